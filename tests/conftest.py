@@ -1,0 +1,50 @@
+"""Shared test set-up: the GPU context, and failing any test that triggers a GPU validation message.
+
+The Vulkan validation layer (apt: vulkan-validationlayers) is switched on through
+$WGPURENDER_VALIDATION before the first adapter is made; its messages arrive on
+the ``wgpu`` logger, and a test during which one arrives fails.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import tempfile
+
+os.environ.setdefault("WGPURENDER_VALIDATION", "1")
+os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
+
+import pytest  # noqa: E402
+import wgpu  # noqa: E402,F401  (imported before logging config: wgpu installs its own logger class)
+
+
+class _ValidationCollector(logging.Handler):
+    def __init__(self) -> None:
+        super().__init__(level=logging.WARNING)
+        self.messages: list[str] = []
+
+    def emit(self, record: logging.LogRecord) -> None:
+        text = record.getMessage()
+        if "VALIDATION" in text or "Validation Error" in text:
+            self.messages.append(text)
+
+
+_collector = _ValidationCollector()
+logging.getLogger("wgpu").addHandler(_collector)
+
+
+@pytest.fixture(autouse=True)
+def no_gpu_validation_errors():
+    """Fail the test if the Vulkan validation layer reported anything while it ran."""
+    _collector.messages.clear()
+    yield
+    if _collector.messages:
+        pytest.fail("GPU validation errors:\n" + "\n".join(_collector.messages[:5]), pytrace=False)
+
+
+@pytest.fixture(scope="session")
+def ctx():
+    """The Vulkan context every GPU test shares (lavapipe in CI)."""
+    from wgpurender.gpu import get_context
+
+    return get_context("Vulkan")

@@ -1,0 +1,27 @@
+"""wgpurender info: the adapters this machine has and what the chosen one offers."""
+
+from __future__ import annotations
+
+from ._args import add_backend_arg
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser("info", help="show adapters, the chosen device, its features and limits")
+    add_backend_arg(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..gpu import _adapters, get_context
+
+    print("adapters:")
+    for a in _adapters():
+        info = a.info
+        print(f"  {info['backend_type']:<8} {info['adapter_type']:<14} {info['device']} ({info['description']})")
+    ctx = get_context(args.backend)
+    print(f"chosen: {ctx.describe()}")
+    print(f"optional features enabled: {', '.join(sorted(ctx.features)) or 'none'}")
+    for name in ("max-texture-dimension-2d", "max-immediate-size", "min-uniform-buffer-offset-alignment",
+                 "max-bind-groups", "max-color-attachments"):
+        print(f"  {name}: {ctx.limit(name)}")
+    return 0

@@ -1,0 +1,42 @@
+"""WGSL shaders live as files in shaders_wgsl/ and are loaded by name.
+
+Compiling one is the analogue of vkCreateShaderModule; wgpu takes WGSL text (or
+SPIR-V) and translates it for the backend through naga.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import wgpu
+
+from .errors import UserError
+
+SHADER_DIR_ENV = "WGPURENDER_SHADERS"
+REPO_ROOT = Path(__file__).resolve().parent.parent
+
+
+def shader_dir() -> Path:
+    """shaders_wgsl/ beside the package (override with $WGPURENDER_SHADERS)."""
+    return Path(os.environ.get(SHADER_DIR_ENV) or REPO_ROOT / "shaders_wgsl")
+
+
+def load_wgsl(name: str) -> str:
+    path = shader_dir() / name
+    if not path.is_file():
+        raise UserError(f"shader {name} not found in {shader_dir()} (set ${SHADER_DIR_ENV} to the shaders_wgsl folder)")
+    return path.read_text(encoding="utf-8")
+
+
+def create_shader_module(device: wgpu.GPUDevice, name: str, code: str | None = None) -> wgpu.GPUShaderModule:
+    """Compile shaders_wgsl/<name> (or ``code`` generated from it) with a readable error.
+
+    naga reports errors with line and column; we keep that text and name the file.
+    """
+    source = load_wgsl(name) if code is None else code
+    try:
+        return device.create_shader_module(label=name, code=source)
+    except wgpu.GPUError as err:
+        detail = str(err).strip()
+        raise UserError(f"shader {name} failed to compile:\n{detail}") from None

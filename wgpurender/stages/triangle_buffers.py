@@ -1,0 +1,48 @@
+"""Course step 2b: the first triangle from a vertex buffer and an index buffer.
+
+The vertex layout below is the course's input layout: one binding (stride 20
+bytes, per-vertex), two attributes (location 0: float32x2 position at offset 0;
+location 1: float32x3 colour at offset 8).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import wgpu
+
+from .base import Stage
+from .triangle import BACKGROUND, TRIANGLE_COLORS, TRIANGLE_POSITIONS, triangle_pipeline
+
+VERTEX_LAYOUT = {
+    "array_stride": 5 * 4,
+    "step_mode": "vertex",
+    "attributes": [
+        {"shader_location": 0, "format": "float32x2", "offset": 0},
+        {"shader_location": 1, "format": "float32x3", "offset": 2 * 4},
+    ],
+}
+INDICES = np.array([0, 1, 2, 0], dtype=np.uint16)  # one pad index: buffer writes are 4-byte multiples
+
+
+class TriangleBuffers(Stage):
+    name = "triangle-buffers"
+    summary = "first triangle from a vertex buffer and an index buffer with an explicit vertex layout"
+    course_step = "2b: vertex + index buffers and the input layout"
+    order = 2.1
+    supports_msaa = True
+
+    def setup(self) -> None:
+        vertices = np.hstack([TRIANGLE_POSITIONS, TRIANGLE_COLORS]).astype(np.float32)
+        # create_buffer_with_data stands for the course's staging upload: wgpu copies
+        # the bytes into device memory for us (a mapped-at-creation buffer).
+        self.vertex_buffer = self.device.create_buffer_with_data(data=vertices, usage=wgpu.BufferUsage.VERTEX)
+        self.index_buffer = self.device.create_buffer_with_data(data=INDICES, usage=wgpu.BufferUsage.INDEX)
+        self.pipeline = triangle_pipeline(self, "triangle_buffers.wgsl", [VERTEX_LAYOUT])
+
+    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+        render_pass = encoder.begin_render_pass(color_attachments=[self.color_attachment(target, BACKGROUND)])
+        render_pass.set_pipeline(self.pipeline)
+        render_pass.set_vertex_buffer(0, self.vertex_buffer)
+        render_pass.set_index_buffer(self.index_buffer, "uint16")
+        render_pass.draw_indexed(3)
+        render_pass.end()
