@@ -147,7 +147,5 @@ def get_context(backend: str | None = None) -> GPUContext:
     limits = {}
     if "immediates" in features:
         limits["max-immediate-size"] = adapter.limits["max-immediate-size"]
-    device = adapter.request_device_sync(
-        label="wgpurender", required_features=sorted(features), required_limits=limits
-    )
+    device = adapter.request_device_sync(label="wgpurender", required_features=sorted(features), required_limits=limits)
     return GPUContext(adapter=adapter, device=device, features=features)

@@ -11,6 +11,8 @@ from PIL import Image
 
 from .errors import UserError
 
+__all__ = ["UserError", "save_png", "load_png", "check_writable", "srgb_encode", "srgb_decode", "to_uint8"]
+
 
 def srgb_encode(linear: np.ndarray) -> np.ndarray:
     """The sRGB transfer function (IEC 61966-2-1), linear [0, 1] -> encoded [0, 1]."""

@@ -28,9 +28,20 @@ def add_backend_arg(parser: argparse.ArgumentParser) -> None:
 def add_render_args(parser: argparse.ArgumentParser) -> None:
     """--size, --msaa, --format, --time: how a stage or scene is rendered."""
     parser.add_argument("--size", type=size_arg, default=None, metavar="WxH", help="image size (default 800x600)")
-    parser.add_argument("--msaa", type=int, default=None, metavar="N", help="MSAA sample count, 1 or 4 (default: the stage's)")
-    parser.add_argument("--format", default=None, metavar="F",
-                        help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float")
-    parser.add_argument("--time", type=float, default=0.0, metavar="T",
-                        help="animation time in seconds, fixed so output is deterministic (default 0)")
+    parser.add_argument(
+        "--msaa", type=int, default=None, metavar="N", help="MSAA sample count, 1 or 4 (default: the stage's)"
+    )
+    parser.add_argument(
+        "--format",
+        default=None,
+        metavar="F",
+        help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float",
+    )
+    parser.add_argument(
+        "--time",
+        type=float,
+        default=0.0,
+        metavar="T",
+        help="animation time in seconds, fixed so output is deterministic (default 0)",
+    )
     add_backend_arg(parser)

@@ -21,7 +21,12 @@ def run(args) -> int:
     ctx = get_context(args.backend)
     print(f"chosen: {ctx.describe()}")
     print(f"optional features enabled: {', '.join(sorted(ctx.features)) or 'none'}")
-    for name in ("max-texture-dimension-2d", "max-immediate-size", "min-uniform-buffer-offset-alignment",
-                 "max-bind-groups", "max-color-attachments"):
+    for name in (
+        "max-texture-dimension-2d",
+        "max-immediate-size",
+        "min-uniform-buffer-offset-alignment",
+        "max-bind-groups",
+        "max-color-attachments",
+    ):
         print(f"  {name}: {ctx.limit(name)}")
     return 0

@@ -9,7 +9,8 @@ def register(subparsers) -> None:
     p = subparsers.add_parser(
         "render",
         help="render a stage or a scene headless to a PNG",
-        description="Render a course stage (see 'wgpurender stages') or a scene file (.toml) offscreen and write a PNG.",
+        description="Render a course stage (see 'wgpurender stages') or a scene file (.toml) offscreen "
+        "and write a PNG.",
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
     p.add_argument("-o", "--output", required=True, metavar="PNG", help="output PNG path (written atomically)")

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("stages", help="list the course stages", description="List every stage with the course step it stands for.")
+    p = subparsers.add_parser(
+        "stages", help="list the course stages", description="List every stage with the course step it stands for."
+    )
     p.set_defaults(func=run)
 
 

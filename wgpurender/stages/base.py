@@ -21,7 +21,9 @@ SUPPORTED_SAMPLE_COUNTS = (1, 4)  # what WebGPU guarantees, and all that lavapip
 def check_sample_count(ctx: GPUContext, msaa: int) -> int:
     if msaa not in SUPPORTED_SAMPLE_COUNTS:
         counts = ", ".join(map(str, SUPPORTED_SAMPLE_COUNTS))
-        raise UserError(f"MSAA {msaa}x is not supported by {ctx.adapter.info['device']}: supported sample counts are {counts}")
+        raise UserError(
+            f"MSAA {msaa}x is not supported by {ctx.adapter.info['device']}: supported sample counts are {counts}"
+        )
     return msaa
 
 
@@ -42,7 +44,10 @@ class Stage:
         self.format = color_format
         self.msaa = check_sample_count(ctx, self.default_msaa if msaa is None else msaa)
         if self.msaa > 1 and not self.supports_msaa:
-            raise UserError(f"stage {self.name!r} does not use MSAA: leave out --msaa (stages with MSAA: triangle, triangle-buffers, msaa, 3d, textured)")
+            from . import all_stages
+
+            with_msaa = ", ".join(name for name, cls in all_stages().items() if cls.supports_msaa)
+            raise UserError(f"stage {self.name!r} does not use MSAA: leave out --msaa (stages with MSAA: {with_msaa})")
         self.size = (0, 0)
         self._msaa_view: wgpu.GPUTextureView | None = None
         self.setup()

@@ -35,11 +35,11 @@ class Offscreen(Stage):
 
     def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
         render_pass = encoder.begin_render_pass(
-            color_attachments=[{"view": self.image.create_view(), "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}]
+            color_attachments=[
+                {"view": self.image.create_view(), "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}
+            ]
         )
         render_pass.set_pipeline(self.pipeline)
         render_pass.draw(3)
         render_pass.end()
-        encoder.copy_texture_to_texture(
-            {"texture": self.image}, {"texture": target}, (self.size[0], self.size[1], 1)
-        )
+        encoder.copy_texture_to_texture({"texture": self.image}, {"texture": target}, (self.size[0], self.size[1], 1))

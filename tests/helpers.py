@@ -1,0 +1,50 @@
+"""Independent references for the tests: rasterisation and interpolation in float64 numpy."""
+
+from __future__ import annotations
+
+import numpy as np
+
+# The standard 4x sample positions of Vulkan/D3D (VkPhysicalDeviceLimits::standardSampleLocations),
+# in pixel units from the pixel's top-left corner.
+STANDARD_4X = np.array([[0.375, 0.125], [0.875, 0.375], [0.125, 0.625], [0.625, 0.875]])
+
+
+def ndc_to_pixels(ndc: np.ndarray, size: tuple[int, int]) -> np.ndarray:
+    """wgpu's viewport transform: NDC x right / y up to pixels x right / y down."""
+    w, h = size
+    ndc = np.asarray(ndc, dtype=np.float64)
+    return np.stack([(ndc[:, 0] + 1) * 0.5 * w, (1 - ndc[:, 1]) * 0.5 * h], axis=1)
+
+
+def barycentric(tri_px: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Barycentric weights (N, 3) of ``points`` (N, 2) in a pixel-space triangle."""
+    a, b, c = tri_px
+    m = np.array([[b[0] - a[0], c[0] - a[0]], [b[1] - a[1], c[1] - a[1]]])
+    uv = np.linalg.solve(m, (np.asarray(points, dtype=np.float64) - a).T).T
+    return np.column_stack([1 - uv.sum(axis=1), uv[:, 0], uv[:, 1]])
+
+
+def pixel_centres(size: tuple[int, int]) -> np.ndarray:
+    w, h = size
+    ys, xs = np.mgrid[0:h, 0:w]
+    return np.stack([xs + 0.5, ys + 0.5], axis=-1).reshape(-1, 2)
+
+
+def inside(tri_px: np.ndarray, points: np.ndarray, eps: float = 0.0) -> np.ndarray:
+    """True where all barycentric weights exceed ``eps`` (eps > 0 keeps away from edges)."""
+    return (barycentric(tri_px, points) > eps).all(axis=1)
+
+
+def edge_distance(tri_px: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Distance in pixels from each point to the nearest of the triangle's three edge lines."""
+    d = np.full(len(points), np.inf)
+    for i in range(3):
+        p, q = tri_px[i], tri_px[(i + 1) % 3]
+        n = np.array([q[1] - p[1], p[0] - q[0]])
+        d = np.minimum(d, np.abs((points - p) @ n) / np.linalg.norm(n))
+    return d
+
+
+def triangle_area(tri_px: np.ndarray) -> float:
+    a, b, c = tri_px
+    return 0.5 * abs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
