@@ -32,3 +32,10 @@ def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgp
         },
     )
     lib.wgpuCommandEncoderClearTexture(encoder._internal, texture._internal, subresources)
+
+
+def timestamp_period_ns(ctx: GPUContext) -> float:
+    """Nanoseconds per timestamp tick (wgpuQueueGetTimestampPeriod; VkPhysicalDeviceLimits::timestampPeriod)."""
+    from wgpu.backends.wgpu_native._ffi import lib
+
+    return float(lib.wgpuQueueGetTimestampPeriod(ctx.queue._internal))

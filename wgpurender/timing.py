@@ -66,6 +66,9 @@ class PassTimer:
         self.max_passes = max_passes
         if not self.enabled:
             return
+        from .native import timestamp_period_ns
+
+        self.period_ns = timestamp_period_ns(ctx)
         count = 2 * max_passes
         self.query_set = ctx.device.create_query_set(type="timestamp", count=count)
         self.resolve_buffer = ctx.device.create_buffer(
@@ -104,9 +107,7 @@ class PassTimer:
         self.read_buffer.map_sync(wgpu.MapMode.READ, 0, 8 * n)
         ticks = np.frombuffer(self.read_buffer.read_mapped(0, 8 * n), dtype=np.uint64).astype(np.float64)
         self.read_buffer.unmap()
-        # WebGPU defines timestamps in nanoseconds; wgpu-native 0.32 exposes no period query, and the
-        # Vulkan timestampPeriod is 1 ns on lavapipe and on NVIDIA's driver, where we measure.
-        period_ns = 1.0
+        period_ns = self.period_ns
         out: dict[str, float] = {}
         for i, label in enumerate(self.labels):
             out[label] = out.get(label, 0.0) + (ticks[2 * i + 1] - ticks[2 * i]) * period_ns / 1e6
