@@ -1,0 +1,150 @@
+// FXAA in the style of Timothy Lottes' FXAA 3.11 "quality" path, written for
+// this project (see wgpurender/post/fxaa.py). Needs post_common.wgsl (prepended).
+//
+// 1. Local contrast: luma of the pixel and its 4 neighbours; below the
+//    threshold the pixel is returned untouched (flat regions stay exact).
+// 2. Sub-pixel aliasing: how far the pixel is from the 3x3 average luma gives a
+//    blend amount for lone bright/dark pixels.
+// 3. Edge direction: horizontal or vertical from second differences, then which
+//    side of the pixel the edge lies on (the steeper neighbour).
+// 4. Edge search: walk along the edge in both directions (bilinear samples half
+//    a pixel off centre, i.e. the average of both sides) until the luma leaves
+//    the edge's average; the nearer end decides how far across the edge to
+//    shift the final sample.
+// 5. One bilinear fetch at the shifted position blends the two sides.
+//
+// Luma is computed on sqrt(linear luminance), an approximation of perceptual
+// lightness: FXAA's thresholds are meant for gamma-encoded values.
+
+@group(0) @binding(1) var src_sampler: sampler;
+
+struct Params {
+    subpix: f32,              // 0 = no sub-pixel blending, 1 = full (0.75 is FXAA's default)
+    edge_threshold: f32,      // minimum contrast relative to the local max luma (0.166)
+    edge_threshold_min: f32,  // absolute minimum contrast, skips dark noise (0.0833)
+};
+@group(0) @binding(2) var<uniform> params: Params;
+
+const SEARCH_STEPS: u32 = 12u;
+
+fn luma_of(c: vec3f) -> f32 {
+    return sqrt(max(dot(c, LUMA_709), 0.0));
+}
+
+fn luma_at(p: vec2i) -> f32 {
+    return luma_of(src_clamped(p).rgb);
+}
+
+fn luma_uv(uv: vec2f) -> f32 {
+    return luma_of(textureSampleLevel(src, src_sampler, uv, 0.0).rgb);
+}
+
+// Distance walked at each search step, in pixels: fine near the pixel, coarse far away.
+fn search_step(i: u32) -> f32 {
+    var steps = array<f32, 12>(1.0, 1.0, 1.0, 1.0, 1.0, 1.5, 2.0, 2.0, 2.0, 2.0, 4.0, 8.0);
+    return steps[i];
+}
+
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+    let p = vec2i(in.position.xy);
+    let centre = src_clamped(p);
+    let inv = 1.0 / vec2f(textureDimensions(src));
+    let uv = in.position.xy * inv;
+
+    // 1. local contrast (texture y grows downwards: north is -y)
+    let l_m = luma_of(centre.rgb);
+    let l_n = luma_at(p + vec2i(0, -1));
+    let l_s = luma_at(p + vec2i(0, 1));
+    let l_w = luma_at(p + vec2i(-1, 0));
+    let l_e = luma_at(p + vec2i(1, 0));
+    let l_max = max(l_m, max(max(l_n, l_s), max(l_w, l_e)));
+    let l_min = min(l_m, min(min(l_n, l_s), min(l_w, l_e)));
+    let range = l_max - l_min;
+    if range < max(params.edge_threshold_min, l_max * params.edge_threshold) {
+        return centre;
+    }
+
+    let l_nw = luma_at(p + vec2i(-1, -1));
+    let l_ne = luma_at(p + vec2i(1, -1));
+    let l_sw = luma_at(p + vec2i(-1, 1));
+    let l_se = luma_at(p + vec2i(1, 1));
+
+    // 2. sub-pixel blend amount: a smoothstep of |3x3 average - centre| / range, squared
+    let average = (2.0 * (l_n + l_s + l_w + l_e) + (l_nw + l_ne + l_sw + l_se)) / 12.0;
+    let sub_a = clamp(abs(average - l_m) / range, 0.0, 1.0);
+    let sub_b = (3.0 - 2.0 * sub_a) * sub_a * sub_a;
+    let sub_offset = sub_b * sub_b * params.subpix;
+
+    // 3. direction. `horizontal`: the edge runs along x, luma changes along y.
+    let change_y = abs(l_nw - 2.0 * l_w + l_sw) + 2.0 * abs(l_n - 2.0 * l_m + l_s) + abs(l_ne - 2.0 * l_e + l_se);
+    let change_x = abs(l_nw - 2.0 * l_n + l_ne) + 2.0 * abs(l_w - 2.0 * l_m + l_e) + abs(l_sw - 2.0 * l_s + l_se);
+    let horizontal = change_y >= change_x;
+    let l_neg = select(l_w, l_n, horizontal);   // neighbour on the negative side across the edge
+    let l_pos = select(l_e, l_s, horizontal);   // neighbour on the positive side
+    let grad_neg = abs(l_neg - l_m);
+    let grad_pos = abs(l_pos - l_m);
+    var across = select(inv.x, inv.y, horizontal);  // one pixel across the edge, in uv
+    var l_edge: f32;                                 // average luma of the two sides
+    if grad_neg >= grad_pos {
+        across = -across;
+        l_edge = 0.5 * (l_neg + l_m);
+    } else {
+        l_edge = 0.5 * (l_pos + l_m);
+    }
+    let grad_scaled = 0.25 * max(grad_neg, grad_pos);
+    let along = select(vec2f(0.0, inv.y), vec2f(inv.x, 0.0), horizontal);
+    var edge_uv = uv;
+    if horizontal {
+        edge_uv.y += 0.5 * across;
+    } else {
+        edge_uv.x += 0.5 * across;
+    }
+
+    // 4. edge search in both directions
+    var uv_a = edge_uv - along;
+    var uv_b = edge_uv + along;
+    var end_a = luma_uv(uv_a) - l_edge;
+    var end_b = luma_uv(uv_b) - l_edge;
+    var done_a = abs(end_a) >= grad_scaled;
+    var done_b = abs(end_b) >= grad_scaled;
+    for (var i = 1u; i < SEARCH_STEPS; i++) {
+        if done_a && done_b {
+            break;
+        }
+        if !done_a {
+            uv_a -= along * search_step(i);
+            end_a = luma_uv(uv_a) - l_edge;
+            done_a = abs(end_a) >= grad_scaled;
+        }
+        if !done_b {
+            uv_b += along * search_step(i);
+            end_b = luma_uv(uv_b) - l_edge;
+            done_b = abs(end_b) >= grad_scaled;
+        }
+    }
+    let dist_a = select(uv.y - uv_a.y, uv.x - uv_a.x, horizontal);
+    let dist_b = select(uv_b.y - uv.y, uv_b.x - uv.x, horizontal);
+    let nearer_a = dist_a < dist_b;
+    let dist = min(dist_a, dist_b);
+    let edge_length = dist_a + dist_b;
+    // Only shift when the nearer end really ends the edge on this pixel's side:
+    // its luma must sit on the other side of the edge average than the centre.
+    let centre_below = l_m < l_edge;
+    let end_below = select(end_b < 0.0, end_a < 0.0, nearer_a);
+    var offset = 0.0;
+    if end_below != centre_below {
+        offset = 0.5 - dist / edge_length;
+    }
+    offset = max(offset, sub_offset);
+
+    // 5. the final, shifted bilinear fetch
+    var final_uv = uv;
+    if horizontal {
+        final_uv.y += offset * across;
+    } else {
+        final_uv.x += offset * across;
+    }
+    let color = textureSampleLevel(src, src_sampler, final_uv, 0.0);
+    return vec4f(color.rgb, centre.a);
+}

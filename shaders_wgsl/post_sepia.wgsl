@@ -1,0 +1,18 @@
+// Sepia: the classic sepia tone matrix, mixed in by `amount`, see wgpurender/post/sepia.py.
+// Needs post_common.wgsl (prepended). No clamp: bright inputs may exceed 1 in an
+// HDR chain; an 8-bit target clamps on write.
+
+struct Params {
+    amount: f32,
+};
+@group(0) @binding(2) var<uniform> params: Params;
+
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+    let texel = src_texel(in.position);
+    let c = texel.rgb;
+    let sepia = vec3f(dot(vec3f(0.393, 0.769, 0.189), c),
+                      dot(vec3f(0.349, 0.686, 0.168), c),
+                      dot(vec3f(0.272, 0.534, 0.131), c));
+    return vec4f(mix(c, sepia, params.amount), texel.a);
+}

@@ -1,0 +1,40 @@
+// Tone mapping: linear HDR (rgba16float) -> linear [0, 1], see wgpurender/post/tonemap.py.
+// Needs post_common.wgsl (prepended).
+
+struct Params {
+    exposure: f32,   // linear multiplier applied before the curve
+    curve: f32,      // the "operator" parameter: 0 = ACES fitted (Hill), 1 = Reinhard
+};
+@group(0) @binding(2) var<uniform> params: Params;
+
+// ACES fitted (Stephen Hill's fit of the ACES RRT + sRGB ODT): input matrix
+// (sRGB -> ACES-ish space, with the RRT saturation folded in), a rational curve,
+// output matrix back to sRGB primaries. Matrices are written row by row; WGSL
+// mat3x3f takes columns, so rows are applied with dot products.
+fn aces_fitted(c: vec3f) -> vec3f {
+    let a = vec3f(dot(vec3f(0.59719, 0.35458, 0.04823), c),
+                  dot(vec3f(0.07600, 0.90834, 0.01566), c),
+                  dot(vec3f(0.02840, 0.13383, 0.83777), c));
+    let b = (a * (a + 0.0245786) - 0.000090537) / (a * (0.983729 * a + 0.4329510) + 0.238081);
+    let o = vec3f(dot(vec3f(1.60475, -0.53108, -0.07367), b),
+                  dot(vec3f(-0.10208, 1.10813, -0.00605), b),
+                  dot(vec3f(-0.00327, -0.07276, 1.07602), b));
+    return clamp(o, vec3f(0.0), vec3f(1.0));
+}
+
+fn reinhard(c: vec3f) -> vec3f {
+    return c / (1.0 + c);
+}
+
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+    let texel = src_texel(in.position);
+    let c = max(texel.rgb, vec3f(0.0)) * params.exposure;
+    var mapped: vec3f;
+    if params.curve < 0.5 {
+        mapped = aces_fitted(c);
+    } else {
+        mapped = reinhard(c);
+    }
+    return vec4f(mapped, texel.a);
+}
