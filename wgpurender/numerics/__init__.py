@@ -1,0 +1,11 @@
+"""Numerically careful building blocks, each with a naive counterpart that the hard-case tests show failing.
+
+- :mod:`.quaternions`: quaternion <-> matrix (Shepperd's branch, stable near 180 degrees), renormalisation, slerp,
+  re-orthonormalisation of drifting rotation matrices.
+- :mod:`.camera_relative`: compose model-view in float64 so float32 never sees world coordinates of 1e6.
+- :mod:`.gpu_eval`: run a small compute shader over storage buffers and read the result back.
+- :mod:`.depth_planes`: the depth-precision scene (two nearly coincident planes) with a chosen depth format / reverse-Z.
+- :mod:`.coverage`: flat-colour triangles at 1x or 4x MSAA, for coverage-vs-area tests.
+
+See docs/numerics.md for what each hard case proves and the tolerances.
+"""
