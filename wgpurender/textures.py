@@ -1,0 +1,448 @@
+"""Textures and samplers: images to RGBA8, upload, a gamma-correct mip chain on the GPU, cached samplers.
+
+Course step 5. The course loads pixels on the CPU, copies them into a host-visible
+staging buffer, records vkCmdCopyBufferToImage with layout transitions around it,
+fills the mip levels with vkCmdBlitImage (one blit and barrier per level) and
+creates a VkSampler. The wgpu analogue of each step is commented where it happens.
+
+Pixel rules (also in the error messages):
+- RGB, RGBA, L, LA, 1-bit, CMYK, YCbCr and palette (P, PA) images become RGBA8 through
+  Pillow's ``convert("RGBA")`` (palette transparency becomes alpha).
+- 16-bit images (Pillow modes I;16*, and I when every value is within 0..65535) keep
+  their high byte: ``v8 = v16 >> 8``. That is the rule Pillow itself applies when it
+  decodes a 16-bit RGB(A) PNG into RGB(A), so a 16-bit grey and a 16-bit colour file
+  holding the same values end up with the same bytes. Float images (mode F) are refused.
+- numpy arrays: (H, W) or (H, W, 1..4); uint8 as is, uint16 by the same >> 8 rule,
+  float arrays in [0, 1] quantised as round(v * 255) with no transfer function applied
+  (the values are stored as they are: give sRGB-encoded floats for an sRGB texture).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+import numpy as np
+import wgpu
+from PIL import Image
+
+from .errors import UserError
+from .gpu import GPUContext
+from .shaders import create_shader_module
+from .targets import padded_bytes_per_row
+
+MAX_DIM_LIMIT = "max-texture-dimension-2d"
+SRGB_FORMAT = "rgba8unorm-srgb"  # colour textures: the sampler decodes to linear
+LINEAR_FORMAT = "rgba8unorm"  # data textures (normal maps, roughness): values used as stored
+TEXTURE_KINDS = {"color": True, "data": False}  # kind -> srgb
+
+_EIGHT_BIT_MODES = {"1", "L", "LA", "La", "P", "PA", "RGB", "RGBA", "RGBa", "RGBX", "CMYK", "YCbCr", "LAB", "HSV"}
+_SIXTEEN_BIT_MODES = {"I;16", "I;16L", "I;16B", "I;16N"}
+
+# ---------------------------------------------------------------------------
+# Pixels: files and arrays to (H, W, 4) uint8
+# ---------------------------------------------------------------------------
+
+
+def _too_large(what: str, width: int, height: int, max_dim: int) -> UserError:
+    return UserError(
+        f"{what} is {width}x{height}, larger than this GPU's {MAX_DIM_LIMIT} limit of {max_dim}: "
+        f"resize it to at most {max_dim} pixels on each side"
+    )
+
+
+def _check_dims(what: str, width: int, height: int, max_dim: int | None) -> None:
+    if width < 1 or height < 1:
+        raise UserError(f"{what} is empty ({width}x{height}): a texture needs at least 1x1 pixels")
+    if max_dim is not None and max(width, height) > max_dim:
+        raise _too_large(what, width, height, max_dim)
+
+
+def _sixteen_to_eight(values: np.ndarray, what: str) -> np.ndarray:
+    """The documented 16 -> 8 bit rule: keep the high byte."""
+    values = np.asarray(values)
+    if values.size and (values.min() < 0 or values.max() > 0xFFFF):
+        raise UserError(f"{what} holds values outside 0..65535: only 8- and 16-bit images can become textures")
+    return (values.astype(np.uint32) >> 8).astype(np.uint8)
+
+
+def _expand_channels(pixels: np.ndarray, what: str) -> np.ndarray:
+    """(H, W) or (H, W, 1..4) uint8 -> (H, W, 4): grey to RGB, missing alpha = 255."""
+    if pixels.ndim == 2:
+        pixels = pixels[..., None]
+    if pixels.ndim != 3 or not 1 <= pixels.shape[2] <= 4:
+        raise UserError(f"{what} has shape {pixels.shape}: expected (H, W) or (H, W, C) with C = 1..4 channels")
+    h, w, c = pixels.shape
+    out = np.empty((h, w, 4), dtype=np.uint8)
+    grey = c in (1, 2)
+    out[..., :3] = pixels[..., :1] if grey else pixels[..., :3]
+    out[..., 3] = pixels[..., c - 1] if c in (2, 4) else 255
+    return out
+
+
+def pixels_from_array(array: np.ndarray, *, max_dim: int | None = None) -> np.ndarray:
+    """A numpy image as (H, W, 4) uint8 by the rules in the module docstring."""
+    what = "texture array"
+    arr = np.asarray(array)
+    if arr.ndim not in (2, 3):
+        raise UserError(f"{what} has shape {arr.shape}: expected (H, W) or (H, W, C) with C = 1..4 channels")
+    _check_dims(what, arr.shape[1], arr.shape[0], max_dim)
+    if arr.dtype == np.uint8:
+        pass
+    elif arr.dtype == np.uint16:
+        arr = _sixteen_to_eight(arr, what)
+    elif np.issubdtype(arr.dtype, np.floating):
+        if not np.all(np.isfinite(arr)) or arr.min() < 0.0 or arr.max() > 1.0:
+            raise UserError(f"{what} of floats must hold finite values in [0, 1] (got {arr.min()}..{arr.max()})")
+        arr = np.round(arr.astype(np.float64) * 255.0).astype(np.uint8)
+    else:
+        raise UserError(f"{what} has dtype {arr.dtype}: use uint8, uint16 or floats in [0, 1]")
+    return np.ascontiguousarray(_expand_channels(arr, what))
+
+
+def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.ndarray:
+    """Read a PNG/JPEG (anything Pillow reads) as (H, W, 4) uint8.
+
+    The size is checked from the header, before any pixel is decoded, so an image
+    too large for the GPU fails fast and without allocating it.
+    """
+    path = Path(path)
+    if not path.is_file():
+        hint = "it is a directory" if path.is_dir() else "check the path"
+        raise UserError(f"texture image not found: {path} ({hint})")
+    try:
+        with Image.open(path) as im:
+            _check_dims(f"image {path}", im.width, im.height, max_dim)
+            im.load()
+            return _image_to_rgba8(im, path)
+    except Image.DecompressionBombError as err:
+        limit = f"; the GPU's {MAX_DIM_LIMIT} is {max_dim}" if max_dim else ""
+        raise UserError(f"image {path} is too large to decode safely ({err}){limit}") from None
+    except (OSError, ValueError, SyntaxError) as err:
+        raise UserError(f"cannot read image {path}: {err} (is it a valid PNG or JPEG file?)") from None
+
+
+def _image_to_rgba8(im: Image.Image, path: Path) -> np.ndarray:
+    mode = im.mode
+    what = f"image {path}"
+    if mode in _EIGHT_BIT_MODES:
+        return np.ascontiguousarray(np.asarray(im.convert("RGBA")))
+    if mode in _SIXTEEN_BIT_MODES or mode == "I":
+        values = np.asarray(im)  # I;16* -> uint16, I -> int32
+        if mode == "I" and values.size and (values.min() < 0 or values.max() > 0xFFFF):
+            raise UserError(f"{what} is a 32-bit integer image with values outside 0..65535: save it as 8 or 16 bit")
+        return _expand_channels(_sixteen_to_eight(values, what), what)
+    raise UserError(
+        f"{what} has pixel mode {mode!r}, which cannot become an RGBA8 texture: save it as 8- or 16-bit RGB(A) or grey"
+    )
+
+
+def image_pixels(source, *, max_dim: int | None = None) -> np.ndarray:
+    """A path or a numpy array as (H, W, 4) uint8."""
+    if isinstance(source, np.ndarray):
+        return pixels_from_array(source, max_dim=max_dim)
+    if isinstance(source, (str, os.PathLike)):
+        return load_image(source, max_dim=max_dim)
+    raise UserError(f"a texture comes from an image path or a numpy array, not {type(source).__name__}")
+
+
+# ---------------------------------------------------------------------------
+# Textures: upload and mip chain
+# ---------------------------------------------------------------------------
+
+
+def mip_level_count(width: int, height: int) -> int:
+    """Levels down to 1x1: floor(log2(max side)) + 1."""
+    return max(width, height).bit_length()
+
+
+def mip_size(width: int, height: int, level: int) -> tuple[int, int]:
+    """Size of a level: each side max(1, side >> level), as Vulkan and WebGPU define it."""
+    return max(1, width >> level), max(1, height >> level)
+
+
+@dataclass(frozen=True)
+class Texture:
+    """An uploaded 2D texture and the view that samples all its levels."""
+
+    texture: wgpu.GPUTexture
+    view: wgpu.GPUTextureView
+    size: tuple[int, int]
+    format: str
+    mip_level_count: int
+
+    @property
+    def srgb(self) -> bool:
+        return self.format.endswith("-srgb")
+
+
+def _srgb_flag(srgb: bool | None, kind: str | None) -> bool:
+    if kind is not None:
+        if kind not in TEXTURE_KINDS:
+            raise UserError(f"unknown texture kind {kind!r}: choose 'color' (sRGB) or 'data' (linear)")
+        if srgb is not None and srgb != TEXTURE_KINDS[kind]:
+            raise UserError(f"texture kind {kind!r} contradicts srgb={srgb}: give one of them")
+        return TEXTURE_KINDS[kind]
+    if srgb is None:
+        raise UserError(
+            "say whether the texture is colour (srgb=True / kind='color') or data (srgb=False / kind='data')"
+        )
+    return bool(srgb)
+
+
+def create_texture(
+    ctx: GPUContext,
+    source,
+    *,
+    srgb: bool | None = None,
+    kind: str | None = None,
+    mips: bool = True,
+    label: str = "texture",
+) -> Texture:
+    """Load or take pixels, upload them, and fill the mip chain on the GPU.
+
+    ``srgb`` (or ``kind``: 'color' / 'data') is required: colour textures use
+    rgba8unorm-srgb so sampling returns linear values; data textures (normal maps,
+    roughness) use rgba8unorm so the bytes are used as they are.
+    """
+    fmt = SRGB_FORMAT if _srgb_flag(srgb, kind) else LINEAR_FORMAT
+    pixels = image_pixels(source, max_dim=ctx.limit(MAX_DIM_LIMIT))
+    height, width = pixels.shape[:2]
+    levels = mip_level_count(width, height) if mips else 1
+    texture = ctx.device.create_texture(
+        label=label,
+        size=(width, height, 1),
+        format=fmt,
+        mip_level_count=levels,
+        usage=wgpu.TextureUsage.TEXTURE_BINDING
+        | wgpu.TextureUsage.COPY_DST
+        | wgpu.TextureUsage.COPY_SRC
+        | wgpu.TextureUsage.RENDER_ATTACHMENT,
+    )
+    upload_level(ctx, texture, pixels, 0)
+    if levels > 1:
+        generate_mipmaps(ctx, texture)
+    view = texture.create_view()
+    return Texture(texture=texture, view=view, size=(width, height), format=fmt, mip_level_count=levels)
+
+
+def upload_level(ctx: GPUContext, texture: wgpu.GPUTexture, pixels: np.ndarray, level: int = 0) -> None:
+    """Copy (H, W, 4) uint8 pixels into one mip level.
+
+    This one call stands for the course's staging upload: create a host-visible
+    staging buffer, map it and memcpy the pixels, transition the image
+    UNDEFINED -> TRANSFER_DST_OPTIMAL with a barrier, vkCmdCopyBufferToImage, then
+    transition TRANSFER_DST_OPTIMAL -> SHADER_READ_ONLY_OPTIMAL before the first
+    sampling. wgpu stages the bytes in its own upload buffer, records the copy on
+    the queue, and tracks the texture's usage so it inserts both transitions itself
+    (the second one when a pass first binds the texture for sampling). Unlike
+    copy_buffer_to_texture, write_texture needs no 256-byte row alignment.
+    """
+    height, width = pixels.shape[:2]
+    ctx.queue.write_texture(
+        {"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
+        np.ascontiguousarray(pixels, dtype=np.uint8),
+        {"offset": 0, "bytes_per_row": width * 4, "rows_per_image": height},
+        (width, height, 1),
+    )
+
+
+@functools.cache
+def _mipmap_pipeline(device: wgpu.GPUDevice, fmt: str) -> tuple[wgpu.GPURenderPipeline, wgpu.GPUBindGroupLayout]:
+    module = create_shader_module(device, "mipmap.wgsl")
+    bgl = device.create_bind_group_layout(
+        label="mipmap-src",
+        entries=[
+            {
+                "binding": 0,
+                "visibility": wgpu.ShaderStage.FRAGMENT,
+                "texture": {"sample_type": "unfilterable-float", "view_dimension": "2d"},
+            }
+        ],
+    )
+    pipeline = device.create_render_pipeline(
+        label=f"mipmap-{fmt}",
+        layout=device.create_pipeline_layout(bind_group_layouts=[bgl]),
+        vertex={"module": module, "entry_point": "vs_main", "buffers": []},
+        primitive={"topology": "triangle-list", "cull_mode": "none"},
+        depth_stencil=None,
+        multisample={"count": 1, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
+        fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": fmt}]},
+    )
+    return pipeline, bgl
+
+
+def _level_view(texture: wgpu.GPUTexture, level: int) -> wgpu.GPUTextureView:
+    return texture.create_view(base_mip_level=level, mip_level_count=1)
+
+
+def generate_mipmaps(ctx: GPUContext, texture: wgpu.GPUTexture) -> None:
+    """Fill levels 1.. of ``texture`` from level 0, gamma-correct, one render pass per level.
+
+    The course does this with vkCmdBlitImage from level i-1 to level i, and between
+    levels a barrier that moves level i-1 from TRANSFER_DST to TRANSFER_SRC (and at
+    the end every level to SHADER_READ_ONLY). Here each level is a render pass that
+    reads the previous level through a one-level view and draws a fullscreen
+    triangle into a one-level view of the next; wgpu sees the previous pass wrote
+    the level this one reads, and inserts the same barrier between the passes.
+
+    mipmap.wgsl averages in linear light: reading an rgba8unorm-srgb view decodes
+    to linear, and writing the -srgb render target encodes again. The filter is an
+    exact area-weighted box: for even sides it is the 2x2 average; for odd sides
+    (non-power-of-two textures, each level max(1, side >> 1)) a destination texel
+    covers 2 + 1/n source texels and the edge ones get fractional weights, so no
+    source texel is dropped (a linear vkCmdBlitImage would blur or skip them).
+    Data textures (rgba8unorm) take the same path and average the stored values.
+    """
+    pipeline, bgl = _mipmap_pipeline(ctx.device, texture.format)
+    encoder = ctx.device.create_command_encoder(label="mipmaps")
+    for level in range(1, texture.mip_level_count):
+        bind_group = ctx.device.create_bind_group(
+            layout=bgl, entries=[{"binding": 0, "resource": _level_view(texture, level - 1)}]
+        )
+        render_pass = encoder.begin_render_pass(
+            label=f"mip-{level}",
+            color_attachments=[
+                {
+                    "view": _level_view(texture, level),
+                    "clear_value": (0, 0, 0, 0),
+                    "load_op": "clear",
+                    "store_op": "store",
+                }
+            ],
+        )
+        render_pass.set_pipeline(pipeline)
+        render_pass.set_bind_group(0, bind_group)
+        render_pass.draw(3)
+        render_pass.end()
+    ctx.queue.submit([encoder.finish()])
+
+
+def read_mip(ctx: GPUContext, texture: wgpu.GPUTexture, level: int) -> np.ndarray:
+    """One mip level of an RGBA8 texture as (h, w, 4) uint8 stored bytes (tests, debugging)."""
+    width, height = mip_size(texture.size[0], texture.size[1], level)
+    pitch = padded_bytes_per_row(width, 4)
+    buffer = ctx.device.create_buffer(
+        size=pitch * height, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label=f"mip-{level}"
+    )
+    encoder = ctx.device.create_command_encoder(label="read-mip")
+    encoder.copy_texture_to_buffer(
+        {"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
+        {"buffer": buffer, "offset": 0, "bytes_per_row": pitch, "rows_per_image": height},
+        (width, height, 1),
+    )
+    ctx.queue.submit([encoder.finish()])
+    buffer.map_sync(wgpu.MapMode.READ)
+    raw = np.frombuffer(buffer.read_mapped(), dtype=np.uint8).reshape(height, pitch)
+    buffer.unmap()
+    buffer.destroy()
+    return raw[:, : width * 4].reshape(height, width, 4).copy()
+
+
+# ---------------------------------------------------------------------------
+# Samplers
+# ---------------------------------------------------------------------------
+
+FILTERS = ("nearest", "linear")
+ADDRESS_MODES = ("repeat", "clamp-to-edge", "mirror-repeat")
+MAX_ANISOTROPY = 16
+
+
+@dataclass(frozen=True)
+class SamplerSpec:
+    """Everything a sampler is made from; hashable, so equal specs share one GPUSampler.
+
+    The VkSamplerCreateInfo analogue. wgpu (like WebGPU) only allows
+    ``max_anisotropy > 1`` when mag, min and mipmap filters are all linear.
+    """
+
+    mag_filter: str = "linear"
+    min_filter: str = "linear"
+    mipmap_filter: str = "linear"
+    address_mode_u: str = "repeat"
+    address_mode_v: str = "repeat"
+    address_mode_w: str = "repeat"
+    max_anisotropy: int = 1
+    lod_min_clamp: float = 0.0
+    lod_max_clamp: float = 32.0
+
+    def __post_init__(self) -> None:
+        for name in ("mag_filter", "min_filter", "mipmap_filter"):
+            value = getattr(self, name)
+            if value not in FILTERS:
+                raise UserError(f"sampler {name} {value!r} is not valid: choose one of {', '.join(FILTERS)}")
+        for name in ("address_mode_u", "address_mode_v", "address_mode_w"):
+            value = getattr(self, name)
+            if value not in ADDRESS_MODES:
+                raise UserError(f"sampler {name} {value!r} is not valid: choose one of {', '.join(ADDRESS_MODES)}")
+        aniso = self.max_anisotropy
+        if isinstance(aniso, bool) or not isinstance(aniso, int) or not 1 <= aniso <= MAX_ANISOTROPY:
+            raise UserError(f"sampler max_anisotropy {aniso!r} is not valid: give an integer 1..{MAX_ANISOTROPY}")
+        if aniso > 1:
+            nearest = [n for n in ("mag_filter", "min_filter", "mipmap_filter") if getattr(self, n) != "linear"]
+            if nearest:
+                raise UserError(
+                    f"sampler max_anisotropy {aniso} needs mag_filter, min_filter and mipmap_filter all 'linear' "
+                    f"(a wgpu rule), but {', '.join(nearest)} {'is' if len(nearest) == 1 else 'are'} 'nearest': "
+                    "use linear filters or max_anisotropy 1"
+                )
+        clamps = (self.lod_min_clamp, self.lod_max_clamp)
+        numbers = all(isinstance(c, (int, float)) and not isinstance(c, bool) and not math.isnan(c) for c in clamps)
+        if not numbers or not 0.0 <= self.lod_min_clamp <= self.lod_max_clamp:
+            raise UserError(
+                f"sampler lod clamps {self.lod_min_clamp}..{self.lod_max_clamp} are not valid: need 0 <= min <= max"
+            )
+
+    @classmethod
+    def from_dict(cls, spec: dict) -> SamplerSpec:
+        """From a scene-file table. Shorthands: ``filter`` sets mag and min, ``address`` sets u, v and w."""
+        known = {f.name for f in fields(cls)} | {"filter", "address"}
+        unknown = sorted(set(spec) - known)
+        if unknown:
+            valid = ", ".join(sorted(known))
+            raise UserError(f"unknown sampler setting(s) {', '.join(unknown)}: valid ones are {valid}")
+        args = {k: v for k, v in spec.items() if k not in ("filter", "address")}
+        if "filter" in spec:
+            args.setdefault("mag_filter", spec["filter"])
+            args.setdefault("min_filter", spec["filter"])
+        if "address" in spec:
+            for axis in "uvw":
+                args.setdefault(f"address_mode_{axis}", spec["address"])
+        return cls(**args)
+
+
+NEAREST = SamplerSpec(mag_filter="nearest", min_filter="nearest", mipmap_filter="nearest")
+BILINEAR = SamplerSpec(mipmap_filter="nearest")
+TRILINEAR = SamplerSpec()
+
+
+def anisotropic(n: int = MAX_ANISOTROPY) -> SamplerSpec:
+    return SamplerSpec(max_anisotropy=n)
+
+
+@functools.cache
+def _cached_sampler(device: wgpu.GPUDevice, spec: SamplerSpec) -> wgpu.GPUSampler:
+    return device.create_sampler(
+        label="sampler",
+        address_mode_u=spec.address_mode_u,
+        address_mode_v=spec.address_mode_v,
+        address_mode_w=spec.address_mode_w,
+        mag_filter=spec.mag_filter,
+        min_filter=spec.min_filter,
+        mipmap_filter=spec.mipmap_filter,
+        lod_min_clamp=spec.lod_min_clamp,
+        lod_max_clamp=spec.lod_max_clamp,
+        max_anisotropy=spec.max_anisotropy,
+    )
+
+
+def create_sampler(ctx: GPUContext, spec: SamplerSpec | dict | None = None) -> wgpu.GPUSampler:
+    """The sampler for a spec (a SamplerSpec or a dict for SamplerSpec.from_dict), one per distinct spec."""
+    if spec is None:
+        spec = TRILINEAR
+    elif isinstance(spec, dict):
+        spec = SamplerSpec.from_dict(spec)
+    return _cached_sampler(ctx.device, spec)
