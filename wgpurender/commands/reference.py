@@ -1,0 +1,36 @@
+"""wgpurender reference: a stage rendered by the raw-Vulkan reference path to a PNG."""
+
+from __future__ import annotations
+
+from ._args import size_arg
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "reference",
+        help="render a stage with the raw-Vulkan reference path (GLSL + vulkan binding) to a PNG",
+        description="Render a course stage with raw Vulkan calls (no wgpu), headless, and write a PNG. "
+        "Needs glslc (apt install glslc); $WGPURENDER_VALIDATION=1 turns on the validation layer.",
+    )
+    p.add_argument("stage", metavar="STAGE", help="a stage name, e.g. clear-pass, triangle, msaa, msaa-post")
+    p.add_argument("-o", "--output", required=True, metavar="PNG", help="output PNG path (written atomically)")
+    p.add_argument("--size", type=size_arg, default=(800, 600), metavar="WxH", help="image size (default 800x600)")
+    p.add_argument("--msaa", type=int, default=None, metavar="N",
+                   help="MSAA sample count, 1 or 4 (default: the stage's)")
+    p.add_argument("--format", default=None, metavar="F",
+                   help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float")
+    p.add_argument("--time", type=float, default=0.0, metavar="T", help="animation time in seconds (default 0)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..imageio import check_writable, save_png
+    from ..vulkan_ref import render_reference
+    from ..vulkan_ref.instance import get_vulkan
+
+    check_writable(args.output)
+    pixels = render_reference(args.stage, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time)
+    path = save_png(args.output, pixels)
+    print(f"wrote {path} ({pixels.shape[1]}x{pixels.shape[0]})")
+    print(f"device: {get_vulkan().describe()}")
+    return 0

@@ -1,0 +1,84 @@
+"""Shader modules from GLSL: shaders_glsl/<name> compiled to SPIR-V by glslc, cached on disk.
+
+The course compiles its shaders offline with glslc (shaderc) and hands the SPIR-V
+words to vkCreateShaderModule. We do the same at run time and keep the result in
+~/.cache/wgpurender/spirv/, keyed by a hash of the source and the compiler flags,
+so that glslc runs once per shader edit (and is not needed at all on a warm cache).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import vulkan as vk
+
+from ..errors import UserError
+
+GLSL_DIR_ENV = "WGPURENDER_GLSL"
+REPO_ROOT = Path(__file__).resolve().parent.parent.parent
+GLSLC_ARGS = ("--target-env=vulkan1.1",)  # 1.1: the negative viewport height is core there (see pipeline.py)
+# glslc reports "path:LINE: error: message"
+_ERROR_LINE = re.compile(r"^(?P<file>.*?):(?P<line>\d+): error: (?P<msg>.*)$", re.MULTILINE)
+
+
+def glsl_dir() -> Path:
+    """shaders_glsl/ beside the package (override with $WGPURENDER_GLSL)."""
+    return Path(os.environ.get(GLSL_DIR_ENV) or REPO_ROOT / "shaders_glsl")
+
+
+def cache_dir() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    return Path(base) / "wgpurender" / "spirv"
+
+
+def glsl_path(name: str) -> Path:
+    path = glsl_dir() / name
+    if not path.is_file():
+        raise UserError(f"GLSL shader {name} not found in {glsl_dir()} "
+                        f"(set ${GLSL_DIR_ENV} to the shaders_glsl folder)")
+    return path
+
+
+def compile_glsl(path: str | os.PathLike) -> bytes:
+    """SPIR-V for a .vert/.frag file: from the cache, else from glslc (then cached)."""
+    path = Path(path)
+    source = path.read_bytes()
+    key = hashlib.sha256(b"\0".join([path.suffix.encode(), *(a.encode() for a in GLSLC_ARGS), source])).hexdigest()
+    cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{key[:24]}.spv"
+    if cached.is_file():
+        return cached.read_bytes()
+    spirv = _run_glslc(path)
+    cached.parent.mkdir(parents=True, exist_ok=True)
+    tmp = cached.with_suffix(f".{os.getpid()}.tmp")
+    tmp.write_bytes(spirv)
+    os.replace(tmp, cached)  # atomic: a parallel run never reads half a file
+    return spirv
+
+
+def _run_glslc(path: Path) -> bytes:
+    glslc = shutil.which("glslc")
+    if glslc is None:
+        raise UserError("glslc not found on PATH: the raw-Vulkan path compiles GLSL with it (apt install glslc)")
+    proc = subprocess.run([glslc, *GLSLC_ARGS, str(path), "-o", "-"], capture_output=True)
+    if proc.returncode != 0:
+        raise UserError(_describe_error(path, proc.stderr.decode(errors="replace")))
+    return proc.stdout
+
+
+def _describe_error(path: Path, stderr: str) -> str:
+    match = _ERROR_LINE.search(stderr)
+    if match is None:
+        return f"GLSL shader {path} failed to compile: {stderr.strip()}"
+    return f"GLSL shader {path} line {match['line']}: {match['msg'].strip()}"
+
+
+def create_shader_module(device, name: str):
+    """vkCreateShaderModule from shaders_glsl/<name>: the create info takes the SPIR-V words (codeSize in bytes)."""
+    spirv = compile_glsl(glsl_path(name))
+    info = vk.VkShaderModuleCreateInfo(codeSize=len(spirv), pCode=spirv)
+    return vk.vkCreateShaderModule(device, info, None)

@@ -1,0 +1,68 @@
+"""Headless rendering on the raw-Vulkan path: a stage into an image, copied back into numpy."""
+
+from __future__ import annotations
+
+from contextlib import ExitStack
+
+import numpy as np
+
+from ..errors import UserError
+from .commands import one_shot
+from .images import FORMATS, create_image
+from .instance import VulkanContext, get_vulkan
+from .readback import buffer_to_pixels, record_copy_to_buffer
+from .stages import get_ref_stage
+from .stages.base import TARGET_USAGE, RefStage
+
+SUPPORTED_SAMPLE_COUNTS = (1, 4)  # the counts the wgpu path offers (all that lavapipe has)
+
+
+def check_msaa(ctx: VulkanContext, cls: type[RefStage], msaa: int | None) -> int:
+    msaa = cls.default_msaa if msaa is None else msaa
+    supported = [n for n in SUPPORTED_SAMPLE_COUNTS if ctx.limits.framebuffer_color_sample_counts & n]
+    if msaa not in supported:
+        raise UserError(f"MSAA {msaa}x is not supported by {ctx.device_name}: supported sample counts are "
+                        f"{', '.join(map(str, supported))}")
+    if msaa > 1 and not cls.supports_msaa:
+        raise UserError(f"stage {cls.name!r} does not use MSAA: leave out --msaa")
+    return msaa
+
+
+def check_size(ctx: VulkanContext, size: tuple[int, int]) -> tuple[int, int]:
+    width, height = (int(v) for v in size)
+    limit = ctx.limits.max_image_dimension_2d
+    if not (0 < width <= limit and 0 < height <= limit):
+        raise UserError(f"image size {width}x{height} out of range: width and height must be 1..{limit}")
+    return width, height
+
+
+def render_reference(
+    stage: str,
+    size: tuple[int, int] = (800, 600),
+    fmt: str | None = None,
+    msaa: int | None = None,
+    t: float = 0.0,
+) -> np.ndarray:
+    """Render one stage with raw Vulkan calls and return its pixels, (H, W, 4).
+
+    uint8 for the 8-bit formats (stored bytes: sRGB-encoded for rgba8unorm-srgb),
+    float16 for rgba16float, like wgpurender.render.render_stage. Everything made
+    for the render is destroyed before returning. With validation on, any
+    validation message raises ValidationFailed.
+    """
+    cls = get_ref_stage(stage)
+    fmt = fmt or cls.default_format
+    if fmt not in FORMATS:
+        raise UserError(f"unsupported colour format {fmt!r}: choose one of {', '.join(FORMATS)}")
+    ctx = get_vulkan()
+    msaa = check_msaa(ctx, cls, msaa)
+    size = check_size(ctx, size)
+    with ExitStack() as owned:
+        ref_stage = cls(ctx, owned, fmt, msaa, size)
+        target = create_image(ctx, owned, size, fmt, TARGET_USAGE)
+        with one_shot(ctx) as cmd:
+            ref_stage.record(cmd, target, t)
+            buffer = record_copy_to_buffer(ctx, owned, cmd, target)
+        pixels = buffer_to_pixels(ctx, buffer, target)
+    ctx.check_validation(f"the raw-Vulkan render of {stage!r}")
+    return pixels

@@ -1,0 +1,38 @@
+"""The raw-Vulkan versions of the course stages, one module each, named like wgpurender/stages/.
+
+Found by scanning this package, like the wgpu stages: a module defines one
+:class:`RefStage` subclass whose ``name`` matches the wgpu stage it mirrors
+(plus stages only this path has so far, e.g. msaa-post).
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib
+import pkgutil
+
+from ...errors import UserError
+from .base import RefStage
+
+
+@functools.cache
+def all_ref_stages() -> dict[str, type[RefStage]]:
+    """Stage classes by name, in course order."""
+    found: list[type[RefStage]] = []
+    for mod in pkgutil.iter_modules(__path__):
+        if mod.name.startswith("_") or mod.name == "base":
+            continue
+        module = importlib.import_module(f"{__name__}.{mod.name}")
+        for obj in vars(module).values():
+            if isinstance(obj, type) and issubclass(obj, RefStage) and obj.name and obj.__module__ == module.__name__:
+                found.append(obj)
+    found.sort(key=lambda cls: cls.order)
+    return {cls.name: cls for cls in found}
+
+
+def get_ref_stage(name: str) -> type[RefStage]:
+    stages = all_ref_stages()
+    if name not in stages:
+        raise UserError(f"unknown stage {name!r} for the raw-Vulkan reference path: "
+                        f"valid stages are {', '.join(stages)}")
+    return stages[name]

@@ -1,0 +1,31 @@
+"""Course step 1b: clear with a render pass: loadOp CLEAR and a VkClearValue, no draw.
+
+The clear happens when the render pass loads the attachment; the pass's final
+layout (TRANSFER_SRC_OPTIMAL) and its dependency to EXTERNAL hand the image to
+the readback copy.
+"""
+
+from __future__ import annotations
+
+import vulkan as vk
+
+from ..images import Image
+from ..renderpass import begin, create_framebuffer, single_pass
+from .base import RefStage
+
+# Exact in every format: k/255 values survive the float -> unorm conversion (same as the wgpu stage).
+CLEAR_COLOR = (51 / 255, 102 / 255, 204 / 255, 1.0)
+
+
+class ClearPass(RefStage):
+    name = "clear-pass"
+    summary = "clear the image through a render pass (loadOp CLEAR) and draw nothing"
+    order = 1.1
+
+    def setup(self) -> None:
+        self.render_pass = single_pass(self.ctx, self.owned, self.format, 1, CLEAR_COLOR)
+
+    def record(self, cmd, target: Image, t: float = 0.0) -> None:
+        framebuffer = create_framebuffer(self.ctx, self.owned, self.render_pass, [target])
+        begin(cmd, self.render_pass, framebuffer, self.size)
+        vk.vkCmdEndRenderPass(cmd)

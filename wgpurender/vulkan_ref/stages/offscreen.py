@@ -1,0 +1,39 @@
+"""Course step 3a: render into an image of our own, then copy it to the output with vkCmdCopyImage.
+
+The render pass leaves the offscreen image in TRANSFER_SRC_OPTIMAL (its
+dependency to EXTERNAL orders the colour writes before the copy's reads); the
+output goes UNDEFINED -> TRANSFER_DST_OPTIMAL for the copy, then
+TRANSFER_DST_OPTIMAL -> TRANSFER_SRC_OPTIMAL for the readback, each by a barrier.
+"""
+
+from __future__ import annotations
+
+import vulkan as vk
+
+from ..images import Image, create_image, subresource_layers, transition
+from .triangle import Triangle
+
+
+class Offscreen(Triangle):
+    name = "offscreen"
+    summary = "render the triangle into an offscreen image, then copy it to the output"
+    order = 3.0
+    supports_msaa = False
+
+    def setup(self) -> None:
+        super().setup()
+        usage = vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSFER_SRC_BIT
+        self.image = create_image(self.ctx, self.owned, self.size, self.format, usage)
+
+    def record(self, cmd, target: Image, t: float = 0.0) -> None:
+        super().record(cmd, self.image, t)
+        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)
+        origin = vk.VkOffset3D(x=0, y=0, z=0)
+        region = vk.VkImageCopy(
+            srcSubresource=subresource_layers(), srcOffset=origin,
+            dstSubresource=subresource_layers(), dstOffset=origin,
+            extent=vk.VkExtent3D(width=self.size[0], height=self.size[1], depth=1),
+        )
+        vk.vkCmdCopyImage(cmd, self.image.handle, vk.VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target.handle,
+                          vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, [region])
+        transition(cmd, target, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, vk.VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)
