@@ -260,6 +260,32 @@ def test_16_bit_images_keep_the_high_byte(tmp_path):
     np.testing.assert_array_equal(pixels_from_array(values), grey)
 
 
+def test_32_bit_integer_images_follow_the_16_bit_rule_or_are_refused(tmp_path):
+    """Pillow mode I (32-bit int, e.g. TIFF): values within 0..65535 use v >> 8, others are refused."""
+    Image.fromarray(np.array([[0, 256, 65535]], np.int32)).save(tmp_path / "i.tiff")
+    np.testing.assert_array_equal(load_image(tmp_path / "i.tiff")[0, :, 0], [0, 1, 255])
+    Image.fromarray(np.array([[0, 70000]], np.int32)).save(tmp_path / "big.tiff")
+    with pytest.raises(UserError, match="outside 0..65535"):
+        load_image(tmp_path / "big.tiff")
+
+
+def test_png_and_jpeg_files_upload_as_textures(ctx, tmp_path):
+    """A PNG round-trips byte-exactly into level 0; a JPEG gives Pillow's decoded bytes (mean error vs source <= 4)."""
+    y, x = np.mgrid[0:24, 0:40]
+    rgb = np.dstack([x * 6, y * 10, 255 - x * 6]).astype(np.uint8)
+    Image.fromarray(rgb).save(tmp_path / "a.png")
+    Image.fromarray(rgb).save(tmp_path / "a.jpg", quality=95)
+    png = create_texture(ctx, tmp_path / "a.png", srgb=True)
+    level0 = read_mip(ctx, png.texture, 0)
+    np.testing.assert_array_equal(level0[..., :3], rgb)
+    assert png.size == (40, 24) and png.mip_level_count == 6
+    jpg = create_texture(ctx, str(tmp_path / "a.jpg"), kind="color")
+    level0 = read_mip(ctx, jpg.texture, 0)
+    with Image.open(tmp_path / "a.jpg") as im:
+        np.testing.assert_array_equal(level0[..., :3], np.asarray(im.convert("RGB")))
+    assert np.abs(level0[..., :3].astype(int) - rgb).mean() <= 4 and (level0[..., 3] == 255).all()
+
+
 def test_float_image_files_are_refused(tmp_path):
     Image.fromarray(np.zeros((2, 2), np.float32)).save(tmp_path / "f.tiff")
     with pytest.raises(UserError, match="pixel mode 'F'"):
