@@ -541,13 +541,15 @@ def _sequence(value, n: int, where: str, tname: str) -> list:
 def roundtrip_wgsl(struct: Struct, template: str) -> tuple[str, list[Leaf]]:
     """A compute shader that copies every scalar of ``struct`` (bitcast to u32) into a flat array.
 
-    ``template`` is shaders_wgsl/uniforms_roundtrip.wgsl; its {{STRUCT}} and
-    {{COPIES}} markers get the struct name and one statement per scalar, and the
-    generated struct declarations are put in front. Returns the source and the
-    scalars in output order: comparing the output words with the values packed
+    ``template`` is shaders_wgsl/uniforms_roundtrip.wgsl; its placeholders get the
+    generated struct declarations, the struct's name and one statement per scalar
+    (filled by :func:`wgpurender.shader_variants.specialise`). Returns the source and
+    the scalars in output order: comparing the output words with the values packed
     checks offsets, padding and matrix orientation against the GPU's own reading.
     """
+    from .shader_variants import specialise
+
     leaves = list(struct.leaves(expr="u"))
     copies = "\n    ".join(f"out_words[{i}] = bitcast<u32>({leaf.expr});" for i, leaf in enumerate(leaves))
-    body = template.replace("{{STRUCT}}", struct.name).replace("{{COPIES}}", copies)
-    return wgsl_structs(struct) + "\n" + body, leaves
+    values = {"STRUCTS": wgsl_structs(struct), "STRUCT": struct.name, "COPIES": copies}
+    return specialise(template, set(), values, name="uniforms_roundtrip.wgsl"), leaves
