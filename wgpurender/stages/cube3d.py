@@ -218,6 +218,12 @@ class Cube3D(Stage):
         )
 
     def shader_source(self) -> str:
+        """cube3d.wgsl with the generated structs and the immediates or uniform-buffer Draw variant.
+
+        Two variants from one file (#if immediates), not an override constant: a module that
+        declares var<immediate> does not compile where the feature is missing, whatever an
+        override says, and the UBO variant needs a third bind group the other must not have.
+        """
         features = {"immediates"} if self.uses_immediates else set()
         structs = wgsl_structs(CAMERA, OBJECT, DRAW)
         return specialise(load_wgsl(SHADER), features, {"STRUCTS": structs}, name=SHADER)
