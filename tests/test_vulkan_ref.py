@@ -37,7 +37,7 @@ def test_stage_names_mirror_the_wgpu_path():
     from wgpurender.stages import all_stages
 
     ref = set(reference_stage_names())
-    for name in {s for s, _, _ in COMPARED}:
+    for name in {s for s, _, _ in COMPARED} | {"3d"}:
         assert name in all_stages() and name in ref
     assert "msaa-post" in ref
 
@@ -56,6 +56,30 @@ def test_matches_wgpu_path(ctx, stage, fmt, msaa):
     wgpu_pixels = render_stage(stage, SIZE, fmt, msaa, 0.0, ctx, frames=1).pixels
     ref_pixels = render_reference(stage, SIZE, fmt, msaa)
     assert ref_pixels.shape == (SIZE[1], SIZE[0], 4) and ref_pixels.dtype == wgpu_pixels.dtype
+    assert np.array_equal(ref_pixels.view(np.uint8), wgpu_pixels.view(np.uint8)), (
+        f"{np.count_nonzero((ref_pixels != wgpu_pixels).any(-1))} pixels differ"
+    )
+
+
+@pytest.mark.parametrize("t", [0.0, 0.7])
+@pytest.mark.parametrize("msaa", [1, 4])
+@pytest.mark.parametrize("fmt", FORMATS)
+def test_3d_matches_wgpu_path(ctx, fmt, msaa, t):
+    """Stage '3d' (depth, culling, two UBOs, dynamic offsets, push constants): exact (threshold 0).
+
+    The scene is the wgpu stage's (read from wgpurender/stages/cube3d.py); the
+    UBO bytes are packed independently (vulkan_ref/ubo.py, hand-written std140
+    offsets) from the same float64 matrices, and the shaders come from different
+    compilers (naga from WGSL, glslc from GLSL). Measured: bit-identical in all 12
+    cases, t = 0 and 0.7: the Lambert term (normalize, dot, max) compiles to the
+    same float32 operations on lavapipe. A wrong std140 offset (e.g. a mat3 packed
+    as 36 bytes) or a wrong winding after the viewport flip changes whole faces.
+    """
+    from wgpurender.render import render_stage
+
+    size = (64, 48)
+    wgpu_pixels = render_stage("3d", size, fmt, msaa, t, ctx, frames=1).pixels
+    ref_pixels = render_reference("3d", size, fmt, msaa, t)
     assert np.array_equal(ref_pixels.view(np.uint8), wgpu_pixels.view(np.uint8)), (
         f"{np.count_nonzero((ref_pixels != wgpu_pixels).any(-1))} pixels differ"
     )

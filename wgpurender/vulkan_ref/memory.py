@@ -64,9 +64,10 @@ def create_buffer(
     return Buffer(handle, memory, size)
 
 
-def write_host_buffer(ctx: VulkanContext, buffer: Buffer, data: np.ndarray) -> None:
+def write_host_buffer(ctx: VulkanContext, buffer: Buffer, data: np.ndarray | bytes) -> None:
     """Map, copy, unmap. HOST_COHERENT memory needs no vkFlushMappedMemoryRanges."""
-    raw = np.ascontiguousarray(data).view(np.uint8).reshape(-1)
+    raw = np.frombuffer(data, np.uint8) if isinstance(data, bytes) else np.ascontiguousarray(data).view(np.uint8)
+    raw = raw.reshape(-1)
     mapped = vk.vkMapMemory(ctx.device, buffer.memory, 0, raw.nbytes, 0)
     vk.ffi.memmove(mapped, raw, raw.nbytes)
     vk.vkUnmapMemory(ctx.device, buffer.memory)

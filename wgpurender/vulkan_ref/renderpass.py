@@ -23,12 +23,15 @@ from dataclasses import dataclass
 
 import vulkan as vk
 
-from .images import Image, vk_format
+from .images import DEPTH_FORMAT, Image, vk_format
 from .instance import VulkanContext
 
 COLOR_OPTIMAL = vk.VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
 COLOR_STAGE = vk.VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT
 COLOR_WRITE = vk.VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT
+DEPTH_OPTIMAL = vk.VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+DEPTH_STAGES = vk.VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | vk.VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT
+DEPTH_WRITE = vk.VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT
 
 
 @dataclass
@@ -61,10 +64,11 @@ def dependency(src: int, dst: int, src_stage: int, src_access: int, dst_stage: i
     )
 
 
-def into_pass() -> object:
-    """EXTERNAL -> 0: the layout transition from UNDEFINED and the first colour writes wait for
-    earlier colour output (none in a fresh image, but this is the dependency a reused image needs)."""
-    return dependency(vk.VK_SUBPASS_EXTERNAL, 0, COLOR_STAGE, 0, COLOR_STAGE, COLOR_WRITE)
+def into_pass(depth: bool = False) -> object:
+    """EXTERNAL -> 0: the layout transition from UNDEFINED and the first colour (and depth) writes wait
+    for earlier output (none in a fresh image, but this is the dependency a reused image needs)."""
+    stages = COLOR_STAGE | (DEPTH_STAGES if depth else 0)
+    return dependency(vk.VK_SUBPASS_EXTERNAL, 0, stages, 0, stages, COLOR_WRITE | (DEPTH_WRITE if depth else 0))
 
 
 def out_to_transfer(last: int) -> object:
@@ -86,11 +90,12 @@ def clear_color(rgba) -> object:
 
 
 def single_pass(ctx: VulkanContext, owned: ExitStack, fmt: str, samples: int, clear_rgba,
-                final_layout: int = vk.VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) -> RenderPass:
+                final_layout: int = vk.VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth: bool = False) -> RenderPass:
     """One subpass drawing into attachment 0; with MSAA, attachment 0 is the multisampled image and
     attachment 1 the single-sample image it is resolved into (pResolveAttachments) at the end.
+    With ``depth``, a D32 depth attachment (same sample count) comes last, cleared to 1.0.
 
-    The multisampled attachment's storeOp is DONT_CARE: only its resolve is kept.
+    The multisampled attachment's storeOp is DONT_CARE: only its resolve is kept; so is depth's.
     """
     vkf = vk_format(fmt)
     load, store = vk.VK_ATTACHMENT_LOAD_OP_CLEAR, vk.VK_ATTACHMENT_STORE_OP_STORE
@@ -108,8 +113,14 @@ def single_pass(ctx: VulkanContext, owned: ExitStack, fmt: str, samples: int, cl
         ]
         subpass = vk.VkSubpassDescription(pipelineBindPoint=vk.VK_PIPELINE_BIND_POINT_GRAPHICS,
                                           pColorAttachments=[color_ref], pResolveAttachments=[resolve_ref])
-    deps = [into_pass(), out_to_transfer(0)]
-    return create_render_pass(ctx, owned, attachments, [subpass], deps, [clear_color(clear_rgba)] * len(attachments))
+    clears = [clear_color(clear_rgba)] * len(attachments)
+    if depth:
+        depth_ref = ref(len(attachments), DEPTH_OPTIMAL)
+        attachments.append(attachment(DEPTH_FORMAT, samples, load, dont, DEPTH_OPTIMAL))
+        subpass.pDepthStencilAttachment = vk.ffi.addressof(depth_ref)
+        clears.append(vk.VkClearValue(depthStencil=vk.VkClearDepthStencilValue(depth=1.0, stencil=0)))
+    deps = [into_pass(depth), out_to_transfer(0)]
+    return create_render_pass(ctx, owned, attachments, [subpass], deps, clears)
 
 
 def msaa_post_pass(ctx: VulkanContext, owned: ExitStack, scene_fmt: str, out_fmt: str, samples: int,
