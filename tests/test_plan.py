@@ -1,0 +1,256 @@
+"""The render plan: what is built for a scene, and, as important, what is not.
+
+Each test writes a small scene (with its own tiny model and texture files in
+tmp_path) and checks the plan's attachments, passes, variants and reasons.
+No GPU is used: the plan is pure data.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from wgpurender.errors import UserError
+from wgpurender.plan import build_plan, explain_scene, main, plan_scene_file
+from wgpurender.scene import load_scene
+
+REPO = Path(__file__).resolve().parent.parent
+PNG_1X1 = bytes.fromhex(
+    "89504e470d0a1a0a0000000d4948445200000001000000010806000000"
+    "1f15c4890000000d49444154789c63f8cfc0f01f0005000201a5f2e1f30000000049454e44ae426082"
+)
+
+HEAD = """
+[camera]
+eye = [0, 1, 3]
+target = [0, 0, 0]
+
+[materials.brick]
+albedo_map = "albedo.png"
+normal_map = "normal.png"
+roughness_map = "rough.png"
+
+[materials.plain]
+albedo_color = [0.5, 0.5, 0.5]
+
+[materials.flat]
+albedo_map = "albedo.png"
+normal_map = "normal.png"
+unlit = true
+"""
+
+SUN = '\n[[lights]]\ntype = "directional"\ndirection = [0, -1, 0]\n'
+BULB = '\n[[lights]]\ntype = "point"\nposition = [0, 2, 0]\n'
+
+
+def model(material: str) -> str:
+    return f'\n[[models]]\npath = "tri.obj"\nmaterial = "{material}"\n'
+
+
+def render(msaa: int = 4, hdr: bool = True, fmt: str = "rgba8unorm-srgb") -> str:
+    return f'\n[render]\nsize = [64, 48]\nmsaa = {msaa}\nhdr = {str(hdr).lower()}\noutput_format = "{fmt}"\n'
+
+
+def post(*effects: str) -> str:
+    return "".join(f'\n[[post]]\neffect = "{e}"\n' for e in effects)
+
+
+@pytest.fixture()
+def make(tmp_path: Path):
+    (tmp_path / "tri.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    for name in ("albedo", "normal", "rough"):
+        (tmp_path / f"{name}.png").write_bytes(PNG_1X1)
+
+    def _make(body: str, **overrides):
+        path = tmp_path / "scene.toml"
+        path.write_text(textwrap.dedent(HEAD + body))
+        return build_plan(load_scene(path), **overrides)
+
+    return _make
+
+
+def names(plan) -> list[str]:
+    return [a.name for a in plan.attachments]
+
+
+def test_full_scene(make):
+    plan = make(model("brick") + model("brick") + SUN + BULB + render(4, True) + post("tonemap", "fxaa"))
+    assert names(plan) == ["msaa_color", "depth", "scene_color", "post_a", "output"]
+    msaa, depth, scene, temp, out = plan.attachments
+    assert (msaa.format, msaa.sample_count) == ("rgba16float", 4)
+    assert (depth.format, depth.sample_count) == ("depth32float", 4)
+    assert (scene.format, scene.sample_count) == ("rgba16float", 1)
+    assert (out.format, out.size) == ("rgba8unorm-srgb", (64, 48))
+    sp = plan.scene_pass
+    assert (sp.color, sp.resolve_target, sp.depth) == ("msaa_color", "scene_color", "depth")
+    assert [(p.effect, p.input, p.output) for p in plan.post_passes] == [
+        ("tonemap", "scene_color", "post_a"), ("fxaa", "post_a", "output")]
+    # both models share one material: one variant, one pipeline
+    (variant,) = plan.variants
+    assert variant.features == {"albedo_map", "normal_map", "roughness_map", "lighting",
+                                "directional_lights:1", "point_lights:1"}
+    assert variant.flags == {"albedo_map", "normal_map", "roughness_map", "lighting"}
+    assert variant.count("point_lights") == 1 and variant.count("directional_lights") == 1
+    assert variant.key == "albedo_map+directional_lights:1+lighting+normal_map+point_lights:1+roughness_map"
+    assert variant.vertex_attributes == ("position", "normal", "uv", "tangent")
+    (pipeline,) = plan.pipelines
+    assert (pipeline.color_format, pipeline.sample_count, pipeline.depth_format) == ("rgba16float", 4, "depth32float")
+    assert [d.pipeline_key for d in sp.draws] == [pipeline.key, pipeline.key]
+    assert plan.post_pipelines == (("tonemap", "rgba16float"), ("fxaa", "rgba8unorm-srgb"))
+    assert {(t.path.name, t.format) for t in plan.textures} == {
+        ("albedo.png", "rgba8unorm-srgb"), ("normal.png", "rgba8unorm"), ("rough.png", "rgba8unorm")}
+    (sampler,) = plan.samplers
+    assert sampler.spec.mipmap_filter == "linear"
+
+    text = plan.explain()
+    assert "normal_map: material 'brick' has normal_map = 'normal.png'" in text
+    assert "lighting: material 'brick' is lit" in text
+    assert "msaa_color: rgba16float, 64x48, 4 samples" in text
+    assert "render.hdr = true" in text and "render.msaa = 4" in text
+    assert "point_lights:1: material 'brick' is lit and the scene has 1 point light(s): lights[1]" in text
+
+
+def test_unlit_scene_has_no_lighting(make):
+    plan = make(model("plain").replace('"plain"', '{ albedo_color = [1, 0, 0], unlit = true }') + model("flat")
+                + SUN + render(1, False))
+    for v in plan.variants:
+        assert "lighting" not in v.features
+        assert not any(f.endswith(("_lights:1",)) for f in v.features)
+        assert "normal" not in v.vertex_attributes and "tangent" not in v.vertex_attributes
+        assert "normal_map" not in v.features
+    assert {v.key for v in plan.variants} == {"base", "albedo_map"}
+    assert any("normal_map ignored because unlit = true" in n for n in plan.notes)
+    text = plan.explain()
+    assert "      lighting:" not in text and "vertex attributes: position, uv\n" in text
+
+
+def test_mixed_lit_and_unlit_materials_get_separate_variants(make):
+    plan = make(model("brick") + model("flat") + BULB + render())
+    brick, flat = (plan.variant(d.variant_key) for d in plan.scene_pass.draws)
+    assert "lighting" in brick.features and "lighting" not in flat.features
+    assert len(plan.pipelines) == 2
+
+
+def test_msaa_1_has_no_multisampled_attachment_or_resolve(make):
+    plan = make(model("brick") + SUN + render(msaa=1) + post("tonemap"))
+    assert "msaa_color" not in names(plan)
+    assert all(a.sample_count == 1 for a in plan.attachments)
+    sp = plan.scene_pass
+    assert (sp.color, sp.resolve_target) == ("scene_color", None)
+    assert plan.pipelines[0].sample_count == 1
+    assert "resolved" not in plan.explain()
+    # the same scene with --msaa 4 on the command line
+    plan4 = make(model("brick") + SUN + render(msaa=1) + post("tonemap"), msaa=4)
+    assert plan4.attachment("msaa_color").sample_count == 4
+
+
+def test_empty_chain_draws_straight_to_output(make):
+    plan = make(model("brick") + SUN + render(msaa=4, hdr=False))
+    assert plan.post_passes == () and plan.post_pipelines == ()
+    assert names(plan) == ["msaa_color", "depth", "output"]
+    assert plan.scene_pass.resolve_target == "output"
+    assert plan.attachment("msaa_color").format == "rgba8unorm-srgb"  # resolve needs matching formats
+    plan1 = make(model("brick") + SUN + render(msaa=1, hdr=False))
+    assert names(plan1) == ["depth", "output"] and plan1.scene_pass.color == "output"
+    assert "post pipelines: none" in plan1.explain()
+
+
+def test_empty_chain_with_hdr_notes_the_unused_range(make):
+    plan = make(model("plain") + render(msaa=1, hdr=True))
+    assert "rgba16float" not in {a.format for a in plan.attachments}
+    assert any("no post effect reads an HDR image" in n for n in plan.notes)
+
+
+def test_no_normal_maps_no_tangents(make):
+    plan = make(model("plain") + SUN + BULB + render() + post("fxaa"))
+    assert "tangent" not in plan.vertex_attributes
+    assert not any("normal_map" in f for f in plan.features)
+    assert plan.vertex_attributes == {"position", "normal"}  # lit, but no texture: no uv either
+    assert plan.textures == () and plan.samplers == ()
+
+
+def test_no_hdr_target_without_hdr_or_tonemapping(make):
+    plan = make(model("plain") + SUN + render(msaa=4, hdr=False) + post("fxaa", "vignette"))
+    assert "rgba16float" not in {a.format for a in plan.attachments}
+    assert plan.attachment("scene_color").format == "rgba8unorm-srgb"
+    assert plan.attachment("post_a").format == "rgba8unorm-srgb"
+    # tone mapping needs an HDR input even when hdr = false
+    plan = make(model("plain") + SUN + render(msaa=1, hdr=False) + post("tonemap"))
+    scene = plan.attachment("scene_color")
+    assert scene.format == "rgba16float" and "tonemap maps HDR" in scene.reasons[0]
+
+
+def test_plain_unorm_output_gets_explicit_encoding(make):
+    plan = make(model("plain") + render(msaa=1, fmt="rgba8unorm") + post("tonemap"))
+    assert [p.effect for p in plan.post_passes] == ["tonemap", "srgb"]
+    assert "does not encode sRGB: an srgb pass is appended" in plan.post_passes[-1].reason
+    assert "srgb_output" not in plan.features
+    # an explicit srgb last is not doubled; an -srgb output needs no pass
+    plan = make(model("plain") + render(fmt="rgba8unorm") + post("tonemap", "srgb"))
+    assert [p.effect for p in plan.post_passes] == ["tonemap", "srgb"]
+    plan = make(model("plain") + render() + post("tonemap"))
+    assert [p.effect for p in plan.post_passes] == ["tonemap"]
+    # with no chain the scene shader encodes
+    plan = make(model("plain") + render(fmt="rgba8unorm"))
+    assert plan.post_passes == () and all("srgb_output" in v.flags for v in plan.variants)
+
+
+def test_three_effects_ping_pong(make):
+    plan = make(model("plain") + render() + post("tonemap", "sharpen", "vignette"))
+    assert [(p.input, p.output) for p in plan.post_passes] == [
+        ("scene_color", "post_a"), ("post_a", "post_b"), ("post_b", "output")]
+    assert names(plan).count("post_a") == 1 and "post_b" in names(plan)
+
+
+def test_format_override_changes_output_only(make):
+    plan = make(model("plain") + render() + post("tonemap"), output_format="rgba16float", size=(10, 20))
+    assert plan.attachment("output").format == "rgba16float" and plan.size == (10, 20)
+    assert "(overridden)" in plan.explain()
+    with pytest.raises(UserError, match="unsupported output format"):
+        make(model("plain"), output_format="rgb565")
+    with pytest.raises(UserError, match="MSAA 8x is not supported"):
+        make(model("plain"), msaa=8)
+
+
+def test_no_models_no_depth_no_pipelines(make):
+    plan = make(render(msaa=1))
+    assert names(plan) == ["output"] and plan.pipelines == () and plan.scene_pass.depth is None
+
+
+def test_plan_is_pure_data(make):
+    """No GPU object anywhere in the plan: every value is a dataclass, tuple, str, number, Path or SamplerSpec."""
+    plan = make(model("brick") + model("flat") + SUN + render() + post("tonemap", "fxaa"))
+
+    def walk(value):
+        if dataclasses.is_dataclass(value):
+            for f in dataclasses.fields(value):
+                yield from walk(getattr(value, f.name))
+        elif isinstance(value, (tuple, list, frozenset, set)):
+            for v in value:
+                yield from walk(v)
+        else:
+            yield value
+
+    leaves = list(walk(plan))
+    assert leaves and not [v for v in leaves if type(v).__module__.startswith("wgpu")]
+    assert dataclasses.is_dataclass(plan) and type(plan).__dataclass_params__.frozen
+
+
+def test_example_scenes_explain(capsys):
+    scenes = sorted((REPO / "assets" / "scenes").glob("*.toml"))
+    if not scenes or not (REPO / "assets" / "models" / "brick_torus.glb").is_file():
+        pytest.skip("example scenes or assets not present")
+    for path in scenes:
+        assert "passes:" in explain_scene(path)
+    unlit = plan_scene_file(REPO / "assets" / "scenes" / "unlit.toml")
+    assert [v.key for v in unlit.variants] == ["base"] and unlit.post_passes == ()
+    assert main([str(REPO / "assets" / "scenes" / "brick.toml")]) == 0
+    assert "tonemap" in capsys.readouterr().out
+
+
+def test_main_reports_user_errors(tmp_path, capsys):
+    assert main([str(tmp_path / "missing.toml")]) == 2
+    assert "scene file not found" in capsys.readouterr().err
