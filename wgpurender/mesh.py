@@ -271,7 +271,8 @@ def _load_scene(path: Path, file_type: str, **kwargs):
     except UserError:
         raise
     except Exception as err:  # trimesh raises many types for bad files; the user needs only the file and reason
-        reason = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        detail = str(err).strip().splitlines()[0] if str(err).strip() else ""
+        reason = f"{type(err).__name__}: {detail}" if detail else type(err).__name__
         raise UserError(f"cannot read {path} as {file_type.upper()}: the file is malformed ({reason})") from None
 
 
@@ -336,8 +337,8 @@ def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | Non
 
 
 def _place(transform, vertices, faces, normals, uvs, tangents) -> _Part:
-    """Apply a node transform: positions by the matrix, normals by its cofactor, tangent xyz by its 3x3 with w
-    flipped and winding reversed when the transform mirrors."""
+    """Apply a node transform: positions by the matrix, normals by the inverse transpose of its 3x3 (renormalised
+    later), tangent xyz by the 3x3; when the transform mirrors (det < 0) w is negated and the winding reversed."""
     positions = np.asarray(vertices, np.float64)
     faces = np.asarray(faces, np.int64)
     if not np.allclose(transform, np.eye(4)):
@@ -345,7 +346,7 @@ def _place(transform, vertices, faces, normals, uvs, tangents) -> _Part:
         det = np.linalg.det(m)
         positions = positions @ m.T + transform[:3, 3]
         if normals is not None:
-            normals = normals @ (np.linalg.inv(m) * np.sign(det) * abs(det)).T  # cofactor: stays outward
+            normals = normals @ np.linalg.inv(m)  # rows: (M^-T n)^T, the inverse transpose keeps them outward
         if tangents is not None:
             xyz = np.asarray(tangents[:, :3], np.float64) @ m.T
             tangents = np.concatenate([xyz, np.asarray(tangents[:, 3:], np.float64) * np.sign(det)], axis=1)
