@@ -35,6 +35,10 @@ test: setup
 	$(BIN)/ruff check .
 	$(BIN)/pytest -q
 
+# Re-render assets/reference/*.png with the raw-Vulkan path (validation on); never with the wgpu path.
+references: setup
+	WGPURENDER_VALIDATION=1 $(BIN)/python -m wgpurender.vulkan_ref.make_references
+
 lint: setup
 	$(BIN)/ruff check .
 

@@ -33,6 +33,12 @@ def to_uint8(pixels: np.ndarray) -> np.ndarray:
     return np.round(srgb_encode(pixels) * 255.0).astype(np.uint8)
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def check_writable(path: str | os.PathLike) -> Path:
     """Fail early, before any rendering, when an output file cannot be written."""
     path = Path(path)
@@ -57,6 +63,7 @@ def save_png(path: str | os.PathLike, pixels: np.ndarray) -> Path:
     try:
         with os.fdopen(fd, "wb") as f:
             image.save(f, format="PNG")
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files; give the usual permissions
         os.replace(tmp, path)
     except OSError as err:
         Path(tmp).unlink(missing_ok=True)
