@@ -211,6 +211,45 @@ def test_gltf_node_transform_applies_to_positions_normals_tangents(tmp_path):
     assert np.all(np.einsum("ij,ij->i", face_n, mesh.normals[mesh.indices[:, 0]]) > 0)
 
 
+def test_gltf_several_meshes_primitives_and_instances(tmp_path):
+    """Mesh "a" = a triangle primitive + a POINTS primitive (trimesh makes a point cloud of it: skipped), mesh "b" =
+    one triangle primitive placed by two nodes (translated by +10 and +20 in x). Each placed part must keep its own
+    file uvs (a: QUAD_UV, b: QUAD_UV / 2): 4 + 4 + 4 vertices, positions offset per node."""
+    data, views, accessors = b"", [], []
+
+    def add(array, component=5126):
+        nonlocal data
+        array = np.ascontiguousarray(array, np.uint16 if component == 5123 else np.float32)
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": array.nbytes})
+        data += array.tobytes() + b"\0" * (-array.nbytes % 4)
+        kind = "SCALAR" if array.ndim == 1 else f"VEC{array.shape[1]}"
+        accessors.append({"bufferView": len(views) - 1, "componentType": component, "count": len(array), "type": kind})
+        if kind == "VEC3":
+            accessors[-1].update(min=array.min(0).tolist(), max=array.max(0).tolist())
+        return len(accessors) - 1
+
+    pos, idx = add(QUAD_POS), add(QUAD_IDX, 5123)
+    tri_a = {"attributes": {"POSITION": pos, "TEXCOORD_0": add(QUAD_UV)}, "indices": idx}
+    points = {"attributes": {"POSITION": add(QUAD_POS + 5)}, "mode": 0}
+    tri_b = {"attributes": {"POSITION": pos, "TEXCOORD_0": add(QUAD_UV / 2)}, "indices": idx}
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+           "nodes": [{"mesh": 0}, {"mesh": 1, "translation": [10, 0, 0]}, {"mesh": 1, "translation": [20, 0, 0]}],
+           "meshes": [{"name": "a", "primitives": [tri_a, points]}, {"name": "b", "primitives": [tri_b]}],
+           "buffers": [{"byteLength": len(data),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+           "bufferViews": views, "accessors": accessors}
+    (tmp_path / "multi.gltf").write_text(json.dumps(doc))
+    mesh = load_mesh(tmp_path / "multi.gltf")
+    assert mesh.vertex_count == 12 and mesh.triangle_count == 6
+    for offset in (0.0, 10.0, 20.0):
+        part = np.flatnonzero(np.abs(mesh.positions[:, 0] - offset - 0.5) < 1)
+        assert len(part) == 4
+        local = mesh.positions[part] - [offset, 0, 0]
+        k = np.argmin(np.linalg.norm(local[:, None] - QUAD_POS[None], axis=2), axis=1)  # which file vertex
+        np.testing.assert_allclose(local, QUAD_POS[k], atol=1e-6)
+        np.testing.assert_array_equal(mesh.uvs[part], QUAD_UV[k] if offset == 0 else QUAD_UV[k] / 2)
+
+
 # ------------------------------------------------------------------ indices, normals
 
 

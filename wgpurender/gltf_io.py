@@ -34,7 +34,7 @@ COMPONENT_DTYPES = {
     5126: np.float32,
 }
 TYPE_WIDTHS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
-TRIANGLE_MODES = (4, 5)  # TRIANGLES, TRIANGLE_STRIP: the modes trimesh turns into a Trimesh
+TRIMESH_MODES = (0, 1, 4, 5)  # POINTS, LINES, TRIANGLES, TRIANGLE_STRIP: the modes trimesh makes a geometry of
 
 TEXTURE_ROLES = {
     # role -> (where the textureInfo lives in a material, is the image sRGB-encoded)
@@ -134,12 +134,12 @@ def read_accessor(doc: GltfDocument, index: int) -> np.ndarray:
     return out
 
 
-def triangle_primitives(doc: GltfDocument) -> list[tuple[int, int, dict]]:
-    """(mesh index, primitive index, primitive) of every triangle primitive, in the order trimesh loads them."""
+def loaded_primitives(doc: GltfDocument) -> list[tuple[int, int, dict]]:
+    """(mesh index, primitive index, primitive) of every primitive trimesh makes a geometry of, in its order."""
     found = []
     for mi, mesh in enumerate(doc.json.get("meshes", [])):
         for pi, prim in enumerate(mesh.get("primitives", [])):
-            if prim.get("mode", 4) in TRIANGLE_MODES:
+            if prim.get("mode", 4) in TRIMESH_MODES:
                 found.append((mi, pi, prim))
     return found
 

@@ -311,11 +311,12 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
 def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | None]:
     doc = gltf_io.read_document(path)
     scene = _load_scene(path, file_type, skip_materials=True)
-    primitives = gltf_io.triangle_primitives(doc)
+    primitives = gltf_io.loaded_primitives(doc)
     names = list(scene.geometry.keys())
     if len(names) != len(primitives):
-        raise UserError(f"cannot read {path}: trimesh found {len(names)} meshes but the file has {len(primitives)} "
-                        "triangle primitives; re-export the file (e.g. from Blender as glTF 2.0)")
+        raise UserError(f"cannot read {path}: trimesh found {len(names)} geometries but the file has "
+                        f"{len(primitives)} point, line and triangle primitives; re-export the file "
+                        "(e.g. from Blender as glTF 2.0)")
     by_name = dict(zip(names, primitives, strict=True))
     parts, material = [], None
     for transform, name, geom in _placed(scene):
