@@ -394,3 +394,31 @@ def test_committed_obj_asset_loads_with_its_textures():
     assert set(mesh.material.textures) == {"base_color", "normal", "roughness"}
     for ref in mesh.material.textures.values():
         assert ref.load().shape == (512, 512, 4)
+
+
+def test_glb_embedded_texture_is_returned_as_bytes(tmp_path):
+    """A GLB whose base-colour image lives in a bufferView (no file): the TextureRef carries the PNG bytes and
+    load() decodes them to the exact pixels written (2x3 RGBA)."""
+    import io
+
+    from PIL import Image
+
+    pixels = np.arange(2 * 3 * 4, dtype=np.uint8).reshape(2, 3, 4) * 10
+    png = io.BytesIO()
+    Image.fromarray(pixels, "RGBA").save(png, format="PNG")
+    path = write_gltf(tmp_path / "tex.glb", {"POSITION": QUAD_POS, "TEXCOORD_0": QUAD_UV}, QUAD_IDX, material=True)
+    raw = path.read_bytes()
+    json_len = struct.unpack_from("<I", raw, 12)[0]
+    doc = json.loads(raw[20:20 + json_len])
+    binary = raw[20 + json_len + 8:]
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(png.getvalue())})
+    binary += png.getvalue() + b"\0" * (-len(png.getvalue()) % 4)
+    doc["buffers"][0]["byteLength"] = len(binary)
+    doc["images"][0] = {"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"}
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + binary
+    path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+    ref = load_mesh(path).material.textures["base_color"]
+    assert ref.path is None and ref.data == png.getvalue() and ref.srgb
+    np.testing.assert_array_equal(ref.load(), pixels)
