@@ -13,7 +13,7 @@ import numpy as np
 import wgpu
 
 from ..gpu import GPUContext
-from ..shaders import create_shader_module
+from ..shaders import create_shader_module, load_wgsl
 
 WORKGROUP_SIZE = 64  # the @workgroup_size of every numerics_*.wgsl compute entry point
 
@@ -26,8 +26,12 @@ def run_compute(
     *,
     constants: Mapping[str, float] | None = None,
     entry_point: str = "main",
+    prelude: Sequence[str] = (),
 ) -> np.ndarray:
-    """Run ``shaders_wgsl/<shader>`` over float32 ``inputs``; returns the (out_count, 4) float32 output."""
+    """Run ``shaders_wgsl/<shader>`` over float32 ``inputs``; returns the (out_count, 4) float32 output.
+
+    ``prelude``: shader files whose text goes before the shader's own (shared functions).
+    """
     device = ctx.device
     stage = wgpu.ShaderStage.COMPUTE
     entries = [{"binding": i, "visibility": stage, "buffer": {"type": "read-only-storage"}} for i in range(len(inputs))]
@@ -37,7 +41,7 @@ def run_compute(
         label=shader,
         layout=device.create_pipeline_layout(bind_group_layouts=[bgl]),
         compute={
-            "module": create_shader_module(device, shader),
+            "module": create_shader_module(device, shader, "\n".join(load_wgsl(n) for n in [*prelude, shader])),
             "entry_point": entry_point,
             "constants": dict(constants or {}),
         },
