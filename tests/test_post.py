@@ -147,7 +147,7 @@ def test_tonemap_output_is_in_unit_range_and_monotonic(ctx):
     assert got[-1] > 0.99
 
 
-@pytest.mark.parametrize("fmt", ["rgba8unorm", "rgba8unorm-srgb"])
+@pytest.mark.parametrize("fmt", ["rgba8unorm", "rgba8unorm-srgb", "bgra8unorm", "bgra8unorm-srgb"])
 def test_srgb_effect_encodes_exactly_once(ctx, fmt):
     """Both 8-bit targets store round(255 * srgb_encode(x)) within 1 LSB: the shader encodes
     for rgba8unorm, the hardware for rgba8unorm-srgb, never both."""
