@@ -53,7 +53,9 @@ fn fs_main(in: VsOut) -> @location(0) vec4f {
     // a procedural tangent-space normal map (bumps along u and v)
     let m = vec3f(0.3 * sin(6.2831853 * in.uv.x), 0.3 * cos(6.2831853 * in.uv.y), 1.0);
     let shading_n = nrm(t * m.x + b * m.y + n * m.z, n);
-    let diffuse = max(dot(shading_n, u.light_dir.xyz), 0.0);
+    // half-Lambert ("wrap") diffuse, 0.5 + 0.5 n.l: no max() that could swallow a NaN (max(NaN, 0) gives 0
+    // on many GPUs, which would hide the problem rather than fix it)
+    let diffuse = 0.5 + 0.5 * dot(shading_n, u.light_dir.xyz);
     let albedo = vec3f(0.5 + 0.5 * fract(in.uv.x), 0.6, 0.5 + 0.5 * fract(in.uv.y));
     return vec4f(albedo * (0.1 + 0.9 * diffuse), 1.0);
 }
