@@ -24,7 +24,11 @@ class OneLineParser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(prog="wgpurender", description=__doc__.splitlines()[0])
+    parser = OneLineParser(
+        prog="wgpurender",
+        description="The steps of a Vulkan course on wgpu, headless or in a window, checked against a raw-Vulkan "
+        "reference path.",
+    )
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     for mod in sorted(pkgutil.iter_modules(commands.__path__), key=lambda m: m.name):
         if mod.name.startswith("_"):
