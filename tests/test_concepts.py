@@ -1,0 +1,103 @@
+"""The Vulkan -> wgpu mapping table (wgpurender/concepts.py) and its generated docs/vulkan-mapping.md.
+
+The table is documentation that points at code, so these tests keep it honest:
+every required course concept has exactly one row, every code location in it
+imports and resolves (module, then attributes, Class.method included), a row
+without raw-path code says why, and the committed markdown equals a fresh
+generation (so it cannot go stale). No GPU work: resolving only imports modules.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from wgpurender.cli import main
+from wgpurender.concepts import CONCEPTS, markdown, plain_text, resolve
+
+DOC = Path(__file__).resolve().parent.parent / "docs" / "vulkan-mapping.md"
+
+# The course's concept list (issue 5), written out here independently of the data.
+REQUIRED = (
+    "instance", "physical device", "device", "queue families", "surface", "presentation and present modes",
+    "heaps and memory types", "staging", "command pool and buffers", "descriptor pool", "set layouts",
+    "sets and updates", "images", "views", "subresources", "layouts and transitions", "swapchain",
+    "attachment descriptions and references", "subpasses and dependencies", "barriers with stage and access masks",
+    "fences", "semaphores", "events", "render pass", "framebuffer", "begin info and clear values", "pipeline",
+    "pipeline layout", "pipeline cache", "shader modules and SPIR-V", "vertex input bindings and attributes",
+    "input assembly", "viewport and scissor", "rasterizer", "multisample", "dynamic state", "depth/stencil",
+    "blending", "input attachments", "push constants", "UBO alignment",
+)
+# Concepts the raw path has no code for (headless, one queue): their rows must say so.
+NOT_IN_RAW_PATH = {"surface", "presentation and present modes", "swapchain", "semaphores", "events"}
+ALL_LOCATIONS = sorted({(row.name, loc) for row in CONCEPTS for loc in (*row.raw, *row.wgpu_where)})
+
+
+def test_every_required_concept_has_exactly_one_row():
+    names = [row.name for row in CONCEPTS]
+    for concept in REQUIRED:
+        assert names.count(concept) == 1, f"{concept!r} has {names.count(concept)} rows"
+    assert len(set(names)) == len(names), "duplicate rows"
+
+
+@pytest.mark.parametrize(("concept", "location"), ALL_LOCATIONS)
+def test_location_exists(concept, location):
+    """Import the module and walk the attribute path; a renamed function fails here."""
+    assert location.startswith("wgpurender."), location
+    obj = resolve(location)
+    assert obj is not None
+
+
+def test_raw_and_wgpu_locations_are_on_their_own_path():
+    for row in CONCEPTS:
+        assert all(loc.startswith("wgpurender.vulkan_ref.") for loc in row.raw), row.name
+        assert not any(loc.startswith("wgpurender.vulkan_ref.") for loc in row.wgpu_where), row.name
+
+
+def test_rows_without_raw_code_say_why():
+    """Exactly the headless concepts have no raw-path code, each with a note; the window holds their wgpu side."""
+    empty = {row.name for row in CONCEPTS if not row.raw}
+    assert empty == NOT_IN_RAW_PATH
+    for row in CONCEPTS:
+        assert bool(row.raw_note) == (not row.raw), row.name
+        if row.name in {"surface", "presentation and present modes", "swapchain", "semaphores"}:
+            assert any(loc.startswith("wgpurender.window:") for loc in row.wgpu_where), row.name
+        assert row.vulkan and row.wgpu and len(row.differs) > 30, row.name
+
+
+def test_resolve_rejects_missing_names():
+    with pytest.raises(AttributeError):
+        resolve("wgpurender.vulkan_ref.instance:no_such_function")
+    with pytest.raises(AttributeError):
+        resolve("wgpurender.stages.cube3d:Cube3D.no_such_method")
+    with pytest.raises(ImportError):
+        resolve("wgpurender.no_such_module:x")
+
+
+def test_markdown_is_one_table_row_per_concept():
+    text = markdown()
+    rows = [line for line in text.splitlines() if line.startswith("| ") and not line.startswith(("| Concept", "| ---"))]
+    assert len(rows) == len(CONCEPTS)
+    for line, row in zip(rows, CONCEPTS, strict=True):
+        assert line.startswith(f"| {row.name} |")
+        cells = re.split(r"(?<!\\)\|", line)[1:-1]  # split on unescaped pipes
+        assert len(cells) == 6, f"{row.name}: {len(cells)} cells, not 6"
+    assert "GENERATED" in text.split("|")[0] and "python -m wgpurender.concepts" in text
+
+
+def test_doc_is_current():
+    """docs/vulkan-mapping.md == the generated markdown: regenerate with python -m wgpurender.concepts."""
+    assert DOC.is_file(), f"{DOC} missing: python -m wgpurender.concepts > docs/vulkan-mapping.md"
+    assert DOC.read_text(encoding="utf-8") == markdown(), (
+        "docs/vulkan-mapping.md is stale: python -m wgpurender.concepts > docs/vulkan-mapping.md"
+    )
+
+
+def test_command_prints_text_and_markdown(capsys):
+    assert main(["concepts"]) == 0
+    assert capsys.readouterr().out == plain_text()
+    assert main(["concepts", "--markdown"]) == 0
+    assert capsys.readouterr().out == markdown()
+    assert "  raw path:  (not in the raw path: headless" in plain_text()

@@ -1,0 +1,554 @@
+"""The Vulkan -> wgpu mapping table: one row per course concept, with where each side lives in this repository.
+
+Every row names the raw-Vulkan calls, the functions of the raw reference path
+(wgpurender/vulkan_ref/) that make them, the wgpu API that stands for them, the
+functions of the wgpu path that use it, and what differs. Code locations are
+``"module:attribute.path"`` strings (``Class.method`` allowed); tests/test_concepts.py
+imports every one, so a rename cannot leave the table pointing at nothing.
+
+docs/vulkan-mapping.md is generated from :data:`CONCEPTS`::
+
+    python -m wgpurender.concepts > docs/vulkan-mapping.md     # or: wgpurender concepts --markdown
+
+and the test fails when the committed file differs from a fresh generation.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+import textwrap
+from dataclasses import dataclass
+
+HEADLESS = "not in the raw path: headless; see the course text"
+R = "wgpurender.vulkan_ref."
+W = "wgpurender."
+
+
+@dataclass(frozen=True)
+class Concept:
+    """One row. ``raw_note`` says why ``raw`` is empty, where it is."""
+
+    name: str
+    vulkan: tuple[str, ...]
+    raw: tuple[str, ...]
+    wgpu: tuple[str, ...]
+    wgpu_where: tuple[str, ...]
+    differs: str
+    raw_note: str = ""
+
+
+def _raw(*locations: str) -> tuple[str, ...]:
+    return tuple(R + loc for loc in locations)
+
+
+def _wgpu(*locations: str) -> tuple[str, ...]:
+    return tuple(W + loc for loc in locations)
+
+
+CONCEPTS: list[Concept] = [
+    Concept(
+        "instance",
+        ("vkCreateInstance", "VkApplicationInfo", "ppEnabledLayerNames / ppEnabledExtensionNames",
+         "vkCreateDebugUtilsMessengerEXT"),
+        _raw("instance:create_instance", "validation:create_messenger", "validation:validation_features"),
+        ("wgpu.gpu (created on first use)", "set_instance_extras(flags=['Validation'])"),
+        _wgpu("gpu:_enable_validation_once", "gpu:_adapters"),
+        "wgpu-py creates the instance itself on first use: no application info, no layer or extension lists. "
+        "The validation layer is one instance flag, and its messages arrive on the Python 'wgpu' logger instead "
+        "of a debug messenger callback (tests/conftest.py collects them).",
+    ),
+    Concept(
+        "physical device",
+        ("vkEnumeratePhysicalDevices", "vkGetPhysicalDeviceProperties (deviceType, apiVersion, limits)",
+         "vkGetPhysicalDeviceFeatures"),
+        _raw("instance:pick_physical_device", "instance:copy_limits"),
+        ("wgpu.gpu.enumerate_adapters_sync", "GPUAdapter.info / .features / .limits"),
+        _wgpu("gpu:select_adapter", "gpu:available_backends"),
+        "An adapter is a physical device seen through one backend (Vulkan, Metal, D3D12, GL). Its features and "
+        "limits are WebGPU's portable names (max-texture-dimension-2d), not VkPhysicalDeviceLimits fields; "
+        "adapter_type ranks like deviceType.",
+    ),
+    Concept(
+        "queue families",
+        ("vkGetPhysicalDeviceQueueFamilyProperties", "VK_QUEUE_GRAPHICS_BIT", "vkGetDeviceQueue"),
+        _raw("instance:find_queue_family"),
+        ("GPUDevice.queue",),
+        _wgpu("gpu:GPUContext.queue"),
+        "No queue families: wgpu picks a family that does graphics, compute and transfer and gives the device "
+        "exactly one queue. No transfer-only or async-compute queues, so no queue family ownership transfers.",
+    ),
+    Concept(
+        "device",
+        ("vkCreateDevice", "VkDeviceQueueCreateInfo", "VkPhysicalDeviceFeatures (pEnabledFeatures)"),
+        _raw("instance:create_device", "instance:get_vulkan"),
+        ("GPUAdapter.request_device_sync(required_features=, required_limits=)",),
+        _wgpu("gpu:get_context", "gpu:OPTIONAL_FEATURES"),
+        "Features are requested by WebGPU name ('timestamp-query', 'immediates'), limits by name; there are no "
+        "device extensions to list. Core capabilities such as sampler anisotropy need no request: wgpu turns on "
+        "the Vulkan feature itself when the adapter has it.",
+    ),
+    Concept(
+        "surface",
+        ("vkCreateXlibSurfaceKHR / glfwCreateWindowSurface", "vkGetPhysicalDeviceSurfaceSupportKHR",
+         "vkGetPhysicalDeviceSurfaceFormatsKHR"),
+        (),
+        ("wgpu.gpu.get_canvas_context(present_info)", "GPUCanvasContext.get_preferred_format"),
+        _wgpu("window:_present_info", "window:surface_format", "window:_loop"),
+        "One canvas context per window, made from the native window handles; it is surface and swapchain in one "
+        "object. wgpu checks that the queue can present, so there is no present-support query.",
+        raw_note=HEADLESS,
+    ),
+    Concept(
+        "presentation and present modes",
+        ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)",
+         "vkGetPhysicalDeviceSurfacePresentModesKHR"),
+        (),
+        ("GPUCanvasContext.present()", "present modes through the canvas context's configuration"),
+        _wgpu("window:set_present_mode", "window:PRESENT_MODES", "window:run_window"),
+        "Present modes are chosen on the canvas context: wgpu-py 0.32 only exposes vsync on/off, so "
+        "set_present_mode writes the mode into the context's configuration after checking the surface offers "
+        "it. There is no separate present queue and no wait semaphore to pass.",
+        raw_note=HEADLESS,
+    ),
+    Concept(
+        "heaps and memory types",
+        ("vkGetPhysicalDeviceMemoryProperties", "VkMemoryRequirements.memoryTypeBits", "vkAllocateMemory",
+         "vkBindBufferMemory / vkBindImageMemory"),
+        _raw("instance:memory_types", "memory:find_memory_type", "memory:allocate", "memory:create_buffer"),
+        ("device.create_buffer(usage=)", "device.create_texture(usage=)", "BufferUsage.MAP_READ / MAP_WRITE"),
+        _wgpu("targets:create_target", "targets:read_texture"),
+        "No heaps or memory types are visible: wgpu allocates (and sub-allocates) memory for each resource and "
+        "picks the type from the usage flags; MAP_READ / MAP_WRITE buffers land in host-visible memory. There is "
+        "no LAZILY_ALLOCATED choice for transient attachments.",
+    ),
+    Concept(
+        "staging",
+        ("staging VkBuffer in HOST_VISIBLE | HOST_COHERENT memory", "vkMapMemory / vkUnmapMemory",
+         "vkCmdCopyBuffer", "vkCmdCopyBufferToImage"),
+        _raw("memory:upload_buffer", "memory:write_host_buffer"),
+        ("queue.write_buffer", "queue.write_texture", "device.create_buffer_with_data"),
+        _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "textures:upload_level", "stages.cube3d:Cube3D.draw"),
+        "wgpu stages the bytes in its own upload buffer, records the copy before the next submit and inserts the "
+        "barrier after it. write_texture has no 256-byte row alignment (copy_buffer_to_texture has).",
+    ),
+    Concept(
+        "command pool and buffers",
+        ("vkCreateCommandPool", "vkAllocateCommandBuffers", "vkBeginCommandBuffer / vkEndCommandBuffer",
+         "vkQueueSubmit"),
+        _raw("commands:create_command_pool", "commands:one_shot"),
+        ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
+        _wgpu("render:render_stage", "window:_loop"),
+        "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
+        "secondary command buffers (render bundles come closest). The states initial -> recording -> "
+        "executable -> pending are the encoder's life, unnamed.",
+    ),
+    Concept(
+        "descriptor pool",
+        ("vkCreateDescriptorPool", "VkDescriptorPoolSize", "maxSets"),
+        _raw("descriptors:create_pool"),
+        ("(none: device.create_bind_group allocates)",),
+        _wgpu("stages.cube3d:Cube3D._bind_group"),
+        "wgpu manages descriptor pools itself: no pool sizes to count, no pool exhaustion, and a bind group's "
+        "descriptors are freed when it is dropped.",
+    ),
+    Concept(
+        "set layouts",
+        ("VkDescriptorSetLayoutBinding", "vkCreateDescriptorSetLayout"),
+        _raw("descriptors:binding", "descriptors:create_set_layout"),
+        ("device.create_bind_group_layout(entries=)", "GPURenderPipeline.get_bind_group_layout (layout 'auto')"),
+        _wgpu("stages.cube3d:_uniform_layout", "stages.textured:TexturedPipelines.__init__",
+              "post.base:PostEffect._layout_entries"),
+        "An entry says more than a descriptor type: a texture's sample type (filterable float or not) and a "
+        "buffer's min_binding_size and has_dynamic_offset. No combined image sampler type, no immutable "
+        "samplers, no descriptor arrays (descriptorCount > 1) without native features.",
+    ),
+    Concept(
+        "sets and updates",
+        ("vkAllocateDescriptorSets", "VkWriteDescriptorSet + vkUpdateDescriptorSets",
+         "vkCmdBindDescriptorSets (dynamic offsets)"),
+        _raw("descriptors:allocate_sets", "descriptors:write_buffer", "descriptors:write_image",
+             "descriptors:update", "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record"),
+        ("device.create_bind_group(layout=, entries=)", "GPURenderPassEncoder.set_bind_group(index, group, offsets)"),
+        _wgpu("stages.cube3d:Cube3D._bind_group", "stages.cube3d:Cube3D.draw",
+              "stages.textured:TexturedPipelines.combined_group", "stages.textured:TexturedPipelines.sampler_group"),
+        "Allocation and writes are one call, and a bind group is immutable: to point at other resources, make a "
+        "new one. Dynamic offsets work the same way (one group, one offset per draw).",
+    ),
+    Concept(
+        "images",
+        ("vkCreateImage", "VkImageCreateInfo (format, extent, mipLevels, samples, tiling, usage)"),
+        _raw("images:create_image", "images:FORMATS"),
+        ("device.create_texture(size=, format=, usage=, mip_level_count=, sample_count=)",),
+        _wgpu("targets:create_target", "textures:create_texture"),
+        "Memory comes with the texture, tiling is always optimal and the initial layout is not given. Usage "
+        "names differ: RENDER_ATTACHMENT, TEXTURE_BINDING, COPY_SRC / COPY_DST.",
+    ),
+    Concept(
+        "views",
+        ("vkCreateImageView", "VkImageViewCreateInfo (viewType, format, components)"),
+        _raw("images:create_view"),
+        ("GPUTexture.create_view(format=, dimension=, base_mip_level=, mip_level_count=, ...)",),
+        _wgpu("textures:_level_view", "stages.base:Stage.color_attachment"),
+        "The same object; a default view covers the whole texture. A view is kept alive by what uses it, so "
+        "there is no destroy order to get right.",
+    ),
+    Concept(
+        "subresources",
+        ("VkImageSubresourceRange", "VkImageSubresourceLayers"),
+        _raw("images:subresource_range", "images:subresource_layers"),
+        ("create_view(base_mip_level, mip_level_count, base_array_layer, array_layer_count, aspect)",
+         "copy info {'texture', 'mip_level', 'origin', 'aspect'}"),
+        _wgpu("textures:_level_view", "textures:read_mip", "native:clear_texture"),
+        "The same ideas with keyword names; aspect defaults to 'all'. wgpu tracks usage per subresource, which "
+        "is what lets it read one mip level while rendering into the next.",
+    ),
+    Concept(
+        "layouts and transitions",
+        ("VkImageLayout", "VkImageMemoryBarrier oldLayout -> newLayout",
+         "VkAttachmentDescription initialLayout / finalLayout"),
+        _raw("images:transition", "images:LAYOUT_ACCESS"),
+        ("(none: implicit from usage)",),
+        _wgpu("textures:upload_level", "textures:generate_mipmaps"),
+        "wgpu has no image layouts: it tracks how each subresource was last used (copy destination, attachment, "
+        "sampled) and records the transition itself before the next different use.",
+    ),
+    Concept(
+        "swapchain",
+        ("vkCreateSwapchainKHR", "vkGetSwapchainImagesKHR", "vkAcquireNextImageKHR",
+         "re-creation on VK_ERROR_OUT_OF_DATE_KHR"),
+        (),
+        ("GPUCanvasContext.configure(device=, format=, usage=)", "GPUCanvasContext.get_current_texture()",
+         "set_physical_size"),
+        _wgpu("window:_loop", "window:surface_format", "window:SURFACE_USAGE"),
+        "Image count, image views and the acquire semaphore are hidden; get_current_texture() is acquire. A "
+        "resize re-configures the context instead of re-creating a swapchain by hand; a minimised window "
+        "(0x0) renders nothing.",
+        raw_note=HEADLESS,
+    ),
+    Concept(
+        "attachment descriptions and references",
+        ("VkAttachmentDescription (format, samples, loadOp, storeOp, layouts)", "VkAttachmentReference"),
+        _raw("renderpass:attachment", "renderpass:ref"),
+        ("color_attachments=[{view, resolve_target, load_op, store_op, clear_value}]", "depth_stencil_attachment"),
+        _wgpu("stages.base:Stage.color_attachment", "stages.cube3d:Cube3D.draw"),
+        "Attachments are given when the pass begins, not described in advance: the format comes from the view, "
+        "there are no layouts, and store_op 'discard' is STORE_OP_DONT_CARE.",
+    ),
+    Concept(
+        "subpasses and dependencies",
+        ("VkSubpassDescription", "VkSubpassDependency (VK_SUBPASS_EXTERNAL, BY_REGION)", "vkCmdNextSubpass"),
+        _raw("renderpass:single_pass", "renderpass:msaa_post_pass", "renderpass:dependency",
+             "renderpass:into_pass", "renderpass:out_to_transfer"),
+        ("(none: one subpass per render pass)",),
+        _wgpu("post.chain:PostChain.run"),
+        "WebGPU cannot express subpasses (Metal and D3D12 have none): each step is its own render pass, and the "
+        "dependencies between passes are implied by their order in the encoder.",
+    ),
+    Concept(
+        "barriers with stage and access masks",
+        ("vkCmdPipelineBarrier", "VkBufferMemoryBarrier / VkImageMemoryBarrier",
+         "VkPipelineStageFlags + VkAccessFlags (availability and visibility)"),
+        _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer"),
+        ("(none: inserted by wgpu)",),
+        _wgpu("textures:generate_mipmaps", "post.chain:PostChain.run"),
+        "No barrier is ever written: wgpu inserts them between passes and copies from its usage tracking, with "
+        "stage and access masks of its own choice. The cost: no control over how narrow a barrier is, no "
+        "barriers inside a render pass.",
+    ),
+    Concept(
+        "fences",
+        ("vkCreateFence", "vkQueueSubmit(..., fence)", "vkWaitForFences"),
+        _raw("commands:submit_and_wait"),
+        ("(no fence object)", "GPUBuffer.map_sync", "queue.on_submitted_work_done (broken in wgpu-py 0.32)"),
+        _wgpu("gpu:GPUContext.wait_idle", "targets:read_texture"),
+        "The host waits by mapping a buffer that the last submission wrote: submissions complete in order, so "
+        "once the map resolves everything before it has finished.",
+    ),
+    Concept(
+        "semaphores",
+        ("vkCreateSemaphore", "VkSubmitInfo pWaitSemaphores / pSignalSemaphores / pWaitDstStageMask"),
+        (),
+        ("(none: queue submission order)",),
+        _wgpu("window:_loop"),
+        "No semaphores in wgpu: one queue, whose submissions run in order, and the acquire/present semaphores "
+        "of the swapchain are inside get_current_texture() and present().",
+        raw_note="not in the raw path: headless, one queue, no swapchain; see the course text",
+    ),
+    Concept(
+        "events",
+        ("vkCreateEvent", "vkCmdSetEvent / vkCmdWaitEvents (split barriers)"),
+        (),
+        ("(none)",),
+        (),
+        "Cannot be expressed in wgpu: there are no split barriers; wgpu places whole barriers where a resource "
+        "changes use.",
+        raw_note=HEADLESS,
+    ),
+    Concept(
+        "render pass",
+        ("vkCreateRenderPass", "vkCmdBeginRenderPass / vkCmdEndRenderPass"),
+        _raw("renderpass:create_render_pass", "renderpass:RenderPass"),
+        ("GPUCommandEncoder.begin_render_pass(...) -> GPURenderPassEncoder", "GPURenderPassEncoder.end()"),
+        _wgpu("stages.triangle:Triangle.draw", "stages.clear_pass:ClearPass.draw"),
+        "No render pass object is created ahead of time: begin_render_pass takes the attachments directly. A "
+        "pipeline is compatible with any pass whose target formats and sample count match its own.",
+    ),
+    Concept(
+        "framebuffer",
+        ("vkCreateFramebuffer",),
+        _raw("renderpass:create_framebuffer"),
+        ("(none: the views go to begin_render_pass)",),
+        _wgpu("stages.base:Stage.color_attachment"),
+        "No framebuffer object: the views of a pass are listed when it begins.",
+    ),
+    Concept(
+        "begin info and clear values",
+        ("VkRenderPassBeginInfo (renderArea, pClearValues)", "VkClearValue", "VK_ATTACHMENT_LOAD_OP_CLEAR"),
+        _raw("renderpass:begin", "renderpass:clear_color"),
+        ("attachment {'load_op': 'clear', 'clear_value': ...}", "depth_clear_value"),
+        _wgpu("stages.clear_pass:ClearPass.draw", "stages.base:Stage.color_attachment"),
+        "The clear value sits in each attachment instead of an array indexed like the attachments. The render "
+        "area is always the whole attachment.",
+    ),
+    Concept(
+        "pipeline",
+        ("vkCreateGraphicsPipelines", "VkGraphicsPipelineCreateInfo"),
+        _raw("pipeline:create_pipeline", "pipeline:PipelineDesc"),
+        ("device.create_render_pipeline(layout=, vertex=, primitive=, depth_stencil=, multisample=, fragment=)",),
+        _wgpu("stages.triangle:triangle_pipeline", "stages.cube3d:Cube3D._pipeline",
+              "stages.textured:TexturedPipelines._pipeline"),
+        "No render pass or subpass: the fragment targets' formats and the sample count say what it draws into. "
+        "Viewport and scissor are never part of it.",
+    ),
+    Concept(
+        "pipeline layout",
+        ("vkCreatePipelineLayout (pSetLayouts, pPushConstantRanges)",),
+        _raw("pipeline:create_pipeline_layout"),
+        ("device.create_pipeline_layout(bind_group_layouts=, immediate_size=)", "layout='auto'"),
+        _wgpu("stages.cube3d:Cube3D.setup", "stages.textured:TexturedPipelines.__init__"),
+        "Same shape; push constant ranges become one immediate_size shared by all stages. 'auto' derives the "
+        "layout from the shaders (post effects use it through get_bind_group_layout).",
+    ),
+    Concept(
+        "pipeline cache",
+        ("vkCreatePipelineCache", "vkGetPipelineCacheData", "VkPipelineCacheCreateInfo (pInitialData)"),
+        _raw("pipeline:create_pipeline_cache", "pipeline:save_pipeline_cache", "pipeline:pipeline_cache_path"),
+        ("native feature 'pipeline-cache' (requested when offered)",),
+        _wgpu("gpu:get_context", "gpu:OPTIONAL_FEATURES"),
+        "wgpu-native has the feature but wgpu-py 0.32 has no call to create a cache, so the wgpu path only "
+        "requests it; naga's compiled modules are not kept across runs.",
+    ),
+    Concept(
+        "shader modules and SPIR-V",
+        ("glslc (GLSL -> SPIR-V)", "vkCreateShaderModule (codeSize, pCode)"),
+        _raw("glsl:compile_glsl", "glsl:create_shader_module", "glsl:glsl_path"),
+        ("device.create_shader_module(code=WGSL or SPIR-V)",),
+        _wgpu("shaders:create_shader_module", "shaders:load_wgsl"),
+        "WGSL text compiled by naga at run time (errors with line and column). naga also takes SPIR-V, but not "
+        "a combined sampler2D and not subpassInput.",
+    ),
+    Concept(
+        "vertex input bindings and attributes",
+        ("VkVertexInputBindingDescription", "VkVertexInputAttributeDescription", "vkCmdBindVertexBuffers"),
+        _raw("stages.triangle_buffers:vertex_input", "stages.cube3d:vertex_input"),
+        ("vertex={'buffers': [{array_stride, step_mode, attributes: [{shader_location, format, offset}]}]}",
+         "GPURenderPassEncoder.set_vertex_buffer"),
+        _wgpu("stages.triangle_buffers:VERTEX_LAYOUT", "stages.cube3d:VERTEX_LAYOUT",
+              "stages.triangle_buffers:TriangleBuffers.draw"),
+        "A binding is its position in the buffers list; formats are named float32x3 instead of "
+        "R32G32B32_SFLOAT. step_mode 'instance' is inputRate INSTANCE.",
+    ),
+    Concept(
+        "input assembly",
+        ("VkPipelineInputAssemblyStateCreateInfo (topology, primitiveRestartEnable)",),
+        _raw("pipeline:create_pipeline"),
+        ("primitive={'topology': ..., 'strip_index_format': ...}",),
+        _wgpu("stages.triangle:triangle_pipeline"),
+        "No adjacency or patch topologies; primitive restart is implied for strips by strip_index_format.",
+    ),
+    Concept(
+        "viewport and scissor",
+        ("vkCmdSetViewport", "vkCmdSetScissor", "VkPipelineViewportStateCreateInfo"),
+        _raw("pipeline:set_viewport_and_scissor"),
+        ("GPURenderPassEncoder.set_viewport(x, y, w, h, min_depth, max_depth)", "set_scissor_rect"),
+        _wgpu("stages.textured:Textured.draw"),
+        "Always dynamic, defaulting to the whole attachment; one viewport. wgpu's NDC y points up, Vulkan's down: "
+        "wgpu's Vulkan backend flips with a negative viewport height, and the raw path does the same so both "
+        "draw the same image from the same positions.",
+    ),
+    Concept(
+        "rasterizer",
+        ("VkPipelineRasterizationStateCreateInfo (polygonMode, cullMode, frontFace, lineWidth, depthBias)",),
+        _raw("pipeline:create_pipeline"),
+        ("primitive={'front_face': ..., 'cull_mode': ...}", "depth_stencil depth_bias*"),
+        _wgpu("stages.cube3d:Cube3D._pipeline", "stages.triangle:triangle_pipeline"),
+        "No polygon modes other than fill (line/point need native features), line width always 1, no "
+        "rasterizer discard; depth bias lives in the depth-stencil state.",
+    ),
+    Concept(
+        "multisample",
+        ("VkPipelineMultisampleStateCreateInfo (rasterizationSamples)", "VkImageCreateInfo.samples",
+         "VkSubpassDescription.pResolveAttachments"),
+        _raw("pipeline:create_pipeline", "renderpass:single_pass", "stages.base:RefStage.transient_msaa_image",
+             "render:check_msaa"),
+        ("multisample={'count', 'mask', 'alpha_to_coverage_enabled'}", "create_texture(sample_count=)",
+         "attachment 'resolve_target'"),
+        _wgpu("stages.base:Stage.multisample_state", "stages.base:Stage.color_attachment", "stages.base:Stage.resize"),
+        "Sample counts 1 and 4 only (what WebGPU guarantees). The resolve target is a field of the colour "
+        "attachment, not of a subpass; discarding the samples is store_op 'discard'.",
+    ),
+    Concept(
+        "dynamic state",
+        ("VkPipelineDynamicStateCreateInfo", "VK_DYNAMIC_STATE_VIEWPORT / SCISSOR / ..."),
+        _raw("pipeline:create_pipeline"),
+        ("(no list: set_viewport, set_scissor_rect, set_blend_constant, set_stencil_reference are always dynamic)",),
+        _wgpu("stages.textured:Textured.draw"),
+        "Nothing to declare: those four are always pass commands, everything else is baked into the pipeline "
+        "(no extended dynamic state).",
+    ),
+    Concept(
+        "depth/stencil",
+        ("VkPipelineDepthStencilStateCreateInfo", "depth attachment (D32_SFLOAT)", "VkClearDepthStencilValue"),
+        _raw("pipeline:create_pipeline", "renderpass:single_pass", "stages.cube3d:Cube3D.setup"),
+        ("depth_stencil={'format', 'depth_write_enabled', 'depth_compare', 'stencil_front', ...}",
+         "depth_stencil_attachment={'view', 'depth_load_op', 'depth_clear_value', ...}"),
+        _wgpu("stages.cube3d:Cube3D._pipeline", "stages.cube3d:Cube3D.on_resize", "stages.cube3d:Cube3D.draw"),
+        "The depth format is part of the pipeline; no depth bounds test. Otherwise one to one.",
+    ),
+    Concept(
+        "blending",
+        ("VkPipelineColorBlendAttachmentState", "VkPipelineColorBlendStateCreateInfo (logicOp)"),
+        _raw("pipeline:create_pipeline", "pipeline:ALL_COLOR"),
+        ("fragment targets [{'format', 'blend': {'color', 'alpha'}, 'write_mask'}]",),
+        _wgpu("stages.triangle:triangle_pipeline", "stages.cube3d:Cube3D._pipeline"),
+        "Per-target blend state like Vulkan's per-attachment one; no logic ops. None of our stages blend yet: "
+        "both paths write all channels with blending off.",
+    ),
+    Concept(
+        "input attachments",
+        ("VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT", "VkSubpassDescription.pInputAttachments", "GLSL subpassLoad"),
+        _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post"),
+        ("(none: the previous pass's texture, sampled in a new pass)",),
+        _wgpu("post.base:PostEffect.encode", "post.chain:PostChain.run"),
+        "Cannot be expressed (no subpasses). The image goes through memory between passes, which a tiling GPU "
+        "would have kept on chip; in exchange an effect may read neighbouring pixels (post/base.py explains).",
+    ),
+    Concept(
+        "push constants",
+        ("VkPushConstantRange", "vkCmdPushConstants", "GLSL layout(push_constant)"),
+        _raw("stages.msaa_post:MsaaPost._setup_post", "stages.msaa_post:MsaaPost.record",
+             "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record", "ubo:pack_draw"),
+        ("native feature 'immediates'", "create_pipeline_layout(immediate_size=)",
+         "GPURenderPassEncoder.set_immediates(offset, data, data_offset, size)", "WGSL var<immediate>"),
+        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.draw", "gpu:get_context"),
+        "Not in WebGPU proper: a wgpu-native feature ('immediates', up to max-immediate-size bytes), one range "
+        "for all stages. Without it the 3d stage reads the same struct from a dynamic-offset uniform buffer.",
+    ),
+    Concept(
+        "UBO alignment",
+        ("std140 layout", "VkPhysicalDeviceLimits.minUniformBufferOffsetAlignment"),
+        _raw("ubo:dynamic_stride", "ubo:pack_camera", "ubo:pack_object", "instance:copy_limits"),
+        ("WGSL uniform address space layout", "limit 'min-uniform-buffer-offset-alignment'"),
+        _wgpu("uniforms:Struct.stride", "uniforms:Struct.pack", "uniforms:Struct.pack_many", "uniforms:wgsl_structs"),
+        "WGSL's uniform layout equals std140 for these types and naga rejects a struct that breaks it. The wgpu "
+        "path declares each struct once and generates both the packer and the WGSL text; the raw path packs by "
+        "hand, as an independent check.",
+    ),
+    Concept(
+        "offscreen readback",
+        ("vkCmdCopyImageToBuffer", "VkBufferImageCopy (bufferRowLength)", "HOST_CACHED memory"),
+        _raw("readback:record_copy_to_buffer", "readback:buffer_to_pixels"),
+        ("GPUCommandEncoder.copy_texture_to_buffer", "GPUBuffer.map_sync / read_mapped"),
+        _wgpu("targets:read_texture", "targets:padded_bytes_per_row"),
+        "Rows in the buffer must start at multiples of 256 bytes in wgpu (Vulkan packs them tightly), so the "
+        "wgpu path pads and unpads.",
+    ),
+]
+
+
+# -- output ---------------------------------------------------------------------------------------
+
+
+def short(location: str) -> str:
+    """A location without the package prefix, for display."""
+    return location.removeprefix(W)
+
+
+def raw_cell(row: Concept) -> list[str]:
+    return [short(loc) for loc in row.raw] or [f"({row.raw_note})"]
+
+
+def wgpu_cell(row: Concept) -> list[str]:
+    return [short(loc) for loc in row.wgpu_where] or ["(nothing)"]
+
+
+def _md(items) -> str:
+    text = items if isinstance(items, str) else "<br>".join(f"`{i}`" if ":" in i and " " not in i else i
+                                                           for i in items)
+    return text.replace("|", "\\|")
+
+
+MARKDOWN_HEADER = """\
+# Vulkan -> wgpu: the course's concepts, side by side
+
+<!-- GENERATED FILE: do not edit. -->
+Generated from `wgpurender/concepts.py` by `python -m wgpurender.concepts > docs/vulkan-mapping.md`
+(or `wgpurender concepts --markdown > docs/vulkan-mapping.md`); edit the data there and regenerate.
+tests/test_concepts.py fails when this file is stale and checks that every code location below exists.
+
+Locations are `module:function` (or `module:Class.method`) under `wgpurender.`: the raw path is
+`vulkan_ref.*` (Python `vulkan` binding, GLSL), the wgpu path is everything else.
+"""
+
+
+def markdown(rows: list[Concept] = CONCEPTS) -> str:
+    lines = [
+        MARKDOWN_HEADER,
+        "| Concept | Vulkan | Raw path | wgpu | wgpu path | What differs |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    for row in rows:
+        cells = [row.name, _md(row.vulkan), _md(raw_cell(row)), _md(row.wgpu), _md(wgpu_cell(row)), _md(row.differs)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def plain_text(rows: list[Concept] = CONCEPTS, width: int = 100) -> str:
+    out = []
+    for row in rows:
+        out.append(row.name)
+        for label, items in (
+            ("Vulkan", row.vulkan),
+            ("raw path", raw_cell(row)),
+            ("wgpu", row.wgpu),
+            ("wgpu path", wgpu_cell(row)),
+            ("differs", [row.differs]),
+        ):
+            text = "; ".join(items)
+            out.append(textwrap.fill(text, width, initial_indent=f"  {label + ':':<11}", subsequent_indent=" " * 13))
+        out.append("")
+    return "\n".join(out)
+
+
+# -- checking ---------------------------------------------------------------------------------------
+
+
+def resolve(location: str):
+    """The object a ``module:attr.path`` location names; ImportError / AttributeError when it is gone."""
+    module_name, _, path = location.partition(":")
+    if not path:
+        raise ValueError(f"location {location!r} is not 'module:attribute'")
+    obj = importlib.import_module(module_name)
+    for part in path.split("."):
+        obj = getattr(obj, part)
+    return obj
+
+
+def main() -> int:
+    sys.stdout.write(markdown())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
