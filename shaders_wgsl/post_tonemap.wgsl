@@ -29,7 +29,10 @@ fn reinhard(c: vec3f) -> vec3f {
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     let texel = src_texel(in.position);
-    let c = max(texel.rgb, vec3f(0.0)) * params.exposure;
+    // Clamp to the largest finite f16 before and after exposure: both curves are flat there (ACES at 1,
+    // Reinhard at 0.99998), while inf (or a * a past 1.8e19 inside ACES) would give inf / inf = NaN.
+    let hdr = min(max(texel.rgb, vec3f(0.0)), vec3f(65504.0));
+    let c = min(hdr * params.exposure, vec3f(65504.0));
     var mapped: vec3f;
     if params.curve < 0.5 {
         mapped = aces_fitted(c);
