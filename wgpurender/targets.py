@@ -69,22 +69,22 @@ def create_target(
     )
 
 
-def read_texture(ctx: GPUContext, texture: wgpu.GPUTexture) -> np.ndarray:
-    """Copy a single-sample colour texture to the host as an (H, W, 4) array.
+def read_texture(ctx: GPUContext, texture: wgpu.GPUTexture, level: int = 0) -> np.ndarray:
+    """Copy one mip level of a single-sample colour texture to the host as an (H, W, 4) array.
 
     uint8 for 8-bit formats (raw stored bytes, so sRGB formats give sRGB-encoded
     values), float16/float32 for float formats. Blocks until the GPU is done.
     """
     fmt = texture.format
     bpp, dtype = COLOR_FORMATS[check_format(fmt)]
-    width, height = texture.size[0], texture.size[1]
+    width, height = max(1, texture.size[0] >> level), max(1, texture.size[1] >> level)
     pitch = padded_bytes_per_row(width, bpp)
     buffer = ctx.device.create_buffer(
         size=pitch * height, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="readback"
     )
     encoder = ctx.device.create_command_encoder(label="readback")
     encoder.copy_texture_to_buffer(
-        {"texture": texture, "mip_level": 0, "origin": (0, 0, 0)},
+        {"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
         {"buffer": buffer, "offset": 0, "bytes_per_row": pitch, "rows_per_image": height},
         (width, height, 1),
     )

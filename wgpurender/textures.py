@@ -32,7 +32,7 @@ from PIL import Image
 from .errors import UserError
 from .gpu import GPUContext
 from .shaders import create_shader_module
-from .targets import padded_bytes_per_row
+from .targets import read_texture
 
 MAX_DIM_LIMIT = "max-texture-dimension-2d"
 SRGB_FORMAT = "rgba8unorm-srgb"  # colour textures: the sampler decodes to linear
@@ -323,23 +323,7 @@ def generate_mipmaps(ctx: GPUContext, texture: wgpu.GPUTexture) -> None:
 
 def read_mip(ctx: GPUContext, texture: wgpu.GPUTexture, level: int) -> np.ndarray:
     """One mip level of an RGBA8 texture as (h, w, 4) uint8 stored bytes (tests, debugging)."""
-    width, height = mip_size(texture.size[0], texture.size[1], level)
-    pitch = padded_bytes_per_row(width, 4)
-    buffer = ctx.device.create_buffer(
-        size=pitch * height, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label=f"mip-{level}"
-    )
-    encoder = ctx.device.create_command_encoder(label="read-mip")
-    encoder.copy_texture_to_buffer(
-        {"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
-        {"buffer": buffer, "offset": 0, "bytes_per_row": pitch, "rows_per_image": height},
-        (width, height, 1),
-    )
-    ctx.queue.submit([encoder.finish()])
-    buffer.map_sync(wgpu.MapMode.READ)
-    raw = np.frombuffer(buffer.read_mapped(), dtype=np.uint8).reshape(height, pitch)
-    buffer.unmap()
-    buffer.destroy()
-    return raw[:, : width * 4].reshape(height, width, 4).copy()
+    return read_texture(ctx, texture, level)
 
 
 # ---------------------------------------------------------------------------
