@@ -228,6 +228,7 @@ class PostEffect:
         encoder: wgpu.GPUCommandEncoder,
         source: wgpu.GPUTexture,
         target: wgpu.GPUTexture,
+        timestamp_writes: dict | None = None,
     ) -> None:
         """Record one render pass: read ``source`` (single-sample), write all of ``target``.
 
@@ -251,6 +252,7 @@ class PostEffect:
             color_attachments=[
                 {"view": target.create_view(), "load_op": "clear", "clear_value": (0, 0, 0, 0), "store_op": "store"}
             ],
+            timestamp_writes=timestamp_writes,
         )
         render_pass.set_pipeline(pipeline)
         render_pass.set_bind_group(0, bind_group)

@@ -97,9 +97,13 @@ class PostChain:
         return current[:count]
 
     def run(
-        self, ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture
+        self, ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
+        timer=None,
     ) -> None:
-        """Record every effect into ``encoder``; the last one writes ``target``. Empty chain: records nothing."""
+        """Record every effect into ``encoder``; the last one writes ``target``. Empty chain: records nothing.
+
+        ``timer``: an optional :class:`wgpurender.timing.PassTimer`; each effect's pass is timed as "post:NAME".
+        """
         effects = self.effects_for(target.format)
         if not effects:
             return
@@ -108,5 +112,6 @@ class PostChain:
         current = source
         for i, effect in enumerate(effects):
             destination = target if i == len(effects) - 1 else temps[i % 2]
-            effect.encode(ctx.device, encoder, current, destination)
+            writes = timer.writes(f"post:{effect.name}") if timer is not None else None
+            effect.encode(ctx.device, encoder, current, destination, timestamp_writes=writes)
             current = destination

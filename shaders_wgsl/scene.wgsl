@@ -1,0 +1,206 @@
+// The scene shader: one template, specialised per material variant (wgpurender/scene_render/layout.py).
+//
+// Preprocessing (wgpurender/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
+// variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output) and the derived
+// ones (uv: any texture; directional_lights / point_lights: that count > 0; immediates: push constants
+// available). The STRUCTS placeholder gets the declarations generated from the Python Struct
+// definitions; the light counts are compile-time constants, so each loop has a fixed trip count.
+// An unlit variant keeps none of the lighting code, no normal/tangent attribute and no light struct.
+//
+// Shading model: normalized Blinn-Phong, in linear light. The course teaches Blinn-Phong, and the
+// normalized form keeps highlights energy-plausible as the exponent changes while every term stays a
+// closed form the tests can evaluate in numpy:
+//     L = ambient * albedo
+//       + sum over lights  E * max(n.l, 0) * (albedo + specular * (s + 8) / 8 * max(n.h, 0)^s)
+// which is pi * BRDF * E * n.l with BRDF = albedo / pi + specular * (s + 8) / (8 pi) * (n.h)^s, so a
+// light of intensity 1 shining straight onto a white surface gives exactly 1. The exponent comes
+// from roughness r (material roughness times the roughness map's G channel):
+//     s = clamp(2 / r^4 - 2, 1, 4096)     (the Beckmann-matched Blinn-Phong exponent)
+// `specular` is the dielectric reflectance 0.04 (no Fresnel term).
+// Lights: E = colour * intensity. Directional lights travel along `direction` (l = -direction).
+// Point lights fall off with the plain inverse square, E = colour * intensity / max(d^2, 1e-4):
+// no range cut-off, so intensity is the irradiance at 1 unit.
+// Normal mapping (tangent space, +Y up, linear texels): m = texel * 2 - 1, m.xy *= normal_strength,
+// T = Gram-Schmidt of the tangent against N, B = w * cross(N, T) (w = tangent.w times the sign of
+// det(world)), n' = normalize(T m.x + B m.y + N m.z). Every normalisation is guarded: a zero-length
+// vector falls back to a stated default instead of producing NaN.
+
+{{STRUCTS}}
+
+const DIRECTIONAL_LIGHTS: u32 = {{DIRECTIONAL_LIGHTS}}u;
+const POINT_LIGHTS: u32 = {{POINT_LIGHTS}}u;
+
+@group(0) @binding(0) var<uniform> camera: Camera;
+@group(1) @binding(0) var<uniform> object_data: Object;
+#if immediates
+var<immediate> material: Material;
+#else
+@group(2) @binding(0) var<uniform> material: Material;
+#endif
+#if uv
+@group(2) @binding(1) var material_sampler: sampler;
+#endif
+#if albedo_map
+@group(2) @binding(2) var albedo_tex: texture_2d<f32>;
+#endif
+#if normal_map
+@group(2) @binding(3) var normal_tex: texture_2d<f32>;
+#endif
+#if roughness_map
+@group(2) @binding(4) var roughness_tex: texture_2d<f32>;
+#endif
+
+struct VertexIn {
+    @location(0) position: vec3f,
+#if lighting
+    @location(1) normal: vec3f,
+#endif
+#if uv
+    @location(2) uv: vec2f,
+#endif
+#if normal_map
+    @location(3) tangent: vec4f,
+#endif
+};
+
+struct VertexOut {
+    @builtin(position) clip: vec4f,
+#if lighting
+    @location(0) world_position: vec3f,
+    @location(1) normal: vec3f,
+#endif
+#if uv
+    @location(2) uv: vec2f,
+#endif
+#if normal_map
+    @location(3) tangent: vec4f,
+#endif
+};
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    // Written as the tutorial's GLSL does (proj * view * model * p, evaluated left to right), so the
+    // float32 arithmetic matches it operation for operation.
+    out.clip = camera.proj * camera.view * object_data.world * vec4f(in.position, 1.0);
+#if lighting
+    out.world_position = (object_data.world * vec4f(in.position, 1.0)).xyz;
+    out.normal = object_data.normal * in.normal;  // cofactor matrix: right direction, any length
+#endif
+#if uv
+#if flip_v
+    out.uv = vec2f(in.uv.x, 1.0 - in.uv.y);
+#else
+    out.uv = in.uv;
+#endif
+#endif
+#if normal_map
+    let world3 = mat3x3f(object_data.world[0].xyz, object_data.world[1].xyz, object_data.world[2].xyz);
+    out.tangent = vec4f(world3 * in.tangent.xyz, in.tangent.w * object_data.mirror);
+#endif
+    return out;
+}
+
+#if lighting
+// v / |v|, or `fallback` when v is (nearly) zero or not finite.
+fn safe_normalize(v: vec3f, fallback: vec3f) -> vec3f {
+    let len2 = dot(v, v);
+    if (len2 > 1e-20 && len2 < 1e30) {
+        return v * inverseSqrt(len2);
+    }
+    return fallback;
+}
+
+fn surface_normal(in: VertexOut, normal_texel: vec3f) -> vec3f {
+    let n = safe_normalize(in.normal, vec3f(0.0, 0.0, 1.0));
+#if normal_map
+    // Tangent orthogonalised against n; a degenerate tangent falls back to the unperturbed normal.
+    let t_raw = in.tangent.xyz - n * dot(n, in.tangent.xyz);
+    if (dot(t_raw, t_raw) <= 1e-20) {
+        return n;
+    }
+    let t = normalize(t_raw);
+    let b = select(1.0, -1.0, in.tangent.w < 0.0) * cross(n, t);
+    var m = normal_texel * 2.0 - 1.0;
+    m = vec3f(m.xy * material.normal_strength, m.z);
+    return safe_normalize(t * m.x + b * m.y + n * m.z, n);
+#else
+    return n;
+#endif
+}
+
+fn shininess(roughness: f32) -> f32 {
+    let r = clamp(roughness, 0.0, 1.0);
+    let r4 = r * r * r * r;
+    return clamp(2.0 / max(r4, 1e-6) - 2.0, 1.0, 4096.0);
+}
+
+// Radiance reflected towards v from irradiance E arriving along l (all unit vectors).
+fn blinn_phong(n: vec3f, l: vec3f, v: vec3f, albedo: vec3f, s: f32, irradiance: vec3f) -> vec3f {
+    let n_dot_l = max(dot(n, l), 0.0);
+    let h = safe_normalize(l + v, n);
+    let spec = material.specular * (s + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), s);
+    return irradiance * n_dot_l * (albedo + vec3f(spec));
+}
+
+fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> vec3f {
+    let n = surface_normal(in, normal_texel);
+    let v = safe_normalize(camera.eye.xyz - in.world_position, n);
+    let s = shininess(roughness);
+    var color = camera.ambient.rgb * albedo;
+#if directional_lights
+    for (var i = 0u; i < DIRECTIONAL_LIGHTS; i++) {
+        let light = camera.directional[i];
+        let l = safe_normalize(-light.direction.xyz, n);
+        color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb);
+    }
+#endif
+#if point_lights
+    for (var i = 0u; i < POINT_LIGHTS; i++) {
+        let light = camera.point[i];
+        let to_light = light.position.xyz - in.world_position;
+        let d2 = max(dot(to_light, to_light), 1e-4);
+        let l = safe_normalize(to_light, n);
+        color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb / d2);
+    }
+#endif
+    return color;
+}
+#endif
+
+#if srgb_output
+// The output is a plain 8-bit format that does not encode: apply the sRGB curve here.
+fn srgb_encode(c: vec3f) -> vec3f {
+    let x = clamp(c, vec3f(0.0), vec3f(1.0));
+    return select(1.055 * pow(x, vec3f(1.0 / 2.4)) - 0.055, 12.92 * x, x <= vec3f(0.0031308));
+}
+#endif
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4f {
+    var base = material.base_color;
+#if albedo_map
+    base = base * textureSample(albedo_tex, material_sampler, in.uv);
+#endif
+#if lighting
+    // Textures are sampled here, in uniform control flow (implicit derivatives), and passed down.
+#if normal_map
+    let normal_texel = textureSample(normal_tex, material_sampler, in.uv).xyz;
+#else
+    let normal_texel = vec3f(0.5, 0.5, 1.0);
+#endif
+#if roughness_map
+    let roughness = material.roughness * textureSample(roughness_tex, material_sampler, in.uv).g;
+#else
+    let roughness = material.roughness;
+#endif
+    let color = shade(base.rgb, in, normal_texel, roughness);
+#else
+    let color = base.rgb;
+#endif
+#if srgb_output
+    return vec4f(srgb_encode(color), base.a);
+#else
+    return vec4f(color, base.a);
+#endif
+}

@@ -1,0 +1,146 @@
+"""A frame of a scene: the scene pass into the plan's attachments, then the post chain into the output.
+
+The plan (wgpurender/plan.py) decides everything; this module only builds what it lists:
+
+- ``msaa_color`` (4 samples) only at msaa 4, resolved at the end of the scene pass into
+  ``scene_color`` (with a post chain) or straight into the output (without one);
+- ``depth`` (depth32float, as many samples as the colour) only when there are models;
+- ``scene_color`` (rgba16float when HDR) only when a post chain reads it;
+- the post chain (:class:`wgpurender.post.PostChain`) ping-pongs through its own intermediates.
+
+Why the post chain is separate passes, not subpasses: WebGPU (and so wgpu) has no subpasses
+or input attachments, because Metal and D3D12 do not expose them; each effect is its own
+render pass that samples the previous image as a texture, so the image makes a full trip
+through memory per effect. The cost and what is gained are spelled out in
+wgpurender/post/base.py's module docstring: the same on desktop GPUs and lavapipe, a lost
+tile-memory saving on mobile, and effects may read neighbouring pixels (FXAA needs that).
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import wgpu
+
+from ..errors import UserError
+from ..gpu import GPUContext, get_context
+from ..plan import RenderPlan, build_plan
+from ..post import PostChain
+from ..scene import Scene, load_scene
+from ..targets import create_target, read_texture
+from .resources import SceneResources
+from .scene_pass import ScenePassRenderer
+
+ATTACHMENT_USAGE = {
+    "msaa-color": wgpu.TextureUsage.RENDER_ATTACHMENT,
+    "depth": wgpu.TextureUsage.RENDER_ATTACHMENT,
+    "scene-color": wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING,
+}
+
+
+class SceneRenderer:
+    """Draws one scene by its plan into any texture of the plan's output format (offscreen or swapchain).
+
+    ``resize(size)`` makes the size-dependent attachments; ``draw(encoder, target, t)`` records a frame.
+    Scenes are static: ``t`` is accepted (the window passes it) and does not change the image.
+    """
+
+    def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, *, use_immediates: bool | None = None) -> None:
+        self.ctx, self.scene, self.plan = ctx, scene, plan
+        self._check_limits()
+        self.resources = SceneResources(ctx, plan)
+        self.scene_pass = ScenePassRenderer(ctx, scene, plan, self.resources, use_immediates)
+        scene_fmt = plan.attachment("scene_color").format if plan.has_attachment("scene_color") else None
+        self.chain = PostChain([step.create() for step in scene.post], intermediate_format=scene_fmt or "rgba16float")
+        self.size: tuple[int, int] | None = None
+        self.attachments: dict[str, wgpu.GPUTexture] = {}
+
+    def _check_limits(self) -> None:
+        max_dim = self.ctx.limit("max-texture-dimension-2d")
+        w, h = self.plan.size
+        if max(w, h) > max_dim:
+            raise UserError(f"render size {w}x{h} is larger than this GPU's max-texture-dimension-2d ({max_dim}): "
+                            "choose a smaller [render] size or --size")
+
+    def resize(self, size: tuple[int, int]) -> None:
+        """(Re)create the plan's attachments other than the output at ``size``."""
+        size = (int(size[0]), int(size[1]))
+        if size == self.size:
+            return
+        self.size = size
+        self.attachments = {}
+        for a in self.plan.attachments:
+            if a.role in ATTACHMENT_USAGE:
+                self.attachments[a.name] = self.ctx.device.create_texture(
+                    label=a.name, size=(size[0], size[1], 1), format=a.format, sample_count=a.sample_count,
+                    usage=ATTACHMENT_USAGE[a.role])
+
+    def _texture(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTexture:
+        return target if name == "output" else self.attachments[name]
+
+    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
+        """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass)."""
+        if target.format != self.plan.output_format:
+            raise UserError(f"the scene was planned for {self.plan.output_format} output, but the target is "
+                            f"{target.format}: build the plan with output_format={target.format!r}")
+        size = (target.size[0], target.size[1])
+        self.resize(size)
+        sp = self.plan.scene_pass
+        color = {"view": self._texture(sp.color, target).create_view(), "clear_value": sp.clear_color,
+                 "load_op": "clear", "store_op": "store"}
+        if sp.resolve_target is not None:
+            # The multisampled image is scratch: resolved at the end of the pass, its samples discarded.
+            color.update(resolve_target=self._texture(sp.resolve_target, target).create_view(), store_op="discard")
+        depth = self.attachments[sp.depth].create_view() if sp.depth else None
+        writes = timer.writes("scene") if timer is not None else None
+        self.scene_pass.encode(encoder, color, depth, size[0] / size[1], timestamp_writes=writes)
+        if self.chain:
+            self.chain.run(self.ctx, encoder, self.attachments[sp.writes], target, timer=timer)
+
+
+def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,
+                  msaa: int | None = None, use_immediates: bool | None = None) -> SceneRenderer:
+    """A renderer for a scene file, with the plan's size, output format and MSAA overridable."""
+    scene = load_scene(path)
+    plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa)
+    return SceneRenderer(ctx, scene, plan, use_immediates=use_immediates)
+
+
+def render_frame(ctx: GPUContext, renderer: SceneRenderer, target: wgpu.GPUTexture, t: float = 0.0):
+    """Record, submit and read back one frame: (pixels, wall milliseconds including the readback)."""
+    start = time.perf_counter()
+    encoder = ctx.device.create_command_encoder(label="scene-frame")
+    renderer.draw(encoder, target, t)
+    ctx.queue.submit([encoder.finish()])
+    pixels = read_texture(ctx, target)
+    return pixels, (time.perf_counter() - start) * 1e3
+
+
+def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
+                      msaa: int | None = None, t: float = 0.0, ctx: GPUContext | None = None, *,
+                      frames: int = 3, use_immediates: bool | None = None):
+    """Render a scene file headless: a :class:`wgpurender.render.RenderResult` of the last of ``frames`` frames.
+
+    The first frame pays for texture uploads, mip generation and shader compilation, so
+    ``frame_ms`` is the last (steady-state) frame: record, submit, GPU work and readback.
+    """
+    from ..render import RenderResult
+
+    ctx = ctx or get_context()
+    renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates)
+    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    pixels, frame_ms = None, 0.0
+    for _ in range(max(1, frames)):
+        pixels, frame_ms = render_frame(ctx, renderer, target, t)
+    return RenderResult(pixels=pixels, frame_ms=frame_ms, adapter=ctx.describe())
+
+
+def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None):
+    """``make(fmt) -> SceneRenderer`` for the window: the scene is loaded and checked now, planned per format."""
+    scene = load_scene(path)
+
+    def make(fmt: str) -> SceneRenderer:
+        return SceneRenderer(ctx, scene, build_plan(scene, output_format=fmt, msaa=msaa))
+
+    return make
