@@ -136,9 +136,12 @@ def find_queue_family(physical_device) -> int:
 
 
 def create_device(physical_device, family: int):
-    """vkCreateDevice with one queue of ``family``, no device extensions, no optional features."""
+    """vkCreateDevice with one queue of ``family``, no device extensions; one optional feature,
+    samplerAnisotropy, when the device offers it (anisotropic samplers need it; wgpu enables it the same way)."""
     queue_info = vk.VkDeviceQueueCreateInfo(queueFamilyIndex=family, queueCount=1, pQueuePriorities=[1.0])
-    info = vk.VkDeviceCreateInfo(pQueueCreateInfos=[queue_info], pEnabledFeatures=vk.VkPhysicalDeviceFeatures())
+    offered = vk.vkGetPhysicalDeviceFeatures(physical_device)
+    features = vk.VkPhysicalDeviceFeatures(samplerAnisotropy=offered.samplerAnisotropy)
+    info = vk.VkDeviceCreateInfo(pQueueCreateInfos=[queue_info], pEnabledFeatures=features)
     device = vk.vkCreateDevice(physical_device, info, None)
     return device, vk.vkGetDeviceQueue(device, family, 0)
 
