@@ -126,7 +126,7 @@ CONCEPTS: list[Concept] = [
         "staging",
         ("staging VkBuffer in HOST_VISIBLE | HOST_COHERENT memory", "vkMapMemory / vkUnmapMemory",
          "vkCmdCopyBuffer", "vkCmdCopyBufferToImage"),
-        _raw("memory:upload_buffer", "memory:write_host_buffer"),
+        _raw("memory:upload_buffer", "memory:write_host_buffer", "textures:upload_texture", "textures:record_upload"),
         ("queue.write_buffer", "queue.write_texture", "device.create_buffer_with_data"),
         _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "textures:upload_level", "stages.cube3d:Cube3D.draw"),
         "wgpu stages the bytes in its own upload buffer, records the copy before the next submit and inserts the "
@@ -155,7 +155,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "set layouts",
         ("VkDescriptorSetLayoutBinding", "vkCreateDescriptorSetLayout"),
-        _raw("descriptors:binding", "descriptors:create_set_layout"),
+        _raw("descriptors:binding", "descriptors:create_set_layout", "stages.textured:Textured._setup_descriptors"),
         ("device.create_bind_group_layout(entries=)", "GPURenderPipeline.get_bind_group_layout (layout 'auto')"),
         _wgpu("stages.cube3d:_uniform_layout", "stages.textured:TexturedPipelines.__init__",
               "post.base:PostEffect._layout_entries"),
@@ -168,7 +168,8 @@ CONCEPTS: list[Concept] = [
         ("vkAllocateDescriptorSets", "VkWriteDescriptorSet + vkUpdateDescriptorSets",
          "vkCmdBindDescriptorSets (dynamic offsets)"),
         _raw("descriptors:allocate_sets", "descriptors:write_buffer", "descriptors:write_image",
-             "descriptors:update", "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record"),
+             "descriptors:update", "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record",
+             "stages.textured:Textured._setup_descriptors", "stages.textured:Textured.record"),
         ("device.create_bind_group(layout=, entries=)", "GPURenderPassEncoder.set_bind_group(index, group, offsets)"),
         _wgpu("stages.cube3d:Cube3D._bind_group", "stages.cube3d:Cube3D.draw",
               "stages.textured:TexturedPipelines.combined_group", "stages.textured:TexturedPipelines.sampler_group"),
@@ -178,7 +179,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "images",
         ("vkCreateImage", "VkImageCreateInfo (format, extent, mipLevels, samples, tiling, usage)"),
-        _raw("images:create_image", "images:FORMATS"),
+        _raw("images:create_image", "images:FORMATS", "textures:create_texture_image"),
         ("device.create_texture(size=, format=, usage=, mip_level_count=, sample_count=)",),
         _wgpu("targets:create_target", "textures:create_texture"),
         "Memory comes with the texture, tiling is always optimal and the initial layout is not given. Usage "
@@ -187,7 +188,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "views",
         ("vkCreateImageView", "VkImageViewCreateInfo (viewType, format, components)"),
-        _raw("images:create_view"),
+        _raw("images:create_view", "textures:TextureImage.level"),
         ("GPUTexture.create_view(format=, dimension=, base_mip_level=, mip_level_count=, ...)",),
         _wgpu("textures:_level_view", "stages.base:Stage.color_attachment"),
         "The same object; a default view covers the whole texture. A view is kept alive by what uses it, so "
@@ -196,7 +197,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "subresources",
         ("VkImageSubresourceRange", "VkImageSubresourceLayers"),
-        _raw("images:subresource_range", "images:subresource_layers"),
+        _raw("images:subresource_range", "images:subresource_layers", "textures:level_range", "textures:level_layers"),
         ("create_view(base_mip_level, mip_level_count, base_array_layer, array_layer_count, aspect)",
          "copy info {'texture', 'mip_level', 'origin', 'aspect'}"),
         _wgpu("textures:_level_view", "textures:read_mip", "native:clear_texture"),
@@ -207,7 +208,8 @@ CONCEPTS: list[Concept] = [
         "layouts and transitions",
         ("VkImageLayout", "VkImageMemoryBarrier oldLayout -> newLayout",
          "VkAttachmentDescription initialLayout / finalLayout"),
-        _raw("images:transition", "images:LAYOUT_ACCESS"),
+        _raw("images:transition", "images:LAYOUT_ACCESS", "textures:transition_level",
+             "textures:MipGenerator.__init__"),
         ("(none: implicit from usage)",),
         _wgpu("textures:upload_level", "textures:generate_mipmaps"),
         "wgpu has no image layouts: it tracks how each subresource was last used (copy destination, attachment, "
@@ -249,7 +251,8 @@ CONCEPTS: list[Concept] = [
         "barriers with stage and access masks",
         ("vkCmdPipelineBarrier", "VkBufferMemoryBarrier / VkImageMemoryBarrier",
          "VkPipelineStageFlags + VkAccessFlags (availability and visibility)"),
-        _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer"),
+        _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer",
+             "textures:transition_level"),
         ("(none: inserted by wgpu)",),
         _wgpu("textures:generate_mipmaps", "post.chain:PostChain.run"),
         "No barrier is ever written: wgpu inserts them between passes and copies from its usage tracking, with "
@@ -351,7 +354,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "vertex input bindings and attributes",
         ("VkVertexInputBindingDescription", "VkVertexInputAttributeDescription", "vkCmdBindVertexBuffers"),
-        _raw("stages.triangle_buffers:vertex_input", "stages.cube3d:vertex_input"),
+        _raw("stages.triangle_buffers:vertex_input", "stages.cube3d:vertex_input", "stages.textured:vertex_input"),
         ("vertex={'buffers': [{array_stride, step_mode, attributes: [{shader_location, format, offset}]}]}",
          "GPURenderPassEncoder.set_vertex_buffer"),
         _wgpu("stages.triangle_buffers:VERTEX_LAYOUT", "stages.cube3d:VERTEX_LAYOUT",
@@ -370,7 +373,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "viewport and scissor",
         ("vkCmdSetViewport", "vkCmdSetScissor", "VkPipelineViewportStateCreateInfo"),
-        _raw("pipeline:set_viewport_and_scissor"),
+        _raw("pipeline:set_viewport_and_scissor", "stages.textured:set_viewport"),
         ("GPURenderPassEncoder.set_viewport(x, y, w, h, min_depth, max_depth)", "set_scissor_rect"),
         _wgpu("stages.textured:Textured.draw"),
         "Always dynamic, defaulting to the whole attachment; one viewport. wgpu's NDC y points up, Vulkan's down: "
@@ -463,6 +466,29 @@ CONCEPTS: list[Concept] = [
         _wgpu("targets:read_texture", "targets:padded_bytes_per_row"),
         "Rows in the buffer must start at multiples of 256 bytes in wgpu (Vulkan packs them tightly), so the "
         "wgpu path pads and unpads.",
+    ),
+    Concept(
+        "samplers",
+        ("vkCreateSampler", "VkSamplerCreateInfo (filters, mipmapMode, addressMode*, minLod/maxLod, anisotropy)",
+         "samplerAnisotropy device feature", "VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER / SAMPLED_IMAGE + SAMPLER"),
+        _raw("textures:sampler_info", "textures:create_sampler", "instance:create_device",
+             "stages.textured:Textured._setup_descriptors"),
+        ("device.create_sampler(mag_filter=, min_filter=, mipmap_filter=, address_mode_*=, lod_*_clamp=, "
+         "max_anisotropy=)", "bind group entries {'sampler'} and {'texture'}"),
+        _wgpu("textures:create_sampler", "textures:SamplerSpec", "stages.textured:TexturedPipelines.__init__"),
+        "wgpu requires all three filters linear when max_anisotropy > 1 and turns on the anisotropy device "
+        "feature itself; Vulkan needs samplerAnisotropy enabled at device creation. WGSL has no combined image "
+        "sampler: the wgpu path's 'combined' half puts texture and sampler in one bind group instead.",
+    ),
+    Concept(
+        "mipmaps",
+        ("VkImageCreateInfo.mipLevels", "vkCmdBlitImage per level (the course)", "a render pass per level (here)"),
+        _raw("textures:MipGenerator.record", "textures:level_count", "textures:level_size"),
+        ("create_texture(mip_level_count=)", "a render pass per level into create_view(base_mip_level=)"),
+        _wgpu("textures:generate_mipmaps", "textures:mip_level_count"),
+        "WebGPU has no blit, so the wgpu path draws each level in a render pass (an exact box filter in linear "
+        "light) and wgpu orders the passes; the raw path does the same in GLSL rather than the course's "
+        "vkCmdBlitImage, whose bilinear filter differs, so the two chains compare bit for bit.",
     ),
 ]
 
