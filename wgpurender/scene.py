@@ -281,7 +281,12 @@ class Camera:
 
 @dataclass(frozen=True)
 class SamplerSettings:
-    """How a material's textures are sampled. ``mipmaps`` also decides whether a mip chain is built."""
+    """How a material's textures are sampled. ``mipmaps`` also decides whether a mip chain is built.
+
+    ``mipmaps = false`` with ``anisotropy > 1`` is the Vulkan tutorial's chapter-28 sampler: one mip level
+    (maxLod 0) sampled anisotropically; the mipmap filter stays linear there because wgpu allows anisotropy
+    only with linear min, mag and mipmap filters (with one level it changes nothing).
+    """
 
     filter: str = "linear"
     mipmaps: bool = True
@@ -295,7 +300,7 @@ class SamplerSettings:
         return SamplerSpec(
             mag_filter=self.filter,
             min_filter=self.filter,
-            mipmap_filter=self.filter if self.mipmaps else "nearest",
+            mipmap_filter=self.filter if (self.mipmaps or self.anisotropy > 1) else "nearest",
             address_mode_u=self.address_mode,
             address_mode_v=self.address_mode,
             address_mode_w=self.address_mode,
@@ -538,10 +543,10 @@ def _sampler(c: _Checker, data: Any, key: KeyPath) -> SamplerSettings:
         anisotropy=c.integer(t.get("anisotropy", 1), key + ("anisotropy",), lo=1, hi=MAX_ANISOTROPY),
         address_mode=c.string(t.get("address_mode", "repeat"), key + ("address_mode",), ADDRESS_MODES),
     )
-    if s.anisotropy > 1 and (s.filter != "linear" or not s.mipmaps):
+    if s.anisotropy > 1 and s.filter != "linear":
         raise c.error(
             key + ("anisotropy",),
-            f"{format_path(key)}: anisotropy {s.anisotropy} needs filter = \"linear\" and mipmaps = true "
+            f"{format_path(key)}: anisotropy {s.anisotropy} needs filter = \"linear\" "
             "(wgpu allows anisotropic filtering only with linear min, mag and mipmap filters)",
         )
     return s
