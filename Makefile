@@ -29,7 +29,7 @@ $(STAMP): pyproject.toml
 
 demo: setup
 	@mkdir -p out
-	$(BIN)/wgpurender render msaa -o out/msaa.png
+	$(BIN)/wgpurender render assets/scenes/final.toml -o out/final.png
 
 test: setup
 	$(BIN)/ruff check .

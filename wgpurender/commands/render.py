@@ -13,15 +13,28 @@ def register(subparsers) -> None:
         "and write a PNG.",
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
-    p.add_argument("-o", "--output", required=True, metavar="PNG", help="output PNG path (written atomically)")
+    p.add_argument("-o", "--output", metavar="PNG", help="output PNG (written atomically); required unless --explain")
+    p.add_argument("--explain", action="store_true",
+                   help="print the scene's render plan (passes, attachments, pipelines and why); with -o also render")
     add_render_args(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    from ..errors import UserError
     from ..imageio import check_writable, save_png
     from ..render import render_any
 
+    if args.explain:
+        if not args.target.endswith(".toml"):
+            raise UserError(f"--explain needs a scene file (.toml), got stage {args.target!r}")
+        from ..plan import explain_scene
+
+        print(explain_scene(args.target, size=args.size, output_format=args.format, msaa=args.msaa), end="")
+        if not args.output:
+            return 0
+    if not args.output:
+        raise UserError("render needs -o PNG (the output path), or --explain to print a scene's plan")
     check_writable(args.output)
     result = render_any(args.target, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time, backend=args.backend)
     path = save_png(args.output, result.pixels)
