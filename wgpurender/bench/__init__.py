@@ -1,0 +1,16 @@
+"""Benchmarks: how fast the wgpu path is against its peers (the raw-Vulkan path, the C++ tutorial's numbers).
+
+One module per measurement family, each returning :class:`~wgpurender.bench.report.Result` rows:
+
+- :mod:`.frames`: frame time of every stage (and the final scene when it exists), wgpu against raw
+  Vulkan on the same scene; CPU time to encode and submit; readback cost;
+- :mod:`.post`: the cost of each post effect, the post pass's cost taken apart (format, sampler,
+  quad, load op, readback), and wgpu MSAA + one effect against the raw path's msaa-post subpass;
+- :mod:`.objects`: many tiny objects through dynamic offsets, immediates, instancing and bundles;
+- :mod:`.startup`: first-frame time (shader compilation, pipeline creation) with and without caches,
+  each run in a fresh process;
+- :mod:`.perf`: runs them all (``wgpurender bench perf``); :mod:`.report`: CSV, markdown, plots.
+
+Numbers from a shared machine are noisy: every family reports a median with the 10th and 90th
+percentiles, and comparisons are ratios taken within one run.
+"""

@@ -1,0 +1,257 @@
+"""Frame time of a stage on the wgpu path and on the raw-Vulkan path, set up once and drawn N times.
+
+Per frame both paths do the same: record the stage's commands, submit, wait for
+the GPU (wgpu: ``ctx.wait_idle``; raw: a fence), optionally copy the image to a
+host buffer and read it. Measured per frame:
+
+- ``frame_ms``: wall time of record + submit + wait (no readback);
+- ``cpu_ms``: wall time of record + submit alone (what the CPU spends per frame);
+- ``gpu_ms``: GPU timestamps around the stage's passes (wgpu: start and end of each
+  pass, summed; raw: vkCmdWriteTimestamp before and after the stage's commands);
+- ``readback_ms``: median frame time with readback minus median without.
+
+The raw runner builds on the vulkan_ref modules (stage classes, images, command
+pools) and needs no change there: a stage's ``record`` may be called once per
+frame (it makes a framebuffer each time, registered with the stage's ExitStack;
+a small per-frame cost the raw path pays and wgpu does not).
+"""
+
+from __future__ import annotations
+
+import time
+from contextlib import ExitStack
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..gpu import GPUContext
+from ..timing import PassTimer, Stats
+from .encoder import TimedEncoder
+from .report import Result, size_text
+
+
+@dataclass
+class Samples:
+    """Per-frame samples of one runner, in milliseconds."""
+
+    frame: list[float] = field(default_factory=list)
+    cpu: list[float] = field(default_factory=list)
+    gpu: list[float] = field(default_factory=list)
+    readback_frame: list[float] = field(default_factory=list)
+
+    def results(self, family: str, case: str, path: str, size: tuple[int, int], note: str = "") -> list[Result]:
+        s = size_text(size)
+        out = [Result.of(family, case, path, s, "frame_ms", Stats.of(self.frame), note),
+               Result.of(family, case, path, s, "cpu_ms", Stats.of(self.cpu), note)]
+        if self.gpu:
+            out.append(Result.of(family, case, path, s, "gpu_ms", Stats.of(self.gpu), note))
+        if self.readback_frame:
+            with_rb = Stats.of(self.readback_frame)
+            out.append(Result.of(family, case, path, s, "frame_readback_ms", with_rb, note))
+            extra = with_rb.median - Stats.of(self.frame).median
+            out.append(Result(family, case, path, s, "readback_ms", extra, extra, extra, len(self.readback_frame),
+                              "median(frame with readback) - median(frame)"))
+        return out
+
+
+def measure(runner, frames: int, warmup: int = 2, readback_frames: int = 0) -> Samples:
+    """Run ``warmup`` untimed frames, then ``frames`` timed ones, then ``readback_frames`` with readback."""
+    for _ in range(warmup):
+        runner.frame()
+    samples = Samples()
+    for _ in range(frames):
+        start = time.perf_counter()
+        cpu_ms, gpu_ms = runner.frame()
+        samples.frame.append((time.perf_counter() - start) * 1e3)
+        samples.cpu.append(cpu_ms)
+        if gpu_ms is not None:
+            samples.gpu.append(gpu_ms)
+    for _ in range(readback_frames):
+        start = time.perf_counter()
+        runner.frame(readback=True)
+        samples.readback_frame.append((time.perf_counter() - start) * 1e3)
+    return samples
+
+
+# -- wgpu ---------------------------------------------------------------------------------------
+
+
+class WgpuStageRunner:
+    """A wgpu stage drawn into one offscreen target, frame after frame."""
+
+    def __init__(self, ctx: GPUContext, name: str, size: tuple[int, int], fmt: str | None = None,
+                 msaa: int | None = None) -> None:
+        from ..stages import get_stage
+        from ..targets import create_target
+
+        cls = get_stage(name)
+        self.ctx = ctx
+        self.name = name
+        self.stage = cls(ctx, fmt or cls.default_format, msaa)
+        self.stage.resize(size)
+        self.target = create_target(ctx, size, self.stage.format)
+        self.timer = PassTimer(ctx)
+        self.t = 0.0
+
+    def encode(self, encoder) -> None:
+        self.stage.draw(encoder, self.target, self.t)
+
+    def frame(self, readback: bool = False) -> tuple[float, float | None]:
+        """(cpu_ms of record + submit, gpu_ms of the passes or None); waits for the GPU."""
+        ctx = self.ctx
+        start = time.perf_counter()
+        self.timer.reset()
+        encoder = ctx.device.create_command_encoder(label=f"bench-{self.name}")
+        self.encode(TimedEncoder(encoder, self.timer, self.name))
+        self.timer.resolve(encoder)
+        ctx.queue.submit([encoder.finish()])
+        cpu_ms = (time.perf_counter() - start) * 1e3
+        if readback:
+            from ..targets import read_texture
+
+            read_texture(ctx, self.target)
+        gpu = self.timer.read()  # maps the query buffer: waits for the frame
+        if not gpu:
+            ctx.wait_idle()
+        return cpu_ms, (sum(gpu.values()) if gpu else None)
+
+
+# -- raw Vulkan ---------------------------------------------------------------------------------
+
+
+class RawStageRunner:
+    """A raw-Vulkan stage drawn into one image, frame after frame, with one command buffer and fence reused."""
+
+    def __init__(self, name: str, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None) -> None:
+        import vulkan as vk
+
+        from ..vulkan_ref.commands import create_command_pool
+        from ..vulkan_ref.images import create_image
+        from ..vulkan_ref.instance import get_vulkan
+        from ..vulkan_ref.render import check_msaa, check_size
+        from ..vulkan_ref.stages import get_ref_stage
+        from ..vulkan_ref.stages.base import TARGET_USAGE
+
+        self.vk = vk
+        ctx = self.ctx = get_vulkan()
+        cls = get_ref_stage(name)
+        self.name = name
+        self.size = check_size(ctx, size)
+        self.owned = ExitStack()
+        owned = self.owned
+        self.stage = cls(ctx, owned, fmt or cls.default_format, check_msaa(ctx, cls, msaa), self.size)
+        self.target = create_image(ctx, owned, self.size, self.stage.format, TARGET_USAGE)
+        self.pool = create_command_pool(ctx)
+        owned.callback(vk.vkDestroyCommandPool, ctx.device, self.pool, None)
+        alloc = vk.VkCommandBufferAllocateInfo(commandPool=self.pool, level=vk.VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                               commandBufferCount=1)
+        self.cmd = vk.vkAllocateCommandBuffers(ctx.device, alloc)[0]
+        self.fence = vk.vkCreateFence(ctx.device, vk.VkFenceCreateInfo(), None)
+        owned.callback(vk.vkDestroyFence, ctx.device, self.fence, None)
+        self.queries = vk.vkCreateQueryPool(
+            ctx.device, vk.VkQueryPoolCreateInfo(queryType=vk.VK_QUERY_TYPE_TIMESTAMP, queryCount=2), None)
+        owned.callback(vk.vkDestroyQueryPool, ctx.device, self.queries, None)
+        self.period_ns = float(vk.vkGetPhysicalDeviceProperties(ctx.physical_device).limits.timestampPeriod)
+        self._ticks = vk.ffi.new("uint64_t[2]")
+        self._readback = None
+        self.t = 0.0
+
+    def close(self) -> None:
+        self.vk.vkDeviceWaitIdle(self.ctx.device)
+        self.owned.close()
+        self.ctx.check_validation(f"the raw-Vulkan benchmark of {self.name!r}")
+
+    def __enter__(self) -> RawStageRunner:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def _readback_buffer(self):
+        if self._readback is None:
+            from ..vulkan_ref.images import FORMATS
+            from ..vulkan_ref.memory import HOST_MEMORY, create_buffer
+
+            vk = self.vk
+            nbytes = self.size[0] * self.size[1] * FORMATS[self.stage.format][1]
+            self._readback = create_buffer(self.ctx, self.owned, nbytes, vk.VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           HOST_MEMORY, vk.VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
+        return self._readback
+
+    def _record_copy(self, cmd) -> None:
+        """vkCmdCopyImageToBuffer into the reused host buffer + a barrier for the host read."""
+        from ..vulkan_ref.images import subresource_layers
+        from ..vulkan_ref.memory import WHOLE_SIZE
+
+        vk, buffer = self.vk, self._readback_buffer()
+        region = vk.VkBufferImageCopy(
+            bufferOffset=0, bufferRowLength=0, bufferImageHeight=0, imageSubresource=subresource_layers(),
+            imageOffset=vk.VkOffset3D(x=0, y=0, z=0),
+            imageExtent=vk.VkExtent3D(width=self.size[0], height=self.size[1], depth=1))
+        vk.vkCmdCopyImageToBuffer(cmd, self.target.handle, vk.VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle, 1,
+                                  [region])
+        barrier = vk.VkBufferMemoryBarrier(
+            srcAccessMask=vk.VK_ACCESS_TRANSFER_WRITE_BIT, dstAccessMask=vk.VK_ACCESS_HOST_READ_BIT,
+            srcQueueFamilyIndex=vk.VK_QUEUE_FAMILY_IGNORED, dstQueueFamilyIndex=vk.VK_QUEUE_FAMILY_IGNORED,
+            buffer=buffer.handle, offset=0, size=WHOLE_SIZE)
+        vk.vkCmdPipelineBarrier(cmd, vk.VK_PIPELINE_STAGE_TRANSFER_BIT, vk.VK_PIPELINE_STAGE_HOST_BIT, 0, 0, None, 1,
+                                [barrier], 0, None)
+
+    def frame(self, readback: bool = False) -> tuple[float, float]:
+        vk, ctx, cmd = self.vk, self.ctx, self.cmd
+        start = time.perf_counter()
+        vk.vkResetCommandPool(ctx.device, self.pool, 0)
+        vk.vkBeginCommandBuffer(cmd, vk.VkCommandBufferBeginInfo(flags=vk.VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT))
+        vk.vkCmdResetQueryPool(cmd, self.queries, 0, 2)
+        vk.vkCmdWriteTimestamp(cmd, vk.VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, self.queries, 0)
+        self.stage.record(cmd, self.target, self.t)
+        vk.vkCmdWriteTimestamp(cmd, vk.VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, self.queries, 1)
+        if readback:
+            self._record_copy(cmd)
+        vk.vkEndCommandBuffer(cmd)
+        submit = vk.VkSubmitInfo(pCommandBuffers=[cmd])
+        vk.vkQueueSubmit(ctx.queue, 1, [submit], self.fence)
+        cpu_ms = (time.perf_counter() - start) * 1e3
+        vk.vkWaitForFences(ctx.device, 1, [self.fence], vk.VK_TRUE, 60 * 10**9)
+        vk.vkResetFences(ctx.device, 1, [self.fence])
+        vk.lib.vkGetQueryPoolResults(ctx.device, self.queries, 0, 2, 16, self._ticks, 8,
+                                     vk.VK_QUERY_RESULT_64_BIT | vk.VK_QUERY_RESULT_WAIT_BIT)
+        gpu_ms = (int(self._ticks[1]) - int(self._ticks[0])) * self.period_ns / 1e6
+        if readback:
+            from ..vulkan_ref.memory import read_host_buffer
+
+            read_host_buffer(ctx, self._readback)
+        return cpu_ms, gpu_ms
+
+
+# -- the family ----------------------------------------------------------------------------------
+
+
+def common_stages() -> list[str]:
+    """Stages both paths render, in course order."""
+    from ..stages import all_stages
+    from ..vulkan_ref import reference_stage_names
+
+    raw = set(reference_stage_names())
+    return [name for name in all_stages() if name in raw]
+
+
+def bench_stage(ctx: GPUContext, name: str, size: tuple[int, int], frames: int, readback_frames: int,
+                raw: bool = True) -> list[Result]:
+    """One stage at one size on both paths (raw only when it has the stage and ``raw``)."""
+    runner = WgpuStageRunner(ctx, name, size)
+    out = measure(runner, frames, readback_frames=readback_frames).results("frames", name, "wgpu", size)
+    if raw:
+        with RawStageRunner(name, size) as raw_runner:
+            out += measure(raw_runner, frames, readback_frames=readback_frames).results("frames", name, "raw", size)
+    return out
+
+
+def pixels_agree(ctx: GPUContext, name: str, size: tuple[int, int]) -> float:
+    """Largest channel difference between the two paths' images after the benchmark set-up (sanity check)."""
+    from ..render import render_stage
+    from ..vulkan_ref import render_reference
+
+    a = render_stage(name, size, ctx=ctx).pixels.astype(np.float64)
+    b = render_reference(name, size).astype(np.float64)
+    return float(np.abs(a - b).max())

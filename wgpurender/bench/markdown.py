@@ -1,0 +1,153 @@
+"""The markdown report of one perf run: machine, command, targets, then one section per family."""
+
+from __future__ import annotations
+
+from .report import Result, comparison_table, fmt_ms, markdown_table, results_table, spread
+
+
+def _pick(results: list[Result], family: str, metric: str | None = None, path: str | None = None) -> list[Result]:
+    return [r for r in results if r.family == family and (metric is None or r.metric == metric)
+            and (path is None or r.path == path)]
+
+
+def _one(results: list[Result], family: str, case: str, path: str, size: str, metric: str) -> Result | None:
+    for r in results:
+        if (r.family, r.case, r.path, r.size, r.metric) == (family, case, path, size, metric):
+            return r
+    return None
+
+
+def _targets(run) -> str:
+    from .perf import CPP_GIVEN_MS
+
+    res = run.results
+    rows = []
+    scene = _pick(res, "scene", "frame_ms")
+    wg = {r.size: r for r in scene if r.path == "wgpu"}
+    rw = {r.size: r for r in scene if r.path == "raw"}
+    if wg and rw:
+        worst = max(wg[s].median / rw[s].median for s in wg if s in rw)
+        rows.append(("final scene wgpu / raw frame time <= 1.10", f"worst size {worst:.2f}x",
+                     "met" if worst <= 1.10 else "not met"))
+    else:
+        ratios = [(r.case, r.size, r.median / p.median) for r in _pick(res, "frames", "frame_ms", "wgpu")
+                  for p in [_one(res, "frames", r.case, "raw", r.size, "frame_ms")] if p and p.median > 0]
+        if ratios:
+            case, size, worst = max(ratios, key=lambda x: x[2])
+            within = sum(1 for *_, q in ratios if q <= 1.10)
+            rows.append(("wgpu / raw frame time <= 1.10 (stage by stage: the raw path has no final scene)",
+                         f"{within}/{len(ratios)} stage-sizes within; worst {case} {size} {worst:.2f}x",
+                         "met" if within == len(ratios) else "not met"))
+    s800 = wg.get("800x600")
+    for chapter, ms in CPP_GIVEN_MS.items():
+        if s800:
+            q = s800.median / ms
+            rows.append((f"tutorial {chapter} ({ms:g} ms given, C++ not built here) within 1.05x",
+                         f"final scene 800x600 {fmt_ms(s800.median)} ms = {q:.2f}x", "met" if q <= 1.05 else
+                         "not met"))
+        else:
+            rows.append((f"tutorial {chapter} ({ms:g} ms given, C++ not built here) within 1.05x",
+                         "final scene not measured", "n/a"))
+    cpu = [r for r in _pick(res, "scene", "cpu_ms", "wgpu")]
+    proxy = ""
+    if not cpu:
+        cpu = _pick(res, "frames", "cpu_ms", "wgpu")
+        cpu = [r for r in cpu if r.case == "3d"]
+        proxy = " (stage 3d as proxy)"
+    if cpu:
+        worst = max(r.median for r in cpu)
+        rows.append((f"CPU encode + submit <= 0.3 ms per frame{proxy}", f"{fmt_ms(worst)} ms (worst size)",
+                     "met" if worst <= 0.3 else "not met"))
+    objects = [r for r in _pick(res, "objects", "frame_ms") if r.case.endswith("/10000")]
+    if objects:
+        best = min(objects, key=lambda r: r.median)
+        fps = 1000.0 / best.median
+        gpu = "GPU" if "CPU" not in run.machine.get("adapter", "") else "lavapipe (target is for a GPU)"
+        rows.append(("10k objects at >= 60 fps", f"{fps:.0f} fps ({best.case.split('/')[0]}) on {gpu}",
+                     "met" if fps >= 60 else "not met"))
+    inc = _post_increments(res)
+    if inc:
+        worst = max(w / r for _, w, r in inc if r > 0)
+        rows.append(("post pass no more expensive than the raw subpass (GPU ms, msaa-post minus msaa)",
+                     f"worst wgpu/raw {worst:.2f}x", "met" if worst <= 1.0 else "not met"))
+    return markdown_table(("target", "measured", "status"), rows)
+
+
+def _post_increments(res: list[Result]) -> list[tuple[str, float, float]]:
+    """(size, wgpu post ms, raw post ms): msaa-post minus msaa alone, GPU time, per path."""
+    out = []
+    for r in _pick(res, "msaa-post", "gpu_ms", "wgpu"):
+        if r.case != "msaa-post":
+            continue
+        w0 = _one(res, "msaa-post", "msaa alone", "wgpu", r.size, "gpu_ms")
+        r1 = _one(res, "msaa-post", "msaa-post", "raw", r.size, "gpu_ms")
+        r0 = _one(res, "msaa-post", "msaa alone", "raw", r.size, "gpu_ms")
+        if w0 and r1 and r0:
+            out.append((r.size, r.median - w0.median, r1.median - r0.median))
+    return out
+
+
+def _objects_table(res: list[Result]) -> str:
+    rows = []
+    for r in _pick(res, "objects", "frame_ms"):
+        cpu = _one(res, "objects", r.case, r.path, r.size, "cpu_ms")
+        gpu = _one(res, "objects", r.case, r.path, r.size, "gpu_ms")
+        setup = _one(res, "objects", r.case, r.path, r.size, "setup_ms")
+        mode, count = r.case.split("/")
+        rows.append((mode, count, spread(r), spread(cpu) if cpu else "-", spread(gpu) if gpu else "-",
+                     f"{1000.0 / r.median:.0f}", fmt_ms(setup.median) if setup else "-"))
+    return markdown_table(("mode", "objects", "frame ms", "CPU ms", "GPU ms", "fps", "set-up ms"), rows)
+
+
+def _startup_table(res: list[Result]) -> str:
+    from .startup import PHASES
+
+    cases: dict[tuple[str, str], dict[str, Result]] = {}
+    for r in _pick(res, "startup"):
+        cases.setdefault((r.case, r.path), {})[r.metric] = r
+    rows = [(case, path, *(fmt_ms(m[p].median) if p in m else "-" for p in PHASES))
+            for (case, path), m in cases.items()]
+    return markdown_table(("case", "path", *(p.removesuffix("_ms") + " ms" for p in PHASES)), rows)
+
+
+def render_markdown(run, plots: dict[str, str]) -> str:
+    res = run.results
+    lines = ["# wgpurender performance run", ""]
+    lines += [f"- **{k}**: {v}" for k, v in run.machine.items()]
+    lines += [f"- **command**: `{run.config.command or 'run_perf()'}`",
+              f"- **mode**: {'quick (harness check; numbers not meaningful)' if run.config.quick else 'full'}, "
+              f"{run.config.timed_frames()} timed frames per case; duration {run.seconds:.0f} s",
+              "", "All times in ms: median [p10..p90] over the timed frames. Compare ratios within this run.", ""]
+    lines += ["## Targets", "", _targets(run), ""]
+    if _pick(res, "frames"):
+        lines += ["## Frame time: wgpu vs raw Vulkan, same stage", "",
+                  "frame = record + submit + wait; cpu = record + submit; gpu = timestamps around the stage's "
+                  "passes; readback = frame with readback minus frame.", ""]
+        for metric in ("frame_ms", "gpu_ms", "cpu_ms", "readback_ms"):
+            lines += [f"### {metric}", "", comparison_table(_pick(res, "frames"), metric=metric), ""]
+    if _pick(res, "scene"):
+        lines += ["## Final scene", "", results_table(_pick(res, "scene")), ""]
+    if _pick(res, "post-effects"):
+        lines += ["## Post effects (one pass each)", "",
+                  results_table([r for r in _pick(res, "post-effects") if r.metric in ("gpu_ms", "cpu_ms")]), ""]
+    if _pick(res, "post-probe"):
+        lines += ["## Post pass taken apart (a full-screen copy, one knob changed per row; GPU ms)", "",
+                  results_table(_pick(res, "post-probe", "gpu_ms")), ""]
+    if _pick(res, "msaa-post"):
+        lines += ["## MSAA + one post effect: wgpu (two passes) vs raw (two subpasses)", "",
+                  comparison_table(_pick(res, "msaa-post")), ""]
+        inc = _post_increments(res)
+        if inc:
+            lines += ["Post increment (msaa-post minus msaa alone, GPU ms):", "",
+                      markdown_table(("size", "wgpu post", "raw subpass", "wgpu/raw"),
+                                     [(s, fmt_ms(w), fmt_ms(r), f"{w / r:.2f}x" if r > 0 else "-")
+                                      for s, w, r in inc]), ""]
+    if _pick(res, "objects"):
+        lines += ["## Many objects (800x600, quads of ~4 px)", "", _objects_table(res), ""]
+    if _pick(res, "startup"):
+        lines += ["## First frame (fresh process per run)", "", _startup_table(res), ""]
+    if plots:
+        lines += ["## Plots", ""] + [f"![{k}]({name})" for k, name in plots.items()] + [""]
+    if run.notes:
+        lines += ["## Notes", ""] + [f"- {n}" for n in run.notes] + [""]
+    return "\n".join(lines)

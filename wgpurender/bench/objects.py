@@ -1,0 +1,208 @@
+"""Many objects: N tiny quads, their per-object data delivered four ways, timed per frame.
+
+Modes (the question each answers: what does one more object cost?):
+
+- ``dynamic``: one uniform buffer holds every object's 32 bytes at 256-byte steps
+  (min-uniform-buffer-offset-alignment); per object a ``set_bind_group`` with a
+  dynamic offset and a ``draw`` (the course's UNIFORM_BUFFER_DYNAMIC);
+- ``immediates``: per object ``set_immediates`` (push constants) and a ``draw``;
+- ``instancing``: the objects in a per-instance vertex buffer, ONE draw for all;
+- ``bundle``: the ``dynamic`` mode's draws recorded once into a render bundle and
+  replayed per frame with ``execute_bundles`` (the recording is paid once, at set-up).
+
+Every frame moves the objects (a numpy computation, the same for all modes) and
+uploads them where the mode keeps them in a buffer. Quads are a few pixels wide,
+so the cost measured is per object, not per pixel.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import wgpu
+
+from ..errors import UserError
+from ..gpu import GPUContext
+from ..shader_variants import specialise
+from ..shaders import create_shader_module, load_wgsl
+from ..targets import create_target
+from ..timing import PassTimer
+from .frames import measure
+from .report import Result, size_text
+
+SHADER = "bench_objects.wgsl"
+MODES = ("dynamic", "immediates", "instancing", "bundle")
+OBJECT_BYTES = 32  # rect + colour, two vec4f
+FORMAT = "rgba8unorm"
+BACKGROUND = (0.0, 0.0, 0.0, 1.0)
+
+
+HALF_SIZE = (0.005, 0.0067)  # NDC: quads of about 4x4 pixels at 800x600
+
+
+def object_data(count: int, t: float, seed: int = 7, half_size: tuple[float, float] = HALF_SIZE) -> np.ndarray:
+    """(count, 8) float32: quads at random places, drifting with ``t``, random opaque colours."""
+    rng = np.random.default_rng(seed)
+    centres = rng.uniform(-0.98, 0.98, size=(count, 2))
+    phase = rng.uniform(0.0, 2.0 * np.pi, size=count)
+    data = np.empty((count, 8), dtype=np.float32)
+    data[:, 0] = centres[:, 0] + 0.01 * np.sin(t + phase)
+    data[:, 1] = centres[:, 1] + 0.01 * np.cos(t + phase)
+    data[:, 2:4] = half_size
+    data[:, 4:7] = rng.uniform(0.2, 1.0, size=(count, 3))
+    data[:, 7] = 1.0
+    return data
+
+
+class ObjectsRenderer:
+    """Draws ``count`` quads into an offscreen target using one ``mode``."""
+
+    def __init__(self, ctx: GPUContext, mode: str, count: int, size: tuple[int, int] = (800, 600),
+                 half_size: tuple[float, float] = HALF_SIZE) -> None:
+        if mode not in MODES:
+            raise UserError(f"unknown objects mode {mode!r}: choose one of {', '.join(MODES)}")
+        if mode == "immediates" and not ctx.has("immediates"):
+            raise UserError(f"{ctx.adapter.info['device']} lacks the 'immediates' feature: use another mode")
+        self.ctx, self.mode, self.count, self.size = ctx, mode, count, size
+        self.half_size = half_size
+        self.device = ctx.device
+        self.target = create_target(ctx, size, FORMAT)
+        self.timer = PassTimer(ctx)
+        self.t = 0.0
+        self.stride = self.ctx.limit("min-uniform-buffer-offset-alignment") if mode in ("dynamic", "bundle") \
+            else OBJECT_BYTES
+        self._padded = np.zeros((count, self.stride // 4), dtype=np.float32)
+        self.buffer = None
+        if mode != "immediates":
+            usage = (wgpu.BufferUsage.VERTEX if mode == "instancing" else wgpu.BufferUsage.UNIFORM) \
+                | wgpu.BufferUsage.COPY_DST
+            self.buffer = self.device.create_buffer(label=f"objects-{mode}", size=self.stride * count, usage=usage)
+        self._make_pipeline()
+        self.bundle = self._record_bundle() if mode == "bundle" else None
+
+    # -- set-up --------------------------------------------------------------------------------
+    def _variant(self) -> str:
+        return {"dynamic": "uniform", "bundle": "uniform", "instancing": "instanced"}.get(self.mode, self.mode)
+
+    def _make_pipeline(self) -> None:
+        dev = self.device
+        variant = self._variant()
+        source = specialise(load_wgsl(SHADER), {variant}, name=SHADER)
+        module = create_shader_module(dev, SHADER, source)
+        layouts = []
+        if variant == "uniform":
+            bgl = dev.create_bind_group_layout(entries=[{
+                "binding": 0, "visibility": wgpu.ShaderStage.VERTEX,
+                "buffer": {"type": "uniform", "has_dynamic_offset": True, "min_binding_size": OBJECT_BYTES}}])
+            layouts.append(bgl)
+            self.group = dev.create_bind_group(layout=bgl, entries=[
+                {"binding": 0, "resource": {"buffer": self.buffer, "offset": 0, "size": OBJECT_BYTES}}])
+        layout = dev.create_pipeline_layout(bind_group_layouts=layouts,
+                                            immediate_size=OBJECT_BYTES if variant == "immediates" else 0)
+        buffers = []
+        if variant == "instanced":
+            buffers = [{"array_stride": OBJECT_BYTES, "step_mode": "instance", "attributes": [
+                {"shader_location": 0, "format": "float32x4", "offset": 0},
+                {"shader_location": 1, "format": "float32x4", "offset": 16}]}]
+        self.pipeline = dev.create_render_pipeline(
+            label=f"objects-{self.mode}", layout=layout,
+            vertex={"module": module, "entry_point": "vs_main", "buffers": buffers},
+            primitive={"topology": "triangle-strip", "cull_mode": "none"},
+            depth_stencil=None,
+            multisample={"count": 1, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
+            fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": FORMAT}]},
+        )
+
+    def _record_bundle(self) -> wgpu.GPURenderBundle:
+        enc = self.device.create_render_bundle_encoder(color_formats=[FORMAT])
+        self._draw_dynamic(enc)
+        return enc.finish()
+
+    # -- per frame -------------------------------------------------------------------------------
+    def _draw_dynamic(self, rp) -> None:
+        rp.set_pipeline(self.pipeline)
+        stride, group = self.stride, self.group
+        for k in range(self.count):
+            rp.set_bind_group(0, group, [k * stride])
+            rp.draw(4)
+
+    def _draw_immediates(self, rp, data: np.ndarray) -> None:
+        rp.set_pipeline(self.pipeline)
+        for k in range(self.count):
+            rp.set_immediates(0, data, k * OBJECT_BYTES, OBJECT_BYTES)
+            rp.draw(4)
+
+    def upload(self, data: np.ndarray) -> None:
+        if self.buffer is None:
+            return
+        if self.stride == OBJECT_BYTES:
+            self.ctx.queue.write_buffer(self.buffer, 0, data)
+        else:
+            self._padded[:, :8] = data
+            self.ctx.queue.write_buffer(self.buffer, 0, self._padded)
+
+    def frame(self, readback: bool = False) -> tuple[float, float | None]:
+        """(cpu_ms: data + upload + record + submit, gpu_ms of the pass or None); waits for the GPU."""
+        start = time.perf_counter()
+        data = object_data(self.count, self.t, half_size=self.half_size)
+        self.upload(data)
+        self.timer.reset()
+        encoder = self.device.create_command_encoder(label=f"objects-{self.mode}")
+        rp = encoder.begin_render_pass(
+            color_attachments=[{"view": self.target.create_view(), "load_op": "clear", "store_op": "store",
+                                "clear_value": BACKGROUND}],
+            timestamp_writes=self.timer.writes(self.mode))
+        if self.mode == "dynamic":
+            self._draw_dynamic(rp)
+        elif self.mode == "immediates":
+            self._draw_immediates(rp, data)
+        elif self.mode == "instancing":
+            rp.set_pipeline(self.pipeline)
+            rp.set_vertex_buffer(0, self.buffer)
+            rp.draw(4, self.count)
+        else:
+            rp.execute_bundles([self.bundle])
+        rp.end()
+        self.timer.resolve(encoder)
+        self.ctx.queue.submit([encoder.finish()])
+        cpu_ms = (time.perf_counter() - start) * 1e3
+        if readback:
+            from ..targets import read_texture
+
+            read_texture(self.ctx, self.target)
+        gpu = self.timer.read()
+        if not gpu:
+            self.ctx.wait_idle()
+        return cpu_ms, (sum(gpu.values()) if gpu else None)
+
+    def pixels(self) -> np.ndarray:
+        from ..targets import read_texture
+
+        self.frame()
+        return read_texture(self.ctx, self.target)
+
+
+def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: int,
+                  per_draw_limit: int | None = None, size: tuple[int, int] = (800, 600),
+                  log=print) -> list[Result]:
+    """Each mode at each count. Modes that issue one call per object skip counts above ``per_draw_limit``."""
+    out: list[Result] = []
+    for count in counts:
+        for mode in modes:
+            if mode == "immediates" and not ctx.has("immediates"):
+                continue
+            if per_draw_limit is not None and mode in ("dynamic", "immediates") and count > per_draw_limit:
+                log(f"  objects: {mode} at {count} skipped (over the per-draw limit {per_draw_limit} here)")
+                continue
+            start = time.perf_counter()
+            renderer = ObjectsRenderer(ctx, mode, count, size)
+            setup_ms = (time.perf_counter() - start) * 1e3
+            n = frames if count <= 10_000 else max(3, frames // 3)
+            samples = measure(renderer, n, warmup=1)
+            case = f"{mode}/{count}"
+            out += samples.results("objects", case, "wgpu", size, note="")
+            out.append(Result("objects", case, "wgpu", size_text(size), "setup_ms", setup_ms, setup_ms, setup_ms, 1,
+                              "pipeline + buffers (+ bundle recording)"))
+            log(f"  objects: {case}: frame {np.median(samples.frame):.2f} ms, cpu {np.median(samples.cpu):.2f} ms")
+    return out

@@ -1,0 +1,209 @@
+"""``wgpurender bench perf``: every performance family in one run, written as CSV, markdown and plots.
+
+:func:`run_perf` measures, :func:`write_reports` writes ``results.csv``, ``report.md``
+and ``perf_*.png`` (plots only when matplotlib is installed: ``pip install .[bench]``).
+``--quick`` keeps every family but shrinks sizes, counts and repeats so the whole
+run takes well under a minute on lavapipe: it checks the harness, not the numbers.
+"""
+
+from __future__ import annotations
+
+import datetime
+import os
+import platform
+import shlex
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..gpu import GPUContext, get_context
+from .report import Result
+
+FAMILIES = ("frames", "scene", "post", "objects", "startup")
+FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
+BIG_SIZE = (3840, 2160)
+QUICK_SIZES = ((96, 64),)
+POST_SIZE = (1280, 720)
+FULL_COUNTS = (1_000, 10_000, 100_000)
+QUICK_COUNTS = (50, 200)
+CPU_PER_DRAW_LIMIT = 10_000  # lavapipe: one call per object at 100k is minutes of run time, for no insight
+SCENE_FILE = Path("assets/scenes/final.toml")
+STARTUP_STAGE = "3d"
+
+# Numbers given for the C++ tutorial program (we cannot build it here): ms per frame at 800x600, 2 cores.
+CPP_GIVEN_MS = {"chapter 28": 47.0, "chapter 30": 75.0}
+
+
+@dataclass
+class PerfConfig:
+    quick: bool = False
+    out_dir: Path = Path("bench-results")
+    families: tuple[str, ...] = FAMILIES
+    big: bool | None = None  # 3840x2160 too; None: when the adapter is not a CPU
+    raw: bool = True  # also run the raw-Vulkan peer
+    frames: int | None = None  # timed frames per case (default 20, quick 4)
+    scene_file: Path = SCENE_FILE
+    command: str = ""
+
+    def timed_frames(self) -> int:
+        return self.frames or (4 if self.quick else 20)
+
+    def sizes(self, ctx: GPUContext) -> list[tuple[int, int]]:
+        if self.quick:
+            return list(QUICK_SIZES)
+        big = self.big if self.big is not None else ctx.adapter.info["adapter_type"] != "CPU"
+        return [*FULL_SIZES, BIG_SIZE] if big else list(FULL_SIZES)
+
+
+@dataclass
+class PerfRun:
+    config: PerfConfig
+    machine: dict[str, str]
+    results: list[Result] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+
+
+def machine_info(ctx: GPUContext) -> dict[str, str]:
+    import wgpu
+
+    info = {
+        "adapter": ctx.describe(),
+        "cpu cores": str(os.cpu_count()),
+        "platform": platform.platform(),
+        "python": platform.python_version(),
+        "wgpu-py": wgpu.__version__,
+        "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
+    }
+    try:
+        from ..vulkan_ref.instance import get_vulkan
+
+        info["raw Vulkan device"] = get_vulkan().describe()
+    except Exception as err:  # the raw path is a peer, not a requirement
+        info["raw Vulkan device"] = f"unavailable ({err})"
+    return info
+
+
+def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[str], None] = print) -> PerfRun:
+    ctx = ctx or get_context()
+    start = time.perf_counter()
+    run = PerfRun(config, machine_info(ctx))
+    steps = {"frames": _frames, "scene": _scene, "post": _post, "objects": _objects, "startup": _startup}
+    for family in config.families:
+        log(f"[{family}]")
+        steps[family](ctx, config, run, log)
+    run.seconds = time.perf_counter() - start
+    return run
+
+
+# -- families -----------------------------------------------------------------------------------
+
+
+def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    from .frames import bench_stage, common_stages
+
+    n = config.timed_frames()
+    for size in config.sizes(ctx):
+        for name in common_stages():
+            run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+            log(f"  frames: {name} {size[0]}x{size[1]}")
+    run.notes.append("frames: wgpu-only stages (no raw counterpart) are left out: "
+                     + ", ".join(_wgpu_only_stages()) + ".")
+
+
+def _wgpu_only_stages() -> list[str]:
+    from ..stages import all_stages
+    from .frames import common_stages
+
+    common = set(common_stages())
+    return [name for name in all_stages() if name not in common] or ["none"]
+
+
+def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    from .scene import bench_scene
+
+    n = config.timed_frames()
+    for size in config.sizes(ctx):
+        results, note = bench_scene(ctx, config.scene_file, size, n, raw=config.raw)
+        run.results += results
+        if note:
+            run.notes.append(f"scene: {note}")
+            log(f"  scene: {note}")
+            return
+        log(f"  scene: {size[0]}x{size[1]}")
+
+
+def _post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    from .post import bench_effects, bench_msaa_post, bench_probes
+
+    size = QUICK_SIZES[0] if config.quick else POST_SIZE
+    n = config.timed_frames()
+    run.results += bench_effects(ctx, size, n)
+    log("  post: effects")
+    run.results += bench_probes(ctx, size, n)
+    log("  post: probes")
+    for s in config.sizes(ctx):
+        run.results += bench_msaa_post(ctx, s, n, raw=config.raw)
+    log("  post: msaa-post")
+
+
+def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    from .objects import MODES, bench_objects
+
+    counts = QUICK_COUNTS if config.quick else FULL_COUNTS
+    cpu = ctx.adapter.info["adapter_type"] == "CPU"
+    limit = CPU_PER_DRAW_LIMIT if cpu else None
+    run.results += bench_objects(ctx, list(counts), list(MODES), config.timed_frames(), per_draw_limit=limit,
+                                 log=log)
+    if cpu and max(counts) > CPU_PER_DRAW_LIMIT:
+        run.notes.append(f"objects: on a CPU adapter the per-draw modes (dynamic, immediates) stop at "
+                         f"{CPU_PER_DRAW_LIMIT} objects; 100k runs instancing and the bundle only.")
+    if not ctx.has("immediates"):
+        run.notes.append("objects: the adapter lacks 'immediates', that mode was skipped.")
+
+
+def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    from .startup import bench_startup
+
+    size = QUICK_SIZES[0] if config.quick else (800, 600)
+    run.results += bench_startup(STARTUP_STAGE, size, 1 if config.quick else 3, quick=config.quick,
+                                 raw=config.raw, log=log)
+    run.notes.append("startup: wgpu-py 0.32 cannot create a pipeline cache (the device feature 'pipeline-cache' "
+                     "is offered, but neither wgpu-native's C header nor wgpu-py has a function to make one); the "
+                     "wgpu rows are without one. The raw path's VkPipelineCache is compared absent vs present.")
+
+
+# -- reports --------------------------------------------------------------------------------------
+
+
+def write_reports(run: PerfRun, out_dir: Path | None = None, docs_img: Path | None = None) -> dict[str, Path]:
+    """results.csv, report.md and (with matplotlib) perf_*.png in ``out_dir``; plots also copied to ``docs_img``."""
+    from .markdown import render_markdown
+    from .plots import write_plots
+    from .report import have_matplotlib, write_csv
+
+    out_dir = Path(out_dir or run.config.out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = {"csv": write_csv(run.results, out_dir / "results.csv")}
+    plots: dict[str, Path] = {}
+    if have_matplotlib():
+        plots = write_plots(run.results, out_dir)
+        if docs_img is not None:
+            import shutil
+
+            Path(docs_img).mkdir(parents=True, exist_ok=True)
+            for p in plots.values():
+                shutil.copy(p, Path(docs_img) / p.name)
+    else:
+        run.notes.append("plots: matplotlib is not installed (pip install 'wgpurender[bench]'); no PNGs written.")
+    report = out_dir / "report.md"
+    report.write_text(render_markdown(run, {k: p.name for k, p in plots.items()}))
+    paths["markdown"] = report
+    paths.update({f"plot_{k}": p for k, p in plots.items()})
+    return paths
+
+
+def command_line() -> str:
+    return "wgpurender " + " ".join(shlex.quote(a) for a in sys.argv[1:])

@@ -1,0 +1,137 @@
+"""First-frame time: process start to the first pixels, each run in a fresh Python process.
+
+Phases measured inside the child: imports, context (instance, adapter, device),
+set-up (shader modules and pipelines: where compilation happens), the first frame
+(encode, submit, wait, readback) and a second frame for comparison.
+
+Caches compared:
+
+- raw path: its VkPipelineCache file (saved at exit, loaded at start) absent vs present;
+- both paths: Mesa's on-disk shader cache (the driver's own, below any API) disabled
+  ($MESA_SHADER_CACHE_DISABLE) vs warm (a private $MESA_SHADER_CACHE_DIR filled by a
+  first run);
+- wgpu: wgpu-native 0.32 offers the "pipeline-cache" device feature, but neither its C
+  header nor wgpu-py 0.32 has a function to create a pipeline cache (wgpu's Rust API has
+  ``Device::create_pipeline_cache``), so the wgpu path cannot use one; measured without.
+
+SPIR-V from glslc is cached on disk by the raw path; every configuration here starts
+with that cache warm (glslc time is not pipeline creation).
+
+Run as a child: ``python -m wgpurender.bench.startup wgpu|raw STAGE WxH`` prints JSON.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+T0 = time.perf_counter()
+
+PHASES = ("import_ms", "context_ms", "setup_ms", "first_frame_ms", "second_frame_ms", "total_ms")
+
+
+def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
+    marks = {}
+    if path == "wgpu":
+        from wgpurender.gpu import get_context
+        from wgpurender.targets import create_target, read_texture
+
+        from .frames import WgpuStageRunner  # noqa: F401  (imports wgpu + the stages)
+
+        marks["import_ms"] = time.perf_counter()
+        ctx = get_context()
+        marks["context_ms"] = time.perf_counter()
+        from wgpurender.stages import get_stage
+
+        cls = get_stage(stage)
+        st = cls(ctx, cls.default_format, None)
+        st.resize(size)
+        target = create_target(ctx, size, st.format)
+        marks["setup_ms"] = time.perf_counter()
+        for name in ("first_frame_ms", "second_frame_ms"):
+            enc = ctx.device.create_command_encoder()
+            st.draw(enc, target, 0.0)
+            ctx.queue.submit([enc.finish()])
+            read_texture(ctx, target)
+            marks[name] = time.perf_counter()
+    else:
+        from wgpurender.vulkan_ref.instance import get_vulkan
+
+        from .frames import RawStageRunner
+
+        marks["import_ms"] = time.perf_counter()
+        get_vulkan()
+        marks["context_ms"] = time.perf_counter()
+        runner = RawStageRunner(stage, size)
+        marks["setup_ms"] = time.perf_counter()
+        for name in ("first_frame_ms", "second_frame_ms"):
+            runner.frame(readback=True)
+            marks[name] = time.perf_counter()
+        runner.close()
+    out, last = {}, T0
+    for name in PHASES[:-1]:
+        out[name] = (marks[name] - last) * 1e3
+        last = marks[name]
+    out["total_ms"] = (marks["first_frame_ms"] - T0) * 1e3  # to the first pixels
+    return out
+
+
+def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str]) -> dict[str, float]:
+    cmd = [sys.executable, "-m", "wgpurender.bench.startup", path, stage, f"{size[0]}x{size[1]}"]
+    proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+    if proc.returncode != 0:
+        raise RuntimeError(f"startup child failed ({' '.join(cmd)}): {proc.stderr.strip()[-500:]}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
+    """(path, label, extra env, remove the VkPipelineCache file first)."""
+    off = {"MESA_SHADER_CACHE_DISABLE": "true"}
+    warm = {"MESA_SHADER_CACHE_DISABLE": "false", "MESA_SHADER_CACHE_DIR": str(work / "mesa")}
+    return [
+        ("wgpu", "no caches", off, True),
+        ("wgpu", "Mesa shader cache warm", warm, True),
+        ("raw", "no caches", off, True),
+        ("raw", "VkPipelineCache warm", off, False),
+        ("raw", "Mesa shader cache warm", warm, True),
+    ]
+
+
+def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool = False, raw: bool = True,
+                  log=print) -> list:
+    """Each configuration ``repeats`` times, after one warming run of each. ``quick``: the no-cache rows only."""
+    from ..timing import Stats
+    from .report import Result, size_text
+
+    out = []
+    with tempfile.TemporaryDirectory(prefix="wgpurender-startup-") as tmp:
+        work = Path(tmp)
+        base = dict(os.environ, XDG_CACHE_HOME=str(work / "xdg"), WGPURENDER_VALIDATION="0")
+        base.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
+        configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")]
+        for path, _, extra, _ in configs:  # warm every cache once: SPIR-V, VkPipelineCache, Mesa's
+            run_child(path, stage, size, {**base, **extra})
+        for path, label, extra, cold_vk in configs:
+            samples: dict[str, list[float]] = {name: [] for name in PHASES}
+            for _ in range(repeats):
+                if cold_vk:
+                    for f in (work / "xdg" / "wgpurender").glob("vk-pipeline-cache-*.bin"):
+                        f.unlink()
+                result = run_child(path, stage, size, {**base, **extra})
+                for name in PHASES:
+                    samples[name].append(result[name])
+            for name in PHASES:
+                out.append(Result.of("startup", f"{stage}: {label}", path, size_text(size), name,
+                                     Stats.of(samples[name]), note="fresh process each"))
+            log(f"  startup: {path} {label}: total {Stats.of(samples['total_ms'])}")
+    return out
+
+
+if __name__ == "__main__":
+    w, h = (int(v) for v in sys.argv[3].split("x"))
+    print(json.dumps(_child(sys.argv[1], sys.argv[2], (w, h))))

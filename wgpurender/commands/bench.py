@@ -1,0 +1,70 @@
+"""wgpurender bench: benchmark suites, one sub-subcommand each (perf now; accuracy when it exists).
+
+``bench perf`` lives in wgpurender/bench/perf.py. A sibling suite is added by a module
+wgpurender/bench/<name>.py defining ``register_<name>(subparsers)`` (which sets
+``func``); it is imported lazily and only listed when the module exists.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+from pathlib import Path
+
+from ._args import add_backend_arg
+
+OPTIONAL_SUITES = ("accuracy",)  # wgpurender/bench/accuracy.py: register_accuracy(subparsers) + run(args)
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser("bench", help="benchmark suites: perf (speed against the raw-Vulkan path)",
+                              description="Run a benchmark suite and write its results (CSV, markdown, plots).")
+    suites = p.add_subparsers(dest="suite", required=True, metavar="SUITE")
+    _register_perf(suites)
+    for name in OPTIONAL_SUITES:
+        if importlib.util.find_spec(f"wgpurender.bench.{name}") is not None:
+            getattr(importlib.import_module(f"wgpurender.bench.{name}"), f"register_{name}")(suites)
+
+
+def _register_perf(suites) -> None:
+    p = suites.add_parser(
+        "perf",
+        help="frame, CPU, readback, post, many-objects and first-frame times, wgpu against raw Vulkan",
+        description="Measure every stage (and the final scene when its renderer exists) on the wgpu and the "
+        "raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
+        "and perf_*.png (plots need matplotlib: pip install 'wgpurender[bench]').",
+    )
+    p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats: checks the harness in < 60 s")
+    p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
+                   help="where results go (default ./bench-results)")
+    p.add_argument("--only", action="append", default=None, metavar="FAMILY",
+                   help="run only these families (repeatable): frames, scene, post, objects, startup")
+    big = p.add_mutually_exclusive_group()
+    big.add_argument("--big", dest="big", action="store_true", default=None,
+                     help="add 3840x2160 (default: when the adapter is not a CPU)")
+    big.add_argument("--no-big", dest="big", action="store_false")
+    p.add_argument("--no-raw", dest="raw", action="store_false", help="skip the raw-Vulkan peer")
+    p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per case")
+    p.add_argument("--docs-img", type=Path, default=None, metavar="DIR", help="also copy the plots here")
+    add_backend_arg(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..bench.perf import FAMILIES, PerfConfig, command_line, run_perf, write_reports
+    from ..errors import UserError
+    from ..gpu import get_context
+
+    families = tuple(args.only or FAMILIES)
+    unknown = [f for f in families if f not in FAMILIES]
+    if unknown:
+        raise UserError(f"unknown benchmark family {unknown[0]!r}: choose from {', '.join(FAMILIES)}")
+    if args.frames is not None and args.frames < 1:
+        raise UserError("--frames must be at least 1")
+    config = PerfConfig(quick=args.quick, out_dir=args.out, families=families, big=args.big, raw=args.raw,
+                        frames=args.frames, command=command_line())
+    run_ = run_perf(config, get_context(args.backend))
+    paths = write_reports(run_, args.out, args.docs_img)
+    for kind, path in paths.items():
+        print(f"{kind}: {path}")
+    return 0
