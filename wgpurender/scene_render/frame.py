@@ -35,7 +35,8 @@ from .scene_pass import ScenePassRenderer
 ATTACHMENT_USAGE = {
     "msaa-color": wgpu.TextureUsage.RENDER_ATTACHMENT,
     "depth": wgpu.TextureUsage.RENDER_ATTACHMENT,
-    "scene-color": wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING,
+    # COPY_SRC: so the pre-post image can be read back (tests, debugging); it costs nothing per frame.
+    "scene-color": wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING | wgpu.TextureUsage.COPY_SRC,
 }
 
 
