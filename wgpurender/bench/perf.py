@@ -30,6 +30,9 @@ FULL_COUNTS = (1_000, 10_000, 100_000)
 QUICK_COUNTS = (50, 200)
 CPU_PER_DRAW_LIMIT = 10_000  # lavapipe: one call per object at 100k is minutes of run time, for no insight
 SCENE_FILE = Path("assets/scenes/final.toml")
+TUTORIAL_SCENES = {"chapter 28": Path("assets/scenes/vulkan_tutorial_28.toml"),
+                   "chapter 30": Path("assets/scenes/vulkan_tutorial_30.toml")}
+TUTORIAL_SIZE = (800, 600)  # the size of the C++ numbers
 STARTUP_STAGE = "3d"
 
 # Numbers given for the C++ tutorial program (we cannot build it here): ms per frame at 800x600, 2 cores.
@@ -125,6 +128,11 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from .scene import bench_scene
 
     n = config.timed_frames()
+    from .scene import RAW_SCENE_STAGE, _raw_has_scene
+
+    if config.raw and not _raw_has_scene():
+        run.notes.append(f"scene: the raw-Vulkan path has no stage {RAW_SCENE_STAGE!r}, so the final scene has no "
+                         "raw peer; the wgpu/raw target is read stage by stage (frames).")
     for size in config.sizes(ctx):
         results, note = bench_scene(ctx, config.scene_file, size, n, raw=config.raw)
         run.results += results
@@ -133,6 +141,13 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
             log(f"  scene: {note}")
             return
         log(f"  scene: {size[0]}x{size[1]}")
+    size = QUICK_SIZES[0] if config.quick else TUTORIAL_SIZE
+    for chapter, path in TUTORIAL_SCENES.items():
+        results, note = bench_scene(ctx, path, size, n, raw=False)
+        run.results += results
+        if note:
+            run.notes.append(f"scene {chapter}: {note}")
+        log(f"  scene: tutorial {chapter}")
 
 
 def _post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:

@@ -4,7 +4,8 @@ Imported lazily: without the renderer (or the scene file) the family is skipped 
 note. The renderer's per-frame API is discovered, not assumed: an object with
 ``draw(encoder, target, t)`` (like a stage) is timed frame by frame; otherwise whole
 ``render_scene_file`` calls are timed (set-up included, said in the note).
-The raw path takes part only if it has a stage named ``final``.
+The raw path takes part only if it has a stage named ``final``. Per-pass GPU times (scene pass,
+each post pass) come from the renderer's own ``timer`` argument.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ class SceneRunner:
         self.ctx, self.renderer, self.target = ctx, renderer, target
         self.timer = PassTimer(ctx)
         self.t = 0.0
+        self.passes: dict[str, list[float]] = {}  # GPU ms per pass label, per frame
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
         from .encoder import TimedEncoder
@@ -47,7 +49,10 @@ class SceneRunner:
         start = time.perf_counter()
         self.timer.reset()
         encoder = self.ctx.device.create_command_encoder(label="bench-scene")
-        self.renderer.draw(TimedEncoder(encoder, self.timer, "scene"), self.target, self.t)
+        try:
+            self.renderer.draw(encoder, self.target, self.t, timer=self.timer)
+        except TypeError:  # a renderer without the timer argument: time its passes from outside
+            self.renderer.draw(TimedEncoder(encoder, self.timer, "scene"), self.target, self.t)
         self.timer.resolve(encoder)
         self.ctx.queue.submit([encoder.finish()])
         cpu_ms = (time.perf_counter() - start) * 1e3
@@ -58,23 +63,21 @@ class SceneRunner:
         gpu = self.timer.read()
         if not gpu:
             self.ctx.wait_idle()
+        for label, ms in gpu.items():
+            self.passes.setdefault(label, []).append(ms)
         return cpu_ms, (sum(gpu.values()) if gpu else None)
 
 
 def _make_renderer(module, ctx: GPUContext, path: Path, size: tuple[int, int]):
     """A (renderer, target) pair if the module offers a per-frame renderer, else None."""
-    factory = getattr(module, "create_scene_renderer", None) or getattr(module, "SceneRenderer", None)
-    if factory is None:
+    load = getattr(module, "load_renderer", None)
+    if load is None:
         return None
     from ..targets import create_target
 
-    try:
-        renderer = factory(ctx, path, size=size) if callable(factory) else None
-    except TypeError:
-        return None
-    if renderer is None or not hasattr(renderer, "draw"):
-        return None
-    fmt = getattr(renderer, "output_format", None) or getattr(renderer, "format", None) or "rgba8unorm-srgb"
+    renderer = load(path, ctx, size=size)
+    plan = getattr(renderer, "plan", None)
+    fmt = getattr(plan, "output_format", None) or "rgba8unorm-srgb"
     return renderer, create_target(ctx, size, fmt)
 
 
@@ -96,6 +99,9 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
         runner = SceneRunner(ctx, *made)
         results += measure(runner, frames, readback_frames=max(3, frames // 2)).results("scene", path.stem,
                                                                                         "wgpu", size)
+        for label, samples in runner.passes.items():
+            results.append(Result.of("scene", path.stem, "wgpu", size_text(size), f"gpu_ms:{label}",
+                                     Stats.of(samples[-frames:]), "GPU time of one pass"))
     else:
         samples = []
         for _ in range(max(3, frames // 2)):
