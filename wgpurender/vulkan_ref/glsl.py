@@ -44,15 +44,20 @@ def glsl_path(name: str) -> Path:
     return path
 
 
-def compile_glsl(path: str | os.PathLike) -> bytes:
-    """SPIR-V for a .vert/.frag file: from the cache, else from glslc (then cached)."""
+def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> bytes:
+    """SPIR-V for a .vert/.frag file: from the cache, else from glslc (then cached).
+
+    ``defines``: preprocessor definitions passed as ``-D`` flags (``"ALBEDO_MAP"``, ``"POINT_LIGHTS=2"``),
+    for shaders with variants; they are part of the cache key.
+    """
     path = Path(path)
     source = path.read_bytes()
-    key = hashlib.sha256(b"\0".join([path.suffix.encode(), *(a.encode() for a in GLSLC_ARGS), source])).hexdigest()
+    args = (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
+    key = hashlib.sha256(b"\0".join([path.suffix.encode(), *(a.encode() for a in args), source])).hexdigest()
     cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{key[:24]}.spv"
     if cached.is_file():
         return cached.read_bytes()
-    spirv = _run_glslc(path)
+    spirv = _run_glslc(path, args)
     cached.parent.mkdir(parents=True, exist_ok=True)
     tmp = cached.with_suffix(f".{os.getpid()}.tmp")
     tmp.write_bytes(spirv)
@@ -60,11 +65,11 @@ def compile_glsl(path: str | os.PathLike) -> bytes:
     return spirv
 
 
-def _run_glslc(path: Path) -> bytes:
+def _run_glslc(path: Path, args: tuple[str, ...] = GLSLC_ARGS) -> bytes:
     glslc = shutil.which("glslc")
     if glslc is None:
         raise UserError("glslc not found on PATH: the raw-Vulkan path compiles GLSL with it (apt install glslc)")
-    proc = subprocess.run([glslc, *GLSLC_ARGS, str(path), "-o", "-"], capture_output=True)
+    proc = subprocess.run([glslc, *args, str(path), "-o", "-"], capture_output=True)
     if proc.returncode != 0:
         raise UserError(_describe_error(path, proc.stderr.decode(errors="replace")))
     return proc.stdout
@@ -77,8 +82,8 @@ def _describe_error(path: Path, stderr: str) -> str:
     return f"GLSL shader {path} line {match['line']}: {match['msg'].strip()}"
 
 
-def create_shader_module(device, name: str):
+def create_shader_module(device, name: str, defines: tuple[str, ...] = ()):
     """vkCreateShaderModule from shaders_glsl/<name>: the create info takes the SPIR-V words (codeSize in bytes)."""
-    spirv = compile_glsl(glsl_path(name))
+    spirv = compile_glsl(glsl_path(name), defines)
     info = vk.VkShaderModuleCreateInfo(codeSize=len(spirv), pCode=spirv)
     return vk.vkCreateShaderModule(device, info, None)

@@ -41,6 +41,7 @@ class PipelineDesc:
     front_face: int = vk.VK_FRONT_FACE_COUNTER_CLOCKWISE
     depth_test: bool = False
     subpass: int = 0
+    defines: tuple[str, ...] = ()  # glslc -D definitions for both shaders (shader variants)
 
 
 # -- pipeline cache ----------------------------------------------------------------
@@ -90,8 +91,8 @@ def create_pipeline_layout(ctx: VulkanContext, owned: ExitStack, set_layouts: li
 
 def create_pipeline(ctx: VulkanContext, owned: ExitStack, desc: PipelineDesc, layout, render_pass):
     """vkCreateGraphicsPipelines with the state structures of the course, one per fixed-function stage."""
-    vert = create_shader_module(ctx.device, desc.vert)
-    frag = create_shader_module(ctx.device, desc.frag)
+    vert = create_shader_module(ctx.device, desc.vert, desc.defines)
+    frag = create_shader_module(ctx.device, desc.frag, desc.defines)
     try:
         stages = [
             vk.VkPipelineShaderStageCreateInfo(stage=vk.VK_SHADER_STAGE_VERTEX_BIT, module=vert, pName="main"),
