@@ -12,6 +12,18 @@ fn safe_normalize(v: vec3f, fallback: vec3f) -> vec3f {
     if !(m > 0.0) || !(m <= 3.4028235e38) {
         return fallback;
     }
-    let u = v / m;
+    // Bring m near 1 with an exact power-of-two scale before dividing. Dividing by m directly
+    // fails for m > 2^126 on GPUs that compile v / m as v * (1 / m) and flush the denormal
+    // reciprocal to zero (seen on NVIDIA's Vulkan driver: (3e38, 3e38, 0) came out NaN).
+    var w = v;
+    var s = m;
+    if m > 1.0e30 {
+        w = v * 5.421010862427522e-20;  // 2^-64
+        s = m * 5.421010862427522e-20;
+    } else if m < 1.0e-30 {
+        w = v * 1.8446744073709552e19;  // 2^64
+        s = m * 1.8446744073709552e19;
+    }
+    let u = w / s;
     return u * inverseSqrt(dot(u, u));
 }

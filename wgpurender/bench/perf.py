@@ -142,6 +142,10 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
             return
         log(f"  scene: {size[0]}x{size[1]}")
     size = QUICK_SIZES[0] if config.quick else TUTORIAL_SIZE
+    anchors = Path("../shared/anchors/vulkan-tutorial")
+    if not anchors.is_dir():
+        run.notes.append(f"tutorial scenes skipped: {anchors} (the C++ tutorial's model and texture) is absent")
+        return
     for chapter, path in TUTORIAL_SCENES.items():
         results, note = bench_scene(ctx, path, size, n, raw=False)
         run.results += results
