@@ -109,9 +109,14 @@ def _enable_validation_once() -> None:
     Messages from the layer arrive through the ``wgpu`` Python logger.
     """
     if os.environ.get(VALIDATION_ENV, "") not in ("", "0"):
+        import atexit
+
         from wgpu.backends.wgpu_native.extras import set_instance_extras
 
+        from .native import silence_native_log
+
         set_instance_extras(flags=["Validation"])
+        atexit.register(silence_native_log)
 
 
 @functools.cache
