@@ -1,0 +1,162 @@
+#version 450
+// The scene's fragment shader on the raw path: the GLSL twin of shaders_wgsl/scene.wgsl's fs_main,
+// normalized Blinn-Phong in linear light with normal and roughness maps (the model is explained in
+// scene.wgsl's header; the arithmetic here follows it operation for operation). Variants: -D flags,
+// see scene.vert.
+//
+// Material data is the course's way: per-draw factors in push constants, textures as
+// COMBINED_IMAGE_SAMPLER descriptors in set 2 (the wgpu path, which cannot express combined
+// samplers, binds one sampler and separate textures; lavapipe samples both alike).
+
+#ifdef LIGHTING
+struct DirectionalLight {
+    vec4 direction;  // the way the light travels
+    vec4 radiance;
+};
+struct PointLight {
+    vec4 position;
+    vec4 radiance;
+};
+#endif
+
+layout(std140, set = 0, binding = 0) uniform Camera {
+    mat4 proj;          // @0
+    mat4 view;          // @64
+    vec4 eye;           // @128
+#ifdef LIGHTING
+    vec4 ambient;       // @144
+    uvec4 light_counts; // @160 (the loops use the compile-time counts)
+    DirectionalLight directional[MAX_LIGHTS];  // @176, 32 bytes each
+    PointLight point[MAX_LIGHTS];              // @176 + 32 * MAX_LIGHTS
+#endif
+} camera;
+
+layout(push_constant) uniform Material {
+    vec4 base_color;        // @0
+#ifdef LIGHTING
+    float roughness;        // @16
+    float normal_strength;  // @20
+    float specular;         // @24
+#endif
+} material;
+
+#ifdef ALBEDO_MAP
+layout(set = 2, binding = 2) uniform sampler2D albedo_tex;
+#endif
+#ifdef NORMAL_MAP
+layout(set = 2, binding = 3) uniform sampler2D normal_tex;
+#endif
+#ifdef ROUGHNESS_MAP
+layout(set = 2, binding = 4) uniform sampler2D roughness_tex;
+#endif
+
+#ifdef LIGHTING
+layout(location = 0) in vec3 v_world_position;
+layout(location = 1) in vec3 v_normal;
+#endif
+#ifdef UV
+layout(location = 2) in vec2 v_uv;
+#endif
+#ifdef NORMAL_MAP
+layout(location = 3) in vec4 v_tangent;
+#endif
+
+layout(location = 0) out vec4 out_color;
+
+#ifdef LIGHTING
+// v / |v|, or `fallback` when v is (nearly) zero or not finite.
+vec3 safe_normalize(vec3 v, vec3 fallback) {
+    float len2 = dot(v, v);
+    if (len2 > 1e-20 && len2 < 1e30) {
+        return v * inversesqrt(len2);
+    }
+    return fallback;
+}
+
+vec3 surface_normal(vec3 normal_texel) {
+    vec3 n = safe_normalize(v_normal, vec3(0.0, 0.0, 1.0));
+#ifdef NORMAL_MAP
+    vec3 t_raw = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+    if (dot(t_raw, t_raw) <= 1e-20) {
+        return n;
+    }
+    vec3 t = normalize(t_raw);
+    vec3 b = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
+    vec3 m = normal_texel * 2.0 - 1.0;
+    m = vec3(m.xy * material.normal_strength, m.z);
+    return safe_normalize(t * m.x + b * m.y + n * m.z, n);
+#else
+    return n;
+#endif
+}
+
+float shininess(float roughness) {
+    float r = clamp(roughness, 0.0, 1.0);
+    float r4 = r * r * r * r;
+    return clamp(2.0 / max(r4, 1e-6) - 2.0, 1.0, 4096.0);
+}
+
+vec3 blinn_phong(vec3 n, vec3 l, vec3 v, vec3 albedo, float s, vec3 irradiance) {
+    float n_dot_l = max(dot(n, l), 0.0);
+    vec3 h = safe_normalize(l + v, n);
+    float spec = material.specular * (s + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), s);
+    return irradiance * n_dot_l * (albedo + vec3(spec));
+}
+
+vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
+    vec3 n = surface_normal(normal_texel);
+    vec3 v = safe_normalize(camera.eye.xyz - v_world_position, n);
+    float s = shininess(roughness);
+    vec3 color = camera.ambient.rgb * albedo;
+#if DIRECTIONAL_LIGHTS > 0
+    for (uint i = 0u; i < uint(DIRECTIONAL_LIGHTS); i++) {
+        vec3 l = safe_normalize(-camera.directional[i].direction.xyz, n);
+        color += blinn_phong(n, l, v, albedo, s, camera.directional[i].radiance.rgb);
+    }
+#endif
+#if POINT_LIGHTS > 0
+    for (uint i = 0u; i < uint(POINT_LIGHTS); i++) {
+        vec3 to_light = camera.point[i].position.xyz - v_world_position;
+        float d2 = max(dot(to_light, to_light), 1e-4);
+        vec3 l = safe_normalize(to_light, n);
+        color += blinn_phong(n, l, v, albedo, s, camera.point[i].radiance.rgb / d2);
+    }
+#endif
+    return color;
+}
+#endif
+
+#ifdef SRGB_OUTPUT
+// The output is a plain 8-bit format that does not encode: apply the sRGB curve here.
+vec3 srgb_encode(vec3 c) {
+    vec3 x = clamp(c, vec3(0.0), vec3(1.0));
+    return mix(1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055, 12.92 * x, lessThanEqual(x, vec3(0.0031308)));
+}
+#endif
+
+void main() {
+    vec4 base = material.base_color;
+#ifdef ALBEDO_MAP
+    base = base * texture(albedo_tex, v_uv);
+#endif
+#ifdef LIGHTING
+#ifdef NORMAL_MAP
+    vec3 normal_texel = texture(normal_tex, v_uv).xyz;
+#else
+    vec3 normal_texel = vec3(0.5, 0.5, 1.0);
+#endif
+#ifdef ROUGHNESS_MAP
+    float roughness = material.roughness * texture(roughness_tex, v_uv).g;
+#else
+    float roughness = material.roughness;
+#endif
+    vec3 color = shade(base.rgb, normal_texel, roughness);
+#else
+    vec3 color = base.rgb;
+#endif
+#ifdef SRGB_OUTPUT
+    out_color = vec4(srgb_encode(color), base.a);
+#else
+    out_color = vec4(color, base.a);
+#endif
+}

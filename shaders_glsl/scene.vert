@@ -1,0 +1,66 @@
+#version 450
+// The scene's vertex shader on the raw path: the GLSL twin of shaders_wgsl/scene.wgsl's vs_main.
+//
+// Variants are made like the wgpu path's: one source, preprocessed per material variant. wgpu's
+// template uses "#if feature" (wgpurender/shader_variants.py); here glslc's own preprocessor does it,
+// with -D flags made from the plan's variant (wgpurender/vulkan_ref/scene/variants.py):
+//   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
+//   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
+// The std140 offsets of the blocks are spelled out in wgpurender/vulkan_ref/scene/uniforms.py.
+
+layout(std140, set = 0, binding = 0) uniform Camera {
+    mat4 proj;   // @0
+    mat4 view;   // @64
+    vec4 eye;    // @128
+} camera;
+
+// Every model's block in one buffer; a dynamic offset picks one per draw.
+layout(std140, set = 1, binding = 0) uniform Object {
+    mat4 world;   // @0
+#ifdef LIGHTING
+    mat3 normal;  // @64: three vec4-padded columns (48 bytes)
+    float mirror; // @112: sign of det(world)
+#endif
+} object_data;
+
+layout(location = 0) in vec3 a_position;
+#ifdef LIGHTING
+layout(location = 1) in vec3 a_normal;
+#endif
+#ifdef UV
+layout(location = 2) in vec2 a_uv;
+#endif
+#ifdef NORMAL_MAP
+layout(location = 3) in vec4 a_tangent;
+#endif
+
+#ifdef LIGHTING
+layout(location = 0) out vec3 v_world_position;
+layout(location = 1) out vec3 v_normal;
+#endif
+#ifdef UV
+layout(location = 2) out vec2 v_uv;
+#endif
+#ifdef NORMAL_MAP
+layout(location = 3) out vec4 v_tangent;
+#endif
+
+void main() {
+    // proj * view * world * p, left to right, as the WGSL (and the tutorial's GLSL) writes it.
+    gl_Position = camera.proj * camera.view * object_data.world * vec4(a_position, 1.0);
+#ifdef LIGHTING
+    v_world_position = (object_data.world * vec4(a_position, 1.0)).xyz;
+    v_normal = object_data.normal * a_normal;  // cofactor matrix: right direction, any length
+#endif
+#ifdef UV
+#ifdef FLIP_V
+    v_uv = vec2(a_uv.x, 1.0 - a_uv.y);
+#else
+    v_uv = a_uv;
+#endif
+#endif
+#ifdef NORMAL_MAP
+    mat3 world3 = mat3(object_data.world[0].xyz, object_data.world[1].xyz, object_data.world[2].xyz);
+    v_tangent = vec4(world3 * a_tangent.xyz, a_tangent.w * object_data.mirror);
+#endif
+}

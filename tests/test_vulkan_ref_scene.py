@@ -1,0 +1,249 @@
+"""The final scene on the raw-Vulkan path (wgpurender.vulkan_ref.scene) against the wgpu path, and its refusals.
+
+The raw path draws a scene file the course's way: one render pass, subpass 0 draws the models
+into the 4x MSAA rgba16float attachment (resolve + MSAA depth), subpass 1 reads the resolved image
+as an input attachment and runs the post chain's per-pixel effects in ONE fragment shader. The
+wgpu path draws the same plan with a separate render pass per effect. Both run on lavapipe.
+
+What was measured (320x240 unless said otherwise, lavapipe / Mesa 22.3):
+
+- The scene image itself (no post chain, rgba16float output) is bit-identical at msaa 1 and 4:
+  same sample positions and resolve, same sRGB decoding and filtering of the textures (combined
+  image samplers on the raw path, separate ones on wgpu: sampled alike), the same mip chains, the
+  same float32 shading (GLSL from glslc and WGSL from naga compile to the same operations), and
+  the same std140 bytes from two independent packers.
+- Every post effect alone is bit-identical (tonemap, vignette, grayscale, sepia, srgb; float and
+  8-bit outputs).
+- The one difference is composing effects: the raw path keeps the colour in float32 registers
+  from one effect to the next, the wgpu path stores it in an rgba16float texture between its
+  passes, and lavapipe stores float32 -> float16 by rounding toward zero. final_subpass.toml
+  (tonemap -> vignette): 2697 of 76800 pixels differ, each by 1/255, FLIP mean 0.00176 (the
+  issue's threshold is 0.005). Rounding the colour toward zero to float16 between effects in the
+  raw shader (``wgpu_intermediates=True``, post_chain.frag's F16_BETWEEN_STEPS) makes the two
+  images bit-identical, which proves that this is the whole difference (round-to-nearest, GLSL's
+  packHalf2x16, leaves 1854 pixels different: the rounding mode matters).
+- hdr = false: the intermediates are 8-bit sRGB, stored with lavapipe's approximate linear->sRGB
+  encode; grayscale -> sepia -> srgb (rgba8unorm output), 160x120: 3954 pixels differ by 1/255,
+  FLIP 0.0061. No shader formula reproduces the driver's encoder, so this one is bounded, not
+  explained away.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wgpurender.compare import compare_images
+from wgpurender.errors import UserError
+from wgpurender.imageio import load_png, to_uint8
+from wgpurender.vulkan_ref import render_reference
+from wgpurender.vulkan_ref.scene import render_scene_reference
+
+REPO = Path(__file__).resolve().parent.parent
+SCENES = REPO / "assets" / "scenes"
+SIZE = (320, 240)
+SMALL = (160, 120)
+FLIP_THRESHOLD = 0.005  # the issue's threshold for the lit final scene
+
+pytestmark = pytest.mark.skipif(not (REPO / "assets" / "models" / "brick_torus.glb").is_file(),
+                                reason="scene assets not present")
+
+
+def scene_file(tmp_path: Path, name: str, text: str) -> Path:
+    """A scene file in tmp_path; the asset paths ("../models/...") made absolute."""
+    path = tmp_path / name
+    path.write_text(text.replace('"../', f'"{REPO / "assets"}/'))
+    return path
+
+
+def without_post(text: str) -> str:
+    return text.split("[[post]]")[0]
+
+
+def keep_post(text: str, *effects: str) -> str:
+    """The scene text with only the [[post]] entries of ``effects`` (in their order in the file)."""
+    head, *entries = text.split("[[post]]")
+    kept = [e for e in entries if e.split('effect = "')[1].split('"')[0] in effects]
+    return head + "".join("[[post]]" + e for e in kept)
+
+
+def wgpu_render(ctx, path: Path, size: tuple[int, int]) -> np.ndarray:
+    from wgpurender.scene_render import render_scene_file
+
+    return render_scene_file(path, size=size, ctx=ctx, frames=1).pixels
+
+
+def differing(a: np.ndarray, b: np.ndarray) -> int:
+    return int((a.view(np.uint8).reshape(*a.shape[:2], -1) != b.view(np.uint8).reshape(*b.shape[:2], -1))
+               .any(-1).sum())
+
+
+@pytest.fixture(scope="module")
+def final_pair(ctx):
+    path = SCENES / "final_subpass.toml"
+    return wgpu_render(ctx, path, SIZE), render_scene_reference(path, size=SIZE)
+
+
+# -- the lit final scene ---------------------------------------------------------------------------------------
+
+def test_final_subpass_is_final_without_fxaa():
+    """final_subpass.toml is final.toml with the fxaa [[post]] entry removed, nothing else changed."""
+    from wgpurender.scene import load_scene
+
+    final, subpass = load_scene(SCENES / "final.toml"), load_scene(SCENES / "final_subpass.toml")
+    assert [s.effect for s in final.post] == ["tonemap", "fxaa", "vignette"]
+    assert [(s.effect, s.params) for s in subpass.post] == [(s.effect, s.params) for s in final.post
+                                                             if s.effect != "fxaa"]
+    for field in ("camera", "models", "lights", "render", "materials"):
+        assert getattr(final, field) == getattr(subpass, field), field
+
+
+def test_final_scene_matches_wgpu(final_pair):
+    """wgpu (pass per effect) vs raw (subpass 1, input attachment), lit final scene, tonemap -> vignette.
+
+    FLIP mean <= 0.005 (the issue's threshold; measured 0.00176); tighter, as measured: no channel
+    off by more than 1/255, at most 5% of the pixels differ (measured 3.5%: 2697 of 76800), all
+    from float16 intermediates on the wgpu path (see the module docstring and the next test).
+    """
+    wgpu_pixels, raw = final_pair
+    assert raw.shape == (SIZE[1], SIZE[0], 4) and raw.dtype == np.uint8
+    assert (raw[..., :3].astype(int).sum(-1) > 60).mean() > 0.2  # the models are there, lit
+    result = compare_images(wgpu_pixels, raw)
+    assert result.flip_mean <= FLIP_THRESHOLD, result.summary()
+    assert result.max_abs <= 1, result.summary()
+    assert differing(wgpu_pixels, raw) <= 0.05 * SIZE[0] * SIZE[1]
+
+
+def test_final_scene_exact_with_wgpus_intermediate_rounding(final_pair):
+    """Rounding the chain's colour toward zero to float16 between effects, as lavapipe stores the wgpu
+    path's rgba16float intermediates, makes the raw image identical to the wgpu image (threshold 0).
+
+    This is the evidence for the cause of every difference in test_final_scene_matches_wgpu.
+    """
+    wgpu_pixels, _ = final_pair
+    raw = render_scene_reference(SCENES / "final_subpass.toml", size=SIZE, wgpu_intermediates=True)
+    assert differing(wgpu_pixels, raw) == 0
+
+
+@pytest.mark.parametrize("msaa", [1, 4])
+def test_scene_subpass_is_exact(ctx, tmp_path, msaa):
+    """The scene image alone (final.toml without post, rgba16float output): bit-identical float16, 1x and 4x.
+
+    Same driver, sample positions, texture filtering, mip chains and float32 shading on both paths;
+    the UBO bytes come from two independent std140 packers. Measured: 0 pixels differ.
+    """
+    text = without_post((SCENES / "final.toml").read_text())
+    text = text.replace('output_format = "rgba8unorm-srgb"', 'output_format = "rgba16float"')
+    text = text.replace("msaa = 4", f"msaa = {msaa}")
+    path = scene_file(tmp_path, "final_hdr.toml", text)
+    wgpu_pixels, raw = wgpu_render(ctx, path, SMALL), render_scene_reference(path, size=SMALL)
+    assert raw.dtype == wgpu_pixels.dtype == np.float16
+    assert np.isfinite(raw).all() and raw[..., :3].max() > 0.5
+    assert differing(wgpu_pixels, raw) == 0
+
+
+# -- the other scenes --------------------------------------------------------------------------------------------
+
+def test_brick_without_fxaa_matches_wgpu(ctx, tmp_path):
+    """brick.toml with its chain restricted to tonemap (fxaa removed), 160x120: exact (threshold 0).
+
+    One effect: nothing is stored between effects, so nothing differs. Measured: 0 pixels.
+    """
+    path = scene_file(tmp_path, "brick.toml", keep_post((SCENES / "brick.toml").read_text(), "tonemap"))
+    assert differing(wgpu_render(ctx, path, SMALL), render_scene_reference(path, size=SMALL)) == 0
+
+
+def test_unlit_textured_scene_matches_wgpu(ctx, tmp_path):
+    """An unlit textured scene (final.toml's models, albedo map only, unlit, hdr false, no post, msaa 4):
+    one subpass straight into the sRGB output, exact (threshold 0). Measured: 0 pixels differ."""
+    text = without_post((SCENES / "final.toml").read_text()).replace("hdr = true", "hdr = false")
+    text = text.replace('albedo_map = "', 'unlit = true\nalbedo_map = "', 1)
+    path = scene_file(tmp_path, "unlit_textured.toml", text)
+    raw = render_scene_reference(path, size=SMALL)
+    assert len(np.unique(raw[..., :3].reshape(-1, 3), axis=0)) > 500  # textured, not flat
+    assert differing(wgpu_render(ctx, path, SMALL), raw) == 0
+
+
+def test_unlit_scene_matches_wgpu(ctx):
+    """unlit.toml (flat colour, msaa 1, no post): exact (threshold 0)."""
+    path = SCENES / "unlit.toml"
+    assert differing(wgpu_render(ctx, path, SMALL), render_scene_reference(path, size=SMALL)) == 0
+
+
+def test_ldr_chain_with_shader_srgb(ctx, tmp_path):
+    """hdr = false, grayscale -> sepia into rgba8unorm (the srgb step appended, encoding in the shader), 160x120.
+
+    The scene image is rgba8unorm-srgb (subpassLoad decodes it like a texture read). Each effect
+    alone is exact (grayscale alone into rgba8unorm-srgb: checked here); the chain differs by the wgpu path's 8-bit
+    sRGB intermediates (lavapipe's approximate encoder). Measured: 3954 pixels off by 1/255, FLIP
+    0.0061; bound: no channel off by more than 1/255, FLIP <= 0.01.
+    """
+    srgb_out = without_post((SCENES / "final.toml").read_text()).replace("hdr = true", "hdr = false")
+    gray = '[[post]]\neffect = "grayscale"\namount = 0.5\n'
+    one = scene_file(tmp_path, "gray.toml", srgb_out + gray)  # one step: the -srgb output encodes in hardware
+    assert differing(wgpu_render(ctx, one, SMALL), render_scene_reference(one, size=SMALL)) == 0
+    base = srgb_out.replace('output_format = "rgba8unorm-srgb"', 'output_format = "rgba8unorm"')
+    two = scene_file(tmp_path, "gray_sepia.toml", base + gray + '[[post]]\neffect = "sepia"\namount = 0.7\n')
+    result = compare_images(wgpu_render(ctx, two, SMALL), render_scene_reference(two, size=SMALL))
+    assert result.max_abs <= 1 and result.flip_mean <= 0.01, result.summary()
+
+
+# -- references ----------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit"])
+def test_scene_references_are_current(name):
+    """assets/reference/scene_*.png == a fresh raw render at 320x240, exactly (written only by make_references)."""
+    from wgpurender.vulkan_ref.make_references import (
+        SCENE_DIR,
+        SCENE_REFERENCE_SIZE,
+        SCENE_REFERENCES,
+        reference_path,
+    )
+
+    path = reference_path(name)
+    assert path.is_file(), f"{path} missing: run python -m wgpurender.vulkan_ref.make_references {name}"
+    fresh = render_reference(str(SCENE_DIR / SCENE_REFERENCES[name]), size=SCENE_REFERENCE_SIZE)
+    assert np.array_equal(load_png(path), to_uint8(fresh))
+
+
+def test_reference_command_renders_a_scene(tmp_path):
+    """`wgpurender reference SCENE.toml -o ref.png --size WxH` writes the raw render."""
+    from wgpurender.cli import main
+
+    out = tmp_path / "ref.png"
+    assert main(["reference", str(SCENES / "unlit.toml"), "-o", str(out), "--size", "64x48"]) == 0
+    assert np.array_equal(load_png(out), render_reference(str(SCENES / "unlit.toml"), size=(64, 48)))
+
+
+# -- refusals ------------------------------------------------------------------------------------------------------
+
+def test_fxaa_is_refused_by_name():
+    """final.toml (tonemap -> fxaa -> vignette): a UserError naming fxaa and why, no image."""
+    with pytest.raises(UserError, match=r"fxaa reads neighbouring pixels.*input attachment gives only the "
+                                        r"current pixel.*cannot run fxaa"):
+        render_scene_reference(SCENES / "final.toml", size=(32, 24))
+
+
+def test_sharpen_is_refused_by_name(tmp_path):
+    """retro.toml's sharpen reads neighbours too: refused, naming sharpen."""
+    with pytest.raises(UserError, match=r"post\[3\] sharpen reads neighbouring pixels"):
+        render_scene_reference(SCENES / "retro.toml", size=(32, 24))
+
+
+def test_unsupported_output_format_is_refused():
+    """bgra8unorm-srgb (a plan output format for swapchains): refused, naming the format."""
+    with pytest.raises(UserError, match=r"output format bgra8unorm-srgb: the raw path renders only"):
+        render_scene_reference(SCENES / "unlit.toml", size=(32, 24), fmt="bgra8unorm-srgb")
+
+
+def test_every_problem_is_listed_at_once(tmp_path):
+    """Two neighbour effects: both named in one message."""
+    from wgpurender.plan import plan_scene_file
+    from wgpurender.vulkan_ref.scene import unsupported
+
+    text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sharpen"\n'
+    problems = unsupported(plan_scene_file(scene_file(tmp_path, "both.toml", text)))
+    assert [p.split()[1] for p in problems] == ["fxaa", "sharpen"]
+    assert unsupported(plan_scene_file(SCENES / "final_subpass.toml")) == []

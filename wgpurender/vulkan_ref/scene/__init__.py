@@ -1,0 +1,22 @@
+"""The final scene on the raw-Vulkan path: a scene file drawn the course's way, to compare with wgpu's.
+
+One render pass with two subpasses: subpass 0 draws the models into the 4x MSAA HDR attachment
+(rgba16float) with a resolve attachment and an MSAA depth attachment; subpass 1 reads the resolved
+image as an input attachment (subpassLoad) and applies the post chain's per-pixel effects in one
+fragment shader. Effects that read neighbouring pixels (fxaa, sharpen) are refused with a
+UserError, never dropped.
+
+Public API: :func:`render_scene_reference` ``(path, size=None, fmt=None, msaa=None, t=0.0) ->
+pixels``; :func:`unsupported` ``(plan) -> [reasons]``.
+
+Modules, one idea each, like wgpurender/scene_render/: ``support`` (what can be drawn),
+``uniforms`` (std140 blocks and push constants, offsets by hand), ``variants`` (a plan's shader
+variant as glslc -D flags), ``resources`` (meshes, textures, samplers), ``renderpass`` (attachments,
+the two subpasses, dependencies), ``scene_subpass`` (descriptor sets, pipelines per variant, the
+draws), ``post`` (the post subpass), ``frame`` (a whole frame and the readback).
+"""
+
+from .frame import render_scene_reference
+from .support import unsupported
+
+__all__ = ["render_scene_reference", "unsupported"]
