@@ -8,17 +8,21 @@ from ._args import size_arg
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "reference",
-        help="render a stage with the raw-Vulkan reference path (GLSL + vulkan binding) to a PNG",
-        description="Render a course stage with raw Vulkan calls (no wgpu), headless, and write a PNG. "
+        help="render a stage or a scene file with the raw-Vulkan reference path (GLSL + vulkan binding) to a PNG",
+        description="Render a course stage or a scene file (SCENE.toml: the post chain in a second subpass, "
+        "per-pixel effects only) with raw Vulkan calls (no wgpu), headless, and write a PNG. "
         "Needs glslc (apt install glslc); $WGPURENDER_VALIDATION=1 turns on the validation layer.",
     )
-    p.add_argument("stage", metavar="STAGE", help="a stage name, e.g. clear-pass, triangle, msaa, msaa-post")
+    p.add_argument("stage", metavar="STAGE",
+                   help="a stage name, e.g. clear-pass, triangle, msaa, msaa-post, or a scene file SCENE.toml")
     p.add_argument("-o", "--output", required=True, metavar="PNG", help="output PNG path (written atomically)")
-    p.add_argument("--size", type=size_arg, default=(800, 600), metavar="WxH", help="image size (default 800x600)")
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                   help="image size (default 800x600; a scene file's [render] size)")
     p.add_argument("--msaa", type=int, default=None, metavar="N",
-                   help="MSAA sample count, 1 or 4 (default: the stage's)")
+                   help="MSAA sample count, 1 or 4 (default: the stage's or scene's)")
     p.add_argument("--format", default=None, metavar="F",
-                   help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float")
+                   help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float (default for a scene: its "
+                   "output_format)")
     p.add_argument("--time", type=float, default=0.0, metavar="T", help="animation time in seconds (default 0)")
     p.set_defaults(func=run)
 

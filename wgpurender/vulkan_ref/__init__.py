@@ -7,7 +7,8 @@ images (images, views, layouts, barriers), commands (pools, command buffers,
 fences), descriptors, renderpass (attachments, subpasses, dependencies,
 framebuffers), pipeline (layouts, cache, fixed-function state, viewport flip),
 glsl (glslc -> SPIR-V -> shader modules), readback (vkCmdCopyImageToBuffer),
-and stages/ (one module per stage, named like wgpurender/stages/).
+stages/ (one module per stage, named like wgpurender/stages/), and scene/ (scene files: the
+final scene in one render pass of two subpasses).
 
 Public API: :func:`render_reference` and :func:`reference_stage_names`.
 Importing this package does not touch Vulkan; the first render does.
@@ -20,12 +21,13 @@ import numpy as np
 
 def render_reference(
     stage: str,
-    size: tuple[int, int] = (800, 600),
+    size: tuple[int, int] | None = (800, 600),
     fmt: str | None = None,
     msaa: int | None = None,
     t: float = 0.0,
 ) -> np.ndarray:
-    """Render ``stage`` on the raw-Vulkan path; see :func:`wgpurender.vulkan_ref.render.render_reference`."""
+    """Render ``stage`` (or a scene file, ``*.toml``) on the raw-Vulkan path; see
+    :func:`wgpurender.vulkan_ref.render.render_reference`."""
     from .render import render_reference as render
 
     return render(stage, size=size, fmt=fmt, msaa=msaa, t=t)

@@ -38,19 +38,25 @@ def check_size(ctx: VulkanContext, size: tuple[int, int]) -> tuple[int, int]:
 
 def render_reference(
     stage: str,
-    size: tuple[int, int] = (800, 600),
+    size: tuple[int, int] | None = (800, 600),
     fmt: str | None = None,
     msaa: int | None = None,
     t: float = 0.0,
 ) -> np.ndarray:
-    """Render one stage with raw Vulkan calls and return its pixels, (H, W, 4).
+    """Render one stage (or a scene file, ``*.toml``: size None = its [render] size) with raw Vulkan calls
+    and return its pixels, (H, W, 4).
 
     uint8 for the 8-bit formats (stored bytes: sRGB-encoded for rgba8unorm-srgb),
     float16 for rgba16float, like wgpurender.render.render_stage. Everything made
     for the render is destroyed before returning. With validation on, any
     validation message raises ValidationFailed.
     """
+    if str(stage).endswith(".toml"):  # a scene file: the final scene, drawn by vulkan_ref/scene/
+        from .scene import render_scene_reference
+
+        return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t)
     cls = get_ref_stage(stage)
+    size = size or (800, 600)
     fmt = fmt or cls.default_format
     if fmt not in FORMATS:
         raise UserError(f"unsupported colour format {fmt!r}: choose one of {', '.join(FORMATS)}")
