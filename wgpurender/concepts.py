@@ -241,11 +241,16 @@ CONCEPTS: list[Concept] = [
         "subpasses and dependencies",
         ("VkSubpassDescription", "VkSubpassDependency (VK_SUBPASS_EXTERNAL, BY_REGION)", "vkCmdNextSubpass"),
         _raw("renderpass:single_pass", "renderpass:msaa_post_pass", "renderpass:dependency",
-             "renderpass:into_pass", "renderpass:out_to_transfer"),
+             "renderpass:into_pass", "renderpass:out_to_transfer", "scene.renderpass:create_scene_render_pass",
+             "scene.frame:SceneFrame.record"),
         ("(none: one subpass per render pass)",),
-        _wgpu("post.chain:PostChain.run"),
+        _wgpu("post.chain:PostChain.run", "scene_render.frame:SceneRenderer.draw"),
         "WebGPU cannot express subpasses (Metal and D3D12 have none): each step is its own render pass, and the "
-        "dependencies between passes are implied by their order in the encoder.",
+        "dependencies between passes are implied by their order in the encoder. The final scene shows the cost "
+        "in numbers: the raw path composes the whole post chain in one subpass, in float32 registers, where the "
+        "wgpu path stores the image in an rgba16float texture between effects (lavapipe rounds that store toward "
+        "zero); final_subpass.toml (tonemap -> vignette), 320x240: 2697 pixels off by 1/255, FLIP 0.00176, and "
+        "bit-identical once the raw shader rounds the same way (tests/test_vulkan_ref_scene.py).",
     ),
     Concept(
         "barriers with stage and access masks",
@@ -345,11 +350,12 @@ CONCEPTS: list[Concept] = [
     Concept(
         "shader modules and SPIR-V",
         ("glslc (GLSL -> SPIR-V)", "vkCreateShaderModule (codeSize, pCode)"),
-        _raw("glsl:compile_glsl", "glsl:create_shader_module", "glsl:glsl_path"),
+        _raw("glsl:compile_glsl", "glsl:create_shader_module", "glsl:glsl_path", "scene.variants:glsl_defines"),
         ("device.create_shader_module(code=WGSL or SPIR-V)",),
-        _wgpu("shaders:create_shader_module", "shaders:load_wgsl"),
+        _wgpu("shaders:create_shader_module", "shaders:load_wgsl", "shader_variants:specialise"),
         "WGSL text compiled by naga at run time (errors with line and column). naga also takes SPIR-V, but not "
-        "a combined sampler2D and not subpassInput.",
+        "a combined sampler2D and not subpassInput. Shader variants: WGSL has no preprocessor, so the wgpu path "
+        "specialises its template in Python; the raw path passes glslc -D flags to one GLSL source.",
     ),
     Concept(
         "vertex input bindings and attributes",
@@ -431,11 +437,15 @@ CONCEPTS: list[Concept] = [
     Concept(
         "input attachments",
         ("VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT", "VkSubpassDescription.pInputAttachments", "GLSL subpassLoad"),
-        _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post"),
+        _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post", "scene.post:PostSubpass",
+             "scene.support:unsupported"),
         ("(none: the previous pass's texture, sampled in a new pass)",),
         _wgpu("post.base:PostEffect.encode", "post.chain:PostChain.run"),
         "Cannot be expressed (no subpasses). The image goes through memory between passes, which a tiling GPU "
-        "would have kept on chip; in exchange an effect may read neighbouring pixels (post/base.py explains).",
+        "would have kept on chip; in exchange an effect may read neighbouring pixels (post/base.py explains). "
+        "The converse limits the raw path: subpassLoad reads only the fragment's own pixel, so its final scene "
+        "refuses fxaa and sharpen with a UserError rather than draw a different image. An sRGB or float input "
+        "attachment reads exactly like the wgpu path's texture load: each effect alone is bit-identical.",
     ),
     Concept(
         "push constants",
