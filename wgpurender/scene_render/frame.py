@@ -47,11 +47,13 @@ class SceneRenderer:
     Scenes are static: ``t`` is accepted (the window passes it) and does not change the image.
     """
 
-    def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, *, use_immediates: bool | None = None) -> None:
+    def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, *, use_immediates: bool | None = None,
+                 reverse_z: bool = False) -> None:
         self.ctx, self.scene, self.plan = ctx, scene, plan
         self._check_limits()
         self.resources = SceneResources(ctx, plan)
-        self.scene_pass = ScenePassRenderer(ctx, scene, plan, self.resources, use_immediates)
+        self.scene_pass = ScenePassRenderer(ctx, scene, plan, self.resources, use_immediates,
+                                            reverse_z=reverse_z)
         scene_fmt = plan.attachment("scene_color").format if plan.has_attachment("scene_color") else None
         self.chain = PostChain([step.create() for step in scene.post], intermediate_format=scene_fmt or "rgba16float")
         self.size: tuple[int, int] | None = None

@@ -30,6 +30,9 @@ from .resources import SceneResources
 AMBIENT = (0.03, 0.03, 0.035)  # linear ambient radiance, times albedo: faces no light reaches are not black
 SPECULAR = 0.04  # dielectric reflectance of the Blinn-Phong lobe
 NORMAL_STRENGTH = 1.0  # scales the normal map's tangent-plane components (a material key could set it)
+# Reverse-Z: clip z' = w - z, so stored depth' = 1 - depth (1 at near, 0 at far); REVERSE_Z @ perspective(...)
+# equals transforms.perspective(..., reverse_z=True). Drawn with depth_compare "greater" and a depth clear of 0.
+REVERSE_Z = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 1.0], [0.0, 0.0, 0.0, 1.0]])
 
 
 def camera_values(scene: Scene, aspect: float) -> dict:
@@ -74,11 +77,12 @@ class ScenePassRenderer:
     """Pipelines, uniform buffers and bind groups of a plan's scene pass, and the pass itself."""
 
     def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, resources: SceneResources,
-                 use_immediates: bool | None = None) -> None:
+                 use_immediates: bool | None = None, *, reverse_z: bool = False) -> None:
         if use_immediates and not ctx.has("immediates"):
             raise UserError("this adapter does not offer the 'immediates' feature (push constants): "
                             "leave use_immediates unset to fall back to a uniform buffer")
         self.ctx, self.scene, self.plan, self.resources = ctx, scene, plan, resources
+        self.reverse_z = reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (float depth formats)
         self.uses_immediates = ctx.has("immediates") if use_immediates is None else bool(use_immediates)
         self.draws = plan.scene_pass.draws
         self.pipelines: dict[tuple[str, str], wgpu.GPURenderPipeline] = {}
@@ -188,7 +192,7 @@ class ScenePassRenderer:
                 vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
                 primitive={"topology": "triangle-list", "front_face": front_face, "cull_mode": planned.cull_mode},
                 depth_stencil={"format": planned.depth_format, "depth_write_enabled": True,
-                               "depth_compare": "less"},
+                               "depth_compare": "greater" if self.reverse_z else "less"},
                 multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
                 fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": planned.color_format}]},
             )
@@ -200,10 +204,13 @@ class ScenePassRenderer:
         """Write the camera UBO for this frame and record the scene pass."""
         depth = None
         if depth_view is not None:
-            depth = {"view": depth_view, "depth_clear_value": 1.0, "depth_load_op": "clear",
-                     "depth_store_op": "discard"}
+            depth = {"view": depth_view, "depth_clear_value": 0.0 if self.reverse_z else 1.0,
+                     "depth_load_op": "clear", "depth_store_op": "discard"}
         if self.draws:
-            self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera_values(self.scene, aspect)))
+            camera = camera_values(self.scene, aspect)
+            if self.reverse_z:
+                camera["proj"] = REVERSE_Z @ camera["proj"]
+            self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
         render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
         for k, (_draw, pipeline, group, data, buffers) in enumerate(getattr(self, "draw_state", [])):
