@@ -1,0 +1,74 @@
+"""``wgpurender bench accuracy``: what each quality knob buys in error, and what it costs in time.
+
+Each knob (MSAA 1/4; supersampling 1x-4x; scene target rgba8unorm-srgb / rgba16float / rgba32float; texture
+filtering nearest / linear / trilinear / anisotropic 4 and 16; depth depth24plus / depth32float / reverse-Z
+depth32float) is swept one at a time from the highest setting, plus the combinations that matter, and every
+setting gets FLIP and PSNR against a ground truth and its GPU and wall time per frame. Results: accuracy.csv,
+accuracy.md and accuracy_pareto.png (error against time with the Pareto front) in --out. docs/accuracy.md
+explains the choices and holds a lavapipe run.
+
+Modules: accuracy_knobs (settings -> renderer), accuracy_downsample (the supersampling resolve),
+accuracy_depth (the depth-stress scene), accuracy_run (sweep, timing, scoring, progress), accuracy_pareto,
+accuracy_report (CSV, markdown, plot). This module is imported when the CLI is built: it imports nothing heavy.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+SCENE_FILE = Path("assets/scenes/final.toml")
+QUICK = {"size": (160, 120), "frames": 3, "warmup": 1}
+FULL = {"size": (400, 300), "frames": 15, "warmup": 2}
+
+
+def register_accuracy(suites) -> None:
+    """Add ``accuracy`` to ``wgpurender bench`` (called by wgpurender/commands/bench.py)."""
+    from ..commands._args import add_backend_arg, size_arg
+    from .accuracy_knobs import KNOBS
+
+    p = suites.add_parser(
+        "accuracy",
+        help="error (FLIP, PSNR against a ground truth) against time for each quality knob",
+        description="Sweep MSAA, supersampling, the scene target format, texture filtering and the depth setup; "
+        "write accuracy.csv, accuracy.md and accuracy_pareto.png (the plot needs matplotlib: "
+        "pip install 'wgpurender[bench]').",
+    )
+    p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
+                   help=f"scene file with a post chain (default {SCENE_FILE})")
+    p.add_argument("--quick", action="store_true",
+                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames")
+    p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
+                   help="where results go (default ./bench-results/accuracy)")
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                   help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
+    p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
+    p.add_argument("--knob", action="append", default=None, choices=KNOBS, dest="knobs",
+                   help="sweep only these knobs (repeatable; default all)")
+    p.add_argument("--no-combinations", dest="combinations", action="store_false",
+                   help="only the one-knob-at-a-time sweeps")
+    add_backend_arg(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..errors import UserError
+    from ..gpu import get_context
+    from .accuracy_knobs import KNOBS
+    from .accuracy_report import write_reports
+    from .accuracy_run import AccuracyConfig, run_accuracy
+    from .perf import command_line
+
+    preset = QUICK if args.quick else FULL
+    frames = preset["frames"] if args.frames is None else args.frames
+    if frames < 1:
+        raise UserError("--frames must be at least 1")
+    if not Path(args.scene).is_file():
+        raise UserError(f"scene file not found: {args.scene} (run from the repository root, or give SCENE)")
+    knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
+    config = AccuracyConfig(scene_path=Path(args.scene), base_size=args.size or preset["size"], frames=frames,
+                            warmup=preset["warmup"], knobs=knobs, combinations=args.combinations,
+                            out_dir=Path(args.out), command=command_line())
+    result = run_accuracy(config, get_context(args.backend))
+    for kind, path in write_reports(result, config.out_dir).items():
+        print(f"{kind}: {path}")
+    return 0

@@ -1,0 +1,145 @@
+"""The quality knobs of ``bench accuracy`` and how one setting of them becomes a renderer.
+
+A :class:`Settings` is one point of the sweep: MSAA, supersampling factor, the scene (HDR) target format,
+texture filtering for every material, and the depth setup. :func:`make_renderer` applies it:
+
+- texture filtering replaces each material's sampler in the :class:`~wgpurender.scene.Scene` (so the plan
+  builds mip chains exactly when the level uses them);
+- MSAA and the render size go through :func:`~wgpurender.plan.build_plan`'s own overrides;
+- the scene target and depth formats are rewritten in the plan (attachments and pipelines), so the renderer,
+  which builds exactly what the plan lists, needs no format arguments, and ``plan.explain()`` stays true;
+- reverse-Z is the renderer's ``reverse_z`` flag (projection, compare "greater", clear 0).
+
+WebGPU cannot multisample rgba32float (the format has no multisample capability in the spec), so a
+setting with ``scene_format = "rgba32float"`` must have ``msaa = 1``: :meth:`Settings.problem` says so.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+from ..errors import UserError
+from ..scene import SamplerSettings, Scene
+
+MSAA_LEVELS = (1, 4)
+SS_LEVELS = (1, 2, 3, 4)
+GROUND_TRUTH_SS = 8
+FORMAT_LEVELS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
+FILTER_LEVELS = ("nearest", "linear", "trilinear", "aniso4", "aniso16")
+DEPTH_LEVELS = ("depth24plus", "depth32float", "reverse-z")
+KNOBS = ("msaa", "ss", "format", "filter", "depth")  # the field each knob sets, in Settings order below
+
+# filter level -> (filter, mipmaps, anisotropy); the material's address mode is kept.
+FILTERS = {
+    "nearest": ("nearest", False, 1),  # point sampling of the base level (no mips)
+    "linear": ("linear", False, 1),  # bilinear, base level only
+    "trilinear": ("linear", True, 1),  # bilinear within two mip levels, blended
+    "aniso4": ("linear", True, 4),
+    "aniso16": ("linear", True, 16),
+}
+# depth level -> (depth format, reverse_z)
+DEPTHS = {"depth24plus": ("depth24plus", False), "depth32float": ("depth32float", False),
+          "reverse-z": ("depth32float", True)}
+NOT_MULTISAMPLED = ("rgba32float",)
+
+
+@dataclass(frozen=True)
+class Settings:
+    """One quality setting. The defaults are the highest level of every knob at 1x supersampling."""
+
+    msaa: int = 4
+    ss: int = 1
+    format: str = "rgba16float"
+    filter: str = "aniso16"
+    depth: str = "reverse-z"
+
+    def label(self) -> str:
+        return f"msaa{self.msaa} ss{self.ss} {self.format} {self.filter} {self.depth}"
+
+    def with_(self, **changes) -> Settings:
+        return dataclasses.replace(self, **changes)
+
+    def problem(self) -> str | None:
+        """Why this setting cannot be rendered, or None."""
+        if self.format in NOT_MULTISAMPLED and self.msaa > 1:
+            return f"{self.format} cannot be multisampled in WebGPU: use msaa 1 with it"
+        if self.msaa not in MSAA_LEVELS:
+            return f"msaa {self.msaa} is not one of {MSAA_LEVELS}"
+        if self.format not in FORMAT_LEVELS or self.filter not in FILTERS or self.depth not in DEPTHS:
+            return f"unknown level in {self.label()}"
+        if self.ss < 1:
+            return "supersampling factor must be at least 1"
+        return None
+
+
+# The highest level of every knob that can be combined: rgba16float because rgba32float cannot be multisampled
+# (and at the 8-bit output float16's rounding, 2^-12 relative, is far below one step: docs/accuracy.md).
+TOP = Settings()
+GROUND_TRUTH = TOP.with_(ss=GROUND_TRUTH_SS)
+
+
+def sampler_for(level: str, base: SamplerSettings) -> SamplerSettings:
+    filt, mipmaps, anisotropy = FILTERS[level]
+    return dataclasses.replace(base, filter=filt, mipmaps=mipmaps, anisotropy=anisotropy)
+
+
+def with_filter(scene: Scene, level: str) -> Scene:
+    """The scene with every material's sampler set to ``level`` (address modes kept)."""
+    mats: dict[int, object] = {}
+
+    def swap(material):
+        if id(material) not in mats:
+            mats[id(material)] = dataclasses.replace(material, sampler=sampler_for(level, material.sampler))
+        return mats[id(material)]
+
+    models = tuple(dataclasses.replace(m, material=swap(m.material)) for m in scene.models)
+    materials = {name: swap(m) for name, m in scene.materials.items()}
+    return dataclasses.replace(scene, models=models, materials=materials)
+
+
+def with_formats(plan, scene_format: str | None, depth_format: str | None):
+    """The plan with the scene target (scene_color, msaa_color, post intermediates) and depth formats replaced."""
+    scene_roles = ("scene-color", "msaa-color", "post-intermediate")
+    if scene_format is not None and not any(a.role == "scene-color" for a in plan.attachments):
+        raise UserError(f"{plan.scene_path}: the scene-format knob needs a scene image that a post chain reads, "
+                        "but this scene draws straight into its output: add [[post]] effects or drop the knob")
+    why = "bench accuracy: format set by the sweep"
+
+    def attachment(a):
+        if scene_format is not None and a.role in scene_roles:
+            return dataclasses.replace(a, format=scene_format, reasons=a.reasons + (why,))
+        if depth_format is not None and a.role == "depth":
+            return dataclasses.replace(a, format=depth_format, reasons=a.reasons + (why,))
+        return a
+
+    def pipeline(p):
+        changes = {}
+        if scene_format is not None:
+            changes["color_format"] = scene_format
+        if depth_format is not None and p.depth_format is not None:
+            changes["depth_format"] = depth_format
+        return dataclasses.replace(p, **changes)
+
+    return dataclasses.replace(plan, attachments=tuple(attachment(a) for a in plan.attachments),
+                               pipelines=tuple(pipeline(p) for p in plan.pipelines))
+
+
+def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, int], *, knobs=KNOBS):
+    """A SceneRenderer for ``settings`` at ``base_size * settings.ss``; knobs not in ``knobs`` keep the scene's own.
+
+    The depth-stress scene, for instance, has no textures and no post chain: there only the depth knob applies.
+    """
+    from ..plan import build_plan
+    from ..scene_render import SceneRenderer
+
+    problem = settings.problem()
+    if problem:
+        raise UserError(f"cannot render {settings.label()}: {problem}")
+    if "filter" in knobs:
+        scene = with_filter(scene, settings.filter)
+    size = (base_size[0] * settings.ss, base_size[1] * settings.ss)
+    plan = build_plan(scene, size=size, msaa=settings.msaa if "msaa" in knobs else None)
+    depth_format, reverse_z = DEPTHS[settings.depth] if "depth" in knobs else (None, False)
+    plan = with_formats(plan, settings.format if "format" in knobs else None, depth_format)
+    return SceneRenderer(ctx, scene, plan, reverse_z=reverse_z)
