@@ -451,7 +451,8 @@ CONCEPTS: list[Concept] = [
         "push constants",
         ("VkPushConstantRange", "vkCmdPushConstants", "GLSL layout(push_constant)"),
         _raw("stages.msaa_post:MsaaPost._setup_post", "stages.msaa_post:MsaaPost.record",
-             "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record", "ubo:pack_draw"),
+             "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record", "ubo:pack_draw",
+             "scene.scene_subpass:SceneSubpass.record", "scene.uniforms:pack_material"),
         ("native feature 'immediates'", "create_pipeline_layout(immediate_size=)",
          "GPURenderPassEncoder.set_immediates(offset, data, data_offset, size)", "WGSL var<immediate>"),
         _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.draw", "gpu:get_context"),
@@ -461,7 +462,8 @@ CONCEPTS: list[Concept] = [
     Concept(
         "UBO alignment",
         ("std140 layout", "VkPhysicalDeviceLimits.minUniformBufferOffsetAlignment"),
-        _raw("ubo:dynamic_stride", "ubo:pack_camera", "ubo:pack_object", "instance:copy_limits"),
+        _raw("ubo:dynamic_stride", "ubo:pack_camera", "ubo:pack_object", "instance:copy_limits",
+             "scene.uniforms:pack_camera", "scene.uniforms:pack_object"),
         ("WGSL uniform address space layout", "limit 'min-uniform-buffer-offset-alignment'"),
         _wgpu("uniforms:Struct.stride", "uniforms:Struct.pack", "uniforms:Struct.pack_many", "uniforms:wgsl_structs"),
         "WGSL's uniform layout equals std140 for these types and naga rejects a struct that breaks it. The wgpu "
