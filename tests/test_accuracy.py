@@ -118,8 +118,8 @@ def quick_run(ctx, tmp_path_factory):
     from wgpurender.bench.accuracy_run import AccuracyConfig, run_accuracy
 
     out = tmp_path_factory.mktemp("accuracy")
-    config = AccuracyConfig(scene_path=Path("assets/scenes/final.toml"), base_size=(48, 36), frames=1, warmup=0,
-                            knobs=("msaa", "ss"), out_dir=out, command="pytest")
+    config = AccuracyConfig(scene_path=Path("assets/scenes/final.toml"), base_size=(48, 36), frames=2, warmup=0,
+                            rounds=2, knobs=("msaa", "ss"), out_dir=out, command="pytest")
     run = run_accuracy(config, ctx, progress_stream=io.StringIO())
     return run, write_reports(run, out)
 

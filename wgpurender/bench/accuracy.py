@@ -17,8 +17,8 @@ from __future__ import annotations
 from pathlib import Path
 
 SCENE_FILE = Path("assets/scenes/final.toml")
-QUICK = {"size": (160, 120), "frames": 3, "warmup": 1}
-FULL = {"size": (400, 300), "frames": 15, "warmup": 2}
+QUICK = {"size": (160, 120), "frames": 3, "warmup": 1, "rounds": 1}
+FULL = {"size": (400, 300), "frames": 18, "warmup": 2, "rounds": 3}
 
 
 def register_accuracy(suites) -> None:
@@ -36,12 +36,14 @@ def register_accuracy(suites) -> None:
     p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
                    help=f"scene file with a post chain (default {SCENE_FILE})")
     p.add_argument("--quick", action="store_true",
-                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames")
+                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
     p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
                    help="where results go (default ./bench-results/accuracy)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
     p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
+    p.add_argument("--rounds", type=int, default=None, metavar="R",
+                   help="split the timed frames over R passes through all settings (default 3; --quick 1)")
     p.add_argument("--knob", action="append", default=None, choices=KNOBS, dest="knobs",
                    help="sweep only these knobs (repeatable; default all)")
     p.add_argument("--no-combinations", dest="combinations", action="store_false",
@@ -60,13 +62,14 @@ def run(args) -> int:
 
     preset = QUICK if args.quick else FULL
     frames = preset["frames"] if args.frames is None else args.frames
-    if frames < 1:
-        raise UserError("--frames must be at least 1")
+    rounds = preset["rounds"] if args.rounds is None else args.rounds
+    if frames < 1 or rounds < 1:
+        raise UserError("--frames and --rounds must be at least 1")
     if not Path(args.scene).is_file():
         raise UserError(f"scene file not found: {args.scene} (run from the repository root, or give SCENE)")
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
     config = AccuracyConfig(scene_path=Path(args.scene), base_size=args.size or preset["size"], frames=frames,
-                            warmup=preset["warmup"], knobs=knobs, combinations=args.combinations,
+                            warmup=preset["warmup"], rounds=rounds, knobs=knobs, combinations=args.combinations,
                             out_dir=Path(args.out), command=command_line())
     result = run_accuracy(config, get_context(args.backend))
     for kind, path in write_reports(result, config.out_dir).items():

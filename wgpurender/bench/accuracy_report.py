@@ -78,8 +78,8 @@ def markdown(run: AccuracyRun, plot: Path | None) -> str:
         "",
         f"Command: `{c.command}`  ",
         f"Adapter: {run.adapter}  ",
-        f"Scene: `{c.scene_path}`, base size {w}x{h}; {c.warmup} warm-up + {c.frames} timed frames per setting; "
-        f"run took {run.seconds:.0f} s.",
+        f"Scene: `{c.scene_path}`, base size {w}x{h}; per setting {c.warmup} warm-up + {c.frames} timed frames, "
+        f"spread over {c.rounds} round(s) through all settings; run took {run.seconds:.0f} s.",
         "",
         f"Ground truth (final scene): {gt.label()} = msaa {gt.msaa}, {gt.format}, {gt.filter}, {gt.depth}, rendered "
         f"at {w * gt.ss}x{h * gt.ss} and area-averaged in linear light to {w}x{h}. Depth-stress rows: the analytic "

@@ -6,8 +6,10 @@ a few combinations follow (MSAA x supersampling, trilinear x supersampling, ever
 depth knob on the depth-stress scene, whose ground truth is analytic (accuracy_depth.py).
 
 A setting used by several sweeps (TOP is in all of them) is rendered and timed once.
-Time per frame: ``warmup`` untimed frames, then ``frames`` timed ones; a frame is record + submit + wait (no
-readback, no CPU downsampling). GPU time is the sum of the frame's passes from timestamp queries
+Time per frame: ``warmup`` untimed frames, then ``frames`` timed ones, split over ``rounds`` passes through all
+settings (each later visit starts with one untimed frame), so a change in the machine's load during the run
+spreads over every setting instead of landing on a few; a frame is record + submit + wait (no readback, no CPU
+downsampling). GPU time is the sum of the frame's passes from timestamp queries
 (:class:`~wgpurender.timing.PassTimer`); wall time is measured around the whole frame. Both: median, p10..p90.
 """
 
@@ -132,43 +134,59 @@ class Progress:
               f"{int(elapsed) // 60}:{int(elapsed) % 60:02d}  {text}", file=self.stream, flush=True)
 
 
-def time_frames(ctx: GPUContext, renderer, target, frames: int, warmup: int) -> tuple[Stats, Stats | None, dict]:
-    """(wall, gpu, per-pass medians) of ``frames`` frames after ``warmup`` untimed ones."""
-    timer = PassTimer(ctx)
-    wall, gpu, passes = [], [], {}
-    for i in range(warmup + frames):
+class Timed:
+    """One setting's renderer and target, and the frame times gathered for it over the rounds."""
+
+    def __init__(self, ctx: GPUContext, scene, settings: Settings, base_size: tuple[int, int], knobs) -> None:
+        from ..targets import create_target
+
+        self.ctx, self.settings = ctx, settings
+        self.renderer = make_renderer(ctx, scene, settings, base_size, knobs=knobs)
+        self.target = create_target(ctx, self.renderer.plan.size, self.renderer.plan.output_format)
+        self.timer = PassTimer(ctx)
+        self.wall: list[float] = []
+        self.gpu: list[float] = []
+        self.passes: dict[str, list[float]] = {}
+        self.pixels: np.ndarray | None = None
+
+    def frame(self) -> tuple[float, dict[str, float]]:
+        """Record, submit and wait for one frame: (wall ms, GPU ms per pass)."""
+        ctx, timer = self.ctx, self.timer
         start = time.perf_counter()
         timer.reset()
         encoder = ctx.device.create_command_encoder(label="accuracy-frame")
-        renderer.draw(encoder, target, 0.0, timer=timer)
+        self.renderer.draw(encoder, self.target, 0.0, timer=timer)
         timer.resolve(encoder)
         ctx.queue.submit([encoder.finish()])
         per_pass = timer.read()  # blocks until the frame is done
         if not per_pass:
             ctx.wait_idle()
-        ms = (time.perf_counter() - start) * 1e3
-        if i >= warmup:
-            wall.append(ms)
+        return (time.perf_counter() - start) * 1e3, per_pass
+
+    def run(self, frames: int, warmup: int = 0) -> None:
+        for i in range(warmup + frames):
+            ms, per_pass = self.frame()
+            if i < warmup:
+                continue
+            self.wall.append(ms)
             if per_pass:
-                gpu.append(sum(per_pass.values()))
+                self.gpu.append(sum(per_pass.values()))
                 for label, v in per_pass.items():
-                    passes.setdefault(label, []).append(v)
-    medians = {label: float(np.median(v)) for label, v in passes.items()}
-    return Stats.of(wall), (Stats.of(gpu) if gpu else None), medians
+                    self.passes.setdefault(label, []).append(v)
 
+    def read(self) -> None:
+        """Read the image back (once: it is the same every frame) and resolve it to the base size."""
+        from ..targets import read_texture
 
-def measure(ctx: GPUContext, scene, settings: Settings, base_size: tuple[int, int], frames: int, warmup: int,
-            knobs=KNOBS) -> Measurement:
-    """Render ``settings`` (at ``base_size * ss``), time it, read it back and downsample it to ``base_size``."""
-    from ..targets import create_target, read_texture
+        pixels = read_texture(self.ctx, self.target)
+        if pixels.dtype != np.uint8:
+            raise ValueError(f"accuracy needs an 8-bit sRGB output, got {self.renderer.plan.output_format}")
+        self.pixels = downsample_srgb8(pixels, self.settings.ss)
 
-    renderer = make_renderer(ctx, scene, settings, base_size, knobs=knobs)
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
-    wall, gpu, passes = time_frames(ctx, renderer, target, frames, warmup)
-    pixels = read_texture(ctx, target)
-    if pixels.dtype != np.uint8:
-        raise ValueError(f"accuracy needs an 8-bit sRGB output, got {renderer.plan.output_format}")
-    return Measurement(downsample_srgb8(pixels, settings.ss), renderer.plan.size, wall, gpu, passes)
+    def measurement(self) -> Measurement:
+        medians = {label: float(np.median(v)) for label, v in self.passes.items()}
+        return Measurement(self.pixels, self.renderer.plan.size, Stats.of(self.wall),
+                           Stats.of(self.gpu) if self.gpu else None, medians)
 
 
 @dataclass
@@ -177,6 +195,7 @@ class AccuracyConfig:
     base_size: tuple[int, int]
     frames: int
     warmup: int
+    rounds: int = 1  # the timed frames are split over this many passes through all settings (drift evens out)
     knobs: tuple[str, ...] = KNOBS
     combinations: bool = True
     out_dir: Path = Path("bench-results/accuracy")
@@ -204,15 +223,26 @@ def run_accuracy(config: AccuracyConfig, ctx: GPUContext, progress_stream=None) 
         scenes[DEPTH_STRESS] = load_scene(write_depth_scene(config.out_dir / "depth_stress", config.base_size))
     scene_knobs = {FINAL: KNOBS, DEPTH_STRESS: ("depth",)}
     unique = list(dict.fromkeys(c.key for c in cases))
-    progress = Progress(len(unique), progress_stream)
-    measured: dict[tuple[str, Settings], Measurement] = {}
-    for scene_name, settings in unique:
-        m = measure(ctx, scenes[scene_name], settings, config.base_size, config.frames, config.warmup,
-                    knobs=scene_knobs[scene_name])
-        measured[(scene_name, settings)] = m
-        took = m.gpu.median if m.gpu is not None else m.wall.median
-        what = settings.label() if scene_name == FINAL else settings.depth
-        progress.step(f"{scene_name}: {what} at {m.render_size[0]}x{m.render_size[1]}: {took:.1f} ms")
+    rounds = max(1, min(config.rounds, config.frames))
+    per_round = [config.frames // rounds + (1 if r < config.frames % rounds else 0) for r in range(rounds)]
+    progress = Progress(len(unique) * rounds, progress_stream)
+    timed: dict[tuple[str, Settings], Timed] = {}
+    for r, frames in enumerate(per_round):
+        # Alternate the order, so a setting is not always timed right after the same neighbour.
+        for key in (unique if r % 2 == 0 else unique[::-1]):
+            scene_name, settings = key
+            first = key not in timed
+            if first:
+                timed[key] = Timed(ctx, scenes[scene_name], settings, config.base_size, scene_knobs[scene_name])
+            t = timed[key]
+            t.run(frames, warmup=config.warmup if first else 1)
+            if first:
+                t.read()
+            what = settings.label() if scene_name == FINAL else settings.depth
+            took = float(np.median(t.gpu[-frames:] if t.gpu else t.wall[-frames:]))
+            size = t.renderer.plan.size
+            progress.step(f"round {r + 1}/{rounds} {scene_name}: {what} at {size[0]}x{size[1]}: {took:.1f} ms")
+    measured = {key: t.measurement() for key, t in timed.items()}
     rows = [score(c, measured, config.base_size) for c in cases]
     final_rows = unique_rows([r for r in rows if r.case.scene == FINAL and r.case.sweep != "ground truth"])
     for i in pareto_front([(r.time_ms, r.flip) for r in final_rows]):
