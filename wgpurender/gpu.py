@@ -103,20 +103,18 @@ def requested_backend(backend: str | None = None) -> str:
 
 
 def _enable_validation_once() -> None:
-    """Turn on the Vulkan validation layer when $WGPURENDER_VALIDATION is set.
+    """Turn on the validation layers when $WGPURENDER_VALIDATION is set.
 
     This must run before the first adapter is enumerated (it configures the instance).
-    Messages from the layer arrive through the ``wgpu`` Python logger.
+    Messages from the Vulkan layer arrive through the ``wgpu`` Python logger. The
+    instance is limited to the requested backend: with validation on, NVIDIA's
+    OpenGL backend (enumerated alongside Vulkan otherwise) crashed the process at
+    exit, and the tests only need the backend they test.
     """
     if os.environ.get(VALIDATION_ENV, "") not in ("", "0"):
-        import atexit
-
         from wgpu.backends.wgpu_native.extras import set_instance_extras
 
-        from .native import silence_native_log
-
-        set_instance_extras(flags=["Validation"])
-        atexit.register(silence_native_log)
+        set_instance_extras(backends=[requested_backend()], flags=["Validation"])
 
 
 @functools.cache

@@ -40,14 +40,3 @@ def timestamp_period_ns(ctx: GPUContext) -> float:
 
     return float(lib.wgpuQueueGetTimestampPeriod(ctx.queue._internal))
 
-
-def silence_native_log() -> None:
-    """Stop wgpu-native from calling back into Python for log messages.
-
-    Registered with atexit when the validation layer is on: the layer reports at
-    instance destruction, which can happen while the interpreter is tearing down
-    the cffi callback; on NVIDIA's driver that crashed the process at exit.
-    """
-    from wgpu.backends.wgpu_native._ffi import lib
-
-    lib.wgpuSetLogLevel(lib.WGPULogLevel_Off)
