@@ -31,6 +31,7 @@ import wgpu
 
 from ..errors import UserError
 from ..shaders import create_shader_module, load_wgsl
+from .cache import BoundedCache
 
 COMMON_WGSL = "post_common.wgsl"
 
@@ -145,6 +146,15 @@ class PostEffect:
             p.name: p.validate(params.get(p.name, p.default), self.name) for p in self.params_spec
         }
         self._buffers: dict[wgpu.GPUDevice, wgpu.GPUBuffer] = {}
+        # Per-frame objects, reused while their inputs are the same objects (see post/cache.py):
+        self._uploaded: dict[wgpu.GPUDevice, tuple] = {}  # parameter values last written to the buffer
+        self._groups: BoundedCache[wgpu.GPUBindGroup] = BoundedCache()  # (device, source, target format)
+        self._target_views: BoundedCache[wgpu.GPUTextureView] = BoundedCache()  # target texture
+
+    def clear_cache(self) -> None:
+        """Drop cached bind groups and views (the chain calls it when its textures are replaced)."""
+        self._groups.clear()
+        self._target_views.clear()
 
     def __repr__(self) -> str:
         args = ", ".join(f"{k}={v!r}" for k, v in self.params.items())
@@ -212,15 +222,29 @@ class PostEffect:
         return _PIPELINES[key]
 
     def _uniform_buffer(self, device: wgpu.GPUDevice) -> wgpu.GPUBuffer:
-        data = self.pack_params()
+        """The parameter buffer, rewritten only when a parameter changed since the last write."""
         if device not in self._buffers:
             self._buffers[device] = device.create_buffer(
                 label=f"post-{self.name}-params",
-                size=data.nbytes,
+                size=self.pack_params().nbytes,
                 usage=wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST,
             )
-        device.queue.write_buffer(self._buffers[device], 0, data.tobytes())
+        values = tuple(self.params.values())
+        if self._uploaded.get(device) != values:
+            device.queue.write_buffer(self._buffers[device], 0, self.pack_params().tobytes())
+            self._uploaded[device] = values
         return self._buffers[device]
+
+    def _bind_group(self, device: wgpu.GPUDevice, pipeline: wgpu.GPURenderPipeline,
+                    source: wgpu.GPUTexture) -> wgpu.GPUBindGroup:
+        entries = [{"binding": 0, "resource": source.create_view()}]
+        if self.filtering:
+            entries.append({"binding": 1, "resource": linear_clamp_sampler(device)})
+        if self.params_spec:
+            buffer = self._buffers[device]
+            entries.append({"binding": 2, "resource": {"buffer": buffer, "offset": 0, "size": buffer.size}})
+        return device.create_bind_group(label=f"post-{self.name}", layout=pipeline.get_bind_group_layout(0),
+                                        entries=entries)
 
     def encode(
         self,
@@ -240,18 +264,14 @@ class PostEffect:
         if tuple(source.size[:2]) != tuple(target.size[:2]):
             raise UserError(f"post effect {self.name!r}: source {source.size[:2]} and target {target.size[:2]} differ")
         pipeline = self.pipeline(device, target.format)
-        entries = [{"binding": 0, "resource": source.create_view()}]
-        if self.filtering:
-            entries.append({"binding": 1, "resource": linear_clamp_sampler(device)})
         if self.params_spec:
-            buffer = self._uniform_buffer(device)
-            entries.append({"binding": 2, "resource": {"buffer": buffer, "offset": 0, "size": buffer.size}})
-        bind_group = device.create_bind_group(layout=pipeline.get_bind_group_layout(0), entries=entries)
+            self._uniform_buffer(device)
+        bind_group = self._groups.get((device, source, target.format),
+                                      lambda: self._bind_group(device, pipeline, source))
         render_pass = encoder.begin_render_pass(
             label=f"post-{self.name}",
-            color_attachments=[
-                {"view": target.create_view(), "load_op": "clear", "clear_value": (0, 0, 0, 0), "store_op": "store"}
-            ],
+            color_attachments=[{"view": self._target_views.get(target, target.create_view), "load_op": "clear",
+                                "clear_value": (0, 0, 0, 0), "store_op": "store"}],
             timestamp_writes=timestamp_writes,
         )
         render_pass.set_pipeline(pipeline)

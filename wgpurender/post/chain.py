@@ -57,6 +57,7 @@ class PostChain:
         self.intermediate_format = intermediate_format
         self._intermediates: list[wgpu.GPUTexture] = []
         self._implicit_srgb = SrgbEncode()
+        self._size: tuple[int, int] | None = None
 
     def __len__(self) -> int:
         return len(self.effects)
@@ -80,6 +81,11 @@ class PostChain:
             out.append(effect.describe(fmt_in, fmt_out))
             fmt_in = fmt_out
         return out
+
+    def clear_cache(self) -> None:
+        """Forget every effect's cached bind groups and views (they refer to replaced textures)."""
+        for effect in [*self.effects, self._implicit_srgb]:
+            effect.clear_cache()
 
     def _textures(self, ctx: GPUContext, size: tuple[int, int], count: int) -> list[wgpu.GPUTexture]:
         current = self._intermediates
@@ -108,6 +114,9 @@ class PostChain:
         if not effects:
             return
         size = (source.size[0], source.size[1])
+        if size != self._size:  # resized: intermediates (and usually source and target) are new textures
+            self.clear_cache()
+            self._size = size
         temps = self._textures(ctx, size, intermediate_count(len(effects)))
         current = source
         for i, effect in enumerate(effects):

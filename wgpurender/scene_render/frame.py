@@ -82,6 +82,14 @@ class SceneRenderer:
     def _texture(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTexture:
         return target if name == "output" else self.attachments[name]
 
+    def _view(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTextureView:
+        """A view of an attachment or the output, made once per texture object (resize makes new ones)."""
+        texture = self._texture(name, target)
+        cached = self.__dict__.setdefault("_views", {}).get(name)
+        if cached is None or cached[0] is not texture:
+            cached = self._views[name] = (texture, texture.create_view())
+        return cached[1]
+
     def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
         """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass)."""
         if target.format != self.plan.output_format:
@@ -90,12 +98,12 @@ class SceneRenderer:
         size = (target.size[0], target.size[1])
         self.resize(size)
         sp = self.plan.scene_pass
-        color = {"view": self._texture(sp.color, target).create_view(), "clear_value": sp.clear_color,
+        color = {"view": self._view(sp.color, target), "clear_value": sp.clear_color,
                  "load_op": "clear", "store_op": "store"}
         if sp.resolve_target is not None:
             # The multisampled image is scratch: resolved at the end of the pass, its samples discarded.
-            color.update(resolve_target=self._texture(sp.resolve_target, target).create_view(), store_op="discard")
-        depth = self.attachments[sp.depth].create_view() if sp.depth else None
+            color.update(resolve_target=self._view(sp.resolve_target, target), store_op="discard")
+        depth = self._view(sp.depth, target) if sp.depth else None
         writes = timer.writes("scene") if timer is not None else None
         self.scene_pass.encode(encoder, color, depth, size[0] / size[1], timestamp_writes=writes)
         if self.chain:

@@ -199,6 +199,21 @@ class ScenePassRenderer:
         return self.pipelines[key]
 
     # -- the pass ------------------------------------------------------------------
+    def _write_camera(self, aspect: float) -> None:
+        """Pack and upload the camera UBO, only when its inputs changed since the last upload.
+
+        The scene (camera, lights) is frozen, so the inputs are the objects themselves, the aspect
+        and the depth convention; packing is Python work per field, so it is skipped, not redone.
+        """
+        key = (self.scene.camera, self.scene.lights, aspect, self.reverse_z)
+        if key == getattr(self, "_camera_key", None):
+            return
+        camera = camera_values(self.scene, aspect)
+        if self.reverse_z:
+            camera["proj"] = REVERSE_Z @ camera["proj"]
+        self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
+        self._camera_key = key
+
     def encode(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
                timestamp_writes: dict | None = None) -> None:
         """Write the camera UBO for this frame and record the scene pass."""
@@ -207,10 +222,7 @@ class ScenePassRenderer:
             depth = {"view": depth_view, "depth_clear_value": 0.0 if self.reverse_z else 1.0,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
         if self.draws:
-            camera = camera_values(self.scene, aspect)
-            if self.reverse_z:
-                camera["proj"] = REVERSE_Z @ camera["proj"]
-            self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
+            self._write_camera(aspect)
         render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
         for k, (_draw, pipeline, group, data, buffers) in enumerate(getattr(self, "draw_state", [])):
