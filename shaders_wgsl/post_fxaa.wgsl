@@ -3,6 +3,11 @@
 //
 // 1. Local contrast: luma of the pixel and its 4 neighbours; below the
 //    threshold the pixel is returned untouched (flat regions stay exact).
+//    The effect draws twice (wgpurender/post/fxaa.py): fs_mark writes every
+//    pixel untouched and marks edge pixels in a depth attachment, then fs_main
+//    runs depth-tested on edge pixels only. On lavapipe that is what makes the
+//    early exit real: llvmpipe runs both sides of a branch for every pixel, but
+//    skips the whole shader for a block of pixels that fails an early depth test.
 // 2. Sub-pixel aliasing: how far the pixel is from the 3x3 average luma gives a
 //    blend amount for lone bright/dark pixels.
 // 3. Edge direction: horizontal or vertical from second differences, then which
@@ -39,6 +44,14 @@ fn luma_uv(uv: vec2f) -> f32 {
     return luma_of(textureSampleLevel(src, src_sampler, uv, 0.0).rgb);
 }
 
+// Step 1: true where FXAA works on the pixel (its local contrast is high enough). Written as
+// "not below" so that it is exactly the negation of the early exit's test, NaN included.
+fn is_edge(l_m: f32, l_n: f32, l_s: f32, l_w: f32, l_e: f32) -> bool {
+    let l_max = max(l_m, max(max(l_n, l_s), max(l_w, l_e)));
+    let l_min = min(l_m, min(min(l_n, l_s), min(l_w, l_e)));
+    return !(l_max - l_min < max(params.edge_threshold_min, l_max * params.edge_threshold));
+}
+
 // Distance walked at each search step, in pixels: fine near the pixel, coarse far away.
 fn search_step(i: u32) -> f32 {
     var steps = array<f32, 12>(1.0, 1.0, 1.0, 1.0, 1.0, 1.5, 2.0, 2.0, 2.0, 2.0, 4.0, 8.0);
@@ -58,12 +71,12 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     let l_s = luma_at(p + vec2i(0, 1));
     let l_w = luma_at(p + vec2i(-1, 0));
     let l_e = luma_at(p + vec2i(1, 0));
+    if !is_edge(l_m, l_n, l_s, l_w, l_e) {
+        return centre;
+    }
     let l_max = max(l_m, max(max(l_n, l_s), max(l_w, l_e)));
     let l_min = min(l_m, min(min(l_n, l_s), min(l_w, l_e)));
     let range = l_max - l_min;
-    if range < max(params.edge_threshold_min, l_max * params.edge_threshold) {
-        return centre;
-    }
 
     let l_nw = luma_at(p + vec2i(-1, -1));
     let l_ne = luma_at(p + vec2i(1, -1));
@@ -147,4 +160,24 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     }
     let color = textureSampleLevel(src, src_sampler, final_uv, 0.0);
     return vec4f(color.rgb, centre.a);
+}
+
+// Draw 1 of the pass: every pixel as it is (what fs_main returns off edges), and depth
+// EDGE_DEPTH where fs_main has work to do, FLAT_DEPTH elsewhere. Draw 2 (fs_main, the triangle
+// at depth 0, compare "less") then passes only where this wrote EDGE_DEPTH.
+const EDGE_DEPTH: f32 = 1.0;
+const FLAT_DEPTH: f32 = 0.0;
+
+struct Marked {
+    @location(0) color: vec4f,
+    @builtin(frag_depth) depth: f32,
+};
+
+@fragment
+fn fs_mark(in: FullscreenOut) -> Marked {
+    let p = vec2i(in.position.xy);
+    let centre = src_clamped(p);
+    let edge = is_edge(luma_of(centre.rgb), luma_at(p + vec2i(0, -1)), luma_at(p + vec2i(0, 1)),
+                       luma_at(p + vec2i(-1, 0)), luma_at(p + vec2i(1, 0)));
+    return Marked(centre, select(FLAT_DEPTH, EDGE_DEPTH, edge));
 }

@@ -105,8 +105,20 @@ class EffectDescription:
         return text + "".join(f"; {n}" for n in self.notes)
 
 
-# (device, effect name, target format, input sample type) -> pipeline; samplers per device.
+@dataclass(frozen=True)
+class DrawStep:
+    """One full-screen draw of an effect's pass: a fragment entry point and, when the effect has a depth
+    attachment (``PostEffect.depth_format``), how that draw tests and writes depth. Most effects have one
+    step; FXAA has two, so that a depth test can skip whole blocks of pixels (post/fxaa.py says why)."""
+
+    entry_point: str = "fs_main"
+    depth_compare: str = "always"
+    depth_write: bool = False
+
+
+# (device, effect name, target format, step) -> pipeline; (device, effect name) -> layout; samplers per device.
 _PIPELINES: dict[tuple, wgpu.GPURenderPipeline] = {}
+_LAYOUTS: dict[tuple, wgpu.GPUPipelineLayout] = {}
 _SAMPLERS: dict[wgpu.GPUDevice, wgpu.GPUSampler] = {}
 
 
@@ -135,6 +147,8 @@ class PostEffect:
     shader: ClassVar[str] = ""  # file in shaders_wgsl/, used after post_common.wgsl
     params_spec: ClassVar[tuple[Param, ...]] = ()
     filtering: ClassVar[bool] = False  # samples with a linear sampler (needs a filterable input format)
+    steps: ClassVar[tuple[DrawStep, ...]] = (DrawStep(),)  # the draws of the effect's pass, in order
+    depth_format: ClassVar[str | None] = None  # a depth attachment for the pass (cleared to 1, not stored)
 
     def __init__(self, **params: Any) -> None:
         known = {p.name: p for p in self.params_spec}
@@ -150,11 +164,13 @@ class PostEffect:
         self._uploaded: dict[wgpu.GPUDevice, tuple] = {}  # parameter values last written to the buffer
         self._groups: BoundedCache[wgpu.GPUBindGroup] = BoundedCache()  # (device, source, target format)
         self._target_views: BoundedCache[wgpu.GPUTextureView] = BoundedCache()  # target texture
+        self._depth_views: BoundedCache[wgpu.GPUTextureView] = BoundedCache(2)  # (device, size)
 
     def clear_cache(self) -> None:
         """Drop cached bind groups and views (the chain calls it when its textures are replaced)."""
         self._groups.clear()
         self._target_views.clear()
+        self._depth_views.clear()
 
     def __repr__(self) -> str:
         args = ", ".join(f"{k}={v!r}" for k, v in self.params.items())
@@ -198,28 +214,47 @@ class PostEffect:
             entries.append({"binding": 2, "visibility": frag, "buffer": {"type": "uniform"}})
         return entries
 
-    def pipeline(self, device: wgpu.GPUDevice, target_format: str) -> wgpu.GPURenderPipeline:
-        """The pipeline for this effect writing ``target_format``, made once per (effect, format)."""
-        key = (device, self.name, target_format)
-        if key not in _PIPELINES:
-            module = create_shader_module(device, self.shader, effect_source(self.shader))
+    def _pipeline_layout(self, device: wgpu.GPUDevice) -> wgpu.GPUPipelineLayout:
+        """One layout per effect, shared by its steps' pipelines (so one bind group serves every step)."""
+        key = (device, self.name)
+        if key not in _LAYOUTS:
             bgl = device.create_bind_group_layout(label=f"post-{self.name}", entries=self._layout_entries())
-            layout = device.create_pipeline_layout(label=f"post-{self.name}", bind_group_layouts=[bgl])
+            _LAYOUTS[key] = device.create_pipeline_layout(label=f"post-{self.name}", bind_group_layouts=[bgl])
+        return _LAYOUTS[key]
+
+    def pipeline(self, device: wgpu.GPUDevice, target_format: str, step: int = 0) -> wgpu.GPURenderPipeline:
+        """The pipeline of one step of this effect writing ``target_format``, made once per (effect, format)."""
+        key = (device, self.name, target_format, step)
+        if key not in _PIPELINES:
+            draw = self.steps[step]
+            module = create_shader_module(device, self.shader, effect_source(self.shader))
+            depth = None
+            if self.depth_format is not None:
+                depth = {"format": self.depth_format, "depth_write_enabled": draw.depth_write,
+                         "depth_compare": draw.depth_compare}
             _PIPELINES[key] = device.create_render_pipeline(
-                label=f"post-{self.name}-{target_format}",
-                layout=layout,
+                label=f"post-{self.name}-{target_format}-{draw.entry_point}",
+                layout=self._pipeline_layout(device),
                 vertex={"module": module, "entry_point": "vs_main", "buffers": []},
                 primitive={"topology": "triangle-list", "cull_mode": "none"},
-                depth_stencil=None,
+                depth_stencil=depth,
                 multisample={"count": 1, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
                 fragment={
                     "module": module,
-                    "entry_point": "fs_main",
+                    "entry_point": draw.entry_point,
                     "targets": [{"format": target_format}],
                     "constants": self.constants(target_format),
                 },
             )
         return _PIPELINES[key]
+
+    def _depth_attachment(self, device: wgpu.GPUDevice, size: tuple[int, int]) -> dict | None:
+        if self.depth_format is None:
+            return None
+        view = self._depth_views.get((device, size), lambda: device.create_texture(
+            label=f"post-{self.name}-depth", size=(size[0], size[1], 1), format=self.depth_format,
+            usage=wgpu.TextureUsage.RENDER_ATTACHMENT).create_view())
+        return {"view": view, "depth_clear_value": 1.0, "depth_load_op": "clear", "depth_store_op": "discard"}
 
     def _uniform_buffer(self, device: wgpu.GPUDevice) -> wgpu.GPUBuffer:
         """The parameter buffer, rewritten only when a parameter changed since the last write."""
@@ -263,7 +298,8 @@ class PostEffect:
             raise UserError(f"post effect {self.name!r} reads a multisampled texture: resolve it first")
         if tuple(source.size[:2]) != tuple(target.size[:2]):
             raise UserError(f"post effect {self.name!r}: source {source.size[:2]} and target {target.size[:2]} differ")
-        pipeline = self.pipeline(device, target.format)
+        pipelines = [self.pipeline(device, target.format, i) for i in range(len(self.steps))]
+        pipeline = pipelines[0]
         if self.params_spec:
             self._uniform_buffer(device)
         bind_group = self._groups.get((device, source, target.format),
@@ -272,9 +308,11 @@ class PostEffect:
             label=f"post-{self.name}",
             color_attachments=[{"view": self._target_views.get(target, target.create_view), "load_op": "clear",
                                 "clear_value": (0, 0, 0, 0), "store_op": "store"}],
+            depth_stencil_attachment=self._depth_attachment(device, (target.size[0], target.size[1])),
             timestamp_writes=timestamp_writes,
         )
-        render_pass.set_pipeline(pipeline)
         render_pass.set_bind_group(0, bind_group)
-        render_pass.draw(3)
+        for step_pipeline in pipelines:
+            render_pass.set_pipeline(step_pipeline)
+            render_pass.draw(3)
         render_pass.end()
