@@ -167,9 +167,12 @@ def test_mip_chain_matches_numpy_box_filter(ctx, srgb, shape):
 
     Colour textures filter in linear light (decode, average, encode); data textures
     average the bytes. Non-power-of-two sizes halve as max(1, n >> 1). Tolerance
-    against the unrounded reference (in 8-bit levels): data textures 0.5 (correct
-    rounding); sRGB 1.0 at most and 0.3 on average (Vulkan lets the sRGB encode be
-    off by a little: lavapipe is off by up to 0.81 here, on average 0.26).
+    against the unrounded reference (in 8-bit levels): below 1.0 for both, i.e. one of
+    the two nearest levels, which is what Vulkan requires of a float -> unorm store
+    (it does not require round-to-nearest: lavapipe rounds to nearest here, max 0.5,
+    while NVIDIA's H200 driver gave 0.556 on one texel); the mean error at most 0.3
+    (a store that always truncated would average 0.5). sRGB: lavapipe's encode is
+    off by up to 0.81 here, on average 0.26.
     """
     h, w = shape
     pixels = np.random.default_rng(h * 100 + w).integers(0, 256, (h, w, 4), dtype=np.uint8)
@@ -184,10 +187,7 @@ def test_mip_chain_matches_numpy_box_filter(ctx, srgb, shape):
         errors.append(np.abs(got.astype(np.float64) - reference_level(prev, srgb)).ravel())
         prev = got
     errors = np.concatenate(errors)
-    if srgb:
-        assert errors.max() <= 1.0 and errors.mean() <= 0.3
-    else:
-        assert errors.max() <= 0.5 + 1e-9
+    assert errors.max() < 1.0 and errors.mean() <= 0.3
 
 
 def test_srgb_mip_of_black_and_white_is_linear_grey(ctx):
