@@ -162,7 +162,7 @@ def test_msaa_post_is_grey_of_msaa(fmt):
 
 
 @pytest.mark.parametrize("stage", reference_stage_names())
-def test_reference_images_are_current(stage):
+def test_reference_images_are_current(stage, lavapipe_only):
     """assets/reference/<stage>.png == a fresh render by the raw path at 256x192, exactly.
 
     The PNGs are written only by python -m wgpurender.vulkan_ref.make_references;
@@ -297,8 +297,9 @@ def test_raw_mip_chain(ctx, srgb, shape):
 
     Odd and degenerate sizes exercise the fractional edge weights. Exact against wgpu: same
     arithmetic on the same driver. Against the unrounded float64 box filter of the previous
-    level: data textures within 0.5 (correct rounding), sRGB within 1.0 (lavapipe's sRGB encode
-    is not correctly rounded; Vulkan allows that), as in tests/test_textures.py.
+    level: below 1.0, one of the two nearest levels, which is what Vulkan requires of a float -> unorm
+    store (lavapipe rounds data to nearest, the H200 not always; lavapipe's sRGB encode is not correctly
+    rounded either), as in tests/test_textures.py.
     """
     from contextlib import ExitStack
 
@@ -321,7 +322,7 @@ def test_raw_mip_chain(ctx, srgb, shape):
         assert got.shape == (max(1, h >> level), max(1, w >> level), 4)
         np.testing.assert_array_equal(got, read_mip(ctx, wgpu_texture.texture, level), err_msg=f"level {level}")
         error = np.abs(got - _box_level(levels[level - 1], srgb))
-        assert error.max() <= (1.0 if srgb else 0.5 + 1e-9), f"level {level}: {error.max()}"
+        assert error.max() < 1.0, f"level {level}: {error.max()}"  # one of the two nearest levels (Vulkan)
 
 
 def test_sampler_info_mirrors_the_spec():

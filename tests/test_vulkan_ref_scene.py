@@ -209,7 +209,7 @@ def test_glm_vulkan_scene_matches_wgpu(ctx, tmp_path):
 # -- references ----------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit"])
-def test_scene_references_are_current(name):
+def test_scene_references_are_current(name, lavapipe_only):
     """assets/reference/scene_*.png == a fresh raw render at 320x240, exactly (written only by make_references)."""
     from wgpurender.vulkan_ref.make_references import (
         SCENE_DIR,

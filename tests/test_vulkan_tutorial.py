@@ -57,7 +57,7 @@ def _errors(ref: np.ndarray, ours: np.ndarray) -> tuple[np.ndarray, float]:
 
 
 @pytest.mark.parametrize("chapter", sorted(CHAPTERS))
-def test_frame_matches_the_tutorial(ctx, chapter):
+def test_frame_matches_the_tutorial(ctx, chapter, lavapipe_only):
     ref, ours = _render(ctx, chapter)
     assert ours.shape == ref.shape == (600, 800, 3)
     mae, within2 = _errors(ref, ours)
@@ -67,7 +67,7 @@ def test_frame_matches_the_tutorial(ctx, chapter):
     assert compare_images(ref, ours).flip_mean < 1e-3
 
 
-def test_bit_exact_with_the_tutorials_float32_inputs(ctx, monkeypatch):
+def test_bit_exact_with_the_tutorials_float32_inputs(ctx, monkeypatch, lavapipe_only):
     """GLM's float32 view/projection (params.json) and tinyobjloader's float32 1 - v: zero difference."""
     from wgpurender.scene_render import resources, scene_pass
 
