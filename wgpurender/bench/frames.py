@@ -26,7 +26,7 @@ import numpy as np
 
 from ..gpu import GPUContext
 from ..timing import PassTimer, Stats
-from .encoder import TimedEncoder
+from .encoder import TimedEncoder, finish_frame, gpu_total
 from .report import Result, size_text
 
 
@@ -103,17 +103,8 @@ class WgpuStageRunner:
         self.timer.reset()
         encoder = ctx.device.create_command_encoder(label=f"bench-{self.name}")
         self.encode(TimedEncoder(encoder, self.timer, self.name))
-        self.timer.resolve(encoder)
-        ctx.queue.submit([encoder.finish()])
-        cpu_ms = (time.perf_counter() - start) * 1e3
-        if readback:
-            from ..targets import read_texture
-
-            read_texture(ctx, self.target)
-        gpu = self.timer.read()  # maps the query buffer: waits for the frame
-        if not gpu:
-            ctx.wait_idle()
-        return cpu_ms, (sum(gpu.values()) if gpu else None)
+        cpu_ms, gpu = finish_frame(ctx, encoder, self.timer, start, self.target if readback else None)
+        return cpu_ms, gpu_total(gpu)
 
 
 # -- raw Vulkan ---------------------------------------------------------------------------------

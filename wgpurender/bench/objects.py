@@ -28,6 +28,7 @@ from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
 from ..timing import PassTimer
+from .encoder import finish_frame, gpu_total
 from .frames import measure
 from .report import Result, size_text
 
@@ -164,17 +165,8 @@ class ObjectsRenderer:
         else:
             rp.execute_bundles([self.bundle])
         rp.end()
-        self.timer.resolve(encoder)
-        self.ctx.queue.submit([encoder.finish()])
-        cpu_ms = (time.perf_counter() - start) * 1e3
-        if readback:
-            from ..targets import read_texture
-
-            read_texture(self.ctx, self.target)
-        gpu = self.timer.read()
-        if not gpu:
-            self.ctx.wait_idle()
-        return cpu_ms, (sum(gpu.values()) if gpu else None)
+        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start, self.target if readback else None)
+        return cpu_ms, gpu_total(gpu)
 
     def pixels(self) -> np.ndarray:
         from ..targets import read_texture

@@ -24,7 +24,7 @@ from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
 from ..timing import PassTimer
-from .encoder import TimedEncoder
+from .encoder import TimedEncoder, finish_frame, gpu_total
 from .frames import RawStageRunner, WgpuStageRunner, measure
 from .report import Result
 
@@ -60,13 +60,8 @@ class _PassRunner:
         self.timer.reset()
         encoder = self.ctx.device.create_command_encoder()
         self.encode_pass(TimedEncoder(encoder, self.timer, self.label))
-        self.timer.resolve(encoder)
-        self.ctx.queue.submit([encoder.finish()])
-        cpu_ms = (time.perf_counter() - start) * 1e3
-        gpu = self.timer.read()
-        if not gpu:
-            self.ctx.wait_idle()
-        return cpu_ms, (sum(gpu.values()) if gpu else None)
+        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start)
+        return cpu_ms, gpu_total(gpu)
 
 
 class EffectRunner(_PassRunner):

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..gpu import GPUContext
 from ..timing import Stats
+from .encoder import finish_frame, gpu_total
 from .frames import RawStageRunner, measure
 from .report import Result, size_text
 
@@ -44,28 +45,14 @@ class SceneRunner:
         self.passes: dict[str, list[float]] = {}  # GPU ms per pass label, per frame
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
-        from .encoder import TimedEncoder
-
         start = time.perf_counter()
         self.timer.reset()
         encoder = self.ctx.device.create_command_encoder(label="bench-scene")
-        try:
-            self.renderer.draw(encoder, self.target, self.t, timer=self.timer)
-        except TypeError:  # a renderer without the timer argument: time its passes from outside
-            self.renderer.draw(TimedEncoder(encoder, self.timer, "scene"), self.target, self.t)
-        self.timer.resolve(encoder)
-        self.ctx.queue.submit([encoder.finish()])
-        cpu_ms = (time.perf_counter() - start) * 1e3
-        if readback:
-            from ..targets import read_texture
-
-            read_texture(self.ctx, self.target)
-        gpu = self.timer.read()
-        if not gpu:
-            self.ctx.wait_idle()
+        self.renderer.draw(encoder, self.target, self.t, timer=self.timer)
+        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start, self.target if readback else None)
         for label, ms in gpu.items():
             self.passes.setdefault(label, []).append(ms)
-        return cpu_ms, (sum(gpu.values()) if gpu else None)
+        return cpu_ms, gpu_total(gpu)
 
 
 def _make_renderer(module, ctx: GPUContext, path: Path, size: tuple[int, int]):
