@@ -6,9 +6,8 @@ Adding a stage is adding a module; nothing else needs to change.
 from __future__ import annotations
 
 import functools
-import importlib
-import pkgutil
 
+from ..discovery import subclasses_in_package
 from ..errors import UserError
 from .base import Stage
 
@@ -16,16 +15,7 @@ from .base import Stage
 @functools.cache
 def all_stages() -> dict[str, type[Stage]]:
     """Stage classes by name, in course order."""
-    found: list[type[Stage]] = []
-    for mod in pkgutil.iter_modules(__path__):
-        if mod.name.startswith("_") or mod.name == "base":
-            continue
-        module = importlib.import_module(f"{__name__}.{mod.name}")
-        for obj in vars(module).values():
-            if isinstance(obj, type) and issubclass(obj, Stage) and obj.name and obj.__module__ == module.__name__:
-                found.append(obj)
-    found.sort(key=lambda cls: cls.order)
-    return {cls.name: cls for cls in found}
+    return {cls.name: cls for cls in subclasses_in_package(__path__, __name__, Stage)}
 
 
 def get_stage(name: str) -> type[Stage]:

@@ -8,9 +8,8 @@ Found by scanning this package, like the wgpu stages: a module defines one
 from __future__ import annotations
 
 import functools
-import importlib
-import pkgutil
 
+from ...discovery import subclasses_in_package
 from ...errors import UserError
 from .base import RefStage
 
@@ -18,16 +17,7 @@ from .base import RefStage
 @functools.cache
 def all_ref_stages() -> dict[str, type[RefStage]]:
     """Stage classes by name, in course order."""
-    found: list[type[RefStage]] = []
-    for mod in pkgutil.iter_modules(__path__):
-        if mod.name.startswith("_") or mod.name == "base":
-            continue
-        module = importlib.import_module(f"{__name__}.{mod.name}")
-        for obj in vars(module).values():
-            if isinstance(obj, type) and issubclass(obj, RefStage) and obj.name and obj.__module__ == module.__name__:
-                found.append(obj)
-    found.sort(key=lambda cls: cls.order)
-    return {cls.name: cls for cls in found}
+    return {cls.name: cls for cls in subclasses_in_package(__path__, __name__, RefStage)}
 
 
 def get_ref_stage(name: str) -> type[RefStage]:
