@@ -136,7 +136,7 @@ CONCEPTS: list[Concept] = [
         "command pool and buffers",
         ("vkCreateCommandPool", "vkAllocateCommandBuffers", "vkBeginCommandBuffer / vkEndCommandBuffer",
          "vkQueueSubmit"),
-        _raw("commands:create_command_pool", "commands:one_shot"),
+        _raw("command_buffers:create_command_pool", "command_buffers:one_shot"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
         _wgpu("render:render_stage", "window:_loop"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
@@ -267,7 +267,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "fences",
         ("vkCreateFence", "vkQueueSubmit(..., fence)", "vkWaitForFences"),
-        _raw("commands:submit_and_wait"),
+        _raw("command_buffers:submit_and_wait"),
         ("(no fence object)", "GPUBuffer.map_sync", "queue.on_submitted_work_done (broken in wgpu-py 0.32)"),
         _wgpu("gpu:GPUContext.wait_idle", "targets:read_texture"),
         "The host waits by mapping a buffer that the last submission wrote: submissions complete in order, so "

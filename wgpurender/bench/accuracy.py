@@ -22,8 +22,8 @@ FULL = {"size": (400, 300), "frames": 18, "warmup": 2, "rounds": 3}
 
 
 def register_accuracy(suites) -> None:
-    """Add ``accuracy`` to ``wgpurender bench`` (called by wgpurender/commands/bench.py)."""
-    from ..commands._args import add_backend_arg, size_arg
+    """Add ``accuracy`` to ``wgpurender bench`` (called by wgpurender/cli/bench.py)."""
+    from ..cli._args import add_backend_arg, size_arg
     from .accuracy_knobs import KNOBS
 
     p = suites.add_parser(

@@ -116,7 +116,7 @@ class RawStageRunner:
     def __init__(self, name: str, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None) -> None:
         import vulkan as vk
 
-        from ..vulkan_ref.commands import create_command_pool
+        from ..vulkan_ref.command_buffers import create_command_pool
         from ..vulkan_ref.images import create_image
         from ..vulkan_ref.instance import get_vulkan
         from ..vulkan_ref.render import check_msaa, check_size

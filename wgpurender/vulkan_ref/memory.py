@@ -21,7 +21,7 @@ import numpy as np
 import vulkan as vk
 
 from ..errors import UserError
-from .commands import one_shot
+from .command_buffers import one_shot
 from .instance import VulkanContext
 
 WHOLE_SIZE = 0xFFFFFFFFFFFFFFFF  # VK_WHOLE_SIZE; the binding's constant is -1, which does not fit a VkDeviceSize

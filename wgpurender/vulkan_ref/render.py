@@ -7,7 +7,7 @@ from contextlib import ExitStack
 import numpy as np
 
 from ..errors import UserError
-from .commands import one_shot
+from .command_buffers import one_shot
 from .images import FORMATS, create_image
 from .instance import VulkanContext, get_vulkan
 from .readback import buffer_to_pixels, record_copy_to_buffer

@@ -31,7 +31,7 @@ import numpy as np
 import vulkan as vk
 
 from . import descriptors
-from .commands import one_shot
+from .command_buffers import one_shot
 from .images import LAYOUT_ACCESS, Image, transition
 from .instance import VulkanContext
 from .memory import HOST_MEMORY, WHOLE_SIZE, allocate, create_buffer, read_host_buffer, write_host_buffer

@@ -17,7 +17,7 @@ import vulkan as vk
 
 from ...plan import RenderPlan, build_plan
 from ...scene import Scene, load_scene
-from ..commands import one_shot
+from ..command_buffers import one_shot
 from ..images import Image, create_image
 from ..instance import VulkanContext, get_vulkan
 from ..readback import buffer_to_pixels, record_copy_to_buffer

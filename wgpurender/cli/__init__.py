@@ -1,4 +1,4 @@
-"""The ``wgpurender`` command line. Each subcommand is a module in wgpurender/commands/.
+"""The ``wgpurender`` command line. Each subcommand is a module in this package (wgpurender/cli/).
 
 A module there defines ``register(subparsers)``, which adds its parser and sets
 ``func`` to a function taking the parsed arguments and returning an exit code.
@@ -12,8 +12,7 @@ import importlib
 import pkgutil
 import sys
 
-from . import commands
-from .errors import UserError
+from ..errors import UserError
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -30,10 +29,10 @@ def build_parser() -> argparse.ArgumentParser:
         "reference path.",
     )
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
-    for mod in sorted(pkgutil.iter_modules(commands.__path__), key=lambda m: m.name):
+    for mod in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if mod.name.startswith("_"):
             continue
-        importlib.import_module(f"{commands.__name__}.{mod.name}").register(subparsers)
+        importlib.import_module(f"{__name__}.{mod.name}").register(subparsers)
     return parser
 
 
