@@ -1,9 +1,9 @@
 // FXAA in the style of Timothy Lottes' FXAA 3.11 "quality" path, written for
-// this project (see wgpurender/post/fxaa.py). Needs post_common.wgsl (prepended).
+// this project (see wgpurender/post/shaders.py). Needs post_common.wgsl (prepended).
 //
 // 1. Local contrast: luma of the pixel and its 4 neighbours; below the
 //    threshold the pixel is returned untouched (flat regions stay exact).
-//    The effect draws twice (wgpurender/post/fxaa.py): fs_mark writes every
+//    The fragment pass draws twice (wgpurender/post/shaders.py): fs_mark writes every
 //    pixel untouched and marks edge pixels in a depth attachment, then fs_main
 //    runs depth-tested on edge pixels only. On lavapipe that is what makes the
 //    early exit real: llvmpipe runs both sides of a branch for every pixel, but
@@ -23,12 +23,9 @@
 
 @group(0) @binding(1) var src_sampler: sampler;
 
-struct Params {
-    subpix: f32,              // 0 = no sub-pixel blending, 1 = full (0.75 is FXAA's default)
-    edge_threshold: f32,      // minimum contrast relative to the local max luma (0.166)
-    edge_threshold_min: f32,  // absolute minimum contrast, skips dark noise (0.0833)
-};
-@group(0) @binding(2) var<uniform> params: Params;
+// FxaaParams (subpix: 0 = no sub-pixel blending .. 1 = full; edge_threshold: minimum contrast relative to the
+// local max luma; edge_threshold_min: absolute minimum contrast, skips dark noise) is generated from the
+// effect's spec (wgpurender/course/effects.py) by wgpurender/post/shaders.py.
 
 const SEARCH_STEPS: u32 = 12u;
 
@@ -46,7 +43,7 @@ fn luma_uv(uv: vec2f) -> f32 {
 
 // Step 1: true where FXAA works on the pixel (its local contrast is high enough). Written as
 // "not below" so that it is exactly the negation of the early exit's test, NaN included.
-fn is_edge(l_m: f32, l_n: f32, l_s: f32, l_w: f32, l_e: f32) -> bool {
+fn is_edge(l_m: f32, l_n: f32, l_s: f32, l_w: f32, l_e: f32, params: FxaaParams) -> bool {
     let l_max = max(l_m, max(max(l_n, l_s), max(l_w, l_e)));
     let l_min = min(l_m, min(min(l_n, l_s), min(l_w, l_e)));
     return !(l_max - l_min < max(params.edge_threshold_min, l_max * params.edge_threshold));
@@ -58,12 +55,11 @@ fn search_step(i: u32) -> f32 {
     return steps[i];
 }
 
-@fragment
-fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let p = vec2i(in.position.xy);
+// The FXAA'd colour of pixel p (pos: its centre in pixels).
+fn fxaa_at(p: vec2i, pos: vec2f, params: FxaaParams) -> vec4f {
     let centre = src_clamped(p);
     let inv = 1.0 / vec2f(textureDimensions(src));
-    let uv = in.position.xy * inv;
+    let uv = pos * inv;
 
     // 1. local contrast (texture y grows downwards: north is -y)
     let l_m = luma_of(centre.rgb);
@@ -71,7 +67,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     let l_s = luma_at(p + vec2i(0, 1));
     let l_w = luma_at(p + vec2i(-1, 0));
     let l_e = luma_at(p + vec2i(1, 0));
-    if !is_edge(l_m, l_n, l_s, l_w, l_e) {
+    if !is_edge(l_m, l_n, l_s, l_w, l_e, params) {
         return centre;
     }
     let l_max = max(l_m, max(max(l_n, l_s), max(l_w, l_e)));
@@ -162,22 +158,11 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     return vec4f(color.rgb, centre.a);
 }
 
-// Draw 1 of the pass: every pixel as it is (what fs_main returns off edges), and depth
-// EDGE_DEPTH where fs_main has work to do, FLAT_DEPTH elsewhere. Draw 2 (fs_main, the triangle
-// at depth 0, compare "less") then passes only where this wrote EDGE_DEPTH.
-const EDGE_DEPTH: f32 = 1.0;
-const FLAT_DEPTH: f32 = 0.0;
-
-struct Marked {
-    @location(0) color: vec4f,
-    @builtin(frag_depth) depth: f32,
-};
-
-@fragment
-fn fs_mark(in: FullscreenOut) -> Marked {
-    let p = vec2i(in.position.xy);
+// Draw 1 of the fragment pass (the generated fs_mark, wgpurender/post/shaders.py) writes every pixel
+// as fxaa_at returns it off edges, and depth 1 where this is true (fxaa_at has work to do), 0 elsewhere.
+// Draw 2 (the generated fs_main, the triangle at depth 0, compare "less") then runs only on edge pixels.
+fn fxaa_marks(p: vec2i, params: FxaaParams) -> bool {
     let centre = src_clamped(p);
-    let edge = is_edge(luma_of(centre.rgb), luma_at(p + vec2i(0, -1)), luma_at(p + vec2i(0, 1)),
-                       luma_at(p + vec2i(-1, 0)), luma_at(p + vec2i(1, 0)));
-    return Marked(centre, select(FLAT_DEPTH, EDGE_DEPTH, edge));
+    return is_edge(luma_of(centre.rgb), luma_at(p + vec2i(0, -1)), luma_at(p + vec2i(0, 1)),
+                   luma_at(p + vec2i(-1, 0)), luma_at(p + vec2i(1, 0)), params);
 }

@@ -2,14 +2,9 @@
 // Needs post_common.wgsl (prepended). No clamp: bright inputs may exceed 1 in an
 // HDR chain; an 8-bit target clamps on write.
 
-struct Params {
-    amount: f32,
-};
-@group(0) @binding(2) var<uniform> params: Params;
+// SepiaParams is generated from the effect's spec (wgpurender/post/shaders.py).
 
-@fragment
-fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let texel = src_texel(in.position);
+fn sepia_pixel(texel: vec4f, pos: vec2f, size: vec2f, params: SepiaParams) -> vec4f {
     let c = texel.rgb;
     let sepia = vec3f(dot(vec3f(0.393, 0.769, 0.189), c),
                       dot(vec3f(0.349, 0.686, 0.168), c),

@@ -2,14 +2,9 @@
 // clamp-to-edge at the borders, result clamped at 0. See wgpurender/post/sharpen.py.
 // Needs post_common.wgsl (prepended).
 
-struct Params {
-    strength: f32,
-};
-@group(0) @binding(2) var<uniform> params: Params;
+// SharpenParams is generated from the effect's spec (wgpurender/post/shaders.py).
 
-@fragment
-fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let p = vec2i(in.position.xy);
+fn sharpen_at(p: vec2i, pos: vec2f, params: SharpenParams) -> vec4f {
     let c = src_clamped(p);
     let n = src_clamped(p + vec2i(0, -1)).rgb;
     let s = src_clamped(p + vec2i(0, 1)).rgb;

@@ -1,11 +1,8 @@
 // Tone mapping: linear HDR (rgba16float) -> linear [0, 1], see wgpurender/post/tonemap.py.
 // Needs post_common.wgsl (prepended).
 
-struct Params {
-    exposure: f32,   // linear multiplier applied before the curve
-    curve: f32,      // the "operator" parameter: 0 = ACES fitted (Hill), 1 = Reinhard
-};
-@group(0) @binding(2) var<uniform> params: Params;
+// TonemapParams (exposure, operator_index: 0 = ACES fitted (Hill), 1 = Reinhard) is generated from the
+// effect's spec (wgpurender/course/effects.py) by wgpurender/post/shaders.py.
 
 // ACES fitted (Stephen Hill's fit of the ACES RRT + sRGB ODT): input matrix
 // (sRGB -> ACES-ish space, with the RRT saturation folded in), a rational curve,
@@ -26,15 +23,13 @@ fn reinhard(c: vec3f) -> vec3f {
     return c / (1.0 + c);
 }
 
-@fragment
-fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let texel = src_texel(in.position);
+fn tonemap_pixel(texel: vec4f, pos: vec2f, size: vec2f, params: TonemapParams) -> vec4f {
     // Clamp to the largest finite f16 before and after exposure: both curves are flat there (ACES at 1,
     // Reinhard at 0.99998), while inf (or a * a past 1.8e19 inside ACES) would give inf / inf = NaN.
     let hdr = min(max(texel.rgb, vec3f(0.0)), vec3f(65504.0));
     let c = min(hdr * params.exposure, vec3f(65504.0));
     var mapped: vec3f;
-    if params.curve < 0.5 {
+    if params.operator_index < 0.5 {
         mapped = aces_fitted(c);
     } else {
         mapped = reinhard(c);

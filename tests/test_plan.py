@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from wgpurender.errors import UserError
-from wgpurender.plan import build_plan, explain_scene, main, plan_scene_file
+from wgpurender.plan import AdapterFacts, Knobs, build_plan, explain_scene, main, plan_scene_file
 from wgpurender.scene import load_scene
 
 REPO = Path(__file__).resolve().parent.parent
@@ -78,8 +78,9 @@ def names(plan) -> list[str]:
 
 def test_full_scene(make):
     plan = make(model("brick") + model("brick") + SUN + BULB + render(4, True) + post("tonemap", "fxaa"))
-    assert names(plan) == ["msaa_color", "depth", "scene_color", "post_a", "output"]
-    msaa, depth, scene, temp, out = plan.attachments
+    assert names(plan) == ["msaa_color", "depth", "scene_color", "post_a", "fxaa_mask", "output"]
+    msaa, depth, scene, temp, mask, out = plan.attachments
+    assert (mask.format, mask.role) == ("depth16unorm", "post-mask")  # FXAA's edge mask is listed too
     assert (msaa.format, msaa.sample_count) == ("rgba16float", 4)
     assert (depth.format, depth.sample_count) == ("depth32float", 4)
     assert (scene.format, scene.sample_count) == ("rgba16float", 1)
@@ -99,7 +100,11 @@ def test_full_scene(make):
     (pipeline,) = plan.pipelines
     assert (pipeline.color_format, pipeline.sample_count, pipeline.depth_format) == ("rgba16float", 4, "depth32float")
     assert [d.pipeline_key for d in sp.draws] == [pipeline.key, pipeline.key]
-    assert plan.post_pipelines == (("tonemap", "rgba16float"), ("fxaa", "rgba8unorm-srgb"))
+    assert [(pl.effects, pl.stage, pl.entry_point, pl.target_format, pl.depth_format)
+            for pl in plan.post_pipelines] == [
+        ("tonemap", "fragment", "fs_main", "rgba16float", None),
+        ("fxaa", "fragment", "fs_mark", "rgba8unorm-srgb", "depth16unorm"),  # FXAA's second pipeline is listed
+        ("fxaa", "fragment", "fs_main", "rgba8unorm-srgb", "depth16unorm")]
     assert {(t.path.name, t.format) for t in plan.textures} == {
         ("albedo.png", "rgba8unorm-srgb"), ("normal.png", "rgba8unorm"), ("rough.png", "rgba8unorm")}
     (sampler,) = plan.samplers
@@ -173,7 +178,7 @@ def test_no_normal_maps_no_tangents(make):
 
 
 def test_no_hdr_target_without_hdr_or_tonemapping(make):
-    plan = make(model("plain") + SUN + render(msaa=4, hdr=False) + post("fxaa", "vignette"))
+    plan = make(model("plain") + SUN + render(msaa=4, hdr=False) + post("fxaa", "sharpen", "vignette"))
     assert "rgba16float" not in {a.format for a in plan.attachments}
     assert plan.attachment("scene_color").format == "rgba8unorm-srgb"
     assert plan.attachment("post_a").format == "rgba8unorm-srgb"
@@ -185,12 +190,13 @@ def test_no_hdr_target_without_hdr_or_tonemapping(make):
 
 def test_plain_unorm_output_gets_explicit_encoding(make):
     plan = make(model("plain") + render(msaa=1, fmt="rgba8unorm") + post("tonemap"))
-    assert [p.effect for p in plan.post_passes] == ["tonemap", "srgb"]
-    assert "does not encode sRGB: an srgb pass is appended" in plan.post_passes[-1].reason
+    assert [s.effect for s in plan.post_steps] == ["tonemap", "srgb"]
+    assert "does not encode sRGB: an srgb step is appended" in plan.post_passes[-1].reason
     assert "srgb_output" not in plan.features
     # an explicit srgb last is not doubled; an -srgb output needs no pass
     plan = make(model("plain") + render(fmt="rgba8unorm") + post("tonemap", "srgb"))
-    assert [p.effect for p in plan.post_passes] == ["tonemap", "srgb"]
+    assert [s.effect for s in plan.post_steps] == ["tonemap", "srgb"]
+    assert [p.effect for p in plan.post_passes] == ["tonemap+srgb"]  # fused: both per-pixel
     plan = make(model("plain") + render() + post("tonemap"))
     assert [p.effect for p in plan.post_passes] == ["tonemap"]
     # with no chain the scene shader encodes
@@ -199,10 +205,81 @@ def test_plain_unorm_output_gets_explicit_encoding(make):
 
 
 def test_three_effects_ping_pong(make):
-    plan = make(model("plain") + render() + post("tonemap", "sharpen", "vignette"))
+    plan = make(model("plain") + render() + post("tonemap", "sharpen", "vignette"), knobs=Knobs(post_fuse=False))
     assert [(p.input, p.output) for p in plan.post_passes] == [
         ("scene_color", "post_a"), ("post_a", "post_b"), ("post_b", "output")]
     assert names(plan).count("post_a") == 1 and "post_b" in names(plan)
+
+
+def test_fusion_groups_per_pixel_effects_after_a_neighbourhood_one(make):
+    """tonemap and grayscale read only their own pixel: one pass. sharpen reads neighbours, so it needs the
+    finished image and starts a pass; vignette and sepia only need the pixel sharpen computed: same pass."""
+    chain = ("tonemap", "grayscale", "sharpen", "vignette", "sepia")
+    plan = make(model("plain") + render() + post(*chain))
+    assert [p.effect for p in plan.post_passes] == ["tonemap+grayscale", "sharpen+vignette+sepia"]
+    assert [s.effect for s in plan.post_steps] == list(chain)
+    assert names(plan).count("post_a") == 1 and "post_b" not in names(plan)
+    text = plan.explain()
+    assert "fused: tonemap, grayscale read only the pixel they write" in text
+    assert "on the pixel sharpen just computed" in text
+    assert "post_fuse: on <- render.post_fuse = true" in text
+    unfused = plan.with_knobs(post_fuse=False)
+    assert [p.effect for p in unfused.post_passes] == list(chain)
+    assert "post_fuse: off <- knob post_fuse" in unfused.explain()
+
+
+def test_fuse_can_be_switched_off_in_the_scene(make):
+    plan = make(model("plain") + render() + "post_fuse = false\n" + post("tonemap", "vignette"))
+    assert [p.effect for p in plan.post_passes] == ["tonemap", "vignette"]
+
+
+def test_bytes_per_pass_are_the_compulsory_traffic(make):
+    """Each texel read once and written once: 64x48 pixels, rgba16float 8 bytes, rgba8unorm-srgb 4 bytes."""
+    plan = make(model("plain") + render(msaa=1) + post("tonemap", "vignette", "fxaa"))
+    first, fxaa = plan.post_passes
+    assert (first.bytes_read, first.bytes_written) == (64 * 48 * 8, 64 * 48 * 8)
+    # FXAA on the fragment path also writes and depth-tests its depth16unorm mask (2 bytes a pixel)
+    assert (fxaa.bytes_read, fxaa.bytes_written) == (64 * 48 * (8 + 2), 64 * 48 * (4 + 2))
+    assert f"bytes: {64 * 48 * 16 / 1e6:.1f} MB read" in plan.explain()
+
+
+def test_compute_path_writes_storage_formats_and_copies_into_srgb(make):
+    """rgba8unorm-srgb cannot be a storage texture: the last compute pass writes an rgba8unorm scratch
+    (sRGB-encoded in the shader) that is copied into the output; an 8-bit sRGB scene image's
+    intermediates become rgba16float; no FXAA mask on the compute path."""
+    plan = make(model("plain") + render(msaa=1, hdr=False) + post("fxaa", "sharpen"),
+                knobs=Knobs(post_path="compute"))
+    assert [(p.path, p.output, p.output_format, p.copy_to) for p in plan.post_passes] == [
+        ("compute", "post_a", "rgba16float", None), ("compute", "post_scratch", "rgba8unorm", "output")]
+    assert plan.attachment("post_scratch").format == "rgba8unorm" and not plan.has_attachment("fxaa_mask")
+    assert [(pl.stage, pl.entry_point) for pl in plan.post_pipelines] == [("compute", "cs_main")] * 2
+    # a bgra swapchain output cannot be written by a compute pass: the last pass stays a fragment pass
+    plan = make(model("plain") + render(msaa=1) + post("tonemap"), output_format="bgra8unorm-srgb",
+                knobs=Knobs(post_path="compute"))
+    assert plan.post_passes[0].path == "fragment"
+
+
+def test_post_path_auto_rule(make):
+    scene = model("plain") + render() + post("tonemap")
+    assert make(scene).post_path == "fragment"  # adapter not known
+    gpu = Knobs(adapter=AdapterFacts("DiscreteGPU", frozenset({"immediates"}), "H200"))
+    cpu = Knobs(adapter=AdapterFacts("CPU", frozenset(), "llvmpipe"))
+    assert make(scene, knobs=gpu).post_path == "compute" and make(scene, knobs=gpu).immediates is True
+    assert make(scene, knobs=cpu).post_path == "fragment" and make(scene, knobs=cpu).immediates is False
+    asked = model("plain") + render() + 'post_path = "compute"\n' + post("tonemap")
+    assert make(asked, knobs=cpu).post_path == "compute"
+
+
+def test_depth_knobs(make):
+    plan = make(model("plain") + render(msaa=1)).with_knobs(depth_format="depth24plus", reverse_z=True)
+    assert plan.attachment("depth").format == "depth24plus"
+    assert (plan.pipelines[0].depth_format, plan.pipelines[0].depth_compare) == ("depth24plus", "greater")
+    assert plan.scene_pass.depth_clear == 0.0
+    assert "reverse_z: on" in plan.explain()
+    with pytest.raises(UserError, match="plan knob post_path = 'vertex'"):
+        plan.with_knobs(post_path="vertex")
+    with pytest.raises(UserError, match="unknown plan knob 'gamma'"):
+        plan.with_knobs(gamma=2.2)
 
 
 def test_format_override_changes_output_only(make):
@@ -213,6 +290,8 @@ def test_format_override_changes_output_only(make):
         make(model("plain"), output_format="rgb565")
     with pytest.raises(UserError, match="MSAA 8x is not supported"):
         make(model("plain"), msaa=8)
+    with pytest.raises(UserError, match="scene_format knob needs a scene image"):
+        make(model("plain"), knobs=Knobs(scene_format="rgba32float"))
 
 
 def test_no_models_no_depth_no_pipelines(make):

@@ -190,7 +190,7 @@ def test_valid_scene_values(project):
         ("tonemap", {"exposure": 2.0, "operator": "aces"}),
         ("fxaa", {"subpix": 0.75, "edge_threshold": 0.166, "edge_threshold_min": 0.0833}),
     ]
-    assert scene.post[0].create().params["exposure"] == 2.0
+    assert scene.post[0].step().values["exposure"] == 2.0
 
 
 def test_defaults(project):

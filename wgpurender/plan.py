@@ -25,13 +25,14 @@ numbers (``ShaderVariant.counts``) for array sizes.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .course.effects import EffectStep, group_passes, step_notes, steps_for_target
 from .errors import UserError
-from .post import effects_for_target, intermediate_count
 from .scene import Material, Scene, load_scene
 
 DEPTH_FORMAT = "depth32float"
@@ -41,7 +42,17 @@ COLOR_TEXTURE_FORMAT = "rgba8unorm-srgb"  # albedo: sRGB-encoded image, decoded 
 DATA_TEXTURE_FORMAT = "rgba8unorm"  # normal and roughness maps: values used as stored
 PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8unorm-srgb", "bgra8unorm")
 SAMPLE_COUNTS = (1, 4)
-ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "output")  # the order passes use them
+DEPTH_FORMATS = ("depth32float", "depth24plus")
+SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
+POST_PATHS = ("auto", "fragment", "compute")
+IMMEDIATES = ("auto", "on", "off")
+# Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
+# the "bgra8unorm-storage" feature, which the renderer does not ask for.
+STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
+BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
+                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
+ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "post-mask", "post-scratch",
+                    "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
 ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"))
@@ -98,10 +109,11 @@ class ScenePipeline:
     depth_format: str | None
     cull_mode: str = "back"
     front_face: str = "ccw"
+    depth_compare: str = "less"
 
     @property
     def key(self) -> str:
-        depth = self.depth_format or "no-depth"
+        depth = f"{self.depth_format} {self.depth_compare}" if self.depth_format else "no-depth"
         return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}"
 
 
@@ -146,6 +158,7 @@ class ScenePass:
     depth: str | None
     clear_color: tuple[float, float, float, float]
     draws: tuple[Draw, ...]
+    depth_clear: float = 1.0
     kind: str = "scene"
 
     @property
@@ -155,18 +168,114 @@ class ScenePass:
 
 @dataclass(frozen=True)
 class PostPass:
-    """One full-screen effect: reads ``input``, writes ``output``."""
+    """One full-screen pass of the post chain: its effect ``steps`` run as one shader, ``input`` -> ``output``.
+
+    Several steps share a pass when the plan fuses them (each reads only the pixel the one before it
+    wrote); ``fusion`` says why. ``path`` is "fragment" (a render pass drawing a full-screen triangle) or
+    "compute" (a dispatch writing a storage texture). ``mask``: FXAA's depth mask on the fragment path.
+    ``copy_to``: a compute pass whose output format cannot be a storage texture writes ``output`` (a
+    scratch rgba8unorm, sRGB-encoded in the shader) and is then copied into ``copy_to``.
+    ``bytes_read`` / ``bytes_written``: the compulsory memory traffic, each texel read once and written once.
+    """
 
     index: int
-    effect: str
-    params: tuple[tuple[str, float | str], ...]
+    steps: tuple[EffectStep, ...]
     input: str
     output: str
     input_format: str
     output_format: str
-    reason: str
+    path: str = "fragment"
+    fusion: str = ""
     notes: tuple[str, ...] = ()
+    mask: str | None = None
+    copy_to: str | None = None
+    bytes_read: int = 0
+    bytes_written: int = 0
     kind: str = "post"
+
+    @property
+    def effect(self) -> str:
+        """The steps' names joined with "+", e.g. ``tonemap+vignette`` (one name when not fused)."""
+        return "+".join(s.effect for s in self.steps)
+
+    @property
+    def params(self) -> tuple[tuple[str, float | str], ...]:
+        """The parameters of a single-step pass (``effect.name`` keys when fused)."""
+        if len(self.steps) == 1:
+            return self.steps[0].params
+        return tuple((f"{s.effect}.{k}", v) for s in self.steps for k, v in s.params)
+
+    @property
+    def reason(self) -> str:
+        return "; ".join(s.asked_by for s in self.steps)
+
+    @property
+    def fused(self) -> bool:
+        return len(self.steps) > 1
+
+    @property
+    def writes(self) -> str:
+        return self.copy_to or self.output
+
+    @property
+    def bytes_moved(self) -> int:
+        return self.bytes_read + self.bytes_written
+
+
+@dataclass(frozen=True)
+class PostPipeline:
+    """A pipeline of a post pass: ``stage`` "fragment" (with ``entry_point`` and an optional depth test) or
+    "compute"; ``target_format``: the colour attachment's or the storage texture's format."""
+
+    effects: str
+    stage: str
+    entry_point: str
+    target_format: str
+    depth_format: str | None = None
+
+    @property
+    def key(self) -> str:
+        depth = f", depth {self.depth_format}" if self.depth_format else ""
+        return f"{self.effects} {self.stage} {self.entry_point} -> {self.target_format}{depth}"
+
+
+@dataclass(frozen=True)
+class AdapterFacts:
+    """What the plan needs to know about an adapter for its "auto" knobs (no GPU object: plain values).
+
+    ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
+    device's enabled features (the plan reads "immediates").
+    """
+
+    adapter_type: str
+    features: frozenset[str] = frozenset()
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Knobs:
+    """Every choice a renderer or benchmark may make beyond the scene file; each is shown by ``explain()``.
+
+    ``None`` means "the scene's own setting" (render.post_fuse, render.post_path, the scene format that
+    render.hdr and the chain ask for). Change them with :meth:`RenderPlan.with_knobs`.
+    """
+
+    depth_format: str = DEPTH_FORMAT
+    reverse_z: bool = False
+    scene_format: str | None = None
+    post_fuse: bool | None = None
+    post_path: str | None = None
+    immediates: str = "auto"
+    adapter: AdapterFacts | None = None
+
+    def check(self) -> None:
+        bad = [(name, value, allowed) for name, value, allowed in (
+            ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
+            ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
+        ) if value not in allowed]
+        for name, value, allowed in bad:
+            raise UserError(f"plan knob {name} = {value!r}: choose one of "
+                            f"{', '.join(str(a) for a in allowed if a is not None)}")
 
 
 @dataclass(frozen=True)
@@ -179,11 +288,51 @@ class RenderPlan:
     passes: tuple[ScenePass | PostPass, ...]
     variants: tuple[ShaderVariant, ...]
     pipelines: tuple[ScenePipeline, ...]
-    post_pipelines: tuple[tuple[str, str], ...]  # (effect, target format), one pipeline each
+    post_pipelines: tuple[PostPipeline, ...]
     textures: tuple[TextureUse, ...]
     samplers: tuple[SamplerUse, ...]
     camera_note: str = ""
     notes: tuple[str, ...] = field(default=())
+    knobs: Knobs = field(default_factory=Knobs)
+    settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
+    scene: Scene | None = field(default=None, repr=False, compare=False)
+
+    # -- knobs -----------------------------------------------------------------
+    def with_knobs(self, **changes) -> RenderPlan:
+        """The plan of the same scene with knobs changed: any :class:`Knobs` field, or ``size``,
+        ``output_format``, ``msaa`` (the CLI's overrides). This is how a benchmark or a renderer asks for a
+        knob: the result is a whole new plan, so ``explain()`` stays true."""
+        overrides = {k: changes.pop(k) for k in ("size", "output_format", "msaa") if k in changes}
+        unknown = sorted(set(changes) - set(Knobs.__dataclass_fields__))
+        if unknown:
+            raise UserError(f"unknown plan knob {unknown[0]!r}: knobs are "
+                            f"{', '.join(Knobs.__dataclass_fields__)}, size, output_format, msaa")
+        if self.scene is None:
+            raise UserError("this plan was not built from a scene: build it with build_plan(scene, ...)")
+        current = {"size": self.size, "output_format": self.output_format, "msaa": self.msaa}
+        return build_plan(self.scene, **{**current, **overrides}, knobs=dataclasses.replace(self.knobs, **changes))
+
+    def setting(self, name: str) -> str:
+        """A resolved knob's value as text, e.g. ``setting("post_path") == "compute"``."""
+        return next(value for knob, value, _ in self.settings if knob == name)
+
+    @property
+    def post_path(self) -> str:
+        return self.setting("post_path")
+
+    @property
+    def immediates(self) -> bool | None:
+        """True/False when decided (knob "on"/"off" or a known adapter), None: the renderer asks its device."""
+        return {"on": True, "off": False}.get(self.setting("immediates").split()[0])
+
+    @property
+    def reverse_z(self) -> bool:
+        return self.knobs.reverse_z
+
+    @property
+    def post_steps(self) -> tuple[EffectStep, ...]:
+        """Every effect step of the chain in order, whatever the passes (what the raw path's subpass composes)."""
+        return tuple(s for p in self.post_passes for s in p.steps)
 
     # -- queries -------------------------------------------------------------
     def attachment(self, name: str) -> Attachment:
@@ -223,9 +372,13 @@ class RenderPlan:
         if self.camera_note:
             out.append(f"camera: {self.camera_note}")
         out.append("")
+        out.append("knobs:")
+        for knob, value, why in self.settings:
+            out.append(f"  {knob}: {value} <- {why}")
+        out.append("")
         out.append("passes:")
         for i, p in enumerate(self.passes, start=1):
-            out.extend(_explain_pass(i, p))
+            out.extend(_explain_pass(i, p, self.size))
         out.append("")
         out.append("attachments:")
         for a in self.attachments:
@@ -244,7 +397,8 @@ class RenderPlan:
                 out.append(f"      {feature}: {why}")
             users = [d.label for d in self.scene_pass.draws if d.pipeline_key == pl.key]
             out.append(f"      used by: {', '.join(users)}")
-        out.append("post pipelines: " + (", ".join(f"{e} -> {f}" for e, f in self.post_pipelines) or "none"))
+        out.append("post pipelines:" if self.post_pipelines else "post pipelines: none")
+        out.extend(f"  {pl.key}" for pl in self.post_pipelines)
         out.append("")
         out.append("textures:" if self.textures else "textures: none")
         for t in self.textures:
@@ -265,7 +419,11 @@ class RenderPlan:
         return "\n".join(out) + "\n"
 
 
-def _explain_pass(number: int, p: ScenePass | PostPass) -> list[str]:
+def _megabytes(n: int) -> str:
+    return f"{n / 1e6:.1f} MB"
+
+
+def _explain_pass(number: int, p: ScenePass | PostPass, size: tuple[int, int]) -> list[str]:
     if isinstance(p, ScenePass):
         into = f"{p.color} resolved into {p.resolve_target}" if p.resolve_target else p.color
         depth = f", depth attachment {p.depth}" if p.depth else ""
@@ -273,9 +431,16 @@ def _explain_pass(number: int, p: ScenePass | PostPass) -> list[str]:
         lines = [f"  {number}. scene: draw {len(p.draws)} model(s) into {into}{depth}, clear ({clear})"]
         lines.extend(f"       {d.label}: {d.material_label}, variant {d.variant_key}" for d in p.draws)
         return lines
-    params = ", ".join(f"{k}={v}" for k, v in p.params)
-    lines = [f"  {number}. post {p.effect}({params}): {p.input} ({p.input_format}) -> {p.output} ({p.output_format})",
-             f"       <- {p.reason}"]
+    steps = " + ".join(s.label() for s in p.steps)
+    into = f"{p.output} ({p.output_format})" + (f", copied into {p.copy_to}" if p.copy_to else "")
+    lines = [f"  {number}. post [{p.path}] {steps}: {p.input} ({p.input_format}) -> {into}"]
+    lines.extend(f"       <- {s.asked_by}" for s in p.steps)
+    if p.fusion:
+        lines.append(f"       fused: {p.fusion}")
+    if p.mask:
+        lines.append(f"       mask: {p.mask} (depth test skips blocks without an edge pixel)")
+    lines.append(f"       bytes: {_megabytes(p.bytes_read)} read + {_megabytes(p.bytes_written)} written = "
+                 f"{_megabytes(p.bytes_moved)} at {size[0]}x{size[1]} (each texel once)")
     lines.extend(f"       note: {n}" for n in p.notes)
     return lines
 
@@ -341,10 +506,132 @@ def _check_overrides(size, output_format, msaa) -> None:
         raise UserError(f"bad size {size!r}: give (width, height), both at least 1")
 
 
+def _resolve_post_path(r, knobs: Knobs) -> tuple[str, str]:
+    """fragment or compute, and why. The "auto" rule: compute on a discrete GPU (a fragment pass there is
+    raster-bound, a compute pass uses every SM: facts.md on the H100/H200); fragment everywhere else (a CPU
+    driver like lavapipe rasterises a full-screen triangle as cheaply as it runs a dispatch, and an
+    integrated or mobile GPU's raster path is its fast path); fragment when the adapter is not known."""
+    asked = knobs.post_path or r.post_path
+    origin = "knob post_path" if knobs.post_path else f"render.post_path = {r.post_path}"
+    if asked != "auto":
+        return asked, origin
+    adapter = knobs.adapter
+    if adapter is None:
+        return "fragment", f"{origin}, adapter not known yet: fragment (the renderer re-plans for its adapter)"
+    if adapter.adapter_type == "DiscreteGPU":
+        return "compute", f"{origin}: compute on a discrete GPU ({adapter.name or adapter.adapter_type})"
+    return "fragment", f"{origin}: fragment on a {adapter.adapter_type} adapter ({adapter.name or 'unnamed'})"
+
+
+def _resolve_immediates(knobs: Knobs) -> tuple[str, str]:
+    if knobs.immediates != "auto":
+        return knobs.immediates, "knob immediates"
+    if knobs.adapter is None:
+        return "auto", "used when the device offers the 'immediates' feature, else a uniform buffer per draw"
+    on = "immediates" in knobs.adapter.features
+    return ("on" if on else "off"), ("the device offers 'immediates' (push constants)" if on else
+                                     "the device lacks 'immediates': material factors come from a uniform buffer")
+
+
+def _scene_format(scene: Scene, knobs: Knobs, has_post: bool) -> tuple[str, str]:
+    r = scene.render
+    tonemaps = [s for s in scene.post if s.effect == "tonemap"]
+    if knobs.scene_format is not None:
+        return knobs.scene_format, f"knob scene_format = {knobs.scene_format}"
+    if r.hdr:
+        return HDR_FORMAT, "render.hdr = true: the scene is lit in linear HDR"
+    if tonemaps:
+        return HDR_FORMAT, f"post[{tonemaps[0].index}] tonemap maps HDR to [0, 1], so it needs HDR input"
+    return LDR_SCENE_FORMAT, "render.hdr = false and no tone mapping: 8 bits (sRGB-encoded) suffice"
+
+
+def _fusion_text(group: tuple[EffectStep, ...]) -> str:
+    if len(group) < 2:
+        return ""
+    pixel = [s.effect for s in group if s.spec.fusable]
+    head = group[0] if not group[0].spec.fusable else None
+    why = f"{', '.join(pixel)} read only the pixel they write, so they run as functions in one shader"
+    if head is not None:
+        why += f" on the pixel {head.effect} just computed ({head.effect} reads neighbours, so it starts the pass)"
+    return why + f"; saves {len(group) - 1} write and read of the whole image"
+
+
+def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_target: str, scene_fmt: str, out_fmt: str,
+                 size: tuple[int, int]) -> tuple[list[PostPass], list[Attachment]]:
+    """The chain's passes and the attachments only they use (ping-pong intermediates, FXAA mask, scratch)."""
+    groups = group_passes(steps, fuse)
+    n = len(groups)
+    temp_fmt = scene_fmt
+    notes_all: list[str] = []
+    if path == "compute" and scene_fmt not in STORAGE_FORMATS and n > 1:
+        temp_fmt = HDR_FORMAT
+        notes_all.append(f"{scene_fmt} cannot be a storage texture: the compute path's intermediates are {HDR_FORMAT}")
+    temps = ["post_a", "post_b"][:min(max(n - 1, 0), 2)]
+    attachments = []
+    for i, name in enumerate(temps):
+        users = [j for j in range(n - 1) if j % 2 == i]
+        attachments.append(Attachment(name, "post-intermediate", temp_fmt, size, 1, (
+            "written by " + ", ".join(f"post pass {j + 1} ({'+'.join(s.effect for s in groups[j])})" for j in users)
+            + " and read by the next pass (ping-pong)",) + tuple(notes_all)))
+    pixels = size[0] * size[1]
+    passes = []
+    for i, group in enumerate(groups):
+        last = i == n - 1
+        src_name = scene_target if i == 0 else temps[(i - 1) % 2]
+        src_fmt = scene_fmt if i == 0 else temp_fmt
+        dst_name, dst_fmt = ("output", out_fmt) if last else (temps[i % 2], temp_fmt)
+        notes = [n for s in group for n in step_notes(s, src_fmt, dst_fmt)]
+        pass_path, copy_to, mask = path, None, None
+        if path == "compute" and dst_fmt not in STORAGE_FORMATS:
+            if dst_fmt.startswith("rgba8"):
+                copy_to, dst_name, dst_fmt = dst_name, "post_scratch", "rgba8unorm"
+                notes.append(f"{copy_to} is {out_fmt}, which cannot be a storage texture: the shader writes "
+                             "rgba8unorm with the sRGB curve applied, then the image is copied (same bytes)")
+                attachments.append(Attachment("post_scratch", "post-scratch", "rgba8unorm", size, 1, (
+                    f"post pass {i + 1} on the compute path writes it; copied into {copy_to}",)))
+            else:
+                pass_path = "fragment"
+                notes.append(f"{dst_fmt} cannot be a storage texture: this pass stays a fragment pass")
+        head = group[0].spec
+        if pass_path == "fragment" and head.mask_format:
+            mask = f"{head.name}_mask"
+            attachments.append(Attachment(mask, "post-mask", head.mask_format, size, 1, (
+                f"post pass {i + 1} {head.name}: draw 1 marks edge pixels in depth, draw 2 runs the full "
+                f"{head.name} depth-tested on edges only (wgpurender/post/shaders.py says why)",)))
+        read = pixels * BYTES_PER_PIXEL[src_fmt]
+        written = pixels * BYTES_PER_PIXEL[dst_fmt]
+        if mask:
+            written += pixels * BYTES_PER_PIXEL[head.mask_format]
+            read += pixels * BYTES_PER_PIXEL[head.mask_format]
+        if copy_to:
+            read += pixels * BYTES_PER_PIXEL[dst_fmt]
+            written += pixels * BYTES_PER_PIXEL[out_fmt]
+        passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, _fusion_text(group),
+                               tuple(notes), mask, copy_to, read, written))
+    return passes, attachments
+
+
+def _post_pipelines(passes: list[PostPass]) -> tuple[PostPipeline, ...]:
+    out: list[PostPipeline] = []
+    for p in passes:
+        if p.path == "compute":
+            out.append(PostPipeline(p.effect, "compute", "cs_main", p.output_format))
+        elif p.mask:
+            depth = p.steps[0].spec.mask_format
+            out.append(PostPipeline(p.effect, "fragment", "fs_mark", p.output_format, depth))
+            out.append(PostPipeline(p.effect, "fragment", "fs_main", p.output_format, depth))
+        else:
+            out.append(PostPipeline(p.effect, "fragment", "fs_main", p.output_format))
+    return tuple(dict.fromkeys(out))
+
+
 def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_format: str | None = None,
-               msaa: int | None = None) -> RenderPlan:
-    """The plan for ``scene``; ``size``, ``output_format`` and ``msaa`` override [render] (CLI flags)."""
+               msaa: int | None = None, knobs: Knobs | None = None) -> RenderPlan:
+    """The plan for ``scene``; ``size``, ``output_format`` and ``msaa`` override [render] (CLI flags);
+    ``knobs`` (:class:`Knobs`) make the choices a scene file does not (depth, post path, adapter...)."""
     _check_overrides(size, output_format, msaa)
+    knobs = knobs or Knobs()
+    knobs.check()
     r = scene.render
     size = tuple(size or r.size)
     out_fmt = output_format or r.output_format
@@ -352,25 +639,39 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     src = lambda key, value: f"render.{key} = {value}" + (" (overridden)" if value != getattr(r, key) else "")  # noqa: E731
     notes: list[str] = []
 
-    # -- the post chain (with the srgb pass a plain 8-bit output needs) ------
-    user_effects = [step.create() for step in scene.post]
-    effects = effects_for_target(user_effects, out_fmt)
-    has_post = bool(effects)
-    tonemaps = [s for s in scene.post if s.effect == "tonemap"]
+    # -- knobs -------------------------------------------------------------------
+    post_path, path_why = _resolve_post_path(r, knobs)
+    fuse = r.post_fuse if knobs.post_fuse is None else knobs.post_fuse
+    fuse_why = ("knob post_fuse" if knobs.post_fuse is not None else f"render.post_fuse = {str(r.post_fuse).lower()}")
+    immediates, immediates_why = _resolve_immediates(knobs)
+    depth_compare = "greater" if knobs.reverse_z else "less"
+    settings = [
+        ("depth_format", knobs.depth_format, "knob depth_format" if knobs.depth_format != DEPTH_FORMAT else
+         "default: 32-bit float depth"),
+        ("reverse_z", "on" if knobs.reverse_z else "off",
+         "knob reverse_z: depth 1 at near, 0 at far; compare greater, clear 0" if knobs.reverse_z else
+         "default: depth 0 at near, 1 at far; compare less, clear 1"),
+        ("post_fuse", "on" if fuse else "off", fuse_why + (
+            ": consecutive per-pixel effects share one pass" if fuse else ": one pass per effect (teaching)")),
+        ("post_path", post_path, path_why),
+        ("immediates", immediates, immediates_why),
+    ]
+
+    # -- the post chain (with the srgb step a plain 8-bit output needs) ----------
+    steps = steps_for_target([s.step() for s in scene.post], out_fmt)
+    has_post = bool(steps)
 
     # -- where the scene pass writes ------------------------------------------
     attachments: list[Attachment] = []
     if has_post:
-        if r.hdr:
-            scene_fmt, why = HDR_FORMAT, "render.hdr = true: the scene is lit in linear HDR"
-        elif tonemaps:
-            scene_fmt, why = HDR_FORMAT, f"post[{tonemaps[0].index}] tonemap maps HDR to [0, 1], so it needs HDR input"
-        else:
-            scene_fmt, why = LDR_SCENE_FORMAT, "render.hdr = false and no tone mapping: 8 bits (sRGB-encoded) suffice"
+        scene_fmt, why = _scene_format(scene, knobs, True)
         attachments.append(Attachment("scene_color", "scene-color", scene_fmt, size, 1, (
-            why, f"post[0] {effects[0].name} reads the scene image as a texture (WebGPU has no input attachments)")))
+            why, f"post[0] {steps[0].effect} reads the scene image as a texture (WebGPU has no input attachments)")))
         scene_target = "scene_color"
     else:
+        if knobs.scene_format is not None:
+            raise UserError(f"{scene.path}: the scene_format knob needs a scene image that a post chain reads, "
+                            "but this scene draws straight into its output: add [[post]] effects or drop the knob")
         scene_fmt, scene_target = out_fmt, "output"
         if r.hdr and not out_fmt.endswith("float"):
             notes.append(f"render.hdr = true but no post effect reads an HDR image: the scene draws straight into the "
@@ -383,38 +684,23 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
 
     color_target = scene_target
     if msaa > 1:
+        if scene_fmt == "rgba32float":
+            raise UserError("rgba32float cannot be multisampled in WebGPU: use msaa 1 with it")
         attachments.append(Attachment("msaa_color", "msaa-color", scene_fmt, size, msaa, (
             src("msaa", msaa) + f": drawn multisampled, resolved into {scene_target} at the end of the pass, "
             "samples discarded (store_op discard)",)))
         color_target = "msaa_color"
     if scene.models:
-        attachments.append(Attachment("depth", "depth", DEPTH_FORMAT, size, msaa, (
-            f"{len(scene.models)} model(s) drawn with depth testing"
+        attachments.append(Attachment("depth", "depth", knobs.depth_format, size, msaa, (
+            f"{len(scene.models)} model(s) drawn with depth testing (compare {depth_compare})"
             + (f"; {msaa} samples to match msaa_color" if msaa > 1 else ""),)))
 
     # -- post passes -----------------------------------------------------------
-    n_temp = intermediate_count(len(effects))
-    temps = ["post_a", "post_b"][:n_temp]
-    for i, name in enumerate(temps):
-        users = [j for j in range(len(effects) - 1) if j % 2 == i]
-        attachments.append(Attachment(name, "post-intermediate", scene_fmt, size, 1, (
-            "written by " + ", ".join(f"post[{j}] {effects[j].name}" for j in users)
-            + f" and read by the next effect (ping-pong, same format as {scene_target})",)))
-    passes: list[ScenePass | PostPass] = []
-    post_passes: list[PostPass] = []
-    for i, effect in enumerate(effects):
-        src_name = scene_target if i == 0 else temps[(i - 1) % 2]
-        dst_name = "output" if i == len(effects) - 1 else temps[i % 2]
-        src_fmt = scene_fmt
-        dst_fmt = out_fmt if dst_name == "output" else scene_fmt
-        implicit = i >= len(user_effects)
-        reason = (f"render.output_format = {out_fmt} does not encode sRGB: an srgb pass is appended"
-                  if implicit else f"[[post]] #{i} effect = \"{effect.name}\"")
-        post_passes.append(PostPass(i, effect.name, tuple(effect.params.items()), src_name, dst_name, src_fmt,
-                                    dst_fmt, reason, effect.notes(src_fmt, dst_fmt)))
+    post_passes, post_attachments = plan_post_passes(steps, fuse, post_path, scene_target, scene_fmt, out_fmt, size)
+    attachments.extend(post_attachments)
 
     out_reasons = [src("output_format", out_fmt)]
-    out_reasons.append(f"written by post[{len(effects) - 1}] {effects[-1].name}" if has_post else
+    out_reasons.append(f"written by post pass {len(post_passes)} ({post_passes[-1].effect})" if has_post else
                        ("resolve target of the scene pass" if msaa > 1 else "the scene pass draws into it directly"))
     attachments.append(Attachment("output", "output", out_fmt, size, 1, tuple(out_reasons)))
 
@@ -433,7 +719,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         seen_materials.add(id(mat))
         variant = material_variant(mat, directional, point, srgb_output, notes if first_time else [])
         variants.setdefault(variant.key, variant)
-        pipeline = ScenePipeline(variant, scene_fmt, msaa, DEPTH_FORMAT)
+        pipeline = ScenePipeline(variant, scene_fmt, msaa, knobs.depth_format, depth_compare=depth_compare)
         pipelines.setdefault(pipeline.key, pipeline)
         sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
         spec = mat.sampler.spec() if sampled else None
@@ -456,9 +742,9 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
                           model.transform.matrix, label))
 
     scene_pass = ScenePass(color_target, scene_target if msaa > 1 else None, "depth" if scene.models else None,
-                           r.clear_color, tuple(draws))
+                           r.clear_color, tuple(draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
     passes = [scene_pass, *post_passes]
-    post_pipelines = tuple(dict.fromkeys((p.effect, p.output_format) for p in post_passes))
+    post_pipelines = _post_pipelines(post_passes)
     camera_note = ""
     if scene.camera.convention == "glm-vulkan":
         camera_note = ("convention glm-vulkan: the projection has proj[1][1] *= -1 for Vulkan's y-down NDC; "
@@ -478,6 +764,9 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         samplers=tuple(samplers.values()),
         camera_note=camera_note,
         notes=tuple(notes),
+        knobs=knobs,
+        settings=tuple(settings),
+        scene=scene,
     )
 
 

@@ -91,7 +91,8 @@ SAMPLER_KEYS = ("address_mode", "anisotropy", "filter", "mipmaps")
 MODEL_KEYS = ("material", "path", "transform")
 TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
 LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
-RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "size")
+RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
+POST_PATHS = ("auto", "fragment", "compute")  # see wgpurender/plan.py: post_path
 
 Vec3 = tuple[float, float, float]
 Vec4 = tuple[float, float, float, float]
@@ -388,6 +389,8 @@ class RenderSettings:
     hdr: bool = True
     clear_color: Vec4 = (0.0, 0.0, 0.0, 1.0)
     output_format: str = "rgba8unorm-srgb"
+    post_fuse: bool = True  # fuse consecutive per-pixel effects into one pass (false: one pass each, for teaching)
+    post_path: str = "auto"  # post passes as fragment or compute shaders; auto: chosen per adapter (plan.py)
 
 
 @dataclass(frozen=True)
@@ -399,11 +402,11 @@ class PostStep:
     params: tuple[tuple[str, float | str], ...] = ()
     written: tuple[str, ...] = ()  # the parameter names the file set
 
-    def create(self):
-        """The :class:`wgpurender.post.PostEffect` instance."""
-        from .post import create_effect
+    def step(self):
+        """The GPU-free :class:`wgpurender.course.effects.EffectStep` the plan lists (asked for by this entry)."""
+        from .course.effects import EffectStep
 
-        return create_effect(self.effect, **dict(self.params))
+        return EffectStep(self.effect, self.params, f'[[post]] #{self.index} effect = "{self.effect}"')
 
 
 @dataclass(frozen=True)
@@ -712,11 +715,13 @@ def _render(c: _Checker, data: Any) -> RenderSettings:
         hdr=c.boolean(t.get("hdr", True), key + ("hdr",)),
         clear_color=_color(c, t.get("clear_color", [0, 0, 0, 1]), key + ("clear_color",)),
         output_format=c.string(t.get("output_format", "rgba8unorm-srgb"), key + ("output_format",), OUTPUT_FORMATS),
+        post_fuse=c.boolean(t.get("post_fuse", True), key + ("post_fuse",)),
+        post_path=c.string(t.get("post_path", "auto"), key + ("post_path",), POST_PATHS),
     )
 
 
 def _post(c: _Checker, data: Any) -> tuple[PostStep, ...]:
-    from .post import EFFECTS, check_order, effect_names
+    from .course.effects import EFFECTS, check_order, effect_names
 
     if not isinstance(data, list):
         raise c.error(("post",), "post must be an array of tables: write each effect as [[post]]")
@@ -731,18 +736,18 @@ def _post(c: _Checker, data: Any) -> tuple[PostStep, ...]:
         if name not in EFFECTS:
             raise c.error(key + ("effect",), f"post[{i}]: unknown effect '{name}': valid effects are "
                                              f"{', '.join(effect_names())}")
-        cls = EFFECTS[name]
-        specs = {p.name: p for p in cls.params_spec}
+        spec = EFFECTS[name]
+        specs = {p.name: p for p in spec.params}
         params = {k: v for k, v in entry.items() if k != "effect"}
         c.table(params, key, ("effect", *specs))
         try:
-            effect = cls(**params)
+            values = spec.validate(params)
         except UserError as err:
             bad = next((k for k in params if k in specs), None)
             raise c.error(key + ((bad,) if bad else ()), f"post[{i}]: {err}") from None
-        steps.append(PostStep(index=i, effect=name, params=tuple(effect.params.items()), written=tuple(params)))
+        steps.append(PostStep(index=i, effect=name, params=values, written=tuple(params)))
     try:
-        check_order([s.create() for s in steps])
+        check_order([s.effect for s in steps])
     except UserError as err:
         raise c.error(("post", len(steps) - 1), str(err)) from None
     return tuple(steps)

@@ -5,10 +5,10 @@ texture filtering for every material, and the depth setup. :func:`make_renderer`
 
 - texture filtering replaces each material's sampler in the :class:`~wgpurender.scene.Scene` (so the plan
   builds mip chains exactly when the level uses them);
-- MSAA and the render size go through :func:`~wgpurender.plan.build_plan`'s own overrides;
-- the scene target and depth formats are rewritten in the plan (attachments and pipelines), so the renderer,
-  which builds exactly what the plan lists, needs no format arguments, and ``plan.explain()`` stays true;
-- reverse-Z is the renderer's ``reverse_z`` flag (projection, compare "greater", clear 0).
+- MSAA, the render size, the scene target format, the depth format and reverse-Z are plan knobs, asked for
+  through :meth:`~wgpurender.plan.RenderPlan.with_knobs` (``scene_format``, ``depth_format``, ``reverse_z``),
+  so the renderer, which builds exactly what the plan lists, needs no arguments, and ``plan.explain()``
+  stays true (reverse-Z: projection, compare "greater", clear 0, all from the plan).
 
 WebGPU cannot multisample rgba32float (the format has no multisample capability in the spec), so a
 setting with ``scene_format = "rgba32float"`` must have ``msaa = 1``: :meth:`Settings.problem` says so.
@@ -98,33 +98,6 @@ def with_filter(scene: Scene, level: str) -> Scene:
     return dataclasses.replace(scene, models=models, materials=materials)
 
 
-def with_formats(plan, scene_format: str | None, depth_format: str | None):
-    """The plan with the scene target (scene_color, msaa_color, post intermediates) and depth formats replaced."""
-    scene_roles = ("scene-color", "msaa-color", "post-intermediate")
-    if scene_format is not None and not any(a.role == "scene-color" for a in plan.attachments):
-        raise UserError(f"{plan.scene_path}: the scene-format knob needs a scene image that a post chain reads, "
-                        "but this scene draws straight into its output: add [[post]] effects or drop the knob")
-    why = "bench accuracy: format set by the sweep"
-
-    def attachment(a):
-        if scene_format is not None and a.role in scene_roles:
-            return dataclasses.replace(a, format=scene_format, reasons=a.reasons + (why,))
-        if depth_format is not None and a.role == "depth":
-            return dataclasses.replace(a, format=depth_format, reasons=a.reasons + (why,))
-        return a
-
-    def pipeline(p):
-        changes = {}
-        if scene_format is not None:
-            changes["color_format"] = scene_format
-        if depth_format is not None and p.depth_format is not None:
-            changes["depth_format"] = depth_format
-        return dataclasses.replace(p, **changes)
-
-    return dataclasses.replace(plan, attachments=tuple(attachment(a) for a in plan.attachments),
-                               pipelines=tuple(pipeline(p) for p in plan.pipelines))
-
-
 def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, int], *, knobs=KNOBS):
     """A SceneRenderer for ``settings`` at ``base_size * settings.ss``; knobs not in ``knobs`` keep the scene's own.
 
@@ -140,6 +113,14 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
         scene = with_filter(scene, settings.filter)
     size = (base_size[0] * settings.ss, base_size[1] * settings.ss)
     plan = build_plan(scene, size=size, msaa=settings.msaa if "msaa" in knobs else None)
-    depth_format, reverse_z = DEPTHS[settings.depth] if "depth" in knobs else (None, False)
-    plan = with_formats(plan, settings.format if "format" in knobs else None, depth_format)
-    return SceneRenderer(ctx, scene, plan, reverse_z=reverse_z)
+    return SceneRenderer(ctx, scene, plan.with_knobs(**plan_knobs(settings, knobs)))
+
+
+def plan_knobs(settings: Settings, knobs=KNOBS) -> dict:
+    """The plan knobs (:meth:`wgpurender.plan.RenderPlan.with_knobs`) one setting asks for."""
+    out: dict = {}
+    if "format" in knobs:
+        out["scene_format"] = settings.format
+    if "depth" in knobs:
+        out["depth_format"], out["reverse_z"] = DEPTHS[settings.depth]
+    return out

@@ -1,64 +1,57 @@
-"""Post-processing effects: full-screen passes that read the previous image as a texture.
+"""The wgpu path's post runners: a plan's post passes as fragment or compute shaders.
 
-Public API:
+What an effect *is* (name, parameters with ranges, reach) lives in the API-free course core,
+:mod:`wgpurender.course.effects`; which passes run, fused or not, on which path, is the plan's
+(:mod:`wgpurender.plan`). This package only runs them:
 
-- :data:`EFFECTS`: effect name -> class; :func:`effect_names`; :func:`create_effect`.
-- :class:`PostEffect` (base), :class:`Param`, :class:`EffectDescription`.
-- :class:`PostChain`: runs effects in order, ping-ponging between two textures.
-- :func:`needs_shader_encoding`, :func:`encoding_of`: the sRGB rule (see post/srgb.py).
+- :mod:`.shaders`: the WGSL of a pass, generated (parameter structs from the specs, the effects composed);
+- :mod:`.passes`: the two small runners, :class:`FragmentPass` and :class:`ComputePass`;
+- :mod:`.chain`: :class:`PostRunner` (a plan's passes) and :class:`PostChain` (a bare list of steps).
 
-Each effect is one module here and one ``shaders_wgsl/post_<name>.wgsl``.
+Each effect is one ``shaders_wgsl/post_<name>.wgsl`` holding functions, not entry points.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from ..errors import UserError
-from .base import EffectDescription, Param, PostEffect, encoding_of, needs_shader_encoding
-from .chain import PostChain, check_order, effects_for_target, intermediate_count
-from .fxaa import Fxaa
-from .grayscale import Grayscale
-from .sepia import Sepia
-from .sharpen import Sharpen
-from .srgb import SrgbEncode
-from .tonemap import ToneMap
-from .vignette import Vignette
-
-EFFECTS: dict[str, type[PostEffect]] = {
-    cls.name: cls for cls in (ToneMap, Fxaa, Sharpen, Vignette, Grayscale, Sepia, SrgbEncode)
-}
-
-
-def effect_names() -> list[str]:
-    return sorted(EFFECTS)
+from ..course.effects import (
+    EFFECTS,
+    EffectSpec,
+    EffectStep,
+    Param,
+    check_order,
+    effect_names,
+    encoding_of,
+    make_step,
+    needs_shader_encoding,
+    steps_for_target,
+)
+from .chain import PostChain, PostRunner, attachment_usage, output_usage
+from .passes import ComputePass, FragmentPass
 
 
-def create_effect(name: str, **params: Any) -> PostEffect:
-    """An effect by name; UserError naming the valid effects or parameters otherwise."""
-    if name not in EFFECTS:
-        raise UserError(f"unknown post effect {name!r}: valid effects are {', '.join(effect_names())}")
-    return EFFECTS[name](**params)
+def create_effect(name: str, **params: Any) -> EffectStep:
+    """A validated effect step by name (GPU-free); UserError naming the valid effects or parameters otherwise."""
+    return make_step(name, "", **params)
 
 
 __all__ = [
     "EFFECTS",
-    "EffectDescription",
-    "Fxaa",
-    "Grayscale",
+    "ComputePass",
+    "EffectSpec",
+    "EffectStep",
+    "FragmentPass",
     "Param",
     "PostChain",
-    "PostEffect",
-    "Sepia",
-    "Sharpen",
-    "SrgbEncode",
-    "ToneMap",
-    "Vignette",
+    "PostRunner",
+    "attachment_usage",
     "check_order",
     "create_effect",
     "effect_names",
-    "effects_for_target",
     "encoding_of",
-    "intermediate_count",
+    "make_step",
     "needs_shader_encoding",
+    "output_usage",
+    "steps_for_target",
 ]

@@ -1,126 +1,129 @@
-"""A chain of post effects that ping-pongs between two intermediate textures.
+"""Running a plan's post passes: each pass's small runner (wgpurender/post/passes.py) in order.
 
-Effect i reads the previous result and writes the next; intermediates alternate
-between two textures (A, B, A, ...), and the last effect writes the caller's
-target directly (an offscreen texture or the window's swapchain image, any
-format), so a chain of n effects needs min(n - 1, 2) intermediates and no copy.
+:class:`PostRunner` runs the passes of a :class:`~wgpurender.plan.RenderPlan` between textures the
+caller owns (the scene renderer makes every attachment the plan lists). :class:`PostChain` is the same
+for a bare list of effect steps (tests, benchmarks, the window's experiments): it plans the passes with
+the plan's own rule (:func:`wgpurender.plan.plan_post_passes`) and keeps its own intermediates.
 
-The chain's input is never written: it is usually the resolved scene colour.
-An empty chain records nothing: the scene should then draw straight into the
-output (the render plan does that), so the runner never adds a copy pass.
+Why separate passes at all, not subpasses: WebGPU has no subpasses or input attachments (Metal and
+D3D12 do not expose them), so each pass samples the previous image as a texture and the image makes
+a full trip through memory per pass. Fusing per-pixel effects into one pass (the plan's default)
+removes those trips where no effect needs its neighbours; the raw path's subpass composes them the
+same way. On desktop GPUs and lavapipe subpasses are not tile-local anyway; the bandwidth a tiler's
+subpass would save is a mobile one. What separate passes allow: an effect may read neighbouring
+pixels (FXAA, sharpen), which an input attachment forbids.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import wgpu
 
-from ..errors import UserError
+from ..course.effects import EffectStep, check_order, steps_for_target
 from ..gpu import GPUContext
-from .base import EffectDescription, PostEffect, needs_shader_encoding
-from .srgb import SrgbEncode
+from ..plan import STORAGE_FORMATS, Attachment, PostPass, plan_post_passes
+from .passes import ComputePass, FragmentPass, planned_pass
 
-INTERMEDIATE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING
-
-
-def check_order(effects: Sequence[PostEffect]) -> None:
-    """The srgb effect may only be last: every later effect would take encoded values for linear ones."""
-    for effect in effects[:-1]:
-        if isinstance(effect, SrgbEncode):
-            names = ", ".join(e.name for e in effects)
-            raise UserError(
-                f"post effect 'srgb' must be the last effect (chain: {names}): "
-                "later effects expect linear values; move it to the end or remove it"
-            )
+POST_USAGE = {
+    "post-intermediate": wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING,
+    "post-mask": wgpu.TextureUsage.RENDER_ATTACHMENT,
+    "post-scratch": wgpu.TextureUsage.STORAGE_BINDING | wgpu.TextureUsage.COPY_SRC,
+}
 
 
-def effects_for_target(effects: Sequence[PostEffect], target_format: str) -> list[PostEffect]:
-    """The effects actually run for a target: a non-empty chain ending in a plain 8-bit target gets srgb appended."""
-    effects = list(effects)
-    if effects and needs_shader_encoding(target_format) and not isinstance(effects[-1], SrgbEncode):
-        effects.append(SrgbEncode())
-    return effects
+def attachment_usage(a: Attachment, passes: Sequence[PostPass]) -> int:
+    """The usage a post attachment needs: storage where a compute pass writes it."""
+    usage = POST_USAGE.get(a.role, 0)
+    if any(p.path == "compute" and p.output == a.name for p in passes):
+        usage |= wgpu.TextureUsage.STORAGE_BINDING
+    return usage
 
 
-def intermediate_count(n_effects: int) -> int:
-    """How many ping-pong textures n effects need: the last one writes the output."""
-    return min(max(n_effects - 1, 0), 2)
+def output_usage(passes: Sequence[PostPass]) -> int:
+    """Extra usage the caller's output texture needs: STORAGE_BINDING when a compute pass writes it directly."""
+    last = passes[-1] if passes else None
+    if last is not None and last.path == "compute" and last.output == "output":
+        return wgpu.TextureUsage.STORAGE_BINDING
+    return 0
+
+
+class PostRunner:
+    """The runners of a list of planned post passes, made once (pipelines compiled now, not at frame 1)."""
+
+    def __init__(self, ctx: GPUContext, passes: Sequence[PostPass]) -> None:
+        self.ctx = ctx
+        self.passes = tuple(passes)
+        self.runners: list[FragmentPass | ComputePass] = [planned_pass(ctx.device, p) for p in self.passes]
+
+    def __bool__(self) -> bool:
+        return bool(self.passes)
+
+    def run(self, encoder: wgpu.GPUCommandEncoder, textures: Mapping[str, wgpu.GPUTexture], timer=None) -> None:
+        """Record every pass; ``textures``: attachment name -> texture ("output" included).
+
+        ``timer``: an optional :class:`wgpurender.timing.PassTimer`; each pass is timed as "post:EFFECTS".
+        """
+        for p, runner in zip(self.passes, self.runners, strict=True):
+            writes = timer.writes(f"post:{p.effect}") if timer is not None else None
+            source, target = textures[p.input], textures[p.output]
+            if isinstance(runner, ComputePass):
+                copy_to = textures[p.copy_to] if p.copy_to else None
+                runner.encode(encoder, source, target, copy_to, timestamp_writes=writes)
+            else:
+                runner.encode(encoder, source, target, textures[p.mask] if p.mask else None,
+                              timestamp_writes=writes)
 
 
 class PostChain:
-    """Effects run in order from a source texture to a target texture."""
+    """Effect steps run from a source texture to a target texture, planned like a scene's chain.
 
-    def __init__(self, effects: Sequence[PostEffect], intermediate_format: str = "rgba16float") -> None:
-        check_order(effects)
-        self.effects = list(effects)
-        self.intermediate_format = intermediate_format
-        self._intermediates: list[wgpu.GPUTexture] = []
-        self._implicit_srgb = SrgbEncode()
-        self._size: tuple[int, int] | None = None
+    ``fuse`` and ``path`` are the plan's knobs (post_fuse, post_path "fragment" | "compute");
+    ``intermediate_format``: the ping-pong textures' format (the plan uses the scene image's).
+    """
+
+    def __init__(self, steps: Sequence[EffectStep], intermediate_format: str = "rgba16float", *, fuse: bool = True,
+                 path: str = "fragment") -> None:
+        check_order([s.effect for s in steps])
+        self.steps = list(steps)
+        self.intermediate_format, self.fuse, self.path = intermediate_format, fuse, path
+        self._built: dict[tuple, tuple[PostRunner, dict[str, wgpu.GPUTexture]]] = {}
 
     def __len__(self) -> int:
-        return len(self.effects)
+        return len(self.steps)
 
     def __bool__(self) -> bool:
-        return bool(self.effects)
+        return bool(self.steps)
 
-    def effects_for(self, target_format: str) -> list[PostEffect]:
-        effects = effects_for_target(self.effects, target_format)
-        if len(effects) > len(self.effects):
-            effects[-1] = self._implicit_srgb  # keep one instance, so its pipeline/buffers are reused
-        return effects
+    def plan(self, input_format: str, output_format: str, size: tuple[int, int]):
+        """(passes, attachments) as the plan would list them for this chain."""
+        steps = steps_for_target(self.steps, output_format)
+        return plan_post_passes(steps, self.fuse, self.path, "input", self.intermediate_format, output_format,
+                                size)
 
-    def describe(self, input_format: str, output_format: str) -> list[EffectDescription]:
-        """Each effect with the formats it reads and writes, for the plan's explain()."""
-        effects = self.effects_for(output_format)
-        out = []
-        fmt_in = input_format
-        for i, effect in enumerate(effects):
-            fmt_out = output_format if i == len(effects) - 1 else self.intermediate_format
-            out.append(effect.describe(fmt_in, fmt_out))
-            fmt_in = fmt_out
-        return out
-
-    def clear_cache(self) -> None:
-        """Forget every effect's cached bind groups and views (they refer to replaced textures)."""
-        for effect in [*self.effects, self._implicit_srgb]:
-            effect.clear_cache()
-
-    def _textures(self, ctx: GPUContext, size: tuple[int, int], count: int) -> list[wgpu.GPUTexture]:
-        current = self._intermediates
-        if current and (tuple(current[0].size[:2]) != size or current[0].format != self.intermediate_format):
-            current.clear()  # resized: the old ones are dropped (and freed by wgpu when unreferenced)
-        while len(current) < count:
-            current.append(
-                ctx.device.create_texture(
-                    label=f"post-intermediate-{'ab'[len(current)]}",
-                    size=(size[0], size[1], 1),
-                    format=self.intermediate_format,
-                    usage=INTERMEDIATE_USAGE,
-                )
-            )
-        return current[:count]
-
-    def run(
-        self, ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
-        timer=None,
-    ) -> None:
-        """Record every effect into ``encoder``; the last one writes ``target``. Empty chain: records nothing.
-
-        ``timer``: an optional :class:`wgpurender.timing.PassTimer`; each effect's pass is timed as "post:NAME".
-        """
-        effects = self.effects_for(target.format)
-        if not effects:
-            return
+    def _build(self, ctx: GPUContext, source: wgpu.GPUTexture, target: wgpu.GPUTexture):
         size = (source.size[0], source.size[1])
-        if size != self._size:  # resized: intermediates (and usually source and target) are new textures
-            self.clear_cache()
-            self._size = size
-        temps = self._textures(ctx, size, intermediate_count(len(effects)))
-        current = source
-        for i, effect in enumerate(effects):
-            destination = target if i == len(effects) - 1 else temps[i % 2]
-            writes = timer.writes(f"post:{effect.name}") if timer is not None else None
-            effect.encode(ctx.device, encoder, current, destination, timestamp_writes=writes)
-            current = destination
+        key = (ctx.device, size, source.format, target.format)
+        if key not in self._built:
+            self._built.clear()  # a resize or a new format: the old textures go
+            passes, attachments = self.plan(self.intermediate_format, target.format, size)
+            textures = {a.name: ctx.device.create_texture(
+                label=a.name, size=(size[0], size[1], 1), format=a.format, usage=attachment_usage(a, passes))
+                for a in attachments}
+            self._built[key] = (PostRunner(ctx, passes), textures)
+        return self._built[key]
+
+    def run(self, ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture,
+            target: wgpu.GPUTexture, timer=None) -> None:
+        """Record every pass into ``encoder``; the last one writes ``target``. Empty chain: records nothing.
+
+        On the compute path a pass that writes ``target`` directly needs it to have STORAGE_BINDING usage
+        (:func:`output_usage`); -srgb targets are written through a scratch and a copy instead.
+        """
+        if not self.steps:
+            return
+        runner, textures = self._build(ctx, source, target)
+        runner.run(encoder, {**textures, "input": source, "output": target}, timer=timer)
+
+
+__all__ = ["STORAGE_FORMATS", "PostChain", "PostRunner", "attachment_usage", "output_usage"]

@@ -6,14 +6,13 @@ The plan (wgpurender/plan.py) decides everything; this module only builds what i
   ``scene_color`` (with a post chain) or straight into the output (without one);
 - ``depth`` (depth32float, as many samples as the colour) only when there are models;
 - ``scene_color`` (rgba16float when HDR) only when a post chain reads it;
-- the post chain (:class:`wgpurender.post.PostChain`) ping-pongs through its own intermediates.
+- the post passes' intermediates, FXAA's mask and the compute path's scratch, as the plan lists them;
+- the post passes themselves from the plan (:class:`wgpurender.post.PostRunner`), never from the scene.
 
-Why the post chain is separate passes, not subpasses: WebGPU (and so wgpu) has no subpasses
-or input attachments, because Metal and D3D12 do not expose them; each effect is its own
-render pass that samples the previous image as a texture, so the image makes a full trip
-through memory per effect. The cost and what is gained are spelled out in
-wgpurender/post/base.py's module docstring: the same on desktop GPUs and lavapipe, a lost
-tile-memory saving on mobile, and effects may read neighbouring pixels (FXAA needs that).
+A plan built without an adapter (``--explain`` with no GPU, a test) is re-planned here for this
+device (:func:`adapter_facts`), so its "auto" knobs (post path, immediates) are decided, and the
+renderer builds exactly what ``renderer.plan.explain()`` says. Why the post chain is passes, not
+subpasses, and what fusing them changes: wgpurender/post/chain.py.
 """
 
 from __future__ import annotations
@@ -25,10 +24,10 @@ import wgpu
 
 from ..errors import UserError
 from ..gpu import GPUContext, get_context
-from ..plan import RenderPlan, build_plan
-from ..post import PostChain
+from ..plan import AdapterFacts, RenderPlan, build_plan
+from ..post import PostRunner, attachment_usage, output_usage
 from ..scene import Scene, load_scene
-from ..targets import create_target, read_texture
+from ..targets import TARGET_USAGE, create_target, read_texture
 from .resources import SceneResources
 from .scene_pass import ScenePassRenderer
 
@@ -40,6 +39,19 @@ ATTACHMENT_USAGE = {
 }
 
 
+def adapter_facts(ctx: GPUContext) -> AdapterFacts:
+    """What the plan's "auto" knobs need to know about this context's adapter and device."""
+    info = ctx.info
+    return AdapterFacts(info.get("adapter_type", ""), frozenset(ctx.features), info.get("device", ""))
+
+
+def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
+    """The plan with its adapter known (unchanged when it already was, or when it was not built from a scene)."""
+    if plan.knobs.adapter is not None or plan.scene is None:
+        return plan
+    return plan.with_knobs(adapter=adapter_facts(ctx))
+
+
 class SceneRenderer:
     """Draws one scene by its plan into any texture of the plan's output format (offscreen or swapchain).
 
@@ -47,15 +59,14 @@ class SceneRenderer:
     Scenes are static: ``t`` is accepted (the window passes it) and does not change the image.
     """
 
-    def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, *, use_immediates: bool | None = None,
-                 reverse_z: bool = False) -> None:
+    def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan) -> None:
+        plan = plan_for_device(ctx, plan)
         self.ctx, self.scene, self.plan = ctx, scene, plan
         self._check_limits()
         self.resources = SceneResources(ctx, plan)
-        self.scene_pass = ScenePassRenderer(ctx, scene, plan, self.resources, use_immediates,
-                                            reverse_z=reverse_z)
-        scene_fmt = plan.attachment("scene_color").format if plan.has_attachment("scene_color") else None
-        self.chain = PostChain([step.create() for step in scene.post], intermediate_format=scene_fmt or "rgba16float")
+        self.scene_pass = ScenePassRenderer(ctx, scene, plan, self.resources, plan.immediates)
+        self.chain = PostRunner(ctx, plan.post_passes)
+        self.target_usage = output_usage(plan.post_passes)  # what the output texture needs beyond TARGET_USAGE
         self.size: tuple[int, int] | None = None
         self.attachments: dict[str, wgpu.GPUTexture] = {}
 
@@ -74,10 +85,11 @@ class SceneRenderer:
         self.size = size
         self.attachments = {}
         for a in self.plan.attachments:
-            if a.role in ATTACHMENT_USAGE:
+            usage = ATTACHMENT_USAGE.get(a.role, 0) | attachment_usage(a, self.plan.post_passes)
+            if a.role != "output" and usage:
                 self.attachments[a.name] = self.ctx.device.create_texture(
                     label=a.name, size=(size[0], size[1], 1), format=a.format, sample_count=a.sample_count,
-                    usage=ATTACHMENT_USAGE[a.role])
+                    usage=usage)
 
     def _texture(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTexture:
         return target if name == "output" else self.attachments[name]
@@ -107,7 +119,7 @@ class SceneRenderer:
         writes = timer.writes("scene") if timer is not None else None
         self.scene_pass.encode(encoder, color, depth, size[0] / size[1], timestamp_writes=writes)
         if self.chain:
-            self.chain.run(self.ctx, encoder, self.attachments[sp.writes], target, timer=timer)
+            self.chain.run(encoder, {**self.attachments, "output": target}, timer=timer)
 
 
 def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,
@@ -115,7 +127,9 @@ def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | 
     """A renderer for a scene file, with the plan's size, output format and MSAA overridable."""
     scene = load_scene(path)
     plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa)
-    return SceneRenderer(ctx, scene, plan, use_immediates=use_immediates)
+    if use_immediates is not None:
+        plan = plan.with_knobs(immediates="on" if use_immediates else "off")
+    return SceneRenderer(ctx, scene, plan)
 
 
 def render_frame(ctx: GPUContext, renderer: SceneRenderer, target: wgpu.GPUTexture, t: float = 0.0):
@@ -140,7 +154,8 @@ def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt
 
     ctx = ctx or get_context()
     renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates)
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format,
+                           usage=TARGET_USAGE | renderer.target_usage)
     pixels, frame_ms = None, 0.0
     for _ in range(max(1, frames)):
         pixels, frame_ms = render_frame(ctx, renderer, target, t)

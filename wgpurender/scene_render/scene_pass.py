@@ -77,12 +77,12 @@ class ScenePassRenderer:
     """Pipelines, uniform buffers and bind groups of a plan's scene pass, and the pass itself."""
 
     def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, resources: SceneResources,
-                 use_immediates: bool | None = None, *, reverse_z: bool = False) -> None:
+                 use_immediates: bool | None = None) -> None:
         if use_immediates and not ctx.has("immediates"):
             raise UserError("this adapter does not offer the 'immediates' feature (push constants): "
                             "leave use_immediates unset to fall back to a uniform buffer")
         self.ctx, self.scene, self.plan, self.resources = ctx, scene, plan, resources
-        self.reverse_z = reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (float depth formats)
+        self.reverse_z = plan.reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (plan knob)
         self.uses_immediates = ctx.has("immediates") if use_immediates is None else bool(use_immediates)
         self.draws = plan.scene_pass.draws
         self.pipelines: dict[tuple[str, str], wgpu.GPURenderPipeline] = {}
@@ -192,7 +192,7 @@ class ScenePassRenderer:
                 vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
                 primitive={"topology": "triangle-list", "front_face": front_face, "cull_mode": planned.cull_mode},
                 depth_stencil={"format": planned.depth_format, "depth_write_enabled": True,
-                               "depth_compare": "greater" if self.reverse_z else "less"},
+                               "depth_compare": planned.depth_compare},
                 multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
                 fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": planned.color_format}]},
             )
@@ -219,7 +219,7 @@ class ScenePassRenderer:
         """Write the camera UBO for this frame and record the scene pass."""
         depth = None
         if depth_view is not None:
-            depth = {"view": depth_view, "depth_clear_value": 0.0 if self.reverse_z else 1.0,
+            depth = {"view": depth_view, "depth_clear_value": self.plan.scene_pass.depth_clear,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
         if self.draws:
             self._write_camera(aspect)

@@ -12,8 +12,11 @@ rgba16float intermediates, to show that this is the whole difference; with hdr =
 intermediates are 8-bit sRGB, whose encoding on lavapipe is an approximation that no shader
 formula reproduces bit for bit, so the flag does nothing there).
 
-The chain is data: a uniform block (descriptor set 0, binding 1) lists the steps' kinds and
-parameters (uniforms.pack_chain); binding 0 is the INPUT_ATTACHMENT descriptor of the resolved
+The effect list and parameters come from the plan (``plan.post_steps``: the GPU-free steps of
+wgpurender/course/effects.py, whatever passes the wgpu path groups them into); the kind numbers and
+the packing below are this path's own, so a parameter the two paths read differently shows up as an
+image difference in the cross-check. The chain is data: a uniform block (descriptor set 0, binding 1)
+lists the steps' kinds and parameters (uniforms.pack_chain); binding 0 is the INPUT_ATTACHMENT descriptor of the resolved
 scene image, in SHADER_READ_ONLY_OPTIMAL, written with vkUpdateDescriptorSets.
 """
 
@@ -23,8 +26,8 @@ from contextlib import ExitStack
 
 import vulkan as vk
 
-from ...plan import PostPass, RenderPlan
-from ...post import needs_shader_encoding
+from ...course.effects import PIXEL, EffectStep, needs_shader_encoding
+from ...plan import RenderPlan
 from .. import descriptors
 from ..images import Image
 from ..instance import VulkanContext
@@ -35,27 +38,25 @@ from . import uniforms as U
 
 FRAGMENT = vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS
-# effect -> the kind number of shaders_glsl/post_chain.frag (its #defines)
+# effect -> the kind number of shaders_glsl/post_chain.frag (its #defines); every per-pixel effect of the specs
 STEP_KINDS = {"tonemap": 0, "vignette": 1, "grayscale": 2, "sepia": 3, "srgb": 4}
 TONE_CURVES = {"aces": 0.0, "reinhard": 1.0}
 
 
-def step_params(p: PostPass, output_format: str) -> tuple[float, ...]:
-    """The parameters in the order post_chain.frag reads them (p0, p1, p2)."""
-    params = dict(p.params)
-    if p.effect == "tonemap":
+def step_params(step: EffectStep, output_format: str) -> tuple[float, ...]:
+    """The parameters in the order post_chain.frag reads them (p0, p1, p2): this path's own packing."""
+    params = step.values
+    if step.effect == "tonemap":
         return float(params["exposure"]), TONE_CURVES[params["operator"]]
-    if p.effect == "vignette":
-        return float(params["strength"]), float(params["radius"]), float(params["softness"])
-    if p.effect in ("grayscale", "sepia"):
-        return (float(params["amount"]),)
-    if p.effect == "srgb":  # the curve only where the output does not encode by itself
+    if step.effect == "srgb":  # the curve only where the output does not encode by itself
         return (1.0 if needs_shader_encoding(output_format) else 0.0,)
-    raise ValueError(f"no post_chain.frag step for {p.effect!r}")  # support.check_supported refuses it first
+    if step.effect in STEP_KINDS and step.spec.reach == PIXEL:  # vignette, grayscale, sepia: in spec order
+        return tuple(float(params[p.name]) for p in step.spec.params)
+    raise ValueError(f"no post_chain.frag step for {step.effect!r}")  # support.check_supported refuses it first
 
 
 def chain_steps(plan: RenderPlan) -> list[tuple[int, tuple[float, ...]]]:
-    return [(STEP_KINDS[p.effect], step_params(p, plan.output_format)) for p in plan.post_passes]
+    return [(STEP_KINDS[s.effect], step_params(s, plan.output_format)) for s in plan.post_steps]
 
 
 class PostSubpass:

@@ -38,17 +38,18 @@ PIXEL_EFFECTS = ("tonemap", "vignette", "grayscale", "sepia", "srgb")
 def unsupported(plan: RenderPlan) -> list[str]:
     """One sentence per feature of the plan that the raw path cannot draw (empty: all supported)."""
     problems = []
-    for p in plan.post_passes:
-        if p.effect in NEIGHBOUR_EFFECTS:
+    steps = plan.post_steps  # the effects in order, however the wgpu path groups them into passes
+    for i, step in enumerate(steps):
+        if step.effect in NEIGHBOUR_EFFECTS:
             problems.append(
-                f"post[{p.index}] {NEIGHBOUR_EFFECTS[p.effect]}; an input attachment gives only the current pixel "
-                f"(subpassLoad takes no coordinates): the raw path cannot run {p.effect} in its post subpass "
-                f"(remove the {p.effect} [[post]] entry to compare the rest of the chain)")
-        elif p.effect not in PIXEL_EFFECTS:
-            problems.append(f"post[{p.index}] {p.effect}: the raw path's post subpass has no {p.effect} effect "
+                f"post[{i}] {NEIGHBOUR_EFFECTS[step.effect]}; an input attachment gives only the current pixel "
+                f"(subpassLoad takes no coordinates): the raw path cannot run {step.effect} in its post subpass "
+                f"(remove the {step.effect} [[post]] entry to compare the rest of the chain)")
+        elif step.effect not in PIXEL_EFFECTS:
+            problems.append(f"post[{i}] {step.effect}: the raw path's post subpass has no {step.effect} effect "
                             f"(it has {', '.join(PIXEL_EFFECTS)})")
-    if len(plan.post_passes) > MAX_POST_STEPS:
-        problems.append(f"{len(plan.post_passes)} post effects: the raw path's chain holds at most {MAX_POST_STEPS}")
+    if len(steps) > MAX_POST_STEPS:
+        problems.append(f"{len(steps)} post effects: the raw path's chain holds at most {MAX_POST_STEPS}")
     if plan.output_format not in FORMATS:
         problems.append(f"output format {plan.output_format}: the raw path renders only {', '.join(FORMATS)}")
     return problems
