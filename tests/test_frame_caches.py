@@ -1,5 +1,6 @@
-"""Per-frame caches (issue 7) never serve a stale object: post-chain bind groups and views, effect
-parameter uploads, the scene's camera upload and attachment views.
+"""Per-frame caches (issue 7) never serve a stale object: post-chain bind groups and views, the scene's
+camera upload and attachment views; and the one GPU cache type (wgpurender/gpu_cache.py) is bounded,
+counts hits and misses, and goes with its device.
 
 Each check renders with a renderer or chain that has cached objects from an earlier frame and compares
 with an independent result: a numpy float64 reference (rtol 2e-3 + atol 1e-3 for rgba16float outputs,
@@ -8,15 +9,17 @@ as in tests/test_post.py), or a fresh renderer that has no caches (bit-exact: sa
 
 from __future__ import annotations
 
+import gc
+import weakref
 from pathlib import Path
 
 import numpy as np
 import pytest
 from test_post import ATOL, RTOL, ref_aces, ref_vignette, upload
 
+from wgpurender.gpu_cache import GpuCache, cache_stats, device_cache
 from wgpurender.plan import build_plan
-from wgpurender.post import PostChain, ToneMap, Vignette
-from wgpurender.post.cache import BoundedCache
+from wgpurender.post import PostChain, create_effect
 from wgpurender.scene import parse_scene
 from wgpurender.scene_render import SceneRenderer, render_frame
 from wgpurender.targets import create_target, read_texture
@@ -62,6 +65,19 @@ def _run(ctx, chain: PostChain, src, dst) -> np.ndarray:
     return read_texture(ctx, dst).astype(np.float64)
 
 
+def ToneMap(**params):  # noqa: N802
+    return create_effect("tonemap", **params)
+
+
+def Vignette(**params):  # noqa: N802
+    return create_effect("vignette", **params)
+
+
+def _runners(chain: PostChain):
+    ((runner, _textures),) = chain._built.values()
+    return runner.runners
+
+
 def _reference(img: np.ndarray, exposure: float = 1.0) -> np.ndarray:
     return ref_vignette(ref_aces(img.astype(np.float64), exposure), 0.5, 0.5, 0.5)
 
@@ -69,44 +85,61 @@ def _reference(img: np.ndarray, exposure: float = 1.0) -> np.ndarray:
 def test_chain_alternating_sources_and_targets_gives_each_its_own_image(ctx):
     """Two sources into two targets, alternately (A->X, B->Y, A->Y, B->X): every output is the reference of
     the source it was given, so a bind group or view cached for one texture is never used for another."""
-    chain = PostChain([ToneMap(), Vignette(strength=0.5)])
+    chain = PostChain([ToneMap(), Vignette(strength=0.5)], fuse=False)
     images = [_image(1), _image(2)]
     sources = [upload(ctx, img) for img in images]
     targets = [create_target(ctx, (32, 24), "rgba16float") for _ in range(2)]
     for s, t in [(0, 0), (1, 1), (0, 1), (1, 0), (0, 0)]:
         got = _run(ctx, chain, sources[s], targets[t])
         np.testing.assert_allclose(got, _reference(images[s]), rtol=2 * RTOL, atol=ATOL)
-    tonemap = chain.effects[0]
-    assert tonemap._groups.misses == 2, "one bind group per source, reused after that"
+    tonemap = _runners(chain)[0]
+    assert tonemap.groups.misses == 2, "one bind group per source, reused after that"
 
 
 def test_chain_resized_renders_the_new_size_and_drops_old_entries(ctx):
     """32x24, then 16x12, then 32x24 again: each matches its reference; the resize empties the caches."""
-    chain = PostChain([ToneMap(), Vignette(strength=0.5)])
+    chain = PostChain([ToneMap(), Vignette(strength=0.5)], fuse=False)
     for w, h, seed in [(32, 24, 3), (16, 12, 4), (32, 24, 5)]:
         img = _image(seed, w, h)
         got = _run(ctx, chain, upload(ctx, img), create_target(ctx, (w, h), "rgba16float"))
         np.testing.assert_allclose(got, _reference(img), rtol=2 * RTOL, atol=ATOL)
-        assert len(chain.effects[1]._groups) == 1 and len(chain.effects[1]._target_views) == 1
+        vignette = _runners(chain)[1]
+        assert len(vignette.groups) == 1 and len(vignette.views) == 1
 
 
-def test_changed_parameter_is_uploaded_next_frame(ctx):
-    """The parameter buffer is rewritten only on change: exposure 1 -> 2.5 between frames must show."""
-    tonemap = ToneMap(exposure=1.0)
-    chain = PostChain([tonemap, Vignette(strength=0.5)])
-    img = _image(6)
-    src, dst = upload(ctx, img), create_target(ctx, (32, 24), "rgba16float")
-    np.testing.assert_allclose(_run(ctx, chain, src, dst), _reference(img, 1.0), rtol=2 * RTOL, atol=ATOL)
-    tonemap.params["exposure"] = 2.5
-    np.testing.assert_allclose(_run(ctx, chain, src, dst), _reference(img, 2.5), rtol=2 * RTOL, atol=ATOL)
-
-
-def test_bounded_cache_keeps_the_most_recent_entries():
-    cache: BoundedCache[str] = BoundedCache(capacity=2)
+def test_gpu_cache_keeps_the_most_recent_entries_and_counts():
+    cache: GpuCache[str] = GpuCache("test", capacity=2)
     assert cache.get("a", lambda: "A") == "A" and cache.get("b", lambda: "B") == "B"
     assert cache.get("a", lambda: "new") == "A"  # hit: "a" becomes the most recent
     cache.get("c", lambda: "C")  # evicts "b", the least recently used
-    assert len(cache) == 2 and cache.get("b", lambda: "B2") == "B2" and cache.misses == 4
+    assert len(cache) == 2 and cache.get("b", lambda: "B2") == "B2"
+    assert cache.stats() == {"size": 2, "capacity": 2, "hits": 1, "misses": 4, "evictions": 2}
+
+
+def test_device_caches_go_with_their_device():
+    """Caches hang on the device object, so no module dict keeps a device (and what it made) alive."""
+
+    class Device:  # stands in for a GPUDevice: any object that takes attributes
+        pass
+
+    device = Device()
+    made = device_cache(device, "post-pipelines", capacity=8)
+    made.get("key", lambda: object())
+    assert device_cache(device, "post-pipelines") is made and cache_stats(device)["post-pipelines"]["misses"] == 1
+    alive = weakref.ref(device)
+    del device, made
+    gc.collect()
+    assert alive() is None
+
+
+def test_renderer_pipelines_live_in_named_device_caches(ctx, tmp_path):
+    """A second renderer of the same scene on the same device compiles no post pipeline again."""
+    scene = parse_scene(SCENE, tmp_path / "scene.toml")
+    SceneRenderer(ctx, scene, build_plan(scene))
+    before = cache_stats(ctx.device)["post-pipelines"]
+    SceneRenderer(ctx, scene, build_plan(scene))
+    after = cache_stats(ctx.device)["post-pipelines"]
+    assert after["misses"] == before["misses"] and after["hits"] > before["hits"]
 
 
 @pytest.mark.parametrize("sizes", [((64, 48), (40, 40)), ((40, 40), (64, 48))])

@@ -15,18 +15,10 @@ import pytest
 import wgpu
 
 from wgpurender.errors import UserError
+from wgpurender.gpu_cache import cache_stats
 from wgpurender.imageio import srgb_encode
-from wgpurender.post import (
-    EFFECTS,
-    PostChain,
-    SrgbEncode,
-    ToneMap,
-    Vignette,
-    create_effect,
-    effect_names,
-    intermediate_count,
-)
-from wgpurender.targets import create_target, read_texture
+from wgpurender.post import EFFECTS, PostChain, create_effect, effect_names, output_usage, steps_for_target
+from wgpurender.targets import TARGET_USAGE, create_target, read_texture
 
 W, H = 32, 24
 RTOL, ATOL = 2e-3, 1e-3
@@ -103,11 +95,28 @@ def upload(ctx, pixels: np.ndarray) -> wgpu.GPUTexture:
     return tex
 
 
-def run_chain(ctx, effects, pixels: np.ndarray, fmt: str = "rgba16float") -> np.ndarray:
+def ToneMap(**params):  # noqa: N802  (reads like the effect's name in the parametrisations below)
+    return create_effect("tonemap", **params)
+
+
+def Vignette(**params):  # noqa: N802
+    return create_effect("vignette", **params)
+
+
+def SrgbEncode():  # noqa: N802
+    return create_effect("srgb")
+
+
+def run_chain(ctx, effects, pixels: np.ndarray, fmt: str = "rgba16float", *, fuse: bool = True,
+              path: str = "fragment") -> np.ndarray:
+    """The chain run on ``pixels``; on the compute path the target gets the storage usage the plan asks for."""
     src = upload(ctx, pixels)
-    dst = create_target(ctx, (pixels.shape[1], pixels.shape[0]), fmt)
+    chain = PostChain(effects, fuse=fuse, path=path)
+    size = (pixels.shape[1], pixels.shape[0])
+    passes, _ = chain.plan("rgba16float", fmt, size)
+    dst = create_target(ctx, size, fmt, usage=TARGET_USAGE | output_usage(passes))
     encoder = ctx.device.create_command_encoder()
-    PostChain(effects).run(ctx, encoder, src, dst)
+    chain.run(ctx, encoder, src, dst)
     ctx.queue.submit([encoder.finish()])
     out = read_texture(ctx, dst)
     return out.astype(np.float64) if out.dtype != np.uint8 else out
@@ -130,8 +139,10 @@ def as64(img: np.ndarray) -> np.ndarray:
     ],
     ids=["aces", "reinhard", "vignette", "grayscale", "sepia", "sharpen"],
 )
-def test_effect_matches_numpy(ctx, hdr_image, effect, reference):
-    got = run_chain(ctx, [effect], hdr_image)
+@pytest.mark.parametrize("path", ["fragment", "compute"])
+def test_effect_matches_numpy(ctx, hdr_image, effect, reference, path):
+    """Each effect on both post paths (a full-screen triangle, and a dispatch writing a storage texture)."""
+    got = run_chain(ctx, [effect], hdr_image, path=path)
     want = reference(as64(hdr_image))
     np.testing.assert_allclose(got, want, rtol=RTOL, atol=ATOL)
 
@@ -147,14 +158,17 @@ def test_tonemap_output_is_in_unit_range_and_monotonic(ctx):
     assert got[-1] > 0.99
 
 
+@pytest.mark.parametrize("path", ["fragment", "compute"])
 @pytest.mark.parametrize("fmt", ["rgba8unorm", "rgba8unorm-srgb", "bgra8unorm", "bgra8unorm-srgb"])
-def test_srgb_effect_encodes_exactly_once(ctx, fmt):
+def test_srgb_effect_encodes_exactly_once(ctx, fmt, path):
     """Both 8-bit targets store round(255 * srgb_encode(x)) within 1 LSB: the shader encodes
-    for rgba8unorm, the hardware for rgba8unorm-srgb, never both."""
+    for rgba8unorm, the hardware for rgba8unorm-srgb, never both. On the compute path an -srgb target
+    is written through an rgba8unorm scratch that the shader encodes (then copied), a bgra target by a
+    fragment pass (it cannot be a storage texture): still exactly once."""
     ramp = np.zeros((4, 64, 4), dtype=np.float16)
     ramp[..., :3] = np.linspace(0, 1, 64)[None, :, None]
     ramp[..., 3] = 1
-    got = run_chain(ctx, [SrgbEncode()], ramp, fmt).astype(int)
+    got = run_chain(ctx, [SrgbEncode()], ramp, fmt, path=path).astype(int)
     want = np.round(srgb_encode(as64(ramp)[..., :3]) * 255).astype(int)
     assert np.abs(got[..., :3] - want).max() <= 1
 
@@ -167,9 +181,8 @@ def test_srgb_effect_keeps_float_targets_linear(ctx, hdr_image):
 def test_chain_appends_srgb_for_plain_unorm_target(ctx):
     """tonemap alone into rgba8unorm gets an implicit srgb pass: bytes = encode(tonemap(x))."""
     img = np.full((8, 8, 4), 0.5, dtype=np.float16)
-    chain = PostChain([ToneMap()])
-    assert [e.name for e in chain.effects_for("rgba8unorm")] == ["tonemap", "srgb"]
-    assert [e.name for e in chain.effects_for("rgba8unorm-srgb")] == ["tonemap"]
+    assert [s.effect for s in steps_for_target([ToneMap()], "rgba8unorm")] == ["tonemap", "srgb"]
+    assert [s.effect for s in steps_for_target([ToneMap()], "rgba8unorm-srgb")] == ["tonemap"]
     got = run_chain(ctx, [ToneMap()], img, "rgba8unorm").astype(int)
     want = np.round(srgb_encode(ref_aces(as64(img), 1.0)[..., :3]) * 255).astype(int)
     assert np.abs(got[..., :3] - want).max() <= 1
@@ -196,12 +209,13 @@ def edge_coverage(w: int = 48, h: int = 32, n: int = 16) -> np.ndarray:
     return inside.reshape(h, n, w, n).mean(axis=(1, 3))
 
 
-def test_fxaa_smooths_aliased_edge_and_keeps_flat_regions(ctx):
+@pytest.mark.parametrize("path", ["fragment", "compute"])
+def test_fxaa_smooths_aliased_edge_and_keeps_flat_regions(ctx, path):
     """Flat 3x3 neighbourhoods come back bit-exact (FXAA's early exit); staircase pixels (a 4-neighbour
     differs) move to intermediate values, towards the other side, and the mean absolute error against
     the true pixel coverage drops to under half of the aliased image's."""
     img = aliased_edge()
-    got = run_chain(ctx, [create_effect("fxaa")], img)
+    got = run_chain(ctx, [create_effect("fxaa")], img, path=path)
     lum = as64(img)[..., 0]
     p = np.pad(lum, 1, mode="edge")
     window = np.stack([p[dy : dy + lum.shape[0], dx : dx + lum.shape[1]] for dy in range(3) for dx in range(3)])
@@ -224,8 +238,9 @@ def test_fxaa_smooths_aliased_edge_and_keeps_flat_regions(ctx):
 
 
 # -- chains -------------------------------------------------------------------
-def test_two_effects_equal_composition(ctx, hdr_image):
-    got = run_chain(ctx, [ToneMap(exposure=1.2), Vignette(strength=0.6)], hdr_image)
+@pytest.mark.parametrize(("fuse", "path"), [(True, "fragment"), (False, "fragment"), (True, "compute")])
+def test_two_effects_equal_composition(ctx, hdr_image, fuse, path):
+    got = run_chain(ctx, [ToneMap(exposure=1.2), Vignette(strength=0.6)], hdr_image, fuse=fuse, path=path)
     want = ref_vignette(ref_aces(as64(hdr_image), 1.2), 0.6, 0.5, 0.5)
     np.testing.assert_allclose(got, want, rtol=2 * RTOL, atol=ATOL)
 
@@ -233,17 +248,25 @@ def test_two_effects_equal_composition(ctx, hdr_image):
 def test_three_effects_use_both_intermediates(ctx, hdr_image):
     """sharpen -> grayscale -> tonemap: A then B then the output; each intermediate rounded to float16."""
     effects = [create_effect("sharpen", strength=0.3), create_effect("grayscale"), ToneMap(operator="reinhard")]
-    got = run_chain(ctx, effects, hdr_image)
+    got = run_chain(ctx, effects, hdr_image, fuse=False)
     f16 = lambda a: a.astype(np.float16).astype(np.float64)  # noqa: E731
     want = ref_reinhard(f16(ref_grayscale(f16(ref_sharpen(as64(hdr_image), 0.3)), 1.0)), 1.0)
     np.testing.assert_allclose(got, want, rtol=2 * RTOL, atol=ATOL)
-    assert intermediate_count(3) == 2 and intermediate_count(2) == 1 and intermediate_count(1) == 0
+    passes, attachments = PostChain(effects, fuse=False).plan("rgba16float", "rgba16float", (W, H))
+    assert [p.output for p in passes] == ["post_a", "post_b", "output"]
+    # fused, the three are one pass (grayscale and tonemap need only the pixel sharpen computed): no float16
+    # rounding between them
+    got = run_chain(ctx, effects, hdr_image, fuse=True)
+    want = ref_reinhard(ref_grayscale(f16(ref_sharpen(as64(hdr_image), 0.3)), 1.0), 1.0)
+    np.testing.assert_allclose(got, want, rtol=2 * RTOL, atol=ATOL)
+    passes, attachments = PostChain(effects, fuse=True).plan("rgba16float", "rgba16float", (W, H))
+    assert [p.effect for p in passes] == ["sharpen+grayscale+tonemap"] and attachments == []
 
 
 def test_empty_chain_records_nothing(ctx, hdr_image):
     """An empty chain does not touch the target (the plan draws the scene straight into it instead)."""
     chain = PostChain([])
-    assert not chain and chain.describe("rgba16float", "rgba8unorm") == []
+    assert not chain and chain.plan("rgba16float", "rgba8unorm", (W, H)) == ([], [])
     src = upload(ctx, hdr_image)
     dst = upload(ctx, np.full_like(hdr_image, 0.25))
     encoder = ctx.device.create_command_encoder()
@@ -269,22 +292,30 @@ def test_unknown_effect_and_parameter():
         create_effect("vignette", strength=3)
 
 
-def test_pipelines_cached_per_effect_and_format(ctx):
-    a, b = ToneMap(), ToneMap(exposure=2)
-    assert a.pipeline(ctx.device, "rgba16float") is b.pipeline(ctx.device, "rgba16float")
-    assert a.pipeline(ctx.device, "rgba16float") is not a.pipeline(ctx.device, "rgba8unorm-srgb")
+def test_pipelines_cached_per_shader_and_format(ctx, hdr_image):
+    """Parameters live in a uniform buffer, not in the shader: a second chain of the same effects with other
+    values makes no new pipeline (the device's "post-pipelines" cache hits); another target format does."""
+    run_chain(ctx, [ToneMap(exposure=1.0)], hdr_image)
+    before = cache_stats(ctx.device)["post-pipelines"]
+    run_chain(ctx, [ToneMap(exposure=3.0)], hdr_image)
+    after = cache_stats(ctx.device)["post-pipelines"]
+    assert (after["misses"], after["hits"]) == (before["misses"], before["hits"] + 1)
+    run_chain(ctx, [ToneMap(exposure=3.0)], hdr_image, "rgba8unorm-srgb")
+    assert cache_stats(ctx.device)["post-pipelines"]["misses"] == after["misses"] + 1
 
 
-def test_describe():
-    chain = PostChain([ToneMap(exposure=2), create_effect("fxaa")])
-    d = chain.describe("rgba16float", "rgba8unorm")
-    assert [x.name for x in d] == ["tonemap", "fxaa", "srgb"]
-    assert [(x.input_format, x.output_format) for x in d] == [
+def test_chain_plan():
+    chain = PostChain([ToneMap(exposure=2), create_effect("fxaa")], fuse=False)
+    passes, _ = chain.plan("rgba16float", "rgba8unorm", (W, H))
+    assert [p.effect for p in passes] == ["tonemap", "fxaa", "srgb"]
+    assert [(p.input_format, p.output_format) for p in passes] == [
         ("rgba16float", "rgba16float"),
         ("rgba16float", "rgba16float"),
         ("rgba16float", "rgba8unorm"),
     ]
-    assert d[0].params == {"exposure": 2.0, "operator": "aces"}
-    assert "applies the sRGB curve" in d[2].line()
+    assert passes[0].steps[0].values == {"exposure": 2.0, "operator": "aces"}
+    assert "applies the sRGB curve" in passes[2].notes[0]
+    fused, _ = PostChain([ToneMap(exposure=2), create_effect("fxaa")]).plan("rgba16float", "rgba8unorm", (W, H))
+    assert [p.effect for p in fused] == ["tonemap", "fxaa+srgb"]
     required = {"tonemap", "srgb", "fxaa", "vignette", "grayscale", "sepia", "sharpen"}
     assert set(effect_names()) == set(EFFECTS) >= required

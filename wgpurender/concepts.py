@@ -158,7 +158,7 @@ CONCEPTS: list[Concept] = [
         _raw("descriptors:binding", "descriptors:create_set_layout", "stages.textured:Textured._setup_descriptors"),
         ("device.create_bind_group_layout(entries=)", "GPURenderPipeline.get_bind_group_layout (layout 'auto')"),
         _wgpu("stages.cube3d:_uniform_layout", "stages.textured:TexturedPipelines.__init__",
-              "post.base:PostEffect._layout_entries"),
+              "post.passes:PlannedPass._entries"),
         "An entry says more than a descriptor type: a texture's sample type (filterable float or not) and a "
         "buffer's min_binding_size and has_dynamic_offset. No combined image sampler type, no immutable "
         "samplers, no descriptor arrays (descriptorCount > 1) without native features.",
@@ -244,13 +244,14 @@ CONCEPTS: list[Concept] = [
              "renderpass:into_pass", "renderpass:out_to_transfer", "scene.renderpass:create_scene_render_pass",
              "scene.frame:SceneFrame.record"),
         ("(none: one subpass per render pass)",),
-        _wgpu("post.chain:PostChain.run", "scene_render.frame:SceneRenderer.draw"),
+        _wgpu("post.chain:PostRunner.run", "post.shaders:pass_source", "scene_render.frame:SceneRenderer.draw"),
         "WebGPU cannot express subpasses (Metal and D3D12 have none): each step is its own render pass, and the "
-        "dependencies between passes are implied by their order in the encoder. The final scene shows the cost "
-        "in numbers: the raw path composes the whole post chain in one subpass, in float32 registers, where the "
-        "wgpu path stores the image in an rgba16float texture between effects (lavapipe rounds that store toward "
-        "zero); final_subpass.toml (tonemap -> vignette), 320x240: 2697 pixels off by 1/255, FLIP 0.00176, and "
-        "bit-identical once the raw shader rounds the same way (tests/test_vulkan_ref_scene.py).",
+        "dependencies between passes are implied by their order in the encoder. What a subpass chain gives, the "
+        "plan gets by fusing: consecutive per-pixel effects run as functions in one pass (post/shaders.py), in "
+        "float32 registers like the raw subpass; final_subpass.toml, 320x240: bit-identical to the raw path. "
+        "Unfused (render.post_fuse = false) the image goes through an rgba16float texture between effects "
+        "(lavapipe rounds that store toward zero): 2697 pixels off by 1/255, FLIP 0.00176, and bit-identical "
+        "once the raw shader rounds the same way (tests/test_vulkan_ref_scene.py).",
     ),
     Concept(
         "barriers with stage and access masks",
@@ -259,7 +260,7 @@ CONCEPTS: list[Concept] = [
         _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer",
              "textures:transition_level"),
         ("(none: inserted by wgpu)",),
-        _wgpu("textures:generate_mipmaps", "post.chain:PostChain.run"),
+        _wgpu("textures:generate_mipmaps", "post.chain:PostRunner.run"),
         "No barrier is ever written: wgpu inserts them between passes and copies from its usage tracking, with "
         "stage and access masks of its own choice. The cost: no control over how narrow a barrier is, no "
         "barriers inside a render pass.",
@@ -440,9 +441,9 @@ CONCEPTS: list[Concept] = [
         _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post", "scene.post:PostSubpass",
              "scene.support:unsupported"),
         ("(none: the previous pass's texture, sampled in a new pass)",),
-        _wgpu("post.base:PostEffect.encode", "post.chain:PostChain.run"),
+        _wgpu("post.passes:FragmentPass.encode", "post.chain:PostRunner.run"),
         "Cannot be expressed (no subpasses). The image goes through memory between passes, which a tiling GPU "
-        "would have kept on chip; in exchange an effect may read neighbouring pixels (post/base.py explains). "
+        "would have kept on chip; in exchange an effect may read neighbouring pixels (post/chain.py explains). "
         "The converse limits the raw path: subpassLoad reads only the fragment's own pixel, so its final scene "
         "refuses fxaa and sharpen with a UserError rather than draw a different image. An sRGB or float input "
         "attachment reads exactly like the wgpu path's texture load: each effect alone is bit-identical.",

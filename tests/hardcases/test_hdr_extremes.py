@@ -1,7 +1,7 @@
 """HDR extremes through the tone-mapping post effect: 0, denormals, 1e6, 1e20, 3.4e38 and inf stay finite and monotone.
 
 Input: one row of increasing radiances (grey, alpha 1) in an rgba32float or rgba16float texture (in rgba16float
-everything above 65504, 1e6 included, is stored as inf), through wgpurender.post.ToneMap (ACES fitted and Reinhard,
+everything above 65504, 1e6 included, is stored as inf), through the tonemap post effect (ACES fitted and Reinhard,
 exposure 0, 1 and 1e4) into rgba32float. Required, tolerance 0: every output finite and in [0, 1]; non-decreasing
 along the ramp; radiance >= 100 (and inf) maps to >= 0.99 at exposure 1 (a bright sun is white, not black);
 exposure 0 gives 0 everywhere, inf included.
@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wgpurender.post import ToneMap
+from wgpurender.post import PostChain, create_effect
 from wgpurender.targets import create_target, read_texture
 
 RAMP = np.array(
@@ -65,7 +65,7 @@ def _tonemap(ctx, source_format: str, **params) -> np.ndarray:
     )
     target = create_target(ctx, (width, 1), "rgba32float")
     encoder = ctx.device.create_command_encoder()
-    ToneMap(**params).encode(ctx.device, encoder, source, target)
+    PostChain([create_effect("tonemap", **params)]).run(ctx, encoder, source, target)
     ctx.queue.submit([encoder.finish()])
     return read_texture(ctx, target)[0, :, :3].astype(np.float64)
 

@@ -65,14 +65,18 @@ class _PassRunner:
 
 
 class EffectRunner(_PassRunner):
-    def __init__(self, ctx: GPUContext, effect, size: tuple[int, int], src_fmt: str, dst_fmt: str) -> None:
-        super().__init__(ctx, f"post-{effect.name}")
-        self.effect = effect
+    """One effect step (wgpurender.course.effects) as its own fragment pass."""
+
+    def __init__(self, ctx: GPUContext, step, size: tuple[int, int], src_fmt: str, dst_fmt: str) -> None:
+        from ..post import PostChain
+
+        super().__init__(ctx, f"post-{step.effect}")
+        self.chain = PostChain([step], intermediate_format=src_fmt)
         self.source = _source(ctx, size, src_fmt)
         self.target = create_target(ctx, size, dst_fmt)
 
     def encode_pass(self, encoder) -> None:
-        self.effect.encode(self.ctx.device, encoder, self.source, self.target)
+        self.chain.run(self.ctx, encoder, self.source, self.target)
 
 
 @dataclass(frozen=True)
@@ -138,25 +142,25 @@ class WgpuMsaaPostRunner(WgpuStageRunner):
     """wgpu's counterpart of the raw msaa-post stage: the msaa stage into an image, then grayscale."""
 
     def __init__(self, ctx: GPUContext, size: tuple[int, int], scene_format: str = "rgba8unorm-srgb") -> None:
-        from ..post import create_effect
+        from ..post import PostChain, create_effect
 
         super().__init__(ctx, "msaa", size)
         self.name = "msaa-post"
         self.scene = _source(ctx, size, scene_format)
-        self.effect = create_effect("grayscale", amount=1.0)
+        self.chain = PostChain([create_effect("grayscale", amount=1.0)], intermediate_format=scene_format)
 
     def encode(self, encoder) -> None:
         self.stage.draw(encoder, self.scene, self.t)
-        self.effect.encode(self.ctx.device, encoder, self.scene, self.target)
+        self.chain.run(self.ctx, encoder, self.scene, self.target)
 
 
 def bench_effects(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Result]:
-    from ..post import EFFECTS
+    from ..post import EFFECTS, create_effect
 
     out = []
-    for name, cls in sorted(EFFECTS.items()):
+    for name in sorted(EFFECTS):
         dst = "rgba8unorm" if name == "srgb" else "rgba8unorm-srgb"
-        runner = EffectRunner(ctx, cls(), size, "rgba16float", dst)
+        runner = EffectRunner(ctx, create_effect(name), size, "rgba16float", dst)
         out += measure(runner, frames).results("post-effects", name, "wgpu", size, note=f"rgba16float -> {dst}")
     return out
 

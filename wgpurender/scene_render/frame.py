@@ -123,12 +123,17 @@ class SceneRenderer:
 
 
 def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,
-                  msaa: int | None = None, use_immediates: bool | None = None) -> SceneRenderer:
-    """A renderer for a scene file, with the plan's size, output format and MSAA overridable."""
+                  msaa: int | None = None, use_immediates: bool | None = None,
+                  knobs: dict | None = None) -> SceneRenderer:
+    """A renderer for a scene file, with the plan's size, output format and MSAA overridable;
+    ``knobs``: plan knobs (:meth:`wgpurender.plan.RenderPlan.with_knobs`), e.g. ``{"post_fuse": False}``."""
     scene = load_scene(path)
     plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa)
+    knobs = dict(knobs or {})
     if use_immediates is not None:
-        plan = plan.with_knobs(immediates="on" if use_immediates else "off")
+        knobs["immediates"] = "on" if use_immediates else "off"
+    if knobs:
+        plan = plan.with_knobs(**knobs)
     return SceneRenderer(ctx, scene, plan)
 
 
@@ -144,7 +149,7 @@ def render_frame(ctx: GPUContext, renderer: SceneRenderer, target: wgpu.GPUTextu
 
 def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
                       msaa: int | None = None, t: float = 0.0, ctx: GPUContext | None = None, *,
-                      frames: int = 3, use_immediates: bool | None = None):
+                      frames: int = 3, use_immediates: bool | None = None, knobs: dict | None = None):
     """Render a scene file headless: a :class:`wgpurender.render.RenderResult` of the last of ``frames`` frames.
 
     The first frame pays for texture uploads, mip generation and shader compilation, so
@@ -153,7 +158,7 @@ def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt
     from ..render import RenderResult
 
     ctx = ctx or get_context()
-    renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates)
+    renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates, knobs=knobs)
     target = create_target(ctx, renderer.plan.size, renderer.plan.output_format,
                            usage=TARGET_USAGE | renderer.target_usage)
     pixels, frame_ms = None, 0.0

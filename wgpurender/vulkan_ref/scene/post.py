@@ -16,8 +16,8 @@ The effect list and parameters come from the plan (``plan.post_steps``: the GPU-
 wgpurender/course/effects.py, whatever passes the wgpu path groups them into); the kind numbers and
 the packing below are this path's own, so a parameter the two paths read differently shows up as an
 image difference in the cross-check. The chain is data: a uniform block (descriptor set 0, binding 1)
-lists the steps' kinds and parameters (uniforms.pack_chain); binding 0 is the INPUT_ATTACHMENT descriptor of the resolved
-scene image, in SHADER_READ_ONLY_OPTIMAL, written with vkUpdateDescriptorSets.
+lists the steps' kinds and parameters (uniforms.pack_chain); binding 0 is the INPUT_ATTACHMENT
+descriptor of the resolved scene image, in SHADER_READ_ONLY_OPTIMAL, written with vkUpdateDescriptorSets.
 """
 
 from __future__ import annotations
