@@ -189,7 +189,7 @@ def test_variant_without_normal_map_has_no_tangent_attribute(ctx, tmp_path):
     assert variant.vertex_attributes == ("position", "normal", "uv")
     source = _code(shader_source(variant, ctx.has("immediates")))
     assert "tangent" not in source and "@location(3)" not in source and "var normal_tex" not in source
-    from wgpurender.scene_render.layout import vertex_layout
+    from wgpurender.scene_render.shader_interface import vertex_layout
 
     layout = vertex_layout(variant)
     assert layout["array_stride"] == 4 * (3 + 3 + 2)

@@ -19,7 +19,6 @@ Pixel rules (also in the error messages):
 
 from __future__ import annotations
 
-import functools
 import math
 import os
 from dataclasses import dataclass, fields
@@ -31,6 +30,7 @@ from PIL import Image
 
 from .errors import UserError
 from .gpu import GPUContext
+from .gpu_cache import device_cache
 from .shaders import create_shader_module
 from .targets import read_texture
 
@@ -250,8 +250,12 @@ def upload_level(ctx: GPUContext, texture: wgpu.GPUTexture, pixels: np.ndarray, 
     )
 
 
-@functools.cache
 def _mipmap_pipeline(device: wgpu.GPUDevice, fmt: str) -> tuple[wgpu.GPURenderPipeline, wgpu.GPUBindGroupLayout]:
+    """Made once per device and format (the device's "mipmap-pipelines" cache: wgpurender/gpu_cache.py)."""
+    return device_cache(device, "mipmap-pipelines", 16).get(fmt, lambda: _make_mipmap_pipeline(device, fmt))
+
+
+def _make_mipmap_pipeline(device: wgpu.GPUDevice, fmt: str) -> tuple[wgpu.GPURenderPipeline, wgpu.GPUBindGroupLayout]:
     module = create_shader_module(device, "mipmap.wgsl")
     bgl = device.create_bind_group_layout(
         label="mipmap-src",
@@ -407,8 +411,12 @@ def anisotropic(n: int = MAX_ANISOTROPY) -> SamplerSpec:
     return SamplerSpec(max_anisotropy=n)
 
 
-@functools.cache
 def _cached_sampler(device: wgpu.GPUDevice, spec: SamplerSpec) -> wgpu.GPUSampler:
+    """One sampler per device and spec (the device's "samplers" cache: wgpurender/gpu_cache.py)."""
+    return device_cache(device, "samplers").get(spec, lambda: _make_sampler(device, spec))
+
+
+def _make_sampler(device: wgpu.GPUDevice, spec: SamplerSpec) -> wgpu.GPUSampler:
     return device.create_sampler(
         label="sampler",
         address_mode_u=spec.address_mode_u,

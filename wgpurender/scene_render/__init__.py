@@ -9,7 +9,8 @@ Public API:
   :func:`load_renderer` makes one from a file;
 - :func:`shader_source` ``(variant, immediates) -> str``: the specialised WGSL of a plan's variant.
 
-Modules, one idea each: ``layout`` (uniform structs, vertex layouts, the WGSL variant), ``resources``
+Modules, one idea each: ``shader_interface`` (what the shader and Python agree on: uniform structs, vertex
+layouts, bindings, the WGSL variant), ``resources``
 (meshes, buffers, textures, samplers), ``scene_pass`` (pipelines, UBOs, bind groups, the scene pass),
 ``frame`` (attachments, the post chain, a whole frame).
 
@@ -20,7 +21,7 @@ material (white, lit). Name a model's textures in a scene material (docs/scenes.
 """
 
 from .frame import SceneRenderer, load_renderer, render_frame, render_scene_file, scene_drawable_factory
-from .layout import shader_source
+from .shader_interface import shader_source
 
 __all__ = [
     "SceneRenderer",

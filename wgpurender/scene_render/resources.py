@@ -17,7 +17,7 @@ from ..gpu import GPUContext
 from ..mesh import Mesh, load_mesh
 from ..plan import Draw, RenderPlan
 from ..textures import Texture, create_sampler, create_texture
-from .layout import interleave
+from .shader_interface import interleave
 
 
 @dataclass(frozen=True)

@@ -19,12 +19,13 @@ import wgpu
 from .. import transforms as tf
 from ..errors import UserError
 from ..gpu import GPUContext
+from ..gpu_cache import GpuCache
 from ..plan import Draw, RenderPlan, ShaderVariant
 from ..scene import Scene
 from ..shaders import create_shader_module
 from ..stages.cube3d import _uniform_layout
 from ..uniforms import Struct
-from . import layout as L
+from . import shader_interface as L
 from .resources import SceneResources
 
 AMBIENT = (0.03, 0.03, 0.035)  # linear ambient radiance, times albedo: faces no light reaches are not black
@@ -85,9 +86,10 @@ class ScenePassRenderer:
         self.reverse_z = plan.reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (plan knob)
         self.uses_immediates = ctx.has("immediates") if use_immediates is None else bool(use_immediates)
         self.draws = plan.scene_pass.draws
-        self.pipelines: dict[tuple[str, str], wgpu.GPURenderPipeline] = {}
-        self._modules: dict[str, wgpu.GPUShaderModule] = {}
-        self._material_layouts: dict[str, wgpu.GPUBindGroupLayout | None] = {}
+        # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
+        self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
+        self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
+        self._material_layouts: GpuCache[tuple] = GpuCache("scene-material-layouts")
         if self.draws:
             self._setup_uniforms()
             self._setup_draws()
@@ -134,22 +136,23 @@ class ScenePassRenderer:
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
-        if variant.key not in self._material_layouts:
-            frag = wgpu.ShaderStage.FRAGMENT
-            entries = []
-            if not self.uses_immediates:
-                entries.append({"binding": L.MATERIAL_BINDING, "visibility": frag,
-                                "buffer": {"type": "uniform", "min_binding_size": L.material_struct(variant).size}})
-            if L.samples_textures(variant):
-                entries.append({"binding": L.SAMPLER_BINDING, "visibility": frag, "sampler": {"type": "filtering"}})
-            for feature, binding in L.TEXTURE_BINDINGS.items():
-                if feature in variant.flags:
-                    entries.append({"binding": binding, "visibility": frag,
-                                    "texture": {"sample_type": "float", "view_dimension": "2d"}})
-            self._material_layouts[variant.key] = (
-                self.ctx.device.create_bind_group_layout(label=f"material {variant.key}", entries=entries)
-                if entries else None)
-        return self._material_layouts[variant.key]
+        return self._material_layouts.get(variant.key, lambda: (self._make_material_layout(variant),))[0]
+
+    def _make_material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
+        frag = wgpu.ShaderStage.FRAGMENT
+        entries = []
+        if not self.uses_immediates:
+            entries.append({"binding": L.MATERIAL_BINDING, "visibility": frag,
+                            "buffer": {"type": "uniform", "min_binding_size": L.material_struct(variant).size}})
+        if L.samples_textures(variant):
+            entries.append({"binding": L.SAMPLER_BINDING, "visibility": frag, "sampler": {"type": "filtering"}})
+        for feature, binding in L.TEXTURE_BINDINGS.items():
+            if feature in variant.flags:
+                entries.append({"binding": binding, "visibility": frag,
+                                "texture": {"sample_type": "float", "view_dimension": "2d"}})
+        if not entries:
+            return None
+        return self.ctx.device.create_bind_group_layout(label=f"material {variant.key}", entries=entries)
 
     def _material_group(self, variant: ShaderVariant, draw: Draw, k: int) -> wgpu.GPUBindGroup | None:
         bgl = self.material_layout(variant)
@@ -168,35 +171,33 @@ class ScenePassRenderer:
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
 
     def shader_module(self, variant: ShaderVariant) -> wgpu.GPUShaderModule:
-        if variant.key not in self._modules:
-            code = L.shader_source(variant, self.uses_immediates)
-            self._modules[variant.key] = create_shader_module(self.ctx.device, L.SHADER, code)
-        return self._modules[variant.key]
+        return self._modules.get(variant.key, lambda: create_shader_module(
+            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates)))
 
     def pipeline(self, variant: ShaderVariant, front_face: str = "ccw") -> wgpu.GPURenderPipeline:
         """The pipeline of a variant in this plan's scene pass, made once per (variant key, winding)."""
-        key = (variant.key, front_face)
-        if key not in self.pipelines:
-            planned = next(p for p in self.plan.pipelines if p.variant.key == variant.key)
-            layouts = [self.camera_layout, self.object_layout]
-            material_bgl = self.material_layout(variant)
-            if material_bgl is not None:
-                layouts.append(material_bgl)
-            immediate_size = L.material_struct(variant).size if self.uses_immediates else 0
-            dev = self.ctx.device
-            pipeline_layout = dev.create_pipeline_layout(bind_group_layouts=layouts, immediate_size=immediate_size)
-            module = self.shader_module(variant)
-            self.pipelines[key] = dev.create_render_pipeline(
-                label=f"scene {variant.key}",
-                layout=pipeline_layout,
-                vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
-                primitive={"topology": "triangle-list", "front_face": front_face, "cull_mode": planned.cull_mode},
-                depth_stencil={"format": planned.depth_format, "depth_write_enabled": True,
-                               "depth_compare": planned.depth_compare},
-                multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
-                fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": planned.color_format}]},
-            )
-        return self.pipelines[key]
+        return self.pipelines.get((variant.key, front_face), lambda: self._make_pipeline(variant, front_face))
+
+    def _make_pipeline(self, variant: ShaderVariant, front_face: str) -> wgpu.GPURenderPipeline:
+        planned = next(p for p in self.plan.pipelines if p.variant.key == variant.key)
+        layouts = [self.camera_layout, self.object_layout]
+        material_bgl = self.material_layout(variant)
+        if material_bgl is not None:
+            layouts.append(material_bgl)
+        immediate_size = L.material_struct(variant).size if self.uses_immediates else 0
+        dev = self.ctx.device
+        pipeline_layout = dev.create_pipeline_layout(bind_group_layouts=layouts, immediate_size=immediate_size)
+        module = self.shader_module(variant)
+        return dev.create_render_pipeline(
+            label=f"scene {variant.key}",
+            layout=pipeline_layout,
+            vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
+            primitive={"topology": "triangle-list", "front_face": front_face, "cull_mode": planned.cull_mode},
+            depth_stencil={"format": planned.depth_format, "depth_write_enabled": True,
+                           "depth_compare": planned.depth_compare},
+            multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
+            fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": planned.color_format}]},
+        )
 
     # -- the pass ------------------------------------------------------------------
     def _write_camera(self, aspect: float) -> None:

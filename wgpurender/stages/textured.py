@@ -15,12 +15,12 @@ gets a gamma-correct mip chain on the GPU (wgpurender/textures.py).
 from __future__ import annotations
 
 import dataclasses
-import functools
 
 import numpy as np
 import wgpu
 
 from ..gpu import GPUContext
+from ..gpu_cache import device_cache
 from ..shaders import create_shader_module
 from ..textures import (
     BILINEAR,
@@ -192,9 +192,10 @@ class TexturedPipelines:
         return self.device.create_bind_group(layout=self.sampler_layout, entries=[{"binding": 0, "resource": sampler}])
 
 
-@functools.cache
 def textured_pipelines(device: wgpu.GPUDevice, fmt: str, sample_count: int = 1) -> TexturedPipelines:
-    return TexturedPipelines(device, fmt, sample_count)
+    """Made once per device, format and sample count (the device's cache, wgpurender/gpu_cache.py)."""
+    return device_cache(device, "textured-pipelines", 16).get(
+        (fmt, sample_count), lambda: TexturedPipelines(device, fmt, sample_count))
 
 
 def render_textured(
