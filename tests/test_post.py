@@ -292,9 +292,10 @@ def test_unknown_effect_and_parameter():
         create_effect("vignette", strength=3)
 
 
-def test_pipelines_cached_per_shader_and_format(ctx, hdr_image):
+def test_pipelines_cached_per_shader_and_format(ctx, hdr_image, monkeypatch):
     """Parameters live in a uniform buffer, not in the shader: a second chain of the same effects with other
     values makes no new pipeline (the device's "post-pipelines" cache hits); another target format does."""
+    monkeypatch.delattr(ctx.device, "_wgpurender_caches", raising=False)  # start from empty device caches
     run_chain(ctx, [ToneMap(exposure=1.0)], hdr_image)
     before = cache_stats(ctx.device)["post-pipelines"]
     run_chain(ctx, [ToneMap(exposure=3.0)], hdr_image)

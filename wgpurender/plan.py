@@ -114,7 +114,8 @@ class ScenePipeline:
     @property
     def key(self) -> str:
         depth = f"{self.depth_format} {self.depth_compare}" if self.depth_format else "no-depth"
-        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}"
+        winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
+        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}"
 
 
 @dataclass(frozen=True)
@@ -330,6 +331,11 @@ class RenderPlan:
         return self.knobs.reverse_z
 
     @property
+    def mipmap_formats(self) -> tuple[str, ...]:
+        """Formats of the textures that get mip chains: one mip-generation render pipeline each (mipmap.wgsl)."""
+        return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps))
+
+    @property
     def post_steps(self) -> tuple[EffectStep, ...]:
         """Every effect step of the chain in order, whatever the passes (what the raw path's subpass composes)."""
         return tuple(s for p in self.post_passes for s in p.steps)
@@ -360,6 +366,9 @@ class RenderPlan:
     @property
     def vertex_attributes(self) -> frozenset[str]:
         return frozenset(a for v in self.variants for a in v.vertex_attributes)
+
+    def pipeline(self, key: str) -> ScenePipeline:
+        return next(p for p in self.pipelines if p.key == key)
 
     def variant(self, key: str) -> ShaderVariant:
         return next(v for v in self.variants if v.key == key)
@@ -405,6 +414,9 @@ class RenderPlan:
             mips = "with mipmaps" if t.mipmaps else "no mipmaps"
             shown = os.path.relpath(t.path, self.scene_path.parent)
             out.append(f"  {shown} as {t.format}, {mips} <- {'; '.join(t.used_by)}")
+        if self.mipmap_formats:
+            out.append("mipmap pipelines: " + ", ".join(self.mipmap_formats)
+                       + " (one render pipeline per format generates every mip chain of that format)")
         out.append("samplers:" if self.samplers else "samplers: none")
         for s in self.samplers:
             spec = s.spec
@@ -448,6 +460,11 @@ def _explain_pass(number: int, p: ScenePass | PostPass, size: tuple[int, int]) -
 # ---------------------------------------------------------------------------
 # Building the plan
 # ---------------------------------------------------------------------------
+
+
+def _determinant3(matrix) -> float:
+    (a, b, c), (d, e, f), (g, h, i) = (tuple(row[:3]) for row in matrix[:3])
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
 
 
 def _material_label(m: Material) -> str:
@@ -719,7 +736,10 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         seen_materials.add(id(mat))
         variant = material_variant(mat, directional, point, srgb_output, notes if first_time else [])
         variants.setdefault(variant.key, variant)
-        pipeline = ScenePipeline(variant, scene_fmt, msaa, knobs.depth_format, depth_compare=depth_compare)
+        # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
+        front_face = "cw" if _determinant3(model.transform.matrix) < 0 else "ccw"
+        pipeline = ScenePipeline(variant, scene_fmt, msaa, knobs.depth_format, front_face=front_face,
+                                 depth_compare=depth_compare)
         pipelines.setdefault(pipeline.key, pipeline)
         sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
         spec = mat.sampler.spec() if sampled else None

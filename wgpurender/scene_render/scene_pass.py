@@ -20,7 +20,7 @@ from .. import transforms as tf
 from ..errors import UserError
 from ..gpu import GPUContext
 from ..gpu_cache import GpuCache
-from ..plan import Draw, RenderPlan, ShaderVariant
+from ..plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
 from ..scene import Scene
 from ..shaders import create_shader_module
 from ..stages.cube3d import _uniform_layout
@@ -129,8 +129,7 @@ class ScenePassRenderer:
             data = material.pack(material_values(self.scene, draw, variant))
             if self.material_buffer is not None:
                 self.ctx.queue.write_buffer(self.material_buffer, k * self.material_stride, data)
-            mirror = np.linalg.det(np.array(draw.transform)[:3, :3]) < 0
-            pipeline = self.pipeline(variant, "cw" if mirror else "ccw")
+            pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
             group = self._material_group(variant, draw, k)
             self.draw_state.append((draw, pipeline, group, data, self.resources.mesh_buffers(draw)))
 
@@ -174,12 +173,12 @@ class ScenePassRenderer:
         return self._modules.get(variant.key, lambda: create_shader_module(
             self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates)))
 
-    def pipeline(self, variant: ShaderVariant, front_face: str = "ccw") -> wgpu.GPURenderPipeline:
-        """The pipeline of a variant in this plan's scene pass, made once per (variant key, winding)."""
-        return self.pipelines.get((variant.key, front_face), lambda: self._make_pipeline(variant, front_face))
+    def pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
+        """A pipeline the plan lists (a variant, formats, winding, depth test), made once."""
+        return self.pipelines.get(planned.key, lambda: self._make_pipeline(planned))
 
-    def _make_pipeline(self, variant: ShaderVariant, front_face: str) -> wgpu.GPURenderPipeline:
-        planned = next(p for p in self.plan.pipelines if p.variant.key == variant.key)
+    def _make_pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
+        variant = planned.variant
         layouts = [self.camera_layout, self.object_layout]
         material_bgl = self.material_layout(variant)
         if material_bgl is not None:
@@ -192,7 +191,7 @@ class ScenePassRenderer:
             label=f"scene {variant.key}",
             layout=pipeline_layout,
             vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
-            primitive={"topology": "triangle-list", "front_face": front_face, "cull_mode": planned.cull_mode},
+            primitive={"topology": "triangle-list", "front_face": planned.front_face, "cull_mode": planned.cull_mode},
             depth_stencil={"format": planned.depth_format, "depth_write_enabled": True,
                            "depth_compare": planned.depth_compare},
             multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
