@@ -220,7 +220,7 @@ def test_fusion_groups_per_pixel_effects_after_a_neighbourhood_one(make):
     assert [s.effect for s in plan.post_steps] == list(chain)
     assert names(plan).count("post_a") == 1 and "post_b" not in names(plan)
     text = plan.explain()
-    assert "fused: tonemap, grayscale read only the pixel they write" in text
+    assert "fused: tonemap, grayscale each read only the pixel they write" in text
     assert "on the pixel sharpen just computed" in text
     assert "post_fuse: on <- render.post_fuse = true" in text
     unfused = plan.with_knobs(post_fuse=False)

@@ -567,7 +567,8 @@ def _fusion_text(group: tuple[EffectStep, ...]) -> str:
         return ""
     pixel = [s.effect for s in group if s.spec.fusable]
     head = group[0] if not group[0].spec.fusable else None
-    why = f"{', '.join(pixel)} read only the pixel they write, so they run as functions in one shader"
+    verb = "reads only the pixel it writes" if len(pixel) == 1 else "each read only the pixel they write"
+    why = f"{', '.join(pixel)} {verb}, so {'it runs as a function' if len(pixel) == 1 else 'they run as functions'} in one shader"
     if head is not None:
         why += f" on the pixel {head.effect} just computed ({head.effect} reads neighbours, so it starts the pass)"
     return why + f"; saves {len(group) - 1} write and read of the whole image"
@@ -794,9 +795,11 @@ def plan_scene_file(path: str | Path, **overrides) -> RenderPlan:
     return build_plan(load_scene(path), **overrides)
 
 
-def explain_scene(path: str | Path, **overrides) -> str:
-    """The plan of a scene file as text (what ``render SCENE.toml --explain`` prints)."""
-    return plan_scene_file(path, **overrides).explain()
+def explain_scene(path: str | Path, adapter: AdapterFacts | None = None, **overrides) -> str:
+    """The plan of a scene file as text (what ``render SCENE.toml --explain`` prints); with ``adapter``, the
+    "auto" knobs are decided for it, as the renderer decides them, so the text lists what it would create."""
+    plan = plan_scene_file(path, **overrides)
+    return (plan.with_knobs(adapter=adapter) if adapter is not None else plan).explain()
 
 
 def main(argv: list[str] | None = None) -> int:

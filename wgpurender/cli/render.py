@@ -30,7 +30,8 @@ def run(args) -> int:
             raise UserError(f"--explain needs a scene file (.toml), got stage {args.target!r}")
         from ..plan import explain_scene
 
-        print(explain_scene(args.target, size=args.size, output_format=args.format, msaa=args.msaa), end="")
+        print(explain_scene(args.target, adapter=_adapter(args.backend), size=args.size, output_format=args.format,
+                            msaa=args.msaa), end="")
         if not args.output:
             return 0
     if not args.output:
@@ -42,3 +43,15 @@ def run(args) -> int:
     print(f"adapter: {result.adapter}")
     print(f"frame time: {result.frame_ms:.2f} ms")
     return 0
+
+
+def _adapter(backend):
+    """The adapter the renderer would use, for the plan's "auto" knobs; None (and a plan that says so) without one."""
+    from ..errors import UserError
+    from ..gpu import get_context
+    from ..scene_render.frame import adapter_facts
+
+    try:
+        return adapter_facts(get_context(backend))
+    except UserError:
+        return None
