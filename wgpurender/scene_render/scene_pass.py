@@ -199,7 +199,7 @@ class ScenePassRenderer:
         self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
         self._camera_key = key
 
-    def encode(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
+    def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
                timestamp_writes: dict | None = None) -> None:
         """Write the camera UBO for this frame and record the scene pass."""
         depth = None
