@@ -12,7 +12,6 @@ import base64
 import json
 import os
 import struct
-import tempfile
 import urllib.parse
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import UserError
+from .safe_write import atomic_write
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
 CHUNK_JSON = 0x4E4F534A
@@ -257,16 +257,4 @@ def write_glb(
     total = 12 + 8 + len(text) + 8 + len(binary)
     out = struct.pack("<III", GLB_MAGIC, 2, total)
     out += struct.pack("<II", len(text), CHUNK_JSON) + text + struct.pack("<II", len(binary), CHUNK_BIN) + binary
-    return _atomic_write(Path(path), out)
-
-
-def _atomic_write(path: Path, data: bytes) -> Path:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return atomic_write(Path(path), out)
