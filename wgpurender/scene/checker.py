@@ -6,8 +6,12 @@ import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ..errors import UserError
 from .toml_locator import KeyLines, KeyPath, format_path
+
+FLOAT32_MAX = float(np.finfo(np.float32).max)
 
 
 def _type_name(value: Any) -> str:
@@ -44,6 +48,9 @@ class Checker:
                open_lo: bool = False) -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise self.error(key, f"{format_path(key)} must be a number, got {_type_name(value)} {value!r}")
+        if abs(value) > FLOAT32_MAX:
+            raise self.error(key, f"{format_path(key)} = {value:g} is beyond float32's range (+-{FLOAT32_MAX:.4g}), "
+                                  "the type the GPU gets; use a smaller number")
         if value < lo or value > hi or (open_lo and value == lo):
             low = f"> {lo}" if open_lo else f">= {lo}"
             bounds = low if hi == math.inf else f"in [{lo}, {hi}]"
@@ -83,6 +90,9 @@ class Checker:
 
     def file(self, value: Any, key: KeyPath, what: str) -> Path:
         written = self.string(value, key)
+        if any(not ch.isprintable() for ch in written):
+            raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
+                                  "(NUL, newline, ...): give a plain file path")
         path = (self.folder / written).resolve()
         if not path.is_file():
             raise self.error(

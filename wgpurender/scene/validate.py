@@ -65,11 +65,39 @@ def _camera(c: _Checker, data: Any) -> Camera:
         raise c.error(key + ("far",), f"camera.far ({cam.far}) must be greater than camera.near ({cam.near})")
     if cam.eye == cam.target:
         raise c.error(key + ("target",), "camera.eye and camera.target are the same point")
+    _check_view(c, cam)
+    return cam
+
+
+DEPTH_STEPS_EXPONENT = 20  # near >= distance * 2^-20: the target keeps 16 float32 depth steps below 1.0
+
+
+def _check_view(c: _Checker, cam: Camera) -> None:
+    """The camera's consequences, in the float32 the GPU gets: a view direction and an up vector that are not
+    parallel, matrices that stay finite, and a near plane the depth buffer can resolve at the target."""
+    key = ("camera",)
+    eye, target, up = (np.array(v, np.float64) for v in (cam.eye, cam.target, cam.up))
+    forward = (target - eye) / np.abs(target - eye).max()  # scaled first: no overflow in the norm
+    forward /= np.linalg.norm(forward)
+    up_dir = up / np.abs(up).max()
+    up_dir /= np.linalg.norm(up_dir)
+    if np.linalg.norm(np.cross(forward, up_dir)) < 1e-6:
+        raise c.error(key + ("up",), f"camera.up {list(cam.up)} is parallel to the view direction (eye to target "
+                                     f"{list(np.round(forward, 6))}): choose an up vector across it, e.g. [0, 0, 1]")
     try:
-        cam.view()
+        view = cam.view()
+        clip = cam.projection(1.0) @ view
     except ValueError as err:
         raise c.error(key + ("up",), f"camera: {err}") from None
-    return cam
+    if not (np.all(np.isfinite(view.astype(np.float32))) and np.all(np.isfinite(clip.astype(np.float32)))):
+        raise c.error(key + ("eye",), f"camera: eye {list(cam.eye)} and target {list(cam.target)} give a view "
+                                      "matrix beyond float32's range; bring them closer to the origin")
+    distance = float(np.linalg.norm((target - eye) / 2.0**64)) * 2.0**64
+    least = distance * 2.0**-DEPTH_STEPS_EXPONENT
+    if cam.near < least:
+        raise c.error(key + ("near",), f"camera.near = {cam.near:g} is too small for the depth buffer: at the "
+                                       f"target's distance ({distance:.6g}) the depth rounds to 1.0 in float32, "
+                                       f"so nothing would be drawn; use near >= {least:.3g}")
 
 
 def _sampler(c: _Checker, data: Any, key: KeyPath) -> SamplerSettings:
@@ -275,7 +303,7 @@ def _post(c: _Checker, data: Any) -> tuple[PostStep, ...]:
         try:
             effect = cls(**params)
         except UserError as err:
-            bad = next((k for k in params if k in specs), None)
+            bad = _culprit(cls, params)
             raise c.error(key + ((bad,) if bad else ()), f"post[{i}]: {err}") from None
         steps.append(PostStep(index=i, effect=name, params=tuple(effect.params.items()), written=tuple(params)))
     try:
@@ -283,3 +311,15 @@ def _post(c: _Checker, data: Any) -> tuple[PostStep, ...]:
     except UserError as err:
         raise c.error(("post", len(steps) - 1), str(err)) from None
     return tuple(steps)
+
+
+def _culprit(cls, params: dict) -> str | None:
+    """The first parameter that the effect refuses on its own (so the error points at its line)."""
+    for name, value in params.items():
+        try:
+            cls(**{name: value})
+        except UserError:
+            return name
+        except TypeError:
+            continue
+    return next(iter(params), None)
