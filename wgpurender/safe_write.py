@@ -117,7 +117,10 @@ def atomic_write(path: str | os.PathLike, data: bytes | Callable[[], bytes]) -> 
     ``data`` may be a function producing the bytes; it runs before the temp file is created.
     """
     path = output_target(path)
-    payload = data() if callable(data) else data
+    try:
+        payload = data() if callable(data) else data
+    except OSError as err:
+        raise UserError(f"cannot write {path}: {err.strerror or err}") from None
     sweep_stale(path.parent)
     tmp = path.parent / f".{path.name}.wgpurender-{os.getpid()}.tmp"
     _live.add(tmp)
