@@ -1,4 +1,5 @@
-"""Shared test set-up: the GPU context, and failing any test that triggers a GPU validation message.
+"""Shared test set-up: the GPU context, failing any test that triggers a GPU validation message, the
+driver class that picks the reference tolerances, and ``--regenerate-references``.
 
 The Vulkan validation layer (apt: vulkan-validationlayers) is switched on through
 $WGPURENDER_VALIDATION before the first adapter is made; its messages arrive on
@@ -27,6 +28,37 @@ class _ValidationCollector(logging.Handler):
         text = record.getMessage()
         if "VALIDATION" in text or "Validation Error" in text:
             self.messages.append(text)
+
+
+def pytest_addoption(parser) -> None:
+    parser.addoption(
+        "--regenerate-references", action="store_true", default=False,
+        help="re-render assets/reference/*.png with the raw-Vulkan path (never the wgpu path) before the tests, "
+             "and print per image how many pixels changed and by how much",
+    )
+
+
+def pytest_sessionstart(session) -> None:
+    """--regenerate-references: the raw path re-renders the committed references, then the tests run."""
+    if not session.config.getoption("--regenerate-references"):
+        return
+    from wgpurender.vulkan_ref.make_references import regenerate
+
+    reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+    lines = [change.describe() for change in regenerate()]
+    session.config._regenerated_references = lines
+    if reporter is not None:
+        reporter.write_line("regenerated references (raw-Vulkan path):")
+        for line in lines:
+            reporter.write_line(f"  {line}")
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
+    lines = getattr(config, "_regenerated_references", None)
+    if lines:
+        terminalreporter.section("regenerated references (raw-Vulkan path)")
+        for line in lines:
+            terminalreporter.write_line(line)
 
 
 _collector = _ValidationCollector()

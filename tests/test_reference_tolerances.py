@@ -124,3 +124,41 @@ def test_calibration_rule():
     assert calibrate(spread, "lavapipe") == {"max_abs": 2, "changed": 0.025, "flip_mean": 0.002}
     gpu = calibrate([Metrics(89, 0.12, 9216, 0.013, 76800)], "gpu")
     assert gpu == {"max_abs": 135, "changed": 0.24, "flip_mean": 0.026}
+
+
+# -- pytest --regenerate-references ---------------------------------------------------------------------------------
+
+def test_regenerate_references_uses_the_raw_path_and_reports_changes(tmp_path):
+    """`pytest --regenerate-references` in a copy of the repository: the raw path rewrites a spoiled reference
+    and prints, per image, the pixels changed and the largest difference; the wgpu path is never imported."""
+    import shutil
+    import subprocess
+    import sys
+
+    repo = REFERENCE_DIR.parent.parent
+    copy = tmp_path / "repo"
+    for part in ("wgpurender", "tests", "assets", "shaders_glsl", "shaders_wgsl", "pyproject.toml"):
+        src = repo / part
+        if src.is_dir():
+            shutil.copytree(src, copy / part, ignore=shutil.ignore_patterns("__pycache__"))
+        elif src.is_file():
+            shutil.copy2(src, copy / part)
+    spoiled = copy / "assets" / "reference" / "triangle.png"
+    pixels = load_png(spoiled).copy()
+    pixels[10:20, 10:30, :3] = 255 - pixels[10:20, 10:30, :3]  # 200 pixels inverted
+    from wgpurender.imageio import save_png
+
+    save_png(spoiled, pixels)
+    probe = copy / "tests" / "test_probe.py"
+    probe.write_text(  # the regeneration made no wgpu device: the wgpu path drew nothing
+        "import sys\n\ndef test_probe():\n    gpu = sys.modules.get('wgpurender.gpu')\n"
+        "    assert gpu is None or gpu.get_context.cache_info().currsize == 0\n")
+    env = {**__import__("os").environ, "PYTHONPATH": str(copy)}
+    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "--regenerate-references",
+                          "tests/test_probe.py"], cwd=copy, env=env, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    line = next(ln for ln in run.stdout.splitlines() if ln.strip().startswith("triangle:"))
+    changed, max_diff = int(line.split()[1]), int(line.split("max difference ")[1].split("/")[0])
+    assert 200 <= changed <= 200 + 0.03 * 256 * 192 and max_diff > 200, line  # the spoiled block, + CPU spread
+    assert "scene_final_subpass:" in run.stdout and "msaa-post:" in run.stdout
+    assert np.array_equal(load_png(spoiled), _fresh("triangle"))
