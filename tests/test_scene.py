@@ -220,7 +220,7 @@ def test_unknown_key_names_file_line_and_valid_keys(project):
     msg = error_of(path)
     assert msg.startswith(f"{path}:{line_of(path, 'sizee')}: ")
     assert "unknown key 'sizee' in render" in msg
-    assert "valid keys are clear_color, hdr, msaa, output_format, size" in msg
+    assert "valid keys are clear_color, hdr, msaa, output_format, post_fuse, post_path, size" in msg
 
 
 def test_unknown_key_in_second_model_inline_table(project):

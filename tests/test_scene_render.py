@@ -79,11 +79,13 @@ def test_final_scene_plan_is_what_gets_built(ctx):
     renderer = SceneRenderer(ctx, *_scene_and_plan(FINAL, size=SMALL))
     _render(ctx, renderer)
     plan = renderer.plan
-    assert set(renderer.attachments) == {"msaa_color", "depth", "scene_color"}
+    assert set(renderer.attachments) == {"msaa_color", "depth", "scene_color", "post_a", "fxaa_mask"}
     assert renderer.attachments["msaa_color"].sample_count == 4
     assert renderer.attachments["scene_color"].format == "rgba16float"
-    assert [p.effect for p in plan.post_passes] == ["tonemap", "fxaa", "vignette"]
-    assert {key for key, _ in renderer.scene_pass.pipelines} == {v.key for v in plan.variants}
+    assert renderer.attachments["fxaa_mask"].format == "depth16unorm"
+    assert [p.effect for p in plan.post_passes] == ["tonemap", "fxaa+vignette"]  # vignette fused into fxaa's pass
+    assert [s.effect for s in plan.post_steps] == ["tonemap", "fxaa", "vignette"]
+    assert len(renderer.scene_pass.pipelines) == len(plan.pipelines) == len(plan.variants) == 1
 
 
 def _scene_and_plan(path, **overrides):
@@ -247,8 +249,9 @@ def test_immediates_and_uniform_fallback_give_the_same_image(ctx, tmp_path):
         pytest.skip("adapter has no immediates: only the fallback can run")
     scene = parse_scene(LIT_CUBE, tmp_path / "scene.toml")
     plan = build_plan(scene)
-    with_immediates = _render(ctx, SceneRenderer(ctx, scene, plan, use_immediates=True))
-    fallback_renderer = SceneRenderer(ctx, scene, plan, use_immediates=False)
+    with_immediates = _render(ctx, SceneRenderer(ctx, scene, plan.with_knobs(immediates="on")))
+    fallback_renderer = SceneRenderer(ctx, scene, plan.with_knobs(immediates="off"))
+    assert "immediates: off <- knob immediates" in fallback_renderer.plan.explain()
     assert fallback_renderer.scene_pass.material_buffer is not None
     assert np.array_equal(with_immediates, _render(ctx, fallback_renderer))
 
@@ -290,4 +293,5 @@ def test_explain_prints_the_plan_without_rendering(capsys, tmp_path):
     code = main(["render", str(FINAL), "--explain", "--size", "64x48"])
     out = capsys.readouterr().out
     assert code == 0
-    assert "output: 64x48 rgba8unorm-srgb, msaa 4" in out and "post vignette" in out
+    assert "output: 64x48 rgba8unorm-srgb, msaa 4" in out and "+ vignette(strength=0.45" in out
+    assert "fxaa_mask: depth16unorm" in out and "fxaa+vignette fragment fs_mark" in out

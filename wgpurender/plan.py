@@ -568,7 +568,8 @@ def _fusion_text(group: tuple[EffectStep, ...]) -> str:
     pixel = [s.effect for s in group if s.spec.fusable]
     head = group[0] if not group[0].spec.fusable else None
     verb = "reads only the pixel it writes" if len(pixel) == 1 else "each read only the pixel they write"
-    why = f"{', '.join(pixel)} {verb}, so {'it runs as a function' if len(pixel) == 1 else 'they run as functions'} in one shader"
+    runs = "it runs as a function" if len(pixel) == 1 else "they run as functions"
+    why = f"{', '.join(pixel)} {verb}, so {runs} in one shader"
     if head is not None:
         why += f" on the pixel {head.effect} just computed ({head.effect} reads neighbours, so it starts the pass)"
     return why + f"; saves {len(group) - 1} write and read of the whole image"

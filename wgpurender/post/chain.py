@@ -56,6 +56,9 @@ class PostRunner:
         self.passes = tuple(passes)
         self.runners: list[FragmentPass | ComputePass] = [planned_pass(ctx.device, p) for p in self.passes]
 
+    def __len__(self) -> int:
+        return len(self.passes)
+
     def __bool__(self) -> bool:
         return bool(self.passes)
 
