@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .course.effects import EffectStep, group_passes, step_notes, steps_for_target
+from .course.shading import material_factors
 from .errors import UserError
 from .scene import Material, Scene, load_scene
 
@@ -148,6 +149,13 @@ class Draw:
     sampler: object | None = None  # SamplerSpec when any texture is sampled
     transform: tuple[tuple[float, ...], ...] = ()
     material_label: str = ""
+    factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
+
+    def factors_text(self) -> str:
+        def show(v) -> str:
+            return "(" + ", ".join(f"{x:g}" for x in v) + ")" if isinstance(v, tuple) else f"{v:g}"
+
+        return ", ".join(f"{k}={show(v)}" for k, v in self.factors)
 
 
 @dataclass(frozen=True)
@@ -441,7 +449,9 @@ def _explain_pass(number: int, p: ScenePass | PostPass, size: tuple[int, int]) -
         depth = f", depth attachment {p.depth}" if p.depth else ""
         clear = ", ".join(f"{c:g}" for c in p.clear_color)
         lines = [f"  {number}. scene: draw {len(p.draws)} model(s) into {into}{depth}, clear ({clear})"]
-        lines.extend(f"       {d.label}: {d.material_label}, variant {d.variant_key}" for d in p.draws)
+        for d in p.draws:
+            lines.append(f"       {d.label}: {d.material_label}, variant {d.variant_key}")
+            lines.append(f"         material factors: {d.factors_text()}")
         return lines
     steps = " + ".join(s.label() for s in p.steps)
     into = f"{p.output} ({p.output_format})" + (f", copied into {p.copy_to}" if p.copy_to else "")
@@ -544,10 +554,12 @@ def _resolve_immediates(knobs: Knobs) -> tuple[str, str]:
     if knobs.immediates != "auto":
         return knobs.immediates, "knob immediates"
     if knobs.adapter is None:
-        return "auto", "used when the device offers the 'immediates' feature, else a uniform buffer per draw"
+        return "auto", ("material factors pushed as immediates when the device offers the 'immediates' feature, "
+                        "else read from a uniform buffer slice per draw")
     on = "immediates" in knobs.adapter.features
-    return ("on" if on else "off"), ("the device offers 'immediates' (push constants)" if on else
-                                     "the device lacks 'immediates': material factors come from a uniform buffer")
+    return ("on" if on else "off"), ("the device offers 'immediates': material factors are pushed per draw" if on
+                                     else "the device lacks 'immediates': material factors come from a uniform "
+                                     "buffer slice per draw")
 
 
 def _scene_format(scene: Scene, knobs: Knobs, has_post: bool) -> tuple[str, str]:
@@ -760,8 +772,10 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
                 samplers[spec] = SamplerUse(spec, (f"{label} sampler",))
             elif f"{label} sampler" not in old.used_by:
                 samplers[spec] = SamplerUse(spec, old.used_by + (f"{label} sampler",))
+        factors = material_factors(tuple(mat.albedo_color), mat.roughness, "lighting" in variant.flags,
+                                   "roughness_map" in variant.flags)
         draws.append(Draw(model.index, model.path, model.label, mat.name, variant.key, pipeline.key, sampled, spec,
-                          model.transform.matrix, label))
+                          model.transform.matrix, label, tuple(factors.items())))
 
     scene_pass = ScenePass(color_target, scene_target if msaa > 1 else None, "depth" if scene.models else None,
                            r.clear_color, tuple(draws), depth_clear=0.0 if knobs.reverse_z else 1.0)

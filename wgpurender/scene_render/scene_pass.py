@@ -19,7 +19,7 @@ import wgpu
 from .. import transforms as tf
 from ..bind_groups import uniform_group, uniform_layout
 from ..course.formats import map_format
-from ..course.shading import AMBIENT, REVERSE_Z, material_factors
+from ..course.shading import AMBIENT, REVERSE_Z
 from ..errors import UserError
 from ..gpu import GPUContext
 from ..gpu_cache import GpuCache
@@ -59,8 +59,8 @@ def object_values(draw: Draw) -> dict:
 
 
 def material_values(scene: Scene, draw: Draw, variant: ShaderVariant) -> dict:
-    mat = scene.models[draw.model_index].material
-    return material_factors(mat.albedo_color, mat.roughness, L.is_lit(variant), "roughness_map" in variant.flags)
+    """The draw's Material values: the plan's factors (course.shading.material_factors, decided there)."""
+    return dict(draw.factors)
 
 
 class ScenePassRenderer:
