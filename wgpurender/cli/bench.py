@@ -17,6 +17,7 @@ def register(subparsers) -> None:
     suites = p.add_subparsers(dest="suite", required=True, metavar="SUITE")
     _register_perf(suites)
     _register_accuracy(suites)
+    _register_roofline(suites)
 
 
 def _register_perf(suites) -> None:
@@ -92,3 +93,44 @@ def _register_accuracy(suites) -> None:
                    help="only the one-knob-at-a-time sweeps")
     add_backend_arg(p)
     p.set_defaults(func=run)
+
+
+def _register_roofline(suites) -> None:
+    """``wgpurender bench post-roofline``: wgpurender/bench/post_roofline.py runs it."""
+    p = suites.add_parser(
+        "post-roofline",
+        help="every post pass: bytes moved, time, GB/s and % of a copy moving the same bytes",
+        description="Time each post pass of a scene (fragment and compute path, fused and unfused) with GPU "
+        "timestamps against a compute copy of the same bytes measured in the same run; write "
+        "post-roofline.md and post-roofline.csv.",
+    )
+    p.add_argument("scene", nargs="?", type=Path, default=Path("assets/scenes/final.toml"), metavar="SCENE",
+                   help="scene file with a post chain (default assets/scenes/final.toml)")
+    p.add_argument("--size", type=size_arg, default=(3840, 2160), metavar="WxH", help="default 3840x2160")
+    p.add_argument("--frames", type=int, default=20, metavar="N", help="timed frames per variant (default 20)")
+    p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
+                   help="where results go (default ./bench-results)")
+    add_backend_arg(p)
+    p.set_defaults(func=_run_roofline)
+
+
+def _run_roofline(args) -> int:
+    from ..bench.perf import command_line
+    from ..bench.post_roofline import csv_text, markdown, run_roofline
+    from ..errors import UserError
+    from ..gpu import get_context
+    from ..safe_write import atomic_write
+
+    if args.frames < 1:
+        raise UserError("--frames must be at least 1")
+    ctx = get_context(args.backend)
+    if not ctx.has("timestamp-query"):
+        raise UserError(f"{ctx.describe()} has no timestamp queries: post-roofline times passes with them")
+    rows = run_roofline(ctx, args.scene, args.size, args.frames)
+    text = markdown(rows, ctx, args.scene, args.size, args.frames, command_line())
+    args.out.mkdir(parents=True, exist_ok=True)
+    atomic_write(args.out / "post-roofline.md", text.encode())
+    atomic_write(args.out / "post-roofline.csv", csv_text(rows).encode())
+    print(text, end="")
+    print(f"wrote {args.out / 'post-roofline.md'} and {args.out / 'post-roofline.csv'}")
+    return 0

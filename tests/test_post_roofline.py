@@ -1,0 +1,34 @@
+"""``wgpurender bench post-roofline`` runs on any adapter and reports the bytes each pass must move.
+
+Bytes are checked against formulas written here: final.toml at 64x48, tonemap reads and writes rgba16float
+(8 bytes a pixel each way); the fused fxaa+vignette fragment pass reads rgba16float, writes rgba8unorm-srgb
+(4) and writes and tests FXAA's depth16unorm mask (2 + 2). Times are only checked to be measured (positive):
+speed is for benchmarks, not tests.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from wgpurender.bench.post_roofline import markdown, run_roofline
+
+FINAL = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "final.toml"
+W, H = 64, 48
+
+
+def test_roofline_rows_cover_every_variant_with_the_planned_bytes(ctx):
+    if not ctx.has("timestamp-query"):
+        pytest.skip("no timestamp queries on this adapter")
+    rows = run_roofline(ctx, FINAL, (W, H), frames=1)
+    by = {(r.variant, r.effects): r for r in rows}
+    assert set(v for v, _ in by) == {"fragment, unfused", "fragment, fused", "compute, unfused", "compute, fused"}
+    assert by[("fragment, unfused", "tonemap")].bytes_moved == W * H * (8 + 8)
+    assert by[("fragment, fused", "fxaa+vignette")].bytes_moved == W * H * (8 + 2 + 4 + 2)
+    # on the compute path an -srgb output is written as rgba8unorm scratch, then copied (4 + 4 bytes, untimed)
+    fused_compute = by[("compute, fused", "fxaa+vignette")]
+    assert (fused_compute.bytes_moved, fused_compute.copy_bytes) == (W * H * (8 + 4), W * H * (4 + 4))
+    assert all(r.ms > 0 and r.copy_ms > 0 and r.chain_wall_ms > 0 for r in rows)
+    text = markdown(rows, ctx, FINAL, (W, H), 1, "test")
+    assert "| fragment, fused | fxaa+vignette |" in text and "% of copy" in text

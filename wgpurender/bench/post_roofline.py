@@ -1,0 +1,197 @@
+"""Post passes against the memory roofline: bytes moved, time, GB/s, and % of a copy moving the same bytes.
+
+For each way the plan can run a scene's post chain (fragment or compute path, fused or one pass per
+effect), the scene is drawn once at the requested size, then the post passes alone are timed with GPU
+timestamps (median of ``frames``). Each pass's bytes are the plan's compulsory traffic (each texel of
+its input read once, each texel of its output written once, FXAA's mask included): what the pass moves
+at best. The roofline is measured in the same run: a compute kernel that copies a storage buffer of
+half the pass's bytes into another (so it reads and writes the same number of bytes as the pass),
+timed the same way. "% of copy" = the copy's time / the pass's time.
+
+A compute pass into an ``-srgb`` output also copies its scratch into the output (``copy_texture_to_texture``
+takes no timestamps): its row gives the dispatch's time and bytes, and the copy's bytes are listed apart.
+
+Run it where the question is (NVIDIA, 3840x2160): ``wgpurender bench post-roofline --size 3840x2160``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import statistics
+from dataclasses import dataclass
+from pathlib import Path
+
+import wgpu
+
+from ..gpu import GPUContext
+from ..plan import BYTES_PER_PIXEL, PostPass, build_plan
+from ..scene import load_scene
+from ..targets import TARGET_USAGE, create_target
+from ..timing import PassTimer, wall_time
+
+VARIANTS = (("fragment", False), ("fragment", True), ("compute", False), ("compute", True))
+COPY_WGSL = """
+@group(0) @binding(0) var<storage, read> src: array<vec4<u32>>;
+@group(0) @binding(1) var<storage, read_write> dst: array<vec4<u32>>;
+
+@compute @workgroup_size(256)
+fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let i = id.x + id.y * groups.x * 256u;
+    if i < arrayLength(&src) {
+        dst[i] = src[i];
+    }
+}
+"""
+
+
+@dataclass(frozen=True)
+class PassTime:
+    variant: str
+    effects: str
+    path: str
+    bytes_moved: int
+    ms: float
+    copy_ms: float
+    copy_bytes: int = 0  # a compute pass's scratch -> output copy (not timed)
+    chain_wall_ms: float = float("nan")  # the whole chain, submit + wait, wall clock (same on every row of a variant)
+
+    @property
+    def gbps(self) -> float:
+        return self.bytes_moved / (self.ms * 1e6) if self.ms > 0 else float("nan")
+
+    @property
+    def copy_gbps(self) -> float:
+        return self.bytes_moved / (self.copy_ms * 1e6) if self.copy_ms > 0 else float("nan")
+
+    @property
+    def percent_of_copy(self) -> float:
+        return 100.0 * self.copy_ms / self.ms if self.ms > 0 else float("nan")
+
+
+def dispatch_bytes(p: PostPass, size: tuple[int, int]) -> tuple[int, int]:
+    """(bytes the timed pass moves, bytes of the untimed copy after it)."""
+    if not p.copy_to:
+        return p.bytes_moved, 0
+    copy = size[0] * size[1] * (BYTES_PER_PIXEL[p.output_format] * 2)
+    return p.bytes_moved - copy, copy
+
+
+class CopyKernel:
+    """A compute copy of ``n_bytes / 2`` bytes (read + write = ``n_bytes``), timed by timestamps."""
+
+    def __init__(self, ctx: GPUContext) -> None:
+        self.ctx = ctx
+        module = ctx.device.create_shader_module(label="roofline-copy", code=COPY_WGSL)
+        self.pipeline = ctx.device.create_compute_pipeline(label="roofline-copy", layout="auto",
+                                                           compute={"module": module, "entry_point": "cs_main"})
+        self.timer = PassTimer(ctx, max_passes=1)
+        self._times: dict[int, float] = {}
+
+    def ms(self, n_bytes: int, frames: int) -> float:
+        if n_bytes not in self._times:
+            self._times[n_bytes] = self._measure(n_bytes, frames)
+        return self._times[n_bytes]
+
+    def _measure(self, n_bytes: int, frames: int) -> float:
+        half = max(16, n_bytes // 2 // 16 * 16)
+        usage = wgpu.BufferUsage.STORAGE
+        src = self.ctx.device.create_buffer(size=half, usage=usage)
+        dst = self.ctx.device.create_buffer(size=half, usage=usage)
+        group = self.ctx.device.create_bind_group(layout=self.pipeline.get_bind_group_layout(0), entries=[
+            {"binding": 0, "resource": {"buffer": src, "offset": 0, "size": half}},
+            {"binding": 1, "resource": {"buffer": dst, "offset": 0, "size": half}}])
+        groups = -(-(half // 16) // 256)
+        gx = min(groups, 65535)
+        gy = -(-groups // gx)
+        samples = []
+        for _ in range(frames + 2):  # two warm-up runs
+            self.timer.reset()
+            encoder = self.ctx.device.create_command_encoder()
+            cp = encoder.begin_compute_pass(timestamp_writes=self.timer.writes("copy"))
+            cp.set_pipeline(self.pipeline)
+            cp.set_bind_group(0, group)
+            cp.dispatch_workgroups(gx, gy, 1)
+            cp.end()
+            self.timer.resolve(encoder)
+            self.ctx.queue.submit([encoder.finish()])
+            samples.append(self.timer.read().get("copy", float("nan")))
+        return statistics.median(samples[2:])
+
+
+def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse: bool, frames: int,
+                 copy: CopyKernel) -> list[PassTime]:
+    from ..scene_render import SceneRenderer, render_frame
+    from ..scene_render.frame import adapter_facts
+
+    plan = build_plan(scene, size=size).with_knobs(post_path=path, post_fuse=fuse, adapter=adapter_facts(ctx))
+    renderer = SceneRenderer(ctx, scene, plan)
+    target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
+    render_frame(ctx, renderer, target)  # the scene image the chain reads, and every pipeline made
+    timer = PassTimer(ctx, max_passes=len(plan.post_passes))
+    samples: list[dict[str, float]] = []
+    for _ in range(frames + 2):
+        timer.reset()
+        encoder = ctx.device.create_command_encoder()
+        renderer.chain.run(encoder, {**renderer.attachments, "output": target}, timer=timer)
+        timer.resolve(encoder)
+        ctx.queue.submit([encoder.finish()])
+        samples.append(timer.read())
+    samples = samples[2:]
+    wall = wall_time(lambda: _chain_once(ctx, renderer, target), warmup=1, repeats=frames).median
+    variant = f"{path}, {'fused' if fuse else 'unfused'}"
+    out = []
+    for p in plan.post_passes:
+        ms = statistics.median(s.get(f"post:{p.effect}", float("nan")) for s in samples)
+        moved, copied = dispatch_bytes(p, size)
+        out.append(PassTime(variant, p.effect, p.path, moved, ms, copy.ms(moved, frames), copied, wall))
+    return out
+
+
+def _chain_once(ctx: GPUContext, renderer, target) -> None:
+    encoder = ctx.device.create_command_encoder()
+    renderer.chain.run(encoder, {**renderer.attachments, "output": target})
+    ctx.queue.submit([encoder.finish()])
+    ctx.wait_idle()
+
+
+def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frames: int) -> list[PassTime]:
+    scene = load_scene(scene_path)
+    copy = CopyKernel(ctx)
+    rows: list[PassTime] = []
+    for path, fuse in VARIANTS:
+        rows += time_variant(ctx, scene, size, path, fuse, frames, copy)
+    return rows
+
+
+def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tuple[int, int], frames: int,
+             command: str) -> str:
+    lines = [f"# Post passes against the memory roofline ({size[0]}x{size[1]})", "",
+             f"- adapter: {ctx.describe()}", f"- scene: {scene_path}", f"- command: `{command}`",
+             f"- GPU timestamps, median of {frames} frames; copy = a compute kernel moving the same bytes, "
+             "same run", "",
+             "| variant | pass | path | MB moved | ms | GB/s | copy ms | copy GB/s | % of copy |",
+             "|---|---|---|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        extra = f" (+{r.copy_bytes / 1e6:.1f} MB copy, untimed)" if r.copy_bytes else ""
+        lines.append(f"| {r.variant} | {r.effects}{extra} | {r.path} | {r.bytes_moved / 1e6:.1f} | {r.ms:.3f} | "
+                     f"{r.gbps:.1f} | {r.copy_ms:.3f} | {r.copy_gbps:.1f} | {r.percent_of_copy:.0f}% |")
+    lines.append("")
+    for variant in dict.fromkeys(r.variant for r in rows):
+        mine = [r for r in rows if r.variant == variant]
+        total_ms = sum(r.ms for r in mine)
+        total_bytes = sum(r.bytes_moved for r in mine)
+        lines.append(f"- {variant}: {len(mine)} pass(es), {total_bytes / 1e6:.1f} MB, {total_ms:.3f} ms by "
+                     f"timestamps ({total_bytes / (total_ms * 1e6) if total_ms else float('nan'):.1f} GB/s); "
+                     f"whole chain by wall clock (submit + wait) {mine[0].chain_wall_ms:.3f} ms")
+    lines += ["", "Timestamps of compute passes on lavapipe do not bracket the dispatch's work (they read far "
+              "below what a CPU can move): there, compare the wall-clock chain times. On a hardware GPU both agree."]
+    return "\n".join(lines) + "\n"
+
+
+def csv_text(rows: list[PassTime]) -> str:
+    fields = [f.name for f in dataclasses.fields(PassTime)] + ["gbps", "copy_gbps", "percent_of_copy"]
+    out = [",".join(fields)]
+    for r in rows:
+        values = [getattr(r, f) for f in fields]
+        out.append(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in values))
+    return "\n".join(out) + "\n"
