@@ -1,5 +1,5 @@
-// Shared part of every post-processing effect (wgpurender/post/): prepended to
-// each shaders_wgsl/post_<effect>.wgsl by wgpurender.post.base.effect_source().
+// Shared part of every post pass (wgpurender/post/): first in the WGSL that
+// wgpurender/post/shaders.py generates for each pass, before the effects' functions.
 //
 // Vulkan reads the previous pass through an input attachment inside the same
 // render pass (subpassLoad). WebGPU has no subpasses, so the previous result is

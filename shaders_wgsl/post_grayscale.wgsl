@@ -1,4 +1,4 @@
-// Grayscale: Rec. 709 luma of linear RGB, mixed in by `amount`, see wgpurender/post/grayscale.py.
+// Grayscale: Rec. 709 luma of linear RGB, mixed in by `amount`, see wgpurender/course/effects.py (the spec).
 // Needs post_common.wgsl (prepended).
 
 // GrayscaleParams is generated from the effect's spec (wgpurender/post/shaders.py).

@@ -1,4 +1,4 @@
-// Sepia: the classic sepia tone matrix, mixed in by `amount`, see wgpurender/post/sepia.py.
+// Sepia: the classic sepia tone matrix, mixed in by `amount`, see wgpurender/course/effects.py (the spec).
 // Needs post_common.wgsl (prepended). No clamp: bright inputs may exceed 1 in an
 // HDR chain; an 8-bit target clamps on write.
 

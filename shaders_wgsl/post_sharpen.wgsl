@@ -1,5 +1,5 @@
 // Sharpen: 3x3 Laplacian kernel (centre 1 + 4k, the four edge neighbours -k),
-// clamp-to-edge at the borders, result clamped at 0. See wgpurender/post/sharpen.py.
+// clamp-to-edge at the borders, result clamped at 0. See wgpurender/course/effects.py.
 // Needs post_common.wgsl (prepended).
 
 // SharpenParams is generated from the effect's spec (wgpurender/post/shaders.py).

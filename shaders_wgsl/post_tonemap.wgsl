@@ -1,4 +1,4 @@
-// Tone mapping: linear HDR (rgba16float) -> linear [0, 1], see wgpurender/post/tonemap.py.
+// Tone mapping: linear HDR (rgba16float) -> linear [0, 1], see wgpurender/course/effects.py (the spec).
 // Needs post_common.wgsl (prepended).
 
 // TonemapParams (exposure, operator_index: 0 = ACES fitted (Hill), 1 = Reinhard) is generated from the

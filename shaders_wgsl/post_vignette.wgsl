@@ -1,4 +1,4 @@
-// Vignette: darken towards the corners, see wgpurender/post/vignette.py.
+// Vignette: darken towards the corners, see wgpurender/course/effects.py (the spec).
 // Needs post_common.wgsl (prepended).
 //
 // d = distance from the image centre in uv units, scaled so a corner is 1;

@@ -1,4 +1,4 @@
-// The scene shader: one template, specialised per material variant (wgpurender/scene_render/layout.py).
+// The scene shader: one template, specialised per material variant (wgpurender/scene_render/shader_interface.py).
 //
 // Preprocessing (wgpurender/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
 // variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output) and the derived
