@@ -4,7 +4,7 @@ Both rendering paths read this module and nothing else to learn which effects ex
 
 - the scene file validates ``[[post]]`` entries with :func:`make_step` (unknown effect or parameter,
   a value out of range: one :class:`~wgpurender.errors.UserError`);
-- the render plan (wgpurender/plan.py) lists :class:`EffectStep` values (an effect, its validated
+- the render plan (wgpurender/plan/) lists :class:`EffectStep` values (an effect, its validated
   parameters, and the scene key that asked for it) and groups them into passes;
 - each path runs them with its own code: the wgpu path (wgpurender/post/) generates its WGSL parameter
   structs from :attr:`EffectSpec.params` with wgpurender/uniforms.py; the raw path keeps its own GLSL

@@ -174,7 +174,7 @@ class RenderSettings:
     clear_color: Vec4 = (0.0, 0.0, 0.0, 1.0)
     output_format: str = "rgba8unorm-srgb"
     post_fuse: bool = True  # fuse consecutive per-pixel effects into one pass (false: one pass each, for teaching)
-    post_path: str = "auto"  # post passes as fragment or compute shaders; auto: chosen per adapter (plan.py)
+    post_path: str = "auto"  # post passes as fragment or compute shaders; auto: chosen per adapter (wgpurender/plan/)
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,7 @@ MODEL_KEYS = ("material", "path", "transform")
 TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
 LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
 RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
-POST_PATHS = ("auto", "fragment", "compute")  # see wgpurender/plan.py: post_path
+POST_PATHS = ("auto", "fragment", "compute")  # see wgpurender/plan/: post_path
 
 
 def _camera(c: _Checker, data: Any) -> Camera:

@@ -1,6 +1,6 @@
 """A frame of a scene: the scene pass into the plan's attachments, then the post chain into the output.
 
-The plan (wgpurender/plan.py) decides everything; this module only builds what it lists:
+The plan (wgpurender/plan/) decides everything; this module only builds what it lists:
 
 - ``msaa_color`` (4 samples) only at msaa 4, resolved at the end of the scene pass into
   ``scene_color`` (with a post chain) or straight into the output (without one);

@@ -1,7 +1,7 @@
 """A frame of a scene file on the raw path: one render pass, two subpasses, then the readback.
 
 :func:`render_scene_reference` loads the scene, builds the same render plan as the wgpu path
-(wgpurender/plan.py: variants, attachments' formats, the post chain, textures, samplers), refuses
+(wgpurender/plan/: variants, attachments' formats, the post chain, textures, samplers), refuses
 what it cannot draw (support.py), and records everything into one command buffer:
 vkCmdBeginRenderPass (clears), subpass 0 (the models), vkCmdNextSubpass, subpass 1 (the post
 chain), vkCmdEndRenderPass, vkCmdCopyImageToBuffer.
