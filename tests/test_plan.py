@@ -257,6 +257,14 @@ def test_compute_path_writes_storage_formats_and_copies_into_srgb(make):
     plan = make(model("plain") + render(msaa=1) + post("tonemap"), output_format="bgra8unorm-srgb",
                 knobs=Knobs(post_path="compute"))
     assert plan.post_passes[0].path == "fragment"
+    # an rgba16float output is written directly, unless it is a swapchain image (not a storage texture)
+    scene = model("plain") + render(msaa=1) + post("tonemap")
+    direct = make(scene, output_format="rgba16float", knobs=Knobs(post_path="compute")).post_passes[0]
+    assert (direct.output, direct.copy_to) == ("output", None)
+    window = make(scene, output_format="rgba16float", knobs=Knobs(post_path="compute", output_storage=False))
+    (p,) = window.post_passes
+    assert (p.path, p.output, p.output_format, p.copy_to, p.copy_format) == (
+        "compute", "post_scratch", "rgba16float", "output", "rgba16float")
 
 
 def test_post_path_auto_rule(make):

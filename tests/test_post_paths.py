@@ -52,3 +52,14 @@ def test_fused_and_compute_chains_equal_the_unfused_chain(ctx, name):
         differing = int((diff > 0).any(-1).sum())
         assert diff.max() <= 1, f"{name} {label}: a channel is off by {diff.max()}/255"
         assert differing <= BOUNDS[name], f"{name} {label}: {differing} pixels differ"
+
+
+def test_compute_output_through_a_scratch_copy_is_the_same_image(ctx):
+    """A swapchain image cannot be a storage texture (knob output_storage = off): the last compute pass then
+    writes a scratch of the same format and copies it. Same shader, same bytes: exactly equal (rgba16float)."""
+    direct = render_scene_file(SCENES / "final_subpass.toml", size=SIZE, fmt="rgba16float", ctx=ctx, frames=1,
+                               knobs={"post_path": "compute"}).pixels
+    copied = render_scene_file(SCENES / "final_subpass.toml", size=SIZE, fmt="rgba16float", ctx=ctx, frames=1,
+                               knobs={"post_path": "compute", "output_storage": False}).pixels
+    np.testing.assert_array_equal(copied, direct)
+    assert np.isfinite(direct).all() and direct[..., :3].max() > 0.1

@@ -136,6 +136,9 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
             ": consecutive per-pixel effects share one pass" if fuse else ": one pass per effect (teaching)")),
         ("post_path", post_path, path_why),
         ("immediates", immediates, immediates_why),
+        ("output_storage", "on" if knobs.output_storage else "off",
+         "offscreen output: a compute pass may write it directly" if knobs.output_storage else
+         "knob output_storage: the output is a swapchain image, not a storage texture"),
     ]
 
     # -- the post chain (with the srgb step a plain 8-bit output needs) ----------
@@ -177,7 +180,8 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
             + (f"; {msaa} samples to match msaa_color" if msaa > 1 else ""),)))
 
     # -- post passes -----------------------------------------------------------
-    post_passes, post_attachments = plan_post_passes(steps, fuse, post_path, scene_target, scene_fmt, out_fmt, size)
+    post_passes, post_attachments = plan_post_passes(steps, fuse, post_path, scene_target, scene_fmt, out_fmt, size,
+                                                     knobs.output_storage)
     attachments.extend(post_attachments)
 
     out_reasons = [src("output_format", out_fmt)]

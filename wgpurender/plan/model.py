@@ -178,6 +178,7 @@ class PostPass:
     bytes_read: int = 0
     bytes_written: int = 0
     kind: str = "post"
+    copy_format: str | None = None  # the format of ``copy_to`` (the scratch is written in ``output_format``)
 
     @property
     def effect(self) -> str:
@@ -253,6 +254,7 @@ class Knobs:
     post_path: str | None = None
     immediates: str = "auto"
     adapter: AdapterFacts | None = None
+    output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (

@@ -58,8 +58,11 @@ def _fusion_text(group: tuple[EffectStep, ...]) -> str:
 
 
 def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_target: str, scene_fmt: str, out_fmt: str,
-                 size: tuple[int, int]) -> tuple[list[PostPass], list[Attachment]]:
-    """The chain's passes and the attachments only they use (ping-pong intermediates, FXAA mask, scratch)."""
+                     size: tuple[int, int], output_storage: bool = True) -> tuple[list[PostPass], list[Attachment]]:
+    """The chain's passes and the attachments only they use (ping-pong intermediates, FXAA mask, scratch).
+
+    ``output_storage``: whether the output texture can be bound as a storage texture (an offscreen target
+    can; a swapchain image cannot), which decides how a compute pass writes it."""
     groups = group_passes(steps, fuse)
     n = len(groups)
     temp_fmt = scene_fmt
@@ -83,16 +86,22 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
         dst_name, dst_fmt = ("output", out_fmt) if last else (temps[i % 2], temp_fmt)
         notes = [n for s in group for n in step_notes(s, src_fmt, dst_fmt)]
         pass_path, copy_to, mask = path, None, None
-        if path == "compute" and dst_fmt not in STORAGE_FORMATS:
-            if dst_fmt.startswith("rgba8"):
-                copy_to, dst_name, dst_fmt = dst_name, "post_scratch", "rgba8unorm"
-                notes.append(f"{copy_to} is {out_fmt}, which cannot be a storage texture: the shader writes "
-                             "rgba8unorm with the sRGB curve applied, then the image is copied (same bytes)")
-                attachments.append(Attachment("post_scratch", "post-scratch", "rgba8unorm", size, 1, (
-                    f"post pass {i + 1} on the compute path writes it; copied into {copy_to}",)))
+        copy_format = None
+        writes_output = dst_name == "output"
+        if path == "compute" and (dst_fmt not in STORAGE_FORMATS or (writes_output and not output_storage)):
+            scratch = dst_fmt if dst_fmt in STORAGE_FORMATS else ("rgba8unorm" if dst_fmt.startswith("rgba8") else None)
+            why = (f"{dst_fmt} cannot be a storage texture" if dst_fmt not in STORAGE_FORMATS else
+                   "the output texture is not a storage texture (a swapchain image: knob output_storage = off)")
+            if scratch is not None:
+                copy_to, copy_format, dst_name, dst_fmt = dst_name, dst_fmt, "post_scratch", scratch
+                encoded = " with the sRGB curve applied" if scratch != copy_format else ""
+                notes.append(f"{why}: the shader writes {scratch}{encoded}, then the image is copied into "
+                             f"{copy_to} (same bytes)")
+                attachments.append(Attachment("post_scratch", "post-scratch", scratch, size, 1, (
+                    f"post pass {i + 1} on the compute path writes it; copied into {copy_to} ({why})",)))
             else:
                 pass_path = "fragment"
-                notes.append(f"{dst_fmt} cannot be a storage texture: this pass stays a fragment pass")
+                notes.append(f"{why}: this pass stays a fragment pass")
         head = group[0].spec
         if pass_path == "fragment" and head.mask_format:
             mask = f"{head.name}_mask"
@@ -106,9 +115,9 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
             read += pixels * BYTES_PER_PIXEL[head.mask_format]
         if copy_to:
             read += pixels * BYTES_PER_PIXEL[dst_fmt]
-            written += pixels * BYTES_PER_PIXEL[out_fmt]
+            written += pixels * BYTES_PER_PIXEL[copy_format]
         passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, _fusion_text(group),
-                               tuple(notes), mask, copy_to, read, written))
+                               tuple(notes), mask, copy_to, read, written, copy_format=copy_format))
     return passes, attachments
 
 

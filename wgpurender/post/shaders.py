@@ -24,7 +24,7 @@ read once and written once. The entry points around ``pass_color``:
 
 from __future__ import annotations
 
-from ..course.effects import EffectSpec, needs_shader_encoding
+from ..course.effects import EffectSpec, encoding_of, needs_shader_encoding
 from ..plan import PostPass
 from ..shaders import load_wgsl
 from ..uniforms import F32, Struct, wgsl_structs
@@ -67,7 +67,8 @@ def _tail(p: PostPass, first: int) -> str:
     for i in range(first, len(p.steps)):
         name = p.steps[i].effect
         lines.append(f"    c = {name}_pixel(c, pos, size{_arg(p, i)});")
-    if p.copy_to and p.steps[-1].effect != "srgb":  # compute into an rgba8unorm scratch of an -srgb output
+    if encoding_of(p.copy_format or "") == "hardware" and p.steps[-1].effect != "srgb":
+        # compute into an rgba8unorm scratch of an -srgb output: the hardware would have encoded, so the shader does
         lines.append("    c = vec4f(srgb_encode(c.rgb), c.a);")
     lines += ["    return c;", "}"]
     return "\n".join(lines)
@@ -126,7 +127,7 @@ def pass_source(p: PostPass) -> str:
         parts.append(wgsl_structs(struct))
         parts.append("@group(0) @binding(2) var<uniform> params: PassParams;")
     files = dict.fromkeys(f"post_{s.effect}.wgsl" for s in p.steps)
-    if p.copy_to:
+    if p.copy_to:  # srgb_encode, for a scratch of an -srgb output
         files.setdefault(SRGB_WGSL)
     parts.extend(load_wgsl(f) for f in files)
     parts.append(_color(p))

@@ -164,6 +164,8 @@ def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None =
     scene = load_scene(path)
 
     def make(fmt: str) -> SceneRenderer:
-        return SceneRenderer(ctx, scene, build_plan(scene, output_format=fmt, msaa=msaa))
+        # A swapchain image cannot be a storage texture: a compute post path writes it through a scratch copy.
+        plan = build_plan(scene, output_format=fmt, msaa=msaa).with_knobs(output_storage=False)
+        return SceneRenderer(ctx, scene, plan)
 
     return make
