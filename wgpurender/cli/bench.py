@@ -99,7 +99,7 @@ def _register_roofline(suites) -> None:
     """``wgpurender bench post-roofline``: wgpurender/bench/post_roofline.py runs it."""
     p = suites.add_parser(
         "post-roofline",
-        help="every post pass: bytes moved, time, GB/s and % of a copy moving the same bytes",
+        help="every post pass: bytes moved, time, GB/s and %% of a copy moving the same bytes",
         description="Time each post pass of a scene (fragment and compute path, fused and unfused) with GPU "
         "timestamps against a compute copy of the same bytes measured in the same run; write "
         "post-roofline.md and post-roofline.csv.",
