@@ -36,7 +36,8 @@ MAX_STAGE_LINES = 150
 PENDING = {
     # plan (issue 11.3): the effect specs move to the API-free wgpurender/course/effects.py
     "wgpurender.plan (core) imports wgpurender.post (wgpu path)",
-    "wgpurender.scene (core) imports wgpurender.post (wgpu path)",
+    "wgpurender.scene.model (core) imports wgpurender.post (wgpu path)",
+    "wgpurender.scene.validate (core) imports wgpurender.post (wgpu path)",
     "wgpurender.vulkan_ref.scene.post (raw path) imports wgpurender.post (wgpu path)",
 }
 

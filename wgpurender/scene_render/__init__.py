@@ -1,4 +1,4 @@
-"""The scene renderer: a scene file (wgpurender/scene.py) drawn exactly as its render plan (wgpurender/plan.py) says.
+"""The scene renderer: a scene file (wgpurender/scene/) drawn exactly as its render plan (wgpurender/plan.py) says.
 
 Public API:
 
