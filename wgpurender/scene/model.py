@@ -8,6 +8,9 @@ from pathlib import Path
 import numpy as np
 
 from .. import transforms
+from ..course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
+from ..course.formats import SAMPLE_COUNTS as MSAA_COUNTS  # noqa: F401
+from ..course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from ..course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 
 MAX_LIGHTS = 8
