@@ -78,7 +78,7 @@ class SamplerSettings:
     address_mode: str = "repeat"
 
     def spec(self):
-        """The :class:`wgpurender.textures.SamplerSpec` for these settings."""
+        """The :class:`wgpurender.course.samplers.SamplerSpec` for these settings."""
         from ..course.samplers import SamplerSpec
 
         return SamplerSpec(
