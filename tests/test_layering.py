@@ -218,3 +218,32 @@ def test_an_injected_violation_is_found(tmp_path, relative, line, message):
     target.write_text(target.read_text(encoding="utf-8") + line, encoding="utf-8")
     found = violations(copy)
     assert any(message in v for v in found), found
+
+
+# -- course order ----------------------------------------------------------------------------------------------
+
+
+def _step_key(number: str) -> tuple[int, str]:
+    """'3b' -> (3, 'b'): the course numbers its steps, chapter then letter."""
+    digits = number.rstrip("abcdefghijklmnopqrstuvwxyz")
+    return int(digits), number[len(digits):]
+
+
+def test_both_registries_and_the_cli_list_stages_in_course_order(capsys):
+    """Each registry lists its stages by the course's step numbers (course/steps.py numbers them; the
+    order is checked from the numbers, not from the table's row order), the course's own sequence of the
+    wgpu steps is the list below, and `wgpurender stages` prints the stages in that order."""
+    from wgpurender.cli import main
+    from wgpurender.course.steps import course_step
+    from wgpurender.stages import all_stages
+    from wgpurender.vulkan_ref.stages import all_ref_stages
+
+    for registry in (all_stages(), all_ref_stages()):
+        names = list(registry)
+        assert all(course_step(n) for n in names), [n for n in names if not course_step(n)]
+        assert names == sorted(names, key=lambda n: _step_key(course_step(n).number))
+    course = ["clear", "clear-pass", "triangle", "triangle-buffers", "offscreen", "msaa", "msaa-post", "3d", "textured"]
+    assert list(all_stages()) == [n for n in course if n in all_stages()]
+    assert main(["stages"]) == 0
+    printed = [line.split()[0] for line in capsys.readouterr().out.splitlines() if not line.startswith(" ")]
+    assert printed == list(all_stages())
