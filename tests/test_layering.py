@@ -33,13 +33,7 @@ RENDERERS = ("wgpurender.scene_render", "wgpurender.vulkan_ref.scene", "wgpurend
 MAX_STAGE_LINES = 150
 # Breaks that other branches of issue 11 remove, each named with its owner. The test fails when one
 # is gone (delete its line then), so this list can only shrink.
-PENDING = {
-    # plan (issue 11.3): the effect specs move to the API-free wgpurender/course/effects.py
-    "wgpurender.plan (core) imports wgpurender.post (wgpu path)",
-    "wgpurender.scene.model (core) imports wgpurender.post (wgpu path)",
-    "wgpurender.scene.validate (core) imports wgpurender.post (wgpu path)",
-    "wgpurender.vulkan_ref.scene.post (raw path) imports wgpurender.post (wgpu path)",
-}
+PENDING: set[str] = set()  # plan's four (the effect specs in wgpurender/course/effects.py) are gone
 
 
 def within(module: str, prefixes) -> bool:

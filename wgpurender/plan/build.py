@@ -257,6 +257,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         knobs=knobs,
         settings=tuple(settings),
         scene=scene,
+        rebuild=build_plan,
     )
 
 

@@ -6,11 +6,12 @@ This is what ``wgpurender render SCENE.toml --explain`` and ``python -m wgpurend
 from __future__ import annotations
 
 import os
+from typing import Any
 
-from .model import PostPass, RenderPlan, ScenePass
+# No import of .model: RenderPlan.explain() calls this module, so it reads the plan's passes by their ``kind``.
 
 
-def explain(plan: RenderPlan) -> str:
+def explain(plan: Any) -> str:
     """Passes, attachments, pipelines, textures and samplers, each with what asked for it."""
     w, h = plan.size
     out = [f"scene: {plan.scene_path}", f"output: {w}x{h} {plan.output_format}, msaa {plan.msaa}"]
@@ -71,8 +72,8 @@ def _megabytes(n: int) -> str:
     return f"{n / 1e6:.1f} MB"
 
 
-def _explain_pass(number: int, p: ScenePass | PostPass, size: tuple[int, int]) -> list[str]:
-    if isinstance(p, ScenePass):
+def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
+    if p.kind == "scene":
         into = f"{p.color} resolved into {p.resolve_target}" if p.resolve_target else p.color
         depth = f", depth attachment {p.depth}" if p.depth else ""
         clear = ", ".join(f"{c:g}" for c in p.clear_color)

@@ -6,12 +6,14 @@
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..course.effects import EffectStep
 from ..errors import UserError
 from ..scene import Scene
+from .explain import explain
 
 DEPTH_FORMAT = "depth32float"
 HDR_FORMAT = "rgba16float"
@@ -284,6 +286,7 @@ class RenderPlan:
     knobs: Knobs = field(default_factory=Knobs)
     settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
     scene: Scene | None = field(default=None, repr=False, compare=False)
+    rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # build_plan
 
     # -- knobs -----------------------------------------------------------------
     def with_knobs(self, **changes) -> RenderPlan:
@@ -295,12 +298,10 @@ class RenderPlan:
         if unknown:
             raise UserError(f"unknown plan knob {unknown[0]!r}: knobs are "
                             f"{', '.join(Knobs.__dataclass_fields__)}, size, output_format, msaa")
-        if self.scene is None:
+        if self.scene is None or self.rebuild is None:
             raise UserError("this plan was not built from a scene: build it with build_plan(scene, ...)")
         current = {"size": self.size, "output_format": self.output_format, "msaa": self.msaa}
-        from .build import build_plan
-
-        return build_plan(self.scene, **{**current, **overrides}, knobs=dataclasses.replace(self.knobs, **changes))
+        return self.rebuild(self.scene, **{**current, **overrides}, knobs=dataclasses.replace(self.knobs, **changes))
 
     def setting(self, name: str) -> str:
         """A resolved knob's value as text, e.g. ``setting("post_path") == "compute"``."""
@@ -365,8 +366,6 @@ class RenderPlan:
     # -- text ----------------------------------------------------------------
     def explain(self) -> str:
         """Passes, attachments, pipelines, textures, samplers and knobs, each with what asked for it."""
-        from .explain import explain
-
         return explain(self)
 
 
