@@ -39,6 +39,7 @@ class GpuCache(Generic[V]):
         return key in self._items
 
     def get(self, key: Hashable, make: Callable[[], V]) -> V:
+        """The value for ``key``, made by ``make()`` on a miss (a value of None is not cached: wrap it)."""
         items = self._items
         value = items.get(key)
         if value is None:

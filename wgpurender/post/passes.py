@@ -18,7 +18,7 @@ from ..errors import UserError
 from ..gpu_cache import GpuCache, device_cache
 from ..plan import PostPass
 from ..shaders import create_shader_module
-from .shaders import WORKGROUP, pack_pass, pass_source, pass_struct, srgb_constant
+from .shaders import WORKGROUP, pack_pass, pass_source, srgb_constant
 
 FRAGMENT, COMPUTE = wgpu.ShaderStage.FRAGMENT, wgpu.ShaderStage.COMPUTE
 
@@ -176,4 +176,4 @@ def planned_pass(device: wgpu.GPUDevice, p: PostPass) -> FragmentPass | ComputeP
     return ComputePass(device, p) if p.path == "compute" else FragmentPass(device, p)
 
 
-__all__ = ["ComputePass", "FragmentPass", "PlannedPass", "linear_clamp_sampler", "pass_struct", "planned_pass"]
+__all__ = ["ComputePass", "FragmentPass", "PlannedPass", "linear_clamp_sampler", "planned_pass"]
