@@ -7,7 +7,10 @@ renderer is made and draws one frame, and what was created is compared with the 
 - textures: every attachment but the output (the caller's), plus every material texture the plan uploads;
 - render pipelines: every scene pipeline (variant, formats, winding), every fragment post pipeline (FXAA's
   mask draw included) and one mipmap pipeline per format of the textures that get mip chains;
-- compute pipelines: every compute post pipeline.
+- compute pipelines: every compute post pipeline;
+- buffers (while the renderer is made and records a frame; the readback is the caller's): one per entry of
+  ``plan.buffers`` (camera, objects, materials without immediates, each mesh's vertices and indices, each
+  post pass's parameters).
 
 The device's caches are emptied first (gpu_cache.py), so an object made for an earlier scene on the same
 device cannot hide one. Expected values come from the plan; what is counted comes from the device.
@@ -23,7 +26,7 @@ import pytest
 from wgpurender.plan import build_plan
 from wgpurender.post import output_usage
 from wgpurender.scene import load_scene
-from wgpurender.scene_render import SceneRenderer, render_frame
+from wgpurender.scene_render import SceneRenderer
 from wgpurender.scene_render.frame import adapter_facts
 from wgpurender.targets import TARGET_USAGE, create_target
 
@@ -37,13 +40,16 @@ class Recorder:
 
     def __init__(self, device, monkeypatch) -> None:
         self.made: Counter = Counter()
-        for name in ("create_texture", "create_render_pipeline", "create_compute_pipeline"):
+        # create_buffer_with_data makes its buffer through create_buffer: counted there, once
+        for name in ("create_texture", "create_render_pipeline", "create_compute_pipeline", "create_buffer"):
             monkeypatch.setattr(device, name, self._wrap(name, getattr(device, name)))
 
     def _wrap(self, name, real):
         def call(*args, **kwargs):
             if name == "create_texture":
                 self.made[("texture", kwargs["format"], kwargs.get("sample_count", 1))] += 1
+            elif name == "create_buffer":
+                self.made[("buffer",)] += 1
             elif name == "create_render_pipeline":
                 self.made[("render", kwargs["fragment"]["targets"][0]["format"])] += 1
             else:
@@ -69,6 +75,8 @@ def expected(plan) -> Counter:
             want[("compute", f"post-{pl.effects}-{pl.target_format}-compute")] += 1
     for fmt in plan.mipmap_formats:
         want[("render", fmt)] += 1
+    if plan.buffers:
+        want[("buffer",)] = len(plan.buffers)
     return want
 
 
@@ -81,8 +89,10 @@ def test_renderer_creates_what_the_plan_lists(ctx, monkeypatch, scene_path, post
     monkeypatch.delattr(ctx.device, "_wgpurender_caches", raising=False)  # a fresh device, as far as caches go
     recorder = Recorder(ctx.device, monkeypatch)
     renderer = SceneRenderer(ctx, scene, plan)
-    render_frame(ctx, renderer, target)
+    encoder = ctx.device.create_command_encoder()
+    renderer.record(encoder, target)
     monkeypatch.undo()
+    ctx.queue.submit([encoder.finish()])
     assert renderer.plan is plan, "the plan knew its adapter: the renderer did not re-plan"
     assert recorder.made == expected(plan), plan.explain()
 

@@ -61,6 +61,12 @@ def explain(plan: Any) -> str:
             f"  filter {spec.min_filter}/{spec.mag_filter}, mipmap {spec.mipmap_filter}, "
             f"address {spec.address_mode_u}, anisotropy {spec.max_anisotropy} <- {'; '.join(s.used_by)}"
         )
+    filtering = [p.effect for p in plan.post_passes if p.steps[0].spec.filtering]
+    if filtering:
+        out.append(f"  post-linear-clamp (linear, clamp to edge) <- {', '.join(filtering)} samples between pixels")
+    out.append("")
+    out.append("buffers:")
+    out.extend(f"  {name}: {what}" for name, what in plan.buffers)
     if plan.notes:
         out.append("")
         out.append("notes:")

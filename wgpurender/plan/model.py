@@ -326,6 +326,26 @@ class RenderPlan:
         return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps))
 
     @property
+    def buffers(self) -> tuple[tuple[str, str], ...]:
+        """(buffer, what it holds) for every GPU buffer the renderer makes for this plan (readback aside)."""
+        draws = self.scene_pass.draws
+        out = []
+        if draws:
+            out.append(("scene-camera", "uniform: Camera (view, projection, eye, lights), written when they change"))
+            out.append(("scene-objects", f"uniform: {len(draws)} Object slice(s), one per draw (dynamic offsets)"))
+            if self.immediates is not True:
+                when = "no immediates" if self.immediates is False else "only if the device lacks immediates"
+                out.append(("scene-materials", f"uniform: {len(draws)} Material slice(s), one per draw ({when})"))
+        for model, attributes in dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes)
+                                               for d in draws):
+            out.append((f"{model.name} vertices", f"vertex attributes {', '.join(attributes)}, interleaved"))
+            out.append((f"{model.name} indices", "index buffer"))
+        for p in self.post_passes:
+            if any(s.spec.params for s in p.steps):
+                out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))
+        return tuple(out)
+
+    @property
     def post_steps(self) -> tuple[EffectStep, ...]:
         """Every effect step of the chain in order, whatever the passes (what the raw path's subpass composes)."""
         return tuple(s for p in self.post_passes for s in p.steps)
