@@ -11,7 +11,8 @@ timed the same way. "% of copy" = the copy's time / the pass's time.
 A compute pass into an ``-srgb`` output also copies its scratch into the output (``copy_texture_to_texture``
 takes no timestamps): its row gives the dispatch's time and bytes, and the copy's bytes are listed apart.
 
-Run it where the question is (NVIDIA, 3840x2160): ``wgpurender bench post-roofline --size 3840x2160``.
+Run it where the question is (NVIDIA, 3840x2160): ``wgpurender bench post-roofline --size 3840x2160``
+(final.toml and final_subpass.toml, whose fused chain is a single per-pixel pass).
 """
 
 from __future__ import annotations

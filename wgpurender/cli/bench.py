@@ -102,10 +102,12 @@ def _register_roofline(suites) -> None:
         help="every post pass: bytes moved, time, GB/s and %% of a copy moving the same bytes",
         description="Time each post pass of a scene (fragment and compute path, fused and unfused) with GPU "
         "timestamps against a compute copy of the same bytes measured in the same run; write "
-        "post-roofline.md and post-roofline.csv.",
+        "post-roofline-SCENE.md and .csv for each scene.",
     )
-    p.add_argument("scene", nargs="?", type=Path, default=Path("assets/scenes/final.toml"), metavar="SCENE",
-                   help="scene file with a post chain (default assets/scenes/final.toml)")
+    p.add_argument("scenes", nargs="*", type=Path, metavar="SCENE",
+                   default=[Path("assets/scenes/final.toml"), Path("assets/scenes/final_subpass.toml")],
+                   help="scene files with a post chain (default: final.toml, whose fused pass is fxaa+vignette, "
+                   "and final_subpass.toml, whose whole chain is one per-pixel pass)")
     p.add_argument("--size", type=size_arg, default=(3840, 2160), metavar="WxH", help="default 3840x2160")
     p.add_argument("--frames", type=int, default=20, metavar="N", help="timed frames per variant (default 20)")
     p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
@@ -126,11 +128,13 @@ def _run_roofline(args) -> int:
     ctx = get_context(args.backend)
     if not ctx.has("timestamp-query"):
         raise UserError(f"{ctx.describe()} has no timestamp queries: post-roofline times passes with them")
-    rows = run_roofline(ctx, args.scene, args.size, args.frames)
-    text = markdown(rows, ctx, args.scene, args.size, args.frames, command_line())
     args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "post-roofline.md", text.encode())
-    atomic_write(args.out / "post-roofline.csv", csv_text(rows).encode())
-    print(text, end="")
-    print(f"wrote {args.out / 'post-roofline.md'} and {args.out / 'post-roofline.csv'}")
+    for scene in args.scenes:
+        rows = run_roofline(ctx, scene, args.size, args.frames)
+        text = markdown(rows, ctx, scene, args.size, args.frames, command_line())
+        md, csv = args.out / f"post-roofline-{scene.stem}.md", args.out / f"post-roofline-{scene.stem}.csv"
+        atomic_write(md, text.encode())
+        atomic_write(csv, csv_text(rows).encode())
+        print(text, end="")
+        print(f"wrote {md} and {csv}")
     return 0
