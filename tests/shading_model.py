@@ -23,13 +23,18 @@ FOV = 45.0
 
 def course_constant(name: str):
     """The course core's value of a scene constant if the core has it, else the documented value."""
+    import importlib
+
     try:
-        from wgpurender import course  # the API-free course core (issue 11), once it exists
+        course = importlib.import_module("wgpurender.course")  # the API-free course core (issue 11)
     except ImportError:
         return DOCUMENTED[name]
-    for module_name in ("scene", "lighting", "materials", "constants"):
-        module = getattr(course, module_name, None)
-        if module is not None and hasattr(module, name):
+    for module_name in ("shading", "scene", "lighting", "materials", "constants"):
+        try:
+            module = importlib.import_module(f"wgpurender.course.{module_name}")
+        except ImportError:
+            continue
+        if hasattr(module, name):
             return getattr(module, name)
     return getattr(course, name, DOCUMENTED[name])
 
