@@ -13,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import wgpu
+from shading_model import srgb_encode  # the test's own sRGB formula, not the package's
 
 from wgpurender.errors import UserError
 from wgpurender.gpu_cache import cache_stats
-from wgpurender.imageio import srgb_encode
 from wgpurender.post import EFFECTS, PostChain, create_effect, effect_names, output_usage, steps_for_target
 from wgpurender.targets import TARGET_USAGE, create_target, read_texture
 
