@@ -58,7 +58,7 @@ from __future__ import annotations
 
 import math
 import re
-import sys
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -67,11 +67,6 @@ import numpy as np
 
 from . import transforms
 from .errors import UserError
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 MAX_LIGHTS = 8
 CONVENTIONS = ("wgpu", "glm-vulkan")
