@@ -1,37 +1,34 @@
-"""wgpurender bench: benchmark suites, one sub-subcommand each (perf now; accuracy when it exists).
+"""wgpurender bench: benchmark suites, one sub-subcommand each: perf (speed) and accuracy.
 
-``bench perf`` lives in wgpurender/bench/perf.py. A sibling suite is added by a module
-wgpurender/bench/<name>.py defining ``register_<name>(subparsers)`` (which sets
-``func``); it is imported lazily and only listed when the module exists.
+``bench perf`` is registered here and runs wgpurender/bench/perf.py; ``bench accuracy`` is
+registered by wgpurender/bench/accuracy.py (``register_accuracy(subparsers)``).
 """
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 from pathlib import Path
 
 from ._args import add_backend_arg
 
-OPTIONAL_SUITES = ("accuracy",)  # wgpurender/bench/accuracy.py: register_accuracy(subparsers) + run(args)
-
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("bench", help="benchmark suites: perf (speed against the raw-Vulkan path)",
+    p = subparsers.add_parser("bench",
+                              help="benchmark suites: perf (speed against the raw-Vulkan path), accuracy (error "
+                              "against cost)",
                               description="Run a benchmark suite and write its results (CSV, markdown, plots).")
     suites = p.add_subparsers(dest="suite", required=True, metavar="SUITE")
     _register_perf(suites)
-    for name in OPTIONAL_SUITES:
-        if importlib.util.find_spec(f"wgpurender.bench.{name}") is not None:
-            getattr(importlib.import_module(f"wgpurender.bench.{name}"), f"register_{name}")(suites)
+    from ..bench.accuracy import register_accuracy
+
+    register_accuracy(suites)
 
 
 def _register_perf(suites) -> None:
     p = suites.add_parser(
         "perf",
         help="frame, CPU, readback, post, many-objects and first-frame times, wgpu against raw Vulkan",
-        description="Measure every stage (and the final scene when its renderer exists) on the wgpu and the "
-        "raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
+        description="Measure every stage and the final scene (final_subpass.toml on both paths) on the wgpu and "
+        "the raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
         "and perf_*.png (plots need matplotlib: pip install 'wgpurender[bench]').",
     )
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats: checks the harness in < 60 s")
