@@ -11,7 +11,8 @@ from PIL import Image
 
 from .errors import UserError
 
-__all__ = ["UserError", "save_png", "load_png", "check_writable", "srgb_encode", "srgb_decode", "to_uint8"]
+__all__ = ["UserError", "save_png", "save_image", "image_format", "load_png", "check_writable", "srgb_encode",
+           "srgb_decode", "to_uint8"]
 
 
 def srgb_encode(linear: np.ndarray) -> np.ndarray:
@@ -84,3 +85,49 @@ def load_png(path: str | os.PathLike) -> np.ndarray:
             return np.asarray(im.convert("RGBA"))
     except (OSError, ValueError) as err:
         raise UserError(f"cannot read image {path}: {err}") from None
+
+
+# The output format follows the file's suffix: PNG (lossless, what every comparison here reads),
+# or another format Pillow writes when the user asks for it by name. An unknown or missing
+# suffix is refused rather than written as a PNG under a misleading name.
+IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".bmp": "BMP", ".tif": "TIFF", ".tiff": "TIFF",
+                 ".webp": "WEBP"}
+_NO_ALPHA = ("JPEG", "BMP")
+
+
+def image_format(path: str | os.PathLike) -> str:
+    """Pillow's format name for an output path's suffix; a UserError for a suffix we do not write."""
+    suffix = Path(path).suffix.lower()
+    if suffix not in IMAGE_FORMATS:
+        shown = f"suffix {suffix!r}" if suffix else "no suffix"
+        raise UserError(f"cannot write {path}: {shown}; name the file .png (lossless), or "
+                        f"{', '.join(s for s in IMAGE_FORMATS if s != '.png')}")
+    return IMAGE_FORMATS[suffix]
+
+
+def save_image(path: str | os.PathLike, pixels: np.ndarray) -> Path:
+    """Write an (H, W, 3|4) image atomically in the format its suffix names (see :data:`IMAGE_FORMATS`).
+
+    JPEG and BMP have no alpha channel: the alpha is dropped (renders are opaque). JPEG is lossy
+    (quality 95): compare images as PNGs.
+    """
+    fmt = image_format(path)
+    if fmt == "PNG":
+        return save_png(path, pixels)
+    path = check_writable(path)
+    image = Image.fromarray(to_uint8(np.ascontiguousarray(pixels)))
+    if fmt in _NO_ALPHA:
+        image = image.convert("RGB")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            image.save(f, format=fmt, **({"quality": 95} if fmt == "JPEG" else {}))
+        os.chmod(tmp, 0o666 & ~_umask())
+        os.replace(tmp, path)
+    except OSError as err:
+        Path(tmp).unlink(missing_ok=True)
+        raise UserError(f"cannot write {path}: {err.strerror or err}") from None
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
