@@ -123,18 +123,18 @@ def test_unknown_suffix_is_refused_before_rendering(capsys, tmp_path, monkeypatc
 
 
 def test_broken_pipe_prints_no_traceback():
-    """The reader closes the pipe at once (like `| head -1` does after one line): no traceback, exit 141."""
+    """The reader closes the pipe at once (like `| head -1` does after one line): no traceback, exit 0."""
     proc = subprocess.Popen([sys.executable, "-m", "wgpurender", "concepts"], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE)
     proc.stdout.close()
     err = proc.stderr.read().decode()
-    assert proc.wait(timeout=60) == 141, err
+    assert proc.wait(timeout=60) == 0, err
     assert "Traceback" not in err and "BrokenPipeError" not in err, err
 
 
 def test_no_material_library_warning_when_the_scene_gives_the_material(tmp_path, caplog, ctx):
-    """An OBJ whose MTL is missing: loading it alone warns; rendering it from a scene, which names the texture,
-    does not."""
+    """An OBJ whose MTL is missing: loading it alone says so (INFO); rendering it from a scene, which names the
+    texture, says nothing about it."""
     from wgpurender.mesh import load_mesh
     from wgpurender.render import render_any
 
@@ -145,11 +145,11 @@ def test_no_material_library_warning_when_the_scene_gives_the_material(tmp_path,
     scene = tmp_path / "s.toml"
     scene.write_text('[camera]\neye = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n'
                      '[[models]]\npath = "quad.obj"\nmaterial = { albedo_map = "tex.png", unlit = true }\n')
-    with caplog.at_level(logging.WARNING):
+    with caplog.at_level(logging.INFO):
         load_mesh(obj)
     assert any("material library" in r.getMessage() for r in caplog.records)  # the check below can fail
     caplog.clear()
-    with caplog.at_level(logging.WARNING):
+    with caplog.at_level(logging.INFO):
         pixels = render_any(str(scene), size=(32, 24)).pixels
     assert not [r.getMessage() for r in caplog.records if "material library" in r.getMessage()]
     assert (pixels[12, 16, :3] == 200).all()  # the scene's texture, unlit, in the middle

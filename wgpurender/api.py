@@ -110,10 +110,6 @@ def _size(size: Size) -> tuple[int, int] | None:
     return width, height
 
 
-def _is_scene(target: Target) -> bool:
-    return str(target).endswith(".toml")
-
-
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
            backend: str | None = None, t: float = 0.0) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
@@ -129,7 +125,9 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     wh = _size(size)
     ctx = get_context(backend)
     plan = None
-    if _is_scene(target):
+    from .course.formats import is_scene_file
+
+    if is_scene_file(target):
         from .plan import plan_scene_file
         from .scene_render import render_scene_file
 

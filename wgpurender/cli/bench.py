@@ -1,26 +1,22 @@
-"""wgpurender bench: benchmark suites, one sub-subcommand each: perf (speed) and accuracy.
+"""wgpurender bench: benchmark suites, one sub-subcommand each: perf and accuracy.
 
-``bench perf`` is registered here and runs wgpurender/bench/perf.py; ``bench accuracy`` is
-registered by wgpurender/bench/accuracy.py (``register_accuracy(subparsers)``).
+The parsers live here; the suites run in wgpurender/bench/perf.py and wgpurender/bench/accuracy.py
+(bench/ never imports cli/).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from ._args import add_backend_arg
+from ._args import add_backend_arg, size_arg
 
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("bench",
-                              help="benchmark suites: perf (speed against the raw-Vulkan path), accuracy (error "
-                              "against cost)",
+    p = subparsers.add_parser("bench", help="benchmark suites: perf (speed against the raw-Vulkan path)",
                               description="Run a benchmark suite and write its results (CSV, markdown, plots).")
     suites = p.add_subparsers(dest="suite", required=True, metavar="SUITE")
     _register_perf(suites)
-    from ..bench.accuracy import register_accuracy
-
-    register_accuracy(suites)
+    _register_accuracy(suites)
 
 
 def _register_perf(suites) -> None:
@@ -65,3 +61,34 @@ def run(args) -> int:
     for kind, path in paths.items():
         print(f"{kind}: {path}")
     return 0
+
+
+def _register_accuracy(suites) -> None:
+    """``wgpurender bench accuracy``: wgpurender/bench/accuracy.py runs it."""
+    from ..bench.accuracy import FULL, QUICK, SCENE_FILE, run
+    from ..bench.accuracy_knobs import KNOBS
+
+    p = suites.add_parser(
+        "accuracy",
+        help="error (FLIP, PSNR against a ground truth) against time for each quality knob",
+        description="Sweep MSAA, supersampling, the scene target format, texture filtering and the depth setup; "
+        "write accuracy.csv, accuracy.md and accuracy_pareto.png (the plot needs matplotlib: "
+        "pip install 'wgpurender[bench]').",
+    )
+    p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
+                   help=f"scene file with a post chain (default {SCENE_FILE})")
+    p.add_argument("--quick", action="store_true",
+                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
+    p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
+                   help="where results go (default ./bench-results/accuracy)")
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                   help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
+    p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
+    p.add_argument("--rounds", type=int, default=None, metavar="R",
+                   help="split the timed frames over R passes through all settings (default 3; --quick 1)")
+    p.add_argument("--knob", action="append", default=None, choices=KNOBS, dest="knobs",
+                   help="sweep only these knobs (repeatable; default all)")
+    p.add_argument("--no-combinations", dest="combinations", action="store_false",
+                   help="only the one-knob-at-a-time sweeps")
+    add_backend_arg(p)
+    p.set_defaults(func=run)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ._args import positive_float
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -19,7 +21,7 @@ def register(subparsers) -> None:
     p.add_argument("--json", action="store_true",
                    help="print one JSON object instead: the metrics (shares as fractions 0..1, psnr null for "
                    "identical images), the thresholds, what failed, and the heatmap path")
-    p.add_argument("--gain", type=float, default=32.0, help="heatmap magnification (default 32)")
+    p.add_argument("--gain", type=positive_float, default=32.0, help="heatmap magnification (default 32)")
     p.add_argument(
         "--threshold",
         action="append",
