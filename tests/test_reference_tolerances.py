@@ -162,3 +162,52 @@ def test_regenerate_references_uses_the_raw_path_and_reports_changes(tmp_path):
     assert 200 <= changed <= 200 + 0.03 * 256 * 192 and max_diff > 200, line  # the spoiled block, + CPU spread
     assert "scene_final_subpass:" in run.stdout and "msaa-post:" in run.stdout
     assert np.array_equal(load_png(spoiled), _fresh("triangle"))
+
+
+# -- diff folders ---------------------------------------------------------------------------------------------------
+
+class _FakeNode:
+    def __init__(self, nodeid: str) -> None:
+        self.nodeid = nodeid
+
+
+class _FakeRequest:
+    def __init__(self, nodeid: str) -> None:
+        self.node = _FakeNode(nodeid)
+
+
+def test_a_failed_tolerance_check_leaves_a_diff_folder(fresh_renders, monkeypatch, tmp_path):
+    """expected.png, actual.png, heatmap.png and metrics.json, and the metrics and folder in the message."""
+    import json
+
+    import imagecheck
+
+    monkeypatch.setattr(imagecheck, "DIFF_ROOT", tmp_path / "test-diffs")  # not out/: this failure is on purpose
+    request = _FakeRequest("tests/test_reference_tolerances.py::probe[triangle-shifted]")
+    folder = imagecheck.diff_folder(request.node.nodeid)
+    expected, broken = load_png(REFERENCE_DIR / "triangle.png"), shift_one_pixel(fresh_renders["triangle"])
+    with pytest.raises(pytest.fail.Exception) as failure:
+        imagecheck.assert_within_tolerance(request, "triangle", expected, broken, "lavapipe")
+    message = str(failure.value)
+    assert "max diff" in message and "FLIP mean" in message and str(folder) in message
+    assert sorted(p.name for p in folder.iterdir()) == ["actual.png", "expected.png", "heatmap.png", "metrics.json"]
+    assert np.array_equal(load_png(folder / "actual.png"), broken)
+    metrics = json.loads((folder / "metrics.json").read_text())
+    assert metrics["reference"] == "triangle" and metrics["max_abs"] > 2 and metrics["exceeded"]
+    heat = load_png(folder / "heatmap.png")
+    assert heat[..., :3].max() == 255 and heat[..., :3].min() == 0  # bright where they differ, black elsewhere
+
+
+def test_a_failed_exact_check_leaves_a_diff_folder(monkeypatch, tmp_path):
+    """Same-run comparisons (float16 too) fail with the count of differing pixels and a diff folder."""
+    import imagecheck
+
+    monkeypatch.setattr(imagecheck, "DIFF_ROOT", tmp_path / "test-diffs")
+    request = _FakeRequest("tests/test_reference_tolerances.py::probe[exact]")
+    a = np.zeros((8, 8, 4), np.float16)
+    b = a.copy()
+    b[2, 3, 1] = np.float16(1e-3)
+    with pytest.raises(pytest.fail.Exception, match="1 pixels differ; diff folder .*probe_exact"):
+        imagecheck.assert_same_render(request, a, b)
+    assert (imagecheck.diff_folder(request.node.nodeid) / "metrics.json").is_file()
+    imagecheck.assert_same_render(request, a, a.copy())  # equal: passes
