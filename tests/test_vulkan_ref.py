@@ -66,7 +66,7 @@ def test_matches_wgpu_path(request, ctx, stage, fmt, msaa):
 def test_3d_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage '3d' (depth, culling, two UBOs, dynamic offsets, push constants): exact (threshold 0).
 
-    The scene is the wgpu stage's (read from wgpurender/stages/cube3d.py); the
+    The scene is the course core's (wgpurender/course/cubes.py), as on both paths; the
     UBO bytes are packed independently (vulkan_ref/ubo.py, hand-written std140
     offsets) from the same float64 matrices, and the shaders come from different
     compilers (naga from WGSL, glslc from GLSL). Measured: bit-identical in all 12
@@ -325,7 +325,7 @@ def test_sampler_info_mirrors_the_spec():
     """SamplerSpec -> VkSamplerCreateInfo: filters, mipmap mode, address modes, LOD clamps, anisotropy."""
     import vulkan as vk
 
-    from wgpurender.stages.textured import COMBINED_SAMPLER, SEPARATE_SAMPLERS
+    from wgpurender.course.textured import COMBINED_SAMPLER, SEPARATE_SAMPLERS
     from wgpurender.vulkan_ref.textures import sampler_info
 
     info = sampler_info(COMBINED_SAMPLER)
