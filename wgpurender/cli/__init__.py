@@ -52,6 +52,8 @@ def _quiet_libraries() -> None:
     Python's last-resort logging handler prints WARNING records of loggers with no handler (trimesh's, ours);
     a NullHandler on the package loggers stops that. Python warnings are ignored for the run.
     """
+    import wgpu  # noqa: F401  (first: wgpu installs its own logger class, and asserts it got it)
+
     for name in ("trimesh", "wgpurender", "PIL", "wgpu"):
         logger = logging.getLogger(name)
         if not any(isinstance(h, logging.NullHandler) for h in logger.handlers):
