@@ -201,7 +201,8 @@ def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) ->
     try:
         raw = render_scene_reference(scene_file, size=size)
     except UserError as err:
-        matrix.skip("scene", name, "wgpu vs raw", f"the raw path cannot render it yet: {err}")
+        why = str(err).split("cannot render this scene: ")[-1].split(";")[0]  # the first reason, no path
+        matrix.skip("scene", name, "wgpu vs raw", f"the raw path cannot render it yet: {why}")
         raw = None
     if raw is not None:
         chain = len(load_scene(scene_file).post) >= 2
