@@ -72,3 +72,26 @@ def test_an_output_path_that_is_a_file_is_a_user_error(tmp_path, capsys):
     blocker.write_text("")
     assert main(["verify", "--quick", "--out", str(blocker)]) == 2
     assert "is not a folder" in capsys.readouterr().err
+
+
+def test_recalibration_fills_provisional_rows_and_only_widens_measured_ones():
+    """One GPU run replaces the provisional gpu rows (and the class's provenance); on a measured class the
+    bounds never shrink, and the new measurement is appended to the row's provenance."""
+    from wgpurender.tolerances import Metrics
+
+    table = load_table()
+    wide = Metrics(40, 0.2, 9830, 0.02, 49152)
+    rows = [verify.Row("stage", "triangle", "raw vs committed", "pass", wide, reference="triangle"),
+            verify.Row("stage", "triangle", "wgpu vs raw", "identical", Metrics(0, 0.0, 0, 0.0, 49152))]
+    gpu = verify.recalibrated(table, verify.Report("NVIDIA H200 (590.1)", "Xeon", "gpu", "2026-11-23", rows))
+    row = gpu["references"]["triangle"]["gpu"]
+    assert (row["max_abs"], row["changed"], row["flip_mean"]) == (61, 0.4, 0.04) and "provisional" not in row
+    assert "NVIDIA H200" in row["measured"] and gpu["classes"]["gpu"]["provisional"] is False
+    assert "NVIDIA H200" in gpu["classes"]["gpu"]["bounded_by"]
+    assert gpu["references"]["3d"]["gpu"] == table["references"]["3d"]["gpu"]  # not measured: unchanged
+    small = [verify.Row("stage", "triangle", "raw vs committed", "identical", Metrics(0, 0.0, 0, 0.0, 49152),
+                        reference="triangle")]
+    lava = verify.recalibrated(table, verify.Report("llvmpipe", "Intel", "lavapipe", "2026-11-24", small))
+    before, after = table["references"]["triangle"]["lavapipe"], lava["references"]["triangle"]["lavapipe"]
+    assert all(after[k] == before[k] for k in ("max_abs", "changed", "flip_mean"))
+    assert after["measured"].startswith(before["measured"]) and "Intel" in after["measured"]
