@@ -215,3 +215,67 @@ def test_a_failed_exact_check_leaves_a_diff_folder(monkeypatch, tmp_path):
         imagecheck.assert_same_render(request, a, b)
     assert (imagecheck.diff_folder(request.node.nodeid) / "metrics.json").is_file()
     imagecheck.assert_same_render(request, a, a.copy())  # equal: passes
+
+
+# -- real bugs in the raw path, rendered -----------------------------------------------------------------------------
+
+def _shift_first_vertex(monkeypatch) -> str:
+    """triangle-buffers with its first vertex 1 pixel to the right (a half-pixel/viewport-style slip)."""
+    from wgpurender.vulkan_ref.stages import triangle_buffers
+
+    moved = triangle_buffers.TRIANGLE_POSITIONS.copy()
+    moved[0, 0] += 2.0 / REFERENCE_SIZE[0]  # NDC spans 2 over the width
+    monkeypatch.setattr(triangle_buffers, "TRIANGLE_POSITIONS", moved)
+    return "triangle-buffers"
+
+
+def _clear_colour_off_by_3(monkeypatch) -> str:
+    """clear-pass with its green channel 3/255 too high (a constant typo)."""
+    from wgpurender.vulkan_ref.stages import clear_pass
+
+    r, g, b, a = clear_pass.CLEAR_COLOR
+    monkeypatch.setattr(clear_pass, "CLEAR_COLOR", (r, g + 3 / 255, b, a))
+    return "clear-pass"
+
+
+def _drop_a_cube_triangle(monkeypatch) -> str:
+    """3d with one index triangle of the cube mesh dropped (a lost triangle in an index buffer).
+
+    Triangle 2 is on a face the camera sees (428 of 49,152 pixels change on lavapipe; triangles 0 and 1
+    face away and are culled): the smallest visible loss.
+    """
+    from wgpurender.course import cubes
+
+    mesh = cubes.cube_mesh
+
+    def without_triangle_2():
+        vertices, indices = mesh()
+        return vertices, np.delete(indices, [6, 7, 8])
+
+    monkeypatch.setattr(cubes, "cube_mesh", without_triangle_2)
+    return "3d"
+
+
+RENDER_BUGS = {"vertex moved 1 px": (_shift_first_vertex, {"lavapipe"}),
+               "clear colour +3/255": (_clear_colour_off_by_3, {"lavapipe", "gpu"}),
+               "missing cube triangle": (_drop_a_cube_triangle, {"lavapipe"})}
+
+
+@pytest.mark.parametrize("bug", sorted(RENDER_BUGS))
+def test_a_real_render_bug_is_caught(monkeypatch, ctx, raw_driver_class, bug):
+    """A bug put into the raw path itself, rendered: the committed reference check rejects it with this
+    driver class's row. Where that row is (still) too loose for it (a GPU's provisional rows), the
+    same-run tier catches it instead: the wgpu path's render differs from the bugged raw render."""
+    from wgpurender.render import render_stage
+
+    make_bug, caught_by = RENDER_BUGS[bug]
+    name = make_bug(monkeypatch)
+    broken = _fresh(name)
+    monkeypatch.undo()
+    assert (broken != _fresh(name)).any(), f"{bug} changed nothing in {name}: not a test"
+    metrics, tol, exceeded = check(name, load_png(REFERENCE_DIR / f"{name}.png"), broken, raw_driver_class)
+    if raw_driver_class in caught_by:
+        assert exceeded, f"{bug} passes the {name} reference check: {metrics.summary()} within {tol.describe()}"
+    else:
+        ours = to_uint8(render_stage(name, REFERENCE_SIZE, None, None, 0.0, ctx, frames=1).pixels)
+        assert (ours != broken).any(), f"{bug}: the wgpu render equals the bugged raw render"
