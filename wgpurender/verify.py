@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import csv
 import datetime
+import io
 import platform
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -241,12 +242,16 @@ def run_verify(out: Path, quick: bool = False) -> Report:
 
 
 def write_outputs(out: Path, report: Report, table: dict) -> None:
-    with open(out / "verify.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=CSV_FIELDS)
-        writer.writeheader()
-        writer.writerows(r.as_csv(report.device) for r in report.rows)
-    (out / "verify.md").write_text(markdown(report))
-    (out / "tolerances.toml").write_text(format_table(recalibrated(table, report)))
+    """verify.csv, verify.md and tolerances.toml, each written whole or not at all."""
+    from .safe_write import atomic_write
+
+    text = io.StringIO(newline="")
+    writer = csv.DictWriter(text, fieldnames=CSV_FIELDS)
+    writer.writeheader()
+    writer.writerows(r.as_csv(report.device) for r in report.rows)
+    atomic_write(out / "verify.csv", text.getvalue().encode())
+    atomic_write(out / "verify.md", markdown(report).encode())
+    atomic_write(out / "tolerances.toml", format_table(recalibrated(table, report)).encode())
 
 
 def markdown(report: Report) -> str:

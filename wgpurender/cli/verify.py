@@ -27,6 +27,10 @@ def run(args) -> int:
 
     if args.out.exists() and not args.out.is_dir():
         raise UserError(f"--out {args.out}: exists and is not a folder")
+    try:
+        (args.out / "heatmaps").mkdir(parents=True, exist_ok=True)  # before any rendering
+    except OSError as err:
+        raise UserError(f"--out {args.out}: cannot create it ({err.strerror or err})") from None
     report = run_verify(args.out, quick=args.quick)
     for row in report.rows:
         detail = row.note if row.status in ("skipped", "FAIL") else (row.metrics.summary() if row.metrics else "")
