@@ -223,9 +223,14 @@ def _shift_first_vertex(monkeypatch) -> str:
     """triangle-buffers with its first vertex 1 pixel to the right (a half-pixel/viewport-style slip)."""
     from wgpurender.vulkan_ref.stages import triangle_buffers
 
-    moved = triangle_buffers.TRIANGLE_POSITIONS.copy()
-    moved[0, 0] += 2.0 / REFERENCE_SIZE[0]  # NDC spans 2 over the width
-    monkeypatch.setattr(triangle_buffers, "TRIANGLE_POSITIONS", moved)
+    vertices = triangle_buffers.triangle_vertices
+
+    def moved():
+        out = vertices().copy()  # (3, 5): NDC x, y, then colour
+        out[0, 0] += 2.0 / REFERENCE_SIZE[0]  # NDC spans 2 over the width
+        return out
+
+    monkeypatch.setattr(triangle_buffers, "triangle_vertices", moved)
     return "triangle-buffers"
 
 
