@@ -90,7 +90,7 @@ def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
         return lines
     steps = " + ".join(s.label() for s in p.steps)
     into = f"{p.output} ({p.output_format})" + (f", copied into {p.copy_to}" if p.copy_to else "")
-    lines = [f"  {number}. post [{p.path}] {steps}: {p.input} ({p.input_format}) -> {into}"]
+    lines = [f"  {number}. post {steps} [{p.path}]: {p.input} ({p.input_format}) -> {into}"]
     lines.extend(f"       <- {s.asked_by}" for s in p.steps)
     if p.fusion:
         lines.append(f"       fused: {p.fusion}")
