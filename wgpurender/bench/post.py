@@ -15,7 +15,6 @@
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 
 import wgpu
@@ -25,7 +24,7 @@ from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
 from ..timing import PassTimer
-from .encoder import TimedEncoder, finish_frame, gpu_total
+from .encoder import gpu_total, timed_frame
 from .frames import RawStageRunner, WgpuStageRunner, measure
 from .report import Result
 
@@ -57,11 +56,8 @@ class _PassRunner:
         raise NotImplementedError
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
-        start = time.perf_counter()
-        self.timer.reset()
-        encoder = self.ctx.device.create_command_encoder()
-        self.encode_pass(TimedEncoder(encoder, self.timer, self.label))
-        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start)
+        cpu_ms, gpu = timed_frame(self.ctx, lambda encoder, target, t: self.encode_pass(encoder), self.target,
+                                  self.timer, self.label)
         return cpu_ms, gpu_total(gpu)
 
 

@@ -8,7 +8,7 @@ input attachment (subpassLoad) and writes it greyed into the output.
 it is designed to map onto Metal and D3D12, which expose neither (gfx-rs/wgpu#10148 is open). So
 this stage is two render passes recorded into one encoder:
 
-- pass 1 (``draw``): the MSAA colour attachment resolved into ``self.scene``, a texture with
+- pass 1 (``record``): the MSAA colour attachment resolved into ``self.scene``, a texture with
   RENDER_ATTACHMENT | TEXTURE_BINDING usage (the raw path's resolve attachment needs only
   COLOR_ATTACHMENT | INPUT_ATTACHMENT and is never stored);
 - pass 2 (``_post``): a full-screen triangle whose fragment shader reads ``self.scene`` with
@@ -29,10 +29,10 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
+from ..course.triangle import BACKGROUND
 from ..errors import UserError
 from ..shaders import create_shader_module
 from .base import Stage
-from .triangle import BACKGROUND, triangle_pipeline
 
 GREY_AMOUNT = 1.0  # fully grey: the simplest effect to check against numpy (the raw stage's value)
 SCENE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING
@@ -41,15 +41,13 @@ SCENE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BI
 class MsaaPost(Stage):
     name = "msaa-post"
     summary = "4x MSAA triangle, then a grey post effect in a second render pass reading the resolved image"
-    course_step = "3c: post-processing pass reading the previous pass (input attachment on Vulkan)"
-    order = 3.2
     supports_msaa = True
     default_msaa = 4
 
     def setup(self) -> None:
         if self.msaa == 1:
             raise UserError("stage 'msaa-post' resolves a multisampled image in its first pass: use --msaa 4")
-        self.draw_pipeline = triangle_pipeline(self, "triangle.wgsl")
+        self.draw_pipeline = self.basic_pipeline("triangle.wgsl")
         self._setup_post()
 
     def _setup_post(self) -> None:
@@ -78,7 +76,7 @@ class MsaaPost(Stage):
                      {"binding": 1, "resource": {"buffer": self.post_buffer}}],
         )
 
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+    def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
         render_pass = encoder.begin_render_pass(color_attachments=[self.color_attachment(self.scene, BACKGROUND)])
         render_pass.set_pipeline(self.draw_pipeline)
         render_pass.draw(3)
