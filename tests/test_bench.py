@@ -26,7 +26,7 @@ PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 @pytest.fixture(scope="module")
 def quick_run(ctx, tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
-    config = PerfConfig(quick=True, out_dir=out, families=("frames", "post", "objects", "scene"), frames=2,
+    config = PerfConfig(quick=True, out_dir=out, families=("frames", "post", "msaa-post", "objects", "scene"), frames=2,
                         command="pytest")
     run = run_perf(config, ctx, log=lambda _: None)
     return run, write_reports(run, out), out

@@ -149,8 +149,33 @@ def bench_probes(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Re
     return out
 
 
+BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "rgba16float": 8}
+
+
+def msaa_post_traffic(size: tuple[int, int], fmt: str = "rgba8unorm-srgb") -> dict[str, int]:
+    """Bytes that each path's load/store ops and reads declare must go through memory, per frame.
+
+    Both: the 4-sample image is cleared and discarded (never stored), the output stored once. raw: the
+    resolve attachment is never stored (storeOp DONT_CARE, TRANSIENT) and subpass 1 reads it as an input
+    attachment, which a tiling GPU serves from tile memory: nothing else. wgpu: the resolve target must be
+    stored (the next pass samples it) and read back by the post pass: two more full images. On a desktop
+    GPU or lavapipe the raw resolve lives in memory too, so the declared saving is a tiler's, not theirs.
+    """
+    image = size[0] * size[1] * BYTES_PER_PIXEL[fmt]
+    return {"raw": image, "wgpu": 3 * image}
+
+
+def msaa_post_traffic_results(size: tuple[int, int]) -> list[Result]:
+    s = f"{size[0]}x{size[1]}"
+    notes = {"raw": "output store only (resolve never stored, input attachment read from tile memory)",
+             "wgpu": "resolve stored + sampled by pass 2 + output store"}
+    return [Result("msaa-post", "msaa-post", path, s, "declared_mb", b / 1e6, b / 1e6, b / 1e6, 1, notes[path])
+            for path, b in msaa_post_traffic(size).items()]
+
+
 def bench_msaa_post(ctx: GPUContext, size: tuple[int, int], frames: int, raw: bool = True) -> list[Result]:
-    """msaa-post on both paths, plus the msaa stage alone on both, so the post increment can be read off."""
+    """msaa-post on both paths, plus the msaa stage alone on both, so the post increment can be read off;
+    and the memory traffic each path declares (:func:`msaa_post_traffic`)."""
     out = measure(WgpuStageRunner(ctx, "msaa-post", size), frames).results(
         "msaa-post", "msaa-post", "wgpu", size, note="msaa pass + post pass")
     out += measure(WgpuStageRunner(ctx, "msaa", size), frames).results("msaa-post", "msaa alone", "wgpu", size)
@@ -160,4 +185,4 @@ def bench_msaa_post(ctx: GPUContext, size: tuple[int, int], frames: int, raw: bo
                                                    note="one render pass, two subpasses")
         with RawStageRunner("msaa", size) as runner:
             out += measure(runner, frames).results("msaa-post", "msaa alone", "raw", size)
-    return out
+    return out + msaa_post_traffic_results(size)
