@@ -15,6 +15,7 @@
 
 from __future__ import annotations
 
+from contextlib import ExitStack
 from dataclasses import dataclass
 
 import wgpu
@@ -23,9 +24,9 @@ from ..gpu import GPUContext
 from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
-from ..timing import PassTimer
+from ..timing import PassTimer, Stats
 from .encoder import gpu_total, timed_frame
-from .frames import RawStageRunner, WgpuStageRunner, measure
+from .frames import RawStageRunner, Samples, WgpuStageRunner, measure
 from .report import Result
 
 PROBE_SHADER = "bench_post_probe.wgsl"
@@ -173,16 +174,46 @@ def msaa_post_traffic_results(size: tuple[int, int]) -> list[Result]:
             for path, b in msaa_post_traffic(size).items()]
 
 
+def _interleaved(runners: dict[tuple[str, str], object], frames: int) -> dict[tuple[str, str], Samples]:
+    """One frame of each runner per round, the order reversed every other round: on a loaded machine the
+    load drifts over seconds, so measuring one runner after the other would compare different loads."""
+    for runner in runners.values():
+        measure(runner, 0, warmup=2)
+    out = {key: Samples() for key in runners}
+    for i in range(frames):
+        for key in (list(runners) if i % 2 == 0 else list(reversed(runners))):
+            sample = measure(runners[key], 1, warmup=0)
+            out[key].frame += sample.frame
+            out[key].cpu += sample.cpu
+            out[key].gpu += sample.gpu
+    return out
+
+
+def _paired_increment(samples: dict[tuple[str, str], Samples], path: str, size: tuple[int, int]) -> list[Result]:
+    """The post step's GPU cost: msaa-post minus msaa alone, frame by frame within a round (paired), so
+    that the load of that moment cancels; its median and spread."""
+    with_post, alone = samples[("msaa-post", path)].gpu, samples[("msaa alone", path)].gpu
+    if not with_post or len(with_post) != len(alone):
+        return []
+    stats = Stats.of([a - b for a, b in zip(with_post, alone, strict=True)])
+    return [Result("msaa-post", "post step (paired difference)", path, f"{size[0]}x{size[1]}", "gpu_ms",
+                   stats.median, stats.p10, stats.p90, stats.n, "msaa-post minus msaa alone, same round")]
+
+
 def bench_msaa_post(ctx: GPUContext, size: tuple[int, int], frames: int, raw: bool = True) -> list[Result]:
-    """msaa-post on both paths, plus the msaa stage alone on both, so the post increment can be read off;
-    and the memory traffic each path declares (:func:`msaa_post_traffic`)."""
-    out = measure(WgpuStageRunner(ctx, "msaa-post", size), frames).results(
-        "msaa-post", "msaa-post", "wgpu", size, note="msaa pass + post pass")
-    out += measure(WgpuStageRunner(ctx, "msaa", size), frames).results("msaa-post", "msaa alone", "wgpu", size)
-    if raw:
-        with RawStageRunner("msaa-post", size) as runner:
-            out += measure(runner, frames).results("msaa-post", "msaa-post", "raw", size,
-                                                   note="one render pass, two subpasses")
-        with RawStageRunner("msaa", size) as runner:
-            out += measure(runner, frames).results("msaa-post", "msaa alone", "raw", size)
+    """msaa-post on both paths, plus the msaa stage alone on both, so the post step's cost can be read off
+    (interleaved frame by frame); and the memory traffic each path declares (:func:`msaa_post_traffic`)."""
+    notes = {("msaa-post", "wgpu"): "msaa pass + post pass", ("msaa-post", "raw"): "one render pass, two subpasses"}
+    with ExitStack() as stack:
+        runners = {("msaa-post", "wgpu"): WgpuStageRunner(ctx, "msaa-post", size),
+                   ("msaa alone", "wgpu"): WgpuStageRunner(ctx, "msaa", size)}
+        if raw:
+            runners[("msaa-post", "raw")] = stack.enter_context(RawStageRunner("msaa-post", size))
+            runners[("msaa alone", "raw")] = stack.enter_context(RawStageRunner("msaa", size))
+        samples = _interleaved(runners, frames)
+    out = []
+    for (case, path), sample in samples.items():
+        out += sample.results("msaa-post", case, path, size, note=notes.get((case, path), ""))
+    for path in ("wgpu", "raw") if raw else ("wgpu",):
+        out += _paired_increment(samples, path, size)
     return out + msaa_post_traffic_results(size)
