@@ -165,6 +165,13 @@ def copy_limits(limits) -> Limits:
 
 
 @functools.cache
+def _process_log() -> validation.MessageLog:
+    """One message log for every context of the process: the binding has one global callback slot, so a
+    second context's messenger (the window's) would otherwise take the first one's messages away."""
+    return validation.MessageLog()
+
+
+@functools.cache
 def get_vulkan() -> VulkanContext:
     """The process-wide raw Vulkan context (validation per $WGPURENDER_VALIDATION when first called)."""
     return create_context()
@@ -175,7 +182,7 @@ def create_context(instance_extensions: tuple[str, ...] = (), device_extensions:
     """A new context: headless by default. The window (window.py) asks for the surface and swapchain
     extensions, and picks a queue family that can also present: ``pick_family(instance, physical_device)
     -> index``, called once the instance exists (the surface it checks is made from the instance)."""
-    log = validation.MessageLog() if validation.validation_requested() else None
+    log = _process_log() if validation.validation_requested() else None
     instance = create_instance(log, instance_extensions)
     messenger = validation.create_messenger(instance, log) if log is not None else None
     physical = pick_physical_device(instance)
