@@ -42,10 +42,10 @@ import numpy as np
 import vulkan as vk
 
 from ..errors import UserError
+from .checks import check_msaa, check_size
 from .images import Image, create_image, subresource_layers, subresource_range
 from .instance import VulkanContext, create_context
 from .memory import HOST_MEMORY, create_buffer, read_host_buffer
-from .render import check_msaa, check_size
 from .stages.base import TARGET_USAGE
 from .swapchain import (
     FORMAT_NAMES,
