@@ -89,8 +89,9 @@ CONCEPTS: list[Concept] = [
     ),
     Concept(
         "surface",
-        ("vkCreateXlibSurfaceKHR / glfwCreateWindowSurface", "vkGetPhysicalDeviceSurfaceSupportKHR",
-         "vkGetPhysicalDeviceSurfaceFormatsKHR", "vkGetPhysicalDeviceSurfaceCapabilitiesKHR"),
+        ("glfwCreateWindowSurface (GLFW makes the platform's surface: Xlib or XCB, Wayland, Win32)",
+         "vkGetPhysicalDeviceSurfaceSupportKHR", "vkGetPhysicalDeviceSurfaceFormatsKHR",
+         "vkGetPhysicalDeviceSurfaceCapabilitiesKHR", "vkDestroySurfaceKHR"),
         _raw("window:create_window_context", "swapchain:presentation_family", "swapchain:surface_offer",
              "swapchain:destroy_surface"),
         ("wgpu.gpu.get_canvas_context(present_info)", "GPUCanvasContext.get_preferred_format"),
@@ -102,10 +103,9 @@ CONCEPTS: list[Concept] = [
     ),
     Concept(
         "presentation and present modes",
-        ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)",
+        ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)", "VkSwapchainCreateInfoKHR.presentMode",
          "vkGetPhysicalDeviceSurfacePresentModesKHR"),
-        _raw("swapchain:PRESENT_MODES", "swapchain:check_present_mode", "swapchain:SurfaceOffer.describe",
-             "window:RawWindow.frame"),
+        _raw("swapchain:surface_offer", "swapchain:create_swapchain", "swapchain:present"),
         ("GPUCanvasContext.present()", "present modes through the canvas context's configuration"),
         _wgpu("window:set_present_mode", "window:PRESENT_MODES", "window:run_window"),
         "Present modes are chosen on the canvas context: wgpu-py 0.32 only exposes vsync on/off, so "
@@ -222,9 +222,9 @@ CONCEPTS: list[Concept] = [
     Concept(
         "swapchain",
         ("vkCreateSwapchainKHR", "vkGetSwapchainImagesKHR", "vkAcquireNextImageKHR",
-         "re-creation on VK_ERROR_OUT_OF_DATE_KHR"),
-        _raw("swapchain:create_swapchain", "swapchain:choose_format", "window:RawWindow._recreate",
-             "window:RawWindow.frame", "window:RawWindow._record"),
+         "re-creation on VK_ERROR_OUT_OF_DATE_KHR (the binding raises VkErrorOutOfDateKhr, VkSuboptimalKhr)"),
+        _raw("swapchain:create_swapchain", "swapchain:acquire_next_image", "window:RawWindow.frame",
+             "window:RawWindow._recreate"),
         ("GPUCanvasContext.configure(device=, format=, usage=)", "GPUCanvasContext.get_current_texture()",
          "set_physical_size"),
         _wgpu("window:_loop", "window:surface_format", "window:SURFACE_USAGE"),
@@ -269,7 +269,7 @@ CONCEPTS: list[Concept] = [
         ("vkCmdPipelineBarrier", "VkBufferMemoryBarrier / VkImageMemoryBarrier",
          "VkPipelineStageFlags + VkAccessFlags (availability and visibility)"),
         _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer",
-             "textures:transition_level", "scene.neighbourhood:NeighbourhoodPass.record", "window:image_barrier"),
+             "textures:transition_level", "window:image_barrier"),
         ("(none: inserted by wgpu)",),
         _wgpu("textures:generate_mipmaps", "post.chain:PostChain.run"),
         "No barrier is ever written: wgpu inserts them between passes and copies from its usage tracking, with "
@@ -292,7 +292,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "semaphores",
         ("vkCreateSemaphore", "VkSubmitInfo pWaitSemaphores / pSignalSemaphores / pWaitDstStageMask"),
-        _raw("swapchain:owned_semaphore", "window:FrameSlot", "window:RawWindow.frame"),
+        _raw("swapchain:owned_semaphore", "window:RawWindow.frame", "swapchain:present"),
         ("(none: queue submission order)",),
         _wgpu("window:_loop"),
         "No semaphores in wgpu: one queue, whose submissions run in order, and the acquire/present semaphores "
@@ -304,8 +304,9 @@ CONCEPTS: list[Concept] = [
     ),
     Concept(
         "frames in flight",
-        ("MAX_FRAMES_IN_FLIGHT copies of command buffer, fence and semaphores", "imagesInFlight fences"),
-        _raw("window:FRAMES_IN_FLIGHT", "window:FrameSlot", "window:RawWindow.frame"),
+        ("MAX_FRAMES_IN_FLIGHT copies of VkCommandBuffer, VkFence and VkSemaphore", "vkWaitForFences before a "
+         "slot is recorded again", "vkResetFences", "imagesInFlight fences"),
+        _raw("window:FrameSlot", "window:RawWindow.frame"),
         ("(none: inside the surface)",),
         _wgpu("window:_loop"),
         "wgpu keeps its own frame pacing inside the surface (get_current_texture() blocks when the CPU runs too "
@@ -473,7 +474,7 @@ CONCEPTS: list[Concept] = [
         "input attachments",
         ("VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT", "VkSubpassDescription.pInputAttachments", "GLSL subpassLoad"),
         _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post", "scene.post:PostSubpass",
-             "scene.neighbourhood:split_chain"),
+             "scene.neighbourhood:NeighbourhoodPass._create_render_pass"),
         ("(none: the previous pass's texture, sampled in a new pass)",),
         _wgpu("stages.msaa_post:MsaaPost._post", "post.base:PostEffect.encode", "post.chain:PostChain.run"),
         "Cannot be expressed (no subpasses; gfx-rs/wgpu#10148). The image goes through memory between passes, "

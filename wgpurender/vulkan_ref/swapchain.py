@@ -43,18 +43,9 @@ FORMAT_NAMES = {
 }
 
 
-def instance_fn(ctx_or_instance, name: str):
-    instance = getattr(ctx_or_instance, "instance", ctx_or_instance)
-    return vk.vkGetInstanceProcAddr(instance, name)
-
-
-def device_fn(ctx: VulkanContext, name: str):
-    return vk.vkGetDeviceProcAddr(ctx.device, name)
-
-
 def presentation_family(instance, physical_device, surface) -> int:
     """The first queue family that does graphics and can present to ``surface`` (often the same one)."""
-    supports = instance_fn(instance, "vkGetPhysicalDeviceSurfaceSupportKHR")
+    supports = vk.vkGetInstanceProcAddr(instance, "vkGetPhysicalDeviceSurfaceSupportKHR")
     for index, family in enumerate(vk.vkGetPhysicalDeviceQueueFamilyProperties(physical_device)):
         if family.queueFlags & vk.VK_QUEUE_GRAPHICS_BIT and supports(physical_device, index, surface):
             return index
@@ -81,9 +72,9 @@ class SurfaceOffer:
 
 def surface_offer(ctx: VulkanContext, surface) -> SurfaceOffer:
     pd = ctx.physical_device
-    caps = instance_fn(ctx, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR")(pd, surface)
-    modes = instance_fn(ctx, "vkGetPhysicalDeviceSurfacePresentModesKHR")(pd, surface)
-    formats = instance_fn(ctx, "vkGetPhysicalDeviceSurfaceFormatsKHR")(pd, surface)
+    caps = vk.vkGetInstanceProcAddr(ctx.instance, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR")(pd, surface)
+    modes = vk.vkGetInstanceProcAddr(ctx.instance, "vkGetPhysicalDeviceSurfacePresentModesKHR")(pd, surface)
+    formats = vk.vkGetInstanceProcAddr(ctx.instance, "vkGetPhysicalDeviceSurfaceFormatsKHR")(pd, surface)
     extent = caps.currentExtent
     alpha = caps.supportedCompositeAlpha
     opaque = vk.VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
@@ -138,18 +129,35 @@ def create_swapchain(ctx: VulkanContext, surface, offer: SurfaceOffer, window_si
         compositeAlpha=offer.composite_alpha, presentMode=present_mode, clipped=vk.VK_TRUE,
         oldSwapchain=old.handle if old is not None else vk.VK_NULL_HANDLE,
     )
-    handle = device_fn(ctx, "vkCreateSwapchainKHR")(ctx.device, info, None)
-    images = list(device_fn(ctx, "vkGetSwapchainImagesKHR")(ctx.device, handle))
+    handle = vk.vkGetDeviceProcAddr(ctx.device, "vkCreateSwapchainKHR")(ctx.device, info, None)
+    images = list(vk.vkGetDeviceProcAddr(ctx.device, "vkGetSwapchainImagesKHR")(ctx.device, handle))
     return Swapchain(handle, images, fmt, tuple(extent))
+
+
+def acquire_next_image(ctx: VulkanContext, swapchain: Swapchain, semaphore, index) -> None:
+    """vkAcquireNextImageKHR into ``index`` (a uint32_t*), signalling ``semaphore`` when the image is free.
+
+    The index pointer is ours: the binding raises VkSuboptimalKhr for that success code, and without our
+    pointer the acquired image's index would be lost with the exception.
+    """
+    acquire = vk.vkGetDeviceProcAddr(ctx.device, "vkAcquireNextImageKHR")
+    acquire(ctx.device, swapchain.handle, 0xFFFFFFFFFFFFFFFF, semaphore, vk.VK_NULL_HANDLE, index)
+
+
+def present(ctx: VulkanContext, swapchain: Swapchain, image_index: int, wait_semaphore) -> None:
+    """vkQueuePresentKHR: give the image back to the presentation engine once ``wait_semaphore`` signals."""
+    info = vk.VkPresentInfoKHR(pWaitSemaphores=[wait_semaphore], pSwapchains=[swapchain.handle],
+                               pImageIndices=[image_index])
+    vk.vkGetDeviceProcAddr(ctx.device, "vkQueuePresentKHR")(ctx.queue, info)
 
 
 def destroy_swapchain(ctx: VulkanContext, swapchain: Swapchain | None) -> None:
     if swapchain is not None:
-        device_fn(ctx, "vkDestroySwapchainKHR")(ctx.device, swapchain.handle, None)
+        vk.vkGetDeviceProcAddr(ctx.device, "vkDestroySwapchainKHR")(ctx.device, swapchain.handle, None)
 
 
 def destroy_surface(ctx: VulkanContext, surface) -> None:
-    instance_fn(ctx, "vkDestroySurfaceKHR")(ctx.instance, surface, None)
+    vk.vkGetInstanceProcAddr(ctx.instance, "vkDestroySurfaceKHR")(ctx.instance, surface, None)
 
 
 def owned_semaphore(ctx: VulkanContext, owned: ExitStack):

@@ -49,13 +49,14 @@ from .memory import HOST_MEMORY, create_buffer, read_host_buffer
 from .stages.base import TARGET_USAGE
 from .swapchain import (
     FORMAT_NAMES,
+    acquire_next_image,
     check_present_mode,
     create_swapchain,
     destroy_surface,
     destroy_swapchain,
-    device_fn,
     owned_fence,
     owned_semaphore,
+    present,
     presentation_family,
     surface_offer,
 )
@@ -175,8 +176,6 @@ class RawWindow:
             flags=vk.VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, queueFamilyIndex=ctx.queue_family), None)
         self.owned.callback(vk.vkDestroyCommandPool, ctx.device, pool, None)
         self.slots = [FrameSlot(ctx, self.owned, pool, make) for _ in range(FRAMES_IN_FLIGHT)]
-        self.acquire = device_fn(ctx, "vkAcquireNextImageKHR")
-        self.present = device_fn(ctx, "vkQueuePresentKHR")
         self.swapchain = None
         self.swap_owned = ExitStack()  # per-swapchain-image semaphores
         self.resized, self.recreated, self.events = False, 0, []
@@ -221,16 +220,15 @@ class RawWindow:
         """One frame; False when the swapchain had to be re-created instead (nothing presented)."""
         slot = self.slots[index % FRAMES_IN_FLIGHT]
         slot.wait()
-        index = vk.ffi.new("uint32_t*")  # ours: the binding raises on SUBOPTIMAL and would drop the index
+        acquired = vk.ffi.new("uint32_t*")
         try:
-            self.acquire(self.ctx.device, self.swapchain.handle, NO_TIMEOUT, slot.image_available, vk.VK_NULL_HANDLE,
-                         index)
+            acquire_next_image(self.ctx, self.swapchain, slot.image_available, acquired)
         except vk.VkSuboptimalKhr:  # a success code: the image is acquired and the semaphore will signal
             self.resized = True  # so draw and present it, then re-create
         except vk.VkErrorOutOfDateKhr:  # nothing acquired, the semaphore untouched
             self._recreate()
             return False
-        image_index = index[0]
+        image_index = acquired[0]
         other = self.images_in_flight[image_index]
         if other is not None and other is not slot.fence:
             vk.vkWaitForFences(self.ctx.device, 1, [other], vk.VK_TRUE, NO_TIMEOUT)
@@ -240,10 +238,8 @@ class RawWindow:
         submit = vk.VkSubmitInfo(pWaitSemaphores=[slot.image_available], pWaitDstStageMask=[TRANSFER],
                                  pCommandBuffers=[slot.cmd], pSignalSemaphores=[self.render_finished[image_index]])
         vk.vkQueueSubmit(self.ctx.queue, 1, [submit], slot.fence)
-        info = vk.VkPresentInfoKHR(pWaitSemaphores=[self.render_finished[image_index]],
-                                   pSwapchains=[self.swapchain.handle], pImageIndices=[image_index])
         try:
-            self.present(self.ctx.queue, info)
+            present(self.ctx, self.swapchain, image_index, self.render_finished[image_index])
         except (vk.VkErrorOutOfDateKhr, vk.VkSuboptimalKhr):
             self.resized = True
         if self.resized:
