@@ -24,7 +24,7 @@ def _targets(run) -> str:
 
     res = run.results
     rows = []
-    # the final scene on both paths: final_subpass.toml (the raw path refuses final.toml's FXAA)
+    # the final scene on both paths: final.toml and final_subpass.toml (its per-pixel chain only)
     scene = [r for r in _pick(res, "scene", "frame_ms") if r.case in ("final", "final_subpass")]
     wg = {(r.case, r.size): r for r in scene if r.path == "wgpu"}
     rw = {(r.case, r.size): r for r in scene if r.path == "raw"}
