@@ -483,8 +483,9 @@ CONCEPTS: list[Concept] = [
         "(post/chain.py explains). The converse limits the raw path: subpassLoad reads only the fragment's own "
         "pixel, so fxaa and sharpen cut its chain: each samples the previous result in a render pass of its "
         "own. An sRGB or float input attachment reads exactly like the wgpu path's texture load: msaa-post and "
-        "every repository scene are bit-identical across the paths (fused on wgpu, or unfused with float16 "
-        "between per-pixel effects on both).",
+        "every repository scene are bit-identical across the paths (the unfused wgpu chain against the raw "
+        "path rounding to float16 between per-pixel effects; the fused chain differs by 1/255 only after a "
+        "neighbourhood effect, whose result the raw path stores).",
     ),
     Concept(
         "push constants",
