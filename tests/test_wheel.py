@@ -86,10 +86,11 @@ def installed(tmp_path_factory) -> dict:
     site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                           check=True, capture_output=True, text=True).stdout.strip()
     (Path(site) / "_test_venv_packages.pth").write_text("\n".join(_dependency_paths()) + "\n")
-    subprocess.run([*pip, "--python", str(python), "install", "-q", "--no-deps", "--no-index", str(wheel)],
-                   check=True, capture_output=True, text=True)
     env = {k: v for k, v in os.environ.items()
            if k not in ("WGPURENDER_SHADERS", "WGPURENDER_GLSL", "PYTHONPATH", "VIRTUAL_ENV")}
+    # without PYTHONPATH: a checkout on it would make pip find wgpurender 'already installed'
+    subprocess.run([*pip, "--python", str(python), "install", "-q", "--no-deps", "--no-index", str(wheel)],
+                   check=True, capture_output=True, text=True, env=env)
     env["XDG_CACHE_HOME"] = str(root / "cache")  # a cold SPIR-V cache: the raw path must compile from the wheel
     cwd = root / "cwd"
     cwd.mkdir()
