@@ -5,8 +5,8 @@ repository root, so ``pip install .`` rendered nothing). The wheel is built offl
 (``--no-build-isolation``: the test extra has setuptools>=77) from a copy of the files a build
 reads, installed with ``--no-deps`` into a fresh venv that sees the running interpreter's packages
 (the dependencies: its site-packages and its other sys.path folders, such as a PYTHONPATH, but never
-the checkout) through a .pth file, which puts them after the venv's own site-packages, and then run from an empty temp folder with no shader
-override set. Takes ~15 s alone on lavapipe.
+the checkout) through a .pth file, which puts them after the venv's own site-packages, and then run
+from an empty temp folder with no shader override set. Takes ~15 s alone on lavapipe.
 """
 
 from __future__ import annotations
