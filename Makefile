@@ -10,7 +10,7 @@ APT_PACKAGES := python3 python3-venv mesa-vulkan-drivers libvulkan1 libglfw3 xvf
 STAMP := $(VENV)/.installed
 export XDG_RUNTIME_DIR ?= /tmp
 
-.PHONY: setup apt demo test lint references bench clean
+.PHONY: setup apt demo test fuzz lint references bench clean
 
 setup: apt $(STAMP)
 
@@ -34,6 +34,13 @@ demo: setup
 test: setup
 	$(BIN)/ruff check .
 	$(BIN)/pytest -q
+
+# The long fuzz run (>= 10,000 cases, counts by outcome printed and written to out/fuzz-report.json) and the long
+# soak. Niced, and lavapipe limited to 2 threads, so a shared machine stays usable; it takes about an hour.
+fuzz: setup
+	@mkdir -p out
+	WGPURENDER_FUZZ=long WGPURENDER_FUZZ_REPORT=out/fuzz-report.json LP_NUM_THREADS=2 \
+	  nice -n 10 $(BIN)/python -m pytest -q -p no:cacheprovider tests/fuzz tests/test_soak.py
 
 # Re-render assets/reference/*.png with the raw-Vulkan path (validation on); never with the wgpu path.
 references: setup

@@ -209,8 +209,8 @@ def _check_gpu_range(what: str, label: str, values: np.ndarray, limit: float) ->
     if np.any(bad):
         rows = int(np.count_nonzero(np.any(bad.reshape(len(wide), -1), axis=1)))
         worst = wide[bad][0]
-        raise UserError(f"{what} has {rows} {label}(s) that are NaN or infinite, or beyond {limit:.3g}, in float32 (the "
-                        f"GPU's type), e.g. {worst:g}; fix the model or scale it down before export")
+        raise UserError(f"{what} has {rows} {label}(s) that are NaN or infinite, or beyond {limit:.3g}, in float32 "
+                        f"(the GPU's type), e.g. {worst:g}; fix the model or scale it down before export")
 
 
 def _complete_normals(positions: np.ndarray, indices: np.ndarray, normals: np.ndarray | None) -> np.ndarray:

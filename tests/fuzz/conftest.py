@@ -1,0 +1,25 @@
+"""Fuzz tests: bounded in ``make test``; ``make fuzz`` (WGPURENDER_FUZZ=long) raises the example counts and prints,
+and writes to $WGPURENDER_FUZZ_REPORT, the counts by outcome."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+import harness  # noqa: E402
+
+
+def pytest_terminal_summary(terminalreporter):
+    if not harness.OUTCOMES:
+        return
+    terminalreporter.write_line(harness.summary())
+    for outcome, examples in sorted(harness.EXAMPLES.items()):
+        terminalreporter.write_line(f"  {outcome}: {len(examples)}, first: {examples[0][:600]}")
+    report = os.environ.get("WGPURENDER_FUZZ_REPORT")
+    if report:
+        Path(report).write_text(json.dumps({"counts": dict(harness.OUTCOMES),
+                                            "examples": {k: v[:5] for k, v in harness.EXAMPLES.items()}}, indent=1))
