@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import signal
+import stat
 import subprocess
 import sys
 import time
@@ -108,10 +109,19 @@ def test_a_fifo_is_not_replaced_nor_opened(tmp_path, images):
     assert fifo.exists() and not fifo.is_file() and _temps(tmp_path) == []
 
 
-def test_a_device_is_not_replaced(images):
-    # /dev/null is a character device on every Linux; the check must refuse before any rename could replace it
-    _refused(images, "/dev/null", "character device")
-    assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")
+def test_a_device_is_not_replaced(tmp_path, images):
+    """A character device (a twin of /dev/null made in tmp_path) is refused before any rename could replace it.
+
+    Not the real /dev/null: if this check ever regressed, the test itself would replace the machine's /dev/null
+    with a PNG (it happened once, on a developer's machine, with the old code).
+    """
+    device = tmp_path / "null.png"
+    try:
+        os.mknod(device, 0o666 | stat.S_IFCHR, os.makedev(1, 3))
+    except PermissionError:
+        pytest.skip("making a device node needs root (CAP_MKNOD)")
+    _refused(images, device, "character device")
+    assert stat.S_ISCHR(os.lstat(device).st_mode)
 
 
 def test_a_directory_is_not_replaced(tmp_path, images):

@@ -149,7 +149,7 @@ def _loop(ctx, glfw, window, make_drawable, frames, present_mode, fixed_time, sc
         drawable.resize((width, height))
         encoder = ctx.device.create_command_encoder(label="frame")
         t = fixed_time if fixed_time is not None else time.perf_counter() - start
-        drawable.draw(encoder, texture, t)
+        drawable.record(encoder, texture, t)
         ctx.queue.submit([encoder.finish()])
         if screenshot and (frames is None or shown == frames - 1):
             last = read_texture(ctx, texture)  # a copy of what we rendered, before it is presented

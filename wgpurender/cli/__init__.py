@@ -50,9 +50,11 @@ def _quiet_libraries() -> None:
     """Library warnings and log records never reach stderr as extra lines: the error message says what went wrong.
 
     Python's last-resort logging handler prints WARNING records of loggers with no handler (trimesh's, ours);
-    a NullHandler on the package loggers stops that. Python warnings are ignored for the run.
+    a NullHandler on the package loggers stops that. Python warnings are ignored for the run. wgpu's logger is
+    left alone: wgpu installs its own logger class when imported (getting it first breaks that import), and its
+    records include GPU validation errors, which are bugs to be seen.
     """
-    for name in ("trimesh", "wgpurender", "PIL", "wgpu"):
+    for name in ("trimesh", "wgpurender", "PIL"):
         logger = logging.getLogger(name)
         if not any(isinstance(h, logging.NullHandler) for h in logger.handlers):
             logger.addHandler(logging.NullHandler())

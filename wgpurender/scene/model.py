@@ -79,8 +79,8 @@ class SamplerSettings:
     address_mode: str = "repeat"
 
     def spec(self):
-        """The :class:`wgpurender.textures.SamplerSpec` for these settings."""
-        from ..textures import SamplerSpec
+        """The :class:`wgpurender.course.samplers.SamplerSpec` for these settings."""
+        from ..course.samplers import SamplerSpec
 
         return SamplerSpec(
             mag_filter=self.filter,
