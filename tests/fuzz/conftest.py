@@ -23,3 +23,9 @@ def pytest_terminal_summary(terminalreporter):
     if report:
         Path(report).write_text(json.dumps({"counts": dict(harness.OUTCOMES),
                                             "examples": {k: v[:5] for k, v in harness.EXAMPLES.items()}}, indent=1))
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """``make fuzz`` counts every case instead of stopping at the first bad one: it fails here if any was bad."""
+    if harness.LONG and any(k not in harness.PASSING for k in harness.OUTCOMES):
+        session.exitstatus = 1

@@ -7,7 +7,7 @@ import json
 
 import numpy as np
 import pytest
-from harness import PASSING, render_argv, reset_folder, run_case
+from harness import check, render_argv, reset_folder, run_case
 from hypothesis import given
 from hypothesis import strategies as st
 from reliab_gen import scene_text, triangle_gltf
@@ -27,7 +27,7 @@ def _case(folder, name: str, data: bytes, label: str) -> None:
     scene.write_text(scene_text(name))
     output = folder / "out" / "out.png"
     outcome = run_case(render_argv(scene, output), output, scene, label)
-    assert outcome in PASSING, f"{outcome}: {label}"
+    check(outcome, f"{outcome}: {label}")
 
 
 def _box(file_type: str) -> bytes:

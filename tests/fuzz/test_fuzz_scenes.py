@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from harness import PASSING, render_argv, reset_folder, run_case
+from harness import check, render_argv, reset_folder, run_case
 from hypothesis import given
 from hypothesis import strategies as st
 from reliab_gen import triangle_gltf, write_gltf
@@ -28,7 +28,7 @@ def _case(folder, text: str, label: str) -> None:
     scene.write_text(text)
     output = folder / "out" / "out.png"
     outcome = run_case(render_argv(scene, output), output, scene, label)
-    assert outcome in PASSING, f"{outcome}: {label}\n{text}"
+    check(outcome, f"{outcome}: {label}\n{text}")
 
 
 def _maybe(draw, key: str, value: st.SearchStrategy) -> str:

@@ -7,7 +7,7 @@ import io
 
 import numpy as np
 import pytest
-from harness import PASSING, render_argv, reset_folder, run_case
+from harness import check, render_argv, reset_folder, run_case
 from hypothesis import given
 from hypothesis import strategies as st
 from PIL import Image
@@ -67,7 +67,7 @@ def _case(folder, texture: bytes, scene_text: str, label: str) -> None:
     scene.write_text(scene_text)
     output = folder / "out" / "out.png"
     outcome = run_case(render_argv(scene, output), output, scene, label)
-    assert outcome in PASSING, f"{outcome}: {label}"
+    check(outcome, f"{outcome}: {label}")
 
 
 @fuzz_settings(ci=8, long=1100)
