@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
+from . import slow_frames
 from .errors import UserError
 from .gpu import GPUContext
 
@@ -155,6 +156,7 @@ def _loop(ctx, glfw, window, make_drawable, frames, present_mode, fixed_time, sc
             last = read_texture(ctx, texture)  # a copy of what we rendered, before it is presented
         context.present()
         shown += 1
+        slow_frames.tick(ctx, drawable, (width, height))  # a frame over 3 s says once why (reliab, issue 15)
     elapsed = (time.perf_counter() - start) * 1e3
     if screenshot and last is None and shown:
         raise UserError("the window closed before a frame could be captured")
