@@ -16,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from .. import shader_errors
 from ..errors import UserError
 from ..safe_write import install_signal_handlers
 
@@ -78,6 +79,12 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return 130
+    except Exception as err:  # a pipeline error from user-supplied shaders is a user error; anything else a bug
+        user = shader_errors.as_user_error(err)
+        if user is None:
+            raise
+        print(f"wgpurender {args.command}: error: {one_line(user)}", file=sys.stderr)
+        return 2
     except BrokenPipeError:  # e.g. piped into head: the reader has all it wanted
         sys.stderr.close()
         return 0
