@@ -163,8 +163,9 @@ def test_bad_post_parameter_is_reported_at_its_own_line(tmp_path):
 # --- CLI numbers ----------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
-def test_render_time_must_be_finite(tmp_path, value):
-    code, _, err = run_cli("render", "3d", "-o", tmp_path / "x.png", f"--time={value}")
+@pytest.mark.parametrize("command", ["render 3d -o", "reference triangle -o", "demo triangle --screenshot"])
+def test_animation_time_must_be_finite(tmp_path, value, command):
+    code, _, err = run_cli(*command.split(), tmp_path / "x.png", f"--time={value}")
     assert code == 2 and "--time" in _one_line(err) and "finite" in err
     assert not (tmp_path / "x.png").exists()
 

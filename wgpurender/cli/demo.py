@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._args import size_arg
+from ._args import finite_float, size_arg
 
 
 def register(subparsers) -> None:
@@ -22,7 +22,7 @@ def register(subparsers) -> None:
         help="swapchain present mode (default fifo, always available)",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
-    p.add_argument("--time", type=float, default=None, metavar="T", help="freeze the animation at T seconds")
+    p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
     p.set_defaults(func=run)
