@@ -11,6 +11,20 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 
 import harness  # noqa: E402
+import pytest  # noqa: E402
+
+
+@pytest.fixture(scope="session", autouse=True)
+def warm_up(tmp_path_factory):
+    """One render outside any case's time bound: the first pays for the GPU device, the imports and shader
+    compilation, which on a loaded machine took longer than the per-case bound (and read as a hang)."""
+    from reliab_gen import run_cli, scene_text, triangle_gltf, write_gltf
+
+    folder = tmp_path_factory.mktemp("warm")
+    write_gltf(folder / "model.gltf", triangle_gltf())
+    (folder / "scene.toml").write_text(scene_text())
+    code, _, err = run_cli(*harness.render_argv(folder / "scene.toml", folder / "out.png"))
+    assert code == 0, err
 
 
 def pytest_terminal_summary(terminalreporter):
