@@ -59,7 +59,9 @@ def run(args) -> int:
 
 
 def _drawable_factory(ctx, args):
-    if args.target.endswith(".toml"):
+    from ..course.formats import is_scene_file
+
+    if is_scene_file(args.target):
         from ..scene_render import scene_drawable_factory
 
         return scene_drawable_factory(args.target, ctx, msaa=args.msaa)
