@@ -16,7 +16,7 @@ import warnings
 
 import numpy as np
 
-from .. import shader_errors
+from .. import __version__, shader_errors
 from ..errors import UserError
 from ..safe_write import install_signal_handlers
 
@@ -34,6 +34,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="The steps of a Vulkan course on wgpu, headless or in a window, checked against a raw-Vulkan "
         "reference path.",
     )
+    parser.add_argument("--version", action="version", version=f"wgpurender {__version__}")
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     for mod in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if mod.name.startswith("_"):
@@ -79,12 +80,12 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:  # e.g. piped into head: the reader has all it wanted
+        sys.stderr.close()
+        return 0
     except Exception as err:  # a pipeline error from user-supplied shaders is a user error; anything else a bug
         user = shader_errors.as_user_error(err)
         if user is None:
             raise
         print(f"wgpurender {args.command}: error: {one_line(user)}", file=sys.stderr)
         return 2
-    except BrokenPipeError:  # e.g. piped into head: the reader has all it wanted
-        sys.stderr.close()
-        return 0

@@ -23,8 +23,8 @@ def _register_perf(suites) -> None:
     p = suites.add_parser(
         "perf",
         help="frame, CPU, readback, post, many-objects and first-frame times, wgpu against raw Vulkan",
-        description="Measure every stage (and the final scene when its renderer exists) on the wgpu and the "
-        "raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
+        description="Measure every stage and the final scene (final_subpass.toml on both paths) on the wgpu and "
+        "the raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
         "and perf_*.png (plots need matplotlib: pip install 'wgpurender[bench]').",
     )
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats: checks the harness in < 60 s")
@@ -90,5 +90,9 @@ def _register_accuracy(suites) -> None:
                    help="sweep only these knobs (repeatable; default all)")
     p.add_argument("--no-combinations", dest="combinations", action="store_false",
                    help="only the one-knob-at-a-time sweeps")
+    p.add_argument("--truth", choices=("rendered", "analytic"), default="rendered",
+                   help="rendered (default): every knob on SCENE against the same renderer at 8x; analytic: "
+                   "anti-aliasing (none, FXAA, MSAA 4, SSAA 2x/4x), texture filtering and depth on test scenes "
+                   "against float64 ground truths no renderer made (accuracy_analytic.csv/.md)")
     add_backend_arg(p)
     p.set_defaults(func=run)
