@@ -25,10 +25,17 @@ def register(subparsers) -> None:
     p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--raw", action="store_true",
+                   help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
+                   "in flight (wgpurender/vulkan_ref/window.py); stages as 'wgpurender reference' has them")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    if args.raw:
+        from ._demo_raw import run_raw
+
+        return run_raw(args)
     from ..errors import UserError
     from ..gpu import get_context
     from ..imageio import check_writable, save_png
