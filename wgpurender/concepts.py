@@ -52,8 +52,8 @@ CONCEPTS: list[Concept] = [
         ("vkCreateInstance", "VkApplicationInfo", "ppEnabledLayerNames / ppEnabledExtensionNames",
          "vkCreateDebugUtilsMessengerEXT"),
         _raw("instance:create_instance", "validation:create_messenger", "validation:validation_features"),
-        ("wgpu.gpu (created on first use)", "set_instance_extras(flags=['Validation'])"),
-        _wgpu("gpu:_enable_validation_once", "gpu:_adapters"),
+        ("wgpu.gpu (created on first use)", "set_instance_extras(backends=[...], flags=['Validation'])"),
+        _wgpu("gpu:_configure_instance_once", "gpu:_adapters"),
         "wgpu-py creates the instance itself on first use: no application info, no layer or extension lists. "
         "The validation layer is one instance flag, and its messages arrive on the Python 'wgpu' logger instead "
         "of a debug messenger callback (tests/conftest.py collects them).",

@@ -104,7 +104,7 @@ class PassTimer:
         if not self.enabled or not self.labels:
             return {}
         n = 2 * len(self.labels)
-        self.read_buffer.map_sync(wgpu.MapMode.READ, 0, 8 * n)
+        self.ctx.map_read(self.read_buffer, 0, 8 * n)
         ticks = np.frombuffer(self.read_buffer.read_mapped(0, 8 * n), dtype=np.uint64).astype(np.float64)
         self.read_buffer.unmap()
         period_ns = self.period_ns
