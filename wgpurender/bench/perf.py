@@ -30,6 +30,7 @@ FULL_COUNTS = (1_000, 10_000, 100_000)
 QUICK_COUNTS = (50, 200)
 CPU_PER_DRAW_LIMIT = 10_000  # lavapipe: one call per object at 100k is minutes of run time, for no insight
 SCENE_FILE = Path("assets/scenes/final.toml")
+SUBPASS_SCENE_FILE = Path("assets/scenes/final_subpass.toml")  # final.toml without FXAA: every raw path can draw it
 TUTORIAL_SCENES = {"chapter 28": Path("assets/scenes/vulkan_tutorial_28.toml"),
                    "chapter 30": Path("assets/scenes/vulkan_tutorial_30.toml")}
 TUTORIAL_SIZE = (800, 600)  # the size of the C++ numbers
@@ -102,14 +103,28 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
 # -- families -----------------------------------------------------------------------------------
 
 
+class Progress:
+    """A progress line per finished case: '[k/n] what, elapsed, ETA' (the ETA from the mean case so far)."""
+
+    def __init__(self, total: int, log: Callable[[str], None]) -> None:
+        self.total, self.log, self.done, self.start = max(1, total), log, 0, time.perf_counter()
+
+    def step(self, what: str) -> None:
+        self.done += 1
+        elapsed = time.perf_counter() - self.start
+        eta = elapsed / self.done * (self.total - self.done)
+        self.log(f"  [{self.done}/{self.total}] {what}  ({elapsed:.0f} s elapsed, ETA {eta:.0f} s)")
+
+
 def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from .frames import bench_stage, common_stages
 
     n = config.timed_frames()
-    for size in config.sizes(ctx):
-        for name in common_stages():
-            run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
-            log(f"  frames: {name} {size[0]}x{size[1]}")
+    cases = [(size, name) for size in config.sizes(ctx) for name in common_stages()]
+    progress = Progress(len(cases), log)
+    for size, name in cases:
+        run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+        progress.step(f"frames: {name} {size[0]}x{size[1]}")
     run.notes.append("frames: wgpu-only stages (no raw counterpart) are left out: "
                      + ", ".join(_wgpu_only_stages()) + ".")
 
@@ -122,23 +137,31 @@ def _wgpu_only_stages() -> list[str]:
     return [name for name in all_stages() if name not in common] or ["none"]
 
 
+def _scene_files(config: PerfConfig) -> list[Path]:
+    """The configured scene, and final_subpass.toml beside final.toml (the raw path draws it without FXAA)."""
+    files = [config.scene_file]
+    if config.scene_file == SCENE_FILE and SUBPASS_SCENE_FILE.is_file():
+        files.append(SUBPASS_SCENE_FILE)
+    return files
+
+
 def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from .scene import bench_scene
 
     n = config.timed_frames()
-    from .scene import RAW_SCENE_STAGE, _raw_has_scene
-
-    if config.raw and not _raw_has_scene():
-        run.notes.append(f"scene: the raw-Vulkan path has no stage {RAW_SCENE_STAGE!r}, so the final scene has no "
-                         "raw peer; the wgpu/raw target is read stage by stage (frames).")
-    for size in config.sizes(ctx):
-        results, note = bench_scene(ctx, config.scene_file, size, n, raw=config.raw)
+    cases = [(path, size) for path in _scene_files(config) for size in config.sizes(ctx)]
+    progress = Progress(len(cases), log)
+    notes: set[str] = set()
+    for path, size in cases:
+        results, note = bench_scene(ctx, path, size, n, raw=config.raw)
         run.results += results
-        if note:
+        if note and note not in notes:
+            notes.add(note)
             run.notes.append(f"scene: {note}")
             log(f"  scene: {note}")
+        if not results:
             return
-        log(f"  scene: {size[0]}x{size[1]}")
+        progress.step(f"scene: {path.stem} {size[0]}x{size[1]}")
     size = QUICK_SIZES[0] if config.quick else TUTORIAL_SIZE
     anchors = Path("../shared/anchors/vulkan-tutorial")
     if not anchors.is_dir():
