@@ -25,6 +25,9 @@ def register(subparsers) -> None:
     p.add_argument("--time", type=float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
+                   help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
+                   "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
     p.set_defaults(func=run)
 
 
@@ -64,7 +67,7 @@ def _drawable_factory(ctx, args):
     if is_scene_file(args.target):
         from ..scene_render import scene_drawable_factory
 
-        return scene_drawable_factory(args.target, ctx, msaa=args.msaa)
+        return scene_drawable_factory(args.target, ctx, msaa=args.msaa, anisotropy=args.anisotropy)
     from ..stages import get_stage
 
     cls = get_stage(args.target)
