@@ -129,6 +129,9 @@ def _configure_instance_once() -> None:
     """
     from wgpu.backends.wgpu_native.extras import set_instance_extras
 
+    from .cffi_types import install_for_wgpu
+
+    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
     set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else [])
 
