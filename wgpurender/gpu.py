@@ -118,6 +118,7 @@ def requested_backend(backend: str | None = None) -> str:
     raise UserError(f"unknown backend {name!r}: choose one of {', '.join(BACKENDS)}")
 
 
+@functools.cache
 def _configure_instance_once() -> None:
     """Create the wgpu instance for the requested backend only, with validation when $WGPURENDER_VALIDATION is set.
 
@@ -133,7 +134,7 @@ def _configure_instance_once() -> None:
 
     install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
-    set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else [])
+    set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else ["Default"])
 
 
 @functools.cache

@@ -32,6 +32,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    from ..course.formats import is_scene_file
     from ..errors import UserError
     from ..gpu import get_context
     from ..imageio import check_writable, save_png
@@ -43,7 +44,8 @@ def run(args) -> int:
         check_writable(args.screenshot)
     ctx = get_context(args.backend)
     make = _drawable_factory(ctx, args)
-    make("rgba8unorm-srgb")  # fail on a bad stage name or option before a window opens
+    if not is_scene_file(args.target):  # a scene file was loaded and planned by its factory: no second renderer
+        make("rgba8unorm-srgb")  # fail on a bad stage name or option before a window opens
     result = run_window(
         ctx,
         make,

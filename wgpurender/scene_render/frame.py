@@ -149,6 +149,7 @@ def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None =
     """``make(fmt) -> SceneRenderer`` for the window: the scene is loaded and checked now, planned per format."""
     scene = load_scene(path)
     adapter_type = ctx.adapter.info["adapter_type"]
+    build_plan(scene, msaa=msaa, anisotropy=anisotropy, adapter_type=adapter_type)  # a bad option fails here, cheaply
 
     def make(fmt: str) -> SceneRenderer:
         return SceneRenderer(ctx, scene, build_plan(scene, output_format=fmt, msaa=msaa, anisotropy=anisotropy,
