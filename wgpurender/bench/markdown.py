@@ -43,8 +43,8 @@ def _targets(run) -> str:
         both = [s for s in wg if s in rw and rw[s].median > 0]
         if both:
             size, worst = max(((s, wg[s].median / rw[s].median) for s in both), key=lambda x: x[1])
-            rows.append((f"scene {case}: wgpu / raw frame time <= {limit:.2f}", f"worst {size} {worst:.2f}x",
-                         _verdict(run, worst <= limit)))
+            rows.append((f"final scene ({case}.toml) wgpu / raw frame time <= {limit:.2f}",
+                         f"worst {size} {worst:.2f}x", _verdict(run, worst <= limit)))
     ratios = [(r.case, r.size, r.median / p.median) for r in _pick(res, "frames", "frame_ms", "wgpu")
               for p in [_one(res, "frames", r.case, "raw", r.size, "frame_ms")] if p and p.median > 0]
     if ratios:

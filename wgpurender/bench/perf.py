@@ -30,7 +30,8 @@ FULL_COUNTS = (1_000, 10_000, 100_000)
 QUICK_COUNTS = (50, 200)
 CPU_PER_DRAW_LIMIT = 10_000  # lavapipe: one call per object at 100k is minutes of run time, for no insight
 SCENE_FILE = Path("assets/scenes/final.toml")
-SUBPASS_SCENE_FILE = Path("assets/scenes/final_subpass.toml")  # final.toml without FXAA: every raw path can draw it
+# final.toml's chain without FXAA: the scene the raw-Vulkan path draws too (its subpass takes per-pixel effects)
+SUBPASS_SCENE_FILE = Path("assets/scenes/final_subpass.toml")
 TUTORIAL_SCENES = {"chapter 28": Path("assets/scenes/vulkan_tutorial_28.toml"),
                    "chapter 30": Path("assets/scenes/vulkan_tutorial_30.toml")}
 TUTORIAL_SIZE = (800, 600)  # the size of the C++ numbers
@@ -137,31 +138,22 @@ def _wgpu_only_stages() -> list[str]:
     return [name for name in all_stages() if name not in common] or ["none"]
 
 
-def _scene_files(config: PerfConfig) -> list[Path]:
-    """The configured scene, and final_subpass.toml beside final.toml (the raw path draws it without FXAA)."""
-    files = [config.scene_file]
-    if config.scene_file == SCENE_FILE and SUBPASS_SCENE_FILE.is_file():
-        files.append(SUBPASS_SCENE_FILE)
-    return files
-
-
 def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from .scene import bench_scene
 
     n = config.timed_frames()
-    cases = [(path, size) for path in _scene_files(config) for size in config.sizes(ctx)]
-    progress = Progress(len(cases), log)
-    notes: set[str] = set()
-    for path, size in cases:
-        results, note = bench_scene(ctx, path, size, n, raw=config.raw)
-        run.results += results
-        if note and note not in notes:
-            notes.add(note)
-            run.notes.append(f"scene: {note}")
-            log(f"  scene: {note}")
-        if not results:
-            return
-        progress.step(f"scene: {path.stem} {size[0]}x{size[1]}")
+    files = list(dict.fromkeys((config.scene_file, SUBPASS_SCENE_FILE)))
+    progress = Progress(len(files) * len(config.sizes(ctx)), log)
+    for scene_file in files:
+        for size in config.sizes(ctx):
+            results, note = bench_scene(ctx, scene_file, size, n, raw=config.raw)
+            run.results += results
+            if note and f"scene: {note}" not in run.notes:
+                run.notes.append(f"scene: {note}")
+                log(f"  scene: {note}")
+            if not results:
+                break
+            progress.step(f"scene: {scene_file.name} {size[0]}x{size[1]}")
     size = QUICK_SIZES[0] if config.quick else TUTORIAL_SIZE
     anchors = Path("../shared/anchors/vulkan-tutorial")
     if not anchors.is_dir():
