@@ -28,6 +28,7 @@ def test_every_typedef_shape_matches_cffis_parser(parser):
     assert len(names) > 100
     # every 7th name (the whole set parses for minutes), plus the ones a frame uses
     sample = set(names[::7]) | {n for n in names if n in ("WGPURenderPassDescriptor", "WGPUColor", "WGPUBool")}
+    sample |= {"uint8_t", "uint32_t", "intptr_t", "uintptr_t", "int", "float", "double"}  # primitives wgpu-py uses
     for name in sorted(sample):
         for cdecl in (name, f"{name} *", f"{name}[]"):
             fast = cffi_types.fast_parse_type_and_quals(ffi._parser, cdecl)
@@ -38,7 +39,12 @@ def test_every_typedef_shape_matches_cffis_parser(parser):
                 assert ffi._get_cached_btype(fast[0]) is ffi._get_cached_btype(expected[0])
 
 
-@pytest.mark.parametrize("cdecl", ["uint32_t []", "char[4]", "WGPUColor **", "struct WGPUColor *", "int (*)(int)"])
+def test_void_pointer_matches_cffis_parser(parser):
+    ffi, real = parser
+    assert cffi_types.fast_parse_type_and_quals(ffi._parser, "void *") == real("void *")
+
+
+@pytest.mark.parametrize("cdecl", ["char[4]", "WGPUColor **", "struct WGPUColor *", "int (*)(int)"])
 def test_other_shapes_go_to_the_parser(parser, cdecl):
     ffi, _ = parser
     assert cffi_types.fast_parse_type_and_quals(ffi._parser, cdecl) is None

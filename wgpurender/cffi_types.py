@@ -7,9 +7,10 @@ frame or a pipeline needs dozens of distinct types. That was most of the wgpu pa
 first-frame time (profile in docs/benchmarks.md: 74 parses, more than the rest of a
 ``render final.toml`` together).
 
-For the three shapes wgpu-py uses with a typedef'd name, ``NAME``, ``NAME *`` and ``NAME[]``, the
-parse has a known answer: cffi's own parser resolves a typedef name to its declaration
-(``_declarations["typedef NAME"]``, the first branch of ``Parser._get_type_and_quals``), a ``*`` to
+For the three shapes wgpu-py uses with a typedef'd name or a C primitive (``uint8_t``, ``void``...),
+``NAME``, ``NAME *`` and ``NAME[]``, the parse has a known answer: cffi's own parser resolves a typedef
+name to its declaration (``_declarations["typedef NAME"]``, the first branch of
+``Parser._get_type_and_quals``), a primitive through ``commontypes.resolve_common_type``, a ``*`` to
 ``model.PointerType(that, quals)``, ``[]`` to ``model.ArrayType(that, None)``. We build those
 directly and hand every other string to the real parser; tests/test_cffi_types.py checks the
 fast answer equals the parser's for every typedef of wgpu.h. This uses cffi internals
@@ -30,7 +31,10 @@ def fast_parse_type_and_quals(parser, cdecl: str):
     m = _SHAPE.match(cdecl)
     if m is None:
         return None
-    entry = parser._declarations.get("typedef " + m.group(1))
+    name = m.group(1)
+    entry = parser._declarations.get("typedef " + name)
+    if entry is None:
+        entry = _primitive(parser, name)
     if entry is None:
         return None
     tp, quals = entry
@@ -40,6 +44,18 @@ def fast_parse_type_and_quals(parser, cdecl: str):
     if suffix == "*":
         return parser._get_type_pointer(tp, quals), 0
     return model.ArrayType(tp, None), quals
+
+
+def _primitive(parser, name: str):
+    """(type, quals) of ``void`` or a C primitive such as uint8_t, as the parser's common-type branch gives them."""
+    from cffi import model
+    from cffi.commontypes import resolve_common_type
+
+    if name == "void":
+        return model.void_type, 0
+    if name in model.PrimitiveType.ALL_PRIMITIVE_TYPES:
+        return resolve_common_type(parser, name)
+    return None
 
 
 def install(ffi) -> bool:
