@@ -28,10 +28,17 @@ def register(subparsers) -> None:
     p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
                    help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
                    "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
+    p.add_argument("--raw", action="store_true",
+                   help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
+                   "in flight (wgpurender/vulkan_ref/window.py); stages as 'wgpurender reference' has them")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    if args.raw:
+        from ._demo_raw import run_raw
+
+        return run_raw(args)
     from ..course.formats import is_scene_file
     from ..errors import UserError
     from ..gpu import get_context
