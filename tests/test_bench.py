@@ -115,7 +115,8 @@ def test_final_scene_measured_on_both_paths(quick_run):
     assert {("final_subpass", "wgpu"), ("final_subpass", "raw"), ("final", "wgpu"), ("final", "raw")} <= measured
     assert not any("no raw peer" in n for n in run.notes), run.notes
     report = (quick_run[2] / "report.md").read_text()
-    assert ".toml) wgpu / raw frame time <= 1.10" in report
+    for case in ("final", "final_subpass"):  # the limit is 1.05 on a CPU adapter, 1.10 on a GPU
+        assert f"final scene ({case}.toml) wgpu / raw frame time <= " in report
 
 
 def test_families_produce_their_rows(quick_run):
