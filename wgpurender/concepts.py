@@ -51,8 +51,8 @@ CONCEPTS: list[Concept] = [
         ("vkCreateInstance", "VkApplicationInfo", "ppEnabledLayerNames / ppEnabledExtensionNames",
          "vkCreateDebugUtilsMessengerEXT"),
         _raw("instance:create_instance", "validation:create_messenger", "validation:validation_features"),
-        ("wgpu.gpu (created on first use)", "set_instance_extras(flags=['Validation'])"),
-        _wgpu("gpu:_enable_validation_once", "gpu:_adapters"),
+        ("wgpu.gpu (created on first use)", "set_instance_extras(backends=[...], flags=['Validation'])"),
+        _wgpu("gpu:_configure_instance_once", "gpu:_adapters"),
         "wgpu-py creates the instance itself on first use: no application info, no layer or extension lists. "
         "The validation layer is one instance flag, and its messages arrive on the Python 'wgpu' logger instead "
         "of a debug messenger callback (tests/conftest.py collects them).",
@@ -194,7 +194,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateImageView", "VkImageViewCreateInfo (viewType, format, components)"),
         _raw("images:create_view", "textures:TextureImage.level"),
         ("GPUTexture.create_view(format=, dimension=, base_mip_level=, mip_level_count=, ...)",),
-        _wgpu("textures:_level_view", "stages.base:Stage.color_attachment"),
+        _wgpu("textures:_level_view", "stages.base:Stage.target_view"),
         "The same object; a default view covers the whole texture. A view is kept alive by what uses it, so "
         "there is no destroy order to get right.",
     ),
@@ -512,7 +512,7 @@ CONCEPTS: list[Concept] = [
         ("vkCmdCopyImageToBuffer", "VkBufferImageCopy (bufferRowLength)", "HOST_CACHED memory"),
         _raw("readback:record_copy_to_buffer", "readback:buffer_to_pixels"),
         ("GPUCommandEncoder.copy_texture_to_buffer", "GPUBuffer.map_sync / read_mapped"),
-        _wgpu("targets:read_texture", "targets:padded_bytes_per_row"),
+        _wgpu("targets:Readback.record", "targets:Readback.read", "targets:padded_bytes_per_row"),
         "Rows in the buffer must start at multiples of 256 bytes in wgpu (Vulkan packs them tightly), so the "
         "wgpu path pads and unpads.",
     ),

@@ -30,6 +30,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .anisotropy import resolve_anisotropy
 from .errors import UserError
 from .post import effects_for_target, intermediate_count
 from .scene import Material, Scene, load_scene
@@ -342,8 +343,11 @@ def _check_overrides(size, output_format, msaa) -> None:
 
 
 def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_format: str | None = None,
-               msaa: int | None = None) -> RenderPlan:
-    """The plan for ``scene``; ``size``, ``output_format`` and ``msaa`` override [render] (CLI flags)."""
+               msaa: int | None = None, anisotropy: str = "scene", adapter_type: str | None = None) -> RenderPlan:
+    """The plan for ``scene``; ``size``, ``output_format`` and ``msaa`` override [render] (CLI flags).
+
+    ``anisotropy`` ("scene" or "auto") with ``adapter_type`` (wgpu's adapter_type, e.g. "CPU"): the
+    per-adapter anisotropy rule of wgpurender/anisotropy.py (the perf engineer's knob)."""
     _check_overrides(size, output_format, msaa)
     r = scene.render
     size = tuple(size or r.size)
@@ -437,6 +441,10 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         pipelines.setdefault(pipeline.key, pipeline)
         sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
         spec = mat.sampler.spec() if sampled else None
+        if spec is not None:
+            spec, why = resolve_anisotropy(spec, anisotropy, adapter_type)
+            if why and first_time:
+                notes.append(f"{_material_label(mat)} sampler: {why}")
         label = _material_label(mat)
         for feature, path in sampled:
             fmt = COLOR_TEXTURE_FORMAT if feature == "albedo_map" else DATA_TEXTURE_FORMAT

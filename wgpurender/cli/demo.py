@@ -25,6 +25,9 @@ def register(subparsers) -> None:
     p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
+                   help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
+                   "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
     p.add_argument("--raw", action="store_true",
                    help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
                    "in flight (wgpurender/vulkan_ref/window.py); stages as 'wgpurender reference' has them")
@@ -36,6 +39,7 @@ def run(args) -> int:
         from ._demo_raw import run_raw
 
         return run_raw(args)
+    from ..course.formats import is_scene_file
     from ..errors import UserError
     from ..gpu import get_context
     from ..imageio import check_writable, save_png
@@ -47,7 +51,8 @@ def run(args) -> int:
         check_writable(args.screenshot)
     ctx = get_context(args.backend)
     make = _drawable_factory(ctx, args)
-    make("rgba8unorm-srgb")  # fail on a bad stage name or option before a window opens
+    if not is_scene_file(args.target):  # a scene file was loaded and planned by its factory: no second renderer
+        make("rgba8unorm-srgb")  # fail on a bad stage name or option before a window opens
     result = run_window(
         ctx,
         make,
@@ -71,7 +76,7 @@ def _drawable_factory(ctx, args):
     if is_scene_file(args.target):
         from ..scene_render import scene_drawable_factory
 
-        return scene_drawable_factory(args.target, ctx, msaa=args.msaa)
+        return scene_drawable_factory(args.target, ctx, msaa=args.msaa, anisotropy=args.anisotropy)
     from ..stages import get_stage
 
     cls = get_stage(args.target)
