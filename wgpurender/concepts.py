@@ -94,7 +94,7 @@ CONCEPTS: list[Concept] = [
          "vkGetPhysicalDeviceSurfaceFormatsKHR"),
         (),
         ("wgpu.gpu.get_canvas_context(present_info)", "GPUCanvasContext.get_preferred_format"),
-        _wgpu("window:_present_info", "window:surface_format", "window:_loop"),
+        _wgpu("window:present_info", "window:surface_format", "window:DemoWindow.__init__"),
         "One canvas context per window, made from the native window handles; it is surface and swapchain in one "
         "object. wgpu checks that the queue can present, so there is no present-support query.",
         raw_note=HEADLESS,
@@ -105,10 +105,10 @@ CONCEPTS: list[Concept] = [
          "vkGetPhysicalDeviceSurfacePresentModesKHR"),
         (),
         ("GPUCanvasContext.present()", "present modes through the canvas context's configuration"),
-        _wgpu("window:set_present_mode", "window:PRESENT_MODES", "window:run_window"),
-        "Present modes are chosen on the canvas context: wgpu-py 0.32 only exposes vsync on/off, so "
-        "set_present_mode writes the mode into the context's configuration after checking the surface offers "
-        "it. There is no separate present queue and no wait semaphore to pass.",
+        _wgpu("window:present_info", "window:PRESENT_MODES", "window:DemoWindow.frame"),
+        "Present modes are chosen through the canvas context: wgpu-py 0.32 only exposes vsync on/off, so fifo "
+        "is vsync on and immediate is vsync off (wgpu falls back to mailbox, then fifo); mailbox cannot be asked "
+        "for. There is no separate present queue and no wait semaphore to pass.",
         raw_note=HEADLESS,
     ),
     Concept(
@@ -138,7 +138,7 @@ CONCEPTS: list[Concept] = [
          "vkQueueSubmit"),
         _raw("command_buffers:create_command_pool", "command_buffers:one_shot"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
-        _wgpu("render:render_stage", "window:_loop"),
+        _wgpu("render:render_stage", "window:DemoWindow._encode"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
         "secondary command buffers (render bundles come closest). The states initial -> recording -> "
         "executable -> pending are the encoder's life, unnamed.",
@@ -222,10 +222,11 @@ CONCEPTS: list[Concept] = [
         (),
         ("GPUCanvasContext.configure(device=, format=, usage=)", "GPUCanvasContext.get_current_texture()",
          "set_physical_size"),
-        _wgpu("window:_loop", "window:surface_format", "window:SURFACE_USAGE"),
+        _wgpu("window:DemoWindow.frame", "window:surface_format", "window:SURFACE_USAGE"),
         "Image count, image views and the acquire semaphore are hidden; get_current_texture() is acquire. A "
         "resize re-configures the context instead of re-creating a swapchain by hand; a minimised window "
-        "(0x0) renders nothing.",
+        "(0x0) renders nothing, and an occluded one skips the frame (get_current_texture() raises "
+        "wgpu.DrawCancelled where Vulkan's acquire returns VK_ERROR_OUT_OF_DATE_KHR or VK_SUBOPTIMAL_KHR).",
         raw_note=HEADLESS,
     ),
     Concept(
@@ -278,7 +279,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateSemaphore", "VkSubmitInfo pWaitSemaphores / pSignalSemaphores / pWaitDstStageMask"),
         (),
         ("(none: queue submission order)",),
-        _wgpu("window:_loop"),
+        _wgpu("window:DemoWindow.frame"),
         "No semaphores in wgpu: one queue, whose submissions run in order, and the acquire/present semaphores "
         "of the swapchain are inside get_current_texture() and present().",
         raw_note="not in the raw path: headless, one queue, no swapchain; see the course text",

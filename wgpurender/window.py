@@ -1,35 +1,48 @@
-"""A GLFW window with a wgpu surface: the course's surface, swapchain and present modes.
+"""A GLFW window with a wgpu surface: the course's surface, swapchain and present modes, plus the demo's controls.
 
-vkCreateXlibSurfaceKHR + vkCreateSwapchainKHR become one ``GPUCanvasContext``
-configured with a format, a usage and a present mode; vkAcquireNextImageKHR is
-``get_current_texture()`` and vkQueuePresentKHR is ``present()``. Resizing
-re-configures the surface (the swapchain re-creation of the course), and a
-minimised window (0x0 framebuffer) simply renders nothing until it comes back.
+vkCreateXlibSurfaceKHR + vkCreateSwapchainKHR become one ``GPUCanvasContext`` made from
+the native window handles (``wgpu.utils.get_glfw_present_info``) and configured with a
+format and a usage; vkAcquireNextImageKHR is ``get_current_texture()`` and vkQueuePresentKHR
+is ``present()``. Resizing re-configures the surface (the swapchain re-creation of the
+course), a minimised window (0x0 framebuffer) renders nothing until it comes back, and an
+occluded one (``wgpu.DrawCancelled`` from ``get_current_texture()``, wgpu-py 0.32) skips
+the frame, like VK_ERROR_OUT_OF_DATE_KHR / VK_SUBOPTIMAL_KHR in the course.
+
+Present modes: wgpu-py 0.32's public API has vsync on or off, nothing finer. ``fifo``
+(vsync on, never tears, always offered) and ``immediate`` (vsync off: wgpu takes immediate,
+else mailbox, else fifo, whichever the surface offers first) map onto it; ``mailbox`` cannot
+be asked for without reaching into the context's private configuration, so it is not offered.
+
+The demo on top (wgpurender/cli/demo.py): an orbit camera (wgpurender/window_input.py),
+FPS and frame time in the title, live reload of the WGSL files and the scene file in use
+(wgpurender/live_reload.py: a broken file leaves the last good pipeline on screen and prints
+``file:line: message`` once), and a benchmark mode (wgpurender/frame_times.py).
 """
 
 from __future__ import annotations
 
 import sys
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import wgpu
 
+from .demo_view import DemoView
 from .errors import UserError
+from .frame_times import BenchmarkSpec, FrameRecorder
 from .gpu import GPUContext
+from .live_reload import FileWatcher, error_line
+from .window_input import Controls, ScriptEvent, send
 
-PRESENT_MODES = ("fifo", "mailbox", "immediate")
-SURFACE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC | wgpu.TextureUsage.COPY_DST
-
-
-class Drawable:
-    """What the window draws: a stage, or a scene renderer with the same three methods."""
-
-    def resize(self, size: tuple[int, int]) -> None: ...
-
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None: ...
+PRESENT_MODES = ("fifo", "immediate")
+SURFACE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC
+RELOAD_POLL_S = 0.25  # how often the watched files are stat'ed
+TITLE_EVERY_S = 0.5  # how often the FPS in the title is refreshed
+WAIT_RELOAD_TIMEOUT_S = 60.0
+# Errors a rebuild or a new drawable's first frame can raise when a file is broken.
+REBUILD_ERRORS = (UserError, wgpu.GPUError, ValueError, KeyError, TypeError, OSError)
 
 
 @dataclass
@@ -37,6 +50,8 @@ class WindowResult:
     frames: int
     mean_frame_ms: float
     last_frame: np.ndarray | None  # the last presented image, when a screenshot was asked for
+    reload_errors: list[str] = field(default_factory=list)
+    benchmark: FrameRecorder | None = None
 
 
 def _glfw():
@@ -49,57 +64,24 @@ def _glfw():
     return glfw
 
 
-def _present_info(glfw, window, present_mode: str) -> dict:
-    """The native handles wgpu needs to make a surface, per platform."""
-    vsync = present_mode == "fifo"
-    if sys.platform.startswith("win"):
-        return {"window": int(glfw.get_win32_window(window)), "vsync": vsync}
-    if sys.platform.startswith("darwin"):
-        return {"window": int(glfw.get_cocoa_window(window)), "vsync": vsync}
-    if glfw.get_platform() == glfw.PLATFORM_WAYLAND:
-        return {
-            "platform": "wayland",
-            "window": int(glfw.get_wayland_window(window)),
-            "display": int(glfw.get_wayland_display()),
-            "vsync": vsync,
-        }
-    return {
-        "platform": "x11",
-        "window": int(glfw.get_x11_window(window)),
-        "display": int(glfw.get_x11_display()),
-        "vsync": vsync,
-    }
+def present_info(window, present_mode: str) -> dict:
+    """The native handles wgpu needs to make a surface, from wgpu's own helper; vsync picks the present mode."""
+    from wgpu.utils.glfw_present_info import get_glfw_present_info
+
+    if present_mode not in PRESENT_MODES:
+        raise UserError(f"unknown present mode {present_mode!r}: choose one of {', '.join(PRESENT_MODES)}")
+    return get_glfw_present_info(window, vsync=present_mode == "fifo")
 
 
 def surface_format(context, adapter) -> str:
-    """An sRGB swapchain format when the surface offers one, as the Vulkan tutorial picks."""
-    formats = context._get_capabilities(adapter)["formats"]
-    for fmt in formats:
-        if fmt.endswith("-srgb"):
-            return fmt
-    return context.get_preferred_format(adapter)
-
-
-def set_present_mode(context, adapter, present_mode: str) -> None:
-    """Choose the exact present mode (wgpu-py only exposes vsync on/off, so we set the field).
-
-    fifo: wait for vblank, never tears (always available); mailbox: newest frame
-    wins at vblank; immediate: no waiting, may tear.
-    """
-    available = context._get_capabilities(adapter).get("present_modes", ["fifo"])
-    if present_mode not in available:
-        raise UserError(
-            f"present mode {present_mode!r} is not offered by this surface: available: {', '.join(available)}"
-        )
-    from wgpu.backends.wgpu_native._ffi import lib
-
-    context._wgpu_config.presentMode = getattr(lib, f"WGPUPresentMode_{present_mode.capitalize()}")
-    context._configure_screen_real()
+    """The sRGB variant of the surface's preferred format, as the Vulkan tutorial picks (B8G8R8A8_SRGB)."""
+    preferred = context.get_preferred_format(adapter)
+    return preferred if preferred.endswith("-srgb") else preferred + "-srgb"
 
 
 def run_window(
     ctx: GPUContext,
-    make_drawable: Callable[[str], Drawable],
+    view: DemoView,
     *,
     title: str = "wgpurender",
     size: tuple[int, int] = (800, 600),
@@ -107,13 +89,11 @@ def run_window(
     present_mode: str = "fifo",
     fixed_time: float | None = None,
     screenshot: bool = False,
+    benchmark: BenchmarkSpec | None = None,
+    script: list[ScriptEvent] = (),
 ) -> WindowResult:
-    """Open a window and draw until it closes (Esc, close button) or ``frames`` frames were shown.
-
-    ``make_drawable(format)`` builds the stage for the surface's format.
-    """
-    if present_mode not in PRESENT_MODES:
-        raise UserError(f"unknown present mode {present_mode!r}: choose one of {', '.join(PRESENT_MODES)}")
+    """Open a window and draw ``view`` until it closes (Esc, close button), ``frames`` frames were shown,
+    or the benchmark's run time is over."""
     glfw = _glfw()
     glfw.window_hint(glfw.CLIENT_API, glfw.NO_API)  # wgpu owns the surface, GLFW makes no GL context
     window = glfw.create_window(size[0], size[1], title, None, None)
@@ -121,41 +101,175 @@ def run_window(
         glfw.terminate()
         raise UserError("GLFW could not create a window")
     try:
-        return _loop(ctx, glfw, window, make_drawable, frames, present_mode, fixed_time, screenshot)
+        demo = DemoWindow(ctx, glfw, window, view, title, present_mode)
+        return demo.run(frames, fixed_time, screenshot, benchmark, list(script))
     finally:
         glfw.destroy_window(window)
         glfw.terminate()
 
 
-def _loop(ctx, glfw, window, make_drawable, frames, present_mode, fixed_time, screenshot) -> WindowResult:
-    from .targets import read_texture
+class DemoWindow:
+    """One window's state: surface, drawable (and the last good one), controls, watcher, title counters."""
 
-    glfw.set_key_callback(window, lambda w, key, *_: key == glfw.KEY_ESCAPE and glfw.set_window_should_close(w, True))
-    context = wgpu.gpu.get_canvas_context(_present_info(glfw, window, present_mode))
-    fmt = surface_format(context, ctx.adapter)
-    context.set_physical_size(*glfw.get_framebuffer_size(window))
-    context.configure(device=ctx.device, format=fmt, usage=SURFACE_USAGE)
-    set_present_mode(context, ctx.adapter, present_mode)
-    drawable = make_drawable(fmt)
-    start, shown, last = time.perf_counter(), 0, None
-    while not glfw.window_should_close(window) and (frames is None or shown < frames):
-        glfw.poll_events()
-        width, height = glfw.get_framebuffer_size(window)
+    def __init__(self, ctx: GPUContext, glfw, window, view: DemoView, title: str, present_mode: str) -> None:
+        self.ctx, self.glfw, self.window, self.view, self.title = ctx, glfw, window, view, title
+        self.context = wgpu.gpu.get_canvas_context(present_info(window, present_mode))
+        self.format = surface_format(self.context, ctx.adapter)
+        self.context.set_physical_size(*glfw.get_framebuffer_size(window))
+        self.context.configure(device=ctx.device, format=self.format, usage=SURFACE_USAGE)
+        self.controls = Controls(glfw, lambda: view.orbit)
+        self._install_callbacks()
+        self.drawable = view.build(self.format)  # a broken file at start-up is the user's error: exit 2
+        self.first_frame_pending = True
+        self.watcher = FileWatcher(view.watched)
+        self.previous = None  # the last good drawable while a rebuilt one has not drawn its first frame
+        self.reload_errors: list[str] = []
+        self.broken = False  # the files as they are now do not build: the title says so
+        self.reloads = 0
+        self._last_poll = self._title_at = time.perf_counter()
+        self._title_frames = 0
+
+    def _install_callbacks(self) -> None:
+        g, c = self.glfw, self.controls
+        g.set_key_callback(self.window, lambda _w, key, _sc, action, _mods: c.key(key, action))
+        g.set_mouse_button_callback(self.window, lambda _w, button, action, _mods: c.mouse_button(button, action))
+        g.set_cursor_pos_callback(self.window, lambda _w, x, y: c.cursor_pos(x, y))
+        g.set_scroll_callback(self.window, lambda _w, _dx, dy: c.scroll(dy))
+
+    # -- live reload -----------------------------------------------------------------
+    def poll_files(self, force: bool = False) -> bool:
+        """Rebuild when a watched file changed; True when a rebuild was tried."""
+        now = time.perf_counter()
+        if not force and now - self._last_poll < RELOAD_POLL_S:
+            return False
+        self._last_poll = now
+        changed = self.watcher.changed()
+        if not changed:
+            return False
+        self.reloads += 1
+        names = ", ".join(p.name for p in changed)
+        try:
+            candidate = self.view.build(self.format)
+        except REBUILD_ERRORS as err:
+            self._report(err)
+        else:
+            self.previous, self.drawable = self.drawable, candidate
+            self.first_frame_pending = True
+            print(f"reloaded after a change to {names}", flush=True)
+        self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
+        return True
+
+    def _report(self, err: BaseException) -> None:
+        """Print a failed rebuild once (the watcher only fires again when a file changes again)."""
+        line = error_line(err, self.view.watched | set(self.watcher.paths))
+        self.reload_errors.append(line)
+        self.broken = True
+        print(f"reload failed, still showing the last good frame: {line}", file=sys.stderr, flush=True)
+
+    # -- a frame ----------------------------------------------------------------------
+    def _encode(self, texture, t: float) -> None:
+        """Record and submit a frame of the current drawable; a new drawable that fails falls back to the old."""
+        while True:
+            self.view.apply_camera(self.drawable)
+            self.drawable.resize(tuple(texture.size[:2]))
+            encoder = self.ctx.device.create_command_encoder(label="frame")
+            if not self.first_frame_pending:
+                self.drawable.draw(encoder, texture, t)
+                break
+            try:
+                with self.view.record_lazy_loads():  # pipelines made in the first draw load shaders too
+                    self.drawable.draw(encoder, texture, t)
+            except REBUILD_ERRORS as err:
+                if self.previous is None:
+                    raise
+                self._report(err)
+                self.drawable, self.previous = self.previous, None
+                self.first_frame_pending = False
+                continue
+            self.first_frame_pending, self.previous, self.broken = False, None, False
+            self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
+            break
+        self.ctx.queue.submit([encoder.finish()])
+
+    def frame(self, t: float, capture: bool) -> tuple[bool, np.ndarray | None]:
+        """Draw and present one frame: (drawn, pixels when ``capture``). False: nothing to draw into."""
+        from .targets import read_texture
+
+        width, height = self.glfw.get_framebuffer_size(self.window)
         if width == 0 or height == 0:  # minimised: nothing to draw into, wait for the next event
-            glfw.wait_events_timeout(0.1)
-            continue
-        context.set_physical_size(width, height)
-        texture = context.get_current_texture()
-        drawable.resize((width, height))
-        encoder = ctx.device.create_command_encoder(label="frame")
-        t = fixed_time if fixed_time is not None else time.perf_counter() - start
-        drawable.draw(encoder, texture, t)
-        ctx.queue.submit([encoder.finish()])
-        if screenshot and (frames is None or shown == frames - 1):
-            last = read_texture(ctx, texture)  # a copy of what we rendered, before it is presented
-        context.present()
-        shown += 1
-    elapsed = (time.perf_counter() - start) * 1e3
-    if screenshot and last is None and shown:
-        raise UserError("the window closed before a frame could be captured")
-    return WindowResult(frames=shown, mean_frame_ms=elapsed / max(shown, 1), last_frame=last)
+            self.glfw.wait_events_timeout(0.1)
+            return False, None
+        self.context.set_physical_size(width, height)
+        try:
+            texture = self.context.get_current_texture()
+        except wgpu.DrawCancelled:  # occluded (or the surface is being re-made): skip this frame
+            self.glfw.wait_events_timeout(0.05)
+            return False, None
+        self._encode(texture, t)
+        pixels = read_texture(self.ctx, texture) if capture else None  # before present hands the image away
+        self.context.present()
+        return True, pixels
+
+    def _update_title(self, now: float) -> None:
+        self._title_frames += 1
+        if now - self._title_at < TITLE_EVERY_S:
+            return
+        ms = (now - self._title_at) * 1e3 / self._title_frames
+        status = "  |  reload failed (see the terminal)" if self.broken else ""
+        self.glfw.set_window_title(self.window, f"{self.title}  |  {1e3 / ms:.1f} FPS  {ms:.2f} ms{status}")
+        self._title_at, self._title_frames = now, 0
+
+    # -- the loop -----------------------------------------------------------------------
+    def run(self, frames, fixed_time, screenshot, benchmark, script) -> WindowResult:
+        recorder = FrameRecorder(benchmark) if benchmark else None
+        start, shown, last = time.perf_counter(), 0, None
+        while not self.glfw.window_should_close(self.window) and (frames is None or shown < frames):
+            self.glfw.poll_events()
+            shots = self._run_script(script, shown)
+            if self.controls.close_requested:
+                break
+            self.poll_files()
+            t = fixed_time if fixed_time is not None else time.perf_counter() - start
+            want = bool(shots) or (screenshot and (frames is None or shown == frames - 1))
+            drawn, pixels = self.frame(t, want)
+            if not drawn:
+                continue
+            for path in shots:
+                from .imageio import save_png
+
+                save_png(path, pixels)
+            if screenshot and pixels is not None:
+                last = pixels
+            shown += 1
+            now = time.perf_counter()
+            self._update_title(now)
+            if recorder is not None:
+                recorder.frame_done(now)
+                if recorder.finished():
+                    break
+        elapsed = (time.perf_counter() - start) * 1e3
+        if screenshot and last is None and shown:
+            raise UserError("the window closed before a frame could be captured")
+        return WindowResult(frames=shown, mean_frame_ms=elapsed / max(shown, 1), last_frame=last,
+                            reload_errors=self.reload_errors, benchmark=recorder)
+
+    def _run_script(self, script: list[ScriptEvent], frame: int) -> list[Path]:
+        """Deliver the test script's events for this frame; the paths of shots to save after it."""
+        shots = []
+        while script and script[0].frame <= frame:
+            event = script.pop(0)
+            if event.action == "shot":
+                shots.append(Path(event.args[0]))
+            elif event.action == "wait-reload":
+                self._wait_reload()
+            else:
+                send(self.controls, event)
+        return shots
+
+    def _wait_reload(self) -> None:
+        deadline = time.perf_counter() + WAIT_RELOAD_TIMEOUT_S
+        while not self.poll_files(force=True):
+            if time.perf_counter() > deadline:
+                raise UserError(f"--test-input wait-reload: no watched file changed in {WAIT_RELOAD_TIMEOUT_S:.0f} s")
+            self.glfw.poll_events()
+            time.sleep(0.05)
