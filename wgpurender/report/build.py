@@ -112,7 +112,8 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) 
         shutil.copyfile(pareto, site / "accuracy_pareto.png")
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     meta = (f"Built {page.e(stamp)} on {page.e(ctx.describe())} in {seconds:.0f} s with <code>wgpurender report"
-            f"</code>. Stages at {STAGE_SIZE[0]}x{STAGE_SIZE[1]}, scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]} (the tutorial's at 320x240); times are "
+            f"</code>. Stages at {STAGE_SIZE[0]}x{STAGE_SIZE[1]}, scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]} "
+            "(the tutorial's at 320x240); times are "
             "medians of a few frames on this machine (a quick look: <code>wgpurender bench</code> measures). "
             "The heatmap compares the raw-Vulkan image (reference) with the wgpu one.")
     closing = page.closing("accuracy_pareto.png" if pareto else None, extras.hard_cases_table())

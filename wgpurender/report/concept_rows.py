@@ -20,8 +20,8 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 STEP_CONCEPTS: dict[str, tuple[str, ...]] = {
     "clear": ("instance", "physical device", "queue families", "device", "images", "layouts and transitions",
               "command pool and buffers", "fences", "offscreen readback"),
-    "clear-pass": ("render pass", "framebuffer", "begin info and clear values", "attachment descriptions and references",
-                   "views"),
+    "clear-pass": ("render pass", "framebuffer", "begin info and clear values",
+                   "attachment descriptions and references", "views"),
     "triangle": ("pipeline", "pipeline layout", "shader modules and SPIR-V", "input assembly", "viewport and scissor",
                  "rasterizer", "blending", "dynamic state"),
     "triangle-buffers": ("vertex input bindings and attributes", "heaps and memory types", "staging"),
