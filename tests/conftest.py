@@ -1,4 +1,5 @@
-"""Shared test set-up: the GPU context, and failing any test that triggers a GPU validation message.
+"""Shared test set-up: the GPU context, failing any test that triggers a GPU validation message, the
+driver class that picks the reference tolerances, and ``--regenerate-references``.
 
 The Vulkan validation layer (apt: vulkan-validationlayers) is switched on through
 $WGPURENDER_VALIDATION before the first adapter is made; its messages arrive on
@@ -29,6 +30,37 @@ class _ValidationCollector(logging.Handler):
             self.messages.append(text)
 
 
+def pytest_addoption(parser) -> None:
+    parser.addoption(
+        "--regenerate-references", action="store_true", default=False,
+        help="re-render assets/reference/*.png with the raw-Vulkan path (never the wgpu path) before the tests, "
+             "and print per image how many pixels changed and by how much",
+    )
+
+
+def pytest_sessionstart(session) -> None:
+    """--regenerate-references: the raw path re-renders the committed references, then the tests run."""
+    if not session.config.getoption("--regenerate-references"):
+        return
+    from wgpurender.vulkan_ref.make_references import regenerate
+
+    reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+    lines = [change.describe() for change in regenerate()]
+    session.config._regenerated_references = lines
+    if reporter is not None:
+        reporter.write_line("regenerated references (raw-Vulkan path):")
+        for line in lines:
+            reporter.write_line(f"  {line}")
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
+    lines = getattr(config, "_regenerated_references", None)
+    if lines:
+        terminalreporter.section("regenerated references (raw-Vulkan path)")
+        for line in lines:
+            terminalreporter.write_line(line)
+
+
 _collector = _ValidationCollector()
 logging.getLogger("wgpu").addHandler(_collector)
 
@@ -50,13 +82,24 @@ def ctx():
     return get_context("Vulkan")
 
 
-@pytest.fixture
-def lavapipe_only(ctx):
-    """Skip on other drivers: for images that were made on lavapipe and are compared bit for bit.
+@pytest.fixture(scope="session")
+def raw_driver_class():
+    """The tolerance table's driver class ('lavapipe' or 'gpu') of the raw-Vulkan path's device.
 
-    Reference images (assets/reference, and the C++ tutorial's frames) are one driver's output;
-    another driver rasterises and filters within the Vulkan spec's tolerances but not identically.
-    The wgpu-vs-raw comparisons run everywhere, since both paths then use the same driver.
+    Reference images (assets/reference, and the C++ tutorial's frames) were made on lavapipe;
+    another CPU or a GPU rasterises and filters within the Vulkan spec's tolerances but not
+    identically, so they are compared with that class's calibrated bounds
+    (assets/reference/tolerances.toml), never skipped.
     """
-    if "llvmpipe" not in ctx.adapter.info["device"]:
-        pytest.skip(f"reference images were rendered on lavapipe; this adapter is {ctx.adapter.info['device']}")
+    from wgpurender.tolerances import driver_class
+    from wgpurender.vulkan_ref.instance import get_vulkan
+
+    return driver_class(get_vulkan().device_name)
+
+
+@pytest.fixture(scope="session")
+def wgpu_driver_class(ctx):
+    """The tolerance table's driver class of the wgpu path's adapter."""
+    from wgpurender.tolerances import driver_class
+
+    return driver_class(ctx.adapter.info["device"])

@@ -211,7 +211,7 @@ def test_standard_depth_z_fights_in_the_depth_stress_scene(ctx, depth_scene, lev
 
 def test_reverse_z_matrix_is_the_reverse_z_perspective():
     from wgpurender import transforms as tf
-    from wgpurender.scene_render.scene_pass import REVERSE_Z
+    from wgpurender.course.shading import REVERSE_Z
 
     for near, far in ((0.1, 50.0), (0.01, 1e5)):
         want = tf.perspective(42.0, 4 / 3, near, far, reverse_z=True)

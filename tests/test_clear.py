@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from wgpurender.course.triangle import CLEAR_COLOR
 from wgpurender.imageio import srgb_encode
 from wgpurender.render import render_stage
 from wgpurender.stages import get_stage
-from wgpurender.stages.clear_pass import CLEAR_COLOR
 from wgpurender.targets import create_target, read_texture
 
 ODD_SIZES = [(257, 13), (1, 1), (63, 65)]  # 257 * 4 bytes = 1028: not a multiple of 256
@@ -40,10 +40,10 @@ def test_clear_without_render_pass_overwrites_everything(ctx, size):
     fill = get_stage("clear-pass")(ctx, "rgba8unorm")
     clear = get_stage("clear")(ctx, "rgba8unorm")
     encoder = ctx.device.create_command_encoder()
-    fill.draw(encoder, target)
+    fill.record(encoder, target)
     ctx.queue.submit([encoder.finish()])
     assert (read_texture(ctx, target) != 0).any()
     encoder = ctx.device.create_command_encoder()
-    clear.draw(encoder, target)
+    clear.record(encoder, target)
     ctx.queue.submit([encoder.finish()])
     assert (read_texture(ctx, target) == 0).all()

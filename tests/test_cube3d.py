@@ -15,19 +15,19 @@ import numpy as np
 import pytest
 from helpers import inside, ndc_to_pixels, pixel_centres
 
-from wgpurender.errors import UserError
-from wgpurender.render import render_stage
-from wgpurender.stages.cube3d import (
+from wgpurender.course.cubes import (
     AMBIENT,
     DEFAULT_CUBES,
     FACE_COLORS,
     FACE_NORMALS,
     LIGHT_DIR,
     CameraSpec,
-    Cube3D,
     CubeSpec,
     permute_channels,
 )
+from wgpurender.errors import UserError
+from wgpurender.render import render_stage
+from wgpurender.stages.cube3d import Cube3D
 from wgpurender.targets import create_target, read_texture
 
 FMT = "rgba8unorm"
@@ -39,7 +39,7 @@ def render(ctx, size, t=0.0, msaa=1, **kwargs) -> np.ndarray:
     stage.resize(size)
     target = create_target(ctx, size, FMT)
     encoder = ctx.device.create_command_encoder()
-    stage.draw(encoder, target, t)
+    stage.record(encoder, target, t)
     ctx.queue.submit([encoder.finish()])
     return read_texture(ctx, target)
 

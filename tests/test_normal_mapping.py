@@ -12,11 +12,11 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender import procedural
+from wgpurender.course.shading import AMBIENT, SPECULAR
 from wgpurender.imageio import save_png
 from wgpurender.plan import build_plan
 from wgpurender.scene import parse_scene
 from wgpurender.scene_render import SceneRenderer, render_frame
-from wgpurender.scene_render.scene_pass import AMBIENT, SPECULAR
 from wgpurender.targets import create_target
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -243,12 +243,18 @@ def test_example_scenes_explain(capsys):
     scenes = sorted((REPO / "assets" / "scenes").glob("*.toml"))
     if not scenes or not (REPO / "assets" / "models" / "brick_torus.glb").is_file():
         pytest.skip("example scenes or assets not present")
+    anchors = REPO.parent / "shared" / "anchors"
+    needs_anchors = [p for p in scenes if "shared/anchors" in p.read_text() and not anchors.is_dir()]
     for path in scenes:
-        assert "passes:" in explain_scene(path)
+        if path not in needs_anchors:
+            assert "passes:" in explain_scene(path)
     unlit = plan_scene_file(REPO / "assets" / "scenes" / "unlit.toml")
     assert [v.key for v in unlit.variants] == ["base"] and unlit.post_passes == ()
     assert main([str(REPO / "assets" / "scenes" / "brick.toml")]) == 0
     assert "tonemap" in capsys.readouterr().out
+    if needs_anchors:
+        pytest.skip(f"{', '.join(p.name for p in needs_anchors)} not explained: they read the tutorial's model "
+                    f"and texture from {anchors}, which is absent (the other scenes were checked)")
 
 
 def test_main_reports_user_errors(tmp_path, capsys):

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from wgpurender.course.textured import BACKGROUND, SCREEN_QUAD
 from wgpurender.errors import UserError
 from wgpurender.targets import create_target, read_texture
 from wgpurender.textures import (
@@ -74,11 +75,31 @@ def checker(n: int, cell: int = 1) -> np.ndarray:
     return np.where(((ix // cell) + (iy // cell)) % 2 == 0, 255, 0).astype(np.uint8)
 
 
-def draw(ctx, tex, spec, size, fmt="rgba8unorm", **kwargs) -> np.ndarray:
-    from wgpurender.stages.textured import render_textured
+def draw(ctx, tex, spec, size, fmt="rgba8unorm", vertices=SCREEN_QUAD, mvp=None) -> np.ndarray:
+    """``vertices`` drawn with ``tex`` through ``spec`` into a new single-sample target (identity mvp by
+    default), with the textured stage's separate-sampler pipeline; the pixels read back."""
+    import wgpu
+
+    from wgpurender.stages.textured import textured_pipelines, uniform_bytes
 
     target = create_target(ctx, size, fmt)
-    render_textured(ctx, target, tex, spec, **kwargs)
+    device = ctx.device
+    pipes = textured_pipelines(device, target.format, 1)
+    uniforms = uniform_bytes(np.eye(4) if mvp is None else mvp)
+    ubuf = device.create_buffer_with_data(data=uniforms, usage=wgpu.BufferUsage.UNIFORM)
+    vertex_data = np.ascontiguousarray(vertices, dtype=np.float32)
+    vbuf = device.create_buffer_with_data(data=vertex_data, usage=wgpu.BufferUsage.VERTEX)
+    encoder = device.create_command_encoder(label="draw-textured")
+    attachment = {"view": target.create_view(), "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}
+    render_pass = encoder.begin_render_pass(color_attachments=[attachment])
+    render_pass.set_pipeline(pipes.separate)
+    render_pass.set_bind_group(0, pipes.group(pipes.uniform_layout, ubuf))
+    render_pass.set_bind_group(1, pipes.group(pipes.texture_layout, tex.view))
+    render_pass.set_bind_group(2, pipes.group(pipes.sampler_layout, create_sampler(ctx, spec)))
+    render_pass.set_vertex_buffer(0, vbuf)
+    render_pass.draw(len(vertices))
+    render_pass.end()
+    ctx.queue.submit([encoder.finish()])
     return read_texture(ctx, target)
 
 
@@ -142,7 +163,7 @@ def test_anisotropic_is_sharper_on_a_grazing_plane(ctx):
     across-the-view contrast (mean |horizontal neighbour difference|) than isotropic trilinear, which
     picks a blurrier mip from the compressed direction. Measured on lavapipe: 7.4 vs 4.2; asserted: > 1.3x.
     """
-    from wgpurender.stages.textured import pattern_pixels, plane_mvp, plane_vertices
+    from wgpurender.course.textured import pattern_pixels, plane_mvp, plane_vertices
 
     tex = create_texture(ctx, pattern_pixels(), srgb=True)
     contrast = {}
@@ -380,7 +401,7 @@ def test_samplers_are_cached_per_spec(ctx):
 )
 def test_address_modes(ctx, mode, expected_cols):
     """A 2-texel texture (black, white) drawn with uv 0..2 on 8 pixels: 2 pixels per texel step."""
-    from wgpurender.stages.textured import quad_vertices
+    from wgpurender.course.textured import quad_vertices
 
     tex = create_texture(ctx, np.array([[0, 255]], np.uint8), srgb=False, mips=False)
     quad = quad_vertices(np.array([[-1, 1, 0], [1, 1, 0], [-1, -1, 0], [1, -1, 0]]), (0.0, 0.0, 2.0, 1.0))
@@ -398,11 +419,12 @@ def test_textured_stage(ctx):
     Background is the clear colour; the plane covers a large part of each half; the
     right half has 4 lanes separated by background columns near the bottom.
     """
+    from wgpurender.course.steps import course_step
     from wgpurender.render import render_stage
     from wgpurender.stages import all_stages
     from wgpurender.stages.textured import Textured
 
-    assert all_stages()["textured"] is Textured and Textured.order == 5.0 and Textured.supports_msaa
+    assert all_stages()["textured"] is Textured and course_step("textured").number == "5" and Textured.supports_msaa
     size = (160, 96)
     a = render_stage("textured", size, t=0.5, ctx=ctx, frames=1).pixels
     b = render_stage("textured", size, t=0.5, ctx=ctx, frames=1).pixels

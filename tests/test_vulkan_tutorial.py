@@ -1,21 +1,23 @@
 """The Vulkan tutorial's frames (chapters 28 and 30) reproduced by the scene renderer.
 
-The references are the C++ tutorial's own frames on lavapipe (../shared/anchors/vulkan-tutorial,
-not ours, never copied into the repository); the test skips when that folder is absent.
+The references are the C++ tutorial's own frames on lavapipe on an Intel CPU
+(../shared/anchors/vulkan-tutorial, not ours, never copied into the repository); the tests skip
+when that folder is absent.
 
-Targets (the issue's): mean absolute error <= 1/255 per channel and >= 99% of pixels within
-2/255. Reached on lavapipe (Mesa 22.3.6): chapter 28 MAE (1.3e-4, 7.7e-5, 6.3e-5)/255, 99.9998%
-within 2/255, 106 pixels differ (105 by 1/255, one by 8/255); chapter 30 MAE (2.0e-4, 1.1e-4,
-5.6e-5)/255, 99.9994% within 2/255. The tests assert the issue's targets and, tighter, MAE <=
-0.01/255 and >= 99.99% within 2/255 (room for a different LLVM's rounding, still far from any real
-regression: an upside-down image, a half-texel shift or a wrong sRGB step each cost > 1/255 MAE).
+Tolerance-based (tests/imagecheck.py, rows tutorial_28 / tutorial_30 of
+assets/reference/tolerances.toml, per driver class): llvmpipe's code differs between host CPUs,
+and a GPU filters differently. Measured, lavapipe Mesa 22.3.6: on the Intel CPU that made the
+frames, chapter 28 differs in 106 pixels (105 by 1/255, one by 8/255); on an AMD EPYC in 2,994
+pixels (max 8/255, FLIP 0.0004) and chapter 30 in 3,569 (max 15/255, FLIP 0.0005). The issue's
+targets (mean absolute error <= 1/255 per channel, >= 99% of pixels within 2/255) are asserted too.
 
-Why any pixel differs at all, isolated by test_bit_exact_with_the_tutorials_float32_inputs: our
-matrices are computed in float64 and rounded once (6 of GLM's float32 elements differ by 1 ulp) and
-our OBJ loader computes 1 - v in float64 (tinyobjloader: 1.0f - v in float32; 2003 of 4675
-texture coordinates differ by 1 ulp). Given exactly the tutorial's float32 inputs, both frames are
-bit-identical, chapter 30's full mip chain included: our gamma-correct box filter equals the
-tutorial's linear vkCmdBlitImage chain on this power-of-two (1024^2) sRGB texture.
+Why any pixel differs on the Intel CPU: our matrices are computed in float64 and rounded once (6
+of GLM's float32 elements differ by 1 ulp) and our OBJ loader computes 1 - v in float64
+(tinyobjloader: 1.0f - v in float32; 2003 of 4675 texture coordinates differ by 1 ulp). Given
+exactly the tutorial's float32 inputs, both frames were bit-identical to the C++ frames there.
+That equality only holds on the CPU that made them, so test_float32_inputs_same_on_both_paths
+keeps the exact check where it is sound: our wgpu render and our raw-Vulkan render, both with the
+tutorial's float32 inputs, made in the same run on the same machine.
 """
 
 from __future__ import annotations
@@ -25,8 +27,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from imagecheck import assert_same_render, assert_within_tolerance
 
-from wgpurender.compare import compare_images
 from wgpurender.imageio import load_png
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -57,23 +59,34 @@ def _errors(ref: np.ndarray, ours: np.ndarray) -> tuple[np.ndarray, float]:
 
 
 @pytest.mark.parametrize("chapter", sorted(CHAPTERS))
-def test_frame_matches_the_tutorial(ctx, chapter, lavapipe_only):
+def test_frame_matches_the_tutorial(request, ctx, chapter, wgpu_driver_class):
     ref, ours = _render(ctx, chapter)
     assert ours.shape == ref.shape == (600, 800, 3)
     mae, within2 = _errors(ref, ours)
-    assert np.all(mae <= 1.0) and within2 >= 0.99  # the issue's targets
-    assert np.all(mae <= 0.01), mae
-    assert within2 >= 0.9999, within2
-    assert compare_images(ref, ours).flip_mean < 1e-3
+    assert np.all(mae <= 1.0) and within2 >= 0.99, (mae, within2)  # the issue's targets
+    assert_within_tolerance(request, f"tutorial_{chapter}", ref, ours, wgpu_driver_class)
 
 
-def test_bit_exact_with_the_tutorials_float32_inputs(ctx, monkeypatch, lavapipe_only):
-    """GLM's float32 view/projection (params.json) and tinyobjloader's float32 1 - v: zero difference."""
+def _glm_matrices() -> dict[str, np.ndarray]:
+    """GLM's float32 view and projection as the C++ program uploaded them (params.json), m[row, col]."""
+    params = json.loads((ANCHORS / "params.json").read_text())["camera"]["matrices_column_major_as_uploaded"]
+    return {k: np.array(v, dtype=np.float64).T for k, v in params.items()}  # column-major -> m[row, col]
+
+
+def _tinyobj_uvs(load):
+    """Wrap a mesh loader so that v is tinyobjloader's float32 1.0f - v (the file's vt has 6 decimals)."""
+    def mesh(self, path):
+        loaded = load(self, path)
+        v = np.round(1.0 - loaded.uvs[:, 1].astype(np.float64), 6)
+        loaded.uvs[:, 1] = np.float32(1.0) - v.astype(np.float32)
+        return loaded
+    return mesh
+
+
+def _use_tutorial_inputs_on_wgpu(monkeypatch, glm) -> None:
     from wgpurender.scene_render import resources, scene_pass
 
-    params = json.loads((ANCHORS / "params.json").read_text())["camera"]["matrices_column_major_as_uploaded"]
-    glm = {k: np.array(v, dtype=np.float64).T for k, v in params.items()}  # column-major -> m[row, col]
-    camera_values, load = scene_pass.camera_values, resources.SceneResources.mesh
+    camera_values = scene_pass.camera_values
 
     def glm_camera(scene, aspect):
         values = camera_values(scene, aspect)
@@ -81,14 +94,54 @@ def test_bit_exact_with_the_tutorials_float32_inputs(ctx, monkeypatch, lavapipe_
         values["proj"] = scene.camera.clip_correction @ glm["proj"]  # exact: only a sign changes
         return values
 
-    def tinyobj_uvs(self, path):
-        mesh = load(self, path)
-        v = np.round(1.0 - mesh.uvs[:, 1].astype(np.float64), 6)  # the file's vt (6 decimals), recovered
-        mesh.uvs[:, 1] = np.float32(1.0) - v.astype(np.float32)
-        return mesh
-
     monkeypatch.setattr(scene_pass, "camera_values", glm_camera)
-    monkeypatch.setattr(resources.SceneResources, "mesh", tinyobj_uvs)
-    for chapter in sorted(CHAPTERS):
-        ref, ours = _render(ctx, chapter)
-        assert np.array_equal(ref, ours), f"chapter {chapter}: {np.count_nonzero((ref != ours).any(-1))} pixels differ"
+    monkeypatch.setattr(resources.SceneResources, "mesh", _tinyobj_uvs(resources.SceneResources.mesh))
+
+
+def _use_tutorial_inputs_on_raw(monkeypatch, glm) -> None:
+    """The raw path uploads the glm-vulkan projection as the tutorial does (Y flip kept, plain viewport)."""
+    from wgpurender.vulkan_ref.scene import resources, scene_subpass
+
+    camera_block = scene_subpass.camera_block
+
+    class GlmCamera:
+        def __init__(self, cam):
+            self._cam = cam
+
+        def __getattr__(self, name):
+            return getattr(self._cam, name)
+
+        def source_projection(self, aspect):
+            return glm["proj"]
+
+        def view(self):
+            return glm["view"]
+
+    class SceneWithGlmCamera:
+        def __init__(self, scene):
+            self._scene, self.camera = scene, GlmCamera(scene.camera)
+
+        def __getattr__(self, name):
+            return getattr(self._scene, name)
+
+    monkeypatch.setattr(scene_subpass, "camera_block", lambda scene, aspect: camera_block(SceneWithGlmCamera(scene),
+                                                                                          aspect))
+    monkeypatch.setattr(resources.SceneResources, "mesh", _tinyobj_uvs(resources.SceneResources.mesh))
+
+
+@pytest.mark.parametrize("chapter", sorted(CHAPTERS))
+def test_float32_inputs_same_on_both_paths(request, ctx, monkeypatch, chapter, wgpu_driver_class):
+    """GLM's float32 view/projection and tinyobjloader's float32 1 - v on both paths: identical frames.
+
+    Exact because both renders are made here, in this run, on one driver (the two-tier rule); against
+    the C++ frame the same render is within the tutorial's tolerance (the C++ frame came from another CPU).
+    """
+    from wgpurender.vulkan_ref.scene import render_scene_reference
+
+    glm = _glm_matrices()
+    _use_tutorial_inputs_on_wgpu(monkeypatch, glm)
+    _use_tutorial_inputs_on_raw(monkeypatch, glm)
+    ref, ours = _render(ctx, chapter)
+    raw = render_scene_reference(ROOT / "assets" / "scenes" / CHAPTERS[chapter][0], size=(800, 600))
+    assert_same_render(request, raw[..., :3], ours, "wgpu and raw renders with the tutorial's float32 inputs")
+    assert_within_tolerance(request, f"tutorial_{chapter}", ref, ours, wgpu_driver_class)

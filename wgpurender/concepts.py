@@ -128,7 +128,7 @@ CONCEPTS: list[Concept] = [
          "vkCmdCopyBuffer", "vkCmdCopyBufferToImage"),
         _raw("memory:upload_buffer", "memory:write_host_buffer", "textures:upload_texture", "textures:record_upload"),
         ("queue.write_buffer", "queue.write_texture", "device.create_buffer_with_data"),
-        _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "textures:upload_level", "stages.cube3d:Cube3D.draw"),
+        _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "textures:upload_level", "stages.cube3d:Cube3D.record"),
         "wgpu stages the bytes in its own upload buffer, records the copy before the next submit and inserts the "
         "barrier after it. write_texture has no 256-byte row alignment (copy_buffer_to_texture has).",
     ),
@@ -138,7 +138,7 @@ CONCEPTS: list[Concept] = [
          "vkQueueSubmit"),
         _raw("command_buffers:create_command_pool", "command_buffers:one_shot"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
-        _wgpu("render:render_stage", "window:DemoWindow._encode"),
+        _wgpu("render:render_stage", "window:DemoWindow._run_frame"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
         "secondary command buffers (render bundles come closest). The states initial -> recording -> "
         "executable -> pending are the encoder's life, unnamed.",
@@ -148,7 +148,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateDescriptorPool", "VkDescriptorPoolSize", "maxSets"),
         _raw("descriptors:create_pool"),
         ("(none: device.create_bind_group allocates)",),
-        _wgpu("stages.cube3d:Cube3D._bind_group"),
+        _wgpu("bind_groups:uniform_group"),
         "wgpu manages descriptor pools itself: no pool sizes to count, no pool exhaustion, and a bind group's "
         "descriptors are freed when it is dropped.",
     ),
@@ -157,7 +157,7 @@ CONCEPTS: list[Concept] = [
         ("VkDescriptorSetLayoutBinding", "vkCreateDescriptorSetLayout"),
         _raw("descriptors:binding", "descriptors:create_set_layout", "stages.textured:Textured._setup_descriptors"),
         ("device.create_bind_group_layout(entries=)", "GPURenderPipeline.get_bind_group_layout (layout 'auto')"),
-        _wgpu("stages.cube3d:_uniform_layout", "stages.textured:TexturedPipelines.__init__",
+        _wgpu("bind_groups:uniform_layout", "stages.textured:TexturedPipelines.__init__",
               "post.base:PostEffect._layout_entries"),
         "An entry says more than a descriptor type: a texture's sample type (filterable float or not) and a "
         "buffer's min_binding_size and has_dynamic_offset. No combined image sampler type, no immutable "
@@ -171,8 +171,8 @@ CONCEPTS: list[Concept] = [
              "descriptors:update", "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record",
              "stages.textured:Textured._setup_descriptors", "stages.textured:Textured.record"),
         ("device.create_bind_group(layout=, entries=)", "GPURenderPassEncoder.set_bind_group(index, group, offsets)"),
-        _wgpu("stages.cube3d:Cube3D._bind_group", "stages.cube3d:Cube3D.draw",
-              "stages.textured:TexturedPipelines.combined_group", "stages.textured:TexturedPipelines.sampler_group"),
+        _wgpu("bind_groups:uniform_group", "stages.cube3d:Cube3D.record",
+              "stages.textured:TexturedPipelines.group"),
         "Allocation and writes are one call, and a bind group is immutable: to point at other resources, make a "
         "new one. Dynamic offsets work the same way (one group, one offset per draw).",
     ),
@@ -234,7 +234,7 @@ CONCEPTS: list[Concept] = [
         ("VkAttachmentDescription (format, samples, loadOp, storeOp, layouts)", "VkAttachmentReference"),
         _raw("renderpass:attachment", "renderpass:ref"),
         ("color_attachments=[{view, resolve_target, load_op, store_op, clear_value}]", "depth_stencil_attachment"),
-        _wgpu("stages.base:Stage.color_attachment", "stages.cube3d:Cube3D.draw"),
+        _wgpu("stages.base:Stage.color_attachment", "stages.cube3d:Cube3D.record"),
         "Attachments are given when the pass begins, not described in advance: the format comes from the view, "
         "there are no layouts, and store_op 'discard' is STORE_OP_DONT_CARE.",
     ),
@@ -245,7 +245,7 @@ CONCEPTS: list[Concept] = [
              "renderpass:into_pass", "renderpass:out_to_transfer", "scene.renderpass:create_scene_render_pass",
              "scene.frame:SceneFrame.record"),
         ("(none: one subpass per render pass)",),
-        _wgpu("post.chain:PostChain.run", "scene_render.frame:SceneRenderer.draw"),
+        _wgpu("post.chain:PostChain.run", "scene_render.frame:SceneRenderer.record"),
         "WebGPU cannot express subpasses (Metal and D3D12 have none): each step is its own render pass, and the "
         "dependencies between passes are implied by their order in the encoder. The final scene shows the cost "
         "in numbers: the raw path composes the whole post chain in one subpass, in float32 registers, where the "
@@ -299,7 +299,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateRenderPass", "vkCmdBeginRenderPass / vkCmdEndRenderPass"),
         _raw("renderpass:create_render_pass", "renderpass:RenderPass"),
         ("GPUCommandEncoder.begin_render_pass(...) -> GPURenderPassEncoder", "GPURenderPassEncoder.end()"),
-        _wgpu("stages.triangle:Triangle.draw", "stages.clear_pass:ClearPass.draw"),
+        _wgpu("stages.triangle:Triangle.record", "stages.clear_pass:ClearPass.record"),
         "No render pass object is created ahead of time: begin_render_pass takes the attachments directly. A "
         "pipeline is compatible with any pass whose target formats and sample count match its own.",
     ),
@@ -316,7 +316,7 @@ CONCEPTS: list[Concept] = [
         ("VkRenderPassBeginInfo (renderArea, pClearValues)", "VkClearValue", "VK_ATTACHMENT_LOAD_OP_CLEAR"),
         _raw("renderpass:begin", "renderpass:clear_color"),
         ("attachment {'load_op': 'clear', 'clear_value': ...}", "depth_clear_value"),
-        _wgpu("stages.clear_pass:ClearPass.draw", "stages.base:Stage.color_attachment"),
+        _wgpu("stages.clear_pass:ClearPass.record", "stages.base:Stage.color_attachment"),
         "The clear value sits in each attachment instead of an array indexed like the attachments. The render "
         "area is always the whole attachment.",
     ),
@@ -325,7 +325,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateGraphicsPipelines", "VkGraphicsPipelineCreateInfo"),
         _raw("pipeline:create_pipeline", "pipeline:PipelineDesc"),
         ("device.create_render_pipeline(layout=, vertex=, primitive=, depth_stencil=, multisample=, fragment=)",),
-        _wgpu("stages.triangle:triangle_pipeline", "stages.cube3d:Cube3D._pipeline",
+        _wgpu("stages.base:Stage.basic_pipeline", "stages.cube3d:Cube3D._pipeline",
               "stages.textured:TexturedPipelines._pipeline"),
         "No render pass or subpass: the fragment targets' formats and the sample count say what it draws into. "
         "Viewport and scissor are never part of it.",
@@ -342,7 +342,8 @@ CONCEPTS: list[Concept] = [
     Concept(
         "pipeline cache",
         ("vkCreatePipelineCache", "vkGetPipelineCacheData", "VkPipelineCacheCreateInfo (pInitialData)"),
-        _raw("pipeline:create_pipeline_cache", "pipeline:save_pipeline_cache", "pipeline:pipeline_cache_path"),
+        _raw("pipeline_cache:create_pipeline_cache", "pipeline_cache:save_pipeline_cache",
+             "pipeline_cache:pipeline_cache_path"),
         ("native feature 'pipeline-cache' (requested when offered)",),
         _wgpu("gpu:get_context", "gpu:OPTIONAL_FEATURES"),
         "wgpu-native has the feature but wgpu-py 0.32 has no call to create a cache, so the wgpu path only "
@@ -365,7 +366,7 @@ CONCEPTS: list[Concept] = [
         ("vertex={'buffers': [{array_stride, step_mode, attributes: [{shader_location, format, offset}]}]}",
          "GPURenderPassEncoder.set_vertex_buffer"),
         _wgpu("stages.triangle_buffers:VERTEX_LAYOUT", "stages.cube3d:VERTEX_LAYOUT",
-              "stages.triangle_buffers:TriangleBuffers.draw"),
+              "stages.triangle_buffers:TriangleBuffers.record"),
         "A binding is its position in the buffers list; formats are named float32x3 instead of "
         "R32G32B32_SFLOAT. step_mode 'instance' is inputRate INSTANCE.",
     ),
@@ -374,7 +375,7 @@ CONCEPTS: list[Concept] = [
         ("VkPipelineInputAssemblyStateCreateInfo (topology, primitiveRestartEnable)",),
         _raw("pipeline:create_pipeline"),
         ("primitive={'topology': ..., 'strip_index_format': ...}",),
-        _wgpu("stages.triangle:triangle_pipeline"),
+        _wgpu("stages.base:Stage.basic_pipeline"),
         "No adjacency or patch topologies; primitive restart is implied for strips by strip_index_format.",
     ),
     Concept(
@@ -382,7 +383,7 @@ CONCEPTS: list[Concept] = [
         ("vkCmdSetViewport", "vkCmdSetScissor", "VkPipelineViewportStateCreateInfo"),
         _raw("pipeline:set_viewport_and_scissor", "stages.textured:set_viewport"),
         ("GPURenderPassEncoder.set_viewport(x, y, w, h, min_depth, max_depth)", "set_scissor_rect"),
-        _wgpu("stages.textured:Textured.draw"),
+        _wgpu("stages.textured:Textured.record"),
         "Always dynamic, defaulting to the whole attachment; one viewport. wgpu's NDC y points up, Vulkan's down: "
         "wgpu's Vulkan backend flips with a negative viewport height, and the raw path does the same so both "
         "draw the same image from the same positions.",
@@ -392,7 +393,7 @@ CONCEPTS: list[Concept] = [
         ("VkPipelineRasterizationStateCreateInfo (polygonMode, cullMode, frontFace, lineWidth, depthBias)",),
         _raw("pipeline:create_pipeline"),
         ("primitive={'front_face': ..., 'cull_mode': ...}", "depth_stencil depth_bias*"),
-        _wgpu("stages.cube3d:Cube3D._pipeline", "stages.triangle:triangle_pipeline"),
+        _wgpu("stages.cube3d:Cube3D._pipeline", "stages.base:Stage.basic_pipeline"),
         "No polygon modes other than fill (line/point need native features), line width always 1, no "
         "rasterizer discard; depth bias lives in the depth-stencil state.",
     ),
@@ -413,7 +414,7 @@ CONCEPTS: list[Concept] = [
         ("VkPipelineDynamicStateCreateInfo", "VK_DYNAMIC_STATE_VIEWPORT / SCISSOR / ..."),
         _raw("pipeline:create_pipeline"),
         ("(no list: set_viewport, set_scissor_rect, set_blend_constant, set_stencil_reference are always dynamic)",),
-        _wgpu("stages.textured:Textured.draw"),
+        _wgpu("stages.textured:Textured.record"),
         "Nothing to declare: those four are always pass commands, everything else is baked into the pipeline "
         "(no extended dynamic state).",
     ),
@@ -423,7 +424,7 @@ CONCEPTS: list[Concept] = [
         _raw("pipeline:create_pipeline", "renderpass:single_pass", "stages.cube3d:Cube3D.setup"),
         ("depth_stencil={'format', 'depth_write_enabled', 'depth_compare', 'stencil_front', ...}",
          "depth_stencil_attachment={'view', 'depth_load_op', 'depth_clear_value', ...}"),
-        _wgpu("stages.cube3d:Cube3D._pipeline", "stages.cube3d:Cube3D.on_resize", "stages.cube3d:Cube3D.draw"),
+        _wgpu("stages.cube3d:Cube3D._pipeline", "stages.cube3d:Cube3D.on_resize", "stages.cube3d:Cube3D.record"),
         "The depth format is part of the pipeline; no depth bounds test. Otherwise one to one.",
     ),
     Concept(
@@ -431,7 +432,7 @@ CONCEPTS: list[Concept] = [
         ("VkPipelineColorBlendAttachmentState", "VkPipelineColorBlendStateCreateInfo (logicOp)"),
         _raw("pipeline:create_pipeline", "pipeline:ALL_COLOR"),
         ("fragment targets [{'format', 'blend': {'color', 'alpha'}, 'write_mask'}]",),
-        _wgpu("stages.triangle:triangle_pipeline", "stages.cube3d:Cube3D._pipeline"),
+        _wgpu("stages.base:Stage.basic_pipeline", "stages.cube3d:Cube3D._pipeline"),
         "Per-target blend state like Vulkan's per-attachment one; no logic ops. None of our stages blend yet: "
         "both paths write all channels with blending off.",
     ),
@@ -456,7 +457,7 @@ CONCEPTS: list[Concept] = [
              "scene.scene_subpass:SceneSubpass.record", "scene.uniforms:pack_material"),
         ("native feature 'immediates'", "create_pipeline_layout(immediate_size=)",
          "GPURenderPassEncoder.set_immediates(offset, data, data_offset, size)", "WGSL var<immediate>"),
-        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.draw", "gpu:get_context"),
+        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "gpu:get_context"),
         "Not in WebGPU proper: a wgpu-native feature ('immediates', up to max-immediate-size bytes), one range "
         "for all stages. Without it the 3d stage reads the same struct from a dynamic-offset uniform buffer.",
     ),

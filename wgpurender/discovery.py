@@ -10,9 +10,12 @@ import importlib
 import pkgutil
 from collections.abc import Iterable
 
+from .course.steps import course_position
+
 
 def subclasses_in_package(package_path: Iterable[str], package_name: str, base: type) -> list[type]:
-    """Named subclasses of ``base`` defined in the package's modules (not imported ones), sorted by ``order``."""
+    """Named subclasses of ``base`` defined in the package's modules (not imported ones), in course order
+    (:mod:`wgpurender.course.steps`)."""
     found: list[type] = []
     for mod in pkgutil.iter_modules(package_path):
         if mod.name.startswith("_") or mod.name == "base":
@@ -21,4 +24,4 @@ def subclasses_in_package(package_path: Iterable[str], package_name: str, base: 
         for obj in vars(module).values():
             if isinstance(obj, type) and issubclass(obj, base) and obj.name and obj.__module__ == module.__name__:
                 found.append(obj)
-    return sorted(found, key=lambda cls: cls.order)
+    return sorted(found, key=lambda cls: course_position(cls.name))

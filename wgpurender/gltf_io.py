@@ -12,14 +12,15 @@ import base64
 import json
 import os
 import struct
-import tempfile
 import urllib.parse
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from . import gltf_schema
 from .errors import UserError
+from .safe_write import atomic_write
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
 CHUNK_JSON = 0x4E4F534A
@@ -65,10 +66,12 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
             doc_json, glb_bin = _split_glb(raw)
         else:
             doc_json = json.loads(raw.decode("utf-8"))
-    except (ValueError, UnicodeDecodeError, struct.error) as err:
+    except (ValueError, UnicodeDecodeError, struct.error, RecursionError) as err:
         raise UserError(f"malformed glTF file {path}: {err}") from None
-    if not isinstance(doc_json, dict):
-        raise UserError(f"malformed glTF file {path}: the top level is not a JSON object")
+    try:
+        gltf_schema.check(doc_json)
+    except ValueError as err:
+        raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
     buffers = [_load_buffer(path, i, b, glb_bin) for i, b in enumerate(doc_json.get("buffers", []))]
     return GltfDocument(path, doc_json, buffers)
 
@@ -100,8 +103,8 @@ def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) ->
             raise UserError(f"malformed glTF file {path}: buffer {index} has no uri and there is no GLB binary chunk")
         return glb_bin
     if uri.startswith("data:"):
-        return base64.b64decode(uri.split(",", 1)[1])
-    file = path.parent / urllib.parse.unquote(uri)
+        return _data_uri(path, f"$.buffers[{index}].uri", uri)
+    file = _uri_file(path, f"$.buffers[{index}].uri", uri)
     if not file.is_file():
         raise UserError(f"glTF file {path}: buffer file {file} not found (keep .bin files next to the .gltf)")
     return file.read_bytes()
@@ -180,8 +183,27 @@ def _image_source(doc: GltfDocument, image: dict) -> dict:
         start = view.get("byteOffset", 0)
         return {"uri": None, "data": doc.buffers[view["buffer"]][start : start + view["byteLength"]]}
     if uri.startswith("data:"):
-        return {"uri": None, "data": base64.b64decode(uri.split(",", 1)[1])}
-    return {"uri": (doc.path.parent / urllib.parse.unquote(uri)).resolve(), "data": None}
+        return {"uri": None, "data": _data_uri(doc.path, "an image uri", uri)}
+    return {"uri": _uri_file(doc.path, "an image uri", uri).resolve(), "data": None}
+
+
+def _data_uri(path: Path, where: str, uri: str) -> bytes:
+    """The bytes of a base64 data: URI, or UserError."""
+    head, comma, payload = uri.partition(",")
+    if not comma or ";base64" not in head:
+        raise UserError(f"malformed glTF file {path}: {where} is a data: URI without ';base64,'; re-export the file")
+    try:
+        return base64.b64decode(payload, validate=True)
+    except ValueError as err:
+        raise UserError(f"malformed glTF file {path}: {where}: bad base64 data ({err})") from None
+
+
+def _uri_file(path: Path, where: str, uri: str) -> Path:
+    """The file a relative URI names, beside the glTF file; UserError for one no file can have."""
+    name = urllib.parse.unquote(uri)
+    if not name or any(not ch.isprintable() for ch in name):
+        raise UserError(f"malformed glTF file {path}: {where} {name!r} is not a usable file name")
+    return path.parent / name
 
 
 def write_glb(
@@ -257,16 +279,4 @@ def write_glb(
     total = 12 + 8 + len(text) + 8 + len(binary)
     out = struct.pack("<III", GLB_MAGIC, 2, total)
     out += struct.pack("<II", len(text), CHUNK_JSON) + text + struct.pack("<II", len(binary), CHUNK_BIN) + binary
-    return _atomic_write(Path(path), out)
-
-
-def _atomic_write(path: Path, data: bytes) -> Path:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return atomic_write(Path(path), out)

@@ -2,16 +2,18 @@
 
 from __future__ import annotations
 
+import io
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 from PIL import Image
 
 from .errors import UserError
+from .safe_write import atomic_write, output_target
 
-__all__ = ["UserError", "save_png", "load_png", "check_writable", "srgb_encode", "srgb_decode", "to_uint8"]
+__all__ = ["UserError", "save_png", "load_png", "check_writable", "decode_image", "encode_png", "srgb_encode",
+           "srgb_decode", "to_uint8"]
 
 
 def srgb_encode(linear: np.ndarray) -> np.ndarray:
@@ -33,45 +35,40 @@ def to_uint8(pixels: np.ndarray) -> np.ndarray:
     return np.round(srgb_encode(pixels) * 255.0).astype(np.uint8)
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
 def check_writable(path: str | os.PathLike) -> Path:
-    """Fail early, before any rendering, when an output file cannot be written."""
-    path = Path(path)
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise UserError(f"cannot write {path}: directory {parent} does not exist (create it first)")
-    if not os.access(parent, os.W_OK):
-        raise UserError(f"cannot write {path}: directory {parent} is not writable")
-    if path.is_dir():
-        raise UserError(f"cannot write {path}: it is a directory, give a file name ending in .png")
-    return path
+    """Fail early, before any rendering, when an output file cannot or must not be written (safe_write's rules)."""
+    return output_target(path)
+
+
+def encode_png(pixels: np.ndarray) -> bytes:
+    """PNG bytes of an (H, W, 3|4) image (float pixels are linear and get sRGB-encoded)."""
+    buffer = io.BytesIO()
+    Image.fromarray(to_uint8(np.ascontiguousarray(pixels))).save(buffer, format="PNG")
+    return buffer.getvalue()
 
 
 def save_png(path: str | os.PathLike, pixels: np.ndarray) -> Path:
-    """Write an (H, W, 3|4) image atomically: to a temporary file, then rename.
+    """Write an (H, W, 3|4) image atomically: encoded in memory, written to a temporary file, then renamed.
 
-    A crash or a full disk leaves either the old file or none, never half a PNG.
+    A crash, a signal or a full disk leaves either the old file or none, never half a PNG; see
+    :mod:`wgpurender.safe_write` for what each exit path leaves and which targets are refused.
     """
-    path = check_writable(path)
-    image = Image.fromarray(to_uint8(np.ascontiguousarray(pixels)))
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            image.save(f, format="PNG")
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files; give the usual permissions
-        os.replace(tmp, path)
-    except OSError as err:
-        Path(tmp).unlink(missing_ok=True)
-        raise UserError(f"cannot write {path}: {err.strerror or err}") from None
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    output_target(path)
+    return atomic_write(path, lambda: encode_png(pixels))
+
+
+def decode_image(image: Image.Image, name: str) -> np.ndarray:
+    """(H, W, 4) uint8 from any Pillow image: 16-bit and 32-bit integer greyscale are scaled to 8 bits
+    (Pillow's own convert("RGBA") would clip them at 255), and every channel layout becomes RGBA."""
+    if image.mode in ("I", "I;16", "I;16B", "I;16L", "I;16N"):
+        wide = np.asarray(image).astype(np.float64)
+        if wide.size and (wide.min() < 0 or wide.max() > 65535):
+            raise UserError(f"cannot read image {name}: {image.mode} pixels outside 0..65535")
+        gray = np.round(wide / 257.0).astype(np.uint8)
+        image = Image.fromarray(gray, "L")
+    elif image.mode == "F":
+        raise UserError(f"cannot read image {name}: floating-point images are not supported; save it as 8- or 16-bit")
+    return np.asarray(image.convert("RGBA"))
 
 
 def load_png(path: str | os.PathLike) -> np.ndarray:
@@ -81,6 +78,6 @@ def load_png(path: str | os.PathLike) -> np.ndarray:
         raise UserError(f"image not found: {path}")
     try:
         with Image.open(path) as im:
-            return np.asarray(im.convert("RGBA"))
-    except (OSError, ValueError) as err:
+            return decode_image(im, str(path))
+    except (OSError, ValueError, Image.DecompressionBombError) as err:
         raise UserError(f"cannot read image {path}: {err}") from None

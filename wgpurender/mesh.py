@@ -70,8 +70,13 @@ class TextureRef:
 
         from PIL import Image
 
-        with Image.open(io.BytesIO(self.data)) as im:
-            return np.asarray(im.convert("RGBA"))
+        from .imageio import decode_image
+
+        try:
+            with Image.open(io.BytesIO(self.data)) as im:
+                return decode_image(im, "an image embedded in the model")
+        except (OSError, ValueError, Image.DecompressionBombError) as err:
+            raise UserError(f"cannot read an image embedded in the model: {err}") from None
 
 
 @dataclass
@@ -155,9 +160,7 @@ def build_mesh(
     if len(positions) == 0 or len(indices) == 0:
         raise UserError(f"{what} is empty: {len(positions)} vertices, {len(indices)} triangles "
                         "(faces with fewer than 3 vertices, lines and points are not triangles)")
-    if not np.all(np.isfinite(positions)):
-        bad = int(np.count_nonzero(~np.all(np.isfinite(positions), axis=1)))
-        raise UserError(f"{what} has {bad} vertex position(s) that are NaN or infinite; fix or re-export the model")
+    _check_gpu_range(what, "vertex position", positions, MAX_COORDINATE)
     if indices.min() < 0 or indices.max() >= len(positions):
         raise UserError(f"{what} has triangle indices outside 0..{len(positions) - 1}; the file is malformed")
     for label, array, width in (("normals", normals, 3), ("uvs", uvs, 2), ("tangents", tangents, 4)):
@@ -165,8 +168,7 @@ def build_mesh(
             raise UserError(f"{what}: {label} have shape {np.shape(array)}, expected ({len(positions)}, {width})")
     has_uvs = uvs is not None
     uvs = np.zeros((len(positions), 2)) if uvs is None else np.asarray(uvs, np.float64).reshape(-1, 2)
-    if not np.all(np.isfinite(uvs)):
-        raise UserError(f"{what} has texture coordinates that are NaN or infinite; fix or re-export the model")
+    _check_gpu_range(what, "texture coordinate", uvs, FLOAT32_MAX)
     normals = _complete_normals(positions, indices, normals)
 
     tangents_source = None
@@ -193,6 +195,22 @@ def build_mesh(
         material=material,
         source=None if source is None else Path(source),
     )
+
+
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+MAX_COORDINATE = 1e18  # squared distances stay finite in the GPU's float32 (sqrt(3.4e38) = 1.8e19)
+
+
+def _check_gpu_range(what: str, label: str, values: np.ndarray, limit: float) -> None:
+    """Values must be finite in float32, the type the GPU gets (a float64 check misses 1e39), and within limit."""
+    with np.errstate(all="ignore"):
+        wide = np.asarray(values, np.float64)
+        bad = ~np.isfinite(wide.astype(np.float32)) | (np.abs(wide) > limit)
+    if np.any(bad):
+        rows = int(np.count_nonzero(np.any(bad.reshape(len(wide), -1), axis=1)))
+        worst = wide[bad][0]
+        raise UserError(f"{what} has {rows} {label}(s) that are NaN or infinite, or beyond {limit:.3g}, in float32 "
+                        f"(the GPU's type), e.g. {worst:g}; fix the model or scale it down before export")
 
 
 def _complete_normals(positions: np.ndarray, indices: np.ndarray, normals: np.ndarray | None) -> np.ndarray:
@@ -254,11 +272,36 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     if file_type in ("gltf", "glb"):
         parts, material = _gltf_parts(path, file_type)
     else:
+        if file_type == "obj":
+            check_obj_records(path)
         parts, material = _trimesh_parts(path, file_type), _obj_material(path) if file_type == "obj" else None
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
     return build_mesh(*_concatenate(parts), generate_tangents=generate_tangents, material=material, source=path)
+
+
+OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least numbers each record needs
+
+
+def check_obj_records(path: Path) -> None:
+    """Vertex records of an OBJ file carry enough numbers: trimesh fails with an IndexError (or reads a wrong
+    array) on ``vt 0.5``. Raises ``FILE:LINE: ...`` for the first bad record."""
+    with open(path, "rb") as f:
+        for number, raw in enumerate(f, start=1):
+            tokens = raw.split(b"#", 1)[0].split()
+            if not tokens or tokens[0] not in (b"v", b"vt", b"vn"):
+                continue
+            kind = tokens[0].decode()
+            need, form = OBJ_RECORDS[kind]
+            try:
+                values = [float(t) for t in tokens[1:]]
+            except ValueError:
+                values = None
+            if values is None or len(values) < need:
+                written = raw.decode("utf-8", "replace").strip()
+                raise UserError(f"{path}:{number}: OBJ record {written[:60]!r} needs {need} numbers "
+                                f"('{kind} {form}'); fix the line or re-export the model")
 
 
 def _load_scene(path: Path, file_type: str, **kwargs):
@@ -297,14 +340,14 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
     kwargs = {"skip_materials": True} if file_type in ("obj", "ply") else {}
     scene = _load_scene(path, file_type, **kwargs)
     parts = []
-    for transform, _, geom in _placed(scene):
+    for transform, name, geom in _placed(scene):
         uv = getattr(geom.visual, "uv", None)
         if uv is not None and len(uv) == len(geom.vertices):
             uv = np.asarray(uv, np.float64).copy()
             uv[:, 1] = 1.0 - uv[:, 1]  # OBJ / PLY: v = 0 at the bottom -> Mesh convention, v = 0 at the top
         else:
             uv = None
-        parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, None))
+        parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, None, str(path), name))
     return parts
 
 
@@ -329,7 +372,7 @@ def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | Non
                 raise UserError(f"malformed glTF file {path}: {label} has {len(array)} elements, POSITION {count}")
         if tangents is not None and tangents.shape[1] != 4:
             raise UserError(f"malformed glTF file {path}: TANGENT must be VEC4, got {tangents.shape[1]} components")
-        parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, tangents))
+        parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, tangents, str(path), name))
         if material is None and prim.get("material") is not None:
             mat_name, textures = gltf_io.material_textures(doc, prim["material"])
             material = Material(mat_name, {role: TextureRef(t["uri"], t["data"], t["srgb"])
@@ -337,14 +380,22 @@ def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | Non
     return parts, material
 
 
-def _place(transform, vertices, faces, normals, uvs, tangents) -> _Part:
+def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "model", node: str = "?") -> _Part:
     """Apply a node transform: positions by the matrix, normals by the inverse transpose of its 3x3 (renormalised
     later), tangent xyz by the 3x3; when the transform mirrors (det < 0) w is negated and the winding reversed."""
     positions = np.asarray(vertices, np.float64)
     faces = np.asarray(faces, np.int64)
     if not np.allclose(transform, np.eye(4)):
         m = transform[:3, :3]
-        det = np.linalg.det(m)
+        with np.errstate(all="ignore"):
+            det = np.linalg.det(m)
+        if not np.all(np.isfinite(transform.astype(np.float32))) or not np.isfinite(det):
+            raise UserError(f"{where}: the node placing mesh '{node}' has a transform beyond float32's range "
+                            "(e.g. a 1e308 matrix); fix the node's matrix, translation, rotation or scale")
+        if abs(det) < 1e-12 * max(1.0, float(np.abs(m).max()) ** 3):
+            raise UserError(f"{where}: the node placing mesh '{node}' has a singular transform (determinant "
+                            f"{det:.3g}: a scale of 0 on some axis, or a flat matrix), which flattens the mesh and "
+                            "leaves its normals undefined; give every axis a non-zero scale")
         positions = positions @ m.T + transform[:3, 3]
         if normals is not None:
             normals = normals @ np.linalg.inv(m)  # rows: (M^-T n)^T, the inverse transpose keeps them outward
@@ -387,7 +438,8 @@ def _obj_material(path: Path) -> Material | None:
     for lib in libraries:
         mtl = path.parent / lib.decode("utf-8", "replace")
         if not mtl.is_file():
-            log.warning("%s: material library %s not found; loading without textures", path, mtl)
+            # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
+            log.info("%s: material library %s not found; loading without textures", path, mtl)
             continue
         materials = parse_mtl(mtl)
         if wanted in materials:

@@ -1,22 +1,14 @@
-"""Headless rendering: a stage into an offscreen target, read back into numpy."""
+"""Headless rendering: a stage (or a scene file) into an offscreen target, read back into numpy."""
 
 from __future__ import annotations
 
-import time
-from dataclasses import dataclass
-
-import numpy as np
-
+from .course.formats import is_scene_file
+from .frame_loop import RenderResult, run_frames
 from .gpu import GPUContext, get_context
 from .stages import get_stage
-from .targets import check_format, create_target, read_texture
+from .targets import check_format, create_target
 
-
-@dataclass
-class RenderResult:
-    pixels: np.ndarray
-    frame_ms: float  # wall time of one steady-state frame: encode, submit, GPU, readback
-    adapter: str
+__all__ = ["RenderResult", "render_any", "render_stage"]
 
 
 def render_stage(
@@ -39,16 +31,8 @@ def render_stage(
     stage = cls(ctx, fmt, msaa)
     stage.resize(size)
     target = create_target(ctx, size, fmt)
-    frame_ms = 0.0
-    pixels = None
-    for _ in range(max(1, frames)):
-        start = time.perf_counter()
-        encoder = ctx.device.create_command_encoder(label=f"{name}-frame")
-        stage.draw(encoder, target, t)
-        ctx.queue.submit([encoder.finish()])
-        pixels = read_texture(ctx, target)
-        frame_ms = (time.perf_counter() - start) * 1e3
-    return RenderResult(pixels=pixels, frame_ms=frame_ms, adapter=ctx.describe())
+    frame = run_frames(ctx, stage.record, target, frames, t, label=f"{name}-frame")
+    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
 
 
 def render_any(
@@ -59,9 +43,9 @@ def render_any(
     t: float = 0.0,
     backend: str | None = None,
 ) -> RenderResult:
-    """A stage by name, or a scene file when ``target`` ends in .toml."""
+    """A stage by name, or a scene file (:func:`wgpurender.course.formats.is_scene_file`)."""
     ctx = get_context(backend)
-    if target.endswith(".toml"):
+    if is_scene_file(target):
         from .scene_render import render_scene_file  # the final-scene renderer
 
         return render_scene_file(target, size=size, fmt=fmt, msaa=msaa, t=t, ctx=ctx)

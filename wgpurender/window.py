@@ -100,10 +100,14 @@ def run_window(
     if not window:
         glfw.terminate()
         raise UserError("GLFW could not create a window")
+    demo = None
     try:
         demo = DemoWindow(ctx, glfw, window, view, title, present_mode)
         return demo.run(frames, fixed_time, screenshot, benchmark, list(script))
     finally:
+        if demo is not None:
+            demo.close()  # the surface goes before its window: released after it, it crashes the process
+        del demo
         glfw.destroy_window(window)
         glfw.terminate()
 
@@ -128,6 +132,13 @@ class DemoWindow:
         self.reloads = 0
         self._last_poll = self._title_at = time.perf_counter()
         self._title_frames = 0
+
+    def close(self) -> None:
+        """Release the surface (vkDestroySwapchainKHR + vkDestroySurfaceKHR) while the window still exists."""
+        self.drawable = self.previous = None
+        if self.context is not None:
+            self.context.unconfigure()
+            self.context = None
 
     def _install_callbacks(self) -> None:
         g, c = self.glfw, self.controls
@@ -167,34 +178,34 @@ class DemoWindow:
         print(f"reload failed, still showing the last good frame: {line}", file=sys.stderr, flush=True)
 
     # -- a frame ----------------------------------------------------------------------
-    def _encode(self, texture, t: float) -> None:
-        """Record and submit a frame of the current drawable; a new drawable that fails falls back to the old."""
+    def _run_frame(self, texture, t: float, capture: bool):
+        """One frame through the shared frame loop (wgpurender/frame_loop.py) into the swapchain image.
+
+        A rebuilt drawable's first frame may still fail (pipelines made on first use); then the last
+        good drawable draws this frame and stays, and the error is printed once.
+        """
+        from .frame_loop import run_frame
+
         while True:
             self.view.apply_camera(self.drawable)
             self.drawable.resize(tuple(texture.size[:2]))
-            encoder = self.ctx.device.create_command_encoder(label="frame")
             if not self.first_frame_pending:
-                self.drawable.draw(encoder, texture, t)
-                break
+                return run_frame(self.ctx, self.drawable.record, texture, t, read_back=capture)
             try:
-                with self.view.record_lazy_loads():  # pipelines made in the first draw load shaders too
-                    self.drawable.draw(encoder, texture, t)
+                with self.view.record_lazy_loads():  # pipelines made in the first frame load shaders too
+                    frame = run_frame(self.ctx, self.drawable.record, texture, t, read_back=capture)
             except REBUILD_ERRORS as err:
                 if self.previous is None:
                     raise
                 self._report(err)
-                self.drawable, self.previous = self.previous, None
-                self.first_frame_pending = False
+                self.drawable, self.previous, self.first_frame_pending = self.previous, None, False
                 continue
             self.first_frame_pending, self.previous, self.broken = False, None, False
             self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
-            break
-        self.ctx.queue.submit([encoder.finish()])
+            return frame
 
     def frame(self, t: float, capture: bool) -> tuple[bool, np.ndarray | None]:
         """Draw and present one frame: (drawn, pixels when ``capture``). False: nothing to draw into."""
-        from .targets import read_texture
-
         width, height = self.glfw.get_framebuffer_size(self.window)
         if width == 0 or height == 0:  # minimised: nothing to draw into, wait for the next event
             self.glfw.wait_events_timeout(0.1)
@@ -205,8 +216,7 @@ class DemoWindow:
         except wgpu.DrawCancelled:  # occluded (or the surface is being re-made): skip this frame
             self.glfw.wait_events_timeout(0.05)
             return False, None
-        self._encode(texture, t)
-        pixels = read_texture(self.ctx, texture) if capture else None  # before present hands the image away
+        pixels = self._run_frame(texture, t, capture).pixels  # read back before present hands the image away
         self.context.present()
         return True, pixels
 

@@ -21,37 +21,6 @@ QUICK = {"size": (160, 120), "frames": 3, "warmup": 1, "rounds": 1}
 FULL = {"size": (400, 300), "frames": 18, "warmup": 2, "rounds": 3}
 
 
-def register_accuracy(suites) -> None:
-    """Add ``accuracy`` to ``wgpurender bench`` (called by wgpurender/cli/bench.py)."""
-    from ..cli._args import add_backend_arg, size_arg
-    from .accuracy_knobs import KNOBS
-
-    p = suites.add_parser(
-        "accuracy",
-        help="error (FLIP, PSNR against a ground truth) against time for each quality knob",
-        description="Sweep MSAA, supersampling, the scene target format, texture filtering and the depth setup; "
-        "write accuracy.csv, accuracy.md and accuracy_pareto.png (the plot needs matplotlib: "
-        "pip install 'wgpurender[bench]').",
-    )
-    p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
-                   help=f"scene file with a post chain (default {SCENE_FILE})")
-    p.add_argument("--quick", action="store_true",
-                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
-    p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
-                   help="where results go (default ./bench-results/accuracy)")
-    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
-                   help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
-    p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
-    p.add_argument("--rounds", type=int, default=None, metavar="R",
-                   help="split the timed frames over R passes through all settings (default 3; --quick 1)")
-    p.add_argument("--knob", action="append", default=None, choices=KNOBS, dest="knobs",
-                   help="sweep only these knobs (repeatable; default all)")
-    p.add_argument("--no-combinations", dest="combinations", action="store_false",
-                   help="only the one-knob-at-a-time sweeps")
-    add_backend_arg(p)
-    p.set_defaults(func=run)
-
-
 def run(args) -> int:
     from ..errors import UserError
     from ..gpu import get_context

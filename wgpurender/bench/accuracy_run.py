@@ -15,6 +15,7 @@ downsampling). GPU time is the sum of the frame's passes from timestamp queries
 
 from __future__ import annotations
 
+import functools
 import sys
 import time
 from dataclasses import dataclass, field
@@ -23,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..compare import compare_images
+from ..frame_loop import run_frame
 from ..gpu import GPUContext
 from ..timing import PassTimer, Stats
 from .accuracy_depth import analytic_image, write_depth_scene
@@ -151,17 +153,10 @@ class Timed:
 
     def frame(self) -> tuple[float, dict[str, float]]:
         """Record, submit and wait for one frame: (wall ms, GPU ms per pass)."""
-        ctx, timer = self.ctx, self.timer
-        start = time.perf_counter()
-        timer.reset()
-        encoder = ctx.device.create_command_encoder(label="accuracy-frame")
-        self.renderer.draw(encoder, self.target, 0.0, timer=timer)
-        timer.resolve(encoder)
-        ctx.queue.submit([encoder.finish()])
-        per_pass = timer.read()  # blocks until the frame is done
-        if not per_pass:
-            ctx.wait_idle()
-        return (time.perf_counter() - start) * 1e3, per_pass
+        timer = self.timer
+        f = run_frame(self.ctx, functools.partial(self.renderer.record, timer=timer), self.target, 0.0,
+                      label="accuracy-frame", read_back=False, timer=timer)  # the timer read waits for the GPU
+        return f.frame_ms, f.gpu_ms
 
     def run(self, frames: int, warmup: int = 0) -> None:
         for i in range(warmup + frames):

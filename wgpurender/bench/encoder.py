@@ -7,10 +7,9 @@ changing their code. Everything else is forwarded to the real encoder.
 
 from __future__ import annotations
 
-import time
-
 import wgpu
 
+from ..frame_loop import Record, run_frame
 from ..gpu import GPUContext
 from ..timing import PassTimer
 
@@ -30,29 +29,18 @@ class TimedEncoder:
         return self._encoder.begin_render_pass(**kwargs)
 
 
-def finish_frame(
-    ctx: GPUContext,
-    encoder: wgpu.GPUCommandEncoder,
-    timer: PassTimer,
-    start: float,
-    readback_target: wgpu.GPUTexture | None = None,
-) -> tuple[float, dict[str, float]]:
-    """End a timed frame the same way for every runner: resolve, submit, read back, wait.
+def timed_frame(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, timer: PassTimer, label: str,
+                t: float = 0.0, read_back: bool = False) -> tuple[float, dict[str, float]]:
+    """One frame through the frame loop with every render pass ``record`` begins timestamped.
 
-    Returns the CPU milliseconds from ``start`` (a perf_counter value) to the submit
-    and the GPU milliseconds per pass label (empty without timestamp queries).
+    Returns the CPU milliseconds of record + submit and the GPU milliseconds per pass label
+    (empty without timestamp queries).
     """
-    timer.resolve(encoder)
-    ctx.queue.submit([encoder.finish()])
-    cpu_ms = (time.perf_counter() - start) * 1e3
-    if readback_target is not None:
-        from ..targets import read_texture
+    def timed(encoder: wgpu.GPUCommandEncoder, tgt: wgpu.GPUTexture, t: float) -> None:
+        record(TimedEncoder(encoder, timer, label), tgt, t)
 
-        read_texture(ctx, readback_target)
-    gpu = timer.read()  # maps the query buffer: waits for the frame
-    if not gpu:
-        ctx.wait_idle()
-    return cpu_ms, gpu
+    frame = run_frame(ctx, timed, target, t, label=label, read_back=read_back, timer=timer)
+    return frame.cpu_ms, frame.gpu_ms
 
 
 def gpu_total(gpu: dict[str, float]) -> float | None:

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..gpu import GPUContext
 from ..timing import PassTimer, Stats
-from .encoder import TimedEncoder, finish_frame, gpu_total
+from .encoder import gpu_total, timed_frame
 from .report import Result, size_text
 
 
@@ -93,17 +93,12 @@ class WgpuStageRunner:
         self.timer = PassTimer(ctx)
         self.t = 0.0
 
-    def encode(self, encoder) -> None:
-        self.stage.draw(encoder, self.target, self.t)
+    def record(self, encoder, target, t: float) -> None:
+        self.stage.record(encoder, target, t)
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
         """(cpu_ms of record + submit, gpu_ms of the passes or None); waits for the GPU."""
-        ctx = self.ctx
-        start = time.perf_counter()
-        self.timer.reset()
-        encoder = ctx.device.create_command_encoder(label=f"bench-{self.name}")
-        self.encode(TimedEncoder(encoder, self.timer, self.name))
-        cpu_ms, gpu = finish_frame(ctx, encoder, self.timer, start, self.target if readback else None)
+        cpu_ms, gpu = timed_frame(self.ctx, self.record, self.target, self.timer, self.name, self.t, readback)
         return cpu_ms, gpu_total(gpu)
 
 
@@ -116,10 +111,10 @@ class RawStageRunner:
     def __init__(self, name: str, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None) -> None:
         import vulkan as vk
 
+        from ..vulkan_ref.checks import check_msaa, check_size
         from ..vulkan_ref.command_buffers import create_command_pool
         from ..vulkan_ref.images import create_image
         from ..vulkan_ref.instance import get_vulkan
-        from ..vulkan_ref.render import check_msaa, check_size
         from ..vulkan_ref.stages import get_ref_stage
         from ..vulkan_ref.stages.base import TARGET_USAGE
 

@@ -23,12 +23,13 @@ import numpy as np
 import wgpu
 
 from ..errors import UserError
+from ..frame_loop import run_frame
 from ..gpu import GPUContext
 from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
 from ..timing import PassTimer
-from .encoder import finish_frame, gpu_total
+from .encoder import gpu_total
 from .frames import measure
 from .report import Result, size_text
 
@@ -145,13 +146,15 @@ class ObjectsRenderer:
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
         """(cpu_ms: data + upload + record + submit, gpu_ms of the pass or None); waits for the GPU."""
-        start = time.perf_counter()
-        data = object_data(self.count, self.t, half_size=self.half_size)
+        f = run_frame(self.ctx, self.record, self.target, self.t, label=f"objects-{self.mode}", read_back=readback,
+                      timer=self.timer)
+        return f.cpu_ms, gpu_total(f.gpu_ms)
+
+    def record(self, encoder, target, t: float) -> None:
+        data = object_data(self.count, t, half_size=self.half_size)
         self.upload(data)
-        self.timer.reset()
-        encoder = self.device.create_command_encoder(label=f"objects-{self.mode}")
         rp = encoder.begin_render_pass(
-            color_attachments=[{"view": self.target.create_view(), "load_op": "clear", "store_op": "store",
+            color_attachments=[{"view": target.create_view(), "load_op": "clear", "store_op": "store",
                                 "clear_value": BACKGROUND}],
             timestamp_writes=self.timer.writes(self.mode))
         if self.mode == "dynamic":
@@ -165,8 +168,6 @@ class ObjectsRenderer:
         else:
             rp.execute_bundles([self.bundle])
         rp.end()
-        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start, self.target if readback else None)
-        return cpu_ms, gpu_total(gpu)
 
     def pixels(self) -> np.ndarray:
         from ..targets import read_texture

@@ -35,8 +35,6 @@ TUTORIAL_SCENES = {"chapter 28": Path("assets/scenes/vulkan_tutorial_28.toml"),
 TUTORIAL_SIZE = (800, 600)  # the size of the C++ numbers
 STARTUP_STAGE = "3d"
 
-# Numbers given for the C++ tutorial program (we cannot build it here): ms per frame at 800x600, 2 cores.
-CPP_GIVEN_MS = {"chapter 28": 47.0, "chapter 30": 75.0}
 
 
 @dataclass

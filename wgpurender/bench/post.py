@@ -14,7 +14,6 @@
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 
 import wgpu
@@ -24,7 +23,7 @@ from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
 from ..timing import PassTimer
-from .encoder import TimedEncoder, finish_frame, gpu_total
+from .encoder import gpu_total, timed_frame
 from .frames import RawStageRunner, WgpuStageRunner, measure
 from .report import Result
 
@@ -56,11 +55,8 @@ class _PassRunner:
         raise NotImplementedError
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
-        start = time.perf_counter()
-        self.timer.reset()
-        encoder = self.ctx.device.create_command_encoder()
-        self.encode_pass(TimedEncoder(encoder, self.timer, self.label))
-        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start)
+        cpu_ms, gpu = timed_frame(self.ctx, lambda encoder, target, t: self.encode_pass(encoder), self.target,
+                                  self.timer, self.label)
         return cpu_ms, gpu_total(gpu)
 
 
@@ -145,9 +141,9 @@ class WgpuMsaaPostRunner(WgpuStageRunner):
         self.scene = _source(ctx, size, scene_format)
         self.effect = create_effect("grayscale", amount=1.0)
 
-    def encode(self, encoder) -> None:
-        self.stage.draw(encoder, self.scene, self.t)
-        self.effect.encode(self.ctx.device, encoder, self.scene, self.target)
+    def record(self, encoder, target, t: float) -> None:
+        self.stage.record(encoder, self.scene, t)
+        self.effect.encode(self.ctx.device, encoder, self.scene, target)
 
 
 def bench_effects(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Result]:

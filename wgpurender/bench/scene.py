@@ -10,13 +10,15 @@ each post pass) come from the renderer's own ``timer`` argument.
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import time
 from pathlib import Path
 
+from ..frame_loop import run_frame
 from ..gpu import GPUContext
 from ..timing import Stats
-from .encoder import finish_frame, gpu_total
+from .encoder import gpu_total
 from .frames import RawStageRunner, measure
 from .report import Result, size_text
 
@@ -45,14 +47,11 @@ class SceneRunner:
         self.passes: dict[str, list[float]] = {}  # GPU ms per pass label, per frame
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
-        start = time.perf_counter()
-        self.timer.reset()
-        encoder = self.ctx.device.create_command_encoder(label="bench-scene")
-        self.renderer.draw(encoder, self.target, self.t, timer=self.timer)
-        cpu_ms, gpu = finish_frame(self.ctx, encoder, self.timer, start, self.target if readback else None)
-        for label, ms in gpu.items():
+        f = run_frame(self.ctx, functools.partial(self.renderer.record, timer=self.timer), self.target, self.t,
+                      label="bench-scene", read_back=readback, timer=self.timer)
+        for label, ms in f.gpu_ms.items():
             self.passes.setdefault(label, []).append(ms)
-        return cpu_ms, gpu_total(gpu)
+        return f.cpu_ms, gpu_total(f.gpu_ms)
 
 
 def _make_renderer(module, ctx: GPUContext, path: Path, size: tuple[int, int]):

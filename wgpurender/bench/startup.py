@@ -38,8 +38,9 @@ PHASES = ("import_ms", "context_ms", "setup_ms", "first_frame_ms", "second_frame
 def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
     marks = {}
     if path == "wgpu":
+        from wgpurender.frame_loop import run_frame
         from wgpurender.gpu import get_context
-        from wgpurender.targets import create_target, read_texture
+        from wgpurender.targets import create_target
 
         from .frames import WgpuStageRunner  # noqa: F401  (imports wgpu + the stages)
 
@@ -54,10 +55,7 @@ def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
         target = create_target(ctx, size, st.format)
         marks["setup_ms"] = time.perf_counter()
         for name in ("first_frame_ms", "second_frame_ms"):
-            enc = ctx.device.create_command_encoder()
-            st.draw(enc, target, 0.0)
-            ctx.queue.submit([enc.finish()])
-            read_texture(ctx, target)
+            run_frame(ctx, st.record, target, 0.0)
             marks[name] = time.perf_counter()
     else:
         from wgpurender.vulkan_ref.instance import get_vulkan

@@ -9,10 +9,15 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import logging
 import pkgutil
 import sys
+import warnings
+
+import numpy as np
 
 from ..errors import UserError
+from ..safe_write import install_signal_handlers
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -36,15 +41,43 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def one_line(text: str) -> str:
+    """A message on one line: line breaks and other control characters written as escapes (\\n, \\x00)."""
+    return "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in str(text))
+
+
+def _quiet_libraries() -> None:
+    """Library warnings and log records never reach stderr as extra lines: the error message says what went wrong.
+
+    Python's last-resort logging handler prints WARNING records of loggers with no handler (trimesh's, ours);
+    a NullHandler on the package loggers stops that. Python warnings are ignored for the run. wgpu's logger is
+    left alone: wgpu installs its own logger class when imported (getting it first breaks that import), and its
+    records include GPU validation errors, which are bugs to be seen.
+    """
+    for name in ("trimesh", "wgpurender", "PIL"):
+        logger = logging.getLogger(name)
+        if not any(isinstance(h, logging.NullHandler) for h in logger.handlers):
+            logger.addHandler(logging.NullHandler())
+    warnings.simplefilter("ignore")
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Run one command. A user error is exactly one line on stderr and exit code 2; SIGTERM and Ctrl-C end the
+    run through exceptions, so output files are complete or absent and no temp file stays behind."""
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exit_:  # --help, or a usage error already printed as one line
         return int(exit_.code or 0)
+    install_signal_handlers()
     try:
-        return int(args.func(args) or 0)
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            _quiet_libraries()
+            return int(args.func(args) or 0)
     except UserError as err:
-        print(f"wgpurender {args.command}: error: {err}", file=sys.stderr)
+        print(f"wgpurender {args.command}: error: {one_line(err)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:  # e.g. piped into head: the reader has all it wanted
+        sys.stderr.close()
+        return 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 
 def size_arg(text: str) -> tuple[int, int]:
@@ -15,6 +16,25 @@ def size_arg(text: str) -> tuple[int, int]:
     if not (0 < width <= 16384 and 0 < height <= 16384):
         raise argparse.ArgumentTypeError(f"size {text!r} out of range: width and height must be 1..16384")
     return width, height
+
+
+def finite_float(text: str) -> float:
+    """A finite number (not nan, inf or -inf)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number: give a plain number such as 1.5")
+    return value
+
+
+def positive_float(text: str) -> float:
+    """A finite number above 0."""
+    value = finite_float(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be above 0, e.g. 32")
+    return value
 
 
 def add_backend_arg(parser: argparse.ArgumentParser) -> None:
@@ -39,7 +59,7 @@ def add_render_args(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--time",
-        type=float,
+        type=finite_float,
         default=0.0,
         metavar="T",
         help="animation time in seconds, fixed so output is deterministic (default 0)",

@@ -1,19 +1,14 @@
-"""wgpurender bench: benchmark suites, one sub-subcommand each (perf now; accuracy when it exists).
+"""wgpurender bench: benchmark suites, one sub-subcommand each: perf and accuracy.
 
-``bench perf`` lives in wgpurender/bench/perf.py. A sibling suite is added by a module
-wgpurender/bench/<name>.py defining ``register_<name>(subparsers)`` (which sets
-``func``); it is imported lazily and only listed when the module exists.
+The parsers live here; the suites run in wgpurender/bench/perf.py and wgpurender/bench/accuracy.py
+(bench/ never imports cli/).
 """
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 from pathlib import Path
 
-from ._args import add_backend_arg
-
-OPTIONAL_SUITES = ("accuracy",)  # wgpurender/bench/accuracy.py: register_accuracy(subparsers) + run(args)
+from ._args import add_backend_arg, size_arg
 
 
 def register(subparsers) -> None:
@@ -21,9 +16,7 @@ def register(subparsers) -> None:
                               description="Run a benchmark suite and write its results (CSV, markdown, plots).")
     suites = p.add_subparsers(dest="suite", required=True, metavar="SUITE")
     _register_perf(suites)
-    for name in OPTIONAL_SUITES:
-        if importlib.util.find_spec(f"wgpurender.bench.{name}") is not None:
-            getattr(importlib.import_module(f"wgpurender.bench.{name}"), f"register_{name}")(suites)
+    _register_accuracy(suites)
 
 
 def _register_perf(suites) -> None:
@@ -68,3 +61,34 @@ def run(args) -> int:
     for kind, path in paths.items():
         print(f"{kind}: {path}")
     return 0
+
+
+def _register_accuracy(suites) -> None:
+    """``wgpurender bench accuracy``: wgpurender/bench/accuracy.py runs it."""
+    from ..bench.accuracy import FULL, QUICK, SCENE_FILE, run
+    from ..bench.accuracy_knobs import KNOBS
+
+    p = suites.add_parser(
+        "accuracy",
+        help="error (FLIP, PSNR against a ground truth) against time for each quality knob",
+        description="Sweep MSAA, supersampling, the scene target format, texture filtering and the depth setup; "
+        "write accuracy.csv, accuracy.md and accuracy_pareto.png (the plot needs matplotlib: "
+        "pip install 'wgpurender[bench]').",
+    )
+    p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
+                   help=f"scene file with a post chain (default {SCENE_FILE})")
+    p.add_argument("--quick", action="store_true",
+                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
+    p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
+                   help="where results go (default ./bench-results/accuracy)")
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                   help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
+    p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
+    p.add_argument("--rounds", type=int, default=None, metavar="R",
+                   help="split the timed frames over R passes through all settings (default 3; --quick 1)")
+    p.add_argument("--knob", action="append", default=None, choices=KNOBS, dest="knobs",
+                   help="sweep only these knobs (repeatable; default all)")
+    p.add_argument("--no-combinations", dest="combinations", action="store_false",
+                   help="only the one-knob-at-a-time sweeps")
+    add_backend_arg(p)
+    p.set_defaults(func=run)

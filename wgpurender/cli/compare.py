@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ._args import positive_float
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -15,7 +17,7 @@ def register(subparsers) -> None:
     p.add_argument("reference", metavar="A.png")
     p.add_argument("test", metavar="B.png")
     p.add_argument("--heatmap", metavar="PNG", help="write a magnified difference image")
-    p.add_argument("--gain", type=float, default=32.0, help="heatmap magnification (default 32)")
+    p.add_argument("--gain", type=positive_float, default=32.0, help="heatmap magnification (default 32)")
     p.add_argument(
         "--threshold",
         action="append",

@@ -17,5 +17,5 @@ def run(args) -> int:
     width = max(len(n) for n in stages)
     for name, cls in stages.items():
         print(f"{name:<{width}}  {cls.summary}")
-        print(f"{'':<{width}}  course step {cls.course_step}")
+        print(f"{'':<{width}}  course step {cls.course_step()}")
     return 0

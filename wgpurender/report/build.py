@@ -33,12 +33,12 @@ SCENE_SIZES = {"vulkan_tutorial_28": (320, 240), "vulkan_tutorial_30": (320, 240
 
 
 def course_stages() -> list[str]:
-    """Stage names of both paths in course order (a stage only one path has is a step too)."""
+    """Stage names of both paths in course order (course/steps.py); a stage only one path has is a step too."""
+    from ..course.steps import course_position
     from ..stages import all_stages
     from ..vulkan_ref.stages import all_ref_stages
 
-    merged = {**{n: c.order for n, c in all_ref_stages().items()}, **{n: c.order for n, c in all_stages().items()}}
-    return sorted(merged, key=lambda n: merged[n])
+    return sorted(set(all_stages()) | set(all_ref_stages()), key=course_position)
 
 
 def check_out_dir(out_dir: Path) -> Path:

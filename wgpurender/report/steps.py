@@ -70,7 +70,10 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
     ref_cls = all_ref_stages().get(name)
     main = cls or ref_cls
     module = sys.modules[main.__module__]
-    step = Step(name, name, getattr(main, "course_step", "") or f"course step {main.order:g}", main.summary,
+    from ..course.steps import course_step
+
+    number = course_step(name)
+    step = Step(name, name, f"course step {number.number}: {number.title}" if number else "", main.summary,
                 _paragraphs(module.__doc__))
     if cls is not None:
         step.wgpu = render_stage(name, size, ctx=ctx, frames=1).pixels

@@ -1,11 +1,11 @@
-"""The scene renderer: a scene file (wgpurender/scene.py) drawn exactly as its render plan (wgpurender/plan.py) says.
+"""The scene renderer: a scene file (wgpurender/scene/) drawn exactly as its render plan (wgpurender/plan.py) says.
 
 Public API:
 
 - :func:`render_scene_file` ``(path, size=None, fmt=None, msaa=None, t=0.0, ctx=None) -> RenderResult``:
   headless, what ``wgpurender render SCENE.toml`` calls;
 - :func:`scene_drawable_factory` ``(path, ctx, msaa=None) -> make(fmt) -> SceneRenderer``: for the window;
-- :class:`SceneRenderer` ``(ctx, scene, plan)``: ``resize(size)``, ``draw(encoder, target, t, timer=None)``;
+- :class:`SceneRenderer` ``(ctx, scene, plan)``: ``resize(size)``, ``record(encoder, target, t, timer=None)``;
   :func:`load_renderer` makes one from a file;
 - :func:`shader_source` ``(variant, immediates) -> str``: the specialised WGSL of a plan's variant.
 

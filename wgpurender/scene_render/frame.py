@@ -18,17 +18,17 @@ tile-memory saving on mobile, and effects may read neighbouring pixels (FXAA nee
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import wgpu
 
 from ..errors import UserError
+from ..frame_loop import RenderResult, run_frame, run_frames
 from ..gpu import GPUContext, get_context
 from ..plan import RenderPlan, build_plan
 from ..post import PostChain
 from ..scene import Scene, load_scene
-from ..targets import create_target, read_texture
+from ..targets import create_target
 from .resources import SceneResources
 from .scene_pass import ScenePassRenderer
 
@@ -43,7 +43,7 @@ ATTACHMENT_USAGE = {
 class SceneRenderer:
     """Draws one scene by its plan into any texture of the plan's output format (offscreen or swapchain).
 
-    ``resize(size)`` makes the size-dependent attachments; ``draw(encoder, target, t)`` records a frame.
+    ``resize(size)`` makes the size-dependent attachments; ``record(encoder, target, t)`` records a frame.
     Scenes are static: ``t`` is accepted (the window passes it) and does not change the image.
     """
 
@@ -90,7 +90,7 @@ class SceneRenderer:
             cached = self._views[name] = (texture, texture.create_view())
         return cached[1]
 
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
+    def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
         """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass)."""
         if target.format != self.plan.output_format:
             raise UserError(f"the scene was planned for {self.plan.output_format} output, but the target is "
@@ -105,7 +105,7 @@ class SceneRenderer:
             color.update(resolve_target=self._view(sp.resolve_target, target), store_op="discard")
         depth = self._view(sp.depth, target) if sp.depth else None
         writes = timer.writes("scene") if timer is not None else None
-        self.scene_pass.encode(encoder, color, depth, size[0] / size[1], timestamp_writes=writes)
+        self.scene_pass.record(encoder, color, depth, size[0] / size[1], timestamp_writes=writes)
         if self.chain:
             self.chain.run(self.ctx, encoder, self.attachments[sp.writes], target, timer=timer)
 
@@ -120,12 +120,8 @@ def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | 
 
 def render_frame(ctx: GPUContext, renderer: SceneRenderer, target: wgpu.GPUTexture, t: float = 0.0):
     """Record, submit and read back one frame: (pixels, wall milliseconds including the readback)."""
-    start = time.perf_counter()
-    encoder = ctx.device.create_command_encoder(label="scene-frame")
-    renderer.draw(encoder, target, t)
-    ctx.queue.submit([encoder.finish()])
-    pixels = read_texture(ctx, target)
-    return pixels, (time.perf_counter() - start) * 1e3
+    frame = run_frame(ctx, renderer.record, target, t, label="scene-frame")
+    return frame.pixels, frame.frame_ms
 
 
 def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
@@ -136,15 +132,11 @@ def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt
     The first frame pays for texture uploads, mip generation and shader compilation, so
     ``frame_ms`` is the last (steady-state) frame: record, submit, GPU work and readback.
     """
-    from ..render import RenderResult
-
     ctx = ctx or get_context()
     renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates)
     target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
-    pixels, frame_ms = None, 0.0
-    for _ in range(max(1, frames)):
-        pixels, frame_ms = render_frame(ctx, renderer, target, t)
-    return RenderResult(pixels=pixels, frame_ms=frame_ms, adapter=ctx.describe())
+    frame = run_frames(ctx, renderer.record, target, frames, t, label="scene-frame")
+    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
 
 
 def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None):

@@ -17,22 +17,16 @@ import numpy as np
 import wgpu
 
 from .. import transforms as tf
+from ..bind_groups import uniform_group, uniform_layout
+from ..course.formats import map_format
+from ..course.shading import AMBIENT, REVERSE_Z, material_factors
 from ..errors import UserError
 from ..gpu import GPUContext
 from ..plan import Draw, RenderPlan, ShaderVariant
 from ..scene import Scene
 from ..shaders import create_shader_module
-from ..stages.cube3d import _uniform_layout
-from ..uniforms import Struct
 from . import layout as L
 from .resources import SceneResources
-
-AMBIENT = (0.03, 0.03, 0.035)  # linear ambient radiance, times albedo: faces no light reaches are not black
-SPECULAR = 0.04  # dielectric reflectance of the Blinn-Phong lobe
-NORMAL_STRENGTH = 1.0  # scales the normal map's tangent-plane components (a material key could set it)
-# Reverse-Z: clip z' = w - z, so stored depth' = 1 - depth (1 at near, 0 at far); REVERSE_Z @ perspective(...)
-# equals transforms.perspective(..., reverse_z=True). Drawn with depth_compare "greater" and a depth clear of 0.
-REVERSE_Z = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 1.0], [0.0, 0.0, 0.0, 1.0]])
 
 
 def camera_values(scene: Scene, aspect: float) -> dict:
@@ -65,12 +59,7 @@ def object_values(draw: Draw) -> dict:
 
 def material_values(scene: Scene, draw: Draw, variant: ShaderVariant) -> dict:
     mat = scene.models[draw.model_index].material
-    values = {"base_color": mat.albedo_color}
-    if L.is_lit(variant):
-        # With a roughness map the map's G channel is the roughness (factor 1); without, material.roughness.
-        values.update(roughness=1.0 if "roughness_map" in variant.flags else mat.roughness,
-                      normal_strength=NORMAL_STRENGTH, specular=SPECULAR)
-    return values
+    return material_factors(mat.albedo_color, mat.roughness, L.is_lit(variant), "roughness_map" in variant.flags)
 
 
 class ScenePassRenderer:
@@ -101,10 +90,10 @@ class ScenePassRenderer:
         self.camera_buffer = dev.create_buffer(label="scene-camera", size=L.CAMERA.size, usage=usage)
         self.object_buffer = dev.create_buffer(label="scene-objects", size=self.object_stride * n, usage=usage)
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
-        self.camera_layout = _uniform_layout(dev, L.CAMERA, stages, dynamic=False)
-        self.object_layout = _uniform_layout(dev, L.OBJECT, wgpu.ShaderStage.VERTEX, dynamic=True)
-        self.camera_group = self._uniform_group(self.camera_layout, self.camera_buffer, L.CAMERA)
-        self.object_group = self._uniform_group(self.object_layout, self.object_buffer, L.OBJECT)
+        self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
+        self.object_layout = uniform_layout(dev, L.OBJECT, wgpu.ShaderStage.VERTEX, dynamic=True)
+        self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
+        self.object_group = uniform_group(dev, self.object_layout, self.object_buffer, L.OBJECT)
         # World matrices are static: written once. The camera is written per frame (aspect, lights).
         self.ctx.queue.write_buffer(self.object_buffer, 0,
                                     L.OBJECT.pack_many([object_values(d) for d in self.draws], self.alignment))
@@ -113,10 +102,6 @@ class ScenePassRenderer:
         if not self.uses_immediates:
             self.material_buffer = dev.create_buffer(label="scene-materials", size=self.material_stride * n,
                                                      usage=usage)
-
-    def _uniform_group(self, bgl, buffer: wgpu.GPUBuffer, struct: Struct, offset: int = 0) -> wgpu.GPUBindGroup:
-        return self.ctx.device.create_bind_group(
-            layout=bgl, entries=[{"binding": 0, "resource": {"buffer": buffer, "offset": offset, "size": struct.size}}])
 
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
@@ -163,8 +148,8 @@ class ScenePassRenderer:
         if L.samples_textures(variant):
             entries.append({"binding": L.SAMPLER_BINDING, "resource": self.resources.sampler(draw.sampler)})
         for feature, path in draw.textures:
-            fmt = "rgba8unorm-srgb" if feature == "albedo_map" else "rgba8unorm"
-            entries.append({"binding": L.TEXTURE_BINDINGS[feature], "resource": self.resources.texture(path, fmt).view})
+            texture = self.resources.texture(path, map_format(feature))
+            entries.append({"binding": L.TEXTURE_BINDINGS[feature], "resource": texture.view})
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
 
     def shader_module(self, variant: ShaderVariant) -> wgpu.GPUShaderModule:
@@ -214,7 +199,7 @@ class ScenePassRenderer:
         self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
         self._camera_key = key
 
-    def encode(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
+    def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
                timestamp_writes: dict | None = None) -> None:
         """Write the camera UBO for this frame and record the scene pass."""
         depth = None

@@ -1,9 +1,10 @@
-"""What every course stage has in common: a pipeline set up once, drawn into any colour texture.
+"""What every course stage has in common: a pipeline set up once, recorded into any colour texture.
 
 A stage never owns its output texture: headless rendering passes an offscreen
 texture, the window passes the swapchain image of the frame. Size-dependent
 attachments (the multisampled colour image, the depth image) are made in
-:meth:`Stage.resize`.
+:meth:`Stage.resize`. The MSAA parts are spelled out in the msaa stage (msaa.py);
+here they are shared by every stage that takes ``--msaa 4``.
 """
 
 from __future__ import annotations
@@ -12,15 +13,16 @@ from typing import ClassVar
 
 import wgpu
 
+from ..course.formats import DEFAULT_FORMAT, SAMPLE_COUNTS
+from ..course.steps import course_position, course_step
 from ..errors import UserError
 from ..gpu import GPUContext
-
-SUPPORTED_SAMPLE_COUNTS = (1, 4)  # what WebGPU guarantees, and all that lavapipe offers
+from ..shaders import create_shader_module
 
 
 def check_sample_count(ctx: GPUContext, msaa: int) -> int:
-    if msaa not in SUPPORTED_SAMPLE_COUNTS:
-        counts = ", ".join(map(str, SUPPORTED_SAMPLE_COUNTS))
+    if msaa not in SAMPLE_COUNTS:
+        counts = ", ".join(map(str, SAMPLE_COUNTS))
         raise UserError(
             f"MSAA {msaa}x is not supported by {ctx.adapter.info['device']}: supported sample counts are {counts}"
         )
@@ -28,15 +30,25 @@ def check_sample_count(ctx: GPUContext, msaa: int) -> int:
 
 
 class Stage:
-    """One step of the course. Subclasses set the class attributes and implement draw()."""
+    """One step of the course. Subclasses set the class attributes and implement record()."""
 
     name: ClassVar[str] = ""
     summary: ClassVar[str] = ""
-    course_step: ClassVar[str] = ""
-    order: ClassVar[float] = 0.0
     supports_msaa: ClassVar[bool] = False
     default_msaa: ClassVar[int] = 1
-    default_format: ClassVar[str] = "rgba8unorm-srgb"
+    default_format: ClassVar[str] = DEFAULT_FORMAT
+    _defined: ClassVar[dict[str, type[Stage]]] = {}  # every named stage class, as its module is imported
+
+    def __init_subclass__(cls, **kwargs) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.name:
+            Stage._defined[cls.name] = cls
+
+    @classmethod
+    def course_step(cls) -> str:
+        """'number: title' of the course step this stage stands for (wgpurender/course/steps.py)."""
+        step = course_step(cls.name)
+        return f"{step.number}: {step.title}" if step else "(not in the course table yet)"
 
     def __init__(self, ctx: GPUContext, color_format: str, msaa: int | None = None) -> None:
         self.ctx = ctx
@@ -44,10 +56,9 @@ class Stage:
         self.format = color_format
         self.msaa = check_sample_count(ctx, self.default_msaa if msaa is None else msaa)
         if self.msaa > 1 and not self.supports_msaa:
-            from . import all_stages
-
-            with_msaa = ", ".join(name for name, cls in all_stages().items() if cls.supports_msaa)
-            raise UserError(f"stage {self.name!r} does not use MSAA: leave out --msaa (stages with MSAA: {with_msaa})")
+            names = sorted((n for n, c in Stage._defined.items() if c.supports_msaa), key=course_position)
+            raise UserError(f"stage {self.name!r} does not use MSAA: leave out --msaa (stages with MSAA: "
+                            f"{', '.join(names)})")
         self.size = (0, 0)
         self._msaa_view: wgpu.GPUTextureView | None = None
         self.setup()
@@ -59,7 +70,8 @@ class Stage:
     def on_resize(self, size: tuple[int, int]) -> None:
         """Create size-dependent attachments beyond the MSAA colour image."""
 
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+    def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+        """Record this frame's commands into ``encoder``, drawing into ``target`` at time ``t``."""
         raise NotImplementedError
 
     # -- shared ----------------------------------------------------------
@@ -68,15 +80,18 @@ class Stage:
             return
         self.size = size
         if self.msaa > 1:
-            tex = self.device.create_texture(
-                label=f"{self.name}-msaa-color",
-                size=(size[0], size[1], 1),
-                format=self.format,
-                usage=wgpu.TextureUsage.RENDER_ATTACHMENT,
-                sample_count=self.msaa,
-            )
-            self._msaa_view = tex.create_view()
+            self._msaa_view = self.multisampled_texture(size).create_view()
         self.on_resize(size)
+
+    def multisampled_texture(self, size: tuple[int, int]) -> wgpu.GPUTexture:
+        """The multisampled colour image: only ever rendered to and resolved, never read or copied."""
+        return self.device.create_texture(
+            label=f"{self.name}-msaa-color",
+            size=(size[0], size[1], 1),
+            format=self.format,
+            usage=wgpu.TextureUsage.RENDER_ATTACHMENT,
+            sample_count=self.msaa,
+        )
 
     def color_attachment(self, target: wgpu.GPUTexture, clear=(0.0, 0.0, 0.0, 1.0)) -> dict:
         """The colour attachment for a pass: the target itself, or the MSAA image resolved into it.
@@ -97,3 +112,17 @@ class Stage:
 
     def multisample_state(self) -> dict:
         return {"count": self.msaa, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False}
+
+    def basic_pipeline(self, shader: str, vertex_buffers: list | None = None) -> wgpu.GPURenderPipeline:
+        """The fixed-function state of the first triangle: no culling, no depth, one colour target."""
+        module = create_shader_module(self.device, shader)
+        layout = self.device.create_pipeline_layout(bind_group_layouts=[])
+        return self.device.create_render_pipeline(
+            label=shader,
+            layout=layout,
+            vertex={"module": module, "entry_point": "vs_main", "buffers": vertex_buffers or []},
+            primitive={"topology": "triangle-list", "front_face": "ccw", "cull_mode": "none"},
+            depth_stencil=None,
+            multisample=self.multisample_state(),
+            fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": self.format}]},
+        )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import wgpu
 
+from ..course.triangle import TRANSFER_CLEAR_COLOR
 from ..native import clear_texture
 from .base import Stage
 
@@ -11,9 +12,7 @@ from .base import Stage
 class ClearTransfer(Stage):
     name = "clear"
     summary = "clear the image with a transfer command, no render pass (to zero: WebGPU's clear has no colour)"
-    course_step = "1a: clear without a render pass (vkCmdClearColorImage)"
-    order = 1.0
-    clear_color = (0.0, 0.0, 0.0, 0.0)
+    clear_color = TRANSFER_CLEAR_COLOR
 
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+    def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
         clear_texture(self.ctx, encoder, target)

@@ -11,18 +11,16 @@ from __future__ import annotations
 
 import wgpu
 
+from ..course.triangle import BACKGROUND
 from .base import Stage
-from .triangle import BACKGROUND, triangle_pipeline
 
 
 class Offscreen(Stage):
     name = "offscreen"
     summary = "render the triangle into an offscreen texture, then copy it to the output"
-    course_step = "3a: offscreen rendering and readback"
-    order = 3.0
 
     def setup(self) -> None:
-        self.pipeline = triangle_pipeline(self, "triangle.wgsl")
+        self.pipeline = self.basic_pipeline("triangle.wgsl")
         self.image: wgpu.GPUTexture | None = None
 
     def on_resize(self, size: tuple[int, int]) -> None:
@@ -33,7 +31,7 @@ class Offscreen(Stage):
             usage=wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC,
         )
 
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+    def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
         render_pass = encoder.begin_render_pass(
             color_attachments=[
                 {"view": self.image.create_view(), "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}

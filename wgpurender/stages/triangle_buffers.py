@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
+from ..course.triangle import BACKGROUND, TRIANGLE_INDICES, triangle_vertices
 from .base import Stage
-from .triangle import BACKGROUND, TRIANGLE_COLORS, TRIANGLE_POSITIONS, triangle_pipeline
 
 VERTEX_LAYOUT = {
     "array_stride": 5 * 4,
@@ -21,28 +21,26 @@ VERTEX_LAYOUT = {
         {"shader_location": 1, "format": "float32x3", "offset": 2 * 4},
     ],
 }
-INDICES = np.array([0, 1, 2, 0], dtype=np.uint16)  # one pad index: buffer writes are 4-byte multiples
+INDICES = np.concatenate([TRIANGLE_INDICES, [0]]).astype(np.uint16)  # one pad index: writes are 4-byte multiples
 
 
 class TriangleBuffers(Stage):
     name = "triangle-buffers"
     summary = "first triangle from a vertex buffer and an index buffer with an explicit vertex layout"
-    course_step = "2b: vertex + index buffers and the input layout"
-    order = 2.1
     supports_msaa = True
 
     def setup(self) -> None:
-        vertices = np.hstack([TRIANGLE_POSITIONS, TRIANGLE_COLORS]).astype(np.float32)
         # create_buffer_with_data stands for the course's staging upload: wgpu copies
         # the bytes into device memory for us (a mapped-at-creation buffer).
+        vertices = triangle_vertices()
         self.vertex_buffer = self.device.create_buffer_with_data(data=vertices, usage=wgpu.BufferUsage.VERTEX)
         self.index_buffer = self.device.create_buffer_with_data(data=INDICES, usage=wgpu.BufferUsage.INDEX)
-        self.pipeline = triangle_pipeline(self, "triangle_buffers.wgsl", [VERTEX_LAYOUT])
+        self.pipeline = self.basic_pipeline("triangle_buffers.wgsl", [VERTEX_LAYOUT])
 
-    def draw(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
+    def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
         render_pass = encoder.begin_render_pass(color_attachments=[self.color_attachment(target, BACKGROUND)])
         render_pass.set_pipeline(self.pipeline)
         render_pass.set_vertex_buffer(0, self.vertex_buffer)
         render_pass.set_index_buffer(self.index_buffer, "uint16")
-        render_pass.draw_indexed(3)
+        render_pass.draw_indexed(len(TRIANGLE_INDICES))
         render_pass.end()

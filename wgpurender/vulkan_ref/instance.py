@@ -17,6 +17,7 @@ import vulkan as vk
 
 from ..errors import UserError
 from . import validation
+from .pipeline_cache import create_pipeline_cache, save_pipeline_cache
 
 API_VERSION = vk.VK_MAKE_VERSION(1, 1, 0)  # 1.1: negative viewport heights (VK_KHR_maintenance1) are core
 
@@ -68,8 +69,6 @@ class VulkanContext:
         self._closed = True
         vk.vkDeviceWaitIdle(self.device)
         if self.pipeline_cache is not None:
-            from .pipeline import save_pipeline_cache
-
             save_pipeline_cache(self)
             vk.vkDestroyPipelineCache(self.device, self.pipeline_cache, None)
         vk.vkDestroyDevice(self.device, None)
@@ -179,8 +178,6 @@ def get_vulkan() -> VulkanContext:
         device_name=props.deviceName, memory_types=types, heap_sizes=heaps, limits=copy_limits(props.limits),
         log=log, messenger=messenger,
     )
-    from .pipeline import create_pipeline_cache
-
     ctx.pipeline_cache = create_pipeline_cache(ctx, props)
     atexit.register(ctx.close)
     ctx.check_validation("device creation")

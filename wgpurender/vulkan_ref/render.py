@@ -6,35 +6,17 @@ from contextlib import ExitStack
 
 import numpy as np
 
+from ..course.formats import is_scene_file
 from ..errors import UserError
+from .checks import check_msaa, check_size
 from .command_buffers import one_shot
 from .images import FORMATS, create_image
-from .instance import VulkanContext, get_vulkan
+from .instance import get_vulkan
 from .readback import buffer_to_pixels, record_copy_to_buffer
 from .stages import get_ref_stage
-from .stages.base import TARGET_USAGE, RefStage
+from .stages.base import TARGET_USAGE
 
-SUPPORTED_SAMPLE_COUNTS = (1, 4)  # the counts the wgpu path offers (all that lavapipe has)
-
-
-def check_msaa(ctx: VulkanContext, cls: type[RefStage], msaa: int | None) -> int:
-    msaa = cls.default_msaa if msaa is None else msaa
-    supported = [n for n in SUPPORTED_SAMPLE_COUNTS if ctx.limits.framebuffer_color_sample_counts & n]
-    if msaa not in supported:
-        raise UserError(f"MSAA {msaa}x is not supported by {ctx.device_name}: supported sample counts are "
-                        f"{', '.join(map(str, supported))}")
-    if msaa > 1 and not cls.supports_msaa:
-        raise UserError(f"stage {cls.name!r} does not use MSAA: leave out --msaa")
-    return msaa
-
-
-def check_size(ctx: VulkanContext, size: tuple[int, int]) -> tuple[int, int]:
-    width, height = (int(v) for v in size)
-    limit = ctx.limits.max_image_dimension_2d
-    if not (0 < width <= limit and 0 < height <= limit):
-        raise UserError(f"image size {width}x{height} out of range: width and height must be 1..{limit}")
-    return width, height
-
+__all__ = ["check_msaa", "check_size", "render_reference"]
 
 def render_reference(
     stage: str,
@@ -51,7 +33,7 @@ def render_reference(
     for the render is destroyed before returning. With validation on, any
     validation message raises ValidationFailed.
     """
-    if str(stage).endswith(".toml"):  # a scene file: the final scene, drawn by vulkan_ref/scene/
+    if is_scene_file(stage):  # a scene file: the final scene, drawn by vulkan_ref/scene/
         from .scene import render_scene_reference
 
         return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t)

@@ -17,11 +17,11 @@ import vulkan as vk
 
 from ...plan import RenderPlan, build_plan
 from ...scene import Scene, load_scene
+from ..checks import check_size
 from ..command_buffers import one_shot
 from ..images import Image, create_image
 from ..instance import VulkanContext, get_vulkan
 from ..readback import buffer_to_pixels, record_copy_to_buffer
-from ..render import check_size
 from ..renderpass import begin, create_framebuffer
 from ..stages.base import TARGET_USAGE
 from .post import PostSubpass

@@ -24,9 +24,10 @@ from contextlib import ExitStack
 import numpy as np
 import vulkan as vk
 
+from ...course.formats import is_srgb_map
+from ...course.shading import AMBIENT, material_factors
 from ...plan import Draw, RenderPlan, ShaderVariant
 from ...scene import Scene
-from ...scene_render.scene_pass import AMBIENT, NORMAL_STRENGTH, SPECULAR
 from .. import descriptors
 from ..instance import VulkanContext
 from ..memory import HOST_MEMORY, create_buffer, write_host_buffer
@@ -59,10 +60,11 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
 def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
     """Push constant bytes; with a roughness map, the map's G channel is the roughness (factor 1)."""
     mat = scene.models[draw.model_index].material
-    if not is_lit(variant):
-        return U.pack_material(mat.albedo_color, lit=False)
-    roughness = 1.0 if "roughness_map" in variant.flags else mat.roughness
-    return U.pack_material(mat.albedo_color, True, roughness, NORMAL_STRENGTH, SPECULAR)
+    lit = is_lit(variant)
+    f = material_factors(mat.albedo_color, mat.roughness, lit, "roughness_map" in variant.flags)
+    if not lit:
+        return U.pack_material(f["base_color"], lit=False)
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"])
 
 
 class SceneSubpass:
@@ -122,7 +124,7 @@ class SceneSubpass:
         for d in textured:
             sampler = self.resources.sampler(d.sampler)
             for feature, path in d.textures:
-                texture = self.resources.texture(path, srgb=feature == "albedo_map")
+                texture = self.resources.texture(path, srgb=is_srgb_map(feature))
                 writes.append(descriptors.write_image(self.material_sets[d.model_index], TEXTURE_BINDINGS[feature],
                                                       texture.view, READ_ONLY,
                                                       vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sampler))

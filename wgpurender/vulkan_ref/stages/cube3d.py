@@ -1,8 +1,8 @@
 """Course step 4: rotating cubes with a depth buffer, two UBOs in two descriptor sets, push constants.
 
-The scene (cubes, camera, mesh, colours, light) is the wgpu stage's
-(wgpurender/stages/cube3d.py), read from there so both paths draw the same
-thing; everything Vulkan is spelled out here:
+The scene (cubes, camera, mesh, colours, light) is the course core's
+(wgpurender/course/cubes.py), as on the wgpu path; everything Vulkan is spelled
+out here, with its own std140 packers (ubo.py) and GLSL:
 - set 0: the camera UBO (UNIFORM_BUFFER, vertex + fragment), in HOST_VISIBLE
   memory written through a mapping each frame (the course's updateUniformBuffer);
 - set 1: the object UBO (UNIFORM_BUFFER_DYNAMIC, vertex): every cube's block in
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import vulkan as vk
 
-from ... import transforms as tf
+from ...course import cubes as course
 from .. import descriptors, ubo
 from ..images import Image, create_image
 from ..memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
@@ -24,7 +24,7 @@ from ..pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, se
 from ..renderpass import begin, create_framebuffer, single_pass
 from .base import RefStage
 
-STRIDE = 9 * 4  # position, normal, colour: three vec3
+STRIDE = course.VERTEX_FLOATS * 4  # position, normal, colour: three vec3
 
 
 def vertex_input() -> tuple[list, list]:
@@ -43,31 +43,28 @@ class Cube3D(RefStage):
     supports_msaa = True
 
     def setup(self) -> None:
-        from ...stages import cube3d as scene  # the scene's definition; imports wgpu's module, not a device
-
-        self.scene = scene
         ctx, owned = self.ctx, self.owned
-        vertices, indices = scene.cube_mesh()
+        vertices, indices = course.cube_mesh()
         self.index_count = len(indices)
         vertex_stage, attr_read = vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT
         self.vertex_buffer = upload_buffer(ctx, owned, vertices, vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                                            vertex_stage, attr_read)
         self.index_buffer = upload_buffer(ctx, owned, indices, vk.VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
                                           vertex_stage, vk.VK_ACCESS_INDEX_READ_BIT)
-        self.cubes = scene.DEFAULT_CUBES
+        self.cubes = course.DEFAULT_CUBES
         self.object_stride = ubo.dynamic_stride(ubo.OBJECT_SIZE, ctx.limits.min_uniform_buffer_offset_alignment)
         uniform = vk.VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
         self.camera_buffer = create_buffer(ctx, owned, ubo.CAMERA_SIZE, uniform, HOST_MEMORY)
         self.object_buffer = create_buffer(ctx, owned, self.object_stride * len(self.cubes), uniform, HOST_MEMORY)
         self._setup_descriptors()
-        self.render_pass = single_pass(ctx, owned, self.format, self.msaa, scene.BACKGROUND, depth=True)
+        self.render_pass = single_pass(ctx, owned, self.format, self.msaa, course.BACKGROUND, depth=True)
         bindings, attributes = vertex_input()
         desc = PipelineDesc("cube3d.vert", "cube3d.frag", bindings, attributes, samples=self.msaa,
                             cull_mode=vk.VK_CULL_MODE_BACK_BIT, depth_test=True)
         self.pipeline = create_pipeline(ctx, owned, desc, self.layout, self.render_pass)
         self.msaa_image = self.transient_msaa_image() if self.msaa > 1 else None
         usage = vk.VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT
-        self.depth = create_image(ctx, owned, self.size, "depth32float", usage, self.msaa, lazy=True)
+        self.depth = create_image(ctx, owned, self.size, course.DEPTH_FORMAT, usage, self.msaa, lazy=True)
 
     def _setup_descriptors(self) -> None:
         ctx, owned = self.ctx, self.owned
@@ -88,10 +85,10 @@ class Cube3D(RefStage):
 
     def update_uniforms(self, t: float) -> None:
         """Host writes before the submit: vkQueueSubmit makes them visible to the device."""
-        scene = self.scene
-        proj, view = scene.CameraSpec().matrices(self.size[0] / self.size[1])
-        write_host_buffer(self.ctx, self.camera_buffer, ubo.pack_camera(proj, view, scene.LIGHT_DIR, scene.AMBIENT))
-        blocks = [ubo.pack_object(w, tf.normal_matrix(w)) for w in (cube.world(t) for cube in self.cubes)]
+        camera = course.camera_values(course.CameraSpec(), self.size[0] / self.size[1])
+        packed = ubo.pack_camera(camera["proj"], camera["view"], camera["light_dir"], camera["ambient"])
+        write_host_buffer(self.ctx, self.camera_buffer, packed)
+        blocks = [ubo.pack_object(o["world"], o["normal"]) for o in course.object_values(self.cubes, t)]
         write_host_buffer(self.ctx, self.object_buffer, ubo.pack_many(blocks, self.object_stride))
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
@@ -105,9 +102,9 @@ class Cube3D(RefStage):
         vk.vkCmdBindIndexBuffer(cmd, self.index_buffer.handle, 0, vk.VK_INDEX_TYPE_UINT16)
         graphics = vk.VK_PIPELINE_BIND_POINT_GRAPHICS
         vk.vkCmdBindDescriptorSets(cmd, graphics, self.layout, 0, 1, [self.camera_set], 0, None)
-        for k, cube in enumerate(self.cubes):
+        for k, draw in enumerate(course.draw_values(self.cubes)):
             vk.vkCmdBindDescriptorSets(cmd, graphics, self.layout, 1, 1, [self.object_set], 1, [k * self.object_stride])
-            data = vk.ffi.from_buffer(ubo.pack_draw(cube.tint, k))
+            data = vk.ffi.from_buffer(ubo.pack_draw(draw["tint"], draw["object_index"]))
             vk.vkCmdPushConstants(cmd, self.layout, vk.VK_SHADER_STAGE_VERTEX_BIT, 0, ubo.DRAW_SIZE, data)
             vk.vkCmdDrawIndexed(cmd, self.index_count, 1, 0, 0, 0)
         vk.vkCmdEndRenderPass(cmd)

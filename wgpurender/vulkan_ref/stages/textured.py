@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 import vulkan as vk
 
+from ...course import textured as course
 from ...transforms import to_gpu
 from .. import descriptors
 from ..images import Image
@@ -30,7 +31,7 @@ from ..renderpass import begin, create_framebuffer, single_pass
 from ..textures import create_sampler, upload_texture
 from .base import RefStage
 
-STRIDE = 5 * 4  # vec3 position, vec2 uv
+STRIDE = course.VERTEX_FLOATS * 4  # vec3 position, vec2 uv
 # layout(std140) uniform Uniforms { mat4 mvp; vec4 uv_offset; }
 UNIFORM_SIZE = 64 + 16  # mvp @0, uv_offset @64
 READ_ONLY = vk.VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
@@ -68,22 +69,18 @@ class Textured(RefStage):
     supports_msaa = True
 
     def setup(self) -> None:
-        from ...stages import textured as scene  # the scene's definition; imports wgpu's module, not a device
-
-        self.scene = scene
         ctx, owned = self.ctx, self.owned
-        self.texture = upload_texture(ctx, owned, scene.pattern_pixels(), srgb=True, mips=True)
-        lanes = [scene.plane_vertices(r) for r in scene.lane_ranges(len(scene.SEPARATE_SAMPLERS))]
-        vertices = np.concatenate([scene.plane_vertices(), *lanes])  # 0..5 the whole plane, then 6 per lane
+        self.texture = upload_texture(ctx, owned, course.pattern_pixels(), srgb=True, mips=True)
+        vertices = course.stage_vertices()  # 0..5 the whole plane, then 6 per lane
         self.vertex_buffer = upload_buffer(ctx, owned, vertices, vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                                            vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT,
                                            vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT)
         uniform = vk.VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
         self.uniform_buffers = [create_buffer(ctx, owned, UNIFORM_SIZE, uniform, HOST_MEMORY) for _ in range(2)]
-        self.combined_sampler = create_sampler(ctx, owned, scene.COMBINED_SAMPLER)
-        self.lane_samplers = [create_sampler(ctx, owned, spec) for _, spec in scene.SEPARATE_SAMPLERS]
+        self.combined_sampler = create_sampler(ctx, owned, course.COMBINED_SAMPLER)
+        self.lane_samplers = [create_sampler(ctx, owned, spec) for _, spec in course.SEPARATE_SAMPLERS]
         self._setup_descriptors()
-        self.render_pass = single_pass(ctx, owned, self.format, self.msaa, scene.BACKGROUND)
+        self.render_pass = single_pass(ctx, owned, self.format, self.msaa, course.BACKGROUND)
         bindings, attributes = vertex_input()
 
         def desc(frag: str) -> PipelineDesc:
@@ -124,18 +121,11 @@ class Textured(RefStage):
         self.combined_layout = create_pipeline_layout(ctx, owned, [uniform_layout, combined_layout])
         self.separate_layout = create_pipeline_layout(ctx, owned, [uniform_layout, image_layout, sampler_layout])
 
-    def halves(self) -> tuple[tuple[int, int], tuple[int, int]]:
-        """(x, width) of the left and right viewports: the left one gets width // 2 columns."""
-        width = self.size[0]
-        left = width // 2
-        return (0, left), (left, width - left)
-
     def update_uniforms(self, t: float) -> None:
         height = self.size[1]
-        uv_offset = (0.0, -self.scene.SCROLL_PER_SECOND * t)
-        for buffer, (_, w) in zip(self.uniform_buffers, self.halves(), strict=True):
-            mvp = self.scene.plane_mvp(max(w, 1) / max(height, 1))
-            write_host_buffer(self.ctx, buffer, pack_uniforms(mvp, uv_offset))
+        for buffer, (_, w) in zip(self.uniform_buffers, course.halves(self.size[0]), strict=True):
+            mvp = course.plane_mvp(max(w, 1) / max(height, 1))
+            write_host_buffer(self.ctx, buffer, pack_uniforms(mvp, course.uv_offset(t)))
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
         self.update_uniforms(t)
@@ -143,7 +133,7 @@ class Textured(RefStage):
         framebuffer = create_framebuffer(self.ctx, self.owned, self.render_pass, views)
         begin(cmd, self.render_pass, framebuffer, self.size)
         graphics, height = vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.size[1]
-        (lx, lw), (rx, rw) = self.halves()
+        (lx, lw), (rx, rw) = course.halves(self.size[0])
         vk.vkCmdBindVertexBuffers(cmd, 0, 1, [self.vertex_buffer.handle], [0])
         if lw > 0:
             vk.vkCmdBindPipeline(cmd, graphics, self.combined_pipeline)
