@@ -1,5 +1,9 @@
 """Open a page in headless Chromium over the DevTools protocol (--remote-debugging-pipe) and report what happened.
 
+Also the README's screenshot of the report::
+
+    cd tests && ../.venv/bin/python browser.py /tmp/site/index.html ../docs/img/report.png 3d
+
 No Python dependency: Chromium reads JSON commands from fd 3 and writes replies and events
 to fd 4, each message ended by a NUL byte. :func:`open_page` loads a file:// URL, waits for
 the load event, and returns every <img>'s natural width, the console errors (console.error,
@@ -94,8 +98,10 @@ def _errors(events: list[dict]) -> list[str]:
     return out
 
 
-def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 90.0) -> PageReport:
-    """Load ``path`` in headless Chromium; what loaded, what went wrong, and a screenshot."""
+def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 90.0,
+              scroll_to: str | None = None) -> PageReport:
+    """Load ``path`` in headless Chromium; what loaded, what went wrong, and a screenshot (of the element with
+    id ``scroll_to`` scrolled to the top, when given)."""
     exe = chromium()
     if exe is None:
         raise FileNotFoundError("chromium is not installed (apt-get install chromium)")
@@ -116,7 +122,7 @@ def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 
         os.close(from_chrome_w)
         pipe = _Pipe(proc, to_chrome_w, from_chrome_r)
         try:
-            return _inspect(pipe, path, size, timeout)
+            return _inspect(pipe, path, size, timeout, scroll_to)
         finally:
             try:
                 pipe.send("Browser.close", timeout=10)
@@ -131,7 +137,7 @@ def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 
             os.close(from_chrome_r)
 
 
-def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float) -> PageReport:
+def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float, scroll_to: str | None) -> PageReport:
     target = pipe.send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = pipe.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
     for domain in ("Page", "Runtime", "Log"):
@@ -145,5 +151,15 @@ def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float) -> 
         "expression": "JSON.stringify(Array.from(document.images, i => "
                       "({src: i.getAttribute('src'), complete: i.complete, width: i.naturalWidth})))",
         "returnByValue": True}, session=session)["result"]["value"]
+    if scroll_to:
+        scroll = f"document.getElementById({json.dumps(scroll_to)}).scrollIntoView()"
+        pipe.send("Runtime.evaluate", {"expression": scroll}, session=session)
     shot = pipe.send("Page.captureScreenshot", {"format": "png"}, session=session)["data"]
     return PageReport(json.loads(images), _errors(pipe.events), base64.b64decode(shot))
+
+
+if __name__ == "__main__":
+    import sys
+
+    page, png, *anchor = sys.argv[1:]
+    Path(png).write_bytes(open_page(Path(page), (1100, 860), scroll_to=anchor[0] if anchor else None).screenshot)

@@ -137,8 +137,9 @@ def test_scene_sections_show_the_render_plan(site):
     from wgpurender.plan import explain_scene
 
     text = (site / "index.html").read_text()
-    plan = explain_scene(REPO / "assets" / "scenes" / "final.toml", size=(240, 180))
-    assert html.escape(plan) in _section(text, "final")
+    plan = explain_scene(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
+    assert plan[0].startswith("scene: ") and "scene: assets/scenes/final.toml" in _section(text, "final")
+    assert html.escape("\n".join(plan[1:])) in _section(text, "final")  # the plan, all but the file's path
     assert 'src="accuracy_pareto.png"' in text and (site / "accuracy_pareto.png").is_file()
     hard = text[text.index('<section id="hard-cases">'):]
     for case in ("depth precision", "far from origin", "MSAA slivers"):  # rows of docs/numerics.md's table

@@ -23,7 +23,8 @@ nav a { margin-right: 10px; white-space: nowrap; }
 .step { margin-top: 26px; }
 .images { display: flex; gap: 14px; flex-wrap: wrap; align-items: flex-start; }
 figure { margin: 0; } figcaption { font-size: 13px; color: #444; }
-figure img { border: 1px solid #ccc; image-rendering: pixelated; width: 240px; height: auto; display: block; }
+figure img { border: 1px solid #ccc; image-rendering: pixelated; width: 240px; height: auto; display: block;
+             background: repeating-conic-gradient(#ddd 0 25%, #fff 0 50%) 0 0 / 16px 16px; }  /* alpha shows */
 .scale img { width: auto; border: 1px solid #ccc; image-rendering: pixelated; }
 .scale .ticks { display: flex; font-size: 11px; color: #444; }
 .scale .ticks span { width: 24px; text-align: center; }

@@ -8,6 +8,7 @@ why with the raw path's own error text instead of an image; the same goes for th
 from __future__ import annotations
 
 import inspect
+import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,7 +20,7 @@ from ..concepts import Concept
 from ..errors import UserError
 from ..gpu import GPUContext
 from . import timings
-from .concept_rows import rows_for
+from .concept_rows import REPO_ROOT, rows_for
 from .timings import Timing
 
 HEATMAP_GAIN = 32.0  # as `wgpurender compare`: a 1/255 difference shows as 32/255
@@ -100,8 +101,8 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
 
     scene = load_scene(path)
     overrides = {"size": size} if size else {}
-    step = Step(path.stem, path.name, "scene file", scene.description, _scene_words(path),
-                plan=explain_scene(path, **overrides))
+    plan = explain_scene(path, **overrides).replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
+    step = Step(path.stem, path.name, "scene file", scene.description, _scene_words(path), plan=plan)
     step.wgpu = render_scene_file(path, size=size, ctx=ctx, frames=1).pixels
     step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size)
     step.raw, step.raw_note = _try(lambda: render_reference(str(path), size), log)
