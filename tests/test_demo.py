@@ -182,7 +182,7 @@ def test_benchmark_writes_every_timed_frame_to_csv(display, tmp_path):
     times = [float(r[1]) for r in rows[1:]]
     assert frames == list(range(len(frames))) and len(frames) >= 2
     assert all(t > 0 for t in times)
-    assert sum(times) >= 1000.0  # the run lasted at least the asked run time (it stops after crossing it)
+    assert sum(times) >= 1000.0 - 1e-4 * len(times)  # at least the asked run time (rows are rounded to 0.1 us)
     assert sum(times[:-1]) < 1000.0
     assert f"benchmark: {len(frames)} frames" in result.stdout
     shown = int(result.stdout.split("frames: ")[1].split(",")[0])
