@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import functools
 import os
 import sys
 import time
@@ -28,6 +29,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
+from wgpurender.frame_loop import run_frame  # noqa: E402
 from wgpurender.gpu import get_context  # noqa: E402
 from wgpurender.plan import build_plan  # noqa: E402
 from wgpurender.scene import Scene, load_scene  # noqa: E402
@@ -43,19 +45,13 @@ def time_scene(ctx, scene: Scene, size, frames: int, warmup: int) -> tuple[Stats
     target = create_target(ctx, plan.size, plan.output_format)
     timer = PassTimer(ctx)
     wall, gpu = [], {}
+    record = functools.partial(renderer.record, timer=timer)
     for i in range(warmup + frames):
-        start = time.perf_counter()
-        timer.reset()
-        encoder = ctx.device.create_command_encoder(label="bench")
-        renderer.draw(encoder, target, 0.0, timer=timer)
-        timer.resolve(encoder)
-        ctx.queue.submit([encoder.finish()])
-        passes = timer.read()  # maps the query buffer: waits for the frame
-        if not passes:
-            ctx.wait_idle()
+        # the timer read waits for the frame (or run_frame waits without timestamps)
+        frame = run_frame(ctx, record, target, 0.0, label="bench", read_back=False, timer=timer)
         if i >= warmup:
-            wall.append((time.perf_counter() - start) * 1e3)
-            for label, ms in passes.items():
+            wall.append(frame.frame_ms)
+            for label, ms in frame.gpu_ms.items():
                 gpu.setdefault(label, []).append(ms)
     return Stats.of(wall), {label: Stats.of(v) for label, v in gpu.items()}
 

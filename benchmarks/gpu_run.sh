@@ -37,5 +37,6 @@ status=0
 "$PYTHON" -m wgpurender bench perf --out "$RESULTS/perf" 2>&1 | tee "$RESULTS/perf.log" || status=1
 "$PYTHON" -m pytest tests/hardcases -q -p no:cacheprovider 2>&1 | tee "$RESULTS/hardcases.log" || status=1
 "$PYTHON" -m wgpurender bench accuracy --out "$RESULTS/accuracy" 2>&1 | tee "$RESULTS/accuracy.log" || status=1
+"$PYTHON" -m wgpurender bench accuracy --truth analytic --out "$RESULTS/accuracy_analytic" 2>&1 | tee "$RESULTS/accuracy_analytic.log" || status=1
 echo "results in $RESULTS (exit $status)"
 exit $status

@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import wgpu
+from shading_model import srgb_encode  # the test's own sRGB formula, not the package's
 
 from wgpurender.errors import UserError
-from wgpurender.imageio import srgb_encode
 from wgpurender.post import (
     EFFECTS,
     PostChain,

@@ -30,7 +30,7 @@ def test_pass_timestamps_order_work(ctx):
     tri = get_stage("msaa")(ctx, "rgba8unorm")
     tri.resize((512, 512))
     results = []
-    for _ in range(3):
+    for _ in range(5):
         timer.reset()
         encoder = ctx.device.create_command_encoder()
         empty = encoder.begin_render_pass(
@@ -50,4 +50,7 @@ def test_pass_timestamps_order_work(ctx):
     last = results[-1]
     assert set(last) == {"empty", "triangle"}
     assert all(v >= 0 for v in last.values())
-    assert last["triangle"] > last["empty"]
+    # The fastest of 5 frames per pass: on a loaded machine (lavapipe runs on the CPU) one frame's pass can be
+    # preempted; the minimum is the pass's own cost.
+    fastest = {label: min(r[label] for r in results[1:]) for label in last}
+    assert fastest["triangle"] > fastest["empty"], fastest

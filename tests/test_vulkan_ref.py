@@ -128,9 +128,9 @@ def test_clear_color_image_agrees_with_render_pass_clear(ctx, monkeypatch):
     The colour's components are k/255, exact in unorm; in sRGB both paths encode
     the same float with the same hardware conversion.
     """
+    from wgpurender.course.triangle import CLEAR_COLOR
     from wgpurender.render import render_stage
     from wgpurender.vulkan_ref.stages.clear import ClearTransfer
-    from wgpurender.vulkan_ref.stages.clear_pass import CLEAR_COLOR
 
     monkeypatch.setattr(ClearTransfer, "color", CLEAR_COLOR)
     for fmt in FORMATS:

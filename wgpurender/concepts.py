@@ -62,7 +62,7 @@ CONCEPTS: list[Concept] = [
         "physical device",
         ("vkEnumeratePhysicalDevices", "vkGetPhysicalDeviceProperties (deviceType, apiVersion, limits)",
          "vkGetPhysicalDeviceFeatures"),
-        _raw("instance:pick_physical_device", "instance:copy_limits"),
+        _raw("instance:pick_physical_device", "instance:copy_limits", "instance:create_device"),
         ("wgpu.gpu.enumerate_adapters_sync", "GPUAdapter.info / .features / .limits"),
         _wgpu("gpu:select_adapter", "gpu:available_backends"),
         "An adapter is a physical device seen through one backend (Vulkan, Metal, D3D12, GL). Its features and "
@@ -72,7 +72,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "queue families",
         ("vkGetPhysicalDeviceQueueFamilyProperties", "VK_QUEUE_GRAPHICS_BIT", "vkGetDeviceQueue"),
-        _raw("instance:find_queue_family"),
+        _raw("instance:find_queue_family", "instance:create_device"),
         ("GPUDevice.queue",),
         _wgpu("gpu:GPUContext.queue"),
         "No queue families: wgpu picks a family that does graphics, compute and transfer and gives the device "
@@ -115,7 +115,8 @@ CONCEPTS: list[Concept] = [
         "heaps and memory types",
         ("vkGetPhysicalDeviceMemoryProperties", "VkMemoryRequirements.memoryTypeBits", "vkAllocateMemory",
          "vkBindBufferMemory / vkBindImageMemory"),
-        _raw("instance:memory_types", "memory:find_memory_type", "memory:allocate", "memory:create_buffer"),
+        _raw("instance:memory_types", "memory:find_memory_type", "memory:allocate", "memory:create_buffer",
+             "images:create_image"),
         ("device.create_buffer(usage=)", "device.create_texture(usage=)", "BufferUsage.MAP_READ / MAP_WRITE"),
         _wgpu("targets:create_target", "targets:read_texture"),
         "No heaps or memory types are visible: wgpu allocates (and sub-allocates) memory for each resource and "
@@ -136,7 +137,7 @@ CONCEPTS: list[Concept] = [
         "command pool and buffers",
         ("vkCreateCommandPool", "vkAllocateCommandBuffers", "vkBeginCommandBuffer / vkEndCommandBuffer",
          "vkQueueSubmit"),
-        _raw("command_buffers:create_command_pool", "command_buffers:one_shot"),
+        _raw("command_buffers:create_command_pool", "command_buffers:one_shot", "command_buffers:submit_and_wait"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
         _wgpu("render:render_stage", "window:DemoWindow._run_frame"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
@@ -297,7 +298,8 @@ CONCEPTS: list[Concept] = [
     Concept(
         "render pass",
         ("vkCreateRenderPass", "vkCmdBeginRenderPass / vkCmdEndRenderPass"),
-        _raw("renderpass:create_render_pass", "renderpass:RenderPass"),
+        _raw("renderpass:create_render_pass", "renderpass:RenderPass", "renderpass:begin",
+             "stages.cube3d:Cube3D.record"),
         ("GPUCommandEncoder.begin_render_pass(...) -> GPURenderPassEncoder", "GPURenderPassEncoder.end()"),
         _wgpu("stages.triangle:Triangle.record", "stages.clear_pass:ClearPass.record"),
         "No render pass object is created ahead of time: begin_render_pass takes the attachments directly. A "
@@ -362,7 +364,8 @@ CONCEPTS: list[Concept] = [
     Concept(
         "vertex input bindings and attributes",
         ("VkVertexInputBindingDescription", "VkVertexInputAttributeDescription", "vkCmdBindVertexBuffers"),
-        _raw("stages.triangle_buffers:vertex_input", "stages.cube3d:vertex_input", "stages.textured:vertex_input"),
+        _raw("stages.triangle_buffers:vertex_input", "stages.cube3d:vertex_input", "stages.textured:vertex_input",
+             "stages.cube3d:Cube3D.record"),
         ("vertex={'buffers': [{array_stride, step_mode, attributes: [{shader_location, format, offset}]}]}",
          "GPURenderPassEncoder.set_vertex_buffer"),
         _wgpu("stages.triangle_buffers:VERTEX_LAYOUT", "stages.cube3d:VERTEX_LAYOUT",

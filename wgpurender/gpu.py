@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import wgpu
 
+from .course.formats import SAMPLE_COUNTS
 from .errors import UserError
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
@@ -69,7 +70,7 @@ class GPUContext:
 
     def sample_counts(self, fmt: str = "rgba8unorm") -> tuple[int, ...]:
         """MSAA sample counts this adapter can render with (WebGPU knows 1 and 4)."""
-        return (1, 4)
+        return SAMPLE_COUNTS
 
     def wait_idle(self) -> None:
         """Block until every submitted command buffer has finished.

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
+from .course.formats import OUTPUT_FORMATS
 from .errors import UserError
 from .gpu import GPUContext
 
@@ -25,7 +26,6 @@ COLOR_FORMATS: dict[str, tuple[int, type]] = {
     "rgba16float": (8, np.float16),
     "rgba32float": (16, np.float32),
 }
-OUTPUT_FORMATS = ("rgba8unorm", "rgba8unorm-srgb", "rgba16float")
 
 TARGET_USAGE = (
     wgpu.TextureUsage.RENDER_ATTACHMENT

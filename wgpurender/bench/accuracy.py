@@ -36,11 +36,33 @@ def run(args) -> int:
         raise UserError("--frames and --rounds must be at least 1")
     if not Path(args.scene).is_file():
         raise UserError(f"scene file not found: {args.scene} (run from the repository root, or give SCENE)")
+    if args.truth == "analytic":
+        return _run_analytic(args, preset, frames)
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
     config = AccuracyConfig(scene_path=Path(args.scene), base_size=args.size or preset["size"], frames=frames,
                             warmup=preset["warmup"], rounds=rounds, knobs=knobs, combinations=args.combinations,
                             out_dir=Path(args.out), command=command_line())
     result = run_accuracy(config, get_context(args.backend))
     for kind, path in write_reports(result, config.out_dir).items():
+        print(f"{kind}: {path}")
+    return 0
+
+
+def _run_analytic(args, preset: dict, frames: int) -> int:
+    import datetime
+    import sys
+
+    from ..gpu import get_context
+    from .accuracy_analytic import run_analytic, write_analytic_reports
+    from .perf import command_line
+
+    ctx = get_context(args.backend)
+    size = args.size or preset["size"]
+    rows = run_analytic(ctx, Path(args.out), size, frames, preset["warmup"],
+                        progress=lambda text: print(text, file=sys.stderr, flush=True))
+    header = [f"# bench accuracy --truth analytic ({size[0]}x{size[1]})", "",
+              f"- adapter: {ctx.describe()}", f"- date: {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC",
+              f"- command: `{command_line()}`", f"- timed frames per setting: {frames} (median, p10..p90)"]
+    for kind, path in write_analytic_reports(rows, Path(args.out), header).items():
         print(f"{kind}: {path}")
     return 0

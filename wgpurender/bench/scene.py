@@ -2,7 +2,7 @@
 
 Imported lazily: without the renderer (or the scene file) the family is skipped with a
 note. The renderer's per-frame API is discovered, not assumed: an object with
-``draw(encoder, target, t)`` (like a stage) is timed frame by frame; otherwise whole
+``record(encoder, target, t)`` (like a stage) is timed frame by frame; otherwise whole
 ``render_scene_file`` calls are timed (set-up included, said in the note).
 The raw path takes part only if it has a stage named ``final``. Per-pass GPU times (scene pass,
 each post pass) come from the renderer's own ``timer`` argument.

@@ -90,5 +90,9 @@ def _register_accuracy(suites) -> None:
                    help="sweep only these knobs (repeatable; default all)")
     p.add_argument("--no-combinations", dest="combinations", action="store_false",
                    help="only the one-knob-at-a-time sweeps")
+    p.add_argument("--truth", choices=("rendered", "analytic"), default="rendered",
+                   help="rendered (default): every knob on SCENE against the same renderer at 8x; analytic: "
+                   "anti-aliasing (none, FXAA, MSAA 4, SSAA 2x/4x), texture filtering and depth on test scenes "
+                   "against float64 ground truths no renderer made (accuracy_analytic.csv/.md)")
     add_backend_arg(p)
     p.set_defaults(func=run)

@@ -36,9 +36,9 @@ def register(subparsers) -> None:
     p.add_argument(
         "--present-mode",
         default="fifo",
-        choices=("fifo", "immediate"),
+        choices=("fifo", "mailbox", "immediate"),
         help="fifo: vsync, never tears (default); immediate: no vsync (wgpu falls back to mailbox, then fifo, "
-        "when the surface lacks it)",
+        "when the surface lacks it); mailbox alone cannot be asked for through wgpu-py 0.32 (exit 2 says so)",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
     p.add_argument("--time", type=float, default=None, metavar="T", help="freeze the animation at T seconds")
@@ -55,7 +55,7 @@ def register(subparsers) -> None:
                        help="seconds of timed frames (default 10)")
     bench.add_argument("--benchmark-result-file", default="benchmark.csv", metavar="CSV",
                        help="where the per-frame times go: frame,frame_ms (default benchmark.csv)")
-    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window_input)
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window/controls.py)
     p.set_defaults(func=run)
 
 
@@ -88,12 +88,12 @@ def run(args) -> int:
 def _show(args):
     from pathlib import Path
 
-    from ..demo_view import DemoView
-    from ..frame_times import BenchmarkSpec
     from ..gpu import get_context
     from ..imageio import check_writable
     from ..window import run_window
-    from ..window_input import parse_script
+    from ..window.controls import parse_script
+    from ..window.frame_times import BenchmarkSpec
+    from ..window.view import DemoView
 
     if args.screenshot:
         check_writable(args.screenshot)

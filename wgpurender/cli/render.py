@@ -21,12 +21,13 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    from ..course.formats import is_scene_file
     from ..errors import UserError
     from ..imageio import check_writable, save_png
     from ..render import render_any
 
     if args.explain:
-        if not args.target.endswith(".toml"):
+        if not is_scene_file(args.target):
             raise UserError(f"--explain needs a scene file (.toml), got stage {args.target!r}")
         from ..plan import explain_scene
 

@@ -8,15 +8,14 @@ from pathlib import Path
 import numpy as np
 
 from .. import transforms
+from ..course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
+from ..course.formats import SAMPLE_COUNTS as MSAA_COUNTS  # noqa: F401
+from ..course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
+from ..course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 
 MAX_LIGHTS = 8
 CONVENTIONS = ("wgpu", "glm-vulkan")
 LIGHT_TYPES = ("directional", "point")
-MSAA_COUNTS = (1, 4)
-OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float")
-FILTERS = ("linear", "nearest")
-ADDRESS_MODES = ("repeat", "clamp-to-edge", "mirror-repeat")
-MAX_ANISOTROPY = 16
 
 Vec3 = tuple[float, float, float]
 Vec4 = tuple[float, float, float, float]
@@ -100,11 +99,11 @@ class Material:
     ``origin`` says where it was defined, e.g. ``[materials.brick]`` or ``models[0].material (inline)``."""
 
     name: str
-    albedo_color: Vec4 = (1.0, 1.0, 1.0, 1.0)
+    albedo_color: Vec4 = DEFAULT_ALBEDO_COLOR
     albedo_map: Path | None = None
     normal_map: Path | None = None
     roughness_map: Path | None = None
-    roughness: float = 0.5
+    roughness: float = DEFAULT_ROUGHNESS
     unlit: bool = False
     uv_flip_v: bool = False
     sampler: SamplerSettings = field(default_factory=SamplerSettings)
@@ -171,7 +170,7 @@ class RenderSettings:
     size: tuple[int, int] = (800, 600)
     msaa: int = 4
     hdr: bool = True
-    clear_color: Vec4 = (0.0, 0.0, 0.0, 1.0)
+    clear_color: Vec4 = DEFAULT_CLEAR_COLOR
     output_format: str = "rgba8unorm-srgb"
 
 

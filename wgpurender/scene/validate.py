@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .. import transforms
+from ..course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 from ..errors import UserError
 from .checker import Checker as _Checker
 from .checker import _type_name
@@ -123,8 +124,8 @@ def _material(c: _Checker, data: Any, key: KeyPath, name: str, origin: str) -> M
     maps = {k: c.file(t[k], key + (k,), "texture") for k in ("albedo_map", "normal_map", "roughness_map") if k in t}
     return Material(
         name=name,
-        albedo_color=_color(c, t.get("albedo_color", [1, 1, 1, 1]), key + ("albedo_color",)),
-        roughness=c.number(t.get("roughness", 0.5), key + ("roughness",), 0.0, 1.0),
+        albedo_color=_color(c, t.get("albedo_color", list(DEFAULT_ALBEDO_COLOR)), key + ("albedo_color",)),
+        roughness=c.number(t.get("roughness", DEFAULT_ROUGHNESS), key + ("roughness",), 0.0, 1.0),
         unlit=c.boolean(t.get("unlit", False), key + ("unlit",)),
         uv_flip_v=c.boolean(t.get("uv_flip_v", False), key + ("uv_flip_v",)),
         sampler=_sampler(c, t.get("sampler", {}), key + ("sampler",)),
@@ -275,7 +276,7 @@ def _render(c: _Checker, data: Any) -> RenderSettings:
         size=(w, h),
         msaa=c.integer(t.get("msaa", 4), key + ("msaa",), choices=MSAA_COUNTS),
         hdr=c.boolean(t.get("hdr", True), key + ("hdr",)),
-        clear_color=_color(c, t.get("clear_color", [0, 0, 0, 1]), key + ("clear_color",)),
+        clear_color=_color(c, t.get("clear_color", list(DEFAULT_CLEAR_COLOR)), key + ("clear_color",)),
         output_format=c.string(t.get("output_format", "rgba8unorm-srgb"), key + ("output_format",), OUTPUT_FORMATS),
     )
 

@@ -1,6 +1,9 @@
 """The course stages, found by scanning this package: each module defines one Stage subclass.
 
-Adding a stage is adding a module; nothing else needs to change.
+Adding a stage is adding a module (and its row in the course's order table,
+wgpurender/course/steps.py, which places it; without one it is listed last).
+Nothing imports a stage module except this registry, the runners, the CLI, the
+bench and tests (docs/architecture.md).
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ import vulkan as vk
 from ...errors import UserError
 from ...mesh import Mesh, load_mesh
 from ...plan import Draw, RenderPlan
-from ...textures import load_image
+from ...texture_pixels import load_image
 from ..instance import VulkanContext
 from ..memory import Buffer, upload_buffer
 from ..textures import TextureImage, create_sampler, upload_texture

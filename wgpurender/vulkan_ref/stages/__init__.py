@@ -2,7 +2,8 @@
 
 Found by scanning this package, like the wgpu stages: a module defines one
 :class:`RefStage` subclass whose ``name`` matches the wgpu stage it mirrors
-(plus stages only this path has so far, e.g. msaa-post).
+(plus stages only this path has so far, e.g. msaa-post), listed in the course's
+order (wgpurender/course/steps.py).
 """
 
 from __future__ import annotations

@@ -14,8 +14,11 @@ from typing import ClassVar
 
 import vulkan as vk
 
+from ...course.formats import DEFAULT_FORMAT
 from ..images import Image, create_image
 from ..instance import VulkanContext
+from ..pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
+from ..renderpass import begin, create_framebuffer, single_pass
 
 TARGET_USAGE = (
     vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSFER_SRC_BIT | vk.VK_IMAGE_USAGE_TRANSFER_DST_BIT
@@ -25,11 +28,10 @@ TARGET_USAGE = (
 class RefStage:
     name: ClassVar[str] = ""
     summary: ClassVar[str] = ""
-    order: ClassVar[float] = 0.0
     supports_msaa: ClassVar[bool] = False
     requires_msaa: ClassVar[bool] = False
     default_msaa: ClassVar[int] = 1
-    default_format: ClassVar[str] = "rgba8unorm-srgb"
+    default_format: ClassVar[str] = DEFAULT_FORMAT
 
     def __init__(self, ctx: VulkanContext, owned: ExitStack, fmt: str, msaa: int, size: tuple[int, int]) -> None:
         self.ctx = ctx
@@ -49,3 +51,21 @@ class RefStage:
         """The multisampled colour attachment: only ever rendered to and resolved, never stored."""
         usage = vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT
         return create_image(self.ctx, self.owned, self.size, fmt or self.format, usage, self.msaa, lazy=True)
+
+    def single_pass(self, clear_color, depth: bool = False) -> None:
+        """One render pass with one subpass into the target (through a transient MSAA image at msaa > 1)."""
+        self.render_pass = single_pass(self.ctx, self.owned, self.format, self.msaa, clear_color, depth=depth)
+        self.msaa_image = self.transient_msaa_image() if self.msaa > 1 else None
+
+    def begin_pass(self, cmd, target: Image, *extra: Image) -> None:
+        """A framebuffer of [MSAA image,] target[, extra attachments] and vkCmdBeginRenderPass on it."""
+        views = [target] if self.msaa_image is None else [self.msaa_image, target]
+        framebuffer = create_framebuffer(self.ctx, self.owned, self.render_pass, [*views, *extra])
+        begin(cmd, self.render_pass, framebuffer, self.size)
+
+    def basic_pipeline(self, vert: str, frag: str = "color.frag", bindings=(), attributes=()):
+        """The first triangle's pipeline: no culling, no depth, an empty layout (the course's fixed function)."""
+        self.layout = create_pipeline_layout(self.ctx, self.owned)
+        desc = PipelineDesc(vert=vert, frag=frag, samples=self.msaa, vertex_bindings=list(bindings),
+                            vertex_attributes=list(attributes))
+        return create_pipeline(self.ctx, self.owned, desc, self.layout, self.render_pass)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import vulkan as vk
 
+from ...course.triangle import TRANSFER_CLEAR_COLOR
 from ..images import Image, subresource_range, transition
 from .base import RefStage
 
@@ -22,8 +23,7 @@ from .base import RefStage
 class ClearTransfer(RefStage):
     name = "clear"
     summary = "clear the image with vkCmdClearColorImage, no render pass (to zero, like the wgpu stage)"
-    order = 1.0
-    color = (0.0, 0.0, 0.0, 0.0)
+    color = TRANSFER_CLEAR_COLOR
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
         transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)

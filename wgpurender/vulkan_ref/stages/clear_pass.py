@@ -9,18 +9,15 @@ from __future__ import annotations
 
 import vulkan as vk
 
+from ...course.triangle import CLEAR_COLOR  # exact in every format
 from ..images import Image
 from ..renderpass import begin, create_framebuffer, single_pass
 from .base import RefStage
-
-# Exact in every format: k/255 values survive the float -> unorm conversion (same as the wgpu stage).
-CLEAR_COLOR = (51 / 255, 102 / 255, 204 / 255, 1.0)
 
 
 class ClearPass(RefStage):
     name = "clear-pass"
     summary = "clear the image through a render pass (loadOp CLEAR) and draw nothing"
-    order = 1.1
 
     def setup(self) -> None:
         self.render_pass = single_pass(self.ctx, self.owned, self.format, 1, CLEAR_COLOR)

@@ -21,7 +21,6 @@ from .. import descriptors, ubo
 from ..images import Image, create_image
 from ..memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
 from ..pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
-from ..renderpass import begin, create_framebuffer, single_pass
 from .base import RefStage
 
 STRIDE = course.VERTEX_FLOATS * 4  # position, normal, colour: three vec3
@@ -39,7 +38,6 @@ def vertex_input() -> tuple[list, list]:
 class Cube3D(RefStage):
     name = "3d"
     summary = "rotating cubes: depth buffer, camera and object UBOs in two descriptor sets, push constants"
-    order = 4.0
     supports_msaa = True
 
     def setup(self) -> None:
@@ -57,12 +55,11 @@ class Cube3D(RefStage):
         self.camera_buffer = create_buffer(ctx, owned, ubo.CAMERA_SIZE, uniform, HOST_MEMORY)
         self.object_buffer = create_buffer(ctx, owned, self.object_stride * len(self.cubes), uniform, HOST_MEMORY)
         self._setup_descriptors()
-        self.render_pass = single_pass(ctx, owned, self.format, self.msaa, course.BACKGROUND, depth=True)
+        self.single_pass(course.BACKGROUND, depth=True)
         bindings, attributes = vertex_input()
         desc = PipelineDesc("cube3d.vert", "cube3d.frag", bindings, attributes, samples=self.msaa,
                             cull_mode=vk.VK_CULL_MODE_BACK_BIT, depth_test=True)
         self.pipeline = create_pipeline(ctx, owned, desc, self.layout, self.render_pass)
-        self.msaa_image = self.transient_msaa_image() if self.msaa > 1 else None
         usage = vk.VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT
         self.depth = create_image(ctx, owned, self.size, course.DEPTH_FORMAT, usage, self.msaa, lazy=True)
 
@@ -93,9 +90,7 @@ class Cube3D(RefStage):
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
         self.update_uniforms(t)
-        views = [target] if self.msaa_image is None else [self.msaa_image, target]
-        framebuffer = create_framebuffer(self.ctx, self.owned, self.render_pass, [*views, self.depth])
-        begin(cmd, self.render_pass, framebuffer, self.size)
+        self.begin_pass(cmd, target, self.depth)
         vk.vkCmdBindPipeline(cmd, vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.pipeline)
         set_viewport_and_scissor(cmd, self.size)
         vk.vkCmdBindVertexBuffers(cmd, 0, 1, [self.vertex_buffer.handle], [0])

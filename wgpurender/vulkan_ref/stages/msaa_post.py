@@ -18,21 +18,18 @@ import struct
 
 import vulkan as vk
 
+from ...course.triangle import BACKGROUND, GREY_AMOUNT
 from ...errors import UserError
 from .. import descriptors
 from ..images import Image, create_image
 from ..pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
 from ..renderpass import begin, create_framebuffer, msaa_post_pass
 from .base import RefStage
-from .triangle import BACKGROUND
-
-GREY_AMOUNT = 1.0  # fully grey: the simplest effect to check against numpy
 
 
 class MsaaPost(RefStage):
     name = "msaa-post"
     summary = "4x MSAA triangle, then a grey post effect in a second subpass reading it as an input attachment"
-    order = 3.2
     supports_msaa = True
     requires_msaa = True
     default_msaa = 4

@@ -10,23 +10,28 @@ from __future__ import annotations
 
 import vulkan as vk
 
+from ...course.triangle import BACKGROUND
 from ..images import Image, create_image, subresource_layers, transition
-from .triangle import Triangle
+from ..pipeline import set_viewport_and_scissor
+from .base import RefStage
 
 
-class Offscreen(Triangle):
+class Offscreen(RefStage):
     name = "offscreen"
     summary = "render the triangle into an offscreen image, then copy it to the output"
-    order = 3.0
-    supports_msaa = False
 
     def setup(self) -> None:
-        super().setup()
+        self.single_pass(BACKGROUND)
+        self.pipeline = self.basic_pipeline("triangle.vert")
         usage = vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSFER_SRC_BIT
         self.image = create_image(self.ctx, self.owned, self.size, self.format, usage)
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
-        super().record(cmd, self.image, t)
+        self.begin_pass(cmd, self.image)  # the triangle into our own image
+        vk.vkCmdBindPipeline(cmd, vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.pipeline)
+        set_viewport_and_scissor(cmd, self.size)
+        vk.vkCmdDraw(cmd, 3, 1, 0, 0)
+        vk.vkCmdEndRenderPass(cmd)
         transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)
         origin = vk.VkOffset3D(x=0, y=0, z=0)
         region = vk.VkImageCopy(

@@ -1,8 +1,7 @@
 """Course step 5: a textured plane at a grazing angle, combined vs separate image samplers.
 
-The scene is the wgpu stage's (wgpurender/stages/textured.py: the generated pattern, the
-plane and its lanes, the camera, the samplers per lane), read from there so both paths draw
-the same thing; everything Vulkan is spelled out here and in vulkan_ref/textures.py:
+The scene is the course core's (course/textured.py: pattern, plane, lanes, camera, samplers), as
+on the wgpu path; everything Vulkan is spelled out here and in vulkan_ref/textures.py:
 - the texture: a staging upload into an R8G8B8A8_SRGB image with a full mip chain, each
   level drawn from the previous one by a render pass (the wgpu path's filter; see textures.py
   for why not vkCmdBlitImage);
@@ -27,7 +26,6 @@ from .. import descriptors
 from ..images import Image
 from ..memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
 from ..pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
-from ..renderpass import begin, create_framebuffer, single_pass
 from ..textures import create_sampler, upload_texture
 from .base import RefStage
 
@@ -65,7 +63,6 @@ def set_viewport(cmd, x: int, width: int, height: int) -> None:
 class Textured(RefStage):
     name = "textured"
     summary = "a generated sRGB texture with a mip chain: a combined image sampler vs one image and 4 samplers"
-    order = 5.0
     supports_msaa = True
 
     def setup(self) -> None:
@@ -80,17 +77,15 @@ class Textured(RefStage):
         self.combined_sampler = create_sampler(ctx, owned, course.COMBINED_SAMPLER)
         self.lane_samplers = [create_sampler(ctx, owned, spec) for _, spec in course.SEPARATE_SAMPLERS]
         self._setup_descriptors()
-        self.render_pass = single_pass(ctx, owned, self.format, self.msaa, course.BACKGROUND)
+        self.single_pass(course.BACKGROUND)
         bindings, attributes = vertex_input()
 
         def desc(frag: str) -> PipelineDesc:
             return PipelineDesc("textured.vert", frag, bindings, attributes, samples=self.msaa)
 
-        self.combined_pipeline = create_pipeline(ctx, owned, desc("textured_combined.frag"), self.combined_layout,
-                                                 self.render_pass)
-        self.separate_pipeline = create_pipeline(ctx, owned, desc("textured_separate.frag"), self.separate_layout,
-                                                 self.render_pass)
-        self.msaa_image = self.transient_msaa_image() if self.msaa > 1 else None
+        self.combined_pipeline, self.separate_pipeline = (
+            create_pipeline(ctx, owned, desc(f"textured_{kind}.frag"), layout, self.render_pass)
+            for kind, layout in (("combined", self.combined_layout), ("separate", self.separate_layout)))
 
     def _setup_descriptors(self) -> None:
         ctx, owned = self.ctx, self.owned
@@ -129,9 +124,7 @@ class Textured(RefStage):
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
         self.update_uniforms(t)
-        views = [target] if self.msaa_image is None else [self.msaa_image, target]
-        framebuffer = create_framebuffer(self.ctx, self.owned, self.render_pass, views)
-        begin(cmd, self.render_pass, framebuffer, self.size)
+        self.begin_pass(cmd, target)
         graphics, height = vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.size[1]
         (lx, lw), (rx, rw) = course.halves(self.size[0])
         vk.vkCmdBindVertexBuffers(cmd, 0, 1, [self.vertex_buffer.handle], [0])

@@ -8,14 +8,14 @@ R32G32_SFLOAT position at offset 0; location 1: R32G32B32_SFLOAT colour at 8).
 
 from __future__ import annotations
 
-import numpy as np
 import vulkan as vk
 
+from ...course.triangle import BACKGROUND, TRIANGLE_INDICES, triangle_vertices
+from ..images import Image
 from ..memory import upload_buffer
-from ..pipeline import PipelineDesc
-from .triangle import TRIANGLE_COLORS, TRIANGLE_POSITIONS, Triangle
+from ..pipeline import set_viewport_and_scissor
+from .base import RefStage
 
-INDICES = np.array([0, 1, 2], dtype=np.uint16)
 STRIDE = 5 * 4
 
 
@@ -28,27 +28,25 @@ def vertex_input() -> tuple[list, list]:
     return bindings, attributes
 
 
-class TriangleBuffers(Triangle):
+class TriangleBuffers(RefStage):
     name = "triangle-buffers"
     summary = "first triangle from a vertex buffer and an index buffer with an explicit input layout"
-    order = 2.1
-    vertex_shader = "triangle_buffers.vert"
+    supports_msaa = True
 
     def setup(self) -> None:
-        vertices = np.hstack([TRIANGLE_POSITIONS, TRIANGLE_COLORS]).astype(np.float32)
         stage, access = vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT
-        self.vertex_buffer = upload_buffer(self.ctx, self.owned, vertices, vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                           stage, access)
-        self.index_buffer = upload_buffer(self.ctx, self.owned, INDICES, vk.VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+        self.vertex_buffer = upload_buffer(self.ctx, self.owned, triangle_vertices(),
+                                           vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, stage, access)
+        self.index_buffer = upload_buffer(self.ctx, self.owned, TRIANGLE_INDICES, vk.VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
                                           stage, vk.VK_ACCESS_INDEX_READ_BIT)
-        super().setup()
+        self.single_pass(BACKGROUND)
+        self.pipeline = self.basic_pipeline("triangle_buffers.vert", "color.frag", *vertex_input())
 
-    def pipeline_desc(self) -> PipelineDesc:
-        bindings, attributes = vertex_input()
-        return PipelineDesc(vert=self.vertex_shader, frag="color.frag", samples=self.msaa,
-                            vertex_bindings=bindings, vertex_attributes=attributes)
-
-    def draw(self, cmd) -> None:
+    def record(self, cmd, target: Image, t: float = 0.0) -> None:
+        self.begin_pass(cmd, target)
+        vk.vkCmdBindPipeline(cmd, vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.pipeline)
+        set_viewport_and_scissor(cmd, self.size)
         vk.vkCmdBindVertexBuffers(cmd, 0, 1, [self.vertex_buffer.handle], [0])
         vk.vkCmdBindIndexBuffer(cmd, self.index_buffer.handle, 0, vk.VK_INDEX_TYPE_UINT16)
-        vk.vkCmdDrawIndexed(cmd, len(INDICES), 1, 0, 0, 0)
+        vk.vkCmdDrawIndexed(cmd, len(TRIANGLE_INDICES), 1, 0, 0, 0)
+        vk.vkCmdEndRenderPass(cmd)

@@ -57,9 +57,9 @@ def drop_shader_caches() -> None:
     stage's pipelines, mip generation, the post effects); a rebuilt drawable would otherwise
     reuse the old shader. Only the demo window calls this, before each (re)build.
     """
-    from . import textures
-    from .post import base as post_base
-    from .stages import textured
+    from .. import textures
+    from ..post import base as post_base
+    from ..stages import textured
 
     for cache in (getattr(textured, "textured_pipelines", None), getattr(textures, "_mipmap_pipeline", None)):
         if isinstance(cache, functools._lru_cache_wrapper):

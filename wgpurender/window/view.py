@@ -15,8 +15,8 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from .gpu import GPUContext
-from .orbit import Orbit
+from ..gpu import GPUContext
+from ..orbit import Orbit
 
 
 class DemoView:
@@ -24,15 +24,17 @@ class DemoView:
 
     def __init__(self, ctx: GPUContext, target: str, msaa: int | None = None) -> None:
         self.ctx, self.target, self.msaa = ctx, target, msaa
-        self.is_scene = target.endswith(".toml")
+        from ..course.formats import is_scene_file
+
+        self.is_scene = is_scene_file(target)
         self.watched: set[Path] = set()
         self.orbit: Orbit | None = None
         self._start_pose: tuple | None = None
 
     def build(self, fmt: str):
         """A new drawable, its first frame's shaders included (pipelines made lazily are made in ``warm``)."""
+        from ..shaders import recording_loads
         from .live_reload import drop_shader_caches
-        from .shaders import recording_loads
 
         drop_shader_caches()
         with recording_loads() as loaded:
@@ -45,7 +47,7 @@ class DemoView:
         """A context manager for the first draw of a new drawable: shaders it loads join ``watched``."""
         from contextlib import contextmanager
 
-        from .shaders import recording_loads
+        from ..shaders import recording_loads
 
         @contextmanager
         def block():
@@ -57,13 +59,13 @@ class DemoView:
 
     def _make(self, fmt: str):
         if self.is_scene:
-            from .plan import build_plan
-            from .scene import load_scene
-            from .scene_render import SceneRenderer
+            from ..plan import build_plan
+            from ..scene import load_scene
+            from ..scene_render import SceneRenderer
 
             scene = load_scene(self.target)
             return SceneRenderer(self.ctx, scene, build_plan(scene, output_format=fmt, msaa=self.msaa))
-        from .stages import get_stage
+        from ..stages import get_stage
 
         return get_stage(self.target)(self.ctx, fmt, self.msaa)
 

@@ -13,10 +13,11 @@ Present modes: wgpu-py 0.32's public API has vsync on or off, nothing finer. ``f
 else mailbox, else fifo, whichever the surface offers first) map onto it; ``mailbox`` cannot
 be asked for without reaching into the context's private configuration, so it is not offered.
 
-The demo on top (wgpurender/cli/demo.py): an orbit camera (wgpurender/window_input.py),
-FPS and frame time in the title, live reload of the WGSL files and the scene file in use
-(wgpurender/live_reload.py: a broken file leaves the last good pipeline on screen and prints
-``file:line: message`` once), and a benchmark mode (wgpurender/frame_times.py).
+The demo on top (wgpurender/cli/demo.py), one module each in this package: ``view`` (what is
+shown: a stage or a scene, rebuilt from its files, with the orbit camera of wgpurender/orbit.py),
+``controls`` (mouse and keys, and the tests' synthetic input), ``live_reload`` (which files
+changed; a broken file leaves the last good pipeline on screen and prints ``file:line: message``
+once), ``frame_times`` (the benchmark mode). FPS and frame time go in the title.
 """
 
 from __future__ import annotations
@@ -29,12 +30,12 @@ from pathlib import Path
 import numpy as np
 import wgpu
 
-from .demo_view import DemoView
-from .errors import UserError
+from ..errors import UserError
+from ..gpu import GPUContext
+from .controls import Controls, ScriptEvent, send
 from .frame_times import BenchmarkSpec, FrameRecorder
-from .gpu import GPUContext
 from .live_reload import FileWatcher, error_line
-from .window_input import Controls, ScriptEvent, send
+from .view import DemoView
 
 PRESENT_MODES = ("fifo", "immediate")
 SURFACE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC
@@ -68,6 +69,10 @@ def present_info(window, present_mode: str) -> dict:
     """The native handles wgpu needs to make a surface, from wgpu's own helper; vsync picks the present mode."""
     from wgpu.utils.glfw_present_info import get_glfw_present_info
 
+    if present_mode == "mailbox":
+        raise UserError("present mode 'mailbox' is not offered through wgpu-py 0.32's public API (vsync on or off "
+                        "only): use fifo (vsync) or immediate (no vsync; wgpu falls back to mailbox where immediate "
+                        "is missing)")
     if present_mode not in PRESENT_MODES:
         raise UserError(f"unknown present mode {present_mode!r}: choose one of {', '.join(PRESENT_MODES)}")
     return get_glfw_present_info(window, vsync=present_mode == "fifo")
@@ -184,7 +189,7 @@ class DemoWindow:
         A rebuilt drawable's first frame may still fail (pipelines made on first use); then the last
         good drawable draws this frame and stays, and the error is printed once.
         """
-        from .frame_loop import run_frame
+        from ..frame_loop import run_frame
 
         while True:
             self.view.apply_camera(self.drawable)
@@ -245,7 +250,7 @@ class DemoWindow:
             if not drawn:
                 continue
             for path in shots:
-                from .imageio import save_png
+                from ..imageio import save_png
 
                 save_png(path, pixels)
             if screenshot and pixels is not None:

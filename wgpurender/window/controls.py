@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import UserError
-from .orbit import RADIANS_PER_PIXEL, Orbit
+from ..errors import UserError
+from ..orbit import RADIANS_PER_PIXEL, Orbit
 
 KEY_STEP_PIXELS = math.radians(5.0) / RADIANS_PER_PIXEL  # one key press orbits 5 degrees
 

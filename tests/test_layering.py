@@ -1,0 +1,249 @@
+"""The layering rule of docs/architecture.md, enforced from the imports (ast) of every module in wgpurender/.
+
+Modules are classified by package prefix, so a module added later (vulkan_ref/window.py, a report
+module, the scene/ package) is classified without editing this file:
+
+- raw path: ``wgpurender.vulkan_ref.*``;
+- wgpu path: ``stages``, ``scene_render``, ``post``, ``gpu``, ``targets``, ``textures``, ``window``,
+  ``render``, ``frame_loop``, ... (every module that imports wgpu and is neither raw, cli nor bench);
+- core: ``wgpurender.course.*`` and every other module that imports no GPU API.
+
+Every import counts, also the ones inside functions: a lazy import is still a dependency.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "wgpurender"
+GPU_APIS = ("wgpu", "vulkan")
+RAW = "wgpurender.vulkan_ref"
+WGPU_PACKAGES = ("wgpurender.stages", "wgpurender.scene_render", "wgpurender.post", "wgpurender.window",
+                 "wgpurender.render", "wgpurender.frame_loop")
+OUTER = ("wgpurender.cli", "wgpurender.bench", "wgpurender.report")  # may import both paths
+CORE = ("wgpurender.course",)  # core by definition; other modules are core when they import no GPU API
+STAGE_PACKAGES = ("wgpurender.stages", "wgpurender.vulkan_ref.stages")
+STAGE_IMPORTERS = ("wgpurender.cli", "wgpurender.bench", "wgpurender.render", "wgpurender.vulkan_ref.render",
+                   "wgpurender.window", "wgpurender.concepts")  # registry, CLI/runners, bench (+ the mapping table)
+RENDERERS = ("wgpurender.scene_render", "wgpurender.vulkan_ref.scene", "wgpurender.render",
+             "wgpurender.vulkan_ref.render")
+MAX_STAGE_LINES = 150
+# Breaks that other branches of issue 11 remove, each named with its owner. The test fails when one
+# is gone (delete its line then), so this list can only shrink.
+PENDING = {
+    # plan (issue 11.3): the effect specs move to the API-free wgpurender/course/effects.py
+    "wgpurender.plan (core) imports wgpurender.post (wgpu path)",
+    "wgpurender.scene.model (core) imports wgpurender.post (wgpu path)",
+    "wgpurender.scene.validate (core) imports wgpurender.post (wgpu path)",
+    "wgpurender.vulkan_ref.scene.post (raw path) imports wgpurender.post (wgpu path)",
+}
+
+
+def within(module: str, prefixes) -> bool:
+    prefixes = (prefixes,) if isinstance(prefixes, str) else prefixes
+    return any(module == p or module.startswith(p + ".") for p in prefixes)
+
+
+def module_name(path: Path, root: Path) -> tuple[str, bool]:
+    parts = list(path.relative_to(root.parent).with_suffix("").parts)
+    is_package = parts[-1] == "__init__"
+    return ".".join(parts[:-1] if is_package else parts), is_package
+
+
+def imports_of(tree: ast.AST, module: str, is_package: bool, known: set[str]) -> set[str]:
+    """Everything a module imports: external top-level names and wgpurender modules (``from . import x``
+    counts as the submodule x when it is one)."""
+    found = set()
+    base = module.split(".") if is_package else module.split(".")[:-1]
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                anchor = base[: len(base) - (node.level - 1)]
+                prefix = ".".join(anchor + ([node.module] if node.module else []))
+            else:
+                prefix = node.module
+            for alias in node.names:
+                candidate = f"{prefix}.{alias.name}"
+                found.add(candidate if candidate in known else prefix)
+    return found
+
+
+def resolve(name: str, known: set[str]) -> str:
+    """The wgpurender module an imported name lives in (``wgpurender.course.cubes.CubeSpec`` -> the module)."""
+    while name not in known and "." in name:
+        name = name.rsplit(".", 1)[0]
+    return name
+
+
+def import_graph(root: Path = PACKAGE) -> tuple[dict[str, set[str]], dict[str, set[str]], dict[str, Path]]:
+    """(internal edges, external top-level imports, paths) for every module under ``root``."""
+    files = {}
+    for path in sorted(root.rglob("*.py")):
+        name, is_package = module_name(path, root)
+        files[name] = (path, is_package)
+    known = set(files)
+    internal, external = {}, {}
+    for name, (path, is_package) in files.items():
+        names = imports_of(ast.parse(path.read_text(encoding="utf-8")), name, is_package, known)
+        internal[name] = {m for m in (resolve(n, known) for n in names if n.startswith("wgpurender")) if m != name}
+        external[name] = {n.split(".")[0] for n in names if not n.startswith("wgpurender")}
+    return internal, external, {name: path for name, (path, _) in files.items()}
+
+
+def uses_gpu(name: str, external: dict[str, set[str]]) -> bool:
+    return bool(external[name] & set(GPU_APIS))
+
+
+def layer(name: str, external: dict[str, set[str]]) -> str:
+    if within(name, OUTER) or name == "wgpurender" or name == "wgpurender.__main__":
+        return "outer"
+    if within(name, RAW):
+        return "raw"
+    if within(name, CORE):
+        return "core"
+    if within(name, WGPU_PACKAGES) or uses_gpu(name, external):
+        return "wgpu"
+    return "core"
+
+
+def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
+    """Strongly connected components with more than one module (Tarjan), each sorted."""
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in edges.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(edges):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def is_stage_module(name: str) -> bool:
+    return any(name.startswith(p + ".") for p in STAGE_PACKAGES) and name.rsplit(".", 1)[1] != "base"
+
+
+def violations(root: Path = PACKAGE) -> list[str]:
+    """Every break of the layering rule, one line each (empty when the rule holds)."""
+    internal, external, paths = import_graph(root)
+    out = []
+    for name, targets in sorted(internal.items()):
+        mine = layer(name, external)
+        for target in sorted(targets):
+            theirs = layer(target, external)
+            if mine == "raw" and theirs == "wgpu":
+                out.append(f"{name} (raw path) imports {target} (wgpu path)")
+            if mine == "wgpu" and theirs == "raw":
+                out.append(f"{name} (wgpu path) imports {target} (raw path)")
+            if mine in ("core", "raw", "wgpu") and theirs == "outer":
+                out.append(f"{name} imports {target}: only cli/ and bench/ may import cli/ or bench/")
+            if mine == "core" and (theirs in ("raw", "wgpu") or within(target, STAGE_PACKAGES + RENDERERS)):
+                out.append(f"{name} (core) imports {target} ({theirs} path)")
+            if is_stage_module(target) and not (within(name, STAGE_IMPORTERS) or within(name, STAGE_PACKAGES)
+                                                and not is_stage_module(name)):
+                out.append(f"{name} imports the stage {target}: only the registry, the CLI/runners and the bench may")
+            if is_stage_module(name) and is_stage_module(target):
+                out.append(f"{name} imports the stage {target}: stages are leaves")
+        if mine == "core" and uses_gpu(name, external):
+            out.append(f"{name} (core) imports a GPU API")
+    for component in cycles(internal):
+        out.append("import cycle: " + " <-> ".join(component))
+    for name, path in sorted(paths.items()):
+        if is_stage_module(name):
+            lines = len(path.read_text(encoding="utf-8").splitlines())
+            if lines > MAX_STAGE_LINES:
+                out.append(f"{name} has {lines} lines: a stage module reads as its course step in <= {MAX_STAGE_LINES}")
+    return out
+
+
+def test_the_layering_rule_holds():
+    found = violations()
+    assert [v for v in found if v not in PENDING] == []
+    assert sorted(PENDING - set(found)) == [], "fixed: remove these from PENDING"
+
+
+def test_the_course_core_is_api_free():
+    """Direct check of the core package, whatever the classification above says."""
+    _, external, _ = import_graph()
+    course = {n: external[n] & set(GPU_APIS) for n in external if within(n, "wgpurender.course")}
+    assert course and not any(course.values()), course
+
+
+# -- the rule can fail: each case is a copy of the package with one injected violation --------------------------
+
+INJECTED = [
+    ("vulkan_ref/stages/cube3d.py", "from ...stages import cube3d\n", "(raw path) imports wgpurender.stages.cube3d"),
+    ("stages/cube3d.py", "from ..vulkan_ref import images\n", "(wgpu path) imports wgpurender.vulkan_ref.images"),
+    ("course/cubes.py", "import wgpu\n", "(core) imports a GPU API"),
+    ("course/cubes.py", "from ..stages import triangle\n", "(core) imports wgpurender.stages.triangle"),
+    ("course/cubes.py", "from ..cli import _args\n", "only cli/ and bench/ may import cli/ or bench/"),
+    ("transforms.py", "from .course import cubes\n", "import cycle"),
+    ("stages/base.py", "from . import all_stages\n", "import cycle: wgpurender.stages <-> wgpurender.stages.base"),
+    ("stages/msaa.py", "from .triangle import Triangle\n", "stages are leaves"),
+    ("scene_render/scene_pass.py", "from ..stages.cube3d import Cube3D\n", "only the registry"),
+    ("stages/triangle.py", "\n" * 200, "lines: a stage module"),
+]
+
+
+@pytest.mark.parametrize("relative, line, message", INJECTED, ids=[f"{r}:{m[:24]}" for r, _, m in INJECTED])
+def test_an_injected_violation_is_found(tmp_path, relative, line, message):
+    import shutil
+
+    copy = tmp_path / "wgpurender"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    target = copy / relative
+    target.write_text(target.read_text(encoding="utf-8") + line, encoding="utf-8")
+    found = violations(copy)
+    assert any(message in v for v in found), found
+
+
+# -- course order ----------------------------------------------------------------------------------------------
+
+
+def _step_key(number: str) -> tuple[int, str]:
+    """'3b' -> (3, 'b'): the course numbers its steps, chapter then letter."""
+    digits = number.rstrip("abcdefghijklmnopqrstuvwxyz")
+    return int(digits), number[len(digits):]
+
+
+def test_both_registries_and_the_cli_list_stages_in_course_order(capsys):
+    """Each registry lists its stages by the course's step numbers (course/steps.py numbers them; the
+    order is checked from the numbers, not from the table's row order), the course's own sequence of the
+    wgpu steps is the list below, and `wgpurender stages` prints the stages in that order."""
+    from wgpurender.cli import main
+    from wgpurender.course.steps import course_step
+    from wgpurender.stages import all_stages
+    from wgpurender.vulkan_ref.stages import all_ref_stages
+
+    for registry in (all_stages(), all_ref_stages()):
+        names = list(registry)
+        assert all(course_step(n) for n in names), [n for n in names if not course_step(n)]
+        assert names == sorted(names, key=lambda n: _step_key(course_step(n).number))
+    course = ["clear", "clear-pass", "triangle", "triangle-buffers", "offscreen", "msaa", "msaa-post", "3d", "textured"]
+    assert list(all_stages()) == [n for n in course if n in all_stages()]
+    assert main(["stages"]) == 0
+    printed = [line.split()[0] for line in capsys.readouterr().out.splitlines() if not line.startswith(" ")]
+    assert printed == list(all_stages())

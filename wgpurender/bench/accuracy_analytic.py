@@ -1,0 +1,217 @@
+"""``bench accuracy --truth analytic``: three knobs against ground truths that no renderer made.
+
+- **Anti-aliasing**, the SMAA paper's protocol (Jimenez et al. 2012: error against a reference, and cost in
+  ms): none, FXAA, MSAA 4x, SSAA 2x and 4x (and MSAA 4x + FXAA) on flat-coloured triangles of known
+  geometry (slivers near horizontal and vertical, a large triangle, sub-pixel triangles), against their
+  exact per-pixel coverage (accuracy_truth.polygon_coverage).
+- **Texture filtering**: nearest, linear, trilinear, anisotropic 4x and 16x on a ground plane seen at a
+  grazing angle, against the float64 integral of the bilinearly reconstructed texture over each pixel's
+  footprint (accuracy_truth.footprint_average).
+- **Depth**: depth24plus, depth32float and reverse-Z on the depth-stress scene (accuracy_depth.py), whose
+  exact image is known (the near quad everywhere).
+
+Each setting goes through the real scene renderer (accuracy_knobs.make_renderer) and is timed like the main
+sweep (GPU timestamps and wall time per frame). Errors: FLIP and PSNR of the 8-bit sRGB image against the
+truth, and the mean absolute error in linear light.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..compare import compare_images
+from ..gpu import GPUContext
+from ..procedural import MeshArrays, write_obj
+from . import accuracy_truth as truth
+from .accuracy_depth import analytic_image, write_depth_scene
+from .accuracy_downsample import linear_from_srgb8, srgb8_from_linear
+from .accuracy_knobs import DEPTH_LEVELS, FILTER_LEVELS, Settings
+from .accuracy_run import Measurement, Timed
+
+FOV = 45.0
+BACKGROUND = (0.02, 0.025, 0.04)
+# Triangles in units of the image size (x right, y down), flat colours (linear), none overlapping.
+TRIANGLES = [
+    (((0.04, 0.08), (0.96, 0.15), (0.04, 0.12)), (0.9, 0.9, 0.85)),  # a long sliver, nearly horizontal
+    (((0.08, 0.25), (0.12, 0.92), (0.16, 0.25)), (0.95, 0.3, 0.1)),  # a tall sliver, nearly vertical
+    (((0.25, 0.3), (0.62, 0.9), (0.7, 0.35)), (0.1, 0.7, 0.25)),  # a large triangle with oblique edges
+    (((0.75, 0.3), (0.95, 0.28), (0.8, 0.85)), (0.2, 0.35, 0.95)),  # another, steep edges
+    (((0.3, 0.2), (0.5, 0.24), (0.5, 0.22)), (0.95, 0.85, 0.2)),  # a thin wedge
+]
+SUBPIXEL = [((0.20 + 0.05 * i, 0.95), (0.212 + 0.05 * i, 0.958), (0.203 + 0.05 * i, 0.962)) for i in range(6)]
+AA_SETTINGS = {  # label -> (msaa, ss, fxaa)
+    "none": (1, 1, False), "fxaa": (1, 1, True), "msaa4": (4, 1, False), "ssaa2": (1, 2, False),
+    "ssaa4": (1, 4, False), "msaa4+fxaa": (4, 1, True),
+}
+GROUND = {"eye": (0.0, 2.0, 0.0), "target": (0.0, 0.0, -2.5), "uv_per_unit": 0.75, "tex": 64}
+
+
+@dataclass
+class TruthRow:
+    section: str
+    setting: str
+    m: Measurement
+    flip: float
+    psnr: float
+    linear_mae: float
+    note: str = ""
+
+
+def _view_distance() -> float:
+    return 1.0 / np.tan(np.radians(FOV) / 2.0)
+
+
+def _to_world(points: np.ndarray, size: tuple[int, int]) -> np.ndarray:
+    """Image-fraction points -> the z = 0 plane seen exactly filling a FOV-degree view from (0, 0, d)."""
+    w, h = size
+    return np.stack([(points[:, 0] * 2 - 1) * w / h, 1 - points[:, 1] * 2, np.zeros(len(points))], axis=-1)
+
+
+def _triangle_obj(path: Path, world: np.ndarray) -> Path:
+    a, b, c = world
+    if np.cross(b - a, c - a)[2] < 0:  # counter-clockwise seen from +Z, the camera's side
+        world = world[[0, 2, 1]]
+    mesh = MeshArrays(world, np.tile([0.0, 0.0, 1.0], (3, 1)), np.zeros((3, 2)), np.array([[0, 1, 2]]))
+    return write_obj(path, mesh)
+
+
+def write_triangles_scene(folder: Path, size: tuple[int, int], fxaa: bool) -> tuple[Path, np.ndarray]:
+    """The AA scene file, and its exact linear image at ``size``."""
+    folder.mkdir(parents=True, exist_ok=True)
+    models, coverages, colours = [], [], []
+    shapes = TRIANGLES + [(s, (0.95, 0.95, 0.95)) for s in SUBPIXEL]
+    for i, (points, colour) in enumerate(shapes):
+        world = np.round(_to_world(np.array(points), size), 6)  # what the OBJ holds (6 decimals)
+        obj = _triangle_obj(folder / f"tri{i}.obj", world)
+        w, h = size
+        px = np.stack([(world[:, 0] * h / w + 1) / 2 * w, (1 - world[:, 1]) / 2 * h], axis=-1)
+        coverages.append(truth.polygon_coverage(px, size))
+        colours.append(colour)
+        material = f"{{ albedo_color = {list(colour)}, unlit = true }}"
+        models.append(f'[[models]]\npath = "{obj.name}"\nmaterial = {material}\n')
+    post = '\n[[post]]\neffect = "fxaa"\n' if fxaa else ""
+    text = (f'description = "bench accuracy --truth analytic: flat triangles of known coverage"\n\n[camera]\n'
+            f"eye = [0.0, 0.0, {float(_view_distance())!r}]\ntarget = [0.0, 0.0, 0.0]\nfov_y = {FOV}\n\n"
+            + "\n".join(models)
+            + f"\n[render]\nsize = [{size[0]}, {size[1]}]\nmsaa = 1\nhdr = {str(fxaa).lower()}\n"
+            f"clear_color = [{BACKGROUND[0]}, {BACKGROUND[1]}, {BACKGROUND[2]}, 1.0]\n"
+            f'output_format = "rgba8unorm-srgb"\n' + post)
+    path = folder / ("triangles_fxaa.toml" if fxaa else "triangles.toml")
+    path.write_text(text)
+    return path, truth.composite(coverages, colours, BACKGROUND)
+
+
+def ground_texture(n: int) -> np.ndarray:
+    """(n, n, 4) uint8 sRGB: a 2-texel checker of two colours with a thin diagonal stripe, full of detail."""
+    ys, xs = np.mgrid[0:n, 0:n]
+    checker = ((xs // 2 + ys // 2) % 2).astype(bool)
+    rgb = np.where(checker[..., None], [230, 140, 40], [30, 60, 160])
+    rgb[(xs - ys) % 16 == 0] = [250, 250, 250]
+    return np.concatenate([rgb, np.full((n, n, 1), 255)], axis=-1).astype(np.uint8)
+
+
+def write_ground_scene(folder: Path, size: tuple[int, int], n_sub: int = 16) -> tuple[Path, np.ndarray]:
+    """The filtering scene (an unlit textured ground plane at a grazing angle) and its exact linear image."""
+    from ..imageio import save_png
+
+    folder.mkdir(parents=True, exist_ok=True)
+    texels = ground_texture(GROUND["tex"])
+    save_png(folder / "ground.png", texels)
+    k, extent = GROUND["uv_per_unit"], 40.0
+    corners = np.array([[-extent, 0, -extent], [extent, 0, -extent], [extent, 0, extent], [-extent, 0, extent]])
+    mesh = MeshArrays(corners, np.tile([0.0, 1.0, 0.0], (4, 1)), corners[:, [0, 2]] * k,
+                      np.array([[0, 2, 1], [0, 3, 2]]))  # counter-clockwise seen from above
+    write_obj(folder / "ground.obj", mesh)
+    eye, target = GROUND["eye"], GROUND["target"]
+    text = (f'description = "bench accuracy --truth analytic: a textured ground plane at a grazing angle"\n\n'
+            f"[camera]\neye = {list(eye)}\ntarget = {list(target)}\nfov_y = {FOV}\nnear = 0.05\nfar = 200.0\n\n"
+            f'[[models]]\npath = "ground.obj"\nmaterial = {{ albedo_map = "ground.png", unlit = true, '
+            f'sampler = {{ filter = "linear", mipmaps = true, address_mode = "repeat" }} }}\n\n'
+            f"[render]\nsize = [{size[0]}, {size[1]}]\nmsaa = 1\nhdr = false\n"
+            f'output_format = "rgba8unorm-srgb"\n')
+    path = folder / "ground.toml"
+    path.write_text(text)
+    texture_linear = linear_from_srgb8(texels)[..., :3]
+    return path, truth.footprint_average(texture_linear, eye, target, FOV, size, k, n_sub)
+
+
+def _score(section: str, setting: str, t: Timed, truth_linear: np.ndarray, note: str = "") -> TruthRow:
+    m = t.measurement()
+    truth8 = srgb8_from_linear(truth_linear)
+    c = compare_images(truth8, m.pixels[..., :3])
+    mae = float(np.abs(linear_from_srgb8(m.pixels)[..., :3] - truth_linear).mean())
+    return TruthRow(section, setting, m, c.flip_mean, c.psnr, mae, note)
+
+
+def _timed(ctx: GPUContext, scene_path: Path, settings: Settings, size, knobs, frames: int, warmup: int) -> Timed:
+    from ..scene import load_scene
+
+    t = Timed(ctx, load_scene(scene_path), settings, size, knobs)
+    t.run(frames, warmup=warmup)
+    t.read()
+    return t
+
+
+def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: int, warmup: int,
+                 progress=print) -> list[TruthRow]:
+    """Render, time and score the three sections; returns the rows in report order."""
+    rows: list[TruthRow] = []
+    work = out_dir / "analytic_scenes"
+    plain, aa_truth = write_triangles_scene(work, size, fxaa=False)
+    with_fxaa, _ = write_triangles_scene(work, size, fxaa=True)
+    for label, (msaa, ss, fxaa) in AA_SETTINGS.items():
+        settings = Settings(msaa=msaa, ss=ss)
+        t = _timed(ctx, with_fxaa if fxaa else plain, settings, size, ("msaa", "ss"), frames, warmup)
+        rows.append(_score("anti-aliasing", label, t, aa_truth))
+        progress(f"anti-aliasing {label}: FLIP {rows[-1].flip:.4f}")
+    ground, ground_truth = write_ground_scene(work, size)
+    for level in FILTER_LEVELS:
+        t = _timed(ctx, ground, Settings(msaa=1, filter=level), size, ("filter",), frames, warmup)
+        rows.append(_score("texture filtering", level, t, ground_truth))
+        progress(f"texture filtering {level}: FLIP {rows[-1].flip:.4f}")
+    depth_scene = write_depth_scene(work / "depth_stress", size)
+    exact = linear_from_srgb8(analytic_image(size))[..., :3]
+    for level in DEPTH_LEVELS:
+        t = _timed(ctx, depth_scene, Settings(msaa=1, depth=level), size, ("depth",), frames, warmup)
+        rows.append(_score("depth", level, t, exact))
+        progress(f"depth {level}: FLIP {rows[-1].flip:.4f}")
+    return rows
+
+
+CSV_COLUMNS = ("section", "setting", "render_size", "flip_mean", "psnr_db", "linear_mae", "gpu_ms_median",
+               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames")
+
+
+def _num(v: float | None, digits: int) -> str:
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return ""
+    return "inf" if math.isinf(v) else f"{v:.{digits}f}"
+
+
+def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str]) -> dict[str, Path]:
+    """accuracy_analytic.csv and accuracy_analytic.md in ``out_dir``."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    csv_path, md_path = out_dir / "accuracy_analytic.csv", out_dir / "accuracy_analytic.md"
+    with csv_path.open("w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(CSV_COLUMNS)
+        for r in rows:
+            g = r.m.gpu
+            writer.writerow([r.section, r.setting, f"{r.m.render_size[0]}x{r.m.render_size[1]}", _num(r.flip, 5),
+                             _num(r.psnr, 2), _num(r.linear_mae, 5), _num(g.median if g else None, 3),
+                             _num(g.p10 if g else None, 3), _num(g.p90 if g else None, 3),
+                             _num(r.m.wall.median, 3), r.m.wall.n])
+    lines = [*header, "", "| knob | setting | render | FLIP | PSNR dB | mean abs. error (linear) | GPU ms | wall ms |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        g = r.m.gpu
+        gpu = f"{g.median:.2f} ({g.p10:.2f}..{g.p90:.2f})" if g else "-"
+        lines.append(f"| {r.section} | {r.setting} | {r.m.render_size[0]}x{r.m.render_size[1]} | {r.flip:.4f} | "
+                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {r.m.wall.median:.2f} |")
+    md_path.write_text("\n".join(lines) + "\n")
+    return {"csv": csv_path, "markdown": md_path}
