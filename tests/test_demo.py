@@ -193,3 +193,35 @@ def test_bad_test_input_is_one_line(display):
     result = _demo(display, "triangle", "--frames", "1", "--test-input", "x:key R")
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and "frame number" in result.stderr
+
+
+def test_editing_the_scene_file_rebuilds_the_scene(display, tmp_path):
+    """unlit.toml (flat colour, no lighting, no MSAA, sRGB output) gets a new albedo: the cube's pixels take it."""
+    shutil.copytree(REPO / "assets" / "models", tmp_path / "models")
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    scene = scenes / "unlit.toml"
+    text = (REPO / "assets" / "scenes" / "unlit.toml").read_text()
+    assert text.count("albedo_color = [0.8, 0.3, 0.1]") == 1
+    scene.write_text(text)
+    before, after = tmp_path / "before.png", tmp_path / "after.png"
+    proc = subprocess.Popen([sys.executable, "-m", "wgpurender", "demo", str(scene), "--frames", "3", "--size", SIZE,
+                             "--test-input", f"0:shot {before}; 1:wait-reload; 1:shot {after}"],
+                            env=dict(os.environ, DISPLAY=display), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        _wait_for(before, proc)
+        _save(scene, text.replace("albedo_color = [0.8, 0.3, 0.1]", "albedo_color = [0.0, 1.0, 0.0]"))
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 0, err
+    assert "reloaded after a change to unlit.toml" in out
+    a, b = load_png(before).astype(int), load_png(after).astype(int)
+    # sRGB bytes of the linear albedo, unlit: round(255 * srgb(c)) for c = 0.8, 0.3, 0.1 and then 0, 1, 0.
+    srgb = [round(255 * (1.055 * c ** (1 / 2.4) - 0.055)) if c > 0.0031308 else round(255 * 12.92 * c)
+            for c in (0.8, 0.3, 0.1)]
+    cube = (np.abs(a[..., :3] - srgb).max(axis=2) <= 1)
+    assert cube.mean() > 0.05
+    assert (np.abs(b[cube][:, :3] - [0, 255, 0]).max(axis=1) <= 1).mean() > 0.95  # the cube is green now

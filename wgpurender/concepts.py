@@ -93,7 +93,8 @@ CONCEPTS: list[Concept] = [
         ("vkCreateXlibSurfaceKHR / glfwCreateWindowSurface", "vkGetPhysicalDeviceSurfaceSupportKHR",
          "vkGetPhysicalDeviceSurfaceFormatsKHR"),
         (),
-        ("wgpu.gpu.get_canvas_context(present_info)", "GPUCanvasContext.get_preferred_format"),
+        ("wgpu.utils.get_glfw_present_info(window)", "wgpu.gpu.get_canvas_context(present_info)",
+         "GPUCanvasContext.get_preferred_format"),
         _wgpu("window:present_info", "window:surface_format", "window:DemoWindow.__init__"),
         "One canvas context per window, made from the native window handles; it is surface and swapchain in one "
         "object. wgpu checks that the queue can present, so there is no present-support query.",
@@ -104,7 +105,7 @@ CONCEPTS: list[Concept] = [
         ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)",
          "vkGetPhysicalDeviceSurfacePresentModesKHR"),
         (),
-        ("GPUCanvasContext.present()", "present modes through the canvas context's configuration"),
+        ("GPUCanvasContext.present()", "get_glfw_present_info(window, vsync=True / False)"),
         _wgpu("window:present_info", "window:PRESENT_MODES", "window:DemoWindow.frame"),
         "Present modes are chosen through the canvas context: wgpu-py 0.32 only exposes vsync on/off, so fifo "
         "is vsync on and immediate is vsync off (wgpu falls back to mailbox, then fifo); mailbox cannot be asked "
@@ -139,7 +140,7 @@ CONCEPTS: list[Concept] = [
          "vkQueueSubmit"),
         _raw("command_buffers:create_command_pool", "command_buffers:one_shot", "command_buffers:submit_and_wait"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
-        _wgpu("render:render_stage", "window:DemoWindow._run_frame"),
+        _wgpu("render:render_stage", "frame_loop:run_frame"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
         "secondary command buffers (render bundles come closest). The states initial -> recording -> "
         "executable -> pending are the encoder's life, unnamed.",
