@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -36,7 +37,9 @@ def diff_folder(test_id: str) -> Path:
 
 def write_diff(folder: Path, expected: np.ndarray, actual: np.ndarray, metrics: dict) -> Path:
     """expected.png, actual.png, heatmap.png (where they differ) and metrics.json into ``folder``."""
-    folder.mkdir(parents=True, exist_ok=True)
+    if folder.is_dir():
+        shutil.rmtree(folder)  # only this comparison's files, never a stale mix
+    folder.mkdir(parents=True)
     exp8, act8 = _rgba8(expected), _rgba8(actual)
     save_png(folder / "expected.png", exp8)
     save_png(folder / "actual.png", act8)
@@ -83,13 +86,26 @@ def check(name: str, expected: np.ndarray, actual: np.ndarray, cls: str) -> tupl
 def assert_within_tolerance(request, name: str, expected: np.ndarray, actual: np.ndarray, cls: str) -> Metrics:
     """``actual`` (a fresh render) against ``expected`` (a committed reference), with the table's bounds
     for reference ``name`` on driver class ``cls``; on failure a diff folder and the metrics."""
-    metrics, tol, exceeded = check(name, expected, actual, cls)
+    return _assert_within(request, expected, actual, tolerance(name, cls))
+
+
+def assert_close(request, expected: np.ndarray, actual: np.ndarray, *, max_abs: int, changed: float = 1.0,
+                 flip_mean: float = 1.0, what: str = "renders") -> Metrics:
+    """Two renders of this run that may differ by an explained amount (bounds stated in the test)."""
+    tol = Tolerance(what, "same machine", max_abs, changed, flip_mean, "see the test's docstring",
+                    "this test's bounds", False)
+    return _assert_within(request, expected, actual, tol)
+
+
+def _assert_within(request, expected: np.ndarray, actual: np.ndarray, tol: Tolerance) -> Metrics:
+    metrics = measure(_rgba8(expected), _rgba8(actual))
+    exceeded = tol.exceeded(metrics)
     if exceeded:
-        data = {"check": "tolerance", "reference": name, "driver_class": cls, **metrics.as_dict(),
+        data = {"check": "tolerance", "reference": tol.name, "driver_class": tol.driver_class, **metrics.as_dict(),
                 "tolerance": {"max_abs": tol.max_abs, "changed": tol.changed, "flip_mean": tol.flip_mean,
                               "provisional": tol.provisional, "bounded_by": tol.bounded_by},
                 "exceeded": exceeded}
         folder = write_diff(diff_folder(_test_id(request)), expected, actual, data)
-        pytest.fail(f"{name}: {'; '.join(exceeded)}\n  measured: {metrics.summary()}\n  {tol.describe()}\n"
+        pytest.fail(f"{tol.name}: {'; '.join(exceeded)}\n  measured: {metrics.summary()}\n  {tol.describe()}\n"
                     f"  diff folder: {folder}", pytrace=False)
     return metrics

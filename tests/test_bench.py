@@ -53,6 +53,18 @@ def test_every_common_stage_measured_on_both_paths(quick_run):
         assert (stage, "wgpu") in measured and (stage, "raw") in measured, stage
 
 
+def test_final_scene_measured_on_both_paths(quick_run):
+    """The raw path draws final_subpass.toml (its subpass takes the per-pixel chain), so the report has the pair;
+    final.toml (FXAA) is wgpu-only, with a note that says why."""
+    run, _, _ = quick_run
+    measured = {(r.case, r.path) for r in run.results if r.family == "scene" and r.metric == "frame_ms"}
+    assert {("final_subpass", "wgpu"), ("final_subpass", "raw"), ("final", "wgpu")} <= measured
+    assert ("final", "raw") not in measured
+    assert any("final.toml has no raw peer" in n and "fxaa" in n for n in run.notes), run.notes
+    report = (quick_run[2] / "report.md").read_text()
+    assert "final scene (final_subpass.toml) wgpu / raw frame time" in report
+
+
 def test_families_produce_their_rows(quick_run):
     run, _, _ = quick_run
     families = {r.family for r in run.results}

@@ -15,6 +15,8 @@ import pytest
 from PIL import Image
 from reliab_gen import run_cli
 
+from wgpurender.compare import SCALE_BAR
+
 
 @pytest.fixture
 def images(tmp_path):
@@ -25,6 +27,9 @@ def images(tmp_path):
     Image.fromarray(b).save(tmp_path / "b.png")
     return tmp_path / "a.png", tmp_path / "b.png"
 
+
+# the 64x64 inputs' heatmap with its colour scale below it (at least 200 px wide: compare.heatmap_with_scale)
+HEATMAP_SIZE = (200, 64 + sum(SCALE_BAR))
 
 def _temps(folder):
     return sorted(p.name for p in folder.iterdir() if p.name.endswith(".tmp"))
@@ -74,7 +79,7 @@ def test_sigkill_leaves_one_named_temp_file_that_the_next_write_removes(tmp_path
     assert not out.exists()
     code, _, err = run_cli("compare", *images, "--heatmap", out)
     assert code in (0, 1), err
-    assert _temps(out.parent) == [] and Image.open(out).size == (64, 64)
+    assert _temps(out.parent) == [] and Image.open(out).size == HEATMAP_SIZE
 
 
 def _refused(images, target, needle):
@@ -99,7 +104,7 @@ def test_a_symlink_is_written_through_when_asked(tmp_path, images, monkeypatch):
     monkeypatch.setenv("WGPURENDER_FOLLOW_SYMLINKS", "1")
     code, _, err = run_cli("compare", *images, "--heatmap", link)
     assert code in (0, 1), err
-    assert link.is_symlink() and Image.open(real).size == (64, 64)
+    assert link.is_symlink() and Image.open(real).size == HEATMAP_SIZE
 
 
 def test_a_fifo_is_not_replaced_nor_opened(tmp_path, images):

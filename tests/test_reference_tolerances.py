@@ -74,14 +74,18 @@ def fresh_renders() -> dict[str, np.ndarray]:
 
 @pytest.mark.parametrize("name", PERTURBED)
 @pytest.mark.parametrize("bug", sorted(BUGS))
-def test_lavapipe_bounds_reject_a_real_change(fresh_renders, name, bug):
-    """Every bug on every reference exceeds the lavapipe row (the fresh render alone is within it)."""
+def test_lavapipe_bounds_reject_a_real_change(fresh_renders, raw_driver_class, name, bug):
+    """Every bug on every reference exceeds the lavapipe row.
+
+    The bug is applied to this machine's fresh raw render on lavapipe (so the CPU spread is in it too),
+    and to the committed (lavapipe) image itself on a GPU, whose own render is not lavapipe's.
+    """
     expected = load_png(REFERENCE_DIR / f"{name}.png")
-    _, _, exceeded = check(name, expected, fresh_renders[name], "lavapipe")
-    if exceeded:
-        pytest.skip(f"this machine is not lavapipe-like for {name}: {exceeded}")
-    broken = BUGS[bug](fresh_renders[name])
-    assert (broken != fresh_renders[name]).any(), "the bug changed nothing: not a test"
+    base = fresh_renders[name] if raw_driver_class == "lavapipe" else expected.copy()
+    _, _, exceeded = check(name, expected, base, "lavapipe")
+    assert not exceeded, f"the unbroken image already fails: {exceeded}"
+    broken = BUGS[bug](base)
+    assert (broken != base).any(), "the bug changed nothing: not a test"
     metrics, tol, exceeded = check(name, expected, broken, "lavapipe")
     assert exceeded, f"{bug} on {name} passes: {metrics.summary()} within {tol.describe()}"
 
@@ -162,3 +166,121 @@ def test_regenerate_references_uses_the_raw_path_and_reports_changes(tmp_path):
     assert 200 <= changed <= 200 + 0.03 * 256 * 192 and max_diff > 200, line  # the spoiled block, + CPU spread
     assert "scene_final_subpass:" in run.stdout and "msaa-post:" in run.stdout
     assert np.array_equal(load_png(spoiled), _fresh("triangle"))
+
+
+# -- diff folders ---------------------------------------------------------------------------------------------------
+
+class _FakeNode:
+    def __init__(self, nodeid: str) -> None:
+        self.nodeid = nodeid
+
+
+class _FakeRequest:
+    def __init__(self, nodeid: str) -> None:
+        self.node = _FakeNode(nodeid)
+
+
+def test_a_failed_tolerance_check_leaves_a_diff_folder(fresh_renders, monkeypatch, tmp_path):
+    """expected.png, actual.png, heatmap.png and metrics.json, and the metrics and folder in the message."""
+    import json
+
+    import imagecheck
+
+    monkeypatch.setattr(imagecheck, "DIFF_ROOT", tmp_path / "test-diffs")  # not out/: this failure is on purpose
+    request = _FakeRequest("tests/test_reference_tolerances.py::probe[triangle-shifted]")
+    folder = imagecheck.diff_folder(request.node.nodeid)
+    expected, broken = load_png(REFERENCE_DIR / "triangle.png"), shift_one_pixel(fresh_renders["triangle"])
+    with pytest.raises(pytest.fail.Exception) as failure:
+        imagecheck.assert_within_tolerance(request, "triangle", expected, broken, "lavapipe")
+    message = str(failure.value)
+    assert "max diff" in message and "FLIP mean" in message and str(folder) in message
+    assert sorted(p.name for p in folder.iterdir()) == ["actual.png", "expected.png", "heatmap.png", "metrics.json"]
+    assert np.array_equal(load_png(folder / "actual.png"), broken)
+    metrics = json.loads((folder / "metrics.json").read_text())
+    assert metrics["reference"] == "triangle" and metrics["max_abs"] > 2 and metrics["exceeded"]
+    heat = load_png(folder / "heatmap.png")
+    assert heat[..., :3].max() == 255 and heat[..., :3].min() == 0  # bright where they differ, black elsewhere
+
+
+def test_a_failed_exact_check_leaves_a_diff_folder(monkeypatch, tmp_path):
+    """Same-run comparisons (float16 too) fail with the count of differing pixels and a diff folder."""
+    import imagecheck
+
+    monkeypatch.setattr(imagecheck, "DIFF_ROOT", tmp_path / "test-diffs")
+    request = _FakeRequest("tests/test_reference_tolerances.py::probe[exact]")
+    a = np.zeros((8, 8, 4), np.float16)
+    b = a.copy()
+    b[2, 3, 1] = np.float16(1e-3)
+    with pytest.raises(pytest.fail.Exception, match="1 pixels differ; diff folder .*probe_exact"):
+        imagecheck.assert_same_render(request, a, b)
+    assert (imagecheck.diff_folder(request.node.nodeid) / "metrics.json").is_file()
+    imagecheck.assert_same_render(request, a, a.copy())  # equal: passes
+
+
+# -- real bugs in the raw path, rendered -----------------------------------------------------------------------------
+
+def _shift_first_vertex(monkeypatch) -> str:
+    """triangle-buffers with its first vertex 1 pixel to the right (a half-pixel/viewport-style slip)."""
+    from wgpurender.vulkan_ref.stages import triangle_buffers
+
+    vertices = triangle_buffers.triangle_vertices
+
+    def moved():
+        out = vertices().copy()  # (3, 5): NDC x, y, then colour
+        out[0, 0] += 2.0 / REFERENCE_SIZE[0]  # NDC spans 2 over the width
+        return out
+
+    monkeypatch.setattr(triangle_buffers, "triangle_vertices", moved)
+    return "triangle-buffers"
+
+
+def _clear_colour_off_by_3(monkeypatch) -> str:
+    """clear-pass with its green channel 3/255 too high (a constant typo)."""
+    from wgpurender.vulkan_ref.stages import clear_pass
+
+    r, g, b, a = clear_pass.CLEAR_COLOR
+    monkeypatch.setattr(clear_pass, "CLEAR_COLOR", (r, g + 3 / 255, b, a))
+    return "clear-pass"
+
+
+def _drop_a_cube_triangle(monkeypatch) -> str:
+    """3d with one index triangle of the cube mesh dropped (a lost triangle in an index buffer).
+
+    Triangle 2 is on a face the camera sees (428 of 49,152 pixels change on lavapipe; triangles 0 and 1
+    face away and are culled): the smallest visible loss.
+    """
+    from wgpurender.course import cubes
+
+    mesh = cubes.cube_mesh
+
+    def without_triangle_2():
+        vertices, indices = mesh()
+        return vertices, np.delete(indices, [6, 7, 8])
+
+    monkeypatch.setattr(cubes, "cube_mesh", without_triangle_2)
+    return "3d"
+
+
+RENDER_BUGS = {"vertex moved 1 px": (_shift_first_vertex, {"lavapipe"}),
+               "clear colour +3/255": (_clear_colour_off_by_3, {"lavapipe", "gpu"}),
+               "missing cube triangle": (_drop_a_cube_triangle, {"lavapipe"})}
+
+
+@pytest.mark.parametrize("bug", sorted(RENDER_BUGS))
+def test_a_real_render_bug_is_caught(monkeypatch, ctx, raw_driver_class, bug):
+    """A bug put into the raw path itself, rendered: the committed reference check rejects it with this
+    driver class's row. Where that row is (still) too loose for it (a GPU's provisional rows), the
+    same-run tier catches it instead: the wgpu path's render differs from the bugged raw render."""
+    from wgpurender.render import render_stage
+
+    make_bug, caught_by = RENDER_BUGS[bug]
+    name = make_bug(monkeypatch)
+    broken = _fresh(name)
+    monkeypatch.undo()
+    assert (broken != _fresh(name)).any(), f"{bug} changed nothing in {name}: not a test"
+    metrics, tol, exceeded = check(name, load_png(REFERENCE_DIR / f"{name}.png"), broken, raw_driver_class)
+    if raw_driver_class in caught_by:
+        assert exceeded, f"{bug} passes the {name} reference check: {metrics.summary()} within {tol.describe()}"
+    else:
+        ours = to_uint8(render_stage(name, REFERENCE_SIZE, None, None, 0.0, ctx, frames=1).pixels)
+        assert (ours != broken).any(), f"{bug}: the wgpu render equals the bugged raw render"

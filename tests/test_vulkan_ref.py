@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from imagecheck import assert_within_tolerance
+from imagecheck import assert_same_render, assert_within_tolerance
 
 from wgpurender.errors import UserError
 from wgpurender.imageio import load_png, srgb_decode, srgb_encode, to_uint8
@@ -44,7 +44,7 @@ def test_stage_names_mirror_the_wgpu_path():
 
 
 @pytest.mark.parametrize(("stage", "fmt", "msaa"), COMPARED)
-def test_matches_wgpu_path(ctx, stage, fmt, msaa):
+def test_matches_wgpu_path(request, ctx, stage, fmt, msaa):
     """wgpu path == raw-Vulkan path, exactly (threshold 0), for every format and sample count.
 
     Exact because both run on lavapipe with the same formats, fill rules, sample
@@ -57,15 +57,13 @@ def test_matches_wgpu_path(ctx, stage, fmt, msaa):
     wgpu_pixels = render_stage(stage, SIZE, fmt, msaa, 0.0, ctx, frames=1).pixels
     ref_pixels = render_reference(stage, SIZE, fmt, msaa)
     assert ref_pixels.shape == (SIZE[1], SIZE[0], 4) and ref_pixels.dtype == wgpu_pixels.dtype
-    assert np.array_equal(ref_pixels.view(np.uint8), wgpu_pixels.view(np.uint8)), (
-        f"{np.count_nonzero((ref_pixels != wgpu_pixels).any(-1))} pixels differ"
-    )
+    assert_same_render(request, ref_pixels, wgpu_pixels, "raw and wgpu renders")
 
 
 @pytest.mark.parametrize("t", [0.0, 0.7])
 @pytest.mark.parametrize("msaa", [1, 4])
 @pytest.mark.parametrize("fmt", FORMATS)
-def test_3d_matches_wgpu_path(ctx, fmt, msaa, t):
+def test_3d_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage '3d' (depth, culling, two UBOs, dynamic offsets, push constants): exact (threshold 0).
 
     The scene is the course core's (wgpurender/course/cubes.py), as on both paths; the
@@ -81,9 +79,7 @@ def test_3d_matches_wgpu_path(ctx, fmt, msaa, t):
     size = (64, 48)
     wgpu_pixels = render_stage("3d", size, fmt, msaa, t, ctx, frames=1).pixels
     ref_pixels = render_reference("3d", size, fmt, msaa, t)
-    assert np.array_equal(ref_pixels.view(np.uint8), wgpu_pixels.view(np.uint8)), (
-        f"{np.count_nonzero((ref_pixels != wgpu_pixels).any(-1))} pixels differ"
-    )
+    assert_same_render(request, ref_pixels, wgpu_pixels, "raw and wgpu renders")
 
 
 def _barycentric(size: tuple[int, int]) -> np.ndarray:
@@ -122,7 +118,7 @@ def test_triangle_matches_analytic_raster():
     assert (pixels[..., 3][drawn] == 255).all()
 
 
-def test_clear_color_image_agrees_with_render_pass_clear(ctx, monkeypatch):
+def test_clear_color_image_agrees_with_render_pass_clear(request, ctx, monkeypatch):
     """vkCmdClearColorImage with the clear-pass colour == the wgpu clear-pass stage, exactly, in all formats.
 
     The colour's components are k/255, exact in unorm; in sRGB both paths encode
@@ -136,7 +132,7 @@ def test_clear_color_image_agrees_with_render_pass_clear(ctx, monkeypatch):
     for fmt in FORMATS:
         ref_pixels = render_reference("clear", (16, 8), fmt)
         wgpu_pixels = render_stage("clear-pass", (16, 8), fmt, None, 0.0, ctx, frames=1).pixels
-        assert np.array_equal(ref_pixels.view(np.uint8), wgpu_pixels.view(np.uint8)), fmt
+        assert_same_render(request, ref_pixels, wgpu_pixels, f"raw clear and wgpu clear-pass ({fmt})")
 
 
 @pytest.mark.parametrize("fmt", ["rgba8unorm", "rgba8unorm-srgb"])
@@ -250,7 +246,7 @@ def test_validation_messages_are_caught():
     ("rgba8unorm-srgb", 4, 0.0),
     ("rgba16float", 4, 0.7),
 ])
-def test_textured_matches_wgpu_path(ctx, fmt, msaa, t):
+def test_textured_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage 'textured' on both paths, 160x96: exact (threshold 0).
 
     Same driver, same sampler state (vulkan_ref/textures.sampler_info fills VkSamplerCreateInfo
@@ -268,9 +264,7 @@ def test_textured_matches_wgpu_path(ctx, fmt, msaa, t):
     size = (160, 96)
     wgpu_pixels = render_stage("textured", size, fmt, msaa, t, ctx, frames=1).pixels
     ref_pixels = render_reference("textured", size, fmt, msaa, t)
-    assert np.array_equal(ref_pixels.view(np.uint8), wgpu_pixels.view(np.uint8)), (
-        f"{np.count_nonzero((ref_pixels != wgpu_pixels).any(-1))} pixels differ"
-    )
+    assert_same_render(request, ref_pixels, wgpu_pixels, "raw and wgpu renders")
 
 
 def _box_level(prev: np.ndarray, srgb: bool) -> np.ndarray:

@@ -34,9 +34,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from imagecheck import assert_within_tolerance
+from imagecheck import assert_close, assert_same_render, assert_within_tolerance
 
-from wgpurender.compare import compare_images
 from wgpurender.errors import UserError
 from wgpurender.imageio import load_png, to_uint8
 from wgpurender.vulkan_ref import render_reference
@@ -101,7 +100,7 @@ def test_final_subpass_is_final_without_fxaa():
         assert getattr(final, field) == getattr(subpass, field), field
 
 
-def test_final_scene_matches_wgpu(final_pair):
+def test_final_scene_matches_wgpu(request, final_pair):
     """wgpu (pass per effect) vs raw (subpass 1, input attachment), lit final scene, tonemap -> vignette.
 
     FLIP mean <= 0.005 (the issue's threshold; measured 0.00176); tighter, as measured: no channel
@@ -111,13 +110,10 @@ def test_final_scene_matches_wgpu(final_pair):
     wgpu_pixels, raw = final_pair
     assert raw.shape == (SIZE[1], SIZE[0], 4) and raw.dtype == np.uint8
     assert (raw[..., :3].astype(int).sum(-1) > 60).mean() > 0.2  # the models are there, lit
-    result = compare_images(wgpu_pixels, raw)
-    assert result.flip_mean <= FLIP_THRESHOLD, result.summary()
-    assert result.max_abs <= 1, result.summary()
-    assert differing(wgpu_pixels, raw) <= 0.05 * SIZE[0] * SIZE[1]
+    assert_close(request, raw, wgpu_pixels, max_abs=1, changed=0.05, flip_mean=FLIP_THRESHOLD)
 
 
-def test_final_scene_exact_with_wgpus_intermediate_rounding(final_pair):
+def test_final_scene_exact_with_wgpus_intermediate_rounding(request, final_pair):
     """Rounding the chain's colour toward zero to float16 between effects, as lavapipe stores the wgpu
     path's rgba16float intermediates, makes the raw image identical to the wgpu image (threshold 0).
 
@@ -125,11 +121,11 @@ def test_final_scene_exact_with_wgpus_intermediate_rounding(final_pair):
     """
     wgpu_pixels, _ = final_pair
     raw = render_scene_reference(SCENES / "final_subpass.toml", size=SIZE, wgpu_intermediates=True)
-    assert differing(wgpu_pixels, raw) == 0
+    assert_same_render(request, raw, wgpu_pixels, "raw and wgpu renders")
 
 
 @pytest.mark.parametrize("msaa", [1, 4])
-def test_scene_subpass_is_exact(ctx, tmp_path, msaa):
+def test_scene_subpass_is_exact(request, ctx, tmp_path, msaa):
     """The scene image alone (final.toml without post, rgba16float output): bit-identical float16, 1x and 4x.
 
     Same driver, sample positions, texture filtering, mip chains and float32 shading on both paths;
@@ -142,21 +138,21 @@ def test_scene_subpass_is_exact(ctx, tmp_path, msaa):
     wgpu_pixels, raw = wgpu_render(ctx, path, SMALL), render_scene_reference(path, size=SMALL)
     assert raw.dtype == wgpu_pixels.dtype == np.float16
     assert np.isfinite(raw).all() and raw[..., :3].max() > 0.5
-    assert differing(wgpu_pixels, raw) == 0
+    assert_same_render(request, raw, wgpu_pixels, "raw and wgpu renders")
 
 
 # -- the other scenes --------------------------------------------------------------------------------------------
 
-def test_brick_without_fxaa_matches_wgpu(ctx, tmp_path):
+def test_brick_without_fxaa_matches_wgpu(request, ctx, tmp_path):
     """brick.toml with its chain restricted to tonemap (fxaa removed), 160x120: exact (threshold 0).
 
     One effect: nothing is stored between effects, so nothing differs. Measured: 0 pixels.
     """
     path = scene_file(tmp_path, "brick.toml", keep_post((SCENES / "brick.toml").read_text(), "tonemap"))
-    assert differing(wgpu_render(ctx, path, SMALL), render_scene_reference(path, size=SMALL)) == 0
+    assert_same_render(request, render_scene_reference(path, size=SMALL), wgpu_render(ctx, path, SMALL))
 
 
-def test_unlit_textured_scene_matches_wgpu(ctx, tmp_path):
+def test_unlit_textured_scene_matches_wgpu(request, ctx, tmp_path):
     """An unlit textured scene (final.toml's models, albedo map only, unlit, hdr false, no post, msaa 4):
     one subpass straight into the sRGB output, exact (threshold 0). Measured: 0 pixels differ."""
     text = without_post((SCENES / "final.toml").read_text()).replace("hdr = true", "hdr = false")
@@ -164,16 +160,16 @@ def test_unlit_textured_scene_matches_wgpu(ctx, tmp_path):
     path = scene_file(tmp_path, "unlit_textured.toml", text)
     raw = render_scene_reference(path, size=SMALL)
     assert len(np.unique(raw[..., :3].reshape(-1, 3), axis=0)) > 500  # textured, not flat
-    assert differing(wgpu_render(ctx, path, SMALL), raw) == 0
+    assert_same_render(request, raw, wgpu_render(ctx, path, SMALL))
 
 
-def test_unlit_scene_matches_wgpu(ctx):
+def test_unlit_scene_matches_wgpu(request, ctx):
     """unlit.toml (flat colour, msaa 1, no post): exact (threshold 0)."""
     path = SCENES / "unlit.toml"
-    assert differing(wgpu_render(ctx, path, SMALL), render_scene_reference(path, size=SMALL)) == 0
+    assert_same_render(request, render_scene_reference(path, size=SMALL), wgpu_render(ctx, path, SMALL))
 
 
-def test_ldr_chain_with_shader_srgb(ctx, tmp_path):
+def test_ldr_chain_with_shader_srgb(request, ctx, tmp_path):
     """hdr = false, grayscale -> sepia into rgba8unorm (the srgb step appended, encoding in the shader), 160x120.
 
     The scene image is rgba8unorm-srgb (subpassLoad decodes it like a texture read). Each effect
@@ -184,14 +180,14 @@ def test_ldr_chain_with_shader_srgb(ctx, tmp_path):
     srgb_out = without_post((SCENES / "final.toml").read_text()).replace("hdr = true", "hdr = false")
     gray = '[[post]]\neffect = "grayscale"\namount = 0.5\n'
     one = scene_file(tmp_path, "gray.toml", srgb_out + gray)  # one step: the -srgb output encodes in hardware
-    assert differing(wgpu_render(ctx, one, SMALL), render_scene_reference(one, size=SMALL)) == 0
+    assert_same_render(request, render_scene_reference(one, size=SMALL), wgpu_render(ctx, one, SMALL))
     base = srgb_out.replace('output_format = "rgba8unorm-srgb"', 'output_format = "rgba8unorm"')
     two = scene_file(tmp_path, "gray_sepia.toml", base + gray + '[[post]]\neffect = "sepia"\namount = 0.7\n')
-    result = compare_images(wgpu_render(ctx, two, SMALL), render_scene_reference(two, size=SMALL))
-    assert result.max_abs <= 1 and result.flip_mean <= 0.01, result.summary()
+    assert_close(request, render_scene_reference(two, size=SMALL), wgpu_render(ctx, two, SMALL), max_abs=1,
+                 flip_mean=0.01)
 
 
-def test_glm_vulkan_scene_matches_wgpu(ctx, tmp_path):
+def test_glm_vulkan_scene_matches_wgpu(request, ctx, tmp_path):
     """retro.toml without sharpen (glm-vulkan camera, mirrored quad, reinhard -> sepia -> vignette -> srgb
     into rgba8unorm), 160x120: bit-identical with the wgpu path's float16 rounding between effects.
 
@@ -202,9 +198,8 @@ def test_glm_vulkan_scene_matches_wgpu(ctx, tmp_path):
     text = keep_post((SCENES / "retro.toml").read_text(), "tonemap", "sepia", "vignette", "srgb")
     path = scene_file(tmp_path, "retro.toml", text)
     wgpu_pixels = wgpu_render(ctx, path, SMALL)
-    assert differing(wgpu_pixels, render_scene_reference(path, size=SMALL, wgpu_intermediates=True)) == 0
-    result = compare_images(wgpu_pixels, render_scene_reference(path, size=SMALL))
-    assert result.max_abs <= 1 and result.flip_mean <= FLIP_THRESHOLD, result.summary()
+    assert_same_render(request, render_scene_reference(path, size=SMALL, wgpu_intermediates=True), wgpu_pixels)
+    assert_close(request, render_scene_reference(path, size=SMALL), wgpu_pixels, max_abs=1, flip_mean=FLIP_THRESHOLD)
 
 
 # -- references ----------------------------------------------------------------------------------------------------

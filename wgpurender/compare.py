@@ -80,6 +80,39 @@ def heatmap(reference: np.ndarray, test: np.ndarray, gain: float = 32.0) -> np.n
     """
     a, b = _rgb8(reference, "reference"), _rgb8(test, "test")
     d = np.abs(a.astype(np.float64) - b.astype(np.float64)).max(axis=-1) * gain / 255.0
+    return _ramp(d)
+
+
+def _ramp(d: np.ndarray) -> np.ndarray:
+    """Black-red-yellow-white for d in [0, 1] (clipped), as 8-bit RGB."""
     d = np.clip(d, 0.0, 1.0)
     ramp = np.stack([np.clip(3 * d, 0, 1), np.clip(3 * d - 1, 0, 1), np.clip(3 * d - 2, 0, 1)], axis=-1)
     return np.round(ramp * 255).astype(np.uint8)
+
+
+SCALE_BAR = (12, 16, 4)  # bar height, label line height, margin (pixels)
+
+
+def heatmap_with_scale(reference: np.ndarray, test: np.ndarray, gain: float = 32.0) -> np.ndarray:
+    """:func:`heatmap` with its colour scale drawn below it: the ramp from no difference to the difference
+    that saturates (255/gain, in 1/255 units), labelled. At least 200 pixels wide, so the labels fit."""
+    from PIL import Image, ImageDraw
+
+    image = heatmap(reference, test, gain)
+    h, w = image.shape[:2]
+    bar_h, line_h, margin = SCALE_BAR
+    width = max(w, 200)
+    out = np.zeros((h + margin + bar_h + line_h, width, 3), np.uint8)
+    out[:h, :w] = image
+    bar_w = width - 2 * margin
+    out[h + margin : h + margin + bar_h, margin : margin + bar_w] = _ramp(np.linspace(0.0, 1.0, bar_w))[None]
+    canvas = Image.fromarray(out)
+    draw = ImageDraw.Draw(canvas)
+    saturation = 255.0 / gain
+    y = h + margin + bar_h + 2
+    draw.text((margin, y), "0", fill=(255, 255, 255))
+    right = f">= {saturation:.3g}/255"
+    draw.text((margin + bar_w - draw.textlength(right), y), right, fill=(255, 255, 255))
+    middle = f"{saturation / 2:.3g}"
+    draw.text((margin + bar_w // 2 - draw.textlength(middle) / 2, y), middle, fill=(255, 255, 255))
+    return np.asarray(canvas)

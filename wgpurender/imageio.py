@@ -12,8 +12,8 @@ from PIL import Image
 from .errors import UserError
 from .safe_write import atomic_write, output_target
 
-__all__ = ["UserError", "save_png", "load_png", "check_writable", "decode_image", "encode_png", "srgb_encode",
-           "srgb_decode", "to_uint8"]
+__all__ = ["UserError", "save_png", "save_image", "image_format", "load_png", "check_writable", "decode_image",
+           "encode_png", "encode_image", "srgb_encode", "srgb_decode", "to_uint8"]
 
 
 def srgb_encode(linear: np.ndarray) -> np.ndarray:
@@ -81,3 +81,45 @@ def load_png(path: str | os.PathLike) -> np.ndarray:
             return decode_image(im, str(path))
     except (OSError, ValueError, Image.DecompressionBombError) as err:
         raise UserError(f"cannot read image {path}: {err}") from None
+
+
+# The output format follows the file's suffix: PNG (lossless, what every comparison here reads),
+# or another format Pillow writes when the user asks for it by name. An unknown or missing
+# suffix is refused rather than written as a PNG under a misleading name.
+IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".bmp": "BMP", ".tif": "TIFF", ".tiff": "TIFF",
+                 ".webp": "WEBP"}
+_NO_ALPHA = ("JPEG", "BMP")
+
+
+def image_format(path: str | os.PathLike) -> str:
+    """Pillow's format name for an output path's suffix; a UserError for a suffix we do not write."""
+    suffix = Path(path).suffix.lower()
+    if suffix not in IMAGE_FORMATS:
+        shown = f"suffix {suffix!r}" if suffix else "no suffix"
+        raise UserError(f"cannot write {path}: {shown}; name the file .png (lossless), or "
+                        f"{', '.join(s for s in IMAGE_FORMATS if s != '.png')}")
+    return IMAGE_FORMATS[suffix]
+
+
+def encode_image(pixels: np.ndarray, fmt: str) -> bytes:
+    """The image's bytes in a Pillow format (JPEG/BMP without alpha, JPEG at quality 95)."""
+    if fmt == "PNG":
+        return encode_png(pixels)
+    image = Image.fromarray(to_uint8(np.ascontiguousarray(pixels)))
+    if fmt in _NO_ALPHA:
+        image = image.convert("RGB")
+    buffer = io.BytesIO()
+    image.save(buffer, format=fmt, **({"quality": 95} if fmt == "JPEG" else {}))
+    return buffer.getvalue()
+
+
+def save_image(path: str | os.PathLike, pixels: np.ndarray) -> Path:
+    """Write an (H, W, 3|4) image atomically in the format its suffix names (see :data:`IMAGE_FORMATS`),
+    with :func:`save_png`'s guarantees (:mod:`wgpurender.safe_write`).
+
+    JPEG and BMP have no alpha channel: the alpha is dropped (renders are opaque). JPEG is lossy
+    (quality 95): compare images as PNGs.
+    """
+    fmt = image_format(path)
+    output_target(path)
+    return atomic_write(path, lambda: encode_image(pixels, fmt))

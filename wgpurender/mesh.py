@@ -251,11 +251,12 @@ class _Part:
     tangents: np.ndarray | None
 
 
-def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_material: bool = True) -> Mesh:
     """Load a model file into one :class:`Mesh` (all its meshes and nodes merged, node transforms applied).
 
-    The material is the first one the file's triangles use. Raises UserError for missing, unsupported,
-    malformed or empty files and for non-finite positions.
+    The material is the first one the file's triangles use; ``obj_material=False`` skips an OBJ's MTL
+    (and its "material library not found" warning) for callers whose scene supplies the material.
+    Raises UserError for missing, unsupported, malformed or empty files and for non-finite positions.
     """
     path = Path(path)
     suffix = path.suffix.lower()
@@ -274,7 +275,8 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     else:
         if file_type == "obj":
             check_obj_records(path)
-        parts, material = _trimesh_parts(path, file_type), _obj_material(path) if file_type == "obj" else None
+        parts = _trimesh_parts(path, file_type)
+        material = _obj_material(path) if file_type == "obj" and obj_material else None
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")

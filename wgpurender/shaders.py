@@ -1,4 +1,4 @@
-"""WGSL shaders live as files in shaders_wgsl/ and are loaded by name.
+"""WGSL shaders live as files in shaders_wgsl/ and are loaded by name (the wheel ships them: shader_files.py).
 
 Compiling one is the analogue of vkCreateShaderModule; wgpu takes WGSL text (or
 SPIR-V) and translates it for the backend through naga.
@@ -6,7 +6,6 @@ SPIR-V) and translates it for the backend through naga.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -14,15 +13,15 @@ from pathlib import Path
 import wgpu
 
 from .errors import UserError
+from .shader_files import shader_folder
 
 SHADER_DIR_ENV = "WGPURENDER_SHADERS"
-REPO_ROOT = Path(__file__).resolve().parent.parent
 _recorders: list[set[Path]] = []  # open recording_loads() blocks
 
 
 def shader_dir() -> Path:
-    """shaders_wgsl/ beside the package (override with $WGPURENDER_SHADERS)."""
-    return Path(os.environ.get(SHADER_DIR_ENV) or REPO_ROOT / "shaders_wgsl")
+    """The WGSL folder: $WGPURENDER_SHADERS, else the wheel's copy of shaders_wgsl/, else the checkout's."""
+    return shader_folder("wgsl", SHADER_DIR_ENV)
 
 
 def load_wgsl(name: str) -> str:

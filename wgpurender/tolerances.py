@@ -17,11 +17,11 @@ API-free: imports no GPU API and neither render path.
 from __future__ import annotations
 
 import math
+import tomllib
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
-import tomllib
 
 from .errors import UserError
 

@@ -2,8 +2,10 @@
 
 One module per measurement family, each returning :class:`~wgpurender.bench.report.Result` rows:
 
-- :mod:`.frames`: frame time of every stage (and the final scene when it exists), wgpu against raw
-  Vulkan on the same scene; CPU time to encode and submit; readback cost;
+- :mod:`.frames`: frame time of every stage, wgpu against raw Vulkan on the same scene; CPU time to
+  encode and submit; readback cost;
+- :mod:`.scene`: the final scene frame by frame (``final_subpass.toml`` on both paths: the raw path's
+  subpass refuses final.toml's FXAA);
 - :mod:`.post`: the cost of each post effect, the post pass's cost taken apart (format, sampler,
   quad, load op, readback), and wgpu MSAA + one effect against the raw path's msaa-post subpass;
 - :mod:`.objects`: many tiny objects through dynamic offsets, immediates, instancing and bundles;

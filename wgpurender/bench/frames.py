@@ -109,24 +109,29 @@ class RawStageRunner:
     """A raw-Vulkan stage drawn into one image, frame after frame, with one command buffer and fence reused."""
 
     def __init__(self, name: str, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None) -> None:
-        import vulkan as vk
-
         from ..vulkan_ref.checks import check_msaa, check_size
-        from ..vulkan_ref.command_buffers import create_command_pool
-        from ..vulkan_ref.images import create_image
         from ..vulkan_ref.instance import get_vulkan
         from ..vulkan_ref.stages import get_ref_stage
-        from ..vulkan_ref.stages.base import TARGET_USAGE
 
-        self.vk = vk
-        ctx = self.ctx = get_vulkan()
+        ctx = get_vulkan()
         cls = get_ref_stage(name)
         self.name = name
         self.size = check_size(ctx, size)
         self.owned = ExitStack()
+        self.stage = cls(ctx, self.owned, fmt or cls.default_format, check_msaa(ctx, cls, msaa), self.size)
+        self._setup_frames(ctx, self.stage.format)
+
+    def _setup_frames(self, ctx, fmt: str) -> None:
+        """The target image, one command buffer, a fence and a timestamp pool, reused every frame."""
+        import vulkan as vk
+
+        from ..vulkan_ref.command_buffers import create_command_pool
+        from ..vulkan_ref.images import create_image
+        from ..vulkan_ref.stages.base import TARGET_USAGE
+
+        self.vk, self.ctx, self.format = vk, ctx, fmt
         owned = self.owned
-        self.stage = cls(ctx, owned, fmt or cls.default_format, check_msaa(ctx, cls, msaa), self.size)
-        self.target = create_image(ctx, owned, self.size, self.stage.format, TARGET_USAGE)
+        self.target = create_image(ctx, owned, self.size, fmt, TARGET_USAGE)
         self.pool = create_command_pool(ctx)
         owned.callback(vk.vkDestroyCommandPool, ctx.device, self.pool, None)
         alloc = vk.VkCommandBufferAllocateInfo(commandPool=self.pool, level=vk.VK_COMMAND_BUFFER_LEVEL_PRIMARY,
@@ -159,7 +164,7 @@ class RawStageRunner:
             from ..vulkan_ref.memory import HOST_MEMORY, create_buffer
 
             vk = self.vk
-            nbytes = self.size[0] * self.size[1] * FORMATS[self.stage.format][1]
+            nbytes = self.size[0] * self.size[1] * FORMATS[self.format][1]
             self._readback = create_buffer(self.ctx, self.owned, nbytes, vk.VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                            HOST_MEMORY, vk.VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
         return self._readback

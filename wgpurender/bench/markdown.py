@@ -24,12 +24,14 @@ def _targets(run) -> str:
 
     res = run.results
     rows = []
-    scene = [r for r in _pick(res, "scene", "frame_ms") if r.case == "final"]
-    wg = {r.size: r for r in scene if r.path == "wgpu"}
-    rw = {r.size: r for r in scene if r.path == "raw"}
-    if wg and rw:
-        worst = max(wg[s].median / rw[s].median for s in wg if s in rw)
-        rows.append(("final scene wgpu / raw frame time <= 1.10", f"worst size {worst:.2f}x",
+    # the final scene on both paths: final_subpass.toml (the raw path refuses final.toml's FXAA)
+    scene = [r for r in _pick(res, "scene", "frame_ms") if r.case in ("final", "final_subpass")]
+    wg = {(r.case, r.size): r for r in scene if r.path == "wgpu"}
+    rw = {(r.case, r.size): r for r in scene if r.path == "raw"}
+    pairs = [(key, wg[key].median / rw[key].median) for key in wg if key in rw and rw[key].median > 0]
+    if pairs:
+        (case, size), worst = max(pairs, key=lambda p: p[1])
+        rows.append((f"final scene ({case}.toml) wgpu / raw frame time <= 1.10", f"worst {size} {worst:.2f}x",
                      "met" if worst <= 1.10 else "not met"))
     else:
         ratios = [(r.case, r.size, r.median / p.median) for r in _pick(res, "frames", "frame_ms", "wgpu")
@@ -37,7 +39,7 @@ def _targets(run) -> str:
         if ratios:
             case, size, worst = max(ratios, key=lambda x: x[2])
             within = sum(1 for *_, q in ratios if q <= 1.10)
-            rows.append(("wgpu / raw frame time <= 1.10 (stage by stage: the raw path has no final scene)",
+            rows.append(("wgpu / raw frame time <= 1.10 (stage by stage: no final scene measured on both paths)",
                          f"{within}/{len(ratios)} stage-sizes within; worst {case} {size} {worst:.2f}x",
                          "met" if within == len(ratios) else "not met"))
     for chapter, ms in CPP_GIVEN_MS.items():

@@ -1,18 +1,16 @@
-"""The final scene in the benchmark, when the final-scene renderer exists (wgpurender.scene_render).
+"""A scene file in the benchmark: the wgpu scene renderer and, where it can draw the scene, the raw path's.
 
-Imported lazily: without the renderer (or the scene file) the family is skipped with a
-note. The renderer's per-frame API is discovered, not assumed: an object with
-``record(encoder, target, t)`` (like a stage) is timed frame by frame; otherwise whole
-``render_scene_file`` calls are timed (set-up included, said in the note).
-The raw path takes part only if it has a stage named ``final``. Per-pass GPU times (scene pass,
-each post pass) come from the renderer's own ``timer`` argument.
+Both are drawn frame by frame into one target (the runner protocol of :func:`frames.measure`).
+Per-pass GPU times on the wgpu side (scene pass, each post pass) come from the renderer's own
+``timer`` argument. The raw-Vulkan path (wgpurender/vulkan_ref/scene/) draws a scene in one
+render pass of two subpasses; it refuses effects that read neighbouring pixels (FXAA, sharpen),
+so ``final.toml`` has no raw peer and ``final_subpass.toml`` (the same scene and per-pixel chain)
+is the pair whose frame times compare the two paths.
 """
 
 from __future__ import annotations
 
 import functools
-import importlib.util
-import time
 from pathlib import Path
 
 from ..frame_loop import run_frame
@@ -22,26 +20,18 @@ from .encoder import gpu_total
 from .frames import RawStageRunner, measure
 from .report import Result, size_text
 
-RAW_SCENE_STAGE = "final"
-
-
-def scene_renderer_available() -> bool:
-    return importlib.util.find_spec("wgpurender.scene_render") is not None
-
-
-def _raw_has_scene() -> bool:
-    from ..vulkan_ref import reference_stage_names
-
-    return RAW_SCENE_STAGE in reference_stage_names()
-
 
 class SceneRunner:
     """A persistent scene renderer drawn frame by frame (the runner protocol of frames.measure)."""
 
-    def __init__(self, ctx: GPUContext, renderer, target) -> None:
+    def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int]) -> None:
+        from ..scene_render import load_renderer
+        from ..targets import create_target
         from ..timing import PassTimer
 
-        self.ctx, self.renderer, self.target = ctx, renderer, target
+        self.ctx = ctx
+        self.renderer = load_renderer(path, ctx, size=size)
+        self.target = create_target(ctx, size, self.renderer.plan.output_format)
         self.timer = PassTimer(ctx)
         self.t = 0.0
         self.passes: dict[str, list[float]] = {}  # GPU ms per pass label, per frame
@@ -54,51 +44,68 @@ class SceneRunner:
         return f.cpu_ms, gpu_total(f.gpu_ms)
 
 
-def _make_renderer(module, ctx: GPUContext, path: Path, size: tuple[int, int]):
-    """A (renderer, target) pair if the module offers a per-frame renderer, else None."""
-    load = getattr(module, "load_renderer", None)
-    if load is None:
-        return None
-    from ..targets import create_target
+class _RawSceneFrame:
+    """A raw-path scene frame with the stage interface ``record(cmd, target, t)`` (scenes are static)."""
 
-    renderer = load(path, ctx, size=size)
-    plan = getattr(renderer, "plan", None)
-    fmt = getattr(plan, "output_format", None) or "rgba8unorm-srgb"
-    return renderer, create_target(ctx, size, fmt)
+    def __init__(self, frame) -> None:
+        self.frame = frame
+
+    def record(self, cmd, target, t: float = 0.0) -> None:
+        self.frame.record(cmd, target)
+
+
+class RawSceneRunner(RawStageRunner):
+    """The raw-Vulkan path's scene frame (vulkan_ref/scene/), frame after frame, like a raw stage."""
+
+    def __init__(self, path: Path, size: tuple[int, int]) -> None:
+        from contextlib import ExitStack
+
+        from ..plan import build_plan
+        from ..scene import load_scene
+        from ..vulkan_ref.checks import check_size
+        from ..vulkan_ref.instance import get_vulkan
+        from ..vulkan_ref.scene.frame import SceneFrame
+
+        ctx = get_vulkan()
+        scene = load_scene(path)
+        plan = build_plan(scene, size=size)
+        self.name = str(path)
+        self.size = check_size(ctx, plan.size)
+        self.owned = ExitStack()
+        self.stage = _RawSceneFrame(SceneFrame(ctx, self.owned, scene, plan))
+        self._setup_frames(ctx, plan.output_format)
+
+
+def raw_refusal(path: Path) -> str:
+    """Why the raw path cannot draw this scene ('' when it can)."""
+    from ..plan import plan_scene_file
+    from ..vulkan_ref.scene import unsupported
+
+    return "; ".join(unsupported(plan_scene_file(path)))
 
 
 def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
                 raw: bool = True) -> tuple[list[Result], str]:
-    """(results, note); a non-empty note with no results means skipped."""
-    if not scene_renderer_available():
-        return [], "skipped: wgpurender.scene_render does not exist yet (final-scene renderer not landed)"
+    """(results, note): the wgpu renderer, and the raw path's when ``raw`` and it can draw the scene.
+
+    A note with no results means skipped (the scene file is absent); a note with results says why
+    the raw peer is missing.
+    """
     path = Path(path)
     if not path.is_file():
         return [], f"skipped: scene file {path} not found"
-    import importlib
-
-    module = importlib.import_module("wgpurender.scene_render")
-    made = _make_renderer(module, ctx, path, size)
-    results: list[Result] = []
-    note = ""
-    if made is not None:
-        runner = SceneRunner(ctx, *made)
-        results += measure(runner, frames, readback_frames=max(3, frames // 2)).results("scene", path.stem,
-                                                                                        "wgpu", size)
-        for label, samples in runner.passes.items():
-            results.append(Result.of("scene", path.stem, "wgpu", size_text(size), f"gpu_ms:{label}",
-                                     Stats.of(samples[-frames:]), "GPU time of one pass"))
-    else:
-        samples = []
-        for _ in range(max(3, frames // 2)):
-            start = time.perf_counter()
-            module.render_scene_file(str(path), size=size, ctx=ctx)
-            samples.append((time.perf_counter() - start) * 1e3)
-        note = "render_scene_file per frame: set-up and readback included (no per-frame renderer API found)"
-        results.append(Result.of("scene", path.stem, "wgpu", size_text(size), "frame_readback_ms",
-                                 Stats.of(samples), note))
-    if raw and _raw_has_scene():
-        with RawStageRunner(RAW_SCENE_STAGE, size) as raw_runner:
-            results += measure(raw_runner, frames, readback_frames=max(3, frames // 2)).results(
-                "scene", path.stem, "raw", size)
-    return results, note if not results else ""
+    runner = SceneRunner(ctx, path, size)
+    readback_frames = max(3, frames // 2)
+    results = measure(runner, frames, readback_frames=readback_frames).results("scene", path.stem, "wgpu", size)
+    for label, samples in runner.passes.items():
+        results.append(Result.of("scene", path.stem, "wgpu", size_text(size), f"gpu_ms:{label}",
+                                 Stats.of(samples[-frames:]), "GPU time of one pass"))
+    if not raw:
+        return results, ""
+    refusal = raw_refusal(path)
+    if refusal:
+        return results, f"{path.name} has no raw peer: {refusal}"
+    with RawSceneRunner(path, size) as raw_runner:
+        results += measure(raw_runner, frames, readback_frames=readback_frames).results("scene", path.stem, "raw",
+                                                                                        size)
+    return results, ""

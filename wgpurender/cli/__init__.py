@@ -16,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from .. import __version__
 from ..errors import UserError
 from ..safe_write import install_signal_handlers
 
@@ -33,6 +34,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="The steps of a Vulkan course on wgpu, headless or in a window, checked against a raw-Vulkan "
         "reference path.",
     )
+    parser.add_argument("--version", action="version", version=f"wgpurender {__version__}")
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     for mod in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if mod.name.startswith("_"):

@@ -23,8 +23,8 @@ def _register_perf(suites) -> None:
     p = suites.add_parser(
         "perf",
         help="frame, CPU, readback, post, many-objects and first-frame times, wgpu against raw Vulkan",
-        description="Measure every stage (and the final scene when its renderer exists) on the wgpu and the "
-        "raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
+        description="Measure every stage and the final scene (final_subpass.toml on both paths) on the wgpu and "
+        "the raw-Vulkan path, post effects, many objects and first-frame time; write results.csv, report.md "
         "and perf_*.png (plots need matplotlib: pip install 'wgpurender[bench]').",
     )
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats: checks the harness in < 60 s")

@@ -12,11 +12,15 @@ def register(subparsers) -> None:
         "compare",
         help="compare two PNGs: PSNR, max difference, share of pixels off, FLIP",
         description="Print PSNR, the largest channel difference, the share of pixels off by more than 1/255 "
-        "and 2/255, and the mean FLIP error of B against the reference A. Exits 1 when a threshold is exceeded.",
+        "and 2/255 (in %), and the mean FLIP error of B against the reference A. Exits 1 when a threshold is "
+        "exceeded.",
     )
     p.add_argument("reference", metavar="A.png")
     p.add_argument("test", metavar="B.png")
-    p.add_argument("--heatmap", metavar="PNG", help="write a magnified difference image")
+    p.add_argument("--heatmap", metavar="PNG", help="write a magnified difference image, its colour scale below it")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object instead: the metrics (shares as fractions 0..1, psnr null for "
+                   "identical images), the thresholds, what failed, and the heatmap path")
     p.add_argument("--gain", type=positive_float, default=32.0, help="heatmap magnification (default 32)")
     p.add_argument(
         "--threshold",
@@ -25,7 +29,8 @@ def register(subparsers) -> None:
         metavar="METRIC=VALUE",
         type=_threshold,
         help="fail (exit 1) when METRIC exceeds VALUE (psnr: falls below); metrics: "
-        "psnr, max_abs, over_1, over_2, flip_mean; repeatable. Default: flip_mean=0.005",
+        "psnr, max_abs, over_1, over_2, flip_mean; shares as a fraction or a percentage (over_1=0.5%%); "
+        "repeatable. Default: flip_mean=0.005",
     )
     p.set_defaults(func=run)
 
@@ -37,29 +42,57 @@ def _threshold(text: str) -> tuple[str, float]:
     if name not in METRICS:
         raise argparse.ArgumentTypeError(f"unknown metric {name!r}: choose from {', '.join(METRICS)}")
     try:
+        if value.endswith("%"):
+            return name, float(value[:-1]) / 100.0
         return name, float(value)
     except ValueError:
         raise argparse.ArgumentTypeError(f"threshold {text!r} needs a number after '='") from None
 
 
+SHARES = ("over_1", "over_2")  # fractions of the pixels: printed as %
+
+
 def run(args) -> int:
-    from ..compare import compare_images, heatmap
+    from ..compare import compare_images, heatmap_with_scale
     from ..imageio import check_writable, load_png, save_png
 
     if args.heatmap:
         check_writable(args.heatmap)
     a, b = load_png(args.reference), load_png(args.test)
     result = compare_images(a, b)
-    for name, value in result.as_dict().items():
-        print(f"{name:>10}: {value:.6g}")
-    if args.heatmap:
-        print(f"heatmap: {save_png(args.heatmap, heatmap(a, b, args.gain))}")
-    failed = []
-    for name, limit in args.threshold or [("flip_mean", 0.005)]:
-        value = getattr(result, name)
-        if (value < limit) if name == "psnr" else (value > limit):
-            failed.append(f"{name} {value:.6g} {'<' if name == 'psnr' else '>'} {limit:g}")
-    if failed:
-        print("over threshold: " + "; ".join(failed))
-        return 1
-    return 0
+    heatmap_path = save_png(args.heatmap, heatmap_with_scale(a, b, args.gain)) if args.heatmap else None
+    thresholds = args.threshold or [("flip_mean", 0.005)]
+    failed = [(name, limit) for name, limit in thresholds if _exceeds(name, getattr(result, name), limit)]
+    if args.json:
+        print(_json(result, thresholds, failed, heatmap_path))
+    else:
+        for name, value in result.as_dict().items():
+            print(f"{name:>10}: {_shown(name, value)}")
+        if heatmap_path:
+            print(f"heatmap: {heatmap_path}")
+        if failed:
+            print("over threshold: " + "; ".join(
+                f"{name} {_shown(name, getattr(result, name))} {'<' if name == 'psnr' else '>'} {_shown(name, limit)}"
+                for name, limit in failed))
+    return 1 if failed else 0
+
+
+def _exceeds(name: str, value: float, limit: float) -> bool:
+    return value < limit if name == "psnr" else value > limit
+
+
+def _shown(name: str, value: float) -> str:
+    return f"{100 * value:.4g}%" if name in SHARES else f"{value:.6g}"
+
+
+def _json(result, thresholds, failed, heatmap_path) -> str:
+    import json
+    import math
+
+    metrics = {k: (None if isinstance(v, float) and math.isinf(v) else v) for k, v in result.as_dict().items()}
+    return json.dumps({
+        "metrics": metrics,
+        "thresholds": dict(thresholds),
+        "failed": [name for name, _ in failed],
+        "heatmap": str(heatmap_path) if heatmap_path else None,
+    }, indent=2)

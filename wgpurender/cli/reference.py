@@ -15,7 +15,8 @@ def register(subparsers) -> None:
     )
     p.add_argument("stage", metavar="STAGE",
                    help="a stage name, e.g. clear-pass, triangle, msaa, msaa-post, or a scene file SCENE.toml")
-    p.add_argument("-o", "--output", required=True, metavar="PNG", help="output PNG path (written atomically)")
+    p.add_argument("-o", "--output", required=True, metavar="IMAGE",
+                   help="output image (written atomically): .png, or .jpg, .bmp, .tif, .webp by suffix")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="image size (default 800x600; a scene file's [render] size)")
     p.add_argument("--msaa", type=int, default=None, metavar="N",
@@ -28,13 +29,14 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..imageio import check_writable, save_png
+    from ..imageio import check_writable, image_format, save_image
     from ..vulkan_ref import render_reference
     from ..vulkan_ref.instance import get_vulkan
 
+    image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)
     pixels = render_reference(args.stage, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time)
-    path = save_png(args.output, pixels)
+    path = save_image(args.output, pixels)
     print(f"wrote {path} ({pixels.shape[1]}x{pixels.shape[0]})")
     print(f"device: {get_vulkan().describe()}")
     return 0

@@ -13,7 +13,9 @@ def register(subparsers) -> None:
         "and write a PNG.",
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
-    p.add_argument("-o", "--output", metavar="PNG", help="output PNG (written atomically); required unless --explain")
+    p.add_argument("-o", "--output", metavar="IMAGE",
+                   help="output image (written atomically), .png; .jpg, .bmp, .tif, .webp by suffix; required "
+                   "unless --explain")
     p.add_argument("--explain", action="store_true",
                    help="print the scene's render plan (passes, attachments, pipelines and why); with -o also render")
     add_render_args(p)
@@ -23,7 +25,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from ..course.formats import is_scene_file
     from ..errors import UserError
-    from ..imageio import check_writable, save_png
+    from ..imageio import check_writable, image_format, save_image
     from ..render import render_any
 
     if args.explain:
@@ -36,9 +38,10 @@ def run(args) -> int:
             return 0
     if not args.output:
         raise UserError("render needs -o PNG (the output path), or --explain to print a scene's plan")
+    image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)
     result = render_any(args.target, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time, backend=args.backend)
-    path = save_png(args.output, result.pixels)
+    path = save_image(args.output, result.pixels)
     print(f"wrote {path} ({result.pixels.shape[1]}x{result.pixels.shape[0]})")
     print(f"adapter: {result.adapter}")
     print(f"frame time: {result.frame_ms:.2f} ms")

@@ -110,7 +110,7 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) 
     pareto = extras.pareto_plot()
     if pareto is not None:
         shutil.copyfile(pareto, site / "accuracy_pareto.png")
-    stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    stamp = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
     meta = (f"Built {page.e(stamp)} on {page.e(ctx.describe())} in {seconds:.0f} s with <code>wgpurender report"
             f"</code>. Stages at {STAGE_SIZE[0]}x{STAGE_SIZE[1]}, scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]} "
             "(the tutorial's at 320x240); times are "

@@ -2,18 +2,13 @@
 
 from __future__ import annotations
 
-import sys
+import tomllib
 from pathlib import Path
 
 from ..errors import UserError
 from .checker import Checker
 from .model import Scene
 from .validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 
 def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:

@@ -47,7 +47,8 @@ class SceneResources:
     def mesh(self, path: Path) -> Mesh:
         """The loaded mesh; tangents only when a variant drawing it has a normal map."""
         if path not in self._meshes:
-            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
+            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents,
+                                                obj_material=False)  # the scene file gives the material
         return self._meshes[path]
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:

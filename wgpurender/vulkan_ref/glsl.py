@@ -18,20 +18,21 @@ from pathlib import Path
 import vulkan as vk
 
 from ..errors import UserError
+from ..shader_files import shader_folder
 
 GLSL_DIR_ENV = "WGPURENDER_GLSL"
-REPO_ROOT = Path(__file__).resolve().parent.parent.parent
 GLSLC_ARGS = ("--target-env=vulkan1.1",)  # 1.1: the negative viewport height is core there (see pipeline.py)
 # glslc reports "path:LINE: error: message"
 _ERROR_LINE = re.compile(r"^(?P<file>.*?):(?P<line>\d+): error: (?P<msg>.*)$", re.MULTILINE)
 
 
 def glsl_dir() -> Path:
-    """shaders_glsl/ beside the package (override with $WGPURENDER_GLSL)."""
-    return Path(os.environ.get(GLSL_DIR_ENV) or REPO_ROOT / "shaders_glsl")
+    """The GLSL folder: $WGPURENDER_GLSL, else the wheel's copy of shaders_glsl/, else the checkout's."""
+    return shader_folder("glsl", GLSL_DIR_ENV)
 
 
 def cache_dir() -> Path:
+    """SPIR-V cache in the user's cache folder (never the install folder, which may be read-only)."""
     base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
     return Path(base) / "wgpurender" / "spirv"
 

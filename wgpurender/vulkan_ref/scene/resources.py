@@ -71,7 +71,8 @@ class SceneResources:
 
     def mesh(self, path: Path) -> Mesh:
         if path not in self._meshes:
-            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
+            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents,
+                                                obj_material=False)  # the scene file gives the material
         return self._meshes[path]
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:

@@ -1,0 +1,100 @@
+"""examples/course_tour.ipynb runs headless (nbclient, a python3 kernel from ipykernel) and shows what it says.
+
+Checked from its outputs: every stage cell shows one image per stage; every wgpu-vs-raw comparison it
+prints is within the tolerances below; the plan is printed; the accuracy plot is drawn and MSAA 4x is
+closer to the supersampled ground truth than 1x. Takes ~35 s alone on lavapipe.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+NOTEBOOK = REPO / "examples" / "course_tour.ipynb"
+# wgpu vs raw Vulkan on the same driver: a stage differs by at most unorm rounding (1/255); the lit scene
+# stays within the issue's FLIP threshold (measured 0.0016 at 320x240, float16 intermediates on wgpu).
+STAGE_MAX_ABS, STAGE_FLIP = 1, 0.01
+SCENE_MAX_ABS, SCENE_FLIP = 1, 0.005
+
+
+@pytest.fixture(scope="module")
+def executed():
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    pytest.importorskip("ipykernel")
+    pytest.importorskip("matplotlib")
+    if shutil.which("glslc") is None:
+        pytest.skip("glslc not installed (apt install glslc): the notebook renders the raw path")
+    nb = nbformat.read(NOTEBOOK, as_version=4)
+    nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
+                            resources={"metadata": {"path": str(NOTEBOOK.parent)}}).execute()
+    return [c for c in nb.cells if c.cell_type == "code"]
+
+
+def _text(cell) -> str:
+    return "".join(o.text for o in cell.outputs if o.output_type == "stream" and o.name == "stdout")
+
+
+def _pngs(cell) -> list[bytes]:
+    return [base64.b64decode(o.data["image/png"]) for o in cell.outputs if "image/png" in o.get("data", {})]
+
+
+def _tagged(cells, tag: str) -> list[dict]:
+    return [json.loads(line.split(" ", 1)[1]) for c in cells for line in _text(c).splitlines()
+            if line.startswith(tag + " ")]
+
+
+def test_no_errors_or_validation_messages(executed):
+    for cell in executed:
+        assert not [o for o in cell.outputs if o.output_type == "error"]
+        stderr = "".join(o.text for o in cell.outputs if o.output_type == "stream" and o.name == "stderr")
+        assert "Validation" not in stderr and "Traceback" not in stderr, stderr
+
+
+def test_every_stage_is_shown(executed):
+    from PIL import Image
+
+    from wgpurender.stages import all_stages
+
+    cell = next(c for c in executed if "w.stage_names():" in c.source and "w.reference(" not in c.source)
+    images = _pngs(cell)
+    assert len(images) == len(all_stages())
+    for png in images:
+        with Image.open(io.BytesIO(png)) as im:
+            assert im.size == (160, 120)
+
+
+def test_wgpu_and_raw_agree(executed):
+    from wgpurender.vulkan_ref import reference_stage_names
+
+    rows = {r["target"]: r for r in _tagged(executed, "compare")}
+    from wgpurender.stages import all_stages
+
+    both = [s for s in all_stages() if s in reference_stage_names()]
+    assert set(both) <= set(rows) and "final_subpass.toml" in rows
+    for name in both:
+        assert rows[name]["max_abs"] <= STAGE_MAX_ABS and rows[name]["flip_mean"] <= STAGE_FLIP, rows[name]
+    scene = rows["final_subpass.toml"]
+    assert scene["max_abs"] <= SCENE_MAX_ABS and scene["flip_mean"] <= SCENE_FLIP, scene
+    side_by_side = next(c for c in executed if "w.reference(name" in c.source)
+    assert len(_pngs(side_by_side)) == len(both)
+
+
+def test_the_plan_is_explained(executed):
+    text = "".join(_text(c) for c in executed)
+    for section in ("passes:", "attachments:", "scene pipelines:", "post tonemap", "samplers:"):
+        assert section in text
+
+
+def test_accuracy_plot(executed):
+    rows = {r["msaa"]: r for r in _tagged(executed, "accuracy")}
+    assert set(rows) == {1, 4}
+    assert 0 < rows[4]["flip_mean"] < rows[1]["flip_mean"]
+    plot = next(c for c in executed if "plt.show()" in c.source)
+    assert len(_pngs(plot)) == 1

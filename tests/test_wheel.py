@@ -1,0 +1,137 @@
+"""The wheel works on its own: built from the repository, installed into a fresh venv, run from a temp folder.
+
+Nothing a wheel user needs may come from the checkout (shaders were once found through the
+repository root, so ``pip install .`` rendered nothing). The wheel is built offline
+(``--no-build-isolation``: the test extra has setuptools>=77) from a copy of the files a build
+reads, installed with ``--no-deps`` into a fresh venv that sees the test venv's packages (the
+dependencies) through a .pth file, and then run from an empty temp folder with no shader
+override set. Takes ~15 s alone on lavapipe.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import sysconfig
+import venv
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+REPO = Path(__file__).resolve().parent.parent
+BUILD_INPUTS = ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md", "wgpurender", "shaders_wgsl", "shaders_glsl")
+
+# The first triangle's vertices and colours (course step 2a), written out here: NDC, y up, linear RGB.
+TRIANGLE_NDC = np.array([[-0.8, -0.7], [0.7, -0.5], [-0.1, 0.8]])
+TRIANGLE_RGB = np.eye(3)
+
+
+def _srgb8(linear: np.ndarray) -> np.ndarray:
+    """IEC 61966-2-1 encoding to 8 bits (the default target is rgba8unorm-srgb)."""
+    x = np.asarray(linear, dtype=np.float64)
+    return np.round(255 * np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055))
+
+
+def _check_triangle_centre(image: np.ndarray) -> None:
+    """The pixel nearest the centroid has the barycentric mix of the vertex colours at its centre (within 1/255)."""
+    h, w = image.shape[:2]
+    cx, cy = TRIANGLE_NDC.mean(axis=0)
+    px, py = int((cx + 1) / 2 * w), int((1 - cy) / 2 * h)
+    centre = np.array([(px + 0.5) / w * 2 - 1, 1 - (py + 0.5) / h * 2])  # the pixel centre in NDC
+    a, b, c = TRIANGLE_NDC
+    weights = np.linalg.solve(np.array([b - a, c - a]).T, centre - a)
+    bary = np.array([1 - weights.sum(), *weights])
+    expected = _srgb8(bary @ TRIANGLE_RGB)
+    assert np.abs(image[py, px, :3].astype(int) - expected).max() <= 1, (image[py, px], expected)
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory) -> dict:
+    """Build the wheel, install it into a fresh venv; the venv's paths and a clean environment."""
+    root = tmp_path_factory.mktemp("wheel")
+    src = root / "src"
+    src.mkdir()
+    for name in BUILD_INPUTS:
+        if (REPO / name).is_dir():
+            shutil.copytree(REPO / name, src / name, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+        else:
+            shutil.copy2(REPO / name, src / name)
+    pip = [sys.executable, "-m", "pip"]
+    subprocess.run([*pip, "wheel", "-q", "--no-build-isolation", "--no-deps", "--no-index", str(src),
+                    "-w", str(root / "dist")], check=True, capture_output=True, text=True)
+    wheel = next((root / "dist").glob("wgpurender-*.whl"))
+    env_dir = root / "venv"
+    venv.create(env_dir, with_pip=False)
+    python = env_dir / "bin" / "python"
+    site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          check=True, capture_output=True, text=True).stdout.strip()
+    deps = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"]}
+    (Path(site) / "_test_venv_packages.pth").write_text("\n".join(sorted(deps)) + "\n")
+    subprocess.run([*pip, "--python", str(python), "install", "-q", "--no-deps", "--no-index", str(wheel)],
+                   check=True, capture_output=True, text=True)
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("WGPURENDER_SHADERS", "WGPURENDER_GLSL", "PYTHONPATH", "VIRTUAL_ENV")}
+    env["XDG_CACHE_HOME"] = str(root / "cache")  # a cold SPIR-V cache: the raw path must compile from the wheel
+    cwd = root / "cwd"
+    cwd.mkdir()
+    return {"wheel": wheel, "python": python, "bin": env_dir / "bin", "env": env, "cwd": cwd, "cache": root / "cache"}
+
+
+def _run(installed: dict, *args: str) -> subprocess.CompletedProcess:
+    proc = subprocess.run([str(a) for a in args], cwd=installed["cwd"], env=installed["env"],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, f"{args} failed ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}"
+    return proc
+
+
+def test_the_wheel_carries_every_shader(installed):
+    names = set(zipfile.ZipFile(installed["wheel"]).namelist())
+    for folder, kind in (("shaders_wgsl", "wgsl"), ("shaders_glsl", "glsl")):
+        expected = {f"wgpurender/_shaders/{kind}/{p.name}" for p in (REPO / folder).iterdir() if p.is_file()}
+        assert expected and expected <= names, sorted(expected - names)
+
+
+def test_the_installed_package_is_not_the_checkout(installed):
+    out = _run(installed, installed["python"], "-c", "import wgpurender; print(wgpurender.__file__)").stdout
+    assert Path(out.strip()).is_relative_to(installed["python"].parent.parent), out
+    assert not Path(out.strip()).is_relative_to(REPO)
+
+
+def test_render_triangle_from_the_wheel(installed):
+    _run(installed, installed["bin"] / "wgpurender", "render", "triangle", "-o", "t.png")
+    image = np.asarray(Image.open(installed["cwd"] / "t.png"))
+    assert image.shape == (600, 800, 4)
+    _check_triangle_centre(image)
+    assert (image[0, 0, :3] == 0).all() and (image[-1, -1, :3] == 0).all()  # the black clear outside
+
+
+def test_render_final_scene_from_the_wheel_matches_the_checkout(installed, ctx):
+    """Same machine, same run: the wheel's render is bit-identical to this process's (checkout) render."""
+    from wgpurender.render import render_any
+
+    scene = REPO / "assets" / "scenes" / "final.toml"
+    _run(installed, installed["bin"] / "wgpurender", "render", scene, "-o", "f.png", "--size", "320x240")
+    image = np.asarray(Image.open(installed["cwd"] / "f.png"))
+    assert image.shape == (240, 320, 4)
+    assert image[..., :3].std() > 20  # a lit scene, not a flat clear
+    here = render_any(str(scene), size=(320, 240)).pixels
+    assert np.array_equal(image, here)
+
+
+def test_python_api_from_the_wheel(installed):
+    code = "import wgpurender as w; r = w.render('triangle', size=(64, 48)); print(r.pixels.shape)"
+    assert _run(installed, installed["python"], "-c", code).stdout.strip() == "(48, 64, 4)"
+
+
+@pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
+def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
+    _run(installed, installed["bin"] / "wgpurender", "reference", "triangle", "-o", "r.png", "--size", "64x48")
+    image = np.asarray(Image.open(installed["cwd"] / "r.png"))
+    assert image.shape == (48, 64, 4)
+    _check_triangle_centre(image)
+    assert list((installed["cache"] / "wgpurender" / "spirv").glob("*.spv"))

@@ -1,0 +1,233 @@
+"""The Python API: render a course stage or a scene file, render it again on the raw-Vulkan path, compare.
+
+For scripts and notebooks::
+
+    import wgpurender as w
+
+    img = w.render("triangle", size=(320, 240))          # the wgpu path
+    ref = w.reference("triangle", size=(320, 240))       # the raw-Vulkan path (needs glslc)
+    print(w.compare(ref, img))                           # PSNR, max difference, FLIP ...
+    w.side_by_side(img, ref, w.heatmap(ref, img))        # shown inline by Jupyter
+    img.save("triangle.png")
+
+A target is a stage name (``wgpurender stages`` lists them, :func:`stage_names` returns them) or a
+scene file (``*.toml``). Every call returns an :class:`Image`: ``.pixels`` (numpy, ``(H, W, 4)``),
+``.save(path)``, ``.timings``, ``.plan`` (the render plan, for a scene on the wgpu path) and a
+PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` with a message that
+says how to fix it (the CLI prints the same message).
+
+One GPU context serves every call in a process (:func:`wgpurender.gpu.get_context` keeps it), so
+the adapter and device are made once. Nothing here imports wgpu, vulkan or trimesh until a render
+needs them: ``import wgpurender`` stays cheap.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .errors import UserError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .compare import Comparison
+    from .plan import RenderPlan
+
+Size = tuple[int, int] | str | None
+Target = str | os.PathLike
+
+
+@dataclass
+class Image:
+    """One rendered (or derived) image.
+
+    ``pixels``: ``(H, W, 4)`` numpy array; uint8 for the 8-bit formats (the stored bytes, so
+    sRGB-encoded for ``rgba8unorm-srgb``), float16 for ``rgba16float`` (linear).
+    ``path``: ``"wgpu"``, ``"raw"`` (the raw-Vulkan reference) or ``"derived"`` (heatmap, montage).
+    ``timings``: milliseconds; ``call_ms`` is the whole call (set-up included), ``frame_ms`` one
+    steady-state frame (wgpu path only: record, submit, GPU work, read back).
+    ``plan``: the :class:`~wgpurender.plan.RenderPlan` a scene was drawn from (wgpu path), else None.
+    """
+
+    pixels: np.ndarray
+    target: str
+    path: str
+    timings: dict[str, float] = field(default_factory=dict)
+    adapter: str = ""
+    plan: RenderPlan | None = None
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height)."""
+        return int(self.pixels.shape[1]), int(self.pixels.shape[0])
+
+    def rgba8(self) -> np.ndarray:
+        """The pixels as 8-bit sRGB-encoded RGBA (float pixels are linear and get encoded)."""
+        from .imageio import to_uint8
+
+        return to_uint8(np.ascontiguousarray(self.pixels))
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the image atomically; the format follows the suffix (see :func:`wgpurender.imageio.save_image`)."""
+        from .imageio import save_image
+
+        return save_image(path, self.pixels)
+
+    def _repr_png_(self) -> bytes:
+        """PNG bytes: Jupyter shows the image inline."""
+        from PIL import Image as PILImage
+
+        buffer = io.BytesIO()
+        PILImage.fromarray(self.rgba8()).save(buffer, format="PNG")
+        return buffer.getvalue()
+
+    def __repr__(self) -> str:
+        w, h = self.size
+        frame = self.timings.get("frame_ms")
+        timing = f", frame {frame:.2f} ms" if frame is not None else ""
+        return f"<wgpurender.Image {self.target!r} ({self.path}) {w}x{h} {self.pixels.dtype}{timing}>"
+
+
+def _size(size: Size) -> tuple[int, int] | None:
+    if size is None:
+        return None
+    if isinstance(size, str):
+        parts = size.lower().split("x")
+        if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
+            raise UserError(f"malformed size {size!r}: expected 'WIDTHxHEIGHT', e.g. '800x600', or a (w, h) tuple")
+        size = (int(parts[0]), int(parts[1]))
+    try:
+        width, height = (int(v) for v in size)
+    except (TypeError, ValueError):
+        raise UserError(f"malformed size {size!r}: expected a (width, height) tuple of integers") from None
+    if not (0 < width <= 16384 and 0 < height <= 16384):
+        raise UserError(f"size {width}x{height} out of range: width and height must be 1..16384")
+    return width, height
+
+
+def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
+           backend: str | None = None, t: float = 0.0) -> Image:
+    """Render a stage or a scene file on the wgpu path, headless.
+
+    ``size``: ``(width, height)`` or ``"WxH"`` (default 800x600 for a stage, the scene's
+    ``[render] size`` for a scene); ``msaa``: 1 or 4 (default: the stage's or the scene's);
+    ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``Vulkan``
+    (default), ``Metal``, ``D3D12`` or ``OpenGL``; ``t``: animation time in seconds.
+    """
+    from .gpu import get_context
+
+    start = time.perf_counter()
+    wh = _size(size)
+    ctx = get_context(backend)
+    plan = None
+    from .course.formats import is_scene_file
+
+    if is_scene_file(target):
+        from .plan import plan_scene_file
+        from .scene_render import render_scene_file
+
+        plan = plan_scene_file(target, size=wh, output_format=format, msaa=msaa)
+        result = render_scene_file(target, size=wh, fmt=format, msaa=msaa, t=t, ctx=ctx)
+    else:
+        from .render import render_stage
+
+        result = render_stage(str(target), wh or (800, 600), format, msaa, t, ctx)
+    timings = {"frame_ms": result.frame_ms, "call_ms": (time.perf_counter() - start) * 1e3}
+    return Image(result.pixels, str(target), "wgpu", timings, result.adapter, plan)
+
+
+def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
+              t: float = 0.0) -> Image:
+    """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
+
+    Same arguments as :func:`render` (no ``backend``: this path is Vulkan). Needs ``glslc``
+    on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
+    """
+    from .vulkan_ref import render_reference
+    from .vulkan_ref.instance import get_vulkan
+
+    start = time.perf_counter()
+    pixels = render_reference(str(target), size=_size(size), fmt=format, msaa=msaa, t=t)
+    timings = {"call_ms": (time.perf_counter() - start) * 1e3}
+    return Image(pixels, str(target), "raw", timings, get_vulkan().describe())
+
+
+def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
+    """8-bit pixels from an Image, an array (float = linear) or an image file."""
+    from .imageio import load_png, to_uint8
+
+    if isinstance(image, Image):
+        return image.rgba8()
+    if isinstance(image, (str, os.PathLike)):
+        return load_png(image)
+    if isinstance(image, np.ndarray):
+        return to_uint8(np.ascontiguousarray(image))
+    raise UserError(f"{name}: expected a wgpurender.Image, a numpy array or an image path, got {type(image).__name__}")
+
+
+def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | str | os.PathLike, *,
+            flip: bool = True) -> Comparison:
+    """How far image ``b`` is from the reference ``a``: PSNR, largest channel difference, shares of
+    pixels off by more than 1/255 and 2/255, mean FLIP (``flip=False`` skips it: NaN).
+
+    Returns a :class:`~wgpurender.compare.Comparison`; ``.as_dict()`` gives plain numbers,
+    ``.summary()`` one line.
+    """
+    from .compare import compare_images
+
+    return compare_images(_pixels(a, "a"), _pixels(b, "b"), with_flip=flip)
+
+
+def heatmap(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | str | os.PathLike,
+            gain: float = 32.0) -> Image:
+    """Where ``a`` and ``b`` differ, magnified by ``gain``, with its colour scale drawn below."""
+    from .compare import heatmap_with_scale
+
+    return Image(heatmap_with_scale(_pixels(a, "a"), _pixels(b, "b"), gain), "heatmap", "derived")
+
+
+def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
+    """Images in one row (aligned at the top, ``gap`` pixels apart): wgpu beside raw beside the heatmap."""
+    if not images:
+        raise UserError("side_by_side needs at least one image")
+    parts = [_pixels(i, f"image {n}") for n, i in enumerate(images)]
+    parts = [np.dstack([p, np.full(p.shape[:2], 255, np.uint8)]) if p.shape[2] == 3 else p for p in parts]
+    height = max(p.shape[0] for p in parts)
+    width = sum(p.shape[1] for p in parts) + gap * (len(parts) - 1)
+    out = np.zeros((height, width, 4), np.uint8)
+    out[..., 3] = 255
+    x = 0
+    for p in parts:
+        out[: p.shape[0], x : x + p.shape[1]] = p
+        x += p.shape[1] + gap
+    return Image(out, " | ".join(getattr(i, "target", "array") for i in images), "derived")
+
+
+def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None) -> str:
+    """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints)."""
+    from .plan import explain_scene
+
+    return explain_scene(scene, size=_size(size), output_format=format, msaa=msaa)
+
+
+def stage_names() -> list[str]:
+    """The wgpu path's stage names, in course order."""
+    from .stages import all_stages
+
+    return list(all_stages())
+
+
+def reference_stage_names() -> list[str]:
+    """The stages the raw-Vulkan path can render, in course order."""
+    from .vulkan_ref import reference_stage_names
+
+    return reference_stage_names()
+
+
+__all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "explain", "stage_names",
+           "reference_stage_names"]
