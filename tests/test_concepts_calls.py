@@ -49,7 +49,9 @@ HELPERS = {
     "vulkan_ref.stages.base:RefStage.transient_msaa_image": "asks the images helper for a multisampled image",
     "vulkan_ref.render:check_msaa": "checks the requested sample count against the device's",
     "vulkan_ref.stages.cube3d:Cube3D.setup": "creates the depth image and pipeline through helpers",
-    "vulkan_ref.scene.support:unsupported": "says which plans the raw path refuses",
+    "vulkan_ref.window:create_window_context": "glfwCreateWindowSurface (the glfw binding's create_window_surface) "
+                                               "makes the surface from the instance",
+    "vulkan_ref.window:RawWindow._recreate": "re-creates the swapchain through create_swapchain, passing the old one",
     "vulkan_ref.ubo:pack_draw": "packs the push-constant bytes",
     "vulkan_ref.scene.uniforms:pack_material": "packs the push-constant bytes",
     "vulkan_ref.ubo:dynamic_stride": "std140/dynamic-offset arithmetic",

@@ -34,13 +34,14 @@ TRIANGLE_RGB = np.eye(3)
 
 
 def test_stage_names_mirror_the_wgpu_path():
-    """Every compared stage exists under the same name on both paths; msaa-post is the one extra."""
+    """Every compared stage exists under the same name on both paths, msaa-post included (its wgpu twin is two
+    render passes: tests/test_msaa_post.py)."""
     from wgpurender.stages import all_stages
 
     ref = set(reference_stage_names())
     for name in {s for s, _, _ in COMPARED} | {"3d"}:
         assert name in all_stages() and name in ref
-    assert "msaa-post" in ref
+    assert "msaa-post" in ref and "msaa-post" in all_stages()
 
 
 @pytest.mark.parametrize(("stage", "fmt", "msaa"), COMPARED)

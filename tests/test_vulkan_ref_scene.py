@@ -22,6 +22,7 @@ What was measured (320x240 unless said otherwise, lavapipe / Mesa 22.3):
   raw shader (``wgpu_intermediates=True``, post_chain.frag's F16_BETWEEN_STEPS) makes the two
   images bit-identical, which proves that this is the whole difference (round-to-nearest, GLSL's
   packHalf2x16, leaves 1854 pixels different: the rounding mode matters).
+- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_vulkan_ref_neighbourhood.py.
 - hdr = false: the intermediates are 8-bit sRGB, stored with lavapipe's approximate linear->sRGB
   encode; grayscale -> sepia -> srgb (rgba8unorm output), 160x120: 3954 pixels differ by 1/255,
   FLIP 0.0061. No shader formula reproduces the driver's encoder, so this one is bounded, not
@@ -232,19 +233,6 @@ def test_reference_command_renders_a_scene(tmp_path):
 
 # -- refusals ------------------------------------------------------------------------------------------------------
 
-def test_fxaa_is_refused_by_name():
-    """final.toml (tonemap -> fxaa -> vignette): a UserError naming fxaa and why, no image."""
-    with pytest.raises(UserError, match=r"fxaa reads neighbouring pixels.*input attachment gives only the "
-                                        r"current pixel.*cannot run fxaa"):
-        render_scene_reference(SCENES / "final.toml", size=(32, 24))
-
-
-def test_sharpen_is_refused_by_name(tmp_path):
-    """retro.toml's sharpen reads neighbours too: refused, naming sharpen."""
-    with pytest.raises(UserError, match=r"post\[3\] sharpen reads neighbouring pixels"):
-        render_scene_reference(SCENES / "retro.toml", size=(32, 24))
-
-
 def test_unsupported_output_format_is_refused():
     """bgra8unorm-srgb (a plan output format for swapchains): refused, naming the format."""
     with pytest.raises(UserError, match=r"output format bgra8unorm-srgb: the raw path renders only"):
@@ -252,11 +240,21 @@ def test_unsupported_output_format_is_refused():
 
 
 def test_every_problem_is_listed_at_once(tmp_path):
-    """Two neighbour effects: both named in one message."""
-    from wgpurender.plan import plan_scene_file
+    """Too many effects and an unsupported output format: both named in one message. Neighbourhood effects
+    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_vulkan_ref_neighbourhood.py)."""
+    from wgpurender.plan import build_plan
+    from wgpurender.scene import load_scene
     from wgpurender.vulkan_ref.scene import unsupported
+    from wgpurender.vulkan_ref.scene.uniforms import MAX_POST_STEPS
 
-    text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sharpen"\n'
-    problems = unsupported(plan_scene_file(scene_file(tmp_path, "both.toml", text)))
-    assert [p.split()[1] for p in problems] == ["fxaa", "sharpen"]
-    assert unsupported(plan_scene_file(SCENES / "final_subpass.toml")) == []
+    text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sepia"\n' * MAX_POST_STEPS
+    plan = build_plan(load_scene(scene_file(tmp_path, "long.toml", text)), output_format="bgra8unorm-srgb")
+    problems = unsupported(plan)
+    assert len(problems) == 2 and "post effects" in problems[0] and "bgra8unorm-srgb" in problems[1], problems
+    assert unsupported(plan_of(SCENES / "final.toml")) == [] and unsupported(plan_of(SCENES / "retro.toml")) == []
+
+
+def plan_of(path: Path):
+    from wgpurender.plan import plan_scene_file
+
+    return plan_scene_file(path)

@@ -20,7 +20,6 @@ import sys
 import textwrap
 from dataclasses import dataclass
 
-HEADLESS = "not in the raw path: headless; see the course text"
 R = "wgpurender.vulkan_ref."
 W = "wgpurender."
 
@@ -90,27 +89,31 @@ CONCEPTS: list[Concept] = [
     ),
     Concept(
         "surface",
-        ("vkCreateXlibSurfaceKHR / glfwCreateWindowSurface", "vkGetPhysicalDeviceSurfaceSupportKHR",
-         "vkGetPhysicalDeviceSurfaceFormatsKHR"),
-        (),
+        ("glfwCreateWindowSurface (GLFW makes the platform's surface: Xlib or XCB, Wayland, Win32)",
+         "vkGetPhysicalDeviceSurfaceSupportKHR", "vkGetPhysicalDeviceSurfaceFormatsKHR",
+         "vkGetPhysicalDeviceSurfaceCapabilitiesKHR", "vkDestroySurfaceKHR"),
+        _raw("window:create_window_context", "swapchain:presentation_family", "swapchain:surface_offer",
+             "swapchain:destroy_surface"),
         ("wgpu.utils.get_glfw_present_info(window)", "wgpu.gpu.get_canvas_context(present_info)",
          "GPUCanvasContext.get_preferred_format"),
         _wgpu("window:present_info", "window:surface_format", "window:DemoWindow.__init__"),
         "One canvas context per window, made from the native window handles; it is surface and swapchain in one "
-        "object. wgpu checks that the queue can present, so there is no present-support query.",
-        raw_note=HEADLESS,
+        "object. wgpu checks that the queue can present, so there is no present-support query. The raw window "
+        "(wgpurender demo --raw) asks GLFW for the surface (glfwCreateWindowSurface, with the instance extensions "
+        "GLFW names: VK_KHR_surface + VK_KHR_xcb_surface under X11) and picks a queue family that can present.",
     ),
     Concept(
         "presentation and present modes",
-        ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)",
+        ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)", "VkSwapchainCreateInfoKHR.presentMode",
          "vkGetPhysicalDeviceSurfacePresentModesKHR"),
-        (),
+        _raw("swapchain:surface_offer", "swapchain:create_swapchain", "swapchain:present"),
         ("GPUCanvasContext.present()", "get_glfw_present_info(window, vsync=True / False)"),
         _wgpu("window:present_info", "window:PRESENT_MODES", "window:DemoWindow.frame"),
         "Present modes are chosen through the canvas context: wgpu-py 0.32 only exposes vsync on/off, so fifo "
         "is vsync on and immediate is vsync off (wgpu falls back to mailbox, then fifo); mailbox cannot be asked "
-        "for. There is no separate present queue and no wait semaphore to pass.",
-        raw_note=HEADLESS,
+        "for. There is no separate present queue and no wait semaphore to pass. The raw window presents with "
+        "vkQueuePresentKHR waiting on the image's render-finished semaphore, and prints what the surface offers "
+        "(lavapipe under Xvfb: immediate, mailbox, fifo, fifo-relaxed).",
     ),
     Concept(
         "heaps and memory types",
@@ -220,16 +223,20 @@ CONCEPTS: list[Concept] = [
     Concept(
         "swapchain",
         ("vkCreateSwapchainKHR", "vkGetSwapchainImagesKHR", "vkAcquireNextImageKHR",
-         "re-creation on VK_ERROR_OUT_OF_DATE_KHR"),
-        (),
+         "re-creation on VK_ERROR_OUT_OF_DATE_KHR (the binding raises VkErrorOutOfDateKhr, VkSuboptimalKhr)"),
+        _raw("swapchain:create_swapchain", "swapchain:acquire_next_image", "window:RawWindow.frame",
+             "window:RawWindow._recreate"),
         ("GPUCanvasContext.configure(device=, format=, usage=)", "GPUCanvasContext.get_current_texture()",
          "set_physical_size"),
         _wgpu("window:DemoWindow.frame", "window:surface_format", "window:SURFACE_USAGE"),
         "Image count, image views and the acquire semaphore are hidden; get_current_texture() is acquire. A "
         "resize re-configures the context instead of re-creating a swapchain by hand; a minimised window "
         "(0x0) renders nothing, and an occluded one skips the frame (get_current_texture() raises "
-        "wgpu.DrawCancelled where Vulkan's acquire returns VK_ERROR_OUT_OF_DATE_KHR or VK_SUBOPTIMAL_KHR).",
-        raw_note=HEADLESS,
+        "wgpu.DrawCancelled where Vulkan's acquire returns VK_ERROR_OUT_OF_DATE_KHR or VK_SUBOPTIMAL_KHR). The "
+        "raw window does all of it: minImageCount + 1 images, vkAcquireNextImageKHR "
+        "with a semaphore, re-creation from the old swapchain on resize, SUBOPTIMAL or OUT_OF_DATE and after "
+        "minimise, and a swapchain made with TRANSFER_DST (the stage's image is blitted in) and TRANSFER_SRC "
+        "(--screenshot reads the presented image back).",
     ),
     Concept(
         "attachment descriptions and references",
@@ -245,22 +252,27 @@ CONCEPTS: list[Concept] = [
         ("VkSubpassDescription", "VkSubpassDependency (VK_SUBPASS_EXTERNAL, BY_REGION)", "vkCmdNextSubpass"),
         _raw("renderpass:single_pass", "renderpass:msaa_post_pass", "renderpass:dependency",
              "renderpass:into_pass", "renderpass:out_to_transfer", "scene.renderpass:create_scene_render_pass",
-             "scene.frame:SceneFrame.record"),
+             "scene.frame:SceneFrame.record", "scene.neighbourhood:NeighbourhoodPass"),
         ("(none: one subpass per render pass)",),
-        _wgpu("post.chain:PostChain.run", "scene_render.frame:SceneRenderer.record"),
-        "WebGPU cannot express subpasses (Metal and D3D12 have none): each step is its own render pass, and the "
-        "dependencies between passes are implied by their order in the encoder. The final scene shows the cost "
-        "in numbers: the raw path composes the whole post chain in one subpass, in float32 registers, where the "
-        "wgpu path stores the image in an rgba16float texture between effects (lavapipe rounds that store toward "
-        "zero); final_subpass.toml (tonemap -> vignette), 320x240: 2697 pixels off by 1/255, FLIP 0.00176, and "
-        "bit-identical once the raw shader rounds the same way (tests/test_vulkan_ref_scene.py).",
+        _wgpu("stages.msaa_post:MsaaPost.record", "post.chain:PostChain.run",
+              "scene_render.frame:SceneRenderer.record"),
+        "WebGPU cannot express subpasses (Metal and D3D12 have none; gfx-rs/wgpu#10148): each step is its own "
+        "render pass, and the dependencies between passes are implied by their order in the encoder. The "
+        "msaa-post stage shows it at its smallest: one render pass with two subpasses on the raw path, two "
+        "render passes and a stored, re-read resolve on wgpu (docs/benchmarks.md measures the cost). The final "
+        "scene shows the arithmetic: the raw path composes consecutive per-pixel effects in one subpass, in "
+        "float32 registers, where the wgpu path stores the image in an rgba16float texture between effects "
+        "(lavapipe rounds that store toward zero); final_subpass.toml (tonemap -> vignette), 320x240: 2697 "
+        "pixels off by 1/255, FLIP 0.00176, and bit-identical once the raw shader rounds the same way "
+        "(tests/test_vulkan_ref_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
+        "on the raw path too, behind an explicit barrier, with the per-pixel effects after it in its subpass 1.",
     ),
     Concept(
         "barriers with stage and access masks",
         ("vkCmdPipelineBarrier", "VkBufferMemoryBarrier / VkImageMemoryBarrier",
          "VkPipelineStageFlags + VkAccessFlags (availability and visibility)"),
         _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer",
-             "textures:transition_level"),
+             "textures:transition_level", "window:image_barrier"),
         ("(none: inserted by wgpu)",),
         _wgpu("textures:generate_mipmaps", "post.chain:PostChain.run"),
         "No barrier is ever written: wgpu inserts them between passes and copies from its usage tracking, with "
@@ -270,21 +282,41 @@ CONCEPTS: list[Concept] = [
     Concept(
         "fences",
         ("vkCreateFence", "vkQueueSubmit(..., fence)", "vkWaitForFences"),
-        _raw("command_buffers:submit_and_wait"),
+        _raw("command_buffers:submit_and_wait", "swapchain:owned_fence", "window:FrameSlot.wait",
+             "window:RawWindow.frame"),
         ("(no fence object)", "GPUBuffer.map_sync", "queue.on_submitted_work_done (broken in wgpu-py 0.32)"),
         _wgpu("gpu:GPUContext.wait_idle", "targets:read_texture"),
         "The host waits by mapping a buffer that the last submission wrote: submissions complete in order, so "
-        "once the map resolves everything before it has finished.",
+        "once the map resolves everything before it has finished. WebGPU has no fence object because it has no "
+        "host-visible per-submission handle: the browser API it follows only promises a callback "
+        "(onSubmittedWorkDone). The raw window uses one fence per frame in flight, made signalled, reset only "
+        "after a successful acquire, waited on before the slot is recorded again.",
     ),
     Concept(
         "semaphores",
         ("vkCreateSemaphore", "VkSubmitInfo pWaitSemaphores / pSignalSemaphores / pWaitDstStageMask"),
-        (),
+        _raw("swapchain:owned_semaphore", "window:RawWindow.frame", "swapchain:present"),
         ("(none: queue submission order)",),
         _wgpu("window:DemoWindow.frame"),
         "No semaphores in wgpu: one queue, whose submissions run in order, and the acquire/present semaphores "
-        "of the swapchain are inside get_current_texture() and present().",
-        raw_note="not in the raw path: headless, one queue, no swapchain; see the course text",
+        "of the swapchain are inside get_current_texture() and present(). Their natural use is exactly there, "
+        "and the raw window has both: image-available (one per frame slot, signalled by the acquire, waited on "
+        "at the TRANSFER stage, so the stage renders before the image is free) and render-finished (one per "
+        "swapchain image, signalled by the submit, waited on by the present). Headless rendering has none: one "
+        "queue, nothing to hand over.",
+    ),
+    Concept(
+        "frames in flight",
+        ("MAX_FRAMES_IN_FLIGHT copies of VkCommandBuffer, VkFence and VkSemaphore", "vkWaitForFences before a "
+         "slot is recorded again", "vkResetFences", "imagesInFlight fences"),
+        _raw("window:FrameSlot", "window:RawWindow.frame"),
+        ("(none: inside the surface)",),
+        _wgpu("window:DemoWindow.frame"),
+        "wgpu keeps its own frame pacing inside the surface (get_current_texture() blocks when the CPU runs too "
+        "far ahead) and tracks resource lifetimes itself, so the wgpu window records one frame after another "
+        "with no per-frame copies. The raw window keeps 2 frame slots, each with its own command buffer, fence, "
+        "semaphore, offscreen image and framebuffers (freed when its fence signals), and waits on the fence of "
+        "the slot that last used a swapchain image before reusing that image.",
     ),
     Concept(
         "events",
@@ -294,7 +326,8 @@ CONCEPTS: list[Concept] = [
         (),
         "Cannot be expressed in wgpu: there are no split barriers; wgpu places whole barriers where a resource "
         "changes use.",
-        raw_note=HEADLESS,
+        raw_note="not in the raw path: no natural use; a split barrier pays off when independent work can run "
+        "between a write and its read, and in these frames every pass reads what the pass before it wrote",
     ),
     Concept(
         "render pass",
@@ -444,14 +477,15 @@ CONCEPTS: list[Concept] = [
         "input attachments",
         ("VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT", "VkSubpassDescription.pInputAttachments", "GLSL subpassLoad"),
         _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post", "scene.post:PostSubpass",
-             "scene.support:unsupported"),
+             "scene.neighbourhood:NeighbourhoodPass._create_render_pass"),
         ("(none: the previous pass's texture, sampled in a new pass)",),
-        _wgpu("post.base:PostEffect.encode", "post.chain:PostChain.run"),
-        "Cannot be expressed (no subpasses). The image goes through memory between passes, which a tiling GPU "
-        "would have kept on chip; in exchange an effect may read neighbouring pixels (post/base.py explains). "
-        "The converse limits the raw path: subpassLoad reads only the fragment's own pixel, so its final scene "
-        "refuses fxaa and sharpen with a UserError rather than draw a different image. An sRGB or float input "
-        "attachment reads exactly like the wgpu path's texture load: each effect alone is bit-identical.",
+        _wgpu("stages.msaa_post:MsaaPost._post", "post.base:PostEffect.encode", "post.chain:PostChain.run"),
+        "Cannot be expressed (no subpasses; gfx-rs/wgpu#10148). The image goes through memory between passes, "
+        "which a tiling GPU would have kept on chip; in exchange an effect may read neighbouring pixels "
+        "(post/base.py explains). The converse limits the raw path: subpassLoad reads only the fragment's own "
+        "pixel, so fxaa and sharpen cut its chain: each samples the previous result in a render pass of its "
+        "own. An sRGB or float input attachment reads exactly like the wgpu path's texture load: msaa-post and "
+        "every repository scene are bit-identical across the paths (with float16 between per-pixel effects).",
     ),
     Concept(
         "push constants",

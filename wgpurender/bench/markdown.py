@@ -24,7 +24,7 @@ def _targets(run) -> str:
 
     res = run.results
     rows = []
-    # the final scene on both paths: final_subpass.toml (the raw path refuses final.toml's FXAA)
+    # the final scene on both paths: final.toml and final_subpass.toml (its per-pixel chain only)
     scene = [r for r in _pick(res, "scene", "frame_ms") if r.case in ("final", "final_subpass")]
     wg = {(r.case, r.size): r for r in scene if r.path == "wgpu"}
     rw = {(r.case, r.size): r for r in scene if r.path == "raw"}
@@ -139,8 +139,17 @@ def render_markdown(run, plots: dict[str, str]) -> str:
         lines += ["## Post pass taken apart (a full-screen copy, one knob changed per row; GPU ms)", "",
                   results_table(_pick(res, "post-probe", "gpu_ms")), ""]
     if _pick(res, "msaa-post"):
+        timed = [r for r in _pick(res, "msaa-post") if r.metric != "declared_mb"]
         lines += ["## MSAA + one post effect: wgpu (two passes) vs raw (two subpasses)", "",
-                  comparison_table(_pick(res, "msaa-post")), ""]
+                  comparison_table(timed), ""]
+        traffic = {(r.size, r.path): r.median for r in _pick(res, "msaa-post", "declared_mb")}
+        sizes = list(dict.fromkeys(size for size, _ in traffic))
+        if sizes:
+            lines += ["Memory traffic the load/store ops declare per frame (MB; bench/post.py msaa_post_traffic: "
+                      "a tiler's saving, not lavapipe's or a desktop GPU's):", "",
+                      markdown_table(("size", "wgpu (two passes)", "raw (two subpasses)", "extra"),
+                                     [(s, f"{traffic[(s, 'wgpu')]:.2f}", f"{traffic[(s, 'raw')]:.2f}",
+                                       f"{traffic[(s, 'wgpu')] - traffic[(s, 'raw')]:.2f}") for s in sizes]), ""]
         inc = _post_increments(res)
         if inc:
             lines += ["Post increment (msaa-post minus msaa alone, GPU ms):", "",

@@ -21,7 +21,7 @@ from pathlib import Path
 from ..gpu import GPUContext, get_context
 from .report import Result
 
-FAMILIES = ("frames", "scene", "post", "objects", "startup")
+FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
 FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
 BIG_SIZE = (3840, 2160)
 QUICK_SIZES = ((96, 64),)
@@ -93,7 +93,8 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
     ctx = ctx or get_context()
     start = time.perf_counter()
     run = PerfRun(config, machine_info(ctx))
-    steps = {"frames": _frames, "scene": _scene, "post": _post, "objects": _objects, "startup": _startup}
+    steps = {"frames": _frames, "scene": _scene, "post": _post, "msaa-post": _msaa_post, "objects": _objects,
+             "startup": _startup}
     for family in config.families:
         log(f"[{family}]")
         steps[family](ctx, config, run, log)
@@ -152,7 +153,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 
 def _post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from .post import bench_effects, bench_msaa_post, bench_probes
+    from .post import bench_effects, bench_probes
 
     size = QUICK_SIZES[0] if config.quick else POST_SIZE
     n = config.timed_frames()
@@ -160,9 +161,15 @@ def _post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     log("  post: effects")
     run.results += bench_probes(ctx, size, n)
     log("  post: probes")
+
+
+def _msaa_post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    """The msaa-post stage on both paths (input-attachment subpass vs a second render pass), every size."""
+    from .post import bench_msaa_post
+
     for s in config.sizes(ctx):
-        run.results += bench_msaa_post(ctx, s, n, raw=config.raw)
-    log("  post: msaa-post")
+        run.results += bench_msaa_post(ctx, s, config.timed_frames(), raw=config.raw)
+        log(f"  msaa-post: {s[0]}x{s[1]}")
 
 
 def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:

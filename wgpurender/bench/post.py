@@ -7,13 +7,15 @@
   makes a trivial post pass expensive: the source and target formats, sampler vs
   textureLoad, one triangle vs a quad, load_op clear vs load, and an empty pass
   (clear + store, no draw) for the floor;
-- ``msaa-post``: the raw path's one-render-pass, two-subpass stage (the grey effect
-  reads the resolve as an input attachment) against wgpu's MSAA triangle pass
-  followed by the grayscale effect as a second render pass.
+- ``msaa-post``: the stage of that name on both paths: the raw path's one render pass
+  with two subpasses (the grey effect reads the resolve as an input attachment) against
+  the wgpu stage's MSAA triangle pass followed by a second render pass sampling the
+  resolved texture (wgpurender/stages/msaa_post.py says why wgpu needs it).
 """
 
 from __future__ import annotations
 
+from contextlib import ExitStack
 from dataclasses import dataclass
 
 import wgpu
@@ -22,9 +24,9 @@ from ..gpu import GPUContext
 from ..shader_variants import specialise
 from ..shaders import create_shader_module, load_wgsl
 from ..targets import create_target
-from ..timing import PassTimer
+from ..timing import PassTimer, Stats
 from .encoder import gpu_total, timed_frame
-from .frames import RawStageRunner, WgpuStageRunner, measure
+from .frames import RawStageRunner, Samples, WgpuStageRunner, measure
 from .report import Result
 
 PROBE_SHADER = "bench_post_probe.wgsl"
@@ -130,22 +132,6 @@ class ProbeRunner(_PassRunner):
         rp.end()
 
 
-class WgpuMsaaPostRunner(WgpuStageRunner):
-    """wgpu's counterpart of the raw msaa-post stage: the msaa stage into an image, then grayscale."""
-
-    def __init__(self, ctx: GPUContext, size: tuple[int, int], scene_format: str = "rgba8unorm-srgb") -> None:
-        from ..post import create_effect
-
-        super().__init__(ctx, "msaa", size)
-        self.name = "msaa-post"
-        self.scene = _source(ctx, size, scene_format)
-        self.effect = create_effect("grayscale", amount=1.0)
-
-    def record(self, encoder, target, t: float) -> None:
-        self.stage.record(encoder, self.scene, t)
-        self.effect.encode(self.ctx.device, encoder, self.scene, target)
-
-
 def bench_effects(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Result]:
     from ..post import EFFECTS
 
@@ -164,15 +150,70 @@ def bench_probes(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Re
     return out
 
 
-def bench_msaa_post(ctx: GPUContext, size: tuple[int, int], frames: int, raw: bool = True) -> list[Result]:
-    """msaa-post on both paths, plus the msaa stage alone on both, so the post increment can be read off."""
-    out = measure(WgpuMsaaPostRunner(ctx, size), frames).results(
-        "msaa-post", "msaa-post", "wgpu", size, note="msaa pass + grayscale pass")
-    out += measure(WgpuStageRunner(ctx, "msaa", size), frames).results("msaa-post", "msaa alone", "wgpu", size)
-    if raw:
-        with RawStageRunner("msaa-post", size) as runner:
-            out += measure(runner, frames).results("msaa-post", "msaa-post", "raw", size,
-                                                   note="one render pass, two subpasses")
-        with RawStageRunner("msaa", size) as runner:
-            out += measure(runner, frames).results("msaa-post", "msaa alone", "raw", size)
+BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "rgba16float": 8}
+
+
+def msaa_post_traffic(size: tuple[int, int], fmt: str = "rgba8unorm-srgb") -> dict[str, int]:
+    """Bytes that each path's load/store ops and reads declare must go through memory, per frame.
+
+    Both: the 4-sample image is cleared and discarded (never stored), the output stored once. raw: the
+    resolve attachment is never stored (storeOp DONT_CARE, TRANSIENT) and subpass 1 reads it as an input
+    attachment, which a tiling GPU serves from tile memory: nothing else. wgpu: the resolve target must be
+    stored (the next pass samples it) and read back by the post pass: two more full images. On a desktop
+    GPU or lavapipe the raw resolve lives in memory too, so the declared saving is a tiler's, not theirs.
+    """
+    image = size[0] * size[1] * BYTES_PER_PIXEL[fmt]
+    return {"raw": image, "wgpu": 3 * image}
+
+
+def msaa_post_traffic_results(size: tuple[int, int]) -> list[Result]:
+    s = f"{size[0]}x{size[1]}"
+    notes = {"raw": "output store only (resolve never stored, input attachment read from tile memory)",
+             "wgpu": "resolve stored + sampled by pass 2 + output store"}
+    return [Result("msaa-post", "msaa-post", path, s, "declared_mb", b / 1e6, b / 1e6, b / 1e6, 1, notes[path])
+            for path, b in msaa_post_traffic(size).items()]
+
+
+def _interleaved(runners: dict[tuple[str, str], object], frames: int) -> dict[tuple[str, str], Samples]:
+    """One frame of each runner per round, the order reversed every other round: on a loaded machine the
+    load drifts over seconds, so measuring one runner after the other would compare different loads."""
+    for runner in runners.values():
+        measure(runner, 0, warmup=2)
+    out = {key: Samples() for key in runners}
+    for i in range(frames):
+        for key in (list(runners) if i % 2 == 0 else list(reversed(runners))):
+            sample = measure(runners[key], 1, warmup=0)
+            out[key].frame += sample.frame
+            out[key].cpu += sample.cpu
+            out[key].gpu += sample.gpu
     return out
+
+
+def _paired_increment(samples: dict[tuple[str, str], Samples], path: str, size: tuple[int, int]) -> list[Result]:
+    """The post step's GPU cost: msaa-post minus msaa alone, frame by frame within a round (paired), so
+    that the load of that moment cancels; its median and spread."""
+    with_post, alone = samples[("msaa-post", path)].gpu, samples[("msaa alone", path)].gpu
+    if not with_post or len(with_post) != len(alone):
+        return []
+    stats = Stats.of([a - b for a, b in zip(with_post, alone, strict=True)])
+    return [Result("msaa-post", "post step (paired difference)", path, f"{size[0]}x{size[1]}", "gpu_ms",
+                   stats.median, stats.p10, stats.p90, stats.n, "msaa-post minus msaa alone, same round")]
+
+
+def bench_msaa_post(ctx: GPUContext, size: tuple[int, int], frames: int, raw: bool = True) -> list[Result]:
+    """msaa-post on both paths, plus the msaa stage alone on both, so the post step's cost can be read off
+    (interleaved frame by frame); and the memory traffic each path declares (:func:`msaa_post_traffic`)."""
+    notes = {("msaa-post", "wgpu"): "msaa pass + post pass", ("msaa-post", "raw"): "one render pass, two subpasses"}
+    with ExitStack() as stack:
+        runners = {("msaa-post", "wgpu"): WgpuStageRunner(ctx, "msaa-post", size),
+                   ("msaa alone", "wgpu"): WgpuStageRunner(ctx, "msaa", size)}
+        if raw:
+            runners[("msaa-post", "raw")] = stack.enter_context(RawStageRunner("msaa-post", size))
+            runners[("msaa alone", "raw")] = stack.enter_context(RawStageRunner("msaa", size))
+        samples = _interleaved(runners, frames)
+    out = []
+    for (case, path), sample in samples.items():
+        out += sample.results("msaa-post", case, path, size, note=notes.get((case, path), ""))
+    for path in ("wgpu", "raw") if raw else ("wgpu",):
+        out += _paired_increment(samples, path, size)
+    return out + msaa_post_traffic_results(size)

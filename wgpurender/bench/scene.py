@@ -3,9 +3,9 @@
 Both are drawn frame by frame into one target (the runner protocol of :func:`frames.measure`).
 Per-pass GPU times on the wgpu side (scene pass, each post pass) come from the renderer's own
 ``timer`` argument. The raw-Vulkan path (wgpurender/vulkan_ref/scene/) draws a scene in one
-render pass of two subpasses; it refuses effects that read neighbouring pixels (FXAA, sharpen),
-so ``final.toml`` has no raw peer and ``final_subpass.toml`` (the same scene and per-pixel chain)
-is the pair whose frame times compare the two paths.
+render pass of two subpasses, plus a render pass per effect that reads neighbouring pixels (FXAA,
+sharpen), so both ``final.toml`` and ``final_subpass.toml`` (the same scene, per-pixel chain only)
+have raw peers; a scene the raw path refuses is timed on wgpu only, with a note saying why.
 """
 
 from __future__ import annotations

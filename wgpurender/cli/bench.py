@@ -31,7 +31,7 @@ def _register_perf(suites) -> None:
     p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
                    help="where results go (default ./bench-results)")
     p.add_argument("--only", action="append", default=None, metavar="FAMILY",
-                   help="run only these families (repeatable): frames, scene, post, objects, startup")
+                   help="run only these families (repeatable): frames, scene, post, msaa-post, objects, startup")
     big = p.add_mutually_exclusive_group()
     big.add_argument("--big", dest="big", action="store_true", default=None,
                      help="add 3840x2160 (default: when the adapter is not a CPU)")

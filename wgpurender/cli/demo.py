@@ -44,6 +44,9 @@ def register(subparsers) -> None:
     p.add_argument("--time", type=float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--raw", action="store_true",
+                   help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
+                   "in flight (wgpurender/vulkan_ref/window.py); stages as 'wgpurender reference' has them")
     p.add_argument("--validation", action="store_true",
                    help="turn on the Vulkan validation layer (as $WGPURENDER_VALIDATION=1) and count its messages")
     bench = p.add_argument_group("benchmark (like Sascha Willems' Vulkan examples)")
@@ -60,6 +63,10 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    if args.raw:
+        from ._demo_raw import run_raw
+
+        return run_raw(args)
     import os
 
     from ..errors import UserError

@@ -77,7 +77,7 @@ class VulkanContext:
         vk.vkDestroyInstance(self.instance, None)
 
 
-def create_instance(log: validation.MessageLog | None):
+def create_instance(log: validation.MessageLog | None, extensions: tuple[str, ...] = ()):
     """vkCreateInstance: application info, layers, extensions; with validation, a pNext chain.
 
     The messenger create-info also goes on the chain, so that messages from
@@ -87,11 +87,11 @@ def create_instance(log: validation.MessageLog | None):
         pApplicationName="wgpurender-vulkan-ref", applicationVersion=1, pEngineName="wgpurender",
         engineVersion=1, apiVersion=API_VERSION,
     )
-    layers, extensions, chain = [], [], []
+    layers, extensions, chain = [], list(extensions), []
     if log is not None:
         validation.check_layer_available()
         layers = [validation.LAYER]
-        extensions = ["VK_EXT_debug_utils", "VK_EXT_validation_features"]
+        extensions += ["VK_EXT_debug_utils", "VK_EXT_validation_features"]
         messenger = validation.messenger_info(log)
         features = validation.validation_features()
         features.pNext = vk.ffi.addressof(messenger)
@@ -134,13 +134,15 @@ def find_queue_family(physical_device) -> int:
     raise UserError("the Vulkan device has no graphics queue family")
 
 
-def create_device(physical_device, family: int):
-    """vkCreateDevice with one queue of ``family``, no device extensions; one optional feature,
+def create_device(physical_device, family: int, extensions: tuple[str, ...] = ()):
+    """vkCreateDevice with one queue of ``family`` and ``extensions`` (none headless; VK_KHR_swapchain for
+    the window, vulkan_ref/window.py); one optional feature,
     samplerAnisotropy, when the device offers it (anisotropic samplers need it; wgpu enables it the same way)."""
     queue_info = vk.VkDeviceQueueCreateInfo(queueFamilyIndex=family, queueCount=1, pQueuePriorities=[1.0])
     offered = vk.vkGetPhysicalDeviceFeatures(physical_device)
     features = vk.VkPhysicalDeviceFeatures(samplerAnisotropy=offered.samplerAnisotropy)
-    info = vk.VkDeviceCreateInfo(pQueueCreateInfos=[queue_info], pEnabledFeatures=features)
+    info = vk.VkDeviceCreateInfo(pQueueCreateInfos=[queue_info], pEnabledFeatures=features,
+                                 ppEnabledExtensionNames=list(extensions))
     device = vk.vkCreateDevice(physical_device, info, None)
     return device, vk.vkGetDeviceQueue(device, family, 0)
 
@@ -163,14 +165,29 @@ def copy_limits(limits) -> Limits:
 
 
 @functools.cache
+def _process_log() -> validation.MessageLog:
+    """One message log for every context of the process: the binding has one global callback slot, so a
+    second context's messenger (the window's) would otherwise take the first one's messages away."""
+    return validation.MessageLog()
+
+
+@functools.cache
 def get_vulkan() -> VulkanContext:
     """The process-wide raw Vulkan context (validation per $WGPURENDER_VALIDATION when first called)."""
-    log = validation.MessageLog() if validation.validation_requested() else None
-    instance = create_instance(log)
+    return create_context()
+
+
+def create_context(instance_extensions: tuple[str, ...] = (), device_extensions: tuple[str, ...] = (),
+                   pick_family=None) -> VulkanContext:
+    """A new context: headless by default. The window (window.py) asks for the surface and swapchain
+    extensions, and picks a queue family that can also present: ``pick_family(instance, physical_device)
+    -> index``, called once the instance exists (the surface it checks is made from the instance)."""
+    log = _process_log() if validation.validation_requested() else None
+    instance = create_instance(log, instance_extensions)
     messenger = validation.create_messenger(instance, log) if log is not None else None
     physical = pick_physical_device(instance)
-    family = find_queue_family(physical)
-    device, queue = create_device(physical, family)
+    family = pick_family(instance, physical) if pick_family else find_queue_family(physical)
+    device, queue = create_device(physical, family, device_extensions)
     props = vk.vkGetPhysicalDeviceProperties(physical)
     types, heaps = memory_types(physical)
     ctx = VulkanContext(

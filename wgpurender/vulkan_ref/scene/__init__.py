@@ -3,8 +3,9 @@
 One render pass with two subpasses: subpass 0 draws the models into the 4x MSAA HDR attachment
 (rgba16float) with a resolve attachment and an MSAA depth attachment; subpass 1 reads the resolved
 image as an input attachment (subpassLoad) and applies the post chain's per-pixel effects in one
-fragment shader. Effects that read neighbouring pixels (fxaa, sharpen) are refused with a
-UserError, never dropped.
+fragment shader. Effects that read neighbouring pixels (fxaa, sharpen) cannot read through an input
+attachment: each runs in a render pass of its own that samples the previous result after an image
+barrier, followed by the per-pixel effects after it in that pass's subpass 1 (neighbourhood.py).
 
 Public API: :func:`render_scene_reference` ``(path, size=None, fmt=None, msaa=None, t=0.0) ->
 pixels``; :func:`unsupported` ``(plan) -> [reasons]``.
@@ -13,7 +14,8 @@ Modules, one idea each, like wgpurender/scene_render/: ``support`` (what can be 
 ``uniforms`` (std140 blocks and push constants, offsets by hand), ``variants`` (a plan's shader
 variant as glslc -D flags), ``resources`` (meshes, textures, samplers), ``renderpass`` (attachments,
 the two subpasses, dependencies), ``scene_subpass`` (descriptor sets, pipelines per variant, the
-draws), ``post`` (the post subpass), ``frame`` (a whole frame and the readback).
+draws), ``post`` (the post subpass), ``neighbourhood`` (fxaa and sharpen passes),
+``frame`` (a whole frame and the readback).
 """
 
 from .frame import render_scene_reference

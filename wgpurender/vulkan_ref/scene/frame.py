@@ -24,6 +24,7 @@ from ..instance import VulkanContext, get_vulkan
 from ..readback import buffer_to_pixels, record_copy_to_buffer
 from ..renderpass import begin, create_framebuffer
 from ..stages.base import TARGET_USAGE
+from .neighbourhood import HANDOFF_USAGE, NeighbourhoodPass, split_chain
 from .post import PostSubpass
 from .renderpass import create_scene_render_pass
 from .resources import SceneResources
@@ -35,6 +36,7 @@ USAGES = {  # attachments that live only inside the pass: transient, lazily allo
     "msaa_color": vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | TRANSIENT,
     "scene_color": vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | TRANSIENT,
     "depth": vk.VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | TRANSIENT,
+    "handoff": HANDOFF_USAGE,  # stored: the next (neighbourhood) pass samples it
 }
 
 
@@ -60,9 +62,11 @@ class SceneFrame:
                  wgpu_intermediates: bool = False) -> None:
         self.ctx, self.owned, self.scene, self.plan = ctx, owned, scene, plan
         self.size = plan.size
-        self.pass_ = create_scene_render_pass(ctx, owned, plan)
+        head, segments = split_chain(plan.post_passes)
+        self.pass_ = create_scene_render_pass(ctx, owned, plan, head, handoff=bool(segments))
         self.images: dict[str, Image] = {
-            a.name: create_image(ctx, owned, self.size, a.format, USAGES[a.name], a.samples, lazy=True)
+            a.name: create_image(ctx, owned, self.size, a.format, USAGES[a.name], a.samples,
+                                 lazy=bool(USAGES[a.name] & TRANSIENT))
             for a in self.pass_.attachments if a.name != "output"
         }
         self.resources = SceneResources(ctx, owned, plan)
@@ -70,7 +74,20 @@ class SceneFrame:
         self.post = None
         if self.pass_.has_post:
             self.post = PostSubpass(ctx, owned, plan, self.pass_.render_pass, self.images["scene_color"],
-                                    wgpu_intermediates)
+                                    wgpu_intermediates, passes=head)
+        self.neighbourhood = self._neighbourhood_passes(segments, wgpu_intermediates)
+
+    def _neighbourhood_passes(self, segments, wgpu_intermediates: bool) -> list[tuple[NeighbourhoodPass, Image | None]]:
+        """One pass per neighbourhood effect, each with the handoff image it writes (None: the output)."""
+        passes, source = [], self.images.get("handoff")
+        for i, segment in enumerate(segments):
+            final = i == len(segments) - 1
+            nb = NeighbourhoodPass(self.ctx, self.owned, self.plan, segment, source, self.plan.output_format, final,
+                                   wgpu_intermediates)
+            written = None if final else create_image(self.ctx, self.owned, self.size, source.format, HANDOFF_USAGE)
+            passes.append((nb, written))
+            source = written
+        return passes
 
     def record(self, cmd, target: Image) -> None:
         views = [target if a.name == "output" else self.images[a.name] for a in self.pass_.attachments]
@@ -83,6 +100,8 @@ class SceneFrame:
             set_viewport(cmd, self.size, flip=True)  # dynamic state survives the subpass; set for clarity
             self.post.record(cmd, self.size)
         vk.vkCmdEndRenderPass(cmd)
+        for nb, written in self.neighbourhood:
+            nb.record(cmd, written or target)
 
 
 def render_scene_reference(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,

@@ -19,6 +19,7 @@ scene image, in SHADER_READ_ONLY_OPTIMAL, written with vkUpdateDescriptorSets.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from contextlib import ExitStack
 
 import vulkan as vk
@@ -54,16 +55,21 @@ def step_params(p: PostPass, output_format: str) -> tuple[float, ...]:
     raise ValueError(f"no post_chain.frag step for {p.effect!r}")  # support.check_supported refuses it first
 
 
-def chain_steps(plan: RenderPlan) -> list[tuple[int, tuple[float, ...]]]:
-    return [(STEP_KINDS[p.effect], step_params(p, plan.output_format)) for p in plan.post_passes]
+def chain_steps(plan: RenderPlan, passes: Sequence[PostPass] | None = None) -> list[tuple[int, tuple[float, ...]]]:
+    """The steps of ``passes`` (default: the plan's whole chain) for the chain's uniform block."""
+    passes = plan.post_passes if passes is None else passes
+    return [(STEP_KINDS[p.effect], step_params(p, plan.output_format)) for p in passes]
 
 
 class PostSubpass:
     """The input attachment descriptor, the chain's UBO and the full-screen pipeline of subpass 1."""
 
     def __init__(self, ctx: VulkanContext, owned: ExitStack, plan: RenderPlan, render_pass: RenderPass,
-                 scene_image: Image, wgpu_intermediates: bool = False) -> None:
-        self.ctx, self.plan = ctx, plan
+                 scene_image: Image, wgpu_intermediates: bool = False, passes: Sequence[PostPass] | None = None,
+                 subpass: int = 1) -> None:
+        """``passes``: the per-pixel effects this subpass runs (default: the whole chain; a neighbourhood
+        pass runs the effects after its own, neighbourhood.py); ``subpass``: its index in ``render_pass``."""
+        self.ctx, self.plan, self.passes = ctx, plan, passes
         bindings = [descriptors.binding(0, vk.VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, FRAGMENT),
                     descriptors.binding(1, vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, FRAGMENT)]
         set_layout = descriptors.create_set_layout(ctx, owned, bindings)
@@ -79,12 +85,12 @@ class PostSubpass:
         defines = (f"MAX_POST_STEPS={U.MAX_POST_STEPS}",)
         if wgpu_intermediates and scene_image.format == "rgba16float":
             defines += ("F16_BETWEEN_STEPS",)
-        desc = PipelineDesc("fullscreen.vert", "post_chain.frag", subpass=1, defines=defines)
+        desc = PipelineDesc("fullscreen.vert", "post_chain.frag", subpass=subpass, defines=defines)
         self.pipeline = create_pipeline(ctx, owned, desc, self.layout, render_pass)
 
     def record(self, cmd, size: tuple[int, int]) -> None:
         """Write the chain's UBO (host write before the submit) and draw the full-screen triangle."""
-        write_host_buffer(self.ctx, self.buffer, U.pack_chain(size, chain_steps(self.plan)))
+        write_host_buffer(self.ctx, self.buffer, U.pack_chain(size, chain_steps(self.plan, self.passes)))
         vk.vkCmdBindPipeline(cmd, GRAPHICS, self.pipeline)
         vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, self.layout, 0, 1, [self.set], 0, None)
         vk.vkCmdDraw(cmd, 3, 1, 0, 0)

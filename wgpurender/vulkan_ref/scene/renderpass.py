@@ -15,18 +15,25 @@ colour writes before subpass 1's fragment shader reads the input attachment, pix
 no fragment reads another pixel, so a tiler may run subpass 1 tile by tile right after subpass 0),
 EXTERNAL -> 1 (the output's first write), last -> EXTERNAL (writes before the readback copy).
 
+With a neighbourhood effect (fxaa, sharpen) in the chain, subpass 1 runs only the per-pixel effects
+before it (the chain's *head*) and the pass ends in a stored ``handoff`` image instead of the
+output; an explicit image barrier then makes it readable by the neighbourhood pass's sampler
+(neighbourhood.py). A chain that starts with a neighbourhood effect has no subpass 1: subpass 0
+resolves straight into ``handoff``.
+
 wgpu cannot express any of this: its scene pass resolves into a texture that the first post
 pass samples in a render pass of its own (wgpurender/scene_render/frame.py).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from contextlib import ExitStack
 from dataclasses import dataclass
 
 import vulkan as vk
 
-from ...plan import RenderPlan
+from ...plan import PostPass, RenderPlan
 from ..images import DEPTH_FORMAT, vk_format
 from ..instance import VulkanContext
 from ..renderpass import (
@@ -74,11 +81,21 @@ def scene_format(plan: RenderPlan) -> str:
     return plan.attachment("scene_color").format if plan.has_attachment("scene_color") else plan.output_format
 
 
-def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderPlan) -> SceneRenderPass:
-    has_post = bool(plan.post_passes)
+def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderPlan,
+                             head: Sequence[PostPass] | None = None, handoff: bool = False) -> SceneRenderPass:
+    """The scene's pass. ``head``: the per-pixel effects of subpass 1 (default: the whole chain; empty: no
+    subpass 1). ``handoff``: the pass ends in the ``handoff`` image, which a neighbourhood pass samples next
+    (neighbourhood.py), instead of the output: stored, left in COLOR_ATTACHMENT_OPTIMAL for the explicit
+    barrier that follows the pass, and no dependency to the readback copy."""
+    head = plan.post_passes if head is None else tuple(head)
+    has_post = bool(head)
     samples, depth = plan.msaa, plan.has_attachment("depth")
     drawn_fmt = scene_format(plan)
-    target = "scene_color" if has_post else "output"  # what subpass 0's image ends up in (single-sample)
+    last_name = "handoff" if handoff else "output"
+    last_layout = COLOR_OPTIMAL if handoff else TRANSFER_SRC
+    target = "scene_color" if has_post else last_name  # what subpass 0's image ends up in (single-sample)
+    store = STORE_DONT_CARE if has_post else STORE
+    final = READ_ONLY if has_post else last_layout
     specs, descriptions, clears = [], [], []
 
     def add(spec: AttachmentSpec, description, clear) -> int:
@@ -93,13 +110,9 @@ def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderP
         color = add(AttachmentSpec("msaa_color", drawn_fmt, samples),
                     attachment(vkf, samples, CLEAR, STORE_DONT_CARE, COLOR_OPTIMAL), clear)
         # the resolve overwrites every pixel: nothing to load
-        resolved = add(AttachmentSpec(target, drawn_fmt, 1),
-                       attachment(vkf, 1, LOAD_DONT_CARE, STORE_DONT_CARE if has_post else STORE,
-                                  READ_ONLY if has_post else TRANSFER_SRC), clear)
+        resolved = add(AttachmentSpec(target, drawn_fmt, 1), attachment(vkf, 1, LOAD_DONT_CARE, store, final), clear)
     else:
-        color = add(AttachmentSpec(target, drawn_fmt, 1),
-                    attachment(vkf, 1, CLEAR, STORE_DONT_CARE if has_post else STORE,
-                               READ_ONLY if has_post else TRANSFER_SRC), clear)
+        color = add(AttachmentSpec(target, drawn_fmt, 1), attachment(vkf, 1, CLEAR, store, final), clear)
         resolved = None
     depth_index = None
     if depth:
@@ -109,8 +122,9 @@ def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderP
     output = None
     if has_post:
         # fully overwritten by the post chain's full-screen triangle: nothing to load or clear
-        output = add(AttachmentSpec("output", plan.output_format, 1),
-                     attachment(vk_format(plan.output_format), 1, LOAD_DONT_CARE, STORE, TRANSFER_SRC), clear)
+        out_fmt = drawn_fmt if handoff else plan.output_format
+        output = add(AttachmentSpec(last_name, out_fmt, 1),
+                     attachment(vk_format(out_fmt), 1, LOAD_DONT_CARE, STORE, last_layout), clear)
 
     # The references must outlive vkCreateRenderPass: keep every one in a local.
     color_ref = ref(color)
@@ -133,6 +147,7 @@ def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderP
                        vk.VK_ACCESS_INPUT_ATTACHMENT_READ_BIT, by_region=True),
             dependency(vk.VK_SUBPASS_EXTERNAL, 1, COLOR_STAGE, 0, COLOR_STAGE, COLOR_WRITE),
         ]
-    deps.append(out_to_transfer(len(subpasses) - 1))
+    if not handoff:
+        deps.append(out_to_transfer(len(subpasses) - 1))
     handle = create_render_pass(ctx, owned, descriptions, subpasses, deps, clears)
     return SceneRenderPass(handle, specs)

@@ -1,15 +1,15 @@
 """What the raw path can render of a scene file, and a clear refusal for the rest.
 
-The raw path draws a scene the course's way: the post chain runs in a second subpass that reads
-the resolved scene image as an input attachment. An input attachment gives a fragment only the
-pixel under it (``subpassLoad`` takes no coordinates), so an effect that reads neighbouring pixels
-cannot run there. Refusing is the honest answer: dropping or approximating the effect would give
-a different image under the same scene file, and the comparison with the wgpu path would measure
-the omission instead of the two APIs.
+The raw path draws a scene the course's way: the per-pixel post effects run in a second subpass
+that reads the resolved scene image as an input attachment; the effects that read neighbouring
+pixels (fxaa, sharpen), which an input attachment cannot feed (``subpassLoad`` gives only the
+pixel under the fragment), each run in a render pass of their own that samples the previous
+result (neighbourhood.py). Refusing the rest is the honest answer: dropping or approximating a
+feature would give a different image under the same scene file, and the comparison with the wgpu
+path would measure the omission instead of the two APIs.
 
 Refused (each names itself in the UserError):
-- post effects that read neighbouring pixels: ``fxaa`` (its edge search samples along the edge,
-  bilinearly, between pixels) and ``sharpen`` (a 3x3 Laplacian);
+- a post effect the raw path has no shader for (a new effect added to the wgpu path only);
 - more than ``MAX_POST_STEPS`` post effects (the size of the chain's uniform block);
 - output formats the raw path has no image format for (``bgra8unorm``, ``bgra8unorm-srgb``: the
   raw path reads back RGBA images only; wgpu offers them for swapchains).
@@ -25,28 +25,20 @@ from __future__ import annotations
 from ...errors import UserError
 from ...plan import RenderPlan
 from ..images import FORMATS
+from .neighbourhood import NEIGHBOUR_SHADERS
 from .uniforms import MAX_POST_STEPS
 
-# effect -> why an input attachment cannot feed it
-NEIGHBOUR_EFFECTS = {
-    "fxaa": "fxaa reads neighbouring pixels (its edge search samples bilinearly along the edge)",
-    "sharpen": "sharpen reads neighbouring pixels (a 3x3 Laplacian of the four neighbours)",
-}
-PIXEL_EFFECTS = ("tonemap", "vignette", "grayscale", "sepia", "srgb")
+PIXEL_EFFECTS = ("tonemap", "vignette", "grayscale", "sepia", "srgb")  # post_chain.frag, in a subpass
+NEIGHBOUR_EFFECTS = tuple(NEIGHBOUR_SHADERS)  # a render pass each (neighbourhood.py)
 
 
 def unsupported(plan: RenderPlan) -> list[str]:
     """One sentence per feature of the plan that the raw path cannot draw (empty: all supported)."""
     problems = []
     for p in plan.post_passes:
-        if p.effect in NEIGHBOUR_EFFECTS:
-            problems.append(
-                f"post[{p.index}] {NEIGHBOUR_EFFECTS[p.effect]}; an input attachment gives only the current pixel "
-                f"(subpassLoad takes no coordinates): the raw path cannot run {p.effect} in its post subpass "
-                f"(remove the {p.effect} [[post]] entry to compare the rest of the chain)")
-        elif p.effect not in PIXEL_EFFECTS:
-            problems.append(f"post[{p.index}] {p.effect}: the raw path's post subpass has no {p.effect} effect "
-                            f"(it has {', '.join(PIXEL_EFFECTS)})")
+        if p.effect not in PIXEL_EFFECTS + NEIGHBOUR_EFFECTS:
+            problems.append(f"post[{p.index}] {p.effect}: the raw path has no {p.effect} effect "
+                            f"(it has {', '.join(PIXEL_EFFECTS + NEIGHBOUR_EFFECTS)})")
     if len(plan.post_passes) > MAX_POST_STEPS:
         problems.append(f"{len(plan.post_passes)} post effects: the raw path's chain holds at most {MAX_POST_STEPS}")
     if plan.output_format not in FORMATS:

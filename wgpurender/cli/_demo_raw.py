@@ -1,0 +1,27 @@
+"""``wgpurender demo --raw``: the demo's flags, run by the raw-Vulkan window (wgpurender/vulkan_ref/window.py)."""
+
+from __future__ import annotations
+
+
+def run_raw(args) -> int:
+    from ..errors import UserError
+    from ..imageio import check_writable, save_png
+    from ..vulkan_ref.window import run_raw_window
+
+    if args.frames is not None and args.frames < 1:
+        raise UserError("--frames must be at least 1")
+    if args.screenshot:
+        check_writable(args.screenshot)
+    if args.backend:
+        raise UserError("--backend picks a wgpu backend: the raw path is Vulkan only, leave it out with --raw")
+    result = run_raw_window(args.target, size=args.size, present_mode=args.present_mode, frames=args.frames,
+                            screenshot=bool(args.screenshot), msaa=args.msaa, fixed_time=args.time)
+    print(f"surface offers: {result.offered}")
+    print(f"swapchain: {result.swapchain_format}, present mode {result.present_mode}, "
+          f"re-created {result.recreated} time(s)")
+    for event in result.events:
+        print(f"  {event}")
+    print(f"frames: {result.frames}, mean frame time {result.mean_frame_ms:.2f} ms")
+    if args.screenshot and result.last_frame is not None:
+        print(f"wrote {save_png(args.screenshot, result.last_frame)}")
+    return 0
