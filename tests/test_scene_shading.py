@@ -87,13 +87,20 @@ def test_output_encoding_without_post_chain(ctx, tmp_path, path, fmt):
     - rgba8unorm-srgb: the hardware encode of L, i.e. t again (within 1/255);
     - rgba8unorm: the shader's own encode of L, also t (within 1/255): a missing encode gives
       t = 128 -> 55, a double encode (on an -srgb target) t = 55 -> 128;
-    - rgba16float: L itself, linear (within 2e-3).
+    - rgba16float: L itself, linear (within 5e-3).
+
+    Why 5e-3 for rgba16float: the value comes straight from the hardware's sRGB decode of the texture.
+    The Vulkan spec defines that decode only by reference ("Texel Decode": the "sRGB EOTF" section of
+    the Khronos Data Format Specification) and states no precision for it, so it need not be correctly
+    rounded. lavapipe is within 2e-3; NVIDIA's H100 (driver 580.159.04, 2026-11-23) was 3.75e-3 off
+    (texel 251 -> 0.9609 for 0.9647), 0.43 of the gap to the next code's value there (8.9e-3 at the top).
+    A missing, double or extra sRGB conversion is off by up to 0.287, 57x the bound.
     """
     text, texels = _textured_unlit_scene(tmp_path, fmt)
     image = _render(path, ctx, text, tmp_path)
     linear = srgb_decode(texels[..., :3] / 255.0)
     if fmt == "rgba16float":
-        got, expected, tol, unit = image[..., :3].astype(np.float64), linear, 2e-3, ""
+        got, expected, tol, unit = image[..., :3].astype(np.float64), linear, 5e-3, ""
     else:
         got = image[..., :3].astype(np.float64)
         expected, tol, unit = np.round(srgb_encode(linear) * 255.0), 1.0, "/255"

@@ -3,9 +3,10 @@
 Nothing a wheel user needs may come from the checkout (shaders were once found through the
 repository root, so ``pip install .`` rendered nothing). The wheel is built offline
 (``--no-build-isolation``: the test extra has setuptools>=77) from a copy of the files a build
-reads, installed with ``--no-deps`` into a fresh venv that sees the test venv's packages (the
-dependencies) through a .pth file, and then run from an empty temp folder with no shader
-override set. Takes ~15 s alone on lavapipe.
+reads, installed with ``--no-deps`` into a fresh venv that sees the running interpreter's packages
+(the dependencies: its site-packages and its other sys.path folders, such as a PYTHONPATH, but never
+the checkout) through a .pth file, which puts them after the venv's own site-packages, and then run
+from an empty temp folder with no shader override set. Takes ~15 s alone on lavapipe.
 """
 
 from __future__ import annotations
@@ -50,6 +51,20 @@ def _check_triangle_centre(image: np.ndarray) -> None:
     assert np.abs(image[py, px, :3].astype(int) - expected).max() <= 1, (image[py, px], expected)
 
 
+def _dependency_paths() -> list[str]:
+    """Where this interpreter finds the dependencies: its site-packages and every other sys.path folder
+    (e.g. PYTHONPATH=/tmp/site on the device machine), except any that holds a wgpurender package (the
+    checkout) and the repository's tests: the venv must import wgpurender from the wheel or not at all."""
+    paths = [sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"], *sys.path]
+    keep = []
+    for entry in paths:
+        folder = Path(entry or ".").resolve()
+        if (folder.is_dir() and not (folder / "wgpurender").exists() and folder not in (REPO, REPO / "tests")
+                and str(folder) not in keep):
+            keep.append(str(folder))
+    return keep
+
+
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory) -> dict:
     """Build the wheel, install it into a fresh venv; the venv's paths and a clean environment."""
@@ -70,12 +85,12 @@ def installed(tmp_path_factory) -> dict:
     python = env_dir / "bin" / "python"
     site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                           check=True, capture_output=True, text=True).stdout.strip()
-    deps = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"]}
-    (Path(site) / "_test_venv_packages.pth").write_text("\n".join(sorted(deps)) + "\n")
-    subprocess.run([*pip, "--python", str(python), "install", "-q", "--no-deps", "--no-index", str(wheel)],
-                   check=True, capture_output=True, text=True)
+    (Path(site) / "_test_venv_packages.pth").write_text("\n".join(_dependency_paths()) + "\n")
     env = {k: v for k, v in os.environ.items()
            if k not in ("WGPURENDER_SHADERS", "WGPURENDER_GLSL", "PYTHONPATH", "VIRTUAL_ENV")}
+    # without PYTHONPATH: a checkout on it would make pip find wgpurender 'already installed'
+    subprocess.run([*pip, "--python", str(python), "install", "-q", "--no-deps", "--no-index", str(wheel)],
+                   check=True, capture_output=True, text=True, env=env)
     env["XDG_CACHE_HOME"] = str(root / "cache")  # a cold SPIR-V cache: the raw path must compile from the wheel
     cwd = root / "cwd"
     cwd.mkdir()

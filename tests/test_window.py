@@ -3,15 +3,24 @@
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 
 import numpy as np
 import pytest
-from xvfb import xvfb_display  # noqa: F401  (the fixture "display": a private Xvfb)
+from xvfb import private_display
 
 from wgpurender.imageio import load_png
 from wgpurender.render import render_stage
+
+
+@pytest.fixture(scope="module")
+def display():
+    """Start Xvfb on a display number it picks itself (-displayfd), stop it by PID afterwards."""
+    if shutil.which("Xvfb") is None:
+        pytest.skip("Xvfb is not installed (apt-get install xvfb)")
+    yield from private_display()
 
 
 def _demo(display, *args, timeout=120):

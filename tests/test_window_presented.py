@@ -18,6 +18,7 @@ import time
 
 import numpy as np
 import pytest
+from xvfb import private_display
 
 from wgpurender.render import render_stage
 
@@ -29,18 +30,7 @@ def display():
     """A private Xvfb on a display number it picks itself (-displayfd), stopped by PID afterwards."""
     if shutil.which("Xvfb") is None or shutil.which("xdotool") is None:
         pytest.skip("needs Xvfb and xdotool (apt-get install xvfb xdotool)")
-    read_fd, write_fd = os.pipe()
-    proc = subprocess.Popen(["Xvfb", "-displayfd", str(write_fd), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
-                            pass_fds=(write_fd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    os.close(write_fd)
-    with os.fdopen(read_fd) as pipe:
-        number = pipe.readline().strip()
-    if not number:
-        proc.kill()
-        pytest.fail("Xvfb did not report a display number")
-    yield f":{number}"
-    proc.terminate()
-    proc.wait(timeout=10)
+    yield from private_display()
 
 
 def _xdotool(display: str, *args: str) -> str:

@@ -290,7 +290,8 @@ def recalibrated(table: dict, report: Report) -> dict:
         if old and not old.get("provisional", False):
             bounds = {k: max(v, old[k]) for k, v in bounds.items()}
             text = f"{old.get('measured', '')}; {text}"
-        new["references"][row.reference][cls] = {**bounds, "measured": text}
+        kept = {k: v for k, v in (old or {}).items() if k not in (*bounds, "measured", "provisional")}
+        new["references"][row.reference][cls] = {**bounds, "measured": text, **kept}  # e.g. the tutorial targets
     if measured_any and info.get("provisional"):
         info["bounded_by"] = f"{where} vs the lavapipe-made references (wgpurender verify)"
         info["provisional"] = False
