@@ -9,8 +9,8 @@ import sys
 import glfw
 
 from wgpurender.gpu import get_context
-from wgpurender.scene_render import scene_drawable_factory
 from wgpurender.window import run_window
+from wgpurender.window.view import DemoView
 
 STEPS = [(1, 1), (3000, 40), "iconify", "restore", (40, 3000), "hide", "show", (97, 13), (2, 700), (320, 240),
          "hide", (5, 5), "show", "iconify", (3000, 40), "restore", (1, 1), (160, 120)]
@@ -24,23 +24,20 @@ def main(scene: str, frames: int) -> None:
         windows.append(real_create(*args))
         return windows[-1]
 
-    glfw.create_window = create  # the window.py loop stays untouched: we only learn its window
-    make = scene_drawable_factory(scene, get_context())
+    glfw.create_window = create  # the window loop stays untouched: we only learn its window
     sizes, steps = set(), iter(STEPS * (frames // len(STEPS) + 1))
 
     class Storm:
-        def __init__(self, fmt: str) -> None:
-            self.inner = make(fmt)
+        def __init__(self, inner) -> None:
+            self.inner = inner
 
         def resize(self, size):
             sizes.add(tuple(size))
             self.inner.resize(size)
 
         def record(self, encoder, target, t=0.0):
-            (self.inner.record if hasattr(self.inner, "record") else self.inner.draw)(encoder, target, t)
+            self.inner.record(encoder, target, t)
             self._step()
-
-        draw = record  # window.py has called it draw, then record
 
         def _step(self):
             step = next(steps)
@@ -51,7 +48,12 @@ def main(scene: str, frames: int) -> None:
                 {"iconify": glfw.iconify_window, "restore": glfw.restore_window, "hide": glfw.hide_window,
                  "show": glfw.show_window}[step](window)
 
-    result = run_window(get_context(), Storm, size=(200, 150), frames=frames, fixed_time=0.0)
+    class StormView(DemoView):  # the demo's own view (files, reload), each drawable wrapped in the storm
+        def _make(self, fmt: str):
+            return Storm(super()._make(fmt))
+
+    ctx = get_context()
+    result = run_window(ctx, StormView(ctx, scene), size=(200, 150), frames=frames, fixed_time=0.0)
     print(json.dumps({"frames": result.frames, "sizes": sorted(sizes)}))
 
 
