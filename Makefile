@@ -1,16 +1,17 @@
 # Two commands do everything on a fresh Debian 12 machine (as root, or with sudo):
 #   make demo   install what is missing, then render the most complete scene headless to out/
+#               (make report: the visual course report in out/report/index.html)
 #   make test   install what is missing, then run ruff and the whole test suite on lavapipe
 SHELL := /bin/bash
 VENV := .venv
 BIN := $(VENV)/bin
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 APT_PACKAGES := python3 python3-venv mesa-vulkan-drivers libvulkan1 libglfw3 xvfb xauth \
-                vulkan-validationlayers glslc vulkan-tools xdotool
+                vulkan-validationlayers glslc vulkan-tools xdotool chromium
 STAMP := $(VENV)/.installed
 export XDG_RUNTIME_DIR ?= /tmp
 
-.PHONY: setup apt demo test lint references bench clean
+.PHONY: setup apt demo report test fuzz lint references bench clean
 
 setup: apt $(STAMP)
 
@@ -30,10 +31,24 @@ $(STAMP): pyproject.toml
 demo: setup
 	@mkdir -p out
 	$(BIN)/wgpurender render assets/scenes/final.toml -o out/final.png
+	@echo "In a window: $(BIN)/wgpurender demo assets/scenes/final.toml (orbit camera, live reload; see README)"
+	@echo "The course on one page: make report (or $(BIN)/wgpurender report -o out/report), then open out/report/index.html"
+
+# The visual course report: every step on both paths, their difference, timings and code (about a minute on lavapipe).
+report: setup
+	@mkdir -p out
+	$(BIN)/wgpurender report -o out/report
 
 test: setup
 	$(BIN)/ruff check .
 	$(BIN)/pytest -q
+
+# The long fuzz run (>= 10,000 cases, counts by outcome printed and written to out/fuzz-report.json) and the long
+# soak. lavapipe limited to 1 thread, so a shared machine stays usable; it takes about an hour.
+fuzz: setup
+	@mkdir -p out
+	WGPURENDER_FUZZ=long WGPURENDER_FUZZ_REPORT=out/fuzz-report.json LP_NUM_THREADS=1 \
+	  $(BIN)/python -m pytest -q -p no:cacheprovider tests/fuzz tests/test_soak.py
 
 # Re-render assets/reference/*.png with the raw-Vulkan path (validation on); never with the wgpu path.
 references: setup

@@ -63,8 +63,6 @@ HELPERS = {
     "vulkan_ref.textures:MipGenerator.record": "draws each level in a render pass (the row says: not vkCmdBlitImage)",
     "vulkan_ref.textures:level_count": "mip chain arithmetic",
     "vulkan_ref.textures:level_size": "mip chain arithmetic",
-    "window:_present_info": "the window handle that get_canvas_context receives",
-    "window:run_window": "the frame loop: rendercanvas presents after each draw callback",
     "window:surface_format": "picks the format passed to configure",
     "stages.clear_pass:ClearPass.record": "takes its clear attachment from Stage.color_attachment",
     "stages.cube3d:Cube3D.record": "staging row: calls update_uniforms, which writes the buffers",

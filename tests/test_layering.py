@@ -23,7 +23,8 @@ GPU_APIS = ("wgpu", "vulkan")
 RAW = "wgpurender.vulkan_ref"
 WGPU_PACKAGES = ("wgpurender.stages", "wgpurender.scene_render", "wgpurender.post", "wgpurender.window",
                  "wgpurender.render", "wgpurender.frame_loop")
-OUTER = ("wgpurender.cli", "wgpurender.bench", "wgpurender.api", "wgpurender.verify")  # may import both paths
+OUTER = ("wgpurender.cli", "wgpurender.bench", "wgpurender.api", "wgpurender.verify",
+         "wgpurender.report")  # may import both paths
 CORE = ("wgpurender.course",)  # core by definition; other modules are core when they import no GPU API
 STAGE_PACKAGES = ("wgpurender.stages", "wgpurender.vulkan_ref.stages")
 STAGE_IMPORTERS = ("wgpurender.cli", "wgpurender.bench", "wgpurender.render", "wgpurender.vulkan_ref.render",

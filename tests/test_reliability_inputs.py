@@ -107,6 +107,16 @@ def test_nul_in_texture_path_is_one_line(tmp_path):
     _fails(tmp_path, text, "scene.toml:", "materials.m.albedo_map", "control character")
 
 
+def test_nul_in_a_material_library_texture_path_is_a_user_error(tmp_path):
+    from wgpurender.errors import UserError
+    from wgpurender.mesh import load_mesh
+
+    (tmp_path / "model.mtl").write_bytes(b"newmtl m\nmap_Kd a\x00b.png\n")
+    (tmp_path / "model.obj").write_text("mtllib model.mtl\nusemtl m\n" + OBJ_TRIANGLE + "f 1 2 3\n")
+    with pytest.raises(UserError, match=r"model\.mtl:2: texture path 'a\\x00b\.png' contains a control character"):
+        load_mesh(tmp_path / "model.obj")  # was a ValueError from Path.resolve
+
+
 def test_newline_in_a_value_is_escaped_onto_one_line(tmp_path):
     line = _fails(tmp_path, scene_text("two\\nlines.obj"), "models[0].path")
     assert "\\n" in line
@@ -163,8 +173,9 @@ def test_bad_post_parameter_is_reported_at_its_own_line(tmp_path):
 # --- CLI numbers ----------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
-def test_render_time_must_be_finite(tmp_path, value):
-    code, _, err = run_cli("render", "3d", "-o", tmp_path / "x.png", f"--time={value}")
+@pytest.mark.parametrize("command", ["render 3d -o", "reference triangle -o", "demo triangle --screenshot"])
+def test_animation_time_must_be_finite(tmp_path, value, command):
+    code, _, err = run_cli(*command.split(), tmp_path / "x.png", f"--time={value}")
     assert code == 2 and "--time" in _one_line(err) and "finite" in err
     assert not (tmp_path / "x.png").exists()
 

@@ -54,3 +54,42 @@ def test_pass_timestamps_order_work(ctx):
     # preempted; the minimum is the pass's own cost.
     fastest = {label: min(r[label] for r in results[1:]) for label in last}
     assert fastest["triangle"] > fastest["empty"], fastest
+
+
+def test_deferred_timer_keeps_each_frames_passes_apart(ctx):
+    """frames > 1: every frame resolves into its own slot; collect() returns them in order, then nothing.
+
+    Frame 0 times one empty pass; frames 1-5 an empty pass and a 4x MSAA 512x512 triangle. A slot
+    offset gone wrong mixes the frames' labels or reads another slot's ticks (the triangle's time
+    would not exceed the empty pass's; the fastest of 5 frames, as a loaded machine can preempt one).
+    """
+    if not ctx.has("timestamp-query"):
+        pytest.skip("adapter has no timestamp-query")
+    timer = PassTimer(ctx, frames=6)
+    target = create_target(ctx, (512, 512), "rgba8unorm")
+    tri = get_stage("msaa")(ctx, "rgba8unorm")
+    tri.resize((512, 512))
+    for k in range(6):
+        timer.reset()
+        encoder = ctx.device.create_command_encoder()
+        empty = encoder.begin_render_pass(
+            color_attachments=[{"view": target.create_view(), "load_op": "clear", "store_op": "store",
+                                "clear_value": (0, 0, 0, 1)}],
+            timestamp_writes=timer.writes("empty"),
+        )
+        empty.end()
+        if k:
+            rp = encoder.begin_render_pass(color_attachments=[tri.color_attachment(target)],
+                                           timestamp_writes=timer.writes("triangle"))
+            rp.set_pipeline(tri.pipeline)
+            rp.draw(3)
+            rp.end()
+        timer.resolve(encoder)
+        ctx.queue.submit([encoder.finish()])
+        assert timer.read() == {}  # deferred: nothing per frame
+    frames = timer.collect()
+    assert [sorted(f) for f in frames] == [["empty"]] + [["empty", "triangle"]] * 5
+    assert all(v >= 0 for f in frames for v in f.values())
+    fastest = {label: min(f[label] for f in frames[1:]) for label in ("empty", "triangle")}
+    assert fastest["triangle"] > fastest["empty"], fastest
+    assert timer.collect() == []

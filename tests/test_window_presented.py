@@ -80,6 +80,11 @@ def test_presented_pixels_and_resize(ctx, display, mode):
     proc = subprocess.Popen([sys.executable, "-m", "wgpurender", "demo", STAGE, "--size", "160x120", "--time", "0",
                              "--present-mode", mode, "--frames", "1000000"],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if mode == "mailbox":  # wgpu-py 0.32's public API has vsync on/off only: the demo says so at once, exit 2
+        stderr = proc.communicate(timeout=120)[1]
+        if proc.returncode == 2 and "not offered" in stderr:
+            pytest.skip(stderr.strip())
+        pytest.fail(f"demo --present-mode mailbox: exit {proc.returncode}: {stderr.strip()}")
     try:
         try:
             window = _xdotool(display, "search", "--sync", "--onlyvisible", "--name", f"wgpurender: {STAGE}").split()[0]

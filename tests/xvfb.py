@@ -8,6 +8,7 @@ display is up, every failure is the test's.
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import tempfile
 from collections.abc import Iterator
@@ -38,3 +39,11 @@ def private_display() -> Iterator[str]:
         finally:
             proc.terminate()
             proc.wait(timeout=10)
+
+
+@pytest.fixture(scope="module", name="display")
+def xvfb_display() -> Iterator[str]:
+    """The fixture ``display`` (import ``xvfb_display`` into a test module): a private Xvfb for that module."""
+    if shutil.which("Xvfb") is None:
+        pytest.skip("Xvfb is not installed (apt-get install xvfb)")
+    yield from private_display()

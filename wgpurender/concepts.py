@@ -51,8 +51,8 @@ CONCEPTS: list[Concept] = [
         ("vkCreateInstance", "VkApplicationInfo", "ppEnabledLayerNames / ppEnabledExtensionNames",
          "vkCreateDebugUtilsMessengerEXT"),
         _raw("instance:create_instance", "validation:create_messenger", "validation:validation_features"),
-        ("wgpu.gpu (created on first use)", "set_instance_extras(flags=['Validation'])"),
-        _wgpu("gpu:_enable_validation_once", "gpu:_adapters"),
+        ("wgpu.gpu (created on first use)", "set_instance_extras(backends=[...], flags=['Validation'])"),
+        _wgpu("gpu:_configure_instance_once", "gpu:_adapters"),
         "wgpu-py creates the instance itself on first use: no application info, no layer or extension lists. "
         "The validation layer is one instance flag, and its messages arrive on the Python 'wgpu' logger instead "
         "of a debug messenger callback (tests/conftest.py collects them).",
@@ -94,8 +94,9 @@ CONCEPTS: list[Concept] = [
          "vkGetPhysicalDeviceSurfaceCapabilitiesKHR", "vkDestroySurfaceKHR"),
         _raw("window:create_window_context", "swapchain:presentation_family", "swapchain:surface_offer",
              "swapchain:destroy_surface"),
-        ("wgpu.gpu.get_canvas_context(present_info)", "GPUCanvasContext.get_preferred_format"),
-        _wgpu("window:_present_info", "window:surface_format", "window:_loop"),
+        ("wgpu.utils.get_glfw_present_info(window)", "wgpu.gpu.get_canvas_context(present_info)",
+         "GPUCanvasContext.get_preferred_format"),
+        _wgpu("window:present_info", "window:surface_format", "window:DemoWindow.__init__"),
         "One canvas context per window, made from the native window handles; it is surface and swapchain in one "
         "object. wgpu checks that the queue can present, so there is no present-support query. The raw window "
         "(wgpurender demo --raw) asks GLFW for the surface (glfwCreateWindowSurface, with the instance extensions "
@@ -106,11 +107,11 @@ CONCEPTS: list[Concept] = [
         ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)", "VkSwapchainCreateInfoKHR.presentMode",
          "vkGetPhysicalDeviceSurfacePresentModesKHR"),
         _raw("swapchain:surface_offer", "swapchain:create_swapchain", "swapchain:present"),
-        ("GPUCanvasContext.present()", "present modes through the canvas context's configuration"),
-        _wgpu("window:set_present_mode", "window:PRESENT_MODES", "window:run_window"),
-        "Present modes are chosen on the canvas context: wgpu-py 0.32 only exposes vsync on/off, so "
-        "set_present_mode writes the mode into the context's configuration after checking the surface offers "
-        "it. There is no separate present queue and no wait semaphore to pass. The raw window presents with "
+        ("GPUCanvasContext.present()", "get_glfw_present_info(window, vsync=True / False)"),
+        _wgpu("window:present_info", "window:PRESENT_MODES", "window:DemoWindow.frame"),
+        "Present modes are chosen through the canvas context: wgpu-py 0.32 only exposes vsync on/off, so fifo "
+        "is vsync on and immediate is vsync off (wgpu falls back to mailbox, then fifo); mailbox cannot be asked "
+        "for. There is no separate present queue and no wait semaphore to pass. The raw window presents with "
         "vkQueuePresentKHR waiting on the image's render-finished semaphore, and prints what the surface offers "
         "(lavapipe under Xvfb: immediate, mailbox, fifo, fifo-relaxed).",
     ),
@@ -142,7 +143,7 @@ CONCEPTS: list[Concept] = [
          "vkQueueSubmit"),
         _raw("command_buffers:create_command_pool", "command_buffers:one_shot", "command_buffers:submit_and_wait"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
-        _wgpu("render:render_stage", "window:_loop"),
+        _wgpu("render:render_stage", "frame_loop:run_frame"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
         "secondary command buffers (render bundles come closest). The states initial -> recording -> "
         "executable -> pending are the encoder's life, unnamed.",
@@ -194,7 +195,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateImageView", "VkImageViewCreateInfo (viewType, format, components)"),
         _raw("images:create_view", "textures:TextureImage.level"),
         ("GPUTexture.create_view(format=, dimension=, base_mip_level=, mip_level_count=, ...)",),
-        _wgpu("textures:_level_view", "stages.base:Stage.color_attachment"),
+        _wgpu("textures:_level_view", "stages.base:Stage.target_view"),
         "The same object; a default view covers the whole texture. A view is kept alive by what uses it, so "
         "there is no destroy order to get right.",
     ),
@@ -227,10 +228,12 @@ CONCEPTS: list[Concept] = [
              "window:RawWindow._recreate"),
         ("GPUCanvasContext.configure(device=, format=, usage=)", "GPUCanvasContext.get_current_texture()",
          "set_physical_size"),
-        _wgpu("window:_loop", "window:surface_format", "window:SURFACE_USAGE"),
+        _wgpu("window:DemoWindow.frame", "window:surface_format", "window:SURFACE_USAGE"),
         "Image count, image views and the acquire semaphore are hidden; get_current_texture() is acquire. A "
         "resize re-configures the context instead of re-creating a swapchain by hand; a minimised window "
-        "(0x0) renders nothing. The raw window does all of it: minImageCount + 1 images, vkAcquireNextImageKHR "
+        "(0x0) renders nothing, and an occluded one skips the frame (get_current_texture() raises "
+        "wgpu.DrawCancelled where Vulkan's acquire returns VK_ERROR_OUT_OF_DATE_KHR or VK_SUBOPTIMAL_KHR). The "
+        "raw window does all of it: minImageCount + 1 images, vkAcquireNextImageKHR "
         "with a semaphore, re-creation from the old swapchain on resize, SUBOPTIMAL or OUT_OF_DATE and after "
         "minimise, and a swapchain made with TRANSFER_DST (the stage's image is blitted in) and TRANSFER_SRC "
         "(--screenshot reads the presented image back).",
@@ -295,7 +298,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateSemaphore", "VkSubmitInfo pWaitSemaphores / pSignalSemaphores / pWaitDstStageMask"),
         _raw("swapchain:owned_semaphore", "window:RawWindow.frame", "swapchain:present"),
         ("(none: queue submission order)",),
-        _wgpu("window:_loop"),
+        _wgpu("window:DemoWindow.frame"),
         "No semaphores in wgpu: one queue, whose submissions run in order, and the acquire/present semaphores "
         "of the swapchain are inside get_current_texture() and present(). Their natural use is exactly there, "
         "and the raw window has both: image-available (one per frame slot, signalled by the acquire, waited on "
@@ -309,7 +312,7 @@ CONCEPTS: list[Concept] = [
          "slot is recorded again", "vkResetFences", "imagesInFlight fences"),
         _raw("window:FrameSlot", "window:RawWindow.frame"),
         ("(none: inside the surface)",),
-        _wgpu("window:_loop"),
+        _wgpu("window:DemoWindow.frame"),
         "wgpu keeps its own frame pacing inside the surface (get_current_texture() blocks when the CPU runs too "
         "far ahead) and tracks resource lifetimes itself, so the wgpu window records one frame after another "
         "with no per-frame copies. The raw window keeps 2 frame slots, each with its own command buffer, fence, "
@@ -515,7 +518,7 @@ CONCEPTS: list[Concept] = [
         ("vkCmdCopyImageToBuffer", "VkBufferImageCopy (bufferRowLength)", "HOST_CACHED memory"),
         _raw("readback:record_copy_to_buffer", "readback:buffer_to_pixels"),
         ("GPUCommandEncoder.copy_texture_to_buffer", "GPUBuffer.map_sync / read_mapped"),
-        _wgpu("targets:read_texture", "targets:padded_bytes_per_row"),
+        _wgpu("targets:Readback.record", "targets:Readback.read", "targets:padded_bytes_per_row"),
         "Rows in the buffer must start at multiples of 256 bytes in wgpu (Vulkan packs them tightly), so the "
         "wgpu path pads and unpads.",
     ),

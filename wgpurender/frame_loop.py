@@ -7,8 +7,10 @@ The headless runner (render.py), the scene renderer's headless path and the benc
   drawing into ``target`` at time ``t`` (a stage's or a SceneRenderer's bound ``record`` method);
 - :func:`run_frame` ``(ctx, record, target, t=0.0, *, label="frame", read_back=True, timer=None,
   wait=False) -> Frame``: creates an encoder, calls ``record``, resolves the timer's queries (if any),
-  submits, then reads ``target`` back (``read_back``), reads the timer (which waits for the GPU),
-  or waits for the GPU (``wait``, or a timer without timestamps) - in that order;
+  records the copy of ``target`` to the host into the same encoder (``read_back``, as the raw path
+  records vkCmdCopyImageToBuffer into the frame's command buffer), submits once, then reads the copy
+  (one host buffer per context, reused), reads the timer (which waits for the GPU), or waits for the
+  GPU (``wait``, or a timer without timestamps) - in that order;
 - :func:`run_frames` ``(ctx, record, target, frames, t=0.0, ...) -> Frame``: ``frames`` frames, the
   last one returned (the first pays for lazy driver work such as shader JIT);
 - :class:`Frame`: ``pixels`` (or None), ``frame_ms`` (wall time from the encoder to the end of the
@@ -28,7 +30,7 @@ import numpy as np
 import wgpu
 
 from .gpu import GPUContext
-from .targets import read_texture
+from .targets import Readback
 from .timing import PassTimer
 
 Record = Callable[[wgpu.GPUCommandEncoder, wgpu.GPUTexture, float], None]
@@ -61,13 +63,24 @@ def run_frame(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, t: float
     record(encoder, target, t)
     if timer is not None:
         timer.resolve(encoder)
+    readback = _readback(ctx) if read_back else None
+    if readback is not None:
+        readback.record(encoder, target)
     ctx.queue.submit([encoder.finish()])
     cpu_ms = (time.perf_counter() - start) * 1e3
-    pixels = read_texture(ctx, target) if read_back else None
+    pixels = readback.read() if readback is not None else None
     gpu = timer.read() if timer is not None else {}  # maps the query buffer: waits for the frame
     if wait or (timer is not None and not gpu):
         ctx.wait_idle()
     return Frame(pixels, (time.perf_counter() - start) * 1e3, cpu_ms, gpu)
+
+
+def _readback(ctx: GPUContext) -> Readback:
+    """The context's frame readback (one reused host buffer)."""
+    readback = ctx.__dict__.get("_frame_readback")
+    if readback is None:
+        readback = ctx.__dict__["_frame_readback"] = Readback(ctx)
+    return readback
 
 
 def run_frames(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, frames: int, t: float = 0.0,

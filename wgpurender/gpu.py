@@ -73,14 +73,19 @@ class GPUContext:
         return SAMPLE_COUNTS
 
     def wait_idle(self) -> None:
-        """Block until every submitted command buffer has finished.
+        """Block until every submitted command buffer has finished (the Vulkan analogue: vkQueueWaitIdle).
 
-        ``queue.on_submitted_work_done_sync()`` raises TypeError in wgpu 0.32.0, so we
-        wait the portable way: submit a tiny buffer copy after the real work and map
-        its destination. Queue submissions complete in order, so once the map
-        resolves, everything submitted before it has finished (the Vulkan analogue
-        is vkQueueWaitIdle, or a fence on the last submission).
+        wgpu-native's ``wgpuDevicePoll(wait=True)`` waits for the last submission, here on the calling
+        thread (wgpu-py's private ``GPUDevice._poll_wait``). The public ways cost more per frame:
+        ``queue.on_submitted_work_done_sync()`` raises TypeError in wgpu 0.32.0, and mapping a
+        fence buffer hands the wait to wgpu-py's poll thread and back (two thread wake-ups, 0.2 ms
+        to several ms on a loaded machine). Where ``_poll_wait`` is missing (another wgpu-py), we
+        map a tiny buffer copied after the real work: submissions complete in order.
         """
+        poll = getattr(self.device, "_poll_wait", None)
+        if poll is not None:
+            poll()
+            return
         dev = self.device
         if self._fence is None:
             self._src = dev.create_buffer(size=4, usage=wgpu.BufferUsage.COPY_SRC, label="fence-src")
@@ -93,6 +98,16 @@ class GPUContext:
         self._fence.map_sync(wgpu.MapMode.READ)
         self._fence.unmap()
 
+    def map_read(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> None:
+        """``buffer.map_sync(READ, ...)``, with the wait done on this thread (see :meth:`wait_idle`).
+
+        The map request is queued first, then the device is polled here, which runs the map
+        callback on this thread; the promise is then already resolved.
+        """
+        promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
+        self.wait_idle()
+        promise.sync_wait()
+
 
 def requested_backend(backend: str | None = None) -> str:
     """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan."""
@@ -103,24 +118,28 @@ def requested_backend(backend: str | None = None) -> str:
     raise UserError(f"unknown backend {name!r}: choose one of {', '.join(BACKENDS)}")
 
 
-def _enable_validation_once() -> None:
-    """Turn on the validation layers when $WGPURENDER_VALIDATION is set.
+@functools.cache
+def _configure_instance_once() -> None:
+    """Create the wgpu instance for the requested backend only, with validation when $WGPURENDER_VALIDATION is set.
 
-    This must run before the first adapter is enumerated (it configures the instance).
-    Messages from the Vulkan layer arrive through the ``wgpu`` Python logger. The
-    instance is limited to the requested backend: with validation on, NVIDIA's
-    OpenGL backend (enumerated alongside Vulkan otherwise) crashed the process at
-    exit, and the tests only need the backend they test.
+    This must run before the first adapter is enumerated (it configures the instance). Limiting
+    the instance to one backend means no OpenGL/EGL enumeration at start-up (the largest part of
+    the context time on lavapipe and NVIDIA alike), and with validation on, NVIDIA's OpenGL
+    backend (enumerated alongside Vulkan otherwise) crashed the process at exit. Validation
+    messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
     """
-    if os.environ.get(VALIDATION_ENV, "") not in ("", "0"):
-        from wgpu.backends.wgpu_native.extras import set_instance_extras
+    from wgpu.backends.wgpu_native.extras import set_instance_extras
 
-        set_instance_extras(backends=[requested_backend()], flags=["Validation"])
+    from .cffi_types import install_for_wgpu
+
+    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
+    validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
+    set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else ["Default"])
 
 
 @functools.cache
 def _adapters() -> tuple:
-    _enable_validation_once()
+    _configure_instance_once()
     return tuple(wgpu.gpu.enumerate_adapters_sync())
 
 

@@ -77,6 +77,12 @@ def device_cache(device: Any, name: str, capacity: int = 64) -> GpuCache:
     return cache
 
 
+def clear_caches(device: Any) -> None:
+    """Empty every named cache of a device (the demo's live reload: shader files changed on disk)."""
+    for cache in getattr(device, _ATTRIBUTE, {}).values():
+        cache.clear()
+
+
 def cache_stats(device: Any) -> dict[str, dict[str, int]]:
     """Every named cache of a device with its counts (for benchmarks and tests)."""
     return {name: cache.stats() for name, cache in getattr(device, _ATTRIBUTE, {}).items()}

@@ -456,7 +456,7 @@ def parse_mtl(path: Path) -> dict[str, Material]:
     name is the last token. Paths are resolved relative to the MTL file."""
     materials: dict[str, Material] = {}
     current = None
-    for raw in path.read_text(encoding="utf-8", errors="replace").splitlines():
+    for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
         tokens = raw.strip().split()
         if not tokens or tokens[0].startswith("#"):
             continue
@@ -466,5 +466,8 @@ def parse_mtl(path: Path) -> dict[str, Material]:
             materials[current.name] = current
         elif key in MTL_ROLES and current is not None and len(tokens) > 1:
             role, srgb = MTL_ROLES[key]
+            if not tokens[-1].isprintable():
+                raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
+                                "fix the material library")
             current.textures.setdefault(role, TextureRef((path.parent / tokens[-1]).resolve(), None, srgb))
     return materials

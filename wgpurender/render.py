@@ -42,11 +42,14 @@ def render_any(
     msaa: int | None = None,
     t: float = 0.0,
     backend: str | None = None,
+    anisotropy: str = "scene",
 ) -> RenderResult:
-    """A stage by name, or a scene file (:func:`wgpurender.course.formats.is_scene_file`)."""
+    """A stage by name, or a scene file (:func:`wgpurender.course.formats.is_scene_file`).
+
+    ``anisotropy``: "scene" or "auto" (per adapter, wgpurender/anisotropy.py), for scene files."""
     ctx = get_context(backend)
     if is_scene_file(target):
         from .scene_render import render_scene_file  # the final-scene renderer
 
-        return render_scene_file(target, size=size, fmt=fmt, msaa=msaa, t=t, ctx=ctx)
+        return render_scene_file(target, size=size, fmt=fmt, msaa=msaa, t=t, ctx=ctx, anisotropy=anisotropy)
     return render_stage(target, size or (800, 600), fmt, msaa, t, ctx)

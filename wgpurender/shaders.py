@@ -6,6 +6,8 @@ SPIR-V) and translates it for the backend through naga.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import wgpu
@@ -14,6 +16,7 @@ from .errors import UserError
 from .shader_files import shader_folder
 
 SHADER_DIR_ENV = "WGPURENDER_SHADERS"
+_recorders: list[set[Path]] = []  # open recording_loads() blocks
 
 
 def shader_dir() -> Path:
@@ -25,7 +28,20 @@ def load_wgsl(name: str) -> str:
     path = shader_dir() / name
     if not path.is_file():
         raise UserError(f"shader {name} not found in {shader_dir()} (set ${SHADER_DIR_ENV} to the shaders_wgsl folder)")
+    for loaded in _recorders:
+        loaded.add(path.resolve())
     return path.read_text(encoding="utf-8")
+
+
+@contextmanager
+def recording_loads() -> Iterator[set[Path]]:
+    """The WGSL files loaded inside the block (the demo window watches them for live reload)."""
+    loaded: set[Path] = set()
+    _recorders.append(loaded)
+    try:
+        yield loaded
+    finally:
+        _recorders.remove(loaded)
 
 
 def create_shader_module(device: wgpu.GPUDevice, name: str, code: str | None = None) -> wgpu.GPUShaderModule:

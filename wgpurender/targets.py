@@ -69,33 +69,65 @@ def create_target(
     )
 
 
+class Readback:
+    """Copies of a colour texture to the host through one reused buffer: the raw path's way.
+
+    ``record(encoder, texture)`` records the copy into the frame's own encoder (one submit per
+    frame, like vkCmdCopyImageToBuffer in the frame's command buffer); after the submit,
+    ``read()`` maps the buffer, unpads the rows and unmaps. The buffer grows when a larger
+    texture comes and is otherwise kept, so a frame loop allocates nothing per frame.
+    """
+
+    def __init__(self, ctx: GPUContext) -> None:
+        self.ctx = ctx
+        self.buffer: wgpu.GPUBuffer | None = None
+        self._pending: tuple[str, int, int, int, int, type] | None = None
+
+    def record(self, encoder: wgpu.GPUCommandEncoder, texture: wgpu.GPUTexture, level: int = 0) -> None:
+        fmt = texture.format
+        bpp, dtype = COLOR_FORMATS[check_format(fmt)]
+        width, height = max(1, texture.size[0] >> level), max(1, texture.size[1] >> level)
+        pitch = padded_bytes_per_row(width, bpp)
+        if self.buffer is None or self.buffer.size < pitch * height:
+            if self.buffer is not None:
+                self.buffer.destroy()
+            self.buffer = self.ctx.device.create_buffer(
+                size=pitch * height, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="readback")
+        encoder.copy_texture_to_buffer(
+            {"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
+            {"buffer": self.buffer, "offset": 0, "bytes_per_row": pitch, "rows_per_image": height},
+            (width, height, 1),
+        )
+        self._pending = (fmt, width, height, pitch, bpp, dtype)
+
+    def read(self) -> np.ndarray:
+        """The recorded copy as (H, W, 4) pixels; blocks until the GPU is done."""
+        if self._pending is None:
+            raise RuntimeError("Readback.read() before record()")
+        fmt, width, height, pitch, bpp, dtype = self._pending
+        self._pending = None
+        self.ctx.map_read(self.buffer, 0, pitch * height)
+        # copy=False: a view of the mapping, copied once (unpadded) before unmap; read_mapped's own copy cost 3-6x more
+        raw = np.frombuffer(self.buffer.read_mapped(0, pitch * height, copy=False), dtype=np.uint8)
+        pixels = raw.reshape(height, pitch)[:, : width * bpp].copy().view(dtype).reshape(height, width, 4)
+        del raw
+        self.buffer.unmap()
+        if fmt.startswith("bgra"):
+            pixels = pixels[..., [2, 1, 0, 3]]
+        return pixels
+
+
 def read_texture(ctx: GPUContext, texture: wgpu.GPUTexture, level: int = 0) -> np.ndarray:
     """Copy one mip level of a single-sample colour texture to the host as an (H, W, 4) array.
 
     uint8 for 8-bit formats (raw stored bytes, so sRGB formats give sRGB-encoded
     values), float16/float32 for float formats. Blocks until the GPU is done.
+    A one-off :class:`Readback` (its own encoder, submit and buffer); frame loops keep one.
     """
-    fmt = texture.format
-    bpp, dtype = COLOR_FORMATS[check_format(fmt)]
-    width, height = max(1, texture.size[0] >> level), max(1, texture.size[1] >> level)
-    pitch = padded_bytes_per_row(width, bpp)
-    buffer = ctx.device.create_buffer(
-        size=pitch * height, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="readback"
-    )
+    readback = Readback(ctx)
     encoder = ctx.device.create_command_encoder(label="readback")
-    encoder.copy_texture_to_buffer(
-        {"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
-        {"buffer": buffer, "offset": 0, "bytes_per_row": pitch, "rows_per_image": height},
-        (width, height, 1),
-    )
+    readback.record(encoder, texture, level)
     ctx.queue.submit([encoder.finish()])
-    buffer.map_sync(wgpu.MapMode.READ)
-    # copy=False: a view of the mapping, copied once (unpadded) before unmap; read_mapped's own copy cost 3-6x more
-    raw = np.frombuffer(buffer.read_mapped(copy=False), dtype=np.uint8).reshape(height, pitch)
-    pixels = raw[:, : width * bpp].copy().view(dtype).reshape(height, width, 4)
-    del raw
-    buffer.unmap()
-    buffer.destroy()
-    if fmt.startswith("bgra"):
-        pixels = pixels[..., [2, 1, 0, 3]]
+    pixels = readback.read()
+    readback.buffer.destroy()
     return pixels

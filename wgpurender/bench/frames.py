@@ -1,14 +1,20 @@
 """Frame time of a stage on the wgpu path and on the raw-Vulkan path, set up once and drawn N times.
 
-Per frame both paths do the same: record the stage's commands, submit, wait for
-the GPU (wgpu: ``ctx.wait_idle``; raw: a fence), optionally copy the image to a
-host buffer and read it. Measured per frame:
+Per frame both paths do the same: record the stage's commands, submit once, wait for
+the GPU on the calling thread (wgpu: ``ctx.wait_idle``, i.e. wgpuDevicePoll; raw: a
+fence), optionally with the copy of the image to a reused host buffer recorded into the
+same command buffer, then read it. Timestamps are resolved every frame on both paths;
+wgpu reads them for all frames at the end (PassTimer(frames=N): mapping a buffer per
+frame costs more than the raw path's vkGetQueryPoolResults). The two paths run in
+alternating rounds (:func:`measure_interleaved`), so a load change on a shared machine
+hits both. Measured per frame:
 
 - ``frame_ms``: wall time of record + submit + wait (no readback);
 - ``cpu_ms``: wall time of record + submit alone (what the CPU spends per frame);
 - ``gpu_ms``: GPU timestamps around the stage's passes (wgpu: start and end of each
   pass, summed; raw: vkCmdWriteTimestamp before and after the stage's commands);
-- ``readback_ms``: median frame time with readback minus median without.
+- ``readback_ms``: paired: a frame with readback right after a frame without, the
+  median of the differences (p10..p90 of the differences as the spread).
 
 The raw runner builds on the vulkan_ref modules (stage classes, images, command
 pools) and needs no change there: a stage's ``record`` may be called once per
@@ -29,6 +35,8 @@ from ..timing import PassTimer, Stats
 from .encoder import gpu_total, timed_frame
 from .report import Result, size_text
 
+TIMER_SLOTS = 1024  # frames between two PassTimer.collect() calls: far more than one measure() makes
+
 
 @dataclass
 class Samples:
@@ -38,6 +46,11 @@ class Samples:
     cpu: list[float] = field(default_factory=list)
     gpu: list[float] = field(default_factory=list)
     readback_frame: list[float] = field(default_factory=list)
+    readback_pair: list[float] = field(default_factory=list)  # readback frame minus the frame just before
+
+    def extend(self, other: Samples) -> None:
+        for name in ("frame", "cpu", "gpu", "readback_frame", "readback_pair"):
+            getattr(self, name).extend(getattr(other, name))
 
     def results(self, family: str, case: str, path: str, size: tuple[int, int], note: str = "") -> list[Result]:
         s = size_text(size)
@@ -46,31 +59,63 @@ class Samples:
         if self.gpu:
             out.append(Result.of(family, case, path, s, "gpu_ms", Stats.of(self.gpu), note))
         if self.readback_frame:
-            with_rb = Stats.of(self.readback_frame)
-            out.append(Result.of(family, case, path, s, "frame_readback_ms", with_rb, note))
-            extra = with_rb.median - Stats.of(self.frame).median
-            out.append(Result(family, case, path, s, "readback_ms", extra, extra, extra, len(self.readback_frame),
-                              "median(frame with readback) - median(frame)"))
+            out.append(Result.of(family, case, path, s, "frame_readback_ms", Stats.of(self.readback_frame), note))
+            out.append(readback_result(family, case, path, s, self.readback_pair))
         return out
 
 
+def readback_result(family: str, case: str, path: str, size: str, pairs: list[float]) -> Result:
+    """The readback cost from paired frames; a median below zero (readback lost in the noise) reads 0."""
+    st = Stats.of(pairs)
+    note = "median of (frame with readback - the frame just before it)"
+    if st.median < 0:
+        note += f"; measured {st.median:.3f} ms: below the noise, shown as 0"
+    return Result(family, case, path, size, "readback_ms", max(0.0, st.median), max(0.0, st.p10), max(0.0, st.p90),
+                  st.n, note)
+
+
+def _timed(runner, readback: bool = False) -> tuple[float, float, float | None]:
+    start = time.perf_counter()
+    cpu_ms, gpu_ms = runner.frame(readback=readback)
+    return (time.perf_counter() - start) * 1e3, cpu_ms, gpu_ms
+
+
 def measure(runner, frames: int, warmup: int = 2, readback_frames: int = 0) -> Samples:
-    """Run ``warmup`` untimed frames, then ``frames`` timed ones, then ``readback_frames`` with readback."""
+    """``warmup`` untimed frames, then ``frames`` timed ones; the first ``readback_frames`` of them each
+    followed by a frame with readback (paired). A runner with ``collect_gpu()`` reports GPU times at the end."""
     for _ in range(warmup):
         runner.frame()
-    samples = Samples()
-    for _ in range(frames):
-        start = time.perf_counter()
-        cpu_ms, gpu_ms = runner.frame()
-        samples.frame.append((time.perf_counter() - start) * 1e3)
+    collect = getattr(runner, "collect_gpu", None)
+    if collect is not None:
+        collect()  # drop the warm-up frames' timestamps
+    samples, kinds = Samples(), []
+    for i in range(frames):
+        frame_ms, cpu_ms, gpu_ms = _timed(runner)
+        samples.frame.append(frame_ms)
         samples.cpu.append(cpu_ms)
+        kinds.append(True)
         if gpu_ms is not None:
             samples.gpu.append(gpu_ms)
-    for _ in range(readback_frames):
-        start = time.perf_counter()
-        runner.frame(readback=True)
-        samples.readback_frame.append((time.perf_counter() - start) * 1e3)
+        if i < readback_frames:
+            with_rb, _, _ = _timed(runner, readback=True)
+            samples.readback_frame.append(with_rb)
+            samples.readback_pair.append(with_rb - frame_ms)
+            kinds.append(False)
+    if collect is not None:
+        samples.gpu = [g for g, plain in zip(collect(), kinds, strict=False) if plain and g is not None]
     return samples
+
+
+def measure_interleaved(runners: dict[str, object], frames: int, readback_frames: int = 0,
+                        rounds: int = 4) -> dict[str, Samples]:
+    """:func:`measure` for each runner in ``rounds`` alternating rounds (the order flips each round)."""
+    names = list(runners)
+    out = {name: Samples() for name in names}
+    per, rb = max(1, frames // rounds), max(0, -(-readback_frames // rounds))
+    for k in range(rounds):
+        for name in (names if k % 2 == 0 else names[::-1]):
+            out[name].extend(measure(runners[name], per, warmup=2 if k == 0 else 1, readback_frames=rb))
+    return out
 
 
 # -- wgpu ---------------------------------------------------------------------------------------
@@ -90,16 +135,20 @@ class WgpuStageRunner:
         self.stage = cls(ctx, fmt or cls.default_format, msaa)
         self.stage.resize(size)
         self.target = create_target(ctx, size, self.stage.format)
-        self.timer = PassTimer(ctx)
+        self.timer = PassTimer(ctx, frames=TIMER_SLOTS)
         self.t = 0.0
 
     def record(self, encoder, target, t: float) -> None:
         self.stage.record(encoder, target, t)
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
-        """(cpu_ms of record + submit, gpu_ms of the passes or None); waits for the GPU."""
+        """(cpu_ms of record + submit, None: GPU times come from collect_gpu); waits for the GPU."""
         cpu_ms, gpu = timed_frame(self.ctx, self.record, self.target, self.timer, self.name, self.t, readback)
         return cpu_ms, gpu_total(gpu)
+
+    def collect_gpu(self) -> list[float | None]:
+        """GPU ms of every frame since the last call, oldest first."""
+        return [gpu_total(g) for g in self.timer.collect()]
 
 
 # -- raw Vulkan ---------------------------------------------------------------------------------
@@ -229,13 +278,13 @@ def common_stages() -> list[str]:
 
 def bench_stage(ctx: GPUContext, name: str, size: tuple[int, int], frames: int, readback_frames: int,
                 raw: bool = True) -> list[Result]:
-    """One stage at one size on both paths (raw only when it has the stage and ``raw``)."""
+    """One stage at one size on both paths (raw only when it has the stage and ``raw``), interleaved."""
     runner = WgpuStageRunner(ctx, name, size)
-    out = measure(runner, frames, readback_frames=readback_frames).results("frames", name, "wgpu", size)
-    if raw:
-        with RawStageRunner(name, size) as raw_runner:
-            out += measure(raw_runner, frames, readback_frames=readback_frames).results("frames", name, "raw", size)
-    return out
+    if not raw:
+        return measure(runner, frames, readback_frames=readback_frames).results("frames", name, "wgpu", size)
+    with RawStageRunner(name, size) as raw_runner:
+        samples = measure_interleaved({"wgpu": runner, "raw": raw_runner}, frames, readback_frames)
+    return [r for path, s in samples.items() for r in s.results("frames", name, path, size)]
 
 
 def pixels_agree(ctx: GPUContext, name: str, size: tuple[int, int]) -> float:

@@ -105,14 +105,28 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
 # -- families -----------------------------------------------------------------------------------
 
 
+class Progress:
+    """A progress line per finished case: '[k/n] what, elapsed, ETA' (the ETA from the mean case so far)."""
+
+    def __init__(self, total: int, log: Callable[[str], None]) -> None:
+        self.total, self.log, self.done, self.start = max(1, total), log, 0, time.perf_counter()
+
+    def step(self, what: str) -> None:
+        self.done += 1
+        elapsed = time.perf_counter() - self.start
+        eta = elapsed / self.done * (self.total - self.done)
+        self.log(f"  [{self.done}/{self.total}] {what}  ({elapsed:.0f} s elapsed, ETA {eta:.0f} s)")
+
+
 def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from .frames import bench_stage, common_stages
 
     n = config.timed_frames()
-    for size in config.sizes(ctx):
-        for name in common_stages():
-            run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
-            log(f"  frames: {name} {size[0]}x{size[1]}")
+    cases = [(size, name) for size in config.sizes(ctx) for name in common_stages()]
+    progress = Progress(len(cases), log)
+    for size, name in cases:
+        run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+        progress.step(f"frames: {name} {size[0]}x{size[1]}")
     run.notes.append("frames: wgpu-only stages (no raw counterpart) are left out: "
                      + ", ".join(_wgpu_only_stages()) + ".")
 
@@ -129,7 +143,9 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from .scene import bench_scene
 
     n = config.timed_frames()
-    for scene_file in (config.scene_file, SUBPASS_SCENE_FILE):
+    files = list(dict.fromkeys((config.scene_file, SUBPASS_SCENE_FILE)))
+    progress = Progress(len(files) * len(config.sizes(ctx)), log)
+    for scene_file in files:
         for size in config.sizes(ctx):
             results, note = bench_scene(ctx, scene_file, size, n, raw=config.raw)
             run.results += results
@@ -138,7 +154,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
                 log(f"  scene: {note}")
             if not results:
                 break
-            log(f"  scene: {scene_file.name} {size[0]}x{size[1]}")
+            progress.step(f"scene: {scene_file.name} {size[0]}x{size[1]}")
     size = QUICK_SIZES[0] if config.quick else TUTORIAL_SIZE
     anchors = Path("../shared/anchors/vulkan-tutorial")
     if not anchors.is_dir():

@@ -119,8 +119,8 @@ def comparison_table(results: Sequence[Result], numerator: str = "wgpu", denomin
     for (_, case, size, m), paths in by_key.items():
         if numerator in paths and denominator in paths:
             a, b = paths[numerator], paths[denominator]
-            ratio = a.median / b.median if b.median > 0 else float("nan")
-            rows.append((case, size or "-", m, spread(a), spread(b), f"{ratio:.2f}x"))
+            ratio = f"{a.median / b.median:.2f}x" if b.median > 0 else "-"
+            rows.append((case, size or "-", m, spread(a), spread(b), ratio))
     return markdown_table(("case", "size", "metric", f"{numerator} ms", f"{denominator} ms",
                            f"{numerator}/{denominator}"), rows)
 

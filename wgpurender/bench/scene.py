@@ -5,7 +5,8 @@ Per-pass GPU times on the wgpu side (scene pass, each post pass) come from the r
 ``timer`` argument. The raw-Vulkan path (wgpurender/vulkan_ref/scene/) draws a scene in one
 render pass of two subpasses, plus a render pass per effect that reads neighbouring pixels (FXAA,
 sharpen), so both ``final.toml`` and ``final_subpass.toml`` (the same scene, per-pixel chain only)
-have raw peers; a scene the raw path refuses is timed on wgpu only, with a note saying why.
+have raw peers; a scene the raw path refuses is timed on wgpu only, with a note saying why. The two paths run in
+alternating rounds (frames.measure_interleaved); wgpu's timestamps are read once at the end (PassTimer(frames=N)).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from ..frame_loop import run_frame
 from ..gpu import GPUContext
 from ..timing import Stats
 from .encoder import gpu_total
-from .frames import RawStageRunner, measure
+from .frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
 from .report import Result, size_text
 
 
@@ -32,16 +33,22 @@ class SceneRunner:
         self.ctx = ctx
         self.renderer = load_renderer(path, ctx, size=size)
         self.target = create_target(ctx, size, self.renderer.plan.output_format)
-        self.timer = PassTimer(ctx)
+        self.timer = PassTimer(ctx, frames=TIMER_SLOTS)
         self.t = 0.0
         self.passes: dict[str, list[float]] = {}  # GPU ms per pass label, per frame
 
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
         f = run_frame(self.ctx, functools.partial(self.renderer.record, timer=self.timer), self.target, self.t,
                       label="bench-scene", read_back=readback, timer=self.timer)
-        for label, ms in f.gpu_ms.items():
-            self.passes.setdefault(label, []).append(ms)
-        return f.cpu_ms, gpu_total(f.gpu_ms)
+        return f.cpu_ms, None
+
+    def collect_gpu(self) -> list[float | None]:
+        """GPU ms of every frame since the last call (and each pass's time into ``passes``)."""
+        frames = self.timer.collect()
+        for gpu in frames:
+            for label, ms in gpu.items():
+                self.passes.setdefault(label, []).append(ms)
+        return [gpu_total(g) for g in frames]
 
 
 class _RawSceneFrame:
@@ -96,16 +103,14 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
         return [], f"skipped: scene file {path} not found"
     runner = SceneRunner(ctx, path, size)
     readback_frames = max(3, frames // 2)
-    results = measure(runner, frames, readback_frames=readback_frames).results("scene", path.stem, "wgpu", size)
-    for label, samples in runner.passes.items():
+    refusal = raw_refusal(path) if raw else ""
+    if not raw or refusal:
+        samples = {"wgpu": measure(runner, frames, readback_frames=readback_frames)}
+    else:
+        with RawSceneRunner(path, size) as raw_runner:
+            samples = measure_interleaved({"wgpu": runner, "raw": raw_runner}, frames, readback_frames)
+    results = [r for p, smp in samples.items() for r in smp.results("scene", path.stem, p, size)]
+    for label, ms in runner.passes.items():
         results.append(Result.of("scene", path.stem, "wgpu", size_text(size), f"gpu_ms:{label}",
-                                 Stats.of(samples[-frames:]), "GPU time of one pass"))
-    if not raw:
-        return results, ""
-    refusal = raw_refusal(path)
-    if refusal:
-        return results, f"{path.name} has no raw peer: {refusal}"
-    with RawSceneRunner(path, size) as raw_runner:
-        results += measure(raw_runner, frames, readback_frames=readback_frames).results("scene", path.stem, "raw",
-                                                                                        size)
-    return results, ""
+                                 Stats.of(ms[-frames:]), "GPU time of one pass"))
+    return results, (f"{path.name} has no raw peer: {refusal}" if refusal else "")

@@ -16,7 +16,7 @@ import warnings
 
 import numpy as np
 
-from .. import __version__
+from .. import __version__, shader_errors
 from ..errors import UserError
 from ..safe_write import install_signal_handlers
 
@@ -83,3 +83,9 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # e.g. piped into head: the reader has all it wanted
         sys.stderr.close()
         return 0
+    except Exception as err:  # a pipeline error from user-supplied shaders is a user error; anything else a bug
+        user = shader_errors.as_user_error(err)
+        if user is None:
+            raise
+        print(f"wgpurender {args.command}: error: {one_line(user)}", file=sys.stderr)
+        return 2

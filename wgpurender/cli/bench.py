@@ -31,8 +31,9 @@ def _register_perf(suites) -> None:
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats: checks the harness in < 60 s")
     p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
                    help="where results go (default ./bench-results)")
-    p.add_argument("--only", action="append", default=None, metavar="FAMILY",
-                   help="run only these families (repeatable): frames, scene, post, msaa-post, objects, startup")
+    p.add_argument("--only", "--families", dest="only", action="append", default=None, metavar="FAMILY",
+                   help="run only these families (repeatable, or comma-separated): frames, scene, post, msaa-post, "
+                   "objects, startup")
     big = p.add_mutually_exclusive_group()
     big.add_argument("--big", dest="big", action="store_true", default=None,
                      help="add 3840x2160 (default: when the adapter is not a CPU)")
@@ -49,7 +50,7 @@ def run(args) -> int:
     from ..errors import UserError
     from ..gpu import get_context
 
-    families = tuple(args.only or FAMILIES)
+    families = tuple(f.strip() for arg in (args.only or FAMILIES) for f in arg.split(",") if f.strip())
     unknown = [f for f in families if f not in FAMILIES]
     if unknown:
         raise UserError(f"unknown benchmark family {unknown[0]!r}: choose from {', '.join(FAMILIES)}")

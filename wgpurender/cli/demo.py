@@ -1,16 +1,34 @@
-"""wgpurender demo: a stage or a scene in a window."""
+"""wgpurender demo: a stage or a scene in a window, with an orbit camera, live reload and a benchmark mode."""
 
 from __future__ import annotations
 
-from ._args import size_arg
+import argparse
+
+from ._args import finite_float, size_arg
+
+CONTROLS = ("left drag orbits, right/middle drag pans, scroll zooms; arrows/WASD orbit, +/- (Q/E) zoom, "
+            "R or Home resets the camera, Esc quits")
+
+
+def _positive(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds >= 0, got {text!r}")
+    return value
 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "demo",
-        help="show a stage or a scene in a window",
+        help="show a stage or a scene in a window (orbit camera, live reload, --benchmark)",
         description="Open a GLFW window and draw a stage (see 'wgpurender stages') or a scene file (.toml). "
-        "Esc or the close button ends it.",
+        f"Scenes and the 3d stage have an orbit camera: {CONTROLS}. The title shows FPS and frame time. "
+        "Editing a WGSL file the pipeline uses ($WGPURENDER_SHADERS or shaders_wgsl/) or the scene file "
+        "rebuilds it; a broken file prints file:line once and the last good frame stays on screen. "
+        "See also 'wgpurender report -o DIR', the course on one page.",
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
     p.add_argument("--size", type=size_arg, default=(800, 600), metavar="WxH", help="window size (default 800x600)")
@@ -19,15 +37,31 @@ def register(subparsers) -> None:
         "--present-mode",
         default="fifo",
         choices=("fifo", "mailbox", "immediate"),
-        help="swapchain present mode (default fifo, always available)",
+        help="fifo: vsync, never tears (default); immediate: no vsync (wgpu falls back to mailbox, then fifo, "
+        "when the surface lacks it); mailbox alone cannot be asked for through wgpu-py 0.32 (exit 2 says so)",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
-    p.add_argument("--time", type=float, default=None, metavar="T", help="freeze the animation at T seconds")
+    p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
+                   help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
+                   "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
     p.add_argument("--raw", action="store_true",
                    help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
                    "in flight (wgpurender/vulkan_ref/window.py); stages as 'wgpurender reference' has them")
+    p.add_argument("--validation", action="store_true",
+                   help="turn on the Vulkan validation layer (as $WGPURENDER_VALIDATION=1) and count its messages")
+    bench = p.add_argument_group("benchmark (like Sascha Willems' Vulkan examples)")
+    bench.add_argument("--benchmark", action="store_true",
+                       help="warm up, run for a fixed time, write per-frame times to CSV, then exit")
+    bench.add_argument("--benchmark-warmup", type=_positive, default=2.0, metavar="S",
+                       help="seconds drawn before timing starts (default 2)")
+    bench.add_argument("--benchmark-runtime", type=_positive, default=10.0, metavar="S",
+                       help="seconds of timed frames (default 10)")
+    bench.add_argument("--benchmark-result-file", default="benchmark.csv", metavar="CSV",
+                       help="where the per-frame times go: frame,frame_ms (default benchmark.csv)")
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window/controls.py)
     p.set_defaults(func=run)
 
 
@@ -36,43 +70,73 @@ def run(args) -> int:
         from ._demo_raw import run_raw
 
         return run_raw(args)
+    import os
+
     from ..errors import UserError
-    from ..gpu import get_context
-    from ..imageio import check_writable, save_png
-    from ..window import run_window
+    from ..gpu import VALIDATION_ENV
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
-    if args.screenshot:
-        check_writable(args.screenshot)
-    ctx = get_context(args.backend)
-    make = _drawable_factory(ctx, args)
-    make("rgba8unorm-srgb")  # fail on a bad stage name or option before a window opens
-    result = run_window(
-        ctx,
-        make,
-        title=f"wgpurender: {args.target}",
-        size=args.size,
-        frames=args.frames,
-        present_mode=args.present_mode,
-        fixed_time=args.time,
-        screenshot=bool(args.screenshot),
-    )
+    if args.validation:
+        os.environ[VALIDATION_ENV] = "1"  # read when the first adapter is made, just below
+    counter = _count_validation_messages() if args.validation else None
+    result, ctx = _show(args)
     print(f"adapter: {ctx.describe()}")
     print(f"frames: {result.frames}, mean frame time {result.mean_frame_ms:.2f} ms")
+    if result.benchmark is not None:
+        print(result.benchmark.summary())
+        print(f"wrote {result.benchmark.write_csv()}")
     if args.screenshot and result.last_frame is not None:
+        from ..imageio import save_png
+
         print(f"wrote {save_png(args.screenshot, result.last_frame)}")
+    if counter is not None:
+        print(f"validation messages: {len(counter.messages)}")
     return 0
 
 
-def _drawable_factory(ctx, args):
-    from ..course.formats import is_scene_file
+def _show(args):
+    from pathlib import Path
 
-    if is_scene_file(args.target):
-        from ..scene_render import scene_drawable_factory
+    from ..gpu import get_context
+    from ..imageio import check_writable
+    from ..window import run_window
+    from ..window.controls import parse_script
+    from ..window.frame_times import BenchmarkSpec
+    from ..window.view import DemoView
 
-        return scene_drawable_factory(args.target, ctx, msaa=args.msaa)
-    from ..stages import get_stage
+    if args.screenshot:
+        check_writable(args.screenshot)
+    benchmark = None
+    if args.benchmark:
+        benchmark = BenchmarkSpec(args.benchmark_warmup, args.benchmark_runtime, Path(args.benchmark_result_file))
+        check_writable(benchmark.csv_path)
+    script = parse_script(args.test_input)
+    ctx = get_context(args.backend)
+    view = DemoView(ctx, args.target, args.msaa, anisotropy=args.anisotropy)
+    view.check()  # fail on a bad stage name, scene or option before a window opens
+    result = run_window(ctx, view, title=f"wgpurender: {args.target}", size=args.size, frames=args.frames,
+                        present_mode=args.present_mode, fixed_time=args.time, screenshot=bool(args.screenshot),
+                        benchmark=benchmark, script=script)
+    return result, ctx
 
-    cls = get_stage(args.target)
-    return lambda fmt: cls(ctx, fmt, args.msaa)
+
+def _count_validation_messages():
+    """A handler on the 'wgpu' logger that keeps the validation layer's messages (they are printed too)."""
+    import logging
+
+    import wgpu  # noqa: F401  (wgpu installs its logger class first)
+
+    class Counter(logging.Handler):
+        def __init__(self) -> None:
+            super().__init__(level=logging.WARNING)
+            self.messages: list[str] = []
+
+        def emit(self, record: logging.LogRecord) -> None:
+            text = record.getMessage()
+            if "VALIDATION" in text or "Validation Error" in text:
+                self.messages.append(text)
+
+    counter = Counter()
+    logging.getLogger("wgpu").addHandler(counter)
+    return counter

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._args import size_arg
+from ._args import finite_float, size_arg
 
 
 def register(subparsers) -> None:
@@ -24,7 +24,7 @@ def register(subparsers) -> None:
     p.add_argument("--format", default=None, metavar="F",
                    help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float (default for a scene: its "
                    "output_format)")
-    p.add_argument("--time", type=float, default=0.0, metavar="T", help="animation time in seconds (default 0)")
+    p.add_argument("--time", type=finite_float, default=0.0, metavar="T", help="animation time in seconds (default 0)")
     p.set_defaults(func=run)
 
 

@@ -18,6 +18,9 @@ def register(subparsers) -> None:
                    "unless --explain")
     p.add_argument("--explain", action="store_true",
                    help="print the scene's render plan (passes, attachments, pipelines and why); with -o also render")
+    p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
+                   help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
+                   "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
     add_render_args(p)
     p.set_defaults(func=run)
 
@@ -33,15 +36,18 @@ def run(args) -> int:
             raise UserError(f"--explain needs a scene file (.toml), got stage {args.target!r}")
         from ..plan import explain_scene
 
-        print(explain_scene(args.target, adapter=_adapter(args.backend), size=args.size, output_format=args.format,
-                            msaa=args.msaa), end="")
+        adapter = _adapter(args.backend)
+        print(explain_scene(args.target, adapter=adapter, size=args.size, output_format=args.format, msaa=args.msaa,
+                            anisotropy=args.anisotropy, adapter_type=adapter.adapter_type if adapter else None),
+              end="")
         if not args.output:
             return 0
     if not args.output:
         raise UserError("render needs -o PNG (the output path), or --explain to print a scene's plan")
     image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)
-    result = render_any(args.target, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time, backend=args.backend)
+    result = render_any(args.target, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time, backend=args.backend,
+                        anisotropy=args.anisotropy)
     path = save_image(args.output, result.pixels)
     print(f"wrote {path} ({result.pixels.shape[1]}x{result.pixels.shape[0]})")
     print(f"adapter: {result.adapter}")

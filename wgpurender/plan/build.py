@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from pathlib import Path
 
+from ..anisotropy import resolve_anisotropy
 from ..course.effects import steps_for_target
 from ..course.shading import material_factors
 from ..errors import UserError
@@ -107,11 +109,16 @@ def _scene_format(scene: Scene, knobs: Knobs, has_post: bool) -> tuple[str, str]
 
 
 def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_format: str | None = None,
-               msaa: int | None = None, knobs: Knobs | None = None) -> RenderPlan:
+               msaa: int | None = None, knobs: Knobs | None = None, anisotropy: str | None = None,
+               adapter_type: str | None = None) -> RenderPlan:
     """The plan for ``scene``; ``size``, ``output_format`` and ``msaa`` override [render] (CLI flags);
     ``knobs`` (:class:`Knobs`) make the choices a scene file does not (depth, post path, adapter...)."""
     _check_overrides(size, output_format, msaa)
     knobs = knobs or Knobs()
+    if anisotropy is not None or adapter_type is not None:  # the anisotropy rule's arguments (perf's knob)
+        knobs = dataclasses.replace(knobs, anisotropy=anisotropy or knobs.anisotropy,
+                                    anisotropy_adapter=adapter_type or knobs.anisotropy_adapter)
+    aniso_adapter = knobs.adapter.adapter_type if knobs.adapter is not None else knobs.anisotropy_adapter
     knobs.check()
     r = scene.render
     size = tuple(size or r.size)
@@ -211,6 +218,10 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         pipelines.setdefault(pipeline.key, pipeline)
         sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
         spec = mat.sampler.spec() if sampled else None
+        if spec is not None:
+            spec, why = resolve_anisotropy(spec, knobs.anisotropy, aniso_adapter)
+            if why and first_time:
+                notes.append(f"{_material_label(mat)} sampler: {why}")
         label = _material_label(mat)
         for feature, path in sampled:
             fmt = COLOR_TEXTURE_FORMAT if feature == "albedo_map" else DATA_TEXTURE_FORMAT

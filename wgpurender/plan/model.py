@@ -257,6 +257,8 @@ class Knobs:
     immediates: str = "auto"
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
+    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/anisotropy.py)
+    anisotropy_adapter: str | None = None  # the adapter type that rule reads when ``adapter`` is not given
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (

@@ -124,11 +124,14 @@ class SceneRenderer:
 
 def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,
                   msaa: int | None = None, use_immediates: bool | None = None,
-                  knobs: dict | None = None) -> SceneRenderer:
+                  knobs: dict | None = None, anisotropy: str = "scene") -> SceneRenderer:
     """A renderer for a scene file, with the plan's size, output format and MSAA overridable;
-    ``knobs``: plan knobs (:meth:`wgpurender.plan.RenderPlan.with_knobs`), e.g. ``{"post_fuse": False}``."""
+    ``knobs``: plan knobs (:meth:`wgpurender.plan.RenderPlan.with_knobs`), e.g. ``{"post_fuse": False}``;
+    ``anisotropy="auto"``: the per-adapter anisotropy rule for this context's adapter (wgpurender/anisotropy.py).
+    """
     scene = load_scene(path)
-    plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa)
+    plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa, anisotropy=anisotropy,
+                      adapter_type=ctx.adapter.info["adapter_type"])
     knobs = dict(knobs or {})
     if use_immediates is not None:
         knobs["immediates"] = "on" if use_immediates else "off"
@@ -145,27 +148,31 @@ def render_frame(ctx: GPUContext, renderer: SceneRenderer, target: wgpu.GPUTextu
 
 def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
                       msaa: int | None = None, t: float = 0.0, ctx: GPUContext | None = None, *,
-                      frames: int = 3, use_immediates: bool | None = None, knobs: dict | None = None):
+                      frames: int = 3, use_immediates: bool | None = None, knobs: dict | None = None,
+                      anisotropy: str = "scene"):
     """Render a scene file headless: a :class:`wgpurender.render.RenderResult` of the last of ``frames`` frames.
 
     The first frame pays for texture uploads, mip generation and shader compilation, so
     ``frame_ms`` is the last (steady-state) frame: record, submit, GPU work and readback.
     """
     ctx = ctx or get_context()
-    renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates, knobs=knobs)
+    renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates, knobs=knobs,
+                             anisotropy=anisotropy)
     target = create_target(ctx, renderer.plan.size, renderer.plan.output_format,
                            usage=TARGET_USAGE | renderer.target_usage)
     frame = run_frames(ctx, renderer.record, target, frames, t, label="scene-frame")
     return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
 
 
-def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None):
+def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None, anisotropy: str = "scene"):
     """``make(fmt) -> SceneRenderer`` for the window: the scene is loaded and checked now, planned per format."""
     scene = load_scene(path)
+    adapter_type = ctx.adapter.info["adapter_type"]
+    build_plan(scene, msaa=msaa, anisotropy=anisotropy, adapter_type=adapter_type)  # a bad option fails here, cheaply
 
     def make(fmt: str) -> SceneRenderer:
         # A swapchain image cannot be a storage texture: a compute post path writes it through a scratch copy.
-        plan = build_plan(scene, output_format=fmt, msaa=msaa).with_knobs(output_storage=False)
-        return SceneRenderer(ctx, scene, plan)
+        plan = build_plan(scene, output_format=fmt, msaa=msaa, anisotropy=anisotropy, adapter_type=adapter_type)
+        return SceneRenderer(ctx, scene, plan.with_knobs(output_storage=False))
 
     return make

@@ -99,7 +99,7 @@ class Stage:
         With MSAA the multisampled image is only a scratch attachment: store_op
         discard tells the driver it need not keep the samples after the resolve.
         """
-        view = target.create_view()
+        view = self.target_view(target)
         if self.msaa == 1:
             return {"view": view, "clear_value": clear, "load_op": "clear", "store_op": "store"}
         return {
@@ -109,6 +109,13 @@ class Stage:
             "load_op": "clear",
             "store_op": "discard",
         }
+
+    def target_view(self, target: wgpu.GPUTexture) -> wgpu.GPUTextureView:
+        """A view of ``target``, made once per texture object (a frame loop draws into the same one)."""
+        cached = self.__dict__.get("_target_view")
+        if cached is None or cached[0] is not target:
+            cached = self.__dict__["_target_view"] = (target, target.create_view())
+        return cached[1]
 
     def multisample_state(self) -> dict:
         return {"count": self.msaa, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False}

@@ -47,7 +47,7 @@ class Msaa(Stage):
             ).create_view()
 
     def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
-        output = target.create_view()
+        output = self.target_view(target)
         if self.msaa == 1:
             attachment = {"view": output, "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}
         else:  # 3. draw into the samples, resolve into the output, drop the samples

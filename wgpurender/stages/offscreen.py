@@ -30,11 +30,12 @@ class Offscreen(Stage):
             format=self.format,
             usage=wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC,
         )
+        self.image_view = self.image.create_view()
 
     def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0) -> None:
         render_pass = encoder.begin_render_pass(
             color_attachments=[
-                {"view": self.image.create_view(), "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}
+                {"view": self.image_view, "clear_value": BACKGROUND, "load_op": "clear", "store_op": "store"}
             ]
         )
         render_pass.set_pipeline(self.pipeline)

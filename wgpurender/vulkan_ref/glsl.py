@@ -56,14 +56,32 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     args = (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
     key = hashlib.sha256(b"\0".join([path.suffix.encode(), *(a.encode() for a in args), source])).hexdigest()
     cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{key[:24]}.spv"
+    if cached.name in _MEMORY_CACHE:
+        return _MEMORY_CACHE[cached.name]
     if cached.is_file():
         return cached.read_bytes()
     spirv = _run_glslc(path, args)
-    cached.parent.mkdir(parents=True, exist_ok=True)
-    tmp = cached.with_suffix(f".{os.getpid()}.tmp")
-    tmp.write_bytes(spirv)
-    os.replace(tmp, cached)  # atomic: a parallel run never reads half a file
+    _store(cached, spirv)
     return spirv
+
+
+_MEMORY_CACHE: dict[str, bytes] = {}  # where SPIR-V goes when the cache folder is not writable
+
+
+def _store(cached: Path, spirv: bytes) -> None:
+    """Cache on disk atomically (a parallel run never reads half a file); in memory when the folder is not
+    writable (read-only home, $XDG_CACHE_HOME a file): glslc then runs once per process instead of once ever."""
+    tmp = cached.with_suffix(f".{os.getpid()}.tmp")
+    try:
+        cached.parent.mkdir(parents=True, exist_ok=True)
+        tmp.write_bytes(spirv)
+        os.replace(tmp, cached)
+    except OSError:
+        _MEMORY_CACHE[cached.name] = spirv
+        try:
+            tmp.unlink(missing_ok=True)
+        except OSError:
+            pass
 
 
 def _run_glslc(path: Path, args: tuple[str, ...] = GLSLC_ARGS) -> bytes:
@@ -79,7 +97,8 @@ def _run_glslc(path: Path, args: tuple[str, ...] = GLSLC_ARGS) -> bytes:
 def _describe_error(path: Path, stderr: str) -> str:
     match = _ERROR_LINE.search(stderr)
     if match is None:
-        return f"GLSL shader {path} failed to compile: {stderr.strip()}"
+        first = (stderr.strip().splitlines() or ["glslc failed"])[0]
+        return f"GLSL shader {path} failed to compile: {first}"
     return f"GLSL shader {path} line {match['line']}: {match['msg'].strip()}"
 
 

@@ -1,0 +1,28 @@
+"""wgpurender report: the course on one static page (both paths' images, differences, timings, code)."""
+
+from __future__ import annotations
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "report",
+        help="write the visual course report: a static HTML site with both paths' images per course step",
+        description="Render every course step (stages, then scene files) on the wgpu path and the raw-Vulkan path, "
+        "and write DIR/index.html with PNG files beside it: per step its description, both images side by side, "
+        "the difference heatmap and its scale, PSNR and FLIP, GPU and frame time on both paths, the Vulkan -> wgpu "
+        "concept rows with their code locations, and for scenes the render plan; then the accuracy Pareto plot and "
+        "the numerical hard cases. Opens from disk in any browser (no network). Needs glslc for the raw path.",
+    )
+    p.add_argument("-o", "--output", required=True, metavar="DIR",
+                   help="folder for the site (new, empty, or an earlier report, which is replaced)")
+    p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..gpu import get_context
+    from ..report import build_report
+
+    index = build_report(args.output, ctx=get_context(args.backend))
+    print(f"wrote {index}")
+    return 0

@@ -1,0 +1,146 @@
+"""One course step of the report: render it on both paths, compare, time, and find its words and concept rows.
+
+A step is a stage (by name) or a scene file. Where the raw path cannot draw a step (a
+stage it does not have, a post effect that reads neighbouring pixels), the section says
+why with the raw path's own error text instead of an image; the same goes for the wgpu path.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..compare import Comparison, compare_images, heatmap
+from ..concepts import Concept
+from ..errors import UserError
+from ..gpu import GPUContext
+from . import timings
+from .concept_rows import REPO_ROOT, rows_for
+from .timings import Timing
+
+HEATMAP_GAIN = 32.0  # as `wgpurender compare`: a 1/255 difference shows as 32/255
+
+
+@dataclass
+class Step:
+    """Everything one section of the page shows."""
+
+    key: str  # a stage name, or a scene file's stem
+    title: str
+    course_step: str
+    summary: str
+    words: list[str]  # paragraphs
+    wgpu: np.ndarray | None = None
+    raw: np.ndarray | None = None
+    wgpu_note: str = ""
+    raw_note: str = ""
+    comparison: Comparison | None = None
+    heat: np.ndarray | None = None
+    timing: dict[str, Timing | None] = field(default_factory=dict)
+    concepts: list[Concept] = field(default_factory=list)
+    plan: str = ""  # the --explain text, scenes only
+
+
+def _paragraphs(doc: str | None) -> list[str]:
+    text = inspect.cleandoc(doc or "")
+    return [" ".join(p.split()) if not p.lstrip().startswith("-") else p for p in text.split("\n\n") if p.strip()]
+
+
+def _try(what, log) -> tuple[object | None, str]:
+    """(value, "") or (None, the one-line reason) for a UserError (what the path cannot do)."""
+    try:
+        return what(), ""
+    except UserError as err:
+        log(f"  {err}")
+        return None, str(err).splitlines()[0]
+
+
+def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> Step:
+    """A stage: the wgpu stage and the raw stage of the same name (either may be missing)."""
+    from ..render import render_stage
+    from ..stages import all_stages
+    from ..vulkan_ref import render_reference
+    from ..vulkan_ref.stages import all_ref_stages
+
+    cls = all_stages().get(name)
+    ref_cls = all_ref_stages().get(name)
+    main = cls or ref_cls
+    module = sys.modules[main.__module__]
+    from ..course.steps import course_step
+
+    number = course_step(name)
+    step = Step(name, name, f"course step {number.number}: {number.title}" if number else "", main.summary,
+                _paragraphs(module.__doc__))
+    if cls is not None:
+        step.wgpu = render_stage(name, size, ctx=ctx, frames=1).pixels
+        step.timing["wgpu"] = timings.stage_wgpu(ctx, name, size)
+    else:
+        step.wgpu_note = "the wgpu path has no stage of this name yet"
+    if ref_cls is not None:
+        step.raw, step.raw_note = _try(lambda: render_reference(name, size), log)
+        step.timing["raw"] = timings.stage_raw(name, size) if step.raw is not None else None
+    else:
+        step.raw_note = "the raw-Vulkan path has no stage of this name"
+    modules = tuple(m for m in (cls and cls.__module__, ref_cls and ref_cls.__module__) if m)
+    step.concepts = rows_for(name, tuple(m.removeprefix("wgpurender.") for m in modules))
+    _compare(step)
+    return step
+
+
+def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=print) -> Step:
+    """A scene file: its description, its plan, and the scene on both paths."""
+    from ..plan import explain_scene
+    from ..scene import load_scene
+    from ..scene_render import render_scene_file
+    from ..vulkan_ref import render_reference
+
+    scene = load_scene(path)
+    overrides = {"size": size} if size else {}
+    plan = explain_scene(path, **overrides).replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
+    step = Step(path.stem, path.name, "scene file", scene.description, _scene_words(path), plan=plan)
+    step.wgpu = render_scene_file(path, size=size, ctx=ctx, frames=1).pixels
+    step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size)
+    step.raw, step.raw_note = _try(lambda: render_reference(str(path), size), log)
+    step.timing["raw"] = timings.scene_raw(path, size) if step.raw is not None else None
+    step.concepts = rows_for("scene")
+    _compare(step)
+    return step
+
+
+def _scene_words(path: Path) -> list[str]:
+    """The scene file's leading comment block, as a paragraph."""
+    lines = []
+    for line in path.read_text(encoding="utf-8").splitlines():
+        if not line.startswith("#"):
+            break
+        lines.append(line.lstrip("# ").rstrip())
+    return [" ".join(lines)] if lines else []
+
+
+def _compare(step: Step) -> None:
+    if step.wgpu is None or step.raw is None:
+        return
+    if step.wgpu.shape != step.raw.shape or step.wgpu.dtype != np.uint8 or step.raw.dtype != np.uint8:
+        step.raw_note = f"not compared: wgpu {step.wgpu.shape} {step.wgpu.dtype}, raw {step.raw.shape} {step.raw.dtype}"
+        return
+    step.comparison = compare_images(step.raw, step.wgpu)
+    step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)
+
+
+def heatmap_scale(block: int = 24, height: int = 14) -> tuple[np.ndarray, list[int]]:
+    """The heatmap's colour scale, drawn by :func:`~wgpurender.compare.heatmap` itself: (image, levels).
+
+    8-bit images differ in whole steps of 1/255, so the scale is one block per step, from 0 to
+    the first step that saturates (255 / gain rounded up: 8 at gain 32, white and above).
+    """
+    levels = list(range(int(np.ceil(255.0 / HEATMAP_GAIN)) + 1))
+    ref = np.zeros((1, len(levels), 3), np.uint8)
+    test = np.array(levels, np.uint8)[None, :, None].repeat(3, axis=2)
+    row = heatmap(ref, test, HEATMAP_GAIN)[0]
+    image = np.repeat(np.repeat(row[None], height, axis=0), block, axis=1)
+    return image, levels

@@ -1,0 +1,65 @@
+"""The demo's benchmark mode, after Sascha Willems' Vulkan examples: warm up, run for a while, write frame times.
+
+``wgpurender demo TARGET --benchmark`` draws untimed for ``warmup`` seconds (shader JIT,
+first uploads, the swapchain settling), then records the wall time of every frame for
+``runtime`` seconds and writes one CSV row per frame: ``frame,frame_ms``. A frame's time is
+from the start of one loop iteration to the start of the next (poll input, record, submit,
+present), the time a user waits for it; with the fifo present mode it includes waiting for
+vblank.
+"""
+
+from __future__ import annotations
+
+import csv
+import statistics
+from dataclasses import dataclass, field
+from pathlib import Path
+
+
+@dataclass
+class BenchmarkSpec:
+    warmup_s: float = 2.0
+    runtime_s: float = 10.0
+    csv_path: Path = Path("benchmark.csv")
+
+
+@dataclass
+class FrameRecorder:
+    """Feeds on frame boundaries; knows when the warm-up ended and the run is over."""
+
+    spec: BenchmarkSpec
+    frame_ms: list[float] = field(default_factory=list)
+    _start: float | None = None
+    _last: float | None = None
+
+    def frame_done(self, now: float) -> None:
+        """Call once per presented frame with time.perf_counter()."""
+        if self._start is None:
+            self._start = now
+        elif now - self._start >= self.spec.warmup_s:
+            if self._last is not None and self._last - self._start >= self.spec.warmup_s:
+                self.frame_ms.append((now - self._last) * 1e3)
+        self._last = now
+
+    def finished(self) -> bool:
+        return sum(self.frame_ms) >= self.spec.runtime_s * 1e3
+
+    def write_csv(self) -> Path:
+        """frame,frame_ms rows, written to a temporary file first so a failed run clobbers nothing."""
+        path = Path(self.spec.csv_path)
+        tmp = path.with_name(path.name + ".part")
+        with tmp.open("w", newline="", encoding="utf-8") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(["frame", "frame_ms"])
+            writer.writerows((k, f"{ms:.4f}") for k, ms in enumerate(self.frame_ms))
+        tmp.replace(path)
+        return path
+
+    def summary(self) -> str:
+        times = self.frame_ms
+        if not times:
+            return "benchmark: no frames recorded (runtime too short?)"
+        mean = statistics.fmean(times)
+        q = statistics.quantiles(times, n=100) if len(times) > 1 else [times[0]] * 99
+        return (f"benchmark: {len(times)} frames in {sum(times) / 1e3:.2f} s, {1e3 / mean:.1f} FPS; frame time "
+                f"mean {mean:.3f} ms, min {min(times):.3f}, p50 {q[49]:.3f}, p99 {q[98]:.3f}, max {max(times):.3f} ms")
