@@ -100,11 +100,10 @@ def render_wgpu(ctx, text: str, folder: Path) -> np.ndarray:
     from wgpurender.plan import build_plan
     from wgpurender.scene import parse_scene
     from wgpurender.scene_render import SceneRenderer, render_frame
-    from wgpurender.targets import create_target
 
     scene = parse_scene(text, folder / "scene.toml")
     renderer = SceneRenderer(ctx, scene, build_plan(scene))
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    target = renderer.create_output()
     return render_frame(ctx, renderer, target)[0]
 
 

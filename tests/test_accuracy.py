@@ -185,10 +185,9 @@ def depth_scene(tmp_path_factory):
 
 def _render(ctx, scene, settings, size=(64, 48), knobs=("depth",)):
     from wgpurender.scene_render import render_frame
-    from wgpurender.targets import create_target
 
     renderer = make_renderer(ctx, scene, settings, size, knobs=knobs)
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    target = renderer.create_output()
     return render_frame(ctx, renderer, target)[0], renderer
 
 

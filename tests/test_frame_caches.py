@@ -22,7 +22,7 @@ from wgpurender.plan import build_plan
 from wgpurender.post import PostChain, create_effect
 from wgpurender.scene import parse_scene
 from wgpurender.scene_render import SceneRenderer, render_frame
-from wgpurender.targets import create_target, read_texture
+from wgpurender.targets import TARGET_USAGE, create_target, read_texture
 
 CUBE = Path(__file__).resolve().parents[1] / "assets" / "models" / "brick_cube.obj"
 SCENE = f"""
@@ -150,9 +150,9 @@ def test_scene_renderer_resized_equals_a_fresh_renderer(ctx, tmp_path, sizes):
     reused = SceneRenderer(ctx, scene, build_plan(scene))
     first, second = sizes
     for size in (first, second):
-        target = create_target(ctx, size, reused.plan.output_format)
+        target = create_target(ctx, size, reused.plan.output_format, usage=TARGET_USAGE | reused.target_usage)
         got = render_frame(ctx, reused, target)[0]
-        fresh_target = create_target(ctx, size, reused.plan.output_format)
+        fresh_target = create_target(ctx, size, reused.plan.output_format, usage=TARGET_USAGE | reused.target_usage)
         want = render_frame(ctx, SceneRenderer(ctx, scene, build_plan(scene)), fresh_target)[0]
         np.testing.assert_array_equal(got, want)
         assert got[..., :3].max() > 0, "something was drawn"

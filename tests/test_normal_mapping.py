@@ -17,7 +17,6 @@ from wgpurender.imageio import save_png
 from wgpurender.plan import build_plan
 from wgpurender.scene import parse_scene
 from wgpurender.scene_render import SceneRenderer, render_frame
-from wgpurender.targets import create_target
 
 ROOT = Path(__file__).resolve().parents[1]
 ASSETS = ROOT / "assets"
@@ -30,7 +29,7 @@ ROUGHNESS = 0.3
 def _render(ctx, text: str, folder: Path) -> np.ndarray:
     scene = parse_scene(text, folder / "scene.toml")
     renderer = SceneRenderer(ctx, scene, build_plan(scene))
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    target = renderer.create_output()
     return render_frame(ctx, renderer, target)[0].astype(np.float64)
 
 

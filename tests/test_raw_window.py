@@ -11,7 +11,6 @@ BGRA UNORM) moves the encoded bytes unchanged on lavapipe (measured: 0 pixels di
 from __future__ import annotations
 
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -26,23 +25,7 @@ REPO = Path(__file__).resolve().parent.parent
 SIZE = (160, 120)
 
 
-@pytest.fixture(scope="module")
-def display():
-    """Start Xvfb on a display number it picks itself (-displayfd), stop it by PID afterwards."""
-    if shutil.which("Xvfb") is None:
-        pytest.skip("Xvfb is not installed (apt-get install xvfb)")
-    read_fd, write_fd = os.pipe()
-    proc = subprocess.Popen(["Xvfb", "-displayfd", str(write_fd), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
-                            pass_fds=(write_fd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    os.close(write_fd)
-    with os.fdopen(read_fd) as pipe:
-        number = pipe.readline().strip()
-    if not number:
-        proc.kill()
-        pytest.fail("Xvfb did not report a display number")
-    yield f":{number}"
-    proc.terminate()
-    proc.wait(timeout=10)
+from xvfb import xvfb_display  # noqa: E402,F401 - the shared Xvfb fixture "display" (skips where Xvfb cannot start)
 
 
 def raw_demo(display, *args, timeout=180):

@@ -18,7 +18,7 @@ from wgpurender.imageio import save_png
 from wgpurender.plan import build_plan
 from wgpurender.scene import parse_scene
 from wgpurender.scene_render import SceneRenderer, render_frame, render_scene_file, shader_source
-from wgpurender.targets import create_target, read_texture
+from wgpurender.targets import read_texture
 
 ROOT = Path(__file__).resolve().parents[1]
 ASSETS = ROOT / "assets"
@@ -55,7 +55,7 @@ def _renderer(ctx, text: str, folder: Path, **overrides) -> SceneRenderer:
 
 
 def _render(ctx, renderer: SceneRenderer) -> np.ndarray:
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    target = renderer.create_output()
     return render_frame(ctx, renderer, target)[0]
 
 
@@ -76,7 +76,10 @@ def test_final_scene_renders_finite_and_covers_the_frame(ctx):
 
 
 def test_final_scene_plan_is_what_gets_built(ctx):
-    renderer = SceneRenderer(ctx, *_scene_and_plan(FINAL, size=SMALL))
+    """The fragment chain, pinned: on a discrete GPU the auto post path is compute, which needs no FXAA mask
+    (tests/test_plan_is_what_is_built.py checks both paths against what is created)."""
+    scene, plan = _scene_and_plan(FINAL, size=SMALL)
+    renderer = SceneRenderer(ctx, scene, plan.with_knobs(post_path="fragment"))
     _render(ctx, renderer)
     plan = renderer.plan
     assert set(renderer.attachments) == {"msaa_color", "depth", "scene_color", "post_a", "fxaa_mask"}
@@ -294,4 +297,7 @@ def test_explain_prints_the_plan_without_rendering(capsys, tmp_path):
     out = capsys.readouterr().out
     assert code == 0
     assert "output: 64x48 rgba8unorm-srgb, msaa 4" in out and "+ vignette(strength=0.45" in out
-    assert "fxaa_mask: depth16unorm" in out and "fxaa+vignette fragment fs_mark" in out
+    if "post_path: compute" in out:  # the auto rule on a discrete GPU: one dispatch, no FXAA mask, a scratch copy
+        assert "fxaa+vignette compute cs_main" in out and "fxaa_mask" not in out and "post_scratch" in out
+    else:
+        assert "fxaa_mask: depth16unorm" in out and "fxaa+vignette fragment fs_mark" in out

@@ -28,10 +28,9 @@ def _rss_mb() -> float:
 @pytest.mark.skipif(not Path("/proc/self/statm").exists(), reason="needs Linux /proc for RSS")
 def test_final_scene_soak_has_flat_memory(ctx):
     from wgpurender.scene_render.frame import load_renderer, render_frame
-    from wgpurender.targets import create_target
 
     renderer = load_renderer(FINAL, ctx, size=(160, 120))
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format)
+    target = renderer.create_output()
     frames, rss = [], []
     first = None
     for i in range(FRAMES):

@@ -83,10 +83,11 @@ def wgpu_images(ctx):
     cache = {}
 
     def get(name: str, fuse: bool = True) -> np.ndarray:
-        """The wgpu path's image: fused (its default) or unfused (a pass and a float16 texture per effect)."""
+        """The wgpu path's fragment chain (the raw path's twin; auto picks compute on a discrete GPU, compared in
+        test_post_paths), fused (its default) or unfused (a pass and a float16 texture per effect)."""
         if (name, fuse) not in cache:
             cache[(name, fuse)] = render_scene_file(scene_path(name), size=SIZE, ctx=ctx, frames=1,
-                                                    knobs={"post_fuse": fuse}).pixels
+                                                    knobs={"post_fuse": fuse, "post_path": "fragment"}).pixels
         return cache[(name, fuse)]
     return get
 

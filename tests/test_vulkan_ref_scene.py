@@ -73,8 +73,14 @@ def keep_post(text: str, *effects: str) -> str:
 
 
 def wgpu_render(ctx, path: Path, size: tuple[int, int], **knobs) -> np.ndarray:
-    """The wgpu path's image; ``knobs``: plan knobs, e.g. post_fuse=False for a pass (and a texture) per effect."""
+    """The wgpu path's image; ``knobs``: plan knobs, e.g. post_fuse=False for a pass (and a texture) per effect.
+
+    The post path is pinned to fragment, the chain these exactness claims are about: on a discrete GPU the auto
+    path is compute, which encodes sRGB in its shader (tests/test_post_paths.py compares the two paths).
+    """
     from wgpurender.scene_render import render_scene_file
+
+    knobs.setdefault("post_path", "fragment")
 
     return render_scene_file(path, size=size, ctx=ctx, frames=1, knobs=knobs).pixels
 

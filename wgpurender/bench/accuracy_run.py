@@ -140,11 +140,10 @@ class Timed:
     """One setting's renderer and target, and the frame times gathered for it over the rounds."""
 
     def __init__(self, ctx: GPUContext, scene, settings: Settings, base_size: tuple[int, int], knobs) -> None:
-        from ..targets import create_target
 
         self.ctx, self.settings = ctx, settings
         self.renderer = make_renderer(ctx, scene, settings, base_size, knobs=knobs)
-        self.target = create_target(ctx, self.renderer.plan.size, self.renderer.plan.output_format)
+        self.target = self.renderer.create_output()
         self.timer = PassTimer(ctx)
         self.wall: list[float] = []
         self.gpu: list[float] = []

@@ -27,12 +27,11 @@ class SceneRunner:
 
     def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int]) -> None:
         from ..scene_render import load_renderer
-        from ..targets import create_target
         from ..timing import PassTimer
 
         self.ctx = ctx
         self.renderer = load_renderer(path, ctx, size=size)
-        self.target = create_target(ctx, size, self.renderer.plan.output_format)
+        self.target = self.renderer.create_output()
         self.timer = PassTimer(ctx, frames=TIMER_SLOTS)
         self.t = 0.0
         self.passes: dict[str, list[float]] = {}  # GPU ms per pass label, per frame

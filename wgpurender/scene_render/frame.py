@@ -70,6 +70,15 @@ class SceneRenderer:
         self.size: tuple[int, int] | None = None
         self.attachments: dict[str, wgpu.GPUTexture] = {}
 
+    def create_output(self, label: str = "scene-output") -> wgpu.GPUTexture:
+        """An offscreen output texture for this plan: its size, format and every usage the plan's passes need.
+
+        On the compute post path a pass may write the output directly (STORAGE_BINDING), so a texture made
+        by hand with the plain target usage fails there; headless callers take their target from here.
+        """
+        return create_target(self.ctx, self.plan.size, self.plan.output_format, usage=TARGET_USAGE | self.target_usage,
+                             label=label)
+
     def _check_limits(self) -> None:
         max_dim = self.ctx.limit("max-texture-dimension-2d")
         w, h = self.plan.size
@@ -158,8 +167,7 @@ def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt
     ctx = ctx or get_context()
     renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates, knobs=knobs,
                              anisotropy=anisotropy)
-    target = create_target(ctx, renderer.plan.size, renderer.plan.output_format,
-                           usage=TARGET_USAGE | renderer.target_usage)
+    target = renderer.create_output()
     frame = run_frames(ctx, renderer.record, target, frames, t, label="scene-frame")
     return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
 
