@@ -11,21 +11,23 @@ from __future__ import annotations
 
 import sys
 import time
+import weakref
 
 SLOW_FRAME_SECONDS = 3.0
-_last: dict[int, float] = {}  # id(drawable) -> time of its previous frame
-_told: set[int] = set()
+# Per drawable, held weakly: keyed by id() a new drawable could inherit a dead one's state (ids are reused), and a
+# window that rebuilds its drawable on live reload would keep every old one alive.
+_last: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # drawable -> time of its previous frame
+_told: weakref.WeakSet = weakref.WeakSet()  # drawables whose slow frame was explained
 
 
 def tick(ctx, drawable, size: tuple[int, int], now: float | None = None) -> str | None:
     """Call once per presented frame. Returns (and prints once per drawable) the explanation of a slow frame."""
     now = time.perf_counter() if now is None else now
-    key = id(drawable)
-    previous = _last.get(key)
-    _last[key] = now
-    if previous is None or key in _told or now - previous < SLOW_FRAME_SECONDS:
+    previous = _last.get(drawable)
+    _last[drawable] = now
+    if previous is None or drawable in _told or now - previous < SLOW_FRAME_SECONDS:
         return None
-    _told.add(key)
+    _told.add(drawable)
     message = f"wgpurender: a frame took {now - previous:.1f} s at {size[0]}x{size[1]}: {explain(ctx, drawable, size)}"
     print(message, file=sys.stderr)
     return message
