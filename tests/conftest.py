@@ -8,7 +8,6 @@ the ``wgpu`` logger, and a test during which one arrives fails.
 
 from __future__ import annotations
 
-import logging
 import os
 import tempfile
 
@@ -18,16 +17,7 @@ os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
 import pytest  # noqa: E402
 import wgpu  # noqa: E402,F401  (imported before logging config: wgpu installs its own logger class)
 
-
-class _ValidationCollector(logging.Handler):
-    def __init__(self) -> None:
-        super().__init__(level=logging.WARNING)
-        self.messages: list[str] = []
-
-    def emit(self, record: logging.LogRecord) -> None:
-        text = record.getMessage()
-        if "VALIDATION" in text or "Validation Error" in text:
-            self.messages.append(text)
+from wgpurender.gpu_validation import collect_validation_messages  # noqa: E402
 
 
 def pytest_addoption(parser) -> None:
@@ -61,8 +51,7 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
             terminalreporter.write_line(line)
 
 
-_collector = _ValidationCollector()
-logging.getLogger("wgpu").addHandler(_collector)
+_collector = collect_validation_messages()
 
 
 @pytest.fixture(autouse=True)

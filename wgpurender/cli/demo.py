@@ -79,7 +79,12 @@ def run(args) -> int:
         raise UserError("--frames must be at least 1")
     if args.validation:
         os.environ[VALIDATION_ENV] = "1"  # read when the first adapter is made, just below
-    counter = _count_validation_messages() if args.validation else None
+    if args.validation:
+        from ..gpu_validation import collect_validation_messages
+
+        counter = collect_validation_messages()
+    else:
+        counter = None
     result, ctx = _show(args)
     print(f"adapter: {ctx.describe()}")
     print(f"frames: {result.frames}, mean frame time {result.mean_frame_ms:.2f} ms")
@@ -119,24 +124,3 @@ def _show(args):
                         present_mode=args.present_mode, fixed_time=args.time, screenshot=bool(args.screenshot),
                         benchmark=benchmark, script=script)
     return result, ctx
-
-
-def _count_validation_messages():
-    """A handler on the 'wgpu' logger that keeps the validation layer's messages (they are printed too)."""
-    import logging
-
-    import wgpu  # noqa: F401  (wgpu installs its logger class first)
-
-    class Counter(logging.Handler):
-        def __init__(self) -> None:
-            super().__init__(level=logging.WARNING)
-            self.messages: list[str] = []
-
-        def emit(self, record: logging.LogRecord) -> None:
-            text = record.getMessage()
-            if "VALIDATION" in text or "Validation Error" in text:
-                self.messages.append(text)
-
-    counter = Counter()
-    logging.getLogger("wgpu").addHandler(counter)
-    return counter
