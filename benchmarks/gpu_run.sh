@@ -13,18 +13,7 @@ set -u -o pipefail
 
 cd "$(dirname "$0")/.."
 RESULTS="${1:-${OUT:-gpu-results}}"
-mkdir -p "$RESULTS"
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
-export PYTHON="${PYTHON:-python3}"
-
-if compgen -G ".whl/*.whl" > /dev/null; then
-    "$PYTHON" -m pip install --no-index --no-deps --target /tmp/site .whl/*.whl \
-        > "$RESULTS/pip.log" 2>&1 || { echo "wheel install failed: see $RESULTS/pip.log"; exit 1; }
-    export PYTHONPATH="$PWD:/tmp/site${PYTHONPATH:+:$PYTHONPATH}"
-else
-    echo "no .whl/ folder: using the current Python environment as it is"
-    export PYTHONPATH="$PWD${PYTHONPATH:+:$PYTHONPATH}"
-fi
+source benchmarks/device_env.sh  # RESULTS made, wheels installed, PYTHONPATH set
 
 {
     echo "date: $(date -Is)"

@@ -15,19 +15,7 @@ set -u -o pipefail
 
 cd "$(dirname "$0")/.."
 RESULTS="$(realpath -m "${1:-${OUT:-verify-results}}")"
-mkdir -p "$RESULTS"
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
-export PYTHON="${PYTHON:-python3}"
-
-if compgen -G ".whl/*.whl" > /dev/null; then
-    "$PYTHON" -m pip install --no-index --no-deps --target /tmp/site .whl/*.whl \
-        > "$RESULTS/pip.log" 2>&1 || { echo "wheel install failed: see $RESULTS/pip.log"; exit 1; }
-    export PYTHONPATH="$PWD:/tmp/site${PYTHONPATH:+:$PYTHONPATH}"
-else
-    export PYTHONPATH="$PWD${PYTHONPATH:+:$PYTHONPATH}"
-fi
-# the tutorial's frames live beside the repository; a copy that has them inside gets the link
-if [ ! -e ../shared ] && [ -d shared/anchors ]; then ln -s "$PWD/shared" ../shared; fi
+source benchmarks/device_env.sh  # RESULTS made, wheels installed, PYTHONPATH set
 
 {
     echo "date: $(date -Is)"
