@@ -52,7 +52,7 @@ fuzz: setup
 
 # Re-render assets/reference/*.png with the raw-Vulkan path (validation on); never with the wgpu path.
 references: setup
-	WGPURENDER_VALIDATION=1 $(BIN)/python -m wgpurender.vulkan_ref.make_references
+	WGPURENDER_VALIDATION=1 $(BIN)/python -m wgpurender.raw_path.make_references
 
 lint: setup
 	$(BIN)/ruff check .

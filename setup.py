@@ -4,7 +4,7 @@ The shader folders stay at the repository's top level (the course's layout: a re
 finds the WGSL and the GLSL beside each other, not deep in the package). setuptools'
 package-data can only reach files inside a package, so ``build_py`` copies both folders
 into ``wgpurender/_shaders/{wgsl,glsl}`` of the build tree; the installed package reads
-them from there through importlib.resources (wgpurender/shaders.py, vulkan_ref/glsl.py).
+them from there through importlib.resources (wgpurender/wgpu_path/shaders.py, raw_path/glsl.py).
 An editable install (``pip install -e``) builds nothing: it reads the checkout's folders.
 Everything else is declared in pyproject.toml.
 """

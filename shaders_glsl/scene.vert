@@ -2,11 +2,11 @@
 // The scene's vertex shader on the raw path: the GLSL twin of shaders_wgsl/scene.wgsl's vs_main.
 //
 // Variants are made like the wgpu path's: one source, preprocessed per material variant. wgpu's
-// template uses "#if feature" (wgpurender/shader_variants.py); here glslc's own preprocessor does it,
-// with -D flags made from the plan's variant (wgpurender/vulkan_ref/scene/variants.py):
+// template uses "#if feature" (wgpurender/core/shader_variants.py); here glslc's own preprocessor does it,
+// with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
-// The std140 offsets of the blocks are spelled out in wgpurender/vulkan_ref/scene/uniforms.py.
+// The std140 offsets of the blocks are spelled out in wgpurender/raw_path/scene/uniforms.py.
 
 layout(std140, set = 0, binding = 0) uniform Camera {
     mat4 proj;   // @0

@@ -1,6 +1,6 @@
 #version 450
 // Course step 5: the textured plane. The same computation as vs_main in shaders_wgsl/textured.wgsl;
-// the std140 block is packed by hand in wgpurender/vulkan_ref/stages/textured.py (mvp @0, uv_offset @64).
+// the std140 block is packed by hand in wgpurender/raw_path/stages/textured.py (mvp @0, uv_offset @64).
 
 layout(std140, set = 0, binding = 0) uniform Uniforms {
     mat4 mvp;

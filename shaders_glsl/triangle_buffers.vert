@@ -1,7 +1,7 @@
 #version 450
 // Course step 2b: the triangle's vertices from a vertex buffer. The input layout
 // (binding 0, stride 20; location 0 vec2 at offset 0, location 1 vec3 at offset 8)
-// is declared in wgpurender/vulkan_ref/stages/triangle_buffers.py.
+// is declared in wgpurender/raw_path/stages/triangle_buffers.py.
 
 layout(location = 0) in vec2 a_position;
 layout(location = 1) in vec3 a_color;

@@ -1,5 +1,5 @@
-// Shared part of every post pass (wgpurender/post/): first in the WGSL that
-// wgpurender/post/shaders.py generates for each pass, before the effects' functions.
+// Shared part of every post pass (wgpurender/wgpu_path/post/): first in the WGSL that
+// wgpurender/wgpu_path/post/shaders.py generates for each pass, before the effects' functions.
 //
 // Vulkan reads the previous pass through an input attachment inside the same
 // render pass (subpassLoad). WebGPU has no subpasses, so the previous result is

@@ -1,9 +1,9 @@
 // FXAA in the style of Timothy Lottes' FXAA 3.11 "quality" path, written for
-// this project (see wgpurender/post/shaders.py). Needs post_common.wgsl (prepended).
+// this project (see wgpurender/wgpu_path/post/shaders.py). Needs post_common.wgsl (prepended).
 //
 // 1. Local contrast: luma of the pixel and its 4 neighbours; below the
 //    threshold the pixel is returned untouched (flat regions stay exact).
-//    The fragment pass draws twice (wgpurender/post/shaders.py): fs_mark writes every
+//    The fragment pass draws twice (wgpurender/wgpu_path/post/shaders.py): fs_mark writes every
 //    pixel untouched and marks edge pixels in a depth attachment, then fs_main
 //    runs depth-tested on edge pixels only. On lavapipe that is what makes the
 //    early exit real: llvmpipe runs both sides of a branch for every pixel, but
@@ -25,7 +25,7 @@
 
 // FxaaParams (subpix: 0 = no sub-pixel blending .. 1 = full; edge_threshold: minimum contrast relative to the
 // local max luma; edge_threshold_min: absolute minimum contrast, skips dark noise) is generated from the
-// effect's spec (wgpurender/course/effects.py) by wgpurender/post/shaders.py.
+// effect's spec (wgpurender/core/course/effects.py) by wgpurender/wgpu_path/post/shaders.py.
 
 const SEARCH_STEPS: u32 = 12u;
 
@@ -158,7 +158,7 @@ fn fxaa_at(p: vec2i, pos: vec2f, params: FxaaParams) -> vec4f {
     return vec4f(color.rgb, centre.a);
 }
 
-// Draw 1 of the fragment pass (the generated fs_mark, wgpurender/post/shaders.py) writes every pixel
+// Draw 1 of the fragment pass (the generated fs_mark, wgpurender/wgpu_path/post/shaders.py) writes every pixel
 // as fxaa_at returns it off edges, and depth 1 where this is true (fxaa_at has work to do), 0 elsewhere.
 // Draw 2 (the generated fs_main, the triangle at depth 0, compare "less") then runs only on edge pixels.
 fn fxaa_marks(p: vec2i, params: FxaaParams) -> bool {

@@ -1,8 +1,8 @@
-// Sepia: the classic sepia tone matrix, mixed in by `amount`, see wgpurender/course/effects.py (the spec).
+// Sepia: the classic sepia tone matrix, mixed in by `amount`, see wgpurender/core/course/effects.py (the spec).
 // Needs post_common.wgsl (prepended). No clamp: bright inputs may exceed 1 in an
 // HDR chain; an 8-bit target clamps on write.
 
-// SepiaParams is generated from the effect's spec (wgpurender/post/shaders.py).
+// SepiaParams is generated from the effect's spec (wgpurender/wgpu_path/post/shaders.py).
 
 fn sepia_pixel(texel: vec4f, pos: vec2f, size: vec2f, params: SepiaParams) -> vec4f {
     let c = texel.rgb;

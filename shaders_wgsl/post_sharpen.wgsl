@@ -1,8 +1,8 @@
 // Sharpen: 3x3 Laplacian kernel (centre 1 + 4k, the four edge neighbours -k),
-// clamp-to-edge at the borders, result clamped at 0. See wgpurender/course/effects.py.
+// clamp-to-edge at the borders, result clamped at 0. See wgpurender/core/course/effects.py.
 // Needs post_common.wgsl (prepended).
 
-// SharpenParams is generated from the effect's spec (wgpurender/post/shaders.py).
+// SharpenParams is generated from the effect's spec (wgpurender/wgpu_path/post/shaders.py).
 
 fn sharpen_at(p: vec2i, pos: vec2f, params: SharpenParams) -> vec4f {
     let c = src_clamped(p);

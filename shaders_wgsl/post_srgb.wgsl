@@ -1,4 +1,4 @@
-// Output encoding: linear -> sRGB (IEC 61966-2-1), see wgpurender/course/effects.py (the sRGB rule).
+// Output encoding: linear -> sRGB (IEC 61966-2-1), see wgpurender/core/course/effects.py (the sRGB rule).
 // Needs post_common.wgsl (prepended).
 //
 // SRGB_ENCODE is set per target format when the pipeline is made: 1 for plain 8-bit

@@ -1,8 +1,8 @@
-// Tone mapping: linear HDR (rgba16float) -> linear [0, 1], see wgpurender/course/effects.py (the spec).
+// Tone mapping: linear HDR (rgba16float) -> linear [0, 1], see wgpurender/core/course/effects.py (the spec).
 // Needs post_common.wgsl (prepended).
 
 // TonemapParams (exposure, operator_index: 0 = ACES fitted (Hill), 1 = Reinhard) is generated from the
-// effect's spec (wgpurender/course/effects.py) by wgpurender/post/shaders.py.
+// effect's spec (wgpurender/core/course/effects.py) by wgpurender/wgpu_path/post/shaders.py.
 
 // ACES fitted (Stephen Hill's fit of the ACES RRT + sRGB ODT): input matrix
 // (sRGB -> ACES-ish space, with the RRT saturation folded in), a rational curve,

@@ -1,6 +1,6 @@
-// The scene shader: one template, specialised per material variant (wgpurender/scene_render/shader_interface.py).
+// The scene shader: one template, specialised per material variant (wgpurender/wgpu_path/scene_render/shader_interface.py).
 //
-// Preprocessing (wgpurender/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
+// Preprocessing (wgpurender/core/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
 // variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output) and the derived
 // ones (uv: any texture; directional_lights / point_lights: that count > 0; immediates: push constants
 // available). The STRUCTS placeholder gets the declarations generated from the Python Struct

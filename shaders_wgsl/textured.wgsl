@@ -8,7 +8,7 @@
 //   (GLSL texture2D + sampler). The texture group stays bound; only the small
 //   sampler group changes between draws.
 //
-// Vertex layout (wgpurender/stages/textured.py VERTEX_LAYOUT): float32x3 position
+// Vertex layout (wgpurender/wgpu_path/stages/textured.py VERTEX_LAYOUT): float32x3 position
 // at 0, float32x2 uv at 12, stride 20. uv (0,0) is the first texel row's left edge.
 
 struct Uniforms {

@@ -1,7 +1,7 @@
 // Course step 2a: the first triangle with no vertex buffer at all.
 // Position and colour come from the vertex index, like gl_VertexIndex in the
 // Vulkan tutorial's first shader. The values match TRIANGLE_* in
-// wgpurender/stages/triangle.py; a test checks both variants draw the same image.
+// wgpurender/wgpu_path/stages/triangle.py; a test checks both variants draw the same image.
 
 struct VertexOut {
     @builtin(position) position: vec4f,

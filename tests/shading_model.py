@@ -2,7 +2,7 @@
 
 Nothing here comes from the renderer: the constants are the course's documented values (scene.wgsl's
 header, docs/scenes.md), typed in again, and the formulas are the documented ones. When the course
-core (``wgpurender/course/``) publishes its scene constants, :func:`course_constant` reads them from
+core (``wgpurender/core/course/``) publishes its scene constants, :func:`course_constant` reads them from
 there, the one place both render paths are meant to take them from; until then it uses the value written
 here. Either way a path that keeps its *own* differing copy of a constant fails the tests.
 
@@ -26,12 +26,12 @@ def course_constant(name: str):
     import importlib
 
     try:
-        course = importlib.import_module("wgpurender.course")  # the API-free course core (issue 11)
+        course = importlib.import_module("wgpurender.core.course")  # the API-free course core (issue 11)
     except ImportError:
         return DOCUMENTED[name]
     for module_name in ("shading", "scene", "lighting", "materials", "constants"):
         try:
-            module = importlib.import_module(f"wgpurender.course.{module_name}")
+            module = importlib.import_module(f"wgpurender.core.course.{module_name}")
         except ImportError:
             continue
         if hasattr(module, name):
@@ -97,9 +97,9 @@ fov_y = {FOV}
 
 def render_wgpu(ctx, text: str, folder: Path) -> np.ndarray:
     """Render a scene text on the wgpu path (paths in it relative to ``folder``): (H, W, 4) pixels."""
-    from wgpurender.plan import build_plan
-    from wgpurender.scene import parse_scene
-    from wgpurender.scene_render import SceneRenderer, render_frame
+    from wgpurender.core.plan import build_plan
+    from wgpurender.core.scene import parse_scene
+    from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
 
     scene = parse_scene(text, folder / "scene.toml")
     renderer = SceneRenderer(ctx, scene, build_plan(scene))
@@ -109,7 +109,7 @@ def render_wgpu(ctx, text: str, folder: Path) -> np.ndarray:
 
 def render_raw(text: str, folder: Path) -> np.ndarray:
     """The same on the raw-Vulkan path."""
-    from wgpurender.vulkan_ref.scene import render_scene_reference
+    from wgpurender.raw_path.scene import render_scene_reference
 
     path = folder / "scene.toml"
     path.write_text(text, encoding="utf-8")

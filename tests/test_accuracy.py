@@ -31,7 +31,7 @@ from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
 from wgpurender.bench.accuracy_downsample import box_average, downsample_srgb8, linear_from_srgb8
 from wgpurender.bench.accuracy_knobs import TOP, Settings, make_renderer
 from wgpurender.bench.accuracy_pareto import dominates, pareto_front
-from wgpurender.errors import UserError
+from wgpurender.core.errors import UserError
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -178,13 +178,13 @@ def test_cli_lists_accuracy():
 
 @pytest.fixture(scope="module")
 def depth_scene(tmp_path_factory):
-    from wgpurender.scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     return load_scene(write_depth_scene(tmp_path_factory.mktemp("depth"), (64, 48)))
 
 
 def _render(ctx, scene, settings, size=(64, 48), knobs=("depth",)):
-    from wgpurender.scene_render import render_frame
+    from wgpurender.wgpu_path.scene_render import render_frame
 
     renderer = make_renderer(ctx, scene, settings, size, knobs=knobs)
     target = renderer.create_output()
@@ -212,7 +212,7 @@ def test_standard_depth_z_fights_in_the_depth_stress_scene(ctx, depth_scene, lev
 def test_reverse_z_matrix_is_the_reverse_z_perspective():
     """REVERSE_Z applied to a right-handed 0..1 perspective (written out here) stores depth 1 at the near plane,
     0 at the far plane, and the exact hyperbola near * (far - d) / (d * (far - near)) between them."""
-    from wgpurender.course.shading import REVERSE_Z
+    from wgpurender.core.course.shading import REVERSE_Z
 
     for near, far in ((0.1, 50.0), (0.01, 1e5)):
         f = 1.0 / math.tan(math.radians(42.0) / 2.0)
@@ -225,7 +225,7 @@ def test_reverse_z_matrix_is_the_reverse_z_perspective():
 
 
 def test_knobs_reach_the_plan_and_bad_combinations_are_user_errors(ctx, depth_scene):
-    from wgpurender.scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     scene = load_scene("assets/scenes/final.toml")
     s = Settings(msaa=1, format="rgba32float", filter="nearest", depth="depth24plus")

@@ -16,7 +16,7 @@ import pytest
 from PIL import Image as PILImage
 
 import wgpurender as w
-from wgpurender.errors import UserError
+from wgpurender.core.errors import UserError
 
 REPO = Path(__file__).resolve().parent.parent
 FINAL = REPO / "assets" / "scenes" / "final_subpass.toml"
@@ -43,15 +43,14 @@ def test_import_is_cheap():
     assert out.strip() == "[]"
 
 
-def test_render_and_compare_are_callable_and_still_modules():
-    """render.py and compare.py share their names with the API functions: both uses work, in either order."""
-    import wgpurender.compare
-    import wgpurender.render  # noqa: F401  (bound as a module first, then used through w)
+def test_render_and_compare_are_plain_functions():
+    """The API's render and compare are functions of wgpurender.api, not modules made callable."""
+    import types
 
-    assert callable(w.render) and callable(w.compare) and w.render.render_stage and w.compare.compare_images
-    code = "from wgpurender.render import render_stage; import wgpurender as w; print(callable(w.render))"
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert out.strip() == "True"
+    from wgpurender import api
+
+    assert w.render is api.render and w.compare is api.compare
+    assert not isinstance(w.render, types.ModuleType) and not isinstance(w.compare, types.ModuleType)
 
 
 def test_render_stage(ctx, tmp_path):
@@ -79,7 +78,7 @@ def test_unknown_stage_is_a_user_error(ctx):
 
 
 def test_render_scene_carries_its_plan(ctx):
-    from wgpurender.render import render_any
+    from wgpurender.wgpu_path.render import render_any
 
     img = w.render(FINAL, size=(96, 64), msaa=1)
     assert img.plan is not None and img.plan.size == (96, 64) and img.plan.msaa == 1

@@ -129,7 +129,7 @@ def test_families_produce_their_rows(quick_run):
 
 
 def run_ctx_has_immediates(run) -> bool:
-    from wgpurender.gpu import get_context
+    from wgpurender.wgpu_path.gpu import get_context
 
     return get_context("Vulkan").has("immediates")
 

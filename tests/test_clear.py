@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wgpurender.course.triangle import CLEAR_COLOR
-from wgpurender.imageio import srgb_encode
-from wgpurender.render import render_stage
-from wgpurender.stages import get_stage
-from wgpurender.targets import create_target, read_texture
+from wgpurender.core.course.triangle import CLEAR_COLOR
+from wgpurender.core.imageio import srgb_encode
+from wgpurender.wgpu_path.render import render_stage
+from wgpurender.wgpu_path.stages import get_stage
+from wgpurender.wgpu_path.targets import create_target, read_texture
 
 ODD_SIZES = [(257, 13), (1, 1), (63, 65)]  # 257 * 4 bytes = 1028: not a multiple of 256
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from wgpurender import imageio
 from wgpurender.cli import main
+from wgpurender.core import imageio
 
 
 def _run(capsys, *argv):

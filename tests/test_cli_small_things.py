@@ -18,7 +18,7 @@ import pytest
 from PIL import Image
 
 from wgpurender.cli import main
-from wgpurender.imageio import load_png, save_png
+from wgpurender.core.imageio import load_png, save_png
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -74,7 +74,7 @@ def test_compare_json(capsys, tmp_path):
 
 def test_heatmap_has_a_colour_scale(capsys, tmp_path):
     """The image is the heatmap on top, then a bar from black (equal) to white (saturated), labelled."""
-    from wgpurender.compare import SCALE_BAR, heatmap
+    from wgpurender.core.compare import SCALE_BAR, heatmap
 
     a, b = _pair(tmp_path)
     heat = tmp_path / "h.png"
@@ -114,9 +114,9 @@ def test_render_writes_the_format_its_suffix_names(capsys, tmp_path, suffix, fmt
 
 
 def test_unknown_suffix_is_refused_before_rendering(capsys, tmp_path, monkeypatch):
-    import wgpurender.render
+    import wgpurender.wgpu_path.render
 
-    monkeypatch.setattr(wgpurender.render, "render_any", lambda *a, **k: pytest.fail("rendered anyway"))
+    monkeypatch.setattr(wgpurender.wgpu_path.render, "render_any", lambda *a, **k: pytest.fail("rendered anyway"))
     code, _, err = _run(capsys, "render", "triangle", "-o", str(tmp_path / "t.xyz"))
     assert code == 2 and err.count("\n") == 1 and "'.xyz'" in err and ".png" in err
     assert not list(tmp_path.iterdir())
@@ -135,8 +135,8 @@ def test_broken_pipe_prints_no_traceback():
 def test_no_material_library_warning_when_the_scene_gives_the_material(tmp_path, caplog, ctx):
     """An OBJ whose MTL is missing: loading it alone says so (INFO); rendering it from a scene, which names the
     texture, says nothing about it."""
-    from wgpurender.mesh import load_mesh
-    from wgpurender.render import render_any
+    from wgpurender.core.mesh import load_mesh
+    from wgpurender.wgpu_path.render import render_any
 
     obj = tmp_path / "quad.obj"
     obj.write_text("mtllib missing.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"

@@ -31,7 +31,7 @@ REQUIRED = (
     "blending", "input attachments", "push constants", "UBO alignment", "frames in flight",
 )
 # Concepts the raw path has no code for: their rows must say so (events: no natural use; the raw window,
-# wgpurender/vulkan_ref/window.py, has the surface, swapchain, semaphores and frames in flight).
+# wgpurender/raw_path/window.py, has the surface, swapchain, semaphores and frames in flight).
 NOT_IN_RAW_PATH = {"events"}
 ALL_LOCATIONS = sorted({(row.name, loc) for row in CONCEPTS for loc in (*row.raw, *row.wgpu_where)})
 
@@ -53,8 +53,8 @@ def test_location_exists(concept, location):
 
 def test_raw_and_wgpu_locations_are_on_their_own_path():
     for row in CONCEPTS:
-        assert all(loc.startswith("wgpurender.vulkan_ref.") for loc in row.raw), row.name
-        assert not any(loc.startswith("wgpurender.vulkan_ref.") for loc in row.wgpu_where), row.name
+        assert all(loc.startswith("wgpurender.raw_path.") for loc in row.raw), row.name
+        assert not any(loc.startswith("wgpurender.raw_path.") for loc in row.wgpu_where), row.name
 
 
 def test_rows_without_raw_code_say_why():
@@ -64,15 +64,15 @@ def test_rows_without_raw_code_say_why():
     for row in CONCEPTS:
         assert bool(row.raw_note) == (not row.raw), row.name
         if row.name in {"surface", "presentation and present modes", "swapchain", "semaphores"}:
-            assert any(loc.startswith("wgpurender.window:") for loc in row.wgpu_where), row.name
+            assert any(loc.startswith("wgpurender.wgpu_path.window:") for loc in row.wgpu_where), row.name
         assert row.vulkan and row.wgpu and len(row.differs) > 30, row.name
 
 
 def test_resolve_rejects_missing_names():
     with pytest.raises(AttributeError):
-        resolve("wgpurender.vulkan_ref.instance:no_such_function")
+        resolve("wgpurender.raw_path.instance:no_such_function")
     with pytest.raises(AttributeError):
-        resolve("wgpurender.stages.cube3d:Cube3D.no_such_method")
+        resolve("wgpurender.wgpu_path.stages.cube3d:Cube3D.no_such_method")
     with pytest.raises(ImportError):
         resolve("wgpurender.no_such_module:x")
 

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from helpers import inside, ndc_to_pixels, pixel_centres
 
-from wgpurender.course.cubes import (
+from wgpurender.core.course.cubes import (
     AMBIENT,
     DEFAULT_CUBES,
     FACE_COLORS,
@@ -25,10 +25,10 @@ from wgpurender.course.cubes import (
     CubeSpec,
     permute_channels,
 )
-from wgpurender.errors import UserError
-from wgpurender.render import render_stage
-from wgpurender.stages.cube3d import Cube3D
-from wgpurender.targets import create_target, read_texture
+from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path.render import render_stage
+from wgpurender.wgpu_path.stages.cube3d import Cube3D
+from wgpurender.wgpu_path.targets import create_target, read_texture
 
 FMT = "rgba8unorm"
 COLOR_TOL = 2  # /255: float32 GPU maths vs float64 here, plus 8-bit rounding (0.5)

@@ -1,5 +1,5 @@
 """FXAA's two draws on the fragment path (mark edges in depth, then FXAA depth-tested on edge pixels;
-wgpurender/post/shaders.py says why) give exactly the image of the single full-screen draw of the same
+wgpurender/wgpu_path/post/shaders.py says why) give exactly the image of the single full-screen draw of the same
 shader, whose early exit makes the same decision per pixel; and the compute path (one dispatch, no mask)
 gives that image too. Bit-exact (array_equal): the same arithmetic on the same pixels."""
 
@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from test_post import aliased_edge, hdr_image, run_chain, upload  # noqa: F401  (hdr_image is a fixture)
 
-from wgpurender.post import FragmentPass, PostChain, create_effect
-from wgpurender.targets import create_target, read_texture
+from wgpurender.wgpu_path.post import FragmentPass, PostChain, create_effect
+from wgpurender.wgpu_path.targets import create_target, read_texture
 
 
 def single_draw(ctx, img: np.ndarray, fmt: str = "rgba16float", **params) -> np.ndarray:

@@ -1,14 +1,14 @@
 """The layering rule of docs/architecture.md, enforced from the imports (ast) of every module in wgpurender/.
 
-Modules are classified by package prefix, so a module added later (vulkan_ref/window.py, a report
-module, the scene/ package) is classified without editing this file:
+Modules are classified by folder, so a module added later is classified without editing this file:
 
-- raw path: ``wgpurender.vulkan_ref.*``;
-- wgpu path: ``stages``, ``scene_render``, ``post``, ``gpu``, ``targets``, ``textures``, ``window``,
-  ``render``, ``frame_loop``, ... (every module that imports wgpu and is neither raw, cli nor bench);
-- core: ``wgpurender.course.*`` and every other module that imports no GPU API.
+- core: ``wgpurender/core/`` (API-free: course data, scene model, plan, uniforms, image I/O, compare, tolerances);
+- wgpu path: ``wgpurender/wgpu_path/``;
+- raw path: ``wgpurender/raw_path/``;
+- outer (the tools: cli, api, bench, verify, report, concepts, the package itself): everything else.
 
-Every import counts, also the ones inside functions: a lazy import is still a dependency.
+Every import counts, also the ones inside functions (a lazy import is still a dependency) and the ones made by
+string through ``importlib.import_module("wgpurender....")``.
 """
 
 from __future__ import annotations
@@ -20,21 +20,16 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "wgpurender"
 GPU_APIS = ("wgpu", "vulkan")
-RAW = "wgpurender.vulkan_ref"
-WGPU_PACKAGES = ("wgpurender.stages", "wgpurender.scene_render", "wgpurender.post", "wgpurender.window",
-                 "wgpurender.render", "wgpurender.frame_loop")
-OUTER = ("wgpurender.cli", "wgpurender.bench", "wgpurender.api", "wgpurender.verify",
-         "wgpurender.report")  # may import both paths
-CORE = ("wgpurender.course",)  # core by definition; other modules are core when they import no GPU API
-STAGE_PACKAGES = ("wgpurender.stages", "wgpurender.vulkan_ref.stages")
-STAGE_IMPORTERS = ("wgpurender.cli", "wgpurender.bench", "wgpurender.render", "wgpurender.vulkan_ref.render",
-                   "wgpurender.window", "wgpurender.concepts")  # registry, CLI/runners, bench (+ the mapping table)
-RENDERERS = ("wgpurender.scene_render", "wgpurender.vulkan_ref.scene", "wgpurender.render",
-             "wgpurender.vulkan_ref.render")
+CORE, WGPU, RAW = "wgpurender.core", "wgpurender.wgpu_path", "wgpurender.raw_path"
+STAGE_PACKAGES = ("wgpurender.wgpu_path.stages", "wgpurender.raw_path.stages")
+STAGE_IMPORTERS = ("wgpurender.cli", "wgpurender.bench", "wgpurender.wgpu_path.render", "wgpurender.raw_path.render",
+                   "wgpurender.wgpu_path.window", "wgpurender.concepts")  # registry, CLI/runners, bench, mapping table
+RENDERERS = ("wgpurender.wgpu_path.scene_render", "wgpurender.raw_path.scene", "wgpurender.wgpu_path.render",
+             "wgpurender.raw_path.render")
 MAX_STAGE_LINES = 150
-# Breaks that other branches of issue 11 remove, each named with its owner. The test fails when one
-# is gone (delete its line then), so this list can only shrink.
-PENDING: set[str] = set()  # plan's four (the effect specs in wgpurender/course/effects.py) are gone
+# Known breaks, each named with its owner. The test fails when one is gone (delete its line then), so this list
+# can only shrink.
+PENDING: set[str] = set()
 
 
 def within(module: str, prefixes) -> bool:
@@ -65,11 +60,29 @@ def imports_of(tree: ast.AST, module: str, is_package: bool, known: set[str]) ->
             for alias in node.names:
                 candidate = f"{prefix}.{alias.name}"
                 found.add(candidate if candidate in known else prefix)
+        elif isinstance(node, ast.Call) and _is_import_module(node.func) and node.args:
+            found.update(_string_prefix(node.args[0]))
     return found
 
 
+def _is_import_module(func: ast.expr) -> bool:
+    """``importlib.import_module(...)``, ``import_module(...)`` or ``__import__(...)``."""
+    name = func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+    return name in ("import_module", "__import__")
+
+
+def _string_prefix(arg: ast.expr) -> set[str]:
+    """The module named by a string argument: a constant, or an f-string's constant head
+    (``f"wgpurender.wgpu_path.stages.{name}"`` imports something in that package)."""
+    if isinstance(arg, ast.Constant) and isinstance(arg.value, str):
+        return {arg.value}
+    if isinstance(arg, ast.JoinedStr) and arg.values and isinstance(arg.values[0], ast.Constant):
+        return {str(arg.values[0].value).rstrip(".")}
+    return set()
+
+
 def resolve(name: str, known: set[str]) -> str:
-    """The wgpurender module an imported name lives in (``wgpurender.course.cubes.CubeSpec`` -> the module)."""
+    """The wgpurender module an imported name lives in (``wgpurender.core.course.cubes.CubeSpec`` -> the module)."""
     while name not in known and "." in name:
         name = name.rsplit(".", 1)[0]
     return name
@@ -94,16 +107,12 @@ def uses_gpu(name: str, external: dict[str, set[str]]) -> bool:
     return bool(external[name] & set(GPU_APIS))
 
 
-def layer(name: str, external: dict[str, set[str]]) -> str:
-    if within(name, OUTER) or name == "wgpurender" or name == "wgpurender.__main__":
-        return "outer"
-    if within(name, RAW):
-        return "raw"
-    if within(name, CORE):
-        return "core"
-    if within(name, WGPU_PACKAGES) or uses_gpu(name, external):
-        return "wgpu"
-    return "core"
+def layer(name: str, external: dict[str, set[str]] | None = None) -> str:
+    """The layer of a module, by its folder alone."""
+    for prefix, kind in ((CORE, "core"), (WGPU, "wgpu"), (RAW, "raw")):
+        if within(name, prefix):
+            return kind
+    return "outer"
 
 
 def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
@@ -146,24 +155,25 @@ def violations(root: Path = PACKAGE) -> list[str]:
     internal, external, paths = import_graph(root)
     out = []
     for name, targets in sorted(internal.items()):
-        mine = layer(name, external)
+        mine = layer(name)
         for target in sorted(targets):
-            theirs = layer(target, external)
+            theirs = layer(target)
             if mine == "raw" and theirs == "wgpu":
-                out.append(f"{name} (raw path) imports {target} (wgpu path)")
+                out.append(f"{name} (raw path) imports {target} (wgpu path): the two paths never import each other")
             if mine == "wgpu" and theirs == "raw":
-                out.append(f"{name} (wgpu path) imports {target} (raw path)")
+                out.append(f"{name} (wgpu path) imports {target} (raw path): the two paths never import each other")
             if mine in ("core", "raw", "wgpu") and theirs == "outer":
-                out.append(f"{name} imports {target}: only cli/ and bench/ may import cli/ or bench/")
-            if mine == "core" and (theirs in ("raw", "wgpu") or within(target, STAGE_PACKAGES + RENDERERS)):
-                out.append(f"{name} (core) imports {target} ({theirs} path)")
+                out.append(f"{name} imports {target} (outer): only the tools (cli, api, bench, verify, report) "
+                           "import the tools")
+            if mine == "core" and theirs in ("raw", "wgpu"):
+                out.append(f"{name} (core) imports {target} ({theirs} path): the core imports no path")
             if is_stage_module(target) and not (within(name, STAGE_IMPORTERS) or within(name, STAGE_PACKAGES)
                                                 and not is_stage_module(name)):
                 out.append(f"{name} imports the stage {target}: only the registry, the CLI/runners and the bench may")
             if is_stage_module(name) and is_stage_module(target):
                 out.append(f"{name} imports the stage {target}: stages are leaves")
         if mine == "core" and uses_gpu(name, external):
-            out.append(f"{name} (core) imports a GPU API")
+            out.append(f"{name} (core) imports a GPU API: the core is API-free")
     for component in cycles(internal):
         out.append("import cycle: " + " <-> ".join(component))
     for name, path in sorted(paths.items()):
@@ -183,23 +193,32 @@ def test_the_layering_rule_holds():
 def test_the_course_core_is_api_free():
     """Direct check of the core package, whatever the classification above says."""
     _, external, _ = import_graph()
-    course = {n: external[n] & set(GPU_APIS) for n in external if within(n, "wgpurender.course")}
+    course = {n: external[n] & set(GPU_APIS) for n in external if within(n, "wgpurender.core.course")}
     assert course and not any(course.values()), course
 
 
 # -- the rule can fail: each case is a copy of the package with one injected violation --------------------------
 
 INJECTED = [
-    ("vulkan_ref/stages/cube3d.py", "from ...stages import cube3d\n", "(raw path) imports wgpurender.stages.cube3d"),
-    ("stages/cube3d.py", "from ..vulkan_ref import images\n", "(wgpu path) imports wgpurender.vulkan_ref.images"),
-    ("course/cubes.py", "import wgpu\n", "(core) imports a GPU API"),
-    ("course/cubes.py", "from ..stages import triangle\n", "(core) imports wgpurender.stages.triangle"),
-    ("course/cubes.py", "from ..cli import _args\n", "only cli/ and bench/ may import cli/ or bench/"),
-    ("transforms.py", "from .course import cubes\n", "import cycle"),
-    ("stages/base.py", "from . import all_stages\n", "import cycle: wgpurender.stages <-> wgpurender.stages.base"),
-    ("stages/msaa.py", "from .triangle import Triangle\n", "stages are leaves"),
-    ("scene_render/scene_pass.py", "from ..stages.cube3d import Cube3D\n", "only the registry"),
-    ("stages/triangle.py", "\n" * 200, "lines: a stage module"),
+    ("raw_path/stages/cube3d.py", "from wgpurender.wgpu_path.stages import cube3d\n",
+     "(raw path) imports wgpurender.wgpu_path.stages.cube3d"),
+    ("wgpu_path/stages/cube3d.py", "from wgpurender.raw_path import images\n",
+     "(wgpu path) imports wgpurender.raw_path.images"),
+    ("core/course/cubes.py", "import wgpu\n", "(core) imports a GPU API"),
+    ("core/course/cubes.py", "from wgpurender.wgpu_path.stages import triangle\n",
+     "(core) imports wgpurender.wgpu_path.stages.triangle"),
+    ("core/course/cubes.py", "from wgpurender.cli import _args\n", "only the tools"),
+    ("core/course/cubes.py", "import importlib\nimportlib.import_module('wgpurender.wgpu_path.gpu')\n",
+     "(core) imports wgpurender.wgpu_path.gpu"),
+    ("core/plan/build.py", "from importlib import import_module\nimport_module(f'wgpurender.raw_path.stages.{x}')\n",
+     "(core) imports wgpurender.raw_path.stages"),
+    ("core/transforms.py", "from wgpurender.core.course import cubes\n", "import cycle"),
+    ("wgpu_path/stages/base.py", "from wgpurender.wgpu_path.stages import all_stages\n",
+     "import cycle: wgpurender.wgpu_path.stages <-> wgpurender.wgpu_path.stages.base"),
+    ("wgpu_path/stages/msaa.py", "from wgpurender.wgpu_path.stages.triangle import Triangle\n", "stages are leaves"),
+    ("wgpu_path/scene_render/scene_pass.py", "from wgpurender.wgpu_path.stages.cube3d import Cube3D\n",
+     "only the registry"),
+    ("wgpu_path/stages/triangle.py", "\n" * 200, "lines: a stage module"),
 ]
 
 
@@ -229,9 +248,9 @@ def test_both_registries_and_the_cli_list_stages_in_course_order(capsys):
     order is checked from the numbers, not from the table's row order), the course's own sequence of the
     wgpu steps is the list below, and `wgpurender stages` prints the stages in that order."""
     from wgpurender.cli import main
-    from wgpurender.course.steps import course_step
-    from wgpurender.stages import all_stages
-    from wgpurender.vulkan_ref.stages import all_ref_stages
+    from wgpurender.core.course.steps import course_step
+    from wgpurender.raw_path.stages import all_ref_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     for registry in (all_stages(), all_ref_stages()):
         names = list(registry)

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from helpers import STANDARD_4X, edge_distance, inside, ndc_to_pixels, pixel_centres
 
-from wgpurender.course.triangle import TRIANGLE_POSITIONS
-from wgpurender.render import render_stage
+from wgpurender.core.course.triangle import TRIANGLE_POSITIONS
+from wgpurender.wgpu_path.render import render_stage
 
 SIZE = (96, 72)
 

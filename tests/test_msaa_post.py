@@ -3,7 +3,7 @@
 Both run on lavapipe in this process with the same triangle, the same resolve and the same grey
 formula (GLSL subpassLoad vs WGSL textureLoad of the stored resolve), so the images must be equal
 bit for bit (threshold 0). Measured: 0 pixels differ at 800x600, 64x48 and 97x61 in every format.
-The pixel values themselves are checked against numpy in tests/test_vulkan_ref.py
+The pixel values themselves are checked against numpy in tests/test_raw_path.py
 (test_msaa_post_is_grey_of_msaa), so equality here also checks the wgpu stage's values.
 """
 
@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wgpurender.errors import UserError
-from wgpurender.vulkan_ref import render_reference
+from wgpurender.core.errors import UserError
+from wgpurender.raw_path import render_reference
 
 FORMATS = ["rgba8unorm-srgb", "rgba8unorm", "rgba16float"]
 
@@ -21,7 +21,7 @@ FORMATS = ["rgba8unorm-srgb", "rgba8unorm", "rgba16float"]
 @pytest.mark.parametrize("size", [(64, 48), (97, 61)])
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_msaa_post_matches_raw_subpasses(ctx, fmt, size):
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     wgpu_pixels = render_stage("msaa-post", size, fmt, 4, 0.0, ctx, frames=1).pixels
     raw = render_reference("msaa-post", size, fmt, 4)
@@ -35,7 +35,7 @@ def test_msaa_post_matches_raw_subpasses(ctx, fmt, size):
 
 def test_msaa_post_is_not_the_msaa_stage(ctx):
     """The post pass ran: the msaa stage's colour triangle became grey (so equality above is not two copies)."""
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     msaa = render_stage("msaa", (64, 48), "rgba8unorm", 4, 0.0, ctx, frames=1).pixels
     post = render_stage("msaa-post", (64, 48), "rgba8unorm", 4, 0.0, ctx, frames=1).pixels
@@ -43,7 +43,7 @@ def test_msaa_post_is_not_the_msaa_stage(ctx):
 
 
 def test_msaa_post_needs_msaa(ctx):
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     with pytest.raises(UserError, match="use --msaa 4"):
         render_stage("msaa-post", (32, 24), "rgba8unorm", 1, 0.0, ctx, frames=1)
@@ -51,7 +51,7 @@ def test_msaa_post_needs_msaa(ctx):
 
 def test_cli_lists_and_renders_msaa_post(tmp_path, capsys):
     from wgpurender.cli import main
-    from wgpurender.imageio import load_png
+    from wgpurender.core.imageio import load_png
 
     assert main(["stages"]) == 0
     assert "msaa-post" in capsys.readouterr().out

@@ -60,7 +60,7 @@ def test_no_errors_or_validation_messages(executed):
 def test_every_stage_is_shown(executed):
     from PIL import Image
 
-    from wgpurender.stages import all_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     cell = next(c for c in executed if "w.stage_names():" in c.source and "w.reference(" not in c.source)
     images = _pngs(cell)
@@ -71,10 +71,10 @@ def test_every_stage_is_shown(executed):
 
 
 def test_wgpu_and_raw_agree(executed):
-    from wgpurender.vulkan_ref import reference_stage_names
+    from wgpurender.raw_path import reference_stage_names
 
     rows = {r["target"]: r for r in _tagged(executed, "compare")}
-    from wgpurender.stages import all_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     both = [s for s in all_stages() if s in reference_stage_names()]
     assert set(both) <= set(rows) and "final_subpass.toml" in rows

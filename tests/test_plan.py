@@ -13,9 +13,9 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.errors import UserError
-from wgpurender.plan import AdapterFacts, Knobs, build_plan, explain_scene, main, plan_scene_file
-from wgpurender.scene import load_scene
+from wgpurender.core.errors import UserError
+from wgpurender.core.plan import AdapterFacts, Knobs, build_plan, explain_scene, main, plan_scene_file
+from wgpurender.core.scene import load_scene
 
 REPO = Path(__file__).resolve().parent.parent
 PNG_1X1 = bytes.fromhex(

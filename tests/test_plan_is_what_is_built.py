@@ -23,12 +23,12 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.plan import build_plan
-from wgpurender.post import output_usage
-from wgpurender.scene import load_scene
-from wgpurender.scene_render import SceneRenderer
-from wgpurender.scene_render.frame import adapter_facts
-from wgpurender.targets import TARGET_USAGE, create_target
+from wgpurender.core.plan import build_plan
+from wgpurender.core.scene import load_scene
+from wgpurender.wgpu_path.post import output_usage
+from wgpurender.wgpu_path.scene_render import SceneRenderer
+from wgpurender.wgpu_path.scene_render.frame import adapter_facts
+from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
 
 REPO = Path(__file__).resolve().parent.parent
 SCENES = sorted(p for p in (REPO / "assets" / "scenes").glob("*.toml") if "shared" not in p.read_text())

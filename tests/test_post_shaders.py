@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.course.effects import EFFECTS, make_step
-from wgpurender.post import PostChain
-from wgpurender.post.shaders import pack_pass, params_struct, pass_source
+from wgpurender.core.course.effects import EFFECTS, make_step
+from wgpurender.wgpu_path.post import PostChain
+from wgpurender.wgpu_path.post.shaders import pack_pass, params_struct, pass_source
 
 SHADERS = Path(__file__).resolve().parent.parent / "shaders_wgsl"
 

@@ -1,4 +1,4 @@
-"""The raw-Vulkan window (wgpurender/vulkan_ref/window.py) under a private Xvfb, on lavapipe, validation on.
+"""The raw-Vulkan window (wgpurender/raw_path/window.py) under a private Xvfb, on lavapipe, validation on.
 
 Every run here has the validation layer with synchronisation validation on ($WGPURENDER_VALIDATION,
 set by conftest.py and passed to the subprocess): any message makes the window raise, so exit code 0
@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.imageio import load_png
-from wgpurender.vulkan_ref import render_reference
+from wgpurender.core.imageio import load_png
+from wgpurender.raw_path import render_reference
 
 REPO = Path(__file__).resolve().parent.parent
 SIZE = (160, 120)
@@ -71,7 +71,7 @@ def test_raw_window_resize_and_minimise(display, monkeypatch):
     The minimised state is injected (RawWindow.minimised returns True for three polls): Xvfb has no window
     manager, so glfwIconifyWindow has no effect there; the loop's reaction to it is what is tested.
     """
-    from wgpurender.vulkan_ref import window as raw_window
+    from wgpurender.raw_path import window as raw_window
 
     monkeypatch.setenv("DISPLAY", display)
     state = {"calls": 0, "minimised": 0, "acquired_while_minimised": 0}

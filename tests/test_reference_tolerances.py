@@ -12,10 +12,18 @@ import numpy as np
 import pytest
 from imagecheck import check
 
-from wgpurender.imageio import load_png, to_uint8
-from wgpurender.tolerances import DRIVER_CLASSES, TABLE_PATH, Metrics, calibrate, format_table, load_table, tolerance
-from wgpurender.vulkan_ref import reference_stage_names, render_reference
-from wgpurender.vulkan_ref.make_references import (
+from wgpurender.core.imageio import load_png, to_uint8
+from wgpurender.core.tolerances import (
+    DRIVER_CLASSES,
+    TABLE_PATH,
+    Metrics,
+    calibrate,
+    format_table,
+    load_table,
+    tolerance,
+)
+from wgpurender.raw_path import reference_stage_names, render_reference
+from wgpurender.raw_path.make_references import (
     REFERENCE_DIR,
     REFERENCE_SIZE,
     SCENE_DIR,
@@ -150,12 +158,12 @@ def test_regenerate_references_uses_the_raw_path_and_reports_changes(tmp_path, r
     spoiled = copy / "assets" / "reference" / "triangle.png"
     pixels = load_png(spoiled).copy()
     pixels[10:20, 10:30, :3] = 255 - pixels[10:20, 10:30, :3]  # 200 pixels inverted
-    from wgpurender.imageio import save_png
+    from wgpurender.core.imageio import save_png
 
     save_png(spoiled, pixels)
     probe = copy / "tests" / "test_probe.py"
     probe.write_text(  # the regeneration made no wgpu device: the wgpu path drew nothing
-        "import sys\n\ndef test_probe():\n    gpu = sys.modules.get('wgpurender.gpu')\n"
+        "import sys\n\ndef test_probe():\n    gpu = sys.modules.get('wgpurender.wgpu_path.gpu')\n"
         "    assert gpu is None or gpu.get_context.cache_info().currsize == 0\n")
     import os
 
@@ -225,7 +233,7 @@ def test_a_failed_exact_check_leaves_a_diff_folder(monkeypatch, tmp_path):
 
 def _shift_first_vertex(monkeypatch) -> str:
     """triangle-buffers with its first vertex 1 pixel to the right (a half-pixel/viewport-style slip)."""
-    from wgpurender.vulkan_ref.stages import triangle_buffers
+    from wgpurender.raw_path.stages import triangle_buffers
 
     vertices = triangle_buffers.triangle_vertices
 
@@ -240,7 +248,7 @@ def _shift_first_vertex(monkeypatch) -> str:
 
 def _clear_colour_off_by_3(monkeypatch) -> str:
     """clear-pass with its green channel 3/255 too high (a constant typo)."""
-    from wgpurender.vulkan_ref.stages import clear_pass
+    from wgpurender.raw_path.stages import clear_pass
 
     r, g, b, a = clear_pass.CLEAR_COLOR
     monkeypatch.setattr(clear_pass, "CLEAR_COLOR", (r, g + 3 / 255, b, a))
@@ -253,7 +261,7 @@ def _drop_a_cube_triangle(monkeypatch) -> str:
     Triangle 2 is on a face the camera sees (428 of 49,152 pixels change on lavapipe; triangles 0 and 1
     face away and are culled): the smallest visible loss.
     """
-    from wgpurender.course import cubes
+    from wgpurender.core.course import cubes
 
     mesh = cubes.cube_mesh
 
@@ -275,7 +283,7 @@ def test_a_real_render_bug_is_caught(monkeypatch, ctx, raw_driver_class, bug):
     """A bug put into the raw path itself, rendered: the committed reference check rejects it with this
     driver class's row. Where that row is (still) too loose for it (a GPU's provisional rows), the
     same-run tier catches it instead: the wgpu path's render differs from the bugged raw render."""
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     make_bug, caught_by = RENDER_BUGS[bug]
     name = make_bug(monkeypatch)

@@ -24,7 +24,7 @@ import pytest
 from browser import chromium, open_page
 from PIL import Image
 
-from wgpurender.imageio import load_png
+from wgpurender.core.imageio import load_png
 
 REPO = Path(__file__).resolve().parent.parent
 needs_chromium = pytest.mark.skipif(chromium() is None, reason="chromium is not installed (apt-get install chromium)")
@@ -76,8 +76,8 @@ def test_the_browser_check_catches_a_missing_image(site, tmp_path):
 
 
 def test_one_section_per_course_step_in_course_order(site):
-    from wgpurender.course.steps import COURSE
-    from wgpurender.stages import all_stages
+    from wgpurender.core.course.steps import COURSE
+    from wgpurender.wgpu_path.stages import all_stages
 
     text = (site / "index.html").read_text()
     keys = _sections(text)
@@ -93,8 +93,8 @@ def test_one_section_per_course_step_in_course_order(site):
 
 @needs_glslc
 def test_the_images_are_both_paths_renders_and_the_heatmap_marks_their_differences(site, ctx):
-    from wgpurender.render import render_stage
-    from wgpurender.vulkan_ref import render_reference
+    from wgpurender.raw_path import render_reference
+    from wgpurender.wgpu_path.render import render_stage
 
     for stage in ("triangle", "3d", "textured"):
         wgpu_img, raw_img = load_png(site / f"{stage}_wgpu.png"), load_png(site / f"{stage}_raw.png")
@@ -106,7 +106,7 @@ def test_the_images_are_both_paths_renders_and_the_heatmap_marks_their_differenc
 
 
 def test_metrics_and_timings_are_shown_for_both_paths(site):
-    from wgpurender.compare import compare_images
+    from wgpurender.core.compare import compare_images
 
     text = (site / "index.html").read_text()
     part = _section(text, "3d")
@@ -126,15 +126,15 @@ def test_concept_rows_point_at_real_code_on_both_paths(site):
     for concept in ("depth/stencil", "push constants", "UBO alignment"):
         assert f"<td>{html.escape(concept)}</td>" in part
     locations = re.findall(r"<small>([\w/.]+\.py):(\d+)</small>", text)
-    assert any(p.startswith("wgpurender/vulkan_ref/") for p, _ in locations)
-    assert any(p.startswith("wgpurender/stages/") for p, _ in locations)
+    assert any(p.startswith("wgpurender/raw_path/") for p, _ in locations)
+    assert any(p.startswith("wgpurender/wgpu_path/stages/") for p, _ in locations)
     for path, line in set(locations):
         source = (REPO / path).read_text().splitlines()[int(line) - 1].strip()
         assert source.startswith(("def ", "class ", "@", "async def ")), f"{path}:{line} is {source!r}"
 
 
 def test_scene_sections_show_the_render_plan(site):
-    from wgpurender.plan import explain_scene
+    from wgpurender.core.plan import explain_scene
 
     text = (site / "index.html").read_text()
     plan = explain_scene(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()

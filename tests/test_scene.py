@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.errors import UserError
-from wgpurender.scene import MAX_LIGHTS, KeyLines, load_scene, parse_scene
+from wgpurender.core.errors import UserError
+from wgpurender.core.scene import MAX_LIGHTS, KeyLines, load_scene, parse_scene
 
 TRIANGLE_OBJ = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"
 # 1x1 PNG (the scene only checks that texture files exist; the texture loader reads them)

@@ -11,14 +11,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender import procedural
 from wgpurender.cli import main
-from wgpurender.errors import UserError
-from wgpurender.imageio import save_png
-from wgpurender.plan import build_plan
-from wgpurender.scene import parse_scene
-from wgpurender.scene_render import SceneRenderer, render_frame, render_scene_file, shader_source
-from wgpurender.targets import read_texture
+from wgpurender.core import procedural
+from wgpurender.core.errors import UserError
+from wgpurender.core.imageio import save_png
+from wgpurender.core.plan import build_plan
+from wgpurender.core.scene import parse_scene
+from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame, render_scene_file, shader_source
+from wgpurender.wgpu_path.targets import read_texture
 
 ROOT = Path(__file__).resolve().parents[1]
 ASSETS = ROOT / "assets"
@@ -92,7 +92,7 @@ def test_final_scene_plan_is_what_gets_built(ctx):
 
 
 def _scene_and_plan(path, **overrides):
-    from wgpurender.scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     scene = load_scene(path)
     return scene, build_plan(scene, **overrides)
@@ -194,7 +194,7 @@ def test_variant_without_normal_map_has_no_tangent_attribute(ctx, tmp_path):
     assert variant.vertex_attributes == ("position", "normal", "uv")
     source = _code(shader_source(variant, ctx.has("immediates")))
     assert "tangent" not in source and "@location(3)" not in source and "var normal_tex" not in source
-    from wgpurender.scene_render.shader_interface import vertex_layout
+    from wgpurender.wgpu_path.scene_render.shader_interface import vertex_layout
 
     layout = vertex_layout(variant)
     assert layout["array_stride"] == 4 * (3 + 3 + 2)
@@ -270,7 +270,7 @@ def test_nan_positions_are_a_user_error(ctx, tmp_path):
 
 
 def test_more_lights_than_the_limit_is_a_user_error(ctx, tmp_path):
-    from wgpurender.scene import MAX_LIGHTS
+    from wgpurender.core.scene import MAX_LIGHTS
 
     lights = '\n[[lights]]\ntype = "point"\nposition = [0, 1, 0]\n' * (MAX_LIGHTS + 1)
     (tmp_path / "scene.toml").write_text(LIT_CUBE + lights)

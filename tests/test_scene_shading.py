@@ -29,8 +29,8 @@ from shading_model import (
     view_distance,
 )
 
-from wgpurender import procedural
-from wgpurender.imageio import save_png
+from wgpurender.core import procedural
+from wgpurender.core.imageio import save_png
 
 W, H = 64, 48
 PATHS = ("wgpu", "raw")

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from wgpurender.errors import UserError
-from wgpurender.shader_variants import specialise
+from wgpurender.core.errors import UserError
+from wgpurender.core.shader_variants import specialise
 
 TEMPLATE = """a
 #if lit

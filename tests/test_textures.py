@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from wgpurender.course.textured import BACKGROUND, SCREEN_QUAD
-from wgpurender.errors import UserError
-from wgpurender.targets import create_target, read_texture
-from wgpurender.textures import (
+from wgpurender.core.course.textured import BACKGROUND, SCREEN_QUAD
+from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path.targets import create_target, read_texture
+from wgpurender.wgpu_path.textures import (
     BILINEAR,
     NEAREST,
     TRILINEAR,
@@ -80,7 +80,7 @@ def draw(ctx, tex, spec, size, fmt="rgba8unorm", vertices=SCREEN_QUAD, mvp=None)
     default), with the textured stage's separate-sampler pipeline; the pixels read back."""
     import wgpu
 
-    from wgpurender.stages.textured import textured_pipelines, uniform_bytes
+    from wgpurender.wgpu_path.stages.textured import textured_pipelines, uniform_bytes
 
     target = create_target(ctx, size, fmt)
     device = ctx.device
@@ -163,7 +163,7 @@ def test_anisotropic_is_sharper_on_a_grazing_plane(ctx):
     across-the-view contrast (mean |horizontal neighbour difference|) than isotropic trilinear, which
     picks a blurrier mip from the compressed direction. Measured on lavapipe: 7.4 vs 4.2; asserted: > 1.3x.
     """
-    from wgpurender.course.textured import pattern_pixels, plane_mvp, plane_vertices
+    from wgpurender.core.course.textured import pattern_pixels, plane_mvp, plane_vertices
 
     tex = create_texture(ctx, pattern_pixels(), srgb=True)
     contrast = {}
@@ -401,7 +401,7 @@ def test_samplers_are_cached_per_spec(ctx):
 )
 def test_address_modes(ctx, mode, expected_cols):
     """A 2-texel texture (black, white) drawn with uv 0..2 on 8 pixels: 2 pixels per texel step."""
-    from wgpurender.course.textured import quad_vertices
+    from wgpurender.core.course.textured import quad_vertices
 
     tex = create_texture(ctx, np.array([[0, 255]], np.uint8), srgb=False, mips=False)
     quad = quad_vertices(np.array([[-1, 1, 0], [1, 1, 0], [-1, -1, 0], [1, -1, 0]]), (0.0, 0.0, 2.0, 1.0))
@@ -419,10 +419,10 @@ def test_textured_stage(ctx):
     Background is the clear colour; the plane covers a large part of each half; the
     right half has 4 lanes separated by background columns near the bottom.
     """
-    from wgpurender.course.steps import course_step
-    from wgpurender.render import render_stage
-    from wgpurender.stages import all_stages
-    from wgpurender.stages.textured import Textured
+    from wgpurender.core.course.steps import course_step
+    from wgpurender.wgpu_path.render import render_stage
+    from wgpurender.wgpu_path.stages import all_stages
+    from wgpurender.wgpu_path.stages.textured import Textured
 
     assert all_stages()["textured"] is Textured and course_step("textured").number == "5" and Textured.supports_msaa
     size = (160, 96)

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from helpers import barycentric, edge_distance, inside, ndc_to_pixels, pixel_centres, triangle_area
 
-from wgpurender.course.triangle import TRIANGLE_COLORS, TRIANGLE_POSITIONS
-from wgpurender.render import render_stage
+from wgpurender.core.course.triangle import TRIANGLE_COLORS, TRIANGLE_POSITIONS
+from wgpurender.wgpu_path.render import render_stage
 
 SIZE = (160, 120)
 

@@ -15,9 +15,8 @@ import wgpu
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from wgpurender.errors import UserError
-from wgpurender.shaders import create_shader_module, load_wgsl
-from wgpurender.uniforms import (
+from wgpurender.core.errors import UserError
+from wgpurender.core.uniforms import (
     F32,
     I32,
     MAT3,
@@ -35,6 +34,7 @@ from wgpurender.uniforms import (
     roundtrip_wgsl,
     wgsl_structs,
 )
+from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
 
 FOO = Struct("Foo", [("v", VEC2F)])
 

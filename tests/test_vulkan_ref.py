@@ -1,4 +1,4 @@
-"""The raw-Vulkan reference path (wgpurender.vulkan_ref): against the wgpu path, against numpy, and its errors.
+"""The raw-Vulkan reference path (wgpurender.raw_path): against the wgpu path, against numpy, and its errors.
 
 Both paths run on the same driver (lavapipe), so where they do the same thing
 they must agree to the bit: same formats, same rasterisation rules (top-left
@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 from imagecheck import assert_same_render, assert_within_tolerance
 
-from wgpurender.errors import UserError
-from wgpurender.imageio import load_png, srgb_decode, srgb_encode, to_uint8
-from wgpurender.vulkan_ref import reference_stage_names, render_reference
+from wgpurender.core.errors import UserError
+from wgpurender.core.imageio import load_png, srgb_decode, srgb_encode, to_uint8
+from wgpurender.raw_path import reference_stage_names, render_reference
 
 SIZE = (67, 45)  # small, odd, not square: exposes half-pixel and y-flip mistakes
 FORMATS = ("rgba8unorm", "rgba8unorm-srgb", "rgba16float")
@@ -36,7 +36,7 @@ TRIANGLE_RGB = np.eye(3)
 def test_stage_names_mirror_the_wgpu_path():
     """Every compared stage exists under the same name on both paths, msaa-post included (its wgpu twin is two
     render passes: tests/test_msaa_post.py)."""
-    from wgpurender.stages import all_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     ref = set(reference_stage_names())
     for name in {s for s, _, _ in COMPARED} | {"3d"}:
@@ -53,7 +53,7 @@ def test_matches_wgpu_path(request, ctx, stage, fmt, msaa):
     differ in all 24 cases, also at 64x48 and 97x61. 'clear' is zero on both
     paths (WebGPU's clear has no colour); float16 is compared bit for bit.
     """
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     wgpu_pixels = render_stage(stage, SIZE, fmt, msaa, 0.0, ctx, frames=1).pixels
     ref_pixels = render_reference(stage, SIZE, fmt, msaa)
@@ -67,15 +67,15 @@ def test_matches_wgpu_path(request, ctx, stage, fmt, msaa):
 def test_3d_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage '3d' (depth, culling, two UBOs, dynamic offsets, push constants): exact (threshold 0).
 
-    The scene is the course core's (wgpurender/course/cubes.py), as on both paths; the
-    UBO bytes are packed independently (vulkan_ref/ubo.py, hand-written std140
+    The scene is the course core's (wgpurender/core/course/cubes.py), as on both paths; the
+    UBO bytes are packed independently (raw_path/ubo.py, hand-written std140
     offsets) from the same float64 matrices, and the shaders come from different
     compilers (naga from WGSL, glslc from GLSL). Measured: bit-identical in all 12
     cases, t = 0 and 0.7: the Lambert term (normalize, dot, max) compiles to the
     same float32 operations on lavapipe. A wrong std140 offset (e.g. a mat3 packed
     as 36 bytes) or a wrong winding after the viewport flip changes whole faces.
     """
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     size = (64, 48)
     wgpu_pixels = render_stage("3d", size, fmt, msaa, t, ctx, frames=1).pixels
@@ -125,9 +125,9 @@ def test_clear_color_image_agrees_with_render_pass_clear(request, ctx, monkeypat
     The colour's components are k/255, exact in unorm; in sRGB both paths encode
     the same float with the same hardware conversion.
     """
-    from wgpurender.course.triangle import CLEAR_COLOR
-    from wgpurender.render import render_stage
-    from wgpurender.vulkan_ref.stages.clear import ClearTransfer
+    from wgpurender.core.course.triangle import CLEAR_COLOR
+    from wgpurender.raw_path.stages.clear import ClearTransfer
+    from wgpurender.wgpu_path.render import render_stage
 
     monkeypatch.setattr(ClearTransfer, "color", CLEAR_COLOR)
     for fmt in FORMATS:
@@ -167,7 +167,7 @@ def test_reference_images_are_current(request, stage, raw_driver_class):
     output differs between host CPUs and a GPU's more, so the bounds are the driver class's calibrated row
     of assets/reference/tolerances.toml (tests/test_reference_tolerances.py shows they reject real changes).
     """
-    from wgpurender.vulkan_ref.make_references import REFERENCE_SIZE, reference_path
+    from wgpurender.raw_path.make_references import REFERENCE_SIZE, reference_path
 
     path = reference_path(stage)
     assert path.is_file(), f"{path} missing: run pytest --regenerate-references"
@@ -203,7 +203,7 @@ def test_missing_glslc_is_a_user_error(monkeypatch, tmp_path):
 
 def test_spirv_cache_spares_glslc(monkeypatch, tmp_path):
     """Once compiled, a shader comes from the cache: glslc is not needed again until the source changes."""
-    from wgpurender.vulkan_ref.glsl import cache_dir, compile_glsl, glsl_path
+    from wgpurender.raw_path.glsl import cache_dir, compile_glsl, glsl_path
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     spirv = compile_glsl(glsl_path("color.frag"))
@@ -214,7 +214,7 @@ def test_spirv_cache_spares_glslc(monkeypatch, tmp_path):
 
 
 def test_glsl_compile_error_names_file_and_line(monkeypatch, tmp_path):
-    from wgpurender.vulkan_ref.glsl import compile_glsl
+    from wgpurender.raw_path.glsl import compile_glsl
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     broken = tmp_path / "broken.frag"
@@ -228,8 +228,8 @@ def test_validation_messages_are_caught():
     """The messenger is live: an invalid call (a zero-size buffer) is reported and check_validation raises."""
     import vulkan as vk
 
-    from wgpurender.vulkan_ref.instance import get_vulkan
-    from wgpurender.vulkan_ref.validation import ValidationFailed
+    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.validation import ValidationFailed
 
     ctx = get_vulkan()
     assert ctx.log is not None, "tests run with $WGPURENDER_VALIDATION set"
@@ -250,7 +250,7 @@ def test_validation_messages_are_caught():
 def test_textured_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage 'textured' on both paths, 160x96: exact (threshold 0).
 
-    Same driver, same sampler state (vulkan_ref/textures.sampler_info fills VkSamplerCreateInfo
+    Same driver, same sampler state (raw_path/textures.sampler_info fills VkSamplerCreateInfo
     as wgpu's Vulkan backend does: LOD clamps, anisotropy 16 with samplerAnisotropy enabled),
     and a bit-identical mip chain: the raw path draws each level with the same integer-weight
     box filter in GLSL (textured_mipmap.frag) as mipmap.wgsl, in the same order of float
@@ -260,7 +260,7 @@ def test_textured_matches_wgpu_path(request, ctx, fmt, msaa, t):
     the mip weights by 1.0001 in the GLSL changes 2 pixels by 1/255; the raw path without
     anisotropy changes 3686 of 15360 pixels.
     """
-    from wgpurender.render import render_stage
+    from wgpurender.wgpu_path.render import render_stage
 
     size = (160, 96)
     wgpu_pixels = render_stage("textured", size, fmt, msaa, t, ctx, frames=1).pixels
@@ -300,9 +300,9 @@ def test_raw_mip_chain(ctx, srgb, shape):
     """
     from contextlib import ExitStack
 
-    from wgpurender.textures import create_texture, read_mip
-    from wgpurender.vulkan_ref.instance import get_vulkan
-    from wgpurender.vulkan_ref.textures import read_level, upload_texture
+    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.textures import read_level, upload_texture
+    from wgpurender.wgpu_path.textures import create_texture, read_mip
 
     h, w = shape
     pixels = np.random.default_rng(7 * h + w).integers(0, 256, (h, w, 4), dtype=np.uint8)
@@ -326,8 +326,8 @@ def test_sampler_info_mirrors_the_spec():
     """SamplerSpec -> VkSamplerCreateInfo: filters, mipmap mode, address modes, LOD clamps, anisotropy."""
     import vulkan as vk
 
-    from wgpurender.course.textured import COMBINED_SAMPLER, SEPARATE_SAMPLERS
-    from wgpurender.vulkan_ref.textures import sampler_info
+    from wgpurender.core.course.textured import COMBINED_SAMPLER, SEPARATE_SAMPLERS
+    from wgpurender.raw_path.textures import sampler_info
 
     info = sampler_info(COMBINED_SAMPLER)
     assert (info.magFilter, info.minFilter, info.mipmapMode) == (

@@ -1,4 +1,4 @@
-"""The final scene on the raw-Vulkan path (wgpurender.vulkan_ref.scene) against the wgpu path, and its refusals.
+"""The final scene on the raw-Vulkan path (wgpurender.raw_path.scene) against the wgpu path, and its refusals.
 
 The raw path draws a scene file the course's way: one render pass, subpass 0 draws the models
 into the 4x MSAA rgba16float attachment (resolve + MSAA depth), subpass 1 reads the resolved image
@@ -24,7 +24,7 @@ What was measured (320x240 unless said otherwise, lavapipe / Mesa 22.3):
   raw shader (``wgpu_intermediates=True``, post_chain.frag's F16_BETWEEN_STEPS) makes the two
   images bit-identical, which proves that this is the whole difference (round-to-nearest, GLSL's
   packHalf2x16, leaves 1854 pixels different: the rounding mode matters).
-- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_vulkan_ref_neighbourhood.py.
+- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_raw_path_neighbourhood.py.
 - hdr = false: the intermediates are 8-bit sRGB, stored with lavapipe's approximate linear->sRGB
   encode; grayscale -> sepia -> srgb (rgba8unorm output), 160x120: 3954 pixels differ by 1/255,
   FLIP 0.0061. No shader formula reproduces the driver's encoder, so this one is bounded, not
@@ -39,10 +39,10 @@ import numpy as np
 import pytest
 from imagecheck import assert_close, assert_same_render, assert_within_tolerance
 
-from wgpurender.errors import UserError
-from wgpurender.imageio import load_png, to_uint8
-from wgpurender.vulkan_ref import render_reference
-from wgpurender.vulkan_ref.scene import render_scene_reference
+from wgpurender.core.errors import UserError
+from wgpurender.core.imageio import load_png, to_uint8
+from wgpurender.raw_path import render_reference
+from wgpurender.raw_path.scene import render_scene_reference
 
 REPO = Path(__file__).resolve().parent.parent
 SCENES = REPO / "assets" / "scenes"
@@ -78,7 +78,7 @@ def wgpu_render(ctx, path: Path, size: tuple[int, int], **knobs) -> np.ndarray:
     The post path is pinned to fragment, the chain these exactness claims are about: on a discrete GPU the auto
     path is compute, which encodes sRGB in its shader (tests/test_post_paths.py compares the two paths).
     """
-    from wgpurender.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene_render import render_scene_file
 
     knobs.setdefault("post_path", "fragment")
 
@@ -101,7 +101,7 @@ def final_pair(ctx):
 
 def test_final_subpass_is_final_without_fxaa():
     """final_subpass.toml is final.toml with the fxaa [[post]] entry removed, nothing else changed."""
-    from wgpurender.scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     final, subpass = load_scene(SCENES / "final.toml"), load_scene(SCENES / "final_subpass.toml")
     assert [s.effect for s in final.post] == ["tonemap", "fxaa", "vignette"]
@@ -227,7 +227,7 @@ def test_glm_vulkan_scene_matches_wgpu(request, ctx, tmp_path):
 def test_scene_references_are_current(request, name, raw_driver_class):
     """assets/reference/scene_*.png against a fresh raw render at 320x240, within the table's bounds
     (assets/reference/tolerances.toml, this driver class's row); written only by the raw path."""
-    from wgpurender.vulkan_ref.make_references import (
+    from wgpurender.raw_path.make_references import (
         SCENE_DIR,
         SCENE_REFERENCE_SIZE,
         SCENE_REFERENCES,
@@ -259,11 +259,11 @@ def test_unsupported_output_format_is_refused():
 
 def test_every_problem_is_listed_at_once(tmp_path):
     """Too many effects and an unsupported output format: both named in one message. Neighbourhood effects
-    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_vulkan_ref_neighbourhood.py)."""
-    from wgpurender.plan import build_plan
-    from wgpurender.scene import load_scene
-    from wgpurender.vulkan_ref.scene import unsupported
-    from wgpurender.vulkan_ref.scene.uniforms import MAX_POST_STEPS
+    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_raw_path_neighbourhood.py)."""
+    from wgpurender.core.plan import build_plan
+    from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.scene import unsupported
+    from wgpurender.raw_path.scene.uniforms import MAX_POST_STEPS
 
     text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sepia"\n' * MAX_POST_STEPS
     plan = build_plan(load_scene(scene_file(tmp_path, "long.toml", text)), output_format="bgra8unorm-srgb")
@@ -273,6 +273,6 @@ def test_every_problem_is_listed_at_once(tmp_path):
 
 
 def plan_of(path: Path):
-    from wgpurender.plan import plan_scene_file
+    from wgpurender.core.plan import plan_scene_file
 
     return plan_scene_file(path)

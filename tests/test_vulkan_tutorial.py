@@ -31,8 +31,8 @@ import numpy as np
 import pytest
 from imagecheck import assert_same_render, assert_within_tolerance
 
-from wgpurender.imageio import load_png
-from wgpurender.tolerances import load_table
+from wgpurender.core.imageio import load_png
+from wgpurender.core.tolerances import load_table
 
 ROOT = Path(__file__).resolve().parents[1]
 ANCHORS = ROOT.parent / "shared" / "anchors" / "vulkan-tutorial"
@@ -49,7 +49,7 @@ pytestmark = pytest.mark.skipif(
 
 
 def _render(ctx, chapter: str) -> tuple[np.ndarray, np.ndarray]:
-    from wgpurender.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene_render import render_scene_file
 
     scene, ref = CHAPTERS[chapter]
     result = render_scene_file(ROOT / "assets" / "scenes" / scene, ctx=ctx, frames=1)
@@ -90,7 +90,7 @@ def _tinyobj_uvs(load):
 
 
 def _use_tutorial_inputs_on_wgpu(monkeypatch, glm) -> None:
-    from wgpurender.scene_render import resources, scene_pass
+    from wgpurender.wgpu_path.scene_render import resources, scene_pass
 
     camera_values = scene_pass.camera_values
 
@@ -106,7 +106,7 @@ def _use_tutorial_inputs_on_wgpu(monkeypatch, glm) -> None:
 
 def _use_tutorial_inputs_on_raw(monkeypatch, glm) -> None:
     """The raw path uploads the glm-vulkan projection as the tutorial does (Y flip kept, plain viewport)."""
-    from wgpurender.vulkan_ref.scene import resources, scene_subpass
+    from wgpurender.raw_path.scene import resources, scene_subpass
 
     camera_block = scene_subpass.camera_block
 
@@ -142,7 +142,7 @@ def test_float32_inputs_same_on_both_paths(request, ctx, monkeypatch, chapter, w
     Exact because both renders are made here, in this run, on one driver (the two-tier rule); against
     the C++ frame the same render is within the tutorial's tolerance (the C++ frame came from another CPU).
     """
-    from wgpurender.vulkan_ref.scene import render_scene_reference
+    from wgpurender.raw_path.scene import render_scene_reference
 
     glm = _glm_matrices()
     _use_tutorial_inputs_on_wgpu(monkeypatch, glm)

@@ -127,7 +127,7 @@ def test_render_triangle_from_the_wheel(installed):
 
 def test_render_final_scene_from_the_wheel_matches_the_checkout(installed, ctx):
     """Same machine, same run: the wheel's render is bit-identical to this process's (checkout) render."""
-    from wgpurender.render import render_any
+    from wgpurender.wgpu_path.render import render_any
 
     scene = REPO / "assets" / "scenes" / "final.toml"
     _run(installed, installed["bin"] / "wgpurender", "render", scene, "-o", "f.png", "--size", "320x240")

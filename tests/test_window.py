@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from xvfb import private_display
 
-from wgpurender.imageio import load_png
-from wgpurender.render import render_stage
+from wgpurender.core.imageio import load_png
+from wgpurender.wgpu_path.render import render_stage
 
 
 @pytest.fixture(scope="module")

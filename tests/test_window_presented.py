@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from xvfb import private_display
 
-from wgpurender.render import render_stage
+from wgpurender.wgpu_path.render import render_stage
 
 STAGE = "triangle"
 

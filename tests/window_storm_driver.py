@@ -8,9 +8,9 @@ import sys
 
 import glfw
 
-from wgpurender.gpu import get_context
-from wgpurender.window import run_window
-from wgpurender.window.view import DemoView
+from wgpurender.wgpu_path.gpu import get_context
+from wgpurender.wgpu_path.window import run_window
+from wgpurender.wgpu_path.window.view import DemoView
 
 STEPS = [(1, 1), (3000, 40), "iconify", "restore", (40, 3000), "hide", "show", (97, 13), (2, 700), (320, 240),
          "hide", (5, 5), "show", "iconify", (3000, 40), "restore", (1, 1), (160, 120)]

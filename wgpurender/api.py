@@ -16,7 +16,7 @@ scene file (``*.toml``). Every call returns an :class:`Image`: ``.pixels`` (nump
 PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` with a message that
 says how to fix it (the CLI prints the same message).
 
-One GPU context serves every call in a process (:func:`wgpurender.gpu.get_context` keeps it), so
+One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.gpu.get_context` keeps it), so
 the adapter and device are made once. Nothing here imports wgpu, vulkan or trimesh until a render
 needs them: ``import wgpurender`` stays cheap.
 """
@@ -32,11 +32,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .errors import UserError
+from wgpurender.core.errors import UserError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .compare import Comparison
-    from .plan import RenderPlan
+    from wgpurender.core.compare import Comparison
+    from wgpurender.core.plan import RenderPlan
 
 Size = tuple[int, int] | str | None
 Target = str | os.PathLike
@@ -51,7 +51,7 @@ class Image:
     ``path``: ``"wgpu"``, ``"raw"`` (the raw-Vulkan reference) or ``"derived"`` (heatmap, montage).
     ``timings``: milliseconds; ``call_ms`` is the whole call (set-up included), ``frame_ms`` one
     steady-state frame (wgpu path only: record, submit, GPU work, read back).
-    ``plan``: the :class:`~wgpurender.plan.RenderPlan` a scene was drawn from (wgpu path), else None.
+    ``plan``: the :class:`~wgpurender.core.plan.RenderPlan` a scene was drawn from (wgpu path), else None.
     """
 
     pixels: np.ndarray
@@ -68,13 +68,13 @@ class Image:
 
     def rgba8(self) -> np.ndarray:
         """The pixels as 8-bit sRGB-encoded RGBA (float pixels are linear and get encoded)."""
-        from .imageio import to_uint8
+        from wgpurender.core.imageio import to_uint8
 
         return to_uint8(np.ascontiguousarray(self.pixels))
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the image atomically; the format follows the suffix (see :func:`wgpurender.imageio.save_image`)."""
-        from .imageio import save_image
+        """Write the image atomically; the format follows the suffix (see :func:`core.imageio.save_image`)."""
+        from wgpurender.core.imageio import save_image
 
         return save_image(path, self.pixels)
 
@@ -119,22 +119,22 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``Vulkan``
     (default), ``Metal``, ``D3D12`` or ``OpenGL``; ``t``: animation time in seconds.
     """
-    from .gpu import get_context
+    from wgpurender.wgpu_path.gpu import get_context
 
     start = time.perf_counter()
     wh = _size(size)
     ctx = get_context(backend)
     plan = None
-    from .course.formats import is_scene_file
+    from wgpurender.core.course.formats import is_scene_file
 
     if is_scene_file(target):
-        from .plan import plan_scene_file
-        from .scene_render import render_scene_file
+        from wgpurender.core.plan import plan_scene_file
+        from wgpurender.wgpu_path.scene_render import render_scene_file
 
         plan = plan_scene_file(target, size=wh, output_format=format, msaa=msaa)
         result = render_scene_file(target, size=wh, fmt=format, msaa=msaa, t=t, ctx=ctx)
     else:
-        from .render import render_stage
+        from wgpurender.wgpu_path.render import render_stage
 
         result = render_stage(str(target), wh or (800, 600), format, msaa, t, ctx)
     timings = {"frame_ms": result.frame_ms, "call_ms": (time.perf_counter() - start) * 1e3}
@@ -148,8 +148,8 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     Same arguments as :func:`render` (no ``backend``: this path is Vulkan). Needs ``glslc``
     on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
     """
-    from .vulkan_ref import render_reference
-    from .vulkan_ref.instance import get_vulkan
+    from wgpurender.raw_path import render_reference
+    from wgpurender.raw_path.instance import get_vulkan
 
     start = time.perf_counter()
     pixels = render_reference(str(target), size=_size(size), fmt=format, msaa=msaa, t=t)
@@ -159,7 +159,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
 
 def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
     """8-bit pixels from an Image, an array (float = linear) or an image file."""
-    from .imageio import load_png, to_uint8
+    from wgpurender.core.imageio import load_png, to_uint8
 
     if isinstance(image, Image):
         return image.rgba8()
@@ -175,10 +175,10 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
     """How far image ``b`` is from the reference ``a``: PSNR, largest channel difference, shares of
     pixels off by more than 1/255 and 2/255, mean FLIP (``flip=False`` skips it: NaN).
 
-    Returns a :class:`~wgpurender.compare.Comparison`; ``.as_dict()`` gives plain numbers,
+    Returns a :class:`~wgpurender.core.compare.Comparison`; ``.as_dict()`` gives plain numbers,
     ``.summary()`` one line.
     """
-    from .compare import compare_images
+    from wgpurender.core.compare import compare_images
 
     return compare_images(_pixels(a, "a"), _pixels(b, "b"), with_flip=flip)
 
@@ -186,7 +186,7 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
 def heatmap(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | str | os.PathLike,
             gain: float = 32.0) -> Image:
     """Where ``a`` and ``b`` differ, magnified by ``gain``, with its colour scale drawn below."""
-    from .compare import heatmap_with_scale
+    from wgpurender.core.compare import heatmap_with_scale
 
     return Image(heatmap_with_scale(_pixels(a, "a"), _pixels(b, "b"), gain), "heatmap", "derived")
 
@@ -210,21 +210,21 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
 
 def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None) -> str:
     """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints)."""
-    from .plan import explain_scene
+    from wgpurender.core.plan import explain_scene
 
     return explain_scene(scene, size=_size(size), output_format=format, msaa=msaa)
 
 
 def stage_names() -> list[str]:
     """The wgpu path's stage names, in course order."""
-    from .stages import all_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     return list(all_stages())
 
 
 def reference_stage_names() -> list[str]:
     """The stages the raw-Vulkan path can render, in course order."""
-    from .vulkan_ref import reference_stage_names
+    from wgpurender.raw_path import reference_stage_names
 
     return reference_stage_names()
 

@@ -1,7 +1,7 @@
 """The Vulkan -> wgpu mapping table: one row per course concept, with where each side lives in this repository.
 
 Every row names the raw-Vulkan calls, the functions of the raw reference path
-(wgpurender/vulkan_ref/) that make them, the wgpu API that stands for them, the
+(wgpurender/raw_path/) that make them, the wgpu API that stands for them, the
 functions of the wgpu path that use it, and what differs. Code locations are
 ``"module:attribute.path"`` strings (``Class.method`` allowed); tests/test_concepts.py
 imports every one, so a rename cannot leave the table pointing at nothing.
@@ -20,7 +20,7 @@ import sys
 import textwrap
 from dataclasses import dataclass
 
-R = "wgpurender.vulkan_ref."
+R = "wgpurender.raw_path."
 W = "wgpurender."
 
 
@@ -265,7 +265,7 @@ CONCEPTS: list[Concept] = [
         "bit-identical to the raw path. Unfused (render.post_fuse = false) the image goes through an "
         "rgba16float texture between effects (lavapipe rounds that store toward zero): 2697 pixels off by "
         "1/255, FLIP 0.00176, and bit-identical once the raw shader rounds the same way "
-        "(tests/test_vulkan_ref_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
+        "(tests/test_raw_path_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
         "on the raw path too, behind an explicit barrier, with the per-pixel effects after it in its subpass 1.",
     ),
     Concept(
@@ -579,7 +579,7 @@ Generated from `wgpurender/concepts.py` by `python -m wgpurender.concepts > docs
 tests/test_concepts.py fails when this file is stale and checks that every code location below exists.
 
 Locations are `module:function` (or `module:Class.method`) under `wgpurender.`: the raw path is
-`vulkan_ref.*` (Python `vulkan` binding, GLSL), the wgpu path is everything else.
+`raw_path.*` (Python `vulkan` binding, GLSL), the wgpu path is everything else.
 """
 
 

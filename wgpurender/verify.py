@@ -7,7 +7,7 @@ checked on the raw bytes):
 - ``wgpu vs raw``: every stage both paths have, and every repository scene the raw path can draw,
   rendered here in this run. Exact, except scenes whose post chain has two or more effects: the wgpu
   path stores the colour between effects (float16, or 8-bit sRGB), the raw path keeps float32 in one
-  shader (tests/test_vulkan_ref_scene.py explains and measures it), bounded by CHAIN_BOUND.
+  shader (tests/test_raw_path_scene.py explains and measures it), bounded by CHAIN_BOUND.
 - ``raw vs committed``: the raw path's render against assets/reference/<name>.png, with this
   driver class's row of the table.
 - ``wgpu vs C++ frame``: the Vulkan tutorial scenes against the C++ program's frames in
@@ -32,9 +32,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import UserError
-from .imageio import load_png, save_png, to_uint8
-from .tolerances import Metrics, Tolerance, calibrate, driver_class, format_table, load_table, measure, tolerance
+from wgpurender.core.errors import UserError
+from wgpurender.core.imageio import load_png, save_png, to_uint8
+from wgpurender.core.tolerances import (
+    Metrics,
+    Tolerance,
+    calibrate,
+    driver_class,
+    format_table,
+    load_table,
+    measure,
+    tolerance,
+)
 
 REPO = Path(__file__).resolve().parent.parent
 SCENE_DIR = REPO / "assets" / "scenes"
@@ -43,11 +52,11 @@ TUTORIAL_FRAMES = {"vulkan_tutorial_28": "ref_28_model_loading_1x.png",
                    "vulkan_tutorial_30": "ref_30_multisampling_4xMSAA.png"}
 QUICK = {"stages": ("triangle", "3d"), "scenes": ("unlit",)}
 # wgpu vs raw, scenes with a chain of 2+ post effects: float16 / 8-bit sRGB intermediates on the wgpu path only.
-# Measured on lavapipe (tests/test_vulkan_ref_scene.py): max 1/255, FLIP <= 0.0061.
+# Measured on lavapipe (tests/test_raw_path_scene.py): max 1/255, FLIP <= 0.0061.
 CHAIN_BOUND = Tolerance("post chain", "same device", 1, 1.0, 0.01,
-                        "lavapipe: max 1/255, FLIP 0.0018-0.0061 (tests/test_vulkan_ref_scene.py)",
+                        "lavapipe: max 1/255, FLIP 0.0018-0.0061 (tests/test_raw_path_scene.py)",
                         "wgpu's stored intermediates vs the raw path's float32", False)
-EXACT = Tolerance("exact", "same device", 0, 0.0, 0.0, "0 pixels differ (tests/test_vulkan_ref*.py)",
+EXACT = Tolerance("exact", "same device", 0, 0.0, 0.0, "0 pixels differ (tests/test_raw_path*.py)",
                   "same driver, same run", False)
 CSV_FIELDS = ("device", "kind", "name", "comparison", "status", "max_abs", "changed_pixels", "changed", "flip_mean",
               "bound", "note", "heatmap")
@@ -129,7 +138,7 @@ class Matrix:
         self.rows.append(Row(kind, name, comparison, "skipped", note=reason))
 
     def _heatmap(self, row: Row, expected: np.ndarray, actual: np.ndarray) -> str:
-        from .compare import heatmap
+        from wgpurender.core.compare import heatmap
 
         path = self.out / "heatmaps" / f"{_slug(row.kind, row.name, row.comparison)}.png"
         save_png(path, heatmap(expected, actual))
@@ -156,10 +165,10 @@ def _bound_text(tol: Tolerance) -> str:
 
 def verify_stages(matrix: Matrix, names: list[str]) -> None:
     """Each stage on both paths at the references' size, then the raw render against its committed PNG."""
-    from .render import render_stage
-    from .stages import all_stages
-    from .vulkan_ref import render_reference
-    from .vulkan_ref.make_references import REFERENCE_SIZE, reference_path
+    from wgpurender.raw_path import render_reference
+    from wgpurender.raw_path.make_references import REFERENCE_SIZE, reference_path
+    from wgpurender.wgpu_path.render import render_stage
+    from wgpurender.wgpu_path.stages import all_stages
 
     wgpu_stages = all_stages()
     for name in names:
@@ -177,7 +186,7 @@ def verify_stages(matrix: Matrix, names: list[str]) -> None:
 
 def _scene_size(scene_file: Path) -> tuple[int, int] | None:
     """Scenes at the scene references' size; the tutorial scenes at their own (the C++ frames' 800x600)."""
-    from .vulkan_ref.make_references import SCENE_REFERENCE_SIZE
+    from wgpurender.raw_path.make_references import SCENE_REFERENCE_SIZE
 
     return None if scene_file.stem in TUTORIAL_FRAMES else SCENE_REFERENCE_SIZE
 
@@ -188,10 +197,10 @@ def _needs_anchors(scene_file: Path) -> bool:
 
 def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) -> None:
     """One scene: wgpu vs raw (when the raw path can draw it), the committed reference, the C++ frame."""
-    from .scene import load_scene
-    from .scene_render import render_scene_file
-    from .vulkan_ref.make_references import reference_path
-    from .vulkan_ref.scene import render_scene_reference
+    from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.make_references import reference_path
+    from wgpurender.raw_path.scene import render_scene_reference
+    from wgpurender.wgpu_path.scene_render import render_scene_file
 
     name = scene_file.stem
     if _needs_anchors(scene_file):
@@ -219,10 +228,10 @@ def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) ->
 
 def run_verify(out: Path, quick: bool = False) -> Report:
     """Render and compare everything (``quick``: two stages and one scene); write the outputs to ``out``."""
-    from .gpu import get_context
-    from .vulkan_ref import reference_stage_names
-    from .vulkan_ref.instance import get_vulkan
-    from .vulkan_ref.make_references import SCENE_REFERENCES
+    from wgpurender.raw_path import reference_stage_names
+    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.make_references import SCENE_REFERENCES
+    from wgpurender.wgpu_path.gpu import get_context
 
     ctx, vctx = get_context("Vulkan"), get_vulkan()
     cls = driver_class(vctx.device_name)
@@ -243,7 +252,7 @@ def run_verify(out: Path, quick: bool = False) -> Report:
 
 def write_outputs(out: Path, report: Report, table: dict) -> None:
     """verify.csv, verify.md and tolerances.toml, each written whole or not at all."""
-    from .safe_write import atomic_write
+    from wgpurender.core.safe_write import atomic_write
 
     text = io.StringIO(newline="")
     writer = csv.DictWriter(text, fieldnames=CSV_FIELDS)

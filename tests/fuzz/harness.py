@@ -124,15 +124,15 @@ def _uniform(pixels: np.ndarray) -> bool:
 def asks_for_a_picture(scene_path: Path, width: int, height: int) -> bool:
     """A scene without post effects (which may darken everything on purpose, e.g. exposure 0) that has a visible
     front-facing triangle: its image cannot be uniform."""
-    from wgpurender.scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     return not load_scene(scene_path).post and visible_triangle(scene_path, width, height)
 
 
 def visible_triangle(scene_path: Path, width: int, height: int) -> bool:
     """Whether some model triangle lies wholly inside the view frustum and projects to >= BLANK_MIN_AREA pixels."""
-    from wgpurender.mesh import load_mesh
-    from wgpurender.scene import load_scene
+    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.scene import load_scene
 
     scene = load_scene(scene_path)
     clip_from_world = scene.camera.projection(width / height) @ scene.camera.view()

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wgpurender import transforms as T
+from wgpurender.core import transforms as T
 from wgpurender.numerics.camera_relative import camera_relative, eye_position, model_view
 from wgpurender.numerics.gpu_eval import run_compute
 

@@ -19,8 +19,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from wgpurender.core.transforms import rotate
 from wgpurender.numerics import quaternions as Q
-from wgpurender.transforms import rotate
 
 STEPS = 100_000
 AXIS = np.array([1.0, 2.0, 3.0]) / np.linalg.norm([1.0, 2.0, 3.0])

@@ -20,11 +20,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wgpurender import transforms as T
+from wgpurender.core import transforms as T
+from wgpurender.core.tangents import vertex_tangents
 from wgpurender.numerics.gpu_eval import run_compute
 from wgpurender.numerics.lit import interleave, render_lit
 from wgpurender.numerics.normals import analytic_normals, gpu_normal_matrix
-from wgpurender.tangents import vertex_tangents
 
 R = T.rotate((0.2, 1.0, 0.4), 0.9) @ T.rotate((1.0, 0.0, 0.0), 0.3)
 SCALES = {

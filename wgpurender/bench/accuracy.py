@@ -22,12 +22,12 @@ FULL = {"size": (400, 300), "frames": 18, "warmup": 2, "rounds": 3}
 
 
 def run(args) -> int:
-    from ..errors import UserError
-    from ..gpu import get_context
-    from .accuracy_knobs import KNOBS
-    from .accuracy_report import write_reports
-    from .accuracy_run import AccuracyConfig, run_accuracy
-    from .perf import command_line
+    from wgpurender.bench.accuracy_knobs import KNOBS
+    from wgpurender.bench.accuracy_report import write_reports
+    from wgpurender.bench.accuracy_run import AccuracyConfig, run_accuracy
+    from wgpurender.bench.perf import command_line
+    from wgpurender.core.errors import UserError
+    from wgpurender.wgpu_path.gpu import get_context
 
     preset = QUICK if args.quick else FULL
     frames = preset["frames"] if args.frames is None else args.frames
@@ -52,9 +52,9 @@ def _run_analytic(args, preset: dict, frames: int) -> int:
     import datetime
     import sys
 
-    from ..gpu import get_context
-    from .accuracy_analytic import run_analytic, write_analytic_reports
-    from .perf import command_line
+    from wgpurender.bench.accuracy_analytic import run_analytic, write_analytic_reports
+    from wgpurender.bench.perf import command_line
+    from wgpurender.wgpu_path.gpu import get_context
 
     ctx = get_context(args.backend)
     size = args.size or preset["size"]

@@ -24,14 +24,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..compare import compare_images
-from ..gpu import GPUContext
-from ..procedural import MeshArrays, write_obj
-from . import accuracy_truth as truth
-from .accuracy_depth import analytic_image, write_depth_scene
-from .accuracy_downsample import linear_from_srgb8, srgb8_from_linear
-from .accuracy_knobs import DEPTH_LEVELS, FILTER_LEVELS, Settings
-from .accuracy_run import Measurement, Timed
+from wgpurender.bench import accuracy_truth as truth
+from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
+from wgpurender.bench.accuracy_downsample import linear_from_srgb8, srgb8_from_linear
+from wgpurender.bench.accuracy_knobs import DEPTH_LEVELS, FILTER_LEVELS, Settings
+from wgpurender.bench.accuracy_run import Measurement, Timed
+from wgpurender.core.compare import compare_images
+from wgpurender.core.procedural import MeshArrays, write_obj
+from wgpurender.wgpu_path.gpu import GPUContext
 
 FOV = 45.0
 BACKGROUND = (0.02, 0.025, 0.04)
@@ -117,7 +117,7 @@ def ground_texture(n: int) -> np.ndarray:
 
 def write_ground_scene(folder: Path, size: tuple[int, int], n_sub: int = 16) -> tuple[Path, np.ndarray]:
     """The filtering scene (an unlit textured ground plane at a grazing angle) and its exact linear image."""
-    from ..imageio import save_png
+    from wgpurender.core.imageio import save_png
 
     folder.mkdir(parents=True, exist_ok=True)
     texels = ground_texture(GROUND["tex"])
@@ -149,7 +149,7 @@ def _score(section: str, setting: str, t: Timed, truth_linear: np.ndarray, note:
 
 
 def _timed(ctx: GPUContext, scene_path: Path, settings: Settings, size, knobs, frames: int, warmup: int) -> Timed:
-    from ..scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     t = Timed(ctx, load_scene(scene_path), settings, size, knobs)
     t.run(frames, warmup=warmup)

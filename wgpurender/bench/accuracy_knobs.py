@@ -3,10 +3,10 @@
 A :class:`Settings` is one point of the sweep: MSAA, supersampling factor, the scene (HDR) target format,
 texture filtering for every material, and the depth setup. :func:`make_renderer` applies it:
 
-- texture filtering replaces each material's sampler in the :class:`~wgpurender.scene.Scene` (so the plan
+- texture filtering replaces each material's sampler in the :class:`~wgpurender.core.scene.Scene` (so the plan
   builds mip chains exactly when the level uses them);
 - MSAA, the render size, the scene target format, the depth format and reverse-Z are plan knobs, asked for
-  through :meth:`~wgpurender.plan.RenderPlan.with_knobs` (``scene_format``, ``depth_format``, ``reverse_z``),
+  through :meth:`~wgpurender.core.plan.RenderPlan.with_knobs` (``scene_format``, ``depth_format``, ``reverse_z``),
   so the renderer, which builds exactly what the plan lists, needs no arguments, and ``plan.explain()``
   stays true (reverse-Z: projection, compare "greater", clear 0, all from the plan).
 
@@ -19,8 +19,8 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-from ..errors import UserError
-from ..scene import SamplerSettings, Scene
+from wgpurender.core.errors import UserError
+from wgpurender.core.scene import SamplerSettings, Scene
 
 MSAA_LEVELS = (1, 4)
 SS_LEVELS = (1, 2, 3, 4)
@@ -103,8 +103,8 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
 
     The depth-stress scene, for instance, has no textures and no post chain: there only the depth knob applies.
     """
-    from ..plan import build_plan
-    from ..scene_render import SceneRenderer
+    from wgpurender.core.plan import build_plan
+    from wgpurender.wgpu_path.scene_render import SceneRenderer
 
     problem = settings.problem()
     if problem:
@@ -117,7 +117,7 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
 
 
 def plan_knobs(settings: Settings, knobs=KNOBS) -> dict:
-    """The plan knobs (:meth:`wgpurender.plan.RenderPlan.with_knobs`) one setting asks for."""
+    """The plan knobs (:meth:`wgpurender.core.plan.RenderPlan.with_knobs`) one setting asks for."""
     out: dict = {}
     if "format" in knobs:
         out["scene_format"] = settings.format

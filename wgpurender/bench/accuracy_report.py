@@ -6,9 +6,9 @@ import csv
 import math
 from pathlib import Path
 
-from .accuracy_knobs import GROUND_TRUTH
-from .accuracy_run import DEPTH_STRESS, AccuracyRun, Row, unique_rows
-from .report import have_matplotlib, markdown_table
+from wgpurender.bench.accuracy_knobs import GROUND_TRUTH
+from wgpurender.bench.accuracy_run import DEPTH_STRESS, AccuracyRun, Row, unique_rows
+from wgpurender.bench.report import have_matplotlib, markdown_table
 
 CSV_COLUMNS = (
     "scene", "sweep", "level", "msaa", "ss", "format", "filter", "depth", "render_size",
@@ -131,7 +131,7 @@ def _merged_labels(rows: list[Row]) -> dict[tuple[float, float], list[str]]:
 
 def write_plot(run: AccuracyRun, path: Path) -> Path:
     """FLIP against time (log) for every distinct final-scene setting; the Pareto front joined and ringed."""
-    from .report import _pyplot
+    from wgpurender.bench.report import _pyplot
 
     plt = _pyplot()
     rows = unique_rows([r for r in run.rows if r.case.scene != DEPTH_STRESS and r.case.sweep != "ground truth"])

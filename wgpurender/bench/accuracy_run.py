@@ -10,7 +10,7 @@ Time per frame: ``warmup`` untimed frames, then ``frames`` timed ones, split ove
 settings (each later visit starts with one untimed frame), so a change in the machine's load during the run
 spreads over every setting instead of landing on a few; a frame is record + submit + wait (no readback, no CPU
 downsampling). GPU time is the sum of the frame's passes from timestamp queries
-(:class:`~wgpurender.timing.PassTimer`); wall time is measured around the whole frame. Both: median, p10..p90.
+(:class:`~wgpurender.wgpu_path.timing.PassTimer`); wall time is measured around the whole frame. Both: median, p10..p90.
 """
 
 from __future__ import annotations
@@ -23,13 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..compare import compare_images
-from ..frame_loop import run_frame
-from ..gpu import GPUContext
-from ..timing import PassTimer, Stats
-from .accuracy_depth import analytic_image, write_depth_scene
-from .accuracy_downsample import downsample_srgb8
-from .accuracy_knobs import (
+from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
+from wgpurender.bench.accuracy_downsample import downsample_srgb8
+from wgpurender.bench.accuracy_knobs import (
     DEPTH_LEVELS,
     FILTER_LEVELS,
     FORMAT_LEVELS,
@@ -41,6 +37,10 @@ from .accuracy_knobs import (
     Settings,
     make_renderer,
 )
+from wgpurender.core.compare import compare_images
+from wgpurender.wgpu_path.frame_loop import run_frame
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.timing import PassTimer, Stats
 
 FINAL, DEPTH_STRESS = "final", "depth-stress"
 LOWEST = {"msaa": MSAA_LEVELS[0], "ss": SS_LEVELS[0], "format": FORMAT_LEVELS[0], "filter": FILTER_LEVELS[0],
@@ -170,7 +170,7 @@ class Timed:
 
     def read(self) -> None:
         """Read the image back (once: it is the same every frame) and resolve it to the base size."""
-        from ..targets import read_texture
+        from wgpurender.wgpu_path.targets import read_texture
 
         pixels = read_texture(self.ctx, self.target)
         if pixels.dtype != np.uint8:
@@ -207,8 +207,8 @@ class AccuracyRun:
 
 def run_accuracy(config: AccuracyConfig, ctx: GPUContext, progress_stream=None) -> AccuracyRun:
     """Render, time and score every case of :func:`plan_cases`."""
-    from ..scene import load_scene
-    from .accuracy_pareto import pareto_front
+    from wgpurender.bench.accuracy_pareto import pareto_front
+    from wgpurender.core.scene import load_scene
 
     start = time.perf_counter()
     cases = plan_cases(config.knobs, config.combinations)
@@ -258,7 +258,7 @@ def unique_rows(rows: list[Row]) -> list[Row]:
 
 def score(case: Case, measured: dict, base_size: tuple[int, int]) -> Row:
     """Errors of a case: against the ground truth (rendered or analytic) and against its knob's top level."""
-    from ..numerics.depth_planes import wrong_pixels
+    from wgpurender.numerics.depth_planes import wrong_pixels
 
     m = measured[case.key]
     if case.scene == DEPTH_STRESS:

@@ -16,7 +16,7 @@ hits both. Measured per frame:
 - ``readback_ms``: paired: a frame with readback right after a frame without, the
   median of the differences (p10..p90 of the differences as the spread).
 
-The raw runner builds on the vulkan_ref modules (stage classes, images, command
+The raw runner builds on the raw_path modules (stage classes, images, command
 pools) and needs no change there: a stage's ``record`` may be called once per
 frame (it makes a framebuffer each time, registered with the stage's ExitStack;
 a small per-frame cost the raw path pays and wgpu does not).
@@ -30,10 +30,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..gpu import GPUContext
-from ..timing import PassTimer, Stats
-from .encoder import gpu_total, timed_frame
-from .report import Result, size_text
+from wgpurender.bench.encoder import gpu_total, timed_frame
+from wgpurender.bench.report import Result, size_text
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.timing import PassTimer, Stats
 
 TIMER_SLOTS = 1024  # frames between two PassTimer.collect() calls: far more than one measure() makes
 
@@ -126,8 +126,8 @@ class WgpuStageRunner:
 
     def __init__(self, ctx: GPUContext, name: str, size: tuple[int, int], fmt: str | None = None,
                  msaa: int | None = None) -> None:
-        from ..stages import get_stage
-        from ..targets import create_target
+        from wgpurender.wgpu_path.stages import get_stage
+        from wgpurender.wgpu_path.targets import create_target
 
         cls = get_stage(name)
         self.ctx = ctx
@@ -158,9 +158,9 @@ class RawStageRunner:
     """A raw-Vulkan stage drawn into one image, frame after frame, with one command buffer and fence reused."""
 
     def __init__(self, name: str, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None) -> None:
-        from ..vulkan_ref.checks import check_msaa, check_size
-        from ..vulkan_ref.instance import get_vulkan
-        from ..vulkan_ref.stages import get_ref_stage
+        from wgpurender.raw_path.checks import check_msaa, check_size
+        from wgpurender.raw_path.instance import get_vulkan
+        from wgpurender.raw_path.stages import get_ref_stage
 
         ctx = get_vulkan()
         cls = get_ref_stage(name)
@@ -174,9 +174,9 @@ class RawStageRunner:
         """The target image, one command buffer, a fence and a timestamp pool, reused every frame."""
         import vulkan as vk
 
-        from ..vulkan_ref.command_buffers import create_command_pool
-        from ..vulkan_ref.images import create_image
-        from ..vulkan_ref.stages.base import TARGET_USAGE
+        from wgpurender.raw_path.command_buffers import create_command_pool
+        from wgpurender.raw_path.images import create_image
+        from wgpurender.raw_path.stages.base import TARGET_USAGE
 
         self.vk, self.ctx, self.format = vk, ctx, fmt
         owned = self.owned
@@ -209,8 +209,8 @@ class RawStageRunner:
 
     def _readback_buffer(self):
         if self._readback is None:
-            from ..vulkan_ref.images import FORMATS
-            from ..vulkan_ref.memory import HOST_MEMORY, create_buffer
+            from wgpurender.raw_path.images import FORMATS
+            from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer
 
             vk = self.vk
             nbytes = self.size[0] * self.size[1] * FORMATS[self.format][1]
@@ -220,8 +220,8 @@ class RawStageRunner:
 
     def _record_copy(self, cmd) -> None:
         """vkCmdCopyImageToBuffer into the reused host buffer + a barrier for the host read."""
-        from ..vulkan_ref.images import subresource_layers
-        from ..vulkan_ref.memory import WHOLE_SIZE
+        from wgpurender.raw_path.images import subresource_layers
+        from wgpurender.raw_path.memory import WHOLE_SIZE
 
         vk, buffer = self.vk, self._readback_buffer()
         region = vk.VkBufferImageCopy(
@@ -258,7 +258,7 @@ class RawStageRunner:
                                      vk.VK_QUERY_RESULT_64_BIT | vk.VK_QUERY_RESULT_WAIT_BIT)
         gpu_ms = (int(self._ticks[1]) - int(self._ticks[0])) * self.period_ns / 1e6
         if readback:
-            from ..vulkan_ref.memory import read_host_buffer
+            from wgpurender.raw_path.memory import read_host_buffer
 
             read_host_buffer(ctx, self._readback)
         return cpu_ms, gpu_ms
@@ -269,8 +269,8 @@ class RawStageRunner:
 
 def common_stages() -> list[str]:
     """Stages both paths render, in course order."""
-    from ..stages import all_stages
-    from ..vulkan_ref import reference_stage_names
+    from wgpurender.raw_path import reference_stage_names
+    from wgpurender.wgpu_path.stages import all_stages
 
     raw = set(reference_stage_names())
     return [name for name in all_stages() if name in raw]
@@ -289,8 +289,8 @@ def bench_stage(ctx: GPUContext, name: str, size: tuple[int, int], frames: int, 
 
 def pixels_agree(ctx: GPUContext, name: str, size: tuple[int, int]) -> float:
     """Largest channel difference between the two paths' images after the benchmark set-up (sanity check)."""
-    from ..render import render_stage
-    from ..vulkan_ref import render_reference
+    from wgpurender.raw_path import render_reference
+    from wgpurender.wgpu_path.render import render_stage
 
     a = render_stage(name, size, ctx=ctx).pixels.astype(np.float64)
     b = render_reference(name, size).astype(np.float64)

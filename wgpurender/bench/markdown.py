@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .report import Result, comparison_table, fmt_ms, markdown_table, results_table, spread
+from wgpurender.bench.report import Result, comparison_table, fmt_ms, markdown_table, results_table, spread
 
 # Numbers given for the C++ tutorial program (we cannot build it here): ms per frame at 800x600, 2 cores.
 CPP_GIVEN_MS = {"chapter 28": 47.0, "chapter 30": 75.0}
@@ -116,7 +116,7 @@ def _objects_table(res: list[Result]) -> str:
 
 
 def _startup_table(res: list[Result]) -> str:
-    from .startup import PHASES
+    from wgpurender.bench.startup import PHASES
 
     cases: dict[tuple[str, str], dict[str, Result]] = {}
     for r in _pick(res, "startup"):

@@ -22,16 +22,16 @@ import time
 import numpy as np
 import wgpu
 
-from ..errors import UserError
-from ..frame_loop import run_frame
-from ..gpu import GPUContext
-from ..shader_variants import specialise
-from ..shaders import create_shader_module, load_wgsl
-from ..targets import create_target
-from ..timing import PassTimer
-from .encoder import gpu_total
-from .frames import measure
-from .report import Result, size_text
+from wgpurender.bench.encoder import gpu_total
+from wgpurender.bench.frames import measure
+from wgpurender.bench.report import Result, size_text
+from wgpurender.core.errors import UserError
+from wgpurender.core.shader_variants import specialise
+from wgpurender.wgpu_path.frame_loop import run_frame
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.targets import create_target
+from wgpurender.wgpu_path.timing import PassTimer
 
 SHADER = "bench_objects.wgsl"
 MODES = ("dynamic", "immediates", "instancing", "bundle")
@@ -170,7 +170,7 @@ class ObjectsRenderer:
         rp.end()
 
     def pixels(self) -> np.ndarray:
-        from ..targets import read_texture
+        from wgpurender.wgpu_path.targets import read_texture
 
         self.frame()
         return read_texture(self.ctx, self.target)

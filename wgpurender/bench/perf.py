@@ -18,8 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..gpu import GPUContext, get_context
-from .report import Result
+from wgpurender.bench.report import Result
+from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
 FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
@@ -81,7 +81,7 @@ def machine_info(ctx: GPUContext) -> dict[str, str]:
         "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
     }
     try:
-        from ..vulkan_ref.instance import get_vulkan
+        from wgpurender.raw_path.instance import get_vulkan
 
         info["raw Vulkan device"] = get_vulkan().describe()
     except Exception as err:  # the raw path is a peer, not a requirement
@@ -119,7 +119,7 @@ class Progress:
 
 
 def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from .frames import bench_stage, common_stages
+    from wgpurender.bench.frames import bench_stage, common_stages
 
     n = config.timed_frames()
     cases = [(size, name) for size in config.sizes(ctx) for name in common_stages()]
@@ -132,15 +132,15 @@ def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 
 def _wgpu_only_stages() -> list[str]:
-    from ..stages import all_stages
-    from .frames import common_stages
+    from wgpurender.bench.frames import common_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     common = set(common_stages())
     return [name for name in all_stages() if name not in common] or ["none"]
 
 
 def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from .scene import bench_scene
+    from wgpurender.bench.scene import bench_scene
 
     n = config.timed_frames()
     files = list(dict.fromkeys((config.scene_file, SUBPASS_SCENE_FILE)))
@@ -169,7 +169,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 
 def _post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from .post import bench_effects, bench_probes
+    from wgpurender.bench.post import bench_effects, bench_probes
 
     size = QUICK_SIZES[0] if config.quick else POST_SIZE
     n = config.timed_frames()
@@ -181,7 +181,7 @@ def _post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 def _msaa_post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     """The msaa-post stage on both paths (input-attachment subpass vs a second render pass), every size."""
-    from .post import bench_msaa_post
+    from wgpurender.bench.post import bench_msaa_post
 
     for s in config.sizes(ctx):
         run.results += bench_msaa_post(ctx, s, config.timed_frames(), raw=config.raw)
@@ -189,7 +189,7 @@ def _msaa_post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 
 def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from .objects import MODES, bench_objects
+    from wgpurender.bench.objects import MODES, bench_objects
 
     counts = QUICK_COUNTS if config.quick else FULL_COUNTS
     cpu = ctx.adapter.info["adapter_type"] == "CPU"
@@ -204,7 +204,7 @@ def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 
 def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from .startup import bench_startup
+    from wgpurender.bench.startup import bench_startup
 
     size = QUICK_SIZES[0] if config.quick else (800, 600)
     run.results += bench_startup(STARTUP_STAGE, size, 1 if config.quick else 3, quick=config.quick,
@@ -219,9 +219,9 @@ def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 def write_reports(run: PerfRun, out_dir: Path | None = None, docs_img: Path | None = None) -> dict[str, Path]:
     """results.csv, report.md and (with matplotlib) perf_*.png in ``out_dir``; plots also copied to ``docs_img``."""
-    from .markdown import render_markdown
-    from .plots import write_plots
-    from .report import have_matplotlib, write_csv
+    from wgpurender.bench.markdown import render_markdown
+    from wgpurender.bench.plots import write_plots
+    from wgpurender.bench.report import have_matplotlib, write_csv
 
     out_dir = Path(out_dir or run.config.out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .report import Result, bar_plot, ratios
+from wgpurender.bench.report import Result, bar_plot, ratios
 
 
 def write_plots(results: list[Result], out_dir: Path) -> dict[str, Path]:

@@ -1,6 +1,6 @@
 """Post-processing costs: each effect, the post pass taken apart, and wgpu against the raw subpass.
 
-- ``effects``: every effect of wgpurender.post as one pass (GPU timestamps of that
+- ``effects``: every effect of wgpurender.wgpu_path.post as one pass (GPU timestamps of that
   pass alone; CPU time to encode and submit it), reading an rgba16float image (the
   chain's intermediate format) and writing the output format;
 - ``probe``: a full-screen copy pass with one knob changed at a time, to find what
@@ -10,7 +10,7 @@
 - ``msaa-post``: the stage of that name on both paths: the raw path's one render pass
   with two subpasses (the grey effect reads the resolve as an input attachment) against
   the wgpu stage's MSAA triangle pass followed by a second render pass sampling the
-  resolved texture (wgpurender/stages/msaa_post.py says why wgpu needs it).
+  resolved texture (wgpurender/wgpu_path/stages/msaa_post.py says why wgpu needs it).
 """
 
 from __future__ import annotations
@@ -20,14 +20,14 @@ from dataclasses import dataclass
 
 import wgpu
 
-from ..gpu import GPUContext
-from ..shader_variants import specialise
-from ..shaders import create_shader_module, load_wgsl
-from ..targets import create_target
-from ..timing import PassTimer, Stats
-from .encoder import gpu_total, timed_frame
-from .frames import RawStageRunner, Samples, WgpuStageRunner, measure
-from .report import Result
+from wgpurender.bench.encoder import gpu_total, timed_frame
+from wgpurender.bench.frames import RawStageRunner, Samples, WgpuStageRunner, measure
+from wgpurender.bench.report import Result
+from wgpurender.core.shader_variants import specialise
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.targets import create_target
+from wgpurender.wgpu_path.timing import PassTimer, Stats
 
 PROBE_SHADER = "bench_post_probe.wgsl"
 SOURCE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING
@@ -63,10 +63,10 @@ class _PassRunner:
 
 
 class EffectRunner(_PassRunner):
-    """One effect step (wgpurender.course.effects) as its own fragment pass."""
+    """One effect step (wgpurender.core.course.effects) as its own fragment pass."""
 
     def __init__(self, ctx: GPUContext, step, size: tuple[int, int], src_fmt: str, dst_fmt: str) -> None:
-        from ..post import PostChain
+        from wgpurender.wgpu_path.post import PostChain
 
         super().__init__(ctx, f"post-{step.effect}")
         self.chain = PostChain([step], intermediate_format=src_fmt)
@@ -137,7 +137,7 @@ class ProbeRunner(_PassRunner):
 
 
 def bench_effects(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Result]:
-    from ..post import EFFECTS, create_effect
+    from wgpurender.wgpu_path.post import EFFECTS, create_effect
 
     out = []
     for name in sorted(EFFECTS):

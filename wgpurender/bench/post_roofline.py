@@ -24,11 +24,11 @@ from pathlib import Path
 
 import wgpu
 
-from ..gpu import GPUContext
-from ..plan import BYTES_PER_PIXEL, PostPass, build_plan
-from ..scene import load_scene
-from ..targets import TARGET_USAGE, create_target
-from ..timing import PassTimer, wall_time
+from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, build_plan
+from wgpurender.core.scene import load_scene
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
+from wgpurender.wgpu_path.timing import PassTimer, wall_time
 
 VARIANTS = (("fragment", False), ("fragment", True), ("compute", False), ("compute", True))
 COPY_WGSL = """
@@ -121,8 +121,8 @@ class CopyKernel:
 
 def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse: bool, frames: int,
                  copy: CopyKernel) -> list[PassTime]:
-    from ..scene_render import SceneRenderer, render_frame
-    from ..scene_render.frame import adapter_facts
+    from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
+    from wgpurender.wgpu_path.scene_render.frame import adapter_facts
 
     plan = build_plan(scene, size=size).with_knobs(post_path=path, post_fuse=fuse, adapter=adapter_facts(ctx))
     renderer = SceneRenderer(ctx, scene, plan)

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
-from ..timing import Stats
+from wgpurender.wgpu_path.timing import Stats
 
 CSV_COLUMNS = ("family", "case", "path", "size", "metric", "median", "p10", "p90", "n", "note")
 

@@ -2,7 +2,7 @@
 
 Both are drawn frame by frame into one target (the runner protocol of :func:`frames.measure`).
 Per-pass GPU times on the wgpu side (scene pass, each post pass) come from the renderer's own
-``timer`` argument. The raw-Vulkan path (wgpurender/vulkan_ref/scene/) draws a scene in one
+``timer`` argument. The raw-Vulkan path (wgpurender/raw_path/scene/) draws a scene in one
 render pass of two subpasses, plus a render pass per effect that reads neighbouring pixels (FXAA,
 sharpen), so both ``final.toml`` and ``final_subpass.toml`` (the same scene, per-pixel chain only)
 have raw peers; a scene the raw path refuses is timed on wgpu only, with a note saying why. The two paths run in
@@ -14,20 +14,20 @@ from __future__ import annotations
 import functools
 from pathlib import Path
 
-from ..frame_loop import run_frame
-from ..gpu import GPUContext
-from ..timing import Stats
-from .encoder import gpu_total
-from .frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
-from .report import Result, size_text
+from wgpurender.bench.encoder import gpu_total
+from wgpurender.bench.frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
+from wgpurender.bench.report import Result, size_text
+from wgpurender.wgpu_path.frame_loop import run_frame
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.timing import Stats
 
 
 class SceneRunner:
     """A persistent scene renderer drawn frame by frame (the runner protocol of frames.measure)."""
 
     def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int]) -> None:
-        from ..scene_render import load_renderer
-        from ..timing import PassTimer
+        from wgpurender.wgpu_path.scene_render import load_renderer
+        from wgpurender.wgpu_path.timing import PassTimer
 
         self.ctx = ctx
         self.renderer = load_renderer(path, ctx, size=size)
@@ -61,16 +61,16 @@ class _RawSceneFrame:
 
 
 class RawSceneRunner(RawStageRunner):
-    """The raw-Vulkan path's scene frame (vulkan_ref/scene/), frame after frame, like a raw stage."""
+    """The raw-Vulkan path's scene frame (raw_path/scene/), frame after frame, like a raw stage."""
 
     def __init__(self, path: Path, size: tuple[int, int]) -> None:
         from contextlib import ExitStack
 
-        from ..plan import build_plan
-        from ..scene import load_scene
-        from ..vulkan_ref.checks import check_size
-        from ..vulkan_ref.instance import get_vulkan
-        from ..vulkan_ref.scene.frame import SceneFrame
+        from wgpurender.core.plan import build_plan
+        from wgpurender.core.scene import load_scene
+        from wgpurender.raw_path.checks import check_size
+        from wgpurender.raw_path.instance import get_vulkan
+        from wgpurender.raw_path.scene.frame import SceneFrame
 
         ctx = get_vulkan()
         scene = load_scene(path)
@@ -84,8 +84,8 @@ class RawSceneRunner(RawStageRunner):
 
 def raw_refusal(path: Path) -> str:
     """Why the raw path cannot draw this scene ('' when it can)."""
-    from ..plan import plan_scene_file
-    from ..vulkan_ref.scene import unsupported
+    from wgpurender.core.plan import plan_scene_file
+    from wgpurender.raw_path.scene import unsupported
 
     return "; ".join(unsupported(plan_scene_file(path)))
 

@@ -38,16 +38,15 @@ PHASES = ("import_ms", "context_ms", "setup_ms", "first_frame_ms", "second_frame
 def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
     marks = {}
     if path == "wgpu":
-        from wgpurender.frame_loop import run_frame
-        from wgpurender.gpu import get_context
-        from wgpurender.targets import create_target
-
-        from .frames import WgpuStageRunner  # noqa: F401  (imports wgpu + the stages)
+        from wgpurender.bench.frames import WgpuStageRunner  # noqa: F401  (imports wgpu + the stages)
+        from wgpurender.wgpu_path.frame_loop import run_frame
+        from wgpurender.wgpu_path.gpu import get_context
+        from wgpurender.wgpu_path.targets import create_target
 
         marks["import_ms"] = time.perf_counter()
         ctx = get_context()
         marks["context_ms"] = time.perf_counter()
-        from wgpurender.stages import get_stage
+        from wgpurender.wgpu_path.stages import get_stage
 
         cls = get_stage(stage)
         st = cls(ctx, cls.default_format, None)
@@ -58,9 +57,8 @@ def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
             run_frame(ctx, st.record, target, 0.0)
             marks[name] = time.perf_counter()
     else:
-        from wgpurender.vulkan_ref.instance import get_vulkan
-
-        from .frames import RawStageRunner
+        from wgpurender.bench.frames import RawStageRunner
+        from wgpurender.raw_path.instance import get_vulkan
 
         marks["import_ms"] = time.perf_counter()
         get_vulkan()
@@ -103,8 +101,8 @@ def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
 def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool = False, raw: bool = True,
                   log=print) -> list:
     """Each configuration ``repeats`` times, after one warming run of each. ``quick``: the no-cache rows only."""
-    from ..timing import Stats
-    from .report import Result, size_text
+    from wgpurender.bench.report import Result, size_text
+    from wgpurender.wgpu_path.timing import Stats
 
     out = []
     with tempfile.TemporaryDirectory(prefix="wgpurender-startup-") as tmp:

@@ -16,9 +16,10 @@ import warnings
 
 import numpy as np
 
-from .. import __version__, shader_errors
-from ..errors import UserError
-from ..safe_write import install_signal_handlers
+from wgpurender import __version__
+from wgpurender.core.errors import UserError
+from wgpurender.core.safe_write import install_signal_handlers
+from wgpurender.wgpu_path import shader_errors
 
 
 class OneLineParser(argparse.ArgumentParser):

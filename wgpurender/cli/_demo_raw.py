@@ -1,12 +1,12 @@
-"""``wgpurender demo --raw``: the demo's flags, run by the raw-Vulkan window (wgpurender/vulkan_ref/window.py)."""
+"""``wgpurender demo --raw``: the demo's flags, run by the raw-Vulkan window (wgpurender/raw_path/window.py)."""
 
 from __future__ import annotations
 
 
 def run_raw(args) -> int:
-    from ..errors import UserError
-    from ..imageio import check_writable, save_png
-    from ..vulkan_ref.window import run_raw_window
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.imageio import check_writable, save_png
+    from wgpurender.raw_path.window import run_raw_window
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ._args import add_backend_arg, size_arg
+from wgpurender.cli._args import add_backend_arg, size_arg
 
 
 def register(subparsers) -> None:
@@ -46,9 +46,9 @@ def _register_perf(suites) -> None:
 
 
 def run(args) -> int:
-    from ..bench.perf import FAMILIES, PerfConfig, command_line, run_perf, write_reports
-    from ..errors import UserError
-    from ..gpu import get_context
+    from wgpurender.bench.perf import FAMILIES, PerfConfig, command_line, run_perf, write_reports
+    from wgpurender.core.errors import UserError
+    from wgpurender.wgpu_path.gpu import get_context
 
     families = tuple(f.strip() for arg in (args.only or FAMILIES) for f in arg.split(",") if f.strip())
     unknown = [f for f in families if f not in FAMILIES]
@@ -67,8 +67,8 @@ def run(args) -> int:
 
 def _register_accuracy(suites) -> None:
     """``wgpurender bench accuracy``: wgpurender/bench/accuracy.py runs it."""
-    from ..bench.accuracy import FULL, QUICK, SCENE_FILE, run
-    from ..bench.accuracy_knobs import KNOBS
+    from wgpurender.bench.accuracy import FULL, QUICK, SCENE_FILE, run
+    from wgpurender.bench.accuracy_knobs import KNOBS
 
     p = suites.add_parser(
         "accuracy",
@@ -122,11 +122,11 @@ def _register_roofline(suites) -> None:
 
 
 def _run_roofline(args) -> int:
-    from ..bench.perf import command_line
-    from ..bench.post_roofline import csv_text, markdown, run_roofline
-    from ..errors import UserError
-    from ..gpu import get_context
-    from ..safe_write import atomic_write
+    from wgpurender.bench.perf import command_line
+    from wgpurender.bench.post_roofline import csv_text, markdown, run_roofline
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.safe_write import atomic_write
+    from wgpurender.wgpu_path.gpu import get_context
 
     if args.frames < 1:
         raise UserError("--frames must be at least 1")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import positive_float
+from wgpurender.cli._args import positive_float
 
 
 def register(subparsers) -> None:
@@ -36,7 +36,7 @@ def register(subparsers) -> None:
 
 
 def _threshold(text: str) -> tuple[str, float]:
-    from ..compare import METRICS
+    from wgpurender.core.compare import METRICS
 
     name, _, value = text.partition("=")
     if name not in METRICS:
@@ -53,8 +53,8 @@ SHARES = ("over_1", "over_2")  # fractions of the pixels: printed as %
 
 
 def run(args) -> int:
-    from ..compare import compare_images, heatmap_with_scale
-    from ..imageio import check_writable, load_png, save_png
+    from wgpurender.core.compare import compare_images, heatmap_with_scale
+    from wgpurender.core.imageio import check_writable, load_png, save_png
 
     if args.heatmap:
         check_writable(args.heatmap)

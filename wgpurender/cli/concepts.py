@@ -17,7 +17,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..concepts import CONCEPTS, markdown, plain_text
+    from wgpurender.concepts import CONCEPTS, markdown, plain_text
 
     rows = [find_concept(" ".join(args.name))] if args.name else CONCEPTS
     print(markdown(rows) if args.markdown else plain_text(rows), end="")
@@ -31,8 +31,8 @@ def find_concept(query: str):
     """
     import difflib
 
-    from ..concepts import CONCEPTS
-    from ..errors import UserError
+    from wgpurender.concepts import CONCEPTS
+    from wgpurender.core.errors import UserError
 
     q = query.strip().lower()
     by_name = {row.name.lower(): row for row in CONCEPTS}

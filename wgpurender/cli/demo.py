@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import finite_float, size_arg
+from wgpurender.cli._args import finite_float, size_arg
 
 CONTROLS = ("left drag orbits, right/middle drag pans, scroll zooms; arrows/WASD orbit, +/- (Q/E) zoom, "
             "R or Home resets the camera, Esc quits")
@@ -49,7 +49,7 @@ def register(subparsers) -> None:
                    "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
     p.add_argument("--raw", action="store_true",
                    help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
-                   "in flight (wgpurender/vulkan_ref/window.py); stages as 'wgpurender reference' has them")
+                   "in flight (wgpurender/raw_path/window.py); stages as 'wgpurender reference' has them")
     p.add_argument("--validation", action="store_true",
                    help="turn on the Vulkan validation layer (as $WGPURENDER_VALIDATION=1) and count its messages")
     bench = p.add_argument_group("benchmark (like Sascha Willems' Vulkan examples)")
@@ -67,20 +67,20 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     if args.raw:
-        from ._demo_raw import run_raw
+        from wgpurender.cli._demo_raw import run_raw
 
         return run_raw(args)
     import os
 
-    from ..errors import UserError
-    from ..gpu import VALIDATION_ENV
+    from wgpurender.core.errors import UserError
+    from wgpurender.wgpu_path.gpu import VALIDATION_ENV
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
     if args.validation:
         os.environ[VALIDATION_ENV] = "1"  # read when the first adapter is made, just below
     if args.validation:
-        from ..gpu_validation import collect_validation_messages
+        from wgpurender.wgpu_path.gpu_validation import collect_validation_messages
 
         counter = collect_validation_messages()
     else:
@@ -92,7 +92,7 @@ def run(args) -> int:
         print(result.benchmark.summary())
         print(f"wrote {result.benchmark.write_csv()}")
     if args.screenshot and result.last_frame is not None:
-        from ..imageio import save_png
+        from wgpurender.core.imageio import save_png
 
         print(f"wrote {save_png(args.screenshot, result.last_frame)}")
     if counter is not None:
@@ -103,12 +103,12 @@ def run(args) -> int:
 def _show(args):
     from pathlib import Path
 
-    from ..gpu import get_context
-    from ..imageio import check_writable
-    from ..window import run_window
-    from ..window.controls import parse_script
-    from ..window.frame_times import BenchmarkSpec
-    from ..window.view import DemoView
+    from wgpurender.core.imageio import check_writable
+    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.window import run_window
+    from wgpurender.wgpu_path.window.controls import parse_script
+    from wgpurender.wgpu_path.window.frame_times import BenchmarkSpec
+    from wgpurender.wgpu_path.window.view import DemoView
 
     if args.screenshot:
         check_writable(args.screenshot)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._args import add_backend_arg
+from wgpurender.cli._args import add_backend_arg
 
 
 def register(subparsers) -> None:
@@ -12,7 +12,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..gpu import _adapters, get_context
+    from wgpurender.wgpu_path.gpu import _adapters, get_context
 
     print("adapters:")
     for a in _adapters():

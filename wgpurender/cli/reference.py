@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._args import finite_float, size_arg
+from wgpurender.cli._args import finite_float, size_arg
 
 
 def register(subparsers) -> None:
@@ -29,9 +29,9 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..imageio import check_writable, image_format, save_image
-    from ..vulkan_ref import render_reference
-    from ..vulkan_ref.instance import get_vulkan
+    from wgpurender.core.imageio import check_writable, image_format, save_image
+    from wgpurender.raw_path import render_reference
+    from wgpurender.raw_path.instance import get_vulkan
 
     image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)

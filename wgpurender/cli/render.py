@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._args import add_render_args
+from wgpurender.cli._args import add_render_args
 
 
 def register(subparsers) -> None:
@@ -26,15 +26,15 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..course.formats import is_scene_file
-    from ..errors import UserError
-    from ..imageio import check_writable, image_format, save_image
-    from ..render import render_any
+    from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.imageio import check_writable, image_format, save_image
+    from wgpurender.wgpu_path.render import render_any
 
     if args.explain:
         if not is_scene_file(args.target):
             raise UserError(f"--explain needs a scene file (.toml), got stage {args.target!r}")
-        from ..plan import explain_scene
+        from wgpurender.core.plan import explain_scene
 
         adapter = _adapter(args.backend)
         print(explain_scene(args.target, adapter=adapter, size=args.size, output_format=args.format, msaa=args.msaa,
@@ -57,9 +57,9 @@ def run(args) -> int:
 
 def _adapter(backend):
     """The adapter the renderer would use, for the plan's "auto" knobs; None (and a plan that says so) without one."""
-    from ..errors import UserError
-    from ..gpu import get_context
-    from ..scene_render.frame import adapter_facts
+    from wgpurender.core.errors import UserError
+    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.scene_render.frame import adapter_facts
 
     try:
         return adapter_facts(get_context(backend))

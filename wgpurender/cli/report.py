@@ -20,8 +20,8 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..gpu import get_context
-    from ..report import build_report
+    from wgpurender.report import build_report
+    from wgpurender.wgpu_path.gpu import get_context
 
     index = build_report(args.output, ctx=get_context(args.backend))
     print(f"wrote {index}")

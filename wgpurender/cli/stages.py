@@ -11,7 +11,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..stages import all_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     stages = all_stages()
     width = max(len(n) for n in stages)

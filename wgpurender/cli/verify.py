@@ -22,8 +22,8 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..errors import UserError
-    from ..verify import run_verify
+    from wgpurender.core.errors import UserError
+    from wgpurender.verify import run_verify
 
     if args.out.exists() and not args.out.is_dir():
         raise UserError(f"--out {args.out}: exists and is not a folder")

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
-from ..gpu import GPUContext
-from ..shaders import create_shader_module
-from ..targets import create_target, read_texture
-from ..transforms import perspective, to_gpu
+from wgpurender.core.transforms import perspective, to_gpu
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.wgpu_path.targets import create_target, read_texture
 
 NEAR_COLOR = (1.0, 0.0, 0.0, 1.0)  # red: the plane that should win everywhere
 FAR_COLOR = (0.0, 1.0, 0.0, 1.0)  # green: seen only where depth failed

@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
-from ..gpu import GPUContext
-from ..shaders import create_shader_module
-from ..targets import create_target, read_texture
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.wgpu_path.targets import create_target, read_texture
 
 
 def wrap_uvs(uvs: np.ndarray) -> np.ndarray:

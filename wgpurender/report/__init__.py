@@ -6,7 +6,7 @@ Per course step, in course order:
 
 - the step's words (the stage's summary and its module docstring; a scene's description);
 - the wgpu image and the raw-Vulkan image side by side, the difference heatmap
-  (wgpurender/compare.py) with its colour scale, PSNR and FLIP;
+  (wgpurender/core/compare.py) with its colour scale, PSNR and FLIP;
 - the median GPU time and frame time on both paths (the benchmark runners of
   wgpurender/bench/frames.py, a few frames each: a quick look, not the benchmark);
 - the concept rows of wgpurender/concepts.py that the step teaches, with the code
@@ -21,6 +21,6 @@ timers for scenes), ``concept_rows`` (which concept rows belong to which step, c
 locations as file:line), ``extras`` (the Pareto plot and the hard cases), ``page`` (HTML).
 """
 
-from .build import build_report
+from wgpurender.report.build import build_report
 
 __all__ = ["build_report"]

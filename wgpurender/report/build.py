@@ -14,11 +14,11 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from ..errors import UserError
-from ..gpu import GPUContext, get_context
-from ..imageio import save_png
-from . import extras, page
-from .steps import Step, heatmap_scale, scene_step, stage_step
+from wgpurender.core.errors import UserError
+from wgpurender.core.imageio import save_png
+from wgpurender.report import extras, page
+from wgpurender.report.steps import Step, heatmap_scale, scene_step, stage_step
+from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENE_DIR = REPO_ROOT / "assets" / "scenes"
@@ -34,9 +34,9 @@ SCENE_SIZES = {"vulkan_tutorial_28": (320, 240), "vulkan_tutorial_30": (320, 240
 
 def course_stages() -> list[str]:
     """Stage names of both paths in course order (course/steps.py); a stage only one path has is a step too."""
-    from ..course.steps import course_position
-    from ..stages import all_stages
-    from ..vulkan_ref.stages import all_ref_stages
+    from wgpurender.core.course.steps import course_position
+    from wgpurender.raw_path.stages import all_ref_stages
+    from wgpurender.wgpu_path.stages import all_stages
 
     return sorted(set(all_stages()) | set(all_ref_stages()), key=course_position)
 
@@ -82,7 +82,7 @@ def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes
 
 def _scene_files() -> list[Path]:
     """The repository's scenes in course order; the tutorial's only where its model is present."""
-    from ..scene import load_scene
+    from wgpurender.core.scene import load_scene
 
     out = []
     for name in SCENES:

@@ -2,7 +2,7 @@
 
 A step gets the rows named for it in :data:`STEP_CONCEPTS` (what the course introduces at
 that step) plus every row whose code locations are in the step's own modules
-(``stages/<module>`` or ``vulkan_ref/stages/<module>``), in the table's order. Code
+(``stages/<module>`` or ``raw_path/stages/<module>``), in the table's order. Code
 locations are shown as ``path:line`` from the repository root, found with :mod:`inspect`.
 """
 
@@ -12,7 +12,7 @@ import inspect
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..concepts import CONCEPTS, Concept, resolve, short
+from wgpurender.concepts import CONCEPTS, Concept, resolve, short
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 import html
 from collections.abc import Sequence
 
-from ..concepts import Concept
-from .concept_rows import locate
-from .steps import Step
+from wgpurender.concepts import Concept
+from wgpurender.report.concept_rows import locate
+from wgpurender.report.steps import Step
 
 GENERATOR_MARK = '<meta name="generator" content="wgpurender report">'
 

@@ -15,13 +15,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..compare import Comparison, compare_images, heatmap
-from ..concepts import Concept
-from ..errors import UserError
-from ..gpu import GPUContext
-from . import timings
-from .concept_rows import REPO_ROOT, rows_for
-from .timings import Timing
+from wgpurender.concepts import Concept
+from wgpurender.core.compare import Comparison, compare_images, heatmap
+from wgpurender.core.errors import UserError
+from wgpurender.report import timings
+from wgpurender.report.concept_rows import REPO_ROOT, rows_for
+from wgpurender.report.timings import Timing
+from wgpurender.wgpu_path.gpu import GPUContext
 
 HEATMAP_GAIN = 32.0  # as `wgpurender compare`: a 1/255 difference shows as 32/255
 
@@ -62,16 +62,16 @@ def _try(what, log) -> tuple[object | None, str]:
 
 def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> Step:
     """A stage: the wgpu stage and the raw stage of the same name (either may be missing)."""
-    from ..render import render_stage
-    from ..stages import all_stages
-    from ..vulkan_ref import render_reference
-    from ..vulkan_ref.stages import all_ref_stages
+    from wgpurender.raw_path import render_reference
+    from wgpurender.raw_path.stages import all_ref_stages
+    from wgpurender.wgpu_path.render import render_stage
+    from wgpurender.wgpu_path.stages import all_stages
 
     cls = all_stages().get(name)
     ref_cls = all_ref_stages().get(name)
     main = cls or ref_cls
     module = sys.modules[main.__module__]
-    from ..course.steps import course_step
+    from wgpurender.core.course.steps import course_step
 
     number = course_step(name)
     step = Step(name, name, f"course step {number.number}: {number.title}" if number else "", main.summary,
@@ -94,10 +94,10 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
 
 def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=print) -> Step:
     """A scene file: its description, its plan, and the scene on both paths."""
-    from ..plan import explain_scene
-    from ..scene import load_scene
-    from ..scene_render import render_scene_file
-    from ..vulkan_ref import render_reference
+    from wgpurender.core.plan import explain_scene
+    from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path import render_reference
+    from wgpurender.wgpu_path.scene_render import render_scene_file
 
     scene = load_scene(path)
     overrides = {"size": size} if size else {}
@@ -133,7 +133,7 @@ def _compare(step: Step) -> None:
 
 
 def heatmap_scale(block: int = 24, height: int = 14) -> tuple[np.ndarray, list[int]]:
-    """The heatmap's colour scale, drawn by :func:`~wgpurender.compare.heatmap` itself: (image, levels).
+    """The heatmap's colour scale, drawn by :func:`~wgpurender.core.compare.heatmap` itself: (image, levels).
 
     8-bit images differ in whole steps of 1/255, so the scale is one block per step, from 0 to
     the first step that saturates (255 / gain rounded up: 8 at gain 32, white and above).

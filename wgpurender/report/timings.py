@@ -11,8 +11,8 @@ import statistics
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..bench.frames import RawStageRunner, WgpuStageRunner, measure
-from ..gpu import GPUContext
+from wgpurender.bench.frames import RawStageRunner, WgpuStageRunner, measure
+from wgpurender.wgpu_path.gpu import GPUContext
 
 FRAMES = 5
 WARMUP = 1
@@ -42,13 +42,13 @@ def stage_raw(name: str, size: tuple[int, int]) -> Timing:
 
 
 def scene_wgpu(ctx: GPUContext, path: Path, size: tuple[int, int]) -> Timing:
-    from ..bench.scene import SceneRunner
+    from wgpurender.bench.scene import SceneRunner
 
     return _timing(SceneRunner(ctx, path, size))
 
 
 def scene_raw(path: Path, size: tuple[int, int]) -> Timing:
-    from ..bench.scene import RawSceneRunner
+    from wgpurender.bench.scene import RawSceneRunner
 
     with RawSceneRunner(path, size) as runner:
         return _timing(runner)

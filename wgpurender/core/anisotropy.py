@@ -1,0 +1,42 @@
+"""Anisotropic filtering per adapter: the scene's value on a GPU, 1 on a CPU driver (lavapipe).
+
+A plan knob (API-free: it reads the adapter type as a string, as wgpu reports it). Why 1 on a CPU:
+lavapipe filters anisotropically in a software loop per fragment whose number of taps grows with
+the footprint, i.e. with minification. Measured on a 2-core EPYC under load (docs/benchmarks.md):
+final.toml's scene pass takes 3.3 s at 800x600 with anisotropy 8 and 0.25 s with 1; at 1280x720
+1.0 s and 0.34 s. The smaller image is the slower one because its texels shrink more per pixel,
+which is also why ``vulkan_tutorial_28.toml`` (one mip level, anisotropy 16) takes seconds at
+96x72. A GPU filters anisotropically in its texture units at little cost, so it keeps the scene's
+value and the scene's look. The mip chain stays as the scene asks: with anisotropy 1, a trilinear
+filter over the mip chain is what keeps minified texels from aliasing.
+
+Rules: ``"scene"`` keeps the scene file's anisotropy everywhere (tests, the raw-path cross-checks,
+benchmarks that compare with the C++ tutorial); ``"auto"`` applies the per-adapter rule (the CLI's
+``render`` and ``demo``), ``"auto"`` with no adapter known keeps the scene's value.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from wgpurender.core.course.samplers import SamplerSpec
+from wgpurender.core.errors import UserError
+
+ANISOTROPY_RULES = ("auto", "scene")
+CPU_ANISOTROPY = 1
+
+
+def resolve_anisotropy(spec: SamplerSpec, rule: str = "scene",
+                       adapter_type: str | None = None) -> tuple[SamplerSpec, str]:
+    """(the sampler to use, why; '' when nothing needs saying)."""
+    if rule not in ANISOTROPY_RULES:
+        raise UserError(f"anisotropy rule {rule!r}: choose one of {', '.join(ANISOTROPY_RULES)}")
+    asked = spec.max_anisotropy
+    if asked <= 1 or rule == "scene" or adapter_type is None:
+        return spec, ""
+    if adapter_type == "CPU":
+        return (dataclasses.replace(spec, max_anisotropy=CPU_ANISOTROPY),
+                f"anisotropy {asked} -> {CPU_ANISOTROPY} on a CPU adapter: a software anisotropic filter costs "
+                "more the more a texture is minified (seconds per frame on lavapipe); trilinear over the mip chain "
+                "instead (--anisotropy scene keeps the scene's value)")
+    return spec, f"anisotropy {asked} as the scene asks: a {adapter_type} adapter filters it in hardware"

@@ -1,0 +1,33 @@
+"""The final scene's shading constants, material defaults and depth convention.
+
+Both scene renderers (wgpurender/wgpu_path/scene_render/ on wgpu, wgpurender/raw_path/scene/ on raw
+Vulkan) pack these into their own uniform blocks; tests check the images against formulas
+written with them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+AMBIENT = (0.03, 0.03, 0.035)  # linear ambient radiance, times albedo: faces no light reaches are not black
+SPECULAR = 0.04  # dielectric reflectance of the Blinn-Phong lobe
+NORMAL_STRENGTH = 1.0  # scales the normal map's tangent-plane components (a material key could set it)
+
+# Material defaults: what a model without a material, or a material without these keys, gets.
+DEFAULT_ALBEDO_COLOR = (1.0, 1.0, 1.0, 1.0)
+DEFAULT_ROUGHNESS = 0.5
+DEFAULT_CLEAR_COLOR = (0.0, 0.0, 0.0, 1.0)  # linear; [render] clear_color
+
+# Reverse-Z: clip z' = w - z, so stored depth' = 1 - depth (1 at near, 0 at far); REVERSE_Z @ perspective(...)
+# equals transforms.perspective(..., reverse_z=True). Drawn with depth_compare "greater" and a depth clear of 0.
+REVERSE_Z = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 1.0], [0.0, 0.0, 0.0, 1.0]])
+
+
+def material_factors(albedo_color, roughness: float, lit: bool, has_roughness_map: bool) -> dict:
+    """The per-draw material factors both paths push: with a roughness map, its G channel is the
+    roughness (factor 1); unlit materials carry only the base colour."""
+    values = {"base_color": albedo_color}
+    if lit:
+        values.update(roughness=1.0 if has_roughness_map else roughness, normal_strength=NORMAL_STRENGTH,
+                      specular=SPECULAR)
+    return values

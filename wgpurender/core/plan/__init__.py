@@ -1,0 +1,33 @@
+"""The render plan: what a scene needs on the GPU, derived from the scene and nothing else.
+
+:func:`build_plan` turns a :class:`~wgpurender.core.scene.Scene` into pure data (no GPU
+objects): attachments with formats and sample counts, passes in order, shader
+variants and pipelines, textures and samplers. The scene renderer builds exactly
+these; everything a scene does not use is left out:
+
+- a shader variant is the frozen set of features one material needs
+  (``albedo_map``, ``normal_map``, ``roughness_map``, ``lighting``, ``flip_v``,
+  ``srgb_output``, and light counts ``directional_lights:N`` / ``point_lights:N``);
+  no ``normal_map`` feature and no tangent attribute unless a lit material has a
+  normal map; no lighting code (and no normal attribute) for unlit materials;
+- no multisampled attachment and no resolve at ``msaa = 1``;
+- no post pass at all when the chain is empty: the scene draws into the output;
+- no HDR (rgba16float) image unless ``hdr = true`` or the chain tone-maps.
+
+Every item carries the reason it is there (which scene key asked for it), and
+:meth:`RenderPlan.explain` prints them. Modules: :mod:`.model` (the dataclasses), :mod:`.build`
+(scene -> plan), :mod:`.post` (the post chain: fusion, path, bytes), :mod:`.explain` (the text).
+``python -m core.plan SCENE.toml`` does that from the command line; :func:`explain_scene` is what the CLI calls.
+
+Variant flags are plain identifiers so a template can test them with
+``#if normal_map`` (wgpurender/core/shader_variants.py); the light counts are separate
+numbers (``ShaderVariant.counts``) for array sizes.
+"""
+
+from wgpurender.core.plan.build import build_plan, explain_scene, main, material_variant, plan_scene_file
+from wgpurender.core.plan.model import *  # noqa: F403  (every dataclass and constant of the plan)
+from wgpurender.core.plan.model import __all__ as _model_names
+from wgpurender.core.plan.post import plan_post_passes
+
+__all__ = [*_model_names, "build_plan", "explain_scene", "main", "material_variant", "plan_post_passes",
+           "plan_scene_file"]

@@ -1,0 +1,7 @@
+"""``python -m wgpurender.core.plan SCENE.toml``: print the scene's plan."""
+
+import sys
+
+from wgpurender.core.plan.build import main
+
+sys.exit(main())

@@ -1,0 +1,102 @@
+"""The render plan as text: every pass, attachment, pipeline, texture and knob, each with what asked for it.
+
+This is what ``wgpurender render SCENE.toml --explain`` and ``python -m wgpurender.core.plan SCENE.toml`` print.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+# No import of .model: RenderPlan.explain() calls this module, so it reads the plan's passes by their ``kind``.
+
+
+def explain(plan: Any) -> str:
+    """Passes, attachments, pipelines, textures and samplers, each with what asked for it."""
+    w, h = plan.size
+    out = [f"scene: {plan.scene_path}", f"output: {w}x{h} {plan.output_format}, msaa {plan.msaa}"]
+    if plan.camera_note:
+        out.append(f"camera: {plan.camera_note}")
+    out.append("")
+    out.append("knobs:")
+    for knob, value, why in plan.settings:
+        out.append(f"  {knob}: {value} <- {why}")
+    out.append("")
+    out.append("passes:")
+    for i, p in enumerate(plan.passes, start=1):
+        out.extend(_explain_pass(i, p, plan.size))
+    out.append("")
+    out.append("attachments:")
+    for a in plan.attachments:
+        samples = f"{a.sample_count} sample{'s' if a.sample_count > 1 else ''}"
+        out.append(f"  {a.name}: {a.format}, {a.size[0]}x{a.size[1]}, {samples} ({a.role})")
+        out.extend(f"      <- {r}" for r in a.reasons)
+    out.append("")
+    out.append("scene pipelines:" if plan.pipelines else "scene pipelines: none (no models)")
+    for pl in plan.pipelines:
+        v = pl.variant
+        out.append(f"  {pl.key}")
+        out.append(f"      vertex attributes: {', '.join(v.vertex_attributes)}")
+        if not v.reasons:
+            out.append("      features: none (flat colour, unlit)")
+        for feature, why in v.reasons:
+            out.append(f"      {feature}: {why}")
+        users = [d.label for d in plan.scene_pass.draws if d.pipeline_key == pl.key]
+        out.append(f"      used by: {', '.join(users)}")
+    out.append("post pipelines:" if plan.post_pipelines else "post pipelines: none")
+    out.extend(f"  {pl.key}" for pl in plan.post_pipelines)
+    out.append("")
+    out.append("textures:" if plan.textures else "textures: none")
+    for t in plan.textures:
+        mips = "with mipmaps" if t.mipmaps else "no mipmaps"
+        shown = os.path.relpath(t.path, plan.scene_path.parent)
+        out.append(f"  {shown} as {t.format}, {mips} <- {'; '.join(t.used_by)}")
+    if plan.mipmap_formats:
+        out.append("mipmap pipelines: " + ", ".join(plan.mipmap_formats)
+                   + " (one render pipeline per format generates every mip chain of that format)")
+    out.append("samplers:" if plan.samplers else "samplers: none")
+    for s in plan.samplers:
+        spec = s.spec
+        out.append(
+            f"  filter {spec.min_filter}/{spec.mag_filter}, mipmap {spec.mipmap_filter}, "
+            f"address {spec.address_mode_u}, anisotropy {spec.max_anisotropy} <- {'; '.join(s.used_by)}"
+        )
+    filtering = [p.effect for p in plan.post_passes if p.steps[0].spec.filtering]
+    if filtering:
+        out.append(f"  post-linear-clamp (linear, clamp to edge) <- {', '.join(filtering)} samples between pixels")
+    out.append("")
+    out.append("buffers:")
+    out.extend(f"  {name}: {what}" for name, what in plan.buffers)
+    if plan.notes:
+        out.append("")
+        out.append("notes:")
+        out.extend(f"  - {n}" for n in plan.notes)
+    return "\n".join(out) + "\n"
+
+
+def _megabytes(n: int) -> str:
+    return f"{n / 1e6:.1f} MB"
+
+
+def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
+    if p.kind == "scene":
+        into = f"{p.color} resolved into {p.resolve_target}" if p.resolve_target else p.color
+        depth = f", depth attachment {p.depth}" if p.depth else ""
+        clear = ", ".join(f"{c:g}" for c in p.clear_color)
+        lines = [f"  {number}. scene: draw {len(p.draws)} model(s) into {into}{depth}, clear ({clear})"]
+        for d in p.draws:
+            lines.append(f"       {d.label}: {d.material_label}, variant {d.variant_key}")
+            lines.append(f"         material factors: {d.factors_text()}")
+        return lines
+    steps = " + ".join(s.label() for s in p.steps)
+    into = f"{p.output} ({p.output_format})" + (f", copied into {p.copy_to}" if p.copy_to else "")
+    lines = [f"  {number}. post {steps} [{p.path}]: {p.input} ({p.input_format}) -> {into}"]
+    lines.extend(f"       <- {s.asked_by}" for s in p.steps)
+    if p.fusion:
+        lines.append(f"       fused: {p.fusion}")
+    if p.mask:
+        lines.append(f"       mask: {p.mask} (depth test skips blocks without an edge pixel)")
+    lines.append(f"       bytes: {_megabytes(p.bytes_read)} read + {_megabytes(p.bytes_written)} written = "
+                 f"{_megabytes(p.bytes_moved)} at {size[0]}x{size[1]} (each texel once)")
+    lines.extend(f"       note: {n}" for n in p.notes)
+    return lines

@@ -1,0 +1,423 @@
+"""The render plan's data: frozen dataclasses with no GPU objects (attachments, passes, variants, pipelines, knobs).
+
+:mod:`.build` makes a :class:`RenderPlan` from a scene; :mod:`.explain` prints it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from wgpurender.core.course.effects import EffectStep
+from wgpurender.core.errors import UserError
+from wgpurender.core.plan.explain import explain
+from wgpurender.core.scene import Scene
+
+DEPTH_FORMAT = "depth32float"
+HDR_FORMAT = "rgba16float"
+LDR_SCENE_FORMAT = "rgba8unorm-srgb"  # 8-bit scene image for a post chain: shaders still see linear values
+COLOR_TEXTURE_FORMAT = "rgba8unorm-srgb"  # albedo: sRGB-encoded image, decoded by the sampler
+DATA_TEXTURE_FORMAT = "rgba8unorm"  # normal and roughness maps: values used as stored
+PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8unorm-srgb", "bgra8unorm")
+SAMPLE_COUNTS = (1, 4)
+DEPTH_FORMATS = ("depth32float", "depth24plus")
+SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
+POST_PATHS = ("auto", "fragment", "compute")
+IMMEDIATES = ("auto", "on", "off")
+# Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
+# the "bgra8unorm-storage" feature, which the renderer does not ask for.
+STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
+BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
+                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
+ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "post-mask", "post-scratch",
+                    "output")  # the order passes use them
+
+# Feature -> vertex attribute it needs (position is always there).
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"))
+TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map")
+
+
+@dataclass(frozen=True)
+class Attachment:
+    """A texture a pass renders into or reads. ``role``: msaa-color, depth, scene-color, post-intermediate, output."""
+
+    name: str
+    role: str
+    format: str
+    size: tuple[int, int]
+    sample_count: int
+    reasons: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class ShaderVariant:
+    """One specialisation of the scene shader: boolean ``flags``, light ``counts``, and why each is on."""
+
+    flags: frozenset[str]
+    counts: tuple[tuple[str, int], ...] = ()
+    reasons: tuple[tuple[str, str], ...] = ()  # (feature, why), in a stable order
+
+    @property
+    def features(self) -> frozenset[str]:
+        """Flags plus ``name:N`` for each light count, e.g. {"lighting", "point_lights:2"}."""
+        return self.flags | {f"{name}:{n}" for name, n in self.counts}
+
+    @property
+    def key(self) -> str:
+        """Stable text key, e.g. ``albedo_map+lighting+normal_map+point_lights:2``; ``base`` when empty."""
+        return "+".join(sorted(self.features)) or "base"
+
+    @property
+    def vertex_attributes(self) -> tuple[str, ...]:
+        uses_uv = bool(self.flags & set(TEXTURE_FEATURES))
+        have = self.flags | ({"uv"} if uses_uv else set())
+        return ("position",) + tuple(attr for feature, attr in ATTRIBUTES if feature in have)
+
+    def count(self, name: str) -> int:
+        return dict(self.counts).get(name, 0)
+
+
+@dataclass(frozen=True)
+class ScenePipeline:
+    """A render pipeline for the scene pass: a variant drawn into one colour format and sample count."""
+
+    variant: ShaderVariant
+    color_format: str
+    sample_count: int
+    depth_format: str | None
+    cull_mode: str = "back"
+    front_face: str = "ccw"
+    depth_compare: str = "less"
+
+    @property
+    def key(self) -> str:
+        depth = f"{self.depth_format} {self.depth_compare}" if self.depth_format else "no-depth"
+        winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
+        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}"
+
+
+@dataclass(frozen=True)
+class TextureUse:
+    """A texture file to upload, the format it is uploaded as, and who samples it."""
+
+    path: Path
+    format: str
+    mipmaps: bool
+    used_by: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class SamplerUse:
+    spec: object  # wgpurender.wgpu_path.textures.SamplerSpec (frozen, hashable)
+    used_by: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Draw:
+    """One model drawn in the scene pass, with its material and pipeline."""
+
+    model_index: int
+    model_path: Path
+    label: str
+    material: str
+    variant_key: str
+    pipeline_key: str
+    textures: tuple[tuple[str, Path], ...] = ()  # (feature, file) actually sampled
+    sampler: object | None = None  # SamplerSpec when any texture is sampled
+    transform: tuple[tuple[float, ...], ...] = ()
+    material_label: str = ""
+    factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
+
+    def factors_text(self) -> str:
+        def show(v) -> str:
+            return "(" + ", ".join(f"{x:g}" for x in v) + ")" if isinstance(v, tuple) else f"{v:g}"
+
+        return ", ".join(f"{k}={show(v)}" for k, v in self.factors)
+
+
+@dataclass(frozen=True)
+class ScenePass:
+    """The pass that draws the models: into ``color`` (resolved into ``resolve_target`` when multisampled)."""
+
+    color: str
+    resolve_target: str | None
+    depth: str | None
+    clear_color: tuple[float, float, float, float]
+    draws: tuple[Draw, ...]
+    depth_clear: float = 1.0
+    kind: str = "scene"
+
+    @property
+    def writes(self) -> str:
+        return self.resolve_target or self.color
+
+
+@dataclass(frozen=True)
+class PostPass:
+    """One full-screen pass of the post chain: its effect ``steps`` run as one shader, ``input`` -> ``output``.
+
+    Several steps share a pass when the plan fuses them (each reads only the pixel the one before it
+    wrote); ``fusion`` says why. ``path`` is "fragment" (a render pass drawing a full-screen triangle) or
+    "compute" (a dispatch writing a storage texture). ``mask``: FXAA's depth mask on the fragment path.
+    ``copy_to``: a compute pass whose output format cannot be a storage texture writes ``output`` (a
+    scratch rgba8unorm, sRGB-encoded in the shader) and is then copied into ``copy_to``.
+    ``bytes_read`` / ``bytes_written``: the compulsory memory traffic, each texel read once and written once.
+    """
+
+    index: int
+    steps: tuple[EffectStep, ...]
+    input: str
+    output: str
+    input_format: str
+    output_format: str
+    path: str = "fragment"
+    fusion: str = ""
+    notes: tuple[str, ...] = ()
+    mask: str | None = None
+    copy_to: str | None = None
+    bytes_read: int = 0
+    bytes_written: int = 0
+    kind: str = "post"
+    copy_format: str | None = None  # the format of ``copy_to`` (the scratch is written in ``output_format``)
+
+    @property
+    def effect(self) -> str:
+        """The steps' names joined with "+", e.g. ``tonemap+vignette`` (one name when not fused)."""
+        return "+".join(s.effect for s in self.steps)
+
+    @property
+    def params(self) -> tuple[tuple[str, float | str], ...]:
+        """The parameters of a single-step pass (``effect.name`` keys when fused)."""
+        if len(self.steps) == 1:
+            return self.steps[0].params
+        return tuple((f"{s.effect}.{k}", v) for s in self.steps for k, v in s.params)
+
+    @property
+    def reason(self) -> str:
+        return "; ".join(s.asked_by for s in self.steps)
+
+    @property
+    def fused(self) -> bool:
+        return len(self.steps) > 1
+
+    @property
+    def writes(self) -> str:
+        return self.copy_to or self.output
+
+    @property
+    def bytes_moved(self) -> int:
+        return self.bytes_read + self.bytes_written
+
+
+@dataclass(frozen=True)
+class PostPipeline:
+    """A pipeline of a post pass: ``stage`` "fragment" (with ``entry_point`` and an optional depth test) or
+    "compute"; ``target_format``: the colour attachment's or the storage texture's format."""
+
+    effects: str
+    stage: str
+    entry_point: str
+    target_format: str
+    depth_format: str | None = None
+
+    @property
+    def key(self) -> str:
+        depth = f", depth {self.depth_format}" if self.depth_format else ""
+        return f"{self.effects} {self.stage} {self.entry_point} -> {self.target_format}{depth}"
+
+
+@dataclass(frozen=True)
+class AdapterFacts:
+    """What the plan needs to know about an adapter for its "auto" knobs (no GPU object: plain values).
+
+    ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
+    device's enabled features (the plan reads "immediates").
+    """
+
+    adapter_type: str
+    features: frozenset[str] = frozenset()
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Knobs:
+    """Every choice a renderer or benchmark may make beyond the scene file; each is shown by ``explain()``.
+
+    ``None`` means "the scene's own setting" (render.post_fuse, render.post_path, the scene format that
+    render.hdr and the chain ask for). Change them with :meth:`RenderPlan.with_knobs`.
+    """
+
+    depth_format: str = DEPTH_FORMAT
+    reverse_z: bool = False
+    scene_format: str | None = None
+    post_fuse: bool | None = None
+    post_path: str | None = None
+    immediates: str = "auto"
+    adapter: AdapterFacts | None = None
+    output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
+    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/anisotropy.py)
+    anisotropy_adapter: str | None = None  # the adapter type that rule reads when ``adapter`` is not given
+
+    def check(self) -> None:
+        bad = [(name, value, allowed) for name, value, allowed in (
+            ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
+            ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
+        ) if value not in allowed]
+        for name, value, allowed in bad:
+            raise UserError(f"plan knob {name} = {value!r}: choose one of "
+                            f"{', '.join(str(a) for a in allowed if a is not None)}")
+
+
+@dataclass(frozen=True)
+class RenderPlan:
+    scene_path: Path
+    size: tuple[int, int]
+    output_format: str
+    msaa: int
+    attachments: tuple[Attachment, ...]
+    passes: tuple[ScenePass | PostPass, ...]
+    variants: tuple[ShaderVariant, ...]
+    pipelines: tuple[ScenePipeline, ...]
+    post_pipelines: tuple[PostPipeline, ...]
+    textures: tuple[TextureUse, ...]
+    samplers: tuple[SamplerUse, ...]
+    camera_note: str = ""
+    notes: tuple[str, ...] = field(default=())
+    knobs: Knobs = field(default_factory=Knobs)
+    settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
+    scene: Scene | None = field(default=None, repr=False, compare=False)
+    rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # build_plan
+
+    # -- knobs -----------------------------------------------------------------
+    def with_knobs(self, **changes) -> RenderPlan:
+        """The plan of the same scene with knobs changed: any :class:`Knobs` field, or ``size``,
+        ``output_format``, ``msaa`` (the CLI's overrides). This is how a benchmark or a renderer asks for a
+        knob: the result is a whole new plan, so ``explain()`` stays true."""
+        overrides = {k: changes.pop(k) for k in ("size", "output_format", "msaa") if k in changes}
+        unknown = sorted(set(changes) - set(Knobs.__dataclass_fields__))
+        if unknown:
+            raise UserError(f"unknown plan knob {unknown[0]!r}: knobs are "
+                            f"{', '.join(Knobs.__dataclass_fields__)}, size, output_format, msaa")
+        if self.scene is None or self.rebuild is None:
+            raise UserError("this plan was not built from a scene: build it with build_plan(scene, ...)")
+        current = {"size": self.size, "output_format": self.output_format, "msaa": self.msaa}
+        return self.rebuild(self.scene, **{**current, **overrides}, knobs=dataclasses.replace(self.knobs, **changes))
+
+    def setting(self, name: str) -> str:
+        """A resolved knob's value as text, e.g. ``setting("post_path") == "compute"``."""
+        return next(value for knob, value, _ in self.settings if knob == name)
+
+    @property
+    def post_path(self) -> str:
+        return self.setting("post_path")
+
+    @property
+    def immediates(self) -> bool | None:
+        """True/False when decided (knob "on"/"off" or a known adapter), None: the renderer asks its device."""
+        return {"on": True, "off": False}.get(self.setting("immediates").split()[0])
+
+    @property
+    def reverse_z(self) -> bool:
+        return self.knobs.reverse_z
+
+    @property
+    def mipmap_formats(self) -> tuple[str, ...]:
+        """Formats of the textures that get mip chains: one mip-generation render pipeline each (mipmap.wgsl)."""
+        return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps))
+
+    @property
+    def buffers(self) -> tuple[tuple[str, str], ...]:
+        """(buffer, what it holds) for every GPU buffer the renderer makes for this plan (readback aside)."""
+        draws = self.scene_pass.draws
+        out = []
+        if draws:
+            out.append(("scene-camera", "uniform: Camera (view, projection, eye, lights), written when they change"))
+            out.append(("scene-objects", f"uniform: {len(draws)} Object slice(s), one per draw (dynamic offsets)"))
+            if self.immediates is not True:
+                when = "no immediates" if self.immediates is False else "only if the device lacks immediates"
+                out.append(("scene-materials", f"uniform: {len(draws)} Material slice(s), one per draw ({when})"))
+        for model, attributes in dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes)
+                                               for d in draws):
+            out.append((f"{model.name} vertices", f"vertex attributes {', '.join(attributes)}, interleaved"))
+            out.append((f"{model.name} indices", "index buffer"))
+        for p in self.post_passes:
+            if any(s.spec.params for s in p.steps):
+                out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))
+        return tuple(out)
+
+    @property
+    def post_steps(self) -> tuple[EffectStep, ...]:
+        """Every effect step of the chain in order, whatever the passes (what the raw path's subpass composes)."""
+        return tuple(s for p in self.post_passes for s in p.steps)
+
+    # -- queries -------------------------------------------------------------
+    def attachment(self, name: str) -> Attachment:
+        for a in self.attachments:
+            if a.name == name:
+                return a
+        raise KeyError(name)
+
+    def has_attachment(self, name: str) -> bool:
+        return any(a.name == name for a in self.attachments)
+
+    @property
+    def scene_pass(self) -> ScenePass:
+        return next(p for p in self.passes if isinstance(p, ScenePass))
+
+    @property
+    def post_passes(self) -> tuple[PostPass, ...]:
+        return tuple(p for p in self.passes if isinstance(p, PostPass))
+
+    @property
+    def features(self) -> frozenset[str]:
+        """Every feature of every variant."""
+        return frozenset().union(*(v.features for v in self.variants)) if self.variants else frozenset()
+
+    @property
+    def vertex_attributes(self) -> frozenset[str]:
+        return frozenset(a for v in self.variants for a in v.vertex_attributes)
+
+    def pipeline(self, key: str) -> ScenePipeline:
+        return next(p for p in self.pipelines if p.key == key)
+
+    def variant(self, key: str) -> ShaderVariant:
+        return next(v for v in self.variants if v.key == key)
+
+    # -- text ----------------------------------------------------------------
+    def explain(self) -> str:
+        """Passes, attachments, pipelines, textures, samplers and knobs, each with what asked for it."""
+        return explain(self)
+
+
+__all__ = [
+    "ATTACHMENT_ORDER",
+    "ATTRIBUTES",
+    "AdapterFacts",
+    "Attachment",
+    "BYTES_PER_PIXEL",
+    "COLOR_TEXTURE_FORMAT",
+    "DATA_TEXTURE_FORMAT",
+    "DEPTH_FORMAT",
+    "DEPTH_FORMATS",
+    "Draw",
+    "HDR_FORMAT",
+    "IMMEDIATES",
+    "Knobs",
+    "LDR_SCENE_FORMAT",
+    "PLAN_OUTPUT_FORMATS",
+    "POST_PATHS",
+    "PostPass",
+    "PostPipeline",
+    "RenderPlan",
+    "SAMPLE_COUNTS",
+    "SCENE_FORMATS",
+    "STORAGE_FORMATS",
+    "SamplerUse",
+    "ScenePass",
+    "ScenePipeline",
+    "ShaderVariant",
+    "TEXTURE_FEATURES",
+    "TextureUse",
+]

@@ -1,0 +1,143 @@
+"""Planning the post chain: which effect steps share a pass (fusion), on which path, through which textures.
+
+Fusion: an effect that reads only the pixel it writes (``reach = "pixel"`` in wgpurender/core/course/effects.py)
+runs as a function in the pass before it; a neighbourhood effect (FXAA, sharpen) starts a new pass, since it
+must read a finished image. Path: "fragment" (a full-screen triangle) or "compute" (a dispatch writing a
+storage texture; the ``-srgb`` formats cannot be one, so such an output is written through an rgba8unorm
+scratch and a copy, and an 8-bit sRGB scene image's intermediates become rgba16float). The "auto" rule and
+the other knobs are resolved here too. Bytes per pass: the compulsory traffic (each texel read and written
+once), what ``--explain`` and ``bench post-roofline`` report.
+"""
+
+from __future__ import annotations
+
+from wgpurender.core.course.effects import EffectStep, group_passes, step_notes
+from wgpurender.core.plan.model import (
+    BYTES_PER_PIXEL,
+    HDR_FORMAT,
+    STORAGE_FORMATS,
+    Attachment,
+    Knobs,
+    PostPass,
+    PostPipeline,
+)
+
+
+def resolve_post_path(r, knobs: Knobs) -> tuple[str, str]:
+    """fragment or compute, and why. The "auto" rule: compute on a discrete GPU (a fragment pass there is
+    raster-bound, a compute pass uses every SM: facts.md on the H100/H200); fragment everywhere else (a CPU
+    driver like lavapipe rasterises a full-screen triangle as cheaply as it runs a dispatch, and an
+    integrated or mobile GPU's raster path is its fast path); fragment when the adapter is not known."""
+    asked = knobs.post_path or r.post_path
+    origin = "knob post_path" if knobs.post_path else f"render.post_path = {r.post_path}"
+    if asked != "auto":
+        return asked, origin
+    adapter = knobs.adapter
+    if adapter is None:
+        return "fragment", f"{origin}, adapter not known yet: fragment (the renderer re-plans for its adapter)"
+    if adapter.adapter_type == "DiscreteGPU":
+        return "compute", f"{origin}: compute on a discrete GPU ({adapter.name or adapter.adapter_type})"
+    return "fragment", f"{origin}: fragment on a {adapter.adapter_type} adapter ({adapter.name or 'unnamed'})"
+
+
+def resolve_immediates(knobs: Knobs) -> tuple[str, str]:
+    if knobs.immediates != "auto":
+        return knobs.immediates, "knob immediates"
+    if knobs.adapter is None:
+        return "auto", ("material factors pushed as immediates when the device offers the 'immediates' feature, "
+                        "else read from a uniform buffer slice per draw")
+    on = "immediates" in knobs.adapter.features
+    return ("on" if on else "off"), ("the device offers 'immediates': material factors are pushed per draw" if on
+                                     else "the device lacks 'immediates': material factors come from a uniform "
+                                     "buffer slice per draw")
+
+
+def _fusion_text(group: tuple[EffectStep, ...]) -> str:
+    if len(group) < 2:
+        return ""
+    pixel = [s.effect for s in group if s.spec.fusable]
+    head = group[0] if not group[0].spec.fusable else None
+    verb = "reads only the pixel it writes" if len(pixel) == 1 else "each read only the pixel they write"
+    runs = "it runs as a function" if len(pixel) == 1 else "they run as functions"
+    why = f"{', '.join(pixel)} {verb}, so {runs} in one shader"
+    if head is not None:
+        why += f" on the pixel {head.effect} just computed ({head.effect} reads neighbours, so it starts the pass)"
+    return why + f"; saves {len(group) - 1} write and read of the whole image"
+
+
+def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_target: str, scene_fmt: str, out_fmt: str,
+                     size: tuple[int, int], output_storage: bool = True) -> tuple[list[PostPass], list[Attachment]]:
+    """The chain's passes and the attachments only they use (ping-pong intermediates, FXAA mask, scratch).
+
+    ``output_storage``: whether the output texture can be bound as a storage texture (an offscreen target
+    can; a swapchain image cannot), which decides how a compute pass writes it."""
+    groups = group_passes(steps, fuse)
+    n = len(groups)
+    temp_fmt = scene_fmt
+    notes_all: list[str] = []
+    if path == "compute" and scene_fmt not in STORAGE_FORMATS and n > 1:
+        temp_fmt = HDR_FORMAT
+        notes_all.append(f"{scene_fmt} cannot be a storage texture: the compute path's intermediates are {HDR_FORMAT}")
+    temps = ["post_a", "post_b"][:min(max(n - 1, 0), 2)]
+    attachments = []
+    for i, name in enumerate(temps):
+        users = [j for j in range(n - 1) if j % 2 == i]
+        attachments.append(Attachment(name, "post-intermediate", temp_fmt, size, 1, (
+            "written by " + ", ".join(f"post pass {j + 1} ({'+'.join(s.effect for s in groups[j])})" for j in users)
+            + " and read by the next pass (ping-pong)",) + tuple(notes_all)))
+    pixels = size[0] * size[1]
+    passes = []
+    for i, group in enumerate(groups):
+        last = i == n - 1
+        src_name = scene_target if i == 0 else temps[(i - 1) % 2]
+        src_fmt = scene_fmt if i == 0 else temp_fmt
+        dst_name, dst_fmt = ("output", out_fmt) if last else (temps[i % 2], temp_fmt)
+        notes = [n for s in group for n in step_notes(s, src_fmt, dst_fmt)]
+        pass_path, copy_to, mask = path, None, None
+        copy_format = None
+        writes_output = dst_name == "output"
+        if path == "compute" and (dst_fmt not in STORAGE_FORMATS or (writes_output and not output_storage)):
+            scratch = dst_fmt if dst_fmt in STORAGE_FORMATS else ("rgba8unorm" if dst_fmt.startswith("rgba8") else None)
+            why = (f"{dst_fmt} cannot be a storage texture" if dst_fmt not in STORAGE_FORMATS else
+                   "the output texture is not a storage texture (a swapchain image: knob output_storage = off)")
+            if scratch is not None:
+                copy_to, copy_format, dst_name, dst_fmt = dst_name, dst_fmt, "post_scratch", scratch
+                encoded = " with the sRGB curve applied" if scratch != copy_format else ""
+                notes.append(f"{why}: the shader writes {scratch}{encoded}, then the image is copied into "
+                             f"{copy_to} (same bytes)")
+                attachments.append(Attachment("post_scratch", "post-scratch", scratch, size, 1, (
+                    f"post pass {i + 1} on the compute path writes it; copied into {copy_to} ({why})",)))
+            else:
+                pass_path = "fragment"
+                notes.append(f"{why}: this pass stays a fragment pass")
+        head = group[0].spec
+        if pass_path == "fragment" and head.mask_format:
+            mask = f"{head.name}_mask"
+            attachments.append(Attachment(mask, "post-mask", head.mask_format, size, 1, (
+                f"post pass {i + 1} {head.name}: draw 1 marks edge pixels in depth, draw 2 runs the full "
+                f"{head.name} depth-tested on edges only (wgpurender/wgpu_path/post/shaders.py says why)",)))
+        read = pixels * BYTES_PER_PIXEL[src_fmt]
+        written = pixels * BYTES_PER_PIXEL[dst_fmt]
+        if mask:
+            written += pixels * BYTES_PER_PIXEL[head.mask_format]
+            read += pixels * BYTES_PER_PIXEL[head.mask_format]
+        if copy_to:
+            read += pixels * BYTES_PER_PIXEL[dst_fmt]
+            written += pixels * BYTES_PER_PIXEL[copy_format]
+        passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, _fusion_text(group),
+                               tuple(notes), mask, copy_to, read, written, copy_format=copy_format))
+    return passes, attachments
+
+
+def post_pipelines_of(passes: list[PostPass]) -> tuple[PostPipeline, ...]:
+    out: list[PostPipeline] = []
+    for p in passes:
+        if p.path == "compute":
+            out.append(PostPipeline(p.effect, "compute", "cs_main", p.output_format))
+        elif p.mask:
+            depth = p.steps[0].spec.mask_format
+            out.append(PostPipeline(p.effect, "fragment", "fs_mark", p.output_format, depth))
+            out.append(PostPipeline(p.effect, "fragment", "fs_main", p.output_format, depth))
+        else:
+            out.append(PostPipeline(p.effect, "fragment", "fs_main", p.output_format))
+    return tuple(dict.fromkeys(out))

@@ -1,0 +1,161 @@
+"""Output files written safely: atomically, never over a special file, and no temp file left behind.
+
+What each exit path leaves (docs/reliability.md says the same for users):
+
+- a normal exit, an error, Ctrl-C (SIGINT) or SIGTERM: the old file or the complete new one, and no temp file
+  (the temp file is unlinked in ``finally``; :func:`install_signal_handlers` turns SIGTERM into an exception so
+  that ``finally`` runs);
+- SIGKILL (or a power cut) during the few milliseconds of the write: the old file or the complete new one, plus
+  possibly one temp file ``.NAME.wgpurender-PID.tmp`` beside it. The next write into that folder removes such
+  files whose process is gone (:func:`sweep_stale`), so they never pile up.
+
+The image is encoded in memory first, so the temp file exists only while its bytes are written.
+
+Refused targets (``UserError``): anything that exists and is not a regular file (a directory, a device such as
+/dev/full, a FIFO, a socket), and a symbolic link unless ``$WGPURENDER_FOLLOW_SYMLINKS=1`` (then the link's target
+is written, and must itself be a regular file or absent). An atomic rename would replace the special file itself.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import stat
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+from wgpurender.core.errors import UserError
+
+FOLLOW_SYMLINKS_ENV = "WGPURENDER_FOLLOW_SYMLINKS"
+TEST_DELAY_ENV = "WGPURENDER_TEST_WRITE_DELAY"  # seconds to hold the temp file open: lets tests kill mid-write
+_TEMP = re.compile(r"^\..+\.wgpurender-(\d+)\.tmp$")
+_live: set[Path] = set()  # temp files of this process, removed by the signal handler
+
+
+def _kind(mode: int) -> str:
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
+                       (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISSOCK, "a socket"), (stat.S_ISLNK, "a symbolic link")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def _follow_symlinks() -> bool:
+    return os.environ.get(FOLLOW_SYMLINKS_ENV, "") not in ("", "0")
+
+
+def output_target(path: str | os.PathLike) -> Path:
+    """The file to write for ``path``, or UserError: never a special file, a symlink only when asked."""
+    path = Path(path)
+    if "\0" in str(path):
+        raise UserError(f"cannot write {str(path)!r}: the path contains a NUL character")
+    try:
+        mode = os.lstat(path).st_mode
+    except FileNotFoundError:
+        mode = None
+    except OSError as err:
+        raise UserError(f"cannot write {path}: {err.strerror or err}") from None
+    if mode is not None and stat.S_ISLNK(mode):
+        if not _follow_symlinks():
+            raise UserError(f"refusing to write {path}: it is a symbolic link (to {os.readlink(path)}); give the "
+                            f"real file name, or set {FOLLOW_SYMLINKS_ENV}=1 to write through links")
+        path = Path(os.path.realpath(path))
+        mode = os.lstat(path).st_mode if path.exists() else None
+    if mode is not None and not stat.S_ISREG(mode):
+        hint = "give a file name ending in .png" if stat.S_ISDIR(mode) else "give the path of a regular file"
+        raise UserError(f"refusing to write {path}: it is {_kind(mode)}, not a regular file; {hint}")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise UserError(f"cannot write {path}: directory {parent} does not exist (create it first)")
+    if not os.access(parent, os.W_OK):
+        raise UserError(f"cannot write {path}: directory {parent} is not writable")
+    return path
+
+
+def _pid_alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def sweep_stale(folder: Path) -> list[Path]:
+    """Remove temp files that a killed run (SIGKILL) left in ``folder``: ours by name, their process gone."""
+    removed = []
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return removed
+    for name in names:
+        m = _TEMP.match(name)
+        if m and not _pid_alive(int(m.group(1))):
+            try:
+                (folder / name).unlink()
+                removed.append(folder / name)
+            except OSError:
+                pass
+    return removed
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def atomic_write(path: str | os.PathLike, data: bytes | Callable[[], bytes]) -> Path:
+    """Write ``data`` to ``path`` atomically (temp file in the same folder, fsync, rename).
+
+    ``data`` may be a function producing the bytes; it runs before the temp file is created.
+    """
+    path = output_target(path)
+    try:
+        payload = data() if callable(data) else data
+    except OSError as err:
+        raise UserError(f"cannot write {path}: {err.strerror or err}") from None
+    sweep_stale(path.parent)
+    tmp = path.parent / f".{path.name}.wgpurender-{os.getpid()}.tmp"
+    _live.add(tmp)
+    try:
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_EXCL, 0o666 & ~_umask())
+        with os.fdopen(fd, "wb") as f:
+            f.write(payload)
+            delay = float(os.environ.get(TEST_DELAY_ENV, "0") or 0)
+            if delay > 0:
+                f.flush()
+                time.sleep(delay)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, output_target(path))  # checked again: a FIFO could have appeared meanwhile
+    except OSError as err:
+        raise UserError(f"cannot write {path}: {err.strerror or err}") from None
+    finally:
+        tmp.unlink(missing_ok=True)
+        _live.discard(tmp)
+    return path
+
+
+def _on_signal(signum: int, frame) -> None:
+    for tmp in list(_live):
+        tmp.unlink(missing_ok=True)
+    raise SystemExit(128 + signum)
+
+
+def install_signal_handlers() -> None:
+    """SIGTERM (and SIGHUP) end the process through SystemExit, so ``finally`` blocks remove temp files.
+    SIGINT already raises KeyboardInterrupt. Only from the main thread (signal's rule)."""
+    for sig in (signal.SIGTERM, getattr(signal, "SIGHUP", None)):
+        if sig is None:
+            continue
+        try:
+            signal.signal(sig, _on_signal)
+        except ValueError:  # not the main thread
+            return

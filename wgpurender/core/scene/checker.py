@@ -1,0 +1,103 @@
+"""Type and value checks of TOML values that fail with ``FILE:LINE: what, and what is valid``."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.scene.toml_locator import KeyLines, KeyPath, format_path
+
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+
+
+def _type_name(value: Any) -> str:
+    return {bool: "a boolean", int: "an integer", float: "a number", str: "a string", list: "an array",
+            dict: "a table"}.get(type(value), type(value).__name__)
+
+
+class Checker:
+    """Type and value checks that fail with FILE:LINE messages."""
+
+    def __init__(self, path: Path, text: str) -> None:
+        self.path = path
+        self.folder = path.parent
+        self.keys = KeyLines(text)
+
+    def error(self, key: KeyPath, message: str) -> UserError:
+        line = self.keys.line_of(key)
+        where = f"{self.path}:{line}" if line else f"{self.path}"
+        return UserError(f"{where}: {message}")
+
+    def table(self, value: Any, key: KeyPath, allowed: tuple[str, ...], required: tuple[str, ...] = ()) -> dict:
+        name = format_path(key) or "the top level"
+        if not isinstance(value, dict):
+            raise self.error(key, f"{name} must be a table, got {_type_name(value)}")
+        for k in value:
+            if k not in allowed:
+                raise self.error(key + (k,), f"unknown key '{k}' in {name}: valid keys are {', '.join(allowed)}")
+        for k in required:
+            if k not in value:
+                raise self.error(key, f"{name} needs '{k}'")
+        return value
+
+    def number(self, value: Any, key: KeyPath, lo: float = -math.inf, hi: float = math.inf,
+               open_lo: bool = False) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise self.error(key, f"{format_path(key)} must be a number, got {_type_name(value)} {value!r}")
+        if abs(value) > FLOAT32_MAX:
+            raise self.error(key, f"{format_path(key)} = {value:g} is beyond float32's range (+-{FLOAT32_MAX:.4g}), "
+                                  "the type the GPU gets; use a smaller number")
+        if value < lo or value > hi or (open_lo and value == lo):
+            low = f"> {lo}" if open_lo else f">= {lo}"
+            bounds = low if hi == math.inf else f"in [{lo}, {hi}]"
+            raise self.error(key, f"{format_path(key)} must be {bounds}, got {value}")
+        return float(value)
+
+    def integer(self, value: Any, key: KeyPath, choices: tuple[int, ...] | None = None,
+                lo: int | None = None, hi: int | None = None) -> int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.error(key, f"{format_path(key)} must be an integer, got {_type_name(value)} {value!r}")
+        if choices is not None and value not in choices:
+            raise self.error(key, f"{format_path(key)} must be one of {', '.join(map(str, choices))}, got {value}")
+        if (lo is not None and value < lo) or (hi is not None and value > hi):
+            raise self.error(key, f"{format_path(key)} must be in {lo}..{hi}, got {value}")
+        return value
+
+    def boolean(self, value: Any, key: KeyPath) -> bool:
+        if not isinstance(value, bool):
+            raise self.error(key, f"{format_path(key)} must be true or false, got {_type_name(value)} {value!r}")
+        return value
+
+    def string(self, value: Any, key: KeyPath, choices: tuple[str, ...] | None = None) -> str:
+        if not isinstance(value, str):
+            raise self.error(key, f"{format_path(key)} must be a string, got {_type_name(value)} {value!r}")
+        if choices is not None and value not in choices:
+            raise self.error(key, f"{format_path(key)} must be one of {', '.join(choices)}, got {value!r}")
+        return value
+
+    def vector(self, value: Any, key: KeyPath, lengths: tuple[int, ...] = (3,), nonzero: bool = False) -> tuple:
+        want = " or ".join(map(str, lengths))
+        if not isinstance(value, list) or len(value) not in lengths:
+            raise self.error(key, f"{format_path(key)} must be an array of {want} numbers, got {value!r}")
+        out = tuple(self.number(v, key) for v in value)
+        if nonzero and not any(out):
+            raise self.error(key, f"{format_path(key)} must not be all zeros")
+        return out
+
+    def file(self, value: Any, key: KeyPath, what: str) -> Path:
+        written = self.string(value, key)
+        if any(not ch.isprintable() for ch in written):
+            raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
+                                  "(NUL, newline, ...): give a plain file path")
+        path = (self.folder / written).resolve()
+        if not path.is_file():
+            raise self.error(
+                key,
+                f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "
+                f"paths are relative to the scene file's folder {self.folder})",
+            )
+        return path

@@ -1,0 +1,50 @@
+"""Reading a scene file: TOML text parsed, then validated part by part into a :class:`Scene`."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.scene.checker import Checker
+from wgpurender.core.scene.model import Scene
+from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
+
+
+def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
+    """Validate TOML text as a scene whose file is ``path`` (relative paths resolve from its folder)."""
+    path = Path(path).absolute()
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise UserError(f"{path}: invalid TOML: {err}") from None
+    c = Checker(path, text)
+    c.table(data, (), TOP_KEYS, required=("camera",))
+    materials = {}
+    mats = data.get("materials", {})
+    c.table(mats, ("materials",), tuple(mats) if isinstance(mats, dict) else ())
+    for name, body in mats.items():
+        materials[name] = _material(c, body, ("materials", name), name, f"[materials.{name}]")
+    description = data.get("description", "")
+    return Scene(
+        path=path,
+        camera=_camera(c, data["camera"]),
+        models=_models(c, data.get("models", []), materials),
+        materials=materials,
+        lights=_lights(c, data.get("lights", [])),
+        render=_render(c, data.get("render", {})),
+        post=_post(c, data.get("post", [])),
+        description=c.string(description, ("description",)),
+    )
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file."""
+    path = Path(path)
+    if not path.is_file():
+        raise UserError(f"scene file not found: {path}")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise UserError(f"cannot read scene file {path}: {err}") from None
+    return parse_scene(text, path)

@@ -1,0 +1,208 @@
+"""The scene's frozen dataclasses and the value sets they accept (what a validated scene file becomes)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.core import transforms
+from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
+from wgpurender.core.course.formats import SAMPLE_COUNTS as MSAA_COUNTS  # noqa: F401
+from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
+from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+
+MAX_LIGHTS = 8
+CONVENTIONS = ("wgpu", "glm-vulkan")
+LIGHT_TYPES = ("directional", "point")
+
+Vec3 = tuple[float, float, float]
+Vec4 = tuple[float, float, float, float]
+
+
+@dataclass(frozen=True)
+class Camera:
+    """A look-at camera with a perspective projection.
+
+    ``convention = "glm-vulkan"``: the scene was set up for the Vulkan tutorial,
+    whose projection is GLM's (right-handed, depth 0..1) with ``proj[1][1] *= -1``
+    because Vulkan's NDC y points down. wgpu's NDC y points up (it flips to
+    framebuffer rows itself), so drawn on wgpu that matrix gives an upside-down
+    image, and the flip also turns every triangle's winding around, which is why
+    the tutorial switches front_face to counter-clockwise. :meth:`source_projection`
+    is the matrix as the convention writes it (what the raw-Vulkan reference path
+    uploads); :meth:`projection` is what wgpu must use: ``clip_correction @
+    source_projection``, which undoes the flip, so winding and orientation are the
+    mesh's own again (counter-clockwise front faces).
+    """
+
+    eye: Vec3
+    target: Vec3
+    up: Vec3 = (0.0, 1.0, 0.0)
+    fov_y: float = 45.0
+    near: float = 0.1
+    far: float = 100.0
+    convention: str = "wgpu"
+
+    def view(self) -> np.ndarray:
+        return transforms.look_at(self.eye, self.target, self.up)
+
+    def source_projection(self, aspect: float) -> np.ndarray:
+        proj = transforms.perspective(self.fov_y, aspect, self.near, self.far)
+        if self.convention == "glm-vulkan":
+            proj[1, 1] *= -1.0
+        return proj
+
+    @property
+    def clip_correction(self) -> np.ndarray:
+        """diag(1, -1, 1, 1) for glm-vulkan (undoes the Y flip), identity otherwise."""
+        return np.diag([1.0, -1.0 if self.convention == "glm-vulkan" else 1.0, 1.0, 1.0])
+
+    def projection(self, aspect: float) -> np.ndarray:
+        return self.clip_correction @ self.source_projection(aspect)
+
+
+@dataclass(frozen=True)
+class SamplerSettings:
+    """How a material's textures are sampled. ``mipmaps`` also decides whether a mip chain is built.
+
+    ``mipmaps = false`` with ``anisotropy > 1`` is the Vulkan tutorial's chapter-28 sampler: one mip level
+    (maxLod 0) sampled anisotropically; the mipmap filter stays linear there because wgpu allows anisotropy
+    only with linear min, mag and mipmap filters (with one level it changes nothing).
+    """
+
+    filter: str = "linear"
+    mipmaps: bool = True
+    anisotropy: int = 1
+    address_mode: str = "repeat"
+
+    def spec(self):
+        """The :class:`wgpurender.core.course.samplers.SamplerSpec` for these settings."""
+        from wgpurender.core.course.samplers import SamplerSpec
+
+        return SamplerSpec(
+            mag_filter=self.filter,
+            min_filter=self.filter,
+            mipmap_filter=self.filter if (self.mipmaps or self.anisotropy > 1) else "nearest",
+            address_mode_u=self.address_mode,
+            address_mode_v=self.address_mode,
+            address_mode_w=self.address_mode,
+            max_anisotropy=self.anisotropy,
+            lod_max_clamp=32.0 if self.mipmaps else 0.0,
+        )
+
+
+@dataclass(frozen=True)
+class Material:
+    """A surface. ``written`` keeps each key's value as the file wrote it (for the plan's explanations);
+    ``origin`` says where it was defined, e.g. ``[materials.brick]`` or ``models[0].material (inline)``."""
+
+    name: str
+    albedo_color: Vec4 = DEFAULT_ALBEDO_COLOR
+    albedo_map: Path | None = None
+    normal_map: Path | None = None
+    roughness_map: Path | None = None
+    roughness: float = DEFAULT_ROUGHNESS
+    unlit: bool = False
+    uv_flip_v: bool = False
+    sampler: SamplerSettings = field(default_factory=SamplerSettings)
+    origin: str = "default"
+    written: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def textures(self) -> dict[str, Path]:
+        maps = {"albedo_map": self.albedo_map, "normal_map": self.normal_map, "roughness_map": self.roughness_map}
+        return {k: v for k, v in maps.items() if v is not None}
+
+    def as_written(self, key: str) -> str:
+        return dict(self.written).get(key, "")
+
+
+DEFAULT_MATERIAL = Material(name="default", origin="default (no material given)")
+
+
+@dataclass(frozen=True)
+class Transform:
+    """The model's world matrix (row-major, acting on column vectors) and how it was written."""
+
+    matrix: tuple[tuple[float, ...], ...]
+    description: str = "identity"
+
+    def array(self) -> np.ndarray:
+        return np.array(self.matrix, dtype=np.float64)
+
+
+def _rows(m: np.ndarray) -> tuple[tuple[float, ...], ...]:
+    return tuple(tuple(float(v) for v in row) for row in m)
+
+
+IDENTITY = Transform(_rows(np.eye(4)))
+
+
+@dataclass(frozen=True)
+class Model:
+    index: int
+    path: Path  # resolved
+    written_path: str  # as in the file
+    material: Material
+    transform: Transform = IDENTITY
+
+    @property
+    def label(self) -> str:
+        return f"models[{self.index}] '{self.written_path}'"
+
+
+@dataclass(frozen=True)
+class Light:
+    """``direction`` (directional: the way the light travels) or ``position`` (point), linear colour."""
+
+    index: int
+    type: str
+    color: Vec3 = (1.0, 1.0, 1.0)
+    intensity: float = 1.0
+    direction: Vec3 | None = None
+    position: Vec3 | None = None
+
+
+@dataclass(frozen=True)
+class RenderSettings:
+    size: tuple[int, int] = (800, 600)
+    msaa: int = 4
+    hdr: bool = True
+    clear_color: Vec4 = DEFAULT_CLEAR_COLOR
+    output_format: str = "rgba8unorm-srgb"
+    post_fuse: bool = True  # fuse consecutive per-pixel effects into one pass (false: one pass each, for teaching)
+    post_path: str = "auto"  # post passes as fragment or compute shaders; auto: chosen per adapter (core/plan/)
+
+
+@dataclass(frozen=True)
+class PostStep:
+    """One [[post]] entry: an effect name and its validated parameters (defaults filled in)."""
+
+    index: int
+    effect: str
+    params: tuple[tuple[str, float | str], ...] = ()
+    written: tuple[str, ...] = ()  # the parameter names the file set
+
+    def step(self):
+        """The GPU-free :class:`wgpurender.core.course.effects.EffectStep` the plan lists (asked for by this entry)."""
+        from wgpurender.core.course.effects import EffectStep
+
+        return EffectStep(self.effect, self.params, f'[[post]] #{self.index} effect = "{self.effect}"')
+
+
+@dataclass(frozen=True)
+class Scene:
+    path: Path
+    camera: Camera
+    models: tuple[Model, ...] = ()
+    materials: dict[str, Material] = field(default_factory=dict)
+    lights: tuple[Light, ...] = ()
+    render: RenderSettings = field(default_factory=RenderSettings)
+    post: tuple[PostStep, ...] = ()
+    description: str = ""
+
+    @property
+    def folder(self) -> Path:
+        return self.path.parent

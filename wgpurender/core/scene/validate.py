@@ -1,0 +1,327 @@
+"""Validation of each part of a scene file (camera, materials, models, lights, render, post) into the dataclasses."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from wgpurender.core import transforms
+from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.errors import UserError
+from wgpurender.core.scene.checker import Checker as _Checker
+from wgpurender.core.scene.checker import _type_name
+from wgpurender.core.scene.model import (
+    ADDRESS_MODES,
+    CONVENTIONS,
+    DEFAULT_MATERIAL,
+    FILTERS,
+    LIGHT_TYPES,
+    MAX_ANISOTROPY,
+    MAX_LIGHTS,
+    MSAA_COUNTS,
+    OUTPUT_FORMATS,
+    Camera,
+    Light,
+    Material,
+    Model,
+    PostStep,
+    RenderSettings,
+    SamplerSettings,
+    Transform,
+    Vec4,
+    _rows,
+)
+from wgpurender.core.scene.toml_locator import KeyPath, format_path
+
+TOP_KEYS = ("camera", "description", "lights", "materials", "models", "post", "render")
+CAMERA_KEYS = ("convention", "eye", "far", "fov_y", "near", "target", "up")
+MATERIAL_KEYS = (
+    "albedo_color", "albedo_map", "normal_map", "roughness", "roughness_map", "sampler", "unlit", "uv_flip_v"
+)
+SAMPLER_KEYS = ("address_mode", "anisotropy", "filter", "mipmaps")
+MODEL_KEYS = ("material", "path", "transform")
+TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
+LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
+RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
+POST_PATHS = ("auto", "fragment", "compute")  # see wgpurender/core/plan/: post_path
+
+
+def _camera(c: _Checker, data: Any) -> Camera:
+    key = ("camera",)
+    t = c.table(data, key, CAMERA_KEYS, required=("eye", "target"))
+    cam = Camera(
+        eye=c.vector(t["eye"], key + ("eye",)),
+        target=c.vector(t["target"], key + ("target",)),
+        up=c.vector(t.get("up", [0, 1, 0]), key + ("up",), nonzero=True),
+        fov_y=c.number(t.get("fov_y", 45.0), key + ("fov_y",), 0.0, 180.0, open_lo=True),
+        near=c.number(t.get("near", 0.1), key + ("near",), 0.0, open_lo=True),
+        far=c.number(t.get("far", 100.0), key + ("far",), 0.0, open_lo=True),
+        convention=c.string(t.get("convention", "wgpu"), key + ("convention",), CONVENTIONS),
+    )
+    if cam.fov_y >= 180:
+        raise c.error(key + ("fov_y",), f"camera.fov_y must be below 180 degrees, got {cam.fov_y}")
+    if cam.far <= cam.near:
+        raise c.error(key + ("far",), f"camera.far ({cam.far}) must be greater than camera.near ({cam.near})")
+    if cam.eye == cam.target:
+        raise c.error(key + ("target",), "camera.eye and camera.target are the same point")
+    _check_view(c, cam)
+    return cam
+
+
+DEPTH_STEPS_EXPONENT = 20  # near >= distance * 2^-20: the target keeps 16 float32 depth steps below 1.0
+
+
+def _check_view(c: _Checker, cam: Camera) -> None:
+    """The camera's consequences, in the float32 the GPU gets: a view direction and an up vector that are not
+    parallel, matrices that stay finite, and a near plane the depth buffer can resolve at the target."""
+    key = ("camera",)
+    eye, target, up = (np.array(v, np.float64) for v in (cam.eye, cam.target, cam.up))
+    forward = (target - eye) / np.abs(target - eye).max()  # scaled first: no overflow in the norm
+    forward /= np.linalg.norm(forward)
+    up_dir = up / np.abs(up).max()
+    up_dir /= np.linalg.norm(up_dir)
+    if np.linalg.norm(np.cross(forward, up_dir)) < 1e-6:
+        raise c.error(key + ("up",), f"camera.up {list(cam.up)} is parallel to the view direction (eye to target "
+                                     f"{list(np.round(forward, 6))}): choose an up vector across it, e.g. [0, 0, 1]")
+    try:
+        view = cam.view()
+        clip = cam.projection(1.0) @ view
+    except ValueError as err:
+        raise c.error(key + ("up",), f"camera: {err}") from None
+    if not (np.all(np.isfinite(view.astype(np.float32))) and np.all(np.isfinite(clip.astype(np.float32)))):
+        raise c.error(key + ("eye",), f"camera: eye {list(cam.eye)} and target {list(cam.target)} give a view "
+                                      "matrix beyond float32's range; bring them closer to the origin")
+    distance = float(np.linalg.norm((target - eye) / 2.0**64)) * 2.0**64
+    least = distance * 2.0**-DEPTH_STEPS_EXPONENT
+    if cam.near < least:
+        raise c.error(key + ("near",), f"camera.near = {cam.near:g} is too small for the depth buffer: at the "
+                                       f"target's distance ({distance:.6g}) the depth rounds to 1.0 in float32, "
+                                       f"so nothing would be drawn; use near >= {least:.3g}")
+
+
+def _sampler(c: _Checker, data: Any, key: KeyPath) -> SamplerSettings:
+    t = c.table(data, key, SAMPLER_KEYS)
+    s = SamplerSettings(
+        filter=c.string(t.get("filter", "linear"), key + ("filter",), FILTERS),
+        mipmaps=c.boolean(t.get("mipmaps", True), key + ("mipmaps",)),
+        anisotropy=c.integer(t.get("anisotropy", 1), key + ("anisotropy",), lo=1, hi=MAX_ANISOTROPY),
+        address_mode=c.string(t.get("address_mode", "repeat"), key + ("address_mode",), ADDRESS_MODES),
+    )
+    if s.anisotropy > 1 and s.filter != "linear":
+        raise c.error(
+            key + ("anisotropy",),
+            f"{format_path(key)}: anisotropy {s.anisotropy} needs filter = \"linear\" "
+            "(wgpu allows anisotropic filtering only with linear min, mag and mipmap filters)",
+        )
+    return s
+
+
+def _material(c: _Checker, data: Any, key: KeyPath, name: str, origin: str) -> Material:
+    t = c.table(data, key, MATERIAL_KEYS)
+    written = tuple((k, v if isinstance(v, str) else repr(v)) for k, v in t.items() if k != "sampler")
+    maps = {k: c.file(t[k], key + (k,), "texture") for k in ("albedo_map", "normal_map", "roughness_map") if k in t}
+    return Material(
+        name=name,
+        albedo_color=_color(c, t.get("albedo_color", list(DEFAULT_ALBEDO_COLOR)), key + ("albedo_color",)),
+        roughness=c.number(t.get("roughness", DEFAULT_ROUGHNESS), key + ("roughness",), 0.0, 1.0),
+        unlit=c.boolean(t.get("unlit", False), key + ("unlit",)),
+        uv_flip_v=c.boolean(t.get("uv_flip_v", False), key + ("uv_flip_v",)),
+        sampler=_sampler(c, t.get("sampler", {}), key + ("sampler",)),
+        origin=origin,
+        written=written,
+        **maps,
+    )
+
+
+def _color(c: _Checker, value: Any, key: KeyPath) -> Vec4:
+    v = c.vector(value, key, lengths=(3, 4))
+    if min(v) < 0:
+        raise c.error(key, f"{format_path(key)} must not be negative, got {list(v)}")
+    return v if len(v) == 4 else (*v, 1.0)
+
+
+def _transform(c: _Checker, data: Any, key: KeyPath) -> Transform:
+    t = c.table(data, key, TRANSFORM_KEYS)
+    if "matrix" in t:
+        others = sorted(set(t) - {"matrix"})
+        if others:
+            raise c.error(key + (others[0],), f"{format_path(key)}: matrix cannot be combined with {', '.join(others)}")
+        rows = t["matrix"]
+        if not isinstance(rows, list) or len(rows) != 4:
+            raise c.error(key + ("matrix",), f"{format_path(key)}.matrix must be 4 rows of 4 numbers")
+        m = np.array([c.vector(r, key + ("matrix",), lengths=(4,)) for r in rows])
+        if abs(np.linalg.det(m[:3, :3])) < 1e-12:
+            raise c.error(key + ("matrix",), f"{format_path(key)}.matrix is singular (its 3x3 part has determinant 0)")
+        return Transform(_rows(m), "matrix")
+    parts, m = [], np.eye(4)
+    if "translate" in t:
+        offset = c.vector(t["translate"], key + ("translate",))
+        m = m @ transforms.translate(offset)
+        parts.append(f"translate {list(offset)}")
+    if "rotate" in t:
+        rot, text = _rotation(c, t["rotate"], key + ("rotate",))
+        m = m @ rot
+        parts.append(text)
+    if "scale" in t:
+        s = t["scale"]
+        factors = (c.number(s, key + ("scale",)),) * 3 if not isinstance(s, list) else c.vector(s, key + ("scale",))
+        if not all(factors):
+            raise c.error(key + ("scale",), f"{format_path(key)}.scale must not be 0 on any axis")
+        m = m @ transforms.scale(factors)
+        parts.append(f"scale {list(factors) if isinstance(s, list) else factors[0]}")
+    return Transform(_rows(m), ", ".join(parts) or "identity")
+
+
+def _rotation(c: _Checker, data: Any, key: KeyPath) -> tuple[np.ndarray, str]:
+    """{axis, degrees} (right-hand rule) or {euler = [x, y, z]} in degrees, applied X first: Rz @ Ry @ Rx."""
+    t = c.table(data, key, ("axis", "degrees", "euler"))
+    if "euler" in t:
+        if set(t) != {"euler"}:
+            raise c.error(key, f"{format_path(key)}: give either euler, or axis and degrees")
+        ex, ey, ez = c.vector(t["euler"], key + ("euler",))
+        rot = (transforms.rotate((0, 0, 1), math.radians(ez)) @ transforms.rotate((0, 1, 0), math.radians(ey))
+               @ transforms.rotate((1, 0, 0), math.radians(ex)))
+        return rot, f"rotate euler XYZ [{ex}, {ey}, {ez}] deg"
+    if set(t) != {"axis", "degrees"}:
+        raise c.error(key, f"{format_path(key)}: give either euler, or axis and degrees")
+    axis = c.vector(t["axis"], key + ("axis",), nonzero=True)
+    degrees = c.number(t["degrees"], key + ("degrees",))
+    return transforms.rotate(axis, math.radians(degrees)), f"rotate {degrees} deg about {list(axis)}"
+
+
+def _model_path(c: _Checker, value: Any, key: KeyPath) -> Path:
+    from wgpurender.core.mesh import SUPPORTED, UNSUPPORTED
+
+    written = c.string(value, key)
+    suffix = Path(written).suffix.lower()
+    if suffix in UNSUPPORTED:
+        raise c.error(key, f"{format_path(key)}: '{written}' is {UNSUPPORTED[suffix]}, which cannot be loaded: "
+                           f"convert it to glTF (.glb); supported formats: {', '.join(SUPPORTED)}")
+    if suffix not in SUPPORTED:
+        raise c.error(key, f"{format_path(key)}: '{written}' has an unknown model format "
+                           f"(supported: {', '.join(SUPPORTED)})")
+    return c.file(written, key, "model file")
+
+
+def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Model, ...]:
+    if not isinstance(data, list):
+        raise c.error(("models",), "models must be an array of tables: write each as [[models]]")
+    out = []
+    for i, entry in enumerate(data):
+        key = ("models", i)
+        t = c.table(entry, key, MODEL_KEYS, required=("path",))
+        material = DEFAULT_MATERIAL
+        if "material" in t:
+            m = t["material"]
+            if isinstance(m, str):
+                if m not in materials:
+                    valid = ", ".join(sorted(materials)) or "none defined"
+                    raise c.error(key + ("material",), f"models[{i}].material: no material '{m}' "
+                                                       f"(materials: {valid}; define it as [materials.{m}])")
+                material = materials[m]
+            else:
+                material = _material(c, m, key + ("material",), f"models[{i}]", f"models[{i}].material (inline)")
+        out.append(
+            Model(
+                index=i,
+                path=_model_path(c, t["path"], key + ("path",)),
+                written_path=t["path"],
+                material=material,
+                transform=_transform(c, t.get("transform", {}), key + ("transform",)),
+            )
+        )
+    return tuple(out)
+
+
+def _lights(c: _Checker, data: Any) -> tuple[Light, ...]:
+    if not isinstance(data, list):
+        raise c.error(("lights",), "lights must be an array of tables: write each as [[lights]]")
+    if len(data) > MAX_LIGHTS:
+        raise c.error(("lights", MAX_LIGHTS), f"{len(data)} lights, but at most MAX_LIGHTS = {MAX_LIGHTS} are "
+                                              f"supported: remove {len(data) - MAX_LIGHTS}")
+    out = []
+    for i, entry in enumerate(data):
+        key = ("lights", i)
+        t = c.table(entry, key, LIGHT_KEYS, required=("type",))
+        kind = c.string(t["type"], key + ("type",), LIGHT_TYPES)
+        needs, forbids = ("direction", "position") if kind == "directional" else ("position", "direction")
+        if needs not in t:
+            raise c.error(key, f"lights[{i}]: a {kind} light needs '{needs}'")
+        if forbids in t:
+            raise c.error(key + (forbids,), f"lights[{i}]: a {kind} light has no '{forbids}' (it has '{needs}')")
+        color = _color(c, t.get("color", [1, 1, 1]), key + ("color",))
+        out.append(
+            Light(
+                index=i,
+                type=kind,
+                color=color[:3],
+                intensity=c.number(t.get("intensity", 1.0), key + ("intensity",), 0.0),
+                direction=c.vector(t[needs], key + (needs,), nonzero=True) if kind == "directional" else None,
+                position=c.vector(t[needs], key + (needs,)) if kind == "point" else None,
+            )
+        )
+    return tuple(out)
+
+
+def _render(c: _Checker, data: Any) -> RenderSettings:
+    key = ("render",)
+    t = c.table(data, key, RENDER_KEYS)
+    size = t.get("size", [800, 600])
+    if not isinstance(size, list) or len(size) != 2:
+        raise c.error(key + ("size",), f"render.size must be [width, height], got {size!r}")
+    w, h = (c.integer(v, key + ("size",), lo=1, hi=16384) for v in size)
+    return RenderSettings(
+        size=(w, h),
+        msaa=c.integer(t.get("msaa", 4), key + ("msaa",), choices=MSAA_COUNTS),
+        hdr=c.boolean(t.get("hdr", True), key + ("hdr",)),
+        clear_color=_color(c, t.get("clear_color", list(DEFAULT_CLEAR_COLOR)), key + ("clear_color",)),
+        output_format=c.string(t.get("output_format", "rgba8unorm-srgb"), key + ("output_format",), OUTPUT_FORMATS),
+        post_fuse=c.boolean(t.get("post_fuse", True), key + ("post_fuse",)),
+        post_path=c.string(t.get("post_path", "auto"), key + ("post_path",), POST_PATHS),
+    )
+
+
+def _post(c: _Checker, data: Any) -> tuple[PostStep, ...]:
+    from wgpurender.core.course.effects import EFFECTS, check_order, effect_names
+
+    if not isinstance(data, list):
+        raise c.error(("post",), "post must be an array of tables: write each effect as [[post]]")
+    steps = []
+    for i, entry in enumerate(data):
+        key = ("post", i)
+        if not isinstance(entry, dict):
+            raise c.error(key, f"post[{i}] must be a table, got {_type_name(entry)}")
+        if "effect" not in entry:
+            raise c.error(key, f"post[{i}] needs 'effect': one of {', '.join(effect_names())}")
+        name = c.string(entry["effect"], key + ("effect",))
+        if name not in EFFECTS:
+            raise c.error(key + ("effect",), f"post[{i}]: unknown effect '{name}': valid effects are "
+                                             f"{', '.join(effect_names())}")
+        spec = EFFECTS[name]
+        specs = {p.name: p for p in spec.params}
+        params = {k: v for k, v in entry.items() if k != "effect"}
+        c.table(params, key, ("effect", *specs))
+        try:
+            values = spec.validate(params)
+        except UserError as err:
+            bad = _culprit(spec, params)
+            raise c.error(key + ((bad,) if bad else ()), f"post[{i}]: {err}") from None
+        steps.append(PostStep(index=i, effect=name, params=values, written=tuple(params)))
+    try:
+        check_order([s.effect for s in steps])
+    except UserError as err:
+        raise c.error(("post", len(steps) - 1), str(err)) from None
+    return tuple(steps)
+
+
+def _culprit(spec, params: dict) -> str | None:
+    """The first parameter that the effect refuses on its own (so the error points at its line)."""
+    for name, value in params.items():
+        try:
+            spec.validate({name: value})
+        except UserError:
+            return name
+    return next(iter(params), None)

@@ -1,0 +1,114 @@
+"""Regenerate assets/reference/<stage>.png with the raw-Vulkan path.
+
+Run ``python -m wgpurender.raw_path.make_references`` (``make references``).
+
+Every stage this path knows, at REFERENCE_SIZE, in its default format and MSAA; and
+scene_<name>.png for each scene file of SCENE_REFERENCES, at SCENE_REFERENCE_SIZE.
+Only this path ever writes these files (also through ``pytest --regenerate-references``);
+tests/test_raw_path*.py re-render them and compare within the calibrated bounds of
+assets/reference/tolerances.toml. Float images (rgba16float) are stored as 8-bit sRGB PNGs
+(imageio.to_uint8). A file whose pixels did not change is left untouched, and each run says, per
+image, how many pixels changed and by how much at most.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+
+REFERENCE_SIZE = (256, 192)
+REFERENCE_DIR = Path(__file__).resolve().parent.parent.parent / "assets" / "reference"
+SCENE_DIR = REFERENCE_DIR.parent / "scenes"
+SCENE_REFERENCE_SIZE = (320, 240)
+# reference name -> scene file in assets/scenes/ (only scenes the raw path can draw: per-pixel post effects)
+SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml"}
+
+
+def reference_path(stage: str, directory: Path = REFERENCE_DIR) -> Path:
+    return directory / f"{stage}.png"
+
+
+@dataclass(frozen=True)
+class Change:
+    """What regenerating one reference did."""
+
+    name: str
+    path: Path
+    pixels_changed: int  # pixels with any channel different from the old file (all of them when it was new)
+    max_diff: int  # largest channel difference, 1/255
+    new: bool
+
+    def describe(self) -> str:
+        if self.new:
+            return f"{self.name}: new file {self.path}"
+        if not self.pixels_changed:
+            return f"{self.name}: unchanged"
+        return f"{self.name}: {self.pixels_changed} pixels changed, max difference {self.max_diff}/255 ({self.path})"
+
+
+def render_named_reference(name: str) -> np.ndarray:
+    """The 8-bit image of reference ``name`` (a stage or a SCENE_REFERENCES key), by the raw path only."""
+    from wgpurender.core.imageio import to_uint8
+    from wgpurender.raw_path import render_reference
+
+    if name in SCENE_REFERENCES:
+        return to_uint8(render_reference(str(SCENE_DIR / SCENE_REFERENCES[name]), size=SCENE_REFERENCE_SIZE))
+    return to_uint8(render_reference(name, size=REFERENCE_SIZE))
+
+
+def all_reference_names() -> list[str]:
+    from wgpurender.raw_path import reference_stage_names
+
+    return [*reference_stage_names(), *SCENE_REFERENCES]
+
+
+def regenerate(directory: Path = REFERENCE_DIR, names: list[str] | None = None) -> list[Change]:
+    """Re-render the references with the raw path; write those whose pixels changed (or are new)."""
+    from wgpurender.core.imageio import load_png, save_png
+
+    directory.mkdir(parents=True, exist_ok=True)
+    changes = []
+    for name in names or all_reference_names():
+        pixels, path = render_named_reference(name), reference_path(name, directory)
+        old = load_png(path) if path.is_file() else None
+        if old is None or old.shape != pixels.shape:
+            save_png(path, pixels)
+            changes.append(Change(name, path, pixels.shape[0] * pixels.shape[1], 255, True))
+            continue
+        diff = np.abs(old.astype(np.int16) - pixels.astype(np.int16)).max(axis=-1)
+        if diff.any():
+            save_png(path, pixels)
+        changes.append(Change(name, path, int(np.count_nonzero(diff)), int(diff.max()), False))
+    return changes
+
+
+def make_references(directory: Path = REFERENCE_DIR, stages: list[str] | None = None) -> list[Path]:
+    """Regenerate and return the paths of the references (changed or not)."""
+    return [c.path for c in regenerate(directory, stages)]
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m wgpurender.raw_path.make_references", description=__doc__)
+    parser.add_argument("stages", nargs="*",
+                        help="stages or scene references (scene_final_subpass, ...) to render (default: all)")
+    parser.add_argument("--dir", type=Path, default=REFERENCE_DIR, help=f"output folder (default {REFERENCE_DIR})")
+    args = parser.parse_args(argv)
+    os.environ.setdefault("WGPURENDER_VALIDATION", "1")  # references come from a validation-clean path only
+    try:
+        for change in regenerate(args.dir, args.stages or None):
+            print(change.describe())
+    except UserError as err:
+        print(f"make_references: error: {err}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

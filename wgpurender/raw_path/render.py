@@ -1,0 +1,56 @@
+"""Headless rendering on the raw-Vulkan path: a stage into an image, copied back into numpy."""
+
+from __future__ import annotations
+
+from contextlib import ExitStack
+
+import numpy as np
+
+from wgpurender.core.course.formats import is_scene_file
+from wgpurender.core.errors import UserError
+from wgpurender.raw_path.checks import check_msaa, check_size
+from wgpurender.raw_path.command_buffers import one_shot
+from wgpurender.raw_path.images import FORMATS, create_image
+from wgpurender.raw_path.instance import get_vulkan
+from wgpurender.raw_path.readback import buffer_to_pixels, record_copy_to_buffer
+from wgpurender.raw_path.stages import get_ref_stage
+from wgpurender.raw_path.stages.base import TARGET_USAGE
+
+__all__ = ["check_msaa", "check_size", "render_reference"]
+
+def render_reference(
+    stage: str,
+    size: tuple[int, int] | None = (800, 600),
+    fmt: str | None = None,
+    msaa: int | None = None,
+    t: float = 0.0,
+) -> np.ndarray:
+    """Render one stage (or a scene file, ``*.toml``: size None = its [render] size) with raw Vulkan calls
+    and return its pixels, (H, W, 4).
+
+    uint8 for the 8-bit formats (stored bytes: sRGB-encoded for rgba8unorm-srgb),
+    float16 for rgba16float, like wgpurender.wgpu_path.render.render_stage. Everything made
+    for the render is destroyed before returning. With validation on, any
+    validation message raises ValidationFailed.
+    """
+    if is_scene_file(stage):  # a scene file: the final scene, drawn by raw_path/scene/
+        from wgpurender.raw_path.scene import render_scene_reference
+
+        return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t)
+    cls = get_ref_stage(stage)
+    size = size or (800, 600)
+    fmt = fmt or cls.default_format
+    if fmt not in FORMATS:
+        raise UserError(f"unsupported colour format {fmt!r}: choose one of {', '.join(FORMATS)}")
+    ctx = get_vulkan()
+    msaa = check_msaa(ctx, cls, msaa)
+    size = check_size(ctx, size)
+    with ExitStack() as owned:
+        ref_stage = cls(ctx, owned, fmt, msaa, size)
+        target = create_image(ctx, owned, size, fmt, TARGET_USAGE)
+        with one_shot(ctx) as cmd:
+            ref_stage.record(cmd, target, t)
+            buffer = record_copy_to_buffer(ctx, owned, cmd, target)
+        pixels = buffer_to_pixels(ctx, buffer, target)
+    ctx.check_validation(f"the raw-Vulkan render of {stage!r}")
+    return pixels

@@ -1,0 +1,113 @@
+"""The scene's models and materials on the raw path: vertex/index buffers, textures, samplers.
+
+Meshes come from :func:`wgpurender.core.mesh.load_mesh` (the same loader as the wgpu path: both paths
+must draw the same triangles), interleaved with exactly the attributes of the variant that draws
+them and uploaded through staging buffers (memory.upload_buffer: vkCmdCopyBuffer into
+DEVICE_LOCAL memory). Textures go through raw_path/textures.py (staging upload, mip chain drawn
+level by level with the wgpu path's box filter), samplers are VkSamplers made from the plan's
+SamplerSpec. Everything is cached, so models sharing a file or a texture share the copy.
+"""
+
+from __future__ import annotations
+
+from contextlib import ExitStack
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import vulkan as vk
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.mesh import Mesh, load_mesh
+from wgpurender.core.plan import Draw, RenderPlan
+from wgpurender.core.texture_pixels import load_image
+from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.memory import Buffer, upload_buffer
+from wgpurender.raw_path.textures import TextureImage, create_sampler, upload_texture
+
+# attribute -> (shader location, float count): the locations of shaders_glsl/scene.vert
+ATTRIBUTES = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4)}
+INDEX_TYPES = {np.dtype(np.uint16): vk.VK_INDEX_TYPE_UINT16, np.dtype(np.uint32): vk.VK_INDEX_TYPE_UINT32}
+
+
+@dataclass(frozen=True)
+class MeshBuffers:
+    vertex: Buffer
+    index: Buffer
+    index_type: int
+    index_count: int
+
+
+def vertex_input(attributes: tuple[str, ...]) -> tuple[list, list]:
+    """One interleaved binding holding ``attributes`` in order: its binding and attribute descriptions."""
+    descriptions, offset = [], 0
+    for name in attributes:
+        location, n = ATTRIBUTES[name]
+        fmt = {2: vk.VK_FORMAT_R32G32_SFLOAT, 3: vk.VK_FORMAT_R32G32B32_SFLOAT, 4: vk.VK_FORMAT_R32G32B32A32_SFLOAT}[n]
+        descriptions.append(vk.VkVertexInputAttributeDescription(location=location, binding=0, format=fmt,
+                                                                 offset=offset))
+        offset += 4 * n
+    binding = vk.VkVertexInputBindingDescription(binding=0, stride=offset, inputRate=vk.VK_VERTEX_INPUT_RATE_VERTEX)
+    return [binding], descriptions
+
+
+def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
+    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents}
+    return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
+
+
+class SceneResources:
+    """Buffers, textures and samplers of one plan, destroyed with ``owned``."""
+
+    def __init__(self, ctx: VulkanContext, owned: ExitStack, plan: RenderPlan) -> None:
+        self.ctx, self.owned, self.plan = ctx, owned, plan
+        self._meshes: dict[Path, Mesh] = {}
+        self._buffers: dict[tuple[Path, tuple[str, ...]], MeshBuffers] = {}
+        self._textures: dict[tuple[Path, bool], TextureImage] = {}
+        self._samplers: dict[object, object] = {}
+        self._needs_tangents = {d.model_path for d in plan.scene_pass.draws
+                                if "tangent" in plan.variant(d.variant_key).vertex_attributes}
+        self._mipmaps = {(t.path, t.format.endswith("-srgb")): t.mipmaps for t in plan.textures}
+
+    def mesh(self, path: Path) -> Mesh:
+        if path not in self._meshes:
+            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents,
+                                                obj_material=False)  # the scene file gives the material
+        return self._meshes[path]
+
+    def mesh_buffers(self, draw: Draw) -> MeshBuffers:
+        attributes = self.plan.variant(draw.variant_key).vertex_attributes
+        key = (draw.model_path, attributes)
+        if key not in self._buffers:
+            mesh = self.mesh(draw.model_path)
+            _check_mesh(mesh, draw, attributes)
+            vertex_stage = vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT
+            vertex = upload_buffer(self.ctx, self.owned, interleave(mesh, attributes),
+                                   vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertex_stage,
+                                   vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT)
+            indices = np.ascontiguousarray(mesh.indices)
+            index = upload_buffer(self.ctx, self.owned, indices, vk.VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vertex_stage,
+                                  vk.VK_ACCESS_INDEX_READ_BIT)
+            self._buffers[key] = MeshBuffers(vertex, index, INDEX_TYPES[indices.dtype], indices.size)
+        return self._buffers[key]
+
+    def texture(self, path: Path, srgb: bool) -> TextureImage:
+        """Albedo maps as R8G8B8A8_SRGB (decoded on sampling), data maps as R8G8B8A8_UNORM, as the plan lists."""
+        key = (path, srgb)
+        if key not in self._textures:
+            pixels = load_image(path, max_dim=self.ctx.limits.max_image_dimension_2d)
+            self._textures[key] = upload_texture(self.ctx, self.owned, pixels, srgb, self._mipmaps.get(key, True))
+        return self._textures[key]
+
+    def sampler(self, spec):
+        if spec not in self._samplers:
+            self._samplers[spec] = create_sampler(self.ctx, self.owned, spec)
+        return self._samplers[spec]
+
+
+def _check_mesh(mesh: Mesh, draw: Draw, attributes: tuple[str, ...]) -> None:
+    if "uv" in attributes and not mesh.has_uvs:
+        raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
+                        "texture coordinates: export it with UVs, or use a material without maps")
+    if "tangent" in attributes and mesh.tangents is None:
+        raise UserError(f"{draw.label}: no tangents could be made for its normal map")

@@ -1,0 +1,178 @@
+"""Subpass 0: every model of the plan drawn with its variant's pipeline, depth-tested, into the MSAA image.
+
+The course's descriptor sets and push constants, as the cube3d stage uses them:
+
+- set 0: the camera UBO (proj, view, eye, ambient, lights), UNIFORM_BUFFER seen by vertex and
+  fragment stages, in HOST_VISIBLE memory written through a mapping;
+- set 1: the object UBO (world, normal matrix, mirror sign), UNIFORM_BUFFER_DYNAMIC: every model's
+  block in one buffer at a stride aligned to minUniformBufferOffsetAlignment, picked per draw with
+  a dynamic offset in vkCmdBindDescriptorSets;
+- set 2 (variants that sample textures): one COMBINED_IMAGE_SAMPLER per map (albedo 2, normal 3,
+  roughness 4), one set per draw, written with vkUpdateDescriptorSets;
+- push constants: the material factors (base colour, roughness, normal strength, specular),
+  vkCmdPushConstants per draw, fragment stage.
+
+Pipelines are made per (variant key, front face) from shaders_glsl/scene.vert|frag compiled with the
+variant's -D flags (variants.py), through the process-wide VkPipelineCache; a mirroring world matrix
+(negative determinant) turns the winding around, as on the wgpu path.
+"""
+
+from __future__ import annotations
+
+from contextlib import ExitStack
+
+import numpy as np
+import vulkan as vk
+
+from wgpurender.core.course.formats import is_srgb_map
+from wgpurender.core.course.shading import AMBIENT, material_factors
+from wgpurender.core.plan import Draw, RenderPlan, ShaderVariant
+from wgpurender.core.scene import Scene
+from wgpurender.raw_path import descriptors
+from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, write_host_buffer
+from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
+from wgpurender.raw_path.renderpass import RenderPass
+from wgpurender.raw_path.scene import uniforms as U
+from wgpurender.raw_path.scene.resources import SceneResources, vertex_input
+from wgpurender.raw_path.scene.variants import glsl_defines, is_lit
+from wgpurender.raw_path.ubo import dynamic_stride, pack_many
+
+VERTEX, FRAGMENT = vk.VK_SHADER_STAGE_VERTEX_BIT, vk.VK_SHADER_STAGE_FRAGMENT_BIT
+GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS
+READ_ONLY = vk.VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4}
+
+
+def camera_block(scene: Scene, aspect: float) -> bytes:
+    """The lit camera block (the unlit shaders declare only its first three members).
+
+    ``convention = "glm-vulkan"`` scenes upload the projection as the tutorial writes it (with GLM's
+    Y flip for Vulkan's y-down NDC): the viewport is then not flipped (see frame.set_viewport).
+    """
+    cam = scene.camera
+    directional = [(np.asarray(lt.direction) / np.linalg.norm(lt.direction), np.asarray(lt.color) * lt.intensity)
+                   for lt in scene.lights if lt.type == "directional"]
+    point = [(lt.position, np.asarray(lt.color) * lt.intensity) for lt in scene.lights if lt.type == "point"]
+    return U.pack_camera(cam.source_projection(aspect), cam.view(), cam.eye, AMBIENT, directional, point)
+
+
+def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
+    """Push constant bytes; with a roughness map, the map's G channel is the roughness (factor 1)."""
+    mat = scene.models[draw.model_index].material
+    lit = is_lit(variant)
+    f = material_factors(mat.albedo_color, mat.roughness, lit, "roughness_map" in variant.flags)
+    if not lit:
+        return U.pack_material(f["base_color"], lit=False)
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"])
+
+
+class SceneSubpass:
+    """Set layouts, descriptor sets, UBOs and pipelines of subpass 0, and the draws."""
+
+    def __init__(self, ctx: VulkanContext, owned: ExitStack, scene: Scene, plan: RenderPlan,
+                 resources: SceneResources, render_pass: RenderPass) -> None:
+        self.ctx, self.owned, self.scene, self.plan = ctx, owned, scene, plan
+        self.resources, self.render_pass = resources, render_pass
+        self.draws = plan.scene_pass.draws
+        self.pipelines: dict[tuple[str, int], object] = {}
+        self.layouts: dict[str, object] = {}
+        if self.draws:
+            self._setup_uniforms()
+            self._setup_sets()
+            self.draw_state = [self._draw_state(k, d) for k, d in enumerate(self.draws)]
+
+    # -- uniform buffers -------------------------------------------------------
+    def _setup_uniforms(self) -> None:
+        ctx, owned, n = self.ctx, self.owned, len(self.draws)
+        uniform = vk.VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
+        self.object_stride = dynamic_stride(U.OBJECT_SIZE, ctx.limits.min_uniform_buffer_offset_alignment)
+        self.camera_buffer = create_buffer(ctx, owned, U.CAMERA_SIZE, uniform, HOST_MEMORY)
+        self.object_buffer = create_buffer(ctx, owned, self.object_stride * n, uniform, HOST_MEMORY)
+        blocks = [U.pack_object(np.array(d.transform, dtype=np.float64)) for d in self.draws]
+        write_host_buffer(ctx, self.object_buffer, pack_many(blocks, self.object_stride))
+
+    # -- descriptor sets ---------------------------------------------------------
+    def _material_bindings(self, variant: ShaderVariant) -> list:
+        return [descriptors.binding(b, vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, FRAGMENT)
+                for feature, b in TEXTURE_BINDINGS.items() if feature in variant.flags]
+
+    def _setup_sets(self) -> None:
+        ctx, owned = self.ctx, self.owned
+        self.camera_bindings = [descriptors.binding(0, vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VERTEX | FRAGMENT)]
+        self.object_bindings = [descriptors.binding(0, vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, VERTEX)]
+        self.camera_layout = descriptors.create_set_layout(ctx, owned, self.camera_bindings)
+        self.object_layout = descriptors.create_set_layout(ctx, owned, self.object_bindings)
+        self.material_layouts = {}
+        for v in self.plan.variants:
+            bindings = self._material_bindings(v)
+            self.material_layouts[v.key] = (bindings, descriptors.create_set_layout(ctx, owned, bindings)
+                                            if bindings else None)
+        textured = [d for d in self.draws if self.material_layouts[d.variant_key][1] is not None]
+        pool = descriptors.create_pool(ctx, owned, [self.camera_bindings, self.object_bindings]
+                                       + [self.material_layouts[d.variant_key][0] for d in textured])
+        sets = descriptors.allocate_sets(ctx, pool, [self.camera_layout, self.object_layout]
+                                         + [self.material_layouts[d.variant_key][1] for d in textured])
+        self.camera_set, self.object_set = sets[:2]
+        self.material_sets = {d.model_index: s for d, s in zip(textured, sets[2:], strict=True)}
+        writes = [
+            descriptors.write_buffer(self.camera_set, 0, self.camera_buffer.handle, 0, U.CAMERA_SIZE),
+            # range = one block: with a dynamic offset the descriptor is a window sliding over the buffer
+            descriptors.write_buffer(self.object_set, 0, self.object_buffer.handle, 0, U.OBJECT_SIZE,
+                                     vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC),
+        ]
+        for d in textured:
+            sampler = self.resources.sampler(d.sampler)
+            for feature, path in d.textures:
+                texture = self.resources.texture(path, srgb=is_srgb_map(feature))
+                writes.append(descriptors.write_image(self.material_sets[d.model_index], TEXTURE_BINDINGS[feature],
+                                                      texture.view, READ_ONLY,
+                                                      vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sampler))
+        descriptors.update(ctx, writes)
+
+    # -- pipelines ------------------------------------------------------------------
+    def pipeline_layout(self, variant: ShaderVariant):
+        if variant.key not in self.layouts:
+            set_layouts = [self.camera_layout, self.object_layout]
+            if self.material_layouts[variant.key][1] is not None:
+                set_layouts.append(self.material_layouts[variant.key][1])
+            size = U.MATERIAL_SIZE_LIT if is_lit(variant) else U.MATERIAL_SIZE_UNLIT
+            push = vk.VkPushConstantRange(stageFlags=FRAGMENT, offset=0, size=size)
+            self.layouts[variant.key] = create_pipeline_layout(self.ctx, self.owned, set_layouts, [push])
+        return self.layouts[variant.key]
+
+    def pipeline(self, variant: ShaderVariant, front_face: int):
+        key = (variant.key, front_face)
+        if key not in self.pipelines:
+            bindings, attributes = vertex_input(variant.vertex_attributes)
+            desc = PipelineDesc("scene.vert", "scene.frag", bindings, attributes, samples=self.plan.msaa,
+                                cull_mode=vk.VK_CULL_MODE_BACK_BIT, front_face=front_face, depth_test=True,
+                                subpass=0, defines=glsl_defines(variant))
+            self.pipelines[key] = create_pipeline(self.ctx, self.owned, desc, self.pipeline_layout(variant),
+                                                  self.render_pass)
+        return self.pipelines[key]
+
+    def _draw_state(self, k: int, draw: Draw) -> tuple:
+        variant = self.plan.variant(draw.variant_key)
+        mirror = np.linalg.det(np.array(draw.transform)[:3, :3]) < 0
+        front = vk.VK_FRONT_FACE_CLOCKWISE if mirror else vk.VK_FRONT_FACE_COUNTER_CLOCKWISE
+        material = vk.ffi.from_buffer(material_block(self.scene, draw, variant))
+        return (self.pipeline(variant, front), self.pipeline_layout(variant), self.material_sets.get(draw.model_index),
+                material, self.resources.mesh_buffers(draw))
+
+    # -- recording ---------------------------------------------------------------------
+    def record(self, cmd, size: tuple[int, int]) -> None:
+        """Write the camera UBO (host write before the submit) and record the draws into subpass 0."""
+        if not self.draws:
+            return
+        write_host_buffer(self.ctx, self.camera_buffer, camera_block(self.scene, size[0] / size[1]))
+        for k, (pipeline, layout, material_set, material, buffers) in enumerate(self.draw_state):
+            vk.vkCmdBindPipeline(cmd, GRAPHICS, pipeline)
+            vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 0, 1, [self.camera_set], 0, None)
+            vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 1, 1, [self.object_set], 1, [k * self.object_stride])
+            if material_set is not None:
+                vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 2, 1, [material_set], 0, None)
+            vk.vkCmdPushConstants(cmd, layout, FRAGMENT, 0, len(material), material)
+            vk.vkCmdBindVertexBuffers(cmd, 0, 1, [buffers.vertex.handle], [0])
+            vk.vkCmdBindIndexBuffer(cmd, buffers.index.handle, 0, buffers.index_type)
+            vk.vkCmdDrawIndexed(cmd, buffers.index_count, 1, 0, 0, 0)

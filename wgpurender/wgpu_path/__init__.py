@@ -1,0 +1,4 @@
+"""The wgpu path: every course step and the final scene on wgpu-py (the subject of the course).
+
+It imports the core and wgpu, never the raw path (tests/test_layering.py checks it).
+"""

@@ -1,0 +1,174 @@
+"""The GPU context: which adapter, which device features, and how to wait for the GPU.
+
+The course creates an instance, picks a physical device and a queue family, and
+creates a logical device with the features it needs. wgpu folds those into
+``request_adapter`` + ``request_device``; this module is where that happens, once
+per process and backend.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from dataclasses import dataclass, field
+
+import wgpu
+
+from wgpurender.core.course.formats import SAMPLE_COUNTS
+from wgpurender.core.errors import UserError
+
+BACKEND_ENV = "WGPURENDER_BACKEND"
+VALIDATION_ENV = "WGPURENDER_VALIDATION"
+DEFAULT_BACKEND = "Vulkan"
+BACKENDS = ("Vulkan", "Metal", "D3D12", "OpenGL")
+
+# Features the renderer uses when the adapter offers them, and works without otherwise.
+OPTIONAL_FEATURES = (
+    "timestamp-query",
+    "immediates",
+    "clear-texture",
+    "float32-filterable",
+    "pipeline-cache",
+)
+
+INSTALL_HINT = (
+    "install a Vulkan driver (Debian: apt-get install mesa-vulkan-drivers libvulkan1, "
+    "which gives the lavapipe CPU driver) or your GPU vendor's driver"
+)
+
+
+@dataclass
+class GPUContext:
+    """An adapter and the device made from it, plus what was negotiated."""
+
+    adapter: wgpu.GPUAdapter
+    device: wgpu.GPUDevice
+    features: frozenset[str]
+    _fence: wgpu.GPUBuffer | None = field(default=None, repr=False)
+
+    @property
+    def queue(self) -> wgpu.GPUQueue:
+        return self.device.queue
+
+    @property
+    def info(self) -> dict:
+        return dict(self.adapter.info)
+
+    @property
+    def backend(self) -> str:
+        return self.adapter.info["backend_type"]
+
+    def has(self, feature: str) -> bool:
+        return feature in self.features
+
+    def limit(self, name: str) -> int:
+        return self.device.limits[name]
+
+    def describe(self) -> str:
+        info = self.adapter.info
+        return f"{info['device']} ({info['backend_type']}, {info['adapter_type']}, {info['description']})"
+
+    def sample_counts(self, fmt: str = "rgba8unorm") -> tuple[int, ...]:
+        """MSAA sample counts this adapter can render with (WebGPU knows 1 and 4)."""
+        return SAMPLE_COUNTS
+
+    def wait_idle(self) -> None:
+        """Block until every submitted command buffer has finished (the Vulkan analogue: vkQueueWaitIdle).
+
+        wgpu-native's ``wgpuDevicePoll(wait=True)`` waits for the last submission, here on the calling
+        thread (wgpu-py's private ``GPUDevice._poll_wait``). The public ways cost more per frame:
+        ``queue.on_submitted_work_done_sync()`` raises TypeError in wgpu 0.32.0, and mapping a
+        fence buffer hands the wait to wgpu-py's poll thread and back (two thread wake-ups, 0.2 ms
+        to several ms on a loaded machine). Where ``_poll_wait`` is missing (another wgpu-py), we
+        map a tiny buffer copied after the real work: submissions complete in order.
+        """
+        poll = getattr(self.device, "_poll_wait", None)
+        if poll is not None:
+            poll()
+            return
+        dev = self.device
+        if self._fence is None:
+            self._src = dev.create_buffer(size=4, usage=wgpu.BufferUsage.COPY_SRC, label="fence-src")
+            self._fence = dev.create_buffer(
+                size=4, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="fence"
+            )
+        enc = dev.create_command_encoder(label="wait-idle")
+        enc.copy_buffer_to_buffer(self._src, 0, self._fence, 0, 4)
+        self.queue.submit([enc.finish()])
+        self._fence.map_sync(wgpu.MapMode.READ)
+        self._fence.unmap()
+
+    def map_read(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> None:
+        """``buffer.map_sync(READ, ...)``, with the wait done on this thread (see :meth:`wait_idle`).
+
+        The map request is queued first, then the device is polled here, which runs the map
+        callback on this thread; the promise is then already resolved.
+        """
+        promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
+        self.wait_idle()
+        promise.sync_wait()
+
+
+def requested_backend(backend: str | None = None) -> str:
+    """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan."""
+    name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
+    for known in BACKENDS:
+        if name.lower() == known.lower():
+            return known
+    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(BACKENDS)}")
+
+
+@functools.cache
+def _configure_instance_once() -> None:
+    """Create the wgpu instance for the requested backend only, with validation when $WGPURENDER_VALIDATION is set.
+
+    This must run before the first adapter is enumerated (it configures the instance). Limiting
+    the instance to one backend means no OpenGL/EGL enumeration at start-up (the largest part of
+    the context time on lavapipe and NVIDIA alike), and with validation on, NVIDIA's OpenGL
+    backend (enumerated alongside Vulkan otherwise) crashed the process at exit. Validation
+    messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
+    """
+    from wgpu.backends.wgpu_native.extras import set_instance_extras
+
+    from wgpurender.wgpu_path.cffi_types import install_for_wgpu
+
+    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
+    validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
+    set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else ["Default"])
+
+
+@functools.cache
+def _adapters() -> tuple:
+    _configure_instance_once()
+    return tuple(wgpu.gpu.enumerate_adapters_sync())
+
+
+def available_backends() -> list[str]:
+    """Backend names of the adapters this machine offers, in enumeration order."""
+    return sorted({a.info["backend_type"] for a in _adapters()})
+
+
+def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
+    """The first adapter of the requested backend (hardware before CPU)."""
+    want = requested_backend(backend)
+    found = [a for a in _adapters() if a.info["backend_type"] == want]
+    if not found:
+        others = available_backends()
+        alt = f"; this machine offers: {', '.join(others)} (use --backend)" if others else ""
+        if want == "Vulkan":
+            raise UserError(f"no Vulkan adapter found: {INSTALL_HINT}{alt}")
+        raise UserError(f"no {want} adapter found{alt}")
+    order = {"DiscreteGPU": 0, "IntegratedGPU": 1, "VirtualGPU": 2, "CPU": 3}
+    return min(found, key=lambda a: order.get(a.info["adapter_type"], 4))
+
+
+@functools.cache
+def get_context(backend: str | None = None) -> GPUContext:
+    """The process-wide context for a backend, created on first use."""
+    adapter = select_adapter(backend)
+    features = frozenset(f for f in OPTIONAL_FEATURES if f in adapter.features)
+    limits = {}
+    if "immediates" in features:
+        limits["max-immediate-size"] = adapter.limits["max-immediate-size"]
+    device = adapter.request_device_sync(label="wgpurender", required_features=sorted(features), required_limits=limits)
+    return GPUContext(adapter=adapter, device=device, features=features)

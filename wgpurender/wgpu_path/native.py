@@ -1,0 +1,42 @@
+"""wgpu-native calls that wgpu-py 0.32 does not wrap, reached through its cffi handle.
+
+Kept in one module so that the day wgpu-py wraps them, one file changes.
+"""
+
+from __future__ import annotations
+
+import wgpu
+
+from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path.gpu import GPUContext
+
+
+def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgpu.GPUTexture) -> None:
+    """Record wgpuCommandEncoderClearTexture: every texel of every mip becomes zero.
+
+    This is a transfer command outside any render pass, like vkCmdClearColorImage;
+    unlike it, WebGPU's clear has no colour argument: it always writes zeros.
+    """
+    if not ctx.has("clear-texture"):
+        raise UserError("this adapter lacks the 'clear-texture' feature: use the stage 'clear-pass' instead")
+    from wgpu.backends.wgpu_native._ffi import ffi, lib
+
+    subresources = ffi.new(
+        "WGPUImageSubresourceRange *",
+        {
+            "aspect": lib.WGPUTextureAspect_All,
+            "baseMipLevel": 0,
+            "mipLevelCount": texture.mip_level_count,
+            "baseArrayLayer": 0,
+            "arrayLayerCount": texture.size[2],
+        },
+    )
+    lib.wgpuCommandEncoderClearTexture(encoder._internal, texture._internal, subresources)
+
+
+def timestamp_period_ns(ctx: GPUContext) -> float:
+    """Nanoseconds per timestamp tick (wgpuQueueGetTimestampPeriod; VkPhysicalDeviceLimits::timestampPeriod)."""
+    from wgpu.backends.wgpu_native._ffi import lib
+
+    return float(lib.wgpuQueueGetTimestampPeriod(ctx.queue._internal))
+

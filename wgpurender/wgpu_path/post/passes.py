@@ -1,0 +1,179 @@
+"""The two small runners of a planned post pass: a render pass (fragment) or a dispatch (compute).
+
+Both run the shader that wgpu_path/post/shaders.py generates for the plan's :class:`~core.plan.PostPass`,
+with the same bindings: 0 the input texture, 1 a linear clamp sampler (effects that filter), 2 the pass's
+parameter struct (steps with parameters), and on the compute path 3 the storage texture written.
+
+Pipelines and layouts are made once per device and shader text (wgpurender/wgpu_path/gpu_cache.py); bind groups
+and views once per (source, target) texture pair, in a small cache that a swapchain cannot grow.
+"""
+
+from __future__ import annotations
+
+import hashlib
+
+import wgpu
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.plan import PostPass
+from wgpurender.wgpu_path.gpu_cache import GpuCache, device_cache
+from wgpurender.wgpu_path.post.shaders import WORKGROUP, pack_pass, pass_source, srgb_constant
+from wgpurender.wgpu_path.shaders import create_shader_module
+
+FRAGMENT, COMPUTE = wgpu.ShaderStage.FRAGMENT, wgpu.ShaderStage.COMPUTE
+
+
+def linear_clamp_sampler(device: wgpu.GPUDevice) -> wgpu.GPUSampler:
+    return device_cache(device, "samplers").get("post-linear-clamp", lambda: device.create_sampler(
+        label="post-linear-clamp", mag_filter="linear", min_filter="linear",
+        address_mode_u="clamp-to-edge", address_mode_v="clamp-to-edge"))
+
+
+class PlannedPass:
+    """What both runners share: the generated shader, its layout, the parameter buffer and bind groups."""
+
+    stage = FRAGMENT
+
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass) -> None:
+        self.device, self.p = device, p
+        self.source = pass_source(p)
+        self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
+        self.filtering = p.steps[0].spec.filtering
+        self.buffer = None
+        data = pack_pass(p)
+        if data:
+            self.buffer = device.create_buffer(label=f"post-{p.effect}-params", size=len(data),
+                                               usage=wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST)
+            device.queue.write_buffer(self.buffer, 0, data)
+        self.layout = device_cache(device, "post-layouts").get((self.key, self.stage), self._make_layout)
+        self.groups: GpuCache[wgpu.GPUBindGroup] = GpuCache(f"post-{p.effect}-bind-groups", 4)
+
+    def module(self) -> wgpu.GPUShaderModule:
+        return device_cache(self.device, "post-modules").get(self.key, lambda: create_shader_module(
+            self.device, f"post_{self.p.effect}.wgsl (generated)", self.source))
+
+    def _entries(self) -> list[dict]:
+        sample_type = "float" if self.filtering else "unfilterable-float"
+        entries = [{"binding": 0, "visibility": self.stage,
+                    "texture": {"sample_type": sample_type, "view_dimension": "2d"}}]
+        if self.filtering:
+            entries.append({"binding": 1, "visibility": self.stage, "sampler": {"type": "filtering"}})
+        if self.buffer is not None:
+            entries.append({"binding": 2, "visibility": self.stage, "buffer": {"type": "uniform"}})
+        return entries
+
+    def _make_layout(self) -> wgpu.GPUPipelineLayout:
+        bgl = self.device.create_bind_group_layout(label=f"post-{self.p.effect}", entries=self._entries())
+        return self.device.create_pipeline_layout(label=f"post-{self.p.effect}", bind_group_layouts=[bgl])
+
+    def _group_entries(self, source: wgpu.GPUTexture) -> list[dict]:
+        entries = [{"binding": 0, "resource": source.create_view()}]
+        if self.filtering:
+            entries.append({"binding": 1, "resource": linear_clamp_sampler(self.device)})
+        if self.buffer is not None:
+            entries.append({"binding": 2, "resource": {"buffer": self.buffer, "offset": 0, "size": self.buffer.size}})
+        return entries
+
+    def check(self, source: wgpu.GPUTexture, target: wgpu.GPUTexture) -> None:
+        if source.sample_count != 1:
+            raise UserError(f"post pass {self.p.effect!r} reads a multisampled texture: resolve it first")
+        if tuple(source.size[:2]) != tuple(target.size[:2]):
+            raise UserError(f"post pass {self.p.effect!r}: source {source.size[:2]} and target "
+                            f"{target.size[:2]} differ")
+
+
+class FragmentPass(PlannedPass):
+    """A render pass drawing the full-screen triangle once (twice with a mask: fs_mark, then fs_main)."""
+
+    stage = FRAGMENT
+
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass) -> None:
+        super().__init__(device, p)
+        self.mask_format = p.steps[0].spec.mask_format if p.mask else None
+        entries = ("fs_mark", "fs_main") if p.mask else ("fs_main",)
+        self.pipelines = [self.pipeline(e) for e in entries]
+        self.views: GpuCache[wgpu.GPUTextureView] = GpuCache(f"post-{p.effect}-views", 4)
+
+    def pipeline(self, entry_point: str) -> wgpu.GPURenderPipeline:
+        depth = None
+        if self.mask_format is not None:  # fs_mark writes the mask; fs_main runs where it is 1 (compare "less" 0)
+            depth = {"format": self.mask_format, "depth_write_enabled": entry_point == "fs_mark",
+                     "depth_compare": "always" if entry_point == "fs_mark" else "less"}
+        fmt = self.p.output_format
+        constants = {"SRGB_ENCODE": srgb_constant(self.p)} if any(s.effect == "srgb" for s in self.p.steps) else {}
+
+        def make() -> wgpu.GPURenderPipeline:
+            module = self.module()
+            return self.device.create_render_pipeline(
+                label=f"post-{self.p.effect}-{fmt}-{entry_point}", layout=self.layout,
+                vertex={"module": module, "entry_point": "vs_main", "buffers": []},
+                primitive={"topology": "triangle-list", "cull_mode": "none"},
+                depth_stencil=depth,
+                multisample={"count": 1, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
+                fragment={"module": module, "entry_point": entry_point, "targets": [{"format": fmt}],
+                          "constants": constants})
+
+        return device_cache(self.device, "post-pipelines").get((self.key, "fragment", entry_point, fmt), make)
+
+    def encode(self, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
+               mask: wgpu.GPUTexture | None = None, timestamp_writes: dict | None = None) -> None:
+        self.check(source, target)
+        group = self.groups.get((source,), lambda: self.device.create_bind_group(
+            label=f"post-{self.p.effect}", layout=self.pipelines[0].get_bind_group_layout(0),
+            entries=self._group_entries(source)))
+        depth = None
+        if mask is not None:
+            depth = {"view": self.views.get(mask, mask.create_view), "depth_clear_value": 1.0,
+                     "depth_load_op": "clear", "depth_store_op": "discard"}
+        # load, not clear: the full-screen triangle writes every pixel (no discard, no blending), so a clear
+        # is wasted work (WebGPU has no "don't care" load op; the raw subpass uses DONT_CARE). ~5% of a pass.
+        render_pass = encoder.begin_render_pass(
+            label=f"post-{self.p.effect}",
+            color_attachments=[{"view": self.views.get(target, target.create_view), "load_op": "load",
+                                "store_op": "store"}],
+            depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
+        render_pass.set_bind_group(0, group)
+        for pipeline in self.pipelines:
+            render_pass.set_pipeline(pipeline)
+            render_pass.draw(3)
+        render_pass.end()
+
+
+class ComputePass(PlannedPass):
+    """A dispatch of 8x8 workgroups writing a storage texture (then a copy, for an -srgb output)."""
+
+    stage = COMPUTE
+
+    def _entries(self) -> list[dict]:
+        return super()._entries() + [{"binding": 3, "visibility": COMPUTE, "storage_texture": {
+            "access": "write-only", "format": self.p.output_format, "view_dimension": "2d"}}]
+
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass) -> None:
+        super().__init__(device, p)
+        constants = {"SRGB_ENCODE": srgb_constant(p)} if any(s.effect == "srgb" for s in p.steps) else {}
+        self.pipeline = device_cache(device, "post-pipelines").get(
+            (self.key, "compute", "cs_main", p.output_format), lambda: device.create_compute_pipeline(
+                label=f"post-{p.effect}-{p.output_format}-compute", layout=self.layout,
+                compute={"module": self.module(), "entry_point": "cs_main", "constants": constants}))
+
+    def encode(self, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
+               copy_to: wgpu.GPUTexture | None = None, timestamp_writes: dict | None = None) -> None:
+        self.check(source, target)
+        group = self.groups.get((source, target), lambda: self.device.create_bind_group(
+            label=f"post-{self.p.effect}", layout=self.pipeline.get_bind_group_layout(0),
+            entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
+        compute_pass = encoder.begin_compute_pass(label=f"post-{self.p.effect}", timestamp_writes=timestamp_writes)
+        compute_pass.set_pipeline(self.pipeline)
+        compute_pass.set_bind_group(0, group)
+        w, h = target.size[0], target.size[1]
+        compute_pass.dispatch_workgroups(-(-w // WORKGROUP[0]), -(-h // WORKGROUP[1]), 1)
+        compute_pass.end()
+        if copy_to is not None:
+            encoder.copy_texture_to_texture({"texture": target}, {"texture": copy_to}, (w, h, 1))
+
+
+def planned_pass(device: wgpu.GPUDevice, p: PostPass) -> FragmentPass | ComputePass:
+    return ComputePass(device, p) if p.path == "compute" else FragmentPass(device, p)
+
+
+__all__ = ["ComputePass", "FragmentPass", "PlannedPass", "linear_clamp_sampler", "planned_pass"]

@@ -1,0 +1,141 @@
+"""The WGSL of one post pass, generated from the plan: parameter structs, the composed effects, an entry point.
+
+Each effect's file (shaders_wgsl/post_<name>.wgsl) holds only functions: a per-pixel effect
+``<name>_pixel(texel, pos, size, params) -> vec4f``, a neighbourhood effect ``<name>_at(p, pos, params)``
+(FXAA also ``fxaa_marks(p, params) -> bool`` for its mask). Their parameter structs are generated here
+from the GPU-free specs (wgpurender/core/course/effects.py) with :mod:`wgpurender.core.uniforms`, like the scene's
+structs, so Python and WGSL cannot disagree on a field (a choice parameter is ``<name>_index``).
+
+A pass's shader is post_common.wgsl, the structs, ``struct PassParams { s0: ..., s1: ... }`` (one member
+per step that has parameters), the effects' functions, and a generated ``pass_color``: the first step's
+colour (the texel itself, or the neighbourhood effect's result) passed through every per-pixel step in
+order. That composition is what fuses a chain: the steps are functions in registers, so the image is
+read once and written once. The entry points around ``pass_color``:
+
+- fragment: ``fs_main`` (a full-screen triangle) and, for an effect with a mask (FXAA on lavapipe),
+  ``fs_mark``: llvmpipe runs both sides of a branch for every pixel, so FXAA's early exit saved nothing
+  (a flat image cost as much as the scene); what it does skip is a block of pixels failing an early
+  depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
+  ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
+- compute: ``cs_main`` over 8x8 tiles, ``textureStore`` into ``dst`` (binding 3), a storage texture.
+  A pass whose output is an ``-srgb`` format writes an ``rgba8unorm`` scratch instead (``-srgb`` cannot
+  be a storage texture) with the sRGB curve applied here, then the runner copies it (same bytes).
+"""
+
+from __future__ import annotations
+
+from wgpurender.core.course.effects import EffectSpec, encoding_of, needs_shader_encoding
+from wgpurender.core.plan import PostPass
+from wgpurender.core.uniforms import F32, Struct, wgsl_structs
+from wgpurender.wgpu_path.shaders import load_wgsl
+
+COMMON_WGSL = "post_common.wgsl"
+SRGB_WGSL = "post_srgb.wgsl"
+WORKGROUP = (8, 8)
+
+
+def params_struct(spec: EffectSpec) -> Struct | None:
+    """The effect's parameter struct (one f32 per parameter, in spec order); None without parameters."""
+    if not spec.params:
+        return None
+    return Struct(spec.struct_name, [(p.field, F32) for p in spec.params])
+
+
+def pass_struct(p: PostPass) -> Struct | None:
+    """``PassParams``: member ``s<i>`` holds step i's parameters (steps without any have no member)."""
+    fields = [(f"s{i}", params_struct(s.spec)) for i, s in enumerate(p.steps) if s.spec.params]
+    return Struct("PassParams", fields) if fields else None
+
+
+def pack_pass(p: PostPass) -> bytes:
+    struct = pass_struct(p)
+    values = {f"s{i}": s.packed() for i, s in enumerate(p.steps) if s.spec.params}
+    return struct.pack(values) if struct is not None else b""
+
+
+def srgb_constant(p: PostPass) -> float:
+    """SRGB_ENCODE of the srgb step: 1 where the format written does not encode by itself."""
+    return 1.0 if needs_shader_encoding(p.output_format) else 0.0
+
+
+def _arg(p: PostPass, i: int) -> str:
+    return f", params.s{i}" if p.steps[i].spec.params else ""
+
+
+def _tail(p: PostPass, first: int) -> str:
+    lines = ["fn pass_tail(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
+    for i in range(first, len(p.steps)):
+        name = p.steps[i].effect
+        lines.append(f"    c = {name}_pixel(c, pos, size{_arg(p, i)});")
+    if encoding_of(p.copy_format or "") == "hardware" and p.steps[-1].effect != "srgb":
+        # compute into an rgba8unorm scratch of an -srgb output: the hardware would have encoded, so the shader does
+        lines.append("    c = vec4f(srgb_encode(c.rgb), c.a);")
+    lines += ["    return c;", "}"]
+    return "\n".join(lines)
+
+
+def _color(p: PostPass) -> str:
+    head = p.steps[0]
+    first = 1 if not head.spec.fusable else 0
+    start = f"{head.effect}_at(p, pos{_arg(p, 0)})" if first else "textureLoad(src, p, 0)"
+    return (f"{_tail(p, first)}\n\n"
+            f"fn pass_color(p: vec2i, pos: vec2f, size: vec2f) -> vec4f {{\n"
+            f"    return pass_tail({start}, pos, size);\n}}")
+
+
+FRAGMENT_MAIN = """
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+    return pass_color(vec2i(in.position.xy), in.position.xy, vec2f(textureDimensions(src)));
+}
+"""
+
+FRAGMENT_MARK = """
+struct Marked {
+    @location(0) color: vec4f,
+    @builtin(frag_depth) depth: f32,
+};
+
+@fragment
+fn fs_mark(in: FullscreenOut) -> Marked {
+    let p = vec2i(in.position.xy);
+    let c = pass_tail(src_clamped(p), in.position.xy, vec2f(textureDimensions(src)));
+    return Marked(c, select(0.0, 1.0, HEAD_marks(p ARG)));
+}
+"""
+
+COMPUTE_MAIN = """
+@group(0) @binding(3) var dst: texture_storage_2d<FORMAT, write>;
+
+@compute @workgroup_size(WX, WY)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    let size = textureDimensions(src);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let p = vec2i(id.xy);
+    textureStore(dst, p, pass_color(p, vec2f(id.xy) + vec2f(0.5), vec2f(size)));
+}
+"""
+
+
+def pass_source(p: PostPass) -> str:
+    """The whole WGSL module of a post pass on its path (fragment or compute)."""
+    parts = [load_wgsl(COMMON_WGSL)]
+    struct = pass_struct(p)
+    if struct is not None:
+        parts.append(wgsl_structs(struct))
+        parts.append("@group(0) @binding(2) var<uniform> params: PassParams;")
+    files = dict.fromkeys(f"post_{s.effect}.wgsl" for s in p.steps)
+    if p.copy_to:  # srgb_encode, for a scratch of an -srgb output
+        files.setdefault(SRGB_WGSL)
+    parts.extend(load_wgsl(f) for f in files)
+    parts.append(_color(p))
+    if p.path == "compute":
+        parts.append(COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(WORKGROUP[0]))
+                     .replace("WY", str(WORKGROUP[1])))
+    else:
+        parts.append(FRAGMENT_MAIN)
+        if p.mask:
+            parts.append(FRAGMENT_MARK.replace("HEAD", p.steps[0].effect).replace(" ARG", _arg(p, 0)))
+    return "\n\n".join(parts) + "\n"

@@ -1,0 +1,55 @@
+"""Headless rendering: a stage (or a scene file) into an offscreen target, read back into numpy."""
+
+from __future__ import annotations
+
+from wgpurender.core.course.formats import is_scene_file
+from wgpurender.wgpu_path.frame_loop import RenderResult, run_frames
+from wgpurender.wgpu_path.gpu import GPUContext, get_context
+from wgpurender.wgpu_path.stages import get_stage
+from wgpurender.wgpu_path.targets import check_format, create_target
+
+__all__ = ["RenderResult", "render_any", "render_stage"]
+
+
+def render_stage(
+    name: str,
+    size: tuple[int, int] = (800, 600),
+    fmt: str | None = None,
+    msaa: int | None = None,
+    t: float = 0.0,
+    ctx: GPUContext | None = None,
+    frames: int = 2,
+) -> RenderResult:
+    """Render ``frames`` frames of a stage headless and return the last one.
+
+    The first frame pays for lazy driver work (shader JIT on lavapipe), so the
+    reported time is the last frame's.
+    """
+    ctx = ctx or get_context()
+    cls = get_stage(name)
+    fmt = check_format(fmt or cls.default_format)
+    stage = cls(ctx, fmt, msaa)
+    stage.resize(size)
+    target = create_target(ctx, size, fmt)
+    frame = run_frames(ctx, stage.record, target, frames, t, label=f"{name}-frame")
+    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
+
+
+def render_any(
+    target: str,
+    size: tuple[int, int] | None = None,
+    fmt: str | None = None,
+    msaa: int | None = None,
+    t: float = 0.0,
+    backend: str | None = None,
+    anisotropy: str = "scene",
+) -> RenderResult:
+    """A stage by name, or a scene file (:func:`wgpurender.core.course.formats.is_scene_file`).
+
+    ``anisotropy``: "scene" or "auto" (per adapter, wgpurender/core/anisotropy.py), for scene files."""
+    ctx = get_context(backend)
+    if is_scene_file(target):
+        from wgpurender.wgpu_path.scene_render import render_scene_file  # the final-scene renderer
+
+        return render_scene_file(target, size=size, fmt=fmt, msaa=msaa, t=t, ctx=ctx, anisotropy=anisotropy)
+    return render_stage(target, size or (800, 600), fmt, msaa, t, ctx)

@@ -1,0 +1,293 @@
+"""A GLFW window with a wgpu surface: the course's surface, swapchain and present modes, plus the demo's controls.
+
+vkCreateXlibSurfaceKHR + vkCreateSwapchainKHR become one ``GPUCanvasContext`` made from
+the native window handles (``wgpu.utils.get_glfw_present_info``) and configured with a
+format and a usage; vkAcquireNextImageKHR is ``get_current_texture()`` and vkQueuePresentKHR
+is ``present()``. Resizing re-configures the surface (the swapchain re-creation of the
+course), a minimised window (0x0 framebuffer) renders nothing until it comes back, and an
+occluded one (``wgpu.DrawCancelled`` from ``get_current_texture()``, wgpu-py 0.32) skips
+the frame, like VK_ERROR_OUT_OF_DATE_KHR / VK_SUBOPTIMAL_KHR in the course.
+
+Present modes: wgpu-py 0.32's public API has vsync on or off, nothing finer. ``fifo``
+(vsync on, never tears, always offered) and ``immediate`` (vsync off: wgpu takes immediate,
+else mailbox, else fifo, whichever the surface offers first) map onto it; ``mailbox`` cannot
+be asked for without reaching into the context's private configuration, so it is not offered.
+
+The demo on top (wgpurender/cli/demo.py), one module each in this package: ``view`` (what is
+shown: a stage or a scene, rebuilt from its files, with the orbit camera of wgpurender/core/orbit.py),
+``controls`` (mouse and keys, and the tests' synthetic input), ``live_reload`` (which files
+changed; a broken file leaves the last good pipeline on screen and prints ``file:line: message``
+once), ``frame_times`` (the benchmark mode). FPS and frame time go in the title.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import wgpu
+
+from wgpurender.core import slow_frames
+from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.window.controls import Controls, ScriptEvent, send
+from wgpurender.wgpu_path.window.frame_times import BenchmarkSpec, FrameRecorder
+from wgpurender.wgpu_path.window.live_reload import FileWatcher, error_line
+from wgpurender.wgpu_path.window.view import DemoView
+
+PRESENT_MODES = ("fifo", "immediate")
+SURFACE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC
+RELOAD_POLL_S = 0.25  # how often the watched files are stat'ed
+TITLE_EVERY_S = 0.5  # how often the FPS in the title is refreshed
+WAIT_RELOAD_TIMEOUT_S = 60.0
+# Errors a rebuild or a new drawable's first frame can raise when a file is broken.
+REBUILD_ERRORS = (UserError, wgpu.GPUError, ValueError, KeyError, TypeError, OSError)
+
+
+@dataclass
+class WindowResult:
+    frames: int
+    mean_frame_ms: float
+    last_frame: np.ndarray | None  # the last presented image, when a screenshot was asked for
+    reload_errors: list[str] = field(default_factory=list)
+    benchmark: FrameRecorder | None = None
+
+
+def _glfw():
+    try:
+        import glfw
+    except ImportError as err:  # the wheel ships its own libglfw; this is a broken install
+        raise UserError(f"cannot import glfw ({err}): pip install glfw, or apt-get install libglfw3") from None
+    if not glfw.init():
+        raise UserError("GLFW could not open a display: run under a desktop session or Xvfb (DISPLAY must be set)")
+    return glfw
+
+
+def present_info(window, present_mode: str) -> dict:
+    """The native handles wgpu needs to make a surface, from wgpu's own helper; vsync picks the present mode."""
+    from wgpu.utils.glfw_present_info import get_glfw_present_info
+
+    if present_mode == "mailbox":
+        raise UserError("present mode 'mailbox' is not offered through wgpu-py 0.32's public API (vsync on or off "
+                        "only): use fifo (vsync) or immediate (no vsync; wgpu falls back to mailbox where immediate "
+                        "is missing)")
+    if present_mode not in PRESENT_MODES:
+        raise UserError(f"unknown present mode {present_mode!r}: choose one of {', '.join(PRESENT_MODES)}")
+    return get_glfw_present_info(window, vsync=present_mode == "fifo")
+
+
+def surface_format(context, adapter) -> str:
+    """The sRGB variant of the surface's preferred format, as the Vulkan tutorial picks (B8G8R8A8_SRGB)."""
+    preferred = context.get_preferred_format(adapter)
+    return preferred if preferred.endswith("-srgb") else preferred + "-srgb"
+
+
+def run_window(
+    ctx: GPUContext,
+    view: DemoView,
+    *,
+    title: str = "wgpurender",
+    size: tuple[int, int] = (800, 600),
+    frames: int | None = None,
+    present_mode: str = "fifo",
+    fixed_time: float | None = None,
+    screenshot: bool = False,
+    benchmark: BenchmarkSpec | None = None,
+    script: list[ScriptEvent] = (),
+) -> WindowResult:
+    """Open a window and draw ``view`` until it closes (Esc, close button), ``frames`` frames were shown,
+    or the benchmark's run time is over."""
+    glfw = _glfw()
+    glfw.window_hint(glfw.CLIENT_API, glfw.NO_API)  # wgpu owns the surface, GLFW makes no GL context
+    window = glfw.create_window(size[0], size[1], title, None, None)
+    if not window:
+        glfw.terminate()
+        raise UserError("GLFW could not create a window")
+    demo = None
+    try:
+        demo = DemoWindow(ctx, glfw, window, view, title, present_mode)
+        return demo.run(frames, fixed_time, screenshot, benchmark, list(script))
+    finally:
+        if demo is not None:
+            demo.close()  # the surface goes before its window: released after it, it crashes the process
+        del demo
+        glfw.destroy_window(window)
+        glfw.terminate()
+
+
+class DemoWindow:
+    """One window's state: surface, drawable (and the last good one), controls, watcher, title counters."""
+
+    def __init__(self, ctx: GPUContext, glfw, window, view: DemoView, title: str, present_mode: str) -> None:
+        self.ctx, self.glfw, self.window, self.view, self.title = ctx, glfw, window, view, title
+        self.context = wgpu.gpu.get_canvas_context(present_info(window, present_mode))
+        self.format = surface_format(self.context, ctx.adapter)
+        self.context.set_physical_size(*glfw.get_framebuffer_size(window))
+        self.context.configure(device=ctx.device, format=self.format, usage=SURFACE_USAGE)
+        self.controls = Controls(glfw, lambda: view.orbit)
+        self._install_callbacks()
+        self.drawable = view.build(self.format)  # a broken file at start-up is the user's error: exit 2
+        self.first_frame_pending = True
+        self.watcher = FileWatcher(view.watched)
+        self.previous = None  # the last good drawable while a rebuilt one has not drawn its first frame
+        self.reload_errors: list[str] = []
+        self.broken = False  # the files as they are now do not build: the title says so
+        self.reloads = 0
+        self._last_poll = self._title_at = time.perf_counter()
+        self._title_frames = 0
+
+    def close(self) -> None:
+        """Release the surface (vkDestroySwapchainKHR + vkDestroySurfaceKHR) while the window still exists."""
+        self.drawable = self.previous = None
+        if self.context is not None:
+            self.context.unconfigure()
+            self.context = None
+
+    def _install_callbacks(self) -> None:
+        g, c = self.glfw, self.controls
+        g.set_key_callback(self.window, lambda _w, key, _sc, action, _mods: c.key(key, action))
+        g.set_mouse_button_callback(self.window, lambda _w, button, action, _mods: c.mouse_button(button, action))
+        g.set_cursor_pos_callback(self.window, lambda _w, x, y: c.cursor_pos(x, y))
+        g.set_scroll_callback(self.window, lambda _w, _dx, dy: c.scroll(dy))
+
+    # -- live reload -----------------------------------------------------------------
+    def poll_files(self, force: bool = False) -> bool:
+        """Rebuild when a watched file changed; True when a rebuild was tried."""
+        now = time.perf_counter()
+        if not force and now - self._last_poll < RELOAD_POLL_S:
+            return False
+        self._last_poll = now
+        changed = self.watcher.changed()
+        if not changed:
+            return False
+        self.reloads += 1
+        names = ", ".join(p.name for p in changed)
+        try:
+            candidate = self.view.build(self.format)
+        except REBUILD_ERRORS as err:
+            self._report(err)
+        else:
+            self.previous, self.drawable = self.drawable, candidate
+            self.first_frame_pending = True
+            print(f"reloaded after a change to {names}", flush=True)
+        self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
+        return True
+
+    def _report(self, err: BaseException) -> None:
+        """Print a failed rebuild once (the watcher only fires again when a file changes again)."""
+        line = error_line(err, self.view.watched | set(self.watcher.paths))
+        self.reload_errors.append(line)
+        self.broken = True
+        print(f"reload failed, still showing the last good frame: {line}", file=sys.stderr, flush=True)
+
+    # -- a frame ----------------------------------------------------------------------
+    def _run_frame(self, texture, t: float, capture: bool):
+        """One frame through the shared frame loop (wgpurender/wgpu_path/frame_loop.py) into the swapchain image.
+
+        A rebuilt drawable's first frame may still fail (pipelines made on first use); then the last
+        good drawable draws this frame and stays, and the error is printed once.
+        """
+        from wgpurender.wgpu_path.frame_loop import run_frame
+
+        while True:
+            self.view.apply_camera(self.drawable)
+            self.drawable.resize(tuple(texture.size[:2]))
+            if not self.first_frame_pending:
+                return run_frame(self.ctx, self.drawable.record, texture, t, read_back=capture)
+            try:
+                with self.view.record_lazy_loads():  # pipelines made in the first frame load shaders too
+                    frame = run_frame(self.ctx, self.drawable.record, texture, t, read_back=capture)
+            except REBUILD_ERRORS as err:
+                if self.previous is None:
+                    raise
+                self._report(err)
+                self.drawable, self.previous, self.first_frame_pending = self.previous, None, False
+                continue
+            self.first_frame_pending, self.previous, self.broken = False, None, False
+            self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
+            return frame
+
+    def frame(self, t: float, capture: bool) -> tuple[bool, np.ndarray | None]:
+        """Draw and present one frame: (drawn, pixels when ``capture``). False: nothing to draw into."""
+        width, height = self.glfw.get_framebuffer_size(self.window)
+        if width == 0 or height == 0:  # minimised: nothing to draw into, wait for the next event
+            self.glfw.wait_events_timeout(0.1)
+            return False, None
+        self.context.set_physical_size(width, height)
+        try:
+            texture = self.context.get_current_texture()
+        except wgpu.DrawCancelled:  # occluded (or the surface is being re-made): skip this frame
+            self.glfw.wait_events_timeout(0.05)
+            return False, None
+        pixels = self._run_frame(texture, t, capture).pixels  # read back before present hands the image away
+        self.context.present()
+        return True, pixels
+
+    def _update_title(self, now: float) -> None:
+        self._title_frames += 1
+        if now - self._title_at < TITLE_EVERY_S:
+            return
+        ms = (now - self._title_at) * 1e3 / self._title_frames
+        status = "  |  reload failed (see the terminal)" if self.broken else ""
+        self.glfw.set_window_title(self.window, f"{self.title}  |  {1e3 / ms:.1f} FPS  {ms:.2f} ms{status}")
+        self._title_at, self._title_frames = now, 0
+
+    # -- the loop -----------------------------------------------------------------------
+    def run(self, frames, fixed_time, screenshot, benchmark, script) -> WindowResult:
+        recorder = FrameRecorder(benchmark) if benchmark else None
+        start, shown, last = time.perf_counter(), 0, None
+        while not self.glfw.window_should_close(self.window) and (frames is None or shown < frames):
+            self.glfw.poll_events()
+            shots = self._run_script(script, shown)
+            if self.controls.close_requested:
+                break
+            self.poll_files()
+            t = fixed_time if fixed_time is not None else time.perf_counter() - start
+            want = bool(shots) or (screenshot and (frames is None or shown == frames - 1))
+            drawn, pixels = self.frame(t, want)
+            if not drawn:
+                continue
+            for path in shots:
+                from wgpurender.core.imageio import save_png
+
+                save_png(path, pixels)
+            if screenshot and pixels is not None:
+                last = pixels
+            shown += 1
+            size = tuple(self.glfw.get_framebuffer_size(self.window))
+            slow_frames.tick(self.ctx, self.drawable, size)  # a frame over 3 s says once why (issue 15)
+            now = time.perf_counter()
+            self._update_title(now)
+            if recorder is not None:
+                recorder.frame_done(now)
+                if recorder.finished():
+                    break
+        elapsed = (time.perf_counter() - start) * 1e3
+        if screenshot and last is None and shown:
+            raise UserError("the window closed before a frame could be captured")
+        return WindowResult(frames=shown, mean_frame_ms=elapsed / max(shown, 1), last_frame=last,
+                            reload_errors=self.reload_errors, benchmark=recorder)
+
+    def _run_script(self, script: list[ScriptEvent], frame: int) -> list[Path]:
+        """Deliver the test script's events for this frame; the paths of shots to save after it."""
+        shots = []
+        while script and script[0].frame <= frame:
+            event = script.pop(0)
+            if event.action == "shot":
+                shots.append(Path(event.args[0]))
+            elif event.action == "wait-reload":
+                self._wait_reload()
+            else:
+                send(self.controls, event)
+        return shots
+
+    def _wait_reload(self) -> None:
+        deadline = time.perf_counter() + WAIT_RELOAD_TIMEOUT_S
+        while not self.poll_files(force=True):
+            if time.perf_counter() > deadline:
+                raise UserError(f"--test-input wait-reload: no watched file changed in {WAIT_RELOAD_TIMEOUT_S:.0f} s")
+            self.glfw.poll_events()
+            time.sleep(0.05)

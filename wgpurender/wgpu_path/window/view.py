@@ -1,0 +1,123 @@
+"""What the demo window shows: a stage or a scene file, rebuilt from its files on demand, with an orbit camera.
+
+A :class:`DemoView` builds the drawable (a :class:`~wgpurender.wgpu_path.stages.base.Stage` or a
+:class:`~wgpurender.wgpu_path.scene_render.SceneRenderer`) for the surface's format, records which
+WGSL files that took (plus the scene file itself) for live reload, and moves the drawable's
+camera to the orbit's pose. Scenes and the 3d stage have a camera; the other stages are
+flat and ignore camera input.
+
+The start pose comes from where the headless renderer gets it: the scene file's
+``[camera]``, or the 3d stage's own camera constants (whatever the stage is built with).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+from wgpurender.core.orbit import Orbit
+from wgpurender.wgpu_path.gpu import GPUContext
+
+
+class DemoView:
+    """``build(fmt)`` makes a fresh drawable from the files as they are now; ``watched`` lists those files."""
+
+    def __init__(self, ctx: GPUContext, target: str, msaa: int | None = None, anisotropy: str = "auto") -> None:
+        self.ctx, self.target, self.msaa, self.anisotropy = ctx, target, msaa, anisotropy
+        from wgpurender.core.course.formats import is_scene_file
+
+        self.is_scene = is_scene_file(target)
+        self.watched: set[Path] = set()
+        self.orbit: Orbit | None = None
+        self._start_pose: tuple | None = None
+
+    def check(self) -> None:
+        """Fail on a bad stage name, scene file or option before a window opens, as cheaply as possible.
+
+        A scene is loaded and planned (no GPU work: building its renderer twice cost a second of start-up on
+        lavapipe); a stage is built, which is cheap and runs the stage's own option checks.
+        """
+        if self.is_scene:
+            from wgpurender.core.plan import build_plan
+            from wgpurender.core.scene import load_scene
+
+            build_plan(load_scene(self.target), msaa=self.msaa, anisotropy=self.anisotropy,
+                       adapter_type=self.ctx.adapter.info["adapter_type"])
+        else:
+            self._make("rgba8unorm-srgb")
+
+    def build(self, fmt: str):
+        """A new drawable, its first frame's shaders included (pipelines made lazily are made in ``warm``)."""
+        from wgpurender.wgpu_path.shaders import recording_loads
+        from wgpurender.wgpu_path.window.live_reload import drop_shader_caches
+
+        drop_shader_caches(self.ctx.device)
+        with recording_loads() as loaded:
+            drawable = self._make(fmt)
+        self.watched = set(loaded) | ({Path(self.target).resolve()} if self.is_scene else set())
+        self._adopt_camera(drawable)
+        return drawable
+
+    def record_lazy_loads(self):
+        """A context manager for the first draw of a new drawable: shaders it loads join ``watched``."""
+        from contextlib import contextmanager
+
+        from wgpurender.wgpu_path.shaders import recording_loads
+
+        @contextmanager
+        def block():
+            with recording_loads() as loaded:
+                yield
+            self.watched |= loaded
+
+        return block()
+
+    def _make(self, fmt: str):
+        if self.is_scene:
+            from wgpurender.core.plan import build_plan
+            from wgpurender.core.scene import load_scene
+            from wgpurender.wgpu_path.scene_render import SceneRenderer
+
+            scene = load_scene(self.target)
+            plan = build_plan(scene, output_format=fmt, msaa=self.msaa, anisotropy=self.anisotropy,
+                              adapter_type=self.ctx.adapter.info["adapter_type"])
+            # a swapchain image is not a storage texture: a compute post path writes it through a scratch copy
+            return SceneRenderer(self.ctx, scene, plan.with_knobs(output_storage=False))
+        from wgpurender.wgpu_path.stages import get_stage
+
+        return get_stage(self.target)(self.ctx, fmt, self.msaa)
+
+    # -- the camera ------------------------------------------------------------------
+    @staticmethod
+    def _camera_of(drawable):
+        """(eye, target, up) of the drawable's camera, or None for a flat stage."""
+        if hasattr(drawable, "scene_pass"):
+            cam = drawable.scene_pass.scene.camera
+        else:
+            cam = getattr(drawable, "camera", None)
+        if cam is None:
+            return None
+        return tuple(cam.eye), tuple(cam.target), tuple(cam.up)
+
+    def _adopt_camera(self, drawable) -> None:
+        """Start the orbit at the drawable's camera; keep the user's orbit when a rebuild left that camera alone."""
+        pose = self._camera_of(drawable)
+        if pose is None:
+            self.orbit = self._start_pose = None
+            return
+        if pose != self._start_pose or self.orbit is None:
+            self.orbit = Orbit.from_look_at(*pose)
+            self._start_pose = pose
+
+    def apply_camera(self, drawable) -> None:
+        """Move the drawable's camera to the orbit's eye and target (a no-op for flat stages)."""
+        if self.orbit is None:
+            return
+        eye, target = self.orbit.eye(), tuple(float(v) for v in self.orbit.target)
+        if hasattr(drawable, "scene_pass"):
+            scene = drawable.scene_pass.scene
+            if (tuple(scene.camera.eye), tuple(scene.camera.target)) != (eye, target):
+                camera = dataclasses.replace(scene.camera, eye=eye, target=target)
+                drawable.scene_pass.scene = dataclasses.replace(scene, camera=camera)
+        elif getattr(drawable, "camera", None) is not None:
+            drawable.camera = dataclasses.replace(drawable.camera, eye=eye, target=target)
