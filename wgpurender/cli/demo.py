@@ -61,7 +61,7 @@ def register(subparsers) -> None:
                        help="seconds of timed frames (default 10)")
     bench.add_argument("--benchmark-result-file", default="benchmark.csv", metavar="CSV",
                        help="where the per-frame times go: frame,frame_ms (default benchmark.csv)")
-    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window/controls.py)
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (core/controls.py)
     p.set_defaults(func=run)
 
 
@@ -103,11 +103,11 @@ def run(args) -> int:
 def _show(args):
     from pathlib import Path
 
+    from wgpurender.core.controls import parse_script
+    from wgpurender.core.frame_times import BenchmarkSpec
     from wgpurender.core.imageio import check_writable
     from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.window import run_window
-    from wgpurender.wgpu_path.window.controls import parse_script
-    from wgpurender.wgpu_path.window.frame_times import BenchmarkSpec
     from wgpurender.wgpu_path.window.view import DemoView
 
     if args.screenshot:
