@@ -21,7 +21,7 @@ import textwrap
 from dataclasses import dataclass
 
 R = "wgpurender.raw_path."
-W = "wgpurender."
+W = "wgpurender.wgpu_path."
 
 
 @dataclass(frozen=True)
@@ -42,7 +42,8 @@ def _raw(*locations: str) -> tuple[str, ...]:
 
 
 def _wgpu(*locations: str) -> tuple[str, ...]:
-    return tuple(W + loc for loc in locations)
+    """wgpu-path locations; ``core.`` ones are the API-free code the wgpu path builds on (WGSL structs, variants)."""
+    return tuple("wgpurender." + loc if loc.startswith("core.") else W + loc for loc in locations)
 
 
 CONCEPTS: list[Concept] = [
@@ -391,7 +392,7 @@ CONCEPTS: list[Concept] = [
         ("glslc (GLSL -> SPIR-V)", "vkCreateShaderModule (codeSize, pCode)"),
         _raw("glsl:compile_glsl", "glsl:create_shader_module", "glsl:glsl_path", "scene.variants:glsl_defines"),
         ("device.create_shader_module(code=WGSL or SPIR-V)",),
-        _wgpu("shaders:create_shader_module", "shaders:load_wgsl", "shader_variants:specialise"),
+        _wgpu("shaders:create_shader_module", "shaders:load_wgsl", "core.shader_variants:specialise"),
         "WGSL text compiled by naga at run time (errors with line and column). naga also takes SPIR-V, but not "
         "a combined sampler2D and not subpassInput. Shader variants: WGSL has no preprocessor, so the wgpu path "
         "specialises its template in Python; the raw path passes glslc -D flags to one GLSL source.",
@@ -508,7 +509,7 @@ CONCEPTS: list[Concept] = [
         _raw("ubo:dynamic_stride", "ubo:pack_camera", "ubo:pack_object", "instance:copy_limits",
              "scene.uniforms:pack_camera", "scene.uniforms:pack_object"),
         ("WGSL uniform address space layout", "limit 'min-uniform-buffer-offset-alignment'"),
-        _wgpu("uniforms:Struct.stride", "uniforms:Struct.pack", "uniforms:Struct.pack_many", "uniforms:wgsl_structs"),
+        _wgpu("core.uniforms:Struct.stride", "core.uniforms:Struct.pack", "core.uniforms:Struct.pack_many", "core.uniforms:wgsl_structs"),
         "WGSL's uniform layout equals std140 for these types and naga rejects a struct that breaks it. The wgpu "
         "path declares each struct once and generates both the packer and the WGSL text; the raw path packs by "
         "hand, as an independent check.",
@@ -553,7 +554,7 @@ CONCEPTS: list[Concept] = [
 
 def short(location: str) -> str:
     """A location without the package prefix, for display."""
-    return location.removeprefix(W)
+    return location.removeprefix(W).removeprefix("wgpurender.")
 
 
 def raw_cell(row: Concept) -> list[str]:
@@ -578,8 +579,9 @@ Generated from `wgpurender/concepts.py` by `python -m wgpurender.concepts > docs
 (or `wgpurender concepts --markdown > docs/vulkan-mapping.md`); edit the data there and regenerate.
 tests/test_concepts.py fails when this file is stale and checks that every code location below exists.
 
-Locations are `module:function` (or `module:Class.method`) under `wgpurender.`: the raw path is
-`raw_path.*` (Python `vulkan` binding, GLSL), the wgpu path is everything else.
+Locations are `module:function` (or `module:Class.method`): the raw path's under `wgpurender.raw_path.`
+(Python `vulkan` binding, GLSL), the wgpu path's under `wgpurender.wgpu_path.` (shown without that prefix);
+`core.*` is the API-free core (`wgpurender.core.`) the wgpu path generates its WGSL structs from.
 """
 
 
