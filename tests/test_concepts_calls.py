@@ -74,6 +74,7 @@ HELPERS = {
     "core.uniforms:wgsl_structs": "the WGSL struct declarations",
     "targets:padded_bytes_per_row": "row-padding arithmetic for copy_texture_to_buffer",
     "textures:mip_level_count": "mip chain arithmetic",
+    "post.chain:attachment_usage": "adds TextureUsage.STORAGE_BINDING to the textures a compute pass writes",
 }
 # Data, not code: constants that hold values of the row's API.
 DATA = {"gpu:GPUContext.queue", "gpu:OPTIONAL_FEATURES", "window:PRESENT_MODES", "window:SURFACE_USAGE",
