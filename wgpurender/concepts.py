@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 R = "wgpurender.raw_path."
 W = "wgpurender.wgpu_path."
+C = "wgpurender."  # core locations are written "core.module:attr"
 
 
 @dataclass(frozen=True)
@@ -45,7 +46,7 @@ def _raw(*locations: str) -> tuple[str, ...]:
 
 def _wgpu(*locations: str) -> tuple[str, ...]:
     """wgpu-path locations; ``core.`` ones are the API-free code the wgpu path builds on (WGSL structs, variants)."""
-    return tuple("wgpurender." + loc if loc.startswith("core.") else W + loc for loc in locations)
+    return tuple((C if loc.startswith("core.") else W) + loc for loc in locations)
 
 
 CONCEPTS: list[Concept] = [
@@ -641,7 +642,7 @@ CONCEPTS: list[Concept] = [
 
 def short(location: str) -> str:
     """A location without the package prefix, for display."""
-    return location.removeprefix(W).removeprefix("wgpurender.")
+    return location.removeprefix(W).removeprefix(C)
 
 
 def title(row: Concept) -> str:
