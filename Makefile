@@ -11,7 +11,7 @@ APT_PACKAGES := python3 python3-venv mesa-vulkan-drivers libvulkan1 libglfw3 xvf
 STAMP := $(VENV)/.installed
 export XDG_RUNTIME_DIR ?= /tmp
 
-.PHONY: setup apt demo report test fuzz lint references bench clean
+.PHONY: setup apt demo report report-screenshot test fuzz lint references bench clean
 
 setup: apt $(STAMP)
 
@@ -34,10 +34,16 @@ demo: setup
 	@echo "In a window: $(BIN)/wgpurender demo assets/scenes/final.toml (orbit camera, live reload; see README)"
 	@echo "The course on one page: make report (or $(BIN)/wgpurender report -o out/report), then open out/report/index.html"
 
-# The visual course report: every step on both paths, their difference, timings and code (about a minute on lavapipe).
+# The visual course report: every step on both paths, their difference, timings and code, and the accuracy measured
+# in the run (about a minute on lavapipe with 2 cores).
 report: setup
 	@mkdir -p out
 	$(BIN)/wgpurender report -o out/report
+
+# docs/img/report.png, the README's picture of the report: a fresh report, then headless Chromium's screenshot of
+# the 3d step (both renders, the heatmap, the metrics and the code of both paths side by side).
+report-screenshot: report
+	cd tests && ../$(BIN)/python browser.py ../out/report/index.html ../docs/img/report.png 3d 1100x1240
 
 test: setup
 	$(BIN)/ruff check .

@@ -1,8 +1,8 @@
 """Open a page in headless Chromium over the DevTools protocol (--remote-debugging-pipe) and report what happened.
 
-Also the README's screenshot of the report::
+Also the README's screenshot of the report (``make report-screenshot`` runs it)::
 
-    cd tests && ../.venv/bin/python browser.py /tmp/site/index.html ../docs/img/report.png 3d
+    cd tests && ../.venv/bin/python browser.py /tmp/site/index.html ../docs/img/report.png 3d 1100x1240
 
 No Python dependency: Chromium reads JSON commands from fd 3 and writes replies and events
 to fd 4, each message ended by a NUL byte. :func:`open_page` loads a file:// URL, waits for
@@ -36,6 +36,7 @@ class PageReport:
     images: list[dict] = field(default_factory=list)  # {"src", "complete", "width"}
     errors: list[str] = field(default_factory=list)
     screenshot: bytes = b""
+    values: dict = field(default_factory=dict)  # the results of the ``evaluate`` expressions, by name
 
 
 class _Pipe:
@@ -99,9 +100,10 @@ def _errors(events: list[dict]) -> list[str]:
 
 
 def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 90.0,
-              scroll_to: str | None = None) -> PageReport:
+              scroll_to: str | None = None, evaluate: dict[str, str] | None = None) -> PageReport:
     """Load ``path`` in headless Chromium; what loaded, what went wrong, and a screenshot (of the element with
-    id ``scroll_to`` scrolled to the top, when given)."""
+    id ``scroll_to`` scrolled to the top, when given). ``evaluate``: name -> JavaScript expression, run in the page
+    before the screenshot; their JSON-able results come back in ``values``."""
     exe = chromium()
     if exe is None:
         raise FileNotFoundError("chromium is not installed (apt-get install chromium)")
@@ -122,7 +124,7 @@ def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 
         os.close(from_chrome_w)
         pipe = _Pipe(proc, to_chrome_w, from_chrome_r)
         try:
-            return _inspect(pipe, path, size, timeout, scroll_to)
+            return _inspect(pipe, path, size, timeout, scroll_to, evaluate or {})
         finally:
             try:
                 pipe.send("Browser.close", timeout=10)
@@ -137,7 +139,8 @@ def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 
             os.close(from_chrome_r)
 
 
-def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float, scroll_to: str | None) -> PageReport:
+def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float, scroll_to: str | None,
+             evaluate: dict[str, str]) -> PageReport:
     target = pipe.send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = pipe.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
     for domain in ("Page", "Runtime", "Log"):
@@ -151,15 +154,19 @@ def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float, scr
         "expression": "JSON.stringify(Array.from(document.images, i => "
                       "({src: i.getAttribute('src'), complete: i.complete, width: i.naturalWidth})))",
         "returnByValue": True}, session=session)["result"]["value"]
+    values = {name: pipe.send("Runtime.evaluate", {"expression": expr, "returnByValue": True},
+                              session=session)["result"].get("value") for name, expr in evaluate.items()}
     if scroll_to:
         scroll = f"document.getElementById({json.dumps(scroll_to)}).scrollIntoView()"
         pipe.send("Runtime.evaluate", {"expression": scroll}, session=session)
     shot = pipe.send("Page.captureScreenshot", {"format": "png"}, session=session)["data"]
-    return PageReport(json.loads(images), _errors(pipe.events), base64.b64decode(shot))
+    return PageReport(json.loads(images), _errors(pipe.events), base64.b64decode(shot), values)
 
 
 if __name__ == "__main__":
     import sys
 
-    page, png, *anchor = sys.argv[1:]
-    Path(png).write_bytes(open_page(Path(page), (1100, 860), scroll_to=anchor[0] if anchor else None).screenshot)
+    page, png, *rest = sys.argv[1:]
+    anchor = rest[0] if rest else None
+    width, height = (int(v) for v in rest[1].split("x")) if len(rest) > 1 else (1100, 860)
+    Path(png).write_bytes(open_page(Path(page), (width, height), scroll_to=anchor).screenshot)

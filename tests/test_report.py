@@ -10,6 +10,7 @@ at a def or class, and each scene's plan text.
 
 from __future__ import annotations
 
+import datetime
 import html
 import io
 import os
@@ -31,14 +32,19 @@ needs_chromium = pytest.mark.skipif(chromium() is None, reason="chromium is not 
 needs_glslc = pytest.mark.skipif(shutil.which("glslc") is None, reason="the raw path needs glslc")
 
 
+BUILT: dict[str, datetime.datetime] = {}
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """`wgpurender report -o DIR`, as a user runs it."""
     if shutil.which("glslc") is None:
         pytest.skip("the raw path needs glslc (apt-get install glslc)")
     out = tmp_path_factory.mktemp("report") / "site"
+    BUILT["start"] = datetime.datetime.now(datetime.UTC).replace(second=0, microsecond=0)
     result = subprocess.run([sys.executable, "-m", "wgpurender", "report", "-o", str(out)], capture_output=True,
                             text=True, timeout=900)
+    BUILT["end"] = datetime.datetime.now(datetime.UTC)
     assert result.returncode == 0, result.stderr
     return out
 
@@ -113,7 +119,8 @@ def test_metrics_and_timings_are_shown_for_both_paths(site):
     got = compare_images(load_png(site / "3d_raw.png"), load_png(site / "3d_wgpu.png"))
     psnr = "identical (inf)" if got.psnr == float("inf") else f"{got.psnr:.2f} dB"
     assert psnr in part and f"{got.flip_mean:.5f}" in part
-    rows = re.findall(r"<tr><th>(GPU time|frame time) \(median\)</th><td>([^<]+)</td><td>([^<]+)</td>", part)
+    rows = re.findall(r'<tr data-metric="[\w-]+"><th class="label">(GPU time|frame time) \(median\)</th>'
+                      r'<td class="value">([^<]+)</td><td class="value">([^<]+)</td>', part)
     assert [r[0] for r in rows] == ["GPU time", "frame time"]
     for _, wgpu_ms, raw_ms in rows:
         for cell in (wgpu_ms, raw_ms):
@@ -140,10 +147,9 @@ def test_scene_sections_show_the_render_plan(site):
     plan = explain_scene(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
     assert plan[0].startswith("scene: ") and "scene: assets/scenes/final.toml" in _section(text, "final")
     assert html.escape("\n".join(plan[1:])) in _section(text, "final")  # the plan, all but the file's path
-    assert 'src="accuracy_pareto.png"' in text and (site / "accuracy_pareto.png").is_file()
-    hard = text[text.index('<section id="hard-cases">'):]
-    for case in ("depth precision", "far from origin", "MSAA slivers"):  # rows of docs/numerics.md's table
-        assert f"<td>{case}</td>" in hard
+    part = _section(text, "final")
+    assert re.search(r'<details class="plan"><summary>', part), "the plan is collapsed by default"
+    assert '<pre class="plan-text">' in part
 
 
 def test_report_refuses_a_folder_that_is_not_a_report(tmp_path):
@@ -153,3 +159,135 @@ def test_report_refuses_a_folder_that_is_not_a_report(tmp_path):
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and "not empty" in result.stderr
     assert (tmp_path / "notes.txt").read_text() == "mine"
+
+
+# -- issue 23: a report for a classroom ---------------------------------------------------------------------
+
+
+def _steps_with_images(text: str) -> list[str]:
+    return [k for k in _sections(text) if 'class="note missing"' not in _section(text, k)]
+
+
+def test_every_step_has_its_images_code_on_both_paths_and_labelled_metrics(site):
+    """Each rendered step: wgpu, raw and heatmap images that open full size, highlighted code excerpts of both
+    paths linked to listings whose anchored line is the excerpt's first line, and each metric in a labelled row."""
+    text = (site / "index.html").read_text()
+    keys = _steps_with_images(text)
+    assert len(keys) >= 14
+    for key in keys:
+        part = _section(text, key)
+        for kind in ("wgpu", "raw", "heat"):
+            name = f"{key}_{kind}.png"
+            assert f'<a class="full" href="{name}"' in part and (site / name).is_file(), f"{key}: {kind} image"
+        columns = {"wgpu": part[part.index('data-path="wgpu"'):part.index('data-path="raw"')],
+                   "raw": part[part.index('data-path="raw"'):]}
+        for side, column in columns.items():
+            links = re.findall(r'<a class="source" href="(code/([\w/.]+\.py)\.html#L-(\d+))">', column)
+            assert links, f"{key}: no {side} code"
+            for _, path, line in links:
+                assert (site / f"code/{path}.html").is_file()
+                source = (REPO / path).read_text().splitlines()[int(line) - 1].strip()
+                assert source.startswith(("def ", "class ")), f"{path}:{line} is {source!r}"
+                assert path.startswith(f"wgpurender/{'wgpu_path' if side == 'wgpu' else 'raw_path'}/")
+        assert 'class="hl"' in part  # Pygments' markup
+        for metric in ("psnr", "flip", "max-diff", "gpu-ms", "frame-ms"):
+            assert re.search(rf'<tr data-metric="{metric}"><th class="label">[^<]+</th><td[^>]*class="value">', part), \
+                f"{key}: metric {metric}"
+
+
+def test_the_heatmap_says_identical_exactly_where_nothing_differs(site):
+    text = (site / "index.html").read_text()
+    identical = amplified = 0
+    for key in _steps_with_images(text):
+        part = _section(text, key)
+        wgpu_img, raw_img = load_png(site / f"{key}_wgpu.png"), load_png(site / f"{key}_raw.png")
+        same = np.array_equal(wgpu_img[..., :3], raw_img[..., :3])
+        assert ('<span class="verdict">identical</span>' in part) == same, key
+        assert ("amplified &times;32" in part) == (not same), key
+        identical += same
+        amplified += not same
+    assert identical and amplified  # both kinds occur in the course (stages identical, final.toml not)
+
+
+def test_the_sampler_lanes_of_textured_are_labelled(site):
+    from wgpurender.core.course.textured import SEPARATE_SAMPLERS
+
+    part = _section((site / "index.html").read_text(), "textured")
+    assert part.count('<div class="lanes">') == 2  # under both paths' images
+    tags = re.findall(r'<span class="lane" style="width: ([\d.]+)%">(\w)</span>', part)
+    assert [t for _, t in tags[:5]] == ["A", "1", "2", "3", "4"]
+    assert sum(float(w) for w, _ in tags[:5]) == pytest.approx(100.0, abs=0.5)
+    legend = part[part.index('<div class="lane-legend'):]
+    for name, _ in SEPARATE_SAMPLERS:
+        assert html.escape(name) in legend
+
+
+def _table(text: str, css: str) -> dict[tuple[str, str], list[str]]:
+    table = text[text.index(f'<table class="{css}">'):]
+    table = table[:table.index("</table>")]
+    rows = re.findall(r'<tr data-group="([^"]+)" data-setting="([^"]+)">(.*?)</tr>', table)
+    return {(g, s): re.findall(r"<td[^>]*>([^<]*)</td>", cells) for g, s, cells in rows}
+
+
+def test_accuracy_and_hard_cases_are_measured_in_the_run(site):
+    """The numbers are this build's: dated within the run, the plot is not docs' plot, and the values obey what
+    the analytic truths force (reverse-Z gives the exact depth image, standard Z the wrong plane everywhere;
+    4x supersampling beats no anti-aliasing), which a table copied from elsewhere would satisfy only by chance."""
+    text = (site / "index.html").read_text()
+    section = text[text.index('<section id="accuracy"'):]
+    when = datetime.datetime.strptime(re.search(r'data-measured="([^"]+)"', section).group(1), "%Y-%m-%d %H:%M UTC")
+    assert BUILT["start"] <= when.replace(tzinfo=datetime.UTC) <= BUILT["end"]
+    plot = site / "accuracy_pareto.png"
+    assert plot.is_file() and plot.read_bytes() != (REPO / "docs" / "img" / "accuracy_pareto.png").read_bytes()
+    accuracy = _table(text, "accuracy-points")
+    from wgpurender.bench.accuracy_knobs import KNOBS
+
+    assert {g for g, _ in accuracy} == set(KNOBS)
+    assert any(cells[5] == "yes" for cells in accuracy.values())  # a Pareto front
+    hard = _table(text, "hard-cases")
+    flip = {key: float(cells[2]) for key, cells in hard.items()}
+    assert flip[("depth", "reverse-z")] == 0.0
+    assert flip[("depth", "depth24plus")] > 0.5
+    assert flip[("anti-aliasing", "ssaa4")] < flip[("anti-aliasing", "none")]
+    assert flip[("texture filtering", "trilinear")] < flip[("texture filtering", "nearest")]
+
+
+@needs_chromium
+def test_code_and_plans_are_shown_whole_in_a_browser(site, tmp_path):
+    """Chromium: the code block sits beside itself (two columns), no render plan is wider than its box once opened,
+    every plan starts collapsed, and a screenshot of the 3d step's code is not blank (saved for a look)."""
+    report = open_page(site / "index.html", scroll_to="3d-code", evaluate={
+        "columns": "Array.from(document.getElementById('3d-code').querySelectorAll('.code-side'), e => "
+                   "Math.round(e.getBoundingClientRect().left))",
+        "open_plans": "document.querySelectorAll('details.plan[open]').length",
+        "clipped": "(() => { document.querySelectorAll('details.plan').forEach(d => d.open = true); "
+                   "return Array.from(document.querySelectorAll('pre.plan-text')).filter("
+                   "p => p.scrollWidth > p.clientWidth + 1).length; })()",
+        "plans": "document.querySelectorAll('pre.plan-text').length",
+    })
+    assert report.errors == []
+    left, right = report.values["columns"]
+    assert right - left > 400  # side by side, not stacked
+    assert report.values["open_plans"] == 0 and report.values["plans"] >= 5 and report.values["clipped"] == 0
+    shot = np.asarray(Image.open(io.BytesIO(report.screenshot)).convert("RGB")).astype(int)
+    (tmp_path / "code.png").write_bytes(report.screenshot)
+    assert shot.std() > 20
+
+
+def test_size_option_and_absent_tutorial_files(tmp_path, monkeypatch, ctx):
+    """--size sets every image's size; a tutorial scene whose files are absent is a section with one line."""
+    from wgpurender.report import build
+
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    shutil.copy(REPO / "assets" / "scenes" / "vulkan_tutorial_28.toml", scenes)  # its relative paths now lead nowhere
+    monkeypatch.setattr(build, "SCENE_DIR", scenes)
+    monkeypatch.setattr(build, "SCENES", ("vulkan_tutorial_28",))
+    index = build.build_report(tmp_path / "site", size=(96, 64), stages=["triangle"], ctx=ctx, accuracy=False,
+                               log=lambda _text: None)
+    text = index.read_text()
+    assert load_png(index.parent / "triangle_wgpu.png").shape[:2] == (64, 96)
+    part = _section(text, "vulkan_tutorial_28")
+    note = re.findall(r'<p class="note missing">([^<]+)</p>', part)
+    assert len(note) == 1 and "absent" in note[0] and "anchors" in note[0]
+    assert "Not measured in this build" in text

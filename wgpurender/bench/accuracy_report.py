@@ -143,8 +143,8 @@ def write_plot(run: AccuracyRun, path: Path) -> Path:
         pts = [r for r in rows if r.case.sweep == sweep]
         ax.scatter([r.time_ms for r in pts], [r.flip for r in pts], marker=markers[i % len(markers)], s=30,
                    label=sweep, zorder=3)
-    for (t, e), labels in _merged_labels(rows).items():
-        ax.annotate(", ".join(labels), (t, e), textcoords="offset points", xytext=(4, 3), fontsize=6.5)
+    texts = [ax.annotate(", ".join(labels), (t, e), textcoords="offset points", xytext=(4, 3), fontsize=6.5)
+             for (t, e), labels in _merged_labels(rows).items()]
     front = sorted((r for r in rows if r.pareto), key=lambda r: r.time_ms)
     if front:
         ax.step([r.time_ms for r in front], [r.flip for r in front], where="post", color="k", linewidth=1,
@@ -160,10 +160,31 @@ def write_plot(run: AccuracyRun, path: Path) -> Path:
     ax.grid(True, which="both", linewidth=0.3)
     ax.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
+    _spread_labels(fig, texts)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path)
     plt.close(fig)
     return path
+
+
+def _spread_labels(fig, texts: list, step_points: float = 7.0, rounds: int = 60) -> None:
+    """Move point labels up or down (in steps of ``step_points``) until no two overlap: settings of close error
+    and time otherwise print on top of each other."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for _ in range(rounds):
+        boxes = [t.get_window_extent(renderer) for t in texts]
+        moved = False
+        pairs = [(a, b) for a in range(len(texts)) for b in range(a + 1, len(texts))]
+        for i, j in pairs:
+            if boxes[i].overlaps(boxes[j]):
+                lower = j if boxes[j].y0 < boxes[i].y0 or (boxes[j].y0 == boxes[i].y0 and j > i) else i
+                x, y = texts[lower].xyann
+                texts[lower].xyann = (x, y - step_points)
+                boxes[lower] = texts[lower].get_window_extent(renderer)
+                moved = True
+        if not moved:
+            return
 
 
 def write_reports(run: AccuracyRun, out_dir: Path) -> dict[str, Path]:

@@ -2,19 +2,25 @@
 
 from __future__ import annotations
 
+from wgpurender.cli._args import size_arg
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "report",
         help="write the visual course report: a static HTML site with both paths' images per course step",
         description="Render every course step (stages, then scene files) on the wgpu path and the raw-Vulkan path, "
-        "and write DIR/index.html with PNG files beside it: per step its description, both images side by side, "
-        "the difference heatmap and its scale, PSNR and FLIP, GPU and frame time on both paths, the Vulkan -> wgpu "
-        "concept rows with their code locations, and for scenes the render plan; then the accuracy Pareto plot and "
-        "the numerical hard cases. Opens from disk in any browser (no network). Needs glslc for the raw path.",
+        "and write DIR/index.html with PNG files beside it: per step its description, both images side by side "
+        "(click: full size), the difference heatmap and its scale, PSNR and FLIP, GPU and frame time on both paths, "
+        "the code that makes the step on both paths side by side (highlighted, linked to the whole file), the "
+        "Vulkan -> wgpu concept rows, and for scenes the render plan; then the accuracy Pareto plot and the hard "
+        "cases, both measured in this run (a quick variant). Opens from disk in any browser (no network). Needs "
+        "glslc for the raw path.",
     )
     p.add_argument("-o", "--output", required=True, metavar="DIR",
                    help="folder for the site (new, empty, or an earlier report, which is replaced)")
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                   help="every step's image size (default 240x180; the tutorial's scenes 320x240)")
     p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
     p.set_defaults(func=run)
 
@@ -23,6 +29,6 @@ def run(args) -> int:
     from wgpurender.report import build_report
     from wgpurender.wgpu_path.gpu import get_context
 
-    index = build_report(args.output, ctx=get_context(args.backend))
+    index = build_report(args.output, size=args.size, ctx=get_context(args.backend))
     print(f"wrote {index}")
     return 0

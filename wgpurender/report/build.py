@@ -16,8 +16,8 @@ from pathlib import Path
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
-from wgpurender.report import extras, page
-from wgpurender.report.steps import Step, heatmap_scale, scene_step, stage_step
+from wgpurender.report import code, extras, page
+from wgpurender.report.steps import Step, heatmap_scale, missing_scene_step, scene_step, stage_step
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -30,6 +30,8 @@ SCENE_SIZE = (240, 180)
 # lavapipe's anisotropic filtering is pathological at some sizes (notes/facts.md): brick.toml takes 11 s a frame
 # at 320x240 but 0.2 s at 240x180; vulkan_tutorial_28.toml 17 s a frame at 240x180 but 0.5 s at 320x240.
 SCENE_SIZES = {"vulkan_tutorial_28": (320, 240), "vulkan_tutorial_30": (320, 240)}
+MAX_SHOT_WIDTH = 360  # images wider than this are shown at this width; a click opens them at full size
+ANCHORS = REPO_ROOT.parent / "shared" / "anchors" / "vulkan-tutorial"
 
 
 def course_stages() -> list[str]:
@@ -55,22 +57,31 @@ def check_out_dir(out_dir: Path) -> Path:
     return out_dir
 
 
-def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes: list[Path] | None = None,
-                 ctx: GPUContext | None = None, log: Callable[[str], None] = print) -> Path:
-    """Render every step on both paths and write the site; returns the path of index.html."""
+def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, stages: list[str] | None = None,
+                 scenes: list[Path] | None = None, ctx: GPUContext | None = None,
+                 log: Callable[[str], None] = print, accuracy: bool = True) -> Path:
+    """Render every step on both paths, measure accuracy, and write the site; returns the path of index.html.
+
+    ``size``: every step's image size (default 240x180, the tutorial's scenes 320x240). ``accuracy=False``
+    leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the page says so).
+    """
     out_dir = check_out_dir(Path(out_dir))
     ctx = ctx or get_context()
     start = time.perf_counter()
     steps: list[Step] = []
     for name in course_stages() if stages is None else stages:
         log(f"stage {name}")
-        steps.append(stage_step(ctx, name, STAGE_SIZE, log))
-    for path in _scene_files() if scenes is None else scenes:
-        log(f"scene {path.name}")
-        steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log))
+        steps.append(stage_step(ctx, name, size or STAGE_SIZE, log))
+    for path, missing in _scene_files() if scenes is None else [(Path(p), "") for p in scenes]:
+        log(f"scene {path.name}" + (f": {missing}" if missing else ""))
+        if missing:
+            steps.append(missing_scene_step(path, missing))
+        else:
+            steps.append(scene_step(ctx, path, size or SCENE_SIZES.get(path.stem, SCENE_SIZE), log))
     tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
     try:
-        _write_site(tmp, steps, ctx, time.perf_counter() - start)
+        measured = extras.measure(ctx, tmp, log) if accuracy else None
+        _write_site(tmp, steps, ctx, time.perf_counter() - start, measured, size)
         if out_dir.exists():
             shutil.rmtree(out_dir)
         tmp.rename(out_dir)
@@ -80,8 +91,9 @@ def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes
     return out_dir / "index.html"
 
 
-def _scene_files() -> list[Path]:
-    """The repository's scenes in course order; the tutorial's only where its model is present."""
+def _scene_files() -> list[tuple[Path, str]]:
+    """The repository's scenes in course order, each with "" or the one line saying why it cannot be rendered
+    here (the tutorial's model and texture live outside the repository, in ../shared/anchors)."""
     from wgpurender.core.scene import load_scene
 
     out = []
@@ -89,13 +101,24 @@ def _scene_files() -> list[Path]:
         path = SCENE_DIR / f"{name}.toml"
         try:
             load_scene(path)
-        except UserError:  # the tutorial's model lives outside the repository (../shared/anchors)
+        except UserError as err:
+            out.append((path, missing_line(path, str(err).splitlines()[0])))
             continue
-        out.append(path)
+        out.append((path, ""))
     return out
 
 
-def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) -> None:
+def missing_line(path: Path, error: str) -> str:
+    """One line for a scene that cannot load: what is missing, and where to get it."""
+    if "anchors" in path.read_text(encoding="utf-8"):
+        return (f"Not rendered: {path.name} draws the Vulkan tutorial's viking room, whose model and texture "
+                f"are not in the repository and are absent here ({ANCHORS} is missing); README.md, \"The Vulkan "
+                f"tutorial's frames\", says how to fetch them.")
+    return f"Not rendered: {error}"
+
+
+def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float, measured: extras.Measured | None,
+                size: tuple[int, int] | None) -> None:
     images: dict[str, dict[str, str]] = {}
     for step in steps:
         files = images[step.key] = {}
@@ -107,16 +130,24 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) 
                 files[kind] = name
     scale, levels = heatmap_scale()
     save_png(site / "heatmap_scale.png", scale)
-    pareto = extras.pareto_plot()
-    if pareto is not None:
-        shutil.copyfile(pareto, site / "accuracy_pareto.png")
+    _write_listings(site, steps)
     stamp = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    meta = (f"Built {page.e(stamp)} on {page.e(ctx.describe())} in {seconds:.0f} s with <code>wgpurender report"
-            f"</code>. Stages at {STAGE_SIZE[0]}x{STAGE_SIZE[1]}, scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]} "
-            "(the tutorial's at 320x240); times are "
-            "medians of a few frames on this machine (a quick look: <code>wgpurender bench</code> measures). "
-            "The heatmap compares the raw-Vulkan image (reference) with the wgpu one.")
-    closing = page.closing("accuracy_pareto.png" if pareto else None, extras.hard_cases_table())
+    sizes = (f"every step at {size[0]}x{size[1]}" if size else f"stages at {STAGE_SIZE[0]}x{STAGE_SIZE[1]}, "
+             f"scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]} (the tutorial's at 320x240)")
+    took = seconds + (measured.seconds if measured else 0.0)
+    meta = (f"Built {page.e(stamp)} on {page.e(ctx.describe())} in {took:.0f} s with "
+            f"<code>wgpurender report</code>: {sizes}. Times are medians of a few frames on this machine (a quick "
+            "look: <code>wgpurender bench</code> measures). The heatmap compares the raw-Vulkan image (reference) "
+            "with the wgpu one. Click an image to see it at full size, a file name to read the whole file.")
+    width = min((size or STAGE_SIZE)[0], MAX_SHOT_WIDTH)
     text = page.page("wgpurender: the Vulkan course on wgpu, step by step", meta, steps, images,
-                     ("heatmap_scale.png", levels), closing)
+                     ("heatmap_scale.png", levels), page.closing(measured), shot_width=width)
     (site / "index.html").write_text(text, encoding="utf-8")
+
+
+def _write_listings(site: Path, steps: list[Step]) -> None:
+    """Every source file an excerpt comes from, highlighted whole, beside the page (code/<path>.html)."""
+    for path in sorted({x.path for step in steps for side in step.code.values() for x in side}):
+        target = site / code.listing_name(path)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(code.listing(path), encoding="utf-8")

@@ -1,61 +1,91 @@
-"""The report's closing sections: the accuracy Pareto plot and the measured hard cases' table.
+"""The report's closing sections, measured while the report is built: accuracy against cost, and the hard cases.
 
-Both are read from the repository's docs, where their runs are written down with machine,
-date and command (docs/accuracy.md, docs/numerics.md): the report shows them, it does not
-re-measure them (a full accuracy run takes minutes).
+- **Accuracy**: the accuracy suite (wgpurender/bench/accuracy_run.py) in a quick variant: every quality
+  knob of ``final.toml`` swept one at a time at a small size, a few frames each, scored with FLIP against
+  the 8x-supersampled ground truth and timed with GPU timestamps; the Pareto plot is drawn from this run.
+- **Hard cases**: the analytic suite (wgpurender/bench/accuracy_analytic.py): slivers and sub-pixel
+  triangles against their exact coverage, a plane at a grazing angle against the float64 filter integral,
+  the depth-stress scene against its known image.
+
+Nothing is copied from docs/: docs/accuracy.md and docs/numerics.md hold the full runs (and the hard cases
+that need the test suite's float64 references), and the page links to them.
 """
 
 from __future__ import annotations
 
-import html
-import re
+import datetime
+import math
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 
+from wgpurender.wgpu_path.gpu import GPUContext
+
 REPO_ROOT = Path(__file__).resolve().parents[2]
-PARETO = REPO_ROOT / "docs" / "img" / "accuracy_pareto.png"
-NUMERICS = REPO_ROOT / "docs" / "numerics.md"
-HARD_CASES_HEADING = "## Naive vs ours, measured"
+SCENE = REPO_ROOT / "assets" / "scenes" / "final.toml"
+SIZE = (128, 96)  # small: the ground truth renders 8x it
+FRAMES, WARMUP = 2, 1
+PLOT = "accuracy_pareto.png"
 
 
-def pareto_plot() -> Path | None:
-    return PARETO if PARETO.is_file() else None
+@dataclass(frozen=True)
+class Point:
+    """One measured setting: what was set, its error and its time."""
+
+    group: str  # the knob swept (accuracy), or the hard case's section
+    setting: str
+    flip: float
+    psnr: float
+    ms: float  # GPU time per frame when timestamps exist, else wall time (median)
+    pareto: bool = False
 
 
-def hard_cases_table(path: Path = NUMERICS) -> tuple[list[str], list[list[str]], str] | None:
-    """(header, rows, the paragraph before the table) of docs/numerics.md's measured table, cells as HTML."""
-    if not path.is_file():
-        return None
-    lines = path.read_text(encoding="utf-8").splitlines()
-    try:
-        start = lines.index(HARD_CASES_HEADING) + 1
-    except ValueError:
-        return None
-    intro, table = [], []
-    for line in lines[start:]:
-        if line.startswith("## "):
-            break
-        if line.startswith("|"):
-            table.append(line)
-        elif not table and line.strip():
-            intro.append(line.strip())
-    if len(table) < 3:
-        return None
-    cells = [_cells(row) for row in table]
-    return cells[0], cells[2:], inline(" ".join(intro))
+@dataclass
+class Measured:
+    size: tuple[int, int]
+    adapter: str
+    when: str
+    seconds: float = 0.0
+    accuracy: list[Point] = field(default_factory=list)
+    hard_cases: list[Point] = field(default_factory=list)
+    plot: str | None = None  # the plot's file name in the site; None without matplotlib
+    timer: str = "GPU"
 
 
-def _cells(row: str) -> list[str]:
-    parts = re.split(r"(?<!\\)\|", row.strip().strip("|"))
-    return [inline(p.strip().replace("\\|", "|")) for p in parts]
+def measure(ctx: GPUContext, site: Path, log: Callable[[str], None] = print, size: tuple[int, int] = SIZE
+            ) -> Measured:
+    """Run both suites' quick variants on ``ctx``; the plot goes into ``site``."""
+    import time
+
+    from wgpurender.bench.accuracy_analytic import run_analytic
+    from wgpurender.bench.accuracy_report import write_plot
+    from wgpurender.bench.accuracy_run import AccuracyConfig, run_accuracy, unique_rows
+    from wgpurender.bench.report import have_matplotlib
+
+    start = time.perf_counter()
+    when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    out = Measured(size, ctx.describe(), when)
+    with tempfile.TemporaryDirectory(prefix="wgpurender-report-accuracy-") as work:
+        log(f"accuracy: every knob of {SCENE.name} at {size[0]}x{size[1]}, {FRAMES} frames each")
+        config = AccuracyConfig(scene_path=SCENE, base_size=size, frames=FRAMES, warmup=WARMUP, rounds=1,
+                                combinations=False, out_dir=Path(work), command="wgpurender report")
+        run = run_accuracy(config, ctx)
+        rows = unique_rows([r for r in run.rows if r.case.scene == "final" and r.case.sweep != "ground truth"])
+        out.timer = "GPU" if all(r.m.gpu is not None for r in rows) else "wall"
+        out.accuracy = [Point(r.case.sweep, r.case.level, r.flip, r.psnr, r.time_ms, r.pareto) for r in rows]
+        if have_matplotlib():
+            write_plot(run, site / PLOT)
+            out.plot = PLOT
+        log("hard cases: anti-aliasing, texture filtering and depth against exact answers")
+        truth = run_analytic(ctx, Path(work), size, FRAMES, WARMUP, progress=lambda _text: None)
+        out.hard_cases = [Point(r.section, r.setting, r.flip, r.psnr,
+                                r.m.gpu.median if r.m.gpu is not None else r.m.wall.median) for r in truth]
+    out.seconds = time.perf_counter() - start
+    return out
 
 
-def inline(text: str) -> str:
-    """Markdown's inline code and emphasis as HTML (the rest escaped)."""
-    out = []
-    for k, part in enumerate(text.split("`")):
-        escaped = html.escape(part)
-        if k % 2:
-            out.append(f"<code>{escaped}</code>")
-        else:
-            out.append(re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", escaped))
-    return "".join(out)
+def number(value: float, digits: int) -> str:
+    if math.isnan(value):
+        return "n/a"
+    return "inf" if math.isinf(value) else f"{value:.{digits}f}"

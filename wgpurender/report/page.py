@@ -9,33 +9,50 @@ import html
 from collections.abc import Sequence
 
 from wgpurender.concepts import Concept
+from wgpurender.report.code import style_css
 from wgpurender.report.concept_rows import locate
-from wgpurender.report.steps import Step
+from wgpurender.report.steps import HEATMAP_GAIN, Step
 
 GENERATOR_MARK = '<meta name="generator" content="wgpurender report">'
 
 CSS = """
-body { font: 15px/1.45 system-ui, sans-serif; margin: 0 auto; max-width: 1180px; padding: 0 18px 40px;
+body { font: 15px/1.45 system-ui, sans-serif; margin: 0 auto; max-width: 1240px; padding: 0 18px 40px;
        color: #1d1f23; background: #fbfbfa; }
 h1 { margin: 22px 0 4px; } h2 { margin-top: 34px; border-bottom: 2px solid #d8d8d4; padding-bottom: 4px; }
+h4 { margin: 6px 0 4px; }
 nav a { margin-right: 10px; white-space: nowrap; }
 .meta { color: #555; font-size: 13px; }
 .step { margin-top: 26px; }
 .images { display: flex; gap: 14px; flex-wrap: wrap; align-items: flex-start; }
-figure { margin: 0; } figcaption { font-size: 13px; color: #444; }
-figure img { border: 1px solid #ccc; image-rendering: pixelated; width: 240px; height: auto; display: block;
+figure { margin: 0; } figcaption { font-size: 13px; color: #444; max-width: var(--shot-width); }
+figure img { border: 1px solid #ccc; image-rendering: pixelated; width: var(--shot-width); height: auto; display: block;
              background: repeating-conic-gradient(#ddd 0 25%, #fff 0 50%) 0 0 / 16px 16px; }  /* alpha shows */
+figure a.full { display: block; position: relative; cursor: zoom-in; }
+.heat .verdict { position: absolute; left: 0; right: 0; top: 40%; text-align: center; color: #fff;
+                 font-weight: 600; text-shadow: 0 0 3px #000; }
+.lanes { display: flex; width: var(--shot-width); font-size: 11px; color: #333; line-height: 1.2; margin-top: 2px; }
+.lanes span { border-left: 2px solid #888; padding: 0 3px; box-sizing: border-box; font-weight: 600; }
+.lane-legend { font-size: 12px; color: #333; max-width: var(--shot-width); }
 .scale img { width: auto; border: 1px solid #ccc; image-rendering: pixelated; }
 .scale .ticks { display: flex; font-size: 11px; color: #444; }
 .scale .ticks span { width: 24px; text-align: center; }
-.note { background: #fff4e0; border-left: 3px solid #e0a030; padding: 6px 10px; font-size: 13px; max-width: 520px; }
+.note { background: #fff4e0; border-left: 3px solid #e0a030; padding: 6px 10px; font-size: 13px; max-width: 640px; }
 table { border-collapse: collapse; margin: 8px 0; font-size: 13px; }
 td, th { border: 1px solid #d4d4d0; padding: 3px 6px; vertical-align: top; text-align: left; }
 th { background: #efefec; }
 code, pre { font-family: ui-monospace, monospace; font-size: 12px; }
 pre { background: #f1f1ee; padding: 8px; overflow-x: auto; }
+pre.plan-text { white-space: pre-wrap; overflow-wrap: anywhere; }
 details summary { cursor: pointer; color: #333; }
 .loc { white-space: nowrap; } .loc small { color: #666; }
+.code { display: grid; grid-template-columns: minmax(0, 1fr) minmax(0, 1fr); gap: 12px; margin: 10px 0; }
+.code-side { min-width: 0; }
+.excerpt { margin-bottom: 8px; border: 1px solid #ddd; background: #f8f8f8; }
+.excerpt .source { display: block; font-size: 12px; padding: 2px 6px; background: #ecece8; }
+.excerpt .hl pre { margin: 0; padding: 6px; font-size: 11.5px; line-height: 1.35; max-height: 420px; overflow: auto;
+                   background: transparent; }
+.hl .linenos { color: #999; padding-right: 6px; }
+figure.plot figcaption { max-width: 760px; }
 """
 
 
@@ -44,7 +61,7 @@ def e(text: object) -> str:
 
 
 def page(title: str, meta: str, steps: Sequence[Step], images: dict[str, dict[str, str]], scale: tuple[str, list[int]],
-         closing: str) -> str:
+         closing: str, shot_width: int = 240) -> str:
     """The whole document; ``images[step.key]`` maps wgpu/raw/heat to file names."""
     nav = " ".join(f'<a href="#{e(s.key)}">{e(s.title)}</a>' for s in steps)
     body = "\n".join(section(s, images.get(s.key, {}), scale) for s in steps)
@@ -55,7 +72,7 @@ def page(title: str, meta: str, steps: Sequence[Step], images: dict[str, dict[st
 {GENERATOR_MARK}
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{e(title)}</title>
-<style>{CSS}</style>
+<style>:root {{ --shot-width: {shot_width}px; }}{CSS}{style_css()}</style>
 </head>
 <body>
 <h1>{e(title)}</h1>
@@ -73,42 +90,97 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
     more = "".join(f"<pre>{e(p)}</pre>" if p.lstrip().startswith("-") else f"<p>{e(p)}</p>" for p in step.words[1:])
     if more:
         words += f"<details><summary>more from the source</summary>{more}</details>"
-    plan = f"<details open><summary>render plan (<code>--explain</code>)</summary><pre>{e(step.plan)}</pre></details>" \
-        if step.plan else ""
-    return f"""<section class="step" id="{e(step.key)}">
+    plan = (f'<details class="plan"><summary>render plan (<code>--explain</code>)</summary>'
+            f'<pre class="plan-text">{e(step.plan)}</pre></details>') if step.plan else ""
+    links = "".join(f'<a href="{e(href)}">{e(text)}</a> ' for text, href in step.links)
+    if step.missing:
+        shots = f'<p class="note missing">{e(step.missing)}</p>'
+    else:
+        shots = f"""<div class="images">
+{_figure(files.get("wgpu"), "wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "wgpu")}
+{_figure(files.get("raw"), "raw Vulkan (GLSL, vulkan binding)", step.raw_note, step, "raw")}
+{_heat(files.get("heat"), scale, step)}
+</div>
+{_numbers(step)}"""
+    return f"""<section class="step" id="{e(step.key)}" data-step="{e(step.key)}">
 <h2>{e(step.title)} <small class="meta">{e(step.course_step)}</small></h2>
 <p><strong>{e(step.summary)}</strong></p>
 {words}
-<div class="images">
-{_figure(files.get("wgpu"), "wgpu (WGSL, wgpu-py)", step.wgpu_note)}
-{_figure(files.get("raw"), "raw Vulkan (GLSL, vulkan binding)", step.raw_note)}
-{_heat(files.get("heat"), scale)}
-</div>
-{_numbers(step)}
+{f'<p class="links">{links}</p>' if links else ""}
+{shots}
+{_code(step)}
 {plan}
 {_concepts(step.concepts)}
 </section>"""
 
 
-def _figure(name: str | None, caption: str, note: str) -> str:
+def _size(step: Step) -> str:
+    image = step.wgpu if step.wgpu is not None else step.raw
+    return f"{image.shape[1]}x{image.shape[0]}" if image is not None else ""
+
+
+def _lanes(step: Step) -> str:
+    """Short tags under the image's parts (A, 1, 2, ...) and a legend naming what each part samples with."""
+    if not step.lanes:
+        return ""
+    tags = ["A"] + [str(k) for k in range(1, len(step.lanes))]
+    spans = "".join(f'<span class="lane" style="width: {100 * share:.1f}%">{tag}</span>'
+                    for tag, (_, share) in zip(tags, step.lanes, strict=True))
+    legend = "; ".join(f"<b>{tag}</b> {e(text)}" for tag, (text, _) in zip(tags, step.lanes, strict=True))
+    return f'<div class="lanes">{spans}</div><div class="lane-legend caption">{legend}</div>'
+
+
+def _figure(name: str | None, caption: str, note: str, step: Step, kind: str) -> str:
     if name is None:
-        return f'<figure><figcaption>{e(caption)}</figcaption><p class="note">{e(note or "not rendered")}</p></figure>'
-    return f'<figure><img src="{e(name)}" alt="{e(caption)}"><figcaption>{e(caption)}</figcaption></figure>'
+        return (f'<figure class="shot" data-image="{kind}"><figcaption class="caption">{e(caption)}</figcaption>'
+                f'<p class="note">{e(note or "not rendered")}</p></figure>')
+    return (f'<figure class="shot" data-image="{kind}"><a class="full" href="{e(name)}" title="full size">'
+            f'<img src="{e(name)}" alt="{e(caption)}"></a>{_lanes(step)}'
+            f'<figcaption class="caption">{e(caption)}, {_size(step)} (click: full size)</figcaption></figure>')
 
 
-def _heat(name: str | None, scale: tuple[str, list[int]]) -> str:
+def _heat(name: str | None, scale: tuple[str, list[int]], step: Step) -> str:
     if name is None:
         return ""
     scale_file, levels = scale
-    ticks = "".join(f"<span>{k}{'+' if k == levels[-1] else ''}</span>" for k in levels)
-    return f"""<figure><img src="{e(name)}" alt="difference heatmap">
-<figcaption>difference |wgpu - raw|, largest channel</figcaption>
+    c = step.comparison
+    identical = c is not None and c.max_abs == 0
+    ticks = "".join(f"<span>{'0' if k == 0 else k}{'+' if k == levels[-1] else ''}</span>" for k in levels)
+    if identical:
+        verdict = '<span class="verdict">identical</span>'
+        caption = "|wgpu - raw|: identical, no pixel differs (the heatmap is all black)"
+    else:
+        verdict = ""
+        caption = (f"|wgpu - raw|, largest channel, amplified &times;{HEATMAP_GAIN:.0f}: a 1/255 difference shows "
+                   f"as {HEATMAP_GAIN:.0f}/255; largest here {c.max_abs}/255" if c else "|wgpu - raw|")
+    return f"""<figure class="shot heat" data-image="heat"><a class="full" href="{e(name)}" title="full size">
+<img src="{e(name)}" alt="difference heatmap">{verdict}</a>
+<figcaption class="caption">{caption}</figcaption>
 <div class="scale"><img src="{e(scale_file)}" alt="heatmap scale"><div class="ticks">{ticks}</div>
-<figcaption>scale: difference in 1/255 steps</figcaption></div></figure>"""
+<figcaption class="caption">scale: difference in 1/255 steps, 0 = identical (black)</figcaption></div></figure>"""
+
+
+def _code(step: Step) -> str:
+    if not step.code:
+        return ""
+    sides = []
+    for side, label in (("wgpu", "wgpu path"), ("raw", "raw-Vulkan path")):
+        parts = [f'<div class="excerpt"><a class="source" href="{e(x.listing)}">{e(x.path)}:{x.first}-{x.last}'
+                 f'</a>{x.html}</div>' for x in step.code.get(side, [])]
+        body = "".join(parts) or f'<p class="note">no {label} code for this step</p>'
+        sides.append(f'<div class="code-side" data-path="{side}"><h4>{label}</h4>{body}</div>')
+    return (f'<details class="code-block" open><summary>the code that makes this step, both paths side by side'
+            f'</summary><div class="code" id="{e(step.key)}-code">{"".join(sides)}</div></details>')
 
 
 def _ms(value: float | None) -> str:
     return "n/a" if value is None else f"{value:.3f} ms"
+
+
+def _metric(key: str, label: str, *cells: str) -> str:
+    values = "".join(f'<td class="value">{c}</td>' for c in cells)
+    span = ' colspan="2"' if len(cells) == 1 else ""
+    return f'<tr data-metric="{key}"><th class="label">{label}</th>{values.replace("<td", "<td" + span, 1)}</tr>'
 
 
 def _numbers(step: Step) -> str:
@@ -116,18 +188,14 @@ def _numbers(step: Step) -> str:
     c = step.comparison
     if c is not None:
         psnr = "identical (inf)" if c.psnr == float("inf") else f"{c.psnr:.2f} dB"
-        rows.append(f"<tr><th>PSNR</th><td colspan=2>{psnr}</td></tr>"
-                    f"<tr><th>FLIP (mean)</th><td colspan=2>{c.flip_mean:.5f}</td></tr>"
-                    f"<tr><th>max difference</th><td colspan=2>{c.max_abs}/255; pixels over 1/255: "
-                    f"{100 * c.over_1:.3f}%</td></tr>")
+        rows += [_metric("psnr", "PSNR", psnr), _metric("flip", "FLIP (mean)", f"{c.flip_mean:.5f}"),
+                 _metric("max-diff", "max difference", f"{c.max_abs}/255; pixels over 1/255: {100 * c.over_1:.3f}%")]
     wgpu, raw = step.timing.get("wgpu"), step.timing.get("raw")
     if wgpu or raw:
-        rows.append("<tr><th></th><th>wgpu</th><th>raw Vulkan</th></tr>")
-        rows.append(f"<tr><th>GPU time (median)</th><td>{_ms(wgpu and wgpu.gpu_ms)}</td>"
-                    f"<td>{_ms(raw and raw.gpu_ms)}</td></tr>")
-        rows.append(f"<tr><th>frame time (median)</th><td>{_ms(wgpu and wgpu.frame_ms)}</td>"
-                    f"<td>{_ms(raw and raw.frame_ms)}</td></tr>")
-    return f"<table>{''.join(rows)}</table>" if rows else ""
+        rows.append('<tr><th></th><th class="label">wgpu</th><th class="label">raw Vulkan</th></tr>')
+        rows.append(_metric("gpu-ms", "GPU time (median)", _ms(wgpu and wgpu.gpu_ms), _ms(raw and raw.gpu_ms)))
+        rows.append(_metric("frame-ms", "frame time (median)", _ms(wgpu and wgpu.frame_ms), _ms(raw and raw.frame_ms)))
+    return f'<table class="metrics">{"".join(rows)}</table>' if rows else ""
 
 
 def _locations(locations: Sequence[str], note: str) -> str:
@@ -153,23 +221,49 @@ def _concepts(rows: Sequence[Concept]) -> str:
             f"<th>what differs</th></tr>{body}</table></details>")
 
 
-def closing(pareto: str | None, hard: tuple[list[str], list[list[str]], str] | None) -> str:
-    parts = ['<section id="accuracy"><h2>Accuracy: error against cost</h2>']
-    if pareto:
-        parts.append(f'<p>The accuracy suite\'s knobs (docs/accuracy.md) as error against frame time; the Pareto '
-                     f'front is the settings no other setting beats on both.</p><figure><img src="{e(pareto)}" '
-                     f'alt="accuracy Pareto plot" style="width: 720px"></figure>')
+def closing(measured) -> str:
+    """The accuracy and hard-case sections from the run's own measurements (report/extras.py)."""
+    from wgpurender.report.extras import number
+
+    if measured is None:
+        return ('<section id="accuracy"><h2>Accuracy: error against cost</h2><p class="note">Not measured in this '
+                'build (accuracy=False).</p></section><section id="hard-cases"><h2>Hard cases against exact answers'
+                '</h2><p class="note">Not measured in this build.</p></section>')
+    m = measured
+    source = (f"Measured in this run ({e(m.when)}, {e(m.adapter)}, {m.size[0]}x{m.size[1]}, a quick variant: "
+              f"{m.seconds:.0f} s). Full runs with more frames: docs/accuracy.md (<code>wgpurender bench accuracy"
+              f"</code>) and docs/numerics.md.")
+    parts = [f'<section id="accuracy" data-measured="{e(m.when)}"><h2>Accuracy: error against cost</h2>'
+             f'<p class="meta source">{source}</p>']
+    if m.plot:
+        parts.append(f'<figure class="plot"><a class="full" href="{e(m.plot)}"><img src="{e(m.plot)}" '
+                     f'alt="accuracy Pareto plot" style="width: 760px"></a><figcaption class="caption">Each quality '
+                     f'knob of final.toml swept alone: FLIP against the 8x-supersampled ground truth, against '
+                     f'{m.timer} time per frame; the Pareto front joins the settings no other beats on both.'
+                     f'</figcaption></figure>')
     else:
-        parts.append('<p class="note">docs/img/accuracy_pareto.png is missing: run <code>wgpurender bench '
-                     'accuracy</code> to make it.</p>')
-    parts.append('</section><section id="hard-cases"><h2>Numerical hard cases, naive against ours</h2>')
-    if hard:
-        header, rows, intro = hard
-        parts.append(f"<p>{intro}</p><table><tr>{''.join(f'<th>{h}</th>' for h in header)}</tr>")
-        parts += [f"<tr>{''.join(f'<td>{c}</td>' for c in row)}</tr>" for row in rows]
-        parts.append("</table><p>From docs/numerics.md; <code>python benchmarks/hardcases_report.py</code> "
-                     "prints this machine's numbers.</p>")
-    else:
-        parts.append('<p class="note">docs/numerics.md has no measured table.</p>')
+        parts.append('<p class="note">The plot needs matplotlib (pip install \'wgpurender[bench]\'); the numbers '
+                     'are below.</p>')
+    parts.append(_points_table("accuracy-points", ("knob", "setting", "FLIP", "PSNR dB", f"{m.timer} ms", "Pareto"),
+                               [(p, "yes" if p.pareto else "") for p in m.accuracy], number))
+    parts.append('</section><section id="hard-cases"><h2>Hard cases against exact answers</h2>'
+                 f'<p class="meta source">{source}</p><p>Thin slivers and sub-pixel triangles against their exact '
+                 'coverage, a plane at a grazing angle against the float64 integral of the texture over each pixel, '
+                 'and two planes 1e-4 apart far away against the image they must give: what each setting gets '
+                 'wrong, and what it costs.</p>')
+    parts.append(_points_table("hard-cases", ("case", "setting", "FLIP", "PSNR dB", f"{m.timer} ms"),
+                               [(p, None) for p in m.hard_cases], number))
     parts.append("</section>")
     return "\n".join(parts)
+
+
+def _points_table(css: str, header: tuple[str, ...], points, number) -> str:
+    rows = []
+    for p, extra in points:
+        cells = [e(p.group), e(p.setting), number(p.flip, 4), number(p.psnr, 2), number(p.ms, 2)]
+        if extra is not None:
+            cells.append(extra)
+        rows.append(f'<tr data-group="{e(p.group)}" data-setting="{e(p.setting)}">'
+                    + "".join(f'<td class="c{k}">{c}</td>' for k, c in enumerate(cells)) + "</tr>")
+    head = "".join(f"<th>{e(h)}</th>" for h in header)
+    return f'<table class="{css}"><tr>{head}</tr>{"".join(rows)}</table>'

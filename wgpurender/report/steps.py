@@ -18,7 +18,7 @@ import numpy as np
 from wgpurender.concepts import Concept
 from wgpurender.core.compare import Comparison, compare_images, heatmap
 from wgpurender.core.errors import UserError
-from wgpurender.report import timings
+from wgpurender.report import code, timings
 from wgpurender.report.concept_rows import REPO_ROOT, rows_for
 from wgpurender.report.timings import Timing
 from wgpurender.wgpu_path.gpu import GPUContext
@@ -44,6 +44,19 @@ class Step:
     timing: dict[str, Timing | None] = field(default_factory=dict)
     concepts: list[Concept] = field(default_factory=list)
     plan: str = ""  # the --explain text, scenes only
+    code: dict[str, list[code.Excerpt]] = field(default_factory=dict)  # "wgpu"/"raw": the lines that make it
+    lanes: list[tuple[str, float]] = field(default_factory=list)  # labels under the images: (text, width share)
+    links: list[tuple[str, str]] = field(default_factory=list)  # (text, href): more views of this step (a hook)
+    missing: str = ""  # one line: why this step is not rendered (the tutorial's files are absent)
+
+
+def textured_lanes() -> list[tuple[str, float]]:
+    """The textured stage's image, left to right: the combined sampler's half, then one lane per sampler."""
+    from wgpurender.core.course.textured import COMBINED_SAMPLER, SEPARATE_SAMPLERS
+
+    combined = f"combined image sampler ({COMBINED_SAMPLER.max_anisotropy}x anisotropic, mirror-repeat)"
+    share = 0.5 / len(SEPARATE_SAMPLERS)
+    return [(combined, 0.5)] + [(name, share) for name, _ in SEPARATE_SAMPLERS]
 
 
 def _paragraphs(doc: str | None) -> list[str]:
@@ -88,6 +101,9 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
         step.raw_note = "the raw-Vulkan path has no stage of this name"
     modules = tuple(m for m in (cls and cls.__module__, ref_cls and ref_cls.__module__) if m)
     step.concepts = rows_for(name, tuple(m.removeprefix("wgpurender.") for m in modules))
+    step.code = code.excerpts(code.stage_locations(cls, ref_cls))
+    if name == "textured":
+        step.lanes = textured_lanes()
     _compare(step)
     return step
 
@@ -108,8 +124,15 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
     step.raw, step.raw_note = _try(lambda: render_reference(str(path), size), log)
     step.timing["raw"] = timings.scene_raw(path, size) if step.raw is not None else None
     step.concepts = rows_for("scene")
+    step.code = code.excerpts(code.scene_locations())
     _compare(step)
     return step
+
+
+def missing_scene_step(path: Path, reason: str) -> Step:
+    """A scene that cannot be rendered here (the tutorial's model and texture are absent): one line says so."""
+    return Step(path.stem, path.name, "scene file", "not rendered on this machine", [], missing=reason,
+                code=code.excerpts(code.scene_locations()))
 
 
 def _scene_words(path: Path) -> list[str]:
