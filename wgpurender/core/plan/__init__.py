@@ -16,7 +16,9 @@ these; everything a scene does not use is left out:
 
 Every item carries the reason it is there (which scene key asked for it), and
 :meth:`RenderPlan.explain` prints them. Modules: :mod:`.model` (the dataclasses), :mod:`.build`
-(scene -> plan), :mod:`.post` (the post chain: fusion, path, bytes), :mod:`.explain` (the text).
+(scene -> plan, section by section: knobs, then :mod:`.targets` (scene image, MSAA, depth, output),
+:mod:`.draws` (per model: material variant, pipeline, draw), :mod:`.textures` (textures and samplers),
+:mod:`.post` (the post chain: fusion, path, bytes)), :mod:`.explain` (the text).
 ``python -m core.plan SCENE.toml`` does that from the command line; :func:`explain_scene` is what the CLI calls.
 
 Variant flags are plain identifiers so a template can test them with
