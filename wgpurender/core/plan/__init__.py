@@ -29,7 +29,8 @@ numbers (``ShaderVariant.counts``) for array sizes.
 from wgpurender.core.plan.build import build_plan, explain_scene, main, material_variant, plan_scene_file
 from wgpurender.core.plan.model import *  # noqa: F403  (every dataclass and constant of the plan)
 from wgpurender.core.plan.model import __all__ as _model_names
+from wgpurender.core.plan.objects import GpuObject
 from wgpurender.core.plan.post import plan_post_passes
 
-__all__ = [*_model_names, "build_plan", "explain_scene", "main", "material_variant", "plan_post_passes",
+__all__ = [*_model_names, "GpuObject", "build_plan", "explain_scene", "main", "material_variant", "plan_post_passes",
            "plan_scene_file"]

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from wgpurender.core.course.effects import steps_for_target
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan.draws import PipelineTarget, material_variant, plan_draws
+from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     DEPTH_FORMAT,
@@ -25,7 +25,7 @@ from wgpurender.core.plan.model import (
     ScenePass,
 )
 from wgpurender.core.plan.post import plan_post_passes, post_pipelines_of, resolve_immediates, resolve_post_path
-from wgpurender.core.plan.targets import output_attachment, plan_scene_targets
+from wgpurender.core.plan.targets import SceneTargets, output_attachment, plan_scene_targets
 from wgpurender.core.scene import Scene, load_scene
 
 __all__ = ["build_plan", "explain_scene", "knob_settings", "main", "material_variant", "plan_scene_file"]
@@ -80,6 +80,32 @@ def _camera_note(scene: Scene) -> str:
             "(front faces stay counter-clockwise)")
 
 
+def left_out(scene: Scene, msaa_text: str, asked_msaa: int, targets: SceneTargets, drawn: SceneDraws,
+             post_passes: list) -> tuple[tuple[str, str], ...]:
+    """What a renderer could have made and this plan does not, and why (``--explain``'s "left out")."""
+    out: list[tuple[str, str]] = []
+    if not scene.models:
+        clear = ", ".join(f"{c:g}" for c in scene.render.clear_color)
+        out.append(("scene draws", f"no [[models]]: the scene pass only clears {targets.target} to render.clear_color "
+                    f"({clear}); a render pass that clears is how WebGPU clears a texture (wgpu-py 0.32 wraps no "
+                    "clear_texture); no scene pipeline, shader, buffer or bind group"))
+        if asked_msaa > 1:
+            out.append(("msaa_color", f"{msaa_text}, but there are no models: nothing to antialias, the clear is "
+                        "single-sampled"))
+        out.append(("depth", "no models: nothing is depth-tested"))
+    elif asked_msaa == 1:
+        out.append(("msaa_color", f"{msaa_text}: drawn single-sampled, no resolve"))
+    if not post_passes:
+        out.append(("scene_color, post passes", "no [[post]] effects: the scene pass writes the output itself"))
+    if scene.models and not scene.lights and not all(m.material.unlit for m in scene.models):
+        out.append(("lighting", "the scene has no [[lights]]: a lit material keeps only its ambient term, drawn by "
+                    "the unlit variant (no normals, light structs or lighting code)"))
+    if scene.models and not drawn.textures:
+        out.append(("textures, samplers, mip chains", "no material samples a texture (albedo_map, normal_map, "
+                    "roughness_map)"))
+    return tuple(out)
+
+
 def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_format: str | None = None,
                msaa: int | None = None, knobs: Knobs | None = None, anisotropy: str | None = None,
                adapter_type: str | None = None) -> RenderPlan:
@@ -94,7 +120,8 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     r = scene.render
     size = tuple(size or r.size)
     out_fmt = output_format or r.output_format
-    msaa = msaa or r.msaa
+    asked_msaa = msaa or r.msaa
+    msaa = asked_msaa if scene.models else 1  # no models: nothing to antialias, the pass only clears
     src = lambda key, value: f"render.{key} = {value}" + (" (overridden)" if value != getattr(r, key) else "")  # noqa: E731
     notes: list[str] = []
     settings = knob_settings(scene, knobs)
@@ -114,6 +141,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     last_post = f"written by post pass {len(post_passes)} ({post_passes[-1].effect})" if post_passes else None
     output = output_attachment(out_fmt, size, src("output_format", out_fmt), last_post, msaa > 1)
     attachments = (*targets.attachments, *post_attachments, output)
+    absent = left_out(scene, src("msaa", asked_msaa), asked_msaa, targets, drawn, post_passes)
     return RenderPlan(
         scene_path=scene.path,
         size=size,
@@ -130,6 +158,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         notes=tuple(notes),
         knobs=knobs,
         settings=settings,
+        absent=absent,
         scene=scene,
         rebuild=build_plan,
     )

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from wgpurender.core.course.shading import material_factors
+from wgpurender.core.course.shading import AMBIENT, material_factors
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
     Draw,
@@ -34,25 +34,28 @@ def _lights_text(lights: list[int]) -> str:
 
 def material_variant(material: Material, directional: list[int], point: list[int], srgb_output: str | None,
                      notes: list[str]) -> ShaderVariant:
-    """The features one material needs, each with its reason; ignored settings become notes."""
+    """The features one material needs, each with its reason; ignored settings become notes.
+
+    A lit material in a scene without lights gets no lighting: what remains of the shading is the ambient
+    term (ambient x albedo), which the unlit variant draws with the base colour scaled by the ambient
+    (:func:`draw_factors`): no normals, no light structs, no lighting code."""
     label = material_label(material)
-    n_directional, n_point = len(directional), len(point)
     reasons: list[tuple[str, str]] = []
-    lit = not material.unlit
+    lit = not material.unlit and bool(directional or point)
     if material.albedo_map:
         reasons.append(("albedo_map", f"{label} has albedo_map = '{material.as_written('albedo_map')}'"))
+    maps = [k for k in ("normal_map", "roughness_map") if getattr(material, k)]
     if lit:
         how = "unlit = false" if material.as_written("unlit") else "unlit is not set (materials are lit by default)"
         reasons.append(("lighting", f"{label} is lit: {how}"))
-        for key in ("normal_map", "roughness_map"):
-            if getattr(material, key):
-                reasons.append((key, f"{label} has {key} = '{material.as_written(key)}'"))
-        if n_directional + n_point == 0:
-            notes.append(f"{label} is lit but the scene has no [[lights]]: it gets no direct light")
-    else:
-        ignored = [k for k in ("normal_map", "roughness_map") if getattr(material, k)]
-        if ignored:
-            notes.append(f"{label}: {' and '.join(ignored)} ignored because unlit = true (no lighting to use them)")
+        reasons.extend((key, f"{label} has {key} = '{material.as_written(key)}'") for key in maps)
+    elif not material.unlit:
+        also = f"; its {' and '.join(maps)} only shape(s) direct light: not sampled" if maps else ""
+        notes.append(f"{label} is lit but the scene has no [[lights]]: only the ambient term remains (ambient x "
+                     f"albedo), so it is drawn with the unlit variant, its base colour scaled by the ambient "
+                     f"{AMBIENT}{also}")
+    elif maps:
+        notes.append(f"{label}: {' and '.join(maps)} ignored because unlit = true (no lighting to use them)")
     samples = any(f in TEXTURE_FEATURES for f, _ in reasons)
     if material.uv_flip_v:
         if samples:
@@ -69,6 +72,19 @@ def material_variant(material: Material, directional: list[int], point: list[int
             reasons.append((f"{kind}_lights:{len(indices)}", why))
     flags = frozenset(f for f, _ in reasons if ":" not in f)
     return ShaderVariant(flags=flags, counts=tuple(counts), reasons=tuple(reasons))
+
+
+def ambient_only(material: Material, variant: ShaderVariant) -> bool:
+    """A lit material drawn without lighting (the scene has no lights): its colour is ambient x albedo."""
+    return not material.unlit and "lighting" not in variant.flags
+
+
+def draw_factors(material: Material, variant: ShaderVariant) -> dict:
+    """The draw's Material values (course.shading.material_factors); ambient-only: base colour x ambient."""
+    base = tuple(material.albedo_color)
+    if ambient_only(material, variant):
+        base = (*(c * a for c, a in zip(base[:3], AMBIENT, strict=True)), *base[3:])
+    return material_factors(base, material.roughness, "lighting" in variant.flags, "roughness_map" in variant.flags)
 
 
 def _determinant3(matrix) -> float:
@@ -141,7 +157,6 @@ def _plan_draw(model: Model, target: PipelineTarget, srgb_output: str | None, kn
     out.table.add_textures(label, sampled, mat.sampler.mipmaps)
     if spec is not None:
         out.table.add_sampler(spec, label)
-    factors = material_factors(tuple(mat.albedo_color), mat.roughness, "lighting" in variant.flags,
-                               "roughness_map" in variant.flags)
+    factors = draw_factors(mat, variant)
     return Draw(model.index, model.path, model.label, mat.name, variant.key, pipeline.key, sampled, spec,
                 model.transform.matrix, label, tuple(factors.items()))

@@ -8,6 +8,7 @@ from pathlib import Path
 from wgpurender.core.anisotropy import resolve_anisotropy
 from wgpurender.core.plan.model import COLOR_TEXTURE_FORMAT, DATA_TEXTURE_FORMAT, Knobs, SamplerUse, TextureUse
 from wgpurender.core.scene import Material
+from wgpurender.core.texture_pixels import image_size, mip_level_count
 
 
 class TextureTable:
@@ -24,9 +25,10 @@ class TextureTable:
             who = f"{label} {feature}"
             old = self.textures.get((path, fmt))
             if old is None:
-                self.textures[(path, fmt)] = TextureUse(path, fmt, mipmaps, (who,))
+                self.textures[(path, fmt)] = _texture_use(path, fmt, mipmaps, (who,))
             elif who not in old.used_by:
-                self.textures[(path, fmt)] = TextureUse(path, fmt, old.mipmaps or mipmaps, old.used_by + (who,))
+                self.textures[(path, fmt)] = _texture_use(path, fmt, old.mipmaps or mipmaps, old.used_by + (who,),
+                                                          old.size)
 
     def add_sampler(self, spec: object, label: str) -> None:
         who = f"{label} sampler"
@@ -35,6 +37,14 @@ class TextureTable:
             self.samplers[spec] = SamplerUse(spec, (who,))
         elif who not in old.used_by:
             self.samplers[spec] = SamplerUse(spec, old.used_by + (who,))
+
+
+def _texture_use(path: Path, fmt: str, mipmaps: bool, used_by: tuple[str, ...],
+                 size: tuple[int, int] | None = None) -> TextureUse:
+    """The use with the image's size (its header only) and the mip levels the upload fills."""
+    size = size or image_size(path)
+    levels = (mip_level_count(*size) if size else None) if mipmaps else 1
+    return TextureUse(path, fmt, mipmaps, used_by, size, levels)
 
 
 def material_sampler(material: Material, label: str, knobs: Knobs, adapter_type: str | None,
