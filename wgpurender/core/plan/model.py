@@ -100,12 +100,17 @@ class ScenePipeline:
 
 @dataclass(frozen=True)
 class TextureUse:
-    """A texture file to upload, the format it is uploaded as, and who samples it."""
+    """A texture file to upload, the format it is uploaded as, and who samples it.
+
+    ``size`` is read from the image's header (None when it cannot be read: the upload says why);
+    ``mip_levels``: the levels the upload fills (1 without mipmaps; None when the size is unknown)."""
 
     path: Path
     format: str
     mipmaps: bool
     used_by: tuple[str, ...]
+    size: tuple[int, int] | None = None
+    mip_levels: int | None = 1
 
 
 @dataclass(frozen=True)
@@ -287,6 +292,7 @@ class RenderPlan:
     notes: tuple[str, ...] = field(default=())
     knobs: Knobs = field(default_factory=Knobs)
     settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
+    absent: tuple[tuple[str, str], ...] = ()  # (what a renderer could have made but does not, why), explain() shows
     scene: Scene | None = field(default=None, repr=False, compare=False)
     rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # build_plan
 
@@ -324,8 +330,23 @@ class RenderPlan:
 
     @property
     def mipmap_formats(self) -> tuple[str, ...]:
-        """Formats of the textures that get mip chains: one mip-generation render pipeline each (mipmap.wgsl)."""
-        return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps))
+        """Formats of the textures that get mip chains: one mip-generation render pipeline each (mipmap.wgsl).
+        A 1x1 image has no level to fill: it needs none."""
+        return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps and (t.mip_levels or 2) > 1))
+
+    @property
+    def objects(self) -> tuple:
+        """Every object the wgpu renderer creates for this plan, by device call (wgpurender/core/plan/objects.py)."""
+        from wgpurender.core.plan.objects import gpu_objects  # objects.py does not import this module (no cycle)
+
+        return gpu_objects(self)
+
+    def object_counts(self) -> dict[str, int]:
+        """How many objects of each kind (device call) the renderer creates: what the plan test compares."""
+        counts: dict[str, int] = {}
+        for o in self.objects:
+            counts[o.kind] = counts.get(o.kind, 0) + o.count
+        return counts
 
     @property
     def buffers(self) -> tuple[tuple[str, str], ...]:
