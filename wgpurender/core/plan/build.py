@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import sys
 from pathlib import Path
 
 from wgpurender.core.anisotropy import resolve_anisotropy
@@ -20,7 +19,6 @@ from wgpurender.core.plan.model import (
     PLAN_OUTPUT_FORMATS,
     SAMPLE_COUNTS,
     TEXTURE_FEATURES,
-    AdapterFacts,
     Attachment,
     Draw,
     Knobs,
@@ -274,24 +272,3 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
 
 def plan_scene_file(path: str | Path, **overrides) -> RenderPlan:
     return build_plan(load_scene(path), **overrides)
-
-
-def explain_scene(path: str | Path, adapter: AdapterFacts | None = None, **overrides) -> str:
-    """The plan of a scene file as text (what ``render SCENE.toml --explain`` prints); with ``adapter``, the
-    "auto" knobs are decided for it, as the renderer decides them, so the text lists what it would create."""
-    plan = plan_scene_file(path, **overrides)
-    return (plan.with_knobs(adapter=adapter) if adapter is not None else plan).explain()
-
-
-def main(argv: list[str] | None = None) -> int:
-    """``python -m wgpurender.core.plan SCENE.toml``: print the plan; UserError -> one line, exit 2."""
-    args = sys.argv[1:] if argv is None else argv
-    if len(args) != 1 or args[0] in ("-h", "--help"):
-        print("usage: python -m wgpurender.core.plan SCENE.toml", file=sys.stderr)
-        return 2
-    try:
-        sys.stdout.write(explain_scene(args[0]))
-    except UserError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    return 0
