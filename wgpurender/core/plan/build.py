@@ -8,12 +8,11 @@ from pathlib import Path
 
 from wgpurender.core.anisotropy import resolve_anisotropy
 from wgpurender.core.course.effects import steps_for_target
+from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import material_factors
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
-    COLOR_TEXTURE_FORMAT,
-    DATA_TEXTURE_FORMAT,
     DEPTH_FORMAT,
     HDR_FORMAT,
     LDR_SCENE_FORMAT,
@@ -224,7 +223,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
                 notes.append(f"{_material_label(mat)} sampler: {why}")
         label = _material_label(mat)
         for feature, path in sampled:
-            fmt = COLOR_TEXTURE_FORMAT if feature == "albedo_map" else DATA_TEXTURE_FORMAT
+            fmt = map_format(feature)
             who = f"{label} {feature}"
             old = textures.get((path, fmt))
             if old is None:
