@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import PurePath
 
+from wgpurender.core.assets import bundled_scene
+
 # MSAA: what WebGPU guarantees without extensions, and all that lavapipe offers.
 SAMPLE_COUNTS = (1, 4)
 
@@ -42,5 +44,6 @@ SCENE_SUFFIX = ".toml"
 
 
 def is_scene_file(target: str | PurePath) -> bool:
-    """Whether a render target names a scene file (rather than a stage): it ends in ``.toml``."""
-    return str(target).endswith(SCENE_SUFFIX)
+    """Whether a render target names a scene file (rather than a stage): it ends in ``.toml``, or it is a
+    bundled scene's name (``final``: :func:`wgpurender.core.assets.bundled_scene`)."""
+    return str(target).endswith(SCENE_SUFFIX) or bundled_scene(target) is not None
