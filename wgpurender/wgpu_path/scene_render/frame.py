@@ -70,6 +70,7 @@ class SceneRenderer:
         self.target_usage = output_usage(plan.post_passes)  # what the output texture needs beyond TARGET_USAGE
         self.size: tuple[int, int] | None = None
         self.attachments: dict[str, wgpu.GPUTexture] = {}
+        self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
 
     def create_output(self, label: str = "scene-output") -> wgpu.GPUTexture:
         """An offscreen output texture for this plan: its size, format and every usage the plan's passes need.
@@ -107,7 +108,7 @@ class SceneRenderer:
     def _view(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTextureView:
         """A view of an attachment or the output, made once per texture object (resize makes new ones)."""
         texture = self._texture(name, target)
-        cached = self.__dict__.setdefault("_views", {}).get(name)
+        cached = self._views.get(name)
         if cached is None or cached[0] is not texture:
             cached = self._views[name] = (texture, texture.create_view())
         return cached[1]
