@@ -43,7 +43,8 @@ def register(subparsers) -> None:
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
     p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
-    p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--backend", default=None,
+                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
     p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
                    help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
                    "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")

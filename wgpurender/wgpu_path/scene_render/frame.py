@@ -41,8 +41,7 @@ ATTACHMENT_USAGE = {
 
 def adapter_facts(ctx: GPUContext) -> AdapterFacts:
     """What the plan's "auto" knobs need to know about this context's adapter and device."""
-    info = ctx.info
-    return AdapterFacts(info.get("adapter_type", ""), frozenset(ctx.features), info.get("device", ""))
+    return ctx.facts()
 
 
 def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
