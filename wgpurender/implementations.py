@@ -93,7 +93,8 @@ def render_in_child(implementation: str, names: list[str], size: tuple[int, int]
 def calibrate(implementation: str, measured: dict, bounded_by: str) -> Path:
     """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
     (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
-    from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, calibrate as bounds, format_implementation_table
+    from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
+    from wgpurender.core.tolerances import calibrate as bounds
 
     table = {"implementations": {}}
     if IMPLEMENTATIONS_PATH.is_file():
