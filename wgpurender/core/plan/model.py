@@ -232,12 +232,15 @@ class AdapterFacts:
     """What the plan needs to know about an adapter for its "auto" knobs (no GPU object: plain values).
 
     ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
-    device's enabled features (the plan reads "immediates").
+    device's enabled features (the plan reads "immediates"); ``backend``: the API under the adapter as wgpu
+    reports it ("Vulkan", "OpenGL", ...; "WebGPU" for a browser), since some features are advertised where
+    they cannot be trusted (wgpurender/core/plan/post.py, ``UNTRUSTED_IMMEDIATES``).
     """
 
     adapter_type: str
     features: frozenset[str] = frozenset()
     name: str = ""
+    backend: str = ""
 
 
 @dataclass(frozen=True)

@@ -23,7 +23,6 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, RenderPlan, resolve_plan
-from wgpurender.core.plan import adapter_facts as plan_adapter_facts
 from wgpurender.core.scene import Scene, load_scene
 from wgpurender.wgpu_path.frame_loop import RenderResult, run_frame, run_frames
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -42,8 +41,7 @@ ATTACHMENT_USAGE = {
 
 def adapter_facts(ctx: GPUContext) -> AdapterFacts:
     """What the plan's "auto" knobs need to know about this context's adapter and device."""
-    info = ctx.info
-    return plan_adapter_facts(info.get("adapter_type", ""), ctx.features, info.get("device", ""))
+    return ctx.facts()
 
 
 def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
