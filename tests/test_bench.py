@@ -42,6 +42,22 @@ def test_csv_has_documented_columns_and_sane_rows(quick_run):
         assert r.n >= 1 and np.isfinite(r.median)
         if "difference" not in r.case:  # readback_ms too: paired frames, never negative; msaa-post differences may be
             assert 0.0 <= r.p10 <= r.median + 1e-3 and r.median <= r.p90 + 1e-3, r
+            assert np.isnan(r.p99) or r.p90 <= r.p99 + 1e-3, r
+
+
+def test_tails_are_reported_beside_the_median():
+    """p99 catches a stall in 5 of 100 frames; p90 > 3x the median flags the case in the report."""
+    from wgpurender.bench.markdown import _tails
+    from wgpurender.bench.report import Result
+    from wgpurender.wgpu_path.timing import Stats
+
+    rare = Stats.of([1.0] * 95 + [20.0] * 5)
+    assert (rare.median, rare.p90, rare.p99) == (1.0, 1.0, 20.0)
+    often = Result.of("frames", "triangle", "wgpu", "800x600", "frame_ms", Stats.of([1.0] * 80 + [10.0] * 20))
+    calm = Result.of("frames", "triangle", "raw", "800x600", "frame_ms", rare)
+    assert often.has_tail() and not calm.has_tail()
+    text = _tails([often, calm])
+    assert text.startswith("1 of 2 timed rows") and "| frames | triangle | wgpu |" in text and "p99 10.0" in text
 
 
 def test_every_common_stage_measured_on_both_paths(quick_run):

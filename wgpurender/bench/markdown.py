@@ -126,6 +126,21 @@ def _startup_table(res: list[Result]) -> str:
     return markdown_table(("case", "path", *(p.removesuffix("_ms") + " ms" for p in PHASES)), rows)
 
 
+def _tails(res: list[Result]) -> str:
+    """Every timed case whose p90 is over TAIL_FACTOR x its median, with its p99; or a line saying none."""
+    from wgpurender.bench.report import TAIL_FACTOR
+
+    timed = [r for r in res if r.metric.endswith("_ms") and r.n >= 5]
+    tails = [r for r in timed if r.has_tail()]
+    head = (f"{len(tails)} of {len(timed)} timed rows have p90 > {TAIL_FACTOR:g}x their median "
+            "(rows of at least 5 samples).")
+    if not tails:
+        return head
+    rows = [(r.family, r.case, r.path, r.size or "-", r.metric, spread(r), f"{r.p90 / r.median:.1f}x") for r in tails]
+    return head + "\n\n" + markdown_table(("family", "case", "path", "size", "metric", "p50 [p10..p90] p99",
+                                            "p90/p50"), rows)
+
+
 def render_markdown(run, plots: dict[str, str]) -> str:
     res = run.results
     lines = ["# wgpurender performance run", ""]
@@ -133,8 +148,9 @@ def render_markdown(run, plots: dict[str, str]) -> str:
     lines += [f"- **command**: `{run.config.command or 'run_perf()'}`",
               f"- **mode**: {'quick (harness check; numbers not meaningful)' if run.config.quick else 'full'}, "
               f"{run.config.timed_frames()} timed frames per case; duration {run.seconds:.0f} s",
-              "", "All times in ms: median [p10..p90] over the timed frames. Compare ratios within this run.", ""]
+              "", "All times in ms: p50 [p10..p90] p99 over the timed frames. Compare ratios within this run.", ""]
     lines += ["## Targets", "", _targets(run), ""]
+    lines += ["## Tails (stalls a median hides)", "", _tails(res), ""]
     if _pick(res, "frames"):
         lines += ["## Frame time: wgpu vs raw Vulkan, same stage", "",
                   "frame = record + submit + wait; cpu = record + submit; gpu = timestamps around the stage's "
