@@ -36,7 +36,7 @@ def _on_cpu(run) -> bool:
 def _targets(run) -> str:
     res = run.results
     rows = []
-    limit = 1.05 if _on_cpu(run) else 1.10
+    limit = 1.05  # issue 22: every stage within 1.05x of raw on a GPU too (issue 7 had 1.10 there)
     for case in sorted({r.case for r in _pick(res, "scene", "frame_ms", "raw")}):
         wg = {r.size: r for r in _pick(res, "scene", "frame_ms", "wgpu") if r.case == case}
         rw = {r.size: r for r in _pick(res, "scene", "frame_ms", "raw") if r.case == case}
@@ -71,7 +71,16 @@ def _targets(run) -> str:
         cpu = _pick(res, "frames", "cpu_ms", "wgpu")
         cpu = [r for r in cpu if r.case == "3d"]
         proxy = " (stage 3d as proxy)"
-    if cpu:
+    untimed = [r for r in _pick(res, "scene", "cpu_ms:untimed", "wgpu") if r.case in ("final", "final_subpass")]
+    calls = [r for r in _pick(res, "scene", "native_calls", "wgpu") if r.case == "final"]
+    if untimed:
+        worst = max(untimed, key=lambda r: r.median)
+        timed = max(r.median for r in cpu) if cpu else float("nan")
+        per = f"; {calls[0].median:.0f} native calls per frame" if calls else ""
+        rows.append(("CPU encode + submit <= 0.3 ms per frame (final scene, as a window draws it)",
+                     f"{fmt_ms(worst.median)} ms ({worst.case} {worst.size}, worst){per}; with pass timestamps "
+                     f"{fmt_ms(timed)} ms", _verdict(run, worst.median <= 0.3)))
+    elif cpu:
         worst = max(r.median for r in cpu)
         rows.append((f"CPU encode + submit <= 0.3 ms per frame{proxy}", f"{fmt_ms(worst)} ms (worst size)",
                      _verdict(run, worst <= 0.3)))

@@ -67,6 +67,9 @@ def explain(plan: Any) -> str:
     out.append("")
     out.append("buffers:")
     out.extend(f"  {name}: {what}" for name, what in plan.buffers)
+    if plan.render_bundles:
+        out.append("render bundles:")
+        out.extend(f"  {name}: {what}" for name, what in plan.render_bundles)
     if plan.notes:
         out.append("")
         out.append("notes:")

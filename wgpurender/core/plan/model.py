@@ -348,6 +348,20 @@ class RenderPlan:
         return tuple(out)
 
     @property
+    def render_bundles(self) -> tuple[tuple[str, str], ...]:
+        """(bundle, what it replays) for every render bundle the renderer records, once, at set-up (issue 22.2)."""
+        out = []
+        draws = self.scene_pass.draws
+        if draws:
+            out.append(("scene-draws", f"the scene pass's {len(draws)} draw(s): pipeline, bind groups, "
+                        "buffers, draw; replayed each frame with one execute_bundles"))
+        for p in self.post_passes:
+            if p.path == "fragment":
+                draws = "fs_mark and fs_main" if p.mask else "the full-screen triangle"
+                out.append((f"post-{p.effect}", f"bind group, pipeline and {draws}, per source texture"))
+        return tuple(out)
+
+    @property
     def post_steps(self) -> tuple[EffectStep, ...]:
         """Every effect step of the chain in order, whatever the passes (what the raw path's subpass composes)."""
         return tuple(s for p in self.post_passes for s in p.steps)
