@@ -145,7 +145,7 @@ def test_families_produce_their_rows(quick_run):
     assert {"frames", "post-effects", "post-probe", "msaa-post", "objects"} <= families
     modes = {r.case.split("/")[0] for r in run.results if r.family == "objects"}
     expected = set(MODES) if run_ctx_has_immediates(run) else set(MODES) - {"immediates"}
-    assert modes == expected
+    assert modes == expected | {"gpu-animated"}
 
 
 def run_ctx_has_immediates(run) -> bool:
@@ -213,6 +213,59 @@ def test_objects_modes_draw_the_numpy_image(ctx):
         off = np.any(np.abs(img - reference) > 1.0, axis=-1).mean()
         assert off <= 0.005, f"{mode}: {off:.4%} of pixels differ from the numpy quads"
     assert (np.abs(first[..., :3]).sum(axis=-1) > 0).mean() > 0.1  # the quads cover a good part of the image
+
+
+def test_gpu_animated_objects_draw_the_numpy_image(ctx):
+    """Animation on the GPU, the same drift formula: the numpy quads of object_data at t, later ones on top."""
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
+    size, count, half, t = (200, 150), 60, (0.05, 0.07), 1.3
+    renderer = GpuAnimatedRenderer(ctx, count, size, half)
+    renderer.t = t
+    img = renderer.pixels().astype(np.float64)
+    reference = _numpy_quads(object_data(count, t, half_size=half), size)
+    off = np.any(np.abs(img - reference) > 1.0, axis=-1).mean()
+    assert off <= 0.005, f"{off:.4%} of pixels differ from the numpy quads"
+    assert renderer.visible_count() == count  # every quad is inside the view
+
+
+def test_gpu_culling_counts_the_objects_in_view(ctx):
+    """Zoomed 2x about (0.3, -0.2): the indirect draw's instance count is the number of quads overlapping the view
+    box, counted here in numpy from the same formula (a quad within 1e-4 of the box edge may go either way)."""
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
+    count, half, (ox, oy, zoom), t = 5000, (0.01, 0.01), (0.3, -0.2, 2.0), 0.7
+    renderer = GpuAnimatedRenderer(ctx, count, (64, 48), half, view=(ox, oy, zoom))
+    renderer.t = t
+    renderer.frame()
+    data = object_data(count, t, half_size=half).astype(np.float64)
+    gap = np.maximum(np.abs((data[:, 0] - ox) * zoom) - half[0] * zoom,
+                     np.abs((data[:, 1] - oy) * zoom) - half[1] * zoom)
+    sure, edge = int((gap < 1.0 - 1e-4).sum()), int((np.abs(gap - 1.0) <= 1e-4).sum())
+    got = renderer.visible_count()
+    assert sure <= got <= sure + edge and 0 < got < count // 2
+
+
+def test_gpu_animated_frame_writes_one_small_uniform(ctx):
+    """Whatever the count, a frame's CPU work is the same few calls: one 32-byte write, no per-object data."""
+    from wgpurender.bench.calls import count_frame
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
+    for count in (100, 20_000):
+        renderer = GpuAnimatedRenderer(ctx, count, (64, 48))
+        written: list[int] = []
+        real = ctx.queue.write_buffer
+
+        def spy(buffer, offset, data, *rest, _real=real, _written=written):
+            _written.append(len(bytes(data)))
+            return _real(buffer, offset, data, *rest)
+
+        ctx.queue.write_buffer = spy
+        try:
+            calls = count_frame(ctx, renderer.record, renderer.target)
+        finally:
+            del ctx.queue.write_buffer
+        assert written == [32] and sum(calls.values()) == 15, dict(calls)
 
 
 def test_cli_lists_perf_and_rejects_unknown_family(capsys):
