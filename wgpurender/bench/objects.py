@@ -27,6 +27,7 @@ import wgpu
 
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import measure
+from wgpurender.bench.objects_data import BACKGROUND, FORMAT, HALF_SIZE, object_params
 from wgpurender.bench.report import Result, size_text
 from wgpurender.core.errors import UserError
 from wgpurender.core.shader_variants import specialise
@@ -39,19 +40,6 @@ from wgpurender.wgpu_path.timing import PassTimer
 SHADER = "bench_objects.wgsl"
 MODES = ("dynamic", "immediates", "instancing", "bundle")
 OBJECT_BYTES = 32  # rect + colour, two vec4f
-FORMAT = "rgba8unorm"
-BACKGROUND = (0.0, 0.0, 0.0, 1.0)
-
-
-HALF_SIZE = (0.005, 0.0067)  # NDC: quads of about 4x4 pixels at 800x600
-
-
-def object_params(count: int, seed: int = 7) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(centres (count, 2), phases (count,), colours (count, 3)): what does not change with time."""
-    rng = np.random.default_rng(seed)
-    centres = rng.uniform(-0.98, 0.98, size=(count, 2))
-    phase = rng.uniform(0.0, 2.0 * np.pi, size=count)
-    return centres, phase, rng.uniform(0.2, 1.0, size=(count, 3))
 
 
 def object_data(count: int, t: float, seed: int = 7, half_size: tuple[float, float] = HALF_SIZE) -> np.ndarray:

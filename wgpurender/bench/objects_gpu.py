@@ -24,7 +24,7 @@ import numpy as np
 import wgpu
 
 from wgpurender.bench.encoder import gpu_total
-from wgpurender.bench.objects import BACKGROUND, FORMAT, HALF_SIZE, object_params
+from wgpurender.bench.objects_data import BACKGROUND, FORMAT, HALF_SIZE, object_params
 from wgpurender.core.shader_variants import specialise
 from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
