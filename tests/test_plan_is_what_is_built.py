@@ -11,7 +11,7 @@ renderer is made and draws one frame, and what was created is compared with the 
 - buffers (while the renderer is made and records a frame; the readback is the caller's): one per entry of
   ``plan.buffers`` (camera, objects, materials without immediates, each mesh's vertices and indices, each
   post pass's parameters);
-- render bundle encoders: one per entry of ``plan.render_bundles`` (the scene pass's draws).
+- render bundle encoders: the plan's objects of that kind (the scene pass's draws, each fragment post pass).
 
 The device's caches are emptied first (gpu_cache.py), so an object made for an earlier scene on the same
 device cannot hide one. Expected values come from the plan; what is counted comes from the device.
@@ -81,8 +81,9 @@ def expected(plan) -> Counter:
         want[("render", fmt)] += 1
     if plan.buffers:
         want[("buffer",)] = len(plan.buffers)
-    for name, _ in plan.render_bundles:
-        want[("bundle", name)] += 1
+    for o in plan.objects:
+        if o.kind == "render_bundle_encoder":
+            want[("bundle", o.name)] += o.count
     return want
 
 

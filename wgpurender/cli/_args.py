@@ -45,6 +45,13 @@ def add_backend_arg(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_anisotropy_arg(parser: argparse.ArgumentParser) -> None:
+    """--anisotropy, with the same choices and default on every command that draws a scene."""
+    from wgpurender.core.anisotropy import ANISOTROPY_HELP, ANISOTROPY_RULES, DEFAULT_ANISOTROPY
+
+    parser.add_argument("--anisotropy", choices=ANISOTROPY_RULES, default=DEFAULT_ANISOTROPY, help=ANISOTROPY_HELP)
+
+
 def add_render_args(parser: argparse.ArgumentParser) -> None:
     """--size, --msaa, --format, --time: how a stage or scene is rendered."""
     parser.add_argument("--size", type=size_arg, default=None, metavar="WxH", help="image size (default 800x600)")

@@ -14,7 +14,6 @@ from dataclasses import dataclass, field
 
 import wgpu
 
-from wgpurender.core.course.formats import SAMPLE_COUNTS
 from wgpurender.core.errors import UserError
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
@@ -45,6 +44,9 @@ class GPUContext:
     device: wgpu.GPUDevice
     features: frozenset[str]
     _fence: wgpu.GPUBuffer | None = field(default=None, repr=False)
+    # the frame loop's reusable readback (frame_loop.Readback, made there on first use; typed loosely: gpu.py
+    # sits below frame_loop.py)
+    frame_readback: object | None = field(default=None, repr=False)
 
     @property
     def queue(self) -> wgpu.GPUQueue:
@@ -67,10 +69,6 @@ class GPUContext:
     def describe(self) -> str:
         info = self.adapter.info
         return f"{info['device']} ({info['backend_type']}, {info['adapter_type']}, {info['description']})"
-
-    def sample_counts(self, fmt: str = "rgba8unorm") -> tuple[int, ...]:
-        """MSAA sample counts this adapter can render with (WebGPU knows 1 and 4)."""
-        return SAMPLE_COUNTS
 
     def wait_idle(self) -> None:
         """Block until every submitted command buffer has finished (the Vulkan analogue: vkQueueWaitIdle).
