@@ -62,7 +62,7 @@ def register(subparsers) -> None:
                        metavar="S", help="seconds of timed frames (default 10)")
     bench.add_argument("--benchmark-result-file", default=BENCHMARK_DEFAULTS["benchmark_result_file"], metavar="CSV",
                        help="where the per-frame times go: frame,frame_ms (default benchmark.csv; --raw too)")
-    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window/controls.py)
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (core/controls.py)
     p.set_defaults(func=run)
 
 
@@ -124,10 +124,10 @@ def _benchmark(args):
 
 
 def _show(args, benchmark):
+    from wgpurender.core.controls import parse_script
     from wgpurender.core.imageio import check_writable
     from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.window import run_window
-    from wgpurender.wgpu_path.window.controls import parse_script
     from wgpurender.wgpu_path.window.view import DemoView
 
     if args.screenshot:
