@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_schema
+from wgpurender.core import gltf_rules, gltf_schema
 from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import check_file_size, input_file, resolved
 from wgpurender.core.safe_write import atomic_write
@@ -71,6 +71,7 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
         raise UserError(f"malformed glTF file {path}: {err}") from None
     try:
         gltf_schema.check(doc_json)
+        gltf_rules.check_rules(doc_json)
     except ValueError as err:
         raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
     buffers = [_load_buffer(path, i, b, glb_bin) for i, b in enumerate(doc_json.get("buffers", []))]
