@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from wgpurender.cli._args import add_anisotropy_arg, finite_float, size_arg
+from wgpurender.cli._args import add_anisotropy_arg, size_arg, time_arg
 
 BENCHMARK_DEFAULTS = {"benchmark_warmup": 2.0, "benchmark_runtime": 10.0, "benchmark_result_file": "benchmark.csv"}
 CONTROLS = ("left drag orbits, right/middle drag pans, scroll zooms; arrows/WASD orbit, +/- (Q/E) zoom, "
@@ -42,7 +42,7 @@ def register(subparsers) -> None:
         "when the surface lacks it); mailbox alone cannot be asked for through wgpu-py 0.32 (exit 2 says so)",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
-    p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
+    p.add_argument("--time", type=time_arg, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None,
                    help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
