@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from gltf_gen import GltfWriter, pixel_of, scene_text
+from gltf_gen import QUAD_INDICES, GltfWriter, pixel_of, quad, scene_text
 
 from wgpurender.core.imageio import to_uint8
 
@@ -68,3 +68,209 @@ def test_sparse_positions_render_displaced(ctx, tmp_path, which):
         col = int(min(column, SIZE[0] - 1.5)) - (1 if x == SPARSE_X[-1] else 0)
         top = int(np.argmax(covered[:, col]))
         assert covered[:, col].any() and abs(top + 0.5 - row) <= 1.5, (which, x, height, top, row)
+
+
+# -- helpers: colours as the output stores them ------------------------------------------------------------------
+
+UNLIT = {"extensions": {"KHR_materials_unlit": {}}}  # colour = base colour exactly: no light model in the way
+
+
+def srgb_encode(linear) -> np.ndarray:
+    x = np.clip(np.asarray(linear, np.float64), 0, 1)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055) * 255
+
+
+def srgb_decode(byte) -> np.ndarray:
+    c = np.asarray(byte, np.float64) / 255
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def at(image: np.ndarray, x: float, y: float) -> np.ndarray:
+    """The RGB bytes of the pixel where the camera puts (x, y, 0)."""
+    col, row = pixel_of(x, y, SIZE)
+    return image[int(row), int(col), :3].astype(np.float64)
+
+
+def assert_colour(image, x, y, linear_rgb, what, tol=3.0):
+    got, want = at(image, x, y), srgb_encode(linear_rgb)
+    assert np.abs(got - want).max() <= tol, (what, (x, y), got.tolist(), want.round(1).tolist())
+
+
+def quad_primitive(g: GltfWriter, x0, y0, x1, y1, material=None, *, uvs=None, colors=None, flip=False) -> dict:
+    attributes = {"POSITION": g.positions(quad(x0, y0, x1, y1))}
+    if uvs is not None:
+        attributes["TEXCOORD_0"] = g.accessor(np.asarray(uvs, np.float32))
+    if colors is not None:
+        attributes["COLOR_0"] = g.accessor(np.asarray(colors, np.float32))
+    indices = QUAD_INDICES.reshape(-1, 3)[:, ::-1].ravel().copy() if flip else QUAD_INDICES
+    prim = {"attributes": attributes, "indices": g.accessor(np.ascontiguousarray(indices))}
+    if material is not None:
+        prim["material"] = material
+    return prim
+
+
+# -- vertex colours x baseColorFactor ------------------------------------------------------------------------------
+
+VERTEX_COLOURS = [(1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (0.2, 0.4, 0.8, 1.0), (1.0, 1.0, 1.0, 1.0)]
+FACTOR = (0.5, 1.0, 0.25, 1.0)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_vertex_colours_times_base_colour_factor(ctx, tmp_path, which):
+    """Four quads, each with one COLOR_0 value on its four vertices, one material with baseColorFactor FACTOR:
+    each quad's centre shows colour x factor (linear), sRGB-encoded by the output."""
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": list(FACTOR)}, **UNLIT)
+    corners = [(-1.8, 0.1), (0.1, 0.1), (-1.8, -1.8), (0.1, -1.8)]
+    prims = [quad_primitive(g, x, y, x + 1.7, y + 1.7, mat, colors=[c] * 4)
+             for (x, y), c in zip(corners, VERTEX_COLOURS, strict=True)]
+    g.node(mesh=g.mesh(prims))
+    g.write(tmp_path / "colours.glb")
+    image = render(ctx, write_scene(tmp_path, "colours.glb"), which)
+    for (x, y), c in zip(corners, VERTEX_COLOURS, strict=True):
+        assert_colour(image, x + 0.85, y + 0.85, np.multiply(c, FACTOR)[:3], f"{which} COLOR_0 {c}")
+
+
+# -- baseColorFactor x baseColorTexture (sRGB) ---------------------------------------------------------------------
+
+TEXELS = np.array([[[200, 40, 10, 255], [30, 220, 90, 255]], [[60, 60, 250, 255], [250, 250, 250, 255]]], np.uint8)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_base_colour_factor_times_srgb_texture(ctx, tmp_path, which):
+    """A 2x2 texture (nearest, clamp) on a quad, factor FACTOR: each quarter shows decode(texel) x factor."""
+    g = GltfWriter()
+    tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": list(FACTOR), "baseColorTexture": {"index": tex}},
+                     **UNLIT)
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1.6, 1.6, 1.6, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "textured.glb")
+    image = render(ctx, write_scene(tmp_path, "textured.glb"), which)
+    for row in range(2):
+        for col in range(2):
+            x, y = -0.8 + 1.6 * col, 0.8 - 1.6 * row  # texel row 0 is the top of the image (v = 0)
+            want = srgb_decode(TEXELS[row, col, :3]) * FACTOR[:3]
+            assert_colour(image, x, y, want, f"{which} texel {row},{col}")
+
+
+# -- each primitive its own material -------------------------------------------------------------------------------
+
+PRIMITIVE_COLOURS = [(0.9, 0.1, 0.1), (0.1, 0.8, 0.2), (0.2, 0.3, 0.9)]
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_each_primitive_draws_with_its_own_material(ctx, tmp_path, which):
+    """Three primitives of one mesh, materials 2, 0, 1 (out of order on purpose): each quad its material's colour."""
+    g = GltfWriter()
+    mats = [g.material(pbrMetallicRoughness={"baseColorFactor": [*c, 1.0]}, **UNLIT) for c in PRIMITIVE_COLOURS]
+    xs = (-1.8, -0.55, 0.7)
+    order = (2, 0, 1)
+    g.node(mesh=g.mesh([quad_primitive(g, x, -1, x + 1.1, 1, mats[m]) for x, m in zip(xs, order, strict=True)]))
+    g.write(tmp_path / "materials.glb")
+    image = render(ctx, write_scene(tmp_path, "materials.glb"), which)
+    for x, m in zip(xs, order, strict=True):
+        assert_colour(image, x + 0.55, 0.0, PRIMITIVE_COLOURS[m], f"{which} primitive with material {m}")
+
+
+def test_a_scene_material_still_overrides_the_file(ctx, tmp_path):
+    """material = { ... } in the scene: every primitive draws with it, the file's colours are not used."""
+    g = GltfWriter()
+    mats = [g.material(pbrMetallicRoughness={"baseColorFactor": [*c, 1.0]}, **UNLIT) for c in PRIMITIVE_COLOURS]
+    g.node(mesh=g.mesh([quad_primitive(g, x, -1, x + 1.1, 1, m) for x, m in zip((-1.8, -0.55, 0.7), mats,
+                                                                               strict=True)]))
+    g.write(tmp_path / "materials.glb")
+    image = render(ctx, write_scene(tmp_path, "materials.glb", "{ unlit = true, albedo_color = [0.5, 0.5, 0.5] }"),
+                   "wgpu")
+    for x in (-1.25, 0.0, 1.25):
+        assert_colour(image, x, 0.0, (0.5, 0.5, 0.5), "scene material")
+
+
+# -- each texture its own sampler: per-axis wrap -------------------------------------------------------------------
+
+WRAP_MODES = {10497: lambda t: t - np.floor(t), 33071: lambda t: np.clip(t, 0.0, 1.0),
+              33648: lambda t: 1.0 - np.abs((t - 2.0 * np.floor(t / 2.0)) - 1.0)}
+
+
+@pytest.mark.parametrize("wrap", [(10497, 33071), (33648, 10497), (33071, 33648)], ids=["repeat-clamp",
+                                                                                          "mirror-repeat",
+                                                                                          "clamp-mirror"])
+@pytest.mark.parametrize("which", PATHS)
+def test_per_axis_wrap_modes(ctx, tmp_path, which, wrap):
+    """UVs run from -1 to 2 across a quad (u with x, v downwards), nearest filtering on a 2x2 texture: at 36
+    points (texel centres of the 3x3 tiles) the texel is the one the file's wrapS / wrapT select, computed here
+    with each mode's formula."""
+    wrap_s, wrap_t = wrap
+    g = GltfWriter()
+    tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=wrap_s, wrapT=wrap_t))
+    mat = g.material(pbrMetallicRoughness={"baseColorTexture": {"index": tex}}, **UNLIT)
+    uvs = [[-1, 2], [2, 2], [2, -1], [-1, -1]]  # quad corners: bottom-left, bottom-right, top-right, top-left
+    g.node(mesh=g.mesh([quad_primitive(g, -1.5, -1.5, 1.5, 1.5, mat, uvs=uvs)]))
+    g.write(tmp_path / "wrap.glb")
+    image = render(ctx, write_scene(tmp_path, "wrap.glb"), which)
+    for u in np.arange(-0.75, 2.0, 0.5):
+        for v in np.arange(-0.75, 2.0, 0.5):
+            x, y = u - 0.5, 0.5 - v  # the quad maps x = -1.5..1.5 to u = -1..2 and y = 1.5..-1.5 to v = -1..2
+            s, t = WRAP_MODES[wrap_s](u), WRAP_MODES[wrap_t](v)
+            texel = TEXELS[min(int(t * 2), 1), min(int(s * 2), 1), :3]
+            assert_colour(image, x, y, srgb_decode(texel), f"{which} uv ({u}, {v}) wrap {wrap}")
+
+
+# -- doubleSided ---------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("which", PATHS)
+def test_double_sided_faces_are_drawn_from_behind(ctx, tmp_path, which):
+    """Two quads wound clockwise as seen from the camera (their back faces): the doubleSided one (left, red) is
+    drawn, the single-sided one (right, green) is culled, leaving the black background."""
+    g = GltfWriter()
+    two = g.material(doubleSided=True, pbrMetallicRoughness={"baseColorFactor": [1, 0, 0, 1]}, **UNLIT)
+    one = g.material(pbrMetallicRoughness={"baseColorFactor": [0, 1, 0, 1]}, **UNLIT)
+    g.node(mesh=g.mesh([quad_primitive(g, -1.8, -1, -0.2, 1, two, flip=True),
+                        quad_primitive(g, 0.2, -1, 1.8, 1, one, flip=True)]))
+    g.write(tmp_path / "sides.glb")
+    image = render(ctx, write_scene(tmp_path, "sides.glb"), which)
+    assert_colour(image, -1.0, 0.0, (1, 0, 0), f"{which} double-sided back face")
+    assert_colour(image, 1.0, 0.0, (0, 0, 0), f"{which} single-sided back face (culled)")
+
+
+# -- alphaMode MASK ------------------------------------------------------------------------------------------------
+
+ALPHAS = np.array([[[255, 255, 255, 64], [255, 255, 255, 191]]], np.uint8)  # alpha 0.251 | 0.749
+
+
+@pytest.mark.parametrize("cutoff", [0.5, 0.2, 0.8])
+@pytest.mark.parametrize("which", PATHS)
+def test_alpha_mask_discards_below_the_cutoff(ctx, tmp_path, which, cutoff):
+    """A 2x1 texture with alpha 64/255 (left) and 191/255 (right), alphaMode MASK: a half is drawn (white) exactly
+    when its alpha is at least alphaCutoff, else the black background shows."""
+    g = GltfWriter()
+    tex = g.texture(ALPHAS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(alphaMode="MASK", alphaCutoff=cutoff, pbrMetallicRoughness={"baseColorTexture": {"index": tex}},
+                     **UNLIT)
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1.0, 1.6, 1.0, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "mask.glb")
+    image = render(ctx, write_scene(tmp_path, "mask.glb"), which)
+    for x, alpha in ((-0.8, ALPHAS[0, 0, 3] / 255), (0.8, ALPHAS[0, 1, 3] / 255)):
+        want = (1, 1, 1) if alpha >= cutoff else (0, 0, 0)
+        assert_colour(image, x, 0.0, want, f"{which} alpha {alpha:.3f} cutoff {cutoff}")
+
+
+# -- node hierarchy ------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("which", PATHS)
+def test_node_hierarchy_places_the_quad(ctx, tmp_path, which):
+    """A unit quad under a child node (rotation 90 degrees about z, scale 0.5) under a parent (translation
+    (0.5, -0.25, 0)): its corners land at parent @ child @ corner (composed here); the covered pixels span their
+    projection, within 1 pixel."""
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1]}, **UNLIT)
+    s = float(np.sin(np.pi / 4))
+    child = g.node(mesh=g.mesh([quad_primitive(g, 0, 0, 2, 1, mat)]), rotation=[0, 0, s, s], scale=[0.5] * 3)
+    parent = g.node(children=[child], translation=[0.5, -0.25, 0])
+    g.write(tmp_path / "tree.glb", roots=[parent])
+    image = render(ctx, write_scene(tmp_path, "tree.glb"), which)
+    corners = quad(0, 0, 2, 1)[:, :2] * 0.5
+    world = np.c_[-corners[:, 1], corners[:, 0]] + [0.5, -0.25]  # rotate 90 degrees: (x, y) -> (-y, x)
+    cols, rows = zip(*(pixel_of(x, y, SIZE) for x, y in world), strict=True)
+    covered = np.argwhere(image[..., :3].max(axis=2) > 128)
+    assert abs(covered[:, 1].min() - min(cols)) <= 1 and abs(covered[:, 1].max() + 1 - max(cols)) <= 1, which
+    assert abs(covered[:, 0].min() - min(rows)) <= 1 and abs(covered[:, 0].max() + 1 - max(rows)) <= 1, which

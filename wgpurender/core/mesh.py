@@ -147,6 +147,18 @@ class Mesh:
                                     dtype=np.float32)
 
 
+def index_range(mesh: Mesh, draw) -> tuple[int, int]:
+    """(first index, index count) a plan Draw covers: the mesh part of its file material (``draw.part``, -1 for
+    primitives without one), or the whole mesh when ``part`` is None."""
+    if draw.part is None:
+        return 0, int(mesh.indices.size)
+    wanted = None if draw.part < 0 else draw.part
+    for part in mesh.parts:
+        if part.material == wanted:
+            return part.first_index, part.index_count
+    raise UserError(f"{draw.label}: the model file has no triangles with material {draw.part}")
+
+
 def index_dtype(max_index: int) -> type:
     """uint16 when every index fits below 65535 (0xFFFF is kept free: it is the strip-restart value), else uint32."""
     return np.uint16 if max_index < 65535 else np.uint32

@@ -10,6 +10,7 @@ from wgpurender.core.anisotropy import resolve_anisotropy
 from wgpurender.core.course.effects import steps_for_target
 from wgpurender.core.course.shading import material_factors
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan import file_materials
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     COLOR_TEXTURE_FORMAT,
@@ -75,6 +76,7 @@ def material_variant(material: Material, directional: list[int], point: list[int
             reasons.append(("flip_v", f"{label} has uv_flip_v = true"))
         else:
             notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
+    reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
     if srgb_output:
         reasons.append(("srgb_output", srgb_output))
     counts = []
@@ -106,6 +108,53 @@ def _scene_format(scene: Scene, knobs: Knobs, has_post: bool) -> tuple[str, str]
     if tonemaps:
         return HDR_FORMAT, f"post[{tonemaps[0].index}] tonemap maps HDR to [0, 1], so it needs HDR input"
     return LDR_SCENE_FORMAT, "render.hdr = false and no tone mapping: 8 bits (sRGB-encoded) suffice"
+
+
+def _plan_draw(model, mat: Material, seen_materials: set, directional, point, srgb_output, notes: list, knobs,
+               aniso_adapter, msaa: int, scene_fmt: str, depth_compare: str, variants: dict, pipelines: dict,
+               textures: dict, samplers: dict) -> Draw:
+    """One draw: a model with one material (its scene material, or one of its file's), and what it needs."""
+    first_time = id(mat) not in seen_materials
+    seen_materials.add(id(mat))
+    variant = material_variant(mat, directional, point, srgb_output, notes if first_time else [])
+    variants.setdefault(variant.key, variant)
+    # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
+    front_face = "cw" if _determinant3(model.transform.matrix) < 0 else "ccw"
+    pipeline = ScenePipeline(variant, scene_fmt, msaa, knobs.depth_format, front_face=front_face,
+                             depth_compare=depth_compare, **file_materials.pipeline_state(mat))
+    pipelines.setdefault(pipeline.key, pipeline)
+    sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
+    spec = mat.sampler.spec() if sampled else None
+    label = _material_label(mat)
+    own = []
+    for feature, feature_spec in file_materials.texture_samplers(mat, sampled, spec):
+        feature_spec, why = resolve_anisotropy(feature_spec, knobs.anisotropy, aniso_adapter)
+        if why and first_time:
+            notes.append(f"{label} sampler: {why}")
+        own.append((feature, feature_spec))
+    for feature, path in sampled:
+        fmt = COLOR_TEXTURE_FORMAT if feature == "albedo_map" else DATA_TEXTURE_FORMAT
+        who = f"{label} {feature}"
+        mips = file_materials.texture_mipmaps(mat, feature)
+        old = textures.get((path, fmt))
+        if old is None:
+            textures[(path, fmt)] = TextureUse(path, fmt, mips, (who,))
+        elif who not in old.used_by:
+            textures[(path, fmt)] = TextureUse(path, fmt, old.mipmaps or mips, old.used_by + (who,))
+    for feature, feature_spec in own:
+        who = f"{label} sampler" if not mat.texture_samplers else f"{label} {feature} sampler"
+        old = samplers.get(feature_spec)
+        if old is None:
+            samplers[feature_spec] = SamplerUse(feature_spec, (who,))
+        elif who not in old.used_by:
+            samplers[feature_spec] = SamplerUse(feature_spec, old.used_by + (who,))
+    factors = material_factors(tuple(mat.albedo_color), mat.roughness, "lighting" in variant.flags,
+                               "roughness_map" in variant.flags,
+                               **file_materials.factor_options(mat, variant.flags))
+    draw_label = model.label if mat.part is None else f"{model.label} {mat.name.removeprefix(model.label).strip()}"
+    return Draw(model.index, model.path, draw_label, mat.name, variant.key, pipeline.key, sampled,
+                own[0][1] if own else None, model.transform.matrix, label, tuple(factors.items()), part=mat.part,
+                samplers=tuple(own))
 
 
 def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_format: str | None = None,
@@ -206,41 +255,15 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     draws = []
     seen_materials: set[int] = set()
     for model in scene.models:
-        mat = model.material
-        first_time = id(mat) not in seen_materials
-        seen_materials.add(id(mat))
-        variant = material_variant(mat, directional, point, srgb_output, notes if first_time else [])
-        variants.setdefault(variant.key, variant)
-        # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
-        front_face = "cw" if _determinant3(model.transform.matrix) < 0 else "ccw"
-        pipeline = ScenePipeline(variant, scene_fmt, msaa, knobs.depth_format, front_face=front_face,
-                                 depth_compare=depth_compare)
-        pipelines.setdefault(pipeline.key, pipeline)
-        sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
-        spec = mat.sampler.spec() if sampled else None
-        if spec is not None:
-            spec, why = resolve_anisotropy(spec, knobs.anisotropy, aniso_adapter)
-            if why and first_time:
-                notes.append(f"{_material_label(mat)} sampler: {why}")
-        label = _material_label(mat)
-        for feature, path in sampled:
-            fmt = COLOR_TEXTURE_FORMAT if feature == "albedo_map" else DATA_TEXTURE_FORMAT
-            who = f"{label} {feature}"
-            old = textures.get((path, fmt))
-            if old is None:
-                textures[(path, fmt)] = TextureUse(path, fmt, mat.sampler.mipmaps, (who,))
-            elif who not in old.used_by:
-                textures[(path, fmt)] = TextureUse(path, fmt, old.mipmaps or mat.sampler.mipmaps, old.used_by + (who,))
-        if spec is not None:
-            old = samplers.get(spec)
-            if old is None:
-                samplers[spec] = SamplerUse(spec, (f"{label} sampler",))
-            elif f"{label} sampler" not in old.used_by:
-                samplers[spec] = SamplerUse(spec, old.used_by + (f"{label} sampler",))
-        factors = material_factors(tuple(mat.albedo_color), mat.roughness, "lighting" in variant.flags,
-                                   "roughness_map" in variant.flags)
-        draws.append(Draw(model.index, model.path, model.label, mat.name, variant.key, pipeline.key, sampled, spec,
-                          model.transform.matrix, label, tuple(factors.items())))
+        materials, found = file_materials.draw_materials(model)
+        if found is not None:
+            notes.extend(file_materials.model_notes(model, found))
+        for mat in materials:
+            draws.append(_plan_draw(model, mat, seen_materials, directional, point, srgb_output, notes, knobs,
+                                    aniso_adapter, msaa, scene_fmt, depth_compare, variants, pipelines, textures,
+                                    samplers))
+    # alpha-blended draws last (over everything opaque), in scene order among themselves: not sorted by depth
+    draws.sort(key=lambda d: pipelines[d.pipeline_key].blend)
 
     scene_pass = ScenePass(color_target, scene_target if msaa > 1 else None, "depth" if scene.models else None,
                            r.clear_color, tuple(draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
