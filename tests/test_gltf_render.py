@@ -274,3 +274,91 @@ def test_node_hierarchy_places_the_quad(ctx, tmp_path, which):
     covered = np.argwhere(image[..., :3].max(axis=2) > 128)
     assert abs(covered[:, 1].min() - min(cols)) <= 1 and abs(covered[:, 1].max() + 1 - max(cols)) <= 1, which
     assert abs(covered[:, 0].min() - min(rows)) <= 1 and abs(covered[:, 0].max() + 1 - max(rows)) <= 1, which
+
+
+# -- alphaMode BLEND -----------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("which", PATHS)
+def test_alpha_blend_is_drawn_over_the_opaque_draws(ctx, tmp_path, which):
+    """A BLEND quad (red, alpha 0.25) in front of an OPAQUE blue one, the blended primitive FIRST in the file:
+    blended draws go last, so the overlap is 0.25 red + 0.75 blue (source-over, in linear light: the sRGB target
+    blends before it encodes); beside the opaque quad the background shows through: 0.25 red."""
+    g = GltfWriter()
+    glass = g.material(alphaMode="BLEND", pbrMetallicRoughness={"baseColorFactor": [1, 0, 0, 0.25]}, **UNLIT)
+    wall = g.material(pbrMetallicRoughness={"baseColorFactor": [0, 0, 1, 1]}, **UNLIT)
+    front = {"attributes": {"POSITION": g.positions(quad(-1.5, -1, 1.5, 1, z=0.5))},
+             "indices": g.accessor(QUAD_INDICES), "material": glass}
+    g.node(mesh=g.mesh([front, quad_primitive(g, -1.8, -1.8, 0, 1.8, wall)]))
+    g.write(tmp_path / "blend.glb")
+    image = render(ctx, write_scene(tmp_path, "blend.glb"), which)
+    assert_colour(image, -0.4, 0.0, (0.25, 0.0, 0.75), f"{which} blended over opaque")
+    assert_colour(image, 0.6, 0.0, (0.25, 0.0, 0.0), f"{which} blended over the background")
+
+
+# -- a lit double-sided surface seen from behind ------------------------------------------------------------------
+
+@pytest.mark.parametrize("which", PATHS)
+def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, which):
+    """A lit quad whose front faces away from the camera, doubleSided, albedo a, roughnessFactor 1; a directional
+    light shining along -z (from behind the camera). At the centre l = v = n' (the turned normal), so scene.wgsl's
+    model gives L = ambient * a + a + 0.04 * (s + 8) / 8 with s = 1 (roughness 1): without the turn n.l would be
+    -1 and only ambient * a would remain."""
+    albedo = np.array([0.4, 0.3, 0.2])
+    g = GltfWriter()
+    mat = g.material(doubleSided=True, pbrMetallicRoughness={"baseColorFactor": [*albedo, 1], "metallicFactor": 0,
+                                                             "roughnessFactor": 1.0})
+    g.node(mesh=g.mesh([quad_primitive(g, -1, -1, 1, 1, mat, flip=True)]))
+    g.write(tmp_path / "lit.glb")
+    light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, -1]\n'
+    image = render(ctx, write_scene(tmp_path, "lit.glb", extra=light), which)
+    ambient = np.array([0.03, 0.03, 0.035])  # course.shading.AMBIENT, written in docs/scenes.md's shading model
+    want = ambient * albedo + albedo + 0.04 * (1 + 8) / 8
+    assert_colour(image, 0.0, 0.0, want, f"{which} lit back face")
+
+
+# -- what --explain says -------------------------------------------------------------------------------------------
+
+def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
+    """A material with emissive, occlusion, metalness and KHR_materials_clearcoat; extensionsUsed lists clearcoat
+    and KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
+    from wgpurender.cli import main
+
+    g = GltfWriter()
+    tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33648))
+    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex},
+                     pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "metallicFactor": 1.0},
+                     extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1}})
+    prim = quad_primitive(g, -1, -1, 1, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
+    prim["attributes"]["TEXCOORD_1"] = prim["attributes"]["TEXCOORD_0"]
+    g.node(mesh=g.mesh([prim, {"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1))}, "mode": 1}]))
+    g.doc["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_unlit"]
+    g.write(tmp_path / "coat.glb")
+    code = main(["render", str(write_scene(tmp_path, "coat.glb")), "--explain"])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "from the model file" in out and "'coat'" in out
+    assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
+    for ignored in ("KHR_materials_clearcoat: ignored", "emissive: ignored", "occlusionTexture: ignored",
+                    "metalness", "TEXCOORD_1 ignored", "LINES primitive ignored",
+                    "extensionsUsed KHR_materials_clearcoat: ignored"):
+        assert ignored in out, ignored
+    assert "KHR_materials_unlit: ignored" not in out
+
+
+def test_cli_refuses_gltf_1_and_unknown_required_extensions(tmp_path, capsys):
+    """One line each, exit 2: the version, and the extension by name."""
+    import json
+
+    from wgpurender.cli import main
+
+    (tmp_path / "old.gltf").write_text(json.dumps({"asset": {"version": "1.0"}, "scene": "defaultScene"}))
+    g = GltfWriter()
+    g.node(mesh=g.mesh([quad_primitive(g, -1, -1, 1, 1)]))
+    g.doc["extensionsRequired"] = g.doc["extensionsUsed"] = ["EXT_meshopt_compression"]
+    g.write(tmp_path / "packed.glb")
+    for model, needle in (("old.gltf", "glTF 1.0 is not supported (glTF 2.0 only)"),
+                          ("packed.glb", "EXT_meshopt_compression")):
+        scene = write_scene(tmp_path, model)
+        code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
+        err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+        assert code == 2 and len(err) == 1 and needle in err[0], err

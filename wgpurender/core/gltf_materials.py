@@ -20,6 +20,7 @@ extension by name.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -154,9 +155,9 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
     materials = []
     for k in sorted(used):
         if k < 0:
-            materials.append(Material("default", origin=f"{label} (primitives without a material: the default "
-                                      "material)", vertex_colors=used[k], part=-1) if used[k] else
-                             _part(DEFAULT_MATERIAL, -1))
+            materials.append(dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
+                                                 origin=f"{label} primitives without a material (the default one)",
+                                                 vertex_colors=used[k], part=-1))
         else:
             materials.append(file_material(doc, k, label, used[k], ignored))
     for m in materials:
@@ -165,12 +166,6 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
         if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
             ignored.append(f"extensionsUsed {ext}: ignored")
     return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
-
-
-def _part(material: Material, part: int) -> Material:
-    import dataclasses
-
-    return dataclasses.replace(material, part=part)
 
 
 def _taken_text(m: Material) -> str:

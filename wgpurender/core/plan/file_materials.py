@@ -61,7 +61,9 @@ def texture_mipmaps(material: Material, feature: str) -> bool:
 
 def model_notes(model: Model, found: ModelMaterials) -> list[str]:
     """``--explain`` lines: what was taken from the model file and what was ignored."""
-    lines = [f"{model.label}: materials from the model file (no material = ... in the scene): {t}"
-             for t in found.taken]
-    lines += [f"{model.label}: {item}" for item in found.ignored]
+    def short(item: str) -> str:
+        return item.removeprefix(model.label).strip()
+
+    lines = [f"{model.label}: from the model file (the scene gives no material): {short(t)}" for t in found.taken]
+    lines += [f"{model.label}: {short(item)}" for item in found.ignored]
     return lines
