@@ -28,7 +28,8 @@ REFERENCE_DIR = Path(__file__).resolve().parent.parent.parent / "assets" / "refe
 SCENE_DIR = REFERENCE_DIR.parent / "scenes"
 SCENE_REFERENCE_SIZE = (320, 240)
 # reference name -> scene file in assets/scenes/ (only scenes the raw path can draw: per-pixel post effects)
-SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml"}
+SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml",
+                    "scene_gltf_features": "gltf_features.toml"}
 
 
 def reference_path(stage: str, directory: Path = REFERENCE_DIR) -> Path:
