@@ -137,7 +137,8 @@ def gltf_features(out: Path) -> None:
                   [[0, 3], [3.5, 3], [3.5, 0], [0, 0]], quad_idx, floor)
     box = proc.box(0.8)
     corner_colors = (box.positions - box.positions.min(0)) / np.ptp(box.positions, axis=0)  # rgb = xyz in the box
-    cube = prim(box.positions, box.normals, None, box.indices, painted, np.c_[corner_colors, np.ones(len(box.positions))])
+    rgba = np.c_[corner_colors, np.ones(len(box.positions))]
+    cube = prim(box.positions, box.normals, None, box.indices, painted, rgba)
     # the leaf is wound clockwise as the camera sees it: its back face shows, drawn because it is double-sided
     leaf_quad = prim([[-0.5, 0, 0], [-0.5, 1.2, 0], [0.5, 1.2, 0], [0.5, 0, 0]], [[0, 0, -1]] * 4,
                      [[0, 1], [0, 0], [1, 0], [1, 1]], quad_idx, leaf_mat)
