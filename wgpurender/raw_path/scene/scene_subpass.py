@@ -58,8 +58,10 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
 
 
 def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
-    """Push constant bytes from the draw's factors (course.shading.material_factors, decided by the plan: with a
-    roughness map, the map's G channel times the factor is the roughness)."""
+    """Push constant bytes: the plan's factors for the draw (core/plan/draws.py decides them, e.g. with a
+    roughness map the map's G channel times the factor is the roughness; a lit material without lights is drawn
+    unlit with its base colour times the ambient), the same values the wgpu path pushes; alpha-masked variants
+    append the cutoff."""
     f = dict(draw.factors)
     cutoff = f.get("alpha_cutoff") if "alpha_mask" in variant.flags else None
     if not is_lit(variant):
