@@ -21,7 +21,8 @@ def register(subparsers) -> None:
                    help="folder for the site (new, empty, or an earlier report, which is replaced)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="every step's image size (default 240x180; the tutorial's scenes 320x240)")
-    p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--backend", default=None,
+                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
     p.set_defaults(func=run)
 
 

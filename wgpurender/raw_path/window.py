@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.controls import Controls, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.errors import UserError
 from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
@@ -83,7 +84,8 @@ class RawWindowResult:
     swapchain_format: str
     recreated: int = 0  # swapchain re-creations (resize, out of date, restore)
     events: list[str] = field(default_factory=list)
-    benchmark: FrameRecorder | None = None
+    benchmark: FrameRecorder | None = None  # --benchmark's frame times (the wgpu window's recorder)
+    validation_messages: int | None = None  # with validation on: how many messages the layer sent
 
 
 def _glfw():
@@ -98,35 +100,30 @@ def _glfw():
     return glfw
 
 
-def adapter_type(ctx: VulkanContext) -> str:
-    """The device type in wgpu's words ("CPU" for lavapipe), for the plan's per-adapter anisotropy rule."""
-    kind = vk.vkGetPhysicalDeviceProperties(ctx.physical_device).deviceType
-    return {vk.VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: "DiscreteGPU", vk.VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-            "IntegratedGPU", vk.VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: "VirtualGPU",
-            vk.VK_PHYSICAL_DEVICE_TYPE_CPU: "CPU"}.get(kind, "Unknown")
-
-
 def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
-                     anisotropy: str = "auto") -> tuple[Callable, str, object]:
+                     anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[Callable, str, object]:
     """(make, format, camera): ``make(owned, size) -> (record, format, drawable)`` makes a raw stage, or a scene
     file drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders; ``camera`` its
-    start camera (eye, target, up), None for a flat stage. ``anisotropy`` as the wgpu demo's: "auto" applies
-    the plan's per-adapter rule (1 on a CPU driver), "scene" keeps the scene's."""
+    start camera (eye, target, up), None for a flat stage. A scene's plan is
+    :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: the per-adapter rule or "scene")."""
     if target.endswith(".toml"):
-        from wgpurender.core.plan import build_plan
+        from wgpurender.core.plan import resolve_plan
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.scene.frame import SceneFrame
         from wgpurender.raw_path.scene.support import check_supported
 
         scene = load_scene(target)
-        rule = {"anisotropy": anisotropy, "adapter_type": adapter_type(ctx)}
+        facts = ctx.adapter_facts()
+
+        def plan_for(size: tuple[int, int] | None):
+            return resolve_plan(scene, facts, size=size, msaa=msaa, anisotropy=anisotropy, output_storage=False)
 
         def make_scene(owned: ExitStack, size: tuple[int, int]):
-            plan = build_plan(scene, size=size, msaa=msaa, **rule)
+            plan = plan_for(size)
             check_supported(plan)
             frame = SceneFrame(ctx, owned, scene, plan)
             return (lambda cmd, image, t: frame.record(cmd, image)), plan.output_format, frame
-        return make_scene, build_plan(scene, msaa=msaa, **rule).output_format, scene.camera
+        return make_scene, plan_for(None).output_format, scene.camera
     from wgpurender.raw_path.stages import get_ref_stage
 
     cls = get_ref_stage(target)
@@ -350,7 +347,7 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
                    frames: int | None = None, screenshot: bool = False, msaa: int | None = None,
                    fixed_time: float | None = None, on_frame: Callable | None = None,
                    benchmark: BenchmarkSpec | None = None, script: list[ScriptEvent] = (),
-                   anisotropy: str = "auto") -> RawWindowResult:
+                   anisotropy: str = DEFAULT_ANISOTROPY) -> RawWindowResult:
     """Show a raw stage or scene until the window closes (Esc or the close button), ``frames`` are presented,
     or the benchmark's run time is over.
 
@@ -358,7 +355,8 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
     the same keys), as are the FPS title and the benchmark CSV (core/frame_times.py). ``screenshot``: the
     last presented frame is copied back from its swapchain image. ``on_frame(glfw, window, n)`` runs before
     frame n (tests use it to resize and minimise); ``script`` is the tests' synthetic input (``demo
-    --test-input``). With validation on, any message raises ValidationFailed when the window closes.
+    --test-input``). ``anisotropy``: a scene's rule (:func:`drawable_factory`). With validation on, any
+    message raises ValidationFailed when the window closes.
     """
     glfw = _glfw()
     title = f"wgpurender --raw: {target}"
@@ -371,6 +369,7 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
         loop = RawDemoLoop(raw, camera, title, benchmark, list(script))
         result = loop.run(frames, screenshot, fixed_time, on_frame)
         vk.vkDeviceWaitIdle(ctx.device)
+        result.validation_messages = len(ctx.log.messages) if ctx.log is not None else None
         ctx.check_validation(f"the raw-Vulkan window of {target!r}")
         return result
     finally:

@@ -20,10 +20,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from wgpurender.core.assets import scene_dir
 from wgpurender.wgpu_path.gpu import GPUContext
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-SCENE = REPO_ROOT / "assets" / "scenes" / "final.toml"
+SCENE = scene_dir() / "final.toml"
 SIZE = (128, 96)  # small: the ground truth renders 8x it
 FRAMES, WARMUP = 2, 1
 PLOT = "accuracy_pareto.png"

@@ -38,7 +38,6 @@ def vertex_input() -> tuple[list, list]:
 class Cube3D(RefStage):
     name = "3d"
     summary = "rotating cubes: depth buffer, camera and object UBOs in two descriptor sets, push constants"
-    supports_msaa = True
     camera = course.CameraSpec()  # the demo window's orbit camera replaces it per instance
 
     def setup(self) -> None:
