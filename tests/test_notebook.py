@@ -98,3 +98,19 @@ def test_accuracy_plot(executed):
     assert 0 < rows[4]["flip_mean"] < rows[1]["flip_mean"]
     plot = next(c for c in executed if "plt.show()" in c.source)
     assert len(_pngs(plot)) == 1
+
+
+def test_show_falls_back_to_a_still_and_record_writes_a_video(executed):
+    """Under nbclient no widget is shown: w.show's output carries the first frame as PNG (320x240) beside the
+    widget; w.record's clip is embedded as an MP4."""
+    from PIL import Image
+
+    show = next(c for c in executed if "w.show(" in c.source)
+    pngs = _pngs(show)
+    assert len(pngs) == 1
+    with Image.open(io.BytesIO(pngs[0])) as im:
+        assert im.size == (320, 240)
+    record = next(c for c in executed if "w.record(" in c.source)
+    assert "recorded 3d.mp4" in _text(record)
+    videos = [o for o in record.outputs if "text/html" in o.get("data", {}) and "video/mp4" in o.data["text/html"]]
+    assert len(videos) == 1

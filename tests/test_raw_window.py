@@ -186,3 +186,33 @@ def test_raw_benchmark_csv_and_fps_title(display, tmp_path, monkeypatch):
     fps, ms = float(match.group(1)), float(match.group(2))
     assert fps == pytest.approx(1e3 / ms, rel=0.01)
     assert min(times) * 0.5 <= ms <= max(times) * 2  # a mean over the last half second of the frames timed
+
+
+@pytest.mark.parametrize("window", ["wgpu", "raw"])
+def test_demo_record_writes_every_presented_frame(display, tmp_path, window):
+    """--record FOLDER: one PNG per presented frame, each the frame shown (the offscreen raw render at t=0, within
+    the windows' tolerance); --record OUT.mp4 has as many frames, at --record-fps."""
+    run = raw_demo if window == "raw" else wgpu_demo
+    frames = tmp_path / "frames"
+    result = run(display, "3d", "--frames", "3", "--time", "0", "--size", f"{SIZE[0]}x{SIZE[1]}", "--record",
+                 str(frames))
+    assert result.returncode == 0, result.stderr
+    assert f"wrote {frames} (3 frames)" in result.stdout
+    want = render_reference("3d", SIZE).astype(int)
+    names = sorted(p.name for p in frames.iterdir())
+    assert names == [f"frame_{k:05d}.png" for k in range(3)]
+    for name in names:
+        diff = np.abs(load_png(frames / name).astype(int)[..., :3] - want[..., :3]).max(axis=2)
+        assert diff.max() <= WINDOW_MAX_ABS and (diff > 0).mean() <= WINDOW_CHANGED
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    video = tmp_path / "demo.mp4"
+    result = run(display, "3d", "--frames", "4", "--size", "96x72", "--record", str(video), "--record-fps", "12")
+    assert result.returncode == 0, result.stderr
+    reader = imageio_ffmpeg.read_frames(str(video))
+    meta = next(reader)
+    assert meta["size"] == (96, 72) and meta["fps"] == pytest.approx(12.0) and len(list(reader)) == 4
+
+
+def test_record_fps_without_record_is_refused(display):
+    result = wgpu_demo(display, "3d", "--frames", "1", "--record-fps", "10")
+    assert result.returncode == 2 and result.stderr.count("\n") == 1 and "--record" in result.stderr

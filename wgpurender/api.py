@@ -274,5 +274,52 @@ def reference_stage_names() -> list[str]:
     return reference_stage_names()
 
 
+def _offscreen_target(target: Target) -> str:
+    """A stage name, or a scene as a file path (a bundled scene's name resolved), for the demo's drawable."""
+    from wgpurender.core.assets import resolve_scene
+    from wgpurender.core.course.formats import is_scene_file
+
+    target = _target(target)
+    return str(resolve_scene(target)) if is_scene_file(target) else target
+
+
+def show(target: Target, size: Size = (640, 480), msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY,
+         backend: str | None = None):
+    """An interactive view in Jupyter: the stage or scene drawn live, with the demo window's orbit camera (drag to
+    orbit, right-drag to pan, scroll to zoom, arrows/WASD, R resets). rendercanvas's Jupyter canvas (jupyter_rfb:
+    ``pip install 'wgpurender[notebook]'``); its display carries the first frame as PNG as well, so a frontend
+    without widgets (nbclient, nbconvert, GitHub) shows that still. Outside a Jupyter kernel, or without
+    jupyter_rfb, the still :class:`Image` is returned instead."""
+    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.notebook import LiveView, Offscreen, widgets_available
+
+    name, wh = _offscreen_target(target), _size(size) or (640, 480)
+    ctx = get_context(checks.backend(backend))
+    if widgets_available():
+        return LiveView(ctx, name, wh, checks.msaa(msaa), anisotropy)
+    pixels = Offscreen(ctx, name, wh, checks.msaa(msaa), anisotropy).frame(0.0)
+    return Image(pixels, str(target), "wgpu", {}, ctx.describe())
+
+
+def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: float = 30.0, size: Size = (640, 480),
+           msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY, turn: float | None = None,
+           backend: str | None = None) -> Path:
+    """Render ``seconds * fps`` frames into ``out``: an ``.mp4`` (H.264, needs imageio-ffmpeg) or a folder of PNG
+    frames (``frames/``). Frame k is at animation time k / fps; ``turn``: degrees the orbit camera turns over the
+    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``."""
+    from wgpurender.core.video import check_output
+    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.notebook import Offscreen, record_frames
+
+    check_output(out)
+    if not (isinstance(seconds, (int, float)) and isinstance(fps, (int, float)) and seconds > 0 and fps > 0):
+        raise UserError(f"seconds and fps must be numbers > 0, got seconds={seconds!r}, fps={fps!r}")
+    name, wh = _offscreen_target(target), _size(size) or (640, 480)
+    offscreen = Offscreen(get_context(checks.backend(backend)), name, wh, checks.msaa(msaa), anisotropy)
+    degrees = turn if turn is not None else (360.0 if offscreen.view.is_scene else 0.0)
+    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees))
+    return path
+
+
 __all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "plan", "explain", "stage_names",
-           "reference_stage_names"]
+           "reference_stage_names", "show", "record"]

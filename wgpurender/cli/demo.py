@@ -62,6 +62,11 @@ def register(subparsers) -> None:
                        metavar="S", help="seconds of timed frames (default 10)")
     bench.add_argument("--benchmark-result-file", default=BENCHMARK_DEFAULTS["benchmark_result_file"], metavar="CSV",
                        help="where the per-frame times go: frame,frame_ms (default benchmark.csv; --raw too)")
+    p.add_argument("--record", default=None, metavar="OUT",
+                   help="write every presented frame: OUT.mp4 (H.264, needs imageio-ffmpeg) or a folder of PNG frames "
+                   "(--raw too)")
+    p.add_argument("--record-fps", type=float, default=None, metavar="N",
+                   help="the video's frame rate (default 30; each presented frame is one video frame)")
     p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (core/controls.py)
     p.set_defaults(func=run)
 
@@ -72,10 +77,36 @@ def run(args) -> int:
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
     benchmark = _benchmark(args)
-    if args.raw:
-        from wgpurender.cli._demo_raw import run_raw
+    video = _video(args)
+    try:
+        if args.raw:
+            from wgpurender.cli._demo_raw import run_raw
 
-        return run_raw(args, benchmark)
+            code = run_raw(args, benchmark, video)
+        else:
+            code = _run_wgpu(args, benchmark, video)
+    finally:
+        if video is not None:
+            video.close()
+    if video is not None:
+        print(f"wrote {video.path} ({video.count} frames)")
+    return code
+
+
+def _video(args):
+    """The --record writer (its output checked now, before a window opens), or None."""
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.video import FrameWriter, check_output
+
+    if args.record is None:
+        if args.record_fps is not None:
+            raise UserError("--record-fps sets the frame rate of --record: add --record OUT, or leave it out")
+        return None
+    check_output(args.record)
+    return FrameWriter(args.record, 30.0 if args.record_fps is None else args.record_fps)
+
+
+def _run_wgpu(args, benchmark, video) -> int:
     import os
 
     from wgpurender.wgpu_path.gpu import VALIDATION_ENV
@@ -88,7 +119,7 @@ def run(args) -> int:
         counter = collect_validation_messages()
     else:
         counter = None
-    result, ctx = _show(args, benchmark)
+    result, ctx = _show(args, benchmark, video)
     print(f"adapter: {ctx.describe()}")
     print(f"frames: {result.frames}, mean frame time {result.mean_frame_ms:.2f} ms")
     if result.benchmark is not None:
@@ -123,7 +154,7 @@ def _benchmark(args):
     return spec
 
 
-def _show(args, benchmark):
+def _show(args, benchmark, video):
     from wgpurender.core.controls import parse_script
     from wgpurender.core.imageio import check_writable
     from wgpurender.wgpu_path.gpu import get_context
@@ -138,5 +169,5 @@ def _show(args, benchmark):
     view.check()  # fail on a bad stage name, scene or option before a window opens
     result = run_window(ctx, view, title=f"wgpurender: {args.target}", size=args.size, frames=args.frames,
                         present_mode=args.present_mode, fixed_time=args.time, screenshot=bool(args.screenshot),
-                        benchmark=benchmark, script=script)
+                        benchmark=benchmark, script=script, video=video)
     return result, ctx

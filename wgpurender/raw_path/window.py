@@ -347,7 +347,7 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
                    frames: int | None = None, screenshot: bool = False, msaa: int | None = None,
                    fixed_time: float | None = None, on_frame: Callable | None = None,
                    benchmark: BenchmarkSpec | None = None, script: list[ScriptEvent] = (),
-                   anisotropy: str = DEFAULT_ANISOTROPY) -> RawWindowResult:
+                   anisotropy: str = DEFAULT_ANISOTROPY, video=None) -> RawWindowResult:
     """Show a raw stage or scene until the window closes (Esc or the close button), ``frames`` are presented,
     or the benchmark's run time is over.
 
@@ -355,8 +355,9 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
     the same keys), as are the FPS title and the benchmark CSV (core/frame_times.py). ``screenshot``: the
     last presented frame is copied back from its swapchain image. ``on_frame(glfw, window, n)`` runs before
     frame n (tests use it to resize and minimise); ``script`` is the tests' synthetic input (``demo
-    --test-input``). ``anisotropy``: a scene's rule (:func:`drawable_factory`). With validation on, any
-    message raises ValidationFailed when the window closes.
+    --test-input``). ``anisotropy``: a scene's rule (:func:`drawable_factory`). ``video``: a core.video.FrameWriter
+    that gets every presented frame (read back from the swapchain image). With validation on, any message raises
+    ValidationFailed when the window closes.
     """
     glfw = _glfw()
     title = f"wgpurender --raw: {target}"
@@ -367,6 +368,7 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
         make, fmt, camera = drawable_factory(ctx, target, msaa, anisotropy)
         raw = RawWindow(glfw, window, ctx, surface, (make, fmt), present_mode)
         loop = RawDemoLoop(raw, camera, title, benchmark, list(script))
+        loop.video = video
         result = loop.run(frames, screenshot, fixed_time, on_frame)
         vk.vkDeviceWaitIdle(ctx.device)
         result.validation_messages = len(ctx.log.messages) if ctx.log is not None else None
@@ -404,6 +406,7 @@ class RawDemoLoop:
         install_callbacks(self.glfw, raw.window, self.controls)
         self.titles = TitleCounter(title)
         self.recorder = FrameRecorder(benchmark) if benchmark else None
+        self.video = None  # a core.video.FrameWriter: every presented frame
 
     def _due_shots(self, count: int) -> list[Path]:
         shots = []
@@ -438,12 +441,14 @@ class RawDemoLoop:
             last_wanted = screenshot and (frames is None or count == frames - 1)
             slot = raw.slots[count % FRAMES_IN_FLIGHT]
             apply_camera(slot.drawable, self.orbit)
-            if not raw.frame(count, t, last_wanted or bool(shots)):
+            if not raw.frame(count, t, last_wanted or bool(shots) or self.video is not None):
                 continue
             now = time.perf_counter()
             times.append((now - began) * 1000)
             for path in shots:
                 save_png(path, raw.screenshot(slot))
+            if self.video is not None:
+                self.video.write(raw.screenshot(slot))
             last_slot = slot if last_wanted else last_slot
             count += 1
             self._count(now)

@@ -97,9 +97,10 @@ def run_window(
     screenshot: bool = False,
     benchmark: BenchmarkSpec | None = None,
     script: list[ScriptEvent] = (),
+    video=None,
 ) -> WindowResult:
     """Open a window and draw ``view`` until it closes (Esc, close button), ``frames`` frames were shown,
-    or the benchmark's run time is over."""
+    or the benchmark's run time is over. ``video``: a core.video.FrameWriter that gets every presented frame."""
     glfw = _glfw()
     glfw.window_hint(glfw.CLIENT_API, glfw.NO_API)  # wgpu owns the surface, GLFW makes no GL context
     window = glfw.create_window(size[0], size[1], title, None, None)
@@ -109,7 +110,7 @@ def run_window(
     demo = None
     try:
         demo = DemoWindow(ctx, glfw, window, view, title, present_mode)
-        return demo.run(frames, fixed_time, screenshot, benchmark, list(script))
+        return demo.run(frames, fixed_time, screenshot, benchmark, list(script), video)
     finally:
         if demo is not None:
             demo.close()  # the surface goes before its window: released after it, it crashes the process
@@ -226,7 +227,7 @@ class DemoWindow:
             self.glfw.set_window_title(self.window, title)
 
     # -- the loop -----------------------------------------------------------------------
-    def run(self, frames, fixed_time, screenshot, benchmark, script) -> WindowResult:
+    def run(self, frames, fixed_time, screenshot, benchmark, script, video=None) -> WindowResult:
         recorder = FrameRecorder(benchmark) if benchmark else None
         start, shown, last = time.perf_counter(), 0, None
         while not self.glfw.window_should_close(self.window) and (frames is None or shown < frames):
@@ -236,10 +237,12 @@ class DemoWindow:
                 break
             self.poll_files()
             t = fixed_time if fixed_time is not None else time.perf_counter() - start
-            want = bool(shots) or (screenshot and (frames is None or shown == frames - 1))
+            want = bool(shots) or video is not None or (screenshot and (frames is None or shown == frames - 1))
             drawn, pixels = self.frame(t, want)
             if not drawn:
                 continue
+            if video is not None:
+                video.write(pixels)
             for path in shots:
                 from wgpurender.core.imageio import save_png
 
