@@ -80,7 +80,7 @@ def test_camera_input_changes_the_image_and_reset_restores_it(ctx, display, tmp_
     shots = {name: tmp_path / f"{name}.png" for name in ("still", "dragged", "zoomed", "reset")}
     script = (f"0:shot {shots['still']}; 1:press; 1:move 0 0; 1:move 80 10; 1:release; 2:shot {shots['dragged']}; "
               f"3:key R; 3:scroll 4; 4:shot {shots['zoomed']}; 5:key R; 6:shot {shots['reset']}")
-    result = _demo(display, "3d", "--frames", "7", "--time", "0", "--size", SIZE, "--validation",
+    result = _demo(display, "3d", "--frames", "7", "--time", "0", "--size", SIZE, "--validation", "--no-overlay",
                    "--test-input", script)
     assert result.returncode == 0, result.stderr
     assert "validation messages: 0" in result.stdout
@@ -97,7 +97,7 @@ def test_scene_camera_comes_from_the_scene_file_and_moves(display, tmp_path):
     scene = str(REPO / "assets" / "scenes" / "unlit.toml")
     still, moved = tmp_path / "still.png", tmp_path / "moved.png"
     script = f"0:shot {still}; " + "1:key LEFT; " * 6 + f"1:key UP; 2:shot {moved}"  # 30 degrees round, 5 up
-    result = _demo(display, scene, "--frames", "3", "--size", SIZE, "--test-input", script)
+    result = _demo(display, scene, "--frames", "3", "--size", SIZE, "--no-overlay", "--test-input", script)
     assert result.returncode == 0, result.stderr
     from wgpurender.wgpu_path.scene_render import render_scene_file
 

@@ -117,9 +117,10 @@ WINDOW_MAX_ABS, WINDOW_CHANGED = 2, 0.05
 
 
 def wgpu_demo(display, *args, timeout=180):
+    """The wgpu window without its settings overlay (the raw window has none: the same input, the same scene)."""
     env = dict(os.environ, DISPLAY=display)
-    return subprocess.run([sys.executable, "-m", "wgpurender", "demo", *args], env=env, capture_output=True,
-                          text=True, timeout=timeout)
+    return subprocess.run([sys.executable, "-m", "wgpurender", "demo", "--no-overlay", *args], env=env,
+                          capture_output=True, text=True, timeout=timeout)
 
 
 @pytest.mark.parametrize("target", ["3d", "assets/scenes/unlit.toml", "assets/scenes/final.toml"])

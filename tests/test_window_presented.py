@@ -78,7 +78,7 @@ def test_presented_pixels_and_resize(ctx, display, mode):
     96x72 from outside; the screen must then show the triangle rendered at 96x72."""
     env = dict(os.environ, DISPLAY=display)
     proc = subprocess.Popen([sys.executable, "-m", "wgpurender", "demo", STAGE, "--size", "160x120", "--time", "0",
-                             "--present-mode", mode, "--frames", "1000000"],
+                             "--present-mode", mode, "--frames", "1000000", "--no-overlay"],  # the scene alone
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if mode == "mailbox":  # wgpu-py 0.32's public API has vsync on/off only: the demo says so at once, exit 2
         stderr = proc.communicate(timeout=120)[1]

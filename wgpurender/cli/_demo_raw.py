@@ -13,6 +13,7 @@ import os
 
 REFUSED = {  # dest -> why it cannot apply to the raw window
     "backend": "--backend picks a wgpu backend: the raw path is Vulkan only, leave it out with --raw",
+    "no_overlay": "--no-overlay hides the wgpu window's settings overlay: the raw window has none, leave it out",
 }
 
 

@@ -10,9 +10,14 @@ from pathlib import Path
 
 from wgpurender.cli._args import add_backend_arg, size_arg
 
+# Every suite with the few words the top-level --help shows for it (the suites' own --help says more).
+SUITES = {"perf": "speed against the raw-Vulkan path", "accuracy": "error against time per quality knob",
+          "post-roofline": "each post pass against a copy of the same bytes"}
+
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("bench", help="benchmark suites: perf (speed against the raw-Vulkan path)",
+    listed = "; ".join(f"{name} ({words})" for name, words in SUITES.items())
+    p = subparsers.add_parser("bench", help=f"benchmark suites: {listed}",
                               description="Run a benchmark suite and write its results (CSV, markdown, plots).")
     suites = p.add_subparsers(dest="suite", required=True, metavar="SUITE")
     _register_perf(suites)

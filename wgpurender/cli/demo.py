@@ -37,9 +37,11 @@ def register(subparsers) -> None:
     p.add_argument(
         "--present-mode",
         default="fifo",
-        choices=("fifo", "mailbox", "immediate"),
+        choices=("fifo", "immediate", "mailbox"),
+        metavar="fifo|immediate",
         help="fifo: vsync, never tears (default); immediate: no vsync (wgpu falls back to mailbox, then fifo, "
-        "when the surface lacks it); mailbox alone cannot be asked for through wgpu-py 0.32 (exit 2 says so)",
+        "when the surface lacks it). mailbox only with --raw, where the surface offers it: wgpu-py 0.32 cannot "
+        "ask for it alone",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
     p.add_argument("--time", type=time_arg, default=None, metavar="T", help="freeze the animation at T seconds")
@@ -62,6 +64,9 @@ def register(subparsers) -> None:
                        metavar="S", help="seconds of timed frames (default 10)")
     bench.add_argument("--benchmark-result-file", default=BENCHMARK_DEFAULTS["benchmark_result_file"], metavar="CSV",
                        help="where the per-frame times go: frame,frame_ms (default benchmark.csv; --raw too)")
+    p.add_argument("--no-overlay", action="store_true",
+                   help="hide the settings overlay (the plan's knobs turned live, frame time, GPU time per pass, plan "
+                   "memory; needs imgui-bundle: pip install 'wgpurender[overlay]'); --benchmark hides it too")
     p.add_argument("--record", default=None, metavar="OUT",
                    help="write every presented frame: OUT.mp4 (H.264, needs imageio-ffmpeg) or a folder of PNG frames "
                    "(--raw too)")
@@ -169,5 +174,5 @@ def _show(args, benchmark, video):
     view.check()  # fail on a bad stage name, scene or option before a window opens
     result = run_window(ctx, view, title=f"wgpurender: {args.target}", size=args.size, frames=args.frames,
                         present_mode=args.present_mode, fixed_time=args.time, screenshot=bool(args.screenshot),
-                        benchmark=benchmark, script=script, video=video)
+                        benchmark=benchmark, script=script, video=video, overlay=not (args.no_overlay or benchmark))
     return result, ctx

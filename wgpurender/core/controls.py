@@ -104,7 +104,7 @@ class ScriptEvent:
     args: tuple[str, ...]
 
 
-SCRIPT_ACTIONS = {"press": 0, "release": 0, "move": 2, "scroll": 1, "key": 1, "wait-reload": 0, "shot": 1}
+SCRIPT_ACTIONS = {"press": 0, "release": 0, "move": 2, "scroll": 1, "key": 1, "wait-reload": 0, "shot": 1, "click": 1}
 
 
 def parse_script(text: str) -> list[ScriptEvent]:
@@ -113,7 +113,8 @@ def parse_script(text: str) -> list[ScriptEvent]:
     press/release act on the left mouse button (``press right`` for the right one); move
     takes cursor x y; scroll dy; key a GLFW key name without KEY_ (R, LEFT, EQUAL);
     wait-reload blocks until a watched file changed and the rebuild was tried; shot PATH
-    saves the frame drawn next.
+    saves the frame drawn next; click NAME clicks the settings overlay's widget NAME (``msaa=4``,
+    ``reverse_z``, ``effect:0``, ...: wgpu_path/window/overlay.py) and releases on the next frame.
     """
     events = []
     for item in filter(None, (part.strip() for part in text.split(";"))):

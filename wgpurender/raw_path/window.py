@@ -415,6 +415,8 @@ class RawDemoLoop:
                 shots.append(Path(event.args[0]))
             elif event.action == "wait-reload":
                 raise UserError("--test-input wait-reload: the raw window has no live reload")
+            elif event.action == "click":
+                raise UserError("--test-input click: the raw window has no settings overlay")
             else:
                 send(self.controls, event)
         return shots

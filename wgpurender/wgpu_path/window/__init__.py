@@ -98,9 +98,11 @@ def run_window(
     benchmark: BenchmarkSpec | None = None,
     script: list[ScriptEvent] = (),
     video=None,
+    overlay: bool = False,
 ) -> WindowResult:
     """Open a window and draw ``view`` until it closes (Esc, close button), ``frames`` frames were shown,
-    or the benchmark's run time is over. ``video``: a core.video.FrameWriter that gets every presented frame."""
+    or the benchmark's run time is over. ``video``: a core.video.FrameWriter that gets every presented frame.
+    ``overlay``: the settings overlay (window/overlay.py; the CLI's default, --no-overlay hides it)."""
     glfw = _glfw()
     glfw.window_hint(glfw.CLIENT_API, glfw.NO_API)  # wgpu owns the surface, GLFW makes no GL context
     window = glfw.create_window(size[0], size[1], title, None, None)
@@ -109,7 +111,7 @@ def run_window(
         raise UserError("GLFW could not create a window")
     demo = None
     try:
-        demo = DemoWindow(ctx, glfw, window, view, title, present_mode)
+        demo = DemoWindow(ctx, glfw, window, view, title, present_mode, overlay)
         return demo.run(frames, fixed_time, screenshot, benchmark, list(script), video)
     finally:
         if demo is not None:
@@ -122,15 +124,19 @@ def run_window(
 class DemoWindow:
     """One window's state: surface, drawable (and the last good one), controls, watcher, title counters."""
 
-    def __init__(self, ctx: GPUContext, glfw, window, view: DemoView, title: str, present_mode: str) -> None:
+    def __init__(self, ctx: GPUContext, glfw, window, view: DemoView, title: str, present_mode: str,
+                 overlay: bool = False) -> None:
         self.ctx, self.glfw, self.window, self.view, self.title = ctx, glfw, window, view, title
         self.context = wgpu.gpu.get_canvas_context(present_info(window, present_mode))
         self.format = surface_format(self.context, ctx.adapter)
         self.context.set_physical_size(*glfw.get_framebuffer_size(window))
         self.context.configure(device=ctx.device, format=self.format, usage=SURFACE_USAGE)
         self.controls = Controls(glfw, lambda: view.orbit)
-        install_callbacks(glfw, window, self.controls)
+        self.settings = self._settings(overlay)
+        self._install_callbacks()
         self.drawable = view.build(self.format)  # a broken file at start-up is the user's error: exit 2
+        if self.settings is not None:
+            self.settings.attach(self.drawable)
         self.first_frame_pending = True
         self.watcher = FileWatcher(view.watched)
         self.previous = None  # the last good drawable while a rebuilt one has not drawn its first frame
@@ -139,6 +145,30 @@ class DemoWindow:
         self.reloads = 0
         self._last_poll = time.perf_counter()
         self.titles = TitleCounter(title)
+
+    def _settings(self, overlay: bool):
+        if not overlay:
+            return None
+        from wgpurender.wgpu_path.window.overlay import available
+
+        missing = available()
+        if missing:
+            print(missing, file=sys.stderr, flush=True)
+            return None
+        from wgpurender.wgpu_path.window.settings import Settings
+
+        return Settings(self.ctx, self.view, self.format)
+
+    def _install_callbacks(self) -> None:
+        """GLFW's input to the controls, through the overlay first when there is one."""
+        g, c, s = self.glfw, self.controls, self.settings
+        if s is None:
+            install_callbacks(g, self.window, c)
+            return
+        g.set_key_callback(self.window, lambda _w, key, _sc, action, _mods: c.key(key, action))
+        g.set_mouse_button_callback(self.window, lambda _w, button, action, _mods: s.mouse_button(c, button, action))
+        g.set_cursor_pos_callback(self.window, lambda _w, x, y: s.cursor_pos(c, x, y))
+        g.set_scroll_callback(self.window, lambda _w, _dx, dy: s.scroll(c, dy))
 
     def close(self) -> None:
         """Release the surface (vkDestroySwapchainKHR + vkDestroySurfaceKHR) while the window still exists."""
@@ -189,11 +219,12 @@ class DemoWindow:
         while True:
             self.view.apply_camera(self.drawable)
             self.drawable.resize(tuple(texture.size[:2]))
+            record, timer = self._record_fn()
             if not self.first_frame_pending:
-                return run_frame(self.ctx, self.drawable.record, texture, t, read_back=capture)
+                return run_frame(self.ctx, record, texture, t, read_back=capture, timer=timer)
             try:
                 with self.view.record_lazy_loads():  # pipelines made in the first frame load shaders too
-                    frame = run_frame(self.ctx, self.drawable.record, texture, t, read_back=capture)
+                    frame = run_frame(self.ctx, record, texture, t, read_back=capture, timer=timer)
             except REBUILD_ERRORS as err:
                 if self.previous is None:
                     raise
@@ -203,6 +234,11 @@ class DemoWindow:
             self.first_frame_pending, self.previous, self.broken = False, None, False
             self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
             return frame
+
+    def _record_fn(self):
+        if self.settings is None:
+            return self.drawable.record, None
+        return self.settings.record_fn(self.drawable), self.settings.timer
 
     def frame(self, t: float, capture: bool) -> tuple[bool, np.ndarray | None]:
         """Draw and present one frame: (drawn, pixels when ``capture``). False: nothing to draw into."""
@@ -216,9 +252,12 @@ class DemoWindow:
         except wgpu.DrawCancelled:  # occluded (or the surface is being re-made): skip this frame
             self.glfw.wait_events_timeout(0.05)
             return False, None
-        pixels = self._run_frame(texture, t, capture).pixels  # read back before present hands the image away
+        frame = self._run_frame(texture, t, capture)  # read back before present hands the image away
+        if self.settings is not None:  # the panel goes over the frame after its readback: shots are the scene
+            self.settings.frame_done(frame.gpu_ms, frame.frame_ms)
+            self.settings.draw(texture)
         self.context.present()
-        return True, pixels
+        return True, frame.pixels
 
     def _update_title(self, now: float) -> None:
         status = "  |  reload failed (see the terminal)" if self.broken else ""
@@ -235,6 +274,8 @@ class DemoWindow:
             shots = self._run_script(script, shown)
             if self.controls.close_requested:
                 break
+            if self.settings is not None and self.settings.pending:
+                self._replan()
             self.poll_files()
             t = fixed_time if fixed_time is not None else time.perf_counter() - start
             want = bool(shots) or video is not None or (screenshot and (frames is None or shown == frames - 1))
@@ -264,6 +305,44 @@ class DemoWindow:
         return WindowResult(frames=shown, mean_frame_ms=elapsed / max(shown, 1), last_frame=last,
                             reload_errors=self.reload_errors, benchmark=recorder)
 
+    def _replan(self) -> None:
+        """A knob was turned: the plan re-resolved, the drawable rebuilt only if the plan changed."""
+        try:
+            candidate, line = self.settings.replan(self.drawable)
+        except REBUILD_ERRORS as err:
+            print(f"knob not applied: {str(err).splitlines()[0]}", file=sys.stderr, flush=True)
+            return
+        if candidate is not None:
+            self.previous, self.drawable = self.drawable, candidate
+            self.first_frame_pending = True
+        print(line, flush=True)
+
+    def _send(self, event: ScriptEvent, script: list[ScriptEvent]) -> None:
+        """A script event as GLFW would deliver it (through the overlay when there is one); ``click NAME`` moves
+        to the overlay's widget NAME and presses there, releasing on the next frame."""
+        if self.settings is None:
+            if event.action == "click":
+                raise UserError("--test-input click: there is no overlay (imgui-bundle missing, or --no-overlay)")
+            send(self.controls, event)
+            return
+        g, c, s = self.glfw, self.controls, self.settings
+        button = g.MOUSE_BUTTON_RIGHT if event.args[:1] == ("right",) else g.MOUSE_BUTTON_LEFT
+        if event.action == "click":
+            if event.args[0] not in s.overlay.rects:
+                raise UserError(f"--test-input click: no overlay widget {event.args[0]!r}; there are: "
+                                f"{', '.join(sorted(s.overlay.rects))}")
+            s.cursor_pos(c, *s.overlay.rects[event.args[0]])
+            s.mouse_button(c, g.MOUSE_BUTTON_LEFT, g.PRESS)
+            script.insert(0, ScriptEvent(event.frame + 1, "release", ()))
+        elif event.action in ("press", "release"):
+            s.mouse_button(c, button, g.PRESS if event.action == "press" else g.RELEASE)
+        elif event.action == "move":
+            s.cursor_pos(c, float(event.args[0]), float(event.args[1]))
+        elif event.action == "scroll":
+            s.scroll(c, float(event.args[0]))
+        else:
+            send(c, event)
+
     def _run_script(self, script: list[ScriptEvent], frame: int) -> list[Path]:
         """Deliver the test script's events for this frame; the paths of shots to save after it."""
         shots = []
@@ -273,7 +352,7 @@ class DemoWindow:
             elif event.action == "wait-reload":
                 self._wait_reload()
             else:
-                send(self.controls, event)
+                self._send(event, script)
         return shots
 
     def _wait_reload(self) -> None:

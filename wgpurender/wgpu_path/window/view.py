@@ -30,6 +30,26 @@ class DemoView:
         self.watched: set[Path] = set()
         self.orbit: Orbit | None = None
         self._start_pose: tuple | None = None
+        self.live = None  # core.plan.live.LiveKnobs while the overlay turns the knobs (start_live)
+
+    def start_live(self):
+        """Let the overlay turn the knobs from now on: their values start at this view's options."""
+        from wgpurender.core.plan.live import LiveKnobs
+
+        if self.is_scene:
+            from wgpurender.core.scene import load_scene
+
+            self.live = LiveKnobs.for_scene(load_scene(self.target), self.msaa, self.anisotropy)
+        else:
+            self.live = LiveKnobs(msaa=self.msaa)
+        return self.live
+
+    def effect_names(self) -> list[str]:
+        if not self.is_scene:
+            return []
+        from wgpurender.core.scene import load_scene
+
+        return [step.effect for step in load_scene(self.target).post]
 
     def check(self) -> None:
         """Fail on a bad stage name, scene file or option before a window opens, as cheaply as possible.
@@ -42,12 +62,14 @@ class DemoView:
         else:
             self._make("rgba8unorm-srgb")
 
-    def build(self, fmt: str):
-        """A new drawable, its first frame's shaders included (pipelines made lazily are made in ``warm``)."""
+    def build(self, fmt: str, keep_caches: bool = False):
+        """A new drawable, its first frame's shaders included (pipelines made lazily are made in ``warm``).
+        ``keep_caches``: a knob changed, not a file: the device's cached pipelines and samplers are reused."""
         from wgpurender.wgpu_path.shaders import recording_loads
         from wgpurender.wgpu_path.window.live_reload import drop_shader_caches
 
-        drop_shader_caches(self.ctx.device)
+        if not keep_caches:
+            drop_shader_caches(self.ctx.device)
         with recording_loads() as loaded:
             drawable = self._make(fmt)
         self.watched = set(loaded) | ({Path(self.target).resolve()} if self.is_scene else set())
@@ -75,6 +97,10 @@ class DemoView:
         from wgpurender.core.plan import resolve_plan
         from wgpurender.wgpu_path.scene_render import adapter_facts
 
+        if self.live is not None:  # the overlay's knobs, through the same resolution function
+            from wgpurender.core.scene import load_scene
+
+            return self.live.resolve(load_scene(self.target), adapter_facts(self.ctx), fmt)
         return resolve_plan(self.target, adapter_facts(self.ctx), output_format=fmt, msaa=self.msaa,
                             anisotropy=self.anisotropy, output_storage=False)
 
@@ -86,7 +112,7 @@ class DemoView:
             return SceneRenderer(self.ctx, plan.scene, plan)
         from wgpurender.wgpu_path.stages import get_stage
 
-        return get_stage(self.target)(self.ctx, fmt, self.msaa)
+        return get_stage(self.target)(self.ctx, fmt, self.msaa if self.live is None else self.live.msaa)
 
     # -- the camera ------------------------------------------------------------------
     @staticmethod
