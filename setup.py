@@ -4,7 +4,7 @@ The shader folders, ``assets/`` and ``examples/`` stay at the repository's top l
 layout: a reader finds the WGSL and the GLSL beside each other, the scenes and models beside the
 code, not deep in the package). setuptools' package-data can only reach files inside a package, so
 ``build_py`` copies them into the build tree: ``wgpurender/_shaders/{wgsl,glsl}``, ``wgpurender/_assets``,
-``wgpurender/_examples`` and the two docs files the report shows (``wgpurender/_docs``); the installed
+``wgpurender/_examples``; the installed
 package reads them from there through importlib.resources (wgpurender/core/shader_files.py,
 wgpurender/core/assets.py). An editable install (``pip install -e``)
 builds nothing: it reads the checkout's folders. Everything else is declared in pyproject.toml.
@@ -22,9 +22,6 @@ HERE = Path(__file__).resolve().parent
 # repository folder -> folder inside the built wgpurender package
 COPIED_FOLDERS = {"shaders_wgsl": "_shaders/wgsl", "shaders_glsl": "_shaders/glsl", "assets": "_assets",
                   "examples": "_examples"}
-# single files the installed package reads (the report's closing sections: docs/accuracy.md's plot, numerics.md)
-COPIED_FILES = {"docs/img/accuracy_pareto.png": "_docs/img/accuracy_pareto.png",
-                "docs/numerics.md": "_docs/numerics.md"}
 LEFT_OUT = shutil.ignore_patterns("__pycache__", "*.pyc", ".ipynb_checkpoints", "make_assets.py")
 
 
@@ -40,10 +37,6 @@ class BuildPyWithCourseData(build_py):
             dest = Path(self.build_lib) / "wgpurender" / name
             shutil.rmtree(dest, ignore_errors=True)
             shutil.copytree(source, dest, ignore=LEFT_OUT)
-        for file, name in COPIED_FILES.items():
-            dest = Path(self.build_lib) / "wgpurender" / name
-            dest.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(HERE / file, dest)
 
 
 setup(cmdclass={"build_py": BuildPyWithCourseData})

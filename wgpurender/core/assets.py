@@ -15,8 +15,8 @@ from importlib import resources
 from pathlib import Path, PurePath
 
 CHECKOUT = Path(__file__).resolve().parents[2]
-# repository folder -> folder inside the package (of docs/ the wheel has the 2 files the report shows)
-PACKAGED = {"assets": "_assets", "examples": "_examples", "docs": "_docs"}
+# repository folder -> folder inside the package
+PACKAGED = {"assets": "_assets", "examples": "_examples"}
 SCENE_SUFFIX = ".toml"
 
 
@@ -46,11 +46,6 @@ def reference_dir() -> Path:
 def notebook_path() -> Path:
     """The course tour notebook (examples/course_tour.ipynb)."""
     return _folder("examples") / "course_tour.ipynb"
-
-
-def docs_file(relative: str) -> Path:
-    """A file of ``docs/`` the package reads (the wheel carries only those: setup.py's COPIED_FILES)."""
-    return _folder("docs") / relative
 
 
 def bundled_scene_names() -> list[str]:

@@ -113,8 +113,8 @@ def missing_line(path: Path, error: str) -> str:
     """One line for a scene that cannot load: what is missing, and where to get it."""
     if "anchors" in path.read_text(encoding="utf-8"):
         return (f"Not rendered: {path.name} draws the Vulkan tutorial's viking room, whose model and texture "
-                f"are not in the repository and are absent here ({ANCHORS} is missing); README.md, \"The Vulkan "
-                f"tutorial's frames\", says how to fetch them.")
+                f"are not in the repository and are absent here (looked for in {ANCHORS}); docs/guide.md, \"Where the "
+                f"tutorial's files come from\", says how to fetch them.")
     return f"Not rendered: {error}"
 
 
