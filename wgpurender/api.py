@@ -9,6 +9,8 @@ For scripts and notebooks::
     print(w.compare(ref, img))                           # PSNR, max difference, FLIP ...
     w.side_by_side(img, ref, w.heatmap(ref, img))        # shown inline by Jupyter
     img.save("triangle.png")
+    w.show("final")                                      # live in Jupyter, the orbit camera (a still elsewhere)
+    w.record("3d", "cubes.mp4", seconds=2)               # MP4 (imageio-ffmpeg) or a folder of PNG frames
 
 A target is a stage name (``wgpurender stages`` lists them, :func:`stage_names` returns them) or a
 scene file (``*.toml``). Every call returns an :class:`Image`: ``.pixels`` (numpy, ``(H, W, 4)``),
