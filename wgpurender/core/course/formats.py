@@ -21,7 +21,8 @@ POST_PATHS = ("auto", "fragment", "compute")
 
 # Bytes per texel of every format the plan and the benches count traffic for.
 BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
-                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
+                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth24plus-stencil8": 4,
+                   "depth32float": 4}
 
 # Texture colour spaces: colour maps are sRGB-encoded images (the sampler decodes them to linear);
 # data maps (normal, roughness) hold values used as stored.
