@@ -83,3 +83,20 @@ def test_the_named_course_texts_are_the_ones_the_course_folder_indexes():
     for entry in COURSE_TEXTS.values():
         name = entry.split(" ")[0]
         assert (SHARED_COURSE / name).is_file() and name in index, name
+
+
+def test_bundled_scenes_are_found_by_name_and_never_shadow_a_stage(tmp_path, monkeypatch):
+    """`render final` is step 6's scene; a stage's name stays a stage even if a bundled scene took it."""
+    from wgpurender.core import assets
+    from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.course.steps import stage_steps
+
+    assert is_scene_file("final") and assets.resolve_scene("final") == REPO / "assets" / "scenes" / "final.toml"
+    assert assets.resolve_scene("assets/scenes/unlit.toml").is_file()
+    assert not any(is_scene_file(s.stage) for s in stage_steps())
+    scenes = tmp_path / "assets" / "scenes"
+    scenes.mkdir(parents=True)
+    (scenes / "triangle.toml").write_text("")
+    monkeypatch.setattr(assets, "assets_dir", lambda: tmp_path / "assets")
+    assert assets.bundled_scene("triangle") is not None and not is_scene_file("triangle")
+    assert not is_scene_file("no-such-scene") and is_scene_file("anything.toml")
