@@ -92,6 +92,14 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
     return step
 
 
+def _scene_course_step(path: Path) -> str:
+    """'course step 6: ...' for the scene a course step is (the final model), else 'scene file'."""
+    from wgpurender.core.course.steps import COURSE
+
+    step = next((s for s in COURSE if s.scene == path.stem), None)
+    return f"course step {step.number}: {step.title}" if step else "scene file"
+
+
 def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=print) -> Step:
     """A scene file: its description, its plan, and the scene on both paths."""
     from wgpurender.core.plan import explain_scene
@@ -102,7 +110,7 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
     scene = load_scene(path)
     overrides = {"size": size} if size else {}
     plan = explain_scene(path, **overrides).replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
-    step = Step(path.stem, path.name, "scene file", scene.description, _scene_words(path), plan=plan)
+    step = Step(path.stem, path.name, _scene_course_step(path), scene.description, _scene_words(path), plan=plan)
     step.wgpu = render_scene_file(path, size=size, ctx=ctx, frames=1).pixels
     step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size)
     step.raw, step.raw_note = _try(lambda: render_reference(str(path), size), log)
