@@ -35,6 +35,7 @@ from wgpurender.core.shader_files import shader_folder
 PACKAGE = Path(__file__).resolve().parent
 TESTS = CHECKOUT / "tests"
 SHADER_NAME = re.compile(r"[\w*]+\.(wgsl|vert|frag|comp)")
+META_TESTS = ("test_course_map.py", "test_layering.py")  # they check the map and the tree, not a step
 SCENE_PACKAGES = {"wgpu": ("wgpu_path/scene_render", "wgpu_path/post"), "raw": ("raw_path/scene",)}
 
 
@@ -165,7 +166,7 @@ def _tests(step: Step, files: list[Path], references: tuple[str, ...]) -> tuple[
     if step.scene is not None:
         names |= {step.scene, f"{step.scene}.toml", *(Path(f).name for f in _scene_files(step.scene))}
     out = []
-    for path in sorted(TESTS.rglob("test_*.py")):
+    for path in sorted(p for p in TESTS.rglob("test_*.py") if p.name not in META_TESTS):
         if _call_arguments(path) & names or _imports_of(path) & modules:
             out.append(path.relative_to(CHECKOUT).as_posix())
     return tuple(out)
