@@ -162,6 +162,10 @@ def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
     assert image.shape == (48, 64, 4)
     _check_triangle_centre(image)
     assert list((installed["cache"] / "wgpurender" / "spirv").glob("*.spv"))
+    # a bundled scene by name on the raw path: the final model with the post chain its subpass runs
+    _run(installed, installed["bin"] / "wgpurender", "reference", "final_subpass", "-o", "s.png", "--size", "64x48")
+    scene = np.asarray(Image.open(installed["cwd"] / "s.png"))
+    assert scene.shape == (48, 64, 4) and scene[..., :3].std() > 10
 
 
 def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):
