@@ -182,6 +182,15 @@ def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):
     assert _run(installed, installed["python"], "-c", code).stdout.split() == ["(48,", "64,", "4)", "4"]
 
 
+def test_stages_and_the_course_map_from_the_wheel(installed):
+    stages = _run(installed, installed["bin"] / "wgpurender", "stages").stdout
+    assert "course step 6:" in stages and stages.splitlines()[-2].startswith("final ")
+    course_map = _run(installed, installed["bin"] / "wgpurender", "stages", "--map").stdout
+    rows = [line for line in course_map.splitlines() if line.startswith("| **")]
+    assert len(rows) == 10 and rows[-1].startswith("| **6** `final`")
+    assert all("(tests/ is in the repository, not in the wheel)" in row for row in rows)
+
+
 @pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
 def test_verify_quick_from_the_wheel(installed):
     """The committed reference images travel in the wheel: every check runs, none is skipped for a missing file."""

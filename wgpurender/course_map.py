@@ -159,7 +159,7 @@ def _references(step: Step) -> tuple[str, ...]:
 
 
 def _tests(step: Step, files: list[Path], references: tuple[str, ...]) -> tuple[str, ...] | None:
-    if not TESTS.is_dir():
+    if not (TESTS.is_dir() and (TESTS.parent / "pyproject.toml").is_file()):  # a checkout, not site-packages
         return None
     modules = {".".join(p.relative_to(PACKAGE.parent).with_suffix("").parts) for p in files}
     names = {step.stage, *(Path(r).stem for r in references)}
