@@ -1,10 +1,9 @@
 """The course map (wgpurender/course_map.py): one row per course step, generated from the code, kept current.
 
 The map's columns are found by reading the code; the checks here come from elsewhere: the files exist, the
-WGSL column is what each wgpu stage actually loads when it renders (shaders.recording_loads on a real device),
-the GLSL column what each raw stage compiles,
-docs/course-map.md is the generator's output, and the course texts it names are the ones ../shared/course
-indexes (where that folder exists: the map itself never reads it).
+WGSL column is what each wgpu stage actually loads when it renders (shaders.recording_loads on a real device)
+and the GLSL column what each raw stage compiles, docs/course-map.md is the generator's output, and the course
+texts it names are the ones ../shared/course indexes (where that folder exists: the map never reads it).
 """
 
 from __future__ import annotations
