@@ -250,7 +250,7 @@ def course_map_markdown() -> str:
 
 DOC_HEAD = """# The course map
 
-Generated from the code by `python -m wgpurender.course_map > docs/course-map.md` (the same table as
+Generated from the code by `make docs` (`python -m wgpurender.course_map > docs/course-map.md`; the same table as
 `wgpurender stages --map`); tests/test_course_map.py fails when this file is not its output. One row per course
 step (wgpurender/core/course/steps.py), in the course's order: where the step lives on the wgpu path and on the
 raw-Vulkan path, the shaders those modules name, the API-free course data they use, the committed reference image
