@@ -147,6 +147,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         size=size,
         output_format=out_fmt,
         msaa=msaa,
+        msaa_asked=asked_msaa,
         attachments=tuple(sorted(attachments, key=lambda a: ATTACHMENT_ORDER.index(a.role))),
         passes=(scene_pass, *post_passes),
         variants=tuple(drawn.variants.values()),
