@@ -41,7 +41,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import vulkan as vk
 
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
+from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder
 from wgpurender.raw_path.checks import check_msaa, check_size
 from wgpurender.raw_path.images import Image, create_image, subresource_layers, subresource_range
 from wgpurender.raw_path.instance import VulkanContext, create_context
@@ -77,6 +79,8 @@ class RawWindowResult:
     swapchain_format: str
     recreated: int = 0  # swapchain re-creations (resize, out of date, restore)
     events: list[str] = field(default_factory=list)
+    benchmark: FrameRecorder | None = None  # --benchmark's frame times (the wgpu window's recorder)
+    validation_messages: int | None = None  # with validation on: how many messages the layer sent
 
 
 def _glfw():
@@ -91,23 +95,29 @@ def _glfw():
     return glfw
 
 
-def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None) -> tuple[Callable, str]:
+def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
+                     anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[Callable, str]:
     """(make, format): ``make(owned, size) -> (record, format, drawable)`` makes a raw stage, or a scene file
-    drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders."""
+    drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders. A scene's plan is
+    :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: the per-adapter rule or "scene")."""
     if target.endswith(".toml"):
-        from wgpurender.core.plan import build_plan
+        from wgpurender.core.plan import resolve_plan
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.scene.frame import SceneFrame
         from wgpurender.raw_path.scene.support import check_supported
 
         scene = load_scene(target)
+        facts = ctx.adapter_facts()
+
+        def plan_for(size: tuple[int, int] | None):
+            return resolve_plan(scene, facts, size=size, msaa=msaa, anisotropy=anisotropy, output_storage=False)
 
         def make_scene(owned: ExitStack, size: tuple[int, int]):
-            plan = build_plan(scene, size=size, msaa=msaa)
+            plan = plan_for(size)
             check_supported(plan)
             frame = SceneFrame(ctx, owned, scene, plan)
             return (lambda cmd, image, t: frame.record(cmd, image)), plan.output_format, frame
-        return make_scene, build_plan(scene, msaa=msaa).output_format
+        return make_scene, plan_for(None).output_format
     from wgpurender.raw_path.stages import get_ref_stage
 
     cls = get_ref_stage(target)
@@ -329,8 +339,12 @@ def create_window_context(glfw, window) -> tuple[VulkanContext, object]:
 
 def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode: str = "fifo",
                    frames: int | None = None, screenshot: bool = False, msaa: int | None = None,
-                   fixed_time: float | None = None, on_frame: Callable | None = None) -> RawWindowResult:
+                   fixed_time: float | None = None, on_frame: Callable | None = None,
+                   anisotropy: str = DEFAULT_ANISOTROPY, benchmark: BenchmarkSpec | None = None) -> RawWindowResult:
     """Show a raw stage or scene until the window closes (Esc or the close button) or ``frames`` are presented.
+
+    ``anisotropy``: a scene's rule (:func:`drawable_factory`). ``benchmark``: warm up, then record every
+    presented frame's time until its run time is over, as the wgpu window does (wgpurender/core/frame_times.py).
 
     ``screenshot``: the last presented frame is copied back from its swapchain image. ``on_frame(glfw,
     window, n)`` runs before frame n (tests use it to resize and minimise). With validation on, any message
@@ -342,7 +356,8 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
     ctx, surface = create_window_context(glfw, window)
     raw = None
     try:
-        raw = RawWindow(glfw, window, ctx, surface, drawable_factory(ctx, target, msaa), present_mode)
+        raw = RawWindow(glfw, window, ctx, surface, drawable_factory(ctx, target, msaa, anisotropy), present_mode)
+        recorder = FrameRecorder(benchmark) if benchmark else None
         count, times, last_slot, start = 0, [], None, time.perf_counter()
         while not glfw.window_should_close(window) and (frames is None or count < frames):
             if on_frame is not None:
@@ -362,12 +377,17 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
                 times.append((time.perf_counter() - began) * 1000)
                 last_slot = raw.slots[count % FRAMES_IN_FLIGHT] if shot else last_slot
                 count += 1
+                if recorder is not None:
+                    recorder.frame_done(time.perf_counter())
+                    if recorder.finished():
+                        break
         last = raw.screenshot(last_slot) if last_slot is not None else None
         vk.vkDeviceWaitIdle(ctx.device)
+        messages = len(ctx.log.messages) if ctx.log is not None else None
         ctx.check_validation(f"the raw-Vulkan window of {target!r}")
         return RawWindowResult(count, float(np.mean(times)) if times else 0.0, last, raw.offer.describe(),
                                raw.mode_name, FORMAT_NAMES.get(raw.swapchain.format, str(raw.swapchain.format)),
-                               raw.recreated, raw.events)
+                               raw.recreated, raw.events, recorder, messages)
     finally:
         if raw is not None:
             raw.close()

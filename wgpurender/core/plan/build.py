@@ -8,7 +8,6 @@ textures and samplers (:mod:`.textures`), the post chain (:mod:`.post`) and the 
 from __future__ import annotations
 
 import dataclasses
-import sys
 from pathlib import Path
 
 from wgpurender.core.course.effects import steps_for_target
@@ -19,7 +18,6 @@ from wgpurender.core.plan.model import (
     DEPTH_FORMAT,
     PLAN_OUTPUT_FORMATS,
     SAMPLE_COUNTS,
-    AdapterFacts,
     Knobs,
     RenderPlan,
     ScenePass,
@@ -28,7 +26,7 @@ from wgpurender.core.plan.post import plan_post_passes, post_pipelines_of, resol
 from wgpurender.core.plan.targets import SceneTargets, output_attachment, plan_scene_targets
 from wgpurender.core.scene import Scene, load_scene
 
-__all__ = ["build_plan", "explain_scene", "knob_settings", "main", "material_variant", "plan_scene_file"]
+__all__ = ["build_plan", "knob_settings", "material_variant", "plan_scene_file"]
 
 
 def _check_overrides(size, output_format, msaa) -> None:
@@ -168,23 +166,3 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
 def plan_scene_file(path: str | Path, **overrides) -> RenderPlan:
     return build_plan(load_scene(path), **overrides)
 
-
-def explain_scene(path: str | Path, adapter: AdapterFacts | None = None, **overrides) -> str:
-    """The plan of a scene file as text (what ``render SCENE.toml --explain`` prints); with ``adapter``, the
-    "auto" knobs are decided for it, as the renderer decides them, so the text lists what it would create."""
-    plan = plan_scene_file(path, **overrides)
-    return (plan.with_knobs(adapter=adapter) if adapter is not None else plan).explain()
-
-
-def main(argv: list[str] | None = None) -> int:
-    """``python -m wgpurender.core.plan SCENE.toml``: print the plan; UserError -> one line, exit 2."""
-    args = sys.argv[1:] if argv is None else argv
-    if len(args) != 1 or args[0] in ("-h", "--help"):
-        print("usage: python -m wgpurender.core.plan SCENE.toml", file=sys.stderr)
-        return 2
-    try:
-        sys.stdout.write(explain_scene(args[0]))
-    except UserError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    return 0

@@ -11,26 +11,20 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from wgpurender.core.course.effects import EffectStep
+from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.explain import explain
 from wgpurender.core.scene import Scene
 
 DEPTH_FORMAT = "depth32float"
-HDR_FORMAT = "rgba16float"
 LDR_SCENE_FORMAT = "rgba8unorm-srgb"  # 8-bit scene image for a post chain: shaders still see linear values
-COLOR_TEXTURE_FORMAT = "rgba8unorm-srgb"  # albedo: sRGB-encoded image, decoded by the sampler
-DATA_TEXTURE_FORMAT = "rgba8unorm"  # normal and roughness maps: values used as stored
 PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8unorm-srgb", "bgra8unorm")
-SAMPLE_COUNTS = (1, 4)
 DEPTH_FORMATS = ("depth32float", "depth24plus")
 SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
-POST_PATHS = ("auto", "fragment", "compute")
 IMMEDIATES = ("auto", "on", "off")
 # Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
 # the "bgra8unorm-storage" feature, which the renderer does not ask for.
 STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
-BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
-                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
 ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "post-mask", "post-scratch",
                     "output")  # the order passes use them
 
@@ -238,12 +232,15 @@ class AdapterFacts:
     """What the plan needs to know about an adapter for its "auto" knobs (no GPU object: plain values).
 
     ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
-    device's enabled features (the plan reads "immediates").
+    device's enabled features (the plan reads "immediates"); ``backend``: the API under the adapter as wgpu
+    reports it ("Vulkan", "OpenGL", ...; "WebGPU" for a browser), since some features are advertised where
+    they cannot be trusted (wgpurender/core/plan/post.py, ``UNTRUSTED_IMMEDIATES``).
     """
 
     adapter_type: str
     features: frozenset[str] = frozenset()
     name: str = ""
+    backend: str = ""
 
 
 @dataclass(frozen=True)
@@ -419,8 +416,6 @@ __all__ = [
     "AdapterFacts",
     "Attachment",
     "BYTES_PER_PIXEL",
-    "COLOR_TEXTURE_FORMAT",
-    "DATA_TEXTURE_FORMAT",
     "DEPTH_FORMAT",
     "DEPTH_FORMATS",
     "Draw",

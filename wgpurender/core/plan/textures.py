@@ -6,7 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from wgpurender.core.anisotropy import resolve_anisotropy
-from wgpurender.core.plan.model import COLOR_TEXTURE_FORMAT, DATA_TEXTURE_FORMAT, Knobs, SamplerUse, TextureUse
+from wgpurender.core.course.formats import map_format
+from wgpurender.core.plan.model import Knobs, SamplerUse, TextureUse
 from wgpurender.core.scene import Material
 from wgpurender.core.texture_pixels import image_size, mip_level_count
 
@@ -21,7 +22,7 @@ class TextureTable:
     def add_textures(self, label: str, sampled: tuple[tuple[str, Path], ...], mipmaps: bool) -> None:
         """Albedo is uploaded as sRGB (decoded by the sampler), normal and roughness maps as stored values."""
         for feature, path in sampled:
-            fmt = COLOR_TEXTURE_FORMAT if feature == "albedo_map" else DATA_TEXTURE_FORMAT
+            fmt = map_format(feature)
             who = f"{label} {feature}"
             old = self.textures.get((path, fmt))
             if old is None:

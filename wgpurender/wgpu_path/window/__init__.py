@@ -17,7 +17,8 @@ The demo on top (wgpurender/cli/demo.py), one module each in this package: ``vie
 shown: a stage or a scene, rebuilt from its files, with the orbit camera of wgpurender/core/orbit.py),
 ``controls`` (mouse and keys, and the tests' synthetic input), ``live_reload`` (which files
 changed; a broken file leaves the last good pipeline on screen and prints ``file:line: message``
-once), ``frame_times`` (the benchmark mode). FPS and frame time go in the title.
+once); the benchmark mode's frame times are wgpurender/core/frame_times.py (the raw window's too). FPS and
+frame time go in the title.
 """
 
 from __future__ import annotations
@@ -32,9 +33,9 @@ import wgpu
 
 from wgpurender.core import slow_frames
 from wgpurender.core.errors import UserError
+from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.window.controls import Controls, ScriptEvent, send
-from wgpurender.wgpu_path.window.frame_times import BenchmarkSpec, FrameRecorder
 from wgpurender.wgpu_path.window.live_reload import FileWatcher, error_line
 from wgpurender.wgpu_path.window.view import DemoView
 

@@ -38,11 +38,7 @@ class DemoView:
         lavapipe); a stage is built, which is cheap and runs the stage's own option checks.
         """
         if self.is_scene:
-            from wgpurender.core.plan import build_plan
-            from wgpurender.core.scene import load_scene
-
-            build_plan(load_scene(self.target), msaa=self.msaa, anisotropy=self.anisotropy,
-                       adapter_type=self.ctx.adapter.info["adapter_type"])
+            self.plan("rgba8unorm-srgb")
         else:
             self._make("rgba8unorm-srgb")
 
@@ -72,17 +68,22 @@ class DemoView:
 
         return block()
 
+    def plan(self, fmt: str):
+        """The scene's plan for this adapter and a swapchain of ``fmt`` (:func:`wgpurender.core.plan.resolve_plan`),
+        from the file as it is now; a swapchain image is not a storage texture, so a compute post path writes
+        it through a scratch copy (``output_storage=False``)."""
+        from wgpurender.core.plan import resolve_plan
+        from wgpurender.wgpu_path.scene_render import adapter_facts
+
+        return resolve_plan(self.target, adapter_facts(self.ctx), output_format=fmt, msaa=self.msaa,
+                            anisotropy=self.anisotropy, output_storage=False)
+
     def _make(self, fmt: str):
         if self.is_scene:
-            from wgpurender.core.plan import build_plan
-            from wgpurender.core.scene import load_scene
             from wgpurender.wgpu_path.scene_render import SceneRenderer
 
-            scene = load_scene(self.target)
-            plan = build_plan(scene, output_format=fmt, msaa=self.msaa, anisotropy=self.anisotropy,
-                              adapter_type=self.ctx.adapter.info["adapter_type"])
-            # a swapchain image is not a storage texture: a compute post path writes it through a scratch copy
-            return SceneRenderer(self.ctx, scene, plan.with_knobs(output_storage=False))
+            plan = self.plan(fmt)
+            return SceneRenderer(self.ctx, plan.scene, plan)
         from wgpurender.wgpu_path.stages import get_stage
 
         return get_stage(self.target)(self.ctx, fmt, self.msaa)
