@@ -229,6 +229,7 @@ def listed(plan) -> Counter:
 
 def check_counts(plan, recorder: Recorder) -> None:
     made = recorder.made
+    assert all(o.reason and o.count > 0 for o in plan.objects), "every object says why it is there"
     assert made == Counter(plan.object_counts()), plan.explain()
     kinds = ("texture", "render_pipeline", "compute_pipeline", "buffer")
     assert +Counter({k: made[k] for k in kinds}) == listed(plan), plan.explain()
