@@ -4,8 +4,9 @@ Every ``device.create_*`` call (textures, buffers, samplers, bind group layouts,
 modules, pipeline layouts, render and compute pipelines, command encoders, query sets, render bundle
 encoders: whatever the device offers) is wrapped while a renderer is made and records one frame, and
 what was created is compared per kind with ``plan.object_counts()`` (``--explain`` lists each object
-and why). A call made inside another (``create_buffer_with_data`` makes its buffer through
-``create_buffer``) counts once, as the outer call. The device's caches are emptied first
+and why; render bundle encoders: the scene pass's draws and each fragment post pass, as the plan lists
+them). A call made inside another (``create_buffer_with_data`` makes its buffer through ``create_buffer``)
+counts once, as the outer call. The device's caches are emptied first
 (gpu_cache.py), so an object made for an earlier scene on the same device cannot hide one.
 
 Scenes: every scene in assets/scenes that needs nothing from ../shared, and five scenes the project
