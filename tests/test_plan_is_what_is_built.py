@@ -308,6 +308,9 @@ def test_no_post_scene_shares_its_mesh_and_splits_its_winding(ctx, monkeypatch, 
     windings = sorted(p["primitive"]["front_face"] for p in recorder.of("render_pipeline"))
     assert windings == ["ccw", "cw"]
     assert not recorder.of("compute_pipeline") and not encoder.compute_passes and len(encoder.render_passes) == 1
+    text = plan.explain()
+    assert "scene_color, post passes: none <- no [[post]] effects" in text
+    assert "msaa_color: none <- render.msaa = 1" in text
 
 
 def test_textures_without_a_normal_map_have_no_tangents(ctx, monkeypatch, tmp_path):
