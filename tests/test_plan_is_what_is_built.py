@@ -24,7 +24,8 @@ never saw, written here, each with facts checked from the device's calls and pix
 - ``unlit_chain``: an unlit textured material through grayscale then sharpen at msaa 1: two post passes
   with an intermediate, no lighting, no normal attribute.
 
-Each runs on both post paths. The raw-Vulkan scene renderer, which shares the plan, is checked where it
+Each runs on both post paths (the repository scenes also on the compute path into a swapchain-like output,
+which a compute pass cannot write directly). The raw-Vulkan scene renderer, which shares the plan, is checked where it
 shares it: the render pass's images and the scene pipelines it creates.
 """
 
@@ -202,9 +203,12 @@ class Encoder:
 
 
 def build_and_record(ctx, monkeypatch, scene_path: Path, post_path: str, size=SIZE):
-    """(plan, recorder, encoder proxy, output pixels) of one renderer made and one frame recorded."""
+    """(plan, recorder, encoder proxy, output pixels) of one renderer made and one frame recorded.
+    ``post_path`` "compute-swapchain": the compute path into an output that cannot be a storage texture."""
     scene = load_scene(scene_path)
-    plan = build_plan(scene, size=size).with_knobs(post_path=post_path, adapter=adapter_facts(ctx))
+    knobs = {"post_path": "compute", "output_storage": False} if post_path == "compute-swapchain" else {
+        "post_path": post_path}
+    plan = build_plan(scene, size=size).with_knobs(**knobs, adapter=adapter_facts(ctx))
     target = create_target(ctx, plan.size, plan.output_format, usage=TARGET_USAGE | output_usage(plan.post_passes))
     encoder = Encoder(ctx.device.create_command_encoder())
     monkeypatch.delattr(ctx.device, "_wgpurender_caches", raising=False)  # a fresh device, as far as caches go
@@ -236,7 +240,7 @@ def check_counts(plan, recorder: Recorder) -> None:
     assert +Counter({k: made[k] for k in kinds}) == listed(plan), plan.explain()
 
 
-@pytest.mark.parametrize("post_path", ["fragment", "compute"])
+@pytest.mark.parametrize("post_path", ["fragment", "compute", "compute-swapchain"])
 @pytest.mark.parametrize("scene_path", SCENES, ids=[p.stem for p in SCENES])
 def test_renderer_creates_what_the_plan_lists(ctx, monkeypatch, scene_path, post_path):
     plan, recorder, _, _ = build_and_record(ctx, monkeypatch, scene_path, post_path)
