@@ -202,7 +202,7 @@ class Encoder:
         return getattr(self.encoder, name)
 
 
-def build_and_record(ctx, monkeypatch, scene_path: Path, post_path: str, size=SIZE):
+def build_and_record(ctx, monkeypatch, scene_path: Path, post_path: str, size=SIZE, timer=None):
     """(plan, recorder, encoder proxy, output pixels) of one renderer made and one frame recorded.
     ``post_path`` "compute-swapchain": the compute path into an output that cannot be a storage texture."""
     scene = load_scene(scene_path)
@@ -214,7 +214,11 @@ def build_and_record(ctx, monkeypatch, scene_path: Path, post_path: str, size=SI
     monkeypatch.delattr(ctx.device, "_wgpurender_caches", raising=False)  # a fresh device, as far as caches go
     recorder = Recorder(ctx.device, monkeypatch)
     renderer = SceneRenderer(ctx, scene, plan)
-    renderer.record(encoder, target)
+    if timer is not None:
+        timer.reset()
+    renderer.record(encoder, target, timer=timer)
+    if timer is not None:
+        timer.resolve(encoder.encoder)
     monkeypatch.undo()
     ctx.queue.submit([encoder.finish()])
     assert renderer.plan is plan, "the plan knew its adapter: the renderer did not re-plan"
@@ -259,6 +263,20 @@ def test_new_scenes_create_what_the_plan_lists(ctx, monkeypatch, tmp_path, name,
     plan, recorder, _, _ = build_and_record(ctx, monkeypatch, write_scene(tmp_path, name), post_path, size)
     check_counts(plan, recorder)
     assert recorder.made["bind_group"] == plan.object_counts().get("bind_group", 0)
+
+
+@pytest.mark.parametrize("post_path", ["fragment", "compute"])
+def test_a_timed_frame_creates_nothing_more(ctx, monkeypatch, post_path):
+    """Timestamps on every pass (a benchmark's timer, whose query set is its own) add no object to the plan's."""
+    from wgpurender.wgpu_path.timing import PassTimer
+
+    if not ctx.has("timestamp-query"):
+        pytest.skip("this adapter has no timestamp queries")
+    timer = PassTimer(ctx, max_passes=8)
+    plan, recorder, _, _ = build_and_record(ctx, monkeypatch, ASSETS / "scenes" / "final.toml", post_path,
+                                            timer=timer)
+    check_counts(plan, recorder)
+    assert len(timer.labels) == 1 + len(plan.post_passes), "every pass was timed"
 
 
 def srgb8(linear: float) -> int:
