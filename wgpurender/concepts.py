@@ -21,7 +21,8 @@ import textwrap
 from dataclasses import dataclass
 
 R = "wgpurender.raw_path."
-W = "wgpurender."
+W = "wgpurender.wgpu_path."
+C = "wgpurender."  # core locations are written "core.module:attr"
 
 
 @dataclass(frozen=True)
@@ -42,7 +43,7 @@ def _raw(*locations: str) -> tuple[str, ...]:
 
 
 def _wgpu(*locations: str) -> tuple[str, ...]:
-    return tuple(W + loc for loc in locations)
+    return tuple((C if loc.startswith("core.") else W) + loc for loc in locations)
 
 
 CONCEPTS: list[Concept] = [
@@ -391,7 +392,7 @@ CONCEPTS: list[Concept] = [
         ("glslc (GLSL -> SPIR-V)", "vkCreateShaderModule (codeSize, pCode)"),
         _raw("glsl:compile_glsl", "glsl:create_shader_module", "glsl:glsl_path", "scene.variants:glsl_defines"),
         ("device.create_shader_module(code=WGSL or SPIR-V)",),
-        _wgpu("shaders:create_shader_module", "shaders:load_wgsl", "shader_variants:specialise"),
+        _wgpu("shaders:create_shader_module", "shaders:load_wgsl", "core.shader_variants:specialise"),
         "WGSL text compiled by naga at run time (errors with line and column). naga also takes SPIR-V, but not "
         "a combined sampler2D and not subpassInput. Shader variants: WGSL has no preprocessor, so the wgpu path "
         "specialises its template in Python; the raw path passes glslc -D flags to one GLSL source.",
@@ -508,7 +509,8 @@ CONCEPTS: list[Concept] = [
         _raw("ubo:dynamic_stride", "ubo:pack_camera", "ubo:pack_object", "instance:copy_limits",
              "scene.uniforms:pack_camera", "scene.uniforms:pack_object"),
         ("WGSL uniform address space layout", "limit 'min-uniform-buffer-offset-alignment'"),
-        _wgpu("uniforms:Struct.stride", "uniforms:Struct.pack", "uniforms:Struct.pack_many", "uniforms:wgsl_structs"),
+        _wgpu("core.uniforms:Struct.stride", "core.uniforms:Struct.pack", "core.uniforms:Struct.pack_many",
+              "core.uniforms:wgsl_structs"),
         "WGSL's uniform layout equals std140 for these types and naga rejects a struct that breaks it. The wgpu "
         "path declares each struct once and generates both the packer and the WGSL text; the raw path packs by "
         "hand, as an independent check.",
@@ -553,7 +555,7 @@ CONCEPTS: list[Concept] = [
 
 def short(location: str) -> str:
     """A location without the package prefix, for display."""
-    return location.removeprefix(W)
+    return location.removeprefix(W).removeprefix(C)
 
 
 def raw_cell(row: Concept) -> list[str]:

@@ -18,6 +18,7 @@ from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
 from wgpurender.bench.report import Result, size_text
 from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.assets import resolve_scene
 from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.timing import Stats
@@ -100,7 +101,7 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
     A note with no results means skipped (the scene file is absent); a note with results says why
     the raw peer is missing.
     """
-    path = Path(path)
+    path = resolve_scene(path)  # a bundled scene's name or repository path works from any folder
     if not path.is_file():
         return [], f"skipped: scene file {path} not found"
     runner = SceneRunner(ctx, path, size, anisotropy)

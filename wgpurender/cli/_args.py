@@ -41,7 +41,8 @@ def add_backend_arg(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--backend",
         default=None,
-        help="graphics backend: Vulkan (default), Metal, D3D12 or OpenGL; also $WGPURENDER_BACKEND",
+        help="graphics backend: vulkan (default), opengl, metal, d3d12 or auto (the best adapter of any); "
+             "also $WGPURENDER_BACKEND",
     )
 
 

@@ -44,7 +44,8 @@ def register(subparsers) -> None:
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
     p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
-    p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--backend", default=None,
+                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
     add_anisotropy_arg(p)
     p.add_argument("--raw", action="store_true",
                    help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "

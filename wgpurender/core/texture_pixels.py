@@ -136,6 +136,16 @@ def image_pixels(source, *, max_dim: int | None = None) -> np.ndarray:
     raise UserError(f"a texture comes from an image path or a numpy array, not {type(source).__name__}")
 
 
+def image_size(path: str | os.PathLike) -> tuple[int, int] | None:
+    """(width, height) from an image file's header (no pixel decoded); None when it cannot be read
+    (the upload then says why, with :func:`load_image`'s message)."""
+    try:
+        with Image.open(path) as im:
+            return im.width, im.height
+    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError):
+        return None
+
+
 def mip_level_count(width: int, height: int) -> int:
     """Levels down to 1x1: floor(log2(max side)) + 1."""
     return max(width, height).bit_length()

@@ -82,10 +82,9 @@ def run_frame(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, t: float
 
 def _readback(ctx: GPUContext) -> Readback:
     """The context's frame readback (one reused host buffer)."""
-    readback = ctx.__dict__.get("_frame_readback")
-    if readback is None:
-        readback = ctx.__dict__["_frame_readback"] = Readback(ctx)
-    return readback
+    if ctx.frame_readback is None:
+        ctx.frame_readback = Readback(ctx)
+    return ctx.frame_readback
 
 
 def run_frames(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, frames: int, t: float = 0.0,

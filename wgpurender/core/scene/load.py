@@ -5,6 +5,7 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
+from wgpurender.core.assets import resolve_scene
 from wgpurender.core.errors import UserError
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.model import Scene
@@ -39,8 +40,8 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file."""
-    path = Path(path)
+    """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.assets`)."""
+    path = resolve_scene(path)
     if not path.is_file():
         raise UserError(f"scene file not found: {path}")
     try:

@@ -9,7 +9,6 @@ import numpy as np
 
 from wgpurender.core import transforms
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
-from wgpurender.core.course.formats import SAMPLE_COUNTS as MSAA_COUNTS  # noqa: F401
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 

@@ -25,7 +25,7 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.course.formats import is_srgb_map
-from wgpurender.core.course.shading import AMBIENT, material_factors
+from wgpurender.core.course.shading import AMBIENT
 from wgpurender.core.plan import Draw, RenderPlan, ShaderVariant
 from wgpurender.core.scene import Scene
 from wgpurender.raw_path import descriptors
@@ -58,10 +58,11 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
 
 
 def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
-    """Push constant bytes; with a roughness map, the map's G channel is the roughness (factor 1)."""
-    mat = scene.models[draw.model_index].material
+    """Push constant bytes: the plan's factors for the draw (core/plan/draws.py decides them, e.g. with a
+    roughness map the map's G channel is the roughness, factor 1; a lit material without lights is drawn
+    unlit with its base colour times the ambient), the same values the wgpu path pushes."""
     lit = is_lit(variant)
-    f = material_factors(mat.albedo_color, mat.roughness, lit, "roughness_map" in variant.flags)
+    f = dict(draw.factors)
     if not lit:
         return U.pack_material(f["base_color"], lit=False)
     return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"])

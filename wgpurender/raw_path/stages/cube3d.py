@@ -38,7 +38,6 @@ def vertex_input() -> tuple[list, list]:
 class Cube3D(RefStage):
     name = "3d"
     summary = "rotating cubes: depth buffer, camera and object UBOs in two descriptor sets, push constants"
-    supports_msaa = True
 
     def setup(self) -> None:
         ctx, owned = self.ctx, self.owned

@@ -23,7 +23,6 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, RenderPlan, resolve_plan
-from wgpurender.core.plan import adapter_facts as plan_adapter_facts
 from wgpurender.core.scene import Scene, load_scene
 from wgpurender.wgpu_path.frame_loop import RenderResult, run_frame, run_frames
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -42,8 +41,7 @@ ATTACHMENT_USAGE = {
 
 def adapter_facts(ctx: GPUContext) -> AdapterFacts:
     """What the plan's "auto" knobs need to know about this context's adapter and device."""
-    info = ctx.info
-    return plan_adapter_facts(info.get("adapter_type", ""), ctx.features, info.get("device", ""))
+    return ctx.facts()
 
 
 def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
@@ -70,6 +68,7 @@ class SceneRenderer:
         self.target_usage = output_usage(plan.post_passes)  # what the output texture needs beyond TARGET_USAGE
         self.size: tuple[int, int] | None = None
         self.attachments: dict[str, wgpu.GPUTexture] = {}
+        self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
 
     def create_output(self, label: str = "scene-output") -> wgpu.GPUTexture:
         """An offscreen output texture for this plan: its size, format and every usage the plan's passes need.
@@ -107,7 +106,7 @@ class SceneRenderer:
     def _view(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTextureView:
         """A view of an attachment or the output, made once per texture object (resize makes new ones)."""
         texture = self._texture(name, target)
-        cached = self.__dict__.setdefault("_views", {}).get(name)
+        cached = self._views.get(name)
         if cached is None or cached[0] is not texture:
             cached = self._views[name] = (texture, texture.create_view())
         return cached[1]

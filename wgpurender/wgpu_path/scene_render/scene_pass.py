@@ -19,7 +19,6 @@ import wgpu
 from wgpurender.core import transforms as tf
 from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
-from wgpurender.core.errors import UserError
 from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
 from wgpurender.core.scene import Scene
 from wgpurender.wgpu_path.bind_groups import uniform_group, uniform_layout
@@ -68,12 +67,9 @@ class ScenePassRenderer:
 
     def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, resources: SceneResources,
                  use_immediates: bool | None = None) -> None:
-        if use_immediates and not ctx.has("immediates"):
-            raise UserError("this adapter does not offer the 'immediates' feature (push constants): "
-                            "leave use_immediates unset to fall back to a uniform buffer")
         self.ctx, self.scene, self.plan, self.resources = ctx, scene, plan, resources
         self.reverse_z = plan.reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (plan knob)
-        self.uses_immediates = ctx.has("immediates") if use_immediates is None else bool(use_immediates)
+        self.uses_immediates = ctx.use_immediates(use_immediates)
         self.draws = plan.scene_pass.draws
         # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
         self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
