@@ -17,8 +17,9 @@ REFUSED = {  # dest -> why it cannot apply to the raw window
 }
 
 
-def run_raw(args, benchmark) -> int:
-    """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller."""
+def run_raw(args, benchmark, size: tuple[int, int]) -> int:
+    """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller; ``size``: the
+    window size the demo chose (--size, else a scene's [render] size)."""
     from wgpurender.core.errors import UserError
     from wgpurender.core.imageio import check_writable, save_png
     from wgpurender.raw_path.validation import ENV
@@ -31,7 +32,7 @@ def run_raw(args, benchmark) -> int:
         check_writable(args.screenshot)
     if args.validation:
         os.environ[ENV] = "1"  # read when the window's Vulkan context is made
-    result = run_raw_window(args.target, size=args.size, present_mode=args.present_mode, frames=args.frames,
+    result = run_raw_window(args.target, size=size, present_mode=args.present_mode, frames=args.frames,
                             screenshot=bool(args.screenshot), msaa=args.msaa, fixed_time=args.time,
                             anisotropy=args.anisotropy, benchmark=benchmark)
     print(f"surface offers: {result.offered}")
