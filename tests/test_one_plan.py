@@ -3,7 +3,8 @@
 For each scene file in assets/scenes/ (those that need ../shared/anchors skip when it is absent):
 - the plans of all entry points are one plan: ``render --explain`` (CLI), the API's ``plan``/``explain``,
   ``Image.plan`` of ``render`` and of ``reference`` (the raw path resolves for its own device with the same
-  function), and the two windows' plans (the same plan, for a swapchain image: ``output_storage`` off);
+  function), bench's (and the report's timing) runners on both paths, and the two windows' plans (the same
+  plan, for a swapchain image: ``output_storage`` off); the report's plan text is checked in test_report.py;
 - ``wgpurender render`` then ``wgpurender reference`` with default flags pass ``wgpurender compare``'s default
   threshold (exit 0);
 - the API's image equals the CLI's, byte for byte (one process, one machine);
@@ -82,6 +83,16 @@ def test_every_entry_point_draws_one_plan(scene, ctx, capsys, tmp_path):
     assert demo == planned.with_knobs(output_storage=False) and demo.knobs == windowed
     raw_window = window_plan(get_vulkan(), load_scene(scene), None, None)
     assert raw_window == demo
+
+    # -- bench perf and the report's timings: both paths' runners draw the same plan -----------------------
+    from wgpurender.bench.scene import RawSceneRunner, SceneRunner
+    from wgpurender.wgpu_path.scene_render import load_renderer
+
+    assert SceneRunner(ctx, scene, planned.size).renderer.plan == planned
+    with RawSceneRunner(scene, planned.size) as runner:
+        assert runner.stage.frame.plan == planned
+    # verify keeps the scene's anisotropy (its references were made so), through the same function
+    assert load_renderer(scene, ctx, anisotropy="scene").plan == w.plan(scene, anisotropy="scene")
 
 
 def test_the_anisotropy_rule_is_resolved_per_adapter_on_both_paths(ctx):
