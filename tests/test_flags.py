@@ -169,7 +169,6 @@ def test_the_check_catches_a_dropped_flag(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize(("argv", "says"), [
     (["demo", "--raw", "--backend", "Vulkan", "triangle"], "--backend"),
-    (["demo", "--raw", "--test-input", "key:R", "triangle"], "--test-input"),
     (["demo", "--benchmark-runtime", "1", "triangle"], "--benchmark-runtime"),
     (["render", "triangle", "-o", "x.png", "--anisotropy", "scene"], "--anisotropy"),
     (["reference", "triangle", "-o", "x.png", "--anisotropy", "scene"], "--anisotropy"),

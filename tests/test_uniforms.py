@@ -193,7 +193,7 @@ def _run_roundtrip(ctx, struct: Struct, values: dict) -> np.ndarray:
     cpass.end()
     enc.copy_buffer_to_buffer(out, 0, readback, 0, out_size)
     ctx.queue.submit([enc.finish()])
-    readback.map_sync(wgpu.MapMode.READ)
+    ctx.map_read(readback)  # on this thread (gpu.py), as every readback
     words = np.frombuffer(readback.read_mapped(), dtype="<u4").copy()
     readback.unmap()
     return words, leaves

@@ -68,7 +68,7 @@ def run_compute(
     compute_pass.dispatch_workgroups((out_count + WORKGROUP_SIZE - 1) // WORKGROUP_SIZE)
     compute_pass.end()
     ctx.queue.submit([encoder.finish()])
-    result = np.frombuffer(ctx.queue.read_buffer(out), dtype=np.float32).reshape(out_count, 4).copy()
+    result = np.frombuffer(ctx.read_buffer(out), dtype=np.float32).reshape(out_count, 4).copy()
     for b in [*buffers, out]:
         b.destroy()
     return result

@@ -11,7 +11,8 @@ group (1, one buffer with dynamic offsets) shared by every draw, a material grou
 variant samples textures or reads its factors from a buffer (no immediates), a shader module per
 variant and a pipeline layout per pipeline; a mip chain is one render pass per level, each reading
 the level above through its own bind group; a post pass has its shader, layout, parameter buffer
-and one bind group. Nothing here is made for an empty scene pass but the clear.
+and one bind group. The scene pass's draws and each fragment post pass's draws are a render bundle, recorded
+once (issue 22.2). Nothing here is made for an empty scene pass but the clear.
 """
 
 from __future__ import annotations
@@ -81,6 +82,8 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         out.append(GpuObject("render_pipeline", f"scene {p.key}", 1, "a scene pipeline of the plan"))
     for s in plan.samplers:
         out.append(GpuObject("sampler", f"sampler anisotropy {s.spec.max_anisotropy}", 1, "; ".join(s.used_by)))
+    out.append(GpuObject("render_bundle_encoder", "scene-draws", 1, f"the {len(draws)} draw(s) recorded once "
+                         "(pipeline, bind groups, buffers, draw); each frame replays them with one call"))
     return out
 
 
@@ -119,6 +122,11 @@ def _post(plan: Any) -> list[GpuObject]:
             out.append(GpuObject("buffer", f"post-{p.effect}-params", 1, "uniform: PassParams"))
         out.append(GpuObject("bind_group", f"post {p.effect}", 1, f"post pass {p.index + 1}: its input"
                              + (" and the storage texture it writes" if p.path == "compute" else "")))
+    for p in plan.post_passes:
+        if p.path == "fragment":
+            draws = "fs_mark and fs_main" if p.mask else "the full-screen triangle"
+            out.append(GpuObject("render_bundle_encoder", f"post-{p.effect}", 1,
+                                 f"post pass {p.index + 1}'s bind group, pipeline and {draws}, once per input"))
     for pl in plan.post_pipelines:
         kind = "compute_pipeline" if pl.stage == "compute" else "render_pipeline"
         out.append(GpuObject(kind, f"post {pl.key}", 1, "a post pipeline of the plan"))
