@@ -47,8 +47,7 @@ def test_raw_window_screenshot_equals_offscreen(display, tmp_path, target):
     assert result.returncode == 0, result.stderr
     assert "frames: 3" in result.stdout and "present mode fifo" in result.stdout
     assert "fifo" in result.stdout.split("surface offers:")[1].split("\n")[0]  # FIFO is always offered
-    # the demo's default anisotropy rule ("auto"), resolved for the same device by the same function
-    want = render_reference(str(REPO / target) if target.endswith(".toml") else target, SIZE, anisotropy="auto")
+    want = render_reference(str(REPO / target) if target.endswith(".toml") else target, SIZE)
     got = load_png(shot)
     assert got.shape == want.shape
     assert np.array_equal(got, want), f"{int((got != want).any(-1).sum())} pixels differ"
