@@ -107,3 +107,11 @@ def test_the_anisotropy_rule_is_resolved_per_adapter_on_both_paths(ctx):
     assert [s.spec.max_anisotropy for s in w.plan(final).samplers] == [wanted]
     assert [s.spec.max_anisotropy for s in w.plan(final, anisotropy="scene").samplers] == [8]
     assert w.reference(final, size=(64, 48)).plan.samplers == w.plan(final, size=(64, 48)).samplers
+
+
+def test_a_stage_refuses_an_anisotropy_rule_instead_of_ignoring_it(ctx):
+    """The rule applies to scene files; a stage's samplers are its own, so asking for one is an error."""
+    for call in (w.render, w.reference):
+        with pytest.raises(w.UserError, match="applies to scene files"):
+            call("textured", anisotropy="scene")
+    assert w.render("triangle", size=(8, 6), anisotropy="auto").plan is None  # the default is no request

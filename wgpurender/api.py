@@ -118,14 +118,13 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
-    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.wgpu_path.gpu import get_context
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     ctx = get_context(checks.backend(backend))
-    if is_scene_file(target):
+    if _scene_or_default_anisotropy(target, anisotropy):
         from wgpurender.wgpu_path.scene_render import render_plan
 
         result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy), t)
@@ -145,14 +144,13 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     same function for the raw path's device (``Image.plan``), so on one device both paths draw one plan.
     Needs ``glslc`` on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
     """
-    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.raw_path.instance import get_vulkan
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     plan = None
-    if is_scene_file(target):
+    if _scene_or_default_anisotropy(target, anisotropy):
         from wgpurender.core.plan import resolve_plan
         from wgpurender.raw_path.scene import render_scene_plan
 
@@ -165,6 +163,19 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
         pixels = render_reference(target, size=wh, fmt=format, msaa=msaa, t=t)
     timings = {"call_ms": (time.perf_counter() - start) * 1e3}
     return Image(pixels, str(target), "raw", timings, get_vulkan().describe(), plan)
+
+
+def _scene_or_default_anisotropy(target: str, anisotropy: str) -> bool:
+    """Whether ``target`` is a scene file; a stage with an anisotropy rule other than the default is refused
+    (a stage's samplers are its own: the rule applies to scenes), not ignored."""
+    from wgpurender.core.course.formats import is_scene_file
+
+    if is_scene_file(target):
+        return True
+    if anisotropy != DEFAULT_ANISOTROPY:
+        raise UserError(f"anisotropy {anisotropy!r} applies to scene files: stage {target!r} has its own samplers "
+                        f"(leave --anisotropy out)")
+    return False
 
 
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy) -> RenderPlan:
