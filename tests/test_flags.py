@@ -8,8 +8,9 @@ in its own module or imported from another ``wgpurender`` module), collecting ea
 
 A command that dispatches early on a flag (``if args.raw: return run_raw(args)``) has one *mode* per such
 branch plus the rest, and every mode must read every flag: so ``demo --raw`` cannot drop ``--benchmark`` that
-the wgpu window reads. A read is either a use or a refusal (a UserError, exit 2, one line); the dynamic tests
-below check the refusals and the uses that issue 20 named (``demo --raw --benchmark/--validation/--anisotropy``).
+the wgpu window reads. The static check counts a read whatever follows it, so it proves "not parsed and then
+never looked at", not "used well": the dynamic tests below check that the refusals are one line and exit 2, and
+the uses issue 20 named (``demo --raw --benchmark/--validation/--anisotropy``) do what they say.
 """
 
 from __future__ import annotations

@@ -115,3 +115,16 @@ def test_a_stage_refuses_an_anisotropy_rule_instead_of_ignoring_it(ctx):
         with pytest.raises(w.UserError, match="applies to scene files"):
             call("textured", anisotropy="scene")
     assert w.render("triangle", size=(8, 6), anisotropy="auto").plan is None  # the default is no request
+
+
+def test_the_api_passes_plan_knobs_to_the_one_function(ctx):
+    """A knob through the API reaches the plan drawn (and an unknown one is refused, not ignored)."""
+    final = REPO / "assets" / "scenes" / "final.toml"
+    image = w.render(final, size=(64, 48), post_path="compute", post_fuse=False)
+    assert image.plan.post_path == "compute" and all(not p.fused for p in image.plan.post_passes)
+    assert image.plan == w.plan(final, size=(64, 48), post_path="compute", post_fuse=False)
+    assert image.plan != w.plan(final, size=(64, 48))
+    with pytest.raises(w.UserError, match="unknown plan knob 'gamma'"):
+        w.plan(final, gamma=2.2)
+    with pytest.raises(w.UserError, match="applies to scene files"):
+        w.render("triangle", post_path="compute")
