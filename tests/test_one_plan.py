@@ -128,3 +128,8 @@ def test_the_api_passes_plan_knobs_to_the_one_function(ctx):
         w.plan(final, gamma=2.2)
     with pytest.raises(w.UserError, match="applies to scene files"):
         w.render("triangle", post_path="compute")
+    # the raw path draws a knob only at its default: asking it for another is an error, not a different image
+    with pytest.raises(w.UserError, match="plan knob reverse_z = True"):
+        w.reference(final, size=(64, 48), reverse_z=True)
+    assert w.reference(final, size=(64, 48), scene_format="rgba16float").plan.attachment("scene_color").format == \
+        "rgba16float"
