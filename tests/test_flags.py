@@ -173,6 +173,8 @@ def test_the_check_catches_a_dropped_flag(tmp_path, monkeypatch):
     (["demo", "--benchmark-runtime", "1", "triangle"], "--benchmark-runtime"),
     (["render", "triangle", "-o", "x.png", "--anisotropy", "scene"], "--anisotropy"),
     (["reference", "triangle", "-o", "x.png", "--anisotropy", "scene"], "--anisotropy"),
+    (["demo", "triangle", "--anisotropy", "scene"], "--anisotropy"),
+    (["demo", "--raw", "triangle", "--anisotropy", "scene"], "--anisotropy"),
     (["verify", "--anisotropy", "scene"], "--anisotropy"),
     (["render", "triangle", "-o", "x.png", "--raw"], "--raw"),
     (["bench", "accuracy", str(REPO / "assets" / "scenes" / "final.toml"), "--truth", "analytic", "--knob", "msaa"],

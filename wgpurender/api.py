@@ -170,13 +170,12 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
 def _is_scene(target: str, anisotropy: str, knobs: dict) -> bool:
     """Whether ``target`` is a scene file; a stage with plan knobs, or an anisotropy rule other than the default,
     is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored."""
+    from wgpurender.core.anisotropy import check_applies
     from wgpurender.core.course.formats import is_scene_file
 
     if is_scene_file(target):
         return True
-    if anisotropy != DEFAULT_ANISOTROPY:
-        raise UserError(f"anisotropy {anisotropy!r} applies to scene files: stage {target!r} has its own samplers "
-                        f"(leave --anisotropy out)")
+    check_applies(target, False, anisotropy)
     if knobs:
         raise UserError(f"plan knob {sorted(knobs)[0]!r} applies to scene files: stage {target!r} has no plan")
     return False

@@ -68,12 +68,15 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    from wgpurender.core.anisotropy import check_applies
+    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.errors import UserError
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
     benchmark = _benchmark(args)
     size = _window_size(args.target, args.size)
+    check_applies(args.target, is_scene_file(args.target), args.anisotropy)
     if args.raw:
         from wgpurender.cli._demo_raw import run_raw
 
