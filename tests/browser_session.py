@@ -57,7 +57,7 @@ class Chromium:
             os.dup2(replies, 4)
 
         self._profile = tempfile.TemporaryDirectory(prefix="wgpurender-webgpu-")
-        flags = (["--enable-unsafe-webgpu"] if self.webgpu else []) + os.environ.get("WGPURENDER_CHROMIUM_FLAGS", "").split()
+        flags = ["--enable-unsafe-webgpu"] if self.webgpu else []
         args = [exe, "--headless=new", "--no-sandbox", "--no-first-run", "--hide-scrollbars", *flags,
                 "--remote-debugging-pipe", f"--user-data-dir={self._profile.name}", "about:blank"]
         self.proc = subprocess.Popen(args, preexec_fn=fds, close_fds=False, stdout=subprocess.DEVNULL,

@@ -9,7 +9,7 @@
   "use strict";
   const X = window.WGPURENDER_EXPORT;
   const meta = X.meta;
-  const api = { adapter: null, error: null, frames: 0, sample: 0, frameMs: null };
+  const api = { adapter: null, error: null, frames: 0, sample: 0, frameMs: null, samplesSeen: new Set() };
   window.wgpurender = api;
   const $ = (id) => document.getElementById(id);
   const blobs = [];
@@ -166,6 +166,9 @@
     return { width: meta.size[0], height: meta.size[1], rgba: btoa(text) };
   };
 
+  // The orbit's view matrix now (column-major), for a test against the Python look-at.
+  api.orbitView = () => (orbit ? Array.from(lookAt(orbit.eye(), orbit.target, orbit.up)) : null);
+
   function controls(canvas) {
     let last = null;
     canvas.addEventListener("pointerdown", (e) => { last = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
@@ -189,6 +192,7 @@
       await present();
       api.frameMs = performance.now() - t0;
       api.frames += 1;
+      api.samplesSeen.add(api.sample);
       if (api.frames % 10 === 1) $("frametime").textContent = `${api.frameMs.toFixed(2)} ms (replay, GPU, present)`;
       requestAnimationFrame(tick);
     };
