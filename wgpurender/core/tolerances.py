@@ -23,9 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.assets import reference_dir
 from wgpurender.core.errors import UserError
 
-TABLE_PATH = Path(__file__).resolve().parents[2] / "assets" / "reference" / "tolerances.toml"
+TABLE_PATH = reference_dir() / "tolerances.toml"
 DRIVER_CLASSES = ("lavapipe", "gpu")
 
 

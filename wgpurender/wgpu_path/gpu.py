@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 
 import wgpu
 
-from wgpurender.core.course.formats import SAMPLE_COUNTS
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.model import AdapterFacts
 from wgpurender.core.plan.post import immediates_rule
+from wgpurender.core.plan.resolve import adapter_facts
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
@@ -53,6 +53,9 @@ class GPUContext:
     device: wgpu.GPUDevice
     features: frozenset[str]
     _fence: wgpu.GPUBuffer | None = field(default=None, repr=False)
+    # the frame loop's reusable readback (frame_loop.Readback, made there on first use; typed loosely: gpu.py
+    # sits below frame_loop.py)
+    frame_readback: object | None = field(default=None, repr=False)
 
     @property
     def queue(self) -> wgpu.GPUQueue:
@@ -72,8 +75,8 @@ class GPUContext:
     def facts(self) -> AdapterFacts:
         """What the plan's "auto" knobs need to know about this adapter and device (plain values)."""
         info = self.info
-        return AdapterFacts(info.get("adapter_type", ""), self.features, info.get("device", ""),
-                            info.get("backend_type", ""))
+        return adapter_facts(info.get("adapter_type", ""), self.features, info.get("device", ""),
+                             info.get("backend_type", ""))
 
     def use_immediates(self, requested: bool | None = None) -> bool:
         """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
@@ -90,10 +93,6 @@ class GPUContext:
     def describe(self) -> str:
         info = self.adapter.info
         return f"{info['device']} ({info['backend_type']}, {info['adapter_type']}, {info['description']})"
-
-    def sample_counts(self, fmt: str = "rgba8unorm") -> tuple[int, ...]:
-        """MSAA sample counts this adapter can render with (WebGPU knows 1 and 4)."""
-        return SAMPLE_COUNTS
 
     def wait_idle(self) -> None:
         """Block until every submitted command buffer has finished (the Vulkan analogue: vkQueueWaitIdle).
@@ -122,14 +121,74 @@ class GPUContext:
         self._fence.unmap()
 
     def map_read(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> None:
-        """``buffer.map_sync(READ, ...)``, with the wait done on this thread (see :meth:`wait_idle`).
+        """``buffer.map_sync(READ, ...)``, waited for on this thread: wgpu-py's poll thread is never woken.
 
-        The map request is queued first, then the device is polled here, which runs the map
-        callback on this thread; the promise is then already resolved.
+        wgpu-py 0.32's ``GPUBuffer.map_async`` always asks the device's ``PollThread`` for a token,
+        which wakes that thread; it then polls (blocking) until the map callback runs, while this
+        thread waits on the promise. Two threads handing the GIL back and forth around one map cost
+        ~5-10 ms stalls (the GIL switch interval) on the H100/H200 (issue 22). wgpu-py 0.32 has no
+        public way to map without the thread, so the least surprising way is taken: for the one
+        ``map_async`` call the device's poller is a stand-in (:class:`CallerPolls`) whose token wakes
+        nothing; the device is then polled here (``wgpuDevicePoll(wait=True)``), which runs the map
+        callback on this thread, and the promise is already resolved. Everything else (map state,
+        ``read_mapped``, ``unmap``) stays wgpu-py's own. Where the private attributes are missing (another
+        wgpu-py), this is plain ``map_sync``.
         """
-        promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
-        self.wait_idle()
+        device = self.device
+        poller = getattr(device, "_poller", None)
+        if poller is None or not hasattr(device, "_poll_wait"):
+            buffer.map_sync(wgpu.MapMode.READ, offset, size)
+            return
+        device._poller = CallerPolls(poller)
+        try:
+            promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
+        finally:
+            device._poller = poller
+        for _ in range(3):  # one blocking poll completes every submission: the callback has run
+            device._poll_wait()
+            if getattr(promise, "_state", "") != "pending":
+                break
+        else:  # never seen: hand the wait to the poll thread after all rather than block forever
+            token = poller.get_token()
+            promise.sync_wait()
+            token.set_done()
         promise.sync_wait()
+
+    def read_buffer(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> bytes:
+        """A copy of a COPY_SRC buffer's bytes, read on this thread (``queue.read_buffer`` without the poll thread)."""
+        size = buffer.size - offset if size is None else size
+        staging = self.device.create_buffer(
+            size=(size + 3) // 4 * 4, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="read-buffer")
+        encoder = self.device.create_command_encoder(label="read-buffer")
+        encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, staging.size)
+        self.queue.submit([encoder.finish()])
+        self.map_read(staging)
+        data = bytes(staging.read_mapped(0, staging.size, copy=False))[:size]
+        staging.unmap()
+        staging.destroy()
+        return data
+
+
+class CallerPolls:
+    """Stands in for wgpu-py's ``PollThread`` during one ``map_async``: tokens that wake no thread.
+
+    The caller polls the device itself right after (:meth:`GPUContext.map_read`), so the map
+    callback runs there; ``set_done`` (called by that callback) has nothing to release.
+    """
+
+    def __init__(self, thread: object) -> None:
+        self.thread = thread
+
+    def get_token(self) -> _QuietToken:
+        return _QuietToken()
+
+
+class _QuietToken:
+    def set_done(self) -> None:
+        pass
+
+    def is_done(self) -> bool:
+        return True
 
 
 def requested_backend(backend: str | None = None) -> str:

@@ -46,7 +46,6 @@ VERTEX_LAYOUT = {
 class Cube3D(Stage):
     name = "3d"
     summary = "rotating cubes: depth buffer, camera and object UBOs in two bind groups, dynamic offsets, immediates"
-    supports_msaa = True
 
     def __init__(self, ctx: GPUContext, color_format: str, msaa: int | None = None, *,
                  use_immediates: bool | None = None, cubes: Sequence[course.CubeSpec] = course.DEFAULT_CUBES,
