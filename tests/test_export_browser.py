@@ -8,28 +8,21 @@ Skipped only where chromium is not installed.
 
 from __future__ import annotations
 
-import base64
-
 import numpy as np
 import pytest
-from browser import chromium
-from browser_session import Chromium
 from imagecheck import _assert_within
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.scene import load_scene
 from wgpurender.core.tolerances import implementation_tolerance, measure
 from wgpurender.export import NOT_EXPORTABLE, export
+from wgpurender.export.chromium import Chromium, find_chromium
 from wgpurender.implementations import all_targets, render_wgpu, target_path
 
 SIZE = (160, 120)
 TARGETS = [n for n in all_targets() if n not in NOT_EXPORTABLE]
 
-pytestmark = pytest.mark.skipif(chromium() is None, reason="chromium is not installed (apt-get install chromium)")
-
-
-def _image(frame: dict) -> np.ndarray:
-    return np.frombuffer(base64.b64decode(frame["rgba"]), np.uint8).reshape(frame["height"], frame["width"], 4)
+pytestmark = pytest.mark.skipif(find_chromium() is None, reason="chromium is not installed (apt-get install chromium)")
 
 
 @pytest.fixture(scope="module")
@@ -50,10 +43,10 @@ def captures(pages, browser):
     out = {}
     for name, page in pages.items():
         tab = browser.open(page)
-        frame = tab.evaluate("window.wgpurender.capture()")
+        frame = tab.capture()
         shown = tab.evaluate("({adapter: document.getElementById('adapter').textContent, "
                              "plan: document.getElementById('plan').textContent, error: window.wgpurender.error})")
-        out[name] = (_image(frame), shown, tab.errors())
+        out[name] = (frame, shown, tab.errors())
     return out
 
 
@@ -78,15 +71,15 @@ def test_a_stage_the_browser_cannot_draw_is_refused(tmp_path):
 
 def test_dragging_the_orbit_camera_changes_the_frame(pages, browser):
     tab = browser.open(pages["final"])
-    before = _image(tab.evaluate("window.wgpurender.capture({current: true})"))
+    before = tab.capture("{current: true}")
     box = tab.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
                        "return [r.left + r.width / 2, r.top + r.height / 2]; })()")
     tab.mouse("mousePressed", *box)
     for step in range(1, 9):
         tab.mouse("mouseMoved", box[0] + 8 * step, box[1] + 3 * step)
     tab.mouse("mouseReleased", box[0] + 64, box[1] + 24, buttons=0)
-    after = _image(tab.evaluate("window.wgpurender.capture({current: true})"))
-    default = _image(tab.evaluate("window.wgpurender.capture()"))
+    after = tab.capture("{current: true}")
+    default = tab.capture()
     assert measure(before, after).changed > 0.05  # 64 px of drag turns the camera by 25.6 degrees
     assert np.array_equal(before, default)  # capture() is still the default camera's frame
 
@@ -102,8 +95,8 @@ def test_the_page_orbit_reproduces_the_scene_camera(pages, browser):
 
 def test_an_animated_stage_shows_different_frames_at_different_times(pages, browser):
     tab = browser.open(pages["3d"])
-    first = _image(tab.evaluate("window.wgpurender.capture({time: 0})"))
-    later = _image(tab.evaluate("window.wgpurender.capture({time: 1.0})"))
+    first = tab.capture("{time: 0}")
+    later = tab.capture("{time: 1.0}")
     assert measure(first, later).changed > 0.01
     seen = tab.evaluate("new Promise((done) => { const start = window.wgpurender.frames; const wait = () => "
                         "window.wgpurender.frames > start + 40 ? done(window.wgpurender.samplesSeen.size) : "

@@ -29,6 +29,7 @@ REPO = Path(__file__).resolve().parent.parent
 SCENE_DIR = REPO / "assets" / "scenes"
 WGPU_IMPLEMENTATIONS = {"wgpu-vulkan": "vulkan", "wgpu-gl": "opengl"}
 IMPLEMENTATIONS = ("raw", "wgpu-vulkan", "wgpu-gl", "browser")
+QUICK = ("triangle", "3d", "unlit")  # verify --quick
 
 
 def scene_files() -> dict[str, Path]:
@@ -72,6 +73,57 @@ def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
     from wgpurender.raw_path import render_reference
 
     return to_uint8(render_reference(target_path(name), size))
+
+
+def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple[dict, dict, str]:
+    """Export each target to ``work/NAME`` and read its frame back in headless Chromium (one browser):
+    (images by name, reasons for the targets that could not be drawn, the browser and adapter)."""
+    from wgpurender.export import export
+    from wgpurender.export.chromium import Chromium
+
+    images, skipped, pages = {}, {}, {}
+    for name in names:
+        try:
+            pages[name] = export(target_path(name), work / name, size).page
+        except UserError as err:
+            skipped[name] = str(err)
+    with Chromium(webgpu=True) as browser:
+        who = browser.version()
+        for name, page in pages.items():
+            tab = browser.open(page)
+            try:
+                images[name] = tab.capture()
+            except RuntimeError as err:
+                skipped[name] = f"the page failed: {err}"
+            adapter = tab.evaluate("window.wgpurender.adapter") or {}
+        who += " / " + " ".join(str(v) for v in adapter.values() if v) if pages else ""
+    return images, skipped, who
+
+
+def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str]]:
+    """The implementations this machine has (of ``wanted``, default all) and why each other one is missing."""
+    import shutil
+
+    from wgpurender.export.chromium import find_chromium
+
+    missing = {}
+    for name in wanted or IMPLEMENTATIONS:
+        if name not in IMPLEMENTATIONS:
+            raise UserError(f"unknown implementation {name!r}: choose from {', '.join(IMPLEMENTATIONS)}")
+        if name == "browser" and find_chromium() is None:
+            missing[name] = "chromium is not installed (apt-get install chromium)"
+        elif name == "raw" and shutil.which("glslc") is None:
+            missing[name] = "glslc is not on PATH (the raw path compiles its GLSL with it)"
+        elif name == "wgpu-gl" and not _has_gl():
+            missing[name] = "no OpenGL adapter (wgpurender info --backend opengl)"
+    return [n for n in (wanted or IMPLEMENTATIONS) if n not in missing], missing
+
+
+def _has_gl() -> bool:
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp"}
+    probe = subprocess.run([sys.executable, "-m", "wgpurender", "info", "--backend", "opengl"], capture_output=True,
+                           text=True, env=env, timeout=120)
+    return probe.returncode == 0
 
 
 def render_in_child(implementation: str, names: list[str], size: tuple[int, int], out: Path,

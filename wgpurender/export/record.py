@@ -77,14 +77,14 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
 
 
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
-    from wgpurender.core.plan import build_plan
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
     from wgpurender.wgpu_path.scene_render.frame import SceneRenderer
     from wgpurender.wgpu_path.scene_render.shader_interface import CAMERA
 
     scene = load_scene(path)
     ctx, recording = recording_context(real)
-    plan = build_plan(scene, size=size).with_knobs(adapter=BROWSER)
+    plan = resolve_plan(scene, BROWSER, size=size, anisotropy="scene")  # the scene's filtering, as authored
     renderer = SceneRenderer(ctx, scene, plan)
     target = renderer.create_output()
     _frame(ctx, renderer.record, target, 0.0)
