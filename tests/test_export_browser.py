@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 from imagecheck import _assert_within
 
-from wgpurender.core.errors import UserError
 from wgpurender.core.scene import load_scene
 from wgpurender.core.tolerances import implementation_tolerance, measure
 from wgpurender.export import NOT_EXPORTABLE, export
@@ -62,11 +61,6 @@ def test_the_browser_agrees_with_wgpu_native(request, ctx, captures, name):
 def test_a_scene_page_shows_its_plan_with_the_browser_fallbacks(captures):
     plan = captures["final"][1]["plan"]
     assert "immediates: off" in plan and "lacks 'immediates'" in plan
-
-
-def test_a_stage_the_browser_cannot_draw_is_refused(tmp_path):
-    with pytest.raises(UserError, match="clearTexture"):
-        export("clear", tmp_path / "clear", SIZE)
 
 
 def test_dragging_the_orbit_camera_changes_the_frame(pages, browser):

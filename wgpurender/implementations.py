@@ -23,10 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 
 REPO = Path(__file__).resolve().parent.parent
-SCENE_DIR = REPO / "assets" / "scenes"
+SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
 WGPU_IMPLEMENTATIONS = {"wgpu-vulkan": "vulkan", "wgpu-gl": "opengl"}
 IMPLEMENTATIONS = ("raw", "wgpu-vulkan", "wgpu-gl", "browser")
 QUICK = ("triangle", "3d", "unlit")  # verify --quick

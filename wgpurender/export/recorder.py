@@ -40,6 +40,10 @@ ALIGNMENT_LIMITS = ("min-uniform-buffer-offset-alignment", "min-storage-buffer-o
 BROWSER = AdapterFacts("", frozenset(), "the browser's WebGPU", "WebGPU")
 
 
+class RecordingError(RuntimeError):
+    """The path handed a recorded call an object the recording did not see being made."""
+
+
 def camel(name: str) -> str:
     return re.sub(r"_([a-z0-9])", lambda m: m.group(1).upper(), name)
 
@@ -83,6 +87,9 @@ class Recording:
             return {"$": value._id}
         if _is_bytes(value):
             return {"#": self.blob(value)}
+        if isinstance(value, wgpu.GPUObjectBase):  # made outside the recording: the page could not name it
+            raise RecordingError(f"{type(value).__name__} {value.label!r} was made outside the recording (a cache "
+                                 "held beyond the recorded device?)")
         if isinstance(value, dict):
             keep = key == "constants"  # WGSL override names stay as written
             return {(k if keep else camel(k)): self.encode(v, k) for k, v in value.items() if v is not None}
@@ -129,6 +136,8 @@ class Rec:
     def __getattr__(self, name: str):
         if name in self._attrs:
             return self._attrs[name]
+        if name.startswith("_wgpurender"):  # the path's own caches on the raw object hold unrecorded objects
+            raise AttributeError(name)
         value = getattr(self._raw, name)
         if name.startswith("_") or name in NOT_RECORDED:
             return value
