@@ -56,3 +56,19 @@ def test_a_file_as_the_output_folder_is_refused(tmp_path):
     (tmp_path / "f").write_text("x")
     with pytest.raises(UserError, match="not a folder"):
         export("triangle", tmp_path / "f", (64, 48))
+
+
+def test_each_report_step_links_its_live_page_or_says_why_not(tmp_path):
+    """The report (wgpurender/report) exports every step next to the site and links it from the section."""
+    import numpy as np
+
+    from wgpurender.report import page
+    from wgpurender.report.build import _live_page
+    from wgpurender.report.steps import Step
+
+    step = Step("triangle", "triangle", "2a", "", [], wgpu=np.zeros((48, 64, 4), np.uint8))
+    files = _live_page(tmp_path, step)
+    assert (tmp_path / files["live"]).is_file() and (tmp_path / "live" / "triangle" / "data.js").is_file()
+    assert f'href="{files["live"]}"' in page._live(files)
+    refused = _live_page(tmp_path, Step("clear", "clear", "1a", "", []))
+    assert "clearTexture" in page._live(refused)
