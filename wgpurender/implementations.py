@@ -143,7 +143,7 @@ def render_in_child(implementation: str, names: list[str], size: tuple[int, int]
     return {name: load_png(out / f"{name}.png") for name in names}
 
 
-def calibrate(implementation: str, measured: dict, bounded_by: str) -> Path:
+def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
     """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
     (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
     from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
@@ -155,7 +155,8 @@ def calibrate(implementation: str, measured: dict, bounded_by: str) -> Path:
 
         table = load_table(IMPLEMENTATIONS_PATH)
     rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
-    table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "targets": rows}
+    table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "driver_class": cls,
+                                                               "targets": rows}
     IMPLEMENTATIONS_PATH.write_text(format_implementation_table(table))
     return IMPLEMENTATIONS_PATH
 
@@ -174,6 +175,9 @@ def _main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     for name in args.targets or all_targets():
         save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+    from wgpurender.wgpu_path.gpu import get_context
+
+    (args.out / "adapter.txt").write_text(get_context(backend).describe())
     return 0
 
 

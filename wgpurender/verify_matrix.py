@@ -25,7 +25,7 @@ import numpy as np
 from wgpurender.core.compare import Comparison, compare_images, heatmap
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
-from wgpurender.core.tolerances import Tolerance, implementation_tolerance, measure
+from wgpurender.core.tolerances import Tolerance, Uncalibrated, driver_class, implementation_tolerance, measure
 
 REFERENCE = "wgpu-vulkan"
 FIELDS = ("target", "a", "b", "status", "max_abs", "over_1", "psnr", "flip_mean", "bound", "note", "heatmap")
@@ -75,18 +75,24 @@ def _bound(a: str, b: str, target: str) -> Tolerance | None:
 
         scene = scene_files().get(target)
         return CHAIN_BOUND if scene is not None and len(load_scene(scene).post) >= 2 else EXACT
-    return implementation_tolerance(other, target)
+    from wgpurender.wgpu_path.gpu import get_context
+
+    return implementation_tolerance(other, target, cls=driver_class(get_context("Vulkan").adapter.info["device"]))
 
 
 def _compare(out: Path, target: str, a: str, b: str, ia: np.ndarray, ib: np.ndarray) -> Cell:
     comparison = compare_images(ia, ib)
     try:
         tol = _bound(a, b, target)
+    except Uncalibrated as err:
+        tol, note = None, str(err)
     except UserError as err:
         return Cell(target, a, b, "FAIL", comparison, "", str(err))
+    else:
+        note = ""
     if np.array_equal(ia, ib):
-        return Cell(target, a, b, "identical", comparison, _text(tol))
-    cell = Cell(target, a, b, "info" if tol is None else "pass", comparison, _text(tol))
+        return Cell(target, a, b, "identical", comparison, _text(tol), note)
+    cell = Cell(target, a, b, "info" if tol is None else "pass", comparison, _text(tol), note)
     if tol is not None:
         exceeded = tol.exceeded(measure(ia, ib)) if tol.name != "exact" else ["not identical"]
         if exceeded:
@@ -118,7 +124,7 @@ def render_all(implementations: list[str], targets: list[str], size: tuple[int, 
             continue
         if impl == "wgpu-gl":
             images[impl] = impls.render_in_child("wgpu-gl", targets, size, work / "wgpu-gl")
-            who[impl] = "wgpu-native over OpenGL (child process)"
+            who[impl] = (work / "wgpu-gl" / "adapter.txt").read_text() + " (wgpu-native, child process)"
             continue
         for name in targets:
             try:
@@ -170,7 +176,7 @@ def _calibrate(images: dict, implementations: list[str], who: dict, size: tuple[
                     if t in images[REFERENCE]}
         bounded_by = (f"{who[impl]} vs {who[REFERENCE]}, CPU {cpu_name()}, {size[0]}x{size[1]}, "
                       f"{datetime.date.today()} (wgpurender verify --calibrate)")
-        calibrate(impl, measured, bounded_by)
+        calibrate(impl, measured, bounded_by, driver_class(who[REFERENCE]))
 
 
 def markdown(report: MatrixReport) -> str:
