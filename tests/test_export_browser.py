@@ -43,8 +43,10 @@ def captures(pages, browser):
     for name, page in pages.items():
         tab = browser.open(page)
         frame = tab.capture()
-        shown = tab.evaluate("({adapter: document.getElementById('adapter').textContent, "
-                             "plan: document.getElementById('plan').textContent, error: window.wgpurender.error})")
+        shown = tab.evaluate("new Promise((done) => { const poll = () => window.wgpurender.difference ? done({"
+                             "adapter: document.getElementById('adapter').textContent, difference: "
+                             "window.wgpurender.difference, plan: document.getElementById('plan').textContent, "
+                             "error: window.wgpurender.error}) : setTimeout(poll, 50); poll(); })")
         out[name] = (frame, shown, tab.errors())
     return out
 
@@ -59,7 +61,9 @@ def test_the_browser_agrees_with_wgpu_native(request, ctx, captures, name):
         tol = implementation_tolerance("browser", name, cls=driver_class(ctx.adapter.info["device"]))
     except Uncalibrated as err:
         pytest.skip(str(err))
-    _assert_within(request, render_wgpu(name, SIZE), image, tol)
+    wgpu_native = render_wgpu(name, SIZE)
+    _assert_within(request, wgpu_native, image, tol)
+    assert shown["difference"]["max"] == measure(wgpu_native, image).max_abs  # what the page says about itself
 
 
 def test_a_scene_page_shows_its_plan_with_the_browser_fallbacks(captures):

@@ -89,6 +89,7 @@ dt {{ font-weight: bold; float: left; width: 7em; }} dd {{ margin-left: 7.5em; }
 <dl>
 <dt>adapter</dt><dd id="adapter">(starting)</dd>
 <dt>frame time</dt><dd id="frametime">-</dd>
+<dt>vs wgpu-native</dt><dd id="difference">-</dd>
 <dt>exported</dt><dd>{escape(meta['exported'])}</dd>
 </dl>
 <h2>Plan</h2>

@@ -228,6 +228,26 @@
     }
     if (orbit) controls(canvas);
     loop(performance.now());
+    compareWithWgpuNative();
+  }
+
+  // This page's t = 0 frame against wgpu-native's frame of the same recording (data.js "reference").
+  async function compareWithWgpuNative() {
+    if (!X.reference) return;
+    drawFrame(0, true);
+    const mine = await readPixels(), theirs = Uint8Array.from(atob(X.reference), (c) => c.charCodeAt(0));
+    let max = 0, over = 0;
+    for (let i = 0; i < mine.length; i += 4) {
+      let d = 0;
+      for (let c = 0; c < 4; c++) d = Math.max(d, Math.abs(mine[i + c] - theirs[i + c]));
+      max = Math.max(max, d);
+      if (d > 1) over += 1;
+    }
+    const share = (100 * over) / (mine.length / 4);
+    api.difference = { max, over1: share / 100 };
+    $("difference").textContent = max === 0 ? "identical to wgpu-native's frame" :
+      `largest channel difference ${max}/255; ${share.toFixed(2)}% of pixels differ by more than 1/255 ` +
+      "(another WebGPU implementation: rasterisation and texture filtering may differ within the spec)";
   }
 
   api.ready = main().catch((e) => { fail("The page could not start WebGPU: " + e.message); throw e; });

@@ -44,6 +44,17 @@ def _uploads(calls: list[dict]) -> list[int]:
     return [c["a"][2 if c["m"] == "writeBuffer" else 1]["#"] for c in calls if c.get("m") in UPLOADS]
 
 
+def _reference(real: GPUContext, target) -> str:
+    """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), base64 RGBA8: the page shows
+    its difference from what the browser drew."""
+    import base64
+
+    from wgpurender.core.imageio import to_uint8
+    from wgpurender.wgpu_path.targets import read_texture
+
+    return base64.b64encode(to_uint8(read_texture(real, target._raw)).tobytes()).decode("ascii")
+
+
 def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, samples, fps, meta) -> dict:
     return {
         "meta": {**meta, "device": 0, "target": target._id, "format": target.format, "fps": fps,
@@ -65,6 +76,7 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
     target = create_target(ctx, size, fmt)
     _frame(ctx, stage.record, target, 0.0)
     setup_end = len(recording.calls)
+    reference = _reference(real, target)
     frame, samples = _record_frames(ctx, recording, stage.record, target, fps, seconds)
     immediates = "no immediates in a browser: per-draw data from a uniform buffer" if name == "3d" else ""
     meta = {"name": name, "kind": "stage", "size": list(size), "orbit": None,
@@ -73,7 +85,7 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
                                           immediates, "animated: recorded uploads replayed in a loop" if
                                           len(samples) > 1 else "static") if x),
             "controls": "Animated: the page replays the recorded frames." if len(samples) > 1 else "A still frame."}
-    return _base(real, recording, target, setup_end, frame, samples, fps, meta)
+    return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}
 
 
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
@@ -89,6 +101,7 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
     target = renderer.create_output()
     _frame(ctx, renderer.record, target, 0.0)
     setup_end = len(recording.calls)
+    reference = _reference(real, target)
     frame, samples = _record_frames(ctx, recording, renderer.record, target, fps, 0.0)
     cam = scene.camera
     camera = {"buffer": renderer.scene_pass.camera_buffer._id,
@@ -98,4 +111,4 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
             "summary": scene.description or f"scene {Path(path).name}",
             "plan": renderer.plan.explain(),
             "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset."}
-    return _base(real, recording, target, setup_end, frame, samples, fps, meta)
+    return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}
