@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import wgpu
 
+from wgpurender.core import checks
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.model import AdapterFacts
 from wgpurender.core.plan.post import immediates_rule
@@ -26,7 +27,6 @@ AUTO = "auto"
 # The name an adapter reports (info["backend_type"]) -> wgpu-native's instance flag for that backend only.
 # wgpu-native calls OpenGL "GL" and Direct3D 12 "DX12"; the adapter says "OpenGL" and "D3D12".
 BACKENDS = {"Vulkan": "Vulkan", "OpenGL": "GL", "Metal": "Metal", "D3D12": "DX12"}
-ALIASES = {"gl": "OpenGL", "gles": "OpenGL", "dx12": "D3D12"}
 # "auto": every backend on the instance, the best adapter wins (GPU before CPU, then this order).
 AUTO_ORDER = ("Vulkan", "Metal", "D3D12", "OpenGL")
 
@@ -194,14 +194,8 @@ class _QuietToken:
 def requested_backend(backend: str | None = None) -> str:
     """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
 
-    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto."""
-    name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
-    name = ALIASES.get(name.lower(), name)
-    for known in (*BACKENDS, AUTO):
-        if name.lower() == known.lower():
-            return known
-    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(b.lower() for b in BACKENDS)} or auto "
-                    f"(--backend or ${BACKEND_ENV})")
+    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py)."""
+    return checks.backend(backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND)
 
 
 _instance_backend: list[str] = []  # the backend the process's one wgpu instance was created for
