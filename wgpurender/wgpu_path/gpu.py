@@ -11,14 +11,14 @@ from __future__ import annotations
 import functools
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import wgpu
 
-from wgpurender.core import checks
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan.model import AdapterFacts
-from wgpurender.core.plan.post import immediates_rule
-from wgpurender.core.plan.resolve import adapter_facts
+
+if TYPE_CHECKING:
+    from wgpurender.core.plan.model import AdapterFacts
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
@@ -74,6 +74,8 @@ class GPUContext:
 
     def facts(self) -> AdapterFacts:
         """What the plan's "auto" knobs need to know about this adapter and device (plain values)."""
+        from wgpurender.core.plan.resolve import adapter_facts  # lazily: the plan package costs ~0.3 s to import
+
         info = self.info
         return adapter_facts(info.get("adapter_type", ""), self.features, info.get("device", ""),
                              info.get("backend_type", ""))
@@ -81,6 +83,8 @@ class GPUContext:
     def use_immediates(self, requested: bool | None = None) -> bool:
         """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
         this backend: core/plan/post.py); ``True`` where the rule says no is refused with its reason."""
+        from wgpurender.core.plan.post import immediates_rule
+
         usable, why = immediates_rule(self.facts())
         if requested and not usable:
             raise UserError(f"immediates cannot be used on {self.describe()}: {why.split('; ')[0]}; "
@@ -195,6 +199,8 @@ def requested_backend(backend: str | None = None) -> str:
     """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
 
     Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py)."""
+    from wgpurender.core import checks  # lazily: it imports numpy, which a context does not need
+
     return checks.backend(backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND)
 
 
