@@ -99,6 +99,20 @@ def _scene_files() -> list[Path]:
     return out
 
 
+def _live_page(site: Path, step: Step) -> dict[str, str]:
+    """The step exported as a live WebGPU page (wgpurender export) under live/KEY/, linked from its section;
+    none (with the reason logged on the page) where the browser cannot draw it."""
+    from wgpurender.export import export
+
+    size = (step.wgpu.shape[1], step.wgpu.shape[0]) if step.wgpu is not None else STAGE_SIZE
+    target = str(SCENE_DIR / f"{step.key}.toml") if (SCENE_DIR / f"{step.key}.toml").is_file() else step.key
+    try:
+        export(target, site / "live" / step.key, size)
+    except UserError as err:
+        return {"live_note": str(err)}
+    return {"live": f"live/{step.key}/index.html"}
+
+
 def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) -> None:
     images: dict[str, dict[str, str]] = {}
     for step in steps:
@@ -109,6 +123,7 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) 
                 name = f"{step.key}_{kind}.png"
                 save_png(site / name, pixels)
                 files[kind] = name
+        files.update(_live_page(site, step))
     scale, levels = heatmap_scale()
     save_png(site / "heatmap_scale.png", scale)
     pareto = extras.pareto_plot()
