@@ -11,14 +11,12 @@ from __future__ import annotations
 import datetime
 import os
 import platform
-import shlex
-import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.bench.report import Result
+from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_line: the CLI's import)
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
@@ -253,6 +251,3 @@ def write_reports(run: PerfRun, out_dir: Path | None = None, docs_img: Path | No
     paths.update({f"plot_{k}": p for k, p in plots.items()})
     return paths
 
-
-def command_line() -> str:
-    return "wgpurender " + " ".join(shlex.quote(a) for a in sys.argv[1:])
