@@ -186,7 +186,10 @@ def _configure_instance_once() -> None:
     backend (enumerated alongside Vulkan otherwise) crashed the process at exit. Validation
     messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
     """
-    from wgpu.backends.wgpu_native.extras import set_instance_extras
+    from wgpurender.wgpu_path.cdef_cache import cached_wgpu_header
+
+    with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
+        from wgpu.backends.wgpu_native.extras import set_instance_extras
 
     from wgpurender.wgpu_path.cffi_types import install_for_wgpu
 
