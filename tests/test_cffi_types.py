@@ -67,7 +67,8 @@ def test_callback_signatures_match_cffis_parser(parser, cdecl):
     expected = real(cdecl)
     assert fast is not None and fast == expected, cdecl
     # ffi.callback makes a function-pointer ctype of a function type, as cffi's _typeof does
-    as_ctype = (lambda t: t.as_function_pointer() if t.is_raw_function else t)
+    def as_ctype(t):
+        return (t.as_function_pointer() if t.is_raw_function else t)
     with ffi._lock:
         assert ffi._get_cached_btype(as_ctype(fast[0])) is ffi._get_cached_btype(as_ctype(expected[0]))
 
