@@ -39,7 +39,8 @@ print(json.dumps({"status": cdef_cache.status, "pixels": read_texture(ctx, targe
 
 
 def _run(cache: Path) -> dict:
-    env = dict(os.environ, XDG_CACHE_HOME=str(cache), PYTHONPATH=str(REPO))
+    path = os.pathsep.join(p for p in (str(REPO), os.environ.get("PYTHONPATH", "")) if p)  # keep wheels' paths
+    env = dict(os.environ, XDG_CACHE_HOME=str(cache), PYTHONPATH=path)
     env.setdefault("XDG_RUNTIME_DIR", "/tmp")
     proc = subprocess.run([sys.executable, "-c", CHILD], env=env, cwd=REPO, capture_output=True, text=True,
                           timeout=300)

@@ -194,11 +194,13 @@ def _msaa_post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from wgpurender.bench.objects import MODES, bench_objects
     from wgpurender.bench.objects_gpu import MODE as GPU_MODE
+    from wgpurender.bench.objects_gpu import SPLAT_MODE
 
     cpu = ctx.adapter.info["adapter_type"] == "CPU"
     counts = QUICK_COUNTS if config.quick else FULL_COUNTS if cpu else GPU_COUNTS
     limit = CPU_PER_DRAW_LIMIT if cpu else None
-    run.results += bench_objects(ctx, list(counts), [*MODES, GPU_MODE], config.timed_frames(), per_draw_limit=limit,
+    modes = [*MODES, GPU_MODE, SPLAT_MODE]
+    run.results += bench_objects(ctx, list(counts), modes, config.timed_frames(), per_draw_limit=limit,
                                  log=log, limits=None if cpu else GPU_MODE_LIMITS)
     if not cpu and not config.quick:
         run.notes.append("objects: on a GPU the counts go to 10M for gpu-animated; the per-draw modes and the bundle "

@@ -122,7 +122,7 @@ def untimed_results(ctx: GPUContext, runner: SceneRunner, case: str, size: tuple
                     frames: int) -> list[Result]:
     """The frame as a window makes it (no pass timestamps, no readback): CPU record + submit, and its native
     calls counted by wrapping the device, queue and encoders (bench/calls.py)."""
-    from wgpurender.bench.calls import steady_calls
+    from wgpurender.bench.calls import call_profile, steady_calls
 
     cpu = []
     for _ in range(frames + 2):
@@ -131,6 +131,8 @@ def untimed_results(ctx: GPUContext, runner: SceneRunner, case: str, size: tuple
     calls = steady_calls(ctx, runner.renderer.record, runner.target)
     n = sum(calls.values())
     detail = ", ".join(f"{k} {v}" for k, v in sorted(calls.items()))
+    detail += ("; CPU us per frame by call (mean of 10 counted frames, the counting's overhead in 'python'): "
+               + call_profile(ctx, runner.renderer.record, runner.target))
     s = size_text(size)
     return [Result.of("scene", case, "wgpu", s, "cpu_ms:untimed", Stats.of(cpu[2:]),
                       "record + submit of the frame without pass timestamps (as a window draws it)"),

@@ -34,7 +34,9 @@ COMMON_WGSL = "post_common.wgsl"
 SRGB_WGSL = "post_srgb.wgsl"
 # The compute path's dispatch shape: workgroup (x, y) and rows of pixels per invocation. `wgpurender bench
 # post-roofline --shapes` sweeps it on the fused per-pixel pass (docs/benchmarks.md, issue 22.4).
-SHAPE = (8, 8, 1)
+# H100, 3840x2160, final_subpass's fused tonemap+vignette: 8x8 x1 0.086 ms (45% of a copy of its bytes), 16x16 x1
+# 68%, 8x8 x2 80%, 32x8 x4 83% (0.046 ms, 1.21x the copy): more pixels per invocation, more loads in flight.
+SHAPE = (32, 8, 4)
 WORKGROUP = SHAPE[:2]
 
 
