@@ -16,7 +16,7 @@ def run(args) -> int:
     from wgpurender.wgpu_path.gpu import _adapters, get_context
 
     print("adapters:")
-    for a in _adapters():
+    for a in _adapters(args.backend):
         info = a.info
         print(f"  {info['backend_type']:<8} {info['adapter_type']:<14} {info['device']} ({info['description']})")
     ctx = get_context(args.backend)

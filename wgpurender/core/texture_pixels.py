@@ -97,11 +97,9 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
     too large for the GPU fails fast and without allocating it.
     """
     path = Path(path)
-    if not path.is_file():
-        hint = "it is a directory" if path.is_dir() else "check the path"
-        raise UserError(f"texture image not found: {path} ({hint})")
+    source = _embedded_or_file(path)
     try:
-        with Image.open(path) as im:
+        with Image.open(source) as im:
             _check_dims(f"image {path}", im.width, im.height, max_dim)
             im.load()
             return _image_to_rgba8(im, path)
@@ -110,6 +108,22 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
         raise UserError(f"image {path} is too large to decode safely ({err}){limit}") from None
     except (OSError, ValueError, SyntaxError) as err:
         raise UserError(f"cannot read image {path}: {err} (is it a valid PNG or JPEG file?)") from None
+
+
+def _embedded_or_file(path: Path):
+    """What Pillow opens: the file, or the bytes of an image embedded in a glTF model (``model.glb#images[k]``,
+    see gltf_materials.embedded_image_path)."""
+    if not path.is_file():
+        from wgpurender.core.gltf_materials import embedded_image_bytes
+
+        data = embedded_image_bytes(path)
+        if data is not None:
+            import io
+
+            return io.BytesIO(data)
+        hint = "it is a directory" if path.is_dir() else "check the path"
+        raise UserError(f"texture image not found: {path} ({hint})")
+    return path
 
 
 def _image_to_rgba8(im: Image.Image, path: Path) -> np.ndarray:
@@ -140,9 +154,9 @@ def image_size(path: str | os.PathLike) -> tuple[int, int] | None:
     """(width, height) from an image file's header (no pixel decoded); None when it cannot be read
     (the upload then says why, with :func:`load_image`'s message)."""
     try:
-        with Image.open(path) as im:
+        with Image.open(_embedded_or_file(Path(path))) as im:
             return im.width, im.height
-    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError):
+    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError, UserError):
         return None
 
 

@@ -15,11 +15,20 @@ from dataclasses import dataclass, field
 import wgpu
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.model import AdapterFacts
+from wgpurender.core.plan.post import immediates_rule
+from wgpurender.core.plan.resolve import adapter_facts
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
 DEFAULT_BACKEND = "Vulkan"
-BACKENDS = ("Vulkan", "Metal", "D3D12", "OpenGL")
+AUTO = "auto"
+# The name an adapter reports (info["backend_type"]) -> wgpu-native's instance flag for that backend only.
+# wgpu-native calls OpenGL "GL" and Direct3D 12 "DX12"; the adapter says "OpenGL" and "D3D12".
+BACKENDS = {"Vulkan": "Vulkan", "OpenGL": "GL", "Metal": "Metal", "D3D12": "DX12"}
+ALIASES = {"gl": "OpenGL", "gles": "OpenGL", "dx12": "D3D12"}
+# "auto": every backend on the instance, the best adapter wins (GPU before CPU, then this order).
+AUTO_ORDER = ("Vulkan", "Metal", "D3D12", "OpenGL")
 
 # Features the renderer uses when the adapter offers them, and works without otherwise.
 OPTIONAL_FEATURES = (
@@ -62,6 +71,21 @@ class GPUContext:
 
     def has(self, feature: str) -> bool:
         return feature in self.features
+
+    def facts(self) -> AdapterFacts:
+        """What the plan's "auto" knobs need to know about this adapter and device (plain values)."""
+        info = self.info
+        return adapter_facts(info.get("adapter_type", ""), self.features, info.get("device", ""),
+                             info.get("backend_type", ""))
+
+    def use_immediates(self, requested: bool | None = None) -> bool:
+        """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
+        this backend: core/plan/post.py); ``True`` where the rule says no is refused with its reason."""
+        usable, why = immediates_rule(self.facts())
+        if requested and not usable:
+            raise UserError(f"immediates cannot be used on {self.describe()}: {why.split('; ')[0]}; "
+                            "leave them unset (or off) to use a uniform buffer")
+        return usable if requested is None else bool(requested)
 
     def limit(self, name: str) -> int:
         return self.device.limits[name]
@@ -168,24 +192,37 @@ class _QuietToken:
 
 
 def requested_backend(backend: str | None = None) -> str:
-    """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan."""
+    """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
+
+    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto."""
     name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
-    for known in BACKENDS:
+    name = ALIASES.get(name.lower(), name)
+    for known in (*BACKENDS, AUTO):
         if name.lower() == known.lower():
             return known
-    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(BACKENDS)}")
+    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(b.lower() for b in BACKENDS)} or auto "
+                    f"(--backend or ${BACKEND_ENV})")
 
 
-@functools.cache
-def _configure_instance_once() -> None:
-    """Create the wgpu instance for the requested backend only, with validation when $WGPURENDER_VALIDATION is set.
+_instance_backend: list[str] = []  # the backend the process's one wgpu instance was created for
 
-    This must run before the first adapter is enumerated (it configures the instance). Limiting
-    the instance to one backend means no OpenGL/EGL enumeration at start-up (the largest part of
-    the context time on lavapipe and NVIDIA alike), and with validation on, NVIDIA's OpenGL
-    backend (enumerated alongside Vulkan otherwise) crashed the process at exit. Validation
-    messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
+
+def _configure_instance_once(backend: str) -> None:
+    """Create the wgpu instance for ``backend`` only, with validation when $WGPURENDER_VALIDATION is set.
+
+    wgpu-py keeps one instance per process, configured before the first adapter is enumerated. Limiting
+    it to one backend means no OpenGL/EGL enumeration at start-up (the largest part of the context time
+    on lavapipe and NVIDIA alike), and with validation on, NVIDIA's OpenGL backend (enumerated alongside
+    Vulkan otherwise) crashed the process at exit. "auto" enables every backend. A later request for
+    another backend in the same process is refused (one process, one instance): run another process.
+    Validation messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
     """
+    if _instance_backend:
+        made = _instance_backend[0]
+        if made not in (backend, AUTO):
+            raise UserError(f"this process already created its wgpu instance for {made} only; the {backend} "
+                            f"backend needs its own process (or start with --backend auto)")
+        return
     from wgpurender.wgpu_path.cdef_cache import cached_wgpu_header
 
     with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
@@ -195,37 +232,51 @@ def _configure_instance_once() -> None:
 
     install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
-    set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else ["Default"])
+    flags = ["All"] if backend == AUTO else [BACKENDS[backend]]
+    set_instance_extras(backends=flags, flags=["Validation"] if validation else ["Default"])
+    _instance_backend.append(backend)
 
 
 @functools.cache
-def _adapters() -> tuple:
-    _configure_instance_once()
+def _enumerate() -> tuple:
     return tuple(wgpu.gpu.enumerate_adapters_sync())
 
 
+def _adapters(backend: str | None = None) -> tuple:
+    """The instance's adapters; the instance is made for ``backend`` (or the requested one) if not yet made."""
+    if backend is not None or not _instance_backend:
+        _configure_instance_once(requested_backend(backend))
+    return _enumerate()
+
+
 def available_backends() -> list[str]:
-    """Backend names of the adapters this machine offers, in enumeration order."""
+    """Backend names of the adapters this process's instance offers (only the requested one, unless auto)."""
     return sorted({a.info["backend_type"] for a in _adapters()})
 
 
 def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
-    """The first adapter of the requested backend (hardware before CPU)."""
+    """The best adapter of the requested backend (hardware before CPU); for "auto", of any backend."""
     want = requested_backend(backend)
-    found = [a for a in _adapters() if a.info["backend_type"] == want]
+    adapters = _adapters(want)
+    found = [a for a in adapters if want == AUTO or a.info["backend_type"] == want]
     if not found:
-        others = available_backends()
+        others = sorted({a.info["backend_type"] for a in adapters})
         alt = f"; this machine offers: {', '.join(others)} (use --backend)" if others else ""
-        if want == "Vulkan":
-            raise UserError(f"no Vulkan adapter found: {INSTALL_HINT}{alt}")
+        if want in ("Vulkan", AUTO):
+            raise UserError(f"no {'Vulkan' if want == 'Vulkan' else 'GPU'} adapter found: {INSTALL_HINT}{alt}")
         raise UserError(f"no {want} adapter found{alt}")
     order = {"DiscreteGPU": 0, "IntegratedGPU": 1, "VirtualGPU": 2, "CPU": 3}
-    return min(found, key=lambda a: order.get(a.info["adapter_type"], 4))
+    rank = {name: i for i, name in enumerate(AUTO_ORDER)}
+    return min(found, key=lambda a: (order.get(a.info["adapter_type"], 4), rank.get(a.info["backend_type"], 9)))
+
+
+def get_context(backend: str | None = None) -> GPUContext:
+    """The process-wide context for a backend, created on first use ("auto" and None resolve first)."""
+    return _context(requested_backend(backend))
 
 
 @functools.cache
-def get_context(backend: str | None = None) -> GPUContext:
-    """The process-wide context for a backend, created on first use."""
+def _context(backend: str) -> GPUContext:
     adapter = select_adapter(backend)
     features = frozenset(f for f in OPTIONAL_FEATURES if f in adapter.features)
     limits = {}

@@ -1,9 +1,9 @@
 """The scene pass's contents: per model, its material's shader variant, its pipeline, its draw.
 
-One draw per model today (a glTF's primitives would each add a :class:`~.model.Draw` here, with
-their own material). A material becomes a :func:`material_variant` (the features it needs, each with
-its reason), the variant and the target formats a :class:`~.model.ScenePipeline`, and what it samples
-goes to the :class:`~.textures.TextureTable`.
+One draw per model and material: a scene material gives one draw; a glTF model without one draws once per
+file material its triangles use (:mod:`.file_materials`, ``Draw.part``). A material becomes a
+:func:`material_variant` (the features it needs, each with its reason), the variant and the target formats a
+:class:`~.model.ScenePipeline`, and what it samples goes to the :class:`~.textures.TextureTable`.
 """
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.shading import AMBIENT, material_factors
+from wgpurender.core.plan import file_materials
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
     Draw,
@@ -62,6 +63,7 @@ def material_variant(material: Material, directional: list[int], point: list[int
             reasons.append(("flip_v", f"{label} has uv_flip_v = true"))
         else:
             notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
+    reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
     if srgb_output:
         reasons.append(("srgb_output", srgb_output))
     counts = []
@@ -84,7 +86,8 @@ def draw_factors(material: Material, variant: ShaderVariant) -> dict:
     base = tuple(material.albedo_color)
     if ambient_only(material, variant):
         base = (*(c * a for c, a in zip(base[:3], AMBIENT, strict=True)), *base[3:])
-    return material_factors(base, material.roughness, "lighting" in variant.flags, "roughness_map" in variant.flags)
+    return material_factors(base, material.roughness, "lighting" in variant.flags, "roughness_map" in variant.flags,
+                            **file_materials.factor_options(material, variant.flags))
 
 
 def _determinant3(matrix) -> float:
@@ -101,11 +104,12 @@ class PipelineTarget:
     depth_format: str
     depth_compare: str
 
-    def pipeline(self, variant: ShaderVariant, model: Model) -> ScenePipeline:
+    def pipeline(self, variant: ShaderVariant, model: Model, material: Material) -> ScenePipeline:
         # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
         front_face = "cw" if _determinant3(model.transform.matrix) < 0 else "ccw"
         return ScenePipeline(variant, self.color_format, self.sample_count, self.depth_format,
-                             front_face=front_face, depth_compare=self.depth_compare)
+                             front_face=front_face, depth_compare=self.depth_compare,
+                             **file_materials.pipeline_state(material))
 
 
 @dataclass
@@ -128,35 +132,48 @@ class SceneDraws:
 
 def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
                anisotropy_adapter: str | None, notes: list[str]) -> SceneDraws:
-    """One draw per model; a material's notes are added the first time it is drawn."""
+    """One draw per model and material; a material's notes are added the first time it is drawn. Alpha-blended
+    draws (glTF alphaMode BLEND) go last, in scene order among themselves: not sorted by depth."""
     directional = [light.index for light in scene.lights if light.type == "directional"]
     point = [light.index for light in scene.lights if light.type == "point"]
     out = SceneDraws()
     seen_materials: set[int] = set()
     for model in scene.models:
-        mat = model.material
-        first_time = id(mat) not in seen_materials
-        seen_materials.add(id(mat))
-        out.draws.append(_plan_draw(model, target, srgb_output, knobs, anisotropy_adapter,
-                                    notes if first_time else None, directional, point, out))
+        materials, found = file_materials.draw_materials(model)
+        if found is not None:
+            notes.extend(file_materials.model_notes(model, found))
+        for mat in materials:
+            first_time = id(mat) not in seen_materials
+            seen_materials.add(id(mat))
+            out.draws.append(_plan_draw(model, mat, target, srgb_output, knobs, anisotropy_adapter,
+                                        notes if first_time else None, directional, point, out))
+    out.draws.sort(key=lambda d: out.pipelines[d.pipeline_key].blend)
     return out
 
 
-def _plan_draw(model: Model, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
+def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
                anisotropy_adapter: str | None, notes: list[str] | None, directional: list[int], point: list[int],
                out: SceneDraws) -> Draw:
-    """The draw of one model (its variant, pipeline, textures and sampler registered in ``out``)."""
-    mat = model.material
+    """The draw of one model with one material (its variant, pipeline, textures and samplers registered in
+    ``out``): a scene material samples every texture with its one sampler, a file material each with its own."""
     label = material_label(mat)
     variant = material_variant(mat, directional, point, srgb_output, notes if notes is not None else [])
     out.variants.setdefault(variant.key, variant)
-    pipeline = target.pipeline(variant, model)
+    pipeline = target.pipeline(variant, model, mat)
     out.pipelines.setdefault(pipeline.key, pipeline)
     sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
     spec = material_sampler(mat, label, knobs, anisotropy_adapter, notes) if sampled else None
-    out.table.add_textures(label, sampled, mat.sampler.mipmaps)
-    if spec is not None:
-        out.table.add_sampler(spec, label)
+    own = []
+    for feature, feature_spec in file_materials.texture_samplers(mat, sampled, spec):
+        if feature_spec is not spec:  # a file texture's own sampler: the anisotropy rule applies to it too
+            feature_spec = material_sampler(mat, label, knobs, anisotropy_adapter, notes, feature_spec)
+        own.append((feature, feature_spec))
+    for feature, path in sampled:
+        out.table.add_textures(label, ((feature, path),), file_materials.texture_mipmaps(mat, feature))
+    for feature, feature_spec in own:
+        out.table.add_sampler(feature_spec, label if not mat.texture_samplers else f"{label} {feature}")
     factors = draw_factors(mat, variant)
-    return Draw(model.index, model.path, model.label, mat.name, variant.key, pipeline.key, sampled, spec,
-                model.transform.matrix, label, tuple(factors.items()))
+    draw_label = model.label if mat.part is None else f"{model.label} {mat.name.removeprefix(model.label).strip()}"
+    return Draw(model.index, model.path, draw_label, mat.name, variant.key, pipeline.key, sampled,
+                own[0][1] if own else None, model.transform.matrix, label, tuple(factors.items()), part=mat.part,
+                samplers=tuple(own))

@@ -29,7 +29,7 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
                     "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
-ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"))
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"))
 TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map")
 
 
@@ -84,12 +84,15 @@ class ScenePipeline:
     cull_mode: str = "back"
     front_face: str = "ccw"
     depth_compare: str = "less"
+    blend: bool = False  # alpha blending (glTF alphaMode BLEND): source-over, no depth writes
 
     @property
     def key(self) -> str:
         depth = f"{self.depth_format} {self.depth_compare}" if self.depth_format else "no-depth"
         winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
-        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}"
+        culling = " | double-sided (no culling)" if self.cull_mode == "none" else ""
+        blending = " | alpha blend, no depth write" if self.blend else ""
+        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}{blending}"
 
 
 @dataclass(frozen=True)
@@ -128,6 +131,12 @@ class Draw:
     transform: tuple[tuple[float, ...], ...] = ()
     material_label: str = ""
     factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
+    part: int | None = None  # the model file's material whose triangles this draws (-1: none); None: all of them
+    samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): each texture's own sampler
+
+    def sampler_of(self, feature: str) -> object | None:
+        """The sampler a texture is sampled with (its own, else the draw's one sampler)."""
+        return dict(self.samplers).get(feature, self.sampler)
 
     def factors_text(self) -> str:
         def show(v) -> str:
@@ -232,12 +241,15 @@ class AdapterFacts:
     """What the plan needs to know about an adapter for its "auto" knobs (no GPU object: plain values).
 
     ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
-    device's enabled features (the plan reads "immediates").
+    device's enabled features (the plan reads "immediates"); ``backend``: the API under the adapter as wgpu
+    reports it ("Vulkan", "OpenGL", ...; "WebGPU" for a browser), since some features are advertised where
+    they cannot be trusted (wgpurender/core/plan/post.py, ``UNTRUSTED_IMMEDIATES``).
     """
 
     adapter_type: str
     features: frozenset[str] = frozenset()
     name: str = ""
+    backend: str = ""
 
 
 @dataclass(frozen=True)

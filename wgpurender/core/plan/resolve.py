@@ -29,11 +29,11 @@ _NOT_FLAGS = ("adapter", "anisotropy", "anisotropy_adapter")  # set from the arg
 KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
 
 
-def adapter_facts(adapter_type: str, features: Iterable[str] = (), name: str = "") -> AdapterFacts:
+def adapter_facts(adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "") -> AdapterFacts:
     """What a plan needs to know about an adapter: its type as wgpu names it ("DiscreteGPU", "IntegratedGPU",
     "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
-    path's facts of one device are equal) and its name."""
-    return AdapterFacts(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name)
+    path's facts of one device are equal), its name and the API under it ("Vulkan", "OpenGL", ...)."""
+    return AdapterFacts(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend)
 
 
 def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None, *,

@@ -49,9 +49,10 @@ def _texture_use(path: Path, fmt: str, mipmaps: bool, used_by: tuple[str, ...],
 
 
 def material_sampler(material: Material, label: str, knobs: Knobs, adapter_type: str | None,
-                     notes: list[str] | None) -> object:
-    """The material's sampler after the anisotropy rule; a change is noted in ``notes`` (None: already noted)."""
-    spec, why = resolve_anisotropy(material.sampler.spec(), knobs.anisotropy, adapter_type)
+                     notes: list[str] | None, spec: object | None = None) -> object:
+    """The material's sampler (or ``spec``: a model file texture's own) after the anisotropy rule; a change is
+    noted in ``notes`` (None: already noted)."""
+    spec, why = resolve_anisotropy(spec or material.sampler.spec(), knobs.anisotropy, adapter_type)
     if why and notes is not None:
         notes.append(f"{label} sampler: {why}")
     return spec

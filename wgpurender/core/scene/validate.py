@@ -230,6 +230,7 @@ def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Mod
                 written_path=t["path"],
                 material=material,
                 transform=_transform(c, t.get("transform", {}), key + ("transform",)),
+                material_from_file="material" not in t,
             )
         )
     return tuple(out)

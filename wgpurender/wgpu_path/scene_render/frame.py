@@ -21,9 +21,9 @@ from pathlib import Path
 
 import wgpu
 
+from wgpurender.core import gpu_memory
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, RenderPlan, resolve_plan
-from wgpurender.core.plan import adapter_facts as plan_adapter_facts
 from wgpurender.core.scene import Scene, load_scene
 from wgpurender.wgpu_path.frame_loop import RenderResult, run_frame, run_frames
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -42,8 +42,7 @@ ATTACHMENT_USAGE = {
 
 def adapter_facts(ctx: GPUContext) -> AdapterFacts:
     """What the plan's "auto" knobs need to know about this context's adapter and device."""
-    info = ctx.info
-    return plan_adapter_facts(info.get("adapter_type", ""), ctx.features, info.get("device", ""))
+    return ctx.facts()
 
 
 def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
@@ -87,6 +86,8 @@ class SceneRenderer:
         if max(w, h) > max_dim:
             raise UserError(f"render size {w}x{h} is larger than this GPU's max-texture-dimension-2d ({max_dim}): "
                             "choose a smaller [render] size or --size")
+        gpu_memory.check_memory(gpu_memory.plan_textures(self.plan), self.ctx.adapter.info["adapter_type"],
+                                f"{self.plan.scene_path.name} at {w}x{h}, msaa {self.plan.msaa}")
 
     def resize(self, size: tuple[int, int]) -> None:
         """(Re)create the plan's attachments other than the output at ``size``."""
