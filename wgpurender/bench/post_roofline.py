@@ -167,7 +167,7 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
     from wgpurender.wgpu_path.scene_render.frame import adapter_facts
 
-    plan = build_plan(scene, size=size).with_knobs(post_path="compute", post_fuse=True, adapter=adapter_facts(ctx))
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path="compute", post_fuse=True)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
     render_frame(ctx, renderer, target)
