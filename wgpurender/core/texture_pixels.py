@@ -24,6 +24,7 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import check_image_pixels, input_file
 
 MAX_DIM_LIMIT = "max-texture-dimension-2d"
 _EIGHT_BIT_MODES = {"1", "L", "LA", "La", "P", "PA", "RGB", "RGBA", "RGBa", "RGBX", "CMYK", "YCbCr", "LAB", "HSV"}
@@ -96,13 +97,11 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
     The size is checked from the header, before any pixel is decoded, so an image
     too large for the GPU fails fast and without allocating it.
     """
-    path = Path(path)
-    if not path.is_file():
-        hint = "it is a directory" if path.is_dir() else "check the path"
-        raise UserError(f"texture image not found: {path} ({hint})")
+    path = input_file(path, "texture image", f"texture image not found: {path} (check the path)")
     try:
         with Image.open(path) as im:
             _check_dims(f"image {path}", im.width, im.height, max_dim)
+            check_image_pixels(im.width, im.height, str(path))
             im.load()
             return _image_to_rgba8(im, path)
     except Image.DecompressionBombError as err:
