@@ -1,12 +1,13 @@
-"""Build hook: ship shaders_wgsl/ and shaders_glsl/ inside the wheel.
+"""Build hook: ship the shaders, the course's assets and its notebook inside the wheel.
 
-The shader folders stay at the repository's top level (the course's layout: a reader
-finds the WGSL and the GLSL beside each other, not deep in the package). setuptools'
-package-data can only reach files inside a package, so ``build_py`` copies both folders
-into ``wgpurender/_shaders/{wgsl,glsl}`` of the build tree; the installed package reads
-them from there through importlib.resources (wgpurender/wgpu_path/shaders.py, raw_path/glsl.py).
-An editable install (``pip install -e``) builds nothing: it reads the checkout's folders.
-Everything else is declared in pyproject.toml.
+The shader folders, ``assets/`` and ``examples/`` stay at the repository's top level (the course's
+layout: a reader finds the WGSL and the GLSL beside each other, the scenes and models beside the
+code, not deep in the package). setuptools' package-data can only reach files inside a package, so
+``build_py`` copies them into the build tree: ``wgpurender/_shaders/{wgsl,glsl}``, ``wgpurender/_assets``,
+``wgpurender/_examples`` and the two docs files the report shows (``wgpurender/_docs``); the installed
+package reads them from there through importlib.resources (wgpurender/core/shader_files.py,
+wgpurender/core/assets.py). An editable install (``pip install -e``)
+builds nothing: it reads the checkout's folders. Everything else is declared in pyproject.toml.
 """
 
 from __future__ import annotations
@@ -18,21 +19,31 @@ from setuptools import setup
 from setuptools.command.build_py import build_py
 
 HERE = Path(__file__).resolve().parent
-SHADER_FOLDERS = {"shaders_wgsl": "wgsl", "shaders_glsl": "glsl"}  # repository folder -> wgpurender/_shaders/<name>
+# repository folder -> folder inside the built wgpurender package
+COPIED_FOLDERS = {"shaders_wgsl": "_shaders/wgsl", "shaders_glsl": "_shaders/glsl", "assets": "_assets",
+                  "examples": "_examples"}
+# single files the installed package reads (the report's closing sections: docs/accuracy.md's plot, numerics.md)
+COPIED_FILES = {"docs/img/accuracy_pareto.png": "_docs/img/accuracy_pareto.png",
+                "docs/numerics.md": "_docs/numerics.md"}
+LEFT_OUT = shutil.ignore_patterns("__pycache__", "*.pyc", ".ipynb_checkpoints", "make_assets.py")
 
 
-class BuildPyWithShaders(build_py):
+class BuildPyWithCourseData(build_py):
     def run(self) -> None:
         super().run()
         if getattr(self, "editable_mode", False):
             return
-        for folder, name in SHADER_FOLDERS.items():
+        for folder, name in COPIED_FOLDERS.items():
             source = HERE / folder
             if not source.is_dir():
-                raise RuntimeError(f"{source} is missing: the wheel would ship without its shaders")
-            dest = Path(self.build_lib) / "wgpurender" / "_shaders" / name
+                raise RuntimeError(f"{source} is missing: the wheel would ship without it")
+            dest = Path(self.build_lib) / "wgpurender" / name
             shutil.rmtree(dest, ignore_errors=True)
-            shutil.copytree(source, dest)
+            shutil.copytree(source, dest, ignore=LEFT_OUT)
+        for file, name in COPIED_FILES.items():
+            dest = Path(self.build_lib) / "wgpurender" / name
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(HERE / file, dest)
 
 
-setup(cmdclass={"build_py": BuildPyWithShaders})
+setup(cmdclass={"build_py": BuildPyWithCourseData})

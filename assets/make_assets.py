@@ -88,12 +88,81 @@ def models(out: Path) -> None:
     )
 
 
+def gltf_features(out: Path) -> None:
+    """gltf_features.glb: the glTF features the loader and both paths take from a model file, in one scene
+    (assets/scenes/gltf_features.toml): per-primitive materials, COLOR_0, doubleSided, alpha MASK, per-texture
+    samplers with per-axis wrap, embedded PNGs, a node hierarchy. Written by tests/gltf_gen.py's GltfWriter (a
+    writer independent of the project's loader), so no third-party file is involved."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from gltf_gen import CLAMP, LINEAR, MIRROR, NEAREST, REPEAT, GltfWriter
+
+    g = GltfWriter()
+    u8 = lambda a: np.round(np.clip(a, 0, 1) * 255).astype(np.uint8)  # noqa: E731
+    yy, xx = np.mgrid[0:64, 0:64] / 63.0
+    checker = ((np.mgrid[0:64, 0:64] // 8).sum(axis=0) % 2).astype(float)
+    floor_img = u8(np.dstack([0.55 + 0.3 * checker, 0.55 + 0.3 * checker, 0.6 + 0.3 * checker, np.ones((64, 64))]))
+    leaf = np.hypot((xx - 0.5) * 1.6, yy - 0.5) < 0.48  # an ellipse: alpha 1 inside, 0 outside (MASK cuts it)
+    vein = np.abs(xx - 0.5) < 0.03
+    leaf_img = u8(np.dstack([0.25 + 0.5 * vein, 0.6 + 0.3 * vein, 0.15 + 0.2 * yy, leaf.astype(float)]))
+    bars = ((np.mgrid[0:32, 0:32][1] // 4) % 2 == 0) | ((np.mgrid[0:32, 0:32][0] // 4) % 4 == 0)
+    fence_img = u8(np.dstack([0.9 * np.ones((32, 32)), 0.75 * np.ones((32, 32)), 0.3 + 0.4 * xx[:32, :32],
+                              bars.astype(float)]))
+    floor_tex = g.texture(floor_img, g.sampler(magFilter=NEAREST, minFilter=9987, wrapS=REPEAT, wrapT=REPEAT))
+    leaf_tex = g.texture(leaf_img, g.sampler(magFilter=LINEAR, minFilter=LINEAR, wrapS=CLAMP, wrapT=CLAMP))
+    fence_tex = g.texture(fence_img, g.sampler(magFilter=NEAREST, minFilter=NEAREST, wrapS=MIRROR, wrapT=CLAMP))
+    floor = g.material(name="floor", pbrMetallicRoughness={"baseColorFactor": [0.8, 0.85, 1.0, 1.0],
+                                                           "baseColorTexture": {"index": floor_tex},
+                                                           "metallicFactor": 0.0, "roughnessFactor": 0.9})
+    painted = g.material(name="painted", pbrMetallicRoughness={"metallicFactor": 0.0, "roughnessFactor": 0.4})
+    leaf_mat = g.material(name="leaf", doubleSided=True, alphaMode="MASK", alphaCutoff=0.5,
+                          pbrMetallicRoughness={"baseColorTexture": {"index": leaf_tex}, "metallicFactor": 0.0})
+    fence = g.material(name="fence", alphaMode="MASK", doubleSided=True,
+                       pbrMetallicRoughness={"baseColorTexture": {"index": fence_tex}, "metallicFactor": 0.0})
+    red = g.material(name="red", pbrMetallicRoughness={"baseColorFactor": [0.8, 0.08, 0.05, 1.0],
+                                                       "metallicFactor": 0.0, "roughnessFactor": 0.5})
+
+    def prim(positions, normals, uvs, indices, material, colors=None) -> dict:
+        attrs = {"POSITION": g.positions(np.asarray(positions, np.float32)),
+                 "NORMAL": g.accessor(np.asarray(normals, np.float32))}
+        if uvs is not None:
+            attrs["TEXCOORD_0"] = g.accessor(np.asarray(uvs, np.float32))
+        if colors is not None:
+            attrs["COLOR_0"] = g.accessor(u8(colors), normalized=True)
+        return {"attributes": attrs, "indices": g.accessor(np.asarray(indices, np.uint16).ravel()),
+                "material": material}
+
+    quad_idx = [0, 1, 2, 0, 2, 3]
+    up, toward = [[0, 1, 0]] * 4, [[0, 0, 1]] * 4
+    ground = prim([[-2.5, 0, 1.5], [2.5, 0, 1.5], [2.5, 0, -2], [-2.5, 0, -2]], up,
+                  [[0, 3], [3.5, 3], [3.5, 0], [0, 0]], quad_idx, floor)
+    box = proc.box(0.8)
+    corner_colors = (box.positions - box.positions.min(0)) / np.ptp(box.positions, axis=0)  # rgb = xyz in the box
+    rgba = np.c_[corner_colors, np.ones(len(box.positions))]
+    cube = prim(box.positions, box.normals, None, box.indices, painted, rgba)
+    # the leaf is wound clockwise as the camera sees it: its back face shows, drawn because it is double-sided
+    leaf_quad = prim([[-0.5, 0, 0], [-0.5, 1.2, 0], [0.5, 1.2, 0], [0.5, 0, 0]], [[0, 0, -1]] * 4,
+                     [[0, 1], [0, 0], [1, 0], [1, 1]], quad_idx, leaf_mat)
+    fence_quad = prim([[-0.7, 0, 0], [0.7, 0, 0], [0.7, 0.9, 0], [-0.7, 0.9, 0]], toward,
+                      [[-1, 1.2], [2, 1.2], [2, -0.2], [-1, -0.2]], quad_idx, fence)
+    cap = prim([[-0.75, 0.9, 0.02], [0.75, 0.9, 0.02], [0.75, 1.0, 0.02], [-0.75, 1.0, 0.02]], toward,
+               None, quad_idx, red)
+    g.node(mesh=g.mesh([ground]), name="ground")
+    cube_child = g.node(mesh=g.mesh([cube]), name="cube", translation=[0, 0.4, 0])
+    g.node(children=[cube_child], name="cube group", translation=[-1.5, 0, -0.2],
+           rotation=[0.0, float(np.sin(np.radians(15))), 0.0, float(np.cos(np.radians(15)))])
+    g.node(mesh=g.mesh([leaf_quad]), name="leaf", translation=[0, 0, 0.2])
+    g.node(mesh=g.mesh([fence_quad, cap]), name="fence and cap", translation=[1.4, 0, -0.3],
+           rotation=[0.0, float(np.sin(np.radians(-12))), 0.0, float(np.cos(np.radians(-12)))])
+    g.write(out / "gltf_features.glb", roots=[0, 2, 3, 4])
+
+
 def generate(root: Path) -> list[Path]:
     (root / "models").mkdir(parents=True, exist_ok=True)
     (root / "textures").mkdir(parents=True, exist_ok=True)
     brick_textures(root / "textures")
     mirror_textures(root / "textures")
     models(root / "models")
+    gltf_features(root / "models")
     return sorted(p.relative_to(root) for d in ("models", "textures") for p in (root / d).iterdir() if p.is_file())
 
 

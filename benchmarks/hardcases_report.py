@@ -27,13 +27,13 @@ def main() -> int:
     import test_msaa_slivers as msaa
     import test_scale_normals as sn
     import test_uv_tiling as uvt
+    from numerics.camera_relative import camera_relative, model_view
+    from numerics.coverage import cell_sums, render_coverage, triangle_areas
+    from numerics.depth_planes import render_planes, wrong_pixels
+    from numerics.normals import analytic_normals
+    from numerics.uv_tiling import exact_uvs, wrap_uvs
 
     from wgpurender.core import transforms as T
-    from wgpurender.numerics.camera_relative import camera_relative, model_view
-    from wgpurender.numerics.coverage import cell_sums, render_coverage, triangle_areas
-    from wgpurender.numerics.depth_planes import render_planes, wrong_pixels
-    from wgpurender.numerics.normals import analytic_normals
-    from wgpurender.numerics.uv_tiling import exact_uvs, wrap_uvs
     from wgpurender.wgpu_path.gpu import get_context
 
     ctx = get_context(args.backend)

@@ -38,6 +38,9 @@ layout(push_constant) uniform Material {
     float normal_strength;  // @20
     float specular;         // @24
 #endif
+#ifdef ALPHA_MASK
+    float alpha_cutoff;     // @28 lit, @16 unlit
+#endif
 } material;
 
 #ifdef ALBEDO_MAP
@@ -60,6 +63,9 @@ layout(location = 2) in vec2 v_uv;
 #ifdef NORMAL_MAP
 layout(location = 3) in vec4 v_tangent;
 #endif
+#ifdef VERTEX_COLOR
+layout(location = 4) in vec4 v_color;
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -74,7 +80,12 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
 }
 
 vec3 surface_normal(vec3 normal_texel) {
+#ifdef DOUBLE_SIDED
+    // a back face is lit as the surface's other side (glTF doubleSided)
+    vec3 n = safe_normalize(gl_FrontFacing ? v_normal : -v_normal, vec3(0.0, 0.0, 1.0));
+#else
     vec3 n = safe_normalize(v_normal, vec3(0.0, 0.0, 1.0));
+#endif
 #ifdef NORMAL_MAP
     vec3 t_raw = v_tangent.xyz - n * dot(n, v_tangent.xyz);
     if (dot(t_raw, t_raw) <= 1e-20) {
@@ -139,6 +150,9 @@ void main() {
 #ifdef ALBEDO_MAP
     base = base * texture(albedo_tex, v_uv);
 #endif
+#ifdef VERTEX_COLOR
+    base = base * v_color;
+#endif
 #ifdef LIGHTING
 #ifdef NORMAL_MAP
     vec3 normal_texel = texture(normal_tex, v_uv).xyz;
@@ -153,6 +167,11 @@ void main() {
     vec3 color = shade(base.rgb, normal_texel, roughness);
 #else
     vec3 color = base.rgb;
+#endif
+#ifdef ALPHA_MASK
+    if (base.a < material.alpha_cutoff) {
+        discard;
+    }
 #endif
 #ifdef SRGB_OUTPUT
     out_color = vec4(srgb_encode(color), base.a);

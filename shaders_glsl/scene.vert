@@ -5,6 +5,7 @@
 // template uses "#if feature" (wgpurender/core/shader_variants.py); here glslc's own preprocessor does it,
 // with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
+//   VERTEX_COLOR, ALPHA_MASK, DOUBLE_SIDED (a model file's own materials),
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
 // The std140 offsets of the blocks are spelled out in wgpurender/raw_path/scene/uniforms.py.
 
@@ -33,6 +34,9 @@ layout(location = 2) in vec2 a_uv;
 #ifdef NORMAL_MAP
 layout(location = 3) in vec4 a_tangent;
 #endif
+#ifdef VERTEX_COLOR
+layout(location = 4) in vec4 a_color;
+#endif
 
 #ifdef LIGHTING
 layout(location = 0) out vec3 v_world_position;
@@ -43,6 +47,9 @@ layout(location = 2) out vec2 v_uv;
 #endif
 #ifdef NORMAL_MAP
 layout(location = 3) out vec4 v_tangent;
+#endif
+#ifdef VERTEX_COLOR
+layout(location = 4) out vec4 v_color;
 #endif
 
 void main() {
@@ -62,5 +69,8 @@ void main() {
 #ifdef NORMAL_MAP
     mat3 world3 = mat3(object_data.world[0].xyz, object_data.world[1].xyz, object_data.world[2].xyz);
     v_tangent = vec4(world3 * a_tangent.xyz, a_tangent.w * object_data.mirror);
+#endif
+#ifdef VERTEX_COLOR
+    v_color = a_color;
 #endif
 }

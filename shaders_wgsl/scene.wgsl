@@ -1,7 +1,8 @@
 // The scene shader: one template, specialised per material variant (wgpurender/wgpu_path/scene_render/shader_interface.py).
 //
 // Preprocessing (wgpurender/core/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
-// variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output) and the derived
+// variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output; from a model file's
+// own materials: vertex_color, alpha_mask, double_sided) and the derived
 // ones (uv: any texture; directional_lights / point_lights: that count > 0; immediates: push constants
 // available). The STRUCTS placeholder gets the declarations generated from the Python Struct
 // definitions; the light counts are compile-time constants, so each loop has a fixed trip count.
@@ -24,6 +25,10 @@
 // T = Gram-Schmidt of the tangent against N, B = w * cross(N, T) (w = tangent.w times the sign of
 // det(world)), n' = normalize(T m.x + B m.y + N m.z). Every normalisation is guarded: a zero-length
 // vector falls back to a stated default instead of producing NaN.
+// Model-file materials (core/gltf_materials.py): base = base_color * albedo texel * vertex colour;
+// alpha_mask discards fragments whose alpha is below material.alpha_cutoff (after every texture sample);
+// double_sided turns the normal around on back faces before lighting (glTF's rule).
+// Each texture has its own sampler (glTF: filters and per-axis wrap per texture).
 
 {{STRUCTS}}
 
@@ -37,17 +42,17 @@ var<immediate> material: Material;
 #else
 @group(2) @binding(0) var<uniform> material: Material;
 #endif
-#if uv
-@group(2) @binding(1) var material_sampler: sampler;
-#endif
 #if albedo_map
+@group(2) @binding(1) var albedo_sampler: sampler;
 @group(2) @binding(2) var albedo_tex: texture_2d<f32>;
 #endif
 #if normal_map
 @group(2) @binding(3) var normal_tex: texture_2d<f32>;
+@group(2) @binding(5) var normal_sampler: sampler;
 #endif
 #if roughness_map
 @group(2) @binding(4) var roughness_tex: texture_2d<f32>;
+@group(2) @binding(6) var roughness_sampler: sampler;
 #endif
 
 struct VertexIn {
@@ -60,6 +65,9 @@ struct VertexIn {
 #endif
 #if normal_map
     @location(3) tangent: vec4f,
+#endif
+#if vertex_color
+    @location(4) color: vec4f,
 #endif
 };
 
@@ -74,6 +82,9 @@ struct VertexOut {
 #endif
 #if normal_map
     @location(3) tangent: vec4f,
+#endif
+#if vertex_color
+    @location(4) color: vec4f,
 #endif
 };
 
@@ -97,6 +108,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
 #if normal_map
     let world3 = mat3x3f(object_data.world[0].xyz, object_data.world[1].xyz, object_data.world[2].xyz);
     out.tangent = vec4f(world3 * in.tangent.xyz, in.tangent.w * object_data.mirror);
+#endif
+#if vertex_color
+    out.color = in.color;
 #endif
     return out;
 }
@@ -177,26 +191,42 @@ fn srgb_encode(c: vec3f) -> vec3f {
 #endif
 
 @fragment
+#if double_sided
+fn fs_main(vertex: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4f {
+    var in = vertex;
+    if (!front_facing) {
+        in.normal = -in.normal;  // a back face is lit as the surface's other side
+    }
+#else
 fn fs_main(in: VertexOut) -> @location(0) vec4f {
+#endif
     var base = material.base_color;
 #if albedo_map
-    base = base * textureSample(albedo_tex, material_sampler, in.uv);
+    base = base * textureSample(albedo_tex, albedo_sampler, in.uv);
+#endif
+#if vertex_color
+    base = base * in.color;
 #endif
 #if lighting
     // Textures are sampled here, in uniform control flow (implicit derivatives), and passed down.
 #if normal_map
-    let normal_texel = textureSample(normal_tex, material_sampler, in.uv).xyz;
+    let normal_texel = textureSample(normal_tex, normal_sampler, in.uv).xyz;
 #else
     let normal_texel = vec3f(0.5, 0.5, 1.0);
 #endif
 #if roughness_map
-    let roughness = material.roughness * textureSample(roughness_tex, material_sampler, in.uv).g;
+    let roughness = material.roughness * textureSample(roughness_tex, roughness_sampler, in.uv).g;
 #else
     let roughness = material.roughness;
 #endif
     let color = shade(base.rgb, in, normal_texel, roughness);
 #else
     let color = base.rgb;
+#endif
+#if alpha_mask
+    if (base.a < material.alpha_cutoff) {
+        discard;
+    }
 #endif
 #if srgb_output
     return vec4f(srgb_encode(color), base.a);

@@ -192,7 +192,7 @@ def _render(ctx, scene, settings, size=(64, 48), knobs=("depth",)):
 
 
 def test_reverse_z_depth32float_resolves_the_depth_stress_scene(ctx, depth_scene):
-    from wgpurender.numerics.depth_planes import wrong_pixels
+    from numerics.depth_planes import wrong_pixels
 
     image, renderer = _render(ctx, depth_scene, TOP.with_(depth="reverse-z"))
     assert renderer.plan.attachment("depth").format == "depth32float" and renderer.scene_pass.reverse_z
@@ -202,7 +202,7 @@ def test_reverse_z_depth32float_resolves_the_depth_stress_scene(ctx, depth_scene
 
 @pytest.mark.parametrize("level", ["depth24plus", "depth32float"])
 def test_standard_depth_z_fights_in_the_depth_stress_scene(ctx, depth_scene, level):
-    from wgpurender.numerics.depth_planes import wrong_pixels
+    from numerics.depth_planes import wrong_pixels
 
     image, renderer = _render(ctx, depth_scene, TOP.with_(depth=level))
     assert renderer.plan.attachment("depth").format == level and not renderer.scene_pass.reverse_z

@@ -42,6 +42,22 @@ def test_csv_has_documented_columns_and_sane_rows(quick_run):
         assert r.n >= 1 and np.isfinite(r.median)
         if "difference" not in r.case:  # readback_ms too: paired frames, never negative; msaa-post differences may be
             assert 0.0 <= r.p10 <= r.median + 1e-3 and r.median <= r.p90 + 1e-3, r
+            assert np.isnan(r.p99) or r.p90 <= r.p99 + 1e-3, r
+
+
+def test_tails_are_reported_beside_the_median():
+    """p99 catches a stall in 5 of 100 frames; p90 > 3x the median flags the case in the report."""
+    from wgpurender.bench.markdown import _tails
+    from wgpurender.bench.report import Result
+    from wgpurender.wgpu_path.timing import Stats
+
+    rare = Stats.of([1.0] * 95 + [20.0] * 5)
+    assert (rare.median, rare.p90, rare.p99) == (1.0, 1.0, 20.0)
+    often = Result.of("frames", "triangle", "wgpu", "800x600", "frame_ms", Stats.of([1.0] * 80 + [10.0] * 20))
+    calm = Result.of("frames", "triangle", "raw", "800x600", "frame_ms", rare)
+    assert often.has_tail() and not calm.has_tail()
+    text = _tails([often, calm])
+    assert text.startswith("1 of 2 timed rows") and "| frames | triangle | wgpu |" in text and "p99 10.0" in text
 
 
 def test_every_common_stage_measured_on_both_paths(quick_run):
@@ -77,13 +93,13 @@ def _fake_run(adapter: str, wgpu_ms: float, raw_ms: float):
 
 
 @pytest.mark.parametrize(("adapter", "wgpu_ms", "raw_ms", "frames_status"), [
-    ("NVIDIA H200 (Vulkan, DiscreteGPU, 570)", 1.08, 1.0, "met"),          # 1.08 <= 1.10 on a GPU
-    ("NVIDIA H200 (Vulkan, DiscreteGPU, 570)", 1.12, 1.0, "not met"),
+    ("NVIDIA H200 (Vulkan, DiscreteGPU, 570)", 1.04, 1.0, "met"),          # 1.04 <= 1.05 on a GPU (issue 22)
+    ("NVIDIA H200 (Vulkan, DiscreteGPU, 570)", 1.08, 1.0, "not met"),
     ("llvmpipe (Vulkan, CPU, Mesa 22.3.6)", 1.08, 1.0, "not met"),         # 1.08 > 1.05 on lavapipe
     ("llvmpipe (Vulkan, CPU, Mesa 22.3.6)", 1.04, 1.0, "met"),
 ])
 def test_targets_judge_only_where_they_apply(adapter, wgpu_ms, raw_ms, frames_status):
-    """Frame-time ratio: 1.10 on a GPU, 1.05 on lavapipe; the C++ tutorial's lavapipe numbers judge lavapipe only."""
+    """Frame-time ratio: 1.05 on a GPU and on lavapipe; the C++ tutorial's lavapipe numbers judge lavapipe only."""
     from wgpurender.bench.markdown import _targets
 
     rows = {line.split("|")[1].strip(): line.split("|")[-2].strip()
@@ -115,8 +131,12 @@ def test_final_scene_measured_on_both_paths(quick_run):
     assert {("final_subpass", "wgpu"), ("final_subpass", "raw"), ("final", "wgpu"), ("final", "raw")} <= measured
     assert not any("no raw peer" in n for n in run.notes), run.notes
     report = (quick_run[2] / "report.md").read_text()
-    for case in ("final", "final_subpass"):  # the limit is 1.05 on a CPU adapter, 1.10 on a GPU
+    for case in ("final", "final_subpass"):
         assert f"final scene ({case}.toml) wgpu / raw frame time <= " in report
+    calls = {r.case: r for r in run.results if r.family == "scene" and r.metric == "native_calls"}
+    untimed = {r.case for r in run.results if r.family == "scene" and r.metric == "cpu_ms:untimed"}
+    assert {"final", "final_subpass"} <= set(calls) and {"final", "final_subpass"} <= untimed
+    assert "native calls per frame" in report and "queue.submit 1" in calls["final"].note
 
 
 def test_families_produce_their_rows(quick_run):
@@ -125,7 +145,7 @@ def test_families_produce_their_rows(quick_run):
     assert {"frames", "post-effects", "post-probe", "msaa-post", "objects"} <= families
     modes = {r.case.split("/")[0] for r in run.results if r.family == "objects"}
     expected = set(MODES) if run_ctx_has_immediates(run) else set(MODES) - {"immediates"}
-    assert modes == expected
+    assert modes == expected | {"gpu-animated"}
 
 
 def run_ctx_has_immediates(run) -> bool:
@@ -193,6 +213,59 @@ def test_objects_modes_draw_the_numpy_image(ctx):
         off = np.any(np.abs(img - reference) > 1.0, axis=-1).mean()
         assert off <= 0.005, f"{mode}: {off:.4%} of pixels differ from the numpy quads"
     assert (np.abs(first[..., :3]).sum(axis=-1) > 0).mean() > 0.1  # the quads cover a good part of the image
+
+
+def test_gpu_animated_objects_draw_the_numpy_image(ctx):
+    """Animation on the GPU, the same drift formula: the numpy quads of object_data at t, later ones on top."""
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
+    size, count, half, t = (200, 150), 60, (0.05, 0.07), 1.3
+    renderer = GpuAnimatedRenderer(ctx, count, size, half)
+    renderer.t = t
+    img = renderer.pixels().astype(np.float64)
+    reference = _numpy_quads(object_data(count, t, half_size=half), size)
+    off = np.any(np.abs(img - reference) > 1.0, axis=-1).mean()
+    assert off <= 0.005, f"{off:.4%} of pixels differ from the numpy quads"
+    assert renderer.visible_count() == count  # every quad is inside the view
+
+
+def test_gpu_culling_counts_the_objects_in_view(ctx):
+    """Zoomed 2x about (0.3, -0.2): the indirect draw's instance count is the number of quads overlapping the view
+    box, counted here in numpy from the same formula (a quad within 1e-4 of the box edge may go either way)."""
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
+    count, half, (ox, oy, zoom), t = 5000, (0.01, 0.01), (0.3, -0.2, 2.0), 0.7
+    renderer = GpuAnimatedRenderer(ctx, count, (64, 48), half, view=(ox, oy, zoom))
+    renderer.t = t
+    renderer.frame()
+    data = object_data(count, t, half_size=half).astype(np.float64)
+    gap = np.maximum(np.abs((data[:, 0] - ox) * zoom) - half[0] * zoom,
+                     np.abs((data[:, 1] - oy) * zoom) - half[1] * zoom)
+    sure, edge = int((gap < 1.0 - 1e-4).sum()), int((np.abs(gap - 1.0) <= 1e-4).sum())
+    got = renderer.visible_count()
+    assert sure <= got <= sure + edge and 0 < got < count // 2
+
+
+def test_gpu_animated_frame_writes_one_small_uniform(ctx):
+    """Whatever the count, a frame's CPU work is the same few calls: one 32-byte write, no per-object data."""
+    from wgpurender.bench.calls import count_frame
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
+    for count in (100, 20_000):
+        renderer = GpuAnimatedRenderer(ctx, count, (64, 48))
+        written: list[int] = []
+        real = ctx.queue.write_buffer
+
+        def spy(buffer, offset, data, *rest, _real=real, _written=written):
+            _written.append(len(bytes(data)))
+            return _real(buffer, offset, data, *rest)
+
+        ctx.queue.write_buffer = spy
+        try:
+            calls = count_frame(ctx, renderer.record, renderer.target)
+        finally:
+            del ctx.queue.write_buffer
+        assert written == [32] and sum(calls.values()) == 15, dict(calls)
 
 
 def test_cli_lists_perf_and_rejects_unknown_family(capsys):

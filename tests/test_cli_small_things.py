@@ -114,9 +114,9 @@ def test_render_writes_the_format_its_suffix_names(capsys, tmp_path, suffix, fmt
 
 
 def test_unknown_suffix_is_refused_before_rendering(capsys, tmp_path, monkeypatch):
-    import wgpurender.wgpu_path.render
+    import wgpurender.api
 
-    monkeypatch.setattr(wgpurender.wgpu_path.render, "render_any", lambda *a, **k: pytest.fail("rendered anyway"))
+    monkeypatch.setattr(wgpurender.api, "render", lambda *a, **k: pytest.fail("rendered anyway"))  # the CLI's render
     code, _, err = _run(capsys, "render", "triangle", "-o", str(tmp_path / "t.xyz"))
     assert code == 2 and err.count("\n") == 1 and "'.xyz'" in err and ".png" in err
     assert not list(tmp_path.iterdir())

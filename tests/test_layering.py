@@ -260,4 +260,5 @@ def test_both_registries_and_the_cli_list_stages_in_course_order(capsys):
     assert list(all_stages()) == [n for n in course if n in all_stages()]
     assert main(["stages"]) == 0
     printed = [line.split()[0] for line in capsys.readouterr().out.splitlines() if not line.startswith(" ")]
-    assert printed == list(all_stages())
+    assert printed == [*course, "final"]  # step 6, the final model, is the bundled scene 'final'
+    assert course_step("final").number == "6" and course_step("final").scene == "final"

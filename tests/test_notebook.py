@@ -77,10 +77,10 @@ def test_wgpu_and_raw_agree(executed):
     from wgpurender.wgpu_path.stages import all_stages
 
     both = [s for s in all_stages() if s in reference_stage_names()]
-    assert set(both) <= set(rows) and "final_subpass.toml" in rows
+    assert set(both) <= set(rows) and "final_subpass" in rows
     for name in both:
         assert rows[name]["max_abs"] <= STAGE_MAX_ABS and rows[name]["flip_mean"] <= STAGE_FLIP, rows[name]
-    scene = rows["final_subpass.toml"]
+    scene = rows["final_subpass"]
     assert scene["max_abs"] <= SCENE_MAX_ABS and scene["flip_mean"] <= SCENE_FLIP, scene
     side_by_side = next(c for c in executed if "w.reference(name" in c.source)
     assert len(_pngs(side_by_side)) == len(both)

@@ -10,7 +10,8 @@ renderer is made and draws one frame, and what was created is compared with the 
 - compute pipelines: every compute post pipeline;
 - buffers (while the renderer is made and records a frame; the readback is the caller's): one per entry of
   ``plan.buffers`` (camera, objects, materials without immediates, each mesh's vertices and indices, each
-  post pass's parameters).
+  post pass's parameters);
+- render bundle encoders: the plan's objects of that kind (the scene pass's draws, each fragment post pass).
 
 The device's caches are emptied first (gpu_cache.py), so an object made for an earlier scene on the same
 device cannot hide one. Expected values come from the plan; what is counted comes from the device.
@@ -41,7 +42,8 @@ class Recorder:
     def __init__(self, device, monkeypatch) -> None:
         self.made: Counter = Counter()
         # create_buffer_with_data makes its buffer through create_buffer: counted there, once
-        for name in ("create_texture", "create_render_pipeline", "create_compute_pipeline", "create_buffer"):
+        for name in ("create_texture", "create_render_pipeline", "create_compute_pipeline", "create_buffer",
+                     "create_render_bundle_encoder"):
             monkeypatch.setattr(device, name, self._wrap(name, getattr(device, name)))
 
     def _wrap(self, name, real):
@@ -50,6 +52,8 @@ class Recorder:
                 self.made[("texture", kwargs["format"], kwargs.get("sample_count", 1))] += 1
             elif name == "create_buffer":
                 self.made[("buffer",)] += 1
+            elif name == "create_render_bundle_encoder":
+                self.made[("bundle", kwargs["label"])] += 1
             elif name == "create_render_pipeline":
                 self.made[("render", kwargs["fragment"]["targets"][0]["format"])] += 1
             else:
@@ -77,6 +81,9 @@ def expected(plan) -> Counter:
         want[("render", fmt)] += 1
     if plan.buffers:
         want[("buffer",)] = len(plan.buffers)
+    for o in plan.objects:
+        if o.kind == "render_bundle_encoder":
+            want[("bundle", o.name)] += o.count
     return want
 
 

@@ -76,12 +76,13 @@ def test_the_browser_check_catches_a_missing_image(site, tmp_path):
 
 
 def test_one_section_per_course_step_in_course_order(site):
-    from wgpurender.core.course.steps import COURSE
+    from wgpurender.core.course.steps import COURSE, stage_steps
     from wgpurender.wgpu_path.stages import all_stages
 
     text = (site / "index.html").read_text()
     keys = _sections(text)
-    stages = [step.stage for step in COURSE]  # the course core's table of steps
+    stages = [step.stage for step in stage_steps()]  # the course core's table of steps drawn by stage modules
+    assert COURSE[-1].scene == "final" and "final" in keys  # step 6, the final model, is the scene section
     assert keys[: len(stages)] == stages
     scenes = keys[len(stages):]
     assert scenes[:5] == ["unlit", "retro", "brick", "final_subpass", "final"]

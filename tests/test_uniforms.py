@@ -14,6 +14,7 @@ import pytest
 import wgpu
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from numerics.wgsl import load_wgsl as load_test_wgsl
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.uniforms import (
@@ -34,7 +35,7 @@ from wgpurender.core.uniforms import (
     roundtrip_wgsl,
     wgsl_structs,
 )
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.shaders import create_shader_module
 
 FOO = Struct("Foo", [("v", VEC2F)])
 
@@ -109,7 +110,7 @@ def test_wgsl_declarations_text_and_compile(ctx):
     assert text.index("struct Foo") < text.index("struct Nested")
     assert "@size(16) v: vec2f" in text
     assert "@size(16) foo: vec2f" in TRAPS["vec2_then_mat4"][0].wgsl()
-    template = load_wgsl("uniforms_roundtrip.wgsl")
+    template = load_test_wgsl("uniforms_roundtrip.wgsl")
     for struct, _, _ in TRAPS.values():
         code, _ = roundtrip_wgsl(struct, template)
         create_shader_module(ctx.device, "uniforms_roundtrip.wgsl", code)
@@ -169,7 +170,7 @@ def test_bad_values_raise_user_error(values, message):
 
 def _run_roundtrip(ctx, struct: Struct, values: dict) -> np.ndarray:
     """Pack ``values``, let the generated compute shader copy every scalar out, return the u32 words."""
-    code, leaves = roundtrip_wgsl(struct, load_wgsl("uniforms_roundtrip.wgsl"))
+    code, leaves = roundtrip_wgsl(struct, load_test_wgsl("uniforms_roundtrip.wgsl"))
     dev = ctx.device
     module = create_shader_module(dev, "uniforms_roundtrip.wgsl", code)
     pipeline = dev.create_compute_pipeline(layout="auto", compute={"module": module, "entry_point": "main"})
@@ -192,7 +193,7 @@ def _run_roundtrip(ctx, struct: Struct, values: dict) -> np.ndarray:
     cpass.end()
     enc.copy_buffer_to_buffer(out, 0, readback, 0, out_size)
     ctx.queue.submit([enc.finish()])
-    readback.map_sync(wgpu.MapMode.READ)
+    ctx.map_read(readback)  # on this thread (gpu.py), as every readback
     words = np.frombuffer(readback.read_mapped(), dtype="<u4").copy()
     readback.unmap()
     return words, leaves

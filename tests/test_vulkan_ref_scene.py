@@ -182,6 +182,13 @@ def test_unlit_textured_scene_matches_wgpu(request, ctx, tmp_path):
     assert_same_render(request, raw, wgpu_render(ctx, path, SMALL))
 
 
+def test_gltf_features_scene_matches_wgpu(request, ctx):
+    """A model drawn with its own glTF materials (vertex colours, double-sided, alpha mask, per-texture samplers,
+    several materials): both paths' images are the same bytes (measured on lavapipe: 0 of 76800 pixels differ)."""
+    path = SCENES / "gltf_features.toml"
+    assert_same_render(request, render_scene_reference(path, size=SIZE), wgpu_render(ctx, path, SIZE))
+
+
 def test_unlit_scene_matches_wgpu(request, ctx):
     """unlit.toml (flat colour, msaa 1, no post): exact (threshold 0)."""
     path = SCENES / "unlit.toml"
@@ -223,7 +230,7 @@ def test_glm_vulkan_scene_matches_wgpu(request, ctx, tmp_path):
 
 # -- references ----------------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit"])
+@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit", "scene_gltf_features"])
 def test_scene_references_are_current(request, name, raw_driver_class):
     """assets/reference/scene_*.png against a fresh raw render at 320x240, within the table's bounds
     (assets/reference/tolerances.toml, this driver class's row); written only by the raw path."""

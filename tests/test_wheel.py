@@ -25,7 +25,10 @@ import pytest
 from PIL import Image
 
 REPO = Path(__file__).resolve().parent.parent
-BUILD_INPUTS = ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md", "wgpurender", "shaders_wgsl", "shaders_glsl")
+BUILD_INPUTS = ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md", "wgpurender", "shaders_wgsl", "shaders_glsl",
+                "assets", "examples", "docs")
+# what the wheel must carry of assets/ (make_assets.py is the generator, not data)
+COURSE_DATA = ("scenes", "models", "textures", "reference")
 
 # The first triangle's vertices and colours (course step 2a), written out here: NDC, y up, linear RGB.
 TRIANGLE_NDC = np.array([[-0.8, -0.7], [0.7, -0.5], [-0.1, 0.8]])
@@ -111,6 +114,14 @@ def test_the_wheel_carries_every_shader(installed):
         assert expected and expected <= names, sorted(expected - names)
 
 
+def test_the_wheel_carries_the_whole_course(installed):
+    names = set(zipfile.ZipFile(installed["wheel"]).namelist())
+    expected = {f"wgpurender/_assets/{p.relative_to(REPO / 'assets').as_posix()}"
+                for folder in COURSE_DATA for p in (REPO / "assets" / folder).rglob("*") if p.is_file()}
+    expected.add("wgpurender/_examples/course_tour.ipynb")
+    assert len(expected) > 20 and expected <= names, sorted(expected - names)
+
+
 def test_the_installed_package_is_not_the_checkout(installed):
     out = _run(installed, installed["python"], "-c", "import wgpurender; print(wgpurender.__file__)").stdout
     assert Path(out.strip()).is_relative_to(installed["python"].parent.parent), out
@@ -126,11 +137,12 @@ def test_render_triangle_from_the_wheel(installed):
 
 
 def test_render_final_scene_from_the_wheel_matches_the_checkout(installed, ctx):
-    """Same machine, same run: the wheel's render is bit-identical to this process's (checkout) render."""
+    """The bundled scene by name (step 6, the final model), from an empty folder. Same machine, same run: the
+    wheel's render is bit-identical to this process's (checkout) render of the repository's file."""
     from wgpurender.wgpu_path.render import render_any
 
     scene = REPO / "assets" / "scenes" / "final.toml"
-    _run(installed, installed["bin"] / "wgpurender", "render", scene, "-o", "f.png", "--size", "320x240")
+    _run(installed, installed["bin"] / "wgpurender", "render", "final", "-o", "f.png", "--size", "320x240")
     image = np.asarray(Image.open(installed["cwd"] / "f.png"))
     assert image.shape == (240, 320, 4)
     assert image[..., :3].std() > 20  # a lit scene, not a flat clear
@@ -150,3 +162,53 @@ def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
     assert image.shape == (48, 64, 4)
     _check_triangle_centre(image)
     assert list((installed["cache"] / "wgpurender" / "spirv").glob("*.spv"))
+
+
+def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):
+    """assets/scenes/unlit.toml from a folder that has no assets/: the wheel's copy; w.render('final') too."""
+    _run(installed, installed["bin"] / "wgpurender", "render", "assets/scenes/unlit.toml", "-o", "u.png",
+         "--size", "64x48")
+    assert np.asarray(Image.open(installed["cwd"] / "u.png")).shape == (48, 64, 4)
+    code = "import wgpurender as w; r = w.render('final', size=(64, 48)); print(r.pixels.shape, r.plan.msaa)"
+    assert _run(installed, installed["python"], "-c", code).stdout.split() == ["(48,", "64,", "4)", "4"]
+
+
+@pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
+def test_verify_quick_from_the_wheel(installed):
+    """The committed reference images travel in the wheel: every check runs, none is skipped for a missing file."""
+    out = _run(installed, installed["bin"] / "wgpurender", "verify", "--quick").stdout
+    for row in ("stage    triangle", "stage    3d", "scene    unlit"):
+        assert f"{row}" in out and "vs committed" in out, out
+    assert "skip" not in out.lower(), out
+
+
+@pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
+def test_report_from_the_wheel_has_every_step_and_scene(installed):
+    from wgpurender.core.course.steps import stage_steps
+
+    _run(installed, installed["bin"] / "wgpurender", "report", "-o", "r")
+    page = (installed["cwd"] / "r" / "index.html").read_text()
+    scenes = ["unlit", "retro", "brick", "final_subpass", "final"]  # the repository's scenes (not the tutorial's)
+    for name in [s.stage for s in stage_steps()] + scenes:
+        assert f"{name}_wgpu.png" in page, name
+        assert (installed["cwd"] / "r" / f"{name}_wgpu.png").is_file(), name
+    assert "is missing" not in page and "has no measured table" not in page  # the closing sections' docs travel
+
+
+def test_bench_perf_quick_from_the_wheel_measures_the_scenes(installed):
+    _run(installed, installed["bin"] / "wgpurender", "bench", "perf", "--quick", "--no-raw", "--out", "b")
+    rows = (installed["cwd"] / "b" / "results.csv").read_text().splitlines()
+    scenes = {row.split(",")[1] for row in rows if row.startswith("scene,")}
+    assert {"final", "final_subpass"} <= scenes, scenes
+    assert "not found" not in (installed["cwd"] / "b" / "report.md").read_text()
+
+
+@pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
+def test_the_notebook_from_the_wheel(installed):
+    """The notebook shipped in the wheel, copied into the empty folder, runs on a kernel of the venv's python."""
+    nb = installed["cwd"] / "tour.ipynb"
+    code = ("import shutil, nbformat, nbclient; from wgpurender.core.assets import notebook_path; "
+            f"shutil.copy(notebook_path(), {str(nb)!r}); nb = nbformat.read({str(nb)!r}, as_version=4); "
+            "nbclient.NotebookClient(nb, timeout=300, kernel_name='python3').execute(); "
+            "print(sum('final_subpass' in o.get('text', '') for c in nb.cells for o in c.get('outputs', [])))")
+    assert int(_run(installed, installed["python"], "-c", code).stdout.split()[-1]) >= 1

@@ -12,7 +12,7 @@ For scripts and notebooks::
 
 A target is a stage name (``wgpurender stages`` lists them, :func:`stage_names` returns them) or a
 scene file (``*.toml``). Every call returns an :class:`Image`: ``.pixels`` (numpy, ``(H, W, 4)``),
-``.save(path)``, ``.timings``, ``.plan`` (the render plan, for a scene on the wgpu path) and a
+``.save(path)``, ``.timings``, ``.plan`` (the render plan a scene was drawn from, on either path) and a
 PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` with a message that
 says how to fix it (the CLI prints the same message).
 
@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from wgpurender.core import checks
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -52,7 +53,7 @@ class Image:
     ``path``: ``"wgpu"``, ``"raw"`` (the raw-Vulkan reference) or ``"derived"`` (heatmap, montage).
     ``timings``: milliseconds; ``call_ms`` is the whole call (set-up included), ``frame_ms`` one
     steady-state frame (wgpu path only: record, submit, GPU work, read back).
-    ``plan``: the :class:`~wgpurender.core.plan.RenderPlan` a scene was drawn from (wgpu path), else None.
+    ``plan``: the :class:`~wgpurender.core.plan.RenderPlan` a scene was drawn from (either path), else None.
     """
 
     pixels: np.ndarray
@@ -106,53 +107,73 @@ def _target(target: Target) -> str:
 
 
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-           backend: str | None = None, t: float = 0.0) -> Image:
+           backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
 
     ``size``: ``(width, height)`` or ``"WxH"`` (default 800x600 for a stage, the scene's
     ``[render] size`` for a scene); ``msaa``: 1 or 4 (default: the stage's or the scene's);
     ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``Vulkan``
-    (default), ``Metal``, ``D3D12`` or ``OpenGL``; ``t``: animation time in seconds.
+    (default), ``Metal``, ``D3D12`` or ``OpenGL``; ``t``: animation time in seconds; ``anisotropy``
+    (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``. A scene is drawn from
+    :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
+    ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
+    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.wgpu_path.gpu import get_context
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     ctx = get_context(checks.backend(backend))
-    plan = None
-    from wgpurender.core.course.formats import is_scene_file
-
     if is_scene_file(target):
-        from wgpurender.core.plan import plan_scene_file
-        from wgpurender.wgpu_path.scene_render import render_scene_file
+        from wgpurender.wgpu_path.scene_render import render_plan
 
-        plan = plan_scene_file(target, size=wh, output_format=format, msaa=msaa)
-        result = render_scene_file(target, size=wh, fmt=format, msaa=msaa, t=t, ctx=ctx)
+        result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy), t)
     else:
         from wgpurender.wgpu_path.render import render_stage
 
         result = render_stage(str(target), wh or (800, 600), format, msaa, t, ctx)
     timings = {"frame_ms": result.frame_ms, "call_ms": (time.perf_counter() - start) * 1e3}
-    return Image(result.pixels, str(target), "wgpu", timings, result.adapter, plan)
+    return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
 
 
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-              t: float = 0.0) -> Image:
+              t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY) -> Image:
     """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
 
-    Same arguments as :func:`render` (no ``backend``: this path is Vulkan). Needs ``glslc``
-    on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
+    Same arguments as :func:`render` (no ``backend``: this path is Vulkan). A scene's plan is resolved by the
+    same function for the raw path's device (``Image.plan``), so on one device both paths draw one plan.
+    Needs ``glslc`` on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
     """
-    from wgpurender.raw_path import render_reference
+    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.raw_path.instance import get_vulkan
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
-    pixels = render_reference(target, size=wh, fmt=format, msaa=msaa, t=t)
+    plan = None
+    if is_scene_file(target):
+        from wgpurender.core.plan import resolve_plan
+        from wgpurender.raw_path.scene import render_scene_plan
+
+        plan = resolve_plan(target, get_vulkan().adapter_facts(), size=wh, output_format=format, msaa=msaa,
+                            anisotropy=anisotropy)
+        pixels = render_scene_plan(plan, t)
+    else:
+        from wgpurender.raw_path import render_reference
+
+        pixels = render_reference(target, size=wh, fmt=format, msaa=msaa, t=t)
     timings = {"call_ms": (time.perf_counter() - start) * 1e3}
-    return Image(pixels, str(target), "raw", timings, get_vulkan().describe())
+    return Image(pixels, str(target), "raw", timings, get_vulkan().describe(), plan)
+
+
+def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy) -> RenderPlan:
+    """The one plan (core/plan/resolve.py) for the wgpu path on ``ctx``'s adapter (None: no adapter)."""
+    from wgpurender.core.plan import resolve_plan
+    from wgpurender.wgpu_path.scene_render import adapter_facts
+
+    facts = adapter_facts(ctx) if ctx is not None else None
+    return resolve_plan(scene, facts, size=size, output_format=format, msaa=msaa, anisotropy=anisotropy)
 
 
 def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
@@ -210,12 +231,33 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
     return Image(out, " | ".join(getattr(i, "target", "array") for i in images), "derived")
 
 
-def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None) -> str:
-    """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints)."""
-    from wgpurender.core.plan import explain_scene
+def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
+         backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY) -> RenderPlan:
+    """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
+    decided for it by :func:`wgpurender.core.plan.resolve_plan`); with no usable adapter, the plan with those
+    knobs left open (it says so)."""
+    from wgpurender.core.course.formats import is_scene_file
 
     scene, size, msaa, format = _target(scene), _size(size), checks.msaa(msaa), checks.output_format(format)
-    return explain_scene(scene, size=size, output_format=format, msaa=msaa)
+    if not is_scene_file(scene):
+        raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
+    return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy)
+
+
+def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
+            backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY) -> str:
+    """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints): :func:`plan`'s."""
+    return plan(scene, size, msaa, format, backend, anisotropy).explain()
+
+
+def _context_or_none(backend: str | None):
+    """The wgpu context :func:`render` would use, or None when there is none (the plan is still printable)."""
+    from wgpurender.wgpu_path.gpu import get_context
+
+    try:
+        return get_context(backend)
+    except UserError:
+        return None
 
 
 def stage_names() -> list[str]:
@@ -232,5 +274,5 @@ def reference_stage_names() -> list[str]:
     return reference_stage_names()
 
 
-__all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "explain", "stage_names",
+__all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "plan", "explain", "stage_names",
            "reference_stage_names"]

@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import load_png, save_png, to_uint8
 from wgpurender.core.tolerances import (
@@ -46,7 +47,7 @@ from wgpurender.core.tolerances import (
 )
 
 REPO = Path(__file__).resolve().parent.parent
-SCENE_DIR = REPO / "assets" / "scenes"
+SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
 ANCHORS = REPO.parent / "shared" / "anchors" / "vulkan-tutorial"
 TUTORIAL_FRAMES = {"vulkan_tutorial_28": "ref_28_model_loading_1x.png",
                    "vulkan_tutorial_30": "ref_30_multisampling_4xMSAA.png"}

@@ -1,6 +1,6 @@
 """Degenerate geometry: zero-area triangles, zero-length normals and degenerate UVs put no NaN/inf in the image.
 
-A 6x6-vertex grid (50 triangles) facing the camera, rendered lit and normal-mapped (shaders_wgsl/numerics_lit.wgsl)
+A 6x6-vertex grid (50 triangles) facing the camera, rendered lit and normal-mapped (numerics_lit.wgsl)
 into rgba32float (64x64), where non-finite values are stored as they are instead of being clamped. Degenerate on
 purpose: one row of vertices collapsed onto its neighbours (zero-area triangles), a 2x2 block of vertices with
 zero-length normals (the triangles between them interpolate an exact zero normal), and a patch where all UVs are
@@ -18,10 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from numerics.lit import interleave, render_lit
 
 from wgpurender.core import transforms as T
 from wgpurender.core.tangents import vertex_tangents
-from wgpurender.numerics.lit import interleave, render_lit
 
 N = 6  # vertices per side
 
@@ -95,7 +95,7 @@ def test_safe_normalize_on_the_gpu(ctx, v):
 
     Tiny and huge finite vectors keep their direction (relative 1e-6); zero and inf give the fallback.
     """
-    from wgpurender.numerics.gpu_eval import run_compute
+    from numerics.gpu_eval import run_compute
 
     mats = np.stack([np.eye(4, dtype=np.float32)] * 2)
     out = run_compute(

@@ -16,8 +16,7 @@ Expected (tolerance 0 px, exact counts):
 from __future__ import annotations
 
 import pytest
-
-from wgpurender.numerics.depth_planes import DepthScene, render_planes, stored_depth, wrong_pixels
+from numerics.depth_planes import DepthScene, render_planes, stored_depth, wrong_pixels
 
 SIZE = (64, 64)
 PIXELS = SIZE[0] * SIZE[1]

@@ -1,7 +1,7 @@
 """A model 1e6 units from the origin, the camera a few units beside it: no vertex jitter with camera-relative math.
 
 The GPU computes clip positions in float32 exactly as a vertex shader would (compute probe
-shaders_wgsl/numerics_transform.wgsl: clip = second * (first * p)); the reference is the same product in float64
+numerics_transform.wgsl: clip = second * (first * p)); the reference is the same product in float64
 on the same float32 model-space vertices. Error = max screen-space distance in pixels on a 256x256 viewport,
 over 8 camera positions 1 mm apart (a slow camera move: where jitter shows).
 
@@ -15,10 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from numerics.camera_relative import camera_relative, eye_position, model_view
+from numerics.gpu_eval import run_compute
 
 from wgpurender.core import transforms as T
-from wgpurender.numerics.camera_relative import camera_relative, eye_position, model_view
-from wgpurender.numerics.gpu_eval import run_compute
 
 SIZE = (256, 256)
 ORIGIN = np.array([1e6, 12.3, -1e6 + 0.37])

@@ -20,8 +20,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import STANDARD_4X
-
-from wgpurender.numerics.coverage import cell_sums, render_coverage, triangle_areas
+from numerics.coverage import cell_sums, render_coverage, triangle_areas
 
 CELL, GRID = 4, 64
 SIZE = (CELL * GRID, CELL * GRID)

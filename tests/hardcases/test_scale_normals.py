@@ -5,7 +5,7 @@ R diag(1/s), so a unit normal n maps to normalize(R (n / s)) (numerics.normals.a
 atan2(|a x b|, a . b), over 518 normals (random + the six axis directions).
 
 - CPU: transforms.normal_matrix (sign-corrected cofactor), float64: < 1e-12 rad for every scale (measured 3e-16).
-- GPU compute probe (shaders_wgsl/numerics_normals.wgsl, float32), ours = numerics.normals.gpu_normal_matrix
+- GPU compute probe (tests/numerics/shaders/numerics_normals.wgsl, float32), ours = numerics.normals.gpu_normal_matrix
   + safe_normalize: < 1e-6 rad and finite for every scale (measured 1.0e-7 rad on lavapipe).
 - Counter-examples: the world matrix used for normals: ~90 degrees off for non-uniform scale; the cofactor without
   the sign correction: 180 degrees off for mirrors; the inverse-transpose computed in float32 on the GPU
@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from numerics.gpu_eval import run_compute
+from numerics.lit import interleave, render_lit
+from numerics.normals import analytic_normals, gpu_normal_matrix
 
 from wgpurender.core import transforms as T
 from wgpurender.core.tangents import vertex_tangents
-from wgpurender.numerics.gpu_eval import run_compute
-from wgpurender.numerics.lit import interleave, render_lit
-from wgpurender.numerics.normals import analytic_normals, gpu_normal_matrix
 
 R = T.rotate((0.2, 1.0, 0.4), 0.9) @ T.rotate((1.0, 0.0, 0.0), 0.3)
 SCALES = {

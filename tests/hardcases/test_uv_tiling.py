@@ -17,8 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from wgpurender.numerics.uv_tiling import exact_uvs, render_uv_probe, wrap_uvs
+from numerics.uv_tiling import exact_uvs, render_uv_probe, wrap_uvs
 
 SIZE = (128, 32)
 TEX = 256

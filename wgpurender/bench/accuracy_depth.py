@@ -1,14 +1,14 @@
 """The depth-stress scene: the depth knob where it matters, with an analytic ground truth.
 
 In the final scene (near 0.1, far 50, surfaces metres apart) every depth setup gives nearly the same image.
-This scene is numerics/depth_planes.py's case written as a scene file, so it goes through the real scene
+This scene is tests/numerics/depth_planes.py's case written as a scene file, so it goes through the real scene
 renderer and the same knob code: camera at the origin looking down -z, near 0.01, far 1e5, two unlit
 camera-filling quads at 1e4 (red) and 1e4 * 1.0005 (green), the farther one drawn FIRST. With the standard
 mapping both store depth ~1 - 1e-6, 5e-10 apart, below one step of depth24plus or of float32 near 1, so the
 far quad keeps every pixel; reverse-Z stores ~1e-6 where float32 resolves a 5e-4 relative gap.
 
 Ground truth, analytic: every pixel is the near quad's colour, linear (1, 0, 0) -> sRGB (255, 0, 0).
-Wrong pixels are counted with :func:`wgpurender.numerics.depth_planes.wrong_pixels` (green shows).
+Wrong pixels are counted with :func:`wrong_pixels` (green shows; the hard-case test counts with it too).
 """
 
 from __future__ import annotations
@@ -21,6 +21,11 @@ NEAR, FAR = 0.01, 1e5
 DISTANCE, GAP = 1e4, 0.0005
 FOV_Y = 60.0
 NEAR_RGB8 = (255, 0, 0, 255)
+
+
+def wrong_pixels(image: np.ndarray) -> int:
+    """Pixels showing the farther (green) plane instead of the nearer (red) one."""
+    return int(((image[..., 1] > 127) & (image[..., 0] < 128)).sum())
 
 QUAD_OBJ = """# a unit quad in the xy plane facing +z (two counter-clockwise triangles)
 v -1 -1 0

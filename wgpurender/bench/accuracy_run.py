@@ -258,7 +258,7 @@ def unique_rows(rows: list[Row]) -> list[Row]:
 
 def score(case: Case, measured: dict, base_size: tuple[int, int]) -> Row:
     """Errors of a case: against the ground truth (rendered or analytic) and against its knob's top level."""
-    from wgpurender.numerics.depth_planes import wrong_pixels
+    from wgpurender.bench.accuracy_depth import wrong_pixels
 
     m = measured[case.key]
     if case.scene == DEPTH_STRESS:

@@ -28,8 +28,6 @@ import time
 from contextlib import ExitStack
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from wgpurender.bench.encoder import gpu_total, timed_frame
 from wgpurender.bench.report import Result, size_text
 from wgpurender.wgpu_path.gpu import GPUContext
@@ -285,13 +283,3 @@ def bench_stage(ctx: GPUContext, name: str, size: tuple[int, int], frames: int, 
     with RawStageRunner(name, size) as raw_runner:
         samples = measure_interleaved({"wgpu": runner, "raw": raw_runner}, frames, readback_frames)
     return [r for path, s in samples.items() for r in s.results("frames", name, path, size)]
-
-
-def pixels_agree(ctx: GPUContext, name: str, size: tuple[int, int]) -> float:
-    """Largest channel difference between the two paths' images after the benchmark set-up (sanity check)."""
-    from wgpurender.raw_path import render_reference
-    from wgpurender.wgpu_path.render import render_stage
-
-    a = render_stage(name, size, ctx=ctx).pixels.astype(np.float64)
-    b = render_reference(name, size).astype(np.float64)
-    return float(np.abs(a - b).max())

@@ -36,7 +36,7 @@ def _on_cpu(run) -> bool:
 def _targets(run) -> str:
     res = run.results
     rows = []
-    limit = 1.05 if _on_cpu(run) else 1.10
+    limit = 1.05  # issue 22: every stage within 1.05x of raw on a GPU too (issue 7 had 1.10 there)
     for case in sorted({r.case for r in _pick(res, "scene", "frame_ms", "raw")}):
         wg = {r.size: r for r in _pick(res, "scene", "frame_ms", "wgpu") if r.case == case}
         rw = {r.size: r for r in _pick(res, "scene", "frame_ms", "raw") if r.case == case}
@@ -71,7 +71,16 @@ def _targets(run) -> str:
         cpu = _pick(res, "frames", "cpu_ms", "wgpu")
         cpu = [r for r in cpu if r.case == "3d"]
         proxy = " (stage 3d as proxy)"
-    if cpu:
+    untimed = [r for r in _pick(res, "scene", "cpu_ms:untimed", "wgpu") if r.case in ("final", "final_subpass")]
+    calls = [r for r in _pick(res, "scene", "native_calls", "wgpu") if r.case == "final"]
+    if untimed:
+        worst = max(untimed, key=lambda r: r.median)
+        timed = max(r.median for r in cpu) if cpu else float("nan")
+        per = f"; {calls[0].median:.0f} native calls per frame" if calls else ""
+        rows.append(("CPU encode + submit <= 0.3 ms per frame (final scene, as a window draws it)",
+                     f"{fmt_ms(worst.median)} ms ({worst.case} {worst.size}, worst){per}; with pass timestamps "
+                     f"{fmt_ms(timed)} ms", _verdict(run, worst.median <= 0.3)))
+    elif cpu:
         worst = max(r.median for r in cpu)
         rows.append((f"CPU encode + submit <= 0.3 ms per frame{proxy}", f"{fmt_ms(worst)} ms (worst size)",
                      _verdict(run, worst <= 0.3)))
@@ -81,6 +90,14 @@ def _targets(run) -> str:
         fps = 1000.0 / best.median
         rows.append(("10k objects at >= 60 fps", f"{fps:.0f} fps ({best.case.split('/')[0]})",
                      _verdict(run, fps >= 60, "the target is for a GPU" if _on_cpu(run) else "")))
+    million = _one(res, "objects", "gpu-animated/1000000", "wgpu", "800x600", "frame_ms")
+    if million:
+        fps = 1000.0 / million.median
+        cpu = [r.median for r in _pick(res, "objects", "cpu_ms") if r.case.startswith("gpu-animated/")]
+        worst_cpu = max(cpu) if cpu else float("nan")
+        rows.append(("1M animated objects at >= 60 fps, CPU <= 0.3 ms per frame at every count",
+                     f"{fps:.0f} fps (gpu-animated); CPU worst {fmt_ms(worst_cpu)} ms",
+                     _verdict(run, fps >= 60 and worst_cpu <= 0.3, "the target is for a GPU" if _on_cpu(run) else "")))
     inc = [q for _, w, r in _post_increments(res) if r > 0 for q in [w / r]]  # a raw increment <= 0: noise
     if inc:
         worst = max(inc)
@@ -126,6 +143,21 @@ def _startup_table(res: list[Result]) -> str:
     return markdown_table(("case", "path", *(p.removesuffix("_ms") + " ms" for p in PHASES)), rows)
 
 
+def _tails(res: list[Result]) -> str:
+    """Every timed case whose p90 is over TAIL_FACTOR x its median, with its p99; or a line saying none."""
+    from wgpurender.bench.report import TAIL_FACTOR
+
+    timed = [r for r in res if r.metric.endswith("_ms") and r.n >= 5]
+    tails = [r for r in timed if r.has_tail()]
+    head = (f"{len(tails)} of {len(timed)} timed rows have p90 > {TAIL_FACTOR:g}x their median "
+            "(rows of at least 5 samples).")
+    if not tails:
+        return head
+    rows = [(r.family, r.case, r.path, r.size or "-", r.metric, spread(r), f"{r.p90 / r.median:.1f}x") for r in tails]
+    return head + "\n\n" + markdown_table(("family", "case", "path", "size", "metric", "p50 [p10..p90] p99",
+                                            "p90/p50"), rows)
+
+
 def render_markdown(run, plots: dict[str, str]) -> str:
     res = run.results
     lines = ["# wgpurender performance run", ""]
@@ -133,8 +165,9 @@ def render_markdown(run, plots: dict[str, str]) -> str:
     lines += [f"- **command**: `{run.config.command or 'run_perf()'}`",
               f"- **mode**: {'quick (harness check; numbers not meaningful)' if run.config.quick else 'full'}, "
               f"{run.config.timed_frames()} timed frames per case; duration {run.seconds:.0f} s",
-              "", "All times in ms: median [p10..p90] over the timed frames. Compare ratios within this run.", ""]
+              "", "All times in ms: p50 [p10..p90] p99 over the timed frames. Compare ratios within this run.", ""]
     lines += ["## Targets", "", _targets(run), ""]
+    lines += ["## Tails (stalls a median hides)", "", _tails(res), ""]
     if _pick(res, "frames"):
         lines += ["## Frame time: wgpu vs raw Vulkan, same stage", "",
                   "frame = record + submit + wait; cpu = record + submit; gpu = timestamps around the stage's "

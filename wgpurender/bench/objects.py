@@ -8,10 +8,13 @@ Modes (the question each answers: what does one more object cost?):
 - ``immediates``: per object ``set_immediates`` (push constants) and a ``draw``;
 - ``instancing``: the objects in a per-instance vertex buffer, ONE draw for all;
 - ``bundle``: the ``dynamic`` mode's draws recorded once into a render bundle and
-  replayed per frame with ``execute_bundles`` (the recording is paid once, at set-up).
+  replayed per frame with ``execute_bundles`` (the recording is paid once, at set-up);
+- ``gpu-animated`` (bench/objects_gpu.py): the same objects moved, culled and counted by the GPU,
+  one indirect draw; the CPU writes 32 bytes a frame. The four modes above are the CPU-animated
+  teaching baseline beside it.
 
-Every frame moves the objects (a numpy computation, the same for all modes) and
-uploads them where the mode keeps them in a buffer. Quads are a few pixels wide,
+Every frame the four CPU-animated modes move the objects (a numpy computation) and
+upload them where the mode keeps them in a buffer. Quads are a few pixels wide,
 so the cost measured is per object, not per pixel.
 """
 
@@ -24,6 +27,7 @@ import wgpu
 
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import measure
+from wgpurender.bench.objects_data import BACKGROUND, FORMAT, HALF_SIZE, object_params
 from wgpurender.bench.report import Result, size_text
 from wgpurender.core.errors import UserError
 from wgpurender.core.shader_variants import specialise
@@ -36,23 +40,20 @@ from wgpurender.wgpu_path.timing import PassTimer
 SHADER = "bench_objects.wgsl"
 MODES = ("dynamic", "immediates", "instancing", "bundle")
 OBJECT_BYTES = 32  # rect + colour, two vec4f
-FORMAT = "rgba8unorm"
-BACKGROUND = (0.0, 0.0, 0.0, 1.0)
-
-
-HALF_SIZE = (0.005, 0.0067)  # NDC: quads of about 4x4 pixels at 800x600
 
 
 def object_data(count: int, t: float, seed: int = 7, half_size: tuple[float, float] = HALF_SIZE) -> np.ndarray:
-    """(count, 8) float32: quads at random places, drifting with ``t``, random opaque colours."""
-    rng = np.random.default_rng(seed)
-    centres = rng.uniform(-0.98, 0.98, size=(count, 2))
-    phase = rng.uniform(0.0, 2.0 * np.pi, size=count)
+    """(count, 8) float32: quads at random places, drifting with ``t``, random opaque colours.
+
+    The CPU-animated modes recompute this every frame (the teaching baseline); the GPU-animated mode
+    (bench/objects_gpu.py) uploads :func:`object_params` once and computes the same drift in a shader.
+    """
+    centres, phase, colours = object_params(count, seed)
     data = np.empty((count, 8), dtype=np.float32)
     data[:, 0] = centres[:, 0] + 0.01 * np.sin(t + phase)
     data[:, 1] = centres[:, 1] + 0.01 * np.cos(t + phase)
     data[:, 2:4] = half_size
-    data[:, 4:7] = rng.uniform(0.2, 1.0, size=(count, 3))
+    data[:, 4:7] = colours
     data[:, 7] = 1.0
     return data
 
@@ -178,8 +179,13 @@ class ObjectsRenderer:
 
 def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: int,
                   per_draw_limit: int | None = None, size: tuple[int, int] = (800, 600),
-                  log=print) -> list[Result]:
-    """Each mode at each count. Modes that issue one call per object skip counts above ``per_draw_limit``."""
+                  log=print, limits: dict[str, int] | None = None) -> list[Result]:
+    """Each mode at each count. Modes that issue one call per object skip counts above ``per_draw_limit``;
+    ``limits``: the largest count per mode (a mode absent from it has none). Mode ``gpu-animated`` is
+    bench/objects_gpu.py's renderer (animation, culling and the draw's instance count on the GPU)."""
+    from wgpurender.bench.objects_gpu import MODE as GPU_MODE
+    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+
     out: list[Result] = []
     for count in counts:
         for mode in modes:
@@ -188,8 +194,12 @@ def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: 
             if per_draw_limit is not None and mode in ("dynamic", "immediates") and count > per_draw_limit:
                 log(f"  objects: {mode} at {count} skipped (over the per-draw limit {per_draw_limit} here)")
                 continue
+            if limits and count > limits.get(mode, count):
+                log(f"  objects: {mode} at {count} skipped (over this mode's limit {limits[mode]} here)")
+                continue
             start = time.perf_counter()
-            renderer = ObjectsRenderer(ctx, mode, count, size)
+            renderer = GpuAnimatedRenderer(ctx, count, size) if mode == GPU_MODE else ObjectsRenderer(ctx, mode, count,
+                                                                                                     size)
             setup_ms = (time.perf_counter() - start) * 1e3
             n = frames if count <= 10_000 else max(3, frames // 3)
             samples = measure(renderer, n, warmup=1)
@@ -198,4 +208,5 @@ def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: 
             out.append(Result("objects", case, "wgpu", size_text(size), "setup_ms", setup_ms, setup_ms, setup_ms, 1,
                               "pipeline + buffers (+ bundle recording)"))
             log(f"  objects: {case}: frame {np.median(samples.frame):.2f} ms, cpu {np.median(samples.cpu):.2f} ms")
+            del renderer
     return out

@@ -27,6 +27,11 @@ BIG_SIZE = (3840, 2160)
 QUICK_SIZES = ((96, 64),)
 POST_SIZE = (1280, 720)
 FULL_COUNTS = (1_000, 10_000, 100_000)
+GPU_COUNTS = (1_000, 10_000, 100_000, 1_000_000, 10_000_000)  # on a GPU adapter
+# The largest count per objects mode on a GPU: one call per object (dynamic, immediates) or per recorded draw
+# (bundle) is seconds per frame past 100k, and the CPU-animated instancing baseline regenerates and uploads
+# 32 bytes an object per frame (10M: ~1.6 s of numpy and 320 MB a frame): it stops at 1M.
+GPU_MODE_LIMITS = {"dynamic": 100_000, "immediates": 100_000, "bundle": 100_000, "instancing": 1_000_000}
 QUICK_COUNTS = (50, 200)
 CPU_PER_DRAW_LIMIT = 10_000  # lavapipe: one call per object at 100k is minutes of run time, for no insight
 SCENE_FILE = Path("assets/scenes/final.toml")
@@ -190,12 +195,17 @@ def _msaa_post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 
 def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from wgpurender.bench.objects import MODES, bench_objects
+    from wgpurender.bench.objects_gpu import MODE as GPU_MODE
 
-    counts = QUICK_COUNTS if config.quick else FULL_COUNTS
     cpu = ctx.adapter.info["adapter_type"] == "CPU"
+    counts = QUICK_COUNTS if config.quick else FULL_COUNTS if cpu else GPU_COUNTS
     limit = CPU_PER_DRAW_LIMIT if cpu else None
-    run.results += bench_objects(ctx, list(counts), list(MODES), config.timed_frames(), per_draw_limit=limit,
-                                 log=log)
+    run.results += bench_objects(ctx, list(counts), [*MODES, GPU_MODE], config.timed_frames(), per_draw_limit=limit,
+                                 log=log, limits=None if cpu else GPU_MODE_LIMITS)
+    if not cpu and not config.quick:
+        run.notes.append("objects: on a GPU the counts go to 10M for gpu-animated; the per-draw modes and the bundle "
+                         "stop at 100k, the CPU-animated instancing baseline at 1M (10M would be ~1.6 s of numpy "
+                         "and a 320 MB upload per frame).")
     if cpu and max(counts) > CPU_PER_DRAW_LIMIT:
         run.notes.append(f"objects: on a CPU adapter the per-draw modes (dynamic, immediates) stop at "
                          f"{CPU_PER_DRAW_LIMIT} objects; 100k runs instancing and the bundle only.")

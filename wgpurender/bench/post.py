@@ -23,6 +23,7 @@ import wgpu
 from wgpurender.bench.encoder import gpu_total, timed_frame
 from wgpurender.bench.frames import RawStageRunner, Samples, WgpuStageRunner, measure
 from wgpurender.bench.report import Result
+from wgpurender.core.course.formats import BYTES_PER_PIXEL
 from wgpurender.core.shader_variants import specialise
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
@@ -152,9 +153,6 @@ def bench_probes(ctx: GPUContext, size: tuple[int, int], frames: int) -> list[Re
     for probe in PROBES:
         out += measure(ProbeRunner(ctx, probe, size), frames).results("post-probe", probe.name, "wgpu", size)
     return out
-
-
-BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "rgba16float": 8}
 
 
 def msaa_post_traffic(size: tuple[int, int], fmt: str = "rgba8unorm-srgb") -> dict[str, int]:

@@ -15,7 +15,8 @@ from pathlib import Path
 
 from wgpurender.wgpu_path.timing import Stats
 
-CSV_COLUMNS = ("family", "case", "path", "size", "metric", "median", "p10", "p90", "n", "note")
+CSV_COLUMNS = ("family", "case", "path", "size", "metric", "median", "p10", "p90", "n", "note", "p99")
+TAIL_FACTOR = 3.0  # a case whose p90 exceeds this many medians has stalls, whatever its median says
 
 
 @dataclass(frozen=True)
@@ -30,10 +31,15 @@ class Result:
     p90: float
     n: int
     note: str = ""
+    p99: float = float("nan")  # nan where the row is not a sample distribution (given numbers, one-off values)
 
     @classmethod
     def of(cls, family: str, case: str, path: str, size: str, metric: str, stats: Stats, note: str = "") -> Result:
-        return cls(family, case, path, size, metric, stats.median, stats.p10, stats.p90, stats.n, note)
+        return cls(family, case, path, size, metric, stats.median, stats.p10, stats.p90, stats.n, note, stats.p99)
+
+    def has_tail(self) -> bool:
+        """p90 over TAIL_FACTOR x the median: a time distribution with stalls in it (issue 22)."""
+        return self.metric.endswith("_ms") and self.n >= 5 and self.median > 0 and self.p90 > TAIL_FACTOR * self.median
 
     def key(self) -> tuple[str, str, str, str]:
         """What a peer must share to be compared: everything but the path."""
@@ -66,7 +72,7 @@ def write_csv(results: Iterable[Result], path: Path) -> Path:
         writer.writeheader()
         for r in results:
             row = asdict(r)
-            for name in ("median", "p10", "p90"):
+            for name in ("median", "p10", "p90", "p99"):
                 row[name] = f"{row[name]:.4f}"
             writer.writerow(row)
     return path
@@ -77,8 +83,8 @@ def read_csv(path: Path) -> list[Result]:
     out = []
     with Path(path).open(newline="") as f:
         for row in csv.DictReader(f):
-            values = {k: (float(v) if types[k] == "float" else int(v) if types[k] == "int" else v)
-                      for k, v in row.items()}
+            values = {k: (float(v or "nan") if types[k] == "float" else int(v) if types[k] == "int" else v)
+                      for k, v in row.items() if k in types}
             out.append(Result(**values))
     return out
 
@@ -93,7 +99,9 @@ def fmt_ms(value: float) -> str:
 
 
 def spread(r: Result) -> str:
-    return f"{fmt_ms(r.median)} [{fmt_ms(r.p10)}..{fmt_ms(r.p90)}]"
+    """p50 [p10..p90], and p99 where the row has one: the tail a median hides."""
+    tail = "" if math.isnan(r.p99) else f" p99 {fmt_ms(r.p99)}"
+    return f"{fmt_ms(r.median)} [{fmt_ms(r.p10)}..{fmt_ms(r.p90)}]{tail}"
 
 
 def markdown_table(header: Sequence[str], rows: Iterable[Sequence[str]]) -> str:
@@ -105,7 +113,7 @@ def markdown_table(header: Sequence[str], rows: Iterable[Sequence[str]]) -> str:
 def results_table(results: Sequence[Result]) -> str:
     """Every row: case, path, size, metric, median [p10..p90], n, note."""
     rows = [(r.case, r.path, r.size or "-", r.metric, spread(r), r.n, r.note) for r in results]
-    return markdown_table(("case", "path", "size", "metric", "median [p10..p90]", "n", "note"), rows)
+    return markdown_table(("case", "path", "size", "metric", "p50 [p10..p90] p99", "n", "note"), rows)
 
 
 def comparison_table(results: Sequence[Result], numerator: str = "wgpu", denominator: str = "raw",

@@ -17,6 +17,7 @@ from pathlib import Path
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
 from wgpurender.bench.report import Result, size_text
+from wgpurender.core.assets import resolve_scene
 from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.timing import Stats
@@ -97,7 +98,7 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
     A note with no results means skipped (the scene file is absent); a note with results says why
     the raw peer is missing.
     """
-    path = Path(path)
+    path = resolve_scene(path)  # a bundled scene's name or repository path works from any folder
     if not path.is_file():
         return [], f"skipped: scene file {path} not found"
     runner = SceneRunner(ctx, path, size)
@@ -109,7 +110,27 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
         with RawSceneRunner(path, size) as raw_runner:
             samples = measure_interleaved({"wgpu": runner, "raw": raw_runner}, frames, readback_frames)
     results = [r for p, smp in samples.items() for r in smp.results("scene", path.stem, p, size)]
+    results += untimed_results(ctx, runner, path.stem, size, frames)
     for label, ms in runner.passes.items():
         results.append(Result.of("scene", path.stem, "wgpu", size_text(size), f"gpu_ms:{label}",
                                  Stats.of(ms[-frames:]), "GPU time of one pass"))
     return results, (f"{path.name} has no raw peer: {refusal}" if refusal else "")
+
+
+def untimed_results(ctx: GPUContext, runner: SceneRunner, case: str, size: tuple[int, int],
+                    frames: int) -> list[Result]:
+    """The frame as a window makes it (no pass timestamps, no readback): CPU record + submit, and its native
+    calls counted by wrapping the device, queue and encoders (bench/calls.py)."""
+    from wgpurender.bench.calls import steady_calls
+
+    cpu = []
+    for _ in range(frames + 2):
+        cpu.append(run_frame(ctx, runner.renderer.record, runner.target, runner.t, label="bench-scene",
+                             read_back=False, wait=True).cpu_ms)
+    calls = steady_calls(ctx, runner.renderer.record, runner.target)
+    n = sum(calls.values())
+    detail = ", ".join(f"{k} {v}" for k, v in sorted(calls.items()))
+    s = size_text(size)
+    return [Result.of("scene", case, "wgpu", s, "cpu_ms:untimed", Stats.of(cpu[2:]),
+                      "record + submit of the frame without pass timestamps (as a window draws it)"),
+            Result("scene", case, "wgpu", s, "native_calls", n, n, n, 1, f"per steady-state frame: {detail}")]

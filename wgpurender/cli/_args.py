@@ -43,8 +43,16 @@ def add_backend_arg(parser: argparse.ArgumentParser) -> None:
         "--backend",
         type=backend_arg,
         default=None,
-        help="graphics backend: Vulkan (default), Metal, D3D12 or OpenGL; also $WGPURENDER_BACKEND",
+        help="graphics backend: vulkan (default), opengl, metal, d3d12 or auto (the best adapter of any); "
+             "also $WGPURENDER_BACKEND",
     )
+
+
+def add_anisotropy_arg(parser: argparse.ArgumentParser) -> None:
+    """--anisotropy, with the same choices and default on every command that draws a scene."""
+    from wgpurender.core.anisotropy import ANISOTROPY_HELP, ANISOTROPY_RULES, DEFAULT_ANISOTROPY
+
+    parser.add_argument("--anisotropy", choices=ANISOTROPY_RULES, default=DEFAULT_ANISOTROPY, help=ANISOTROPY_HELP)
 
 
 def add_render_args(parser: argparse.ArgumentParser) -> None:

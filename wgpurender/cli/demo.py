@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import argparse
 
-from wgpurender.cli._args import size_arg, time_arg
+from wgpurender.cli._args import add_anisotropy_arg, size_arg, time_arg
 
+BENCHMARK_DEFAULTS = {"benchmark_warmup": 2.0, "benchmark_runtime": 10.0, "benchmark_result_file": "benchmark.csv"}
 CONTROLS = ("left drag orbits, right/middle drag pans, scroll zooms; arrows/WASD orbit, +/- (Q/E) zoom, "
             "R or Home resets the camera, Esc quits")
 
@@ -43,40 +44,42 @@ def register(subparsers) -> None:
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
     p.add_argument("--time", type=time_arg, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
-    p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
-    p.add_argument("--anisotropy", choices=("auto", "scene"), default="auto",
-                   help="auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as "
-                   "lavapipe (seconds per frame there otherwise; --explain says why); scene: always the scene's")
+    p.add_argument("--backend", default=None,
+                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
+    add_anisotropy_arg(p)
     p.add_argument("--raw", action="store_true",
                    help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
-                   "in flight (wgpurender/raw_path/window.py); stages as 'wgpurender reference' has them")
+                   "in flight (wgpurender/raw_path/window.py); stages as 'wgpurender reference' has them; "
+                   "--anisotropy, --validation and --benchmark work there too, --backend is refused")
     p.add_argument("--validation", action="store_true",
                    help="turn on the Vulkan validation layer (as $WGPURENDER_VALIDATION=1) and count its messages")
     bench = p.add_argument_group("benchmark (like Sascha Willems' Vulkan examples)")
     bench.add_argument("--benchmark", action="store_true",
                        help="warm up, run for a fixed time, write per-frame times to CSV, then exit")
-    bench.add_argument("--benchmark-warmup", type=_positive, default=2.0, metavar="S",
-                       help="seconds drawn before timing starts (default 2)")
-    bench.add_argument("--benchmark-runtime", type=_positive, default=10.0, metavar="S",
-                       help="seconds of timed frames (default 10)")
-    bench.add_argument("--benchmark-result-file", default="benchmark.csv", metavar="CSV",
-                       help="where the per-frame times go: frame,frame_ms (default benchmark.csv)")
-    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window/controls.py)
+    bench.add_argument("--benchmark-warmup", type=_positive, default=BENCHMARK_DEFAULTS["benchmark_warmup"],
+                       metavar="S", help="seconds drawn before timing starts (default 2)")
+    bench.add_argument("--benchmark-runtime", type=_positive, default=BENCHMARK_DEFAULTS["benchmark_runtime"],
+                       metavar="S", help="seconds of timed frames (default 10)")
+    bench.add_argument("--benchmark-result-file", default=BENCHMARK_DEFAULTS["benchmark_result_file"], metavar="CSV",
+                       help="where the per-frame times go: frame,frame_ms (default benchmark.csv; --raw too)")
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (core/controls.py)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    if args.raw:
-        from wgpurender.cli._demo_raw import run_raw
-
-        return run_raw(args)
-    import os
-
     from wgpurender.core.errors import UserError
-    from wgpurender.wgpu_path.gpu import VALIDATION_ENV
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
+    benchmark = _benchmark(args)
+    if args.raw:
+        from wgpurender.cli._demo_raw import run_raw
+
+        return run_raw(args, benchmark)
+    import os
+
+    from wgpurender.wgpu_path.gpu import VALIDATION_ENV
+
     if args.validation:
         os.environ[VALIDATION_ENV] = "1"  # read when the first adapter is made, just below
     if args.validation:
@@ -85,7 +88,7 @@ def run(args) -> int:
         counter = collect_validation_messages()
     else:
         counter = None
-    result, ctx = _show(args)
+    result, ctx = _show(args, benchmark)
     print(f"adapter: {ctx.describe()}")
     print(f"frames: {result.frames}, mean frame time {result.mean_frame_ms:.2f} ms")
     if result.benchmark is not None:
@@ -100,22 +103,35 @@ def run(args) -> int:
     return 0
 
 
-def _show(args):
+def _benchmark(args):
+    """The --benchmark spec (its CSV checked writable now, before a window opens), or None without it; the
+    --benchmark-* settings without --benchmark are refused rather than ignored."""
     from pathlib import Path
 
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.frame_times import BenchmarkSpec
+    from wgpurender.core.imageio import check_writable
+
+    if not args.benchmark:
+        given = [f"--{name.replace('_', '-')}" for name, default in BENCHMARK_DEFAULTS.items()
+                 if getattr(args, name) != default]
+        if given:
+            raise UserError(f"{given[0]} sets up the benchmark mode: add --benchmark, or leave it out")
+        return None
+    spec = BenchmarkSpec(args.benchmark_warmup, args.benchmark_runtime, Path(args.benchmark_result_file))
+    check_writable(spec.csv_path)
+    return spec
+
+
+def _show(args, benchmark):
+    from wgpurender.core.controls import parse_script
     from wgpurender.core.imageio import check_writable
     from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.window import run_window
-    from wgpurender.wgpu_path.window.controls import parse_script
-    from wgpurender.wgpu_path.window.frame_times import BenchmarkSpec
     from wgpurender.wgpu_path.window.view import DemoView
 
     if args.screenshot:
         check_writable(args.screenshot)
-    benchmark = None
-    if args.benchmark:
-        benchmark = BenchmarkSpec(args.benchmark_warmup, args.benchmark_runtime, Path(args.benchmark_result_file))
-        check_writable(benchmark.csv_path)
     script = parse_script(args.test_input)
     ctx = get_context(args.backend)
     view = DemoView(ctx, args.target, args.msaa, anisotropy=args.anisotropy)

@@ -6,7 +6,8 @@ from wgpurender.cli._args import add_backend_arg
 
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("info", help="show adapters, the chosen device, its features and limits")
+    p = subparsers.add_parser("info", help="show adapters, the chosen device, its features and limits, and where "
+                              "the course's data (bundled scenes, reference images, the notebook) is")
     add_backend_arg(p)
     p.set_defaults(func=run)
 
@@ -15,7 +16,7 @@ def run(args) -> int:
     from wgpurender.wgpu_path.gpu import _adapters, get_context
 
     print("adapters:")
-    for a in _adapters():
+    for a in _adapters(args.backend):
         info = a.info
         print(f"  {info['backend_type']:<8} {info['adapter_type']:<14} {info['device']} ({info['description']})")
     ctx = get_context(args.backend)
@@ -29,4 +30,14 @@ def run(args) -> int:
         "max-color-attachments",
     ):
         print(f"  {name}: {ctx.limit(name)}")
+    _course_data()
     return 0
+
+
+def _course_data() -> None:
+    """Where the bundled course is (the checkout's folders, or the wheel's copies)."""
+    from wgpurender.core.assets import assets_dir, bundled_scene_names, notebook_path
+
+    print(f"course data: {assets_dir()}")
+    print(f"  bundled scenes (by name: wgpurender render final -o f.png): {', '.join(bundled_scene_names())}")
+    print(f"  notebook: {notebook_path()} (copy it anywhere and open it)")

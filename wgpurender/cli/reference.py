@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from wgpurender.cli._args import format_arg, msaa_arg, size_arg, time_arg
+from wgpurender.cli._args import add_anisotropy_arg, format_arg, msaa_arg, size_arg, time_arg
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 
 
 def register(subparsers) -> None:
@@ -25,18 +26,24 @@ def register(subparsers) -> None:
                    help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float (default for a scene: its "
                    "output_format)")
     p.add_argument("--time", type=time_arg, default=0.0, metavar="T", help="animation time in seconds (default 0)")
+    add_anisotropy_arg(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from wgpurender.core.imageio import check_writable, image_format, save_image
-    from wgpurender.raw_path import render_reference
-    from wgpurender.raw_path.instance import get_vulkan
+    """The API's reference (wgpurender/api.py): a scene's plan resolved for the raw device by the one function."""
+    from wgpurender import api
+    from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.imageio import check_writable, image_format
 
     image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)
-    pixels = render_reference(args.stage, size=args.size, fmt=args.format, msaa=args.msaa, t=args.time)
-    path = save_image(args.output, pixels)
-    print(f"wrote {path} ({pixels.shape[1]}x{pixels.shape[0]})")
-    print(f"device: {get_vulkan().describe()}")
+    if not is_scene_file(args.stage) and args.anisotropy != DEFAULT_ANISOTROPY:
+        raise UserError(f"--anisotropy applies to scene files: stage {args.stage!r} has its own samplers")
+    image = api.reference(args.stage, size=args.size, msaa=args.msaa, format=args.format, t=args.time,
+                          anisotropy=args.anisotropy)
+    path = image.save(args.output)
+    print(f"wrote {path} ({image.size[0]}x{image.size[1]})")
+    print(f"device: {image.adapter}")
     return 0

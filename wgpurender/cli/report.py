@@ -15,7 +15,8 @@ def register(subparsers) -> None:
     )
     p.add_argument("-o", "--output", required=True, metavar="DIR",
                    help="folder for the site (new, empty, or an earlier report, which is replaced)")
-    p.add_argument("--backend", default=None, help="graphics backend (default Vulkan; also $WGPURENDER_BACKEND)")
+    p.add_argument("--backend", default=None,
+                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
     p.set_defaults(func=run)
 
 

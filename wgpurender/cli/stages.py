@@ -1,21 +1,31 @@
-"""wgpurender stages: list the course stages."""
+"""wgpurender stages: list the course's steps in order (the stages, then step 6, the final model's scene)."""
 
 from __future__ import annotations
 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
-        "stages", help="list the course stages", description="List every stage with the course step it stands for."
-    )
+        "stages", help="list the course steps",
+        description="List every course step in order: its stage (or, for the final model, its bundled scene) "
+                    "and the course step it stands for.")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    from wgpurender.core.course.steps import COURSE, course_step
     from wgpurender.wgpu_path.stages import all_stages
 
     stages = all_stages()
-    width = max(len(n) for n in stages)
-    for name, cls in stages.items():
-        print(f"{name:<{width}}  {cls.summary}")
-        print(f"{'':<{width}}  course step {cls.course_step()}")
+    rows = [(step.stage, _summary(step, stages.get(step.stage)), f"{step.number}: {step.title}") for step in COURSE]
+    rows += [(name, cls.summary, cls.course_step()) for name, cls in stages.items() if course_step(name) is None]
+    width = max(len(name) for name, _, _ in rows)
+    for name, summary, step in rows:
+        print(f"{name:<{width}}  {summary}")
+        print(f"{'':<{width}}  course step {step}")
     return 0
+
+
+def _summary(step, cls) -> str:
+    if step.scene is not None:
+        return f"the bundled scene {step.scene!r} (assets/scenes/{step.scene}.toml): wgpurender render {step.scene}"
+    return cls.summary if cls is not None else "(no wgpu stage yet)"

@@ -11,8 +11,9 @@ value and the scene's look. The mip chain stays as the scene asks: with anisotro
 filter over the mip chain is what keeps minified texels from aliasing.
 
 Rules: ``"scene"`` keeps the scene file's anisotropy everywhere (tests, the raw-path cross-checks,
-benchmarks that compare with the C++ tutorial); ``"auto"`` applies the per-adapter rule (the CLI's
-``render`` and ``demo``), ``"auto"`` with no adapter known keeps the scene's value.
+benchmarks that compare with the C++ tutorial); ``"auto"`` applies the per-adapter rule (the default of
+every command and API call, on both paths, each for its own adapter), ``"auto"`` with no adapter known keeps
+the scene's value.
 """
 
 from __future__ import annotations
@@ -23,6 +24,9 @@ from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.errors import UserError
 
 ANISOTROPY_RULES = ("auto", "scene")
+DEFAULT_ANISOTROPY = "auto"  # every command's and API call's default (core/plan/resolve.py draws every plan)
+ANISOTROPY_HELP = ("auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as lavapipe "
+                   "(seconds per frame there otherwise; render --explain says why); scene: always the scene's")
 CPU_ANISOTROPY = 1
 
 

@@ -67,8 +67,12 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
             doc_json, glb_bin = _split_glb(raw)
         else:
             doc_json = json.loads(raw.decode("utf-8"))
+    except GltfVersionError as err:
+        raise UserError(f"{path}: {err}") from None
     except (ValueError, UnicodeDecodeError, struct.error, RecursionError) as err:
         raise UserError(f"malformed glTF file {path}: {err}") from None
+    check_version(path, doc_json)
+    check_required_extensions(path, doc_json)
     try:
         gltf_schema.check(doc_json)
         gltf_rules.check_rules(doc_json)
@@ -78,9 +82,44 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
     return GltfDocument(path, doc_json, buffers)
 
 
+class GltfVersionError(ValueError):
+    """A GLB container of another glTF version (its header says so before any JSON is read)."""
+
+
+# Extensions a file may list in extensionsRequired: none, so far (each one changes what a correct render is).
+SUPPORTED_REQUIRED_EXTENSIONS: frozenset[str] = frozenset()
+
+
+def check_version(path: Path, doc_json: object) -> None:
+    """glTF 2.x only, checked before the 2.0 schema (a 1.0 file breaks it in ways that would hide the reason)."""
+    asset = doc_json.get("asset") if isinstance(doc_json, dict) else None
+    version = asset.get("version") if isinstance(asset, dict) else None
+    if version is None:
+        return  # the schema check names the missing asset / version
+    major = str(version).split(".", 1)[0]
+    if major != "2":
+        raise UserError(f"{path}: glTF {version} is not supported (glTF 2.0 only); convert it to glTF 2.0, e.g. "
+                        "with Blender (import, then File > Export > glTF 2.0) or gltf-pipeline")
+
+
+def check_required_extensions(path: Path, doc_json: object) -> None:
+    """An extension in ``extensionsRequired`` changes what the file means: refuse each one we do not implement."""
+    required = doc_json.get("extensionsRequired", []) if isinstance(doc_json, dict) else []
+    if not isinstance(required, list):
+        return
+    missing = [str(name) for name in required if name not in SUPPORTED_REQUIRED_EXTENSIONS]
+    if missing:
+        raise UserError(f"{path}: requires the glTF extension(s) {', '.join(missing)}, which wgpurender does not "
+                        "support; re-export the model without them (e.g. without Draco or meshopt compression, "
+                        "KHR_mesh_quantization or KHR_texture_basisu)")
+
+
 def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
     magic, version, length = struct.unpack_from("<III", raw, 0)
-    if magic != GLB_MAGIC or version != 2:
+    if magic == GLB_MAGIC and version != 2:
+        raise GltfVersionError(f"binary glTF version {version} is not supported (glTF 2.0 only); convert it to "
+                               "glTF 2.0, e.g. with Blender or gltf-pipeline")
+    if magic != GLB_MAGIC:
         raise ValueError(f"not a glTF 2.0 binary (version {version})")
     offset, doc_json, binary = 12, None, None
     while offset + 8 <= min(length, len(raw)):
@@ -116,27 +155,51 @@ def read_accessor(doc: GltfDocument, index: int) -> np.ndarray:
     """An accessor's elements as an (count, width) array; normalized integers become float32 in [0,1]/[-1,1]."""
     try:
         acc = doc.json["accessors"][index]
-        if "sparse" in acc:
-            raise UserError(f"glTF file {doc.path}: sparse accessor {index} is not supported (re-export without it)")
         dtype = np.dtype(COMPONENT_DTYPES[acc["componentType"]]).newbyteorder("<")
         width, count = TYPE_WIDTHS[acc["type"]], int(acc["count"])
         if "bufferView" not in acc:
             out = np.zeros((count, width), dtype)
         else:
-            view = doc.json["bufferViews"][acc["bufferView"]]
-            data = doc.buffers[view["buffer"]]
-            start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
-            stride = view.get("byteStride") or dtype.itemsize * width
-            if count and start + stride * (count - 1) + dtype.itemsize * width > len(data):
-                raise ValueError("accessor runs past the end of its buffer")
-            out = np.ndarray((count, width), dtype, buffer=data, offset=start, strides=(stride, dtype.itemsize))
-            out = out.copy()
-    except (KeyError, IndexError, TypeError, ValueError) as err:
+            out = _view_elements(doc, acc["bufferView"], acc.get("byteOffset", 0), dtype, width, count)
+        if "sparse" in acc:
+            _apply_sparse(doc, acc["sparse"], out, dtype, width)
+    except (KeyError, IndexError, TypeError, ValueError, AttributeError) as err:
         raise UserError(f"malformed glTF file {doc.path}: accessor {index}: {err!r}") from None
     if acc.get("normalized") and out.dtype.kind in "iu":
         info = np.iinfo(out.dtype)
         out = np.maximum(out.astype(np.float32) / info.max, -1.0)
     return out
+
+
+def _view_elements(doc: GltfDocument, view_index: int, offset: int, dtype: np.dtype, width: int,
+                   count: int, *, strided: bool = True) -> np.ndarray:
+    """``count`` elements of ``width`` components from a bufferView (its byteStride honoured), copied."""
+    view = doc.json["bufferViews"][view_index]
+    data = doc.buffers[view["buffer"]]
+    start = view.get("byteOffset", 0) + offset
+    stride = (view.get("byteStride") if strided else None) or dtype.itemsize * width
+    end = view.get("byteOffset", 0) + view.get("byteLength", len(data))
+    if count and start + stride * (count - 1) + dtype.itemsize * width > min(len(data), end):
+        raise ValueError("accessor runs past the end of its buffer view")
+    return np.ndarray((count, width), dtype, buffer=data, offset=start, strides=(stride, dtype.itemsize)).copy()
+
+
+SPARSE_INDEX_DTYPES = {5121: np.uint8, 5123: np.uint16, 5125: np.uint32}
+
+
+def _apply_sparse(doc: GltfDocument, sparse: dict, out: np.ndarray, dtype: np.dtype, width: int) -> None:
+    """Replace the elements a sparse accessor names (glTF 2.0 section 3.6.2.3): ``count`` indices, strictly
+    increasing, each below the accessor's count, and as many values, both tightly packed (no byteStride)."""
+    n = int(sparse["count"])
+    indices_info, values_info = sparse["indices"], sparse["values"]
+    index_dtype = np.dtype(SPARSE_INDEX_DTYPES[indices_info["componentType"]]).newbyteorder("<")
+    indices = _view_elements(doc, indices_info["bufferView"], indices_info.get("byteOffset", 0), index_dtype, 1, n,
+                             strided=False).reshape(-1).astype(np.int64)
+    values = _view_elements(doc, values_info["bufferView"], values_info.get("byteOffset", 0), dtype, width, n,
+                            strided=False)
+    if n and (indices.max() >= len(out) or np.any(np.diff(indices) <= 0)):
+        raise ValueError(f"sparse indices must increase strictly and stay below count {len(out)}")
+    out[indices] = values
 
 
 def loaded_primitives(doc: GltfDocument) -> list[tuple[int, int, dict]]:

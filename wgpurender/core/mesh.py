@@ -4,8 +4,10 @@ UV convention of :class:`Mesh` (the glTF / Vulkan / wgpu one): u = 0 at the left
 image, so ``uv * (width, height)`` addresses texels with row 0 being the first row of the PNG, which is also
 texel row 0 of a wgpu texture written from that PNG. Per format:
 
-- glTF/GLB stores exactly this convention. trimesh flips V on import (and drops TEXCOORD_0 when a primitive has no
-  material, and drops TANGENT): we read TEXCOORD_0 and TANGENT from the file's accessors ourselves (gltf_io.py).
+- glTF/GLB stores exactly this convention. glTF files do not go through trimesh at all: the node graph and every
+  attribute (POSITION, NORMAL, TEXCOORD_n, TANGENT, COLOR_0, indices) are read by the project's own accessor
+  reader (gltf_geometry.py, gltf_io.read_accessor: byteStride, normalized integers, sparse accessors).
+  trimesh still reads OBJ, PLY and STL.
 - OBJ and PLY store v = 0 at the BOTTOM; trimesh passes them through, we convert with v -> 1 - v.
 - STL has no UVs (uvs are zeros, ``has_uvs`` False).
 
@@ -26,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_io
+from wgpurender.core import gltf_geometry, gltf_io
 from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import check_file_size, input_file, resolved
 from wgpurender.core.tangents import area_weighted_normals, face_uv_frames, split_mirrored_vertices, vertex_tangents
@@ -90,13 +92,24 @@ class Material:
     textures: dict[str, TextureRef] = field(default_factory=dict)
 
 
+@dataclass(frozen=True)
+class MeshPart:
+    """A run of triangles drawn with one material of the model file: ``material`` indexes the file's materials
+    (glTF; None = the primitive names none), ``first_index``/``index_count`` count indices (3 per triangle)."""
+
+    material: int | None
+    first_index: int
+    index_count: int
+
+
 @dataclass
 class Mesh:
     """An indexed triangle mesh in plain arrays, ready for vertex/index buffers.
 
     positions (N, 3) float32; normals (N, 3) float32 unit; uvs (N, 2) float32, v = 0 at the top of the image
     (zeros when the file has none: ``has_uvs`` False); tangents (N, 4) float32 or None; indices (F, 3) uint16 when
-    the largest index is below 65535, else uint32 (``index_format`` names the wgpu format).
+    the largest index is below 65535, else uint32 (``index_format`` names the wgpu format); colors (N, 4) float32
+    linear RGBA (glTF COLOR_0) or None; parts: the triangles of each file material, contiguous, in index order.
     """
 
     positions: np.ndarray
@@ -108,6 +121,8 @@ class Mesh:
     tangents_source: str | None = None  # "file", "generated" or None
     material: Material | None = None
     source: Path | None = None
+    colors: np.ndarray | None = None
+    parts: tuple[MeshPart, ...] = ()
 
     @property
     def vertex_count(self) -> int:
@@ -134,6 +149,18 @@ class Mesh:
                                     dtype=np.float32)
 
 
+def index_range(mesh: Mesh, draw) -> tuple[int, int]:
+    """(first index, index count) a plan Draw covers: the mesh part of its file material (``draw.part``, -1 for
+    primitives without one), or the whole mesh when ``part`` is None."""
+    if draw.part is None:
+        return 0, int(mesh.indices.size)
+    wanted = None if draw.part < 0 else draw.part
+    for part in mesh.parts:
+        if part.material == wanted:
+            return part.first_index, part.index_count
+    raise UserError(f"{draw.label}: the model file has no triangles with material {draw.part}")
+
+
 def index_dtype(max_index: int) -> type:
     """uint16 when every index fits below 65535 (0xFFFF is kept free: it is the strip-restart value), else uint32."""
     return np.uint16 if max_index < 65535 else np.uint32
@@ -149,6 +176,8 @@ def build_mesh(
     generate_tangents: bool = True,
     material: Material | None = None,
     source: str | os.PathLike | None = None,
+    colors: np.ndarray | None = None,
+    parts: tuple[MeshPart, ...] = (),
 ) -> Mesh:
     """Validate arrays and complete them into a :class:`Mesh` (the vectorised pipeline every loader ends in).
 
@@ -165,7 +194,8 @@ def build_mesh(
     _check_gpu_range(what, "vertex position", positions, MAX_COORDINATE)
     if indices.min() < 0 or indices.max() >= len(positions):
         raise UserError(f"{what} has triangle indices outside 0..{len(positions) - 1}; the file is malformed")
-    for label, array, width in (("normals", normals, 3), ("uvs", uvs, 2), ("tangents", tangents, 4)):
+    for label, array, width in (("normals", normals, 3), ("uvs", uvs, 2), ("tangents", tangents, 4),
+                                ("colors", colors, 4)):
         if array is not None and np.shape(array) != (len(positions), width):
             raise UserError(f"{what}: {label} have shape {np.shape(array)}, expected ({len(positions)}, {width})")
     has_uvs = uvs is not None
@@ -183,6 +213,7 @@ def build_mesh(
         indices, src = split_mirrored_vertices(indices, handed, len(positions))
         if len(src) != len(positions):
             positions, normals, uvs = positions[src], normals[src], uvs[src]
+            colors = None if colors is None else np.asarray(colors)[src]
         tangents = vertex_tangents(positions, normals, uvs, indices)
         tangents_source = "generated"
 
@@ -196,6 +227,8 @@ def build_mesh(
         tangents_source=tangents_source,
         material=material,
         source=None if source is None else Path(source),
+        colors=None if colors is None else _checked_colors(what, colors),
+        parts=tuple(parts),
     )
 
 
@@ -213,6 +246,14 @@ def _check_gpu_range(what: str, label: str, values: np.ndarray, limit: float) ->
         worst = wide[bad][0]
         raise UserError(f"{what} has {rows} {label}(s) that are NaN or infinite, or beyond {limit:.3g}, in float32 "
                         f"(the GPU's type), e.g. {worst:g}; fix the model or scale it down before export")
+
+
+def _checked_colors(what: str, colors: np.ndarray) -> np.ndarray:
+    """Vertex colours as float32; NaN or infinite ones are refused (the GPU would blend them into every pixel)."""
+    colors = np.asarray(colors, np.float64)
+    if not np.all(np.isfinite(colors)):
+        raise UserError(f"{what} has vertex colours (COLOR_0) that are NaN or infinite; fix the model")
+    return colors.astype(np.float32)
 
 
 def _complete_normals(positions: np.ndarray, indices: np.ndarray, normals: np.ndarray | None) -> np.ndarray:
@@ -251,6 +292,8 @@ class _Part:
     normals: np.ndarray | None
     uvs: np.ndarray | None
     tangents: np.ndarray | None
+    colors: np.ndarray | None = None
+    material: int | None = None
 
 
 def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_material: bool = True) -> Mesh:
@@ -281,7 +324,9 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
-    return build_mesh(*_concatenate(parts), generate_tangents=generate_tangents, material=material, source=path)
+    positions, faces, normals, uvs, tangents, colors, mesh_parts = _concatenate(parts)
+    return build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
+                      material=material, source=path, colors=colors, parts=mesh_parts)
 
 
 OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least numbers each record needs
@@ -355,29 +400,16 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
 
 
 def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | None]:
+    """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space."""
     doc = gltf_io.read_document(path)
-    scene = _load_scene(path, file_type, skip_materials=True)
-    primitives = gltf_io.loaded_primitives(doc)
-    names = list(scene.geometry.keys())
-    if len(names) != len(primitives):
-        raise UserError(f"cannot read {path}: trimesh found {len(names)} geometries but the file has "
-                        f"{len(primitives)} point, line and triangle primitives; re-export the file "
-                        "(e.g. from Blender as glTF 2.0)")
-    by_name = dict(zip(names, primitives, strict=True))
     parts, material = [], None
-    for transform, name, geom in _placed(scene):
-        _, _, prim = by_name[name]
-        count = len(geom.vertices)
-        uv = gltf_io.primitive_attribute(doc, prim, "TEXCOORD_0")  # raw: v = 0 at the top, as the file says
-        tangents = gltf_io.primitive_attribute(doc, prim, "TANGENT")
-        for label, array in (("TEXCOORD_0", uv), ("TANGENT", tangents)):
-            if array is not None and len(array) != count:
-                raise UserError(f"malformed glTF file {path}: {label} has {len(array)} elements, POSITION {count}")
-        if tangents is not None and tangents.shape[1] != 4:
-            raise UserError(f"malformed glTF file {path}: TANGENT must be VEC4, got {tangents.shape[1]} components")
-        parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, tangents, str(path), name))
-        if material is None and prim.get("material") is not None:
-            mat_name, textures = gltf_io.material_textures(doc, prim["material"])
+    for world, node, geometry in gltf_geometry.mesh_primitives(doc):
+        g = geometry
+        part = _place(world, g.positions, g.faces, g.normals, g.uvs, g.tangents, str(path), node)
+        part.colors, part.material = g.colors, g.material
+        parts.append(part)
+        if material is None and g.material is not None:
+            mat_name, textures = gltf_io.material_textures(doc, g.material)
             material = Material(mat_name, {role: TextureRef(t["uri"], t["data"], t["srgb"])
                                            for role, t in textures.items()})
     return parts, material
@@ -411,10 +443,9 @@ def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "mod
 
 
 def _concatenate(parts: list[_Part]):
-    """One set of arrays from several parts; a part without normals/uvs/tangents gets computed or zero ones."""
-    if len(parts) == 1:
-        p = parts[0]
-        return p.positions, p.faces, p.normals, p.uvs, p.tangents
+    """One set of arrays from several parts, grouped by material (stable: file order within a material), and the
+    index range of each material; a part without normals/uvs/colours gets computed, zero or white ones."""
+    parts = sorted(parts, key=lambda p: -1 if p.material is None else p.material)
     offsets = np.cumsum([0] + [len(p.positions) for p in parts[:-1]])
     positions = np.concatenate([p.positions for p in parts])
     faces = np.concatenate([p.faces + o for p, o in zip(parts, offsets, strict=True)])
@@ -425,9 +456,20 @@ def _concatenate(parts: list[_Part]):
     uvs = None
     if any(p.uvs is not None for p in parts):
         uvs = np.concatenate([p.uvs if p.uvs is not None else np.zeros((len(p.positions), 2)) for p in parts])
+    colors = None
+    if any(p.colors is not None for p in parts):
+        colors = np.concatenate([p.colors if p.colors is not None else np.ones((len(p.positions), 4)) for p in parts])
     # tangents from the file only when every part has them; otherwise all are generated consistently
     tangents = np.concatenate([p.tangents for p in parts]) if all(p.tangents is not None for p in parts) else None
-    return positions, faces, normals, uvs, tangents
+    mesh_parts, first = [], 0
+    for p in parts:
+        count = 3 * len(p.faces)
+        if mesh_parts and mesh_parts[-1].material == p.material:
+            mesh_parts[-1] = MeshPart(p.material, mesh_parts[-1].first_index, mesh_parts[-1].index_count + count)
+        else:
+            mesh_parts.append(MeshPart(p.material, first, count))
+        first += count
+    return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts)
 
 
 def _obj_material(path: Path) -> Material | None:

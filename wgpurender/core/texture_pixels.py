@@ -97,9 +97,10 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
     The size is checked from the header, before any pixel is decoded, so an image
     too large for the GPU fails fast and without allocating it.
     """
-    path = input_file(path, "texture image", f"texture image not found: {path} (check the path)")
+    path = Path(path)
+    source = _embedded_or_file(path)
     try:
-        with Image.open(path) as im:
+        with Image.open(source) as im:
             _check_dims(f"image {path}", im.width, im.height, max_dim)
             check_image_pixels(im.width, im.height, str(path))
             im.load()
@@ -109,6 +110,20 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
         raise UserError(f"image {path} is too large to decode safely ({err}){limit}") from None
     except (OSError, ValueError, SyntaxError) as err:
         raise UserError(f"cannot read image {path}: {err} (is it a valid PNG or JPEG file?)") from None
+
+
+def _embedded_or_file(path: Path):
+    """What Pillow opens: the file, or the bytes of an image embedded in a glTF model (``model.glb#images[k]``,
+    see gltf_materials.embedded_image_path)."""
+    if not os.path.lexists(path):
+        from wgpurender.core.gltf_materials import embedded_image_bytes
+
+        data = embedded_image_bytes(path)
+        if data is not None:
+            import io
+
+            return io.BytesIO(data)
+    return input_file(path, "texture image", f"texture image not found: {path} (check the path)")
 
 
 def _image_to_rgba8(im: Image.Image, path: Path) -> np.ndarray:
@@ -133,6 +148,16 @@ def image_pixels(source, *, max_dim: int | None = None) -> np.ndarray:
     if isinstance(source, (str, os.PathLike)):
         return load_image(source, max_dim=max_dim)
     raise UserError(f"a texture comes from an image path or a numpy array, not {type(source).__name__}")
+
+
+def image_size(path: str | os.PathLike) -> tuple[int, int] | None:
+    """(width, height) from an image file's header (no pixel decoded); None when it cannot be read
+    (the upload then says why, with :func:`load_image`'s message)."""
+    try:
+        with Image.open(_embedded_or_file(Path(path))) as im:
+            return im.width, im.height
+    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError, UserError):
+        return None
 
 
 def mip_level_count(width: int, height: int) -> int:

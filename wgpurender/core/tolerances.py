@@ -23,9 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.assets import reference_dir
 from wgpurender.core.errors import UserError
 
-TABLE_PATH = Path(__file__).resolve().parents[2] / "assets" / "reference" / "tolerances.toml"
+TABLE_PATH = reference_dir() / "tolerances.toml"
 DRIVER_CLASSES = ("lavapipe", "gpu")
 
 
@@ -184,6 +185,46 @@ def format_table(table: dict) -> str:
     for name, rows in table.get("references", {}).items():
         for cls, row in rows.items():
             lines.append(f'[references."{name}".{cls}]')
+            lines += [f"{key} = {_value(value)}" for key, value in row.items()]
+            lines.append("")
+    return "\n".join(lines)
+
+
+# -- implementation pairs: the same target on two WebGPU stacks of one machine -------------------------------
+IMPLEMENTATIONS_PATH = TABLE_PATH.with_name("implementations.toml")
+IMPLEMENTATIONS_HEADER = """\
+# Tolerances between implementations of the course on ONE machine: a target rendered by wgpu-native over
+# Vulkan (the reference implementation) and by another stack at the same size (read by tests/test_backends.py,
+# tests/test_export_browser.py and `wgpurender verify --implementations`).
+#
+# [implementations.IMPL]: bounded_by = the machine, drivers and date the spread was measured on.
+# [implementations.IMPL.targets.NAME]: max_abs (1/255), changed (share of pixels), flip_mean, measured (the
+# spread). Rule (wgpurender/core/tolerances.calibrate, CPU drivers): max_abs = worst + 1, at least 2;
+# changed, flip_mean = 2 x worst, at least 1% and 0.002. Written by wgpurender.implementations.calibrate.
+"""
+
+
+def implementation_tolerance(implementation: str, name: str, table: dict | None = None) -> Tolerance:
+    """The bounds for target ``name`` on ``implementation`` against wgpu-native's Vulkan render of it."""
+    if table is None:
+        table = load_table(IMPLEMENTATIONS_PATH)
+    impl = table.get("implementations", {}).get(implementation, {})
+    row = impl.get("targets", {}).get(name)
+    if row is None:
+        raise UserError(f"no {implementation} tolerance for '{name}' in {IMPLEMENTATIONS_PATH.name}: measure it "
+                        "with `wgpurender verify --calibrate` and add the row")
+    return Tolerance(name, implementation, int(row["max_abs"]), float(row["changed"]), float(row["flip_mean"]),
+                     str(row.get("measured", "")), str(impl.get("bounded_by", "")), False)
+
+
+def format_implementation_table(table: dict) -> str:
+    lines = [IMPLEMENTATIONS_HEADER]
+    for impl, info in table.get("implementations", {}).items():
+        lines.append(f'[implementations."{impl}"]')
+        lines += [f"{key} = {_value(value)}" for key, value in info.items() if key != "targets"]
+        lines.append("")
+        for name, row in info.get("targets", {}).items():
+            lines.append(f'[implementations."{impl}".targets."{name}"]')
             lines += [f"{key} = {_value(value)}" for key, value in row.items()]
             lines.append("")
     return "\n".join(lines)

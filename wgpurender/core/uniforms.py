@@ -541,7 +541,7 @@ def _sequence(value, n: int, where: str, tname: str) -> list:
 def roundtrip_wgsl(struct: Struct, template: str) -> tuple[str, list[Leaf]]:
     """A compute shader that copies every scalar of ``struct`` (bitcast to u32) into a flat array.
 
-    ``template`` is shaders_wgsl/uniforms_roundtrip.wgsl; its placeholders get the
+    ``template`` is tests/numerics/shaders/uniforms_roundtrip.wgsl (the test's); its placeholders get the
     generated struct declarations, the struct's name and one statement per scalar
     (filled by :func:`wgpurender.core.shader_variants.specialise`). Returns the source and
     the scalars in output order: comparing the output words with the values packed

@@ -25,12 +25,13 @@ def render_reference(
     fmt: str | None = None,
     msaa: int | None = None,
     t: float = 0.0,
+    anisotropy: str = "scene",
 ) -> np.ndarray:
     """Render ``stage`` (or a scene file, ``*.toml``) on the raw-Vulkan path; see
     :func:`wgpurender.raw_path.render.render_reference`."""
     from wgpurender.raw_path.render import render_reference as render
 
-    return render(stage, size=size, fmt=fmt, msaa=msaa, t=t)
+    return render(stage, size=size, fmt=fmt, msaa=msaa, t=t, anisotropy=anisotropy)
 
 
 def reference_stage_names() -> list[str]:

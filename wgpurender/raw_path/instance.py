@@ -16,9 +16,16 @@ from dataclasses import dataclass, field
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan import AdapterFacts, adapter_facts
 from wgpurender.raw_path import validation
 from wgpurender.raw_path.pipeline_cache import create_pipeline_cache, save_pipeline_cache
 
+DEVICE_TYPES = {  # VkPhysicalDeviceType -> the adapter type wgpu reports for it
+    vk.VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: "DiscreteGPU",
+    vk.VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: "IntegratedGPU",
+    vk.VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: "VirtualGPU",
+    vk.VK_PHYSICAL_DEVICE_TYPE_CPU: "CPU",
+}
 API_VERSION = vk.VK_MAKE_VERSION(1, 1, 0)  # 1.1: negative viewport heights (VK_KHR_maintenance1) are core
 
 
@@ -53,6 +60,7 @@ class VulkanContext:
     messenger: object = None
     pipeline_cache: object = None
     pipeline_cache_file: object = None
+    device_type: str = ""  # as wgpu names adapter types: "DiscreteGPU", "IntegratedGPU", "CPU", ... (DEVICE_TYPES)
     _closed: bool = field(default=False, repr=False)
 
     def check_validation(self, what: str) -> None:
@@ -62,6 +70,11 @@ class VulkanContext:
 
     def describe(self) -> str:
         return f"{self.device_name} (raw Vulkan, validation {'on' if self.log else 'off'})"
+
+    def adapter_facts(self) -> AdapterFacts:
+        """What the plan's "auto" knobs need to know about this device (:func:`wgpurender.core.plan.resolve_plan`):
+        the same facts the wgpu path reports for the same device. Push constants (immediates) are core Vulkan."""
+        return adapter_facts(self.device_type, ("immediates",), self.device_name, "Vulkan")
 
     def close(self) -> None:
         if self._closed:
@@ -193,7 +206,7 @@ def create_context(instance_extensions: tuple[str, ...] = (), device_extensions:
     ctx = VulkanContext(
         instance=instance, physical_device=physical, device=device, queue=queue, queue_family=family,
         device_name=props.deviceName, memory_types=types, heap_sizes=heaps, limits=copy_limits(props.limits),
-        log=log, messenger=messenger,
+        log=log, messenger=messenger, device_type=DEVICE_TYPES.get(props.deviceType, "Other"),
     )
     ctx.pipeline_cache = create_pipeline_cache(ctx, props)
     atexit.register(ctx.close)

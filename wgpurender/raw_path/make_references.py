@@ -21,14 +21,16 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.assets import reference_dir, scene_dir
 from wgpurender.core.errors import UserError
 
 REFERENCE_SIZE = (256, 192)
-REFERENCE_DIR = Path(__file__).resolve().parent.parent.parent / "assets" / "reference"
-SCENE_DIR = REFERENCE_DIR.parent / "scenes"
+REFERENCE_DIR = reference_dir()  # the checkout's assets/reference, or the wheel's copy
+SCENE_DIR = scene_dir()
 SCENE_REFERENCE_SIZE = (320, 240)
 # reference name -> scene file in assets/scenes/ (only scenes the raw path can draw: per-pixel post effects)
-SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml"}
+SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml",
+                    "scene_gltf_features": "gltf_features.toml"}
 
 
 def reference_path(stage: str, directory: Path = REFERENCE_DIR) -> Path:

@@ -42,6 +42,7 @@ class PipelineDesc:
     depth_test: bool = False
     subpass: int = 0
     defines: tuple[str, ...] = ()  # glslc -D definitions for both shaders (shader variants)
+    blend: bool = False  # source-over alpha blending, no depth writes (glTF alphaMode BLEND)
 
 
 # -- layout and pipeline --------------------------------------------------------------
@@ -52,6 +53,17 @@ def create_pipeline_layout(ctx: VulkanContext, owned: ExitStack, set_layouts: li
     layout = vk.vkCreatePipelineLayout(ctx.device, info, None)
     owned.callback(vk.vkDestroyPipelineLayout, ctx.device, layout, None)
     return layout
+
+
+def _blend_attachment(blend: bool):
+    """No blending, or source-over: rgb = src * a + dst * (1 - a), alpha = a + dst_a * (1 - a)."""
+    if not blend:
+        return vk.VkPipelineColorBlendAttachmentState(blendEnable=vk.VK_FALSE, colorWriteMask=ALL_COLOR)
+    return vk.VkPipelineColorBlendAttachmentState(
+        blendEnable=vk.VK_TRUE, colorWriteMask=ALL_COLOR,
+        srcColorBlendFactor=vk.VK_BLEND_FACTOR_SRC_ALPHA, dstColorBlendFactor=vk.VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+        colorBlendOp=vk.VK_BLEND_OP_ADD, srcAlphaBlendFactor=vk.VK_BLEND_FACTOR_ONE,
+        dstAlphaBlendFactor=vk.VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, alphaBlendOp=vk.VK_BLEND_OP_ADD)
 
 
 def create_pipeline(ctx: VulkanContext, owned: ExitStack, desc: PipelineDesc, layout, render_pass):
@@ -75,10 +87,10 @@ def create_pipeline(ctx: VulkanContext, owned: ExitStack, desc: PipelineDesc, la
         )
         multisample = vk.VkPipelineMultisampleStateCreateInfo(rasterizationSamples=desc.samples)
         depth = vk.VkPipelineDepthStencilStateCreateInfo(
-            depthTestEnable=desc.depth_test, depthWriteEnable=desc.depth_test,
+            depthTestEnable=desc.depth_test, depthWriteEnable=desc.depth_test and not desc.blend,
             depthCompareOp=vk.VK_COMPARE_OP_LESS, maxDepthBounds=1.0,
         )
-        blend_attachment = vk.VkPipelineColorBlendAttachmentState(blendEnable=vk.VK_FALSE, colorWriteMask=ALL_COLOR)
+        blend_attachment = _blend_attachment(desc.blend)
         blend = vk.VkPipelineColorBlendStateCreateInfo(pAttachments=[blend_attachment])
         dynamic = vk.VkPipelineDynamicStateCreateInfo(
             pDynamicStates=[vk.VK_DYNAMIC_STATE_VIEWPORT, vk.VK_DYNAMIC_STATE_SCISSOR]

@@ -24,6 +24,7 @@ def render_reference(
     fmt: str | None = None,
     msaa: int | None = None,
     t: float = 0.0,
+    anisotropy: str = "scene",
 ) -> np.ndarray:
     """Render one stage (or a scene file, ``*.toml``: size None = its [render] size) with raw Vulkan calls
     and return its pixels, (H, W, 4).
@@ -36,7 +37,7 @@ def render_reference(
     if is_scene_file(stage):  # a scene file: the final scene, drawn by raw_path/scene/
         from wgpurender.raw_path.scene import render_scene_reference
 
-        return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t)
+        return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t, anisotropy=anisotropy)
     cls = get_ref_stage(stage)
     size = size or (800, 600)
     fmt = fmt or cls.default_format

@@ -14,6 +14,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
 from wgpurender.core.safe_write import cleanup_on_signal
@@ -22,7 +23,7 @@ from wgpurender.report.steps import Step, heatmap_scale, scene_step, stage_step
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
-SCENE_DIR = REPO_ROOT / "assets" / "scenes"
+SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
 # Scene files in course order: the minimal plan first, the complete scene, then the C++ tutorial's chapters
 # (those read the tutorial's model from ../shared/anchors and are left out where it is missing).
 SCENES = ("unlit", "retro", "brick", "final_subpass", "final", "vulkan_tutorial_28", "vulkan_tutorial_30")

@@ -11,9 +11,10 @@ import html
 import re
 from pathlib import Path
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-PARETO = REPO_ROOT / "docs" / "img" / "accuracy_pareto.png"
-NUMERICS = REPO_ROOT / "docs" / "numerics.md"
+from wgpurender.core.assets import docs_file
+
+PARETO = docs_file("img/accuracy_pareto.png")  # the checkout's docs/, or the wheel's copy of these two files
+NUMERICS = docs_file("numerics.md")
 HARD_CASES_HEADING = "## Naive vs ours, measured"
 
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import wgpu
@@ -32,6 +33,9 @@ import wgpu
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.targets import Readback
 from wgpurender.wgpu_path.timing import PassTimer
+
+if TYPE_CHECKING:  # pragma: no cover
+    from wgpurender.core.plan import RenderPlan
 
 Record = Callable[[wgpu.GPUCommandEncoder, wgpu.GPUTexture, float], None]
 
@@ -51,6 +55,7 @@ class RenderResult:
     pixels: np.ndarray
     frame_ms: float  # wall time of one steady-state frame: encode, submit, GPU, readback
     adapter: str
+    plan: RenderPlan | None = None  # the plan a scene was drawn from (None for a stage)
 
 
 def run_frame(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, t: float = 0.0, *, label: str = "frame",
@@ -77,10 +82,9 @@ def run_frame(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, t: float
 
 def _readback(ctx: GPUContext) -> Readback:
     """The context's frame readback (one reused host buffer)."""
-    readback = ctx.__dict__.get("_frame_readback")
-    if readback is None:
-        readback = ctx.__dict__["_frame_readback"] = Readback(ctx)
-    return readback
+    if ctx.frame_readback is None:
+        ctx.frame_readback = Readback(ctx)
+    return ctx.frame_readback
 
 
 def run_frames(ctx: GPUContext, record: Record, target: wgpu.GPUTexture, frames: int, t: float = 0.0,

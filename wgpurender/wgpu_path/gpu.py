@@ -14,13 +14,21 @@ from dataclasses import dataclass, field
 
 import wgpu
 
-from wgpurender.core.course.formats import SAMPLE_COUNTS
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.model import AdapterFacts
+from wgpurender.core.plan.post import immediates_rule
+from wgpurender.core.plan.resolve import adapter_facts
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
 DEFAULT_BACKEND = "Vulkan"
-BACKENDS = ("Vulkan", "Metal", "D3D12", "OpenGL")
+AUTO = "auto"
+# The name an adapter reports (info["backend_type"]) -> wgpu-native's instance flag for that backend only.
+# wgpu-native calls OpenGL "GL" and Direct3D 12 "DX12"; the adapter says "OpenGL" and "D3D12".
+BACKENDS = {"Vulkan": "Vulkan", "OpenGL": "GL", "Metal": "Metal", "D3D12": "DX12"}
+ALIASES = {"gl": "OpenGL", "gles": "OpenGL", "dx12": "D3D12"}
+# "auto": every backend on the instance, the best adapter wins (GPU before CPU, then this order).
+AUTO_ORDER = ("Vulkan", "Metal", "D3D12", "OpenGL")
 
 # Features the renderer uses when the adapter offers them, and works without otherwise.
 OPTIONAL_FEATURES = (
@@ -45,6 +53,9 @@ class GPUContext:
     device: wgpu.GPUDevice
     features: frozenset[str]
     _fence: wgpu.GPUBuffer | None = field(default=None, repr=False)
+    # the frame loop's reusable readback (frame_loop.Readback, made there on first use; typed loosely: gpu.py
+    # sits below frame_loop.py)
+    frame_readback: object | None = field(default=None, repr=False)
 
     @property
     def queue(self) -> wgpu.GPUQueue:
@@ -61,16 +72,27 @@ class GPUContext:
     def has(self, feature: str) -> bool:
         return feature in self.features
 
+    def facts(self) -> AdapterFacts:
+        """What the plan's "auto" knobs need to know about this adapter and device (plain values)."""
+        info = self.info
+        return adapter_facts(info.get("adapter_type", ""), self.features, info.get("device", ""),
+                             info.get("backend_type", ""))
+
+    def use_immediates(self, requested: bool | None = None) -> bool:
+        """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
+        this backend: core/plan/post.py); ``True`` where the rule says no is refused with its reason."""
+        usable, why = immediates_rule(self.facts())
+        if requested and not usable:
+            raise UserError(f"immediates cannot be used on {self.describe()}: {why.split('; ')[0]}; "
+                            "leave them unset (or off) to use a uniform buffer")
+        return usable if requested is None else bool(requested)
+
     def limit(self, name: str) -> int:
         return self.device.limits[name]
 
     def describe(self) -> str:
         info = self.adapter.info
         return f"{info['device']} ({info['backend_type']}, {info['adapter_type']}, {info['description']})"
-
-    def sample_counts(self, fmt: str = "rgba8unorm") -> tuple[int, ...]:
-        """MSAA sample counts this adapter can render with (WebGPU knows 1 and 4)."""
-        return SAMPLE_COUNTS
 
     def wait_idle(self) -> None:
         """Block until every submitted command buffer has finished (the Vulkan analogue: vkQueueWaitIdle).
@@ -99,72 +121,159 @@ class GPUContext:
         self._fence.unmap()
 
     def map_read(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> None:
-        """``buffer.map_sync(READ, ...)``, with the wait done on this thread (see :meth:`wait_idle`).
+        """``buffer.map_sync(READ, ...)``, waited for on this thread: wgpu-py's poll thread is never woken.
 
-        The map request is queued first, then the device is polled here, which runs the map
-        callback on this thread; the promise is then already resolved.
+        wgpu-py 0.32's ``GPUBuffer.map_async`` always asks the device's ``PollThread`` for a token,
+        which wakes that thread; it then polls (blocking) until the map callback runs, while this
+        thread waits on the promise. Two threads handing the GIL back and forth around one map cost
+        ~5-10 ms stalls (the GIL switch interval) on the H100/H200 (issue 22). wgpu-py 0.32 has no
+        public way to map without the thread, so the least surprising way is taken: for the one
+        ``map_async`` call the device's poller is a stand-in (:class:`CallerPolls`) whose token wakes
+        nothing; the device is then polled here (``wgpuDevicePoll(wait=True)``), which runs the map
+        callback on this thread, and the promise is already resolved. Everything else (map state,
+        ``read_mapped``, ``unmap``) stays wgpu-py's own. Where the private attributes are missing (another
+        wgpu-py), this is plain ``map_sync``.
         """
-        promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
-        self.wait_idle()
+        device = self.device
+        poller = getattr(device, "_poller", None)
+        if poller is None or not hasattr(device, "_poll_wait"):
+            buffer.map_sync(wgpu.MapMode.READ, offset, size)
+            return
+        device._poller = CallerPolls(poller)
+        try:
+            promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
+        finally:
+            device._poller = poller
+        for _ in range(3):  # one blocking poll completes every submission: the callback has run
+            device._poll_wait()
+            if getattr(promise, "_state", "") != "pending":
+                break
+        else:  # never seen: hand the wait to the poll thread after all rather than block forever
+            token = poller.get_token()
+            promise.sync_wait()
+            token.set_done()
         promise.sync_wait()
+
+    def read_buffer(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> bytes:
+        """A copy of a COPY_SRC buffer's bytes, read on this thread (``queue.read_buffer`` without the poll thread)."""
+        size = buffer.size - offset if size is None else size
+        staging = self.device.create_buffer(
+            size=(size + 3) // 4 * 4, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="read-buffer")
+        encoder = self.device.create_command_encoder(label="read-buffer")
+        encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, staging.size)
+        self.queue.submit([encoder.finish()])
+        self.map_read(staging)
+        data = bytes(staging.read_mapped(0, staging.size, copy=False))[:size]
+        staging.unmap()
+        staging.destroy()
+        return data
+
+
+class CallerPolls:
+    """Stands in for wgpu-py's ``PollThread`` during one ``map_async``: tokens that wake no thread.
+
+    The caller polls the device itself right after (:meth:`GPUContext.map_read`), so the map
+    callback runs there; ``set_done`` (called by that callback) has nothing to release.
+    """
+
+    def __init__(self, thread: object) -> None:
+        self.thread = thread
+
+    def get_token(self) -> _QuietToken:
+        return _QuietToken()
+
+
+class _QuietToken:
+    def set_done(self) -> None:
+        pass
+
+    def is_done(self) -> bool:
+        return True
 
 
 def requested_backend(backend: str | None = None) -> str:
-    """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan."""
+    """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
+
+    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto."""
     name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
-    for known in BACKENDS:
+    name = ALIASES.get(name.lower(), name)
+    for known in (*BACKENDS, AUTO):
         if name.lower() == known.lower():
             return known
-    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(BACKENDS)}")
+    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(b.lower() for b in BACKENDS)} or auto "
+                    f"(--backend or ${BACKEND_ENV})")
 
 
-@functools.cache
-def _configure_instance_once() -> None:
-    """Create the wgpu instance for the requested backend only, with validation when $WGPURENDER_VALIDATION is set.
+_instance_backend: list[str] = []  # the backend the process's one wgpu instance was created for
 
-    This must run before the first adapter is enumerated (it configures the instance). Limiting
-    the instance to one backend means no OpenGL/EGL enumeration at start-up (the largest part of
-    the context time on lavapipe and NVIDIA alike), and with validation on, NVIDIA's OpenGL
-    backend (enumerated alongside Vulkan otherwise) crashed the process at exit. Validation
-    messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
+
+def _configure_instance_once(backend: str) -> None:
+    """Create the wgpu instance for ``backend`` only, with validation when $WGPURENDER_VALIDATION is set.
+
+    wgpu-py keeps one instance per process, configured before the first adapter is enumerated. Limiting
+    it to one backend means no OpenGL/EGL enumeration at start-up (the largest part of the context time
+    on lavapipe and NVIDIA alike), and with validation on, NVIDIA's OpenGL backend (enumerated alongside
+    Vulkan otherwise) crashed the process at exit. "auto" enables every backend. A later request for
+    another backend in the same process is refused (one process, one instance): run another process.
+    Validation messages from the Vulkan layer arrive through the ``wgpu`` Python logger.
     """
+    if _instance_backend:
+        made = _instance_backend[0]
+        if made not in (backend, AUTO):
+            raise UserError(f"this process already created its wgpu instance for {made} only; the {backend} "
+                            f"backend needs its own process (or start with --backend auto)")
+        return
     from wgpu.backends.wgpu_native.extras import set_instance_extras
 
     from wgpurender.wgpu_path.cffi_types import install_for_wgpu
 
     install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
-    set_instance_extras(backends=[requested_backend()], flags=["Validation"] if validation else ["Default"])
+    flags = ["All"] if backend == AUTO else [BACKENDS[backend]]
+    set_instance_extras(backends=flags, flags=["Validation"] if validation else ["Default"])
+    _instance_backend.append(backend)
 
 
 @functools.cache
-def _adapters() -> tuple:
-    _configure_instance_once()
+def _enumerate() -> tuple:
     return tuple(wgpu.gpu.enumerate_adapters_sync())
 
 
+def _adapters(backend: str | None = None) -> tuple:
+    """The instance's adapters; the instance is made for ``backend`` (or the requested one) if not yet made."""
+    if backend is not None or not _instance_backend:
+        _configure_instance_once(requested_backend(backend))
+    return _enumerate()
+
+
 def available_backends() -> list[str]:
-    """Backend names of the adapters this machine offers, in enumeration order."""
+    """Backend names of the adapters this process's instance offers (only the requested one, unless auto)."""
     return sorted({a.info["backend_type"] for a in _adapters()})
 
 
 def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
-    """The first adapter of the requested backend (hardware before CPU)."""
+    """The best adapter of the requested backend (hardware before CPU); for "auto", of any backend."""
     want = requested_backend(backend)
-    found = [a for a in _adapters() if a.info["backend_type"] == want]
+    adapters = _adapters(want)
+    found = [a for a in adapters if want == AUTO or a.info["backend_type"] == want]
     if not found:
-        others = available_backends()
+        others = sorted({a.info["backend_type"] for a in adapters})
         alt = f"; this machine offers: {', '.join(others)} (use --backend)" if others else ""
-        if want == "Vulkan":
-            raise UserError(f"no Vulkan adapter found: {INSTALL_HINT}{alt}")
+        if want in ("Vulkan", AUTO):
+            raise UserError(f"no {'Vulkan' if want == 'Vulkan' else 'GPU'} adapter found: {INSTALL_HINT}{alt}")
         raise UserError(f"no {want} adapter found{alt}")
     order = {"DiscreteGPU": 0, "IntegratedGPU": 1, "VirtualGPU": 2, "CPU": 3}
-    return min(found, key=lambda a: order.get(a.info["adapter_type"], 4))
+    rank = {name: i for i, name in enumerate(AUTO_ORDER)}
+    return min(found, key=lambda a: (order.get(a.info["adapter_type"], 4), rank.get(a.info["backend_type"], 9)))
+
+
+def get_context(backend: str | None = None) -> GPUContext:
+    """The process-wide context for a backend, created on first use ("auto" and None resolve first)."""
+    return _context(requested_backend(backend))
 
 
 @functools.cache
-def get_context(backend: str | None = None) -> GPUContext:
-    """The process-wide context for a backend, created on first use."""
+def _context(backend: str) -> GPUContext:
     adapter = select_adapter(backend)
     features = frozenset(f for f in OPTIONAL_FEATURES if f in adapter.features)
     limits = {}

@@ -21,20 +21,22 @@ from wgpurender.wgpu_path.gpu import GPUContext
 
 @dataclass(frozen=True)
 class Stats:
-    """Median and spread of a list of samples, in milliseconds."""
+    """Median (p50) and spread of a list of samples, in milliseconds; p99 shows a stall a median hides."""
 
     median: float
     p10: float
     p90: float
     n: int
+    p99: float = float("nan")
 
     @classmethod
     def of(cls, samples_ms: list[float]) -> Stats:
         a = np.asarray(samples_ms, dtype=np.float64)
-        return cls(float(np.median(a)), float(np.percentile(a, 10)), float(np.percentile(a, 90)), len(a))
+        p10, p50, p90, p99 = (float(v) for v in np.percentile(a, [10, 50, 90, 99]))
+        return cls(p50, p10, p90, len(a), p99)
 
     def __str__(self) -> str:
-        return f"{self.median:.3f} ms [{self.p10:.3f}..{self.p90:.3f}] (n={self.n})"
+        return f"{self.median:.3f} ms [{self.p10:.3f}..{self.p90:.3f}] p99 {self.p99:.3f} (n={self.n})"
 
 
 def wall_time(fn: Callable[[], object], *, warmup: int = 2, repeats: int = 10) -> Stats:

@@ -1,8 +1,11 @@
-"""Formats, sample counts and colour-space rules: one home for each fact both paths and the CLI need."""
+"""Formats, sample counts, post paths and colour-space rules: the one home of each fact the paths, the plan,
+the scene validator, the CLI and the benches need (they import it from here; the plan re-exports it)."""
 
 from __future__ import annotations
 
 from pathlib import PurePath
+
+from wgpurender.core.assets import bundled_scene
 
 # MSAA: what WebGPU guarantees without extensions, and all that lavapipe offers.
 SAMPLE_COUNTS = (1, 4)
@@ -12,6 +15,13 @@ SAMPLE_COUNTS = (1, 4)
 DEFAULT_FORMAT = "rgba8unorm-srgb"
 OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float")
 HDR_FORMAT = "rgba16float"  # the scene image under a tone-mapping post chain
+
+# Where a scene's post chain runs: render-pipeline (fragment) passes or compute passes; auto asks the plan.
+POST_PATHS = ("auto", "fragment", "compute")
+
+# Bytes per texel of every format the plan and the benches count traffic for.
+BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
+                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
 
 # Texture colour spaces: colour maps are sRGB-encoded images (the sampler decodes them to linear);
 # data maps (normal, roughness) hold values used as stored.
@@ -34,5 +44,6 @@ SCENE_SUFFIX = ".toml"
 
 
 def is_scene_file(target: str | PurePath) -> bool:
-    """Whether a render target names a scene file (rather than a stage): it ends in ``.toml``."""
-    return str(target).endswith(SCENE_SUFFIX)
+    """Whether a render target names a scene file (rather than a stage): it ends in ``.toml``, or it is a
+    bundled scene's name (``final``: :func:`wgpurender.core.assets.bundled_scene`)."""
+    return str(target).endswith(SCENE_SUFFIX) or bundled_scene(target) is not None

@@ -23,11 +23,17 @@ DEFAULT_CLEAR_COLOR = (0.0, 0.0, 0.0, 1.0)  # linear; [render] clear_color
 REVERSE_Z = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 1.0], [0.0, 0.0, 0.0, 1.0]])
 
 
-def material_factors(albedo_color, roughness: float, lit: bool, has_roughness_map: bool) -> dict:
-    """The per-draw material factors both paths push: with a roughness map, its G channel is the
-    roughness (factor 1); unlit materials carry only the base colour."""
+def material_factors(albedo_color, roughness: float, lit: bool, has_roughness_map: bool, *,
+                     map_scale: float = 1.0, normal_strength: float | None = None,
+                     alpha_cutoff: float | None = None) -> dict:
+    """The per-draw material factors both paths push: with a roughness map, its G channel times ``map_scale`` is
+    the roughness (1 for scene materials, glTF's roughnessFactor); unlit materials carry only the base colour;
+    ``alpha_cutoff`` (alpha-masked variants only) comes last."""
     values = {"base_color": albedo_color}
     if lit:
-        values.update(roughness=1.0 if has_roughness_map else roughness, normal_strength=NORMAL_STRENGTH,
+        values.update(roughness=map_scale if has_roughness_map else roughness,
+                      normal_strength=NORMAL_STRENGTH if normal_strength is None else normal_strength,
                       specular=SPECULAR)
+    if alpha_cutoff is not None:
+        values["alpha_cutoff"] = alpha_cutoff
     return values

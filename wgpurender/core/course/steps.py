@@ -3,6 +3,13 @@
 Both stage registries (wgpurender/wgpu_path/stages/ and wgpurender/raw_path/stages/) list their stages
 in this order, and ``wgpurender stages`` prints it. A stage whose name is not here comes after
 the listed ones (in name order), so a new stage is listed before it is given its place.
+
+Steps 1 to 5 are stage modules (one per path). Step 6, the course's goal, is the final model: a scene
+file (``scene``: a bundled scene's name, ``assets/scenes/<scene>.toml``) drawn by each path's scene renderer
+(wgpu_path/scene_render/ and post/; raw_path/scene/).
+
+MSAA is a fact of the step, so both paths' stages read it from here: ``msaa`` is the sample count a step
+renders with by default, and ``takes_msaa`` whether ``--msaa 4`` applies to it at all.
 """
 
 from __future__ import annotations
@@ -14,18 +21,23 @@ class Step(NamedTuple):
     number: str
     stage: str
     title: str
+    takes_msaa: bool = False
+    msaa: int = 1
+    scene: str | None = None  # a bundled scene's name: the step is a scene file, not a stage module
 
 
 COURSE = (
     Step("1a", "clear", "clear without a render pass (vkCmdClearColorImage)"),
     Step("1b", "clear-pass", "clear with a render pass (loadOp CLEAR, VkClearValue)"),
-    Step("2a", "triangle", "first triangle in NDC, attribute-less"),
-    Step("2b", "triangle-buffers", "vertex + index buffers and the input layout"),
+    Step("2a", "triangle", "first triangle in NDC, attribute-less", takes_msaa=True),
+    Step("2b", "triangle-buffers", "vertex + index buffers and the input layout", takes_msaa=True),
     Step("3a", "offscreen", "offscreen rendering and readback"),
-    Step("3b", "msaa", "4x MSAA with a resolve attachment"),
-    Step("3c", "msaa-post", "4x MSAA, then a post effect reading the resolved image"),
-    Step("4", "3d", "3D with uniform buffers in bind groups (descriptor sets) and push constants"),
-    Step("5", "textured", "textures, combined or separate (texture + one or several samplers)"),
+    Step("3b", "msaa", "4x MSAA with a resolve attachment", takes_msaa=True, msaa=4),
+    Step("3c", "msaa-post", "4x MSAA, then a post effect reading the resolved image", takes_msaa=True, msaa=4),
+    Step("4", "3d", "3D with uniform buffers in bind groups (descriptor sets) and push constants", takes_msaa=True),
+    Step("5", "textured", "textures, combined or separate (texture + one or several samplers)", takes_msaa=True),
+    Step("6", "final", "the final model: textured, normal-mapped and lit, 4x MSAA into an HDR target, then "
+         "post-processing (a scene file)", takes_msaa=True, msaa=4, scene="final"),
 )
 _POSITION = {step.stage: k for k, step in enumerate(COURSE)}
 
@@ -39,3 +51,19 @@ def course_step(stage: str) -> Step | None:
     """The course step a stage stands for, or None for a stage the table does not list yet."""
     k = _POSITION.get(stage)
     return None if k is None else COURSE[k]
+
+
+def stage_steps() -> tuple[Step, ...]:
+    """The steps drawn by stage modules (all but the scene steps)."""
+    return tuple(step for step in COURSE if step.scene is None)
+
+
+def msaa_steps() -> list[str]:
+    """The stages ``--msaa 4`` applies to, in course order (for messages)."""
+    return [step.stage for step in stage_steps() if step.takes_msaa]
+
+
+def step_msaa(stage: str) -> tuple[bool, int]:
+    """(takes --msaa 4, default sample count) of a stage; a stage the table does not list takes no MSAA."""
+    step = course_step(stage)
+    return (step.takes_msaa, step.msaa) if step else (False, 1)

@@ -16,18 +16,24 @@ these; everything a scene does not use is left out:
 
 Every item carries the reason it is there (which scene key asked for it), and
 :meth:`RenderPlan.explain` prints them. Modules: :mod:`.model` (the dataclasses), :mod:`.build`
-(scene -> plan), :mod:`.post` (the post chain: fusion, path, bytes), :mod:`.explain` (the text).
-``python -m core.plan SCENE.toml`` does that from the command line; :func:`explain_scene` is what the CLI calls.
+(scene -> plan, section by section: knobs, then :mod:`.targets` (scene image, MSAA, depth, output),
+:mod:`.draws` (per model: material variant, pipeline, draw), :mod:`.textures` (textures and samplers),
+:mod:`.post` (the post chain: fusion, path, bytes)), :mod:`.objects` (every GPU object, with why),
+:mod:`.explain` (the text), :mod:`.resolve` (:func:`resolve_plan`: the one function every entry point draws
+its plan from, the knobs decided per adapter). ``python -m wgpurender.core.plan SCENE.toml`` prints a plan;
+:func:`explain_scene` is what ``render --explain`` and the API's ``explain`` call.
 
 Variant flags are plain identifiers so a template can test them with
 ``#if normal_map`` (wgpurender/core/shader_variants.py); the light counts are separate
 numbers (``ShaderVariant.counts``) for array sizes.
 """
 
-from wgpurender.core.plan.build import build_plan, explain_scene, main, material_variant, plan_scene_file
+from wgpurender.core.plan.build import build_plan, material_variant, plan_scene_file
 from wgpurender.core.plan.model import *  # noqa: F403  (every dataclass and constant of the plan)
 from wgpurender.core.plan.model import __all__ as _model_names
+from wgpurender.core.plan.objects import GpuObject
 from wgpurender.core.plan.post import plan_post_passes
+from wgpurender.core.plan.resolve import KNOB_FLAGS, adapter_facts, explain_scene, main, resolve_plan
 
-__all__ = [*_model_names, "build_plan", "explain_scene", "main", "material_variant", "plan_post_passes",
-           "plan_scene_file"]
+__all__ = [*_model_names, "KNOB_FLAGS", "GpuObject", "adapter_facts", "build_plan", "explain_scene", "main",
+           "material_variant", "plan_post_passes", "plan_scene_file", "resolve_plan"]

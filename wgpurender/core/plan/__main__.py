@@ -2,6 +2,6 @@
 
 import sys
 
-from wgpurender.core.plan.build import main
+from wgpurender.core.plan.resolve import main
 
 sys.exit(main())

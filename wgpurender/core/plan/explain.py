@@ -70,11 +70,29 @@ def explain(plan: Any) -> str:
     out.append("")
     out.append("buffers:")
     out.extend(f"  {name}: {what}" for name, what in plan.buffers)
+    out.append("")
+    out.extend(_explain_objects(plan))
+    if plan.absent:
+        out.append("")
+        out.append("left out:")
+        out.extend(f"  {what}: none <- {why}" for what, why in plan.absent)
     if plan.notes:
         out.append("")
         out.append("notes:")
         out.extend(f"  - {n}" for n in plan.notes)
     return "\n".join(out) + "\n"
+
+
+def _explain_objects(plan: Any) -> list[str]:
+    """Every object the wgpu renderer creates, per device call, each with why (core/plan/objects.py)."""
+    objects = plan.objects
+    kinds = list(dict.fromkeys(o.kind for o in objects))
+    out = ["objects the wgpu renderer creates (device.create_* calls; the output texture is the caller's):"]
+    for kind in kinds:
+        mine = [o for o in objects if o.kind == kind]
+        out.append(f"  {kind}: {sum(o.count for o in mine)}")
+        out.extend(f"      {o.name}{f' x{o.count}' if o.count > 1 else ''} <- {o.reason}" for o in mine)
+    return out
 
 
 def _megabytes(n: int) -> str:
@@ -86,6 +104,8 @@ def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
         into = f"{p.color} resolved into {p.resolve_target}" if p.resolve_target else p.color
         depth = f", depth attachment {p.depth}" if p.depth else ""
         clear = ", ".join(f"{c:g}" for c in p.clear_color)
+        if not p.draws:
+            return [f"  {number}. scene: clear {into} to ({clear}), nothing to draw (no models)"]
         lines = [f"  {number}. scene: draw {len(p.draws)} model(s) into {into}{depth}, clear ({clear})"]
         for d in p.draws:
             lines.append(f"       {d.label}: {d.material_label}, variant {d.variant_key}")

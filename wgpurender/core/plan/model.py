@@ -11,31 +11,25 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from wgpurender.core.course.effects import EffectStep
+from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.explain import explain
 from wgpurender.core.scene import Scene
 
 DEPTH_FORMAT = "depth32float"
-HDR_FORMAT = "rgba16float"
 LDR_SCENE_FORMAT = "rgba8unorm-srgb"  # 8-bit scene image for a post chain: shaders still see linear values
-COLOR_TEXTURE_FORMAT = "rgba8unorm-srgb"  # albedo: sRGB-encoded image, decoded by the sampler
-DATA_TEXTURE_FORMAT = "rgba8unorm"  # normal and roughness maps: values used as stored
 PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8unorm-srgb", "bgra8unorm")
-SAMPLE_COUNTS = (1, 4)
 DEPTH_FORMATS = ("depth32float", "depth24plus")
 SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
-POST_PATHS = ("auto", "fragment", "compute")
 IMMEDIATES = ("auto", "on", "off")
 # Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
 # the "bgra8unorm-storage" feature, which the renderer does not ask for.
 STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
-BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
-                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
 ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "post-mask", "post-scratch",
                     "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
-ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"))
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"))
 TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map")
 
 
@@ -90,22 +84,30 @@ class ScenePipeline:
     cull_mode: str = "back"
     front_face: str = "ccw"
     depth_compare: str = "less"
+    blend: bool = False  # alpha blending (glTF alphaMode BLEND): source-over, no depth writes
 
     @property
     def key(self) -> str:
         depth = f"{self.depth_format} {self.depth_compare}" if self.depth_format else "no-depth"
         winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
-        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}"
+        culling = " | double-sided (no culling)" if self.cull_mode == "none" else ""
+        blending = " | alpha blend, no depth write" if self.blend else ""
+        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}{blending}"
 
 
 @dataclass(frozen=True)
 class TextureUse:
-    """A texture file to upload, the format it is uploaded as, and who samples it."""
+    """A texture file to upload, the format it is uploaded as, and who samples it.
+
+    ``size`` is read from the image's header (None when it cannot be read: the upload says why);
+    ``mip_levels``: the levels the upload fills (1 without mipmaps; None when the size is unknown)."""
 
     path: Path
     format: str
     mipmaps: bool
     used_by: tuple[str, ...]
+    size: tuple[int, int] | None = None
+    mip_levels: int | None = 1
 
 
 @dataclass(frozen=True)
@@ -129,6 +131,12 @@ class Draw:
     transform: tuple[tuple[float, ...], ...] = ()
     material_label: str = ""
     factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
+    part: int | None = None  # the model file's material whose triangles this draws (-1: none); None: all of them
+    samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): each texture's own sampler
+
+    def sampler_of(self, feature: str) -> object | None:
+        """The sampler a texture is sampled with (its own, else the draw's one sampler)."""
+        return dict(self.samplers).get(feature, self.sampler)
 
     def factors_text(self) -> str:
         def show(v) -> str:
@@ -233,12 +241,15 @@ class AdapterFacts:
     """What the plan needs to know about an adapter for its "auto" knobs (no GPU object: plain values).
 
     ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
-    device's enabled features (the plan reads "immediates").
+    device's enabled features (the plan reads "immediates"); ``backend``: the API under the adapter as wgpu
+    reports it ("Vulkan", "OpenGL", ...; "WebGPU" for a browser), since some features are advertised where
+    they cannot be trusted (wgpurender/core/plan/post.py, ``UNTRUSTED_IMMEDIATES``).
     """
 
     adapter_type: str
     features: frozenset[str] = frozenset()
     name: str = ""
+    backend: str = ""
 
 
 @dataclass(frozen=True)
@@ -287,6 +298,7 @@ class RenderPlan:
     notes: tuple[str, ...] = field(default=())
     knobs: Knobs = field(default_factory=Knobs)
     settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
+    absent: tuple[tuple[str, str], ...] = ()  # (what a renderer could have made but does not, why), explain() shows
     scene: Scene | None = field(default=None, repr=False, compare=False)
     rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # build_plan
 
@@ -324,8 +336,23 @@ class RenderPlan:
 
     @property
     def mipmap_formats(self) -> tuple[str, ...]:
-        """Formats of the textures that get mip chains: one mip-generation render pipeline each (mipmap.wgsl)."""
-        return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps))
+        """Formats of the textures that get mip chains: one mip-generation render pipeline each (mipmap.wgsl).
+        A 1x1 image has no level to fill: it needs none."""
+        return tuple(dict.fromkeys(t.format for t in self.textures if t.mipmaps and (t.mip_levels or 2) > 1))
+
+    @property
+    def objects(self) -> tuple:
+        """Every object the wgpu renderer creates for this plan, by device call (wgpurender/core/plan/objects.py)."""
+        from wgpurender.core.plan.objects import gpu_objects  # objects.py does not import this module (no cycle)
+
+        return gpu_objects(self)
+
+    def object_counts(self) -> dict[str, int]:
+        """How many objects of each kind (device call) the renderer creates: what the plan test compares."""
+        counts: dict[str, int] = {}
+        for o in self.objects:
+            counts[o.kind] = counts.get(o.kind, 0) + o.count
+        return counts
 
     @property
     def buffers(self) -> tuple[tuple[str, str], ...]:
@@ -397,8 +424,6 @@ __all__ = [
     "AdapterFacts",
     "Attachment",
     "BYTES_PER_PIXEL",
-    "COLOR_TEXTURE_FORMAT",
-    "DATA_TEXTURE_FORMAT",
     "DEPTH_FORMAT",
     "DEPTH_FORMATS",
     "Draw",

@@ -16,6 +16,7 @@ from wgpurender.core.plan.model import (
     BYTES_PER_PIXEL,
     HDR_FORMAT,
     STORAGE_FORMATS,
+    AdapterFacts,
     Attachment,
     Knobs,
     PostPass,
@@ -40,16 +41,33 @@ def resolve_post_path(r, knobs: Knobs) -> tuple[str, str]:
     return "fragment", f"{origin}: fragment on a {adapter.adapter_type} adapter ({adapter.name or 'unnamed'})"
 
 
+# Backends whose adapters advertise "immediates" but do not deliver them correctly: the plan falls back to a
+# uniform buffer there. docs/backends.md ("Immediates on OpenGL") has the measurement and the upstream code.
+UNTRUSTED_IMMEDIATES = {
+    "OpenGL": "wgpu's GL backend loses the values when the shader declares other types before them (it looks up "
+              "each member's type in the wrong module: docs/backends.md, 'Immediates on OpenGL')",
+}
+
+
+def immediates_rule(adapter: AdapterFacts) -> tuple[bool, str]:
+    """Whether a device's immediates can be used, and why: offered, and not on a backend known to lose them."""
+    if "immediates" not in adapter.features:
+        return False, "the device lacks 'immediates': material factors come from a uniform buffer slice per draw"
+    broken = UNTRUSTED_IMMEDIATES.get(adapter.backend)
+    if broken:
+        return False, (f"the {adapter.backend} adapter offers 'immediates', but {broken}; material factors come "
+                       "from a uniform buffer slice per draw")
+    return True, "the device offers 'immediates': material factors are pushed per draw"
+
+
 def resolve_immediates(knobs: Knobs) -> tuple[str, str]:
     if knobs.immediates != "auto":
         return knobs.immediates, "knob immediates"
     if knobs.adapter is None:
         return "auto", ("material factors pushed as immediates when the device offers the 'immediates' feature, "
                         "else read from a uniform buffer slice per draw")
-    on = "immediates" in knobs.adapter.features
-    return ("on" if on else "off"), ("the device offers 'immediates': material factors are pushed per draw" if on
-                                     else "the device lacks 'immediates': material factors come from a uniform "
-                                     "buffer slice per draw")
+    on, why = immediates_rule(knobs.adapter)
+    return ("on" if on else "off"), why
 
 
 def _fusion_text(group: tuple[EffectStep, ...]) -> str:

@@ -68,7 +68,6 @@ from wgpurender.core.scene.model import (
     LIGHT_TYPES,
     MAX_ANISOTROPY,
     MAX_LIGHTS,
-    MSAA_COUNTS,
     OUTPUT_FORMATS,
     Camera,
     Light,
@@ -97,7 +96,7 @@ from wgpurender.core.scene.validate import (
 __all__ = [
     "ADDRESS_MODES", "CAMERA_KEYS", "CONVENTIONS", "Camera", "Checker", "DEFAULT_MATERIAL", "FILTERS", "IDENTITY",
     "KeyLines", "KeyPath", "LIGHT_KEYS", "LIGHT_TYPES", "Light", "MATERIAL_KEYS", "MAX_ANISOTROPY", "MAX_LIGHTS",
-    "MODEL_KEYS", "MSAA_COUNTS", "Material", "Model", "OUTPUT_FORMATS", "PostStep", "RENDER_KEYS", "RenderSettings",
+    "MODEL_KEYS", "Material", "Model", "OUTPUT_FORMATS", "PostStep", "RENDER_KEYS", "RenderSettings",
     "SAMPLER_KEYS", "SamplerSettings", "Scene", "TOP_KEYS", "TRANSFORM_KEYS", "Transform", "Vec3", "Vec4",
     "format_path", "load_scene", "parse_scene",
 ]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
+from wgpurender.core.assets import resolve_scene
 from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import MAX_NESTING, input_file, nesting_depth
 from wgpurender.core.scene.checker import Checker
@@ -45,8 +46,8 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file."""
-    path = input_file(path, "scene file")
+    """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.assets`)."""
+    path = input_file(resolve_scene(path), "scene file")
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as err:

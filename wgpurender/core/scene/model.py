@@ -9,7 +9,6 @@ import numpy as np
 
 from wgpurender.core import transforms
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
-from wgpurender.core.course.formats import SAMPLE_COUNTS as MSAA_COUNTS  # noqa: F401
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 
@@ -109,6 +108,16 @@ class Material:
     sampler: SamplerSettings = field(default_factory=SamplerSettings)
     origin: str = "default"
     written: tuple[tuple[str, str], ...] = ()
+    # What a model file's own material can say beyond the scene keys (core/gltf_materials.py makes these):
+    vertex_colors: bool = False  # multiply the base colour by the vertex colour (glTF COLOR_0)
+    double_sided: bool = False  # no back-face culling; back faces are lit with the normal turned around
+    alpha_mode: str = "opaque"  # "opaque", "mask" (discard below alpha_cutoff) or "blend" (unsorted, see docs)
+    alpha_cutoff: float = 0.5
+    normal_strength: float | None = None  # None: course.shading.NORMAL_STRENGTH (glTF normalTexture.scale)
+    roughness_map_scale: float = 1.0  # multiplies a roughness map's G (glTF roughnessFactor)
+    texture_samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): a sampler per texture
+    texture_mipmaps: tuple[tuple[str, bool], ...] = ()  # (feature, builds a mip chain) when per texture
+    part: int | None = None  # the model file's material index this stands for (None: the whole model)
 
     @property
     def textures(self) -> dict[str, Path]:
@@ -147,6 +156,8 @@ class Model:
     written_path: str  # as in the file
     material: Material
     transform: Transform = IDENTITY
+    # True when the scene names no material: a glTF model then draws with its own materials (core/gltf_materials)
+    material_from_file: bool = False
 
     @property
     def label(self) -> str:

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from wgpurender.core import transforms
+from wgpurender.core.course.formats import POST_PATHS, SAMPLE_COUNTS
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 from wgpurender.core.errors import UserError
 from wgpurender.core.scene.checker import Checker as _Checker
@@ -21,7 +22,6 @@ from wgpurender.core.scene.model import (
     LIGHT_TYPES,
     MAX_ANISOTROPY,
     MAX_LIGHTS,
-    MSAA_COUNTS,
     OUTPUT_FORMATS,
     Camera,
     Light,
@@ -46,7 +46,6 @@ MODEL_KEYS = ("material", "path", "transform")
 TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
 LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
 RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
-POST_PATHS = ("auto", "fragment", "compute")  # see wgpurender/core/plan/: post_path
 
 
 def _camera(c: _Checker, data: Any) -> Camera:
@@ -231,6 +230,7 @@ def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Mod
                 written_path=t["path"],
                 material=material,
                 transform=_transform(c, t.get("transform", {}), key + ("transform",)),
+                material_from_file="material" not in t,
             )
         )
     return tuple(out)
@@ -275,7 +275,7 @@ def _render(c: _Checker, data: Any) -> RenderSettings:
     w, h = (c.integer(v, key + ("size",), lo=1, hi=16384) for v in size)
     return RenderSettings(
         size=(w, h),
-        msaa=c.integer(t.get("msaa", 4), key + ("msaa",), choices=MSAA_COUNTS),
+        msaa=c.integer(t.get("msaa", 4), key + ("msaa",), choices=SAMPLE_COUNTS),
         hdr=c.boolean(t.get("hdr", True), key + ("hdr",)),
         clear_color=_color(c, t.get("clear_color", list(DEFAULT_CLEAR_COLOR)), key + ("clear_color",)),
         output_format=c.string(t.get("output_format", "rgba8unorm-srgb"), key + ("output_format",), OUTPUT_FORMATS),

@@ -8,7 +8,9 @@ attachment: each runs in a render pass of its own that samples the previous resu
 barrier, followed by the per-pixel effects after it in that pass's subpass 1 (neighbourhood.py).
 
 Public API: :func:`render_scene_reference` ``(path, size=None, fmt=None, msaa=None, t=0.0) ->
-pixels``; :func:`unsupported` ``(plan) -> [reasons]``.
+pixels``; :func:`render_scene_plan` ``(plan) -> pixels`` (a plan that
+:func:`wgpurender.core.plan.resolve_plan` resolved for ``get_vulkan().adapter_facts()``);
+:func:`unsupported` ``(plan) -> [reasons]``.
 
 Modules, one idea each, like wgpurender/wgpu_path/scene_render/: ``support`` (what can be drawn),
 ``uniforms`` (std140 blocks and push constants, offsets by hand), ``variants`` (a plan's shader
@@ -18,7 +20,7 @@ draws), ``post`` (the post subpass), ``neighbourhood`` (fxaa and sharpen passes)
 ``frame`` (a whole frame and the readback).
 """
 
-from wgpurender.raw_path.scene.frame import render_scene_reference
+from wgpurender.raw_path.scene.frame import render_scene_plan, render_scene_reference
 from wgpurender.raw_path.scene.support import unsupported
 
-__all__ = ["render_scene_reference", "unsupported"]
+__all__ = ["render_scene_plan", "render_scene_reference", "unsupported"]

@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
-from wgpurender.core.plan import RenderPlan, build_plan
-from wgpurender.core.scene import Scene, load_scene
+from wgpurender.core.plan import RenderPlan, resolve_plan
+from wgpurender.core.scene import Scene
 from wgpurender.raw_path.checks import check_size
 from wgpurender.raw_path.command_buffers import one_shot
 from wgpurender.raw_path.images import Image, create_image
@@ -105,26 +105,37 @@ class SceneFrame:
 
 
 def render_scene_reference(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
-                           msaa: int | None = None, t: float = 0.0, *, wgpu_intermediates: bool = False) -> np.ndarray:
+                           msaa: int | None = None, t: float = 0.0, *, wgpu_intermediates: bool = False,
+                           anisotropy: str = "scene") -> np.ndarray:
     """Render a scene file with raw Vulkan calls: (H, W, 4) pixels like wgpurender.render_scene_file's.
 
     ``size``, ``fmt`` (output format) and ``msaa`` override the scene's [render] table, as on the wgpu
-    path. Scenes are static: ``t`` is accepted and ignored. ``wgpu_intermediates`` rounds the post
-    chain's colour to float16 between effects as the wgpu path's rgba16float intermediate textures
-    store it (HDR scenes only): the diagnosis of the one difference between the paths (tests).
-    UserError for what the raw path cannot draw; with validation on, any message raises.
+    path; the plan is :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: "scene"
+    or "auto", the per-adapter rule). Scenes are static: ``t`` is accepted and ignored.
+    ``wgpu_intermediates``: see :func:`render_scene_plan`.
     """
-    scene = load_scene(path)
-    plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa)
+    plan = resolve_plan(path, get_vulkan().adapter_facts(), size=size, output_format=fmt, msaa=msaa,
+                        anisotropy=anisotropy)
+    return render_scene_plan(plan, t, wgpu_intermediates=wgpu_intermediates)
+
+
+def render_scene_plan(plan: RenderPlan, t: float = 0.0, *, wgpu_intermediates: bool = False) -> np.ndarray:
+    """Render a resolved plan (:func:`wgpurender.core.plan.resolve_plan` for ``get_vulkan().adapter_facts()``)
+    with raw Vulkan calls: (H, W, 4) pixels.
+
+    ``wgpu_intermediates`` rounds the post chain's colour to float16 between effects as the wgpu path's
+    rgba16float intermediate textures store it (HDR scenes only): the diagnosis of the one difference between
+    the paths (tests). UserError for what the raw path cannot draw; with validation on, any message raises.
+    """
     check_supported(plan)
     ctx = get_vulkan()
     check_size(ctx, plan.size)
     with ExitStack() as owned:
-        frame = SceneFrame(ctx, owned, scene, plan, wgpu_intermediates)
+        frame = SceneFrame(ctx, owned, plan.scene, plan, wgpu_intermediates)
         target = create_image(ctx, owned, plan.size, plan.output_format, TARGET_USAGE)
         with one_shot(ctx) as cmd:
             frame.record(cmd, target)
             buffer = record_copy_to_buffer(ctx, owned, cmd, target)
         pixels = buffer_to_pixels(ctx, buffer, target)
-    ctx.check_validation(f"the raw-Vulkan render of {path}")
+    ctx.check_validation(f"the raw-Vulkan render of {plan.scene_path}")
     return pixels

@@ -18,7 +18,7 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import Mesh, load_mesh
+from wgpurender.core.mesh import Mesh, index_range, load_mesh
 from wgpurender.core.plan import Draw, RenderPlan
 from wgpurender.core.texture_pixels import load_image
 from wgpurender.raw_path.instance import VulkanContext
@@ -26,7 +26,7 @@ from wgpurender.raw_path.memory import Buffer, upload_buffer
 from wgpurender.raw_path.textures import TextureImage, create_sampler, upload_texture
 
 # attribute -> (shader location, float count): the locations of shaders_glsl/scene.vert
-ATTRIBUTES = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4)}
+ATTRIBUTES = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
 INDEX_TYPES = {np.dtype(np.uint16): vk.VK_INDEX_TYPE_UINT16, np.dtype(np.uint32): vk.VK_INDEX_TYPE_UINT32}
 
 
@@ -52,7 +52,8 @@ def vertex_input(attributes: tuple[str, ...]) -> tuple[list, list]:
 
 
 def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
-    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents}
+    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
+              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32)}
     return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
 
 
@@ -90,6 +91,10 @@ class SceneResources:
                                   vk.VK_ACCESS_INDEX_READ_BIT)
             self._buffers[key] = MeshBuffers(vertex, index, INDEX_TYPES[indices.dtype], indices.size)
         return self._buffers[key]
+
+    def index_range(self, draw: Draw) -> tuple[int, int]:
+        """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
+        return index_range(self.mesh(draw.model_path), draw)
 
     def texture(self, path: Path, srgb: bool) -> TextureImage:
         """Albedo maps as R8G8B8A8_SRGB (decoded on sampling), data maps as R8G8B8A8_UNORM, as the plan lists."""

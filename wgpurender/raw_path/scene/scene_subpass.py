@@ -25,7 +25,7 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.course.formats import is_srgb_map
-from wgpurender.core.course.shading import AMBIENT, material_factors
+from wgpurender.core.course.shading import AMBIENT
 from wgpurender.core.plan import Draw, RenderPlan, ShaderVariant
 from wgpurender.core.scene import Scene
 from wgpurender.raw_path import descriptors
@@ -58,13 +58,16 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
 
 
 def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
-    """Push constant bytes; with a roughness map, the map's G channel is the roughness (factor 1)."""
-    mat = scene.models[draw.model_index].material
-    lit = is_lit(variant)
-    f = material_factors(mat.albedo_color, mat.roughness, lit, "roughness_map" in variant.flags)
-    if not lit:
-        return U.pack_material(f["base_color"], lit=False)
-    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"])
+    """Push constant bytes: the plan's factors for the draw (core/plan/draws.py decides them, e.g. with a
+    roughness map the map's G channel times the factor is the roughness; a lit material without lights is drawn
+    unlit with its base colour times the ambient), the same values the wgpu path pushes; alpha-masked variants
+    append the cutoff."""
+    f = dict(draw.factors)
+    cutoff = f.get("alpha_cutoff") if "alpha_mask" in variant.flags else None
+    if not is_lit(variant):
+        return U.pack_material(f["base_color"], lit=False, alpha_cutoff=cutoff)
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"],
+                           alpha_cutoff=cutoff)
 
 
 class SceneSubpass:
@@ -114,7 +117,7 @@ class SceneSubpass:
         sets = descriptors.allocate_sets(ctx, pool, [self.camera_layout, self.object_layout]
                                          + [self.material_layouts[d.variant_key][1] for d in textured])
         self.camera_set, self.object_set = sets[:2]
-        self.material_sets = {d.model_index: s for d, s in zip(textured, sets[2:], strict=True)}
+        self.material_sets = {id(d): s for d, s in zip(textured, sets[2:], strict=True)}
         writes = [
             descriptors.write_buffer(self.camera_set, 0, self.camera_buffer.handle, 0, U.CAMERA_SIZE),
             # range = one block: with a dynamic offset the descriptor is a window sliding over the buffer
@@ -122,10 +125,10 @@ class SceneSubpass:
                                      vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC),
         ]
         for d in textured:
-            sampler = self.resources.sampler(d.sampler)
             for feature, path in d.textures:
+                sampler = self.resources.sampler(d.sampler_of(feature))  # each texture its own (glTF samplers)
                 texture = self.resources.texture(path, srgb=is_srgb_map(feature))
-                writes.append(descriptors.write_image(self.material_sets[d.model_index], TEXTURE_BINDINGS[feature],
+                writes.append(descriptors.write_image(self.material_sets[id(d)], TEXTURE_BINDINGS[feature],
                                                       texture.view, READ_ONLY,
                                                       vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sampler))
         descriptors.update(ctx, writes)
@@ -137,17 +140,19 @@ class SceneSubpass:
             if self.material_layouts[variant.key][1] is not None:
                 set_layouts.append(self.material_layouts[variant.key][1])
             size = U.MATERIAL_SIZE_LIT if is_lit(variant) else U.MATERIAL_SIZE_UNLIT
+            size += 4 * ("alpha_mask" in variant.flags)  # alpha_cutoff after the last member
             push = vk.VkPushConstantRange(stageFlags=FRAGMENT, offset=0, size=size)
             self.layouts[variant.key] = create_pipeline_layout(self.ctx, self.owned, set_layouts, [push])
         return self.layouts[variant.key]
 
-    def pipeline(self, variant: ShaderVariant, front_face: int):
-        key = (variant.key, front_face)
+    def pipeline(self, variant: ShaderVariant, front_face: int, double_sided: bool = False, blend: bool = False):
+        key = (variant.key, front_face, double_sided, blend)
         if key not in self.pipelines:
             bindings, attributes = vertex_input(variant.vertex_attributes)
+            cull = vk.VK_CULL_MODE_NONE if double_sided else vk.VK_CULL_MODE_BACK_BIT
             desc = PipelineDesc("scene.vert", "scene.frag", bindings, attributes, samples=self.plan.msaa,
-                                cull_mode=vk.VK_CULL_MODE_BACK_BIT, front_face=front_face, depth_test=True,
-                                subpass=0, defines=glsl_defines(variant))
+                                cull_mode=cull, front_face=front_face, depth_test=True,
+                                subpass=0, defines=glsl_defines(variant), blend=blend)
             self.pipelines[key] = create_pipeline(self.ctx, self.owned, desc, self.pipeline_layout(variant),
                                                   self.render_pass)
         return self.pipelines[key]
@@ -157,8 +162,10 @@ class SceneSubpass:
         mirror = np.linalg.det(np.array(draw.transform)[:3, :3]) < 0
         front = vk.VK_FRONT_FACE_CLOCKWISE if mirror else vk.VK_FRONT_FACE_COUNTER_CLOCKWISE
         material = vk.ffi.from_buffer(material_block(self.scene, draw, variant))
-        return (self.pipeline(variant, front), self.pipeline_layout(variant), self.material_sets.get(draw.model_index),
-                material, self.resources.mesh_buffers(draw))
+        planned = self.plan.pipeline(draw.pipeline_key)
+        pipeline = self.pipeline(variant, front, planned.cull_mode == "none", planned.blend)
+        return (pipeline, self.pipeline_layout(variant), self.material_sets.get(id(draw)),
+                material, self.resources.mesh_buffers(draw), self.resources.index_range(draw))
 
     # -- recording ---------------------------------------------------------------------
     def record(self, cmd, size: tuple[int, int]) -> None:
@@ -166,7 +173,7 @@ class SceneSubpass:
         if not self.draws:
             return
         write_host_buffer(self.ctx, self.camera_buffer, camera_block(self.scene, size[0] / size[1]))
-        for k, (pipeline, layout, material_set, material, buffers) in enumerate(self.draw_state):
+        for k, (pipeline, layout, material_set, material, buffers, (first, count)) in enumerate(self.draw_state):
             vk.vkCmdBindPipeline(cmd, GRAPHICS, pipeline)
             vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 0, 1, [self.camera_set], 0, None)
             vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 1, 1, [self.object_set], 1, [k * self.object_stride])
@@ -175,4 +182,4 @@ class SceneSubpass:
             vk.vkCmdPushConstants(cmd, layout, FRAGMENT, 0, len(material), material)
             vk.vkCmdBindVertexBuffers(cmd, 0, 1, [buffers.vertex.handle], [0])
             vk.vkCmdBindIndexBuffer(cmd, buffers.index.handle, 0, buffers.index_type)
-            vk.vkCmdDrawIndexed(cmd, buffers.index_count, 1, 0, 0, 0)
+            vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, 0)

@@ -26,7 +26,7 @@ CAMERA_SIZE = CAMERA_POINT + LIGHT_STRIDE * MAX_LIGHTS  # 688
 # layout(std140) uniform Object: world @0, normal (mat3) @64, mirror @112; 116 bytes, rounded up to 128.
 OBJECT_SIZE = 128
 # push_constant Material: base_color @0, roughness @16, normal_strength @20, specular @24 (lit); 16 bytes unlit.
-MATERIAL_SIZE_LIT, MATERIAL_SIZE_UNLIT = 28, 16
+MATERIAL_SIZE_LIT, MATERIAL_SIZE_UNLIT = 28, 16  # + 4 (alpha_cutoff) in alpha-masked variants
 # layout(std140) uniform Chain: size (vec2) @0, count @8, steps[MAX_POST_STEPS] @16 (kind, p0, p1, p2: 16 bytes).
 MAX_POST_STEPS = 8
 CHAIN_STEPS = 16
@@ -65,8 +65,11 @@ def pack_object(world: np.ndarray) -> bytes:
 
 
 def pack_material(base_color, lit: bool, roughness: float = 0.0, normal_strength: float = 0.0,
-                  specular: float = 0.0) -> bytes:
+                  specular: float = 0.0, alpha_cutoff: float | None = None) -> bytes:
+    """The push constant block; alpha-masked variants append alpha_cutoff (std430: right after the last float)."""
     values = [*base_color, roughness, normal_strength, specular] if lit else list(base_color)
+    if alpha_cutoff is not None:
+        values.append(alpha_cutoff)
     return np.asarray(values, dtype=np.float32).tobytes()
 
 

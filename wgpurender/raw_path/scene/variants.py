@@ -11,7 +11,8 @@ from __future__ import annotations
 from wgpurender.core.plan import ShaderVariant
 from wgpurender.raw_path.scene.uniforms import MAX_LIGHTS
 
-FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output")
+FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output", "vertex_color",
+         "alpha_mask", "double_sided")
 TEXTURE_FLAGS = ("albedo_map", "normal_map", "roughness_map")
 
 

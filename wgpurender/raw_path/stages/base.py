@@ -15,6 +15,7 @@ from typing import ClassVar
 import vulkan as vk
 
 from wgpurender.core.course.formats import DEFAULT_FORMAT
+from wgpurender.core.course.steps import step_msaa
 from wgpurender.raw_path.images import Image, create_image
 from wgpurender.raw_path.instance import VulkanContext
 from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
@@ -32,6 +33,11 @@ class RefStage:
     requires_msaa: ClassVar[bool] = False
     default_msaa: ClassVar[int] = 1
     default_format: ClassVar[str] = DEFAULT_FORMAT
+
+    def __init_subclass__(cls, **kwargs) -> None:
+        """MSAA is the course step's fact (course/steps.py), the same for both paths' stages."""
+        super().__init_subclass__(**kwargs)
+        cls.supports_msaa, cls.default_msaa = step_msaa(cls.name)
 
     def __init__(self, ctx: VulkanContext, owned: ExitStack, fmt: str, msaa: int, size: tuple[int, int]) -> None:
         self.ctx = ctx

@@ -22,8 +22,6 @@ from wgpurender.raw_path.stages.base import RefStage
 class Msaa(RefStage):
     name = "msaa"
     summary = "the triangle with 4x MSAA, resolved into a single-sample image"
-    supports_msaa = True
-    default_msaa = 4
 
     def setup(self) -> None:
         # 3. colour attachment (self.msaa samples) + resolve attachment (the target) in one subpass

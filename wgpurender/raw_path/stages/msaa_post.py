@@ -30,9 +30,7 @@ from wgpurender.raw_path.stages.base import RefStage
 class MsaaPost(RefStage):
     name = "msaa-post"
     summary = "4x MSAA triangle, then a grey post effect in a second subpass reading it as an input attachment"
-    supports_msaa = True
     requires_msaa = True
-    default_msaa = 4
 
     def setup(self) -> None:
         if self.msaa == 1:

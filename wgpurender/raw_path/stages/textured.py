@@ -63,7 +63,6 @@ def set_viewport(cmd, x: int, width: int, height: int) -> None:
 class Textured(RefStage):
     name = "textured"
     summary = "a generated sRGB texture with a mip chain: a combined image sampler vs one image and 4 samplers"
-    supports_msaa = True
 
     def setup(self) -> None:
         ctx, owned = self.ctx, self.owned

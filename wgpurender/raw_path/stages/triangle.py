@@ -20,7 +20,6 @@ from wgpurender.raw_path.stages.base import RefStage
 class Triangle(RefStage):
     name = "triangle"
     summary = "first triangle, no vertex buffer: positions and colours from gl_VertexIndex"
-    supports_msaa = True
 
     def setup(self) -> None:
         self.single_pass(BACKGROUND)

@@ -31,7 +31,6 @@ def vertex_input() -> tuple[list, list]:
 class TriangleBuffers(RefStage):
     name = "triangle-buffers"
     summary = "first triangle from a vertex buffer and an index buffer with an explicit input layout"
-    supports_msaa = True
 
     def setup(self) -> None:
         stage, access = vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT

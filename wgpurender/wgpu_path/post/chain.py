@@ -67,8 +67,11 @@ class PostRunner:
 
         ``timer``: an optional :class:`wgpurender.wgpu_path.timing.PassTimer`; each pass is timed as "post:EFFECTS".
         """
+        if timer is None:
+            self._run_untimed(encoder, textures)
+            return
         for p, runner in zip(self.passes, self.runners, strict=True):
-            writes = timer.writes(f"post:{p.effect}") if timer is not None else None
+            writes = timer.writes(f"post:{p.effect}")
             source, target = textures[p.input], textures[p.output]
             if isinstance(runner, ComputePass):
                 copy_to = textures[p.copy_to] if p.copy_to else None
@@ -76,6 +79,28 @@ class PostRunner:
             else:
                 runner.encode(encoder, source, target, textures[p.mask] if p.mask else None,
                               timestamp_writes=writes)
+
+    def _run_untimed(self, encoder: wgpu.GPUCommandEncoder, textures: Mapping[str, wgpu.GPUTexture]) -> None:
+        """Consecutive compute passes share one compute pass (each dispatch is its own usage scope in WebGPU,
+        so a dispatch reading what the one before it wrote is ordered by wgpu): two calls fewer per pass."""
+        open_pass = None
+        for p, runner in zip(self.passes, self.runners, strict=True):
+            source, target = textures[p.input], textures[p.output]
+            if not isinstance(runner, ComputePass):
+                if open_pass is not None:
+                    open_pass.end()
+                    open_pass = None
+                runner.encode(encoder, source, target, textures[p.mask] if p.mask else None)
+                continue
+            if open_pass is None:
+                open_pass = encoder.begin_compute_pass(label="post-compute")
+            runner.dispatch(open_pass, source, target)
+            if p.copy_to:
+                open_pass.end()
+                open_pass = None
+                runner.copy(encoder, target, textures[p.copy_to])
+        if open_pass is not None:
+            open_pass.end()
 
 
 class PostChain:

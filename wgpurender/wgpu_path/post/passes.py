@@ -5,7 +5,8 @@ with the same bindings: 0 the input texture, 1 a linear clamp sampler (effects t
 parameter struct (steps with parameters), and on the compute path 3 the storage texture written.
 
 Pipelines and layouts are made once per device and shader text (wgpurender/wgpu_path/gpu_cache.py); bind groups
-and views once per (source, target) texture pair, in a small cache that a swapchain cannot grow.
+and views once per (source, target) texture pair, in a small cache that a swapchain cannot grow. A fragment
+pass's draws are a render bundle recorded once per source texture: a frame replays it with one call.
 """
 
 from __future__ import annotations
@@ -93,6 +94,7 @@ class FragmentPass(PlannedPass):
         entries = ("fs_mark", "fs_main") if p.mask else ("fs_main",)
         self.pipelines = [self.pipeline(e) for e in entries]
         self.views: GpuCache[wgpu.GPUTextureView] = GpuCache(f"post-{p.effect}-views", 4)
+        self.bundles: GpuCache[wgpu.GPURenderBundle] = GpuCache(f"post-{p.effect}-bundles", 4)
 
     def pipeline(self, entry_point: str) -> wgpu.GPURenderPipeline:
         depth = None
@@ -118,9 +120,6 @@ class FragmentPass(PlannedPass):
     def encode(self, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
                mask: wgpu.GPUTexture | None = None, timestamp_writes: dict | None = None) -> None:
         self.check(source, target)
-        group = self.groups.get((source,), lambda: self.device.create_bind_group(
-            label=f"post-{self.p.effect}", layout=self.pipelines[0].get_bind_group_layout(0),
-            entries=self._group_entries(source)))
         depth = None
         if mask is not None:
             depth = {"view": self.views.get(mask, mask.create_view), "depth_clear_value": 1.0,
@@ -132,11 +131,26 @@ class FragmentPass(PlannedPass):
             color_attachments=[{"view": self.views.get(target, target.create_view), "load_op": "load",
                                 "store_op": "store"}],
             depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
-        render_pass.set_bind_group(0, group)
-        for pipeline in self.pipelines:
-            render_pass.set_pipeline(pipeline)
-            render_pass.draw(3)
+        render_pass.execute_bundles([self.bundles.get((source,), lambda: self._bundle(source))])
         render_pass.end()
+
+    def _bundle(self, source: wgpu.GPUTexture) -> wgpu.GPURenderBundle:
+        """The pass's draws (bind group, pipeline(s), full-screen triangle), recorded once per source texture.
+
+        Nothing in them depends on the target (a bundle needs only its format), so one bundle serves every
+        swapchain image; the frame replays it with one call instead of 3-5 (issue 22.2).
+        """
+        group = self.groups.get((source,), lambda: self.device.create_bind_group(
+            label=f"post-{self.p.effect}", layout=self.pipelines[0].get_bind_group_layout(0),
+            entries=self._group_entries(source)))
+        bundle = self.device.create_render_bundle_encoder(
+            label=f"post-{self.p.effect}", color_formats=[self.p.output_format],
+            depth_stencil_format=self.mask_format)
+        bundle.set_bind_group(0, group)
+        for pipeline in self.pipelines:
+            bundle.set_pipeline(pipeline)
+            bundle.draw(3)
+        return bundle.finish(label=f"post-{self.p.effect}")
 
 
 class ComputePass(PlannedPass):
@@ -158,18 +172,27 @@ class ComputePass(PlannedPass):
 
     def encode(self, encoder: wgpu.GPUCommandEncoder, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
                copy_to: wgpu.GPUTexture | None = None, timestamp_writes: dict | None = None) -> None:
+        compute_pass = encoder.begin_compute_pass(label=f"post-{self.p.effect}", timestamp_writes=timestamp_writes)
+        self.dispatch(compute_pass, source, target)
+        compute_pass.end()
+        if copy_to is not None:
+            self.copy(encoder, target, copy_to)
+
+    def dispatch(self, compute_pass: wgpu.GPUComputePassEncoder, source: wgpu.GPUTexture,
+                 target: wgpu.GPUTexture) -> None:
+        """The pass's dispatch into an open compute pass (several planned passes may share one: PostRunner)."""
         self.check(source, target)
         group = self.groups.get((source, target), lambda: self.device.create_bind_group(
             label=f"post-{self.p.effect}", layout=self.pipeline.get_bind_group_layout(0),
             entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
-        compute_pass = encoder.begin_compute_pass(label=f"post-{self.p.effect}", timestamp_writes=timestamp_writes)
         compute_pass.set_pipeline(self.pipeline)
         compute_pass.set_bind_group(0, group)
         w, h = target.size[0], target.size[1]
         compute_pass.dispatch_workgroups(-(-w // WORKGROUP[0]), -(-h // WORKGROUP[1]), 1)
-        compute_pass.end()
-        if copy_to is not None:
-            encoder.copy_texture_to_texture({"texture": target}, {"texture": copy_to}, (w, h, 1))
+
+    @staticmethod
+    def copy(encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, copy_to: wgpu.GPUTexture) -> None:
+        encoder.copy_texture_to_texture({"texture": target}, {"texture": copy_to}, (target.size[0], target.size[1], 1))
 
 
 def planned_pass(device: wgpu.GPUDevice, p: PostPass) -> FragmentPass | ComputePass:

@@ -2,8 +2,10 @@
 
 Public API:
 
-- :func:`render_scene_file` ``(path, size=None, fmt=None, msaa=None, t=0.0, ctx=None) -> RenderResult``:
-  headless, what ``wgpurender render SCENE.toml`` calls;
+- :func:`render_plan` ``(ctx, plan, t=0.0) -> RenderResult``: headless, a plan resolved by
+  :func:`wgpurender.core.plan.resolve_plan` for ``adapter_facts(ctx)`` (what ``wgpurender render SCENE.toml``
+  and the API call); :func:`render_scene_file` ``(path, size=None, fmt=None, msaa=None, t=0.0, ctx=None)``
+  resolves and renders in one call;
 - :func:`scene_drawable_factory` ``(path, ctx, msaa=None) -> make(fmt) -> SceneRenderer``: for the window;
 - :class:`SceneRenderer` ``(ctx, scene, plan)``: ``resize(size)``, ``record(encoder, target, t, timer=None)``;
   :func:`load_renderer` makes one from a file;
@@ -22,8 +24,10 @@ material (white, lit). Name a model's textures in a scene material (docs/scenes.
 
 from wgpurender.wgpu_path.scene_render.frame import (
     SceneRenderer,
+    adapter_facts,
     load_renderer,
     render_frame,
+    render_plan,
     render_scene_file,
     scene_drawable_factory,
 )
@@ -31,8 +35,10 @@ from wgpurender.wgpu_path.scene_render.shader_interface import shader_source
 
 __all__ = [
     "SceneRenderer",
+    "adapter_facts",
     "load_renderer",
     "render_frame",
+    "render_plan",
     "render_scene_file",
     "scene_drawable_factory",
     "shader_source",

@@ -23,7 +23,7 @@ import wgpu
 
 from wgpurender.core import gpu_memory
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import AdapterFacts, RenderPlan, build_plan
+from wgpurender.core.plan import AdapterFacts, RenderPlan, resolve_plan
 from wgpurender.core.scene import Scene, load_scene
 from wgpurender.wgpu_path.frame_loop import RenderResult, run_frame, run_frames
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -42,8 +42,7 @@ ATTACHMENT_USAGE = {
 
 def adapter_facts(ctx: GPUContext) -> AdapterFacts:
     """What the plan's "auto" knobs need to know about this context's adapter and device."""
-    info = ctx.info
-    return AdapterFacts(info.get("adapter_type", ""), frozenset(ctx.features), info.get("device", ""))
+    return ctx.facts()
 
 
 def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
@@ -70,6 +69,7 @@ class SceneRenderer:
         self.target_usage = output_usage(plan.post_passes)  # what the output texture needs beyond TARGET_USAGE
         self.size: tuple[int, int] | None = None
         self.attachments: dict[str, wgpu.GPUTexture] = {}
+        self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
 
     def create_output(self, label: str = "scene-output") -> wgpu.GPUTexture:
         """An offscreen output texture for this plan: its size, format and every usage the plan's passes need.
@@ -109,7 +109,7 @@ class SceneRenderer:
     def _view(self, name: str, target: wgpu.GPUTexture) -> wgpu.GPUTextureView:
         """A view of an attachment or the output, made once per texture object (resize makes new ones)."""
         texture = self._texture(name, target)
-        cached = self.__dict__.setdefault("_views", {}).get(name)
+        cached = self._views.get(name)
         if cached is None or cached[0] is not texture:
             cached = self._views[name] = (texture, texture.create_view())
         return cached[1]
@@ -137,18 +137,16 @@ class SceneRenderer:
 def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,
                   msaa: int | None = None, use_immediates: bool | None = None,
                   knobs: dict | None = None, anisotropy: str = "scene") -> SceneRenderer:
-    """A renderer for a scene file, with the plan's size, output format and MSAA overridable;
-    ``knobs``: plan knobs (:meth:`wgpurender.core.plan.RenderPlan.with_knobs`), e.g. ``{"post_fuse": False}``;
-    ``anisotropy="auto"``: the per-adapter anisotropy rule for this context's adapter (wgpurender/core/anisotropy.py).
+    """A renderer for a scene file, planned by :func:`wgpurender.core.plan.resolve_plan` for this context's
+    adapter; ``size``, ``fmt`` and ``msaa`` override the scene's; ``knobs``: plan knobs (e.g.
+    ``{"post_fuse": False}``); ``anisotropy``: "scene" or "auto" (wgpurender/core/anisotropy.py).
     """
-    scene = load_scene(path)
-    plan = build_plan(scene, size=size, output_format=fmt, msaa=msaa, anisotropy=anisotropy,
-                      adapter_type=ctx.adapter.info["adapter_type"])
     knobs = dict(knobs or {})
     if use_immediates is not None:
         knobs["immediates"] = "on" if use_immediates else "off"
-    if knobs:
-        plan = plan.with_knobs(**knobs)
+    scene = load_scene(path)
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, output_format=fmt, msaa=msaa, anisotropy=anisotropy,
+                        **knobs)
     return SceneRenderer(ctx, scene, plan)
 
 
@@ -158,32 +156,41 @@ def render_frame(ctx: GPUContext, renderer: SceneRenderer, target: wgpu.GPUTextu
     return frame.pixels, frame.frame_ms
 
 
-def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
-                      msaa: int | None = None, t: float = 0.0, ctx: GPUContext | None = None, *,
-                      frames: int = 3, use_immediates: bool | None = None, knobs: dict | None = None,
-                      anisotropy: str = "scene"):
-    """Render a scene file headless: a :class:`wgpu_path.render.RenderResult` of the last of ``frames`` frames.
+def render_plan(ctx: GPUContext, plan: RenderPlan, t: float = 0.0, *, frames: int = 3) -> RenderResult:
+    """Render a resolved plan headless: a :class:`wgpu_path.render.RenderResult` of the last of ``frames``
+    frames, whose ``plan`` is the plan drawn (``plan`` itself when it was resolved for this context's adapter).
 
     The first frame pays for texture uploads, mip generation and shader compilation, so
     ``frame_ms`` is the last (steady-state) frame: record, submit, GPU work and readback.
     """
+    if plan.scene is None:
+        raise UserError("this plan was not built from a scene: resolve it with resolve_plan(scene, adapter)")
+    renderer = SceneRenderer(ctx, plan.scene, plan)
+    target = renderer.create_output()
+    frame = run_frames(ctx, renderer.record, target, frames, t, label="scene-frame")
+    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe(), plan=renderer.plan)
+
+
+def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
+                      msaa: int | None = None, t: float = 0.0, ctx: GPUContext | None = None, *,
+                      frames: int = 3, use_immediates: bool | None = None, knobs: dict | None = None,
+                      anisotropy: str = "scene") -> RenderResult:
+    """Render a scene file headless (:func:`render_plan` of its plan for this context's adapter)."""
     ctx = ctx or get_context()
     renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates, knobs=knobs,
                              anisotropy=anisotropy)
-    target = renderer.create_output()
-    frame = run_frames(ctx, renderer.record, target, frames, t, label="scene-frame")
-    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
+    return render_plan(ctx, renderer.plan, t, frames=frames)
 
 
 def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None, anisotropy: str = "scene"):
     """``make(fmt) -> SceneRenderer`` for the window: the scene is loaded and checked now, planned per format."""
     scene = load_scene(path)
-    adapter_type = ctx.adapter.info["adapter_type"]
-    build_plan(scene, msaa=msaa, anisotropy=anisotropy, adapter_type=adapter_type)  # a bad option fails here, cheaply
+    facts = adapter_facts(ctx)
+    resolve_plan(scene, facts, msaa=msaa, anisotropy=anisotropy)  # a bad option fails here, cheaply
 
     def make(fmt: str) -> SceneRenderer:
         # A swapchain image cannot be a storage texture: a compute post path writes it through a scratch copy.
-        plan = build_plan(scene, output_format=fmt, msaa=msaa, anisotropy=anisotropy, adapter_type=adapter_type)
-        return SceneRenderer(ctx, scene, plan.with_knobs(output_storage=False))
+        return SceneRenderer(ctx, scene, resolve_plan(scene, facts, output_format=fmt, msaa=msaa,
+                                                      anisotropy=anisotropy, output_storage=False))
 
     return make

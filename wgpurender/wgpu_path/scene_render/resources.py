@@ -13,7 +13,7 @@ from pathlib import Path
 import wgpu
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import Mesh, load_mesh
+from wgpurender.core.mesh import Mesh, index_range, load_mesh
 from wgpurender.core.plan import Draw, RenderPlan
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.scene_render.shader_interface import interleave
@@ -67,6 +67,10 @@ class SceneResources:
                 index_count=mesh.indices.size,
             )
         return self._buffers[key]
+
+    def index_range(self, draw: Draw) -> tuple[int, int]:
+        """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
+        return index_range(self.mesh(draw.model_path), draw)
 
     # -- textures and samplers -------------------------------------------------
     def texture(self, path: Path, fmt: str) -> Texture:

@@ -19,7 +19,6 @@ import wgpu
 from wgpurender.core import transforms as tf
 from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
-from wgpurender.core.errors import UserError
 from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
 from wgpurender.core.scene import Scene
 from wgpurender.wgpu_path.bind_groups import uniform_group, uniform_layout
@@ -68,12 +67,9 @@ class ScenePassRenderer:
 
     def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, resources: SceneResources,
                  use_immediates: bool | None = None) -> None:
-        if use_immediates and not ctx.has("immediates"):
-            raise UserError("this adapter does not offer the 'immediates' feature (push constants): "
-                            "leave use_immediates unset to fall back to a uniform buffer")
         self.ctx, self.scene, self.plan, self.resources = ctx, scene, plan, resources
         self.reverse_z = plan.reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (plan knob)
-        self.uses_immediates = ctx.has("immediates") if use_immediates is None else bool(use_immediates)
+        self.uses_immediates = ctx.use_immediates(use_immediates)
         self.draws = plan.scene_pass.draws
         # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
         self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
@@ -82,6 +78,7 @@ class ScenePassRenderer:
         if self.draws:
             self._setup_uniforms()
             self._setup_draws()
+        self.bundle = self._make_bundle()
 
     # -- uniforms ----------------------------------------------------------------
     def _setup_uniforms(self) -> None:
@@ -116,7 +113,8 @@ class ScenePassRenderer:
                 self.ctx.queue.write_buffer(self.material_buffer, k * self.material_stride, data)
             pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
             group = self._material_group(variant, draw, k)
-            self.draw_state.append((draw, pipeline, group, data, self.resources.mesh_buffers(draw)))
+            buffers = self.resources.mesh_buffers(draw)
+            self.draw_state.append((draw, pipeline, group, data, buffers, self.resources.index_range(draw)))
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
@@ -128,12 +126,12 @@ class ScenePassRenderer:
         if not self.uses_immediates:
             entries.append({"binding": L.MATERIAL_BINDING, "visibility": frag,
                             "buffer": {"type": "uniform", "min_binding_size": L.material_struct(variant).size}})
-        if L.samples_textures(variant):
-            entries.append({"binding": L.SAMPLER_BINDING, "visibility": frag, "sampler": {"type": "filtering"}})
         for feature, binding in L.TEXTURE_BINDINGS.items():
             if feature in variant.flags:
                 entries.append({"binding": binding, "visibility": frag,
                                 "texture": {"sample_type": "float", "view_dimension": "2d"}})
+                entries.append({"binding": L.SAMPLER_BINDINGS[feature], "visibility": frag,
+                                "sampler": {"type": "filtering"}})
         if not entries:
             return None
         return self.ctx.device.create_bind_group_layout(label=f"material {variant.key}", entries=entries)
@@ -147,11 +145,11 @@ class ScenePassRenderer:
             size = L.material_struct(variant).size
             entries.append({"binding": L.MATERIAL_BINDING, "resource": {
                 "buffer": self.material_buffer, "offset": k * self.material_stride, "size": size}})
-        if L.samples_textures(variant):
-            entries.append({"binding": L.SAMPLER_BINDING, "resource": self.resources.sampler(draw.sampler)})
         for feature, path in draw.textures:
             texture = self.resources.texture(path, map_format(feature))
             entries.append({"binding": L.TEXTURE_BINDINGS[feature], "resource": texture.view})
+            entries.append({"binding": L.SAMPLER_BINDINGS[feature],
+                            "resource": self.resources.sampler(draw.sampler_of(feature))})
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
 
     def shader_module(self, variant: ShaderVariant) -> wgpu.GPUShaderModule:
@@ -177,10 +175,10 @@ class ScenePassRenderer:
             layout=pipeline_layout,
             vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
             primitive={"topology": "triangle-list", "front_face": planned.front_face, "cull_mode": planned.cull_mode},
-            depth_stencil={"format": planned.depth_format, "depth_write_enabled": True,
+            depth_stencil={"format": planned.depth_format, "depth_write_enabled": not planned.blend,
                            "depth_compare": planned.depth_compare},
             multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
-            fragment={"module": module, "entry_point": "fs_main", "targets": [{"format": planned.color_format}]},
+            fragment={"module": module, "entry_point": "fs_main", "targets": [_color_target(planned)]},
         )
 
     # -- the pass ------------------------------------------------------------------
@@ -210,15 +208,49 @@ class ScenePassRenderer:
             self._write_camera(aspect)
         render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
-        for k, (_draw, pipeline, group, data, buffers) in enumerate(getattr(self, "draw_state", [])):
-            render_pass.set_pipeline(pipeline)
-            render_pass.set_bind_group(0, self.camera_group)
-            render_pass.set_bind_group(1, self.object_group, [k * self.object_stride])
-            if group is not None:
-                render_pass.set_bind_group(2, group)
-            if self.uses_immediates:
-                render_pass.set_immediates(0, data, 0, len(data))
-            render_pass.set_vertex_buffer(0, buffers.vertex)
-            render_pass.set_index_buffer(buffers.index, buffers.index_format)
-            render_pass.draw_indexed(buffers.index_count)
+        if self.bundle is not None:
+            render_pass.execute_bundles([self.bundle])
         render_pass.end()
+
+    # -- the draws, recorded once ----------------------------------------------------
+    def _make_bundle(self) -> wgpu.GPURenderBundle | None:
+        """Every draw of the pass in one render bundle, recorded once: the frame replays it with one call.
+
+        The draws are static (pipelines, bind groups, buffers, dynamic offsets and immediates never change
+        between frames; the camera changes through its buffer's contents), so recording them per frame was
+        ~8 wgpu-py calls per draw for nothing (issue 22.2). A bundle depends only on the attachments'
+        formats and sample count, not on the textures, so a resize or a new swapchain image keeps it.
+        """
+        if not self.draws:
+            return None
+        first = self.plan.pipeline(self.draws[0].pipeline_key)
+        encoder = self.ctx.device.create_render_bundle_encoder(
+            label="scene-draws", color_formats=[first.color_format], depth_stencil_format=first.depth_format,
+            sample_count=first.sample_count)
+        self.record_draws(encoder)
+        return encoder.finish(label="scene-draws")
+
+    def record_draws(self, encoder) -> None:
+        """Record every draw into a render pass or render bundle encoder (the bundle is made with this)."""
+        for k, (_draw, pipeline, group, data, buffers, (first, count)) in enumerate(getattr(self, "draw_state", [])):
+            encoder.set_pipeline(pipeline)
+            encoder.set_bind_group(0, self.camera_group)
+            encoder.set_bind_group(1, self.object_group, [k * self.object_stride])
+            if group is not None:
+                encoder.set_bind_group(2, group)
+            if self.uses_immediates:
+                encoder.set_immediates(0, data, 0, len(data))
+            encoder.set_vertex_buffer(0, buffers.vertex)
+            encoder.set_index_buffer(buffers.index, buffers.index_format)
+            encoder.draw_indexed(count, 1, first)  # the draw's part of the mesh (a file material's triangles)
+
+
+def _color_target(planned: ScenePipeline) -> dict:
+    """The colour target; alpha blending (glTF alphaMode BLEND) is source-over: rgb * a + dst * (1 - a)."""
+    target = {"format": planned.color_format}
+    if planned.blend:
+        target["blend"] = {
+            "color": {"src_factor": "src-alpha", "dst_factor": "one-minus-src-alpha", "operation": "add"},
+            "alpha": {"src_factor": "one", "dst_factor": "one-minus-src-alpha", "operation": "add"},
+        }
+    return target

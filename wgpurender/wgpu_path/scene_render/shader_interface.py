@@ -11,8 +11,8 @@ the unlit shader contains no light struct, no normal matrix and no lighting code
 Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
   group 1 Object   - every model's data in ONE buffer, picked per draw by a dynamic offset
-  group 2 material - binding 0: Material (only without immediates), 1: sampler,
-                     2: albedo, 3: normal map, 4: roughness map (only those the variant samples)
+  group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
+                     4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples
   immediates       - Material (per-draw factors) when the adapter has "immediates"
 """
 
@@ -41,17 +41,23 @@ CAMERA = Struct("Camera", _CAMERA_VIEW + [
 ])
 OBJECT_UNLIT = Struct("Object", [("world", MAT4)])
 OBJECT = Struct("Object", [("world", MAT4), ("normal", MAT3), ("mirror", F32)])  # mirror: sign of det(world)
-MATERIAL_UNLIT = Struct("Material", [("base_color", VEC4F)])
-MATERIAL = Struct("Material", [("base_color", VEC4F), ("roughness", F32), ("normal_strength", F32),
-                               ("specular", F32)])
+_MATERIAL_UNLIT_FIELDS = [("base_color", VEC4F)]
+_MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("specular", F32)]
+MATERIAL_UNLIT = Struct("Material", _MATERIAL_UNLIT_FIELDS)
+MATERIAL = Struct("Material", _MATERIAL_FIELDS)
+
+# alpha-masked variants append the cutoff: Material + alpha_cutoff (core/course/shading.material_factors' last key)
+MATERIAL_MASKED = Struct("Material", _MATERIAL_FIELDS + [("alpha_cutoff", F32)])
+MATERIAL_UNLIT_MASKED = Struct("Material", _MATERIAL_UNLIT_FIELDS + [("alpha_cutoff", F32)])
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
     assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items()), _small
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
-ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4)}
+ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
 TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4}
-MATERIAL_BINDING, SAMPLER_BINDING = 0, 1
+SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6}  # each texture's own sampler
+MATERIAL_BINDING = 0
 
 
 def is_lit(variant: ShaderVariant) -> bool:
@@ -71,6 +77,8 @@ def object_struct(variant: ShaderVariant) -> Struct:
 
 
 def material_struct(variant: ShaderVariant) -> Struct:
+    if "alpha_mask" in variant.flags:
+        return MATERIAL_MASKED if is_lit(variant) else MATERIAL_UNLIT_MASKED
     return MATERIAL if is_lit(variant) else MATERIAL_UNLIT
 
 
@@ -86,7 +94,8 @@ def vertex_layout(variant: ShaderVariant) -> dict:
 
 def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     """(N, floats) float32 vertex data with the given attributes, for :func:`vertex_layout`."""
-    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents}
+    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
+              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32)}
     return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
 
 

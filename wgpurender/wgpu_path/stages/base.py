@@ -14,7 +14,7 @@ from typing import ClassVar
 import wgpu
 
 from wgpurender.core.course.formats import DEFAULT_FORMAT, SAMPLE_COUNTS
-from wgpurender.core.course.steps import course_position, course_step
+from wgpurender.core.course.steps import course_step, msaa_steps, step_msaa
 from wgpurender.core.errors import UserError
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module
@@ -37,12 +37,11 @@ class Stage:
     supports_msaa: ClassVar[bool] = False
     default_msaa: ClassVar[int] = 1
     default_format: ClassVar[str] = DEFAULT_FORMAT
-    _defined: ClassVar[dict[str, type[Stage]]] = {}  # every named stage class, as its module is imported
 
     def __init_subclass__(cls, **kwargs) -> None:
+        """MSAA is the course step's fact (course/steps.py), the same for both paths' stages."""
         super().__init_subclass__(**kwargs)
-        if cls.name:
-            Stage._defined[cls.name] = cls
+        cls.supports_msaa, cls.default_msaa = step_msaa(cls.name)
 
     @classmethod
     def course_step(cls) -> str:
@@ -56,9 +55,8 @@ class Stage:
         self.format = color_format
         self.msaa = check_sample_count(ctx, self.default_msaa if msaa is None else msaa)
         if self.msaa > 1 and not self.supports_msaa:
-            names = sorted((n for n, c in Stage._defined.items() if c.supports_msaa), key=course_position)
             raise UserError(f"stage {self.name!r} does not use MSAA: leave out --msaa (stages with MSAA: "
-                            f"{', '.join(names)})")
+                            f"{', '.join(msaa_steps())})")
         self.size = (0, 0)
         self._msaa_view: wgpu.GPUTextureView | None = None
         self.setup()

@@ -46,16 +46,12 @@ VERTEX_LAYOUT = {
 class Cube3D(Stage):
     name = "3d"
     summary = "rotating cubes: depth buffer, camera and object UBOs in two bind groups, dynamic offsets, immediates"
-    supports_msaa = True
 
     def __init__(self, ctx: GPUContext, color_format: str, msaa: int | None = None, *,
                  use_immediates: bool | None = None, cubes: Sequence[course.CubeSpec] = course.DEFAULT_CUBES,
                  camera: course.CameraSpec | None = None) -> None:
         """``use_immediates``: None uses them when the device offers them, False forces the UBO fallback."""
-        if use_immediates and not ctx.has("immediates"):
-            raise UserError(f"{ctx.adapter.info['device']} does not offer the 'immediates' feature (push constants):"
-                            " leave use_immediates unset to fall back to a uniform buffer")
-        self.uses_immediates = ctx.has("immediates") if use_immediates is None else bool(use_immediates)
+        self.uses_immediates = ctx.use_immediates(use_immediates)
         if not cubes:
             raise UserError("stage 3d needs at least one cube")
         self.cubes, self.camera = tuple(cubes), camera or course.CameraSpec()

@@ -25,8 +25,6 @@ from wgpurender.wgpu_path.stages.base import Stage
 class Msaa(Stage):
     name = "msaa"
     summary = "the triangle with 4x MSAA, resolved into a single-sample image"
-    supports_msaa = True
-    default_msaa = 4
 
     def setup(self) -> None:
         self.pipeline = self.basic_pipeline("triangle.wgsl")  # 1. multisample={"count": self.msaa, ...}

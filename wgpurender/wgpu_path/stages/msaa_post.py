@@ -41,8 +41,6 @@ SCENE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BI
 class MsaaPost(Stage):
     name = "msaa-post"
     summary = "4x MSAA triangle, then a grey post effect in a second render pass reading the resolved image"
-    supports_msaa = True
-    default_msaa = 4
 
     def setup(self) -> None:
         if self.msaa == 1:

@@ -96,7 +96,6 @@ def textured_pipelines(device: wgpu.GPUDevice, fmt: str, sample_count: int = 1) 
 class Textured(Stage):
     name = "textured"
     summary = "a generated sRGB texture with GPU mipmaps: one combined texture+sampler vs one texture, 4 samplers"
-    supports_msaa = True
 
     def setup(self) -> None:
         pipes = self.pipes = textured_pipelines(self.device, self.format, self.msaa)

@@ -14,7 +14,6 @@ from wgpurender.wgpu_path.stages.base import Stage
 class Triangle(Stage):
     name = "triangle"
     summary = "first triangle, no vertex buffer: positions and colours from the vertex index"
-    supports_msaa = True
 
     def setup(self) -> None:
         self.pipeline = self.basic_pipeline("triangle.wgsl")

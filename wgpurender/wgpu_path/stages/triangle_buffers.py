@@ -27,7 +27,6 @@ INDICES = np.concatenate([TRIANGLE_INDICES, [0]]).astype(np.uint16)  # one pad i
 class TriangleBuffers(Stage):
     name = "triangle-buffers"
     summary = "first triangle from a vertex buffer and an index buffer with an explicit vertex layout"
-    supports_msaa = True
 
     def setup(self) -> None:
         # create_buffer_with_data stands for the course's staging upload: wgpu copies

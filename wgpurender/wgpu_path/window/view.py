@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from wgpurender.core.orbit import Orbit
+from wgpurender.core.orbit import Orbit, moved_camera
 from wgpurender.wgpu_path.gpu import GPUContext
 
 
@@ -38,11 +38,7 @@ class DemoView:
         lavapipe); a stage is built, which is cheap and runs the stage's own option checks.
         """
         if self.is_scene:
-            from wgpurender.core.plan import build_plan
-            from wgpurender.core.scene import load_scene
-
-            build_plan(load_scene(self.target), msaa=self.msaa, anisotropy=self.anisotropy,
-                       adapter_type=self.ctx.adapter.info["adapter_type"])
+            self.plan("rgba8unorm-srgb")
         else:
             self._make("rgba8unorm-srgb")
 
@@ -72,17 +68,22 @@ class DemoView:
 
         return block()
 
+    def plan(self, fmt: str):
+        """The scene's plan for this adapter and a swapchain of ``fmt`` (:func:`wgpurender.core.plan.resolve_plan`),
+        from the file as it is now; a swapchain image is not a storage texture, so a compute post path writes
+        it through a scratch copy (``output_storage=False``)."""
+        from wgpurender.core.plan import resolve_plan
+        from wgpurender.wgpu_path.scene_render import adapter_facts
+
+        return resolve_plan(self.target, adapter_facts(self.ctx), output_format=fmt, msaa=self.msaa,
+                            anisotropy=self.anisotropy, output_storage=False)
+
     def _make(self, fmt: str):
         if self.is_scene:
-            from wgpurender.core.plan import build_plan
-            from wgpurender.core.scene import load_scene
             from wgpurender.wgpu_path.scene_render import SceneRenderer
 
-            scene = load_scene(self.target)
-            plan = build_plan(scene, output_format=fmt, msaa=self.msaa, anisotropy=self.anisotropy,
-                              adapter_type=self.ctx.adapter.info["adapter_type"])
-            # a swapchain image is not a storage texture: a compute post path writes it through a scratch copy
-            return SceneRenderer(self.ctx, scene, plan.with_knobs(output_storage=False))
+            plan = self.plan(fmt)
+            return SceneRenderer(self.ctx, plan.scene, plan)
         from wgpurender.wgpu_path.stages import get_stage
 
         return get_stage(self.target)(self.ctx, fmt, self.msaa)
@@ -113,11 +114,10 @@ class DemoView:
         """Move the drawable's camera to the orbit's eye and target (a no-op for flat stages)."""
         if self.orbit is None:
             return
-        eye, target = self.orbit.eye(), tuple(float(v) for v in self.orbit.target)
         if hasattr(drawable, "scene_pass"):
             scene = drawable.scene_pass.scene
-            if (tuple(scene.camera.eye), tuple(scene.camera.target)) != (eye, target):
-                camera = dataclasses.replace(scene.camera, eye=eye, target=target)
+            camera = moved_camera(scene.camera, self.orbit)
+            if camera is not scene.camera:
                 drawable.scene_pass.scene = dataclasses.replace(scene, camera=camera)
         elif getattr(drawable, "camera", None) is not None:
-            drawable.camera = dataclasses.replace(drawable.camera, eye=eye, target=target)
+            drawable.camera = moved_camera(drawable.camera, self.orbit)

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
+from numerics.wgsl import load_wgsl
+from wgpurender.bench.accuracy_depth import wrong_pixels  # noqa: F401  (re-exported: its one home)
 from wgpurender.core.transforms import perspective, to_gpu
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module
@@ -54,7 +56,7 @@ def render_planes(
     Standard Z: clear depth 1, compare "less". Reverse-Z: clear depth 0, compare "greater".
     """
     device = ctx.device
-    module = create_shader_module(device, "numerics_depth_planes.wgsl")
+    module = create_shader_module(device, "numerics_depth_planes.wgsl", load_wgsl("numerics_depth_planes.wgsl"))
     bgl = device.create_bind_group_layout(
         entries=[{"binding": 0, "visibility": wgpu.ShaderStage.VERTEX, "buffer": {"type": "read-only-storage"}}]
     )
@@ -99,11 +101,6 @@ def render_planes(
     render_pass.end()
     ctx.queue.submit([encoder.finish()])
     return read_texture(ctx, color)
-
-
-def wrong_pixels(image: np.ndarray) -> int:
-    """Pixels showing the farther (green) plane instead of the nearer (red) one."""
-    return int(((image[..., 1] > 127) & (image[..., 0] < 128)).sum())
 
 
 def stored_depth(z_view: float, scene: DepthScene = DepthScene(), *, reverse_z: bool = False) -> float:

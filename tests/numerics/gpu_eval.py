@@ -12,8 +12,9 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import wgpu
 
+from numerics.wgsl import load_wgsl
 from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.shaders import create_shader_module
 
 WORKGROUP_SIZE = 64  # the @workgroup_size of every numerics_*.wgsl compute entry point
 
@@ -67,7 +68,7 @@ def run_compute(
     compute_pass.dispatch_workgroups((out_count + WORKGROUP_SIZE - 1) // WORKGROUP_SIZE)
     compute_pass.end()
     ctx.queue.submit([encoder.finish()])
-    result = np.frombuffer(ctx.queue.read_buffer(out), dtype=np.float32).reshape(out_count, 4).copy()
+    result = np.frombuffer(ctx.read_buffer(out), dtype=np.float32).reshape(out_count, 4).copy()
     for b in [*buffers, out]:
         b.destroy()
     return result

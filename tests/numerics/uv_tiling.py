@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
+from numerics.wgsl import load_wgsl
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module
 from wgpurender.wgpu_path.targets import create_target, read_texture
@@ -53,7 +54,7 @@ def render_uv_probe(
     Returns (H, W, 4) float32: texel coordinate fract(uv) * texture_size (x, y) and the fetched texel (x, y).
     """
     device = ctx.device
-    module = create_shader_module(device, "numerics_uv.wgsl")
+    module = create_shader_module(device, "numerics_uv.wgsl", load_wgsl("numerics_uv.wgsl"))
     ndc = np.array([[-1, 1], [1, 1], [-1, -1], [1, -1]], dtype=np.float32)
     corners = np.concatenate([ndc, np.asarray(corner_uvs, dtype=np.float32)], axis=1)
     vertices = np.ascontiguousarray(corners[[0, 2, 1, 1, 2, 3]])

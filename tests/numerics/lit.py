@@ -9,9 +9,10 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
+from numerics.wgsl import load_wgsl
 from wgpurender.core.transforms import to_gpu
 from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.shaders import create_shader_module
 from wgpurender.wgpu_path.targets import create_target, read_texture
 
 SHADERS = ("numerics_safe.wgsl", "numerics_lit.wgsl")

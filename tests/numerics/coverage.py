@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
+from numerics.wgsl import load_wgsl
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module
 from wgpurender.wgpu_path.targets import create_target, read_texture
@@ -26,7 +27,7 @@ def pixels_to_ndc(points_px: np.ndarray, size: tuple[int, int]) -> np.ndarray:
 def render_coverage(ctx: GPUContext, size: tuple[int, int], triangles_px: np.ndarray, sample_count: int) -> np.ndarray:
     """Draw (N, 3, 2) pixel-space triangles white on black; returns the (H, W) float64 coverage image."""
     device = ctx.device
-    module = create_shader_module(device, "numerics_coverage.wgsl")
+    module = create_shader_module(device, "numerics_coverage.wgsl", load_wgsl("numerics_coverage.wgsl"))
     pipeline = device.create_render_pipeline(
         label=f"coverage-{sample_count}x",
         layout=device.create_pipeline_layout(bind_group_layouts=[]),

@@ -1,0 +1,85 @@
+"""Backends that work or refuse (issue 21): --backend selects wgpu-native's backend, the plan decides immediates
+per adapter, and every stage and repository scene rendered on OpenGL (llvmpipe EGL here) agrees with its Vulkan
+render within the calibrated bounds of assets/reference/implementations.toml.
+
+wgpu-py keeps one instance per process, made for one backend, so the OpenGL renders come from a child process
+(wgpurender.implementations); the Vulkan renders are this process's.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+from imagecheck import _assert_within
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.plan import AdapterFacts, Knobs
+from wgpurender.core.plan.post import resolve_immediates
+from wgpurender.core.tolerances import implementation_tolerance
+from wgpurender.implementations import REPO, all_targets, render_in_child, render_wgpu
+from wgpurender.wgpu_path.gpu import requested_backend
+
+SIZE = (160, 120)
+
+
+@pytest.mark.parametrize("name, expected", [("vulkan", "Vulkan"), ("OpenGL", "OpenGL"), ("gl", "OpenGL"),
+                                            ("AUTO", "auto"), ("dx12", "D3D12")])
+def test_backend_names(name, expected):
+    assert requested_backend(name) == expected
+
+
+def test_an_unknown_backend_is_refused_with_the_choices():
+    with pytest.raises(UserError, match="vulkan, opengl, metal, d3d12 or auto"):
+        requested_backend("glide")
+
+
+@pytest.mark.parametrize("backend, features, expected", [
+    ("Vulkan", {"immediates"}, "on"),
+    ("OpenGL", {"immediates"}, "off"),  # advertised, but the values are lost (docs/backends.md)
+    ("WebGPU", set(), "off"),           # Dawn has no immediates
+    ("Vulkan", set(), "off"),
+])
+def test_the_plan_decides_immediates_per_adapter(backend, features, expected):
+    value, why = resolve_immediates(Knobs(adapter=AdapterFacts("CPU", frozenset(features), "x", backend)))
+    assert value == expected
+    assert ("uniform buffer" in why) == (expected == "off")
+    if backend == "OpenGL":
+        assert "OpenGL" in why and "backends.md" in why
+
+
+def _gl_or_skip(tmp_path_factory) -> dict:
+    try:
+        return render_in_child("wgpu-gl", all_targets(), SIZE, tmp_path_factory.mktemp("gl"))
+    except UserError as err:
+        if "no OpenGL adapter" in str(err):
+            pytest.skip(f"this machine has no OpenGL adapter: {err}")
+        raise
+
+
+@pytest.fixture(scope="module")
+def gl_renders(tmp_path_factory):
+    return _gl_or_skip(tmp_path_factory)
+
+
+@pytest.mark.parametrize("name", all_targets())
+def test_opengl_agrees_with_vulkan(request, ctx, gl_renders, name):
+    """Before the plan's rule every lit scene came out wrong on GL (immediates lost): unlit black, FLIP 0.11+."""
+    vulkan = render_wgpu(name, SIZE, "Vulkan")
+    _assert_within(request, vulkan, gl_renders[name], implementation_tolerance("wgpu-gl", name))
+
+
+def test_cli_renders_a_scene_on_opengl_and_explains_the_fallback(tmp_path):
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR", "/tmp")}
+    out = tmp_path / "gl.png"
+    done = subprocess.run([sys.executable, "-m", "wgpurender", "render", "assets/scenes/final.toml", "--backend",
+                           "opengl", "--size", "64x48", "-o", str(out), "--explain"],
+                          capture_output=True, text=True, cwd=REPO, env=env, timeout=300)
+    if "no OpenGL adapter" in done.stderr:
+        pytest.skip("this machine has no OpenGL adapter")
+    assert done.returncode == 0, done.stderr
+    assert "(OpenGL," in done.stdout
+    line = next(x for x in done.stdout.splitlines() if x.strip().startswith("immediates:"))
+    assert "off" in line and "OpenGL" in line

@@ -1,0 +1,179 @@
+"""The scene pass's contents: per model, its material's shader variant, its pipeline, its draw.
+
+One draw per model and material: a scene material gives one draw; a glTF model without one draws once per
+file material its triangles use (:mod:`.file_materials`, ``Draw.part``). A material becomes a
+:func:`material_variant` (the features it needs, each with its reason), the variant and the target formats a
+:class:`~.model.ScenePipeline`, and what it samples goes to the :class:`~.textures.TextureTable`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from wgpurender.core.course.shading import AMBIENT, material_factors
+from wgpurender.core.plan import file_materials
+from wgpurender.core.plan.model import (
+    TEXTURE_FEATURES,
+    Draw,
+    Knobs,
+    SamplerUse,
+    ScenePipeline,
+    ShaderVariant,
+    TextureUse,
+)
+from wgpurender.core.plan.textures import TextureTable, material_sampler
+from wgpurender.core.scene import Material, Model, Scene
+
+
+def material_label(m: Material) -> str:
+    return f"material '{m.name}'" if m.origin.startswith("[materials.") else m.origin
+
+
+def _lights_text(lights: list[int]) -> str:
+    return ", ".join(f"lights[{i}]" for i in lights)
+
+
+def material_variant(material: Material, directional: list[int], point: list[int], srgb_output: str | None,
+                     notes: list[str]) -> ShaderVariant:
+    """The features one material needs, each with its reason; ignored settings become notes.
+
+    A lit material in a scene without lights gets no lighting: what remains of the shading is the ambient
+    term (ambient x albedo), which the unlit variant draws with the base colour scaled by the ambient
+    (:func:`draw_factors`): no normals, no light structs, no lighting code."""
+    label = material_label(material)
+    reasons: list[tuple[str, str]] = []
+    lit = not material.unlit and bool(directional or point)
+    if material.albedo_map:
+        reasons.append(("albedo_map", f"{label} has albedo_map = '{material.as_written('albedo_map')}'"))
+    maps = [k for k in ("normal_map", "roughness_map") if getattr(material, k)]
+    if lit:
+        how = "unlit = false" if material.as_written("unlit") else "unlit is not set (materials are lit by default)"
+        reasons.append(("lighting", f"{label} is lit: {how}"))
+        reasons.extend((key, f"{label} has {key} = '{material.as_written(key)}'") for key in maps)
+    elif not material.unlit:
+        also = f"; its {' and '.join(maps)} only shape(s) direct light: not sampled" if maps else ""
+        notes.append(f"{label} is lit but the scene has no [[lights]]: only the ambient term remains (ambient x "
+                     f"albedo), so it is drawn with the unlit variant, its base colour scaled by the ambient "
+                     f"{AMBIENT}{also}")
+    elif maps:
+        notes.append(f"{label}: {' and '.join(maps)} ignored because unlit = true (no lighting to use them)")
+    samples = any(f in TEXTURE_FEATURES for f, _ in reasons)
+    if material.uv_flip_v:
+        if samples:
+            reasons.append(("flip_v", f"{label} has uv_flip_v = true"))
+        else:
+            notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
+    reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
+    if srgb_output:
+        reasons.append(("srgb_output", srgb_output))
+    counts = []
+    for kind, indices in (("directional", directional), ("point", point)):
+        if lit and indices:
+            counts.append((f"{kind}_lights", len(indices)))
+            why = f"{label} is lit and the scene has {len(indices)} {kind} light(s): {_lights_text(indices)}"
+            reasons.append((f"{kind}_lights:{len(indices)}", why))
+    flags = frozenset(f for f, _ in reasons if ":" not in f)
+    return ShaderVariant(flags=flags, counts=tuple(counts), reasons=tuple(reasons))
+
+
+def ambient_only(material: Material, variant: ShaderVariant) -> bool:
+    """A lit material drawn without lighting (the scene has no lights): its colour is ambient x albedo."""
+    return not material.unlit and "lighting" not in variant.flags
+
+
+def draw_factors(material: Material, variant: ShaderVariant) -> dict:
+    """The draw's Material values (course.shading.material_factors); ambient-only: base colour x ambient."""
+    base = tuple(material.albedo_color)
+    if ambient_only(material, variant):
+        base = (*(c * a for c, a in zip(base[:3], AMBIENT, strict=True)), *base[3:])
+    return material_factors(base, material.roughness, "lighting" in variant.flags, "roughness_map" in variant.flags,
+                            **file_materials.factor_options(material, variant.flags))
+
+
+def _determinant3(matrix) -> float:
+    (a, b, c), (d, e, f), (g, h, i) = (tuple(row[:3]) for row in matrix[:3])
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+
+
+@dataclass(frozen=True)
+class PipelineTarget:
+    """What every scene pipeline shares: the pass's colour format, sample count, depth format and test."""
+
+    color_format: str
+    sample_count: int
+    depth_format: str
+    depth_compare: str
+
+    def pipeline(self, variant: ShaderVariant, model: Model, material: Material) -> ScenePipeline:
+        # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
+        front_face = "cw" if _determinant3(model.transform.matrix) < 0 else "ccw"
+        return ScenePipeline(variant, self.color_format, self.sample_count, self.depth_format,
+                             front_face=front_face, depth_compare=self.depth_compare,
+                             **file_materials.pipeline_state(material))
+
+
+@dataclass
+class SceneDraws:
+    """The scene pass's draws and everything they need, each listed once in first-use order."""
+
+    draws: list[Draw] = field(default_factory=list)
+    variants: dict[str, ShaderVariant] = field(default_factory=dict)
+    pipelines: dict[str, ScenePipeline] = field(default_factory=dict)
+    table: TextureTable = field(default_factory=TextureTable)
+
+    @property
+    def textures(self) -> tuple[TextureUse, ...]:
+        return tuple(self.table.textures.values())
+
+    @property
+    def samplers(self) -> tuple[SamplerUse, ...]:
+        return tuple(self.table.samplers.values())
+
+
+def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
+               anisotropy_adapter: str | None, notes: list[str]) -> SceneDraws:
+    """One draw per model and material; a material's notes are added the first time it is drawn. Alpha-blended
+    draws (glTF alphaMode BLEND) go last, in scene order among themselves: not sorted by depth."""
+    directional = [light.index for light in scene.lights if light.type == "directional"]
+    point = [light.index for light in scene.lights if light.type == "point"]
+    out = SceneDraws()
+    seen_materials: set[int] = set()
+    for model in scene.models:
+        materials, found = file_materials.draw_materials(model)
+        if found is not None:
+            notes.extend(file_materials.model_notes(model, found))
+        for mat in materials:
+            first_time = id(mat) not in seen_materials
+            seen_materials.add(id(mat))
+            out.draws.append(_plan_draw(model, mat, target, srgb_output, knobs, anisotropy_adapter,
+                                        notes if first_time else None, directional, point, out))
+    out.draws.sort(key=lambda d: out.pipelines[d.pipeline_key].blend)
+    return out
+
+
+def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
+               anisotropy_adapter: str | None, notes: list[str] | None, directional: list[int], point: list[int],
+               out: SceneDraws) -> Draw:
+    """The draw of one model with one material (its variant, pipeline, textures and samplers registered in
+    ``out``): a scene material samples every texture with its one sampler, a file material each with its own."""
+    label = material_label(mat)
+    variant = material_variant(mat, directional, point, srgb_output, notes if notes is not None else [])
+    out.variants.setdefault(variant.key, variant)
+    pipeline = target.pipeline(variant, model, mat)
+    out.pipelines.setdefault(pipeline.key, pipeline)
+    sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
+    spec = material_sampler(mat, label, knobs, anisotropy_adapter, notes) if sampled else None
+    own = []
+    for feature, feature_spec in file_materials.texture_samplers(mat, sampled, spec):
+        if feature_spec is not spec:  # a file texture's own sampler: the anisotropy rule applies to it too
+            feature_spec = material_sampler(mat, label, knobs, anisotropy_adapter, notes, feature_spec)
+        own.append((feature, feature_spec))
+    for feature, path in sampled:
+        out.table.add_textures(label, ((feature, path),), file_materials.texture_mipmaps(mat, feature))
+    for feature, feature_spec in own:
+        out.table.add_sampler(feature_spec, label if not mat.texture_samplers else f"{label} {feature}")
+    factors = draw_factors(mat, variant)
+    draw_label = model.label if mat.part is None else f"{model.label} {mat.name.removeprefix(model.label).strip()}"
+    return Draw(model.index, model.path, draw_label, mat.name, variant.key, pipeline.key, sampled,
+                own[0][1] if own else None, model.transform.matrix, label, tuple(factors.items()), part=mat.part,
+                samplers=tuple(own))

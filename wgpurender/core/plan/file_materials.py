@@ -1,0 +1,69 @@
+"""The plan's side of a model file's own materials: which materials a model draws with, the variant features and
+pipeline state they add, and each texture's sampler. The mapping itself is core/gltf_materials.py.
+
+A model whose scene entry names no material and whose file is glTF draws one draw per file material its
+triangles use (``Draw.part``); every other model draws once with its scene material, as before.
+"""
+
+from __future__ import annotations
+
+from wgpurender.core.gltf_materials import ModelMaterials, model_materials
+from wgpurender.core.scene import Material, Model
+
+GLTF_SUFFIXES = (".gltf", ".glb")
+
+
+def draw_materials(model: Model) -> tuple[list[Material], ModelMaterials | None]:
+    """The materials ``model`` is drawn with (one draw each) and, for a model file's own, what was taken/ignored."""
+    if model.material_from_file and model.path.suffix.lower() in GLTF_SUFFIXES:
+        found = model_materials(model.path, model.label)
+        return list(found.materials), found
+    return [model.material], None
+
+
+def extra_reasons(material: Material, label: str, lit: bool, samples: bool, notes: list[str]) -> list[tuple]:
+    """Variant features a model file's material adds (none for scene materials): vertex colours, alpha mask, the
+    back-face normal flip of a lit double-sided material."""
+    reasons = []
+    if material.vertex_colors:
+        reasons.append(("vertex_color", f"{label}: the model's primitives have COLOR_0 (multiplies the base colour)"))
+    if material.alpha_mode == "mask":
+        reasons.append(("alpha_mask", f"{label}: alphaMode MASK, alphaCutoff {material.alpha_cutoff:g} "
+                                      "(fragments with a lower alpha are discarded)"))
+    if material.double_sided and lit:
+        reasons.append(("double_sided", f"{label}: doubleSided, lit: back faces are lit with the normal turned "
+                                        "around"))
+    return reasons
+
+
+def pipeline_state(material: Material) -> dict:
+    """ScenePipeline fields a material decides: culling (doubleSided) and blending (alphaMode BLEND)."""
+    return {"cull_mode": "none" if material.double_sided else "back", "blend": material.alpha_mode == "blend"}
+
+
+def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
+    """Keyword arguments of course.shading.material_factors beyond the scene keys."""
+    options = {"map_scale": material.roughness_map_scale, "normal_strength": material.normal_strength}
+    if "alpha_mask" in variant_flags:
+        options["alpha_cutoff"] = material.alpha_cutoff
+    return options
+
+
+def texture_samplers(material: Material, sampled: tuple[tuple[str, object], ...], spec) -> tuple:
+    """(feature, SamplerSpec) per sampled texture: the file's sampler of each texture, else the material's one."""
+    own = dict(material.texture_samplers)
+    return tuple((feature, own.get(feature, spec)) for feature, _ in sampled)
+
+
+def texture_mipmaps(material: Material, feature: str) -> bool:
+    return dict(material.texture_mipmaps).get(feature, material.sampler.mipmaps)
+
+
+def model_notes(model: Model, found: ModelMaterials) -> list[str]:
+    """``--explain`` lines: what was taken from the model file and what was ignored."""
+    def short(item: str) -> str:
+        return item.removeprefix(model.label).strip()
+
+    lines = [f"{model.label}: from the model file (the scene gives no material): {short(t)}" for t in found.taken]
+    lines += [f"{model.label}: {short(item)}" for item in found.ignored]
+    return lines

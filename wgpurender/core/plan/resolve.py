@@ -1,0 +1,74 @@
+"""One resolved plan for every entry point: the knobs decided once, per adapter, by :func:`resolve_plan`.
+
+``wgpurender render``, ``reference``, ``demo`` (both windows), the Python API (``render``, ``reference``,
+``explain``), ``report``, ``verify`` and ``bench`` all draw the plan this function returns, each for the
+adapter it draws on (the wgpu path: :func:`wgpurender.wgpu_path.scene_render.frame.adapter_facts`; the raw
+path: :func:`wgpurender.raw_path.instance.adapter_facts`). So the same scene and flags on the same device give
+the same plan whichever way it is asked for, and ``--explain`` prints the plan that was drawn.
+
+The flags: ``size``, ``output_format``, ``msaa`` (the scene's [render] overridden, as the CLI's --size,
+--format, --msaa), ``anisotropy`` (:data:`DEFAULT_ANISOTROPY`, the per-adapter rule of
+wgpurender/core/anisotropy.py, or "scene") and any other :class:`~wgpurender.core.plan.model.Knobs` field
+(post_path, post_fuse, immediates, depth_format, reverse_z, scene_format, output_storage).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Iterable
+
+from wgpurender.core.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
+from wgpurender.core.errors import UserError
+from wgpurender.core.plan.build import build_plan
+from wgpurender.core.plan.model import AdapterFacts, Knobs, RenderPlan
+from wgpurender.core.scene import Scene, load_scene
+
+PLAN_FEATURES = ("immediates",)  # the adapter features a plan reads; the rest do not change it
+_NOT_FLAGS = ("adapter", "anisotropy", "anisotropy_adapter")  # set from the arguments, never passed as a knob
+KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
+
+
+def adapter_facts(adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "") -> AdapterFacts:
+    """What a plan needs to know about an adapter: its type as wgpu names it ("DiscreteGPU", "IntegratedGPU",
+    "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
+    path's facts of one device are equal), its name and the API under it ("Vulkan", "OpenGL", ...)."""
+    return AdapterFacts(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend)
+
+
+def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None, *,
+                 size: tuple[int, int] | None = None, output_format: str | None = None, msaa: int | None = None,
+                 anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
+    """The plan of a scene (or scene file) for ``adapter``, every "auto" knob decided for it.
+
+    ``adapter`` None: not known (no GPU, or a plan printed before one is chosen); the "auto" knobs then
+    keep the scene's values and say so. Unknown knob names raise UserError.
+    """
+    unknown = sorted(set(knobs) - set(KNOB_FLAGS))
+    if unknown:
+        raise UserError(f"unknown plan knob {unknown[0]!r}: choose from {', '.join(KNOB_FLAGS)}")
+    if anisotropy not in ANISOTROPY_RULES:
+        raise UserError(f"anisotropy {anisotropy!r}: choose one of {', '.join(ANISOTROPY_RULES)}")
+    scene = target if isinstance(target, Scene) else load_scene(target)
+    return build_plan(scene, size=size, output_format=output_format, msaa=msaa,
+                      knobs=Knobs(adapter=adapter, anisotropy=anisotropy, **knobs))
+
+
+def explain_scene(path: str | os.PathLike, adapter: AdapterFacts | None = None, **flags) -> str:
+    """The resolved plan of a scene file as text: what ``render SCENE.toml --explain`` prints for ``adapter``."""
+    return resolve_plan(path, adapter, **flags).explain()
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m wgpurender.core.plan SCENE.toml``: print the plan (no adapter: the "auto" knobs left open);
+    UserError -> one line, exit 2."""
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) != 1 or args[0] in ("-h", "--help"):
+        print("usage: python -m wgpurender.core.plan SCENE.toml", file=sys.stderr)
+        return 2
+    try:
+        sys.stdout.write(explain_scene(args[0]))
+    except UserError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    return 0

@@ -1,0 +1,128 @@
+"""The implementations the course runs on, and one way to render every target on each.
+
+A *target* is a stage (by name) or a repository scene (assets/scenes/NAME.toml, by stem). An
+*implementation* is one WebGPU/Vulkan stack that draws it:
+
+- ``wgpu-vulkan``: wgpu-native over Vulkan (the default of ``wgpurender render``);
+- ``wgpu-gl``: wgpu-native over OpenGL (``--backend opengl``);
+- ``raw``: the raw-Vulkan reference path (wgpurender/raw_path);
+- ``browser``: the exported page (``wgpurender export``) in headless Chromium's WebGPU (Dawn).
+
+wgpu-py keeps one wgpu instance per process, made for one backend (gpu.py), so a second wgpu backend
+renders in a child process: ``python -m wgpurender.implementations IMPL DIR --size WxH [TARGET ...]``
+writes DIR/TARGET.png. Outer tool: imports both paths.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+
+REPO = Path(__file__).resolve().parent.parent
+SCENE_DIR = REPO / "assets" / "scenes"
+WGPU_IMPLEMENTATIONS = {"wgpu-vulkan": "vulkan", "wgpu-gl": "opengl"}
+IMPLEMENTATIONS = ("raw", "wgpu-vulkan", "wgpu-gl", "browser")
+
+
+def scene_files() -> dict[str, Path]:
+    """The repository scenes by stem, in name order (those reading ../shared/anchors only where it exists)."""
+    files = {}
+    for path in sorted(SCENE_DIR.glob("*.toml")):
+        text = path.read_text()
+        if "shared/anchors" in text and not (REPO.parent / "shared" / "anchors").is_dir():
+            continue
+        files[path.stem] = path
+    return files
+
+
+def stage_names() -> list[str]:
+    from wgpurender.wgpu_path.stages import all_stages
+
+    return list(all_stages())
+
+
+def all_targets() -> list[str]:
+    """Every stage, then every repository scene."""
+    return [*stage_names(), *scene_files()]
+
+
+def target_path(name: str) -> str:
+    """What ``wgpurender render`` takes for a target: the stage name, or the scene file."""
+    scenes = scene_files()
+    return str(scenes[name]) if name in scenes else name
+
+
+def render_wgpu(name: str, size: tuple[int, int], backend: str | None = None, t: float = 0.0) -> np.ndarray:
+    """One target on this process's wgpu backend: 8-bit RGBA, top row first."""
+    from wgpurender.core.imageio import to_uint8
+    from wgpurender.wgpu_path.render import render_any
+
+    return to_uint8(render_any(target_path(name), size=size, t=t, backend=backend).pixels)
+
+
+def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
+    from wgpurender.core.imageio import to_uint8
+    from wgpurender.raw_path import render_reference
+
+    return to_uint8(render_reference(target_path(name), size))
+
+
+def render_in_child(implementation: str, names: list[str], size: tuple[int, int], out: Path,
+                    timeout: float = 600) -> dict[str, np.ndarray]:
+    """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance)."""
+    from wgpurender.core.imageio import load_png
+
+    out.mkdir(parents=True, exist_ok=True)
+    cmd = [sys.executable, "-m", "wgpurender.implementations", "--size", f"{size[0]}x{size[1]}", implementation,
+           str(out), *names]
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp"}
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=REPO)
+    if done.returncode != 0:
+        tail = (done.stderr or done.stdout).strip().splitlines()[-1:] or ["(no output)"]
+        raise UserError(f"{implementation} renderer failed: {tail[0]}")
+    return {name: load_png(out / f"{name}.png") for name in names}
+
+
+def calibrate(implementation: str, measured: dict, bounded_by: str) -> Path:
+    """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
+    (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
+    from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
+    from wgpurender.core.tolerances import calibrate as bounds
+
+    table = {"implementations": {}}
+    if IMPLEMENTATIONS_PATH.is_file():
+        from wgpurender.core.tolerances import load_table
+
+        table = load_table(IMPLEMENTATIONS_PATH)
+    rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
+    table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "targets": rows}
+    IMPLEMENTATIONS_PATH.write_text(format_implementation_table(table))
+    return IMPLEMENTATIONS_PATH
+
+
+def _main(argv: list[str] | None = None) -> int:
+    from wgpurender.cli._args import size_arg
+    from wgpurender.core.imageio import save_png
+
+    p = argparse.ArgumentParser(prog="python -m wgpurender.implementations")
+    p.add_argument("implementation", choices=sorted(WGPU_IMPLEMENTATIONS))
+    p.add_argument("out", type=Path)
+    p.add_argument("--size", type=size_arg, default=(160, 120))
+    p.add_argument("targets", nargs="*")
+    args = p.parse_args(argv)
+    backend = WGPU_IMPLEMENTATIONS[args.implementation]
+    args.out.mkdir(parents=True, exist_ok=True)
+    for name in args.targets or all_targets():
+        save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(_main())
