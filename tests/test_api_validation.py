@@ -133,6 +133,8 @@ def test_float_pixels_are_linear_and_srgb_encoded():
     half = np.full((2, 2, 3), 0.5, np.float32)
     encoded = round((1.055 * 0.5 ** (1 / 2.4) - 0.055) * 255)  # IEC 61966-2-1
     assert w.compare(half, np.full((2, 2, 3), encoded, np.uint8), flip=False).max_abs == 0
+    dark = np.full((2, 2, 3), 0.002, np.float32)  # the linear segment: 12.92 x below 0.0031308
+    assert w.compare(dark, np.full((2, 2, 3), round(12.92 * 0.002 * 255), np.uint8), flip=False).max_abs == 0
 
 
 def test_heatmap_gain_scales_the_difference():

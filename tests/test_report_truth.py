@@ -73,6 +73,7 @@ def _marked(pixels: np.ndarray) -> np.ndarray:
     out = pixels.copy()
     out[MARK] = (255, 0, 255, 255)
     out[MARK[0], 40:60, :3] = np.clip(out[MARK[0], 40:60, :3].astype(int) + 3, 0, 255).astype(np.uint8)
+    out[MARK[0], 70:90, :3] = np.clip(out[MARK[0], 70:90, :3].astype(int) + 2, 0, 255).astype(np.uint8)  # over 1 only
     return out
 
 
@@ -136,6 +137,7 @@ def test_each_number_is_beside_its_label(page, stage):
     wgpu_shown = load_png(site / _figure(section, "wgpu"))
     truth = compare_images(raw_shown, wgpu_shown)
     assert np.isfinite(truth.psnr) and truth.flip_mean > 0 and truth.max_abs > 3  # the numbers can tell apart
+    assert truth.over_1 > truth.over_2 > 0
     assert _row(section, "PSNR") == f"{truth.psnr:.2f} dB"
     assert _row(section, "FLIP (mean)") == f"{truth.flip_mean:.5f}"
     assert _row(section, "max difference").startswith(f"{truth.max_abs}/255; pixels over 1/255: "
