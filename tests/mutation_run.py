@@ -56,7 +56,7 @@ MUTATIONS = [
     ("wgpurender/core/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
      'return "lavapipe" if "lavapipe" in device_name.lower()', [TRUST]),
     ("wgpurender/core/tolerances.py", "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
-     ["tests/test_reference_tolerances.py"]),
+     [TRUST, "tests/test_reference_tolerances.py"]),
     ("wgpurender/raw_path/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
      '"immediate": vk.VK_PRESENT_MODE_MAILBOX_KHR', [TRUST]),
     ("wgpurender/core/plan/build.py", 'depth_compare = "greater" if knobs.reverse_z else "less"',

@@ -155,3 +155,10 @@ def test_the_heatmap_lights_exactly_where_the_shown_images_differ(page, stage):
     differs = (raw_shown[..., :3] != wgpu_shown[..., :3]).any(axis=2)
     assert differs[MARK].all()
     assert ((heat[..., :3] > 0).any(axis=2) == differs).all()
+    # the page says its heatmap is amplified x32 (a 1/255 difference shows as 32/255) on a black-red-yellow ramp:
+    # red = clip(3d), green = clip(3d - 1) with d = 32 * difference / 255
+    for columns, step in ((slice(70, 90), 2), (slice(40, 60), 3)):
+        d = min(32 * step / 255, 1.0)
+        want = [round(min(max(3 * d - k, 0.0), 1.0) * 255) for k in (0, 1, 2)]
+        region = heat[MARK[0], columns, :3][differs[MARK[0], columns]]
+        assert len(region) and (region == want).all(), (step, want, np.unique(region, axis=0))

@@ -216,3 +216,21 @@ def test_coplanar_geometry_keeps_what_was_drawn_first_with_reverse_z(ctx, coplan
 @needs_glslc
 def test_coplanar_geometry_keeps_what_was_drawn_first_on_the_raw_path(coplanar):
     assert _centre(w.reference(coplanar)) == [255, 0, 0]
+
+
+# --- the tolerance check at its bounds ---------------------------------------------------------------------------
+
+def test_a_tolerance_fails_just_over_each_bound_and_passes_at_it():
+    from wgpurender.core.tolerances import Metrics, Tolerance
+
+    bound = Tolerance("x", "lavapipe", max_abs=2, changed=0.01, flip_mean=0.002, measured="", bounded_by="",
+                      provisional=False)
+    pixels = 10_000
+    at = Metrics(max_abs=2, changed=0.01, changed_pixels=100, flip_mean=0.002, pixels=pixels)
+    assert bound.exceeded(at) == []
+    over = {"max_abs": Metrics(3, 0.01, 100, 0.002, pixels), "changed": Metrics(2, 0.0101, 101, 0.002, pixels),
+            "flip_mean": Metrics(2, 0.01, 100, 0.00201, pixels)}
+    words = {"max_abs": "max diff", "changed": "changed pixels", "flip_mean": "FLIP mean"}
+    for metric, metrics in over.items():
+        lines = bound.exceeded(metrics)
+        assert len(lines) == 1 and lines[0].startswith(words[metric]), (metric, lines)

@@ -127,8 +127,8 @@ def png_declaring(width: int, height: int, body_rows: int) -> bytes:
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
 
     packer = zlib.compressobj(6)
-    row = bytes(width + 1)
-    data = b"".join(packer.compress(row) for _ in range(min(body_rows, height))) + packer.flush()
+    rows = min(body_rows, height) if width <= 65536 else 0  # wider: the header alone (no 2 GB row here)
+    data = b"".join(packer.compress(bytes(width + 1)) for _ in range(rows)) + packer.flush()
     header = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", data) + chunk(b"IEND", b"")
 
