@@ -153,3 +153,10 @@ def test_side_by_side_places_images_gap_apart():
     out = w.side_by_side(a, b, gap=5).pixels
     assert out.shape == (4, 3 + 5 + 2, 4)
     assert out[0, 0, 0] == 10 and out[0, 8, 0] == 200 and out[0, 4, 0] == 0 and out[3, 0, 0] == 0
+
+
+def test_a_float_image_object_is_compared_as_its_srgb_bytes():
+    """An rgba16float render (Image.pixels float16, linear) compares as the 8-bit image it saves as."""
+    image = api.Image(np.full((2, 2, 4), 0.5, np.float16), "x", "wgpu")
+    encoded = round((1.055 * 0.5 ** (1 / 2.4) - 0.055) * 255)
+    assert w.compare(image, np.full((2, 2, 4), encoded, np.uint8), flip=False).max_abs == 0
