@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from wgpurender.core import checks
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -125,6 +125,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     ctx = get_context(checks.backend(backend))
     if _is_scene(target, anisotropy, knobs):
         from wgpurender.wgpu_path.scene_render import render_plan
@@ -159,6 +160,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     plan = None
     if _is_scene(target, anisotropy, knobs):
         from wgpurender.core.plan import resolve_plan
@@ -261,6 +263,7 @@ def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str 
     from wgpurender.core.course.formats import is_scene_file
 
     scene, size, msaa, format = _target(scene), _size(size), checks.msaa(msaa), checks.output_format(format)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     if not is_scene_file(scene):
         raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
     return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy, knobs)

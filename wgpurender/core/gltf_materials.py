@@ -26,6 +26,7 @@ from pathlib import Path
 
 from wgpurender.core import gltf_geometry, gltf_io
 from wgpurender.core.course.samplers import SamplerSpec
+from wgpurender.core.input_files import input_file
 from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material
 
 EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
@@ -60,7 +61,7 @@ def embedded_image_bytes(path: Path) -> bytes | None:
     doc = gltf_io.read_document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io._image_source(doc, image)
-    return source["data"] if source["data"] is not None else Path(source["uri"]).read_bytes()
+    return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
 
 
 def sampler_spec(doc: gltf_io.GltfDocument, texture: dict) -> tuple[SamplerSpec, bool]:

@@ -18,6 +18,7 @@ from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
+from wgpurender.core.safe_write import cleanup_on_signal
 from wgpurender.report import extras, page
 from wgpurender.report.steps import Step, heatmap_scale, scene_step, stage_step
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -72,14 +73,15 @@ def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes
     for path in _scene_files() if scenes is None else scenes:
         log(f"scene {path.name}")
         steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log, anisotropy))
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
-        _write_site(tmp, steps, ctx, time.perf_counter() - start)
-        if out_dir.exists():
-            shutil.rmtree(out_dir)
-        tmp.rename(out_dir)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    with cleanup_on_signal():  # SIGTERM while the temp folder exists ends through finally
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+        try:
+            _write_site(tmp, steps, ctx, time.perf_counter() - start)
+            if out_dir.exists():
+                shutil.rmtree(out_dir)
+            tmp.rename(out_dir)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
     log(f"report: {len(steps)} steps in {time.perf_counter() - start:.1f} s")
     return out_dir / "index.html"
 
