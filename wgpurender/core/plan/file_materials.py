@@ -33,6 +33,21 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
     if material.double_sided and lit:
         reasons.append(("double_sided", f"{label}: doubleSided, lit: back faces are lit with the normal turned "
                                         "around"))
+    if any(c > 0 for c in material.emissive_color):
+        reasons.append(("emissive", f"{label}: emissiveFactor {tuple(material.emissive_color)} (added to the "
+                                    "shaded colour)"))
+        if material.emissive_map:
+            reasons.append(("emissive_map", f"{label}: emissiveTexture '{material.emissive_map.name}' "
+                                            "(sRGB, multiplies emissiveFactor)"))
+    elif material.emissive_map:
+        notes.append(f"{label}: emissiveTexture ignored: emissiveFactor is 0, so it emits nothing")
+    if material.occlusion_map:
+        if lit:
+            reasons.append(("occlusion_map", f"{label}: occlusionTexture '{material.occlusion_map.name}' (R "
+                                             f"channel, strength {material.occlusion_strength:g}, scales the "
+                                             "ambient term)"))
+        else:
+            notes.append(f"{label}: occlusionTexture unused: it scales the ambient term of lit shading only")
     return reasons
 
 
@@ -46,6 +61,10 @@ def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
     options = {"map_scale": material.roughness_map_scale, "normal_strength": material.normal_strength}
     if "alpha_mask" in variant_flags:
         options["alpha_cutoff"] = material.alpha_cutoff
+    if "occlusion_map" in variant_flags:
+        options["occlusion_strength"] = material.occlusion_strength
+    if "emissive" in variant_flags:
+        options["emissive"] = tuple(material.emissive_color)
     return options
 
 
