@@ -29,10 +29,18 @@ REQUIRED = (
     "pipeline layout", "pipeline cache", "shader modules and SPIR-V", "vertex input bindings and attributes",
     "input assembly", "viewport and scissor", "rasterizer", "multisample", "dynamic state", "depth/stencil",
     "blending", "input attachments", "push constants", "UBO alignment", "frames in flight",
+    # issue 23: the course concepts that both paths have code for and had no row
+    "clear without a render pass", "buffer objects", "draw calls", "memory requirements", "device idle",
+    "compute pipelines", "storage images",
 )
+# The course's Vulkan calls that must each appear in some row (issue 23), written out here.
+REQUIRED_CALLS = ("vkCmdClearColorImage", "vkCreateBuffer", "vkCmdDraw", "vkCmdDrawIndexed",
+                  "vkGetBufferMemoryRequirements", "vkDeviceWaitIdle", "vkCreateComputePipelines", "vkCmdDispatch")
 # Concepts the raw path has no code for: their rows must say so (events: no natural use; the raw window,
 # wgpurender/raw_path/window.py, has the surface, swapchain, semaphores and frames in flight).
-NOT_IN_RAW_PATH = {"events"}
+NOT_IN_RAW_PATH = {"events", "compute pipelines", "storage images"}
+# Concepts no path has code for: shown as "not demonstrated".
+NOT_DEMONSTRATED = {"events"}
 ALL_LOCATIONS = sorted({(row.name, loc) for row in CONCEPTS for loc in (*row.raw, *row.wgpu_where)})
 
 
@@ -49,6 +57,24 @@ def test_location_exists(concept, location):
     assert location.startswith("wgpurender."), location
     obj = resolve(location)
     assert obj is not None
+
+
+def test_the_course_calls_have_rows():
+    named = " ".join(" ".join(row.vulkan) for row in CONCEPTS)
+    for call in REQUIRED_CALLS:
+        assert re.search(rf"\b{call}\b", named), f"no row names {call}"
+
+
+def test_every_demonstrated_row_points_at_code_on_both_paths_or_says_why():
+    """A row has wgpu code, and raw code or a note; a row with code on neither side is marked not demonstrated."""
+    for row in CONCEPTS:
+        has_code = bool(row.raw or row.wgpu_where)
+        assert row.demonstrated == has_code, f"{row.name}: demonstrated={row.demonstrated}, code: {has_code}"
+        if row.demonstrated:
+            assert row.wgpu_where, f"{row.name}: no wgpu-path code"
+            assert row.raw or row.raw_note, f"{row.name}: no raw-path code and no reason"
+    assert {row.name for row in CONCEPTS if not row.demonstrated} == NOT_DEMONSTRATED
+    assert "events (not demonstrated)" in plain_text() and "| events (not demonstrated) |" in markdown()
 
 
 def test_raw_and_wgpu_locations_are_on_their_own_path():
@@ -82,7 +108,7 @@ def test_markdown_is_one_table_row_per_concept():
     rows = [line for line in text.splitlines() if line.startswith("| ") and not line.startswith(("| Concept", "| ---"))]
     assert len(rows) == len(CONCEPTS)
     for line, row in zip(rows, CONCEPTS, strict=True):
-        assert line.startswith(f"| {row.name} |")
+        assert line.startswith(f"| {row.name}")
         cells = re.split(r"(?<!\\)\|", line)[1:-1]  # split on unescaped pipes
         assert len(cells) == 6, f"{row.name}: {len(cells)} cells, not 6"
     assert "GENERATED" in text.split("|")[0] and "python -m wgpurender.concepts" in text

@@ -69,11 +69,12 @@ HELPERS = {
     "render:render_stage": "command-buffer row: run_frames records and submits",
     "stages.base:Stage.resize": "multisample row: multisampled_texture creates the texture",
     "shaders:load_wgsl": "reads the WGSL that create_shader_module takes",
-    "shader_variants:specialise": "specialises the WGSL that create_shader_module takes",
-    "uniforms:Struct.pack": "the WGSL uniform-layout packer",
-    "uniforms:wgsl_structs": "the WGSL struct declarations",
+    "core.shader_variants:specialise": "specialises the WGSL that create_shader_module takes",
+    "core.uniforms:Struct.pack": "the WGSL uniform-layout packer",
+    "core.uniforms:wgsl_structs": "the WGSL struct declarations",
     "targets:padded_bytes_per_row": "row-padding arithmetic for copy_texture_to_buffer",
     "textures:mip_level_count": "mip chain arithmetic",
+    "post.chain:attachment_usage": "adds TextureUsage.STORAGE_BINDING to the textures a compute pass writes",
 }
 # Data, not code: constants that hold values of the row's API.
 DATA = {"gpu:GPUContext.queue", "gpu:OPTIONAL_FEATURES", "window:PRESENT_MODES", "window:SURFACE_USAGE",
@@ -82,7 +83,7 @@ DATA = {"gpu:GPUContext.queue", "gpu:OPTIONAL_FEATURES", "window:PRESENT_MODES",
 
 
 def _short(location: str) -> str:
-    return location.removeprefix("wgpurender.")
+    return location.removeprefix("wgpurender.wgpu_path.").removeprefix("wgpurender.")
 
 
 def _tree(location: str) -> ast.AST | None:

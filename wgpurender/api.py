@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from wgpurender.core import checks
 from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
 
@@ -95,20 +96,14 @@ class Image:
 
 
 def _size(size: Size) -> tuple[int, int] | None:
-    if size is None:
-        return None
-    if isinstance(size, str):
-        parts = size.lower().split("x")
-        if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
-            raise UserError(f"malformed size {size!r}: expected 'WIDTHxHEIGHT', e.g. '800x600', or a (w, h) tuple")
-        size = (int(parts[0]), int(parts[1]))
-    try:
-        width, height = (int(v) for v in size)
-    except (TypeError, ValueError):
-        raise UserError(f"malformed size {size!r}: expected a (width, height) tuple of integers") from None
-    if not (0 < width <= 16384 and 0 < height <= 16384):
-        raise UserError(f"size {width}x{height} out of range: width and height must be 1..16384")
-    return width, height
+    return checks.size(size)
+
+
+def _target(target: Target) -> str:
+    if not isinstance(target, (str, os.PathLike)) or not str(target):
+        raise UserError(f"target must be a stage name or a scene file path, got {type(target).__name__} "
+                        f"{target!r}; wgpurender.stage_names() lists the stages")
+    return str(target)
 
 
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
@@ -127,8 +122,9 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     from wgpurender.wgpu_path.gpu import get_context
 
     start = time.perf_counter()
-    wh = _size(size)
-    ctx = get_context(backend)
+    target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
+        checks.time(t)
+    ctx = get_context(checks.backend(backend))
     if is_scene_file(target):
         from wgpurender.wgpu_path.scene_render import render_plan
 
@@ -153,7 +149,8 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     from wgpurender.raw_path.instance import get_vulkan
 
     start = time.perf_counter()
-    wh = _size(size)
+    target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
+        checks.time(t)
     plan = None
     if is_scene_file(target):
         from wgpurender.core.plan import resolve_plan
@@ -165,7 +162,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     else:
         from wgpurender.raw_path import render_reference
 
-        pixels = render_reference(str(target), size=wh, fmt=format, msaa=msaa, t=t)
+        pixels = render_reference(target, size=wh, fmt=format, msaa=msaa, t=t)
     timings = {"call_ms": (time.perf_counter() - start) * 1e3}
     return Image(pixels, str(target), "raw", timings, get_vulkan().describe(), plan)
 
@@ -181,14 +178,14 @@ def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy) -> RenderPlan
 
 def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
     """8-bit pixels from an Image, an array (float = linear) or an image file."""
-    from wgpurender.core.imageio import load_png, to_uint8
+    from wgpurender.core.imageio import load_png
 
     if isinstance(image, Image):
         return image.rgba8()
     if isinstance(image, (str, os.PathLike)):
         return load_png(image)
     if isinstance(image, np.ndarray):
-        return to_uint8(np.ascontiguousarray(image))
+        return checks.image_array(image, name)
     raise UserError(f"{name}: expected a wgpurender.Image, a numpy array or an image path, got {type(image).__name__}")
 
 
@@ -202,7 +199,9 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
     """
     from wgpurender.core.compare import compare_images
 
-    return compare_images(_pixels(a, "a"), _pixels(b, "b"), with_flip=flip)
+    if not isinstance(flip, (bool, np.bool_)):
+        raise UserError(f"flip must be True or False, got {type(flip).__name__} {flip!r}")
+    return compare_images(_pixels(a, "a"), _pixels(b, "b"), with_flip=bool(flip))
 
 
 def heatmap(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | str | os.PathLike,
@@ -210,6 +209,7 @@ def heatmap(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
     """Where ``a`` and ``b`` differ, magnified by ``gain``, with its colour scale drawn below."""
     from wgpurender.core.compare import heatmap_with_scale
 
+    gain = checks.gain(gain)
     return Image(heatmap_with_scale(_pixels(a, "a"), _pixels(b, "b"), gain), "heatmap", "derived")
 
 
@@ -217,6 +217,7 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
     """Images in one row (aligned at the top, ``gap`` pixels apart): wgpu beside raw beside the heatmap."""
     if not images:
         raise UserError("side_by_side needs at least one image")
+    gap = checks.gap(gap)
     parts = [_pixels(i, f"image {n}") for n, i in enumerate(images)]
     parts = [np.dstack([p, np.full(p.shape[:2], 255, np.uint8)]) if p.shape[2] == 3 else p for p in parts]
     height = max(p.shape[0] for p in parts)
@@ -237,9 +238,10 @@ def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str 
     knobs left open (it says so)."""
     from wgpurender.core.course.formats import is_scene_file
 
+    scene, size, msaa, format = _target(scene), _size(size), checks.msaa(msaa), checks.output_format(format)
     if not is_scene_file(scene):
         raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
-    return _wgpu_plan(_context_or_none(backend), scene, _size(size), msaa, format, anisotropy)
+    return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy)
 
 
 def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,

@@ -27,7 +27,8 @@ C = "wgpurender."  # core locations are written "core.module:attr"
 
 @dataclass(frozen=True)
 class Concept:
-    """One row. ``raw_note`` says why ``raw`` is empty, where it is."""
+    """One row. ``raw_note`` says why ``raw`` is empty, where it is. ``demonstrated`` False: a course concept
+    that neither path has code for (the row says why), shown as "not demonstrated"."""
 
     name: str
     vulkan: tuple[str, ...]
@@ -36,6 +37,7 @@ class Concept:
     wgpu_where: tuple[str, ...]
     differs: str
     raw_note: str = ""
+    demonstrated: bool = True
 
 
 def _raw(*locations: str) -> tuple[str, ...]:
@@ -43,6 +45,7 @@ def _raw(*locations: str) -> tuple[str, ...]:
 
 
 def _wgpu(*locations: str) -> tuple[str, ...]:
+    """wgpu-path locations; ``core.`` ones are the API-free code the wgpu path builds on (WGSL structs, variants)."""
     return tuple((C if loc.startswith("core.") else W) + loc for loc in locations)
 
 
@@ -330,6 +333,7 @@ CONCEPTS: list[Concept] = [
         "changes use.",
         raw_note="not in the raw path: no natural use; a split barrier pays off when independent work can run "
         "between a write and its read, and in these frames every pass reads what the pass before it wrote",
+        demonstrated=False,
     ),
     Concept(
         "render pass",
@@ -547,6 +551,89 @@ CONCEPTS: list[Concept] = [
         "light) and wgpu orders the passes; the raw path does the same in GLSL rather than the course's "
         "vkCmdBlitImage, whose bilinear filter differs, so the two chains compare bit for bit.",
     ),
+    Concept(
+        "buffer objects",
+        ("vkCreateBuffer", "VkBufferCreateInfo (size, usage, sharingMode)", "vkBindBufferMemory",
+         "VkBuffer and its memory freed with their owner (an ExitStack)"),
+        _raw("memory:create_buffer"),
+        ("device.create_buffer(size=, usage=)", "device.create_buffer_with_data(data=, usage=)",
+         "BufferUsage.VERTEX / INDEX / UNIFORM / COPY_DST"),
+        _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "stages.cube3d:Cube3D.setup"),
+        "One call makes the buffer and its memory; there is no sharing mode (one queue) and no explicit destroy "
+        "(Python's garbage collector drops it, or buffer.destroy()). The usage flags are the same idea with "
+        "WebGPU's names; wgpu checks every use against them.",
+    ),
+    Concept(
+        "memory requirements",
+        ("vkGetBufferMemoryRequirements", "vkGetImageMemoryRequirements", "VkMemoryRequirements (size, alignment, "
+         "memoryTypeBits)"),
+        _raw("memory:create_buffer", "images:create_image"),
+        ("device.create_buffer(size=, usage=) (wgpu asks for the requirements and allocates inside)",
+         "device.create_texture(size=, usage=)"),
+        _wgpu("stages.cube3d:Cube3D.setup", "targets:create_target"),
+        "Never visible: wgpu queries the requirements, rounds the size up to the alignment and picks a memory type "
+        "from memoryTypeBits inside create_buffer / create_texture. The raw path allocates exactly "
+        "requirements.size (often more than the buffer's size) from a type the mask allows.",
+    ),
+    Concept(
+        "clear without a render pass",
+        ("vkCmdClearColorImage", "VkClearColorValue", "VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL"),
+        _raw("stages.clear:ClearTransfer.record"),
+        ("GPUCommandEncoder.clear_texture (wgpu-native's wgpuCommandEncoderClearTexture, feature 'clear-texture', "
+         "reached through the cffi handle)",),
+        _wgpu("native:clear_texture", "stages.clear:ClearTransfer.record"),
+        "WebGPU's clear is outside any pass like vkCmdClearColorImage, but takes no colour: it always writes "
+        "zeros (a colour needs a render pass with load_op 'clear', the stage clear-pass). wgpu-py 0.32 does not "
+        "wrap it, so the wgpu path calls wgpu-native through cffi; wgpu places the layout transition itself.",
+    ),
+    Concept(
+        "draw calls",
+        ("vkCmdDraw", "vkCmdDrawIndexed", "vkCmdBindVertexBuffers", "vkCmdBindIndexBuffer"),
+        _raw("stages.triangle:Triangle.record", "stages.triangle_buffers:TriangleBuffers.record",
+             "stages.cube3d:Cube3D.record"),
+        ("GPURenderPassEncoder.draw(vertex_count, instance_count, first_vertex, first_instance)",
+         "draw_indexed(index_count, ...)", "set_vertex_buffer / set_index_buffer"),
+        _wgpu("stages.triangle:Triangle.record", "stages.triangle_buffers:TriangleBuffers.record",
+              "stages.cube3d:Cube3D.record"),
+        "The same calls with the same arguments, recorded on a pass encoder instead of a command buffer; the index "
+        "format is given when the index buffer is bound ('uint16'), as in vkCmdBindIndexBuffer. Each draw is "
+        "validated by wgpu (buffer sizes against the counts), which costs CPU time per call (docs/benchmarks.md).",
+    ),
+    Concept(
+        "device idle",
+        ("vkDeviceWaitIdle",),
+        _raw("window:RawWindow._recreate", "window:RawWindow.close", "instance:VulkanContext.close"),
+        ("wgpu-native's device poll with wait (wgpu-py's private _poll_wait)", "a fence buffer: map_sync"),
+        _wgpu("gpu:GPUContext.wait_idle"),
+        "WebGPU has no wait-idle: a program waits for a mapped buffer or queue.on_submitted_work_done (which "
+        "raises TypeError in wgpu-py 0.32.0). The wgpu path waits in one place, on the calling thread; the raw "
+        "window waits for the device before it re-creates the swapchain or destroys anything.",
+    ),
+    Concept(
+        "compute pipelines",
+        ("vkCreateComputePipelines", "VkComputePipelineCreateInfo", "vkCmdBindPipeline(COMPUTE)", "vkCmdDispatch"),
+        (),
+        ("device.create_compute_pipeline(layout=, compute={module, entry_point, constants})",
+         "encoder.begin_compute_pass", "compute_pass.dispatch_workgroups"),
+        _wgpu("post.passes:ComputePass.__init__", "post.passes:ComputePass.encode"),
+        "The same object: a pipeline with one shader stage, bound in a compute pass and dispatched in workgroups "
+        "(8x8 here, one thread per pixel). The wgpu path's post chain can run as compute (the plan's post_path "
+        "knob: docs/benchmarks.md measures both).",
+        raw_note="not in the raw path: its post chain runs in fragment subpasses, whose input attachments are what "
+        "it shows (a compute pass cannot read a subpass input); the compute path is a wgpu-path alternative",
+    ),
+    Concept(
+        "storage images",
+        ("VK_DESCRIPTOR_TYPE_STORAGE_IMAGE", "VK_IMAGE_USAGE_STORAGE_BIT", "GLSL imageStore"),
+        (),
+        ("bind group layout entry {'storage_texture': {'access': 'write-only', 'format': ...}}",
+         "TextureUsage.STORAGE_BINDING", "WGSL texture_storage_2d, textureStore"),
+        _wgpu("post.passes:ComputePass._entries", "post.passes:ComputePass.encode", "post.chain:attachment_usage"),
+        "An sRGB format cannot be a storage texture (rgba8unorm-srgb is not storable): the compute pass writes "
+        "rgba8unorm or a float format and copies into an sRGB output, or encodes sRGB in the shader.",
+        raw_note="not in the raw path: it has no compute pass (see compute pipelines); its images are colour, "
+        "depth and input attachments and sampled images",
+    ),
 ]
 
 
@@ -556,6 +643,11 @@ CONCEPTS: list[Concept] = [
 def short(location: str) -> str:
     """A location without the package prefix, for display."""
     return location.removeprefix(W).removeprefix(C)
+
+
+def title(row: Concept) -> str:
+    """The row's name, marked where neither path has code for it."""
+    return row.name if row.demonstrated else f"{row.name} (not demonstrated)"
 
 
 def raw_cell(row: Concept) -> list[str]:
@@ -580,8 +672,9 @@ Generated from `wgpurender/concepts.py` by `python -m wgpurender.concepts > docs
 (or `wgpurender concepts --markdown > docs/vulkan-mapping.md`); edit the data there and regenerate.
 tests/test_concepts.py fails when this file is stale and checks that every code location below exists.
 
-Locations are `module:function` (or `module:Class.method`) under `wgpurender.`: the raw path is
-`raw_path.*` (Python `vulkan` binding, GLSL), the wgpu path is everything else.
+Locations are `module:function` (or `module:Class.method`): the raw path's under `wgpurender.raw_path.`
+(Python `vulkan` binding, GLSL), the wgpu path's under `wgpurender.wgpu_path.` (shown without that prefix);
+`core.*` is the API-free core (`wgpurender.core.`) the wgpu path generates its WGSL structs from.
 """
 
 
@@ -592,7 +685,7 @@ def markdown(rows: list[Concept] = CONCEPTS) -> str:
         "| --- | --- | --- | --- | --- | --- |",
     ]
     for row in rows:
-        cells = [row.name, _md(row.vulkan), _md(raw_cell(row)), _md(row.wgpu), _md(wgpu_cell(row)), _md(row.differs)]
+        cells = [title(row), _md(row.vulkan), _md(raw_cell(row)), _md(row.wgpu), _md(wgpu_cell(row)), _md(row.differs)]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
@@ -600,7 +693,7 @@ def markdown(rows: list[Concept] = CONCEPTS) -> str:
 def plain_text(rows: list[Concept] = CONCEPTS, width: int = 100) -> str:
     out = []
     for row in rows:
-        out.append(row.name)
+        out.append(title(row))
         for label, items in (
             ("Vulkan", row.vulkan),
             ("raw path", raw_cell(row)),

@@ -1,45 +1,47 @@
-"""Arguments that several subcommands share."""
+"""Arguments that several subcommands share. The checks themselves are in :mod:`wgpurender.core.checks`, which the
+Python API calls too, so a mistake gets the same message from either."""
 
 from __future__ import annotations
 
 import argparse
-import math
+from collections.abc import Callable
+from typing import Any
+
+from wgpurender.core import checks
+from wgpurender.core.errors import UserError
 
 
-def size_arg(text: str) -> tuple[int, int]:
-    """Parse WxH, e.g. 800x600."""
-    parts = text.lower().split("x")
-    try:
-        width, height = (int(p) for p in parts)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"malformed size {text!r}: expected WIDTHxHEIGHT, e.g. 800x600") from None
-    if not (0 < width <= 16384 and 0 < height <= 16384):
-        raise argparse.ArgumentTypeError(f"size {text!r} out of range: width and height must be 1..16384")
-    return width, height
+def checked(check: Callable[[str], Any]) -> Callable[[str], Any]:
+    """An argparse type from a core check: its UserError becomes argparse's one-line usage error."""
+
+    def parse(text: str) -> Any:
+        try:
+            return check(text)
+        except UserError as err:
+            raise argparse.ArgumentTypeError(str(err)) from None
+
+    parse.__name__ = check.__name__  # argparse names the type in some messages
+    return parse
 
 
-def finite_float(text: str) -> float:
-    """A finite number (not nan, inf or -inf)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number: give a plain number such as 1.5")
-    return value
+size_arg = checked(checks.size)
+finite_float = checked(lambda text: checks.number(text, "the value"))
+gain_arg = checked(checks.gain)
+time_arg = checked(checks.time)
+msaa_arg = checked(checks.msaa)
+format_arg = checked(checks.output_format)
+backend_arg = checked(checks.backend)
 
 
 def positive_float(text: str) -> float:
     """A finite number above 0."""
-    value = finite_float(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be above 0, e.g. 32")
-    return value
+    return checked(lambda t: checks.positive(t, "the value"))(text)
 
 
 def add_backend_arg(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--backend",
+        type=backend_arg,
         default=None,
         help="graphics backend: vulkan (default), opengl, metal, d3d12 or auto (the best adapter of any); "
              "also $WGPURENDER_BACKEND",
@@ -57,17 +59,18 @@ def add_render_args(parser: argparse.ArgumentParser) -> None:
     """--size, --msaa, --format, --time: how a stage or scene is rendered."""
     parser.add_argument("--size", type=size_arg, default=None, metavar="WxH", help="image size (default 800x600)")
     parser.add_argument(
-        "--msaa", type=int, default=None, metavar="N", help="MSAA sample count, 1 or 4 (default: the stage's)"
+        "--msaa", type=msaa_arg, default=None, metavar="N", help="MSAA sample count, 1 or 4 (default: the stage's)"
     )
     parser.add_argument(
         "--format",
+        type=format_arg,
         default=None,
         metavar="F",
         help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float",
     )
     parser.add_argument(
         "--time",
-        type=finite_float,
+        type=time_arg,
         default=0.0,
         metavar="T",
         help="animation time in seconds, fixed so output is deterministic (default 0)",

@@ -1,10 +1,10 @@
 """``wgpurender demo --raw``: the demo's flags, run by the raw-Vulkan window (wgpurender/raw_path/window.py).
 
 Every demo flag either works here as it does for the wgpu window or is refused with one line (exit 2):
-``--backend`` (a wgpu choice) and ``--test-input`` (the wgpu window's synthetic input) are refused;
+``--backend`` (a wgpu choice) is refused; the orbit camera, keys, FPS title, ``--test-input`` and the
+``--benchmark`` CSV are the wgpu window's, from the core (core/controls.py, core/frame_times.py);
 ``--anisotropy`` is resolved for the raw device by the same function (core/plan/resolve.py);
-``--validation`` turns on the Vulkan validation layer and counts its messages; ``--benchmark`` writes the
-same CSV as the wgpu window (wgpurender/core/frame_times.py).
+``--validation`` turns on the Vulkan validation layer and counts its messages.
 """
 
 from __future__ import annotations
@@ -13,12 +13,12 @@ import os
 
 REFUSED = {  # dest -> why it cannot apply to the raw window
     "backend": "--backend picks a wgpu backend: the raw path is Vulkan only, leave it out with --raw",
-    "test_input": "--test-input drives the wgpu window's controls: the raw window has none, leave it out with --raw",
 }
 
 
 def run_raw(args, benchmark) -> int:
     """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller."""
+    from wgpurender.core.controls import parse_script
     from wgpurender.core.errors import UserError
     from wgpurender.core.imageio import check_writable, save_png
     from wgpurender.raw_path.validation import ENV
@@ -31,9 +31,10 @@ def run_raw(args, benchmark) -> int:
         check_writable(args.screenshot)
     if args.validation:
         os.environ[ENV] = "1"  # read when the window's Vulkan context is made
+    script = parse_script(args.test_input)
     result = run_raw_window(args.target, size=args.size, present_mode=args.present_mode, frames=args.frames,
                             screenshot=bool(args.screenshot), msaa=args.msaa, fixed_time=args.time,
-                            anisotropy=args.anisotropy, benchmark=benchmark)
+                            benchmark=benchmark, script=script, anisotropy=args.anisotropy)
     print(f"surface offers: {result.offered}")
     print(f"swapchain: {result.swapchain_format}, present mode {result.present_mode}, "
           f"re-created {result.recreated} time(s)")

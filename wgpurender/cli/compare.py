@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from wgpurender.cli._args import positive_float
+from wgpurender.cli._args import checked, gain_arg
+from wgpurender.core import checks
 
 
 def register(subparsers) -> None:
@@ -21,7 +22,7 @@ def register(subparsers) -> None:
     p.add_argument("--json", action="store_true",
                    help="print one JSON object instead: the metrics (shares as fractions 0..1, psnr null for "
                    "identical images), the thresholds, what failed, and the heatmap path")
-    p.add_argument("--gain", type=positive_float, default=32.0, help="heatmap magnification (default 32)")
+    p.add_argument("--gain", type=gain_arg, default=32.0, help="heatmap magnification (default 32)")
     p.add_argument(
         "--threshold",
         action="append",
@@ -36,17 +37,10 @@ def register(subparsers) -> None:
 
 
 def _threshold(text: str) -> tuple[str, float]:
-    from wgpurender.core.compare import METRICS
-
-    name, _, value = text.partition("=")
-    if name not in METRICS:
-        raise argparse.ArgumentTypeError(f"unknown metric {name!r}: choose from {', '.join(METRICS)}")
-    try:
-        if value.endswith("%"):
-            return name, float(value[:-1]) / 100.0
-        return name, float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"threshold {text!r} needs a number after '='") from None
+    name, equals, value = text.partition("=")
+    if not equals:
+        raise argparse.ArgumentTypeError(f"threshold {text!r} needs METRIC=VALUE, e.g. flip_mean=0.005")
+    return checked(lambda v: checks.threshold(name, v))(value)
 
 
 SHARES = ("over_1", "over_2")  # fractions of the pixels: printed as %

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from wgpurender.cli._args import add_anisotropy_arg, finite_float, size_arg
+from wgpurender.cli._args import add_anisotropy_arg, size_arg, time_arg
 
 BENCHMARK_DEFAULTS = {"benchmark_warmup": 2.0, "benchmark_runtime": 10.0, "benchmark_result_file": "benchmark.csv"}
 CONTROLS = ("left drag orbits, right/middle drag pans, scroll zooms; arrows/WASD orbit, +/- (Q/E) zoom, "
@@ -42,7 +42,7 @@ def register(subparsers) -> None:
         "when the surface lacks it); mailbox alone cannot be asked for through wgpu-py 0.32 (exit 2 says so)",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
-    p.add_argument("--time", type=finite_float, default=None, metavar="T", help="freeze the animation at T seconds")
+    p.add_argument("--time", type=time_arg, default=None, metavar="T", help="freeze the animation at T seconds")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None,
                    help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
@@ -62,7 +62,7 @@ def register(subparsers) -> None:
                        metavar="S", help="seconds of timed frames (default 10)")
     bench.add_argument("--benchmark-result-file", default=BENCHMARK_DEFAULTS["benchmark_result_file"], metavar="CSV",
                        help="where the per-frame times go: frame,frame_ms (default benchmark.csv; --raw too)")
-    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (window/controls.py)
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (core/controls.py)
     p.set_defaults(func=run)
 
 
@@ -124,10 +124,10 @@ def _benchmark(args):
 
 
 def _show(args, benchmark):
+    from wgpurender.core.controls import parse_script
     from wgpurender.core.imageio import check_writable
     from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.window import run_window
-    from wgpurender.wgpu_path.window.controls import parse_script
     from wgpurender.wgpu_path.window.view import DemoView
 
     if args.screenshot:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from wgpurender.cli._args import add_anisotropy_arg, finite_float, size_arg
+from wgpurender.cli._args import add_anisotropy_arg, format_arg, msaa_arg, size_arg, time_arg
 from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 
 
@@ -20,12 +20,12 @@ def register(subparsers) -> None:
                    help="output image (written atomically): .png, or .jpg, .bmp, .tif, .webp by suffix")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="image size (default 800x600; a scene file's [render] size)")
-    p.add_argument("--msaa", type=int, default=None, metavar="N",
+    p.add_argument("--msaa", type=msaa_arg, default=None, metavar="N",
                    help="MSAA sample count, 1 or 4 (default: the stage's or scene's)")
-    p.add_argument("--format", default=None, metavar="F",
+    p.add_argument("--format", type=format_arg, default=None, metavar="F",
                    help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float (default for a scene: its "
                    "output_format)")
-    p.add_argument("--time", type=finite_float, default=0.0, metavar="T", help="animation time in seconds (default 0)")
+    p.add_argument("--time", type=time_arg, default=0.0, metavar="T", help="animation time in seconds (default 0)")
     add_anisotropy_arg(p)
     p.set_defaults(func=run)
 

@@ -1,4 +1,6 @@
-"""The demo's benchmark mode, after Sascha Willems' Vulkan examples: warm up, run for a while, write frame times.
+"""Both demo windows' frame counters: FPS in the title, and the benchmark mode.
+
+The benchmark mode follows Sascha Willems' Vulkan examples: warm up, run for a while, write frame times.
 
 ``wgpurender demo TARGET --benchmark`` draws untimed for ``warmup`` seconds (shader JIT,
 first uploads, the swapchain settling), then records the wall time of every frame for
@@ -64,3 +66,32 @@ class FrameRecorder:
         q = statistics.quantiles(times, n=100) if len(times) > 1 else [times[0]] * 99
         return (f"benchmark: {len(times)} frames in {sum(times) / 1e3:.2f} s, {1e3 / mean:.1f} FPS; frame time "
                 f"mean {mean:.3f} ms, min {min(times):.3f}, p50 {q[49]:.3f}, p99 {q[98]:.3f}, max {max(times):.3f} ms")
+
+
+TITLE_EVERY_S = 0.5  # how often the FPS in the title is refreshed
+
+
+@dataclass
+class TitleCounter:
+    """FPS and mean frame time over the last ``TITLE_EVERY_S``, for the window title (both windows)."""
+
+    base: str
+    _at: float | None = None
+    _frames: int = 0
+
+    def frame_done(self, now: float, status: str = "") -> str | None:
+        """Count a presented frame; every TITLE_EVERY_S the new title, otherwise None."""
+        if self._at is None:
+            self._at = now
+            return None
+        self._frames += 1
+        if now - self._at < TITLE_EVERY_S:
+            return None
+        ms = (now - self._at) * 1e3 / self._frames
+        self._at, self._frames = now, 0
+        return title_text(self.base, ms, status)
+
+
+def title_text(base: str, frame_ms: float, status: str = "") -> str:
+    """``base  |  60.0 FPS  16.67 ms`` (plus a status such as a failed reload)."""
+    return f"{base}  |  {1e3 / frame_ms:.1f} FPS  {frame_ms:.2f} ms{status}"

@@ -18,8 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_schema
+from wgpurender.core import gltf_rules, gltf_schema
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import check_file_size, input_file, resolved
 from wgpurender.core.safe_write import atomic_write
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
@@ -74,6 +75,7 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
     check_required_extensions(path, doc_json)
     try:
         gltf_schema.check(doc_json)
+        gltf_rules.check_rules(doc_json)
     except ValueError as err:
         raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
     buffers = [_load_buffer(path, i, b, glb_bin) for i, b in enumerate(doc_json.get("buffers", []))]
@@ -144,8 +146,8 @@ def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) ->
     if uri.startswith("data:"):
         return _data_uri(path, f"$.buffers[{index}].uri", uri)
     file = _uri_file(path, f"$.buffers[{index}].uri", uri)
-    if not file.is_file():
-        raise UserError(f"glTF file {path}: buffer file {file} not found (keep .bin files next to the .gltf)")
+    missing = f"glTF file {path}: buffer file {file} not found (keep .bin files next to the .gltf)"
+    check_file_size(input_file(file, "glTF buffer file", missing), "glTF buffer file")
     return file.read_bytes()
 
 
@@ -247,7 +249,7 @@ def _image_source(doc: GltfDocument, image: dict) -> dict:
         return {"uri": None, "data": doc.buffers[view["buffer"]][start : start + view["byteLength"]]}
     if uri.startswith("data:"):
         return {"uri": None, "data": _data_uri(doc.path, "an image uri", uri)}
-    return {"uri": _uri_file(doc.path, "an image uri", uri).resolve(), "data": None}
+    return {"uri": resolved(_uri_file(doc.path, "an image uri", uri)), "data": None}
 
 
 def _data_uri(path: Path, where: str, uri: str) -> bytes:

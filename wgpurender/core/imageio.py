@@ -10,6 +10,7 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import check_image_pixels, input_file
 from wgpurender.core.safe_write import atomic_write, output_target
 
 __all__ = ["UserError", "save_png", "save_image", "image_format", "load_png", "check_writable", "decode_image",
@@ -59,7 +60,9 @@ def save_png(path: str | os.PathLike, pixels: np.ndarray) -> Path:
 
 def decode_image(image: Image.Image, name: str) -> np.ndarray:
     """(H, W, 4) uint8 from any Pillow image: 16-bit and 32-bit integer greyscale are scaled to 8 bits
-    (Pillow's own convert("RGBA") would clip them at 255), and every channel layout becomes RGBA."""
+    (Pillow's own convert("RGBA") would clip them at 255), and every channel layout becomes RGBA.
+    The size the header declares is checked first (:func:`check_image_pixels`): nothing is decoded before."""
+    check_image_pixels(*image.size, name)
     if image.mode in ("I", "I;16", "I;16B", "I;16L", "I;16N"):
         wide = np.asarray(image).astype(np.float64)
         if wide.size and (wide.min() < 0 or wide.max() > 65535):
@@ -73,9 +76,7 @@ def decode_image(image: Image.Image, name: str) -> np.ndarray:
 
 def load_png(path: str | os.PathLike) -> np.ndarray:
     """Read an image as (H, W, 4) uint8; a clear error when it is missing or unreadable."""
-    path = Path(path)
-    if not path.is_file():
-        raise UserError(f"image not found: {path}")
+    path = input_file(path, "image")
     try:
         with Image.open(path) as im:
             return decode_image(im, str(path))

@@ -30,6 +30,7 @@ import numpy as np
 
 from wgpurender.core import gltf_geometry, gltf_io
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import check_file_size, input_file, resolved
 from wgpurender.core.tangents import area_weighted_normals, face_uv_frames, split_mirrored_vertices, vertex_tangents
 
 SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl"}
@@ -65,9 +66,10 @@ class TextureRef:
         if self.data is None:
             from wgpurender.core.imageio import load_png
 
-            if self.path is None or not self.path.is_file():
-                raise UserError(f"texture not found: {self.path} (keep textures where the model file refers to them)")
-            return load_png(self.path)
+            missing = f"texture not found: {self.path} (keep textures where the model file refers to them)"
+            if self.path is None:
+                raise UserError(missing)
+            return load_png(input_file(self.path, "texture", missing))
         import io
 
         from PIL import Image
@@ -310,8 +312,7 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
     if suffix not in SUPPORTED:
         raise UserError(f"cannot load {path}: unknown model format '{suffix or path.name}' "
                         f"(supported: {', '.join(SUPPORTED)})")
-    if not path.is_file():
-        raise UserError(f"model file not found: {path}")
+    check_file_size(input_file(path, "model file"), "model file")
     file_type = SUPPORTED[suffix]
     if file_type in ("gltf", "glb"):
         parts, material = _gltf_parts(path, file_type)
@@ -481,7 +482,7 @@ def _obj_material(path: Path) -> Material | None:
     wanted = used.group(1).decode("utf-8", "replace") if used else None
     for lib in libraries:
         mtl = path.parent / lib.decode("utf-8", "replace")
-        if not mtl.is_file():
+        if not os.path.isfile(mtl):
             # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
             log.info("%s: material library %s not found; loading without textures", path, mtl)
             continue
@@ -511,5 +512,5 @@ def parse_mtl(path: Path) -> dict[str, Material]:
             if not tokens[-1].isprintable():
                 raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
                                 "fix the material library")
-            current.textures.setdefault(role, TextureRef((path.parent / tokens[-1]).resolve(), None, srgb))
+            current.textures.setdefault(role, TextureRef(resolved(path.parent / tokens[-1]), None, srgb))
     return materials

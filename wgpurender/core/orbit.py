@@ -15,6 +15,7 @@ never looks straight along ``up`` (where look-at is undefined).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -95,3 +96,12 @@ class Orbit:
     def pose(self) -> tuple:
         """A hashable summary: the window redraws the camera only when it changed."""
         return (*self.eye(), *(float(v) for v in self.target))
+
+
+def moved_camera(camera, orbit: Orbit):
+    """``camera`` (any dataclass with ``eye`` and ``target``) at the orbit's eye and target; the same object when
+    nothing moved, so a window can skip re-uploading it."""
+    eye, target = orbit.eye(), tuple(float(v) for v in orbit.target)
+    if (tuple(camera.eye), tuple(camera.target)) == (eye, target):
+        return camera
+    return dataclasses.replace(camera, eye=eye, target=target)

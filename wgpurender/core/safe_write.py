@@ -18,6 +18,7 @@ is written, and must itself be a regular file or absent). An atomic rename would
 
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import signal
@@ -27,6 +28,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import os_error_reason
 
 FOLLOW_SYMLINKS_ENV = "WGPURENDER_FOLLOW_SYMLINKS"
 TEST_DELAY_ENV = "WGPURENDER_TEST_WRITE_DELAY"  # seconds to hold the temp file open: lets tests kill mid-write
@@ -47,6 +49,45 @@ def _follow_symlinks() -> bool:
     return os.environ.get(FOLLOW_SYMLINKS_ENV, "") not in ("", "0")
 
 
+def _link_target(link: Path) -> tuple[Path, int | None]:
+    """The file a symbolic link leads to and its mode (None when absent); UserError for a loop, where
+    ``realpath`` would hand back a link of the loop and the rename would replace that link."""
+    try:
+        os.stat(link)
+    except FileNotFoundError:
+        pass  # a dangling link: its target is created
+    except OSError as err:
+        raise UserError(f"refusing to write {link}: {os_error_reason(link, err)}") from None
+    target = Path(os.path.realpath(link))
+    try:
+        mode = os.lstat(target).st_mode
+    except FileNotFoundError:
+        return target, None
+    except OSError as err:
+        raise UserError(f"refusing to write {link}: {os_error_reason(target, err)}") from None
+    if stat.S_ISLNK(mode):  # realpath gave up on it: never replace a link
+        raise UserError(f"refusing to write {link}: it leads to the symbolic link {target}, which cannot be resolved")
+    return target, mode
+
+
+def temp_name(path: Path) -> Path:
+    """The temp file beside ``path``: ``.NAME.wgpurender-PID.tmp``, or, when that would pass the file system's
+    name limit (an output name of 240-255 bytes), ``.HASH.wgpurender-PID.tmp`` (same pattern, so
+    :func:`sweep_stale` still finds it)."""
+    name = f".{path.name}.wgpurender-{os.getpid()}.tmp"
+    if len(os.fsencode(name)) > _name_max(path.parent):
+        digest = hashlib.sha256(os.fsencode(path.name)).hexdigest()[:16]
+        name = f".{digest}.wgpurender-{os.getpid()}.tmp"
+    return path.parent / name
+
+
+def _name_max(folder: Path) -> int:
+    try:
+        return int(os.pathconf(folder, "PC_NAME_MAX"))
+    except (OSError, ValueError):
+        return 255
+
+
 def output_target(path: str | os.PathLike) -> Path:
     """The file to write for ``path``, or UserError: never a special file, a symlink only when asked."""
     path = Path(path)
@@ -62,8 +103,7 @@ def output_target(path: str | os.PathLike) -> Path:
         if not _follow_symlinks():
             raise UserError(f"refusing to write {path}: it is a symbolic link (to {os.readlink(path)}); give the "
                             f"real file name, or set {FOLLOW_SYMLINKS_ENV}=1 to write through links")
-        path = Path(os.path.realpath(path))
-        mode = os.lstat(path).st_mode if path.exists() else None
+        path, mode = _link_target(path)
     if mode is not None and not stat.S_ISREG(mode):
         hint = "give a file name ending in .png" if stat.S_ISDIR(mode) else "give the path of a regular file"
         raise UserError(f"refusing to write {path}: it is {_kind(mode)}, not a regular file; {hint}")
@@ -122,7 +162,7 @@ def atomic_write(path: str | os.PathLike, data: bytes | Callable[[], bytes]) -> 
     except OSError as err:
         raise UserError(f"cannot write {path}: {err.strerror or err}") from None
     sweep_stale(path.parent)
-    tmp = path.parent / f".{path.name}.wgpurender-{os.getpid()}.tmp"
+    tmp = temp_name(path)
     _live.add(tmp)
     try:
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_EXCL, 0o666 & ~_umask())

@@ -33,17 +33,22 @@ drawn; the loop sleeps in glfwWaitEventsTimeout and re-creates the swapchain on 
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Callable
 from contextlib import ExitStack
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import vulkan as vk
 
 from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.controls import Controls, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.errors import UserError
-from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder
+from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
+from wgpurender.core.imageio import save_png
+from wgpurender.core.orbit import Orbit, moved_camera
 from wgpurender.raw_path.checks import check_msaa, check_size
 from wgpurender.raw_path.images import Image, create_image, subresource_layers, subresource_range
 from wgpurender.raw_path.instance import VulkanContext, create_context
@@ -96,9 +101,10 @@ def _glfw():
 
 
 def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
-                     anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[Callable, str]:
-    """(make, format): ``make(owned, size) -> (record, format, drawable)`` makes a raw stage, or a scene file
-    drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders. A scene's plan is
+                     anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[Callable, str, object]:
+    """(make, format, camera): ``make(owned, size) -> (record, format, drawable)`` makes a raw stage, or a scene
+    file drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders; ``camera`` its
+    start camera (eye, target, up), None for a flat stage. A scene's plan is
     :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: the per-adapter rule or "scene")."""
     if target.endswith(".toml"):
         from wgpurender.core.plan import resolve_plan
@@ -117,7 +123,7 @@ def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
             check_supported(plan)
             frame = SceneFrame(ctx, owned, scene, plan)
             return (lambda cmd, image, t: frame.record(cmd, image)), plan.output_format, frame
-        return make_scene, plan_for(None).output_format
+        return make_scene, plan_for(None).output_format, scene.camera
     from wgpurender.raw_path.stages import get_ref_stage
 
     cls = get_ref_stage(target)
@@ -126,7 +132,7 @@ def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
     def make_stage(owned: ExitStack, size: tuple[int, int]):
         stage = cls(ctx, owned, cls.default_format, samples, size)
         return stage.record, cls.default_format, stage
-    return make_stage, cls.default_format
+    return make_stage, cls.default_format, getattr(cls, "camera", None)
 
 
 class FrameSlot:
@@ -340,29 +346,86 @@ def create_window_context(glfw, window) -> tuple[VulkanContext, object]:
 def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode: str = "fifo",
                    frames: int | None = None, screenshot: bool = False, msaa: int | None = None,
                    fixed_time: float | None = None, on_frame: Callable | None = None,
-                   anisotropy: str = DEFAULT_ANISOTROPY, benchmark: BenchmarkSpec | None = None) -> RawWindowResult:
-    """Show a raw stage or scene until the window closes (Esc or the close button) or ``frames`` are presented.
+                   benchmark: BenchmarkSpec | None = None, script: list[ScriptEvent] = (),
+                   anisotropy: str = DEFAULT_ANISOTROPY) -> RawWindowResult:
+    """Show a raw stage or scene until the window closes (Esc or the close button), ``frames`` are presented,
+    or the benchmark's run time is over.
 
-    ``anisotropy``: a scene's rule (:func:`drawable_factory`). ``benchmark``: warm up, then record every
-    presented frame's time until its run time is over, as the wgpu window does (wgpurender/core/frame_times.py).
-
-    ``screenshot``: the last presented frame is copied back from its swapchain image. ``on_frame(glfw,
-    window, n)`` runs before frame n (tests use it to resize and minimise). With validation on, any message
-    raises ValidationFailed when the window closes.
+    The demo's controls are the wgpu window's (core/controls.py: orbit camera for scenes and the 3d stage,
+    the same keys), as are the FPS title and the benchmark CSV (core/frame_times.py). ``screenshot``: the
+    last presented frame is copied back from its swapchain image. ``on_frame(glfw, window, n)`` runs before
+    frame n (tests use it to resize and minimise); ``script`` is the tests' synthetic input (``demo
+    --test-input``). ``anisotropy``: a scene's rule (:func:`drawable_factory`). With validation on, any
+    message raises ValidationFailed when the window closes.
     """
     glfw = _glfw()
-    window = open_window(glfw, f"wgpurender --raw: {target}", size)
-    glfw.set_key_callback(window, lambda w, key, *_: key == glfw.KEY_ESCAPE and glfw.set_window_should_close(w, 1))
+    title = f"wgpurender --raw: {target}"
+    window = open_window(glfw, title, size)
     ctx, surface = create_window_context(glfw, window)
     raw = None
     try:
-        raw = RawWindow(glfw, window, ctx, surface, drawable_factory(ctx, target, msaa, anisotropy), present_mode)
-        recorder = FrameRecorder(benchmark) if benchmark else None
+        make, fmt, camera = drawable_factory(ctx, target, msaa, anisotropy)
+        raw = RawWindow(glfw, window, ctx, surface, (make, fmt), present_mode)
+        loop = RawDemoLoop(raw, camera, title, benchmark, list(script))
+        result = loop.run(frames, screenshot, fixed_time, on_frame)
+        vk.vkDeviceWaitIdle(ctx.device)
+        result.validation_messages = len(ctx.log.messages) if ctx.log is not None else None
+        ctx.check_validation(f"the raw-Vulkan window of {target!r}")
+        return result
+    finally:
+        if raw is not None:
+            raw.close()
+        destroy_surface(ctx, surface)
+        ctx.close()
+        glfw.destroy_window(window)
+        glfw.terminate()
+
+
+def apply_camera(drawable, orbit: Orbit | None) -> None:
+    """Move a raw drawable's camera (a SceneFrame's scene camera, or the 3d stage's) to the orbit's pose."""
+    if orbit is None:
+        return
+    if hasattr(drawable, "scene_subpass"):
+        camera = moved_camera(drawable.scene.camera, orbit)
+        if camera is not drawable.scene.camera:
+            drawable.scene = drawable.scene_subpass.scene = dataclasses.replace(drawable.scene, camera=camera)
+    elif getattr(drawable, "camera", None) is not None:
+        drawable.camera = moved_camera(drawable.camera, orbit)
+
+
+class RawDemoLoop:
+    """The frame loop of the raw window with the demo's input, title and benchmark (as the wgpu window's)."""
+
+    def __init__(self, raw: RawWindow, camera, title: str, benchmark: BenchmarkSpec | None,
+                 script: list[ScriptEvent]) -> None:
+        self.raw, self.glfw, self.script = raw, raw.glfw, script
+        self.orbit = None if camera is None else Orbit.from_look_at(camera.eye, camera.target, camera.up)
+        self.controls = Controls(self.glfw, lambda: self.orbit)
+        install_callbacks(self.glfw, raw.window, self.controls)
+        self.titles = TitleCounter(title)
+        self.recorder = FrameRecorder(benchmark) if benchmark else None
+
+    def _due_shots(self, count: int) -> list[Path]:
+        shots = []
+        for event in due(self.script, count):
+            if event.action == "shot":
+                shots.append(Path(event.args[0]))
+            elif event.action == "wait-reload":
+                raise UserError("--test-input wait-reload: the raw window has no live reload")
+            else:
+                send(self.controls, event)
+        return shots
+
+    def run(self, frames, screenshot: bool, fixed_time, on_frame) -> RawWindowResult:
+        raw, glfw = self.raw, self.glfw
         count, times, last_slot, start = 0, [], None, time.perf_counter()
-        while not glfw.window_should_close(window) and (frames is None or count < frames):
+        while not glfw.window_should_close(raw.window) and (frames is None or count < frames):
             if on_frame is not None:
-                on_frame(glfw, window, count)
+                on_frame(glfw, raw.window, count)
             glfw.poll_events()
+            shots = self._due_shots(count)
+            if self.controls.close_requested:
+                break
             if raw.minimised():
                 raw.note("minimised: nothing acquired or drawn")
                 glfw.wait_events_timeout(0.05)
@@ -372,26 +435,28 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
                 raw._recreate()
             began = time.perf_counter()
             t = fixed_time if fixed_time is not None else began - start
-            shot = screenshot and (frames is None or count == frames - 1)
-            if raw.frame(count, t, shot):
-                times.append((time.perf_counter() - began) * 1000)
-                last_slot = raw.slots[count % FRAMES_IN_FLIGHT] if shot else last_slot
-                count += 1
-                if recorder is not None:
-                    recorder.frame_done(time.perf_counter())
-                    if recorder.finished():
-                        break
+            last_wanted = screenshot and (frames is None or count == frames - 1)
+            slot = raw.slots[count % FRAMES_IN_FLIGHT]
+            apply_camera(slot.drawable, self.orbit)
+            if not raw.frame(count, t, last_wanted or bool(shots)):
+                continue
+            now = time.perf_counter()
+            times.append((now - began) * 1000)
+            for path in shots:
+                save_png(path, raw.screenshot(slot))
+            last_slot = slot if last_wanted else last_slot
+            count += 1
+            self._count(now)
+            if self.recorder is not None and self.recorder.finished():
+                break
         last = raw.screenshot(last_slot) if last_slot is not None else None
-        vk.vkDeviceWaitIdle(ctx.device)
-        messages = len(ctx.log.messages) if ctx.log is not None else None
-        ctx.check_validation(f"the raw-Vulkan window of {target!r}")
         return RawWindowResult(count, float(np.mean(times)) if times else 0.0, last, raw.offer.describe(),
                                raw.mode_name, FORMAT_NAMES.get(raw.swapchain.format, str(raw.swapchain.format)),
-                               raw.recreated, raw.events, recorder, messages)
-    finally:
-        if raw is not None:
-            raw.close()
-        destroy_surface(ctx, surface)
-        ctx.close()
-        glfw.destroy_window(window)
-        glfw.terminate()
+                               raw.recreated, raw.events, self.recorder)
+
+    def _count(self, now: float) -> None:
+        title = self.titles.frame_done(now)
+        if title is not None:
+            self.glfw.set_window_title(self.raw.window, title)
+        if self.recorder is not None:
+            self.recorder.frame_done(now)

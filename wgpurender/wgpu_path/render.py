@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from wgpurender.core import gpu_memory
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.wgpu_path.frame_loop import RenderResult, run_frames
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -29,6 +30,9 @@ def render_stage(
     cls = get_stage(name)
     fmt = check_format(fmt or cls.default_format)
     stage = cls(ctx, fmt, msaa)
+    gpu_memory.check_dimensions([size], ctx.limit("max-texture-dimension-2d"), f"stage {name}")
+    gpu_memory.check_memory(gpu_memory.stage_textures(size, fmt, stage.msaa), ctx.adapter.info["adapter_type"],
+                            f"stage {name} at {size[0]}x{size[1]}, msaa {stage.msaa}")
     stage.resize(size)
     target = create_target(ctx, size, fmt)
     frame = run_frames(ctx, stage.record, target, frames, t, label=f"{name}-frame")

@@ -8,13 +8,16 @@ from __future__ import annotations
 import os
 from typing import Any
 
+from wgpurender.core import gpu_memory
+
 # No import of .model: RenderPlan.explain() calls this module, so it reads the plan's passes by their ``kind``.
 
 
 def explain(plan: Any) -> str:
     """Passes, attachments, pipelines, textures and samplers, each with what asked for it."""
     w, h = plan.size
-    out = [f"scene: {plan.scene_path}", f"output: {w}x{h} {plan.output_format}, msaa {plan.msaa}"]
+    out = [f"scene: {plan.scene_path}", f"output: {w}x{h} {plan.output_format}, msaa {plan.msaa}",
+           f"memory: {gpu_memory.describe(gpu_memory.plan_bytes(plan))}"]
     if plan.camera_note:
         out.append(f"camera: {plan.camera_note}")
     out.append("")

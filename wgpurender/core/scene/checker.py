@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import InputFileError, input_file, resolved
 from wgpurender.core.scene.toml_locator import KeyLines, KeyPath, format_path
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)
@@ -93,11 +94,14 @@ class Checker:
         if any(not ch.isprintable() for ch in written):
             raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
                                   "(NUL, newline, ...): give a plain file path")
-        path = (self.folder / written).resolve()
-        if not path.is_file():
-            raise self.error(
-                key,
-                f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "
-                f"paths are relative to the scene file's folder {self.folder})",
-            )
-        return path
+        path = resolved(self.folder / written)
+        try:
+            return input_file(path, what)
+        except InputFileError as err:
+            if not err.missing:
+                raise self.error(key, f"{format_path(key)}: {err}") from None
+        raise self.error(
+            key,
+            f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "
+            f"paths are relative to the scene file's folder {self.folder})",
+        )

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from wgpurender.core.assets import resolve_scene
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import MAX_NESTING, input_file, nesting_depth
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.model import Scene
 from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
@@ -19,6 +20,11 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise UserError(f"{path}: invalid TOML: {err}") from None
+    except RecursionError:  # tomllib recurses once per nested array or inline table
+        data = None
+    if data is None or nesting_depth(data) > MAX_NESTING:
+        raise UserError(f"{path}: tables and arrays are nested more than {MAX_NESTING} deep; a scene needs 3 "
+                        "(e.g. [[models]] with a position array)")
     c = Checker(path, text)
     c.table(data, (), TOP_KEYS, required=("camera",))
     materials = {}
@@ -41,9 +47,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
 
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.assets`)."""
-    path = resolve_scene(path)
-    if not path.is_file():
-        raise UserError(f"scene file not found: {path}")
+    path = input_file(resolve_scene(path), "scene file")
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as err:

@@ -38,6 +38,7 @@ def vertex_input() -> tuple[list, list]:
 class Cube3D(RefStage):
     name = "3d"
     summary = "rotating cubes: depth buffer, camera and object UBOs in two descriptor sets, push constants"
+    camera = course.CameraSpec()  # the demo window's orbit camera replaces it per instance
 
     def setup(self) -> None:
         ctx, owned = self.ctx, self.owned
@@ -81,7 +82,7 @@ class Cube3D(RefStage):
 
     def update_uniforms(self, t: float) -> None:
         """Host writes before the submit: vkQueueSubmit makes them visible to the device."""
-        camera = course.camera_values(course.CameraSpec(), self.size[0] / self.size[1])
+        camera = course.camera_values(self.camera, self.size[0] / self.size[1])
         packed = ubo.pack_camera(camera["proj"], camera["view"], camera["light_dir"], camera["ambient"])
         write_host_buffer(self.ctx, self.camera_buffer, packed)
         blocks = [ubo.pack_object(o["world"], o["normal"]) for o in course.object_values(self.cubes, t)]

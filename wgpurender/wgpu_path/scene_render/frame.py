@@ -21,6 +21,7 @@ from pathlib import Path
 
 import wgpu
 
+from wgpurender.core import gpu_memory
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, RenderPlan, resolve_plan
 from wgpurender.core.scene import Scene, load_scene
@@ -85,6 +86,8 @@ class SceneRenderer:
         if max(w, h) > max_dim:
             raise UserError(f"render size {w}x{h} is larger than this GPU's max-texture-dimension-2d ({max_dim}): "
                             "choose a smaller [render] size or --size")
+        gpu_memory.check_memory(gpu_memory.plan_textures(self.plan), self.ctx.adapter.info["adapter_type"],
+                                f"{self.plan.scene_path.name} at {w}x{h}, msaa {self.plan.msaa}")
 
     def resize(self, size: tuple[int, int]) -> None:
         """(Re)create the plan's attachments other than the output at ``size``."""

@@ -15,10 +15,10 @@ be asked for without reaching into the context's private configuration, so it is
 
 The demo on top (wgpurender/cli/demo.py), one module each in this package: ``view`` (what is
 shown: a stage or a scene, rebuilt from its files, with the orbit camera of wgpurender/core/orbit.py),
-``controls`` (mouse and keys, and the tests' synthetic input), ``live_reload`` (which files
-changed; a broken file leaves the last good pipeline on screen and prints ``file:line: message``
-once); the benchmark mode's frame times are wgpurender/core/frame_times.py (the raw window's too). FPS and
-frame time go in the title.
+``live_reload`` (which files changed; a broken file leaves the last good pipeline on screen and
+prints ``file:line: message`` once). Shared with the raw-Vulkan window (raw_path/window.py), from the
+core: ``core/controls.py`` (mouse and keys, and the tests' synthetic input) and ``core/frame_times.py``
+(FPS and frame time in the title, the benchmark mode).
 """
 
 from __future__ import annotations
@@ -32,17 +32,16 @@ import numpy as np
 import wgpu
 
 from wgpurender.core import slow_frames
+from wgpurender.core.controls import Controls, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.errors import UserError
-from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder
+from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
 from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.window.controls import Controls, ScriptEvent, send
 from wgpurender.wgpu_path.window.live_reload import FileWatcher, error_line
 from wgpurender.wgpu_path.window.view import DemoView
 
 PRESENT_MODES = ("fifo", "immediate")
 SURFACE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC
 RELOAD_POLL_S = 0.25  # how often the watched files are stat'ed
-TITLE_EVERY_S = 0.5  # how often the FPS in the title is refreshed
 WAIT_RELOAD_TIMEOUT_S = 60.0
 # Errors a rebuild or a new drawable's first frame can raise when a file is broken.
 REBUILD_ERRORS = (UserError, wgpu.GPUError, ValueError, KeyError, TypeError, OSError)
@@ -129,7 +128,7 @@ class DemoWindow:
         self.context.set_physical_size(*glfw.get_framebuffer_size(window))
         self.context.configure(device=ctx.device, format=self.format, usage=SURFACE_USAGE)
         self.controls = Controls(glfw, lambda: view.orbit)
-        self._install_callbacks()
+        install_callbacks(glfw, window, self.controls)
         self.drawable = view.build(self.format)  # a broken file at start-up is the user's error: exit 2
         self.first_frame_pending = True
         self.watcher = FileWatcher(view.watched)
@@ -137,8 +136,8 @@ class DemoWindow:
         self.reload_errors: list[str] = []
         self.broken = False  # the files as they are now do not build: the title says so
         self.reloads = 0
-        self._last_poll = self._title_at = time.perf_counter()
-        self._title_frames = 0
+        self._last_poll = time.perf_counter()
+        self.titles = TitleCounter(title)
 
     def close(self) -> None:
         """Release the surface (vkDestroySwapchainKHR + vkDestroySurfaceKHR) while the window still exists."""
@@ -146,13 +145,6 @@ class DemoWindow:
         if self.context is not None:
             self.context.unconfigure()
             self.context = None
-
-    def _install_callbacks(self) -> None:
-        g, c = self.glfw, self.controls
-        g.set_key_callback(self.window, lambda _w, key, _sc, action, _mods: c.key(key, action))
-        g.set_mouse_button_callback(self.window, lambda _w, button, action, _mods: c.mouse_button(button, action))
-        g.set_cursor_pos_callback(self.window, lambda _w, x, y: c.cursor_pos(x, y))
-        g.set_scroll_callback(self.window, lambda _w, _dx, dy: c.scroll(dy))
 
     # -- live reload -----------------------------------------------------------------
     def poll_files(self, force: bool = False) -> bool:
@@ -228,13 +220,10 @@ class DemoWindow:
         return True, pixels
 
     def _update_title(self, now: float) -> None:
-        self._title_frames += 1
-        if now - self._title_at < TITLE_EVERY_S:
-            return
-        ms = (now - self._title_at) * 1e3 / self._title_frames
         status = "  |  reload failed (see the terminal)" if self.broken else ""
-        self.glfw.set_window_title(self.window, f"{self.title}  |  {1e3 / ms:.1f} FPS  {ms:.2f} ms{status}")
-        self._title_at, self._title_frames = now, 0
+        title = self.titles.frame_done(now, status)
+        if title is not None:
+            self.glfw.set_window_title(self.window, title)
 
     # -- the loop -----------------------------------------------------------------------
     def run(self, frames, fixed_time, screenshot, benchmark, script) -> WindowResult:
@@ -275,8 +264,7 @@ class DemoWindow:
     def _run_script(self, script: list[ScriptEvent], frame: int) -> list[Path]:
         """Deliver the test script's events for this frame; the paths of shots to save after it."""
         shots = []
-        while script and script[0].frame <= frame:
-            event = script.pop(0)
+        for event in due(script, frame):
             if event.action == "shot":
                 shots.append(Path(event.args[0]))
             elif event.action == "wait-reload":

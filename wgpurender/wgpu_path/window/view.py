@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from wgpurender.core.orbit import Orbit
+from wgpurender.core.orbit import Orbit, moved_camera
 from wgpurender.wgpu_path.gpu import GPUContext
 
 
@@ -114,11 +114,10 @@ class DemoView:
         """Move the drawable's camera to the orbit's eye and target (a no-op for flat stages)."""
         if self.orbit is None:
             return
-        eye, target = self.orbit.eye(), tuple(float(v) for v in self.orbit.target)
         if hasattr(drawable, "scene_pass"):
             scene = drawable.scene_pass.scene
-            if (tuple(scene.camera.eye), tuple(scene.camera.target)) != (eye, target):
-                camera = dataclasses.replace(scene.camera, eye=eye, target=target)
+            camera = moved_camera(scene.camera, self.orbit)
+            if camera is not scene.camera:
                 drawable.scene_pass.scene = dataclasses.replace(scene, camera=camera)
         elif getattr(drawable, "camera", None) is not None:
-            drawable.camera = dataclasses.replace(drawable.camera, eye=eye, target=target)
+            drawable.camera = moved_camera(drawable.camera, self.orbit)

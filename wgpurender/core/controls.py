@@ -1,4 +1,8 @@
-"""Mouse and keys for the demo window, turned into orbit-camera moves (wgpurender/core/orbit.py).
+"""Mouse and keys for both demo windows, turned into orbit-camera moves (wgpurender/core/orbit.py).
+
+One module for the wgpu window (wgpu_path/window/) and the raw-Vulkan one (raw_path/window.py):
+the same keys, the same drag and scroll steps, the same test script, so the two windows move
+their cameras identically for the same input (tests/test_raw_window.py compares their images).
 
 =====================  ===========================================
 left drag              orbit around the target
@@ -125,6 +129,22 @@ def parse_script(text: str) -> list[ScriptEvent]:
         if action not in ("press", "release") and len(args) != SCRIPT_ACTIONS[action]:
             raise UserError(f"--test-input: {action} takes {SCRIPT_ACTIONS[action]} argument(s): {item!r}")
         events.append(ScriptEvent(n, action, args))
+    return events
+
+
+def install_callbacks(glfw, window, controls: Controls) -> None:
+    """Route a GLFW window's key, mouse button, cursor and scroll events to ``controls``."""
+    glfw.set_key_callback(window, lambda _w, key, _sc, action, _mods: controls.key(key, action))
+    glfw.set_mouse_button_callback(window, lambda _w, button, action, _mods: controls.mouse_button(button, action))
+    glfw.set_cursor_pos_callback(window, lambda _w, x, y: controls.cursor_pos(x, y))
+    glfw.set_scroll_callback(window, lambda _w, _dx, dy: controls.scroll(dy))
+
+
+def due(script: list[ScriptEvent], frame: int) -> list[ScriptEvent]:
+    """Take the script's events that are due before ``frame`` is drawn (the window handles shot/wait-reload)."""
+    events = []
+    while script and script[0].frame <= frame:
+        events.append(script.pop(0))
     return events
 
 

@@ -1,0 +1,189 @@
+"""Argument checks shared by the command line and the Python API: one message for one mistake.
+
+Each function takes a value as the user gave it (a CLI string or a Python object), returns it in the type the
+renderer needs, or raises :class:`UserError` saying what was wrong and what is valid. The CLI's argparse types
+(``cli/_args.py``) call these with the text of the argument; ``wgpurender.api`` calls them with Python values;
+so ``--gain 0`` and ``heatmap(gain=0)`` fail with the same words.
+
+Python's ``bool`` is an ``int``: it is refused wherever a number is expected (``msaa=True`` is a mistake, not 1).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+import numpy as np
+
+from wgpurender.core.compare import METRICS
+from wgpurender.core.course.formats import OUTPUT_FORMATS, SAMPLE_COUNTS
+from wgpurender.core.errors import UserError
+
+MAX_SIZE = 16384  # per side: the largest 2D texture any adapter we support offers
+MAX_GAP = 4096
+BACKENDS = ("Vulkan", "Metal", "D3D12", "OpenGL")
+
+
+def _shown(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+
+
+def _is_integer(value: Any) -> bool:
+    return isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_))
+
+
+def number(value: Any, name: str) -> float:
+    """A finite real number; a numeric string (the CLI's) is parsed. NaN and infinities are refused: a NaN
+    threshold or time would switch a check off or draw one colour, silently."""
+    if isinstance(value, str):
+        try:
+            value = float(value)
+        except ValueError:
+            raise UserError(f"{name} must be a number, got {_shown(value)}") from None
+    elif not _is_number(value):
+        raise UserError(f"{name} must be a number, got {type(value).__name__} {_shown(value)}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise UserError(f"{name} must be a finite number, got {value!r}: give a plain number such as 1.5")
+    return value
+
+
+def positive(value: Any, name: str, example: str = "32") -> float:
+    """A finite number above 0."""
+    value = number(value, name)
+    if value <= 0:
+        raise UserError(f"{name} must be above 0, got {value:g}: e.g. {example}")
+    return value
+
+
+def integer(value: Any, name: str, low: int, high: int) -> int:
+    """A whole number in [low, high]; a digit string (the CLI's) is parsed; 4.0 and True are refused."""
+    if isinstance(value, str):
+        try:
+            value = int(value.strip())
+        except ValueError:
+            raise UserError(f"{name} must be a whole number, got {_shown(value)}") from None
+    elif not _is_integer(value):
+        raise UserError(f"{name} must be a whole number ({low}..{high}), got {type(value).__name__} {_shown(value)}")
+    value = int(value)
+    if not low <= value <= high:
+        raise UserError(f"{name} must be {low}..{high}, got {value}")
+    return value
+
+
+def size(value: Any, name: str = "size") -> tuple[int, int] | None:
+    """(width, height) from ``"WxH"`` or a pair of whole numbers, each 1..16384; None stays None (the default)."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        parts = value.lower().split("x")
+        if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
+            raise UserError(f"malformed {name} {value!r}: expected WIDTHxHEIGHT, e.g. 800x600")
+        value = (int(parts[0]), int(parts[1]))
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if not isinstance(value, (tuple, list)) or len(value) != 2 or not all(_is_integer(v) for v in value):
+        raise UserError(f"malformed {name} {_shown(value)}: expected (width, height) as two whole numbers "
+                        "or 'WIDTHxHEIGHT', e.g. (800, 600)")
+    width, height = int(value[0]), int(value[1])
+    if not (0 < width <= MAX_SIZE and 0 < height <= MAX_SIZE):
+        raise UserError(f"{name} {width}x{height} out of range: width and height must be 1..{MAX_SIZE}")
+    return width, height
+
+
+SAMPLE_COUNT_SHAPES = (1, 2, 4, 8, 16)  # what any API calls a sample count; the adapter says which it offers
+
+
+def msaa(value: Any) -> int | None:
+    """A sample count (1, 2, 4, 8, 16: which of them the adapter offers is checked where the adapter is known;
+    WebGPU guarantees :data:`SAMPLE_COUNTS`), or None (the stage's or scene's own)."""
+    if value is None:
+        return None
+    count = integer(value, "msaa", 1, 64)
+    if count not in SAMPLE_COUNT_SHAPES:
+        raise UserError(f"msaa must be a sample count such as {', '.join(map(str, SAMPLE_COUNTS))}, got {count}")
+    return count
+
+
+def output_format(value: Any) -> str | None:
+    """A colour format both paths render into and write to a PNG (core/course/formats.py), or None."""
+    if value is None:
+        return None
+    if not isinstance(value, str) or value not in OUTPUT_FORMATS:
+        raise UserError(f"unsupported colour format {_shown(value)}: choose one of {', '.join(OUTPUT_FORMATS)}")
+    return value
+
+
+def backend(value: Any) -> str | None:
+    """A wgpu backend name (any case) in its canonical spelling, or None (the default or $WGPURENDER_BACKEND)."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        for known in BACKENDS:
+            if value.lower() == known.lower():
+                return known
+    raise UserError(f"unknown backend {_shown(value)}: choose one of {', '.join(BACKENDS)}")
+
+
+def time(value: Any) -> float:
+    """An animation time in seconds: finite (t = inf made every rotation NaN: a one-colour image)."""
+    return number(value, "t (the animation time)")
+
+
+def gain(value: Any) -> float:
+    """The heatmap's magnification: finite and above 0 (0 divided by zero; NaN or -1 drew every difference
+    black, i.e. 'equal')."""
+    return positive(value, "gain", "32")
+
+
+def gap(value: Any) -> int:
+    """Pixels between images side by side."""
+    return integer(value, "gap", 0, MAX_GAP)
+
+
+def threshold(name: Any, value: Any) -> tuple[str, float]:
+    """A compare threshold: a known metric and a finite value (a NaN threshold never fails: black vs white
+    passed). Shares and differences are >= 0; a share may be given as a percentage string ('0.5%')."""
+    if name not in METRICS:
+        raise UserError(f"unknown metric {_shown(name)}: choose from {', '.join(METRICS)}")
+    scale = 1.0
+    if isinstance(value, str) and value.strip().endswith("%"):
+        value, scale = value.strip()[:-1], 0.01
+    limit = number(value, f"threshold {name}") * scale
+    if name != "psnr" and limit < 0:
+        raise UserError(f"threshold {name} must be 0 or more, got {limit:g}")
+    return name, limit
+
+
+def image_array(array: Any, name: str) -> np.ndarray:
+    """8-bit sRGB-encoded (H, W, 3|4) pixels from a numpy image.
+
+    uint8: as stored. uint16: scaled by 1/257 (65535 -> 255; read as 8-bit, 1/65535 counted as 255). float:
+    linear light, sRGB-encoded (NaN refused: an all-NaN image compared 'identical' to zeros). Other dtypes,
+    other shapes and empty images are refused.
+    """
+    from wgpurender.core.imageio import to_uint8
+
+    if not isinstance(array, np.ndarray):
+        raise UserError(f"{name}: expected a numpy array, got {type(array).__name__}")
+    if array.ndim != 3 or array.shape[2] not in (3, 4):
+        raise UserError(f"{name}: expected an (height, width, 3 or 4) image array, got shape {array.shape}")
+    if array.shape[0] == 0 or array.shape[1] == 0:
+        raise UserError(f"{name}: the image is empty ({array.shape[1]}x{array.shape[0]} pixels)")
+    if array.dtype == np.uint8:
+        return np.ascontiguousarray(array)
+    if array.dtype == np.uint16:
+        return np.round(array.astype(np.float64) / 257.0).astype(np.uint8)
+    if array.dtype.kind == "f":
+        if not np.isfinite(array).all():
+            raise UserError(f"{name}: the image has NaN or infinite pixels; float images must be finite linear "
+                            "values")
+        return to_uint8(np.ascontiguousarray(array))
+    raise UserError(f"{name}: pixels of dtype {array.dtype} are not supported: give uint8, uint16 or float "
+                    "(linear) pixels")

@@ -1,0 +1,144 @@
+"""Input files as the operating system sees them, and bounds on how much work an input may ask for.
+
+Every file the user names (a scene, a model, a texture, an image to compare) goes through :func:`input_file`
+before it is opened: a symbolic link loop, a name component over the file system's limit, a directory, a FIFO
+(opening it would block), a device or a socket is reported as what it is, in one line, instead of "not found" or
+a traceback from ``Path.resolve``/``open``.
+
+The bounds (each can be raised through its environment variable, e.g. for a machine with more memory):
+
+- :data:`MAX_MODEL_BYTES`: a model file (or a glTF buffer file) larger than this is refused before parsing;
+- :data:`MAX_IMAGE_PIXELS`: an image whose header declares more pixels is refused before decoding (a 560 KB PNG
+  can declare 12000x12000, which took 20 GB to compare);
+- :data:`MAX_NESTING`: scene TOML nested deeper is refused (the parser and the checker recurse).
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import stat
+from pathlib import Path
+
+from wgpurender.core.errors import UserError
+
+MAX_MODEL_BYTES_ENV = "WGPURENDER_MAX_MODEL_BYTES"
+MAX_IMAGE_PIXELS_ENV = "WGPURENDER_MAX_IMAGE_PIXELS"
+MAX_MODEL_BYTES = 512 * 1024 * 1024  # 512 MiB: a 2 GB sparse OBJ took ~60 s before its error
+MAX_IMAGE_PIXELS = 40_000_000  # 40 Mpx: an 8K UHD frame (7680x4320 = 33 Mpx) fits; compare needs ~30 B/px
+MAX_NESTING = 32  # tables/arrays inside each other in a scene file: real scenes use 3
+
+
+def _kind(mode: int) -> str | None:
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
+                       (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return None
+
+
+def os_error_reason(path: str | os.PathLike, err: OSError) -> str:
+    """What an OSError about ``path`` means to a user, with how to fix it."""
+    if err.errno == errno.ELOOP:
+        return "it is a symbolic link loop (a link that leads back to itself); point the link at a real file"
+    if err.errno == errno.ENAMETOOLONG:
+        longest = max((len(part.encode("utf-8", "surrogateescape")) for part in Path(path).parts), default=0)
+        return (f"the path is too long for the file system (its longest name is {longest} bytes; names may have "
+                "at most 255); use a shorter name")
+    if err.errno == errno.ENOTDIR:
+        return "a part of the path is a file, not a directory"
+    if err.errno in (errno.EACCES, errno.EPERM):
+        return "permission denied"
+    return err.strerror or str(err)
+
+
+class InputFileError(UserError):
+    """An input file that cannot be read; ``missing`` when nothing is at that path (the caller may say where
+    it looked)."""
+
+    def __init__(self, message: str, missing: bool = False) -> None:
+        super().__init__(message)
+        self.missing = missing
+
+
+def input_file(path: str | os.PathLike, what: str, missing: str | None = None) -> Path:
+    """``path`` if it is a readable regular file (after following links); else UserError saying what it is.
+
+    ``what`` names the input in the message ("scene file", "texture", "image", "model file"); ``missing`` is the
+    message when nothing is there (default: "WHAT not found: PATH").
+    """
+    path = Path(path)
+    shown = str(path)
+    if "\0" in shown:
+        raise UserError(f"cannot read {what} {shown!r}: the path contains a NUL character")
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        if os.path.islink(path):
+            target = os.readlink(path)
+            raise InputFileError(f"{what} {shown} is a symbolic link to {target}, which does not exist") from None
+        raise InputFileError(missing or f"{what} not found: {shown}", missing=True) from None
+    except OSError as err:
+        raise InputFileError(f"cannot read {what} {shown}: {os_error_reason(path, err)}") from None
+    kind = _kind(mode)
+    if kind is not None:
+        raise InputFileError(f"cannot read {what} {shown}: it is {kind}, not a regular file; give the path of a file")
+    return path
+
+
+def resolved(path: str | os.PathLike) -> Path:
+    """``path`` made absolute with links resolved where possible; a loop or an over-long name is left unresolved
+    (``Path.resolve`` raises RuntimeError or OSError there), so that :func:`input_file` can say what it is."""
+    try:
+        return Path(path).resolve()
+    except (RuntimeError, OSError):
+        return Path(os.path.abspath(path))
+
+
+def env_limit(name: str, default: int) -> int:
+    """A positive integer bound from the environment variable ``name``, else ``default``."""
+    text = os.environ.get(name, "").strip()
+    if not text:
+        return default
+    try:
+        value = int(text)
+    except ValueError:
+        raise UserError(f"${name} must be a whole number, got {text!r}") from None
+    if value <= 0:
+        raise UserError(f"${name} must be above 0, got {value}")
+    return value
+
+
+def check_file_size(path: Path, what: str) -> None:
+    """Refuse a model file larger than :data:`MAX_MODEL_BYTES` before anything reads it."""
+    limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES)
+    size = os.stat(path).st_size
+    if size > limit:
+        raise UserError(f"{what} {path} is {size / 2**20:.0f} MiB, over the limit of {limit / 2**20:.0f} MiB; "
+                        f"simplify the model, or raise the limit with ${MAX_MODEL_BYTES_ENV}=BYTES")
+
+
+def check_image_pixels(width: int, height: int, name: str) -> None:
+    """Refuse an image whose header declares more than :data:`MAX_IMAGE_PIXELS` pixels, before decoding it."""
+    limit = env_limit(MAX_IMAGE_PIXELS_ENV, MAX_IMAGE_PIXELS)
+    if width * height > limit:
+        raise UserError(f"image {name} declares {width}x{height} pixels ({width * height / 1e6:.0f} Mpx), over the "
+                        f"limit of {limit / 1e6:.0f} Mpx; scale it down, or raise the limit with "
+                        f"${MAX_IMAGE_PIXELS_ENV}=PIXELS")
+
+
+def nesting_depth(value: object) -> int:
+    """How many tables/arrays sit inside each other in parsed TOML (iterative: no recursion to overflow)."""
+    deepest, stack = 0, [(value, 0)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, dict):
+            children = item.values()
+        elif isinstance(item, list):
+            children = item
+        else:
+            continue
+        deepest = max(deepest, depth + 1)
+        stack.extend((child, depth + 1) for child in children)
+    return deepest
