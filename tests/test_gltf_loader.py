@@ -171,3 +171,13 @@ def test_sparse_indices_out_of_range_are_refused(tmp_path):
     pos = g.positions(quad(0, 0, 1, 1), sparse=(np.array([9], np.uint16), np.float32([[0, 5, 0]])))
     g.node(mesh=g.mesh([{"attributes": {"POSITION": pos}}]))
     assert "sparse" in _error(g.write(tmp_path / "bad.gltf"))
+
+
+def test_unnormalized_integer_attributes_are_refused(tmp_path):
+    """Integer TEXCOORD without normalized: true is KHR_mesh_quantization's form, refused with one line."""
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)),
+                                        "TEXCOORD_0": g.accessor(np.zeros((4, 2), np.uint16))},
+                         "indices": g.accessor(QUAD_INDICES)}]))
+    message = _error(g.write(tmp_path / "quantized.glb"))
+    assert "TEXCOORD_0" in message and "KHR_mesh_quantization" in message
