@@ -405,3 +405,24 @@ def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which):
     ambient = np.array([0.03, 0.03, 0.035])  # course.shading.AMBIENT
     for x, red in ((-0.8, OCCLUSION_TEXELS[0, 0, 0] / 255), (0.8, OCCLUSION_TEXELS[0, 1, 0] / 255)):
         assert_colour(image, x, 0.0, ambient * (1 + strength * (red - 1)), f"{which} occlusion {red:.3f}", tol=2)
+
+
+# -- an OBJ's MTL ----------------------------------------------------------------------------------------------------
+
+MTL_KD = (0.5, 0.25, 1.0)
+MTL_TEXEL = np.array([[[200, 180, 90, 255]]], np.uint8)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_obj_mtl_colour_times_texture(ctx, tmp_path, which):
+    """An OBJ quad whose MTL says Kd MTL_KD, map_Kd a 1x1 sRGB texel, illum 0 (colour only), and no scene
+    material: the quad shows Kd x decode(texel). (OBJ stores v = 0 at the bottom: one texel reads the same.)"""
+    from PIL import Image
+
+    Image.fromarray(MTL_TEXEL, "RGBA").save(tmp_path / "texel.png")
+    (tmp_path / "quad.mtl").write_text(f"newmtl paint\nKd {MTL_KD[0]} {MTL_KD[1]} {MTL_KD[2]}\nillum 0\n"
+                                       "map_Kd texel.png\n")
+    (tmp_path / "quad.obj").write_text("mtllib quad.mtl\nv -1.5 -1 0\nv 1.5 -1 0\nv 1.5 1 0\nv -1.5 1 0\n"
+                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl paint\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    image = render(ctx, write_scene(tmp_path, "quad.obj"), which)
+    assert_colour(image, 0.0, 0.0, np.multiply(MTL_KD, srgb_decode(MTL_TEXEL[0, 0, :3])), f"{which} MTL")
