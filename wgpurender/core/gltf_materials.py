@@ -23,6 +23,8 @@ metals), other texture coordinate sets, ``KHR_texture_transform``, and every oth
 from __future__ import annotations
 
 import dataclasses
+import functools
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -54,13 +56,27 @@ def embedded_image_path(model: Path, image: int) -> Path:
     return Path(f"{model}{EMBEDDED_MARK}{image}]")
 
 
+def _document(path: str) -> gltf_io.GltfDocument:
+    """The parsed model, read once while the file is unchanged (the plan asks each embedded image's size, the
+    upload its pixels: one read of a large GLB each, not one per image)."""
+    stat = os.stat(path)
+    return _read_cached(path, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=4)
+def _read_cached(path: str, mtime_ns: int, size: int) -> gltf_io.GltfDocument:
+    return gltf_io.read_document(path)
+
+
 def embedded_image_bytes(path: Path) -> bytes | None:
     """The encoded bytes of an image a ``model.glb#images[k]`` path names, or None for an ordinary path."""
     text = str(path)
     if EMBEDDED_MARK not in text or not text.endswith("]"):
         return None
     model, _, index = text.rpartition(EMBEDDED_MARK)
-    doc = gltf_io.read_document(model)
+    if not os.path.isfile(model):
+        return None
+    doc = _document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io._image_source(doc, image)
     return source["data"] if source["data"] is not None else Path(source["uri"]).read_bytes()
