@@ -24,7 +24,7 @@ FLOAT = 5126
 
 @dataclass
 class PrimitiveGeometry:
-    """One triangle primitive placed in the model's space by its node's world matrix (already applied)."""
+    """One triangle primitive's arrays, in its mesh's own space (mesh_primitives pairs it with the world matrix)."""
 
     positions: np.ndarray  # (N, 3) float64
     faces: np.ndarray  # (F, 3) int64, counter-clockwise front faces
@@ -101,7 +101,7 @@ def _attribute(doc: GltfDocument, prim: dict, name: str, where: str) -> np.ndarr
     return read_accessor(doc, index).astype(np.float64)
 
 
-def _faces(doc: GltfDocument, prim: dict, count: int, where: str) -> np.ndarray:
+def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
     """Triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive, counter-clockwise as the file means."""
     if "indices" in prim:  # SCALAR unsigned integers: checked with the document (gltf_rules.py)
         idx = read_accessor(doc, prim["indices"]).reshape(-1).astype(np.int64)
@@ -131,9 +131,9 @@ def texcoord_set(doc: GltfDocument, material: int | None) -> int:
     return next((int(i.get("texCoord", 0)) for i in infos if isinstance(i, dict)), 0)
 
 
-def primitive_geometry(doc: GltfDocument, prim: dict, world: np.ndarray, where: str) -> PrimitiveGeometry | None:
-    """One primitive's triangles and attributes (local space; the caller applies ``world``); None for points and
-    lines (see :func:`geometry_notes`)."""
+def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGeometry | None:
+    """One primitive's triangles and attributes in its mesh's own space (the caller applies the node's world
+    matrix); None for points and lines (see :func:`geometry_notes`)."""
     mode = prim.get("mode", 4)
     if mode in SKIPPED_MODES:
         return None
@@ -150,7 +150,7 @@ def primitive_geometry(doc: GltfDocument, prim: dict, world: np.ndarray, where: 
         if array is not None and len(array) != count:
             raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
                             f"POSITION {count}")
-    faces = _faces(doc, prim, count, where)
+    faces = _faces(doc, prim, count)
     if len(faces) and (faces.min() < 0 or faces.max() >= count):
         raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
     colors = arrays["COLOR_0"]
@@ -169,7 +169,7 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
         name = f" '{mesh['name']}'" if mesh.get("name") else ""
         for p, prim in enumerate(mesh.get("primitives", [])):
             where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
-            geometry = primitive_geometry(doc, prim, world, where)
+            geometry = primitive_geometry(doc, prim, where)
             if geometry is not None and len(geometry.faces):
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
