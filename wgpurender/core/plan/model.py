@@ -30,7 +30,7 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
 
 # Feature -> vertex attribute it needs (position is always there).
 ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"))
-TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map")
+TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
 
 
 @dataclass(frozen=True)
