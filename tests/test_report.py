@@ -136,10 +136,11 @@ def test_concept_rows_point_at_real_code_on_both_paths(site):
 
 
 def test_scene_sections_show_the_render_plan(site):
-    from wgpurender.core.plan import explain_scene
+    import wgpurender as w
 
     text = (site / "index.html").read_text()
-    plan = explain_scene(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
+    # the plan drawn on this adapter, as `render --explain` prints it (the one resolved plan, issue 20)
+    plan = w.explain(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
     assert plan[0].startswith("scene: ") and "scene: assets/scenes/final.toml" in _section(text, "final")
     assert html.escape("\n".join(plan[1:])) in _section(text, "final")  # the plan, all but the file's path
     assert 'src="accuracy_pareto.png"' in text and (site / "accuracy_pareto.png").is_file()

@@ -29,7 +29,7 @@ BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra
 # data maps (normal, roughness) hold values used as stored.
 SRGB_TEXTURE_FORMAT = "rgba8unorm-srgb"
 LINEAR_TEXTURE_FORMAT = "rgba8unorm"
-SRGB_MAPS = frozenset({"albedo_map"})
+SRGB_MAPS = frozenset({"albedo_map", "emissive_map"})  # colour; normal, roughness, occlusion are data
 
 
 def is_srgb_map(feature: str) -> bool:
