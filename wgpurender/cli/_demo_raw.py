@@ -17,9 +17,10 @@ REFUSED = {  # dest -> why it cannot apply to the raw window
 }
 
 
-def run_raw(args, benchmark, video=None) -> int:
-    """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller; ``video``: the
-    --record FrameWriter (None without it)."""
+def run_raw(args, benchmark, size: tuple[int, int], video=None) -> int:
+    """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller; ``size``: the
+    window size the demo chose (--size, else a scene's [render] size); ``video``: the --record FrameWriter (None
+    without it)."""
     from wgpurender.core.controls import parse_script
     from wgpurender.core.errors import UserError
     from wgpurender.core.imageio import check_writable, save_png
@@ -34,7 +35,7 @@ def run_raw(args, benchmark, video=None) -> int:
     if args.validation:
         os.environ[ENV] = "1"  # read when the window's Vulkan context is made
     script = parse_script(args.test_input)
-    result = run_raw_window(args.target, size=args.size, present_mode=args.present_mode, frames=args.frames,
+    result = run_raw_window(args.target, size=size, present_mode=args.present_mode, frames=args.frames,
                             screenshot=bool(args.screenshot), msaa=args.msaa, fixed_time=args.time,
                             benchmark=benchmark, script=script, anisotropy=args.anisotropy, video=video)
     print(f"surface offers: {result.offered}")

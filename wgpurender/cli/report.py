@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from wgpurender.cli._args import size_arg
+from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg, size_arg
 
 
 def register(subparsers) -> None:
@@ -21,8 +21,8 @@ def register(subparsers) -> None:
                    help="folder for the site (new, empty, or an earlier report, which is replaced)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="every step's image size (default 240x180; the tutorial's scenes 320x240)")
-    p.add_argument("--backend", default=None,
-                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
+    add_backend_arg(p)
+    add_anisotropy_arg(p)
     p.set_defaults(func=run)
 
 
@@ -30,6 +30,6 @@ def run(args) -> int:
     from wgpurender.report import build_report
     from wgpurender.wgpu_path.gpu import get_context
 
-    index = build_report(args.output, size=args.size, ctx=get_context(args.backend))
+    index = build_report(args.output, size=args.size, ctx=get_context(args.backend), anisotropy=args.anisotropy)
     print(f"wrote {index}")
     return 0

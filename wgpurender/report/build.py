@@ -14,9 +14,11 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
+from wgpurender.core.safe_write import cleanup_on_signal
 from wgpurender.report import code, extras, page
 from wgpurender.report.steps import Step, heatmap_scale, missing_scene_step, scene_step, stage_step
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -60,11 +62,13 @@ def check_out_dir(out_dir: Path) -> Path:
 
 def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, stages: list[str] | None = None,
                  scenes: list[Path] | None = None, ctx: GPUContext | None = None,
-                 log: Callable[[str], None] = print, accuracy: bool = True) -> Path:
+                 log: Callable[[str], None] = print, accuracy: bool = True,
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> Path:
     """Render every step on both paths, measure accuracy, and write the site; returns the path of index.html.
 
     ``size``: every step's image size (default 240x180, the tutorial's scenes 320x240). ``accuracy=False``
     leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the page says so).
+    ``anisotropy``: the scenes' rule (core/anisotropy.py), as ``render --anisotropy``.
     """
     out_dir = check_out_dir(Path(out_dir))
     ctx = ctx or get_context()
@@ -78,16 +82,17 @@ def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, st
         if missing:
             steps.append(missing_scene_step(path, missing))
         else:
-            steps.append(scene_step(ctx, path, size or SCENE_SIZES.get(path.stem, SCENE_SIZE), log))
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
-        measured = extras.measure(ctx, tmp, log) if accuracy else None
-        _write_site(tmp, steps, ctx, time.perf_counter() - start, measured, size)
-        if out_dir.exists():
-            shutil.rmtree(out_dir)
-        tmp.rename(out_dir)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+            steps.append(scene_step(ctx, path, size or SCENE_SIZES.get(path.stem, SCENE_SIZE), log, anisotropy))
+    with cleanup_on_signal():  # SIGTERM while the temp folder exists ends through finally
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+        try:
+            measured = extras.measure(ctx, tmp, log) if accuracy else None
+            _write_site(tmp, steps, ctx, time.perf_counter() - start, measured, size)
+            if out_dir.exists():
+                shutil.rmtree(out_dir)
+            tmp.rename(out_dir)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
     log(f"report: {len(steps)} steps in {time.perf_counter() - start:.1f} s")
     return out_dir / "index.html"
 
@@ -118,6 +123,23 @@ def missing_line(path: Path, error: str) -> str:
     return f"Not rendered: {error}"
 
 
+def _live_page(site: Path, step: Step) -> dict[str, str]:
+    """The step exported as a live WebGPU page (wgpurender export) under live/KEY/, linked from its section;
+    none (with the reason logged on the page) where the browser cannot draw it."""
+    from wgpurender.export import export
+
+    if step.missing:
+        return {}
+
+    size = (step.wgpu.shape[1], step.wgpu.shape[0]) if step.wgpu is not None else STAGE_SIZE
+    target = str(SCENE_DIR / f"{step.key}.toml") if (SCENE_DIR / f"{step.key}.toml").is_file() else step.key
+    try:
+        export(target, site / "live" / step.key, size)
+    except UserError as err:
+        return {"live_note": str(err)}
+    return {"live": f"live/{step.key}/index.html"}
+
+
 def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float, measured: extras.Measured | None,
                 size: tuple[int, int] | None) -> None:
     images: dict[str, dict[str, str]] = {}
@@ -129,6 +151,7 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float, 
                 name = f"{step.key}_{kind}.png"
                 save_png(site / name, pixels)
                 files[kind] = name
+        files.update(_live_page(site, step))
     scale, levels = heatmap_scale()
     save_png(site / "heatmap_scale.png", scale)
     _write_listings(site, steps)

@@ -108,10 +108,19 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 {words}
 {f'<p class="links">{links}</p>' if links else ""}
 {shots}
+{_live(files)}
 {_code(step)}
 {plan}
 {_concepts(step.concepts)}
 </section>"""
+
+
+def _live(files: dict[str, str]) -> str:
+    """The link to the step's live page (wgpurender export), or why there is none."""
+    if "live" in files:
+        return (f'<p class="live"><a href="{e(files["live"])}">Run this step live in your browser</a> '
+                "(WebGPU: the same WGSL, pipelines and data, replayed by the browser)</p>")
+    return f'<p class="live"><small>No live page: {e(files["live_note"])}</small></p>' if "live_note" in files else ""
 
 
 def _size(step: Step) -> str:
