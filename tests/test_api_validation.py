@@ -43,14 +43,20 @@ IMAGES = [  # a bad image argument -> words
 
 def _rows():
     rows = []
-    for name in ("render", "reference", "plan", "explain"):
+    for name in ("render", "reference", "plan", "explain", "show", "record"):
         params = inspect.signature(getattr(api, name)).parameters
         first = next(iter(params))
-        rows += [(name, {first: bad}, needle) for bad, needle in TARGETS]
+        extra = {"out": "frames"} if name == "record" else {}  # a good output: only the argument under test is bad
+        rows += [(name, {first: bad, **extra}, needle) for bad, needle in TARGETS]
         good = SCENE if name in ("plan", "explain") else "triangle"
         for arg, cases in ARGUMENTS.items():
             if arg in params:
-                rows += [(name, {first: good, arg: bad}, needle) for bad, needle in cases]
+                rows += [(name, {first: good, arg: bad, **extra}, needle) for bad, needle in cases]
+    rows += [("record", {"target": "3d", "out": bad}, needle) for bad, needle in [
+        ("clip.gif", "give a .mp4 file or a folder"), (5, "out must be"), ("no/such/clip.mp4", "does not exist")]]
+    rows += [("record", {"target": "3d", "out": "frames", arg: bad}, needle) for arg, bad, needle in [
+        ("seconds", 0, "> 0"), ("seconds", NAN, "finite"), ("fps", "30", "finite number"), ("fps", -1, "> 0"),
+        ("turn", INF, "finite"), ("seconds", True, "finite number")]]
     for name in ("compare", "heatmap"):
         rows += [(name, {"a": bad, "b": GREY}, needle) for bad, needle in IMAGES]
         rows += [(name, {"a": GREY, "b": bad}, needle) for bad, needle in IMAGES]

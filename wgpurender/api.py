@@ -301,13 +301,20 @@ def reference_stage_names() -> list[str]:
     return reference_stage_names()
 
 
-def _offscreen_target(target: Target) -> str:
-    """A stage name, or a scene as a file path (a bundled scene's name resolved), for the demo's drawable."""
+def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
+    """The checked arguments of show and record: (the demo's drawable for them, on the context)."""
+    from wgpurender.core.anisotropy import check_applies
     from wgpurender.core.assets import resolve_scene
     from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.wgpu_path.gpu import get_context
 
     target = _target(target)
-    return str(resolve_scene(target)) if is_scene_file(target) else target
+    wh, msaa = _size(size) or (640, 480), checks.msaa(msaa)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
+    scene = is_scene_file(target)
+    check_applies(target, scene, anisotropy)
+    name = str(resolve_scene(target)) if scene else target
+    return get_context(checks.backend(backend)), name, wh, msaa, anisotropy
 
 
 def show(target: Target, size: Size = (640, 480), msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY,
@@ -317,14 +324,12 @@ def show(target: Target, size: Size = (640, 480), msaa: int | None = None, aniso
     ``pip install 'wgpurender[notebook]'``); its display carries the first frame as PNG as well, so a frontend
     without widgets (nbclient, nbconvert, GitHub) shows that still. Outside a Jupyter kernel, or without
     jupyter_rfb, the still :class:`Image` is returned instead."""
-    from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.notebook import LiveView, Offscreen, widgets_available
 
-    name, wh = _offscreen_target(target), _size(size) or (640, 480)
-    ctx = get_context(checks.backend(backend))
+    ctx, name, wh, msaa, anisotropy = _offscreen(target, size, msaa, anisotropy, backend)
     if widgets_available():
-        return LiveView(ctx, name, wh, checks.msaa(msaa), anisotropy)
-    pixels = Offscreen(ctx, name, wh, checks.msaa(msaa), anisotropy).frame(0.0)
+        return LiveView(ctx, name, wh, msaa, anisotropy)
+    pixels = Offscreen(ctx, name, wh, msaa, anisotropy).frame(0.0)
     return Image(pixels, str(target), "wgpu", {}, ctx.describe())
 
 
@@ -334,15 +339,20 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
     """Render ``seconds * fps`` frames into ``out``: an ``.mp4`` (H.264, needs imageio-ffmpeg) or a folder of PNG
     frames (``frames/``). Frame k is at animation time k / fps; ``turn``: degrees the orbit camera turns over the
     clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``."""
+    import math
+
     from wgpurender.core.video import check_output
-    from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.notebook import Offscreen, record_frames
 
+    if not isinstance(out, (str, os.PathLike)) or not str(out):
+        raise UserError(f"out must be a .mp4 file or a folder path, got {type(out).__name__} {out!r}")
     check_output(out)
-    if not (isinstance(seconds, (int, float)) and isinstance(fps, (int, float)) and seconds > 0 and fps > 0):
-        raise UserError(f"seconds and fps must be numbers > 0, got seconds={seconds!r}, fps={fps!r}")
-    name, wh = _offscreen_target(target), _size(size) or (640, 480)
-    offscreen = Offscreen(get_context(checks.backend(backend)), name, wh, checks.msaa(msaa), anisotropy)
+    for label, value in (("seconds", seconds), ("fps", fps), ("turn", 0.0 if turn is None else turn)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise UserError(f"{label} must be a finite number, got {value!r}")
+    if seconds <= 0 or fps <= 0:
+        raise UserError(f"seconds and fps must be > 0, got seconds={seconds!r}, fps={fps!r}")
+    offscreen = Offscreen(*_offscreen(target, size, msaa, anisotropy, backend))
     degrees = turn if turn is not None else (360.0 if offscreen.view.is_scene else 0.0)
     path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees))
     return path
