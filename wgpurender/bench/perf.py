@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_line: the CLI's import)
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
@@ -52,6 +53,7 @@ class PerfConfig:
     frames: int | None = None  # timed frames per case (default 20, quick 4)
     scene_file: Path = SCENE_FILE
     command: str = ""
+    anisotropy: str = DEFAULT_ANISOTROPY  # the scene families' rule (core/anisotropy.py), as render's --anisotropy
 
     def timed_frames(self) -> int:
         return self.frames or (4 if self.quick else 20)
@@ -150,7 +152,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     progress = Progress(len(files) * len(config.sizes(ctx)), log)
     for scene_file in files:
         for size in config.sizes(ctx):
-            results, note = bench_scene(ctx, scene_file, size, n, raw=config.raw)
+            results, note = bench_scene(ctx, scene_file, size, n, raw=config.raw, anisotropy=config.anisotropy)
             run.results += results
             if note and f"scene: {note}" not in run.notes:
                 run.notes.append(f"scene: {note}")
@@ -164,7 +166,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
         run.notes.append(f"tutorial scenes skipped: {anchors} (the C++ tutorial's model and texture) is absent")
         return
     for chapter, path in TUTORIAL_SCENES.items():
-        results, note = bench_scene(ctx, path, size, n, raw=False)
+        results, note = bench_scene(ctx, path, size, n, raw=False, anisotropy=config.anisotropy)
         run.results += results
         if note:
             run.notes.append(f"scene {chapter}: {note}")

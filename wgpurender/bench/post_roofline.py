@@ -24,7 +24,7 @@ from pathlib import Path
 
 import wgpu
 
-from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, build_plan
+from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, resolve_plan
 from wgpurender.core.scene import load_scene
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
@@ -124,7 +124,7 @@ def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse:
     from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
     from wgpurender.wgpu_path.scene_render.frame import adapter_facts
 
-    plan = build_plan(scene, size=size).with_knobs(post_path=path, post_fuse=fuse, adapter=adapter_facts(ctx))
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path=path, post_fuse=fuse)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
     render_frame(ctx, renderer, target)  # the scene image the chain reads, and every pipeline made
@@ -167,7 +167,7 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
     from wgpurender.wgpu_path.scene_render.frame import adapter_facts
 
-    plan = build_plan(scene, size=size).with_knobs(post_path="compute", post_fuse=True, adapter=adapter_facts(ctx))
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path="compute", post_fuse=True)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
     render_frame(ctx, renderer, target)

@@ -17,6 +17,7 @@ from pathlib import Path
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
 from wgpurender.bench.report import Result, command_line, size_text
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import resolve_scene
 from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
@@ -26,12 +27,13 @@ from wgpurender.wgpu_path.timing import Stats
 class SceneRunner:
     """A persistent scene renderer drawn frame by frame (the runner protocol of frames.measure)."""
 
-    def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int]) -> None:
+    def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int],
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> None:
         from wgpurender.wgpu_path.scene_render import load_renderer
         from wgpurender.wgpu_path.timing import PassTimer
 
         self.ctx = ctx
-        self.renderer = load_renderer(path, ctx, size=size)
+        self.renderer = load_renderer(path, ctx, size=size, anisotropy=anisotropy)  # resolve_plan's plan
         self.target = self.renderer.create_output()
         self.timer = PassTimer(ctx, frames=TIMER_SLOTS)
         self.t = 0.0
@@ -64,10 +66,10 @@ class _RawSceneFrame:
 class RawSceneRunner(RawStageRunner):
     """The raw-Vulkan path's scene frame (raw_path/scene/), frame after frame, like a raw stage."""
 
-    def __init__(self, path: Path, size: tuple[int, int]) -> None:
+    def __init__(self, path: Path, size: tuple[int, int], anisotropy: str = DEFAULT_ANISOTROPY) -> None:
         from contextlib import ExitStack
 
-        from wgpurender.core.plan import build_plan
+        from wgpurender.core.plan import resolve_plan
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.checks import check_size
         from wgpurender.raw_path.instance import get_vulkan
@@ -75,7 +77,7 @@ class RawSceneRunner(RawStageRunner):
 
         ctx = get_vulkan()
         scene = load_scene(path)
-        plan = build_plan(scene, size=size)
+        plan = resolve_plan(scene, ctx.adapter_facts(), size=size, anisotropy=anisotropy)
         self.name = str(path)
         self.size = check_size(ctx, plan.size)
         self.owned = ExitStack()
@@ -92,8 +94,9 @@ def raw_refusal(path: Path) -> str:
 
 
 def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
-                raw: bool = True) -> tuple[list[Result], str]:
-    """(results, note): the wgpu renderer, and the raw path's when ``raw`` and it can draw the scene.
+                raw: bool = True, anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[list[Result], str]:
+    """(results, note): the wgpu renderer, and the raw path's when ``raw`` and it can draw the scene, each
+    drawing the plan :func:`wgpurender.core.plan.resolve_plan` resolves for its adapter.
 
     A note with no results means skipped (the scene file is absent); a note with results says why
     the raw peer is missing.
@@ -101,13 +104,13 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
     path = resolve_scene(path)  # a bundled scene's name or repository path works from any folder
     if not path.is_file():
         return [], f"skipped: scene file {path} not found"
-    runner = SceneRunner(ctx, path, size)
+    runner = SceneRunner(ctx, path, size, anisotropy)
     readback_frames = max(3, frames // 2)
     refusal = raw_refusal(path) if raw else ""
     if not raw or refusal:
         samples = {"wgpu": measure(runner, frames, readback_frames=readback_frames)}
     else:
-        with RawSceneRunner(path, size) as raw_runner:
+        with RawSceneRunner(path, size, anisotropy) as raw_runner:
             samples = measure_interleaved({"wgpu": runner, "raw": raw_runner}, frames, readback_frames)
     results = [r for p, smp in samples.items() for r in smp.results("scene", path.stem, p, size)]
     results += untimed_results(ctx, runner, path.stem, size, frames)

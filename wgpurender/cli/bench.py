@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from wgpurender.cli._args import add_backend_arg, size_arg
+from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg, size_arg
 
 
 def register(subparsers) -> None:
@@ -41,6 +41,7 @@ def _register_perf(suites) -> None:
     p.add_argument("--no-raw", dest="raw", action="store_false", help="skip the raw-Vulkan peer")
     p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per case")
     p.add_argument("--docs-img", type=Path, default=None, metavar="DIR", help="also copy the plots here")
+    add_anisotropy_arg(p)
     add_backend_arg(p)
     p.set_defaults(func=run)
 
@@ -57,7 +58,7 @@ def run(args) -> int:
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
     config = PerfConfig(quick=args.quick, out_dir=args.out, families=families, big=args.big, raw=args.raw,
-                        frames=args.frames, command=command_line())
+                        frames=args.frames, command=command_line(), anisotropy=args.anisotropy)
     run_ = run_perf(config, get_context(args.backend))
     paths = write_reports(run_, args.out, args.docs_img)
     for kind, path in paths.items():

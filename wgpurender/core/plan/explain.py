@@ -89,7 +89,9 @@ def _explain_objects(plan: Any) -> list[str]:
     """Every object the wgpu renderer creates, per device call, each with why (core/plan/objects.py)."""
     objects = plan.objects
     kinds = list(dict.fromkeys(o.kind for o in objects))
-    out = ["objects the wgpu renderer creates (device.create_* calls; the output texture is the caller's):"]
+    head = ("objects the wgpu renderer creates (device.create_* calls; the caller's are not listed: the output "
+            "texture, the frame's command encoder and readback, a benchmark's timestamp query set):")
+    out = [head if objects else head[:-1] + ": none, the scene pass only clears"]
     for kind in kinds:
         mine = [o for o in objects if o.kind == kind]
         out.append(f"  {kind}: {sum(o.count for o in mine)}")
