@@ -102,3 +102,34 @@ def test_a_window_on_opengl_is_refused_in_one_line_not_aborted(display, tmp_path
     # Mesa's EGL may log its own line first (DRI2 under Xvfb); ours is the one error line, no panic, no traceback
     assert done.returncode == 2 and "--backend vulkan" in lines[-1], done.stderr[-2000:]
     assert sum("error:" in x for x in lines) == 1 and "panicked" not in done.stderr and "Traceback" not in done.stderr
+
+
+def test_verify_prints_the_implementation_matrix(tmp_path):
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR", "/tmp")}
+    done = subprocess.run([sys.executable, "-m", "wgpurender", "verify", "--implementations", "wgpu-vulkan,wgpu-gl",
+                           "--quick", "--out", str(tmp_path)], capture_output=True, text=True, cwd=REPO, env=env,
+                          timeout=600)
+    if "not available: wgpu-gl" in done.stdout or "two available" in done.stderr:
+        pytest.skip("this machine has no OpenGL adapter")
+    assert done.returncode == 0, done.stdout + done.stderr
+    rows = (tmp_path / "implementations.csv").read_text().splitlines()[1:]
+    assert sorted(r.split(",")[0] for r in rows) == ["3d", "triangle", "unlit"]  # one pair, three targets
+    assert all(r.split(",")[1:3] == ["wgpu-vulkan", "wgpu-gl"] for r in rows)
+    assert "| unlit | wgpu-vulkan / wgpu-gl |" in (tmp_path / "implementations.md").read_text()
+
+
+def test_a_pair_past_its_bound_fails_with_a_heatmap(tmp_path, monkeypatch):
+    import numpy as np
+
+    from wgpurender import verify_matrix
+    from wgpurender.core.tolerances import Tolerance
+
+    tight = Tolerance("t", "lavapipe", 1, 0.01, 0.002, "test", "test", False)
+    monkeypatch.setattr(verify_matrix, "_bound", lambda a, b, target: tight)
+    a = np.zeros((8, 8, 4), np.uint8)
+    b = a.copy()
+    b[:4] = 40  # half the pixels off by 40/255
+    cell = verify_matrix._compare(tmp_path, "x", "wgpu-vulkan", "wgpu-gl", a, b)
+    assert cell.status == "FAIL" and "max diff 40/255 > 1/255" in cell.note
+    assert (tmp_path / cell.heatmap).is_file()
+    assert cell.comparison.over_1 == 0.5 and cell.comparison.max_abs == 40
