@@ -14,9 +14,11 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
+from wgpurender.core.safe_write import cleanup_on_signal
 from wgpurender.report import extras, page
 from wgpurender.report.steps import Step, heatmap_scale, scene_step, stage_step
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -57,8 +59,10 @@ def check_out_dir(out_dir: Path) -> Path:
 
 
 def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes: list[Path] | None = None,
-                 ctx: GPUContext | None = None, log: Callable[[str], None] = print) -> Path:
-    """Render every step on both paths and write the site; returns the path of index.html."""
+                 ctx: GPUContext | None = None, log: Callable[[str], None] = print,
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> Path:
+    """Render every step on both paths and write the site; returns the path of index.html. ``anisotropy``:
+    the scenes' rule (core/anisotropy.py), as ``render --anisotropy``."""
     out_dir = check_out_dir(Path(out_dir))
     ctx = ctx or get_context()
     start = time.perf_counter()
@@ -68,15 +72,16 @@ def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes
         steps.append(stage_step(ctx, name, STAGE_SIZE, log))
     for path in _scene_files() if scenes is None else scenes:
         log(f"scene {path.name}")
-        steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log))
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
-        _write_site(tmp, steps, ctx, time.perf_counter() - start)
-        if out_dir.exists():
-            shutil.rmtree(out_dir)
-        tmp.rename(out_dir)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+        steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log, anisotropy))
+    with cleanup_on_signal():  # SIGTERM while the temp folder exists ends through finally
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+        try:
+            _write_site(tmp, steps, ctx, time.perf_counter() - start)
+            if out_dir.exists():
+                shutil.rmtree(out_dir)
+            tmp.rename(out_dir)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
     log(f"report: {len(steps)} steps in {time.perf_counter() - start:.1f} s")
     return out_dir / "index.html"
 
