@@ -133,3 +133,19 @@ def test_a_pair_past_its_bound_fails_with_a_heatmap(tmp_path, monkeypatch):
     assert cell.status == "FAIL" and "max diff 40/255 > 1/255" in cell.note
     assert (tmp_path / cell.heatmap).is_file()
     assert cell.comparison.over_1 == 0.5 and cell.comparison.max_abs == 40
+
+
+def test_the_instance_is_made_for_the_chosen_backend_only():
+    """No OpenGL/EGL enumeration when Vulkan is asked for (start-up time), and a second backend in the same
+    process is refused in one line (wgpu-py keeps one instance per process)."""
+    code = ("from wgpurender.wgpu_path import gpu\n"
+            "gpu.get_context('vulkan')\n"
+            "print(gpu.available_backends())\n"
+            "try:\n    gpu.get_context('opengl')\nexcept gpu.UserError as err:\n    print('refused:', err)\n")
+    env = {k: v for k, v in os.environ.items() if k != "WGPURENDER_BACKEND"}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=REPO, env=env,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr
+    first, second = done.stdout.splitlines()[:2]
+    assert first == "['Vulkan']"
+    assert second.startswith("refused:") and "its own process" in second
