@@ -20,7 +20,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, Knobs
 from wgpurender.core.plan.post import resolve_immediates
 from wgpurender.core.tolerances import Uncalibrated, driver_class, implementation_tolerance
-from wgpurender.implementations import REPO, all_targets, render_in_child, render_wgpu
+from wgpurender.implementations import REPO, all_targets, render_in_child
 from wgpurender.wgpu_path.gpu import requested_backend
 
 SIZE = (160, 120)
@@ -51,9 +51,9 @@ def test_the_plan_decides_immediates_per_adapter(backend, features, expected):
         assert "OpenGL" in why and "backends.md" in why
 
 
-def _gl_or_skip(tmp_path_factory) -> dict:
+def _child(implementation: str, tmp_path_factory) -> dict:
     try:
-        return render_in_child("wgpu-gl", all_targets(), SIZE, tmp_path_factory.mktemp("gl"))
+        return render_in_child(implementation, all_targets(), SIZE, tmp_path_factory.mktemp(implementation))
     except UserError as err:
         if "no OpenGL adapter" in str(err):
             pytest.skip(f"this machine has no OpenGL adapter: {err}")
@@ -61,18 +61,21 @@ def _gl_or_skip(tmp_path_factory) -> dict:
 
 
 @pytest.fixture(scope="module")
-def gl_renders(tmp_path_factory):
-    return _gl_or_skip(tmp_path_factory)
+def renders(tmp_path_factory):
+    """Both backends in child processes: one instance per process, and this process's device caches stay
+    untouched (tests/test_course_map.py records the shaders a stage loads on a fresh cache)."""
+    return _child("wgpu-vulkan", tmp_path_factory), _child("wgpu-gl", tmp_path_factory)
 
 
 @pytest.mark.parametrize("name", all_targets())
-def test_opengl_agrees_with_vulkan(request, ctx, gl_renders, name):
+def test_opengl_agrees_with_vulkan(request, ctx, renders, name):
     """Before the plan's rule every lit scene came out wrong on GL (immediates lost): unlit black, FLIP 0.11+."""
     try:
         tol = implementation_tolerance("wgpu-gl", name, cls=driver_class(ctx.adapter.info["device"]))
     except Uncalibrated as err:
         pytest.skip(str(err))
-    _assert_within(request, render_wgpu(name, SIZE, "Vulkan"), gl_renders[name], tol)
+    vulkan, gl = renders
+    _assert_within(request, vulkan[name], gl[name], tol)
 
 
 def test_cli_renders_a_scene_on_opengl_and_explains_the_fallback(tmp_path):
