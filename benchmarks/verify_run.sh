@@ -37,7 +37,7 @@ status=0
 [ -d out/test-diffs ] && cp -r out/test-diffs "$RESULTS/test-diffs" && rm -rf out/test-diffs
 if [ -f "$RESULTS/verify/tolerances.toml" ]; then
     cp "$RESULTS/verify/tolerances.toml" assets/reference/tolerances.toml
-    "$PYTHON" -m pytest -q -p no:cacheprovider -rfEs tests/test_raw_path.py tests/test_raw_path_scene.py \
+    "$PYTHON" -m pytest -q -p no:cacheprovider -rfEs tests/test_vulkan_ref.py tests/test_vulkan_ref_scene.py \
         tests/test_vulkan_tutorial.py tests/test_reference_tolerances.py tests/test_verify.py 2>&1 \
         | tee "$RESULTS/pytest-calibrated.log" | tail -15 || status=1
     [ -d out/test-diffs ] && cp -r out/test-diffs "$RESULTS/test-diffs-calibrated"
