@@ -77,6 +77,10 @@ def run(args) -> int:
     benchmark = _benchmark(args)
     size = _window_size(args.target, args.size)
     check_applies(args.target, is_scene_file(args.target), args.anisotropy)
+    if is_scene_file(args.target):
+        from wgpurender.api import check_static
+
+        check_static(args.target, args.time)
     if args.raw:
         from wgpurender.cli._demo_raw import run_raw
 
