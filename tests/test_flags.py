@@ -174,6 +174,7 @@ def test_the_check_catches_a_dropped_flag(tmp_path, monkeypatch):
     (["render", "triangle", "-o", "x.png", "--anisotropy", "scene"], "--anisotropy"),
     (["reference", "triangle", "-o", "x.png", "--anisotropy", "scene"], "--anisotropy"),
     (["demo", "triangle", "--anisotropy", "scene"], "--anisotropy"),
+    (["bench", "perf", "--only", "frames", "--anisotropy", "scene"], "--anisotropy"),
     (["render", str(REPO / "assets" / "scenes" / "unlit.toml"), "-o", "x.png", "--time", "2"], "--time"),
     (["demo", "--raw", str(REPO / "assets" / "scenes" / "unlit.toml"), "--time", "2"], "--time"),
     (["demo", "--raw", "triangle", "--anisotropy", "scene"], "--anisotropy"),
