@@ -83,6 +83,7 @@ def test_one_section_per_course_step_in_course_order(site):
     keys = _sections(text)
     stages = [step.stage for step in stage_steps()]  # the course core's table of steps drawn by stage modules
     assert COURSE[-1].scene == "final" and "final" in keys  # step 6, the final model, is the scene section
+    assert "course step 6" in _section(text, "final") and "course step 6" not in _section(text, "unlit")
     assert keys[: len(stages)] == stages
     scenes = keys[len(stages):]
     assert scenes[:5] == ["unlit", "retro", "brick", "final_subpass", "final"]

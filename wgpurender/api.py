@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from wgpurender.core import checks
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -112,12 +112,12 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
 
     ``size``: ``(width, height)`` or ``"WxH"`` (default 800x600 for a stage, the scene's
     ``[render] size`` for a scene); ``msaa``: 1 or 4 (default: the stage's or the scene's);
-    ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``Vulkan``
-    (default), ``Metal``, ``D3D12`` or ``OpenGL``; ``t``: animation time in seconds (stages: a scene is static,
-    another time than 0 is refused); ``anisotropy``
-    (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``; ``knobs`` (scenes): the plan's
-    other knobs, e.g. ``post_path="compute"``, ``post_fuse=False``, ``immediates="off"``, ``reverse_z=True``
-    (:data:`wgpurender.core.plan.KNOB_FLAGS`). A scene is drawn from
+    ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``vulkan``
+    (default), ``opengl``, ``metal``, ``d3d12`` or ``auto`` (docs/backends.md); ``t``: animation time in seconds
+    (stages: a scene is static, another time than 0 is refused);
+    ``anisotropy`` (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``; ``knobs``
+    (scenes): the plan's other knobs, e.g. ``post_path="compute"``, ``post_fuse=False``, ``immediates="off"``,
+    ``reverse_z=True`` (:data:`wgpurender.core.plan.KNOB_FLAGS`). A scene is drawn from
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
@@ -126,6 +126,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     ctx = get_context(checks.backend(backend))
     if _is_scene(target, anisotropy, knobs, t):
         from wgpurender.wgpu_path.scene_render import render_plan
@@ -137,6 +138,14 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
         result = render_stage(str(target), wh or (800, 600), format, msaa, t, ctx)
     timings = {"frame_ms": result.frame_ms, "call_ms": (time.perf_counter() - start) * 1e3}
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
+
+
+def export(target: Target, out: str | os.PathLike, size: Size = "800x600") -> Path:
+    """Write a static page into folder ``out`` that renders the stage or scene live with the browser's WebGPU
+    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``)."""
+    from wgpurender.export import export as write_page
+
+    return write_page(str(target), out, _size(size)).page
 
 
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
@@ -152,6 +161,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     plan = None
     if _is_scene(target, anisotropy, knobs, t):
         from wgpurender.core.plan import resolve_plan
@@ -262,6 +272,7 @@ def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str 
     from wgpurender.core.course.formats import is_scene_file
 
     scene, size, msaa, format = _target(scene), _size(size), checks.msaa(msaa), checks.output_format(format)
+    anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     if not is_scene_file(scene):
         raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
     return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy, knobs)

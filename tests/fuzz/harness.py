@@ -98,14 +98,14 @@ def classify(code: int, stderr: str, output: Path | None, scene: Path | None) ->
         return "traceback"
     leftovers = [] if output is None else [p for p in output.parent.iterdir() if p.name.endswith(".tmp")]
     if code == 2:
-        if leftovers or (output is not None and output.exists()):
+        if leftovers or (output is not None and os.path.lexists(output)):  # os.path: no raise on a long name
             return "partial"
         return "error" if len(stderr.splitlines()) == 1 else "multiline"
     if code != 0:
         return "multiline"
     if output is None:
         return "render"
-    if leftovers or not output.is_file():
+    if leftovers or not os.path.isfile(output):
         return "partial"
     try:
         with Image.open(output) as im:

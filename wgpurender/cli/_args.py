@@ -16,7 +16,7 @@ def checked(check: Callable[[str], Any]) -> Callable[[str], Any]:
 
     def parse(text: str) -> Any:
         try:
-            return check(text)
+            return check(checks.CliText(text))
         except UserError as err:
             raise argparse.ArgumentTypeError(str(err)) from None
 

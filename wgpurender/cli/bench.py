@@ -119,6 +119,8 @@ def _register_roofline(suites) -> None:
                    "and final_subpass.toml, whose whole chain is one per-pixel pass)")
     p.add_argument("--size", type=size_arg, default=(3840, 2160), metavar="WxH", help="default 3840x2160")
     p.add_argument("--frames", type=int, default=20, metavar="N", help="timed frames per variant (default 20)")
+    p.add_argument("--shapes", action="store_true",
+                   help="also time the fused compute passes with each dispatch shape (workgroup, rows per invocation)")
     p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
                    help="where results go (default ./bench-results)")
     add_backend_arg(p)
@@ -127,7 +129,7 @@ def _register_roofline(suites) -> None:
 
 def _run_roofline(args) -> int:
     from wgpurender.bench.perf import command_line
-    from wgpurender.bench.post_roofline import csv_text, markdown, run_roofline
+    from wgpurender.bench.post_roofline import csv_text, markdown, record_bandwidth, run_roofline
     from wgpurender.core.errors import UserError
     from wgpurender.core.safe_write import atomic_write
     from wgpurender.wgpu_path.gpu import get_context
@@ -139,7 +141,8 @@ def _run_roofline(args) -> int:
         raise UserError(f"{ctx.describe()} has no timestamp queries: post-roofline times passes with them")
     args.out.mkdir(parents=True, exist_ok=True)
     for scene in args.scenes:
-        rows = run_roofline(ctx, scene, args.size, args.frames)
+        rows = run_roofline(ctx, scene, args.size, args.frames, shapes=args.shapes)
+        record_bandwidth(ctx, scene, args.size, rows, command_line())
         text = markdown(rows, ctx, scene, args.size, args.frames, command_line())
         md, csv = args.out / f"post-roofline-{scene.stem}.md", args.out / f"post-roofline-{scene.stem}.csv"
         atomic_write(md, text.encode())

@@ -40,7 +40,7 @@ def _threshold(text: str) -> tuple[str, float]:
     name, equals, value = text.partition("=")
     if not equals:
         raise argparse.ArgumentTypeError(f"threshold {text!r} needs METRIC=VALUE, e.g. flip_mean=0.005")
-    return checked(lambda v: checks.threshold(name, v))(value)
+    return checked(lambda v: checks.threshold(name, v))(value)  # checked() marks the value as CLI text
 
 
 SHARES = ("over_1", "over_2")  # fractions of the pixels: printed as %

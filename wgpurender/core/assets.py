@@ -11,6 +11,7 @@ API-free (no wgpu, no vulkan).
 
 from __future__ import annotations
 
+import os
 from importlib import resources
 from pathlib import Path, PurePath
 
@@ -66,17 +67,17 @@ def bundled_scene(target: str | PurePath) -> Path | None:
     parts = PurePath(text).parts
     if len(parts) > 1 and parts[0] == "assets":  # a repository path, from outside the checkout
         candidate = assets_dir().joinpath(*parts[1:])
-        return candidate if candidate.is_file() and text.endswith(SCENE_SUFFIX) else None
+        return candidate if os.path.isfile(candidate) and text.endswith(SCENE_SUFFIX) else None
     if len(parts) != 1:
         return None
     name = text[: -len(SCENE_SUFFIX)] if text.endswith(SCENE_SUFFIX) else text
     candidate = scene_dir() / f"{name}{SCENE_SUFFIX}"
-    return candidate if name and candidate.is_file() else None
+    return candidate if name and os.path.isfile(candidate) else None
 
 
 def resolve_scene(target: str | PurePath) -> Path:
     """The scene file ``target`` means: the file itself where it exists, else the bundled scene it names."""
     path = Path(target)
-    if path.is_file():
+    if os.path.isfile(path):  # Path.is_file raises for a name over 255 bytes; input_file says what it is
         return path
     return bundled_scene(target) or path

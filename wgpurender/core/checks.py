@@ -6,6 +6,8 @@ renderer needs, or raises :class:`UserError` saying what was wrong and what is v
 so ``--gain 0`` and ``heatmap(gain=0)`` fail with the same words.
 
 Python's ``bool`` is an ``int``: it is refused wherever a number is expected (``msaa=True`` is a mistake, not 1).
+A string where a number is expected is refused too (``gain="32"``), except command-line text, which the CLI
+marks as :class:`CliText` before calling a check.
 """
 
 from __future__ import annotations
@@ -22,7 +24,12 @@ from wgpurender.core.errors import UserError
 
 MAX_SIZE = 16384  # per side: the largest 2D texture any adapter we support offers
 MAX_GAP = 4096
-BACKENDS = ("Vulkan", "Metal", "D3D12", "OpenGL")
+BACKENDS = ("Vulkan", "OpenGL", "Metal", "D3D12", "auto")  # as the adapter names them; auto: the best of any
+BACKEND_ALIASES = {"gl": "OpenGL", "gles": "OpenGL", "dx12": "D3D12"}  # wgpu-native's instance names, and GLES
+
+
+class CliText(str):
+    """Text from the command line: a number check parses it (a plain ``str`` from Python code is refused)."""
 
 
 def _shown(value: Any) -> str:
@@ -41,11 +48,11 @@ def _is_integer(value: Any) -> bool:
 def number(value: Any, name: str) -> float:
     """A finite real number; a numeric string (the CLI's) is parsed. NaN and infinities are refused: a NaN
     threshold or time would switch a check off or draw one colour, silently."""
-    if isinstance(value, str):
+    if isinstance(value, CliText):
         try:
             value = float(value)
         except ValueError:
-            raise UserError(f"{name} must be a number, got {_shown(value)}") from None
+            raise UserError(f"{name} must be a number, got {_shown(str(value))}") from None
     elif not _is_number(value):
         raise UserError(f"{name} must be a number, got {type(value).__name__} {_shown(value)}")
     value = float(value)
@@ -64,11 +71,11 @@ def positive(value: Any, name: str, example: str = "32") -> float:
 
 def integer(value: Any, name: str, low: int, high: int) -> int:
     """A whole number in [low, high]; a digit string (the CLI's) is parsed; 4.0 and True are refused."""
-    if isinstance(value, str):
+    if isinstance(value, CliText):
         try:
             value = int(value.strip())
         except ValueError:
-            raise UserError(f"{name} must be a whole number, got {_shown(value)}") from None
+            raise UserError(f"{name} must be a whole number, got {_shown(str(value))}") from None
     elif not _is_integer(value):
         raise UserError(f"{name} must be a whole number ({low}..{high}), got {type(value).__name__} {_shown(value)}")
     value = int(value)
@@ -125,10 +132,12 @@ def backend(value: Any) -> str | None:
     if value is None:
         return None
     if isinstance(value, str):
+        name = BACKEND_ALIASES.get(value.lower(), value)
         for known in BACKENDS:
-            if value.lower() == known.lower():
+            if name.lower() == known.lower():
                 return known
-    raise UserError(f"unknown backend {_shown(value)}: choose one of {', '.join(BACKENDS)}")
+    raise UserError(f"unknown backend {_shown(value)}: choose one of {', '.join(b.lower() for b in BACKENDS[:-1])} "
+                    "or auto (--backend or $WGPURENDER_BACKEND)")
 
 
 def time(value: Any) -> float:
@@ -153,12 +162,19 @@ def threshold(name: Any, value: Any) -> tuple[str, float]:
     if name not in METRICS:
         raise UserError(f"unknown metric {_shown(name)}: choose from {', '.join(METRICS)}")
     scale = 1.0
-    if isinstance(value, str) and value.strip().endswith("%"):
-        value, scale = value.strip()[:-1], 0.01
+    if isinstance(value, CliText) and value.strip().endswith("%"):
+        value, scale = CliText(value.strip()[:-1]), 0.01
     limit = number(value, f"threshold {name}") * scale
     if name != "psnr" and limit < 0:
         raise UserError(f"threshold {name} must be 0 or more, got {limit:g}")
     return name, limit
+
+
+def choice(value: Any, name: str, choices: tuple[str, ...]) -> str:
+    """One of a few named settings."""
+    if not isinstance(value, str) or value not in choices:
+        raise UserError(f"{name} must be one of {', '.join(choices)}, got {_shown(value)}")
+    return value
 
 
 def image_array(array: Any, name: str) -> np.ndarray:

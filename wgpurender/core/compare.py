@@ -45,6 +45,13 @@ def _rgb8(image: np.ndarray, name: str) -> np.ndarray:
     return image[..., :3]
 
 
+def _same_size(reference: np.ndarray, test: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    a, b = _rgb8(reference, "reference"), _rgb8(test, "test")
+    if a.shape != b.shape:
+        raise UserError(f"images differ in size: {a.shape[1]}x{a.shape[0]} vs {b.shape[1]}x{b.shape[0]}")
+    return a, b
+
+
 def flip_mean(a: np.ndarray, b: np.ndarray) -> tuple[float, np.ndarray]:
     """Mean LDR FLIP error of b against reference a (both sRGB uint8), and the error map."""
     import flip_evaluator
@@ -57,9 +64,7 @@ def flip_mean(a: np.ndarray, b: np.ndarray) -> tuple[float, np.ndarray]:
 
 def compare_images(reference: np.ndarray, test: np.ndarray, *, with_flip: bool = True) -> Comparison:
     """Compare two 8-bit images of the same size."""
-    a, b = _rgb8(reference, "reference"), _rgb8(test, "test")
-    if a.shape != b.shape:
-        raise UserError(f"images differ in size: {a.shape[1]}x{a.shape[0]} vs {b.shape[1]}x{b.shape[0]}")
+    a, b = _same_size(reference, test)
     diff = np.abs(a.astype(np.int16) - b.astype(np.int16))
     mse = float(np.mean((diff.astype(np.float64) / 255.0) ** 2))
     per_pixel = diff.max(axis=-1)
@@ -78,7 +83,7 @@ def heatmap(reference: np.ndarray, test: np.ndarray, gain: float = 32.0) -> np.n
     The largest channel difference is multiplied by ``gain`` (32: a 1/255 difference
     becomes 32/255, visible) and mapped through a black-red-yellow-white ramp.
     """
-    a, b = _rgb8(reference, "reference"), _rgb8(test, "test")
+    a, b = _same_size(reference, test)
     d = np.abs(a.astype(np.float64) - b.astype(np.float64)).max(axis=-1) * gain / 255.0
     return _ramp(d)
 

@@ -25,7 +25,7 @@ from wgpurender.core.errors import UserError
 MAX_MODEL_BYTES_ENV = "WGPURENDER_MAX_MODEL_BYTES"
 MAX_IMAGE_PIXELS_ENV = "WGPURENDER_MAX_IMAGE_PIXELS"
 MAX_MODEL_BYTES = 512 * 1024 * 1024  # 512 MiB: a 2 GB sparse OBJ took ~60 s before its error
-MAX_IMAGE_PIXELS = 40_000_000  # 40 Mpx: an 8K UHD frame (7680x4320 = 33 Mpx) fits; compare needs ~30 B/px
+MAX_IMAGE_PIXELS = 4096 * 4096  # 16.8 Mpx (4K UHD fits): compare with FLIP peaks at ~160 B/px (2.7 GB here)
 MAX_NESTING = 32  # tables/arrays inside each other in a scene file: real scenes use 3
 
 

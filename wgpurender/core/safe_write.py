@@ -18,6 +18,7 @@ is written, and must itself be a regular file or absent). An atomic rename would
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import re
@@ -164,6 +165,12 @@ def atomic_write(path: str | os.PathLike, data: bytes | Callable[[], bytes]) -> 
     sweep_stale(path.parent)
     tmp = temp_name(path)
     _live.add(tmp)
+    with cleanup_on_signal():
+        _write_and_rename(path, tmp, payload)
+    return path
+
+
+def _write_and_rename(path: Path, tmp: Path, payload: bytes) -> None:
     try:
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_EXCL, 0o666 & ~_umask())
         with os.fdopen(fd, "wb") as f:
@@ -180,7 +187,6 @@ def atomic_write(path: str | os.PathLike, data: bytes | Callable[[], bytes]) -> 
     finally:
         tmp.unlink(missing_ok=True)
         _live.discard(tmp)
-    return path
 
 
 def _on_signal(signum: int, frame) -> None:
@@ -189,13 +195,44 @@ def _on_signal(signum: int, frame) -> None:
     raise SystemExit(128 + signum)
 
 
-def install_signal_handlers() -> None:
-    """SIGTERM (and SIGHUP) end the process through SystemExit, so ``finally`` blocks remove temp files.
-    SIGINT already raises KeyboardInterrupt. Only from the main thread (signal's rule)."""
-    for sig in (signal.SIGTERM, getattr(signal, "SIGHUP", None)):
-        if sig is None:
-            continue
+_ENDING_SIGNALS = tuple(s for s in (signal.SIGTERM, getattr(signal, "SIGHUP", None)) if s is not None)
+_handlers_installed = False
+_cleanup_depth = 0  # nested cleanup_on_signal blocks (the report's temp folder holds atomic writes)
+
+
+def _set_handlers(handler) -> None:
+    for sig in _ENDING_SIGNALS:
         try:
-            signal.signal(sig, _on_signal)
-        except ValueError:  # not the main thread
+            signal.signal(sig, handler)
+        except ValueError:  # not the main thread: the sweep of the next write removes what is left
             return
+
+
+@contextlib.contextmanager
+def cleanup_on_signal():
+    """While a temp file exists, SIGTERM/SIGHUP raise SystemExit (so ``finally`` removes it); outside, they keep
+    their default action. A Python handler only runs between bytecodes, so during long native work (FLIP, numpy,
+    a lavapipe frame) it waited for that work to end: a compare of a huge image ignored SIGTERM for minutes. With
+    the default action the process ends at once, and there is nothing to clean up outside a write."""
+    global _cleanup_depth
+    if not _handlers_installed:
+        yield
+        return
+    _cleanup_depth += 1
+    if _cleanup_depth == 1:
+        _set_handlers(_on_signal)
+    try:
+        yield
+    finally:
+        _cleanup_depth -= 1
+        if _cleanup_depth == 0:
+            _set_handlers(signal.SIG_DFL)
+
+
+def install_signal_handlers() -> None:
+    """The CLI's signal policy: SIGTERM (and SIGHUP) end the process at once, except while an output's temp
+    file exists, when they end it through SystemExit so that ``finally`` removes the file (exit 143 either way
+    as the shell sees it). SIGINT raises KeyboardInterrupt, as always. Only from the main thread."""
+    global _handlers_installed
+    _handlers_installed = True
+    _set_handlers(signal.SIG_DFL)

@@ -24,6 +24,7 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import check_image_pixels, input_file
 
 MAX_DIM_LIMIT = "max-texture-dimension-2d"
 _EIGHT_BIT_MODES = {"1", "L", "LA", "La", "P", "PA", "RGB", "RGBA", "RGBa", "RGBX", "CMYK", "YCbCr", "LAB", "HSV"}
@@ -101,6 +102,7 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
     try:
         with Image.open(source) as im:
             _check_dims(f"image {path}", im.width, im.height, max_dim)
+            check_image_pixels(im.width, im.height, str(path))
             im.load()
             return _image_to_rgba8(im, path)
     except Image.DecompressionBombError as err:
@@ -113,7 +115,7 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
 def _embedded_or_file(path: Path):
     """What Pillow opens: the file, or the bytes of an image embedded in a glTF model (``model.glb#images[k]``,
     see gltf_materials.embedded_image_path)."""
-    if not path.is_file():
+    if not os.path.lexists(path):
         from wgpurender.core.gltf_materials import embedded_image_bytes
 
         data = embedded_image_bytes(path)
@@ -121,9 +123,7 @@ def _embedded_or_file(path: Path):
             import io
 
             return io.BytesIO(data)
-        hint = "it is a directory" if path.is_dir() else "check the path"
-        raise UserError(f"texture image not found: {path} ({hint})")
-    return path
+    return input_file(path, "texture image", f"texture image not found: {path} (check the path)")
 
 
 def _image_to_rgba8(im: Image.Image, path: Path) -> np.ndarray:

@@ -18,6 +18,7 @@ from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
+from wgpurender.core.safe_write import cleanup_on_signal
 from wgpurender.report import extras, page
 from wgpurender.report.steps import Step, heatmap_scale, scene_step, stage_step
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
@@ -72,14 +73,15 @@ def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes
     for path in _scene_files() if scenes is None else scenes:
         log(f"scene {path.name}")
         steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log, anisotropy))
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
-        _write_site(tmp, steps, ctx, time.perf_counter() - start)
-        if out_dir.exists():
-            shutil.rmtree(out_dir)
-        tmp.rename(out_dir)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    with cleanup_on_signal():  # SIGTERM while the temp folder exists ends through finally
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+        try:
+            _write_site(tmp, steps, ctx, time.perf_counter() - start)
+            if out_dir.exists():
+                shutil.rmtree(out_dir)
+            tmp.rename(out_dir)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
     log(f"report: {len(steps)} steps in {time.perf_counter() - start:.1f} s")
     return out_dir / "index.html"
 
@@ -99,6 +101,20 @@ def _scene_files() -> list[Path]:
     return out
 
 
+def _live_page(site: Path, step: Step) -> dict[str, str]:
+    """The step exported as a live WebGPU page (wgpurender export) under live/KEY/, linked from its section;
+    none (with the reason logged on the page) where the browser cannot draw it."""
+    from wgpurender.export import export
+
+    size = (step.wgpu.shape[1], step.wgpu.shape[0]) if step.wgpu is not None else STAGE_SIZE
+    target = str(SCENE_DIR / f"{step.key}.toml") if (SCENE_DIR / f"{step.key}.toml").is_file() else step.key
+    try:
+        export(target, site / "live" / step.key, size)
+    except UserError as err:
+        return {"live_note": str(err)}
+    return {"live": f"live/{step.key}/index.html"}
+
+
 def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) -> None:
     images: dict[str, dict[str, str]] = {}
     for step in steps:
@@ -109,6 +125,7 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) 
                 name = f"{step.key}_{kind}.png"
                 save_png(site / name, pixels)
                 files[kind] = name
+        files.update(_live_page(site, step))
     scale, levels = heatmap_scale()
     save_png(site / "heatmap_scale.png", scale)
     pareto = extras.pareto_plot()

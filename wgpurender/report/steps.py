@@ -93,6 +93,14 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
     return step
 
 
+def _scene_course_step(path: Path) -> str:
+    """'course step 6: ...' for the scene a course step is (the final model), else 'scene file'."""
+    from wgpurender.core.course.steps import COURSE
+
+    step = next((s for s in COURSE if s.scene == path.stem), None)
+    return f"course step {step.number}: {step.title}" if step else "scene file"
+
+
 def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=print,
                anisotropy: str = DEFAULT_ANISOTROPY) -> Step:
     """A scene file: its description, the plan drawn on this adapter, and the scene on both paths (each
@@ -103,7 +111,7 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
 
     plan = resolve_plan(path, adapter_facts(ctx), size=size, anisotropy=anisotropy)
     text = plan.explain().replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
-    step = Step(path.stem, path.name, "scene file", plan.scene.description, _scene_words(path), plan=text)
+    step = Step(path.stem, path.name, _scene_course_step(path), plan.scene.description, _scene_words(path), plan=text)
     step.wgpu = render_plan(ctx, plan, frames=1).pixels
     step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size, anisotropy)
     step.raw, step.raw_note = _try(lambda: render_reference(str(path), size, anisotropy=anisotropy), log)
