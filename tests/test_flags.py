@@ -179,6 +179,7 @@ def test_the_check_catches_a_dropped_flag(tmp_path, monkeypatch):
     (["demo", "--raw", str(REPO / "assets" / "scenes" / "unlit.toml"), "--time", "2"], "--time"),
     (["demo", "--raw", "triangle", "--anisotropy", "scene"], "--anisotropy"),
     (["verify", "--anisotropy", "scene"], "--anisotropy"),
+    (["verify", "--size", "64x48"], "--size"),
     (["render", "triangle", "-o", "x.png", "--raw"], "--raw"),
     (["bench", "accuracy", str(REPO / "assets" / "scenes" / "final.toml"), "--truth", "analytic", "--knob", "msaa"],
      "--knob"),
