@@ -325,7 +325,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
 
     g = GltfWriter()
     tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33648))
-    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex},
+    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex, "texCoord": 1},
                      pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "metallicFactor": 1.0},
                      extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1}})
     prim = quad_primitive(g, -1, -1, 1, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
@@ -340,7 +340,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; occlusion is not used without lights:
     for ignored in ("KHR_materials_clearcoat: ignored", "occlusionTexture unused", "metalness",
-                    "TEXCOORD_1 ignored", "LINES primitive ignored",
+                    "TEXCOORD_1 ignored", "LINES primitive ignored", "occlusionTexture texCoord 1: ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out
