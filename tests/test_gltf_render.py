@@ -252,6 +252,26 @@ def test_alpha_mask_discards_below_the_cutoff(ctx, tmp_path, which, cutoff):
     for x, alpha in ((-0.8, ALPHAS[0, 0, 3] / 255), (0.8, ALPHAS[0, 1, 3] / 255)):
         want = (1, 1, 1) if alpha >= cutoff else (0, 0, 0)
         assert_colour(image, x, 0.0, want, f"{which} alpha {alpha:.3f} cutoff {cutoff}")
+        if alpha >= cutoff:  # what a MASK keeps is opaque
+            col, row = pixel_of(x, 0.0, SIZE)
+            assert image[int(row), int(col), 3] == 255, (which, alpha, cutoff)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_opaque_ignores_alpha(ctx, tmp_path, which):
+    """alphaMode OPAQUE (the default) with texels of alpha 64/255 and 191/255 and a factor alpha of 0.5: the colour
+    is drawn and the output's alpha is 255 (glTF: the alpha value is ignored)."""
+    g = GltfWriter()
+    tex = g.texture(ALPHAS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "baseColorFactor": [1, 1, 1, 0.5]},
+                     **UNLIT)
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1.0, 1.6, 1.0, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "opaque.glb")
+    image = render(ctx, write_scene(tmp_path, "opaque.glb"), which)
+    for x in (-0.8, 0.8):
+        assert_colour(image, x, 0.0, (1, 1, 1), f"{which} opaque colour")
+        col, row = pixel_of(x, 0.0, SIZE)
+        assert image[int(row), int(col), 3] == 255, which
 
 
 # -- node hierarchy ------------------------------------------------------------------------------------------------
