@@ -339,8 +339,9 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
 # -- what --explain says -------------------------------------------------------------------------------------------
 
 def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
-    """A material with emissive, occlusion (unused: no lights), metalness and KHR_materials_clearcoat; extensionsUsed
-    lists clearcoat and KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
+    """A material with emissive, occlusion (kept lit without lights: it scales the ambient term), metalness and
+    KHR_materials_clearcoat; extensionsUsed lists clearcoat and KHR_materials_unlit (supported): --explain names
+    what was taken and every ignored feature."""
     from wgpurender.cli import main
 
     g = GltfWriter()
@@ -358,8 +359,9 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert code == 0
     assert "from the model file" in out and "'coat'" in out
     assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
-    assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; occlusion is not used without lights:
-    for ignored in ("KHR_materials_clearcoat: ignored", "occlusionTexture unused", "metalness",
+    assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
+    assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
+    for ignored in ("KHR_materials_clearcoat: ignored", "metalness",
                     "TEXCOORD_1 ignored", "LINES primitive ignored", "occlusionTexture texCoord 1: ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
@@ -409,10 +411,12 @@ def test_emissive_factor_times_texture_is_added(ctx, tmp_path, which):
 OCCLUSION_TEXELS = np.array([[[255, 0, 0, 255], [64, 0, 0, 255]]], np.uint8)  # R = 1 | 64/255 (linear data)
 
 
+@pytest.mark.parametrize("lights", ["back_light", "no_lights"])
 @pytest.mark.parametrize("which", PATHS)
-def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which):
+def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which, lights):
     """A white lit quad, a directional light travelling along +z (it reaches only the back: n.l < 0, no direct
-    light), occlusionTexture strength 0.8: each half shows ambient x (1 + 0.8 (R - 1)), R the texel's linear red."""
+    light) or no light at all (the material stays lit: the occlusion map shapes its ambient term),
+    occlusionTexture strength 0.8: each half shows ambient x (1 + 0.8 (R - 1)), R the texel's linear red."""
     strength = 0.8
     g = GltfWriter()
     tex = g.texture(OCCLUSION_TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
@@ -420,7 +424,7 @@ def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which):
                      pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0})
     g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1, 1.6, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
     g.write(tmp_path / "ao.glb")
-    light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, 1]\n'
+    light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, 1]\n' if lights == "back_light" else ""
     image = render(ctx, write_scene(tmp_path, "ao.glb", extra=light), which)
     ambient = np.array([0.03, 0.03, 0.035])  # course.shading.AMBIENT
     for x, red in ((-0.8, OCCLUSION_TEXELS[0, 0, 0] / 255), (0.8, OCCLUSION_TEXELS[0, 1, 0] / 255)):
