@@ -252,6 +252,26 @@ def test_alpha_mask_discards_below_the_cutoff(ctx, tmp_path, which, cutoff):
     for x, alpha in ((-0.8, ALPHAS[0, 0, 3] / 255), (0.8, ALPHAS[0, 1, 3] / 255)):
         want = (1, 1, 1) if alpha >= cutoff else (0, 0, 0)
         assert_colour(image, x, 0.0, want, f"{which} alpha {alpha:.3f} cutoff {cutoff}")
+        if alpha >= cutoff:  # what a MASK keeps is opaque
+            col, row = pixel_of(x, 0.0, SIZE)
+            assert image[int(row), int(col), 3] == 255, (which, alpha, cutoff)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_opaque_ignores_alpha(ctx, tmp_path, which):
+    """alphaMode OPAQUE (the default) with texels of alpha 64/255 and 191/255 and a factor alpha of 0.5: the colour
+    is drawn and the output's alpha is 255 (glTF: the alpha value is ignored)."""
+    g = GltfWriter()
+    tex = g.texture(ALPHAS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "baseColorFactor": [1, 1, 1, 0.5]},
+                     **UNLIT)
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1.0, 1.6, 1.0, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "opaque.glb")
+    image = render(ctx, write_scene(tmp_path, "opaque.glb"), which)
+    for x in (-0.8, 0.8):
+        assert_colour(image, x, 0.0, (1, 1, 1), f"{which} opaque colour")
+        col, row = pixel_of(x, 0.0, SIZE)
+        assert image[int(row), int(col), 3] == 255, which
 
 
 # -- node hierarchy ------------------------------------------------------------------------------------------------
@@ -326,7 +346,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
 
     g = GltfWriter()
     tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33648))
-    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex},
+    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex, "texCoord": 1},
                      pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "metallicFactor": 1.0},
                      extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1}})
     prim = quad_primitive(g, -1, -1, 1, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
@@ -342,7 +362,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
     assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
     for ignored in ("KHR_materials_clearcoat: ignored", "metalness",
-                    "TEXCOORD_1 ignored", "LINES primitive ignored",
+                    "TEXCOORD_1 ignored", "LINES primitive ignored", "occlusionTexture texCoord 1: ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out
