@@ -43,12 +43,14 @@ def test_every_named_file_exists_and_every_step_is_on_both_paths_with_a_referenc
 
 def test_the_wgsl_column_is_what_each_stage_loads(rows, ctx):
     """Independent of the map's source reading: record the WGSL files a stage loads while it renders a frame."""
+    from wgpurender.wgpu_path.gpu_cache import clear_caches
     from wgpurender.wgpu_path.render import render_stage
     from wgpurender.wgpu_path.shaders import recording_loads
 
     for r in rows:
         if r.step.scene is not None:
             continue
+        clear_caches(ctx.device)  # a pipeline cached by an earlier test would load nothing
         with recording_loads() as loaded:
             render_stage(r.step.stage, (32, 24), None, None, 0.0, ctx)
         assert {p.name for p in loaded} == {Path(p).name for p in r.wgsl}, (r.step.stage, loaded, r.wgsl)

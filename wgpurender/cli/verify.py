@@ -6,6 +6,8 @@ from pathlib import Path
 
 from wgpurender.cli._args import size_arg
 
+IMPLEMENTATIONS_SIZE = (160, 120)  # --implementations' default: the size its bounds were calibrated at
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -25,7 +27,7 @@ def register(subparsers) -> None:
                    "'all' (every one available here); each renders every stage and scene at --size, every pair is "
                    "compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded by "
                    "assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
-    p.add_argument("--size", type=size_arg, default=(160, 120), metavar="WxH",
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="size for --implementations (default 160x120, the size the bounds were calibrated at)")
     p.add_argument("--calibrate", action="store_true",
                    help="with --implementations: rewrite the measured implementations' rows of "
@@ -37,6 +39,10 @@ def run(args) -> int:
     from wgpurender.core.errors import UserError
     from wgpurender.verify import run_verify
 
+    if args.implementations is None and args.calibrate:
+        raise UserError("--calibrate applies to --implementations only (the driver table is written to --out)")
+    if args.implementations is None and args.size is not None:  # refused, not ignored
+        raise UserError("--size applies to --implementations only (verify renders at the references' sizes)")
     if args.out.exists() and not args.out.is_dir():
         raise UserError(f"--out {args.out}: exists and is not a folder")
     try:
@@ -45,8 +51,6 @@ def run(args) -> int:
         raise UserError(f"--out {args.out}: cannot create it ({err.strerror or err})") from None
     if args.implementations is not None:
         return run_implementations(args)
-    if args.calibrate:
-        raise UserError("--calibrate applies to --implementations only (the driver table is written to --out)")
     report = run_verify(args.out, quick=args.quick)
     for row in report.rows:
         detail = row.note if row.status in ("skipped", "FAIL") else (row.metrics.summary() if row.metrics else "")
@@ -71,7 +75,8 @@ def run_implementations(args) -> int:
         raise UserError(f"--implementations needs two available implementations, have {', '.join(impls) or 'none'}"
                         + "".join(f"; {k}: {v}" for k, v in missing.items()))
     targets = [t for t in all_targets() if not args.quick or t in QUICK]
-    report = run_matrix(args.out, impls, missing, targets, tuple(args.size), calibrate=args.calibrate)
+    size = tuple(args.size or IMPLEMENTATIONS_SIZE)
+    report = run_matrix(args.out, impls, missing, targets, size, calibrate=args.calibrate)
     for c in report.cells:
         m = c.comparison
         detail = c.note if m is None else (f"max {m.max_abs}/255, >1/255 {100 * m.over_1:.2f}%, PSNR {m.psnr:.1f}, "
