@@ -41,6 +41,12 @@ layout(push_constant) uniform Material {
 #ifdef ALPHA_MASK
     float alpha_cutoff;     // @28 lit, @16 unlit
 #endif
+#ifdef OCCLUSION_MAP
+    float occlusion_strength;  // next float
+#endif
+#ifdef EMISSIVE
+    vec4 emissive;          // rgb; on the next multiple of 16 bytes (std430)
+#endif
 } material;
 
 #ifdef ALBEDO_MAP
@@ -51,6 +57,13 @@ layout(set = 2, binding = 3) uniform sampler2D normal_tex;
 #endif
 #ifdef ROUGHNESS_MAP
 layout(set = 2, binding = 4) uniform sampler2D roughness_tex;
+#endif
+#ifdef EMISSIVE_MAP
+layout(set = 2, binding = 7) uniform sampler2D emissive_tex;
+#endif
+#ifdef OCCLUSION_MAP
+layout(set = 2, binding = 9) uniform sampler2D occlusion_tex;
+float ambient_occlusion = 1.0;  // the ambient term's factor for this fragment (set by main before shading)
 #endif
 
 #ifdef LIGHTING
@@ -119,6 +132,9 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
     vec3 v = safe_normalize(camera.eye.xyz - v_world_position, n);
     float s = shininess(roughness);
     vec3 color = camera.ambient.rgb * albedo;
+#ifdef OCCLUSION_MAP
+    color = color * ambient_occlusion;
+#endif
 #if DIRECTIONAL_LIGHTS > 0
     for (uint i = 0u; i < uint(DIRECTIONAL_LIGHTS); i++) {
         vec3 l = safe_normalize(-camera.directional[i].direction.xyz, n);
@@ -153,6 +169,13 @@ void main() {
 #ifdef VERTEX_COLOR
     base = base * v_color;
 #endif
+#ifdef EMISSIVE
+#ifdef EMISSIVE_MAP
+    vec3 emitted = material.emissive.rgb * texture(emissive_tex, v_uv).rgb;
+#else
+    vec3 emitted = material.emissive.rgb;
+#endif
+#endif
 #ifdef LIGHTING
 #ifdef NORMAL_MAP
     vec3 normal_texel = texture(normal_tex, v_uv).xyz;
@@ -164,9 +187,16 @@ void main() {
 #else
     float roughness = material.roughness;
 #endif
+#ifdef OCCLUSION_MAP
+    float occlusion_texel = texture(occlusion_tex, v_uv).r;
+    ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
+#endif
     vec3 color = shade(base.rgb, normal_texel, roughness);
 #else
     vec3 color = base.rgb;
+#endif
+#ifdef EMISSIVE
+    color = color + emitted;
 #endif
 #ifdef ALPHA_MASK
     if (base.a < material.alpha_cutoff) {

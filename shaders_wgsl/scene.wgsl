@@ -28,7 +28,9 @@
 // Model-file materials (core/gltf_materials.py): base = base_color * albedo texel * vertex colour;
 // alpha_mask discards fragments whose alpha is below material.alpha_cutoff (after every texture sample);
 // double_sided turns the normal around on back faces before lighting (glTF's rule).
-// Each texture has its own sampler (glTF: filters and per-axis wrap per texture).
+// Each texture has its own sampler (glTF: filters and per-axis wrap per texture). emissive adds
+// material.emissive.rgb (times the sRGB emissive texel with emissive_map) to the shaded colour;
+// occlusion_map scales the ambient term by 1 + strength * (texel.r - 1) (lit variants only).
 
 {{STRUCTS}}
 
@@ -53,6 +55,16 @@ var<immediate> material: Material;
 #if roughness_map
 @group(2) @binding(4) var roughness_tex: texture_2d<f32>;
 @group(2) @binding(6) var roughness_sampler: sampler;
+#endif
+#if emissive_map
+@group(2) @binding(7) var emissive_tex: texture_2d<f32>;
+@group(2) @binding(8) var emissive_sampler: sampler;
+#endif
+#if occlusion_map
+@group(2) @binding(9) var occlusion_tex: texture_2d<f32>;
+@group(2) @binding(10) var occlusion_sampler: sampler;
+// the ambient term's factor for this fragment (set by fs_main before shading)
+var<private> ambient_occlusion: f32 = 1.0;
 #endif
 
 struct VertexIn {
@@ -162,6 +174,9 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
     let v = safe_normalize(camera.eye.xyz - in.world_position, n);
     let s = shininess(roughness);
     var color = camera.ambient.rgb * albedo;
+#if occlusion_map
+    color = color * ambient_occlusion;
+#endif
 #if directional_lights
     for (var i = 0u; i < DIRECTIONAL_LIGHTS; i++) {
         let light = camera.directional[i];
@@ -207,6 +222,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #if vertex_color
     base = base * in.color;
 #endif
+#if emissive
+#if emissive_map
+    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.uv).rgb;
+#else
+    let emitted = material.emissive.rgb;
+#endif
+#endif
 #if lighting
     // Textures are sampled here, in uniform control flow (implicit derivatives), and passed down.
 #if normal_map
@@ -219,9 +241,16 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #else
     let roughness = material.roughness;
 #endif
-    let color = shade(base.rgb, in, normal_texel, roughness);
+#if occlusion_map
+    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.uv).r;
+    ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
+#endif
+    var color = shade(base.rgb, in, normal_texel, roughness);
 #else
-    let color = base.rgb;
+    var color = base.rgb;
+#endif
+#if emissive
+    color = color + emitted;
 #endif
 #if alpha_mask
     if (base.a < material.alpha_cutoff) {

@@ -145,7 +145,7 @@ def test_families_produce_their_rows(quick_run):
     assert {"frames", "post-effects", "post-probe", "msaa-post", "objects"} <= families
     modes = {r.case.split("/")[0] for r in run.results if r.family == "objects"}
     expected = set(MODES) if run_ctx_has_immediates(run) else set(MODES) - {"immediates"}
-    assert modes == expected | {"gpu-animated"}
+    assert modes == expected | {"gpu-animated", "gpu-compute-raster"}
 
 
 def run_ctx_has_immediates(run) -> bool:
@@ -215,18 +215,22 @@ def test_objects_modes_draw_the_numpy_image(ctx):
     assert (np.abs(first[..., :3]).sum(axis=-1) > 0).mean() > 0.1  # the quads cover a good part of the image
 
 
-def test_gpu_animated_objects_draw_the_numpy_image(ctx):
-    """Animation on the GPU, the same drift formula: the numpy quads of object_data at t, later ones on top."""
+@pytest.mark.parametrize("mode", ["gpu-animated", "gpu-compute-raster"])
+def test_gpu_animated_objects_draw_the_numpy_image(ctx, mode):
+    """Animation on the GPU, the same drift formula: the numpy quads of object_data at t, later ones on top, drawn
+    by the raster pipeline (indirect draw) or by the compute rasteriser (twice: its pixel indices reset per frame)."""
     from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
 
     size, count, half, t = (200, 150), 60, (0.05, 0.07), 1.3
-    renderer = GpuAnimatedRenderer(ctx, count, size, half)
+    renderer = GpuAnimatedRenderer(ctx, count, size, half, mode=mode)
     renderer.t = t
     img = renderer.pixels().astype(np.float64)
     reference = _numpy_quads(object_data(count, t, half_size=half), size)
     off = np.any(np.abs(img - reference) > 1.0, axis=-1).mean()
     assert off <= 0.005, f"{off:.4%} of pixels differ from the numpy quads"
-    assert renderer.visible_count() == count  # every quad is inside the view
+    assert np.array_equal(renderer.pixels(), img)  # the next frame, same t: the same image
+    if mode == "gpu-animated":
+        assert renderer.visible_count() == count  # every quad is inside the view
 
 
 def test_gpu_culling_counts_the_objects_in_view(ctx):

@@ -44,7 +44,37 @@ def test_void_pointer_matches_cffis_parser(parser):
     assert cffi_types.fast_parse_type_and_quals(ffi._parser, "void *") == real("void *")
 
 
-@pytest.mark.parametrize("cdecl", ["char[4]", "WGPUColor **", "struct WGPUColor *", "int (*)(int)"])
+# every callback signature wgpu-py 0.32 hands to ffi.callback (each real parse re-reads wgpu.h's typedefs)
+CALLBACKS = [
+    "void(WGPULogLevel, WGPUStringView, void *)",
+    "void(WGPUQueueWorkDoneStatus, void *, void *)",
+    "void(WGPUMapAsyncStatus, WGPUStringView, void *, void *)",
+    "void(WGPUCompilationInfoRequestStatus, WGPUCompilationInfo*, void*)",
+    "void(WGPURequestAdapterStatus, WGPUAdapter, WGPUStringView, void *, void *)",
+    "void(WGPUDevice const *, WGPUDeviceLostReason, WGPUStringView, void *, void *)",
+    "void(WGPUDevice const *, WGPUErrorType, WGPUStringView, void *, void *)",
+    "void(WGPURequestDeviceStatus, WGPUDevice, WGPUStringView, void *, void *)",
+    "void(WGPUCreatePipelineAsyncStatus, WGPUComputePipeline, char *, void *, void *)",
+    "void(WGPUCreatePipelineAsyncStatus, WGPURenderPipeline, WGPUStringView, void *, void *)",
+    "int(void)", "void()", "WGPUColor const *",
+]
+
+
+@pytest.mark.parametrize("cdecl", CALLBACKS)
+def test_callback_signatures_match_cffis_parser(parser, cdecl):
+    ffi, real = parser
+    fast = cffi_types.fast_parse_type_and_quals(ffi._parser, cdecl)
+    expected = real(cdecl)
+    assert fast is not None and fast == expected, cdecl
+    # ffi.callback makes a function-pointer ctype of a function type, as cffi's _typeof does
+    def as_ctype(t):
+        return (t.as_function_pointer() if t.is_raw_function else t)
+    with ffi._lock:
+        assert ffi._get_cached_btype(as_ctype(fast[0])) is ffi._get_cached_btype(as_ctype(expected[0]))
+
+
+@pytest.mark.parametrize("cdecl", ["char[4]", "WGPUColor **", "struct WGPUColor *", "int (*)(int)",
+                                   "int(int, ...)", "void(int (*)(int))"])
 def test_other_shapes_go_to_the_parser(parser, cdecl):
     ffi, _ = parser
     assert cffi_types.fast_parse_type_and_quals(ffi._parser, cdecl) is None

@@ -171,3 +171,26 @@ def test_sparse_indices_out_of_range_are_refused(tmp_path):
     pos = g.positions(quad(0, 0, 1, 1), sparse=(np.array([9], np.uint16), np.float32([[0, 5, 0]])))
     g.node(mesh=g.mesh([{"attributes": {"POSITION": pos}}]))
     assert "sparse" in _error(g.write(tmp_path / "bad.gltf"))
+
+
+def test_unnormalized_integer_attributes_are_refused(tmp_path):
+    """Integer TEXCOORD without normalized: true is KHR_mesh_quantization's form, refused with one line."""
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)),
+                                        "TEXCOORD_0": g.accessor(np.zeros((4, 2), np.uint16))},
+                         "indices": g.accessor(QUAD_INDICES)}]))
+    message = _error(g.write(tmp_path / "quantized.glb"))
+    assert "TEXCOORD_0" in message and "KHR_mesh_quantization" in message
+
+
+def test_mtl_colour_opacity_and_illum_are_read(tmp_path):
+    """Kd (a single value is grey), d and Tr, illum; a Kd that is not a number is refused with FILE:LINE."""
+    from wgpurender.core.mesh import parse_mtl
+
+    (tmp_path / "m.mtl").write_text("newmtl a\nKd 0.5 0.25 1\nd 0.4\nillum 0\nnewmtl b\nKd 0.3\nTr 0.25\n")
+    found = parse_mtl(tmp_path / "m.mtl")
+    assert found["a"].color == (0.5, 0.25, 1.0) and found["a"].opacity == 0.4 and found["a"].illum == 0
+    assert found["b"].color == (0.3, 0.3, 0.3) and found["b"].opacity == 0.75 and found["b"].illum is None
+    (tmp_path / "bad.mtl").write_text("newmtl a\nKd red\n")
+    with pytest.raises(UserError, match=r"bad.mtl:2: Kd needs numbers"):
+        parse_mtl(tmp_path / "bad.mtl")

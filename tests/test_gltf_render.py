@@ -319,8 +319,8 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
 # -- what --explain says -------------------------------------------------------------------------------------------
 
 def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
-    """A material with emissive, occlusion, metalness and KHR_materials_clearcoat; extensionsUsed lists clearcoat
-    and KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
+    """A material with emissive, occlusion (unused: no lights), metalness and KHR_materials_clearcoat; extensionsUsed
+    lists clearcoat and KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
     from wgpurender.cli import main
 
     g = GltfWriter()
@@ -338,8 +338,9 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert code == 0
     assert "from the model file" in out and "'coat'" in out
     assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
-    for ignored in ("KHR_materials_clearcoat: ignored", "emissive: ignored", "occlusionTexture: ignored",
-                    "metalness", "TEXCOORD_1 ignored", "LINES primitive ignored",
+    assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; occlusion is not used without lights:
+    for ignored in ("KHR_materials_clearcoat: ignored", "occlusionTexture unused", "metalness",
+                    "TEXCOORD_1 ignored", "LINES primitive ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out
@@ -362,3 +363,66 @@ def test_cli_refuses_gltf_1_and_unknown_required_extensions(tmp_path, capsys):
         code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
         err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
         assert code == 2 and len(err) == 1 and needle in err[0], err
+
+
+# -- emissive and occlusion ----------------------------------------------------------------------------------------
+
+EMISSIVE = (0.2, 0.5, 0.1)
+EMISSIVE_TEXELS = np.array([[[255, 128, 255, 255], [40, 255, 200, 255]]], np.uint8)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_emissive_factor_times_texture_is_added(ctx, tmp_path, which):
+    """A black lit material (no lights: only the ambient term, ambient x black = 0) with emissiveFactor EMISSIVE
+    and a 2x1 sRGB emissiveTexture (nearest): each half shows EMISSIVE x decode(texel)."""
+    g = GltfWriter()
+    tex = g.texture(EMISSIVE_TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(emissiveFactor=list(EMISSIVE), emissiveTexture={"index": tex},
+                     pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1]})
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1, 1.6, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "glow.glb")
+    image = render(ctx, write_scene(tmp_path, "glow.glb"), which)
+    for x, texel in ((-0.8, EMISSIVE_TEXELS[0, 0, :3]), (0.8, EMISSIVE_TEXELS[0, 1, :3])):
+        assert_colour(image, x, 0.0, np.multiply(EMISSIVE, srgb_decode(texel)), f"{which} emissive {texel}")
+
+
+OCCLUSION_TEXELS = np.array([[[255, 0, 0, 255], [64, 0, 0, 255]]], np.uint8)  # R = 1 | 64/255 (linear data)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which):
+    """A white lit quad, a directional light travelling along +z (it reaches only the back: n.l < 0, no direct
+    light), occlusionTexture strength 0.8: each half shows ambient x (1 + 0.8 (R - 1)), R the texel's linear red."""
+    strength = 0.8
+    g = GltfWriter()
+    tex = g.texture(OCCLUSION_TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(occlusionTexture={"index": tex, "strength": strength},
+                     pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0})
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1, 1.6, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "ao.glb")
+    light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, 1]\n'
+    image = render(ctx, write_scene(tmp_path, "ao.glb", extra=light), which)
+    ambient = np.array([0.03, 0.03, 0.035])  # course.shading.AMBIENT
+    for x, red in ((-0.8, OCCLUSION_TEXELS[0, 0, 0] / 255), (0.8, OCCLUSION_TEXELS[0, 1, 0] / 255)):
+        assert_colour(image, x, 0.0, ambient * (1 + strength * (red - 1)), f"{which} occlusion {red:.3f}", tol=2)
+
+
+# -- an OBJ's MTL ----------------------------------------------------------------------------------------------------
+
+MTL_KD = (0.5, 0.25, 1.0)
+MTL_TEXEL = np.array([[[200, 180, 90, 255]]], np.uint8)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_obj_mtl_colour_times_texture(ctx, tmp_path, which):
+    """An OBJ quad whose MTL says Kd MTL_KD, map_Kd a 1x1 sRGB texel, illum 0 (colour only), and no scene
+    material: the quad shows Kd x decode(texel). (OBJ stores v = 0 at the bottom: one texel reads the same.)"""
+    from PIL import Image
+
+    Image.fromarray(MTL_TEXEL, "RGBA").save(tmp_path / "texel.png")
+    (tmp_path / "quad.mtl").write_text(f"newmtl paint\nKd {MTL_KD[0]} {MTL_KD[1]} {MTL_KD[2]}\nillum 0\n"
+                                       "map_Kd texel.png\n")
+    (tmp_path / "quad.obj").write_text("mtllib quad.mtl\nv -1.5 -1 0\nv 1.5 -1 0\nv 1.5 1 0\nv -1.5 1 0\n"
+                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl paint\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    image = render(ctx, write_scene(tmp_path, "quad.obj"), which)
+    assert_colour(image, 0.0, 0.0, np.multiply(MTL_KD, srgb_decode(MTL_TEXEL[0, 0, :3])), f"{which} MTL")

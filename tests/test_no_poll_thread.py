@@ -64,7 +64,7 @@ def test_frame_readback_and_timestamps_wake_no_thread(ctx, wakes):
     for i in range(4):
         color = (0.0, i / 4, 0.0, 1.0)
         frame = run_frame(ctx, _timed_clear(timer, color), target, timer=timer)
-        assert (frame.pixels[..., 1] == round(i / 4 * 255)).all()
+        assert (abs(frame.pixels[..., 1].astype(int) - i / 4 * 255) <= 1).all()  # NVIDIA 63, llvmpipe 64
         assert set(frame.gpu_ms) == ({"clear"} if ctx.has("timestamp-query") else set())
         run_frame(ctx, _timed_clear(deferred, RED), target, read_back=False, timer=deferred)
     if ctx.has("timestamp-query"):

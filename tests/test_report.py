@@ -83,6 +83,7 @@ def test_one_section_per_course_step_in_course_order(site):
     keys = _sections(text)
     stages = [step.stage for step in stage_steps()]  # the course core's table of steps drawn by stage modules
     assert COURSE[-1].scene == "final" and "final" in keys  # step 6, the final model, is the scene section
+    assert "course step 6" in _section(text, "final") and "course step 6" not in _section(text, "unlit")
     assert keys[: len(stages)] == stages
     scenes = keys[len(stages):]
     assert scenes[:5] == ["unlit", "retro", "brick", "final_subpass", "final"]
@@ -135,10 +136,11 @@ def test_concept_rows_point_at_real_code_on_both_paths(site):
 
 
 def test_scene_sections_show_the_render_plan(site):
-    from wgpurender.core.plan import explain_scene
+    import wgpurender as w
 
     text = (site / "index.html").read_text()
-    plan = explain_scene(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
+    # the plan drawn on this adapter, as `render --explain` prints it (the one resolved plan, issue 20)
+    plan = w.explain(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
     assert plan[0].startswith("scene: ") and "scene: assets/scenes/final.toml" in _section(text, "final")
     assert html.escape("\n".join(plan[1:])) in _section(text, "final")  # the plan, all but the file's path
     assert 'src="accuracy_pareto.png"' in text and (site / "accuracy_pareto.png").is_file()

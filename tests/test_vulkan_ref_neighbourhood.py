@@ -174,8 +174,10 @@ def test_split_chain_cuts_before_each_neighbourhood_effect():
 def test_reference_command_renders_final(tmp_path):
     """`wgpurender reference assets/scenes/final.toml -o ref.png` writes the raw render (final: fxaa included)."""
     from wgpurender.cli import main
+    from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
     from wgpurender.core.imageio import load_png, to_uint8
 
     out = tmp_path / "ref.png"
     assert main(["reference", str(SCENES / "final.toml"), "-o", str(out), "--size", "96x72"]) == 0
-    assert np.array_equal(load_png(out), to_uint8(render_scene_reference(SCENES / "final.toml", size=(96, 72))))
+    raw = render_scene_reference(SCENES / "final.toml", size=(96, 72), anisotropy=DEFAULT_ANISOTROPY)
+    assert np.array_equal(load_png(out), to_uint8(raw))

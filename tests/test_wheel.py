@@ -6,7 +6,12 @@ repository root, so ``pip install .`` rendered nothing). The wheel is built offl
 reads, installed with ``--no-deps`` into a fresh venv that sees the running interpreter's packages
 (the dependencies: its site-packages and its other sys.path folders, such as a PYTHONPATH, but never
 the checkout) through a .pth file, which puts them after the venv's own site-packages, and then run
-from an empty temp folder with no shader override set. Takes ~15 s alone on lavapipe.
+from an empty temp folder with no shader override set.
+
+The wheel is the whole course: the scenes, models, textures, reference images and the notebook ship in it,
+so a bundled scene renders by name, and verify, report, bench perf --quick, reference and the notebook run
+from the empty folder. About 2.5 min on the shared 2-core machine under load (alone: report ~15 s, bench perf
+--quick ~10 s, the notebook ~7 s).
 """
 
 from __future__ import annotations
@@ -162,6 +167,10 @@ def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
     assert image.shape == (48, 64, 4)
     _check_triangle_centre(image)
     assert list((installed["cache"] / "wgpurender" / "spirv").glob("*.spv"))
+    # a bundled scene by name on the raw path: the final model with the post chain its subpass runs
+    _run(installed, installed["bin"] / "wgpurender", "reference", "final_subpass", "-o", "s.png", "--size", "64x48")
+    scene = np.asarray(Image.open(installed["cwd"] / "s.png"))
+    assert scene.shape == (48, 64, 4) and scene[..., :3].std() > 10
 
 
 def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):
@@ -171,6 +180,15 @@ def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):
     assert np.asarray(Image.open(installed["cwd"] / "u.png")).shape == (48, 64, 4)
     code = "import wgpurender as w; r = w.render('final', size=(64, 48)); print(r.pixels.shape, r.plan.msaa)"
     assert _run(installed, installed["python"], "-c", code).stdout.split() == ["(48,", "64,", "4)", "4"]
+
+
+def test_stages_and_the_course_map_from_the_wheel(installed):
+    stages = _run(installed, installed["bin"] / "wgpurender", "stages").stdout
+    assert "course step 6:" in stages and stages.splitlines()[-2].startswith("final ")
+    course_map = _run(installed, installed["bin"] / "wgpurender", "stages", "--map").stdout
+    rows = [line for line in course_map.splitlines() if line.startswith("| **")]
+    assert len(rows) == 10 and rows[-1].startswith("| **6** `final`")
+    assert all("(tests/ is in the repository, not in the wheel)" in row for row in rows)
 
 
 @pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")

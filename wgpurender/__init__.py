@@ -16,7 +16,7 @@ from wgpurender.core.errors import UserError
 __version__ = "0.1.0"  # the one home of the version: pyproject.toml reads it (tool.setuptools.dynamic)
 
 _API = ("Image", "render", "reference", "compare", "heatmap", "side_by_side", "plan", "explain", "stage_names",
-        "reference_stage_names")
+        "reference_stage_names", "export")
 __all__ = ["UserError", "__version__", *_API]
 
 

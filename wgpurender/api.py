@@ -107,18 +107,19 @@ def _target(target: Target) -> str:
 
 
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-           backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY) -> Image:
+           backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
 
     ``size``: ``(width, height)`` or ``"WxH"`` (default 800x600 for a stage, the scene's
     ``[render] size`` for a scene); ``msaa``: 1 or 4 (default: the stage's or the scene's);
-    ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``Vulkan``
-    (default), ``Metal``, ``D3D12`` or ``OpenGL``; ``t``: animation time in seconds; ``anisotropy``
-    (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``. A scene is drawn from
+    ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``vulkan``
+    (default), ``opengl``, ``metal``, ``d3d12`` or ``auto`` (docs/backends.md); ``t``: animation time in seconds;
+    ``anisotropy`` (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``; ``knobs``
+    (scenes): the plan's other knobs, e.g. ``post_path="compute"``, ``post_fuse=False``, ``immediates="off"``,
+    ``reverse_z=True`` (:data:`wgpurender.core.plan.KNOB_FLAGS`). A scene is drawn from
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
-    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.wgpu_path.gpu import get_context
 
     start = time.perf_counter()
@@ -126,10 +127,10 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     ctx = get_context(checks.backend(backend))
-    if is_scene_file(target):
+    if _is_scene(target, anisotropy, knobs):
         from wgpurender.wgpu_path.scene_render import render_plan
 
-        result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy), t)
+        result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, knobs), t)
     else:
         from wgpurender.wgpu_path.render import render_stage
 
@@ -138,15 +139,22 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
 
 
+def export(target: Target, out: str | os.PathLike, size: Size = "800x600") -> Path:
+    """Write a static page into folder ``out`` that renders the stage or scene live with the browser's WebGPU
+    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``)."""
+    from wgpurender.export import export as write_page
+
+    return write_page(str(target), out, _size(size)).page
+
+
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-              t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY) -> Image:
+              t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
 
     Same arguments as :func:`render` (no ``backend``: this path is Vulkan). A scene's plan is resolved by the
     same function for the raw path's device (``Image.plan``), so on one device both paths draw one plan.
     Needs ``glslc`` on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
     """
-    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.raw_path.instance import get_vulkan
 
     start = time.perf_counter()
@@ -154,12 +162,12 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     plan = None
-    if is_scene_file(target):
+    if _is_scene(target, anisotropy, knobs):
         from wgpurender.core.plan import resolve_plan
         from wgpurender.raw_path.scene import render_scene_plan
 
         plan = resolve_plan(target, get_vulkan().adapter_facts(), size=wh, output_format=format, msaa=msaa,
-                            anisotropy=anisotropy)
+                            anisotropy=anisotropy, **knobs)
         pixels = render_scene_plan(plan, t)
     else:
         from wgpurender.raw_path import render_reference
@@ -169,13 +177,27 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     return Image(pixels, str(target), "raw", timings, get_vulkan().describe(), plan)
 
 
-def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy) -> RenderPlan:
+def _is_scene(target: str, anisotropy: str, knobs: dict) -> bool:
+    """Whether ``target`` is a scene file; a stage with plan knobs, or an anisotropy rule other than the default,
+    is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored."""
+    from wgpurender.core.anisotropy import check_applies
+    from wgpurender.core.course.formats import is_scene_file
+
+    if is_scene_file(target):
+        return True
+    check_applies(target, False, anisotropy)
+    if knobs:
+        raise UserError(f"plan knob {sorted(knobs)[0]!r} applies to scene files: stage {target!r} has no plan")
+    return False
+
+
+def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
     """The one plan (core/plan/resolve.py) for the wgpu path on ``ctx``'s adapter (None: no adapter)."""
     from wgpurender.core.plan import resolve_plan
     from wgpurender.wgpu_path.scene_render import adapter_facts
 
     facts = adapter_facts(ctx) if ctx is not None else None
-    return resolve_plan(scene, facts, size=size, output_format=format, msaa=msaa, anisotropy=anisotropy)
+    return resolve_plan(scene, facts, size=size, output_format=format, msaa=msaa, anisotropy=anisotropy, **knobs)
 
 
 def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
@@ -234,7 +256,7 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
 
 
 def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-         backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY) -> RenderPlan:
+         backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
     """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
     decided for it by :func:`wgpurender.core.plan.resolve_plan`); with no usable adapter, the plan with those
     knobs left open (it says so)."""
@@ -244,13 +266,13 @@ def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str 
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     if not is_scene_file(scene):
         raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
-    return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy)
+    return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy, knobs)
 
 
 def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-            backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY) -> str:
+            backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> str:
     """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints): :func:`plan`'s."""
-    return plan(scene, size, msaa, format, backend, anisotropy).explain()
+    return plan(scene, size, msaa, format, backend, anisotropy, **knobs).explain()
 
 
 def _context_or_none(backend: str | None):

@@ -56,7 +56,7 @@ CONCEPTS: list[Concept] = [
          "vkCreateDebugUtilsMessengerEXT"),
         _raw("instance:create_instance", "validation:create_messenger", "validation:validation_features"),
         ("wgpu.gpu (created on first use)", "set_instance_extras(backends=[...], flags=['Validation'])"),
-        _wgpu("gpu:_configure_instance_once", "gpu:_adapters"),
+        _wgpu("gpu:_configure_instance_once", "gpu:_enumerate"),
         "wgpu-py creates the instance itself on first use: no application info, no layer or extension lists. "
         "The validation layer is one instance flag, and its messages arrive on the Python 'wgpu' logger instead "
         "of a debug messenger callback (tests/conftest.py collects them).",
@@ -86,7 +86,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateDevice", "VkDeviceQueueCreateInfo", "VkPhysicalDeviceFeatures (pEnabledFeatures)"),
         _raw("instance:create_device", "instance:get_vulkan"),
         ("GPUAdapter.request_device_sync(required_features=, required_limits=)",),
-        _wgpu("gpu:get_context", "gpu:OPTIONAL_FEATURES"),
+        _wgpu("gpu:_context", "gpu:OPTIONAL_FEATURES"),
         "Features are requested by WebGPU name ('timestamp-query', 'immediates'), limits by name; there are no "
         "device extensions to list. Core capabilities such as sampler anisotropy need no request: wgpu turns on "
         "the Vulkan feature itself when the adapter has it.",
@@ -387,7 +387,7 @@ CONCEPTS: list[Concept] = [
         _raw("pipeline_cache:create_pipeline_cache", "pipeline_cache:save_pipeline_cache",
              "pipeline_cache:pipeline_cache_path"),
         ("native feature 'pipeline-cache' (requested when offered)",),
-        _wgpu("gpu:get_context", "gpu:OPTIONAL_FEATURES"),
+        _wgpu("gpu:_context", "gpu:OPTIONAL_FEATURES"),
         "wgpu-native has the feature but wgpu-py 0.32 has no call to create a cache, so the wgpu path only "
         "requests it; naga's compiled modules are not kept across runs.",
     ),
@@ -503,7 +503,7 @@ CONCEPTS: list[Concept] = [
              "scene.scene_subpass:SceneSubpass.record", "scene.uniforms:pack_material"),
         ("native feature 'immediates'", "create_pipeline_layout(immediate_size=)",
          "GPURenderPassEncoder.set_immediates(offset, data, data_offset, size)", "WGSL var<immediate>"),
-        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "gpu:get_context"),
+        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "gpu:_context"),
         "Not in WebGPU proper: a wgpu-native feature ('immediates', up to max-immediate-size bytes), one range "
         "for all stages. Without it the 3d stage reads the same struct from a dynamic-offset uniform buffer.",
     ),
@@ -628,7 +628,7 @@ CONCEPTS: list[Concept] = [
         (),
         ("bind group layout entry {'storage_texture': {'access': 'write-only', 'format': ...}}",
          "TextureUsage.STORAGE_BINDING", "WGSL texture_storage_2d, textureStore"),
-        _wgpu("post.passes:ComputePass._entries", "post.passes:ComputePass.encode", "post.chain:attachment_usage"),
+        _wgpu("post.passes:ComputePass._entries", "post.passes:ComputePass.dispatch", "post.chain:attachment_usage"),
         "An sRGB format cannot be a storage texture (rgba8unorm-srgb is not storable): the compute pass writes "
         "rgba8unorm or a float format and copies into an sRGB output, or encodes sRGB in the shader.",
         raw_note="not in the raw path: it has no compute pass (see compute pipelines); its images are colour, "

@@ -23,12 +23,14 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 
 REPO = Path(__file__).resolve().parent.parent
-SCENE_DIR = REPO / "assets" / "scenes"
+SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
 WGPU_IMPLEMENTATIONS = {"wgpu-vulkan": "vulkan", "wgpu-gl": "opengl"}
 IMPLEMENTATIONS = ("raw", "wgpu-vulkan", "wgpu-gl", "browser")
+QUICK = ("triangle", "3d", "unlit")  # verify --quick
 
 
 def scene_files() -> dict[str, Path]:
@@ -74,6 +76,57 @@ def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
     return to_uint8(render_reference(target_path(name), size))
 
 
+def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple[dict, dict, str]:
+    """Export each target to ``work/NAME`` and read its frame back in headless Chromium (one browser):
+    (images by name, reasons for the targets that could not be drawn, the browser and adapter)."""
+    from wgpurender.export import export
+    from wgpurender.export.chromium import Chromium
+
+    images, skipped, pages = {}, {}, {}
+    for name in names:
+        try:
+            pages[name] = export(target_path(name), work / name, size).page
+        except UserError as err:
+            skipped[name] = str(err)
+    with Chromium(webgpu=True) as browser:
+        who = browser.version()
+        for name, page in pages.items():
+            tab = browser.open(page)
+            try:
+                images[name] = tab.capture()
+            except RuntimeError as err:
+                skipped[name] = f"the page failed: {err}"
+            adapter = tab.evaluate("window.wgpurender.adapter") or {}
+        who += " / " + " ".join(str(v) for v in adapter.values() if v) if pages else ""
+    return images, skipped, who
+
+
+def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str]]:
+    """The implementations this machine has (of ``wanted``, default all) and why each other one is missing."""
+    import shutil
+
+    from wgpurender.export.chromium import find_chromium
+
+    missing = {}
+    for name in wanted or IMPLEMENTATIONS:
+        if name not in IMPLEMENTATIONS:
+            raise UserError(f"unknown implementation {name!r}: choose from {', '.join(IMPLEMENTATIONS)}")
+        if name == "browser" and find_chromium() is None:
+            missing[name] = "chromium is not installed (apt-get install chromium)"
+        elif name == "raw" and shutil.which("glslc") is None:
+            missing[name] = "glslc is not on PATH (the raw path compiles its GLSL with it)"
+        elif name == "wgpu-gl" and not _has_gl():
+            missing[name] = "no OpenGL adapter (wgpurender info --backend opengl)"
+    return [n for n in (wanted or IMPLEMENTATIONS) if n not in missing], missing
+
+
+def _has_gl() -> bool:
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp"}
+    probe = subprocess.run([sys.executable, "-m", "wgpurender", "info", "--backend", "opengl"], capture_output=True,
+                           text=True, env=env, timeout=120)
+    return probe.returncode == 0
+
+
 def render_in_child(implementation: str, names: list[str], size: tuple[int, int], out: Path,
                     timeout: float = 600) -> dict[str, np.ndarray]:
     """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance)."""
@@ -90,7 +143,7 @@ def render_in_child(implementation: str, names: list[str], size: tuple[int, int]
     return {name: load_png(out / f"{name}.png") for name in names}
 
 
-def calibrate(implementation: str, measured: dict, bounded_by: str) -> Path:
+def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
     """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
     (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
     from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
@@ -102,7 +155,8 @@ def calibrate(implementation: str, measured: dict, bounded_by: str) -> Path:
 
         table = load_table(IMPLEMENTATIONS_PATH)
     rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
-    table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "targets": rows}
+    table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "driver_class": cls,
+                                                               "targets": rows}
     IMPLEMENTATIONS_PATH.write_text(format_implementation_table(table))
     return IMPLEMENTATIONS_PATH
 
@@ -121,6 +175,9 @@ def _main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     for name in args.targets or all_targets():
         save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+    from wgpurender.wgpu_path.gpu import get_context
+
+    (args.out / "adapter.txt").write_text(get_context(backend).describe())
     return 0
 
 

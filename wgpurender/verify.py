@@ -208,9 +208,11 @@ def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) ->
         matrix.skip("scene", name, "wgpu vs raw", f"needs {ANCHORS} (the tutorial's model and texture), absent")
         return
     size = _scene_size(scene_file)
-    ours = render_scene_file(scene_file, size=size, frames=1).pixels
+    # Both paths draw resolve_plan's plan for their adapter, with the scene's own anisotropy ("scene"): the
+    # committed references and the C++ tutorial frames were made with it, on every adapter.
+    ours = render_scene_file(scene_file, size=size, frames=1, anisotropy="scene").pixels
     try:
-        raw = render_scene_reference(scene_file, size=size)
+        raw = render_scene_reference(scene_file, size=size, anisotropy="scene")
     except UserError as err:
         why = str(err).split("cannot render this scene: ")[-1].split(";")[0]  # the first reason, no path
         matrix.skip("scene", name, "wgpu vs raw", f"the raw path cannot render it yet: {why}")

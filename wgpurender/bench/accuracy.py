@@ -37,6 +37,9 @@ def run(args) -> int:
     if not Path(args.scene).is_file():
         raise UserError(f"scene file not found: {args.scene} (run from the repository root, or give SCENE)")
     if args.truth == "analytic":
+        if args.knobs or not args.combinations:  # refused, not ignored: the analytic suite has its own cases
+            raise UserError("--knob and --no-combinations choose the rendered sweep's settings: leave them out "
+                            "with --truth analytic")
         return _run_analytic(args, preset, frames)
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
     config = AccuracyConfig(scene_path=Path(args.scene), base_size=args.size or preset["size"], frames=frames,

@@ -103,8 +103,8 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
 
     The depth-stress scene, for instance, has no textures and no post chain: there only the depth knob applies.
     """
-    from wgpurender.core.plan import build_plan
-    from wgpurender.wgpu_path.scene_render import SceneRenderer
+    from wgpurender.core.plan import resolve_plan
+    from wgpurender.wgpu_path.scene_render import SceneRenderer, adapter_facts
 
     problem = settings.problem()
     if problem:
@@ -112,8 +112,10 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
     if "filter" in knobs:
         scene = with_filter(scene, settings.filter)
     size = (base_size[0] * settings.ss, base_size[1] * settings.ss)
-    plan = build_plan(scene, size=size, msaa=settings.msaa if "msaa" in knobs else None)
-    return SceneRenderer(ctx, scene, plan.with_knobs(**plan_knobs(settings, knobs)))
+    # anisotropy "scene": the filter sweep sets each level's anisotropy itself, on every adapter
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, msaa=settings.msaa if "msaa" in knobs else None,
+                        anisotropy="scene", **plan_knobs(settings, knobs))
+    return SceneRenderer(ctx, scene, plan)
 
 
 def plan_knobs(settings: Settings, knobs=KNOBS) -> dict:

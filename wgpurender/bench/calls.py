@@ -11,6 +11,7 @@ renderer is not told it is being counted.
 
 from __future__ import annotations
 
+import time
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -26,26 +27,30 @@ _ABSENT = object()
 class _Counted:
     """A proxy of a wgpu object whose method calls are counted as ``"Kind.method"``; passes it makes are too."""
 
-    def __init__(self, real: object, kind: str, counter: Counter) -> None:
-        self._real, self._kind, self._counter = real, kind, counter
+    def __init__(self, real: object, kind: str, counter: Counter, times: Counter | None = None) -> None:
+        self._real, self._kind, self._counter, self._times = real, kind, counter, times
 
     def __getattr__(self, name: str):
         attr = getattr(self._real, name)
         if not callable(attr):
             return attr
+        key = f"{self._kind}.{name}"
 
         def call(*args, **kwargs):
-            self._counter[f"{self._kind}.{name}"] += 1
+            self._counter[key] += 1
+            start = time.perf_counter()
             result = attr(*args, **kwargs)
+            if self._times is not None:
+                self._times[key] += time.perf_counter() - start
             if name in _PASS_MAKERS:
-                return _Counted(result, name.removeprefix("begin_"), self._counter)
+                return _Counted(result, name.removeprefix("begin_"), self._counter, self._times)
             return result
 
         return call
 
 
 @contextmanager
-def counting(ctx: GPUContext, counter: Counter) -> Iterator[None]:
+def counting(ctx: GPUContext, counter: Counter, times: Counter | None = None) -> Iterator[None]:
     """Count every device and queue method call made inside the block (instance attributes, restored after)."""
     patched = []
     for obj, kind in ((ctx.device, "device"), (ctx.queue, "queue")):
@@ -53,7 +58,7 @@ def counting(ctx: GPUContext, counter: Counter) -> Iterator[None]:
             if name.startswith("_") or not callable(getattr(type(obj), name, None)):
                 continue
             patched.append((obj, name, obj.__dict__.get(name, _ABSENT)))  # an instance attribute set by someone else
-            setattr(obj, name, _counting_call(getattr(obj, name), f"{kind}.{name}", counter))
+            setattr(obj, name, _counting_call(getattr(obj, name), f"{kind}.{name}", counter, times))
     try:
         yield
     finally:
@@ -64,27 +69,51 @@ def counting(ctx: GPUContext, counter: Counter) -> Iterator[None]:
                 setattr(obj, name, before)
 
 
-def _counting_call(real: Callable, key: str, counter: Counter) -> Callable:
+def _counting_call(real: Callable, key: str, counter: Counter, times: Counter | None) -> Callable:
     def call(*args, **kwargs):
         counter[key] += 1
-        return real(*args, **kwargs)
+        start = time.perf_counter()
+        try:
+            return real(*args, **kwargs)
+        finally:
+            if times is not None:
+                times[key] += time.perf_counter() - start
 
     return call
 
 
-def count_frame(ctx: GPUContext, record: Callable, target: wgpu.GPUTexture, t: float = 0.0) -> Counter:
+def count_frame(ctx: GPUContext, record: Callable, target: wgpu.GPUTexture, t: float = 0.0,
+                times: Counter | None = None) -> Counter:
     """The calls of one frame as a window makes it: an encoder, ``record``, finish, submit (no readback, no timer).
 
-    The GPU is waited for afterwards, outside the count.
+    ``times``: seconds spent inside each kind of call are added to it (``"python"``: the frame's time outside
+    every counted call: our code and the wrappers'). The GPU is waited for afterwards, outside the count.
     """
     counter: Counter = Counter()
-    with counting(ctx, counter):
+    inner: Counter = Counter()
+    start = time.perf_counter()
+    with counting(ctx, counter, inner):
         encoder = ctx.device.create_command_encoder(label="counted-frame")
-        record(_Counted(encoder, "encoder", counter), target, t)
+        record(_Counted(encoder, "encoder", counter, inner), target, t)
         counter["encoder.finish"] += 1
-        ctx.queue.submit([encoder.finish()])
+        t0 = time.perf_counter()
+        buffer = encoder.finish()
+        inner["encoder.finish"] += time.perf_counter() - t0
+        ctx.queue.submit([buffer])
+    total = time.perf_counter() - start
     ctx.wait_idle()
+    if times is not None:
+        times.update(inner)
+        times["python"] += total - sum(inner.values())
     return counter
+
+
+def call_profile(ctx: GPUContext, record: Callable, target: wgpu.GPUTexture, frames: int = 10) -> str:
+    """Mean microseconds per frame in each kind of call over ``frames`` steady frames, largest first."""
+    times: Counter = Counter()
+    for _ in range(frames):
+        count_frame(ctx, record, target, times=times)
+    return ", ".join(f"{k} {v / frames * 1e6:.0f}" for k, v in times.most_common())
 
 
 def steady_calls(ctx: GPUContext, record: Callable, target: wgpu.GPUTexture, warmup: int = 2) -> Counter:

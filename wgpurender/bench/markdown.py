@@ -90,13 +90,16 @@ def _targets(run) -> str:
         fps = 1000.0 / best.median
         rows.append(("10k objects at >= 60 fps", f"{fps:.0f} fps ({best.case.split('/')[0]})",
                      _verdict(run, fps >= 60, "the target is for a GPU" if _on_cpu(run) else "")))
-    million = _one(res, "objects", "gpu-animated/1000000", "wgpu", "800x600", "frame_ms")
+    million = [r for mode in ("gpu-animated", "gpu-compute-raster")
+               for r in [_one(res, "objects", f"{mode}/1000000", "wgpu", "800x600", "frame_ms")] if r]
     if million:
-        fps = 1000.0 / million.median
-        cpu = [r.median for r in _pick(res, "objects", "cpu_ms") if r.case.startswith("gpu-animated/")]
+        best = min(million, key=lambda r: r.median)
+        mode = best.case.split("/")[0]
+        fps = 1000.0 / best.median
+        cpu = [r.median for r in _pick(res, "objects", "cpu_ms") if r.case.startswith(f"{mode}/")]
         worst_cpu = max(cpu) if cpu else float("nan")
         rows.append(("1M animated objects at >= 60 fps, CPU <= 0.3 ms per frame at every count",
-                     f"{fps:.0f} fps (gpu-animated); CPU worst {fmt_ms(worst_cpu)} ms",
+                     f"{fps:.0f} fps ({mode}); CPU worst {fmt_ms(worst_cpu)} ms over its counts",
                      _verdict(run, fps >= 60 and worst_cpu <= 0.3, "the target is for a GPU" if _on_cpu(run) else "")))
     inc = [q for _, w, r in _post_increments(res) if r > 0 for q in [w / r]]  # a raw increment <= 0: noise
     if inc:

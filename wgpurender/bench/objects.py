@@ -184,7 +184,7 @@ def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: 
     ``limits``: the largest count per mode (a mode absent from it has none). Mode ``gpu-animated`` is
     bench/objects_gpu.py's renderer (animation, culling and the draw's instance count on the GPU)."""
     from wgpurender.bench.objects_gpu import MODE as GPU_MODE
-    from wgpurender.bench.objects_gpu import GpuAnimatedRenderer
+    from wgpurender.bench.objects_gpu import SPLAT_MODE, GpuAnimatedRenderer
 
     out: list[Result] = []
     for count in counts:
@@ -198,8 +198,10 @@ def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: 
                 log(f"  objects: {mode} at {count} skipped (over this mode's limit {limits[mode]} here)")
                 continue
             start = time.perf_counter()
-            renderer = GpuAnimatedRenderer(ctx, count, size) if mode == GPU_MODE else ObjectsRenderer(ctx, mode, count,
-                                                                                                     size)
+            if mode in (GPU_MODE, SPLAT_MODE):
+                renderer = GpuAnimatedRenderer(ctx, count, size, mode=mode)
+            else:
+                renderer = ObjectsRenderer(ctx, mode, count, size)
             setup_ms = (time.perf_counter() - start) * 1e3
             n = frames if count <= 10_000 else max(3, frames // 3)
             samples = measure(renderer, n, warmup=1)

@@ -14,6 +14,12 @@ that 10M objects fit the default 128 MiB storage-binding limit). Per frame:
 So the CPU's work per frame does not depend on the object count. The list's order is the order the
 atomics handed out slots; a depth value per object index keeps "later objects on top", as the other
 modes draw them in order.
+
+Mode ``gpu-compute-raster`` draws the same quads without the raster pipeline: on GH100 (H100/H200) the
+few graphics units make a million 4x4-pixel quads a ~32 ms draw whoever animates them, while a compute
+pass can rasterise such tiny axis-aligned quads itself: each visible object ``atomicMax``es its index
+into the pixels whose centres it covers (the later object wins, as in draw order), and a second dispatch
+turns indices into colours (and zeroes them for the next frame).
 """
 
 from __future__ import annotations
@@ -29,11 +35,12 @@ from wgpurender.core.shader_variants import specialise
 from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
-from wgpurender.wgpu_path.targets import create_target
+from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
 from wgpurender.wgpu_path.timing import PassTimer
 
 SHADER = "bench_objects_gpu.wgsl"
 MODE = "gpu-animated"
+SPLAT_MODE = "gpu-compute-raster"  # the same, drawn by a compute rasteriser (cs_splat, cs_resolve) instead
 WORKGROUP = 256
 MAX_GROUPS_X = 65535
 DEPTH_FORMAT = "depth32float"
@@ -58,18 +65,22 @@ class GpuAnimatedRenderer:
 
     def __init__(self, ctx: GPUContext, count: int, size: tuple[int, int] = (800, 600),
                  half_size: tuple[float, float] = HALF_SIZE,
-                 view: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> None:
+                 view: tuple[float, float, float] = (0.0, 0.0, 1.0), mode: str = MODE) -> None:
         self.ctx, self.count, self.size, self.half_size, self.view = ctx, count, size, half_size, view
-        self.mode = MODE
+        self.mode = mode
         dev = self.device = ctx.device
-        self.target = create_target(ctx, size, FORMAT)
+        extra = wgpu.TextureUsage.STORAGE_BINDING if mode == SPLAT_MODE else 0
+        self.target = create_target(ctx, size, FORMAT, usage=TARGET_USAGE | extra)
         self.depth = dev.create_texture(label="objects-depth", size=(size[0], size[1], 1), format=DEPTH_FORMAT,
                                         usage=wgpu.TextureUsage.RENDER_ATTACHMENT)
         self.timer = PassTimer(ctx)
         self.t = 0.0
         self.groups = dispatch_size(count)
         self._upload_objects()
-        self._make_pipelines()
+        if mode == SPLAT_MODE:
+            self._make_splat()
+        else:
+            self._make_pipelines()
         self._views = None
 
     def _upload_objects(self) -> None:
@@ -105,9 +116,26 @@ class GpuAnimatedRenderer:
         self.cull_group = self._group(self.cull_pipeline, [*shared, self.indirect])
         self.draw_group = self._group(self.draw_pipeline, shared)
 
-    def _group(self, pipeline, buffers) -> wgpu.GPUBindGroup:
+    def _make_splat(self) -> None:
+        """The compute rasteriser: one u32 per pixel (the winning object's index + 1), zero between frames."""
+        dev = self.device
+        w, h = self.size
+        self.ids = dev.create_buffer(label="objects-pixel-ids", size=4 * w * h, usage=wgpu.BufferUsage.STORAGE)
+        module = create_shader_module(dev, SHADER, specialise(load_wgsl(SHADER), {"splat"}, name=SHADER))
+        self.splat_pipeline, self.resolve_pipeline = (dev.create_compute_pipeline(
+            label=f"objects-{entry}", layout="auto", compute={"module": module, "entry_point": entry})
+            for entry in ("cs_splat", "cs_resolve"))
+        out = {"binding": 4, "resource": self.target.create_view()}
+        self.splat_group = self._group(self.splat_pipeline, [self.params, self.centres, self.phase_color, self.ids],
+                                       [out])
+        self.resolve_group = dev.create_bind_group(layout=self.resolve_pipeline.get_bind_group_layout(0), entries=[
+            {"binding": 2, "resource": {"buffer": self.phase_color, "offset": 0, "size": self.phase_color.size}},
+            {"binding": 3, "resource": {"buffer": self.ids, "offset": 0, "size": self.ids.size}}, out])
+
+    def _group(self, pipeline, buffers, extra=()) -> wgpu.GPUBindGroup:
         return self.device.create_bind_group(layout=pipeline.get_bind_group_layout(0), entries=[
-            {"binding": i, "resource": {"buffer": b, "offset": 0, "size": b.size}} for i, b in enumerate(buffers)])
+            {"binding": i, "resource": {"buffer": b, "offset": 0, "size": b.size}} for i, b in enumerate(buffers)]
+            + list(extra))
 
     # -- per frame ---------------------------------------------------------------------------
     def frame(self, readback: bool = False) -> tuple[float, float | None]:
@@ -120,6 +148,9 @@ class GpuAnimatedRenderer:
         x, y = self.view[0], self.view[1]
         self.ctx.queue.write_buffer(self.params, 0, PARAMS.pack(x, y, self.view[2], t, *self.half_size, self.count,
                                                                 self.groups[0] * WORKGROUP))
+        if self.mode == SPLAT_MODE:
+            self._record_splat(encoder)
+            return
         encoder.clear_buffer(self.indirect, 4, 4)
         cp = encoder.begin_compute_pass(label="objects-cull", timestamp_writes=self.timer.writes("cull"))
         cp.set_pipeline(self.cull_pipeline)
@@ -139,6 +170,17 @@ class GpuAnimatedRenderer:
         rp.set_bind_group(0, self.draw_group)
         rp.draw_indirect(self.indirect, 0)
         rp.end()
+
+    def _record_splat(self, encoder) -> None:
+        """One compute pass: splat every visible object, then resolve the pixels (two dispatches, two scopes)."""
+        cp = encoder.begin_compute_pass(label="objects-splat", timestamp_writes=self.timer.writes("splat+resolve"))
+        cp.set_pipeline(self.splat_pipeline)
+        cp.set_bind_group(0, self.splat_group)
+        cp.dispatch_workgroups(*self.groups, 1)
+        cp.set_pipeline(self.resolve_pipeline)
+        cp.set_bind_group(0, self.resolve_group)
+        cp.dispatch_workgroups(-(-self.size[0] // 16), -(-self.size[1] // 16), 1)
+        cp.end()
 
     def visible_count(self) -> int:
         """How many objects the last frame's culling kept (the indirect draw's instance count)."""

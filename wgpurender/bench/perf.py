@@ -11,14 +11,13 @@ from __future__ import annotations
 import datetime
 import os
 import platform
-import shlex
-import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.bench.report import Result
+from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_line: the CLI's import)
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.gpu import GPUContext, get_context
 
 FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
@@ -54,6 +53,7 @@ class PerfConfig:
     frames: int | None = None  # timed frames per case (default 20, quick 4)
     scene_file: Path = SCENE_FILE
     command: str = ""
+    anisotropy: str = DEFAULT_ANISOTROPY  # the scene families' rule (core/anisotropy.py), as render's --anisotropy
 
     def timed_frames(self) -> int:
         return self.frames or (4 if self.quick else 20)
@@ -152,7 +152,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     progress = Progress(len(files) * len(config.sizes(ctx)), log)
     for scene_file in files:
         for size in config.sizes(ctx):
-            results, note = bench_scene(ctx, scene_file, size, n, raw=config.raw)
+            results, note = bench_scene(ctx, scene_file, size, n, raw=config.raw, anisotropy=config.anisotropy)
             run.results += results
             if note and f"scene: {note}" not in run.notes:
                 run.notes.append(f"scene: {note}")
@@ -166,7 +166,7 @@ def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
         run.notes.append(f"tutorial scenes skipped: {anchors} (the C++ tutorial's model and texture) is absent")
         return
     for chapter, path in TUTORIAL_SCENES.items():
-        results, note = bench_scene(ctx, path, size, n, raw=False)
+        results, note = bench_scene(ctx, path, size, n, raw=False, anisotropy=config.anisotropy)
         run.results += results
         if note:
             run.notes.append(f"scene {chapter}: {note}")
@@ -196,11 +196,13 @@ def _msaa_post(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from wgpurender.bench.objects import MODES, bench_objects
     from wgpurender.bench.objects_gpu import MODE as GPU_MODE
+    from wgpurender.bench.objects_gpu import SPLAT_MODE
 
     cpu = ctx.adapter.info["adapter_type"] == "CPU"
     counts = QUICK_COUNTS if config.quick else FULL_COUNTS if cpu else GPU_COUNTS
     limit = CPU_PER_DRAW_LIMIT if cpu else None
-    run.results += bench_objects(ctx, list(counts), [*MODES, GPU_MODE], config.timed_frames(), per_draw_limit=limit,
+    modes = [*MODES, GPU_MODE, SPLAT_MODE]
+    run.results += bench_objects(ctx, list(counts), modes, config.timed_frames(), per_draw_limit=limit,
                                  log=log, limits=None if cpu else GPU_MODE_LIMITS)
     if not cpu and not config.quick:
         run.notes.append("objects: on a GPU the counts go to 10M for gpu-animated; the per-draw modes and the bundle "
@@ -253,6 +255,3 @@ def write_reports(run: PerfRun, out_dir: Path | None = None, docs_img: Path | No
     paths.update({f"plot_{k}": p for k, p in plots.items()})
     return paths
 
-
-def command_line() -> str:
-    return "wgpurender " + " ".join(shlex.quote(a) for a in sys.argv[1:])

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import wgpu
 
-from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, build_plan
+from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, resolve_plan
 from wgpurender.core.scene import load_scene
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
@@ -124,7 +124,7 @@ def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse:
     from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
     from wgpurender.wgpu_path.scene_render.frame import adapter_facts
 
-    plan = build_plan(scene, size=size).with_knobs(post_path=path, post_fuse=fuse, adapter=adapter_facts(ctx))
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path=path, post_fuse=fuse)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
     render_frame(ctx, renderer, target)  # the scene image the chain reads, and every pipeline made
@@ -155,12 +155,52 @@ def _chain_once(ctx: GPUContext, renderer, target) -> None:
     ctx.wait_idle()
 
 
-def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frames: int) -> list[PassTime]:
+# (workgroup x, workgroup y, rows per invocation) tried by --shapes on the fused compute passes
+SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2), (16, 16, 2), (32, 8, 4),
+          (64, 1, 4), (128, 1, 2))
+
+
+def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy: CopyKernel,
+                shapes=SHAPES) -> list[PassTime]:
+    """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run."""
+    from wgpurender.wgpu_path.post.passes import ComputePass
+    from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
+    from wgpurender.wgpu_path.scene_render.frame import adapter_facts
+
+    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path="compute", post_fuse=True)
+    renderer = SceneRenderer(ctx, scene, plan)
+    target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
+    render_frame(ctx, renderer, target)
+    textures = {**renderer.attachments, "output": target}
+    rows = []
+    for p in plan.post_passes:
+        moved, copied = dispatch_bytes(p, size)
+        for shape in shapes:
+            runner = ComputePass(ctx.device, p, shape)
+            timer = PassTimer(ctx, max_passes=1)
+            samples = []
+            for _ in range(frames + 2):
+                timer.reset()
+                encoder = ctx.device.create_command_encoder()
+                runner.encode(encoder, textures[p.input], textures[p.output], timestamp_writes=timer.writes("pass"))
+                timer.resolve(encoder)
+                ctx.queue.submit([encoder.finish()])
+                samples.append(timer.read().get("pass", float("nan")))
+            ms = statistics.median(samples[2:])
+            rows.append(PassTime(f"compute, fused, shape {shape[0]}x{shape[1]} x{shape[2]} rows", p.effect, "compute",
+                                 moved, ms, copy.ms(moved, frames), copied))
+    return rows
+
+
+def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frames: int,
+                 shapes: bool = False) -> list[PassTime]:
     scene = load_scene(scene_path)
     copy = CopyKernel(ctx)
     rows: list[PassTime] = []
     for path, fuse in VARIANTS:
         rows += time_variant(ctx, scene, size, path, fuse, frames, copy)
+    if shapes:
+        rows += shape_sweep(ctx, scene, size, frames, copy)
     return rows
 
 
@@ -196,3 +236,17 @@ def csv_text(rows: list[PassTime]) -> str:
         values = [getattr(r, f) for f in fields]
         out.append(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in values))
     return "\n".join(out) + "\n"
+
+
+def record_bandwidth(ctx: GPUContext, scene_path: Path, size: tuple[int, int], rows: list[PassTime],
+                     command: str) -> Path:
+    """Keep each pass's numbers (not the shape sweep's) for ``render --explain`` on this adapter (core/bandwidth.py)."""
+    import datetime
+
+    from wgpurender.core import bandwidth
+
+    date = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    records = {bandwidth.pass_key(Path(scene_path).stem, r.effects, r.path): bandwidth.PassRecord(
+        r.ms, r.bytes_moved / 1e6, r.copy_ms, f"{size[0]}x{size[1]}", date, command)
+        for r in rows if "shape" not in r.variant and r.ms == r.ms}
+    return bandwidth.save(ctx.info.get("device", ""), records)

@@ -46,6 +46,14 @@ class Result:
         return self.family, self.case, self.size, self.metric
 
 
+def command_line() -> str:
+    """The command that is running, as a person would type it (for reports)."""
+    import shlex
+    import sys
+
+    return "wgpurender " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+
+
 def size_text(size: tuple[int, int]) -> str:
     return f"{size[0]}x{size[1]}"
 

@@ -16,7 +16,8 @@ from pathlib import Path
 
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
-from wgpurender.bench.report import Result, size_text
+from wgpurender.bench.report import Result, command_line, size_text
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import resolve_scene
 from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
@@ -26,12 +27,13 @@ from wgpurender.wgpu_path.timing import Stats
 class SceneRunner:
     """A persistent scene renderer drawn frame by frame (the runner protocol of frames.measure)."""
 
-    def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int]) -> None:
+    def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int],
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> None:
         from wgpurender.wgpu_path.scene_render import load_renderer
         from wgpurender.wgpu_path.timing import PassTimer
 
         self.ctx = ctx
-        self.renderer = load_renderer(path, ctx, size=size)
+        self.renderer = load_renderer(path, ctx, size=size, anisotropy=anisotropy)  # resolve_plan's plan
         self.target = self.renderer.create_output()
         self.timer = PassTimer(ctx, frames=TIMER_SLOTS)
         self.t = 0.0
@@ -64,10 +66,10 @@ class _RawSceneFrame:
 class RawSceneRunner(RawStageRunner):
     """The raw-Vulkan path's scene frame (raw_path/scene/), frame after frame, like a raw stage."""
 
-    def __init__(self, path: Path, size: tuple[int, int]) -> None:
+    def __init__(self, path: Path, size: tuple[int, int], anisotropy: str = DEFAULT_ANISOTROPY) -> None:
         from contextlib import ExitStack
 
-        from wgpurender.core.plan import build_plan
+        from wgpurender.core.plan import resolve_plan
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.checks import check_size
         from wgpurender.raw_path.instance import get_vulkan
@@ -75,7 +77,7 @@ class RawSceneRunner(RawStageRunner):
 
         ctx = get_vulkan()
         scene = load_scene(path)
-        plan = build_plan(scene, size=size)
+        plan = resolve_plan(scene, ctx.adapter_facts(), size=size, anisotropy=anisotropy)
         self.name = str(path)
         self.size = check_size(ctx, plan.size)
         self.owned = ExitStack()
@@ -92,8 +94,9 @@ def raw_refusal(path: Path) -> str:
 
 
 def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
-                raw: bool = True) -> tuple[list[Result], str]:
-    """(results, note): the wgpu renderer, and the raw path's when ``raw`` and it can draw the scene.
+                raw: bool = True, anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[list[Result], str]:
+    """(results, note): the wgpu renderer, and the raw path's when ``raw`` and it can draw the scene, each
+    drawing the plan :func:`wgpurender.core.plan.resolve_plan` resolves for its adapter.
 
     A note with no results means skipped (the scene file is absent); a note with results says why
     the raw peer is missing.
@@ -101,16 +104,17 @@ def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,
     path = resolve_scene(path)  # a bundled scene's name or repository path works from any folder
     if not path.is_file():
         return [], f"skipped: scene file {path} not found"
-    runner = SceneRunner(ctx, path, size)
+    runner = SceneRunner(ctx, path, size, anisotropy)
     readback_frames = max(3, frames // 2)
     refusal = raw_refusal(path) if raw else ""
     if not raw or refusal:
         samples = {"wgpu": measure(runner, frames, readback_frames=readback_frames)}
     else:
-        with RawSceneRunner(path, size) as raw_runner:
+        with RawSceneRunner(path, size, anisotropy) as raw_runner:
             samples = measure_interleaved({"wgpu": runner, "raw": raw_runner}, frames, readback_frames)
     results = [r for p, smp in samples.items() for r in smp.results("scene", path.stem, p, size)]
     results += untimed_results(ctx, runner, path.stem, size, frames)
+    record_passes(ctx, runner, path.stem, size, frames)
     for label, ms in runner.passes.items():
         results.append(Result.of("scene", path.stem, "wgpu", size_text(size), f"gpu_ms:{label}",
                                  Stats.of(ms[-frames:]), "GPU time of one pass"))
@@ -121,7 +125,7 @@ def untimed_results(ctx: GPUContext, runner: SceneRunner, case: str, size: tuple
                     frames: int) -> list[Result]:
     """The frame as a window makes it (no pass timestamps, no readback): CPU record + submit, and its native
     calls counted by wrapping the device, queue and encoders (bench/calls.py)."""
-    from wgpurender.bench.calls import steady_calls
+    from wgpurender.bench.calls import call_profile, steady_calls
 
     cpu = []
     for _ in range(frames + 2):
@@ -130,7 +134,34 @@ def untimed_results(ctx: GPUContext, runner: SceneRunner, case: str, size: tuple
     calls = steady_calls(ctx, runner.renderer.record, runner.target)
     n = sum(calls.values())
     detail = ", ".join(f"{k} {v}" for k, v in sorted(calls.items()))
+    detail += ("; CPU us per frame by call (mean of 10 counted frames, the counting's overhead in 'python'): "
+               + call_profile(ctx, runner.renderer.record, runner.target))
     s = size_text(size)
     return [Result.of("scene", case, "wgpu", s, "cpu_ms:untimed", Stats.of(cpu[2:]),
                       "record + submit of the frame without pass timestamps (as a window draws it)"),
             Result("scene", case, "wgpu", s, "native_calls", n, n, n, 1, f"per steady-state frame: {detail}")]
+
+
+def record_passes(ctx: GPUContext, runner: SceneRunner, scene: str, size: tuple[int, int], frames: int) -> None:
+    """Each pass's median GPU time beside a same-run copy of its bytes, for ``render --explain`` (core/bandwidth.py)."""
+    import datetime
+    import statistics
+
+    from wgpurender.bench.post_roofline import CopyKernel, dispatch_bytes
+    from wgpurender.core import bandwidth
+    from wgpurender.core.plan.explain import scene_pass_bytes
+
+    if not runner.passes or not ctx.has("timestamp-query"):
+        return
+    plan = runner.renderer.plan
+    moved = {("scene", "render"): sum(scene_pass_bytes(plan))}
+    moved.update({(p.effect, p.path): dispatch_bytes(p, size)[0] for p in plan.post_passes})
+    copy, date = CopyKernel(ctx), datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    records = {}
+    for (effect, path), n in moved.items():
+        label = "scene" if effect == "scene" else f"post:{effect}"
+        if label in runner.passes and n > 0:
+            ms = statistics.median(runner.passes[label][-frames:])
+            records[bandwidth.pass_key(scene, effect, path)] = bandwidth.PassRecord(
+                ms, n / 1e6, copy.ms(n, frames), size_text(size), date, command_line())
+    bandwidth.save(ctx.info.get("device", ""), records)

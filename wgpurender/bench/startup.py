@@ -10,6 +10,8 @@ Caches compared:
 - both paths: Mesa's on-disk shader cache (the driver's own, below any API) disabled
   ($MESA_SHADER_CACHE_DISABLE) vs warm (a private $MESA_SHADER_CACHE_DIR filled by a
   first run);
+- wgpu: wgpu.h's cffi parse, cached by the first run (wgpu_path/cdef_cache.py), present (as in every
+  second run) vs removed (a first run on the machine);
 - wgpu: wgpu-native 0.32 offers the "pipeline-cache" device feature, but neither its C
   header nor wgpu-py 0.32 has a function to create a pipeline cache (wgpu's Rust API has
   ``Device::create_pipeline_cache``), so the wgpu path cannot use one; measured without.
@@ -85,12 +87,18 @@ def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str])
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+# wgpu's "no caches" rows start, as a second run of the same command does, with wgpu.h's parse cached
+# (wgpu_path/cdef_cache.py); this row removes that file first: a first run on the machine.
+PARSED = "no caches, wgpu.h parsed (first run)"
+
+
 def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
     """(path, label, extra env, remove the VkPipelineCache file first)."""
     off = {"MESA_SHADER_CACHE_DISABLE": "true"}
     warm = {"MESA_SHADER_CACHE_DISABLE": "false", "MESA_SHADER_CACHE_DIR": str(work / "mesa")}
     return [
         ("wgpu", "no caches", off, True),
+        ("wgpu", PARSED, off, True),
         ("wgpu", "Mesa shader cache warm", warm, True),
         ("raw", "no caches", off, True),
         ("raw", "VkPipelineCache warm", off, False),
@@ -117,6 +125,9 @@ def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool =
             for _ in range(repeats):
                 if cold_vk:
                     for f in (work / "xdg" / "wgpurender").glob("vk-pipeline-cache-*.bin"):
+                        f.unlink()
+                if label == PARSED:
+                    for f in (work / "xdg" / "wgpurender").glob("cffi-wgpu-h-*.pickle"):
                         f.unlink()
                 result = run_child(path, stage, size, {**base, **extra})
                 for name in PHASES:

@@ -16,8 +16,9 @@ REFUSED = {  # dest -> why it cannot apply to the raw window
 }
 
 
-def run_raw(args, benchmark) -> int:
-    """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller."""
+def run_raw(args, benchmark, size: tuple[int, int]) -> int:
+    """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller; ``size``: the
+    window size the demo chose (--size, else a scene's [render] size)."""
     from wgpurender.core.controls import parse_script
     from wgpurender.core.errors import UserError
     from wgpurender.core.imageio import check_writable, save_png
@@ -32,7 +33,7 @@ def run_raw(args, benchmark) -> int:
     if args.validation:
         os.environ[ENV] = "1"  # read when the window's Vulkan context is made
     script = parse_script(args.test_input)
-    result = run_raw_window(args.target, size=args.size, present_mode=args.present_mode, frames=args.frames,
+    result = run_raw_window(args.target, size=size, present_mode=args.present_mode, frames=args.frames,
                             screenshot=bool(args.screenshot), msaa=args.msaa, fixed_time=args.time,
                             benchmark=benchmark, script=script, anisotropy=args.anisotropy)
     print(f"surface offers: {result.offered}")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from wgpurender.cli._args import add_backend_arg, size_arg
+from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg, size_arg
 
 
 def register(subparsers) -> None:
@@ -41,6 +41,7 @@ def _register_perf(suites) -> None:
     p.add_argument("--no-raw", dest="raw", action="store_false", help="skip the raw-Vulkan peer")
     p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per case")
     p.add_argument("--docs-img", type=Path, default=None, metavar="DIR", help="also copy the plots here")
+    add_anisotropy_arg(p)
     add_backend_arg(p)
     p.set_defaults(func=run)
 
@@ -57,7 +58,7 @@ def run(args) -> int:
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
     config = PerfConfig(quick=args.quick, out_dir=args.out, families=families, big=args.big, raw=args.raw,
-                        frames=args.frames, command=command_line())
+                        frames=args.frames, command=command_line(), anisotropy=args.anisotropy)
     run_ = run_perf(config, get_context(args.backend))
     paths = write_reports(run_, args.out, args.docs_img)
     for kind, path in paths.items():
@@ -115,6 +116,8 @@ def _register_roofline(suites) -> None:
                    "and final_subpass.toml, whose whole chain is one per-pixel pass)")
     p.add_argument("--size", type=size_arg, default=(3840, 2160), metavar="WxH", help="default 3840x2160")
     p.add_argument("--frames", type=int, default=20, metavar="N", help="timed frames per variant (default 20)")
+    p.add_argument("--shapes", action="store_true",
+                   help="also time the fused compute passes with each dispatch shape (workgroup, rows per invocation)")
     p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
                    help="where results go (default ./bench-results)")
     add_backend_arg(p)
@@ -123,7 +126,7 @@ def _register_roofline(suites) -> None:
 
 def _run_roofline(args) -> int:
     from wgpurender.bench.perf import command_line
-    from wgpurender.bench.post_roofline import csv_text, markdown, run_roofline
+    from wgpurender.bench.post_roofline import csv_text, markdown, record_bandwidth, run_roofline
     from wgpurender.core.errors import UserError
     from wgpurender.core.safe_write import atomic_write
     from wgpurender.wgpu_path.gpu import get_context
@@ -135,7 +138,8 @@ def _run_roofline(args) -> int:
         raise UserError(f"{ctx.describe()} has no timestamp queries: post-roofline times passes with them")
     args.out.mkdir(parents=True, exist_ok=True)
     for scene in args.scenes:
-        rows = run_roofline(ctx, scene, args.size, args.frames)
+        rows = run_roofline(ctx, scene, args.size, args.frames, shapes=args.shapes)
+        record_bandwidth(ctx, scene, args.size, rows, command_line())
         text = markdown(rows, ctx, scene, args.size, args.frames, command_line())
         md, csv = args.out / f"post-roofline-{scene.stem}.md", args.out / f"post-roofline-{scene.stem}.csv"
         atomic_write(md, text.encode())

@@ -32,7 +32,8 @@ def register(subparsers) -> None:
         "See also 'wgpurender report -o DIR', the course on one page.",
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
-    p.add_argument("--size", type=size_arg, default=(800, 600), metavar="WxH", help="window size (default 800x600)")
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                   help="window size (default: a scene's [render] size, as render's; 800x600 for a stage)")
     p.add_argument("--msaa", type=int, default=None, metavar="N", help="MSAA sample count, 1 or 4")
     p.add_argument(
         "--present-mode",
@@ -67,15 +68,19 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    from wgpurender.core.anisotropy import check_applies
+    from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.errors import UserError
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
     benchmark = _benchmark(args)
+    size = _window_size(args.target, args.size)
+    check_applies(args.target, is_scene_file(args.target), args.anisotropy)
     if args.raw:
         from wgpurender.cli._demo_raw import run_raw
 
-        return run_raw(args, benchmark)
+        return run_raw(args, benchmark, size)
     import os
 
     from wgpurender.wgpu_path.gpu import VALIDATION_ENV
@@ -88,7 +93,7 @@ def run(args) -> int:
         counter = collect_validation_messages()
     else:
         counter = None
-    result, ctx = _show(args, benchmark)
+    result, ctx = _show(args, benchmark, size)
     print(f"adapter: {ctx.describe()}")
     print(f"frames: {result.frames}, mean frame time {result.mean_frame_ms:.2f} ms")
     if result.benchmark is not None:
@@ -123,7 +128,20 @@ def _benchmark(args):
     return spec
 
 
-def _show(args, benchmark):
+def _window_size(target: str, asked: tuple[int, int] | None) -> tuple[int, int]:
+    """--size, else a scene's [render] size (the size ``render`` draws it at), else 800x600 for a stage."""
+    from wgpurender.core.course.formats import is_scene_file
+
+    if asked is not None:
+        return asked
+    if is_scene_file(target):
+        from wgpurender.core.scene import load_scene
+
+        return tuple(load_scene(target).render.size)
+    return (800, 600)
+
+
+def _show(args, benchmark, size):
     from wgpurender.core.controls import parse_script
     from wgpurender.core.imageio import check_writable
     from wgpurender.wgpu_path.gpu import get_context
@@ -136,7 +154,7 @@ def _show(args, benchmark):
     ctx = get_context(args.backend)
     view = DemoView(ctx, args.target, args.msaa, anisotropy=args.anisotropy)
     view.check()  # fail on a bad stage name, scene or option before a window opens
-    result = run_window(ctx, view, title=f"wgpurender: {args.target}", size=args.size, frames=args.frames,
+    result = run_window(ctx, view, title=f"wgpurender: {args.target}", size=size, frames=args.frames,
                         present_mode=args.present_mode, fixed_time=args.time, screenshot=bool(args.screenshot),
                         benchmark=benchmark, script=script)
     return result, ctx

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from wgpurender.cli._args import add_anisotropy_arg, format_arg, msaa_arg, size_arg, time_arg
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 
 
 def register(subparsers) -> None:
@@ -33,14 +32,10 @@ def register(subparsers) -> None:
 def run(args) -> int:
     """The API's reference (wgpurender/api.py): a scene's plan resolved for the raw device by the one function."""
     from wgpurender import api
-    from wgpurender.core.course.formats import is_scene_file
-    from wgpurender.core.errors import UserError
     from wgpurender.core.imageio import check_writable, image_format
 
     image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)
-    if not is_scene_file(args.stage) and args.anisotropy != DEFAULT_ANISOTROPY:
-        raise UserError(f"--anisotropy applies to scene files: stage {args.stage!r} has its own samplers")
     image = api.reference(args.stage, size=args.size, msaa=args.msaa, format=args.format, t=args.time,
                           anisotropy=args.anisotropy)
     path = image.save(args.output)

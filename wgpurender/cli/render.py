@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from wgpurender.cli._args import add_anisotropy_arg, add_render_args
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 
 
 def register(subparsers) -> None:
@@ -39,11 +38,8 @@ def run(args) -> int:
     if args.output:
         image_format(args.output)  # refuse an unknown suffix before rendering
         check_writable(args.output)
-    flags = {"size": args.size, "msaa": args.msaa, "format": args.format, "backend": args.backend}
-    if scene:
-        flags["anisotropy"] = args.anisotropy
-    elif args.anisotropy != DEFAULT_ANISOTROPY:
-        raise UserError(f"--anisotropy applies to scene files: stage {args.target!r} has its own samplers")
+    flags = {"size": args.size, "msaa": args.msaa, "format": args.format, "backend": args.backend,
+             "anisotropy": args.anisotropy}  # the API refuses a rule other than the default for a stage
     if args.explain:
         print(api.explain(args.target, **flags), end="")
         if not args.output:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -15,8 +17,8 @@ def register(subparsers) -> None:
     )
     p.add_argument("-o", "--output", required=True, metavar="DIR",
                    help="folder for the site (new, empty, or an earlier report, which is replaced)")
-    p.add_argument("--backend", default=None,
-                   help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
+    add_backend_arg(p)
+    add_anisotropy_arg(p)
     p.set_defaults(func=run)
 
 
@@ -24,6 +26,6 @@ def run(args) -> int:
     from wgpurender.report import build_report
     from wgpurender.wgpu_path.gpu import get_context
 
-    index = build_report(args.output, ctx=get_context(args.backend))
+    index = build_report(args.output, ctx=get_context(args.backend), anisotropy=args.anisotropy)
     print(f"wrote {index}")
     return 0

@@ -7,11 +7,19 @@ def register(subparsers) -> None:
     p = subparsers.add_parser(
         "stages", help="list the course steps",
         description="List every course step in order: its stage (or, for the final model, its bundled scene) "
-                    "and the course step it stands for.")
+                    "and the course step it stands for. --map prints the course map instead: per step, the "
+                    "module, shaders, course data, reference image, tests and course text of both paths "
+                    "(docs/course-map.md is its output).")
+    p.add_argument("--map", action="store_true", help="print the course map (a Markdown table, one row per step)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    if args.map:
+        from wgpurender.course_map import course_map_markdown
+
+        print(course_map_markdown(), end="")
+        return 0
     from wgpurender.core.course.steps import COURSE, course_step
     from wgpurender.wgpu_path.stages import all_stages
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from wgpurender.cli._args import size_arg
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -18,6 +20,16 @@ def register(subparsers) -> None:
     p.add_argument("--out", type=Path, default=Path("out/verify"), metavar="DIR",
                    help="output folder (default out/verify)")
     p.add_argument("--quick", action="store_true", help="a subset: stages triangle and 3d, scene unlit")
+    p.add_argument("--implementations", metavar="LIST", default=None,
+                   help="the implementation matrix instead: a comma list of raw, wgpu-vulkan, wgpu-gl, browser, or "
+                   "'all' (every one available here); each renders every stage and scene at --size, every pair is "
+                   "compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded by "
+                   "assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
+    p.add_argument("--size", type=size_arg, default=(160, 120), metavar="WxH",
+                   help="size for --implementations (default 160x120, the size the bounds were calibrated at)")
+    p.add_argument("--calibrate", action="store_true",
+                   help="with --implementations: rewrite the measured implementations' rows of "
+                   "assets/reference/implementations.toml from this run")
     p.set_defaults(func=run)
 
 
@@ -31,6 +43,10 @@ def run(args) -> int:
         (args.out / "heatmaps").mkdir(parents=True, exist_ok=True)  # before any rendering
     except OSError as err:
         raise UserError(f"--out {args.out}: cannot create it ({err.strerror or err})") from None
+    if args.implementations is not None:
+        return run_implementations(args)
+    if args.calibrate:
+        raise UserError("--calibrate applies to --implementations only (the driver table is written to --out)")
     report = run_verify(args.out, quick=args.quick)
     for row in report.rows:
         detail = row.note if row.status in ("skipped", "FAIL") else (row.metrics.summary() if row.metrics else "")
@@ -38,6 +54,32 @@ def run(args) -> int:
     print(f"{report.device}; {report.cpu}; driver class {report.driver_class}")
     print(f"wrote {args.out / 'verify.csv'}, {args.out / 'verify.md'}, {args.out / 'heatmaps'}/, "
           f"{args.out / 'tolerances.toml'}")
+    if report.failed:
+        print(f"{len(report.failed)} comparison(s) exceed their bound")
+        return 1
+    return 0
+
+
+def run_implementations(args) -> int:
+    from wgpurender.core.errors import UserError
+    from wgpurender.implementations import QUICK, all_targets, available
+    from wgpurender.verify_matrix import run_matrix
+
+    wanted = None if args.implementations in ("", "all") else [x.strip() for x in args.implementations.split(",")]
+    impls, missing = available(wanted)
+    if len(impls) < 2:
+        raise UserError(f"--implementations needs two available implementations, have {', '.join(impls) or 'none'}"
+                        + "".join(f"; {k}: {v}" for k, v in missing.items()))
+    targets = [t for t in all_targets() if not args.quick or t in QUICK]
+    report = run_matrix(args.out, impls, missing, targets, tuple(args.size), calibrate=args.calibrate)
+    for c in report.cells:
+        m = c.comparison
+        detail = c.note if m is None else (f"max {m.max_abs}/255, >1/255 {100 * m.over_1:.2f}%, PSNR {m.psnr:.1f}, "
+                                           f"FLIP {m.flip_mean:.4f}" + (f" ({c.note})" if c.note else ""))
+        print(f"{c.status:>9}  {c.target:<20} {c.a + ' / ' + c.b:<24} {detail}")
+    for impl, why in missing.items():
+        print(f"  not available: {impl} ({why})")
+    print(f"wrote {args.out / 'implementations.md'}, {args.out / 'implementations.csv'}, {args.out / 'heatmaps'}/")
     if report.failed:
         print(f"{len(report.failed)} comparison(s) exceed their bound")
         return 1

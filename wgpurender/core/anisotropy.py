@@ -30,6 +30,14 @@ ANISOTROPY_HELP = ("auto (default): the scene's anisotropic filtering on a GPU, 
 CPU_ANISOTROPY = 1
 
 
+def check_applies(target: str, is_scene: bool, rule: str) -> None:
+    """A rule other than the default for a stage is refused (UserError), not ignored: a stage's samplers are
+    its own, the rule applies to scene files (the API and every command call this)."""
+    if not is_scene and rule != DEFAULT_ANISOTROPY:
+        raise UserError(f"anisotropy {rule!r} applies to scene files: stage {target!r} has its own samplers "
+                        "(leave --anisotropy out)")
+
+
 def resolve_anisotropy(spec: SamplerSpec, rule: str = "scene",
                        adapter_type: str | None = None) -> tuple[SamplerSpec, str]:
     """(the sampler to use, why; '' when nothing needs saying)."""

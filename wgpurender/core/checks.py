@@ -24,7 +24,8 @@ from wgpurender.core.errors import UserError
 
 MAX_SIZE = 16384  # per side: the largest 2D texture any adapter we support offers
 MAX_GAP = 4096
-BACKENDS = ("Vulkan", "Metal", "D3D12", "OpenGL")
+BACKENDS = ("Vulkan", "OpenGL", "Metal", "D3D12", "auto")  # as the adapter names them; auto: the best of any
+BACKEND_ALIASES = {"gl": "OpenGL", "gles": "OpenGL", "dx12": "D3D12"}  # wgpu-native's instance names, and GLES
 
 
 class CliText(str):
@@ -131,10 +132,12 @@ def backend(value: Any) -> str | None:
     if value is None:
         return None
     if isinstance(value, str):
+        name = BACKEND_ALIASES.get(value.lower(), value)
         for known in BACKENDS:
-            if value.lower() == known.lower():
+            if name.lower() == known.lower():
                 return known
-    raise UserError(f"unknown backend {_shown(value)}: choose one of {', '.join(BACKENDS)}")
+    raise UserError(f"unknown backend {_shown(value)}: choose one of {', '.join(b.lower() for b in BACKENDS[:-1])} "
+                    "or auto (--backend or $WGPURENDER_BACKEND)")
 
 
 def time(value: Any) -> float:

@@ -19,21 +19,12 @@ from wgpurender.core.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
 SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}
-# attribute -> (accepted accessor types, accepted component types: float, normalized ubyte/ushort, ...)
-FLOAT, UBYTE, USHORT, BYTE, SHORT = 5126, 5121, 5123, 5120, 5122
-ATTRIBUTE_TYPES = {
-    "POSITION": (("VEC3",), (FLOAT,)),
-    "NORMAL": (("VEC3",), (FLOAT,)),
-    "TANGENT": (("VEC4",), (FLOAT,)),
-    "TEXCOORD": (("VEC2",), (FLOAT, UBYTE, USHORT)),
-    "COLOR_0": (("VEC3", "VEC4"), (FLOAT, UBYTE, USHORT)),
-}
-INDEX_COMPONENTS = (UBYTE, USHORT, 5125)
+FLOAT = 5126
 
 
 @dataclass
 class PrimitiveGeometry:
-    """One triangle primitive placed in the model's space by its node's world matrix (already applied)."""
+    """One triangle primitive's arrays, in its mesh's own space (mesh_primitives pairs it with the world matrix)."""
 
     positions: np.ndarray  # (N, 3) float64
     faces: np.ndarray  # (F, 3) int64, counter-clockwise front faces
@@ -75,7 +66,8 @@ def root_nodes(doc: GltfDocument) -> list[int]:
 
 def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
-    A node reached twice on one path (a cycle in ``children``) is refused by name."""
+    The graph is a forest (gltf_rules.check_node_graph refuses loops and second parents before this runs); a
+    loop is still refused here rather than followed forever."""
     nodes = doc.json.get("nodes", [])
     if not nodes:
         return [(np.eye(4), i, -1) for i in range(len(doc.json.get("meshes", [])))]
@@ -96,31 +88,22 @@ def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
 
 
 def _attribute(doc: GltfDocument, prim: dict, name: str, where: str) -> np.ndarray | None:
-    """An attribute through the project's accessor reader, its type and component type checked; float64."""
+    """An attribute through the project's accessor reader, as float64. Accessor and component types were checked
+    with the document (gltf_rules.py); integer attributes must also be normalized (unnormalized ones are
+    KHR_mesh_quantization's, which is not supported)."""
     index = prim.get("attributes", {}).get(name)
     if index is None:
         return None
-    kinds, components = ATTRIBUTE_TYPES["TEXCOORD" if name.startswith("TEXCOORD_") else name]
     acc = doc.json["accessors"][index]
-    if acc.get("type") not in kinds:
-        raise UserError(f"malformed glTF file {doc.path}: {where} {name} is {acc.get('type')}, glTF requires "
-                        f"{' or '.join(kinds)}; re-export the file")
-    normalized = acc.get("normalized", False)
-    if acc.get("componentType") not in components or (acc.get("componentType") != FLOAT and not normalized):
-        raise UserError(f"glTF file {doc.path}: {where} {name} has component type {acc.get('componentType')}"
-                        f"{' (not normalized)' if not normalized else ''}, which is not supported (glTF 2.0 allows "
-                        "float or, for TEXCOORD and COLOR, normalized unsigned byte/short; KHR_mesh_quantization "
-                        "is not supported); re-export without quantization")
+    if acc.get("componentType") != FLOAT and not acc.get("normalized", False):
+        raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not normalized "
+                        "(KHR_mesh_quantization), which is not supported; re-export without quantization")
     return read_accessor(doc, index).astype(np.float64)
 
 
-def _faces(doc: GltfDocument, prim: dict, count: int, where: str) -> np.ndarray:
+def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
     """Triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive, counter-clockwise as the file means."""
-    if "indices" in prim:
-        acc = doc.json["accessors"][prim["indices"]]
-        if acc.get("type") != "SCALAR" or acc.get("componentType") not in INDEX_COMPONENTS:
-            raise UserError(f"malformed glTF file {doc.path}: {where} indices must be SCALAR unsigned byte, short "
-                            f"or int, got {acc.get('type')} of component type {acc.get('componentType')}")
+    if "indices" in prim:  # SCALAR unsigned integers: checked with the document (gltf_rules.py)
         idx = read_accessor(doc, prim["indices"]).reshape(-1).astype(np.int64)
     else:
         idx = np.arange(count, dtype=np.int64)
@@ -148,9 +131,9 @@ def texcoord_set(doc: GltfDocument, material: int | None) -> int:
     return next((int(i.get("texCoord", 0)) for i in infos if isinstance(i, dict)), 0)
 
 
-def primitive_geometry(doc: GltfDocument, prim: dict, world: np.ndarray, where: str) -> PrimitiveGeometry | None:
-    """One primitive's triangles and attributes (local space; the caller applies ``world``); None for points and
-    lines (see :func:`geometry_notes`)."""
+def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGeometry | None:
+    """One primitive's triangles and attributes in its mesh's own space (the caller applies the node's world
+    matrix); None for points and lines (see :func:`geometry_notes`)."""
     mode = prim.get("mode", 4)
     if mode in SKIPPED_MODES:
         return None
@@ -167,7 +150,7 @@ def primitive_geometry(doc: GltfDocument, prim: dict, world: np.ndarray, where: 
         if array is not None and len(array) != count:
             raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
                             f"POSITION {count}")
-    faces = _faces(doc, prim, count, where)
+    faces = _faces(doc, prim, count)
     if len(faces) and (faces.min() < 0 or faces.max() >= count):
         raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
     colors = arrays["COLOR_0"]
@@ -186,7 +169,7 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
         name = f" '{mesh['name']}'" if mesh.get("name") else ""
         for p, prim in enumerate(mesh.get("primitives", [])):
             where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
-            geometry = primitive_geometry(doc, prim, world, where)
+            geometry = primitive_geometry(doc, prim, where)
             if geometry is not None and len(geometry.faces):
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out

@@ -11,16 +11,20 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 - ``alphaMode`` OPAQUE / MASK (``alphaCutoff``: fragments below are discarded) / BLEND (alpha blending, drawn
   after the opaque draws, not sorted by depth);
 - each texture's own sampler: mag/min/mipmap filters and per-axis wrap (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT);
-- ``KHR_materials_unlit`` -> an unlit material.
+- ``emissiveFactor`` (x ``KHR_materials_emissive_strength``) x ``emissiveTexture`` (sRGB) -> added to the shaded
+  colour;
+- ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
+- ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
 
 Ignored, and listed by ``--explain``: metalness (``metallicFactor``, the texture's B channel: Blinn-Phong has no
-metals), emissive, occlusion, other texture coordinate sets, ``KHR_texture_transform``, and every other
-extension by name.
+metals), other texture coordinate sets, ``KHR_texture_transform``, and every other extension by name.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -34,8 +38,9 @@ WRAP = {10497: "repeat", 33071: "clamp-to-edge", 33648: "mirror-repeat"}
 MIN_FILTERS = {9728: ("nearest", None), 9729: ("linear", None), 9984: ("nearest", "nearest"),
                9985: ("linear", "nearest"), 9986: ("nearest", "linear"), 9987: ("linear", "linear")}
 ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map": ("normalTexture",),
-         "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture")}
-SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit",)
+         "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
+         "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
+SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
 
 
 @dataclass(frozen=True)
@@ -52,13 +57,27 @@ def embedded_image_path(model: Path, image: int) -> Path:
     return Path(f"{model}{EMBEDDED_MARK}{image}]")
 
 
+def _document(path: str) -> gltf_io.GltfDocument:
+    """The parsed model, read once while the file is unchanged (the plan asks each embedded image's size, the
+    upload its pixels: one read of a large GLB each, not one per image)."""
+    stat = os.stat(path)
+    return _read_cached(path, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=4)
+def _read_cached(path: str, mtime_ns: int, size: int) -> gltf_io.GltfDocument:
+    return gltf_io.read_document(path)
+
+
 def embedded_image_bytes(path: Path) -> bytes | None:
     """The encoded bytes of an image a ``model.glb#images[k]`` path names, or None for an ordinary path."""
     text = str(path)
     if EMBEDDED_MARK not in text or not text.endswith("]"):
         return None
     model, _, index = text.rpartition(EMBEDDED_MARK)
-    doc = gltf_io.read_document(model)
+    if not os.path.isfile(model):
+        return None
+    doc = _document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io._image_source(doc, image)
     return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
@@ -117,6 +136,12 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
     normal = _info(mat, ("normalTexture",)) or {}
+    occlusion = _info(mat, ("occlusionTexture",)) or {}
+    strength = mat.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+    emissive = (0.0, 0.0, 0.0) if unlit else tuple(float(c) * float(strength) for c in mat.get("emissiveFactor",
+                                                                                               (0, 0, 0)))
+    if unlit and ("emissiveTexture" in mat or any(mat.get("emissiveFactor", (0, 0, 0)))):
+        ignored.append(f"{name}: emissive: ignored (KHR_materials_unlit draws the base colour only)")
     return Material(
         name=name, albedo_color=tuple(float(v) for v in pbr.get("baseColorFactor", (1.0, 1.0, 1.0, 1.0))),
         albedo_map=maps.get("albedo_map"), normal_map=maps.get("normal_map"), roughness_map=maps.get("roughness_map"),
@@ -124,7 +149,9 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         double_sided=bool(mat.get("doubleSided", False)), alpha_mode=str(mat.get("alphaMode", "OPAQUE")).lower(),
         alpha_cutoff=float(mat.get("alphaCutoff", 0.5)), normal_strength=float(normal.get("scale", 1.0)),
         roughness_map_scale=roughness, texture_samplers=tuple(samplers), texture_mipmaps=tuple(mipmaps),
-        part=index, written=tuple((f, str(p.name)) for f, p in maps.items()),
+        part=index, written=tuple((f, str(p.name)) for f, p in maps.items()), emissive_color=emissive,
+        emissive_map=maps.get("emissive_map") if not unlit else None,
+        occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
     )
 
 
@@ -133,10 +160,6 @@ def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
         ignored.append(f"{name}: metalness (metallicFactor {pbr.get('metallicFactor', 1.0):g}, the metallic-"
                        "roughness texture's B channel): ignored (the course's Blinn-Phong has no metals; drawn as "
                        "a dielectric)")
-    if any(v != 0 for v in mat.get("emissiveFactor", (0, 0, 0))) or "emissiveTexture" in mat:
-        ignored.append(f"{name}: emissive: ignored")
-    if "occlusionTexture" in mat:
-        ignored.append(f"{name}: occlusionTexture: ignored")
     for ext in mat.get("extensions", {}):
         if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
             ignored.append(f"{name}: {ext}: ignored")
@@ -184,6 +207,10 @@ def _taken_text(m: Material) -> str:
     if m.alpha_mode != "opaque":
         items.append(f"alphaMode {m.alpha_mode.upper()}" + (f" cutoff {m.alpha_cutoff:g}" if m.alpha_mode == "mask"
                                                              else " (unsorted)"))
+    if any(m.emissive_color):
+        items.append(f"emissiveFactor {tuple(round(c, 4) for c in m.emissive_color)}")
+    if m.occlusion_map:
+        items.append(f"occlusion strength {m.occlusion_strength:g}")
     if m.unlit:
         items.append("KHR_materials_unlit")
     elif m.part is not None and m.part >= 0:

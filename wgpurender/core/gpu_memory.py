@@ -19,15 +19,13 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable
 
+from wgpurender.core.course.formats import BYTES_PER_PIXEL
 from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import env_limit
 
 GPU_MEMORY_ENV = "WGPURENDER_GPU_MEMORY"
 CPU_SHARE = 0.8  # of MemAvailable: the rest is the process, Python, numpy and the readback
 CPU_MAX_ALLOCATION = 2**31  # lavapipe's maxMemoryAllocationSize
-BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
-                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth24plus-stencil8": 4,
-                   "depth32float": 4}
 
 
 def texture_bytes(size: tuple[int, int], fmt: str, samples: int = 1) -> int:

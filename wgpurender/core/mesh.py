@@ -90,6 +90,9 @@ class Material:
 
     name: str | None = None
     textures: dict[str, TextureRef] = field(default_factory=dict)
+    color: tuple[float, float, float] | None = None  # MTL Kd (diffuse colour, taken as linear)
+    opacity: float | None = None  # MTL d (dissolve), or 1 - Tr
+    illum: int | None = None  # MTL illumination model: 0 = colour only, no lighting
 
 
 @dataclass(frozen=True)
@@ -472,6 +475,11 @@ def _concatenate(parts: list[_Part]):
     return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts)
 
 
+def obj_material(path: Path) -> Material | None:
+    """The OBJ's first ``usemtl`` material from its MTL (Kd, d/Tr and texture files), or None."""
+    return _obj_material(path)
+
+
 def _obj_material(path: Path) -> Material | None:
     """The material of the first `usemtl` in an OBJ, with the texture files its MTL names (paths resolved)."""
     text = path.read_bytes()
@@ -513,4 +521,23 @@ def parse_mtl(path: Path) -> dict[str, Material]:
                 raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
                                 "fix the material library")
             current.textures.setdefault(role, TextureRef(resolved(path.parent / tokens[-1]), None, srgb))
+        elif key in ("kd", "d", "tr", "illum") and current is not None:
+            _mtl_number(current, key, tokens[1:], f"{path}:{number}")
     return materials
+
+
+def _mtl_number(material: Material, key: str, values: list[str], where: str) -> None:
+    """Kd r g b (a single value means grey), d / Tr (opacity, transparency) and illum; a bad number is one line."""
+    try:
+        numbers = [float(v) for v in values[:3]]
+    except ValueError:
+        raise UserError(f"{where}: {key.capitalize()} needs numbers, got {' '.join(values)!r}; fix the material "
+                        "library") from None
+    if not numbers or not all(np.isfinite(numbers)):
+        raise UserError(f"{where}: {key.capitalize()} needs finite numbers; fix the material library")
+    if key == "kd":
+        material.color = tuple(max(0.0, v) for v in (numbers * 3)[:3])
+    elif key == "illum":
+        material.illum = int(numbers[0])
+    else:
+        material.opacity = min(1.0, max(0.0, numbers[0] if key == "d" else 1.0 - numbers[0]))

@@ -197,18 +197,29 @@ IMPLEMENTATIONS_HEADER = """\
 # Vulkan (the reference implementation) and by another stack at the same size (read by tests/test_backends.py,
 # tests/test_export_browser.py and `wgpurender verify --implementations`).
 #
-# [implementations.IMPL]: bounded_by = the machine, drivers and date the spread was measured on.
+# [implementations.IMPL]: bounded_by = the machine, drivers and date the spread was measured on; driver_class =
+# the class (tolerances.driver_class) of the Vulkan adapter it was measured against: other classes are not bounded.
 # [implementations.IMPL.targets.NAME]: max_abs (1/255), changed (share of pixels), flip_mean, measured (the
 # spread). Rule (wgpurender/core/tolerances.calibrate, CPU drivers): max_abs = worst + 1, at least 2;
 # changed, flip_mean = 2 x worst, at least 1% and 0.002. Written by wgpurender.implementations.calibrate.
 """
 
 
-def implementation_tolerance(implementation: str, name: str, table: dict | None = None) -> Tolerance:
-    """The bounds for target ``name`` on ``implementation`` against wgpu-native's Vulkan render of it."""
+class Uncalibrated(UserError):
+    """The implementation's bounds were measured on another driver class than the one asked about."""
+
+
+def implementation_tolerance(implementation: str, name: str, table: dict | None = None,
+                             cls: str | None = None) -> Tolerance:
+    """The bounds for target ``name`` on ``implementation`` against wgpu-native's Vulkan render of it; with
+    ``cls`` (the Vulkan adapter's driver class), :class:`Uncalibrated` where the rows were measured on another."""
     if table is None:
         table = load_table(IMPLEMENTATIONS_PATH)
     impl = table.get("implementations", {}).get(implementation, {})
+    measured_on = impl.get("driver_class", "lavapipe")
+    if cls is not None and impl and cls != measured_on:
+        raise Uncalibrated(f"the {implementation} bounds were calibrated on {measured_on}, not {cls}: run "
+                           "`wgpurender verify --implementations ... --calibrate` on this machine")
     row = impl.get("targets", {}).get(name)
     if row is None:
         raise UserError(f"no {implementation} tolerance for '{name}' in {IMPLEMENTATIONS_PATH.name}: measure it "

@@ -100,6 +100,16 @@ def _glfw():
     return glfw
 
 
+def window_plan(ctx: VulkanContext, scene, size: tuple[int, int] | None, msaa: int | None,
+                anisotropy: str = DEFAULT_ANISOTROPY):
+    """The plan the window draws a scene with: :func:`wgpurender.core.plan.resolve_plan`'s for this device, as
+    the headless paths resolve it, for a swapchain image (not a storage texture, like the wgpu window's)."""
+    from wgpurender.core.plan import resolve_plan
+
+    return resolve_plan(scene, ctx.adapter_facts(), size=size, msaa=msaa, anisotropy=anisotropy,
+                        output_storage=False)
+
+
 def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
                      anisotropy: str = DEFAULT_ANISOTROPY) -> tuple[Callable, str, object]:
     """(make, format, camera): ``make(owned, size) -> (record, format, drawable)`` makes a raw stage, or a scene
@@ -107,23 +117,18 @@ def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
     start camera (eye, target, up), None for a flat stage. A scene's plan is
     :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: the per-adapter rule or "scene")."""
     if target.endswith(".toml"):
-        from wgpurender.core.plan import resolve_plan
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.scene.frame import SceneFrame
         from wgpurender.raw_path.scene.support import check_supported
 
         scene = load_scene(target)
-        facts = ctx.adapter_facts()
-
-        def plan_for(size: tuple[int, int] | None):
-            return resolve_plan(scene, facts, size=size, msaa=msaa, anisotropy=anisotropy, output_storage=False)
 
         def make_scene(owned: ExitStack, size: tuple[int, int]):
-            plan = plan_for(size)
+            plan = window_plan(ctx, scene, size, msaa, anisotropy)
             check_supported(plan)
             frame = SceneFrame(ctx, owned, scene, plan)
             return (lambda cmd, image, t: frame.record(cmd, image)), plan.output_format, frame
-        return make_scene, plan_for(None).output_format, scene.camera
+        return make_scene, window_plan(ctx, scene, None, msaa, anisotropy).output_format, scene.camera
     from wgpurender.raw_path.stages import get_ref_stage
 
     cls = get_ref_stage(target)

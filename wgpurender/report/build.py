@@ -14,6 +14,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import save_png
@@ -58,8 +59,10 @@ def check_out_dir(out_dir: Path) -> Path:
 
 
 def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes: list[Path] | None = None,
-                 ctx: GPUContext | None = None, log: Callable[[str], None] = print) -> Path:
-    """Render every step on both paths and write the site; returns the path of index.html."""
+                 ctx: GPUContext | None = None, log: Callable[[str], None] = print,
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> Path:
+    """Render every step on both paths and write the site; returns the path of index.html. ``anisotropy``:
+    the scenes' rule (core/anisotropy.py), as ``render --anisotropy``."""
     out_dir = check_out_dir(Path(out_dir))
     ctx = ctx or get_context()
     start = time.perf_counter()
@@ -69,7 +72,7 @@ def build_report(out_dir: str | Path, *, stages: list[str] | None = None, scenes
         steps.append(stage_step(ctx, name, STAGE_SIZE, log))
     for path in _scene_files() if scenes is None else scenes:
         log(f"scene {path.name}")
-        steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log))
+        steps.append(scene_step(ctx, Path(path), SCENE_SIZES.get(Path(path).stem, SCENE_SIZE), log, anisotropy))
     with cleanup_on_signal():  # SIGTERM while the temp folder exists ends through finally
         tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
         try:
@@ -98,6 +101,20 @@ def _scene_files() -> list[Path]:
     return out
 
 
+def _live_page(site: Path, step: Step) -> dict[str, str]:
+    """The step exported as a live WebGPU page (wgpurender export) under live/KEY/, linked from its section;
+    none (with the reason logged on the page) where the browser cannot draw it."""
+    from wgpurender.export import export
+
+    size = (step.wgpu.shape[1], step.wgpu.shape[0]) if step.wgpu is not None else STAGE_SIZE
+    target = str(SCENE_DIR / f"{step.key}.toml") if (SCENE_DIR / f"{step.key}.toml").is_file() else step.key
+    try:
+        export(target, site / "live" / step.key, size)
+    except UserError as err:
+        return {"live_note": str(err)}
+    return {"live": f"live/{step.key}/index.html"}
+
+
 def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) -> None:
     images: dict[str, dict[str, str]] = {}
     for step in steps:
@@ -108,6 +125,7 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float) 
                 name = f"{step.key}_{kind}.png"
                 save_png(site / name, pixels)
                 files[kind] = name
+        files.update(_live_page(site, step))
     scale, levels = heatmap_scale()
     save_png(site / "heatmap_scale.png", scale)
     pareto = extras.pareto_plot()

@@ -84,10 +84,19 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 {_figure(files.get("raw"), "raw Vulkan (GLSL, vulkan binding)", step.raw_note)}
 {_heat(files.get("heat"), scale)}
 </div>
+{_live(files)}
 {_numbers(step)}
 {plan}
 {_concepts(step.concepts)}
 </section>"""
+
+
+def _live(files: dict[str, str]) -> str:
+    """The link to the step's live page (wgpurender export), or why there is none."""
+    if "live" in files:
+        return (f'<p class="live"><a href="{e(files["live"])}">Run this step live in your browser</a> '
+                "(WebGPU: the same WGSL, pipelines and data, replayed by the browser)</p>")
+    return f'<p class="live"><small>No live page: {e(files["live_note"])}</small></p>' if "live_note" in files else ""
 
 
 def _figure(name: str | None, caption: str, note: str) -> str:

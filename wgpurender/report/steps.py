@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.concepts import Concept
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.compare import Comparison, compare_images, heatmap
 from wgpurender.core.errors import UserError
 from wgpurender.report import timings
@@ -92,21 +93,29 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
     return step
 
 
-def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=print) -> Step:
-    """A scene file: its description, its plan, and the scene on both paths."""
-    from wgpurender.core.plan import explain_scene
-    from wgpurender.core.scene import load_scene
-    from wgpurender.raw_path import render_reference
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+def _scene_course_step(path: Path) -> str:
+    """'course step 6: ...' for the scene a course step is (the final model), else 'scene file'."""
+    from wgpurender.core.course.steps import COURSE
 
-    scene = load_scene(path)
-    overrides = {"size": size} if size else {}
-    plan = explain_scene(path, **overrides).replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
-    step = Step(path.stem, path.name, "scene file", scene.description, _scene_words(path), plan=plan)
-    step.wgpu = render_scene_file(path, size=size, ctx=ctx, frames=1).pixels
-    step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size)
-    step.raw, step.raw_note = _try(lambda: render_reference(str(path), size), log)
-    step.timing["raw"] = timings.scene_raw(path, size) if step.raw is not None else None
+    step = next((s for s in COURSE if s.scene == path.stem), None)
+    return f"course step {step.number}: {step.title}" if step else "scene file"
+
+
+def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=print,
+               anisotropy: str = DEFAULT_ANISOTROPY) -> Step:
+    """A scene file: its description, the plan drawn on this adapter, and the scene on both paths (each
+    path's plan resolved for its own adapter by the one function, core/plan/resolve.py)."""
+    from wgpurender.core.plan import resolve_plan
+    from wgpurender.raw_path import render_reference
+    from wgpurender.wgpu_path.scene_render import adapter_facts, render_plan
+
+    plan = resolve_plan(path, adapter_facts(ctx), size=size, anisotropy=anisotropy)
+    text = plan.explain().replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
+    step = Step(path.stem, path.name, _scene_course_step(path), plan.scene.description, _scene_words(path), plan=text)
+    step.wgpu = render_plan(ctx, plan, frames=1).pixels
+    step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size, anisotropy)
+    step.raw, step.raw_note = _try(lambda: render_reference(str(path), size, anisotropy=anisotropy), log)
+    step.timing["raw"] = timings.scene_raw(path, size, anisotropy) if step.raw is not None else None
     step.concepts = rows_for("scene")
     _compare(step)
     return step

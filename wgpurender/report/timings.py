@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from wgpurender.bench.frames import RawStageRunner, WgpuStageRunner, measure
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.gpu import GPUContext
 
 FRAMES = 5
@@ -41,14 +42,14 @@ def stage_raw(name: str, size: tuple[int, int]) -> Timing:
         return _timing(runner)
 
 
-def scene_wgpu(ctx: GPUContext, path: Path, size: tuple[int, int]) -> Timing:
+def scene_wgpu(ctx: GPUContext, path: Path, size: tuple[int, int], anisotropy: str = DEFAULT_ANISOTROPY) -> Timing:
     from wgpurender.bench.scene import SceneRunner
 
-    return _timing(SceneRunner(ctx, path, size))
+    return _timing(SceneRunner(ctx, path, size, anisotropy))
 
 
-def scene_raw(path: Path, size: tuple[int, int]) -> Timing:
+def scene_raw(path: Path, size: tuple[int, int], anisotropy: str = DEFAULT_ANISOTROPY) -> Timing:
     from wgpurender.bench.scene import RawSceneRunner
 
-    with RawSceneRunner(path, size) as runner:
+    with RawSceneRunner(path, size, anisotropy) as runner:
         return _timing(runner)

@@ -22,15 +22,22 @@ from __future__ import annotations
 import re
 
 _SHAPE = re.compile(r"^\s*([A-Za-z_]\w*)\s*(\*|\[\s*\])?\s*$")
+_CONST_POINTER = re.compile(r"^\s*([A-Za-z_]\w*)\s+const\s*\*\s*$")
+_FUNCTION = re.compile(r"^\s*([A-Za-z_]\w*)\s*\(([^()]*)\)\s*$")
 
 
 def fast_parse_type_and_quals(parser, cdecl: str):
-    """(model type, quals) for NAME, NAME * or NAME[] of a declared typedef; None for anything else."""
+    """(model type, quals) for NAME, NAME * or NAME[] of a declared typedef (or a primitive), ``NAME const *``,
+    and a callback's function type ``RET(ARG, ARG...)`` made of those; None for anything else."""
     from cffi import model
 
     m = _SHAPE.match(cdecl)
     if m is None:
-        return None
+        c = _CONST_POINTER.match(cdecl)
+        if c is not None:
+            return _const_pointer(parser, c.group(1))
+        f = _FUNCTION.match(cdecl)
+        return _function(parser, f.group(1), f.group(2)) if f is not None else None
     name = m.group(1)
     entry = parser._declarations.get("typedef " + name)
     if entry is None:
@@ -44,6 +51,35 @@ def fast_parse_type_and_quals(parser, cdecl: str):
     if suffix == "*":
         return parser._get_type_pointer(tp, quals), 0
     return model.ArrayType(tp, None), quals
+
+
+def _const_pointer(parser, name: str):
+    """``NAME const *``: a pointer to the const-qualified item (cffi: PtrDecl of a TypeDecl with quals const)."""
+    from cffi.model import Q_CONST
+
+    entry = parser._declarations.get("typedef " + name) or _primitive(parser, name)
+    if entry is None:
+        return None
+    tp, quals = entry
+    return parser._get_type_pointer(tp, quals | Q_CONST), 0
+
+
+def _function(parser, result: str, args: str):
+    """A function type as cffi's ``_parse_function_type`` makes it (no ellipsis, no __stdcall), or None."""
+    from cffi import model
+
+    res = fast_parse_type_and_quals(parser, result)
+    if res is None or "..." in args or isinstance(res[0], model.RawFunctionType):
+        return None
+    parsed = []
+    for arg in (a for a in args.split(",")) if args.strip() else ():
+        one = fast_parse_type_and_quals(parser, arg)
+        if one is None or isinstance(one[0], model.RawFunctionType):
+            return None
+        parsed.append(parser._as_func_arg(*one))
+    if parsed == [model.void_type]:
+        parsed = []
+    return model.RawFunctionType(tuple(parsed), res[0], False, None), 0
 
 
 def _primitive(parser, name: str):

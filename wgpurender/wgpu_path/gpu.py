@@ -11,13 +11,14 @@ from __future__ import annotations
 import functools
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import wgpu
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan.model import AdapterFacts
-from wgpurender.core.plan.post import immediates_rule
-from wgpurender.core.plan.resolve import adapter_facts
+
+if TYPE_CHECKING:
+    from wgpurender.core.plan.model import AdapterFacts
 
 BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
@@ -26,7 +27,6 @@ AUTO = "auto"
 # The name an adapter reports (info["backend_type"]) -> wgpu-native's instance flag for that backend only.
 # wgpu-native calls OpenGL "GL" and Direct3D 12 "DX12"; the adapter says "OpenGL" and "D3D12".
 BACKENDS = {"Vulkan": "Vulkan", "OpenGL": "GL", "Metal": "Metal", "D3D12": "DX12"}
-ALIASES = {"gl": "OpenGL", "gles": "OpenGL", "dx12": "D3D12"}
 # "auto": every backend on the instance, the best adapter wins (GPU before CPU, then this order).
 AUTO_ORDER = ("Vulkan", "Metal", "D3D12", "OpenGL")
 
@@ -74,6 +74,8 @@ class GPUContext:
 
     def facts(self) -> AdapterFacts:
         """What the plan's "auto" knobs need to know about this adapter and device (plain values)."""
+        from wgpurender.core.plan.resolve import adapter_facts  # lazily: the plan package costs ~0.3 s to import
+
         info = self.info
         return adapter_facts(info.get("adapter_type", ""), self.features, info.get("device", ""),
                              info.get("backend_type", ""))
@@ -81,6 +83,8 @@ class GPUContext:
     def use_immediates(self, requested: bool | None = None) -> bool:
         """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
         this backend: core/plan/post.py); ``True`` where the rule says no is refused with its reason."""
+        from wgpurender.core.plan.post import immediates_rule
+
         usable, why = immediates_rule(self.facts())
         if requested and not usable:
             raise UserError(f"immediates cannot be used on {self.describe()}: {why.split('; ')[0]}; "
@@ -194,14 +198,10 @@ class _QuietToken:
 def requested_backend(backend: str | None = None) -> str:
     """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
 
-    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto."""
-    name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
-    name = ALIASES.get(name.lower(), name)
-    for known in (*BACKENDS, AUTO):
-        if name.lower() == known.lower():
-            return known
-    raise UserError(f"unknown backend {name!r}: choose one of {', '.join(b.lower() for b in BACKENDS)} or auto "
-                    f"(--backend or ${BACKEND_ENV})")
+    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py)."""
+    from wgpurender.core import checks  # lazily: it imports numpy, which a context does not need
+
+    return checks.backend(backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND)
 
 
 _instance_backend: list[str] = []  # the backend the process's one wgpu instance was created for
@@ -223,7 +223,10 @@ def _configure_instance_once(backend: str) -> None:
             raise UserError(f"this process already created its wgpu instance for {made} only; the {backend} "
                             f"backend needs its own process (or start with --backend auto)")
         return
-    from wgpu.backends.wgpu_native.extras import set_instance_extras
+    from wgpurender.wgpu_path.cdef_cache import cached_wgpu_header
+
+    with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
+        from wgpu.backends.wgpu_native.extras import set_instance_extras
 
     from wgpurender.wgpu_path.cffi_types import install_for_wgpu
 

@@ -40,3 +40,20 @@ def timestamp_period_ns(ctx: GPUContext) -> float:
 
     return float(lib.wgpuQueueGetTimestampPeriod(ctx.queue._internal))
 
+
+
+def surface_supports(context, adapter) -> bool:
+    """Whether a window's surface can present frames of ``adapter`` (wgpuSurfaceGetCapabilities gives no formats
+    when it cannot). wgpu-py 0.32 hides that answer (it substitutes a minimal format list), and configuring such a
+    surface aborts the process in wgpu-native; True when the surface is not made yet (nothing to ask)."""
+    from wgpu.backends.wgpu_native._ffi import ffi, lib
+
+    surface_id = getattr(context, "_surface_id", None)
+    if not surface_id:
+        return True
+    caps = ffi.new("WGPUSurfaceCapabilities *")
+    if lib.wgpuSurfaceGetCapabilities(surface_id, adapter._internal, caps) != lib.WGPUStatus_Success:
+        return False
+    supported = caps.formats != ffi.NULL and caps.formatCount > 0
+    lib.wgpuSurfaceCapabilitiesFreeMembers(caps[0])
+    return supported

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import PurePath
 
 from wgpurender.core.assets import bundled_scene
+from wgpurender.core.course.steps import course_step
 
 # MSAA: what WebGPU guarantees without extensions, and all that lavapipe offers.
 SAMPLE_COUNTS = (1, 4)
@@ -21,13 +22,14 @@ POST_PATHS = ("auto", "fragment", "compute")
 
 # Bytes per texel of every format the plan and the benches count traffic for.
 BYTES_PER_PIXEL = {"rgba8unorm": 4, "rgba8unorm-srgb": 4, "bgra8unorm": 4, "bgra8unorm-srgb": 4, "rgba16float": 8,
-                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth32float": 4}
+                   "rgba32float": 16, "depth16unorm": 2, "depth24plus": 4, "depth24plus-stencil8": 4,
+                   "depth32float": 4}
 
 # Texture colour spaces: colour maps are sRGB-encoded images (the sampler decodes them to linear);
 # data maps (normal, roughness) hold values used as stored.
 SRGB_TEXTURE_FORMAT = "rgba8unorm-srgb"
 LINEAR_TEXTURE_FORMAT = "rgba8unorm"
-SRGB_MAPS = frozenset({"albedo_map"})
+SRGB_MAPS = frozenset({"albedo_map", "emissive_map"})  # colour; normal, roughness, occlusion are data
 
 
 def is_srgb_map(feature: str) -> bool:
@@ -45,5 +47,8 @@ SCENE_SUFFIX = ".toml"
 
 def is_scene_file(target: str | PurePath) -> bool:
     """Whether a render target names a scene file (rather than a stage): it ends in ``.toml``, or it is a
-    bundled scene's name (``final``: :func:`wgpurender.core.assets.bundled_scene`)."""
-    return str(target).endswith(SCENE_SUFFIX) or bundled_scene(target) is not None
+    bundled scene's name (``final``: :func:`wgpurender.core.assets.bundled_scene`) that no stage step has."""
+    if str(target).endswith(SCENE_SUFFIX):
+        return True
+    step = course_step(str(target))
+    return (step is None or step.scene is not None) and bundled_scene(target) is not None

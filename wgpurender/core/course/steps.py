@@ -41,6 +41,34 @@ COURSE = (
 )
 _POSITION = {step.stage: k for k, step in enumerate(COURSE)}
 
+# The course texts each step comes from (../shared/course/, never in the repository: named, not required).
+# "000 goals" is the slides' list of the sessions' goals, "000 step N" their step N.
+COURSE_TEXTS = {
+    "000": "000_875fa49d9f08787a.txt (the course slides, French)",
+    "001": "001_fc132b440c510919.txt (descriptor set layout, pool, sets; French)",
+    "002": "002_efacf0121d42d5a4.txt (every Vulkan object, instance to render loop; Chinese)",
+    "003": "003_b8f42c17b130dbb4.txt (uniform buffers and std140; French)",
+    "004": "004_201fafb2b87eaddd.txt (descriptors with Vulkan-Hpp, stage and access flags; Chinese)",
+}
+STEP_TEXTS = {  # chapter -> (text, where in it)
+    "1": (("000", "step 1: clear backbuffer, without then with a render pass"),
+          ("002", "render pass, framebuffer, command buffer")),
+    "2": (("000", "step 2: first triangle in NDC, attribute-less, then vertex/index buffers"),
+          ("002", "pipeline: vertex input, input assembly")),
+    "3": (("000", "step 3: offscreen rendering, then MSAA; the goals' input-attachment post pass"),
+          ("002", "VkPipelineMultisampleStateCreateInfo, images and views")),
+    "4": (("000", "step 4: 3D, descriptor sets for uniform buffers; push constants"),
+          ("001", "the whole chapter"), ("003", "UBOs and std140 alignment"), ("004", "descriptor pool/set/update")),
+    "5": (("000", "step 5: textures, combined or separate samplers"), ("004", "combined image sampler descriptors")),
+    "6": (("000", "goals: a textured, lit, normal-mapped 3D model, 2 UBOs, 4x MSAA render target, one post pass"),),
+}
+
+
+def step_texts(step: Step) -> tuple[tuple[str, str], ...]:
+    """(course text file, where in it) pairs for a step, by its chapter (the number's digits)."""
+    chapter = step.number.rstrip("abcdefghijklmnopqrstuvwxyz")
+    return tuple((COURSE_TEXTS[key].split(" ")[0], where) for key, where in STEP_TEXTS.get(chapter, ()))
+
 
 def course_position(stage: str) -> tuple[int, str]:
     """A sort key: the stage's place in the course, unknown stages last by name."""

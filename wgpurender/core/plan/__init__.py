@@ -9,12 +9,16 @@ these; everything a scene does not use is left out:
   (``albedo_map``, ``normal_map``, ``roughness_map``, ``lighting``, ``flip_v``,
   ``srgb_output``, and light counts ``directional_lights:N`` / ``point_lights:N``);
   no ``normal_map`` feature and no tangent attribute unless a lit material has a
-  normal map; no lighting code (and no normal attribute) for unlit materials;
-- no multisampled attachment and no resolve at ``msaa = 1``;
+  normal map; no lighting code (and no normal attribute) for unlit materials, nor for
+  lit ones in a scene without lights (only ambient x albedo remains: the unlit variant
+  draws it with the base colour scaled by the ambient);
+- no multisampled attachment and no resolve at ``msaa = 1``, nor without models: a
+  camera-only scene's pass only clears (no depth, pipeline, buffer or bind group);
 - no post pass at all when the chain is empty: the scene draws into the output;
 - no HDR (rgba16float) image unless ``hdr = true`` or the chain tone-maps.
 
-Every item carries the reason it is there (which scene key asked for it), and
+Every item carries the reason it is there (which scene key asked for it), ``plan.absent``
+what was left out and why, ``plan.objects`` every object the wgpu renderer creates, and
 :meth:`RenderPlan.explain` prints them. Modules: :mod:`.model` (the dataclasses), :mod:`.build`
 (scene -> plan, section by section: knobs, then :mod:`.targets` (scene image, MSAA, depth, output),
 :mod:`.draws` (per model: material variant, pipeline, draw), :mod:`.textures` (textures and samplers),

@@ -79,7 +79,7 @@ def _camera_note(scene: Scene) -> str:
 
 
 def left_out(scene: Scene, msaa_text: str, asked_msaa: int, targets: SceneTargets, drawn: SceneDraws,
-             post_passes: list) -> tuple[tuple[str, str], ...]:
+             post_passes: list, immediates: str = "auto") -> tuple[tuple[str, str], ...]:
     """What a renderer could have made and this plan does not, and why (``--explain``'s "left out")."""
     out: list[tuple[str, str]] = []
     if not scene.models:
@@ -98,6 +98,9 @@ def left_out(scene: Scene, msaa_text: str, asked_msaa: int, targets: SceneTarget
     if scene.models and not scene.lights and not all(m.material.unlit for m in scene.models):
         out.append(("lighting", "the scene has no [[lights]]: a lit material keeps only its ambient term, drawn by "
                     "the unlit variant (no normals, light structs or lighting code)"))
+    if scene.models and immediates == "on":
+        out.append(("scene-materials buffer", "immediates on: each draw's material factors are pushed with the "
+                    "draw, so no Material buffer (and no material bind group unless it samples textures)"))
     if scene.models and not drawn.textures:
         out.append(("textures, samplers, mip chains", "no material samples a texture (albedo_map, normal_map, "
                     "roughness_map)"))
@@ -139,12 +142,13 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     last_post = f"written by post pass {len(post_passes)} ({post_passes[-1].effect})" if post_passes else None
     output = output_attachment(out_fmt, size, src("output_format", out_fmt), last_post, msaa > 1)
     attachments = (*targets.attachments, *post_attachments, output)
-    absent = left_out(scene, src("msaa", asked_msaa), asked_msaa, targets, drawn, post_passes)
+    absent = left_out(scene, src("msaa", asked_msaa), asked_msaa, targets, drawn, post_passes, setting["immediates"])
     return RenderPlan(
         scene_path=scene.path,
         size=size,
         output_format=out_fmt,
         msaa=msaa,
+        msaa_asked=asked_msaa,
         attachments=tuple(sorted(attachments, key=lambda a: ATTACHMENT_ORDER.index(a.role))),
         passes=(scene_pass, *post_passes),
         variants=tuple(drawn.variants.values()),

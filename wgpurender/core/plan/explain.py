@@ -26,8 +26,10 @@ def explain(plan: Any) -> str:
         out.append(f"  {knob}: {value} <- {why}")
     out.append("")
     out.append("passes:")
+    adapter = plan.knobs.adapter.name if plan.knobs.adapter is not None else None
     for i, p in enumerate(plan.passes, start=1):
         out.extend(_explain_pass(i, p, plan.size))
+        out.append("       " + _measured(plan, p, adapter))
     out.append("")
     out.append("attachments:")
     for a in plan.attachments:
@@ -87,7 +89,9 @@ def _explain_objects(plan: Any) -> list[str]:
     """Every object the wgpu renderer creates, per device call, each with why (core/plan/objects.py)."""
     objects = plan.objects
     kinds = list(dict.fromkeys(o.kind for o in objects))
-    out = ["objects the wgpu renderer creates (device.create_* calls; the output texture is the caller's):"]
+    head = ("objects the wgpu renderer creates (device.create_* calls; the caller's are not listed: the output "
+            "texture, the frame's command encoder and readback, a benchmark's timestamp query set):")
+    out = [head if objects else head[:-1] + ": none, the scene pass only clears"]
     for kind in kinds:
         mine = [o for o in objects if o.kind == kind]
         out.append(f"  {kind}: {sum(o.count for o in mine)}")
@@ -123,3 +127,41 @@ def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
                  f"{_megabytes(p.bytes_moved)} at {size[0]}x{size[1]} (each texel once)")
     lines.extend(f"       note: {n}" for n in p.notes)
     return lines
+
+
+def scene_pass_bytes(plan: Any) -> tuple[int, int]:
+    """(bytes the scene pass must write: its stored image, bytes it reads at most: every texture level once)."""
+    from wgpurender.core.course.formats import BYTES_PER_PIXEL
+
+    sp = plan.scene_pass
+    w, h = plan.size
+    stored = sp.resolve_target or sp.color
+    fmt = next(a.format for a in plan.attachments if a.name == stored) if stored != "output" else plan.output_format
+    written = w * h * BYTES_PER_PIXEL.get(fmt, 4)
+    read = 0
+    for t in plan.textures:
+        if t.size is not None:
+            chain = 4 / 3 if t.mipmaps else 1.0
+            read += int(t.size[0] * t.size[1] * BYTES_PER_PIXEL.get(t.format, 4) * chain)
+    return written, read
+
+
+def _measured(plan: Any, p: Any, adapter: str | None) -> str:
+    """The pass's bytes (the scene pass's; a post pass lists its own above) and the last measurement here."""
+    from wgpurender.core import bandwidth
+
+    if p.kind == "scene":
+        written, read = scene_pass_bytes(plan)
+        head = (f"bytes: {_megabytes(written)} written (the stored image) + up to {_megabytes(read)} of textures "
+                f"read; ")
+        key = bandwidth.pass_key(plan.scene_path.stem, "scene", "render")
+    else:
+        head = ""
+        key = bandwidth.pass_key(plan.scene_path.stem, p.effect, p.path)
+    if adapter is None:
+        return head + "bandwidth: not measured (no adapter known to this plan)"
+    found = bandwidth.lookup(adapter, key)
+    if found is None:
+        return head + (f"bandwidth: not measured on {adapter} (wgpurender bench post-roofline / bench perf "
+                       "record it)")
+    return head + "bandwidth: " + found.text()

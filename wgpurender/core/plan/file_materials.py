@@ -7,10 +7,13 @@ triangles use (``Draw.part``); every other model draws once with its scene mater
 
 from __future__ import annotations
 
+import re
+
 from wgpurender.core.gltf_materials import ModelMaterials, model_materials
 from wgpurender.core.scene import Material, Model
 
 GLTF_SUFFIXES = (".gltf", ".glb")
+MTL_FEATURES = {"base_color": "albedo_map", "normal": "normal_map", "roughness": "roughness_map"}
 
 
 def draw_materials(model: Model) -> tuple[list[Material], ModelMaterials | None]:
@@ -18,7 +21,39 @@ def draw_materials(model: Model) -> tuple[list[Material], ModelMaterials | None]
     if model.material_from_file and model.path.suffix.lower() in GLTF_SUFFIXES:
         found = model_materials(model.path, model.label)
         return list(found.materials), found
+    if model.material_from_file and model.path.suffix.lower() == ".obj":
+        found = obj_materials(model)
+        if found is not None:
+            return list(found.materials), found
     return [model.material], None
+
+
+def obj_materials(model: Model) -> ModelMaterials | None:
+    """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
+    normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
+    an MTL."""
+    from wgpurender.core.mesh import obj_material
+
+    found = obj_material(model.path)
+    if found is None:
+        return None
+    maps = {MTL_FEATURES[role]: ref.path for role, ref in found.textures.items() if role in MTL_FEATURES}
+    name = f"{model.label} MTL material '{found.name}'"
+    opacity = 1.0 if found.opacity is None else found.opacity
+    material = Material(name, albedo_color=(*(found.color or (1.0, 1.0, 1.0)), opacity), origin=name,
+                        alpha_mode="blend" if opacity < 1.0 else "opaque", unlit=found.illum == 0,
+                        written=tuple((f, p.name) for f, p in maps.items()), **maps)
+    taken = [f"Kd {material.albedo_color[:3]}"] + [f"{f} {p.name}" for f, p in maps.items()]
+    if opacity < 1.0:
+        taken.append(f"d {opacity:g} (alpha blended, unsorted)")
+    if found.illum == 0:
+        taken.append("illum 0 (unlit)")
+    ignored = [f"MTL '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
+    used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
+    if len(used) > 1:
+        ignored.append(f"usemtl {', '.join(repr(u.decode('utf-8', 'replace')) for u in list(used)[1:])}: ignored "
+                       f"(an OBJ draws with its first material, '{found.name}')")
+    return ModelMaterials((material,), (f"{name}: " + ", ".join(taken),), tuple(ignored))
 
 
 def extra_reasons(material: Material, label: str, lit: bool, samples: bool, notes: list[str]) -> list[tuple]:
@@ -33,6 +68,21 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
     if material.double_sided and lit:
         reasons.append(("double_sided", f"{label}: doubleSided, lit: back faces are lit with the normal turned "
                                         "around"))
+    if any(c > 0 for c in material.emissive_color):
+        reasons.append(("emissive", f"{label}: emissiveFactor {tuple(material.emissive_color)} (added to the "
+                                    "shaded colour)"))
+        if material.emissive_map:
+            reasons.append(("emissive_map", f"{label}: emissiveTexture '{material.emissive_map.name}' "
+                                            "(sRGB, multiplies emissiveFactor)"))
+    elif material.emissive_map:
+        notes.append(f"{label}: emissiveTexture ignored: emissiveFactor is 0, so it emits nothing")
+    if material.occlusion_map:
+        if lit:
+            reasons.append(("occlusion_map", f"{label}: occlusionTexture '{material.occlusion_map.name}' (R "
+                                             f"channel, strength {material.occlusion_strength:g}, scales the "
+                                             "ambient term)"))
+        else:
+            notes.append(f"{label}: occlusionTexture unused: it scales the ambient term of lit shading only")
     return reasons
 
 
@@ -46,6 +96,10 @@ def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
     options = {"map_scale": material.roughness_map_scale, "normal_strength": material.normal_strength}
     if "alpha_mask" in variant_flags:
         options["alpha_cutoff"] = material.alpha_cutoff
+    if "occlusion_map" in variant_flags:
+        options["occlusion_strength"] = material.occlusion_strength
+    if "emissive" in variant_flags:
+        options["emissive"] = tuple(material.emissive_color)
     return options
 
 

@@ -30,7 +30,7 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
 
 # Feature -> vertex attribute it needs (position is always there).
 ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"))
-TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map")
+TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
 
 
 @dataclass(frozen=True)
@@ -298,6 +298,7 @@ class RenderPlan:
     notes: tuple[str, ...] = field(default=())
     knobs: Knobs = field(default_factory=Knobs)
     settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
+    msaa_asked: int = 0  # the msaa the scene or the caller asked for (``msaa`` is what is drawn: 1 with no models)
     absent: tuple[tuple[str, str], ...] = ()  # (what a renderer could have made but does not, why), explain() shows
     scene: Scene | None = field(default=None, repr=False, compare=False)
     rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # build_plan
@@ -314,7 +315,7 @@ class RenderPlan:
                             f"{', '.join(Knobs.__dataclass_fields__)}, size, output_format, msaa")
         if self.scene is None or self.rebuild is None:
             raise UserError("this plan was not built from a scene: build it with build_plan(scene, ...)")
-        current = {"size": self.size, "output_format": self.output_format, "msaa": self.msaa}
+        current = {"size": self.size, "output_format": self.output_format, "msaa": self.msaa_asked or self.msaa}
         return self.rebuild(self.scene, **{**current, **overrides}, knobs=dataclasses.replace(self.knobs, **changes))
 
     def setting(self, name: str) -> str:

@@ -118,10 +118,15 @@ class Material:
     texture_samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): a sampler per texture
     texture_mipmaps: tuple[tuple[str, bool], ...] = ()  # (feature, builds a mip chain) when per texture
     part: int | None = None  # the model file's material index this stands for (None: the whole model)
+    emissive_color: Vec3 = (0.0, 0.0, 0.0)  # linear radiance added to the shaded colour (glTF emissiveFactor)
+    emissive_map: Path | None = None  # sRGB, multiplies emissive_color (glTF emissiveTexture)
+    occlusion_map: Path | None = None  # linear, R channel scales the ambient term (glTF occlusionTexture)
+    occlusion_strength: float = 1.0
 
     @property
     def textures(self) -> dict[str, Path]:
-        maps = {"albedo_map": self.albedo_map, "normal_map": self.normal_map, "roughness_map": self.roughness_map}
+        maps = {"albedo_map": self.albedo_map, "normal_map": self.normal_map, "roughness_map": self.roughness_map,
+                "emissive_map": self.emissive_map, "occlusion_map": self.occlusion_map}
         return {k: v for k, v in maps.items() if v is not None}
 
     def as_written(self, key: str) -> str:

@@ -41,7 +41,7 @@ from wgpurender.raw_path.ubo import dynamic_stride, pack_many
 VERTEX, FRAGMENT = vk.VK_SHADER_STAGE_VERTEX_BIT, vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS
 READ_ONLY = vk.VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
-TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4}
+TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
 
 
 def camera_block(scene: Scene, aspect: float) -> bytes:
@@ -63,11 +63,19 @@ def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
     unlit with its base colour times the ambient), the same values the wgpu path pushes; alpha-masked variants
     append the cutoff."""
     f = dict(draw.factors)
-    cutoff = f.get("alpha_cutoff") if "alpha_mask" in variant.flags else None
+    extras = {"alpha_cutoff": f.get("alpha_cutoff"), "occlusion_strength": f.get("occlusion_strength"),
+              "emissive": f.get("emissive")}
     if not is_lit(variant):
-        return U.pack_material(f["base_color"], lit=False, alpha_cutoff=cutoff)
-    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"],
-                           alpha_cutoff=cutoff)
+        return U.pack_material(f["base_color"], lit=False, **extras)
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"], **extras)
+
+
+def material_block_size(variant: ShaderVariant) -> int:
+    """The push constant range of a variant: its block packed with zeros (what material_block writes)."""
+    flags = variant.flags
+    return len(U.pack_material((0.0,) * 4, is_lit(variant), alpha_cutoff=0.0 if "alpha_mask" in flags else None,
+                               occlusion_strength=0.0 if "occlusion_map" in flags else None,
+                               emissive=(0.0,) * 3 if "emissive" in flags else None))
 
 
 class SceneSubpass:
@@ -139,8 +147,7 @@ class SceneSubpass:
             set_layouts = [self.camera_layout, self.object_layout]
             if self.material_layouts[variant.key][1] is not None:
                 set_layouts.append(self.material_layouts[variant.key][1])
-            size = U.MATERIAL_SIZE_LIT if is_lit(variant) else U.MATERIAL_SIZE_UNLIT
-            size += 4 * ("alpha_mask" in variant.flags)  # alpha_cutoff after the last member
+            size = material_block_size(variant)
             push = vk.VkPushConstantRange(stageFlags=FRAGMENT, offset=0, size=size)
             self.layouts[variant.key] = create_pipeline_layout(self.ctx, self.owned, set_layouts, [push])
         return self.layouts[variant.key]

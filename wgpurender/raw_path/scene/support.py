@@ -23,13 +23,22 @@ lit and unlit materials, every map, flipped v, both camera conventions, no model
 from __future__ import annotations
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import RenderPlan
+from wgpurender.core.plan import DEPTH_FORMAT, RenderPlan
 from wgpurender.raw_path.images import FORMATS
 from wgpurender.raw_path.scene.neighbourhood import NEIGHBOUR_SHADERS
 from wgpurender.raw_path.scene.uniforms import MAX_POST_STEPS
 
 PIXEL_EFFECTS = ("tonemap", "vignette", "grayscale", "sepia", "srgb")  # post_chain.frag, in a subpass
 NEIGHBOUR_EFFECTS = tuple(NEIGHBOUR_SHADERS)  # a render pass each (neighbourhood.py)
+# Plan knobs the raw path draws only at their default (knob -> (default, what the raw path does instead)): asked
+# for through the API (w.reference(scene, reverse_z=True)), they are refused rather than silently not drawn.
+WGPU_ONLY_KNOBS = {
+    "depth_format": (DEPTH_FORMAT, f"the raw path's depth image is {DEPTH_FORMAT}"),
+    "reverse_z": (False, "the raw path draws depth 0 at near, compare less"),
+    "post_path": (None, "the raw path runs the post chain in a subpass and neighbourhood passes"),
+    "post_fuse": (None, "the raw path composes every per-pixel effect in one subpass"),
+    "immediates": ("auto", "the raw path pushes material factors as push constants"),
+}
 
 
 def unsupported(plan: RenderPlan) -> list[str]:
@@ -44,6 +53,9 @@ def unsupported(plan: RenderPlan) -> list[str]:
         problems.append(f"{len(steps)} post effects: the raw path's chain holds at most {MAX_POST_STEPS}")
     if plan.output_format not in FORMATS:
         problems.append(f"output format {plan.output_format}: the raw path renders only {', '.join(FORMATS)}")
+    for knob, (default, instead) in WGPU_ONLY_KNOBS.items():
+        if getattr(plan.knobs, knob) != default:
+            problems.append(f"plan knob {knob} = {getattr(plan.knobs, knob)!r}: {instead} (leave the knob out)")
     return problems
 
 

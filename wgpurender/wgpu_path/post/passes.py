@@ -18,7 +18,7 @@ import wgpu
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import PostPass
 from wgpurender.wgpu_path.gpu_cache import GpuCache, device_cache
-from wgpurender.wgpu_path.post.shaders import WORKGROUP, pack_pass, pass_source, srgb_constant
+from wgpurender.wgpu_path.post.shaders import dispatch_groups, pack_pass, pass_source, srgb_constant
 from wgpurender.wgpu_path.shaders import create_shader_module
 
 FRAGMENT, COMPUTE = wgpu.ShaderStage.FRAGMENT, wgpu.ShaderStage.COMPUTE
@@ -35,9 +35,9 @@ class PlannedPass:
 
     stage = FRAGMENT
 
-    def __init__(self, device: wgpu.GPUDevice, p: PostPass) -> None:
-        self.device, self.p = device, p
-        self.source = pass_source(p)
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None) -> None:
+        self.device, self.p, self.shape = device, p, shape
+        self.source = pass_source(p, shape)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
         self.filtering = p.steps[0].spec.filtering
         self.buffer = None
@@ -154,7 +154,7 @@ class FragmentPass(PlannedPass):
 
 
 class ComputePass(PlannedPass):
-    """A dispatch of 8x8 workgroups writing a storage texture (then a copy, for an -srgb output)."""
+    """A dispatch writing a storage texture (then a copy, for an -srgb output); ``shape``: post/shaders.py SHAPE."""
 
     stage = COMPUTE
 
@@ -162,8 +162,8 @@ class ComputePass(PlannedPass):
         return super()._entries() + [{"binding": 3, "visibility": COMPUTE, "storage_texture": {
             "access": "write-only", "format": self.p.output_format, "view_dimension": "2d"}}]
 
-    def __init__(self, device: wgpu.GPUDevice, p: PostPass) -> None:
-        super().__init__(device, p)
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None) -> None:
+        super().__init__(device, p, shape)
         constants = {"SRGB_ENCODE": srgb_constant(p)} if any(s.effect == "srgb" for s in p.steps) else {}
         self.pipeline = device_cache(device, "post-pipelines").get(
             (self.key, "compute", "cs_main", p.output_format), lambda: device.create_compute_pipeline(
@@ -187,8 +187,7 @@ class ComputePass(PlannedPass):
             entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
         compute_pass.set_pipeline(self.pipeline)
         compute_pass.set_bind_group(0, group)
-        w, h = target.size[0], target.size[1]
-        compute_pass.dispatch_workgroups(-(-w // WORKGROUP[0]), -(-h // WORKGROUP[1]), 1)
+        compute_pass.dispatch_workgroups(*dispatch_groups((target.size[0], target.size[1]), self.shape), 1)
 
     @staticmethod
     def copy(encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, copy_to: wgpu.GPUTexture) -> None:

@@ -17,7 +17,8 @@ read once and written once. The entry points around ``pass_color``:
   (a flat image cost as much as the scene); what it does skip is a block of pixels failing an early
   depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
-- compute: ``cs_main`` over 8x8 tiles, ``textureStore`` into ``dst`` (binding 3), a storage texture.
+- compute: ``cs_main`` over workgroups of :data:`SHAPE`, ``textureStore`` into ``dst`` (binding 3), a storage
+  texture.
   A pass whose output is an ``-srgb`` format writes an ``rgba8unorm`` scratch instead (``-srgb`` cannot
   be a storage texture) with the sRGB curve applied here, then the runner copies it (same bytes).
 """
@@ -31,7 +32,18 @@ from wgpurender.wgpu_path.shaders import load_wgsl
 
 COMMON_WGSL = "post_common.wgsl"
 SRGB_WGSL = "post_srgb.wgsl"
-WORKGROUP = (8, 8)
+# The compute path's dispatch shape: workgroup (x, y) and rows of pixels per invocation. `wgpurender bench
+# post-roofline --shapes` sweeps it on the fused per-pixel pass (docs/benchmarks.md, issue 22.4).
+# H100, 3840x2160, final_subpass's fused tonemap+vignette: 8x8 x1 0.086 ms (45% of a copy of its bytes), 16x16 x1
+# 68%, 8x8 x2 80%, 32x8 x4 83% (0.046 ms, 1.21x the copy): more pixels per invocation, more loads in flight.
+SHAPE = (32, 8, 4)
+WORKGROUP = SHAPE[:2]
+
+
+def dispatch_groups(size: tuple[int, int], shape: tuple[int, int, int] | None = None) -> tuple[int, int]:
+    """Workgroups (x, y) covering an image of ``size`` with ``shape``."""
+    wx, wy, rows = shape or SHAPE
+    return -(-size[0] // wx), -(-size[1] // (wy * rows))
 
 
 def params_struct(spec: EffectSpec) -> Struct | None:
@@ -110,17 +122,21 @@ COMPUTE_MAIN = """
 @compute @workgroup_size(WX, WY)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let size = textureDimensions(src);
-    if id.x >= size.x || id.y >= size.y {
-        return;
+    for (var k = 0u; k < ROWSu; k++) {
+        let xy = vec2u(id.x, id.y * ROWSu + k);  // ROWS rows per invocation, neighbours in x stay neighbours
+        if xy.x < size.x && xy.y < size.y {
+            let p = vec2i(xy);
+            textureStore(dst, p, pass_color(p, vec2f(xy) + vec2f(0.5), vec2f(size)));
+        }
     }
-    let p = vec2i(id.xy);
-    textureStore(dst, p, pass_color(p, vec2f(id.xy) + vec2f(0.5), vec2f(size)));
 }
 """
 
 
-def pass_source(p: PostPass) -> str:
-    """The whole WGSL module of a post pass on its path (fragment or compute)."""
+def pass_source(p: PostPass, shape: tuple[int, int, int] | None = None) -> str:
+    """The whole WGSL module of a post pass on its path (fragment or compute); ``shape``: the compute path's
+    (workgroup x, workgroup y, rows per invocation), :data:`SHAPE` unless a benchmark sweeps it."""
+    wx, wy, rows = shape or SHAPE
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:
@@ -132,8 +148,8 @@ def pass_source(p: PostPass) -> str:
     parts.extend(load_wgsl(f) for f in files)
     parts.append(_color(p))
     if p.path == "compute":
-        parts.append(COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(WORKGROUP[0]))
-                     .replace("WY", str(WORKGROUP[1])))
+        parts.append(COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(wx))
+                     .replace("WY", str(wy)).replace("ROWS", str(rows)))
     else:
         parts.append(FRAGMENT_MAIN)
         if p.mask:

@@ -69,6 +69,7 @@ class SceneRenderer:
         self.target_usage = output_usage(plan.post_passes)  # what the output texture needs beyond TARGET_USAGE
         self.size: tuple[int, int] | None = None
         self.attachments: dict[str, wgpu.GPUTexture] = {}
+        self._scene_pass = plan.scene_pass
         self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
 
     def create_output(self, label: str = "scene-output") -> wgpu.GPUTexture:
@@ -121,7 +122,7 @@ class SceneRenderer:
                             f"{target.format}: build the plan with output_format={target.format!r}")
         size = (target.size[0], target.size[1])
         self.resize(size)
-        sp = self.plan.scene_pass
+        sp = self._scene_pass  # the plan's property scans its passes: looked up once (issue 22, CPU per frame)
         color = {"view": self._view(sp.color, target), "clear_value": sp.clear_color,
                  "load_op": "clear", "store_op": "store"}
         if sp.resolve_target is not None:

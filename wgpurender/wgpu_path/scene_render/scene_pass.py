@@ -71,6 +71,7 @@ class ScenePassRenderer:
         self.reverse_z = plan.reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (plan knob)
         self.uses_immediates = ctx.use_immediates(use_immediates)
         self.draws = plan.scene_pass.draws
+        self.depth_clear = plan.scene_pass.depth_clear
         # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
         self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
@@ -202,7 +203,7 @@ class ScenePassRenderer:
         """Write the camera UBO for this frame and record the scene pass."""
         depth = None
         if depth_view is not None:
-            depth = {"view": depth_view, "depth_clear_value": self.plan.scene_pass.depth_clear,
+            depth = {"view": depth_view, "depth_clear_value": self.depth_clear,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
         if self.draws:
             self._write_camera(aspect)

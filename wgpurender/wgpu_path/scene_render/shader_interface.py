@@ -18,6 +18,8 @@ Bindings (the course's descriptor sets):
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from wgpurender.core.mesh import Mesh
@@ -46,17 +48,18 @@ _MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_streng
 MATERIAL_UNLIT = Struct("Material", _MATERIAL_UNLIT_FIELDS)
 MATERIAL = Struct("Material", _MATERIAL_FIELDS)
 
-# alpha-masked variants append the cutoff: Material + alpha_cutoff (core/course/shading.material_factors' last key)
-MATERIAL_MASKED = Struct("Material", _MATERIAL_FIELDS + [("alpha_cutoff", F32)])
-MATERIAL_UNLIT_MASKED = Struct("Material", _MATERIAL_UNLIT_FIELDS + [("alpha_cutoff", F32)])
+# Model-file materials append, when their variant has the feature, in core/course/shading.material_factors' order:
+_MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occlusion_strength", F32),
+                    ("emissive", "emissive", VEC4F))
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
     assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items()), _small
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
 ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
-TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4}
-SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6}  # each texture's own sampler
+TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
+SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6, "emissive_map": 8,
+                    "occlusion_map": 10}  # each texture's own sampler
 MATERIAL_BINDING = 0
 
 
@@ -77,9 +80,15 @@ def object_struct(variant: ShaderVariant) -> Struct:
 
 
 def material_struct(variant: ShaderVariant) -> Struct:
-    if "alpha_mask" in variant.flags:
-        return MATERIAL_MASKED if is_lit(variant) else MATERIAL_UNLIT_MASKED
-    return MATERIAL if is_lit(variant) else MATERIAL_UNLIT
+    extras = tuple((name, kind) for flag, name, kind in _MATERIAL_EXTRAS if flag in variant.flags)
+    if not extras:
+        return MATERIAL if is_lit(variant) else MATERIAL_UNLIT
+    return _extended_material(is_lit(variant), extras)
+
+
+@functools.cache
+def _extended_material(lit: bool, extras: tuple) -> Struct:
+    return Struct("Material", (_MATERIAL_FIELDS if lit else _MATERIAL_UNLIT_FIELDS) + list(extras))
 
 
 def vertex_layout(variant: ShaderVariant) -> dict:

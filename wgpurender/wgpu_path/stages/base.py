@@ -59,6 +59,7 @@ class Stage:
                             f"{', '.join(msaa_steps())})")
         self.size = (0, 0)
         self._msaa_view: wgpu.GPUTextureView | None = None
+        self._target_view: tuple[wgpu.GPUTexture, wgpu.GPUTextureView] | None = None  # (texture, its view)
         self.setup()
 
     # -- for subclasses -------------------------------------------------
@@ -110,9 +111,9 @@ class Stage:
 
     def target_view(self, target: wgpu.GPUTexture) -> wgpu.GPUTextureView:
         """A view of ``target``, made once per texture object (a frame loop draws into the same one)."""
-        cached = self.__dict__.get("_target_view")
+        cached = self._target_view
         if cached is None or cached[0] is not target:
-            cached = self.__dict__["_target_view"] = (target, target.create_view())
+            cached = self._target_view = (target, target.create_view())
         return cached[1]
 
     def multisample_state(self) -> dict:

@@ -116,8 +116,10 @@ class Cube3D(Stage):
     def update_uniforms(self, t: float) -> None:
         """The course's updateUniformBuffer: camera, every cube's matrices and (without immediates) draws."""
         queue = self.ctx.queue
-        camera = course.camera_values(self.camera, self.size[0] / self.size[1])
-        queue.write_buffer(self.camera_buffer, 0, CAMERA.pack(camera))
+        aspect = self.size[0] / self.size[1]
+        if getattr(self, "_camera_aspect", None) != aspect:  # the camera is static: written when the aspect changes
+            queue.write_buffer(self.camera_buffer, 0, CAMERA.pack(course.camera_values(self.camera, aspect)))
+            self._camera_aspect = aspect
         queue.write_buffer(self.object_buffer, 0, OBJECT.pack_many(course.object_values(self.cubes, t),
                                                                    self.offset_alignment))
         if not self.uses_immediates:
@@ -136,10 +138,12 @@ class Cube3D(Stage):
         render_pass.set_vertex_buffer(0, self.vertex_buffer)
         render_pass.set_index_buffer(self.index_buffer, "uint16")
         render_pass.set_bind_group(0, self.camera_group)
-        for k, values in enumerate(course.draw_values(self.cubes)):
+        if not hasattr(self, "_draws"):  # tints and indices never change: packed once
+            self._draws = [DRAW.pack(values) for values in course.draw_values(self.cubes)]
+        for k, data in enumerate(self._draws):
             render_pass.set_bind_group(1, self.object_group, [k * self.object_stride])
             if self.uses_immediates:
-                render_pass.set_immediates(0, DRAW.pack(values), 0, DRAW.size)
+                render_pass.set_immediates(0, data, 0, DRAW.size)
             else:
                 render_pass.set_bind_group(2, self.draw_group, [k * self.draw_stride])
             render_pass.draw_indexed(self.index_count)

@@ -81,7 +81,14 @@ def present_info(window, present_mode: str) -> dict:
 
 def surface_format(context, adapter) -> str:
     """The sRGB variant of the surface's preferred format, as the Vulkan tutorial picks (B8G8R8A8_SRGB)."""
+    from wgpurender.wgpu_path.native import surface_supports
+
     preferred = context.get_preferred_format(adapter)
+    if not surface_supports(context, adapter):
+        backend = adapter.info["backend_type"]
+        raise UserError(f"this window cannot show {backend} frames: wgpu-native says the window's surface does not "
+                        f"support the {backend} adapter; use --backend vulkan, or render headless "
+                        "(wgpurender render --backend opengl)")
     return preferred if preferred.endswith("-srgb") else preferred + "-srgb"
 
 

@@ -1,0 +1,114 @@
+"""Recording a stage or a scene for the page: set-up, the first frame, and the per-frame template.
+
+The recording is cut in two: ``setup`` (every call up to and including the first frame at ``t = 0``, so the
+objects the path makes lazily on its first frame are in it) and ``frame`` (the calls of one later frame). A
+frame's uploads (``write_buffer`` / ``write_texture``) are its only data; ``samples[k]`` lists their blobs at
+``t = k / fps``. A target whose uploads do not depend on ``t`` has one sample.
+"""
+
+from __future__ import annotations
+
+import datetime
+from pathlib import Path
+
+from wgpurender.core.errors import UserError
+from wgpurender.export.recorder import BROWSER, Recording, recording_context
+from wgpurender.wgpu_path.gpu import GPUContext
+
+UPLOADS = ("writeBuffer", "writeTexture")
+
+
+def _frame(ctx, record, target, t: float) -> None:
+    encoder = ctx.device.create_command_encoder(label="frame")
+    record(encoder, target, t)
+    ctx.queue.submit([encoder.finish()])
+
+
+def _record_frames(ctx, recording: Recording, record, target, fps: int, seconds: float) -> tuple[list, list]:
+    """(frame template, samples): one frame's calls, and each sample's upload blobs in call order."""
+    frames = []
+    for k in range(max(1, round(fps * seconds))):
+        start = len(recording.calls)
+        _frame(ctx, record, target, k / fps)
+        frames.append(recording.calls[start:])
+        if k == 1 and _uploads(frames[0]) == _uploads(frames[1]):
+            return frames[0], [_uploads(frames[0])]  # static: t changes nothing
+    shape = [c.get("m") for c in frames[0]]
+    for k, calls in enumerate(frames):
+        if [c.get("m") for c in calls] != shape:
+            raise UserError(f"frame {k} records other commands than frame 0: the page cannot replay this animation")
+    return frames[0], [_uploads(calls) for calls in frames]
+
+
+def _uploads(calls: list[dict]) -> list[int]:
+    return [c["a"][2 if c["m"] == "writeBuffer" else 1]["#"] for c in calls if c.get("m") in UPLOADS]
+
+
+def _reference(real: GPUContext, target) -> str:
+    """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), base64 RGBA8: the page shows
+    its difference from what the browser drew."""
+    import base64
+
+    from wgpurender.core.imageio import to_uint8
+    from wgpurender.wgpu_path.targets import read_texture
+
+    return base64.b64encode(to_uint8(read_texture(real, target._raw)).tobytes()).decode("ascii")
+
+
+def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, samples, fps, meta) -> dict:
+    return {
+        "meta": {**meta, "device": 0, "target": target._id, "format": target.format, "fps": fps,
+                 "frames": len(samples), "exported": f"{datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC "
+                 f"from {ctx.describe()} (wgpurender export)"},
+        "setup": recording.calls[:setup_end], "frame": frame, "samples": samples, "blobs": recording.blobs_base64(),
+    }
+
+
+def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.wgpu_path.stages import get_stage
+    from wgpurender.wgpu_path.targets import check_format, create_target
+
+    cls = get_stage(name)
+    ctx, recording = recording_context(real)
+    fmt = check_format(cls.default_format)
+    stage = cls(ctx, fmt, None)
+    stage.resize(size)
+    target = create_target(ctx, size, fmt)
+    _frame(ctx, stage.record, target, 0.0)
+    setup_end = len(recording.calls)
+    reference = _reference(real, target)
+    frame, samples = _record_frames(ctx, recording, stage.record, target, fps, seconds)
+    immediates = "no immediates in a browser: per-draw data from a uniform buffer" if name == "3d" else ""
+    meta = {"name": name, "kind": "stage", "size": list(size), "orbit": None,
+            "summary": f"Course step {cls.course_step()}. {cls.summary}.",
+            "plan": "\n".join(x for x in (f"stage {name}: {cls.summary}", f"output {fmt}, {size[0]}x{size[1]}",
+                                          immediates, "animated: recorded uploads replayed in a loop" if
+                                          len(samples) > 1 else "static") if x),
+            "controls": "Animated: the page replays the recorded frames." if len(samples) > 1 else "A still frame."}
+    return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}
+
+
+def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.core.plan import resolve_plan
+    from wgpurender.core.scene import load_scene
+    from wgpurender.wgpu_path.scene_render.frame import SceneRenderer
+    from wgpurender.wgpu_path.scene_render.shader_interface import CAMERA
+
+    scene = load_scene(path)
+    ctx, recording = recording_context(real)
+    plan = resolve_plan(scene, BROWSER, size=size, anisotropy="scene")  # the scene's filtering, as authored
+    renderer = SceneRenderer(ctx, scene, plan)
+    target = renderer.create_output()
+    _frame(ctx, renderer.record, target, 0.0)
+    setup_end = len(recording.calls)
+    reference = _reference(real, target)
+    frame, samples = _record_frames(ctx, recording, renderer.record, target, fps, 0.0)
+    cam = scene.camera
+    camera = {"buffer": renderer.scene_pass.camera_buffer._id,
+              "fields": {f: CAMERA.offsets[f] for f in ("view", "eye")}} if renderer.scene_pass.draws else None
+    meta = {"name": Path(path).stem, "kind": "scene", "size": list(size),
+            "orbit": {"eye": list(cam.eye), "target": list(cam.target), "up": list(cam.up), "camera": camera},
+            "summary": scene.description or f"scene {Path(path).name}",
+            "plan": renderer.plan.explain(),
+            "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset."}
+    return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}
