@@ -102,7 +102,7 @@ MUTATIONS = [
      "    _handlers_installed = True\n    _set_handlers(_on_signal)", [CAUSES + "|sigterm"]),
     ("wgpurender/core/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
      "BYTES_PER_PIXEL.get(fmt, 16)", [CAUSES + "|memory or adapter"]),
-    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),
+    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
     ("wgpurender/core/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
     ("wgpurender/core/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
