@@ -313,7 +313,7 @@ def test_float_indices_are_refused(tmp_path):
 def test_attributes_of_unequal_counts_are_refused(tmp_path):
     doc = triangle_gltf()
     doc["accessors"][1]["count"] = 2
-    _gltf_fails(tmp_path, doc, "NORMAL has 2 elements, POSITION 3")
+    _gltf_fails(tmp_path, doc, "$.meshes[0].primitives[0].attributes.NORMAL has 2 elements, POSITION 3")
 
 
 # --- formats, thresholds -------------------------------------------------------------------------------------
