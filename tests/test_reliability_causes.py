@@ -279,9 +279,9 @@ def _gltf_fails(tmp_path, doc: dict, *needles: str) -> None:
 def test_a_node_that_is_its_own_child_is_refused_up_front(tmp_path):
     _gltf_fails(tmp_path, triangle_gltf(node={"children": [0]}), "$.nodes[0].children[0]", "own child")
     doc = triangle_gltf(node={"children": [1]})
-    doc["nodes"].append({"children": [2, 1]})  # node 1 lists itself second
+    doc["nodes"].append({"children": [1, 2]})  # node 1 lists itself first: its index differs from its position
     doc["nodes"].append({})
-    _gltf_fails(tmp_path, doc, "$.nodes[1].children[1] = 1", "own child")
+    _gltf_fails(tmp_path, doc, "$.nodes[1].children[0] = 1", "own child")
 
 
 def test_a_node_cycle_through_two_nodes_is_refused(tmp_path):
