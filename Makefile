@@ -11,7 +11,7 @@ APT_PACKAGES := python3 python3-venv mesa-vulkan-drivers libvulkan1 libglfw3 xvf
 STAMP := $(VENV)/.installed
 export XDG_RUNTIME_DIR ?= /tmp
 
-.PHONY: setup apt demo report test fuzz lint references bench clean
+.PHONY: setup apt demo report test fuzz lint references bench clean docs
 
 setup: apt $(STAMP)
 
@@ -59,3 +59,8 @@ lint: setup
 
 clean:
 	rm -rf $(VENV) out .pytest_cache
+
+# The generated docs: the package graph in docs/architecture.md and the course map (tests check both are current).
+docs: setup
+	$(BIN)/python tests/test_layering.py --write
+	$(BIN)/python -m wgpurender.course_map > docs/course-map.md

@@ -1,13 +1,14 @@
 """The course map (wgpurender/course_map.py): one row per course step, generated from the code, kept current.
 
 The map's columns are found by reading the code; the checks here come from elsewhere: the files exist, the
-WGSL column is what each wgpu stage actually loads when it renders (shaders.recording_loads on a real device),
-docs/course-map.md is the generator's output, and the course texts it names are the ones ../shared/course
-indexes (where that folder exists: the map itself never reads it).
+WGSL column is what each wgpu stage actually loads when it renders (shaders.recording_loads on a real device)
+and the GLSL column what each raw stage compiles, docs/course-map.md is the generator's output, and the course
+texts it names are the ones ../shared/course indexes (where that folder exists: the map never reads it).
 """
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import pytest
@@ -42,17 +43,33 @@ def test_every_named_file_exists_and_every_step_is_on_both_paths_with_a_referenc
 
 def test_the_wgsl_column_is_what_each_stage_loads(rows, ctx):
     """Independent of the map's source reading: record the WGSL files a stage loads while it renders a frame."""
+    from wgpurender.wgpu_path.gpu_cache import clear_caches
     from wgpurender.wgpu_path.render import render_stage
     from wgpurender.wgpu_path.shaders import recording_loads
 
     for r in rows:
         if r.step.scene is not None:
             continue
+        clear_caches(ctx.device)  # a pipeline cached by an earlier test would load nothing
         with recording_loads() as loaded:
             render_stage(r.step.stage, (32, 24), None, None, 0.0, ctx)
-        names = {p.name for p in loaded}
-        assert names <= {Path(p).name for p in r.wgsl} | {"mipmap.wgsl"}, (r.step.stage, names, r.wgsl)
-        assert {Path(p).name for p in r.wgsl} <= names, (r.step.stage, names, r.wgsl)
+        assert {p.name for p in loaded} == {Path(p).name for p in r.wgsl}, (r.step.stage, loaded, r.wgsl)
+
+
+@pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
+def test_the_glsl_column_is_what_each_raw_stage_compiles(rows, monkeypatch):
+    """The raw path's counterpart: every GLSL file a raw stage turns into a shader module while it renders."""
+    from wgpurender.raw_path import glsl, render_reference
+
+    loaded: set[str] = set()
+    real = glsl.glsl_path
+    monkeypatch.setattr(glsl, "glsl_path", lambda name: loaded.add(name) or real(name))
+    for r in rows:
+        if r.step.scene is not None:
+            continue
+        loaded.clear()
+        render_reference(r.step.stage, (32, 24))
+        assert loaded == {Path(p).name for p in r.glsl}, (r.step.stage, loaded, r.glsl)
 
 
 def test_the_doc_is_the_generated_map():

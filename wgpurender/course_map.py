@@ -9,8 +9,9 @@ never read). ``wgpurender stages --map`` prints it; docs/course-map.md is this o
 How each column is found:
 - modules: the stage registries (the stage class's module); step 6 (a scene) is drawn by the scene
   renderer's packages, wgpu_path/scene_render + post and raw_path/scene;
-- shaders: string constants in those modules (and defaults of the base-class methods they call) that are
-  whole shader file names; an f-string such as ``f"post_{name}.wgsl"`` stands for the files it can match;
+- shaders: string constants in those modules, and in the loose modules of their path folder they import
+  (textures.py's mip-chain shader), and defaults of the base-class methods they call, that are whole shader
+  file names; an f-string such as ``f"post_{name}.wgsl"`` stands for the files it can match;
 - course data: the ``wgpurender.core.course`` modules they import;
 - reference: ``assets/reference/<stage>.png``, or for a scene step the scene references made from its scene
   files (raw_path/make_references.SCENE_REFERENCES);
@@ -121,6 +122,21 @@ def _shaders(files: Iterable[Path], kind: str) -> tuple[str, ...]:
     return tuple(f"{top}/{name}" for name in sorted(found) if name.endswith(suffixes) and name in available)
 
 
+def _helpers(files: list[Path]) -> list[Path]:
+    """The loose modules of the same path folder that ``files`` import (``wgpu_path/textures.py`` makes the
+    mip chain with mipmap.wgsl for the textured stage): their shaders are the step's too."""
+    if not files:
+        return []
+    folder = files[0].relative_to(PACKAGE).parts[0]  # wgpu_path or raw_path
+    prefix = f"wgpurender.{folder}."
+    out = []
+    for name in sorted(_imports(files)):
+        path = PACKAGE / folder / (name[len(prefix):] + ".py") if name.startswith(prefix) else None
+        if path is not None and "." not in name[len(prefix):] and path.is_file() and path not in files:
+            out.append(path)
+    return out
+
+
 def _imports(files: Iterable[Path]) -> set[str]:
     return set().union(*(_imports_of(path) for path in files))
 
@@ -197,8 +213,8 @@ def course_map() -> list[Row]:
         wgpu_files, raw_files = _step_files(step, "wgpu"), _step_files(step, "raw")
         references = _references(step)
         rows.append(Row(
-            step, tuple(_rel(p) for p in wgpu_files), _shaders(wgpu_files, "wgsl"),
-            tuple(_rel(p) for p in raw_files), _shaders(raw_files, "glsl"),
+            step, tuple(_rel(p) for p in wgpu_files), _shaders(wgpu_files + _helpers(wgpu_files), "wgsl"),
+            tuple(_rel(p) for p in raw_files), _shaders(raw_files + _helpers(raw_files), "glsl"),
             _course_data(step, wgpu_files + raw_files), references,
             _tests(step, wgpu_files + raw_files, references), step_texts(step)))
     return rows
@@ -234,7 +250,7 @@ def course_map_markdown() -> str:
 
 DOC_HEAD = """# The course map
 
-Generated from the code by `python -m wgpurender.course_map > docs/course-map.md` (the same table as
+Generated from the code by `make docs` (`python -m wgpurender.course_map > docs/course-map.md`; the same table as
 `wgpurender stages --map`); tests/test_course_map.py fails when this file is not its output. One row per course
 step (wgpurender/core/course/steps.py), in the course's order: where the step lives on the wgpu path and on the
 raw-Vulkan path, the shaders those modules name, the API-free course data they use, the committed reference image

@@ -25,7 +25,7 @@ def register(subparsers) -> None:
                    "'all' (every one available here); each renders every stage and scene at --size, every pair is "
                    "compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded by "
                    "assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
-    p.add_argument("--size", type=size_arg, default=(160, 120), metavar="WxH",
+    p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="size for --implementations (default 160x120, the size the bounds were calibrated at)")
     p.add_argument("--calibrate", action="store_true",
                    help="with --implementations: rewrite the measured implementations' rows of "
@@ -47,6 +47,9 @@ def run(args) -> int:
         return run_implementations(args)
     if args.calibrate:
         raise UserError("--calibrate applies to --implementations only (the driver table is written to --out)")
+    if args.size is not None:
+        raise UserError("--size applies to --implementations only (verify renders each target at its reference "
+                        "size)")
     report = run_verify(args.out, quick=args.quick)
     for row in report.rows:
         detail = row.note if row.status in ("skipped", "FAIL") else (row.metrics.summary() if row.metrics else "")
@@ -71,7 +74,8 @@ def run_implementations(args) -> int:
         raise UserError(f"--implementations needs two available implementations, have {', '.join(impls) or 'none'}"
                         + "".join(f"; {k}: {v}" for k, v in missing.items()))
     targets = [t for t in all_targets() if not args.quick or t in QUICK]
-    report = run_matrix(args.out, impls, missing, targets, tuple(args.size), calibrate=args.calibrate)
+    size = tuple(args.size) if args.size is not None else (160, 120)  # the size the bounds were calibrated at
+    report = run_matrix(args.out, impls, missing, targets, size, calibrate=args.calibrate)
     for c in report.cells:
         m = c.comparison
         detail = c.note if m is None else (f"max {m.max_abs}/255, >1/255 {100 * m.over_1:.2f}%, PSNR {m.psnr:.1f}, "

@@ -117,9 +117,9 @@ class Cube3D(Stage):
         """The course's updateUniformBuffer: camera, every cube's matrices and (without immediates) draws."""
         queue = self.ctx.queue
         aspect = self.size[0] / self.size[1]
-        if getattr(self, "_camera_aspect", None) != aspect:  # the camera is static: written when the aspect changes
+        if getattr(self, "_camera_written", (None, None)) != (id(self.camera), aspect):  # written when either changes
             queue.write_buffer(self.camera_buffer, 0, CAMERA.pack(course.camera_values(self.camera, aspect)))
-            self._camera_aspect = aspect
+            self._camera_written, self._camera_kept = (id(self.camera), aspect), self.camera  # kept: id stays unique
         queue.write_buffer(self.object_buffer, 0, OBJECT.pack_many(course.object_values(self.cubes, t),
                                                                    self.offset_alignment))
         if not self.uses_immediates:
