@@ -48,6 +48,7 @@ def captures(pages, browser):
                              "window.wgpurender.difference, plan: document.getElementById('plan').textContent, "
                              "error: window.wgpurender.error}) : setTimeout(poll, 50); poll(); })")
         out[name] = (frame, shown, tab.errors())
+        tab.close()
     return out
 
 

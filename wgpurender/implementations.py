@@ -97,6 +97,7 @@ def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple
             except RuntimeError as err:
                 skipped[name] = f"the page failed: {err}"
             adapter = tab.evaluate("window.wgpurender.adapter") or {}
+            tab.close()
         who += " / " + " ".join(str(v) for v in adapter.values() if v) if pages else ""
     return images, skipped, who
 

@@ -98,6 +98,7 @@ def _compare(out: Path, target: str, a: str, b: str, ia: np.ndarray, ib: np.ndar
         if exceeded:
             cell.status, cell.note = "FAIL", "; ".join(exceeded)
     path = out / "heatmaps" / f"impl-{target}-{a}-{b}.png"
+    path.parent.mkdir(parents=True, exist_ok=True)
     save_png(path, heatmap(ia, ib))
     cell.heatmap = str(path.relative_to(out))
     return cell

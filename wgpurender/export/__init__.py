@@ -78,7 +78,7 @@ body {{ font: 14px/1.4 system-ui, sans-serif; margin: 1.5em; color: #222; }}
 canvas {{ border: 1px solid #999; image-rendering: pixelated; cursor: grab; touch-action: none; }}
 #message {{ color: #a00; font-weight: bold; }}
 pre {{ background: #f4f4f4; padding: .6em; overflow: auto; max-height: 28em; font-size: 12px; }}
-dt {{ font-weight: bold; float: left; width: 7em; }} dd {{ margin-left: 7.5em; }}
+dt {{ font-weight: bold; float: left; clear: left; width: 9em; }} dd {{ margin-left: 9.5em; }}
 </style></head>
 <body>
 <h1>{title}</h1>

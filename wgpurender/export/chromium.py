@@ -80,8 +80,11 @@ class _Pipe:
 
 
 class Page:
-    def __init__(self, pipe: _Pipe, session: str) -> None:
-        self.pipe, self.session = pipe, session
+    def __init__(self, pipe: _Pipe, session: str, target: str) -> None:
+        self.pipe, self.session, self.target = pipe, session, target
+
+    def close(self) -> None:
+        self.pipe.send("Target.closeTarget", {"targetId": self.target})
 
     def evaluate(self, expression: str, timeout: float = 300.0):
         reply = self.pipe.send("Runtime.evaluate", {"expression": expression, "awaitPromise": True,
@@ -159,7 +162,7 @@ class Chromium:
         self.pipe.events.clear()
         self.pipe.send("Page.navigate", {"url": Path(path).resolve().as_uri()}, session=session)
         self.pipe.wait_event("Page.loadEventFired", timeout)
-        return Page(self.pipe, session)
+        return Page(self.pipe, session, target)
 
     def __exit__(self, *exc) -> None:
         try:

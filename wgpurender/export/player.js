@@ -192,6 +192,7 @@
       await present();
       api.frameMs = performance.now() - t0;
       api.frames += 1;
+      if (api.frames === 1) api.firstPixelMs = performance.now();  // since navigation start: the first frame shown
       api.samplesSeen.add(api.sample);
       if (api.frames % 10 === 1) $("frametime").textContent = `${api.frameMs.toFixed(2)} ms (replay, GPU, present)`;
       requestAnimationFrame(tick);
