@@ -215,13 +215,14 @@ def test_the_model_size_bound_is_an_environment_setting(tmp_path, monkeypatch):
     _one_line_error(code, err, "over the limit")
 
 
+@pytest.mark.parametrize("command", ["render", "reference"])  # the wgpu path, the raw-Vulkan path
 @pytest.mark.parametrize("target", ["msaa", "scene"])
-def test_a_size_the_adapter_cannot_hold_is_refused_before_allocation(tmp_path, target):
+def test_a_size_the_adapter_cannot_hold_is_refused_before_allocation(tmp_path, target, command):
     if target == "scene":
         write_gltf(tmp_path / "model.gltf", triangle_gltf())
         (tmp_path / "scene.toml").write_text(scene_text())
         target = tmp_path / "scene.toml"
-    code, _, err = run_cli("render", target, "-o", tmp_path / "out.png", "--size", "16384x16384", "--msaa", "4")
+    code, _, err = run_cli(command, target, "-o", tmp_path / "out.png", "--size", "16384x16384", "--msaa", "4")
     _one_line_error(code, err, "16384x16384", "--size")
     assert not (tmp_path / "out.png").exists()
 
