@@ -189,6 +189,30 @@ def test_a_texture_declaring_too_many_pixels_is_refused_before_decoding(tmp_path
     _one_line_error(code, err, "declares 8192x4096")
 
 
+def _png_rows(path: Path, width: int, height: int, rows: int) -> Path:
+    """A greyscale PNG declaring width x height whose zlib stream (complete) holds only ``rows`` rows."""
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    data = zlib.compress(bytes((width + 1) * rows))
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0))
+                     + chunk(b"IDAT", data) + chunk(b"IEND", b""))
+    return path
+
+
+@pytest.mark.parametrize("as_what", ["image", "texture"])
+def test_a_png_whose_data_ends_early_is_refused_not_zero_filled(tmp_path, as_what):
+    """Found by the declared-size fuzz: Pillow decodes it at the declared size, the missing rows black."""
+    png = _png_rows(tmp_path / "short.png", 64, 64, 8)
+    if as_what == "image":
+        code, _, err = run_cli("compare", png, png)
+    else:
+        code, _, err = _render(tmp_path, _textured_scene(tmp_path, "short.png"))
+    _one_line_error(code, err, "short.png", "ends early", "12%")
+    full = _png_rows(tmp_path / "full.png", 64, 64, 64)
+    assert run_cli("compare", full, full)[0] == 0
+
+
 @pytest.mark.parametrize("depth", [40, 500, 3000])
 def test_deeply_nested_toml_is_one_line(tmp_path, depth):
     scene = tmp_path / "scene.toml"
