@@ -202,6 +202,10 @@ void main() {
     if (base.a < material.alpha_cutoff) {
         discard;
     }
+    base.a = 1.0;  // glTF MASK: what is kept is opaque
+#endif
+#ifdef OPAQUE_ALPHA
+    base.a = 1.0;  // glTF OPAQUE: the alpha channel is ignored
 #endif
 #ifdef SRGB_OUTPUT
     out_color = vec4(srgb_encode(color), base.a);

@@ -5,7 +5,8 @@
 // template uses "#if feature" (wgpurender/core/shader_variants.py); here glslc's own preprocessor does it,
 // with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
-//   VERTEX_COLOR, ALPHA_MASK, DOUBLE_SIDED, EMISSIVE, EMISSIVE_MAP, OCCLUSION_MAP (a model file's own materials),
+//   VERTEX_COLOR, ALPHA_MASK, OPAQUE_ALPHA, DOUBLE_SIDED, EMISSIVE, EMISSIVE_MAP, OCCLUSION_MAP (a model
+//   file's own materials),
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
 // The std140 offsets of the blocks are spelled out in wgpurender/raw_path/scene/uniforms.py.
 

@@ -26,7 +26,8 @@
 // det(world)), n' = normalize(T m.x + B m.y + N m.z). Every normalisation is guarded: a zero-length
 // vector falls back to a stated default instead of producing NaN.
 // Model-file materials (core/gltf_materials.py): base = base_color * albedo texel * vertex colour;
-// alpha_mask discards fragments whose alpha is below material.alpha_cutoff (after every texture sample);
+// alpha_mask discards fragments whose alpha is below material.alpha_cutoff (after every texture sample) and
+// writes the rest with alpha 1, as opaque_alpha writes every fragment (glTF OPAQUE ignores alpha);
 // double_sided turns the normal around on back faces before lighting (glTF's rule).
 // Each texture has its own sampler (glTF: filters and per-axis wrap per texture). emissive adds
 // material.emissive.rgb (times the sRGB emissive texel with emissive_map) to the shaded colour;
@@ -256,6 +257,10 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     if (base.a < material.alpha_cutoff) {
         discard;
     }
+    base.a = 1.0;  // glTF MASK: what is kept is opaque
+#endif
+#if opaque_alpha
+    base.a = 1.0;  // glTF OPAQUE: the alpha channel is ignored
 #endif
 #if srgb_output
     return vec4f(srgb_encode(color), base.a);

@@ -146,6 +146,8 @@ def test_families_produce_their_rows(quick_run):
     modes = {r.case.split("/")[0] for r in run.results if r.family == "objects"}
     expected = set(MODES) if run_ctx_has_immediates(run) else set(MODES) - {"immediates"}
     assert modes == expected | {"gpu-animated", "gpu-compute-raster"}
+    untimed = {r.case.split("/")[0] for r in run.results if r.family == "objects" and r.metric == "cpu_ms:untimed"}
+    assert untimed == {"gpu-animated", "gpu-compute-raster"}
 
 
 def run_ctx_has_immediates(run) -> bool:

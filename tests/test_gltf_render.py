@@ -252,6 +252,26 @@ def test_alpha_mask_discards_below_the_cutoff(ctx, tmp_path, which, cutoff):
     for x, alpha in ((-0.8, ALPHAS[0, 0, 3] / 255), (0.8, ALPHAS[0, 1, 3] / 255)):
         want = (1, 1, 1) if alpha >= cutoff else (0, 0, 0)
         assert_colour(image, x, 0.0, want, f"{which} alpha {alpha:.3f} cutoff {cutoff}")
+        if alpha >= cutoff:  # what a MASK keeps is opaque
+            col, row = pixel_of(x, 0.0, SIZE)
+            assert image[int(row), int(col), 3] == 255, (which, alpha, cutoff)
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_opaque_ignores_alpha(ctx, tmp_path, which):
+    """alphaMode OPAQUE (the default) with texels of alpha 64/255 and 191/255 and a factor alpha of 0.5: the colour
+    is drawn and the output's alpha is 255 (glTF: the alpha value is ignored)."""
+    g = GltfWriter()
+    tex = g.texture(ALPHAS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "baseColorFactor": [1, 1, 1, 0.5]},
+                     **UNLIT)
+    g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1.0, 1.6, 1.0, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
+    g.write(tmp_path / "opaque.glb")
+    image = render(ctx, write_scene(tmp_path, "opaque.glb"), which)
+    for x in (-0.8, 0.8):
+        assert_colour(image, x, 0.0, (1, 1, 1), f"{which} opaque colour")
+        col, row = pixel_of(x, 0.0, SIZE)
+        assert image[int(row), int(col), 3] == 255, which
 
 
 # -- node hierarchy ------------------------------------------------------------------------------------------------
@@ -319,13 +339,14 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
 # -- what --explain says -------------------------------------------------------------------------------------------
 
 def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
-    """A material with emissive, occlusion (unused: no lights), metalness and KHR_materials_clearcoat; extensionsUsed
-    lists clearcoat and KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
+    """A material with emissive, occlusion (kept lit without lights: it scales the ambient term), metalness and
+    KHR_materials_clearcoat; extensionsUsed lists clearcoat and KHR_materials_unlit (supported): --explain names
+    what was taken and every ignored feature."""
     from wgpurender.cli import main
 
     g = GltfWriter()
     tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33648))
-    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex},
+    mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex, "texCoord": 1},
                      pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "metallicFactor": 1.0},
                      extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1}})
     prim = quad_primitive(g, -1, -1, 1, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
@@ -338,9 +359,10 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert code == 0
     assert "from the model file" in out and "'coat'" in out
     assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
-    assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; occlusion is not used without lights:
-    for ignored in ("KHR_materials_clearcoat: ignored", "occlusionTexture unused", "metalness",
-                    "TEXCOORD_1 ignored", "LINES primitive ignored",
+    assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
+    assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
+    for ignored in ("KHR_materials_clearcoat: ignored", "metalness",
+                    "TEXCOORD_1 ignored", "LINES primitive ignored", "occlusionTexture texCoord 1: ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out
@@ -389,10 +411,12 @@ def test_emissive_factor_times_texture_is_added(ctx, tmp_path, which):
 OCCLUSION_TEXELS = np.array([[[255, 0, 0, 255], [64, 0, 0, 255]]], np.uint8)  # R = 1 | 64/255 (linear data)
 
 
+@pytest.mark.parametrize("lights", ["back_light", "no_lights"])
 @pytest.mark.parametrize("which", PATHS)
-def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which):
+def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which, lights):
     """A white lit quad, a directional light travelling along +z (it reaches only the back: n.l < 0, no direct
-    light), occlusionTexture strength 0.8: each half shows ambient x (1 + 0.8 (R - 1)), R the texel's linear red."""
+    light) or no light at all (the material stays lit: the occlusion map shapes its ambient term),
+    occlusionTexture strength 0.8: each half shows ambient x (1 + 0.8 (R - 1)), R the texel's linear red."""
     strength = 0.8
     g = GltfWriter()
     tex = g.texture(OCCLUSION_TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
@@ -400,7 +424,7 @@ def test_occlusion_scales_the_ambient_term(ctx, tmp_path, which):
                      pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0})
     g.node(mesh=g.mesh([quad_primitive(g, -1.6, -1, 1.6, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])]))
     g.write(tmp_path / "ao.glb")
-    light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, 1]\n'
+    light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, 1]\n' if lights == "back_light" else ""
     image = render(ctx, write_scene(tmp_path, "ao.glb", extra=light), which)
     ambient = np.array([0.03, 0.03, 0.035])  # course.shading.AMBIENT
     for x, red in ((-0.8, OCCLUSION_TEXELS[0, 0, 0] / 255), (0.8, OCCLUSION_TEXELS[0, 1, 0] / 255)):

@@ -330,7 +330,7 @@ def package_graph(root: Path = PACKAGE) -> str:
         lines.append("")
     crossings = [f"{a} -> {b}: {counts.get((a, b), 0)}" for a, b in FORBIDDEN]
     lines += _wrapped("forbidden imports (module count): ", crossings)
-    top = len([p for p in root.iterdir() if p.name != "__pycache__"])
+    top = len([p for p in root.iterdir() if p.suffix == ".py" or (p / "__init__.py").is_file()])  # modules, packages
     lines.append(f"import cycles: {len(cycles(internal))}; top level of wgpurender/: {top} entries")
     return "\n".join(lines) + "\n"
 

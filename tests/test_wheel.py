@@ -224,6 +224,8 @@ def test_bench_perf_quick_from_the_wheel_measures_the_scenes(installed):
 @pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
 def test_the_notebook_from_the_wheel(installed):
     """The notebook shipped in the wheel, copied into the empty folder, runs on a kernel of the venv's python."""
+    pytest.importorskip("nbformat", reason="nbformat is not installed (pip install -e '.[test]')")
+    pytest.importorskip("nbclient", reason="nbclient is not installed (pip install -e '.[test]')")
     nb = installed["cwd"] / "tour.ipynb"
     code = ("import shutil, nbformat, nbclient; from wgpurender.core.assets import notebook_path; "
             f"shutil.copy(notebook_path(), {str(nb)!r}); nb = nbformat.read({str(nb)!r}, as_version=4); "

@@ -113,7 +113,8 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     ``size``: ``(width, height)`` or ``"WxH"`` (default 800x600 for a stage, the scene's
     ``[render] size`` for a scene); ``msaa``: 1 or 4 (default: the stage's or the scene's);
     ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``vulkan``
-    (default), ``opengl``, ``metal``, ``d3d12`` or ``auto`` (docs/backends.md); ``t``: animation time in seconds;
+    (default), ``opengl``, ``metal``, ``d3d12`` or ``auto`` (docs/backends.md); ``t``: animation time in seconds
+    (stages: a scene is static, another time than 0 is refused);
     ``anisotropy`` (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``; ``knobs``
     (scenes): the plan's other knobs, e.g. ``post_path="compute"``, ``post_fuse=False``, ``immediates="off"``,
     ``reverse_z=True`` (:data:`wgpurender.core.plan.KNOB_FLAGS`). A scene is drawn from
@@ -127,7 +128,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     ctx = get_context(checks.backend(backend))
-    if _is_scene(target, anisotropy, knobs):
+    if _is_scene(target, anisotropy, knobs, t):
         from wgpurender.wgpu_path.scene_render import render_plan
 
         result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, knobs), t)
@@ -162,7 +163,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     plan = None
-    if _is_scene(target, anisotropy, knobs):
+    if _is_scene(target, anisotropy, knobs, t):
         from wgpurender.core.plan import resolve_plan
         from wgpurender.raw_path.scene import render_scene_plan
 
@@ -177,18 +178,26 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     return Image(pixels, str(target), "raw", timings, get_vulkan().describe(), plan)
 
 
-def _is_scene(target: str, anisotropy: str, knobs: dict) -> bool:
+def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
     """Whether ``target`` is a scene file; a stage with plan knobs, or an anisotropy rule other than the default,
-    is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored."""
+    is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored; so is a
+    scene at a time other than 0 (scenes are static: the time animates stages)."""
     from wgpurender.core.anisotropy import check_applies
     from wgpurender.core.course.formats import is_scene_file
 
     if is_scene_file(target):
+        check_static(target, t)
         return True
     check_applies(target, False, anisotropy)
     if knobs:
         raise UserError(f"plan knob {sorted(knobs)[0]!r} applies to scene files: stage {target!r} has no plan")
     return False
+
+
+def check_static(target: str, t: float | None) -> None:
+    """Scenes are static: a time other than 0 (or None: animated) would not change the image, so it is refused."""
+    if t:
+        raise UserError(f"scene {str(target)!r} is static: a time ({t:g} s) animates stages only (leave --time out)")
 
 
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:

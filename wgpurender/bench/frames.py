@@ -78,11 +78,27 @@ def _timed(runner, readback: bool = False) -> tuple[float, float, float | None]:
     return (time.perf_counter() - start) * 1e3, cpu_ms, gpu_ms
 
 
+GC_ENV = "WGPURENDER_BENCH_GC"
+
+
+def settle_garbage() -> None:
+    """Before timed frames: with $WGPURENDER_BENCH_GC=freeze, collect and freeze what set-up made (``gc.freeze``),
+    so a collection during the frames scans only what the frames allocate. An experiment switch for the tails
+    (issue 22): the default leaves the collector as an application has it."""
+    import gc
+    import os
+
+    if os.environ.get(GC_ENV) == "freeze":
+        gc.collect()
+        gc.freeze()
+
+
 def measure(runner, frames: int, warmup: int = 2, readback_frames: int = 0) -> Samples:
     """``warmup`` untimed frames, then ``frames`` timed ones; the first ``readback_frames`` of them each
     followed by a frame with readback (paired). A runner with ``collect_gpu()`` reports GPU times at the end."""
     for _ in range(warmup):
         runner.frame()
+    settle_garbage()
     collect = getattr(runner, "collect_gpu", None)
     if collect is not None:
         collect()  # drop the warm-up frames' timestamps

@@ -96,10 +96,13 @@ def _targets(run) -> str:
         best = min(million, key=lambda r: r.median)
         mode = best.case.split("/")[0]
         fps = 1000.0 / best.median
-        cpu = [r.median for r in _pick(res, "objects", "cpu_ms") if r.case.startswith(f"{mode}/")]
-        worst_cpu = max(cpu) if cpu else float("nan")
+        cpu = [r.median for r in _pick(res, "objects", "cpu_ms:untimed") if r.case.startswith(f"{mode}/")]
+        timed = [r.median for r in _pick(res, "objects", "cpu_ms") if r.case.startswith(f"{mode}/")]
+        worst_cpu = max(cpu or timed) if (cpu or timed) else float("nan")
+        how = "as an application draws it" if cpu else "with timestamp queries"
         rows.append(("1M animated objects at >= 60 fps, CPU <= 0.3 ms per frame at every count",
-                     f"{fps:.0f} fps ({mode}); CPU worst {fmt_ms(worst_cpu)} ms over its counts",
+                     f"{fps:.0f} fps ({mode}); CPU worst {fmt_ms(worst_cpu)} ms over its counts ({how}; with "
+                     f"timestamp queries {fmt_ms(max(timed)) if timed else '-'} ms)",
                      _verdict(run, fps >= 60 and worst_cpu <= 0.3, "the target is for a GPU" if _on_cpu(run) else "")))
     inc = [q for _, w, r in _post_increments(res) if r > 0 for q in [w / r]]  # a raw increment <= 0: noise
     if inc:

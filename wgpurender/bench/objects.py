@@ -35,7 +35,7 @@ from wgpurender.wgpu_path.frame_loop import run_frame
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
 from wgpurender.wgpu_path.targets import create_target
-from wgpurender.wgpu_path.timing import PassTimer
+from wgpurender.wgpu_path.timing import PassTimer, Stats
 
 SHADER = "bench_objects.wgsl"
 MODES = ("dynamic", "immediates", "instancing", "bundle")
@@ -207,6 +207,10 @@ def bench_objects(ctx: GPUContext, counts: list[int], modes: list[str], frames: 
             samples = measure(renderer, n, warmup=1)
             case = f"{mode}/{count}"
             out += samples.results("objects", case, "wgpu", size, note="")
+            if mode in (GPU_MODE, SPLAT_MODE):
+                out.append(Result.of("objects", case, "wgpu", size_text(size), "cpu_ms:untimed",
+                                     Stats.of(renderer.untimed_cpu_ms(n)),
+                                     "record + submit without timestamp queries (as an application draws it)"))
             out.append(Result("objects", case, "wgpu", size_text(size), "setup_ms", setup_ms, setup_ms, setup_ms, 1,
                               "pipeline + buffers (+ bundle recording)"))
             log(f"  objects: {case}: frame {np.median(samples.frame):.2f} ms, cpu {np.median(samples.cpu):.2f} ms")

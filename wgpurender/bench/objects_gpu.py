@@ -144,6 +144,15 @@ class GpuAnimatedRenderer:
                       timer=self.timer)
         return f.cpu_ms, gpu_total(f.gpu_ms)
 
+    def untimed_cpu_ms(self, frames: int) -> list[float]:
+        """CPU ms of ``frames`` frames as an application draws them: no timestamp queries, no readback."""
+        timer, self.timer = self.timer, _NoTimer()
+        try:
+            return [run_frame(self.ctx, self.record, self.target, self.t, label="objects-gpu", read_back=False,
+                              wait=True).cpu_ms for _ in range(frames)]
+        finally:
+            self.timer = timer
+
     def record(self, encoder, target, t: float) -> None:
         x, y = self.view[0], self.view[1]
         self.ctx.queue.write_buffer(self.params, 0, PARAMS.pack(x, y, self.view[2], t, *self.half_size, self.count,
@@ -191,3 +200,10 @@ class GpuAnimatedRenderer:
 
         self.frame()
         return read_texture(self.ctx, self.target)
+
+
+class _NoTimer:
+    """A PassTimer that asks for no timestamps (``writes`` -> None)."""
+
+    def writes(self, label: str) -> None:
+        return None

@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg, size_arg
+from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
 
 
 def register(subparsers) -> None:
@@ -57,6 +58,8 @@ def run(args) -> int:
         raise UserError(f"unknown benchmark family {unknown[0]!r}: choose from {', '.join(FAMILIES)}")
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
+    if args.anisotropy != DEFAULT_ANISOTROPY and "scene" not in families:
+        raise UserError("--anisotropy applies to the scene family: add --only scene, or leave it out")
     config = PerfConfig(quick=args.quick, out_dir=args.out, families=families, big=args.big, raw=args.raw,
                         frames=args.frames, command=command_line(), anisotropy=args.anisotropy)
     run_ = run_perf(config, get_context(args.backend))

@@ -43,7 +43,8 @@ def register(subparsers) -> None:
         "when the surface lacks it); mailbox alone cannot be asked for through wgpu-py 0.32 (exit 2 says so)",
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
-    p.add_argument("--time", type=time_arg, default=None, metavar="T", help="freeze the animation at T seconds")
+    p.add_argument("--time", type=time_arg, default=None, metavar="T",
+                   help="freeze a stage's animation at T seconds (a scene is static: only 0)")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None,
                    help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")
@@ -77,6 +78,10 @@ def run(args) -> int:
     benchmark = _benchmark(args)
     size = _window_size(args.target, args.size)
     check_applies(args.target, is_scene_file(args.target), args.anisotropy)
+    if is_scene_file(args.target):
+        from wgpurender.api import check_static
+
+        check_static(args.target, args.time)
     if args.raw:
         from wgpurender.cli._demo_raw import run_raw
 

@@ -24,7 +24,8 @@ def register(subparsers) -> None:
     p.add_argument("--format", type=format_arg, default=None, metavar="F",
                    help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float (default for a scene: its "
                    "output_format)")
-    p.add_argument("--time", type=time_arg, default=0.0, metavar="T", help="animation time in seconds (default 0)")
+    p.add_argument("--time", type=time_arg, default=0.0, metavar="T",
+                   help="a stage's animation time in seconds (default 0; a scene is static: only 0)")
     add_anisotropy_arg(p)
     p.set_defaults(func=run)
 

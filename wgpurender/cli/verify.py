@@ -6,6 +6,8 @@ from pathlib import Path
 
 from wgpurender.cli._args import size_arg
 
+IMPLEMENTATIONS_SIZE = (160, 120)  # --implementations' default: the size its bounds were calibrated at
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -37,6 +39,10 @@ def run(args) -> int:
     from wgpurender.core.errors import UserError
     from wgpurender.verify import run_verify
 
+    if args.implementations is None and args.calibrate:
+        raise UserError("--calibrate applies to --implementations only (the driver table is written to --out)")
+    if args.implementations is None and args.size is not None:  # refused, not ignored
+        raise UserError("--size applies to --implementations only (verify renders at the references' sizes)")
     if args.out.exists() and not args.out.is_dir():
         raise UserError(f"--out {args.out}: exists and is not a folder")
     try:
@@ -45,11 +51,6 @@ def run(args) -> int:
         raise UserError(f"--out {args.out}: cannot create it ({err.strerror or err})") from None
     if args.implementations is not None:
         return run_implementations(args)
-    if args.calibrate:
-        raise UserError("--calibrate applies to --implementations only (the driver table is written to --out)")
-    if args.size is not None:
-        raise UserError("--size applies to --implementations only (verify renders each target at its reference "
-                        "size)")
     report = run_verify(args.out, quick=args.quick)
     for row in report.rows:
         detail = row.note if row.status in ("skipped", "FAIL") else (row.metrics.summary() if row.metrics else "")
@@ -74,7 +75,7 @@ def run_implementations(args) -> int:
         raise UserError(f"--implementations needs two available implementations, have {', '.join(impls) or 'none'}"
                         + "".join(f"; {k}: {v}" for k, v in missing.items()))
     targets = [t for t in all_targets() if not args.quick or t in QUICK]
-    size = tuple(args.size) if args.size is not None else (160, 120)  # the size the bounds were calibrated at
+    size = tuple(args.size or IMPLEMENTATIONS_SIZE)
     report = run_matrix(args.out, impls, missing, targets, size, calibrate=args.calibrate)
     for c in report.cells:
         m = c.comparison

@@ -130,6 +130,10 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
+        chosen = gltf_geometry.texcoord_set(doc, index)
+        if int(info.get("texCoord", 0)) != chosen:
+            ignored.append(f"{name}: {keys[-1]} texCoord {info.get('texCoord', 0)}: ignored, sampled with "
+                           f"TEXCOORD_{chosen} (a mesh carries one set of texture coordinates)")
         if "KHR_texture_transform" in info.get("extensions", {}):
             ignored.append(f"{name}: {keys[-1]} KHR_texture_transform: ignored (drawn untransformed)")
     _note_ignored(mat, pbr, name, ignored)

@@ -159,15 +159,17 @@ class GPUContext:
         promise.sync_wait()
 
     def read_buffer(self, buffer: wgpu.GPUBuffer, offset: int = 0, size: int | None = None) -> bytes:
-        """A copy of a COPY_SRC buffer's bytes, read on this thread (``queue.read_buffer`` without the poll thread)."""
+        """A copy of a COPY_SRC buffer's bytes, read on this thread (``queue.read_buffer`` without the poll thread).
+
+        ``offset`` and ``size`` are multiples of 4, as WebGPU's buffer copies require."""
         size = buffer.size - offset if size is None else size
         staging = self.device.create_buffer(
-            size=(size + 3) // 4 * 4, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="read-buffer")
+            size=size, usage=wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.MAP_READ, label="read-buffer")
         encoder = self.device.create_command_encoder(label="read-buffer")
-        encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, staging.size)
+        encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, size)
         self.queue.submit([encoder.finish()])
         self.map_read(staging)
-        data = bytes(staging.read_mapped(0, staging.size, copy=False))[:size]
+        data = bytes(staging.read_mapped(0, size, copy=False))
         staging.unmap()
         staging.destroy()
         return data

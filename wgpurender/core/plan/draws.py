@@ -39,10 +39,15 @@ def material_variant(material: Material, directional: list[int], point: list[int
 
     A lit material in a scene without lights gets no lighting: what remains of the shading is the ambient
     term (ambient x albedo), which the unlit variant draws with the base colour scaled by the ambient
-    (:func:`draw_factors`): no normals, no light structs, no lighting code."""
+    (:func:`draw_factors`): no normals, no light structs, no lighting code. Unless an occlusion map
+    scales that ambient term: then it stays lit."""
     label = material_label(material)
     reasons: list[tuple[str, str]] = []
-    lit = not material.unlit and bool(directional or point)
+    occluded = bool(getattr(material, "occlusion_map", None))  # it shapes the ambient term: lit shading keeps it
+    lit = not material.unlit and (bool(directional or point) or occluded)
+    if lit and not (directional or point):
+        notes.append(f"{label} is lit, the scene has no [[lights]], but its occlusion map scales the ambient term: "
+                     "it keeps the lit variant (ambient x albedo x occlusion)")
     if material.albedo_map:
         reasons.append(("albedo_map", f"{label} has albedo_map = '{material.as_written('albedo_map')}'"))
     maps = [k for k in ("normal_map", "roughness_map") if getattr(material, k)]

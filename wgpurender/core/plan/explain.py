@@ -110,9 +110,12 @@ def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
         clear = ", ".join(f"{c:g}" for c in p.clear_color)
         if not p.draws:
             return [f"  {number}. scene: clear {into} to ({clear}), nothing to draw (no models)"]
-        lines = [f"  {number}. scene: draw {len(p.draws)} model(s) into {into}{depth}, clear ({clear})"]
+        models = len({d.model_index for d in p.draws})
+        what = f"{models} model(s)" if models == len(p.draws) else f"{models} model(s) in {len(p.draws)} draws"
+        lines = [f"  {number}. scene: draw {what} into {into}{depth}, clear ({clear})"]
         for d in p.draws:
-            lines.append(f"       {d.label}: {d.material_label}, variant {d.variant_key}")
+            who = d.label if d.material_label == d.label else f"{d.label}: {d.material_label}"  # file materials: once
+            lines.append(f"       {who}, variant {d.variant_key}")
             lines.append(f"         material factors: {d.factors_text()}")
         return lines
     steps = " + ".join(s.label() for s in p.steps)

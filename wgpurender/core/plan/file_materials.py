@@ -64,7 +64,10 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
         reasons.append(("vertex_color", f"{label}: the model's primitives have COLOR_0 (multiplies the base colour)"))
     if material.alpha_mode == "mask":
         reasons.append(("alpha_mask", f"{label}: alphaMode MASK, alphaCutoff {material.alpha_cutoff:g} "
-                                      "(fragments with a lower alpha are discarded)"))
+                                      "(fragments with a lower alpha are discarded, the rest written opaque)"))
+    elif material.part is not None and material.alpha_mode == "opaque" and _alpha_varies(material):
+        reasons.append(("opaque_alpha", f"{label}: alphaMode OPAQUE with an alpha below 1 in its base colour "
+                                        "factor, texture or vertex colours: written with alpha 1 (glTF ignores it)"))
     if material.double_sided and lit:
         reasons.append(("double_sided", f"{label}: doubleSided, lit: back faces are lit with the normal turned "
                                         "around"))
@@ -84,6 +87,11 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
         else:
             notes.append(f"{label}: occlusionTexture unused: it scales the ambient term of lit shading only")
     return reasons
+
+
+def _alpha_varies(material: Material) -> bool:
+    """Whether a file material's base colour can carry an alpha below 1 (factor, texture or COLOR_0)."""
+    return material.albedo_color[3] < 1.0 or material.albedo_map is not None or material.vertex_colors
 
 
 def pipeline_state(material: Material) -> dict:

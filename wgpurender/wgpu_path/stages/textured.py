@@ -113,6 +113,10 @@ class Textured(Stage):
                                for _, s in course.SEPARATE_SAMPLERS]
 
     def update_uniforms(self, t: float) -> None:
+        key = (self.size, tuple(course.uv_offset(t)))
+        if key == getattr(self, "_uniforms_written", None):  # written only when the size or the scroll changes
+            return
+        self._uniforms_written = key
         height = self.size[1]
         for buffer, (_, w) in zip(self.uniform_buffers, course.halves(self.size[0]), strict=True):
             mvp = course.plane_mvp(max(w, 1) / max(height, 1))
