@@ -21,7 +21,7 @@ def run_raw(args, benchmark, size: tuple[int, int]) -> int:
     window size the demo chose (--size, else a scene's [render] size)."""
     from wgpurender.core.controls import parse_script
     from wgpurender.core.errors import UserError
-    from wgpurender.core.imageio import check_writable, save_png
+    from wgpurender.core.imageio import check_writable, image_format, save_image
     from wgpurender.raw_path.validation import ENV
     from wgpurender.raw_path.window import run_raw_window
 
@@ -29,6 +29,7 @@ def run_raw(args, benchmark, size: tuple[int, int]) -> int:
         if getattr(args, dest):
             raise UserError(why)
     if args.screenshot:
+        image_format(args.screenshot)  # the suffix picks the format; refuse an unknown one before a window
         check_writable(args.screenshot)
     if args.validation:
         os.environ[ENV] = "1"  # read when the window's Vulkan context is made
@@ -46,7 +47,7 @@ def run_raw(args, benchmark, size: tuple[int, int]) -> int:
         print(result.benchmark.summary())
         print(f"wrote {result.benchmark.write_csv()}")
     if args.screenshot and result.last_frame is not None:
-        print(f"wrote {save_png(args.screenshot, result.last_frame)}")
+        print(f"wrote {save_image(args.screenshot, result.last_frame)}")
     if result.validation_messages is not None:
         print(f"validation messages: {result.validation_messages}")
     return 0
