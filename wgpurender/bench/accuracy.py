@@ -27,6 +27,7 @@ def run(args) -> int:
     from wgpurender.bench.accuracy_run import AccuracyConfig, run_accuracy
     from wgpurender.bench.perf import command_line
     from wgpurender.core.errors import UserError
+    from wgpurender.core.safe_write import output_folder
     from wgpurender.wgpu_path.gpu import get_context
 
     preset = QUICK if args.quick else FULL
@@ -36,10 +37,12 @@ def run(args) -> int:
         raise UserError("--frames and --rounds must be at least 1")
     if not Path(args.scene).is_file():
         raise UserError(f"scene file not found: {args.scene} (run from the repository root, or give SCENE)")
+    if args.truth == "analytic" and (args.knobs or not args.combinations):  # refused, not ignored: the
+        # analytic suite has its own cases
+        raise UserError("--knob and --no-combinations choose the rendered sweep's settings: leave them out "
+                        "with --truth analytic")
+    output_folder(args.out, "--out")  # after the refusals (they leave nothing), before any timing
     if args.truth == "analytic":
-        if args.knobs or not args.combinations:  # refused, not ignored: the analytic suite has its own cases
-            raise UserError("--knob and --no-combinations choose the rendered sweep's settings: leave them out "
-                            "with --truth analytic")
         return _run_analytic(args, preset, frames)
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
     config = AccuracyConfig(scene_path=Path(args.scene), base_size=args.size or preset["size"], frames=frames,
