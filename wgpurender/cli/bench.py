@@ -86,7 +86,7 @@ def _register_accuracy(suites) -> None:
         "pip install 'wgpurender[bench]').",
     )
     p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
-                   help=f"scene file with a post chain (default {SCENE_FILE})")
+                   help=f"scene file with a post chain, or a bundled scene's name (default {SCENE_FILE})")
     p.add_argument("--quick", action="store_true",
                    help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
     p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
