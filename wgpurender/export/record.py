@@ -9,6 +9,7 @@ frame's uploads (``write_buffer`` / ``write_texture``) are its only data; ``samp
 from __future__ import annotations
 
 import datetime
+import json
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
@@ -25,23 +26,52 @@ def _frame(ctx, record, target, t: float) -> None:
 
 
 def _record_frames(ctx, recording: Recording, record, target, fps: int, seconds: float) -> tuple[list, list]:
-    """(frame template, samples): one frame's calls, and each sample's upload blobs in call order."""
-    frames = []
+    """(frame template, samples): one frame's calls, and each sample's upload blobs in the template's order.
+
+    The wgpu path writes a uniform only when its value changes (issue 22), so a frame may leave out an upload
+    that another frame makes; the template is the frame with every upload, and a frame that left one out
+    replays the data last written there (the GPU buffer still holds it)."""
+    first, frames = len(recording.calls), []
     for k in range(max(1, round(fps * seconds))):
         start = len(recording.calls)
         _frame(ctx, record, target, k / fps)
         frames.append(recording.calls[start:])
         if k == 1 and _uploads(frames[0]) == _uploads(frames[1]):
             return frames[0], [_uploads(frames[0])]  # static: t changes nothing
-    shape = [c.get("m") for c in frames[0]]
+    shape = _commands(frames[0])
     for k, calls in enumerate(frames):
-        if [c.get("m") for c in calls] != shape:
+        if _commands(calls) != shape:
             raise UserError(f"frame {k} records other commands than frame 0: the page cannot replay this animation")
-    return frames[0], [_uploads(calls) for calls in frames]
+    template = max(frames, key=lambda calls: len(_uploads(calls)))
+    slots = [_upload_key(c) for c in template if c.get("m") in UPLOADS]
+    last = {_upload_key(c): _blob(c) for c in recording.calls[:first] if c.get("m") in UPLOADS}
+    samples = []
+    for calls in frames:
+        written = {_upload_key(c): _blob(c) for c in calls if c.get("m") in UPLOADS}
+        if not set(written) <= set(slots):
+            raise UserError("a frame uploads where the others do not: the page cannot replay this animation")
+        last.update(written)
+        samples.append([last[key] for key in slots])
+    return template, samples
+
+
+def _commands(calls: list[dict]) -> list:
+    """A frame's calls without its uploads: what must be the same in every frame."""
+    return [c.get("m") for c in calls if c.get("m") not in UPLOADS]
+
+
+def _blob(call: dict) -> int:
+    return call["a"][2 if call["m"] == "writeBuffer" else 1]["#"]
+
+
+def _upload_key(call: dict) -> str:
+    """Which upload a call is: its method and every argument but the data."""
+    i = 2 if call["m"] == "writeBuffer" else 1
+    return json.dumps([call["m"], call["a"][:i], call["a"][i + 1:]], sort_keys=True)
 
 
 def _uploads(calls: list[dict]) -> list[int]:
-    return [c["a"][2 if c["m"] == "writeBuffer" else 1]["#"] for c in calls if c.get("m") in UPLOADS]
+    return [_blob(c) for c in calls if c.get("m") in UPLOADS]
 
 
 def _reference(real: GPUContext, target) -> str:
