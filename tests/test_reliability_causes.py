@@ -189,6 +189,30 @@ def test_a_texture_declaring_too_many_pixels_is_refused_before_decoding(tmp_path
     _one_line_error(code, err, "declares 8192x4096")
 
 
+def _png_rows(path: Path, width: int, height: int, rows: int) -> Path:
+    """A greyscale PNG declaring width x height whose zlib stream (complete) holds only ``rows`` rows."""
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    data = zlib.compress(bytes((width + 1) * rows))
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0))
+                     + chunk(b"IDAT", data) + chunk(b"IEND", b""))
+    return path
+
+
+@pytest.mark.parametrize("as_what", ["image", "texture"])
+def test_a_png_whose_data_ends_early_is_refused_not_zero_filled(tmp_path, as_what):
+    """Found by the declared-size fuzz: Pillow decodes it at the declared size, the missing rows black."""
+    png = _png_rows(tmp_path / "short.png", 64, 64, 8)
+    if as_what == "image":
+        code, _, err = run_cli("compare", png, png)
+    else:
+        code, _, err = _render(tmp_path, _textured_scene(tmp_path, "short.png"))
+    _one_line_error(code, err, "short.png", "ends early", "12%")
+    full = _png_rows(tmp_path / "full.png", 64, 64, 64)
+    assert run_cli("compare", full, full)[0] == 0
+
+
 @pytest.mark.parametrize("depth", [40, 500, 3000])
 def test_deeply_nested_toml_is_one_line(tmp_path, depth):
     scene = tmp_path / "scene.toml"
@@ -215,8 +239,9 @@ def test_the_model_size_bound_is_an_environment_setting(tmp_path, monkeypatch):
     _one_line_error(code, err, "over the limit")
 
 
+@pytest.mark.parametrize("command", ["render", "reference"])  # the wgpu path, the raw-Vulkan path
 @pytest.mark.parametrize("target", ["msaa", "scene"])
-def test_a_size_the_adapter_cannot_hold_is_refused_before_allocation(tmp_path, monkeypatch, ctx, target):
+def test_a_size_the_adapter_cannot_hold_is_refused_before_allocation(tmp_path, monkeypatch, ctx, target, command):
     """16384x16384 at MSAA 4 is about 10 GB of attachments: over lavapipe's 2 GiB allocation; a GPU's memory is
     unknown to WebGPU (an H100 holds it), so there the budget is given the way a user would, in bytes."""
     if ctx.info.get("adapter_type") != "CPU":
@@ -225,7 +250,7 @@ def test_a_size_the_adapter_cannot_hold_is_refused_before_allocation(tmp_path, m
         write_gltf(tmp_path / "model.gltf", triangle_gltf())
         (tmp_path / "scene.toml").write_text(scene_text())
         target = tmp_path / "scene.toml"
-    code, _, err = run_cli("render", target, "-o", tmp_path / "out.png", "--size", "16384x16384", "--msaa", "4")
+    code, _, err = run_cli(command, target, "-o", tmp_path / "out.png", "--size", "16384x16384", "--msaa", "4")
     _one_line_error(code, err, "16384x16384", "--size")
     assert not (tmp_path / "out.png").exists()
 
@@ -282,6 +307,10 @@ def _gltf_fails(tmp_path, doc: dict, *needles: str) -> None:
 
 def test_a_node_that_is_its_own_child_is_refused_up_front(tmp_path):
     _gltf_fails(tmp_path, triangle_gltf(node={"children": [0]}), "$.nodes[0].children[0]", "own child")
+    doc = triangle_gltf(node={"children": [1]})
+    doc["nodes"].append({"children": [1, 2]})  # node 1 lists itself first: its index differs from its position
+    doc["nodes"].append({})
+    _gltf_fails(tmp_path, doc, "$.nodes[1].children[0] = 1", "own child")
 
 
 def test_a_node_cycle_through_two_nodes_is_refused(tmp_path):
@@ -313,7 +342,7 @@ def test_float_indices_are_refused(tmp_path):
 def test_attributes_of_unequal_counts_are_refused(tmp_path):
     doc = triangle_gltf()
     doc["accessors"][1]["count"] = 2
-    _gltf_fails(tmp_path, doc, "NORMAL has 2 elements, POSITION 3")
+    _gltf_fails(tmp_path, doc, "$.meshes[0].primitives[0].attributes.NORMAL has 2 elements, POSITION 3")
 
 
 # --- formats, thresholds -------------------------------------------------------------------------------------

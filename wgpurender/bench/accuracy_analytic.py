@@ -1,4 +1,4 @@
-"""``bench accuracy --truth analytic``: three knobs against ground truths that no renderer made.
+"""``bench accuracy --truth analytic``: five knobs against ground truths that no renderer made.
 
 - **Anti-aliasing**, the SMAA paper's protocol (Jimenez et al. 2012: error against a reference, and cost in
   ms): none, FXAA, MSAA 4x, SSAA 2x and 4x (and MSAA 4x + FXAA) on flat-coloured triangles of known
@@ -10,9 +10,13 @@
 - **Depth**: depth24plus, depth32float and reverse-Z on the depth-stress scene (accuracy_depth.py), whose
   exact image is known (the near quad everywhere).
 
-Each setting goes through the real scene renderer (accuracy_knobs.make_renderer) and is timed like the main
-sweep (GPU timestamps and wall time per frame). Errors: FLIP and PSNR of the 8-bit sRGB image against the
-truth, and the mean absolute error in linear light.
+- **Mip chain** and **shading precision** (accuracy_fidelity.py): the GPU's mip generation against a float64
+  box-filtered pyramid in linear light, and the lit result in each scene-image format against float64 lighting.
+
+Within each knob the Pareto front (time against mean linear error: the settings no other setting of that knob
+beats on both) is marked. Each setting goes through the real scene renderer (accuracy_knobs.make_renderer) and
+is timed like the main sweep (GPU timestamps and wall time per frame). Errors: FLIP and PSNR of the 8-bit sRGB
+image against the truth, and the mean absolute error in linear light.
 """
 
 from __future__ import annotations
@@ -60,6 +64,11 @@ class TruthRow:
     psnr: float
     linear_mae: float
     note: str = ""
+    pareto: bool = False
+
+    def time_ms(self) -> float:
+        """GPU median where timestamps exist, else the wall median: what the Pareto front weighs."""
+        return self.m.gpu.median if self.m.gpu else self.m.wall.median
 
 
 def _view_distance() -> float:
@@ -180,11 +189,28 @@ def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: 
         t = _timed(ctx, depth_scene, Settings(msaa=1, depth=level), size, ("depth",), frames, warmup)
         rows.append(_score("depth", level, t, exact))
         progress(f"depth {level}: FLIP {rows[-1].flip:.4f}")
+    from wgpurender.bench import accuracy_fidelity
+
+    for row in accuracy_fidelity.run_mip_chain(ctx, frames, TruthRow) + accuracy_fidelity.run_shading(
+            ctx, work, size, frames, warmup, _timed, _score):
+        rows.append(row)
+        progress(f"{row.section} {row.setting}: mean linear error {row.linear_mae:.5f}")
+    return mark_pareto(rows)
+
+
+def mark_pareto(rows: list[TruthRow]) -> list[TruthRow]:
+    """Set ``pareto`` on the rows no other row of the same knob beats on both time and mean linear error."""
+    from wgpurender.bench.accuracy_pareto import pareto_front
+
+    for section in dict.fromkeys(r.section for r in rows):
+        group = [r for r in rows if r.section == section]
+        for i in pareto_front([(r.time_ms(), r.linear_mae) for r in group]):
+            group[i].pareto = True
     return rows
 
 
 CSV_COLUMNS = ("section", "setting", "render_size", "flip_mean", "psnr_db", "linear_mae", "gpu_ms_median",
-               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames")
+               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames", "pareto")
 
 
 def _num(v: float | None, digits: int) -> str:
@@ -205,13 +231,16 @@ def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str
             writer.writerow([r.section, r.setting, f"{r.m.render_size[0]}x{r.m.render_size[1]}", _num(r.flip, 5),
                              _num(r.psnr, 2), _num(r.linear_mae, 5), _num(g.median if g else None, 3),
                              _num(g.p10 if g else None, 3), _num(g.p90 if g else None, 3),
-                             _num(r.m.wall.median, 3), r.m.wall.n])
-    lines = [*header, "", "| knob | setting | render | FLIP | PSNR dB | mean abs. error (linear) | GPU ms | wall ms |",
-             "|---|---|---|---|---|---|---|---|"]
+                             _num(r.m.wall.median, 3), r.m.wall.n, "yes" if r.pareto else ""])
+    lines = [*header, "", "Pareto: within each knob, no other setting is both faster and closer to the truth (time: "
+             "GPU median where timestamps exist, else wall; error: mean absolute linear error).", "",
+             "| knob | setting | render | FLIP | PSNR dB | mean abs. error (linear) | GPU ms | wall ms | Pareto |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         g = r.m.gpu
         gpu = f"{g.median:.2f} ({g.p10:.2f}..{g.p90:.2f})" if g else "-"
         lines.append(f"| {r.section} | {r.setting} | {r.m.render_size[0]}x{r.m.render_size[1]} | {r.flip:.4f} | "
-                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {r.m.wall.median:.2f} |")
+                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {r.m.wall.median:.2f} | "
+                     f"{'**front**' if r.pareto else ''} |")
     md_path.write_text("\n".join(lines) + "\n")
     return {"csv": csv_path, "markdown": md_path}

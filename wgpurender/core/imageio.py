@@ -74,9 +74,61 @@ def decode_image(image: Image.Image, name: str) -> np.ndarray:
     return np.asarray(image.convert("RGBA"))
 
 
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+PNG_CHANNELS = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}  # IHDR colour type -> samples per pixel
+
+
+def check_png_complete(source, name: str) -> None:
+    """UserError when a PNG's image data ends before the rows its header declares (a complete zlib stream of
+    fewer rows): Pillow decodes such a file at the declared size, the missing rows zero-filled, without an error.
+    Other formats, interlaced PNGs and unreadable headers are left to Pillow. ``source``: a path or a binary file
+    object (read from its start, then rewound)."""
+    import struct
+    import zlib
+
+    f = open(source, "rb") if isinstance(source, (str, os.PathLike)) else source
+    start = f.tell()
+    f.seek(0)
+    try:
+        if f.read(8) != PNG_SIGNATURE:
+            return
+        expected = produced = 0
+        inflate = zlib.decompressobj()
+        while True:
+            head = f.read(8)
+            if len(head) < 8:
+                break
+            length, kind = struct.unpack(">I4s", head)
+            data = f.read(length)
+            f.read(4)  # CRC (Pillow checks it)
+            if kind == b"IHDR" and len(data) >= 13:
+                width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", data[:13])
+                if interlace or colour not in PNG_CHANNELS:
+                    return
+                expected = height * (1 + (width * depth * PNG_CHANNELS[colour] + 7) // 8)
+            elif kind == b"IDAT" and expected:
+                chunk = data
+                while chunk and produced < expected:
+                    produced += len(inflate.decompress(chunk, 1 << 20))
+                    chunk = inflate.unconsumed_tail
+            elif kind == b"IEND" or produced >= expected > 0:
+                break
+    except (OSError, zlib.error, struct.error):
+        return  # Pillow reports a broken file in its own words
+    finally:
+        if f is not source:
+            f.close()
+        else:
+            f.seek(start)
+    if expected and produced < expected:
+        raise UserError(f"cannot read image {name}: its data ends early ({100 * produced / expected:.0f}% of the "
+                        "rows its header declares); the file is truncated: save it again")
+
+
 def load_png(path: str | os.PathLike) -> np.ndarray:
     """Read an image as (H, W, 4) uint8; a clear error when it is missing or unreadable."""
     path = input_file(path, "image")
+    check_png_complete(path, str(path))
     try:
         with Image.open(path) as im:
             return decode_image(im, str(path))

@@ -24,6 +24,7 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.imageio import check_png_complete
 from wgpurender.core.input_files import check_image_pixels, input_file
 
 MAX_DIM_LIMIT = "max-texture-dimension-2d"
@@ -103,6 +104,7 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
         with Image.open(source) as im:
             _check_dims(f"image {path}", im.width, im.height, max_dim)
             check_image_pixels(im.width, im.height, str(path))
+            check_png_complete(source, str(path))
             im.load()
             return _image_to_rgba8(im, path)
     except Image.DecompressionBombError as err:

@@ -6,6 +6,7 @@ from contextlib import ExitStack
 
 import numpy as np
 
+from wgpurender.core import gpu_memory
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
 from wgpurender.raw_path.checks import check_msaa, check_size
@@ -46,6 +47,8 @@ def render_reference(
     ctx = get_vulkan()
     msaa = check_msaa(ctx, cls, msaa)
     size = check_size(ctx, size)
+    gpu_memory.check_memory(gpu_memory.stage_textures(size, fmt, msaa), ctx.device_type,
+                            f"stage {stage} at {size[0]}x{size[1]}, msaa {msaa}")
     with ExitStack() as owned:
         ref_stage = cls(ctx, owned, fmt, msaa, size)
         target = create_image(ctx, owned, size, fmt, TARGET_USAGE)

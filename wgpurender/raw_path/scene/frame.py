@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
+from wgpurender.core import gpu_memory
 from wgpurender.core.plan import RenderPlan, resolve_plan
 from wgpurender.core.scene import Scene
 from wgpurender.raw_path.checks import check_size
@@ -130,6 +131,8 @@ def render_scene_plan(plan: RenderPlan, t: float = 0.0, *, wgpu_intermediates: b
     check_supported(plan)
     ctx = get_vulkan()
     check_size(ctx, plan.size)
+    gpu_memory.check_memory(gpu_memory.plan_textures(plan), ctx.device_type,
+                            f"{plan.scene_path.name} at {plan.size[0]}x{plan.size[1]}, msaa {plan.msaa}")
     with ExitStack() as owned:
         frame = SceneFrame(ctx, owned, plan.scene, plan, wgpu_intermediates)
         target = create_image(ctx, owned, plan.size, plan.output_format, TARGET_USAGE)
