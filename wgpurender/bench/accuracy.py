@@ -26,7 +26,9 @@ def run(args) -> int:
     from wgpurender.bench.accuracy_report import write_reports
     from wgpurender.bench.accuracy_run import AccuracyConfig, run_accuracy
     from wgpurender.bench.perf import command_line
+    from wgpurender.core.assets import resolve_scene
     from wgpurender.core.errors import UserError
+    from wgpurender.core.safe_write import output_folder
     from wgpurender.wgpu_path.gpu import get_context
 
     preset = QUICK if args.quick else FULL
@@ -34,15 +36,18 @@ def run(args) -> int:
     rounds = preset["rounds"] if args.rounds is None else args.rounds
     if frames < 1 or rounds < 1:
         raise UserError("--frames and --rounds must be at least 1")
-    if not Path(args.scene).is_file():
-        raise UserError(f"scene file not found: {args.scene} (run from the repository root, or give SCENE)")
+    scene = resolve_scene(args.scene)  # a path, or a bundled scene by name (from any folder, as render does)
+    if not scene.is_file():
+        raise UserError(f"scene file not found: {args.scene} (give a scene file, or a bundled scene's name)")
+    if args.truth == "analytic" and (args.knobs or not args.combinations):  # refused, not ignored: the
+        # analytic suite has its own cases
+        raise UserError("--knob and --no-combinations choose the rendered sweep's settings: leave them out "
+                        "with --truth analytic")
+    output_folder(args.out, "--out")  # after the refusals (they leave nothing), before any timing
     if args.truth == "analytic":
-        if args.knobs or not args.combinations:  # refused, not ignored: the analytic suite has its own cases
-            raise UserError("--knob and --no-combinations choose the rendered sweep's settings: leave them out "
-                            "with --truth analytic")
         return _run_analytic(args, preset, frames)
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
-    config = AccuracyConfig(scene_path=Path(args.scene), base_size=args.size or preset["size"], frames=frames,
+    config = AccuracyConfig(scene_path=scene, base_size=args.size or preset["size"], frames=frames,
                             warmup=preset["warmup"], rounds=rounds, knobs=knobs, combinations=args.combinations,
                             out_dir=Path(args.out), command=command_line())
     result = run_accuracy(config, get_context(args.backend))

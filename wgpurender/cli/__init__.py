@@ -44,6 +44,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _innermost(parser: argparse.ArgumentParser, args: argparse.Namespace) -> argparse.ArgumentParser:
+    """The (sub)command parser ``args`` ran: ``wgpurender bench perf``'s for ``bench perf ...``."""
+    while True:
+        subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+        chosen = getattr(args, subs[0].dest, None) if subs else None
+        if chosen not in (subs[0].choices if subs else {}):
+            return parser
+        parser = subs[0].choices[chosen]
+
+
 def one_line(text: str) -> str:
     """A message on one line: line breaks and other control characters written as escapes (\\n, \\x00)."""
     return "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in str(text))
@@ -68,7 +78,10 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command. A user error is exactly one line on stderr and exit code 2; SIGTERM and Ctrl-C end the
     run through exceptions, so output files are complete or absent and no temp file stays behind."""
     try:
-        args = build_parser().parse_args(argv)
+        parser = build_parser()
+        args, extra = parser.parse_known_args(argv)
+        if extra:  # refused by the command they were given to, pointing at its --help (not the top level's)
+            _innermost(parser, args).error(f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as exit_:  # --help, or a usage error already printed as one line
         return int(exit_.code or 0)
     install_signal_handlers()

@@ -23,7 +23,7 @@ def run_raw(args, benchmark, size: tuple[int, int], video=None) -> int:
     without it)."""
     from wgpurender.core.controls import parse_script
     from wgpurender.core.errors import UserError
-    from wgpurender.core.imageio import check_writable, save_png
+    from wgpurender.core.imageio import check_writable, image_format, save_image
     from wgpurender.raw_path.validation import ENV
     from wgpurender.raw_path.window import run_raw_window
 
@@ -31,6 +31,7 @@ def run_raw(args, benchmark, size: tuple[int, int], video=None) -> int:
         if getattr(args, dest):
             raise UserError(why)
     if args.screenshot:
+        image_format(args.screenshot)  # the suffix picks the format; refuse an unknown one before a window
         check_writable(args.screenshot)
     if args.validation:
         os.environ[ENV] = "1"  # read when the window's Vulkan context is made
@@ -48,7 +49,7 @@ def run_raw(args, benchmark, size: tuple[int, int], video=None) -> int:
         print(result.benchmark.summary())
         print(f"wrote {result.benchmark.write_csv()}")
     if args.screenshot and result.last_frame is not None:
-        print(f"wrote {save_png(args.screenshot, result.last_frame)}")
+        print(f"wrote {save_image(args.screenshot, result.last_frame)}")
     if result.validation_messages is not None:
         print(f"validation messages: {result.validation_messages}")
     return 0

@@ -55,6 +55,7 @@ def _register_perf(suites) -> None:
 def run(args) -> int:
     from wgpurender.bench.perf import FAMILIES, PerfConfig, command_line, run_perf, write_reports
     from wgpurender.core.errors import UserError
+    from wgpurender.core.safe_write import output_folder
     from wgpurender.wgpu_path.gpu import get_context
 
     families = tuple(f.strip() for arg in (args.only or FAMILIES) for f in arg.split(",") if f.strip())
@@ -65,6 +66,9 @@ def run(args) -> int:
         raise UserError("--frames must be at least 1")
     if args.anisotropy != DEFAULT_ANISOTROPY and "scene" not in families:
         raise UserError("--anisotropy applies to the scene family: add --only scene, or leave it out")
+    output_folder(args.out, "--out")  # before any timing
+    if args.docs_img is not None:
+        output_folder(args.docs_img, "--docs-img")
     config = PerfConfig(quick=args.quick, out_dir=args.out, families=families, big=args.big, raw=args.raw,
                         frames=args.frames, command=command_line(), anisotropy=args.anisotropy)
     run_ = run_perf(config, get_context(args.backend))
@@ -87,7 +91,7 @@ def _register_accuracy(suites) -> None:
         "pip install 'wgpurender[bench]').",
     )
     p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
-                   help=f"scene file with a post chain (default {SCENE_FILE})")
+                   help=f"scene file with a post chain, or a bundled scene's name (default {SCENE_FILE})")
     p.add_argument("--quick", action="store_true",
                    help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
     p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
@@ -136,7 +140,7 @@ def _run_roofline(args) -> int:
     from wgpurender.bench.perf import command_line
     from wgpurender.bench.post_roofline import csv_text, markdown, record_bandwidth, run_roofline
     from wgpurender.core.errors import UserError
-    from wgpurender.core.safe_write import atomic_write
+    from wgpurender.core.safe_write import atomic_write, output_folder
     from wgpurender.wgpu_path.gpu import get_context
 
     if args.frames < 1:
@@ -144,7 +148,7 @@ def _run_roofline(args) -> int:
     ctx = get_context(args.backend)
     if not ctx.has("timestamp-query"):
         raise UserError(f"{ctx.describe()} has no timestamp queries: post-roofline times passes with them")
-    args.out.mkdir(parents=True, exist_ok=True)
+    output_folder(args.out, "--out")  # before any timing
     for scene in args.scenes:
         rows = run_roofline(ctx, scene, args.size, args.frames, shapes=args.shapes)
         record_bandwidth(ctx, scene, args.size, rows, command_line())

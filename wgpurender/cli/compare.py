@@ -48,13 +48,14 @@ SHARES = ("over_1", "over_2")  # fractions of the pixels: printed as %
 
 def run(args) -> int:
     from wgpurender.core.compare import compare_images, heatmap_with_scale
-    from wgpurender.core.imageio import check_writable, load_png, save_png
+    from wgpurender.core.imageio import check_writable, image_format, load_png, save_image
 
     if args.heatmap:
+        image_format(args.heatmap)  # the suffix picks the format; refuse an unknown one before reading
         check_writable(args.heatmap)
     a, b = load_png(args.reference), load_png(args.test)
     result = compare_images(a, b)
-    heatmap_path = save_png(args.heatmap, heatmap_with_scale(a, b, args.gain)) if args.heatmap else None
+    heatmap_path = save_image(args.heatmap, heatmap_with_scale(a, b, args.gain)) if args.heatmap else None
     thresholds = args.threshold or [("flip_mean", 0.005)]
     failed = [(name, limit) for name, limit in thresholds if _exceeds(name, getattr(result, name), limit)]
     if args.json:

@@ -141,9 +141,9 @@ def _run_wgpu(args, benchmark, size, video) -> int:
         print(result.benchmark.summary())
         print(f"wrote {result.benchmark.write_csv()}")
     if args.screenshot and result.last_frame is not None:
-        from wgpurender.core.imageio import save_png
+        from wgpurender.core.imageio import save_image
 
-        print(f"wrote {save_png(args.screenshot, result.last_frame)}")
+        print(f"wrote {save_image(args.screenshot, result.last_frame)}")
     if counter is not None:
         print(f"validation messages: {len(counter.messages)}")
     return 0
@@ -184,12 +184,13 @@ def _window_size(target: str, asked: tuple[int, int] | None) -> tuple[int, int]:
 
 def _show(args, benchmark, size, video):
     from wgpurender.core.controls import parse_script
-    from wgpurender.core.imageio import check_writable
+    from wgpurender.core.imageio import check_writable, image_format
     from wgpurender.wgpu_path.gpu import get_context
     from wgpurender.wgpu_path.window import run_window
     from wgpurender.wgpu_path.window.view import DemoView
 
     if args.screenshot:
+        image_format(args.screenshot)  # the suffix picks the format; refuse an unknown one before a window
         check_writable(args.screenshot)
     script = parse_script(args.test_input)
     ctx = get_context(args.backend)

@@ -76,3 +76,15 @@ def resolve_scene(target: str | PurePath) -> Path:
     if os.path.isfile(path):  # Path.is_file raises for a name over 255 bytes; input_file says what it is
         return path
     return bundled_scene(target) or path
+
+
+def unknown_target(name: str, stages: list[str]) -> str:
+    """What to say about a target that is neither a stage nor a scene: the closest name, the stages and the
+    bundled scenes (a typo of 'final' listed only the stages, as if scenes were not targets)."""
+    import difflib
+
+    scenes = bundled_scene_names()
+    close = difflib.get_close_matches(str(name), [*stages, *scenes], n=1)
+    guess = f" (did you mean {close[0]!r}?)" if close else ""
+    return (f"valid stages are {', '.join(stages)}; bundled scenes are {', '.join(scenes)}; "
+            f"or give a scene file (.toml){guess}")

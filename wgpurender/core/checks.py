@@ -167,7 +167,17 @@ def threshold(name: Any, value: Any) -> tuple[str, float]:
     limit = number(value, f"threshold {name}") * scale
     if name != "psnr" and limit < 0:
         raise UserError(f"threshold {name} must be 0 or more, got {limit:g}")
+    top = _THRESHOLD_TOPS.get(name)
+    if top is not None and limit > top[0]:  # a limit above the metric's range never fails: no check at all
+        raise UserError(f"threshold {name} must be at most {top[1]}, got {limit:g}: it could never fail"
+                        f"{' (a percentage needs a %: 0.5%)' if name.startswith('over_') else ''}")
     return name, limit
+
+
+# The metrics' ranges, from their definitions: shares of pixels and FLIP's per-pixel error are in [0, 1],
+# a difference of 8-bit values is at most 255.
+_THRESHOLD_TOPS = {"over_1": (1.0, "1 (100%)"), "over_2": (1.0, "1 (100%)"), "flip_mean": (1.0, "1"),
+                   "max_abs": (255.0, "255")}
 
 
 def choice(value: Any, name: str, choices: tuple[str, ...]) -> str:

@@ -68,6 +68,8 @@ def input_file(path: str | os.PathLike, what: str, missing: str | None = None) -
     ``what`` names the input in the message ("scene file", "texture", "image", "model file"); ``missing`` is the
     message when nothing is there (default: "WHAT not found: PATH").
     """
+    if os.fspath(path) == "":  # Path("") is ".": the message would name a folder nobody gave
+        raise InputFileError(f"no {what} given: the path is empty")
     path = Path(path)
     shown = str(path)
     if "\0" in shown:

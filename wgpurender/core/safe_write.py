@@ -236,3 +236,16 @@ def install_signal_handlers() -> None:
     global _handlers_installed
     _handlers_installed = True
     _set_handlers(signal.SIG_DFL)
+
+
+def output_folder(folder: str | os.PathLike, flag: str) -> Path:
+    """Make the folder a command writes into, before it does any work: a file there was a traceback at the
+    end (bench ran minutes of timings, then failed writing its results). ``flag`` names it in the refusal."""
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise UserError(f"{flag} {folder}: exists and is not a folder; give a folder")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise UserError(f"{flag} {folder}: cannot create it ({err.strerror or err})") from None
+    return folder

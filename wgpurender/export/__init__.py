@@ -54,9 +54,7 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> 
 
     if target in NOT_EXPORTABLE:
         raise UserError(f"cannot export {target}: {NOT_EXPORTABLE[target]}")
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise UserError(f"cannot export to {out}: it is a file, not a folder")
+    out = _check_out(Path(out))
     ctx = get_context()
     data = (record_scene if is_scene_file(target) else record_stage)(ctx, target, tuple(size), FPS, SECONDS)
     out.mkdir(parents=True, exist_ok=True)
@@ -65,6 +63,21 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> 
     (out / "index.html").write_text(page_html(data["meta"]))
     return Export(out / "index.html", target, tuple(size), len(data["setup"]) + len(data["frame"]),
                   sum(len(b) * 3 // 4 for b in data["blobs"]), data["meta"]["frames"] > 1)
+
+
+EXPORT_FILES = frozenset({"index.html", "data.js", "player.js"})
+
+
+def _check_out(out: Path) -> Path:
+    """A new folder, an empty one, or one holding an earlier export only (its three files, player.js among
+    them): export into the course report's folder overwrote the report's index.html."""
+    if out.exists() and not out.is_dir():
+        raise UserError(f"cannot export to {out}: it is a file, not a folder")
+    names = {p.name for p in out.iterdir()} if out.is_dir() else set()
+    if names and not (names <= EXPORT_FILES and "player.js" in names):
+        raise UserError(f"cannot export to {out}: it holds other files than an earlier export "
+                        "(index.html, data.js, player.js); give a new or empty folder")
+    return out
 
 
 def page_html(meta: dict) -> str:

@@ -103,5 +103,14 @@ class Checker:
         raise self.error(
             key,
             f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "
-            f"paths are relative to the scene file's folder {self.folder})",
+            f"paths are relative to the scene file's folder {self.folder}){_anchors_hint(written)}",
         )
+
+
+def _anchors_hint(written: str) -> str:
+    """Why a tutorial scene's file is missing: it lives in ../shared/anchors, which is neither in the repository
+    nor in the wheel (the C++ tutorial's own model and texture), so a lone clone or the wheel cannot draw it."""
+    if "shared/anchors/" not in written.replace("\\", "/"):
+        return ""
+    return ("; this scene reads the Vulkan tutorial's own files from ../shared/anchors beside the repository, "
+            "which wgpurender does not ship: render it from a checkout that has that folder")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 
+from wgpurender.core.assets import unknown_target
 from wgpurender.core.discovery import subclasses_in_package
 from wgpurender.core.errors import UserError
 from wgpurender.raw_path.stages.base import RefStage
@@ -25,5 +26,5 @@ def get_ref_stage(name: str) -> type[RefStage]:
     stages = all_ref_stages()
     if name not in stages:
         raise UserError(f"unknown stage {name!r} for the raw-Vulkan reference path: "
-                        f"valid stages are {', '.join(stages)}")
+                        f"{unknown_target(name, list(stages))}")
     return stages[name]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 
+from wgpurender.core.assets import unknown_target
 from wgpurender.core.discovery import subclasses_in_package
 from wgpurender.core.errors import UserError
 from wgpurender.wgpu_path.stages.base import Stage
@@ -24,5 +25,5 @@ def all_stages() -> dict[str, type[Stage]]:
 def get_stage(name: str) -> type[Stage]:
     stages = all_stages()
     if name not in stages:
-        raise UserError(f"unknown stage {name!r}: valid stages are {', '.join(stages)}")
+        raise UserError(f"unknown stage {name!r}: {unknown_target(name, list(stages))}")
     return stages[name]
