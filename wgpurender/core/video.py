@@ -26,13 +26,13 @@ def check_output(path: str | Path) -> Path:
     """Refuse what cannot be written, before anything is rendered."""
     path = Path(path)
     if is_video(path):
+        if not path.parent.is_dir():  # first: the same answer with or without imageio-ffmpeg
+            raise UserError(f"cannot write {path}: folder {path.parent} does not exist")
         try:
             import imageio_ffmpeg  # noqa: F401
         except ImportError:
             raise UserError(f"cannot write {path}: MP4 needs imageio-ffmpeg (pip install imageio-ffmpeg, or "
                             "'wgpurender[notebook]'); give a folder instead for a PNG sequence") from None
-        if not path.parent.is_dir():
-            raise UserError(f"cannot write {path}: folder {path.parent} does not exist")
     elif path.suffix:
         raise UserError(f"cannot record to {path}: give a .mp4 file or a folder (for PNG frames)")
     elif path.exists() and not path.is_dir():
