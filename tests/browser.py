@@ -16,13 +16,13 @@ from __future__ import annotations
 import base64
 import json
 import os
-import select
 import shutil
 import subprocess
 import tempfile
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from wgpurender.export.chromium import DevToolsPipe
 
 CHROMIUM_NAMES = ("chromium", "chromium-browser", "google-chrome")
 
@@ -37,52 +37,6 @@ class PageReport:
     errors: list[str] = field(default_factory=list)
     screenshot: bytes = b""
     values: dict = field(default_factory=dict)  # the results of the ``evaluate`` expressions, by name
-
-
-class _Pipe:
-    def __init__(self, proc: subprocess.Popen, write_fd: int, read_fd: int) -> None:
-        self.proc, self.write_fd, self.read_fd = proc, write_fd, read_fd
-        self.buffer = b""
-        self.next_id = 0
-        self.events: list[dict] = []
-
-    def send(self, method: str, params: dict | None = None, session: str | None = None, timeout: float = 60.0):
-        self.next_id += 1
-        message = {"id": self.next_id, "method": method, "params": params or {}}
-        if session:
-            message["sessionId"] = session
-        os.write(self.write_fd, json.dumps(message).encode() + b"\0")
-        while True:
-            reply = self.receive(timeout)
-            if reply.get("id") == self.next_id:
-                if "error" in reply:
-                    raise RuntimeError(f"{method}: {reply['error']}")
-                return reply.get("result", {})
-            self.events.append(reply)
-
-    def receive(self, timeout: float) -> dict:
-        deadline = time.monotonic() + timeout
-        while b"\0" not in self.buffer:
-            left = deadline - time.monotonic()
-            if left <= 0 or not select.select([self.read_fd], [], [], left)[0]:
-                raise TimeoutError("no answer from Chromium")
-            chunk = os.read(self.read_fd, 1 << 20)
-            if not chunk:
-                raise RuntimeError("Chromium closed the DevTools pipe")
-            self.buffer += chunk
-        message, _, self.buffer = self.buffer.partition(b"\0")
-        return json.loads(message)
-
-    def wait_event(self, method: str, timeout: float = 60.0) -> dict:
-        deadline = time.monotonic() + timeout
-        for event in self.events:
-            if event.get("method") == method:
-                return event
-        while True:
-            event = self.receive(max(0.0, deadline - time.monotonic()))
-            self.events.append(event)
-            if event.get("method") == method:
-                return event
 
 
 def _errors(events: list[dict]) -> list[str]:
@@ -122,7 +76,7 @@ def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 
                                 stderr=subprocess.DEVNULL)
         os.close(to_chrome_r)
         os.close(from_chrome_w)
-        pipe = _Pipe(proc, to_chrome_w, from_chrome_r)
+        pipe = DevToolsPipe(to_chrome_w, from_chrome_r)
         try:
             return _inspect(pipe, path, size, timeout, scroll_to, evaluate or {})
         finally:
@@ -139,7 +93,7 @@ def open_page(path: Path, size: tuple[int, int] = (1200, 900), timeout: float = 
             os.close(from_chrome_r)
 
 
-def _inspect(pipe: _Pipe, path: Path, size: tuple[int, int], timeout: float, scroll_to: str | None,
+def _inspect(pipe: DevToolsPipe, path: Path, size: tuple[int, int], timeout: float, scroll_to: str | None,
              evaluate: dict[str, str]) -> PageReport:
     target = pipe.send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = pipe.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]

@@ -33,7 +33,9 @@ def find_chromium() -> str | None:
     return next((p for p in map(shutil.which, NAMES) if p), None)
 
 
-class _Pipe:
+class DevToolsPipe:
+    """Chromium's DevTools protocol over ``--remote-debugging-pipe``: JSON commands out, replies and events in."""
+
     def __init__(self, write_fd: int, read_fd: int) -> None:
         self.write_fd, self.read_fd = write_fd, read_fd
         self.buffer = b""
@@ -80,7 +82,7 @@ class _Pipe:
 
 
 class Page:
-    def __init__(self, pipe: _Pipe, session: str, target: str) -> None:
+    def __init__(self, pipe: DevToolsPipe, session: str, target: str) -> None:
         self.pipe, self.session, self.target = pipe, session, target
 
     def close(self) -> None:
@@ -146,7 +148,7 @@ class Chromium:
                                      stderr=subprocess.DEVNULL)
         os.close(to_r)
         os.close(from_w)
-        self.pipe = _Pipe(self._to_w, self._from_r)
+        self.pipe = DevToolsPipe(self._to_w, self._from_r)
         return self
 
     def version(self) -> str:
