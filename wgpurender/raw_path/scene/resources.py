@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
-from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import Mesh, index_range, load_mesh
+from wgpurender.core.mesh import Mesh
 from wgpurender.core.plan import Draw, RenderPlan
+from wgpurender.core.plan.meshes import PlanMeshes
 from wgpurender.core.texture_pixels import load_image
 from wgpurender.raw_path.instance import VulkanContext
 from wgpurender.raw_path.memory import Buffer, upload_buffer
@@ -62,26 +62,17 @@ class SceneResources:
 
     def __init__(self, ctx: VulkanContext, owned: ExitStack, plan: RenderPlan) -> None:
         self.ctx, self.owned, self.plan = ctx, owned, plan
-        self._meshes: dict[Path, Mesh] = {}
+        self.meshes = PlanMeshes(plan)  # what is loaded and checked: the core's, as on the wgpu path
         self._buffers: dict[tuple[Path, tuple[str, ...]], MeshBuffers] = {}
         self._textures: dict[tuple[Path, bool], TextureImage] = {}
         self._samplers: dict[object, object] = {}
-        self._needs_tangents = {d.model_path for d in plan.scene_pass.draws
-                                if "tangent" in plan.variant(d.variant_key).vertex_attributes}
         self._mipmaps = {(t.path, t.format.endswith("-srgb")): t.mipmaps for t in plan.textures}
-
-    def mesh(self, path: Path) -> Mesh:
-        if path not in self._meshes:
-            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents,
-                                                obj_material=False)  # the scene file gives the material
-        return self._meshes[path]
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         attributes = self.plan.variant(draw.variant_key).vertex_attributes
         key = (draw.model_path, attributes)
         if key not in self._buffers:
-            mesh = self.mesh(draw.model_path)
-            _check_mesh(mesh, draw, attributes)
+            mesh = self.meshes.mesh_for(draw)
             vertex_stage = vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT
             vertex = upload_buffer(self.ctx, self.owned, interleave(mesh, attributes),
                                    vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertex_stage,
@@ -94,7 +85,7 @@ class SceneResources:
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
-        return index_range(self.mesh(draw.model_path), draw)
+        return self.meshes.index_range(draw)
 
     def texture(self, path: Path, srgb: bool) -> TextureImage:
         """Albedo maps as R8G8B8A8_SRGB (decoded on sampling), data maps as R8G8B8A8_UNORM, as the plan lists."""
@@ -109,10 +100,3 @@ class SceneResources:
             self._samplers[spec] = create_sampler(self.ctx, self.owned, spec)
         return self._samplers[spec]
 
-
-def _check_mesh(mesh: Mesh, draw: Draw, attributes: tuple[str, ...]) -> None:
-    if "uv" in attributes and not mesh.has_uvs:
-        raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
-                        "texture coordinates: export it with UVs, or use a material without maps")
-    if "tangent" in attributes and mesh.tangents is None:
-        raise UserError(f"{draw.label}: no tangents could be made for its normal map")

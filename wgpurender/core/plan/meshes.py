@@ -1,0 +1,48 @@
+"""The meshes a plan draws, loaded once each and checked against what each draw's shader variant reads.
+
+Both paths upload the same triangles, so what is loaded (tangents only where a variant drawing the model has a
+normal map; the scene file, not the OBJ's MTL, gives the material) and what a draw may ask of its mesh (uvs for
+textures, tangents for a normal map) is decided here, once; each path turns a :class:`Mesh` into its own
+buffers (wgpu_path/scene_render/resources.py, raw_path/scene/resources.py).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.mesh import Mesh, index_range, load_mesh
+from wgpurender.core.plan.model import Draw, RenderPlan
+
+
+class PlanMeshes:
+    """``mesh_for(draw)`` and ``index_range(draw)``, for one plan."""
+
+    def __init__(self, plan: RenderPlan) -> None:
+        self.plan = plan
+        self._meshes: dict[Path, Mesh] = {}
+        self._needs_tangents = {d.model_path for d in plan.scene_pass.draws
+                                if "tangent" in plan.variant(d.variant_key).vertex_attributes}
+
+    def mesh(self, path: Path) -> Mesh:
+        """The loaded mesh; tangents only when a variant drawing it has a normal map."""
+        if path not in self._meshes:
+            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents,
+                                           obj_material=False)  # the scene file gives the material
+        return self._meshes[path]
+
+    def mesh_for(self, draw: Draw) -> Mesh:
+        """The draw's mesh, checked against the vertex attributes its variant reads (UserError names what is
+        missing)."""
+        attributes = self.plan.variant(draw.variant_key).vertex_attributes
+        mesh = self.mesh(draw.model_path)
+        if "uv" in attributes and not mesh.has_uvs:
+            raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
+                            "texture coordinates: export it with UVs, or use a material without maps")
+        if "tangent" in attributes and mesh.tangents is None:
+            raise UserError(f"{draw.label}: no tangents could be made for its normal map")
+        return mesh
+
+    def index_range(self, draw: Draw) -> tuple[int, int]:
+        """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
+        return index_range(self.mesh(draw.model_path), draw)
