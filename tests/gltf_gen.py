@@ -109,18 +109,25 @@ class GltfWriter:
         doc = dict(self.doc)
         doc["scene"] = 0
         doc["scenes"] = [{"nodes": roots if roots is not None else list(range(len(doc["nodes"])))}]
-        data = bytes(self.data) + b"\0" * (-len(self.data) % 4)
-        if path.suffix == ".glb":
-            doc["buffers"] = [{"byteLength": len(data)}]
-            text = json.dumps(doc).encode()
-            text += b" " * (-len(text) % 4)
-            body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(data), 0x004E4942) + data
-            path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
-        else:
-            doc["buffers"] = [{"byteLength": len(data),
-                               "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}]
-            path.write_text(json.dumps(doc))
-        return path
+        return write_container(path, doc, bytes(self.data))
+
+
+def write_container(path: Path, doc: dict, data: bytes) -> Path:
+    """``doc`` with ``data`` as its one buffer: a binary .glb (JSON and BIN chunks, glTF 2.0 section 4.4), else a
+    .gltf with the buffer as a base64 data URI. The container is written by hand, never by the loader under test."""
+    doc = {**doc}
+    data = data + b"\0" * (-len(data) % 4)
+    if path.suffix == ".glb":
+        doc["buffers"] = [{"byteLength": len(data)}]
+        text = json.dumps(doc).encode()
+        text += b" " * (-len(text) % 4)
+        body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(data), 0x004E4942) + data
+        path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+    else:
+        doc["buffers"] = [{"byteLength": len(data),
+                           "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}]
+        path.write_text(json.dumps(doc))
+    return path
 
 
 def quad(x0: float, y0: float, x1: float, y1: float, z: float = 0.0) -> np.ndarray:

@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from gltf_gen import write_container
 
 from wgpurender.core import procedural as proc
 from wgpurender.core.errors import UserError
@@ -56,17 +57,7 @@ def write_gltf(path: Path, attributes: dict, indices: np.ndarray, *, material: b
                                "normalTexture": {"index": 1}}],
                    textures=[{"source": 0}, {"source": 1}],
                    images=[{"uri": "albedo.png"}, {"uri": "normal.png"}])
-    if path.suffix == ".glb":
-        doc["buffers"] = [{"byteLength": len(data)}]
-        text = json.dumps(doc).encode()
-        text += b" " * (-len(text) % 4)
-        body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(data), 0x004E4942) + data
-        path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
-    else:
-        doc["buffers"] = [{"byteLength": len(data),
-                           "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}]
-        path.write_text(json.dumps(doc))
-    return path
+    return write_container(path, doc, data)
 
 
 # ------------------------------------------------------------------ UV convention
@@ -412,13 +403,8 @@ def test_glb_embedded_texture_is_returned_as_bytes(tmp_path):
     doc = json.loads(raw[20:20 + json_len])
     binary = raw[20 + json_len + 8:]
     doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(png.getvalue())})
-    binary += png.getvalue() + b"\0" * (-len(png.getvalue()) % 4)
-    doc["buffers"][0]["byteLength"] = len(binary)
     doc["images"][0] = {"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"}
-    text = json.dumps(doc).encode()
-    text += b" " * (-len(text) % 4)
-    body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + binary
-    path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+    write_container(path, doc, binary + png.getvalue())
     ref = load_mesh(path).material.textures["base_color"]
     assert ref.path is None and ref.data == png.getvalue() and ref.srgb
     np.testing.assert_array_equal(ref.load(), pixels)
