@@ -90,7 +90,7 @@ def _tinyobj_uvs(load):
 
 
 def _use_tutorial_inputs_on_wgpu(monkeypatch, glm) -> None:
-    from wgpurender.wgpu_path.scene_render import resources, scene_pass
+    from wgpurender.wgpu_path.scene_render import scene_pass
 
     camera_values = scene_pass.camera_values
 
@@ -101,12 +101,11 @@ def _use_tutorial_inputs_on_wgpu(monkeypatch, glm) -> None:
         return values
 
     monkeypatch.setattr(scene_pass, "camera_values", glm_camera)
-    monkeypatch.setattr(resources.SceneResources, "mesh", _tinyobj_uvs(resources.SceneResources.mesh))
 
 
 def _use_tutorial_inputs_on_raw(monkeypatch, glm) -> None:
     """The raw path uploads the glm-vulkan projection as the tutorial does (Y flip kept, plain viewport)."""
-    from wgpurender.raw_path.scene import resources, scene_subpass
+    from wgpurender.raw_path.scene import scene_subpass
 
     camera_block = scene_subpass.camera_block
 
@@ -132,7 +131,13 @@ def _use_tutorial_inputs_on_raw(monkeypatch, glm) -> None:
 
     monkeypatch.setattr(scene_subpass, "camera_block", lambda scene, aspect: camera_block(SceneWithGlmCamera(scene),
                                                                                           aspect))
-    monkeypatch.setattr(resources.SceneResources, "mesh", _tinyobj_uvs(resources.SceneResources.mesh))
+
+
+def _use_tutorial_uvs(monkeypatch) -> None:
+    """Both paths load their meshes through the core's PlanMeshes: one patch gives both the tutorial's uvs."""
+    from wgpurender.core.plan.meshes import PlanMeshes
+
+    monkeypatch.setattr(PlanMeshes, "mesh", _tinyobj_uvs(PlanMeshes.mesh))
 
 
 @pytest.mark.parametrize("chapter", sorted(CHAPTERS))
@@ -147,6 +152,7 @@ def test_float32_inputs_same_on_both_paths(request, ctx, monkeypatch, chapter, w
     glm = _glm_matrices()
     _use_tutorial_inputs_on_wgpu(monkeypatch, glm)
     _use_tutorial_inputs_on_raw(monkeypatch, glm)
+    _use_tutorial_uvs(monkeypatch)
     ref, ours = _render(ctx, chapter)
     raw = render_scene_reference(ROOT / "assets" / "scenes" / CHAPTERS[chapter][0], size=(800, 600))
     assert_same_render(request, raw[..., :3], ours, "wgpu and raw renders with the tutorial's float32 inputs")
