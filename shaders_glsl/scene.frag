@@ -1,8 +1,9 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // The scene's fragment shader on the raw path: the GLSL twin of shaders_wgsl/scene.wgsl's fs_main,
 // normalized Blinn-Phong in linear light with normal and roughness maps (the model is explained in
-// scene.wgsl's header; the arithmetic here follows it operation for operation). Variants: -D flags,
-// see scene.vert.
+// scene.wgsl's header; the arithmetic here follows it operation for operation), or with -DPBR the glTF
+// metallic-roughness BRDF of pbr.glsl (pbr.wgsl's twin). Variants: -D flags, see scene.vert.
 //
 // Material data is the course's way: per-draw factors in push constants, textures as
 // COMBINED_IMAGE_SAMPLER descriptors in set 2 (the wgpu path, which cannot express combined
@@ -44,6 +45,9 @@ layout(push_constant) uniform Material {
 #ifdef OCCLUSION_MAP
     float occlusion_strength;  // next float
 #endif
+#ifdef PBR
+    float metallic;         // next float
+#endif
 #ifdef EMISSIVE
     vec4 emissive;          // rgb; on the next multiple of 16 bytes (std430)
 #endif
@@ -64,6 +68,10 @@ layout(set = 2, binding = 7) uniform sampler2D emissive_tex;
 #ifdef OCCLUSION_MAP
 layout(set = 2, binding = 9) uniform sampler2D occlusion_tex;
 float ambient_occlusion = 1.0;  // the ambient term's factor for this fragment (set by main before shading)
+#endif
+#ifdef PBR
+float pbr_metallic = 0.0;  // the metallic factor of this fragment (set by main before shading)
+#include "pbr.glsl"
 #endif
 
 #ifdef LIGHTING
@@ -138,7 +146,11 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
 #if DIRECTIONAL_LIGHTS > 0
     for (uint i = 0u; i < uint(DIRECTIONAL_LIGHTS); i++) {
         vec3 l = safe_normalize(-camera.directional[i].direction.xyz, n);
+#ifdef PBR
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, camera.directional[i].radiance.rgb);
+#else
         color += blinn_phong(n, l, v, albedo, s, camera.directional[i].radiance.rgb);
+#endif
     }
 #endif
 #if POINT_LIGHTS > 0
@@ -146,7 +158,11 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
         vec3 to_light = camera.point[i].position.xyz - v_world_position;
         float d2 = max(dot(to_light, to_light), 1e-4);
         vec3 l = safe_normalize(to_light, n);
+#ifdef PBR
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, camera.point[i].radiance.rgb / d2);
+#else
         color += blinn_phong(n, l, v, albedo, s, camera.point[i].radiance.rgb / d2);
+#endif
     }
 #endif
     return color;
@@ -183,9 +199,16 @@ void main() {
     vec3 normal_texel = vec3(0.5, 0.5, 1.0);
 #endif
 #ifdef ROUGHNESS_MAP
-    float roughness = material.roughness * texture(roughness_tex, v_uv).g;
+    vec4 roughness_texel = texture(roughness_tex, v_uv);
+    float roughness = material.roughness * roughness_texel.g;
+#ifdef PBR
+    pbr_metallic = material.metallic * roughness_texel.b;
+#endif
 #else
     float roughness = material.roughness;
+#ifdef PBR
+    pbr_metallic = material.metallic;
+#endif
 #endif
 #ifdef OCCLUSION_MAP
     float occlusion_texel = texture(occlusion_tex, v_uv).r;

@@ -32,6 +32,9 @@
 // Each texture has its own sampler (glTF: filters and per-axis wrap per texture). emissive adds
 // material.emissive.rgb (times the sRGB emissive texel with emissive_map) to the shaded colour;
 // occlusion_map scales the ambient term by 1 + strength * (texel.r - 1) (lit variants only).
+// pbr (a glTF file's lit metallic-roughness material): each light's term is pbr.wgsl's pbr_radiance instead of
+// blinn_phong, with metallic = material.metallic (times the metallic-roughness texture's B channel with
+// roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 
 {{STRUCTS}}
 
@@ -66,6 +69,11 @@ var<immediate> material: Material;
 @group(2) @binding(10) var occlusion_sampler: sampler;
 // the ambient term's factor for this fragment (set by fs_main before shading)
 var<private> ambient_occlusion: f32 = 1.0;
+#endif
+#if pbr
+// the metallic factor of this fragment (set by fs_main before shading)
+var<private> pbr_metallic: f32 = 0.0;
+{{PBR_FUNCTIONS}}
 #endif
 
 struct VertexIn {
@@ -182,7 +190,11 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
     for (var i = 0u; i < DIRECTIONAL_LIGHTS; i++) {
         let light = camera.directional[i];
         let l = safe_normalize(-light.direction.xyz, n);
+#if pbr
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, light.radiance.rgb);
+#else
         color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb);
+#endif
     }
 #endif
 #if point_lights
@@ -191,7 +203,11 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
         let to_light = light.position.xyz - in.world_position;
         let d2 = max(dot(to_light, to_light), 1e-4);
         let l = safe_normalize(to_light, n);
+#if pbr
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, light.radiance.rgb / d2);
+#else
         color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb / d2);
+#endif
     }
 #endif
     return color;
@@ -238,9 +254,16 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let normal_texel = vec3f(0.5, 0.5, 1.0);
 #endif
 #if roughness_map
-    let roughness = material.roughness * textureSample(roughness_tex, roughness_sampler, in.uv).g;
+    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.uv);
+    let roughness = material.roughness * roughness_texel.g;
+#if pbr
+    pbr_metallic = material.metallic * roughness_texel.b;
+#endif
 #else
     let roughness = material.roughness;
+#if pbr
+    pbr_metallic = material.metallic;
+#endif
 #endif
 #if occlusion_map
     let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.uv).r;

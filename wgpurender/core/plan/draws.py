@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.shading import AMBIENT, material_factors
-from wgpurender.core.plan import file_materials
+from wgpurender.core.plan import file_materials, shading_models
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
     Draw,
@@ -69,6 +69,7 @@ def material_variant(material: Material, directional: list[int], point: list[int
         else:
             notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
     reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
+    reasons.extend(shading_models.model_reasons(material, label, lit, "roughness_map" in maps, notes))
     if srgb_output:
         reasons.append(("srgb_output", srgb_output))
     counts = []

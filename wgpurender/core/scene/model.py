@@ -122,6 +122,10 @@ class Material:
     emissive_map: Path | None = None  # sRGB, multiplies emissive_color (glTF emissiveTexture)
     occlusion_map: Path | None = None  # linear, R channel scales the ambient term (glTF occlusionTexture)
     occlusion_strength: float = 1.0
+    # The material model (core/plan/shading_models.py): "blinn-phong" (the course's) or "pbr" (glTF
+    # metallic-roughness, shaders_wgsl/pbr.wgsl), with the metallic factor (times the roughness map's B channel).
+    shading_model: str = "blinn-phong"
+    metallic: float = 0.0
 
     @property
     def textures(self) -> dict[str, Path]:

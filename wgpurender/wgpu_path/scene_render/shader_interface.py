@@ -30,6 +30,7 @@ from wgpurender.core.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struc
 from wgpurender.wgpu_path.shaders import load_wgsl
 
 SHADER = "scene.wgsl"
+PBR_FUNCTIONS = "pbr.wgsl"  # the glTF metallic-roughness BRDF, inserted for variants with the "pbr" flag
 
 _CAMERA_VIEW = [("proj", MAT4), ("view", MAT4), ("eye", VEC4F)]
 DIRECTIONAL_LIGHT = Struct("DirectionalLight", [("direction", VEC4F), ("radiance", VEC4F)])
@@ -50,7 +51,7 @@ MATERIAL = Struct("Material", _MATERIAL_FIELDS)
 
 # Model-file materials append, when their variant has the feature, in core/course/shading.material_factors' order:
 _MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occlusion_strength", F32),
-                    ("emissive", "emissive", VEC4F))
+                    ("pbr", "metallic", F32), ("emissive", "emissive", VEC4F))
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
     assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items()), _small
@@ -128,5 +129,6 @@ def shader_source(variant: ShaderVariant, immediates: bool) -> str:
         "STRUCTS": wgsl_structs(*structs),
         "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
         "POINT_LIGHTS": str(variant.count("point_lights")),
+        "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
     }
     return specialise(load_wgsl(SHADER), shader_features(variant, immediates), values, name=SHADER)
