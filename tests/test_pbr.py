@@ -113,3 +113,97 @@ def test_pixels_match_the_float64_brdf_on_both_paths(ctx, tmp_path, case):
     worst = np.unravel_index(np.argmax(np.where(inner[..., None], np.abs(wgpu[..., :3] - want), 0)), want.shape)
     assert err.max() <= 2, (case, err.max(), worst, wgpu[worst[:2]].tolist(), want[worst[:2]].tolist())
     assert np.all(np.isfinite(linear))
+
+
+def test_roughness_zero_needs_the_clamp():
+    """At roughness 0 the naive formulas (alpha = 0) give D = 0 / 0 = NaN in the mirror direction and 0 elsewhere:
+    a metal is black except for NaN; the documented clamp (roughness >= 0.045, pbr.wgsl) makes the peak finite and
+    large. Evaluated in float64 from the spec's formulas (the same naive arithmetic is NaN in float32 too)."""
+    n, to_light = np.array([0.0, 0.0, 1.0]), ref.unit([0.3, 0.2, 1.0])
+    mirror = to_light * [-1, -1, 1]  # v = l reflected about n: h = n
+    off = ref.unit([0.1, 0.0, 1.0])
+    naive = {name: ref.brdf(n, to_light, v, BASE, 1.0, 0.0, min_roughness=None) for name, v in
+             (("mirror", mirror), ("off", off))}
+    assert np.isnan(naive["mirror"]).all()
+    assert np.array_equal(naive["off"], np.zeros(3))  # black away from the mirror direction
+    clamped = ref.brdf(n, to_light, mirror, BASE, 1.0, 0.0)
+    assert np.isfinite(clamped).all() and (clamped > 1e3).all()
+    for grazing in (ref.unit([1.0, 0.0, 1e-9]), ref.unit([0.0, 1.0, 0.0])):  # n.v -> 0 and = 0: finite
+        assert np.isfinite(ref.brdf(n, to_light, grazing, BASE, 0.5, 0.0)).all()
+
+
+# -- the MetalRoughSpheres equivalent --------------------------------------------------------------------------------
+
+SPHERES_BASE = (1.0, 0.71, 0.29)  # assets/make_assets.py: SPHERE_BASE (the file's baseColorFactor)
+GRID = 5  # metallic 0..1 bottom to top, roughness 0..1 left to right, spacing 1, radius 0.42, in z = 0
+
+
+@pytest.fixture(scope="module")
+def spheres():
+    """The repository scene on both paths at its own size: linear pixels and the raw 8-bit image."""
+    from pathlib import Path
+
+    from shading_model import srgb_decode
+
+    from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.scene import render_scene_reference
+    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.scene_render import render_scene_file
+
+    path = Path(__file__).resolve().parents[1] / "assets" / "scenes" / "metal_rough_spheres.toml"
+    scene = load_scene(path)
+    raw = render_scene_reference(path)
+    wgpu = render_scene_file(path, ctx=get_context(), frames=1, knobs={"post_path": "fragment"}).pixels
+    return scene, raw[..., :3], wgpu[..., :3], srgb_decode(raw[..., :3] / 255.0)
+
+
+def sphere_disc(scene, row: int, col: int, shrink: float = 0.8) -> np.ndarray:
+    """Pixels within ``shrink`` of the projected radius of sphere (row, col) (row 0: metallic 0, at the bottom)."""
+    w, h = scene.render.size
+    distance = np.linalg.norm(np.subtract(scene.camera.eye, scene.camera.target))
+    half_h = distance * np.tan(np.radians(scene.camera.fov_y) / 2)
+    x, y = col - (GRID - 1) / 2, row - (GRID - 1) / 2
+    cx, cy = (x / (half_h * w / h) + 1) / 2 * w, (1 - y / half_h) / 2 * h
+    radius = 0.42 / half_h * h / 2 * shrink
+    ys, xs = np.mgrid[0:h, 0:w] + 0.5
+    return (xs - cx) ** 2 + (ys - cy) ** 2 <= radius * radius
+
+
+def test_spheres_render_alike_on_both_paths(spheres):
+    _, raw, wgpu, _ = spheres
+    assert np.array_equal(raw, wgpu)
+
+
+def test_roughness_zero_dielectric_has_a_small_bright_highlight(spheres):
+    """Bottom-left sphere: its brightest pixel stands well above the diffuse body (median), and only a few pixels
+    reach half-way up."""
+    scene, _, _, lin = spheres
+    lum = lin[sphere_disc(scene, 0, 0)].sum(-1)
+    body = np.median(lum)
+    assert lum.max() - body > 0.5
+    assert 1 <= (lum >= body + 0.5 * (lum.max() - body)).sum() <= 4
+
+
+def test_metal_spheres_take_the_base_colour(spheres):
+    """Top row (metallicFactor 1): every lit pixel below saturation has the base colour's channel ratios (Schlick
+    F with f0 = base colour; a dielectric-looking metal, f0 = 0.04, would reflect white)."""
+    scene, raw, _, lin = spheres
+    for col in range(GRID):
+        disc = sphere_disc(scene, GRID - 1, col)
+        px = lin[disc][(raw[disc] < 250).all(-1) & (lin[disc].sum(-1) > 0.05)]
+        assert len(px) > 50
+        for channel in (1, 2):
+            ratio = np.median(px[:, channel] / px[:, 0])
+            assert abs(ratio - SPHERES_BASE[channel] / SPHERES_BASE[0]) < 0.05, (col, channel, ratio)
+
+
+@pytest.mark.parametrize("row", [GRID - 2, GRID - 1])
+def test_highlight_width_grows_with_roughness(spheres, row):
+    """The two most metallic rows (no diffuse to hide the lobe): the number of pixels at or above half the
+    sphere's peak grows strictly from roughness 0 to 1."""
+    scene, _, _, lin = spheres
+    widths = []
+    for col in range(GRID):
+        lum = lin[sphere_disc(scene, row, col)].sum(-1)
+        widths.append(int((lum >= 0.5 * lum.max()).sum()))
+    assert all(a < b for a, b in zip(widths, widths[1:], strict=False)), widths
