@@ -15,8 +15,9 @@ struct DirectionalLight {
     vec4 radiance;
 };
 struct PointLight {
-    vec4 position;
-    vec4 radiance;
+    vec4 position;  // w: range (0: none)
+    vec4 radiance;  // w: spot cone offset
+    vec4 spot;      // the spot's axis, w: cone scale (a plain point light: scale 0, offset 1)
 };
 #endif
 
@@ -28,7 +29,7 @@ layout(std140, set = 0, binding = 0) uniform Camera {
     vec4 ambient;       // @144
     uvec4 light_counts; // @160 (the loops use the compile-time counts)
     DirectionalLight directional[MAX_LIGHTS];  // @176, 32 bytes each
-    PointLight point[MAX_LIGHTS];              // @176 + 32 * MAX_LIGHTS
+    PointLight point[MAX_LIGHTS];              // @176 + 32 * MAX_LIGHTS, 48 bytes each
 #endif
 } camera;
 
@@ -135,6 +136,17 @@ vec3 blinn_phong(vec3 n, vec3 l, vec3 v, vec3 albedo, float s, vec3 irradiance) 
     return irradiance * n_dot_l * (albedo + vec3(spec));
 }
 
+// A point light's range window and spot cone (scene.wgsl's light_window).
+float light_window(PointLight light, float d2, vec3 l) {
+    float window = 1.0;
+    if (light.position.w > 0.0) {
+        float x = d2 / (light.position.w * light.position.w);
+        window = clamp(1.0 - x * x, 0.0, 1.0);
+    }
+    float cone = clamp(dot(light.spot.xyz, -l) * light.spot.w + light.radiance.w, 0.0, 1.0);
+    return window * cone * cone;
+}
+
 vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
     vec3 n = surface_normal(normal_texel);
     vec3 v = safe_normalize(camera.eye.xyz - v_world_position, n);
@@ -158,10 +170,11 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
         vec3 to_light = camera.point[i].position.xyz - v_world_position;
         float d2 = max(dot(to_light, to_light), 1e-4);
         vec3 l = safe_normalize(to_light, n);
+        vec3 irradiance = camera.point[i].radiance.rgb / d2 * light_window(camera.point[i], d2, l);
 #ifdef PBR
-        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, camera.point[i].radiance.rgb / d2);
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, irradiance);
 #else
-        color += blinn_phong(n, l, v, albedo, s, camera.point[i].radiance.rgb / d2);
+        color += blinn_phong(n, l, v, albedo, s, irradiance);
 #endif
     }
 #endif

@@ -19,8 +19,9 @@
 //     s = clamp(2 / r^4 - 2, 1, 4096)     (the Beckmann-matched Blinn-Phong exponent)
 // `specular` is the dielectric reflectance 0.04 (no Fresnel term).
 // Lights: E = colour * intensity. Directional lights travel along `direction` (l = -direction).
-// Point lights fall off with the plain inverse square, E = colour * intensity / max(d^2, 1e-4):
-// no range cut-off, so intensity is the irradiance at 1 unit.
+// Point lights fall off with the inverse square, E = colour * intensity / max(d^2, 1e-4), so intensity is
+// the irradiance at 1 unit; a model file's KHR_lights_punctual lights may add a range window and a spot cone
+// (light_window; core/gltf_lights.py converts their units).
 // Normal mapping (tangent space, +Y up, linear texels): m = texel * 2 - 1, m.xy *= normal_strength,
 // T = Gram-Schmidt of the tangent against N, B = w * cross(N, T) (w = tangent.w times the sign of
 // det(world)), n' = normalize(T m.x + B m.y + N m.z). Every normalisation is guarded: a zero-length
@@ -178,6 +179,18 @@ fn blinn_phong(n: vec3f, l: vec3f, v: vec3f, albedo: vec3f, s: f32, irradiance: 
     return irradiance * n_dot_l * (albedo + vec3f(spec));
 }
 
+// A point light's range window and spot cone (KHR_lights_punctual; 1 exactly for a plain point light):
+// clamp(1 - (d / range)^4, 0, 1) when range > 0, times clamp(dot(axis, -l) * scale + offset, 0, 1)^2.
+fn light_window(light: PointLight, d2: f32, l: vec3f) -> f32 {
+    var window = 1.0;
+    if (light.position.w > 0.0) {
+        let x = d2 / (light.position.w * light.position.w);
+        window = clamp(1.0 - x * x, 0.0, 1.0);
+    }
+    let cone = clamp(dot(light.spot.xyz, -l) * light.spot.w + light.radiance.w, 0.0, 1.0);
+    return window * cone * cone;
+}
+
 fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> vec3f {
     let n = surface_normal(in, normal_texel);
     let v = safe_normalize(camera.eye.xyz - in.world_position, n);
@@ -203,10 +216,11 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
         let to_light = light.position.xyz - in.world_position;
         let d2 = max(dot(to_light, to_light), 1e-4);
         let l = safe_normalize(to_light, n);
+        let irradiance = light.radiance.rgb / d2 * light_window(light, d2, l);
 #if pbr
-        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, light.radiance.rgb / d2);
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, irradiance);
 #else
-        color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb / d2);
+        color += blinn_phong(n, l, v, albedo, s, irradiance);
 #endif
     }
 #endif

@@ -61,7 +61,7 @@ def embedded_image_path(model: Path, image: int) -> Path:
     return Path(f"{model}{EMBEDDED_MARK}{image}]")
 
 
-def _document(path: str) -> gltf_io.GltfDocument:
+def document(path: str) -> gltf_io.GltfDocument:
     """The parsed model, read once while the file is unchanged (the plan asks each embedded image's size, the
     upload its pixels: one read of a large GLB each, not one per image)."""
     stat = os.stat(path)
@@ -81,7 +81,7 @@ def embedded_image_bytes(path: Path) -> bytes | None:
     model, _, index = text.rpartition(EMBEDDED_MARK)
     if not os.path.isfile(model):
         return None
-    doc = _document(model)
+    doc = document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io._image_source(doc, image)
     return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
@@ -172,7 +172,7 @@ def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
 
 def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
-    doc = gltf_io.read_document(path)
+    doc = document(str(path))
     used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
@@ -192,7 +192,7 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
     for m in materials:
         taken.append(_taken_text(m))
     for ext in doc.json.get("extensionsUsed", []):
-        if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
+        if ext not in SUPPORTED_MATERIAL_EXTENSIONS and ext != "KHR_lights_punctual":  # lights: core/gltf_lights.py
             ignored.append(f"extensionsUsed {ext}: ignored")
     return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.shading import AMBIENT, material_factors
+from wgpurender.core.gltf_lights import light_note
 from wgpurender.core.plan import file_materials, shading_models
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
@@ -29,8 +30,9 @@ def material_label(m: Material) -> str:
     return f"material '{m.name}'" if m.origin.startswith("[materials.") else m.origin
 
 
-def _lights_text(lights: list[int]) -> str:
-    return ", ".join(f"lights[{i}]" for i in lights)
+def _lights_text(lights: list) -> str:
+    """Light labels (``lights[i]``, or a model file's light) as one list; indices are scene lights."""
+    return ", ".join(f"lights[{i}]" if isinstance(i, int) else str(i) for i in lights)
 
 
 def material_variant(material: Material, directional: list[int], point: list[int], srgb_output: str | None,
@@ -140,8 +142,9 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
                anisotropy_adapter: str | None, notes: list[str]) -> SceneDraws:
     """One draw per model and material; a material's notes are added the first time it is drawn. Alpha-blended
     draws (glTF alphaMode BLEND) go last, in scene order among themselves: not sorted by depth."""
-    directional = [light.index for light in scene.lights if light.type == "directional"]
-    point = [light.index for light in scene.lights if light.type == "point"]
+    directional = [light.label for light in scene.lights if light.type == "directional"]
+    point = [light.label for light in scene.lights if light.type == "point"]
+    notes.extend(light_note(light) for light in scene.lights if light.origin)
     out = SceneDraws()
     seen_materials: set[int] = set()
     for model in scene.models:

@@ -32,13 +32,16 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     c.table(mats, ("materials",), tuple(mats) if isinstance(mats, dict) else ())
     for name, body in mats.items():
         materials[name] = _material(c, body, ("materials", name), name, f"[materials.{name}]")
+    from wgpurender.core.gltf_lights import scene_lights  # here: it reads the scene model this package defines
+
     description = data.get("description", "")
+    models = _models(c, data.get("models", []), materials)
     return Scene(
         path=path,
         camera=_camera(c, data["camera"]),
-        models=_models(c, data.get("models", []), materials),
+        models=models,
         materials=materials,
-        lights=_lights(c, data.get("lights", [])),
+        lights=scene_lights(_lights(c, data.get("lights", [])), models, path),  # + the glTF files' KHR lights
         render=_render(c, data.get("render", {})),
         post=_post(c, data.get("post", [])),
         description=c.string(description, ("description",)),

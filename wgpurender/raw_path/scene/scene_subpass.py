@@ -53,7 +53,8 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
     cam = scene.camera
     directional = [(np.asarray(lt.direction) / np.linalg.norm(lt.direction), np.asarray(lt.color) * lt.intensity)
                    for lt in scene.lights if lt.type == "directional"]
-    point = [(lt.position, np.asarray(lt.color) * lt.intensity) for lt in scene.lights if lt.type == "point"]
+    point = [(lt.position, np.asarray(lt.color) * lt.intensity, lt.shape()) for lt in scene.lights
+             if lt.type == "point"]
     return U.pack_camera(cam.source_projection(aspect), cam.view(), cam.eye, AMBIENT, directional, point)
 
 

@@ -34,7 +34,8 @@ PBR_FUNCTIONS = "pbr.wgsl"  # the glTF metallic-roughness BRDF, inserted for var
 
 _CAMERA_VIEW = [("proj", MAT4), ("view", MAT4), ("eye", VEC4F)]
 DIRECTIONAL_LIGHT = Struct("DirectionalLight", [("direction", VEC4F), ("radiance", VEC4F)])
-POINT_LIGHT = Struct("PointLight", [("position", VEC4F), ("radiance", VEC4F)])
+# position.w: range (0: none); radiance.w: spot cone offset; spot: the spot's axis and cone scale (Light.shape)
+POINT_LIGHT = Struct("PointLight", [("position", VEC4F), ("radiance", VEC4F), ("spot", VEC4F)])
 CAMERA_UNLIT = Struct("Camera", _CAMERA_VIEW)
 CAMERA = Struct("Camera", _CAMERA_VIEW + [
     ("ambient", VEC4F),  # rgb: ambient radiance multiplied by albedo (see scene.wgsl)
