@@ -29,6 +29,9 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+PBR = "tests/test_pbr.py"
+LIGHTS = "tests/test_gltf_lights.py"
+GLTF_RENDER = "tests/test_gltf_render.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -113,6 +116,64 @@ MUTATIONS = [
      " UINT, FLOAT)", [GLTF]),
     ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
+    # glTF metallic-roughness (issue 30): the BRDF on both paths, the material mapping, KHR_lights_punctual
+    ("shaders_wgsl/pbr.wgsl", "let a2 = alpha * alpha;\n    let k = n_dot_h", "let a2 = alpha;\n    let k = n_dot_h",
+     [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "return a2 / (PBR_PI * k * k);", "return a2 / (PBR_PI * k);", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "return 0.5 / (from_l + from_v);", "return 0.25 / (from_l + from_v);", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "let from_l = n_dot_l * sqrt(n_dot_v", "let from_l = n_dot_v * sqrt(n_dot_v", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "(x2 * x2 * x);", "(x2 * x2);", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "let alpha = r * r;", "let alpha = r;", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "PBR_MIN_ROUGHNESS: f32 = 0.045;", "PBR_MIN_ROUGHNESS: f32 = 0.0;", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "vec3f(specular), pbr_schlick(vec3f(PBR_DIELECTRIC_F0), v_dot_h))",
+     "vec3f(specular), vec3f(PBR_DIELECTRIC_F0))", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "let metal = specular * pbr_schlick(base, v_dot_h);", "let metal = specular * base;",
+     [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "return PBR_PI * brdf * irradiance * n_dot_l;", "return brdf * irradiance * n_dot_l;",
+     [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "let n_dot_v = clamp(dot(n, v), 0.0, 1.0);", "let n_dot_v = clamp(dot(n, l), 0.0, 1.0);",
+     [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "vec3f(clamp(metallic, 0.0, 1.0))", "vec3f(clamp(1.0 - metallic, 0.0, 1.0))", [PBR]),
+    ("shaders_wgsl/pbr.wgsl", "let v_dot_h = clamp(dot(v, h), 0.0, 1.0);", "let v_dot_h = clamp(dot(n, h), 0.0, 1.0);",
+     [PBR]),
+    ("shaders_wgsl/scene.wgsl", "pbr_metallic = material.metallic * roughness_texel.b;",
+     "pbr_metallic = material.metallic * roughness_texel.g;", [PBR]),
+    ("shaders_wgsl/scene.wgsl", "    pbr_metallic = material.metallic;\n", "    pbr_metallic = 0.0;\n", [PBR]),
+    ("shaders_wgsl/scene.wgsl", "window = clamp(1.0 - x * x, 0.0, 1.0);", "window = clamp(1.0 - x, 0.0, 1.0);",
+     [LIGHTS]),
+    ("shaders_wgsl/scene.wgsl", "return window * cone * cone;", "return window * cone;", [LIGHTS]),
+    ("shaders_glsl/pbr.glsl", "float alpha = r * r;", "float alpha = r;", [PBR]),
+    ("shaders_glsl/pbr.glsl", "return 0.5 / (from_l + from_v);", "return 0.5 / (from_l * from_v);", [PBR]),
+    ("shaders_glsl/pbr.glsl", "vec3 metal = specular * pbr_schlick(base, v_dot_h);", "vec3 metal = specular * base;",
+     [PBR]),
+    ("shaders_glsl/scene.frag", "return window * cone * cone;", "return window * cone;", [LIGHTS]),
+    ("shaders_glsl/scene.frag", "pbr_metallic = material.metallic * roughness_texel.b;",
+     "pbr_metallic = material.metallic;", [PBR]),
+    ("wgpurender/core/gltf_materials.py", 'metallic=float(pbr.get("metallicFactor", 1.0))',
+     'metallic=float(pbr.get("metallicFactor", 0.0))', [PBR]),
+    ("wgpurender/core/gltf_materials.py", 'shading_model="blinn-phong" if unlit else "pbr"',
+     'shading_model="blinn-phong"', [PBR]),
+    ("wgpurender/core/plan/shading_models.py", 'return {"metallic": material.metallic} if PBR in variant_flags',
+     'return {"metallic": 1.0} if PBR in variant_flags', [PBR]),
+    ("wgpurender/core/plan/shading_models.py", "return lit and material.shading_model == PBR",
+     "return lit and material.shading_model != PBR", [PBR]),
+    ("wgpurender/raw_path/scene/uniforms.py", "(alpha_cutoff, occlusion_strength, metallic)",
+     "(alpha_cutoff, metallic, occlusion_strength)", [GLTF_RENDER]),
+    ("wgpurender/raw_path/scene/uniforms.py", "POINT_STRIDE = 48", "POINT_STRIDE = 32", [LIGHTS]),
+    ("wgpurender/raw_path/glsl.py", "source = path.read_bytes() + _included(path)", "source = path.read_bytes()",
+     [PBR]),
+    ("wgpurender/core/gltf_lights.py", 'float(light.get("intensity", 1.0)) / math.pi',
+     'float(light.get("intensity", 1.0))', [LIGHTS]),
+    ("wgpurender/core/gltf_lights.py", "axis = matrix[:3, :3] @ np.array([0.0, 0.0, -1.0])",
+     "axis = matrix[:3, :3] @ np.array([0.0, 0.0, 1.0])", [LIGHTS]),
+    ("wgpurender/core/gltf_lights.py", "matrix = np.asarray(model.transform.matrix, np.float64) @ world",
+     "matrix = world", [LIGHTS]),
+    ("wgpurender/core/gltf_lights.py", '"outerConeAngle", math.pi / 4)', '"outerConeAngle", math.pi / 2)', [LIGHTS]),
+    ("wgpurender/core/gltf_lights.py", "range=float(light.get(\"range\", 0.0))", "range=0.0", [LIGHTS]),
+    ("wgpurender/core/scene/model.py", "scale = 1.0 / max(1e-3, inner - outer)",
+     "scale = 1.0 / max(1e-3, inner + outer)", [LIGHTS]),
+    ("wgpurender/core/scene/model.py", "return (0.0, 0.0, -1.0), 0.0, 1.0, self.range",
+     "return (0.0, 0.0, -1.0), 0.0, 0.0, self.range", [LIGHTS]),
 ]
 
 

@@ -1,11 +1,11 @@
 """KHR_lights_punctual lights from a glTF file light the scene on both paths, as the extension defines them.
 
 Each file holds a large quad facing the camera (a rough dielectric glTF material) and one light placed by a node
-hierarchy. The expected radiance is the extension's physics, written here independently of the renderer's
-light units: L = f(l, v) E cos, with E = intensity (lux) for a directional light and E = intensity (candela) /
-d^2 x clamp(1 - (d / range)^4, 0, 1) x clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1)^2 for a spot
-(the extension's recommended range window and cone), f the float64 BRDF of tests/pbr_reference.py, plus the
-ambient term (ambient x base colour).
+hierarchy, the model moved by the scene's transform. The expected radiance is the extension's physics, written
+here independently of the renderer's light units: L = f(l, v) E cos, with E = intensity (lux) for a directional
+light and E = intensity (candela) / d^2 x clamp(1 - (d / range)^4, 0, 1) x clamp((cos a - cos outer) /
+(cos inner - cos outer), 0, 1)^2 for a spot (the extension's recommended range window and cone), f the float64
+BRDF of tests/pbr_reference.py, plus the ambient term (ambient x base colour).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from gltf_gen import QUAD_INDICES, GltfWriter, quad
 from shading_model import course_constant, srgb_encode
 
 SIZE = (64, 64)
+SHIFT = (0.1, -0.05, 0.0)  # the scene's transform of the model: it moves the file's lights too
 EYE = np.array([0.0, 0.0, 2.0])
 BASE = (0.8, 0.7, 0.6)
 ROUGHNESS = 0.7
@@ -33,6 +34,7 @@ clear_color = [0, 0, 0, 1]
 
 [[models]]
 path = "lit.glb"
+transform = {{ translate = [{SHIFT[0]}, {SHIFT[1]}, {SHIFT[2]}] }}
 """
 SPOT = {"position": (0.2, -0.1, 1.0), "inner": 0.35, "outer": 0.6, "range": 1.6, "intensity": 3.0}
 SUN = {"turn": np.radians(30), "intensity": 2.5}
@@ -88,7 +90,7 @@ def test_spot_light_with_cone_and_range(ctx, tmp_path):
     write_file(tmp_path, light, {"translation": [x, y, z - 0.5]})
     got = render_both(ctx, tmp_path)
     hits, v, n = surface()
-    to_light = np.asarray(SPOT["position"]) - hits
+    to_light = np.asarray(SPOT["position"]) + SHIFT - hits
     d = np.linalg.norm(to_light, axis=-1)
     l = to_light / d[..., None]  # noqa: E741
     cos_axis = -l @ np.array([0.0, 0.0, -1.0])
@@ -116,7 +118,7 @@ def test_directional_and_point_lights_from_the_file(ctx, tmp_path, kind):
         l = np.broadcast_to(-travel, hits.shape)  # noqa: E741
         irradiance = SUN["intensity"] * np.clip(l @ n, 0, 1)
     else:
-        to_light = np.array([0.0, 0.0, 1.0]) - hits
+        to_light = np.array([0.0, 0.0, 1.0]) + SHIFT - hits
         d2 = np.sum(to_light**2, axis=-1)
         l = ref.unit(to_light)  # noqa: E741
         irradiance = SUN["intensity"] / d2 * np.clip(l @ n, 0, 1)

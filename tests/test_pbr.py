@@ -207,3 +207,75 @@ def test_highlight_width_grows_with_roughness(spheres, row):
         lum = lin[sphere_disc(scene, row, col)].sum(-1)
         widths.append(int((lum >= 0.5 * lum.max()).sum()))
     assert all(a < b for a, b in zip(widths, widths[1:], strict=False)), widths
+
+
+# -- the metallic-roughness texture, the defaults, --explain --------------------------------------------------------
+
+MR_TEXELS = np.array([[[0, 77, 0, 255], [0, 153, 255, 255]]], np.uint8)  # G roughness, B metal (linear data)
+
+
+def test_metallic_roughness_texture_blue_is_metal_green_is_rough(ctx, tmp_path):
+    """A 2x1 metallicRoughnessTexture (nearest) across the quad: the left half is a dielectric of roughness
+    77/255, the right half a metal of roughness 153/255 (factors 1): each pixel against the float64 BRDF."""
+    g = GltfWriter()
+    tex = g.texture(MR_TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33071))
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [*BASE, 1.0], "metallicRoughnessTexture": {"index": tex}})
+    normals = np.tile(np.float32([0, 0, 1]), (4, 1))
+    uvs = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], np.float32)
+    prim = {"attributes": {"POSITION": g.positions(quad(-HALF, -HALF, HALF, HALF)), "NORMAL": g.accessor(normals),
+                           "TEXCOORD_0": g.accessor(uvs)}, "indices": g.accessor(QUAD_INDICES), "material": mat}
+    g.node(mesh=g.mesh([prim]))
+    g.write(tmp_path / "plane.glb")
+    (tmp_path / "scene.toml").write_text(SCENE.format(direction=[-float(c) for c in ref.unit(TOWARDS_VIEW)],
+                                                      intensity=INTENSITY))
+    wgpu, raw = render_both(ctx, tmp_path)
+    assert np.array_equal(wgpu, raw)
+    right = np.broadcast_to(np.arange(SIZE[0]) + 0.5 > SIZE[0] / 2, SIZE[::-1])
+    metallic = np.where(right, MR_TEXELS[0, 1, 2], MR_TEXELS[0, 0, 2])[..., None] / 255.0
+    roughness = np.where(right, MR_TEXELS[0, 1, 1], MR_TEXELS[0, 0, 1]) / 255.0
+    rays = ref.pixel_rays(SIZE, 90.0)
+    hits = ref.plane_hits(EYE, rays, np.array([0.0, 0.0, 1.0]))
+    light = ref.radiance([0, 0, 1], TOWARDS_VIEW, ref.unit(np.asarray(EYE) - hits), BASE, metallic, roughness,
+                         INTENSITY)
+    want = np.round(srgb_encode(light + np.asarray(course_constant("AMBIENT")) * np.asarray(BASE)) * 255)
+    away_from_seam = np.abs(np.arange(SIZE[0]) + 0.5 - SIZE[0] / 2) > 2
+    err = np.abs(wgpu[..., :3].astype(np.float64) - want)[:, away_from_seam]
+    assert err.max() <= 2, err.max()
+
+
+def test_default_material_values_and_explain(tmp_path, capsys):
+    """A glTF material with no pbrMetallicRoughness takes the spec's defaults (metallic 1, roughness 1, white), and
+    --explain says which model each draw uses: the file's material the metallic-roughness one, the scene's own
+    material (a second model) Blinn-Phong, with one pbr pipeline variant only."""
+    from wgpurender.cli import main
+
+    g = GltfWriter()
+    mat = g.material(name="plain")
+    normals = np.tile(np.float32([0, 0, 1]), (4, 1))
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-1, -1, 1, 1)), "NORMAL": g.accessor(normals)},
+                         "indices": g.accessor(QUAD_INDICES), "material": mat}]))
+    g.write(tmp_path / "plane.glb")
+    text = SCENE.format(direction=[0, 0, -1], intensity=1.0)
+    text += '\n[[models]]\npath = "plane.glb"\nmaterial = { albedo_color = [1, 0, 0, 1] }\n'
+    (tmp_path / "scene.toml").write_text(text)
+    assert main(["render", str(tmp_path / "scene.toml"), "--explain"]) == 0
+    out = capsys.readouterr().out
+    assert "base_color=(1, 1, 1, 1), roughness=1, normal_strength=1, specular=0.04, metallic=1" in out
+    assert "is a glTF metallic-roughness material: metallicFactor 1" in out
+    assert "models[1].material (inline) shades with the course's Blinn-Phong" in out
+    variants = [line for line in out.splitlines() if "| rgba8unorm-srgb x1 |" in line and "<-" not in line]
+    assert len(variants) == 2 and sum("+pbr" in v for v in variants) == 1, variants
+
+
+def test_an_included_glsl_file_is_part_of_the_spirv_cache_key(tmp_path, monkeypatch):
+    """scene.frag includes pbr.glsl: editing the included file alone must give new SPIR-V, not the cached one."""
+    from wgpurender.raw_path.glsl import compile_glsl
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    (tmp_path / "a.frag").write_text('#version 450\n#extension GL_GOOGLE_include_directive : require\n'
+                                     '#include "b.glsl"\nlayout(location = 0) out vec4 c;\n'
+                                     'void main() { c = vec4(K); }\n')
+    (tmp_path / "b.glsl").write_text("const float K = 0.25;\n")
+    first = compile_glsl(tmp_path / "a.frag")
+    (tmp_path / "b.glsl").write_text("const float K = 0.75;\n")
+    assert compile_glsl(tmp_path / "a.frag") != first
