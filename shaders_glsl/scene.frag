@@ -38,16 +38,17 @@ layout(push_constant) uniform Material {
 #ifdef LIGHTING
     float roughness;        // @16
     float normal_strength;  // @20
+#ifdef PBR
+    float metallic;         // @24 (the glTF metallic factor takes specular's place)
+#else
     float specular;         // @24
+#endif
 #endif
 #ifdef ALPHA_MASK
     float alpha_cutoff;     // @28 lit, @16 unlit
 #endif
 #ifdef OCCLUSION_MAP
     float occlusion_strength;  // next float
-#endif
-#ifdef PBR
-    float metallic;         // next float
 #endif
 #ifdef EMISSIVE
     vec4 emissive;          // rgb; on the next multiple of 16 bytes (std430)
@@ -123,6 +124,7 @@ vec3 surface_normal(vec3 normal_texel) {
 #endif
 }
 
+#ifndef PBR
 float shininess(float roughness) {
     float r = clamp(roughness, 0.0, 1.0);
     float r4 = r * r * r * r;
@@ -135,6 +137,7 @@ vec3 blinn_phong(vec3 n, vec3 l, vec3 v, vec3 albedo, float s, vec3 irradiance) 
     float spec = material.specular * (s + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), s);
     return irradiance * n_dot_l * (albedo + vec3(spec));
 }
+#endif
 
 // A point light's range window and spot cone (scene.wgsl's light_window).
 float light_window(PointLight light, float d2, vec3 l) {
@@ -150,7 +153,9 @@ float light_window(PointLight light, float d2, vec3 l) {
 vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
     vec3 n = surface_normal(normal_texel);
     vec3 v = safe_normalize(camera.eye.xyz - v_world_position, n);
+#ifndef PBR
     float s = shininess(roughness);
+#endif
     vec3 color = camera.ambient.rgb * albedo;
 #ifdef OCCLUSION_MAP
     color = color * ambient_occlusion;

@@ -165,6 +165,7 @@ fn surface_normal(in: VertexOut, normal_texel: vec3f) -> vec3f {
 #endif
 }
 
+#if !pbr
 fn shininess(roughness: f32) -> f32 {
     let r = clamp(roughness, 0.0, 1.0);
     let r4 = r * r * r * r;
@@ -178,6 +179,7 @@ fn blinn_phong(n: vec3f, l: vec3f, v: vec3f, albedo: vec3f, s: f32, irradiance: 
     let spec = material.specular * (s + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), s);
     return irradiance * n_dot_l * (albedo + vec3f(spec));
 }
+#endif
 
 // A point light's range window and spot cone (KHR_lights_punctual; 1 exactly for a plain point light):
 // clamp(1 - (d / range)^4, 0, 1) when range > 0, times clamp(dot(axis, -l) * scale + offset, 0, 1)^2.
@@ -194,7 +196,9 @@ fn light_window(light: PointLight, d2: f32, l: vec3f) -> f32 {
 fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> vec3f {
     let n = surface_normal(in, normal_texel);
     let v = safe_normalize(camera.eye.xyz - in.world_position, n);
+#if !pbr
     let s = shininess(roughness);
+#endif
     var color = camera.ambient.rgb * albedo;
 #if occlusion_map
     color = color * ambient_occlusion;

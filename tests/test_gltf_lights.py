@@ -106,11 +106,13 @@ def test_spot_light_with_cone_and_range(ctx, tmp_path):
 @pytest.mark.parametrize("kind", ["directional", "point"])
 def test_directional_and_point_lights_from_the_file(ctx, tmp_path, kind):
     """A directional light (lux) whose node turns -Z by 30 degrees about x, or a point light (candela, no range)
-    at (0, 0, 1): each lights the quad as L = f E cos."""
+    at (0, 0, 1), after a scene light that cannot reach the quad's front: each lights the quad as L = f E cos."""
     turn = SUN["turn"]
     rotation = [float(np.sin(turn / 2)), 0.0, 0.0, float(np.cos(turn / 2))]
     light = {"type": kind, "intensity": SUN["intensity"]}
     write_file(tmp_path, light, {"rotation": rotation, "translation": [0.0, 0.0, 0.5]})
+    with open(tmp_path / "scene.toml", "a") as scene:  # a scene light first, behind the quad (n.l < 0: no light):
+        scene.write('[[lights]]\ntype = "point"\nposition = [0, 0, -5]\n')  # the file's comes second in its list
     got = render_both(ctx, tmp_path)
     hits, v, n = surface()
     if kind == "directional":

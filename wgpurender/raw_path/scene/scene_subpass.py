@@ -65,10 +65,11 @@ def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
     append the cutoff."""
     f = dict(draw.factors)
     extras = {"alpha_cutoff": f.get("alpha_cutoff"), "occlusion_strength": f.get("occlusion_strength"),
-              "metallic": f.get("metallic"), "emissive": f.get("emissive")}
+              "emissive": f.get("emissive")}
     if not is_lit(variant):
         return U.pack_material(f["base_color"], lit=False, **extras)
-    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"], **extras)
+    reflectance = f["metallic"] if "metallic" in f else f["specular"]  # PBR: metallic in specular's place
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], reflectance, **extras)
 
 
 def material_block_size(variant: ShaderVariant) -> int:
@@ -76,7 +77,6 @@ def material_block_size(variant: ShaderVariant) -> int:
     flags = variant.flags
     return len(U.pack_material((0.0,) * 4, is_lit(variant), alpha_cutoff=0.0 if "alpha_mask" in flags else None,
                                occlusion_strength=0.0 if "occlusion_map" in flags else None,
-                               metallic=0.0 if "pbr" in flags else None,
                                emissive=(0.0,) * 3 if "emissive" in flags else None))
 
 

@@ -27,7 +27,8 @@ CAMERA_POINT = CAMERA_DIRECTIONAL + LIGHT_STRIDE * MAX_LIGHTS  # 432
 CAMERA_SIZE = CAMERA_POINT + POINT_STRIDE * MAX_LIGHTS  # 816
 # layout(std140) uniform Object: world @0, normal (mat3) @64, mirror @112; 116 bytes, rounded up to 128.
 OBJECT_SIZE = 128
-# push_constant Material: base_color @0, roughness @16, normal_strength @20, specular @24 (lit); 16 bytes unlit.
+# push_constant Material: base_color @0, roughness @16, normal_strength @20, specular (PBR: metallic) @24 (lit);
+# 16 bytes unlit.
 MATERIAL_SIZE_LIT, MATERIAL_SIZE_UNLIT = 28, 16  # + 4 (alpha_cutoff) in alpha-masked variants
 # layout(std140) uniform Chain: size (vec2) @0, count @8, steps[MAX_POST_STEPS] @16 (kind, p0, p1, p2: 16 bytes).
 MAX_POST_STEPS = 8
@@ -69,12 +70,12 @@ def pack_object(world: np.ndarray) -> bytes:
 
 def pack_material(base_color, lit: bool, roughness: float = 0.0, normal_strength: float = 0.0,
                   specular: float = 0.0, alpha_cutoff: float | None = None, occlusion_strength: float | None = None,
-                  metallic: float | None = None, emissive=None) -> bytes:
-    """The push constant block (std430). Model-file variants append, in scene.frag's order: alpha_cutoff,
-    occlusion_strength and metallic (floats, each right after the last), emissive (a vec4 on the next 16-byte
-    boundary)."""
+                  emissive=None) -> bytes:
+    """The push constant block (std430); a PBR variant's metallic factor goes where ``specular`` is. Model-file
+    variants append, in scene.frag's order: alpha_cutoff and occlusion_strength (floats, each right after the
+    last), emissive (a vec4 on the next 16-byte boundary)."""
     values = [*base_color, roughness, normal_strength, specular] if lit else list(base_color)
-    values += [v for v in (alpha_cutoff, occlusion_strength, metallic) if v is not None]
+    values += [v for v in (alpha_cutoff, occlusion_strength) if v is not None]
     if emissive is not None:
         values += [0.0] * (-len(values) % 4) + [*emissive[:3], 0.0]
     return np.asarray(values, dtype=np.float32).tobytes()

@@ -47,12 +47,16 @@ OBJECT_UNLIT = Struct("Object", [("world", MAT4)])
 OBJECT = Struct("Object", [("world", MAT4), ("normal", MAT3), ("mirror", F32)])  # mirror: sign of det(world)
 _MATERIAL_UNLIT_FIELDS = [("base_color", VEC4F)]
 _MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("specular", F32)]
+# The glTF metallic-roughness variant ("pbr") has no use for Blinn-Phong's specular reflectance: its metallic factor
+# takes that slot, so a PBR material's block is no larger than a Blinn-Phong one.
+_MATERIAL_PBR_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("metallic", F32)]
 MATERIAL_UNLIT = Struct("Material", _MATERIAL_UNLIT_FIELDS)
 MATERIAL = Struct("Material", _MATERIAL_FIELDS)
+MATERIAL_PBR = Struct("Material", _MATERIAL_PBR_FIELDS)
 
 # Model-file materials append, when their variant has the feature, in core/course/shading.material_factors' order:
 _MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occlusion_strength", F32),
-                    ("pbr", "metallic", F32), ("emissive", "emissive", VEC4F))
+                    ("emissive", "emissive", VEC4F))
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
     assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items()), _small
@@ -83,14 +87,16 @@ def object_struct(variant: ShaderVariant) -> Struct:
 
 def material_struct(variant: ShaderVariant) -> Struct:
     extras = tuple((name, kind) for flag, name, kind in _MATERIAL_EXTRAS if flag in variant.flags)
+    pbr = "pbr" in variant.flags
     if not extras:
-        return MATERIAL if is_lit(variant) else MATERIAL_UNLIT
-    return _extended_material(is_lit(variant), extras)
+        return (MATERIAL_PBR if pbr else MATERIAL) if is_lit(variant) else MATERIAL_UNLIT
+    return _extended_material(is_lit(variant), pbr, extras)
 
 
 @functools.cache
-def _extended_material(lit: bool, extras: tuple) -> Struct:
-    return Struct("Material", (_MATERIAL_FIELDS if lit else _MATERIAL_UNLIT_FIELDS) + list(extras))
+def _extended_material(lit: bool, pbr: bool, extras: tuple) -> Struct:
+    fields = (_MATERIAL_PBR_FIELDS if pbr else _MATERIAL_FIELDS) if lit else _MATERIAL_UNLIT_FIELDS
+    return Struct("Material", fields + list(extras))
 
 
 def vertex_layout(variant: ShaderVariant) -> dict:
