@@ -31,6 +31,7 @@ SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
 PBR = "tests/test_pbr.py"
 LIGHTS = "tests/test_gltf_lights.py"
+IBL = "tests/test_ibl.py"
 GLTF_RENDER = "tests/test_gltf_render.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
@@ -158,7 +159,7 @@ MUTATIONS = [
     ("wgpurender/core/plan/shading_models.py", "return lit and material.shading_model == PBR",
      "return lit and material.shading_model != PBR", [PBR]),
     ("wgpurender/raw_path/scene/scene_subpass.py", 'reflectance = f["metallic"] if "metallic" in f else f["specular"]',
-     'reflectance = f["specular"] if "specular" in f else f["metallic"]', [PBR]),
+     'reflectance = f["specular"] if "specular" in f else 0.0', [PBR]),
     ("wgpurender/raw_path/scene/uniforms.py", "POINT_STRIDE = 48", "POINT_STRIDE = 32", [LIGHTS]),
     ("wgpurender/core/course/shading.py", 'values["metallic"] = metallic', 'values["metallic"] = 0.0', [PBR]),
     ("wgpurender/raw_path/glsl.py", "source = path.read_bytes() + _included(path)", "source = path.read_bytes()",
@@ -175,6 +176,23 @@ MUTATIONS = [
      "scale = 1.0 / max(1e-3, inner + outer)", [LIGHTS]),
     ("wgpurender/core/scene/model.py", "return (0.0, 0.0, -1.0), 0.0, 1.0, self.range",
      "return (0.0, 0.0, -1.0), 0.0, 0.0, self.range", [LIGHTS]),
+    # image-based lighting maps (GPU) and the bench section
+    ("shaders_wgsl/ibl.wgsl", "sum += env[y * w + x].rgb * max(dot(n, l), 0.0) * band;",
+     "sum += env[y * w + x].rgb * max(dot(n, l), 0.0);", [IBL]),
+    ("shaders_wgsl/ibl.wgsl", "vec4f(sum / PI, 1.0)", "vec4f(sum, 1.0)", [IBL]),
+    ("shaders_wgsl/ibl.wgsl", "let phi = (uv.x - 0.5) * 2.0 * PI;", "let phi = uv.x * 2.0 * PI;", [IBL]),
+    ("shaders_wgsl/ibl.wgsl", "let cos_t = sqrt((1.0 - xi.y) / (1.0 + (a2 - 1.0) * xi.y));",
+     "let cos_t = sqrt((1.0 - xi.y) / (1.0 + (alpha - 1.0) * xi.y));", [IBL]),
+    ("shaders_wgsl/ibl.wgsl", "let g_vis = visibility(n_dot_l, n_dot_v, alpha) * 4.0 * n_dot_l * v_dot_h / n_dot_h;",
+     "let g_vis = visibility(n_dot_l, n_dot_v, alpha) * n_dot_l * v_dot_h / n_dot_h;", [IBL]),
+    ("shaders_wgsl/ibl.wgsl", "ab += vec2f((1.0 - fc) * g_vis, fc * g_vis);", "ab += vec2f(g_vis, fc * g_vis);", [IBL]),
+    ("shaders_wgsl/ibl.wgsl", "let roughness = f32(id.z) / f32(max(params.levels - 1u, 1u));",
+     "let roughness = f32(id.z + 1u) / f32(max(params.levels, 1u));", [IBL]),
+    ("wgpurender/bench/accuracy_ibl.py", "pre * (f0 * ab[..., :1] + ab[..., 1:])", "pre * (f0 * ab[..., :1])", [IBL]),
+    ("wgpurender/bench/accuracy_ibl.py", "weight = (np.clip(dirs @ n, 0, 1) * omega)[:, None]",
+     "weight = (np.clip(dirs @ n, 0, 1))[:, None]", [IBL]),
+    ("wgpurender/core/course/environment.py", "band = (2 * np.pi / (width * sub))", "band = (np.pi / (width * sub))",
+     [IBL]),
 ]
 
 
