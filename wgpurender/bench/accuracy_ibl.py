@@ -6,7 +6,8 @@ The test surface is a grid of normals on the visible half of a sphere seen along
 Truth: L(v) = integral of f(l, v) L_env(l) n.l over the sphere, summed in float64 over every environment texel cut
 into SUB x SUB parts (each part its texel's radiance, its own direction and solid angle). Split sum (what a
 renderer would draw): diffuse (1 - metallic) base E(n) / pi (1 - F(n.v)) + prefiltered(r, roughness) (f0 A + B),
-the maps looked up at their nearest texel and interpolated linearly between roughness levels. Settings: the GGX
+the maps looked up at their nearest texel and interpolated linearly between roughness levels, the table
+bilinearly. Settings: the GGX
 sample count of the prefilter and the LUT; time: the wall time of the three compute passes (readback excluded).
 """
 
@@ -74,6 +75,16 @@ def _lookup(image: np.ndarray, d: np.ndarray) -> np.ndarray:
     return image[np.minimum((v * h).astype(int), h - 1), np.minimum((u * w).astype(int), w - 1)]
 
 
+def _table(lut: np.ndarray, n_dot_v: np.ndarray, roughness: float) -> np.ndarray:
+    """The BRDF table (cells at their centres) interpolated bilinearly at (n.v, roughness), clamped at the edges."""
+    n = lut.shape[0]
+    x, y = np.clip(n_dot_v * n - 0.5, 0, n - 1), float(np.clip(roughness * n - 0.5, 0, n - 1))
+    x0, y0 = np.floor(x).astype(int), int(y)
+    x1, y1, tx, ty = np.minimum(x0 + 1, n - 1), min(y0 + 1, n - 1), (x - x0)[..., None], y - y0
+    rows = [(1 - tx) * lut[yy, x0] + tx * lut[yy, x1] for yy in (y0, y1)]
+    return (1 - ty) * rows[0] + ty * rows[1]
+
+
 def split_sum(maps, normals: np.ndarray, metallic: float, roughness: float) -> np.ndarray:
     v = np.array([0.0, 0.0, 1.0])
     nv = np.clip(normals @ v, 1e-4, 1)
@@ -82,8 +93,7 @@ def split_sum(maps, normals: np.ndarray, metallic: float, roughness: float) -> n
     k = roughness * (levels - 1)
     k0, t = min(int(k), levels - 2), k - min(int(k), levels - 2)
     pre = (1 - t) * _lookup(maps.prefiltered[k0], r) + t * _lookup(maps.prefiltered[k0 + 1], r)
-    n_lut = maps.lut.shape[0]
-    ab = maps.lut[min(int(roughness * n_lut), n_lut - 1), np.minimum((nv * n_lut).astype(int), n_lut - 1)]
+    ab = _table(maps.lut, nv, roughness)
     base = np.asarray(BASE)
     f0 = (1 - metallic) * 0.04 + metallic * base
     fresnel = (0.04 + 0.96 * (1 - nv) ** 5)[..., None]
