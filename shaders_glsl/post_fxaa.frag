@@ -7,7 +7,7 @@
 //   not an input attachment: FXAA samples neighbours and between pixels, which subpassLoad cannot
 //   (it reads only the pixel under the fragment). So FXAA runs in a render pass of its own, after a
 //   barrier that makes the previous pass's colour writes visible to this fragment shader
-//   (wgpurender/raw_path/scene/neighbourhood.py);
+//   (wgpurender/raw_path/post/neighbourhood.py);
 // - the parameters are push constants (12 bytes), not a uniform buffer;
 // - one draw: the wgpu path's mark-then-FXAA pair of draws (a speed-up for llvmpipe) gives the
 //   same pixels as this single draw (wgpurender/wgpu_path/post/fxaa.py).

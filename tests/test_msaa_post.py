@@ -51,7 +51,7 @@ def test_msaa_post_needs_msaa(ctx):
 
 def test_cli_lists_and_renders_msaa_post(tmp_path, capsys):
     from wgpurender.cli import main
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     assert main(["stages"]) == 0
     assert "msaa-post" in capsys.readouterr().out

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.wgpu_path.scene_render import render_scene_file
+from wgpurender.wgpu_path.scene import render_scene_file
 
 SCENES = Path(__file__).resolve().parent.parent / "assets" / "scenes"
 SIZE = (320, 240)

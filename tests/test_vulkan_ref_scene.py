@@ -40,7 +40,7 @@ import pytest
 from imagecheck import assert_close, assert_same_render, assert_within_tolerance
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, to_uint8
+from wgpurender.core.files.imageio import load_png, to_uint8
 from wgpurender.raw_path import render_reference
 from wgpurender.raw_path.scene import render_scene_reference
 
@@ -78,7 +78,7 @@ def wgpu_render(ctx, path: Path, size: tuple[int, int], **knobs) -> np.ndarray:
     The post path is pinned to fragment, the chain these exactness claims are about: on a discrete GPU the auto
     path is compute, which encodes sRGB in its shader (tests/test_post_paths.py compares the two paths).
     """
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     knobs.setdefault("post_path", "fragment")
 
@@ -269,8 +269,8 @@ def test_every_problem_is_listed_at_once(tmp_path):
     (fxaa, sharpen) are no longer problems: they run in passes of their own (test_raw_path_neighbourhood.py)."""
     from wgpurender.core.plan import build_plan
     from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
     from wgpurender.raw_path.scene import unsupported
-    from wgpurender.raw_path.scene.uniforms import MAX_POST_STEPS
 
     text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sepia"\n' * MAX_POST_STEPS
     plan = build_plan(load_scene(scene_file(tmp_path, "long.toml", text)), output_format="bgra8unorm-srgb")

@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.assets import reference_dir, scene_dir
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.assets import reference_dir, scene_dir
 
 REFERENCE_SIZE = (256, 192)
 REFERENCE_DIR = reference_dir()  # the checkout's assets/reference, or the wheel's copy
@@ -57,7 +57,7 @@ class Change:
 
 def render_named_reference(name: str) -> np.ndarray:
     """The 8-bit image of reference ``name`` (a stage or a SCENE_REFERENCES key), by the raw path only."""
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
     from wgpurender.raw_path import render_reference
 
     if name in SCENE_REFERENCES:
@@ -73,7 +73,7 @@ def all_reference_names() -> list[str]:
 
 def regenerate(directory: Path = REFERENCE_DIR, names: list[str] | None = None) -> list[Change]:
     """Re-render the references with the raw path; write those whose pixels changed (or are new)."""
-    from wgpurender.core.imageio import load_png, save_png
+    from wgpurender.core.files.imageio import load_png, save_png
 
     directory.mkdir(parents=True, exist_ok=True)
     changes = []

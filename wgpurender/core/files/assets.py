@@ -15,7 +15,7 @@ import os
 from importlib import resources
 from pathlib import Path, PurePath
 
-CHECKOUT = Path(__file__).resolve().parents[2]
+CHECKOUT = Path(__file__).resolve().parents[3]
 # repository folder -> folder inside the package
 PACKAGED = {"assets": "_assets", "examples": "_examples"}
 SCENE_SUFFIX = ".toml"

@@ -64,7 +64,7 @@ def _read() -> dict:
 
 def save(adapter: str, records: dict[str, PassRecord]) -> Path:
     """Merge ``records`` (pass key -> record) into the adapter's entry; a pass measured again is replaced."""
-    from wgpurender.core.safe_write import atomic_write
+    from wgpurender.core.files.safe_write import atomic_write
 
     data = _read()
     entry = data.setdefault(adapter, {})

@@ -10,8 +10,8 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import check_image_pixels, input_file
-from wgpurender.core.safe_write import atomic_write, output_target
+from wgpurender.core.files.input_files import check_image_pixels, input_file
+from wgpurender.core.files.safe_write import atomic_write, output_target
 
 __all__ = ["UserError", "save_png", "save_image", "image_format", "load_png", "check_writable", "decode_image",
            "encode_png", "encode_image", "srgb_encode", "srgb_decode", "to_uint8"]
@@ -52,7 +52,7 @@ def save_png(path: str | os.PathLike, pixels: np.ndarray) -> Path:
     """Write an (H, W, 3|4) image atomically: encoded in memory, written to a temporary file, then renamed.
 
     A crash, a signal or a full disk leaves either the old file or none, never half a PNG; see
-    :mod:`wgpurender.core.safe_write` for what each exit path leaves and which targets are refused.
+    :mod:`wgpurender.core.files.safe_write` for what each exit path leaves and which targets are refused.
     """
     output_target(path)
     return atomic_write(path, lambda: encode_png(pixels))
@@ -168,7 +168,7 @@ def encode_image(pixels: np.ndarray, fmt: str) -> bytes:
 
 def save_image(path: str | os.PathLike, pixels: np.ndarray) -> Path:
     """Write an (H, W, 3|4) image atomically in the format its suffix names (see :data:`IMAGE_FORMATS`),
-    with :func:`save_png`'s guarantees (:mod:`wgpurender.core.safe_write`).
+    with :func:`save_png`'s guarantees (:mod:`wgpurender.core.files.safe_write`).
 
     JPEG and BMP have no alpha channel: the alpha is dropped (renders are opaque). JPEG is lossy
     (quality 95): compare images as PNGs.

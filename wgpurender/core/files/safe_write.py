@@ -29,7 +29,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import os_error_reason
+from wgpurender.core.files.input_files import os_error_reason
 
 FOLLOW_SYMLINKS_ENV = "WGPURENDER_FOLLOW_SYMLINKS"
 TEST_DELAY_ENV = "WGPURENDER_TEST_WRITE_DELAY"  # seconds to hold the temp file open: lets tests kill mid-write

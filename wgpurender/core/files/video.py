@@ -60,7 +60,7 @@ class FrameWriter:
         if is_video(self.path):
             self._write_video(rgb)
         else:
-            from wgpurender.core.imageio import save_png
+            from wgpurender.core.files.imageio import save_png
 
             save_png(self.path / f"frame_{self.count:05d}.png", rgb)
         self.count += 1

@@ -1,7 +1,7 @@
 """glTF 2.0 geometry read by the project itself: the node graph, and every primitive's attributes and indices.
 
 Nothing here goes through trimesh: positions, normals, TEXCOORD_n, TANGENT, COLOR_0 and indices all come from
-:func:`wgpurender.core.gltf_io.read_accessor` (byteStride, normalized integer types and sparse accessors
+:func:`wgpurender.core.models.gltf_io.read_accessor` (byteStride, normalized integer types and sparse accessors
 supported), node transforms from the file's ``matrix`` or ``translation``/``rotation``/``scale``.
 
 What is not drawn is said, never dropped silently: :func:`geometry_notes` lists it for ``--explain``
@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.gltf_io import GltfDocument, read_accessor
+from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
 SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}

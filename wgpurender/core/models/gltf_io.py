@@ -18,10 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_rules, gltf_schema
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import check_file_size, input_file, resolved
-from wgpurender.core.safe_write import atomic_write
+from wgpurender.core.files.input_files import check_file_size, input_file, resolved
+from wgpurender.core.files.safe_write import atomic_write
+from wgpurender.core.models import gltf_rules, gltf_schema
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
 CHUNK_JSON = 0x4E4F534A

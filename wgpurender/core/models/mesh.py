@@ -28,10 +28,15 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_geometry, gltf_io
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import check_file_size, input_file, resolved
-from wgpurender.core.tangents import area_weighted_normals, face_uv_frames, split_mirrored_vertices, vertex_tangents
+from wgpurender.core.files.input_files import check_file_size, input_file, resolved
+from wgpurender.core.models import gltf_geometry, gltf_io
+from wgpurender.core.models.tangents import (
+    area_weighted_normals,
+    face_uv_frames,
+    split_mirrored_vertices,
+    vertex_tangents,
+)
 
 SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl"}
 CONVERT_HINT = (
@@ -64,7 +69,7 @@ class TextureRef:
     def load(self) -> np.ndarray:
         """The image as (H, W, 4) uint8 (still encoded: decode sRGB in the sampler when ``srgb``)."""
         if self.data is None:
-            from wgpurender.core.imageio import load_png
+            from wgpurender.core.files.imageio import load_png
 
             missing = f"texture not found: {self.path} (keep textures where the model file refers to them)"
             if self.path is None:
@@ -74,7 +79,7 @@ class TextureRef:
 
         from PIL import Image
 
-        from wgpurender.core.imageio import decode_image
+        from wgpurender.core.files.imageio import decode_image
 
         try:
             with Image.open(io.BytesIO(self.data)) as im:

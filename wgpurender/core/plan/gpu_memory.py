@@ -21,7 +21,7 @@ from collections.abc import Iterable
 
 from wgpurender.core.course.formats import BYTES_PER_PIXEL
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import env_limit
+from wgpurender.core.files.input_files import env_limit
 
 GPU_MEMORY_ENV = "WGPURENDER_GPU_MEMORY"
 CPU_SHARE = 0.8  # of MemAvailable: the rest is the process, Python, numpy and the readback

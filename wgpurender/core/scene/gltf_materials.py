@@ -28,9 +28,9 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from wgpurender.core import gltf_geometry, gltf_io
 from wgpurender.core.course.samplers import SamplerSpec
-from wgpurender.core.input_files import input_file
+from wgpurender.core.files.input_files import input_file
+from wgpurender.core.models import gltf_geometry, gltf_io
 from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material
 
 EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]

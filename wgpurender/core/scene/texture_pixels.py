@@ -1,7 +1,7 @@
 """Images and arrays to RGBA8 pixels, and mip-chain sizes: the API-free half of texture loading.
 
-Both paths upload what these functions return (wgpurender/wgpu_path/textures.py on wgpu,
-wgpurender/raw_path/textures.py on raw Vulkan), so a file becomes the same bytes on both.
+Both paths upload what these functions return (wgpurender/wgpu_path/device/textures.py on wgpu,
+wgpurender/raw_path/device/textures.py on raw Vulkan), so a file becomes the same bytes on both.
 
 Pixel rules (also in the error messages):
 - RGB, RGBA, L, LA, 1-bit, CMYK, YCbCr and palette (P, PA) images become RGBA8 through
@@ -24,8 +24,8 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import check_png_complete
-from wgpurender.core.input_files import check_image_pixels, input_file
+from wgpurender.core.files.imageio import check_png_complete
+from wgpurender.core.files.input_files import check_image_pixels, input_file
 
 MAX_DIM_LIMIT = "max-texture-dimension-2d"
 _EIGHT_BIT_MODES = {"1", "L", "LA", "La", "P", "PA", "RGB", "RGBA", "RGBa", "RGBX", "CMYK", "YCbCr", "LAB", "HSV"}
@@ -118,7 +118,7 @@ def _embedded_or_file(path: Path):
     """What Pillow opens: the file, or the bytes of an image embedded in a glTF model (``model.glb#images[k]``,
     see gltf_materials.embedded_image_path)."""
     if not os.path.lexists(path):
-        from wgpurender.core.gltf_materials import embedded_image_bytes
+        from wgpurender.core.scene.gltf_materials import embedded_image_bytes
 
         data = embedded_image_bytes(path)
         if data is not None:

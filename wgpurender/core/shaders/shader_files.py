@@ -5,7 +5,7 @@ package rather than inside it. A wheel carries copies in ``wgpurender/_shaders/{
 build hook puts them there), read through :mod:`importlib.resources`; an editable install or a plain
 checkout has no copies and reads the top-level folders. An environment variable overrides both.
 
-API-free (no wgpu, no vulkan): the wgpu path (``shaders.py``) and the raw path (``raw_path/glsl.py``)
+API-free (no wgpu, no vulkan): the wgpu path (``shaders.py``) and the raw path (``raw_path/device/shaders.py``)
 each call it for their own folder.
 """
 
@@ -31,7 +31,7 @@ def packaged_folder(kind: str) -> Path | None:
 
 def checkout_folder(kind: str) -> Path:
     """The repository's top-level folder (an editable install or a source checkout)."""
-    return Path(__file__).resolve().parents[2] / FOLDERS[kind]
+    return Path(__file__).resolve().parents[3] / FOLDERS[kind]
 
 
 def shader_folder(kind: str, env_var: str) -> Path:

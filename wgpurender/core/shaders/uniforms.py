@@ -31,7 +31,7 @@ the type it was given. Members get ``@size(n)`` where the padding WGSL would not
 insert by itself is needed; the layout is then the same in any address space.
 
 Matrices are given in the usual math orientation (numpy ``m[row, col]``, acting on
-column vectors) and packed column-major through :func:`wgpurender.core.transforms.to_gpu`,
+column vectors) and packed column-major through :func:`wgpurender.core.view.transforms.to_gpu`,
 the one place a transpose happens: the shader's ``m[c][r]`` is ``m[r, c]`` here.
 
 Not expressible (raises :class:`UserError` when the definition is made): bool (not
@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.transforms import to_gpu
+from wgpurender.core.view.transforms import to_gpu
 
 UNIFORM_ALIGN = 16  # structs and arrays in uniform space: alignment and stride rounded up to this
 
@@ -543,11 +543,11 @@ def roundtrip_wgsl(struct: Struct, template: str) -> tuple[str, list[Leaf]]:
 
     ``template`` is tests/numerics/shaders/uniforms_roundtrip.wgsl (the test's); its placeholders get the
     generated struct declarations, the struct's name and one statement per scalar
-    (filled by :func:`wgpurender.core.shader_variants.specialise`). Returns the source and
+    (filled by :func:`wgpurender.core.shaders.shader_variants.specialise`). Returns the source and
     the scalars in output order: comparing the output words with the values packed
     checks offsets, padding and matrix orientation against the GPU's own reading.
     """
-    from wgpurender.core.shader_variants import specialise
+    from wgpurender.core.shaders.shader_variants import specialise
 
     leaves = list(struct.leaves(expr="u"))
     copies = "\n    ".join(f"out_words[{i}] = bitcast<u32>({leaf.expr});" for i, leaf in enumerate(leaves))

@@ -23,8 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.assets import reference_dir
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.assets import reference_dir
 
 TABLE_PATH = reference_dir() / "tolerances.toml"
 DRIVER_CLASSES = ("lavapipe", "gpu")
@@ -93,7 +93,7 @@ def _as_rgba8(image: np.ndarray, what: str) -> np.ndarray:
 
 def measure(expected: np.ndarray, actual: np.ndarray) -> Metrics:
     """The three metrics of ``actual`` against ``expected`` (both 8-bit, same size and channels)."""
-    from wgpurender.core.compare import flip_mean
+    from wgpurender.core.verdict.compare import flip_mean
 
     a, b = _as_rgba8(expected, "expected"), _as_rgba8(actual, "actual")
     if a.shape != b.shape:
@@ -158,7 +158,7 @@ HEADER = """\
 # calibrated on NVIDIA. bounded_by names the drivers/CPUs/GPUs whose spread the bounds come from.
 # [references.NAME.CLASS]: max_abs (largest channel difference, 1/255), changed (share of pixels with any
 # channel different), flip_mean (mean LDR FLIP, RGB). A comparison fails when any one is exceeded.
-# measured: the spread the row was calibrated from. Calibration rule (wgpurender/core/tolerances.calibrate):
+# measured: the spread the row was calibrated from. Calibration rule (wgpurender/core/verdict/tolerances.calibrate):
 # max_abs = worst + 1, at least 2 (lavapipe) or 1.5 x worst + 1 (gpu); changed, flip_mean = 2 x worst,
 # at least 1% and 0.002. Rows marked provisional are guesses from issue 12's notes, not yet measured.
 # The tutorial rows also hold the issue's per-frame targets, checked by tests/test_vulkan_tutorial.py:
@@ -200,7 +200,7 @@ IMPLEMENTATIONS_HEADER = """\
 # [implementations.IMPL]: bounded_by = the machine, drivers and date the spread was measured on; driver_class =
 # the class (tolerances.driver_class) of the Vulkan adapter it was measured against: other classes are not bounded.
 # [implementations.IMPL.targets.NAME]: max_abs (1/255), changed (share of pixels), flip_mean, measured (the
-# spread). Rule (wgpurender/core/tolerances.calibrate, CPU drivers): max_abs = worst + 1, at least 2;
+# spread). Rule (wgpurender/core/verdict/tolerances.calibrate, CPU drivers): max_abs = worst + 1, at least 2;
 # changed, flip_mean = 2 x worst, at least 1% and 0.002. Written by wgpurender.implementations.calibrate.
 """
 

@@ -1,6 +1,6 @@
-"""Mouse and keys for both demo windows, turned into orbit-camera moves (wgpurender/core/orbit.py).
+"""Mouse and keys for both demo windows, turned into orbit-camera moves (wgpurender/core/view/orbit.py).
 
-One module for the wgpu window (wgpu_path/window/) and the raw-Vulkan one (raw_path/window.py):
+One module for the wgpu window (wgpu_path/window/) and the raw-Vulkan one (raw_path/window/__init__.py):
 the same keys, the same drag and scroll steps, the same test script, so the two windows move
 their cameras identically for the same input (tests/test_raw_window.py compares their images).
 
@@ -25,7 +25,7 @@ import math
 from dataclasses import dataclass
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.orbit import RADIANS_PER_PIXEL, Orbit
+from wgpurender.core.view.orbit import RADIANS_PER_PIXEL, Orbit
 
 KEY_STEP_PIXELS = math.radians(5.0) / RADIANS_PER_PIXEL  # one key press orbits 5 degrees
 

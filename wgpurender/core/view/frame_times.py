@@ -8,7 +8,7 @@ first uploads, the swapchain settling), then records the wall time of every fram
 from the start of one loop iteration to the start of the next (poll input, record, submit,
 present), the time a user waits for it; with the fifo present mode it includes waiting for
 vblank. API-free: both windows (wgpurender/wgpu_path/window/ and ``demo --raw``'s
-wgpurender/raw_path/window.py) feed the same recorder, so their CSVs are written the same way.
+wgpurender/raw_path/window/__init__.py) feed the same recorder, so their CSVs are written the same way.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from wgpurender.core.course.formats import SAMPLE_COUNTS
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.context import VulkanContext
 
 
 def check_msaa(ctx: VulkanContext, cls, msaa: int | None) -> int:

@@ -15,7 +15,7 @@ from contextlib import contextmanager
 
 import vulkan as vk
 
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.context import VulkanContext
 
 FENCE_TIMEOUT_NS = 60 * 1_000_000_000  # lavapipe is slow but never this slow
 

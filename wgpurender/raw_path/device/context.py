@@ -17,8 +17,8 @@ import vulkan as vk
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, adapter_facts
-from wgpurender.raw_path import validation
-from wgpurender.raw_path.pipeline_cache import create_pipeline_cache, save_pipeline_cache
+from wgpurender.raw_path.device import validation
+from wgpurender.raw_path.device.pipeline_cache import create_pipeline_cache, save_pipeline_cache
 
 DEVICE_TYPES = {  # VkPhysicalDeviceType -> the adapter type wgpu reports for it
     vk.VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: "DiscreteGPU",
@@ -149,7 +149,7 @@ def find_queue_family(physical_device) -> int:
 
 def create_device(physical_device, family: int, extensions: tuple[str, ...] = ()):
     """vkCreateDevice with one queue of ``family`` and ``extensions`` (none headless; VK_KHR_swapchain for
-    the window, raw_path/window.py); one optional feature,
+    the window, raw_path/window/__init__.py); one optional feature,
     samplerAnisotropy, when the device offers it (anisotropic samplers need it; wgpu enables it the same way)."""
     queue_info = vk.VkDeviceQueueCreateInfo(queueFamilyIndex=family, queueCount=1, pQueuePriorities=[1.0])
     offered = vk.vkGetPhysicalDeviceFeatures(physical_device)

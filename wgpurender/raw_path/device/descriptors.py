@@ -15,7 +15,7 @@ from contextlib import ExitStack
 
 import vulkan as vk
 
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.context import VulkanContext
 
 
 def binding(index: int, kind: int, stages: int, count: int = 1):

@@ -19,8 +19,8 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import allocate
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.memory import allocate
 
 # wgpu format name -> (VkFormat, bytes per texel, numpy dtype of a channel): the same names as targets.COLOR_FORMATS
 FORMATS: dict[str, tuple[int, int, type]] = {

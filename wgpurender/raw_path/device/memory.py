@@ -21,8 +21,8 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path.command_buffers import one_shot
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.command_buffers import one_shot
+from wgpurender.raw_path.device.context import VulkanContext
 
 WHOLE_SIZE = 0xFFFFFFFFFFFFFFFF  # VK_WHOLE_SIZE; the binding's constant is -1, which does not fit a VkDeviceSize
 HOST_MEMORY = vk.VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | vk.VK_MEMORY_PROPERTY_HOST_COHERENT_BIT

@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 
 import vulkan as vk
 
-from wgpurender.raw_path.glsl import create_shader_module
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.shaders import create_shader_module
 
 ALL_COLOR = (
     vk.VK_COLOR_COMPONENT_R_BIT | vk.VK_COLOR_COMPONENT_G_BIT

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import vulkan as vk
 
-from wgpurender.raw_path.glsl import cache_dir
+from wgpurender.raw_path.device.shaders import cache_dir
 
 
 def pipeline_cache_path(props) -> object:

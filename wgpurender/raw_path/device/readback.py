@@ -14,9 +14,9 @@ from contextlib import ExitStack
 import numpy as np
 import vulkan as vk
 
-from wgpurender.raw_path.images import FORMATS, Image, subresource_layers
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import HOST_MEMORY, WHOLE_SIZE, Buffer, create_buffer, read_host_buffer
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import FORMATS, Image, subresource_layers
+from wgpurender.raw_path.device.memory import HOST_MEMORY, WHOLE_SIZE, Buffer, create_buffer, read_host_buffer
 
 
 def record_copy_to_buffer(ctx: VulkanContext, owned: ExitStack, cmd, image: Image) -> Buffer:

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 
 import vulkan as vk
 
-from wgpurender.raw_path.images import DEPTH_FORMAT, Image, vk_format
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import DEPTH_FORMAT, Image, vk_format
 
 COLOR_OPTIMAL = vk.VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
 COLOR_STAGE = vk.VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT

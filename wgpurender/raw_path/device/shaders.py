@@ -18,7 +18,7 @@ from pathlib import Path
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.shader_files import shader_folder
+from wgpurender.core.shaders.shader_files import shader_folder
 
 GLSL_DIR_ENV = "WGPURENDER_GLSL"
 GLSLC_ARGS = ("--target-env=vulkan1.1",)  # 1.1: the negative viewport height is core there (see pipeline.py)

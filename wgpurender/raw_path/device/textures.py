@@ -16,7 +16,7 @@ The course's sequence, spelled out:
 The course fills the levels with vkCmdBlitImage (level i-1 -> level i with VK_FILTER_LINEAR,
 a TRANSFER_SRC/TRANSFER_DST barrier pair per level). We do not use the blit here: its filter is
 the driver's bilinear resampling, which for odd sizes skips or blurs source texels, and it
-averages the stored sRGB bytes on some drivers. The wgpu path (wgpurender/wgpu_path/textures.py,
+averages the stored sRGB bytes on some drivers. The wgpu path (wgpurender/wgpu_path/device/textures.py,
 shaders_wgsl/mipmap.wgsl) uses an exact area-weighted box filter in linear light; the raw
 path must use the same filter for the two images to be compared, so
 shaders_glsl/textured_mipmap.frag does the same integer-weight arithmetic in GLSL.
@@ -30,11 +30,11 @@ from dataclasses import dataclass
 import numpy as np
 import vulkan as vk
 
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.command_buffers import one_shot
-from wgpurender.raw_path.images import LAYOUT_ACCESS, Image, transition
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import (
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device.command_buffers import one_shot
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import LAYOUT_ACCESS, Image, transition
+from wgpurender.raw_path.device.memory import (
     HOST_MEMORY,
     WHOLE_SIZE,
     allocate,
@@ -42,8 +42,13 @@ from wgpurender.raw_path.memory import (
     read_host_buffer,
     write_host_buffer,
 )
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
-from wgpurender.raw_path.renderpass import (
+from wgpurender.raw_path.device.pipeline import (
+    PipelineDesc,
+    create_pipeline,
+    create_pipeline_layout,
+    set_viewport_and_scissor,
+)
+from wgpurender.raw_path.device.renderpass import (
     attachment,
     begin,
     create_framebuffer,
@@ -258,7 +263,8 @@ def read_level(ctx: VulkanContext, texture: TextureImage, level: int) -> np.ndar
 
 
 def sampler_info(spec, anisotropy_supported: bool = True):
-    """VkSamplerCreateInfo for a wgpu_path.textures.SamplerSpec, field for field as wgpu's Vulkan backend fills it.
+    """VkSamplerCreateInfo for a wgpu_path.device.textures.SamplerSpec, field for field as wgpu's Vulkan backend
+    fills it.
 
     mipLodBias 0, no compare, border colour unused (no clamp-to-border). Anisotropy is
     enabled only for max_anisotropy > 1 and only where the device supports it (wgpu

@@ -1,7 +1,7 @@
 """Course concept: uniform buffer layout (std140) and alignment, written out by hand.
 
 The raw path packs its uniform blocks itself, with the offsets spelled out, so
-that it is an independent check of wgpurender/core/uniforms.py (which the wgpu path
+that it is an independent check of wgpurender/core/shaders/uniforms.py (which the wgpu path
 uses). The std140 rules that matter here:
 - a mat4 is 4 columns of vec4: 64 bytes, column-major (transforms.to_gpu);
 - a mat3 is 3 columns, each padded to a vec4: 48 bytes, not 36;
@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wgpurender.core.transforms import to_gpu
+from wgpurender.core.view.transforms import to_gpu
 
 # layout(std140) uniform Camera { mat4 proj; mat4 view; vec3 light_dir; float ambient; }
 CAMERA_SIZE = 64 + 64 + 12 + 4  # proj @0, view @64, light_dir @128, ambient @140

@@ -1,6 +1,6 @@
 """The scene's uniform blocks and push constants, packed by hand with the std140 offsets written out.
 
-Independent of wgpurender/core/uniforms.py (the wgpu path's generated layouts), so that comparing the
+Independent of wgpurender/core/shaders/uniforms.py (the wgpu path's generated layouts), so that comparing the
 two paths' images also checks that packer. The GLSL declarations are in shaders_glsl/scene.vert,
 scene.frag and post_chain.frag; each offset below is the one written beside its member there.
 
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wgpurender.core.transforms import normal_matrix, to_gpu
+from wgpurender.core.view.transforms import normal_matrix, to_gpu
 
 MAX_LIGHTS = 8  # array sizes in the camera block; scene.MAX_LIGHTS bounds what a scene may have
 

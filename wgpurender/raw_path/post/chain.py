@@ -29,13 +29,13 @@ import vulkan as vk
 
 from wgpurender.core.course.effects import PIXEL, EffectStep, needs_shader_encoding
 from wgpurender.core.plan import RenderPlan
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.images import Image
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, write_host_buffer
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
-from wgpurender.raw_path.renderpass import RenderPass
-from wgpurender.raw_path.scene import uniforms as U
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device import uniforms as U
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import Image
+from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, write_host_buffer
+from wgpurender.raw_path.device.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
+from wgpurender.raw_path.device.renderpass import RenderPass
 
 FRAGMENT = vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS

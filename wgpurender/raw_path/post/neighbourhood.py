@@ -33,11 +33,16 @@ import vulkan as vk
 
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.plan import RenderPlan
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.images import Image, create_image, transition, vk_format
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
-from wgpurender.raw_path.renderpass import (
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import Image, create_image, transition, vk_format
+from wgpurender.raw_path.device.pipeline import (
+    PipelineDesc,
+    create_pipeline,
+    create_pipeline_layout,
+    set_viewport_and_scissor,
+)
+from wgpurender.raw_path.device.renderpass import (
     COLOR_OPTIMAL,
     COLOR_STAGE,
     COLOR_WRITE,
@@ -51,7 +56,7 @@ from wgpurender.raw_path.renderpass import (
     out_to_transfer,
     ref,
 )
-from wgpurender.raw_path.scene.post import PostSubpass
+from wgpurender.raw_path.post.chain import PostSubpass
 
 FRAGMENT = vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS

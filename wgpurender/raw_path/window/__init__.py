@@ -43,18 +43,18 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.controls import Controls, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.errors import UserError
-from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
-from wgpurender.core.imageio import save_png
-from wgpurender.core.orbit import Orbit, moved_camera
-from wgpurender.raw_path.checks import check_msaa, check_size
-from wgpurender.raw_path.images import Image, create_image, subresource_layers, subresource_range
-from wgpurender.raw_path.instance import VulkanContext, create_context
-from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, read_host_buffer
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.view.controls import Controls, ScriptEvent, due, install_callbacks, send
+from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
+from wgpurender.core.view.orbit import Orbit, moved_camera
+from wgpurender.raw_path.device.checks import check_msaa, check_size
+from wgpurender.raw_path.device.context import VulkanContext, create_context
+from wgpurender.raw_path.device.images import Image, create_image, subresource_layers, subresource_range
+from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, read_host_buffer
 from wgpurender.raw_path.stages.base import TARGET_USAGE
-from wgpurender.raw_path.swapchain import (
+from wgpurender.raw_path.window.swapchain import (
     FORMAT_NAMES,
     acquire_next_image,
     check_present_mode,
@@ -356,13 +356,13 @@ def run_raw_window(target: str, size: tuple[int, int] = (800, 600), present_mode
     """Show a raw stage or scene until the window closes (Esc or the close button), ``frames`` are presented,
     or the benchmark's run time is over.
 
-    The demo's controls are the wgpu window's (core/controls.py: orbit camera for scenes and the 3d stage,
-    the same keys), as are the FPS title and the benchmark CSV (core/frame_times.py). ``screenshot``: the
+    The demo's controls are the wgpu window's (core/view/controls.py: orbit camera for scenes and the 3d stage,
+    the same keys), as are the FPS title and the benchmark CSV (core/view/frame_times.py). ``screenshot``: the
     last presented frame is copied back from its swapchain image. ``on_frame(glfw, window, n)`` runs before
     frame n (tests use it to resize and minimise); ``script`` is the tests' synthetic input (``demo
-    --test-input``). ``anisotropy``: a scene's rule (:func:`drawable_factory`). ``video``: a core.video.FrameWriter
-    that gets every presented frame (read back from the swapchain image). With validation on, any message raises
-    ValidationFailed when the window closes.
+    --test-input``). ``anisotropy``: a scene's rule (:func:`drawable_factory`). ``video``: a
+    core.files.video.FrameWriter that gets every presented frame (read back from the swapchain image). With
+    validation on, any message raises ValidationFailed when the window closes.
     """
     glfw = _glfw()
     title = f"wgpurender --raw: {target}"
@@ -411,7 +411,7 @@ class RawDemoLoop:
         install_callbacks(self.glfw, raw.window, self.controls)
         self.titles = TitleCounter(title)
         self.recorder = FrameRecorder(benchmark) if benchmark else None
-        self.video = None  # a core.video.FrameWriter: every presented frame
+        self.video = None  # a core.files.video.FrameWriter: every presented frame
 
     def _due_shots(self, count: int) -> list[Path]:
         shots = []

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path.instance import VulkanContext
+from wgpurender.raw_path.device.context import VulkanContext
 
 PRESENT_MODES = {
     "immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import wgpu
 
-from wgpurender.core.uniforms import Struct
+from wgpurender.core.shaders.uniforms import Struct
 
 
 def uniform_layout(device: wgpu.GPUDevice, struct: Struct, visibility: int, dynamic: bool) -> wgpu.GPUBindGroupLayout:

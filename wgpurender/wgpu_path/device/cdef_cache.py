@@ -78,7 +78,7 @@ def _is_wgpu_header(csource) -> bool:
 
 
 def _cdef_cached(ffi, csource: str, real) -> None:
-    from wgpurender.wgpu_path.cffi_types import install
+    from wgpurender.wgpu_path.device.cffi_types import install
 
     _restore_or_parse(ffi, csource, real)
     install(ffi)  # before wgpu-py's import goes on to declare its first callback (cffi_types.py)

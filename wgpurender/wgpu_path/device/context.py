@@ -225,12 +225,12 @@ def _configure_instance_once(backend: str) -> None:
             raise UserError(f"this process already created its wgpu instance for {made} only; the {backend} "
                             f"backend needs its own process (or start with --backend auto)")
         return
-    from wgpurender.wgpu_path.cdef_cache import cached_wgpu_header
+    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
 
     with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
         from wgpu.backends.wgpu_native.extras import set_instance_extras
 
-    from wgpurender.wgpu_path.cffi_types import install_for_wgpu
+    from wgpurender.wgpu_path.device.cffi_types import install_for_wgpu
 
     install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")

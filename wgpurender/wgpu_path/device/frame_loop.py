@@ -30,9 +30,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import wgpu
 
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.targets import Readback
-from wgpurender.wgpu_path.timing import PassTimer
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.targets import Readback
+from wgpurender.wgpu_path.device.timing import PassTimer
 
 if TYPE_CHECKING:  # pragma: no cover
     from wgpurender.core.plan import RenderPlan

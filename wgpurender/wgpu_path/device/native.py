@@ -8,7 +8,7 @@ from __future__ import annotations
 import wgpu
 
 from wgpurender.core.errors import UserError
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 
 def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgpu.GPUTexture) -> None:

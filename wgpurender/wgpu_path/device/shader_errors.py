@@ -13,7 +13,7 @@ import re
 
 from wgpurender.core.errors import UserError
 
-SHADER_DIR_ENV = "WGPURENDER_SHADERS"  # the same variable wgpurender.wgpu_path.shaders reads
+SHADER_DIR_ENV = "WGPURENDER_SHADERS"  # the same variable wgpurender.wgpu_path.device.shaders reads
 _LABEL = re.compile(r"label = '([^']*)'")
 
 

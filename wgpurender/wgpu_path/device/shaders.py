@@ -13,7 +13,7 @@ from pathlib import Path
 import wgpu
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.shader_files import shader_folder
+from wgpurender.core.shaders.shader_files import shader_folder
 
 SHADER_DIR_ENV = "WGPURENDER_SHADERS"
 _recorders: list[set[Path]] = []  # open recording_loads() blocks

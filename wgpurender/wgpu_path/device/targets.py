@@ -13,7 +13,7 @@ import wgpu
 
 from wgpurender.core.course.formats import OUTPUT_FORMATS
 from wgpurender.core.errors import UserError
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 ROW_ALIGNMENT = 256
 

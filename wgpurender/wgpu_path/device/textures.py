@@ -5,7 +5,7 @@ staging buffer, records vkCmdCopyBufferToImage with layout transitions around it
 fills the mip levels with vkCmdBlitImage (one blit and barrier per level) and
 creates a VkSampler. The wgpu analogue of each step is commented where it happens.
 
-Pixel rules: wgpurender/core/texture_pixels.py (API-free, shared with the raw path).
+Pixel rules: wgpurender/core/scene/texture_pixels.py (API-free, shared with the raw path).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from wgpurender.core.course.samplers import (  # noqa: F401  (re-exported: the s
     anisotropic,
 )
 from wgpurender.core.errors import UserError
-from wgpurender.core.texture_pixels import (  # noqa: F401  (re-exported: loading is part of this module's API)
+from wgpurender.core.scene.texture_pixels import (  # noqa: F401  (re-exported: loading is part of this module's API)
     MAX_DIM_LIMIT,
     image_pixels,
     load_image,
@@ -34,10 +34,10 @@ from wgpurender.core.texture_pixels import (  # noqa: F401  (re-exported: loadin
     mip_size,
     pixels_from_array,
 )
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.gpu_cache import device_cache
-from wgpurender.wgpu_path.shaders import create_shader_module
-from wgpurender.wgpu_path.targets import read_texture
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.gpu_cache import device_cache
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+from wgpurender.wgpu_path.device.targets import read_texture
 
 SRGB_FORMAT = "rgba8unorm-srgb"  # colour textures: the sampler decodes to linear
 LINEAR_FORMAT = "rgba8unorm"  # data textures (normal maps, roughness): values used as stored
@@ -135,7 +135,7 @@ def upload_level(ctx: GPUContext, texture: wgpu.GPUTexture, pixels: np.ndarray, 
 
 
 def _mipmap_pipeline(device: wgpu.GPUDevice, fmt: str) -> tuple[wgpu.GPURenderPipeline, wgpu.GPUBindGroupLayout]:
-    """Made once per device and format (the device's "mipmap-pipelines" cache: wgpurender/wgpu_path/gpu_cache.py)."""
+    """Made once per device and format (the device's "mipmap-pipelines" cache: wgpu_path/device/gpu_cache.py)."""
     return device_cache(device, "mipmap-pipelines", 16).get(fmt, lambda: _make_mipmap_pipeline(device, fmt))
 
 
@@ -220,7 +220,7 @@ def read_mip(ctx: GPUContext, texture: wgpu.GPUTexture, level: int) -> np.ndarra
 
 
 def _cached_sampler(device: wgpu.GPUDevice, spec: SamplerSpec) -> wgpu.GPUSampler:
-    """One sampler per device and spec (the device's "samplers" cache: wgpurender/wgpu_path/gpu_cache.py)."""
+    """One sampler per device and spec (the device's "samplers" cache: wgpurender/wgpu_path/device/gpu_cache.py)."""
     return device_cache(device, "samplers").get(spec, lambda: _make_sampler(device, spec))
 
 

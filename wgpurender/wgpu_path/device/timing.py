@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 
 @dataclass(frozen=True)
@@ -79,7 +79,7 @@ class PassTimer:
         self._slots: list[list[str]] = []  # deferred mode: the labels of each resolved frame
         if not self.enabled:
             return
-        from wgpurender.wgpu_path.native import timestamp_period_ns
+        from wgpurender.wgpu_path.device.native import timestamp_period_ns
 
         self.period_ns = timestamp_period_ns(ctx)
         count = 2 * max_passes

@@ -3,7 +3,7 @@
 With $WGPURENDER_VALIDATION set, the Vulkan validation layer's messages (and wgpu's own validation
 errors) arrive as records on the ``wgpu`` logger. :func:`collect_validation_messages` attaches a
 handler that keeps them (they are still printed); the test fixture fails a test that triggered one,
-and the demo reports how many it saw. The raw path has its own debug messenger (raw_path/validation.py).
+and the demo reports how many it saw. The raw path has its own debug messenger (raw_path/device/validation.py).
 """
 
 from __future__ import annotations

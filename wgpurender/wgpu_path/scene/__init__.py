@@ -22,7 +22,7 @@ draws only what the plan lists, so a model without a scene material is drawn wit
 material (white, lit). Name a model's textures in a scene material (docs/scenes.md).
 """
 
-from wgpurender.wgpu_path.scene_render.frame import (
+from wgpurender.wgpu_path.scene.frame import (
     SceneRenderer,
     adapter_facts,
     load_renderer,
@@ -31,7 +31,7 @@ from wgpurender.wgpu_path.scene_render.frame import (
     render_scene_file,
     scene_drawable_factory,
 )
-from wgpurender.wgpu_path.scene_render.shader_interface import shader_source
+from wgpurender.wgpu_path.scene.shader_interface import shader_source
 
 __all__ = [
     "SceneRenderer",

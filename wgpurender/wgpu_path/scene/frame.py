@@ -21,16 +21,15 @@ from pathlib import Path
 
 import wgpu
 
-from wgpurender.core import gpu_memory
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import AdapterFacts, RenderPlan, resolve_plan
+from wgpurender.core.plan import AdapterFacts, RenderPlan, gpu_memory, resolve_plan
 from wgpurender.core.scene import Scene, load_scene
-from wgpurender.wgpu_path.frame_loop import RenderResult, run_frame, run_frames
-from wgpurender.wgpu_path.gpu import GPUContext, get_context
+from wgpurender.wgpu_path.device.context import GPUContext, get_context
+from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frame, run_frames
+from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
 from wgpurender.wgpu_path.post import PostRunner, attachment_usage, output_usage
-from wgpurender.wgpu_path.scene_render.resources import SceneResources
-from wgpurender.wgpu_path.scene_render.scene_pass import ScenePassRenderer
-from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
+from wgpurender.wgpu_path.scene.resources import SceneResources
+from wgpurender.wgpu_path.scene.scene_pass import ScenePassRenderer
 
 ATTACHMENT_USAGE = {
     "msaa-color": wgpu.TextureUsage.RENDER_ATTACHMENT,
@@ -140,7 +139,7 @@ def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | 
                   knobs: dict | None = None, anisotropy: str = "scene") -> SceneRenderer:
     """A renderer for a scene file, planned by :func:`wgpurender.core.plan.resolve_plan` for this context's
     adapter; ``size``, ``fmt`` and ``msaa`` override the scene's; ``knobs``: plan knobs (e.g.
-    ``{"post_fuse": False}``); ``anisotropy``: "scene" or "auto" (wgpurender/core/anisotropy.py).
+    ``{"post_fuse": False}``); ``anisotropy``: "scene" or "auto" (wgpurender/core/plan/anisotropy.py).
     """
     knobs = dict(knobs or {})
     if use_immediates is not None:

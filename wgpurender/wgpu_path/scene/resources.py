@@ -14,9 +14,9 @@ import wgpu
 
 from wgpurender.core.plan import Draw, RenderPlan
 from wgpurender.core.plan.meshes import PlanMeshes
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.scene_render.shader_interface import interleave
-from wgpurender.wgpu_path.textures import Texture, create_sampler, create_texture
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.textures import Texture, create_sampler, create_texture
+from wgpurender.wgpu_path.scene.shader_interface import interleave
 
 
 @dataclass(frozen=True)

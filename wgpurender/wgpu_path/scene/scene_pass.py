@@ -16,17 +16,17 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
-from wgpurender.core import transforms as tf
 from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
 from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
 from wgpurender.core.scene import Scene
-from wgpurender.wgpu_path.bind_groups import uniform_group, uniform_layout
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.gpu_cache import GpuCache
-from wgpurender.wgpu_path.scene_render import shader_interface as L
-from wgpurender.wgpu_path.scene_render.resources import SceneResources
-from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.core.view import transforms as tf
+from wgpurender.wgpu_path.device.bind_groups import uniform_group, uniform_layout
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.gpu_cache import GpuCache
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+from wgpurender.wgpu_path.scene import shader_interface as L
+from wgpurender.wgpu_path.scene.resources import SceneResources
 
 
 def camera_values(scene: Scene, aspect: float) -> dict:

@@ -1,6 +1,6 @@
 """What the scene shader and Python agree on: uniform structs, vertex layouts, and the specialised WGSL.
 
-Every struct is declared once here with :mod:`wgpurender.core.uniforms`; the WGSL declarations
+Every struct is declared once here with :mod:`wgpurender.core.shaders.uniforms`; the WGSL declarations
 are generated into shaders_wgsl/scene.wgsl's ``{{STRUCTS}}``. Lit and unlit variants see
 different declarations of the same buffers: the unlit ``Camera`` is only the first fields
 of the lit one (proj, view, eye), the unlit ``Object`` only ``world``, the unlit
@@ -22,12 +22,12 @@ import functools
 
 import numpy as np
 
-from wgpurender.core.mesh import Mesh
+from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import ShaderVariant
 from wgpurender.core.scene import MAX_LIGHTS
-from wgpurender.core.shader_variants import specialise
-from wgpurender.core.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struct, wgsl_structs
-from wgpurender.wgpu_path.shaders import load_wgsl
+from wgpurender.core.shaders.shader_variants import specialise
+from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struct, wgsl_structs
+from wgpurender.wgpu_path.device.shaders import load_wgsl
 
 SHADER = "scene.wgsl"
 
