@@ -3,7 +3,7 @@
 Both run on lavapipe in this process with the same triangle, the same resolve and the same grey
 formula (GLSL subpassLoad vs WGSL textureLoad of the stored resolve), so the images must be equal
 bit for bit (threshold 0). Measured: 0 pixels differ at 800x600, 64x48 and 97x61 in every format.
-The pixel values themselves are checked against numpy in tests/test_raw_path.py
+The pixel values themselves are checked against numpy in tests/test_vulkan_ref.py
 (test_msaa_post_is_grey_of_msaa), so equality here also checks the wgpu stage's values.
 """
 

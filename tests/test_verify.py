@@ -2,7 +2,7 @@
 
 A --quick run (stages triangle and 3d, scene unlit) on this adapter: the wgpu and raw renders are
 identical, and the raw renders are within the table's bounds of the committed references (as
-tests/test_raw_path.py checks too). A real change (the committed triangle shifted by one pixel,
+tests/test_vulkan_ref.py checks too). A real change (the committed triangle shifted by one pixel,
 handed to verify in place of the file) must turn its row into FAIL, write a heatmap, and exit 1.
 """
 

@@ -7,7 +7,7 @@ GLSL written as the same algorithm as shaders_wgsl/post_fxaa.wgsl and post_sharp
 paths run on lavapipe in this process, so exact equality is the expectation wherever the
 arithmetic is the same.
 
-The one known difference (tests/test_raw_path_scene.py explains it): several per-pixel effects
+The one known difference (tests/test_vulkan_ref_scene.py explains it): several per-pixel effects
 in one subpass keep float32 between them, where the wgpu path stores each effect's result in an
 rgba16float texture, which lavapipe rounds toward zero. Measured at 160x120 (lavapipe, Mesa 22.3.6,
 AMD EPYC, 2026-11-23):

@@ -277,7 +277,7 @@ CONCEPTS: list[Concept] = [
         "bit-identical to the raw path. Unfused (render.post_fuse = false) the image goes through an "
         "rgba16float texture between effects (lavapipe rounds that store toward zero): 2697 pixels off by "
         "1/255, FLIP 0.00176, and bit-identical once the raw shader rounds the same way "
-        "(tests/test_raw_path_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
+        "(tests/test_vulkan_ref_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
         "on the raw path too, behind an explicit barrier, with the per-pixel effects after it in its subpass 1.",
     ),
     Concept(

@@ -7,7 +7,7 @@ checked on the raw bytes):
 - ``wgpu vs raw``: every stage both paths have, and every repository scene the raw path can draw,
   rendered here in this run. Exact, except scenes whose post chain has two or more effects: the wgpu
   path stores the colour between effects (float16, or 8-bit sRGB), the raw path keeps float32 in one
-  shader (tests/test_raw_path_scene.py explains and measures it), bounded by CHAIN_BOUND.
+  shader (tests/test_vulkan_ref_scene.py explains and measures it), bounded by CHAIN_BOUND.
 - ``raw vs committed``: the raw path's render against assets/reference/<name>.png, with this
   driver class's row of the table.
 - ``wgpu vs C++ frame``: the Vulkan tutorial scenes against the C++ program's frames in
@@ -53,11 +53,11 @@ TUTORIAL_FRAMES = {"vulkan_tutorial_28": "ref_28_model_loading_1x.png",
                    "vulkan_tutorial_30": "ref_30_multisampling_4xMSAA.png"}
 QUICK = {"stages": ("triangle", "3d"), "scenes": ("unlit",)}
 # wgpu vs raw, scenes with a chain of 2+ post effects: float16 / 8-bit sRGB intermediates on the wgpu path only.
-# Measured on lavapipe (tests/test_raw_path_scene.py): max 1/255, FLIP <= 0.0061.
+# Measured on lavapipe (tests/test_vulkan_ref_scene.py): max 1/255, FLIP <= 0.0061.
 CHAIN_BOUND = Tolerance("post chain", "same device", 1, 1.0, 0.01,
-                        "lavapipe: max 1/255, FLIP 0.0018-0.0061 (tests/test_raw_path_scene.py)",
+                        "lavapipe: max 1/255, FLIP 0.0018-0.0061 (tests/test_vulkan_ref_scene.py)",
                         "wgpu's stored intermediates vs the raw path's float32", False)
-EXACT = Tolerance("exact", "same device", 0, 0.0, 0.0, "0 pixels differ (tests/test_raw_path*.py)",
+EXACT = Tolerance("exact", "same device", 0, 0.0, 0.0, "0 pixels differ (tests/test_vulkan_ref*.py)",
                   "same driver, same run", False)
 CSV_FIELDS = ("device", "kind", "name", "comparison", "status", "max_abs", "changed_pixels", "changed", "flip_mean",
               "bound", "note", "heatmap")

@@ -5,7 +5,7 @@ Run ``python -m wgpurender.raw_path.make_references`` (``make references``).
 Every stage this path knows, at REFERENCE_SIZE, in its default format and MSAA; and
 scene_<name>.png for each scene file of SCENE_REFERENCES, at SCENE_REFERENCE_SIZE.
 Only this path ever writes these files (also through ``pytest --regenerate-references``);
-tests/test_raw_path*.py re-render them and compare within the calibrated bounds of
+tests/test_vulkan_ref*.py re-render them and compare within the calibrated bounds of
 assets/reference/tolerances.toml. Float images (rgba16float) are stored as 8-bit sRGB PNGs
 (imageio.to_uint8). A file whose pixels did not change is left untouched, and each run says, per
 image, how many pixels changed and by how much at most.

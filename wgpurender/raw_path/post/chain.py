@@ -6,7 +6,7 @@ subpass per effect would add an attachment per step (a colour attachment in subp
 of subpass i + 1), a dependency per step, and a write and read of the whole image per step, which
 is exactly the memory traffic subpasses exist to avoid. The price: between effects the colour
 stays float32, where the wgpu path stores it in its rgba16float ping-pong textures (see
-tests/test_raw_path_scene.py for what that changes: ``wgpu_intermediates`` sets the
+tests/test_vulkan_ref_scene.py for what that changes: ``wgpu_intermediates`` sets the
 F16_BETWEEN_STEPS flag of shaders_glsl/post_chain.frag, which rounds like the wgpu path's
 rgba16float intermediates, to show that this is the whole difference; with hdr = false the
 intermediates are 8-bit sRGB, whose encoding on lavapipe is an approximation that no shader
