@@ -1,5 +1,5 @@
 // Image-based lighting maps from an equirectangular environment (core/course/environment.py's layout), made in
-// compute passes (wgpurender/wgpu_path/ibl.py): the split-sum approximation of glTF's metallic-roughness BRDF
+// compute passes (wgpurender/wgpu_path/scene/ibl.py): the split-sum approximation of glTF's metallic-roughness BRDF
 // (pbr.wgsl) under an environment.
 //
 // irradiance:  E(n) / pi = sum over environment texels of L * max(n.l, 0) * solid angle / pi (every texel: exact

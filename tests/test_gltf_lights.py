@@ -72,7 +72,7 @@ def expected_bytes(light_radiance) -> np.ndarray:
 
 def render_both(ctx, folder):
     from wgpurender.raw_path.scene import render_scene_reference
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     path = folder / "scene.toml"
     wgpu = render_scene_file(path, size=SIZE, ctx=ctx, frames=1, knobs={"post_path": "fragment"}).pixels

@@ -1,4 +1,4 @@
-"""Image-based lighting maps made on the GPU (wgpu_path/ibl.py, shaders_wgsl/ibl.wgsl) against answers worked out
+"""Image-based lighting maps made on the GPU (wgpu_path/scene/ibl.py, shaders_wgsl/ibl.wgsl) against answers worked out
 here: a uniform environment, one bright texel, the split-sum BRDF integrals by plain quadrature, and the bench
 section's error falling with the sample count."""
 
@@ -18,14 +18,14 @@ def equirect_direction(u, v) -> np.ndarray:
 
 @pytest.fixture(scope="module")
 def gpu():
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     return get_context()
 
 
 def test_a_uniform_environment_gives_its_radiance_everywhere(gpu):
     """Radiance c from every direction: E / pi = c for every normal, and every prefiltered level is c."""
-    from wgpurender.wgpu_path.ibl import make_maps
+    from wgpurender.wgpu_path.scene.ibl import make_maps
 
     c = np.array([0.5, 0.25, 2.0], np.float32)
     maps = make_maps(gpu, np.broadcast_to(c, (H, W, 3)).copy(), samples=32)
@@ -36,7 +36,7 @@ def test_a_uniform_environment_gives_its_radiance_everywhere(gpu):
 def test_one_bright_texel_lights_by_its_cosine_and_solid_angle(gpu):
     """Only texel (x, y) is bright (L): E(n) / pi = L max(n.l, 0) omega / pi, l its centre's direction and omega
     = (2 pi / W)(cos theta0 - cos theta1) its solid angle."""
-    from wgpurender.wgpu_path.ibl import make_maps
+    from wgpurender.wgpu_path.scene.ibl import make_maps
 
     x, y, radiance = 5, 4, 100.0
     env = np.zeros((H, W, 3), np.float32)
@@ -55,7 +55,7 @@ def test_one_bright_texel_lights_by_its_cosine_and_solid_angle(gpu):
 def test_roughness_zero_prefilter_is_the_mirror_lookup(gpu):
     """Level 0 (roughness 0): every sample is the mirror direction n, so the texel shows the environment there
     (random texels: a layout turned about any axis shows)."""
-    from wgpurender.wgpu_path.ibl import make_maps
+    from wgpurender.wgpu_path.scene.ibl import make_maps
 
     env = np.random.default_rng(30).random((H, W, 3)).astype(np.float32)
     maps = make_maps(gpu, env, samples=8, prefilter_size=(W, H))
@@ -84,7 +84,7 @@ def split_sum_integrals(n_dot_v: float, roughness: float, steps: int = 600) -> t
 @pytest.mark.parametrize("cell", [(4, 12), (16, 16), (28, 20), (12, 28), (30, 31)])
 def test_brdf_lut_matches_the_integrals(gpu, cell):
     """LUT cell (column n.v, row roughness) at cell centres, 1024 samples, against split_sum_integrals."""
-    from wgpurender.wgpu_path.ibl import make_maps
+    from wgpurender.wgpu_path.scene.ibl import make_maps
 
     maps = make_maps(gpu, np.zeros((2, 4, 3), np.float32), samples=1024, irradiance_size=(1, 1),
                      prefilter_size=(1, 1))
@@ -114,7 +114,7 @@ def test_split_sum_of_a_metal_under_a_uniform_sky_is_its_directional_albedo(gpu)
     the table's resolution: it must match the float64 integral of f n.l c (accuracy_ibl.truth) at every normal
     (within 1% of the brightest; at roughness 1 the table's own sampling noise at grazing n.v is larger)."""
     from wgpurender.bench.accuracy_ibl import sphere_normals, split_sum, truth
-    from wgpurender.wgpu_path.ibl import make_maps
+    from wgpurender.wgpu_path.scene.ibl import make_maps
 
     env = np.ones((H, W, 3), np.float32)
     maps = make_maps(gpu, env, samples=1024)

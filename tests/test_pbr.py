@@ -92,7 +92,7 @@ def expected(metallic: float, roughness: float, to_light, turn_degrees: float, i
 
 def render_both(ctx, folder):
     from wgpurender.raw_path.scene import render_scene_reference
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     path = folder / "scene.toml"
     wgpu = render_scene_file(path, size=SIZE, ctx=ctx, frames=1, knobs={"post_path": "fragment"}).pixels
@@ -147,8 +147,8 @@ def spheres():
 
     from wgpurender.core.scene import load_scene
     from wgpurender.raw_path.scene import render_scene_reference
-    from wgpurender.wgpu_path.gpu import get_context
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.device.context import get_context
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     path = Path(__file__).resolve().parents[1] / "assets" / "scenes" / "metal_rough_spheres.toml"
     scene = load_scene(path)
@@ -269,7 +269,7 @@ def test_default_material_values_and_explain(tmp_path, capsys):
 
 def test_an_included_glsl_file_is_part_of_the_spirv_cache_key(tmp_path, monkeypatch):
     """scene.frag includes pbr.glsl: editing the included file alone must give new SPIR-V, not the cached one."""
-    from wgpurender.raw_path.glsl import compile_glsl
+    from wgpurender.raw_path.device.shaders import compile_glsl
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     (tmp_path / "a.frag").write_text('#version 450\n#extension GL_GOOGLE_include_directive : require\n'

@@ -1,5 +1,5 @@
 """``bench accuracy --truth analytic``'s image-based lighting section: the split-sum maps made on the GPU
-(wgpu_path/ibl.py) against a float64 integral of glTF's metallic-roughness BRDF over the same environment.
+(wgpu_path/scene/ibl.py) against a float64 integral of glTF's metallic-roughness BRDF over the same environment.
 
 The test surface is a grid of normals on the visible half of a sphere seen along +z (v = (0, 0, 1)), for metallic
 0 and 1 and roughness 0.25, 0.5 and 1 (BASE colour), lit only by the procedural sky (core/course/environment.py).
@@ -17,9 +17,9 @@ import numpy as np
 
 from wgpurender.bench.accuracy_downsample import srgb8_from_linear
 from wgpurender.bench.accuracy_run import Measurement
-from wgpurender.core.compare import compare_images
 from wgpurender.core.course.environment import sky, texel_directions
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.core.verdict.compare import compare_images
+from wgpurender.wgpu_path.device.timing import Stats
 
 SAMPLE_COUNTS = (16, 64, 256, 1024)
 BASE = (0.9, 0.7, 0.4)
@@ -109,7 +109,7 @@ def run_ibl(ctx, frames: int, row, environment: np.ndarray | None = None) -> lis
     """One row per sample count (``row(section, setting, measurement, flip, psnr, mae, note=)``): the mean
     absolute linear error of the split-sum radiance over the test surface (relative to the mean radiance in the
     note), FLIP/PSNR of the tiled sRGB images, the compute passes' time."""
-    from wgpurender.wgpu_path.ibl import make_maps
+    from wgpurender.wgpu_path.scene.ibl import make_maps
 
     environment = sky() if environment is None else environment
     normals = sphere_normals()

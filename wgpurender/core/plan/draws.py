@@ -11,7 +11,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.shading import AMBIENT, material_factors
-from wgpurender.core.gltf_lights import light_note
 from wgpurender.core.plan import file_materials, shading_models
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
@@ -24,6 +23,7 @@ from wgpurender.core.plan.model import (
 )
 from wgpurender.core.plan.textures import TextureTable, material_sampler
 from wgpurender.core.scene import Material, Model, Scene
+from wgpurender.core.scene.gltf_lights import light_note
 
 
 def material_label(m: Material) -> str:

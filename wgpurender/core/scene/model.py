@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import transforms
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.view import transforms
 
 MAX_LIGHTS = 8
 CONVENTIONS = ("wgpu", "glm-vulkan")
@@ -108,7 +108,7 @@ class Material:
     sampler: SamplerSettings = field(default_factory=SamplerSettings)
     origin: str = "default"
     written: tuple[tuple[str, str], ...] = ()
-    # What a model file's own material can say beyond the scene keys (core/gltf_materials.py makes these):
+    # What a model file's own material can say beyond the scene keys (core/scene/gltf_materials.py makes these):
     vertex_colors: bool = False  # multiply the base colour by the vertex colour (glTF COLOR_0)
     double_sided: bool = False  # no back-face culling; back faces are lit with the normal turned around
     alpha_mode: str = "opaque"  # "opaque", "mask" (discard below alpha_cutoff) or "blend" (unsorted, see docs)
@@ -165,7 +165,7 @@ class Model:
     written_path: str  # as in the file
     material: Material
     transform: Transform = IDENTITY
-    # True when the scene names no material: a glTF model then draws with its own materials (core/gltf_materials)
+    # True when the scene names no material: a glTF model then draws with its own materials (core/scene/gltf_materials)
     material_from_file: bool = False
 
     @property
@@ -180,7 +180,7 @@ class Light:
     A point light may also have a ``range`` (> 0: the KHR_lights_punctual window, E x clamp(1 - (d / range)^4, 0,
     1)) and a spot ``cone`` (inner, outer half-angles in radians, around ``direction``, the way the spot points:
     E x clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1)^2, a the angle off the axis); the model
-    file's KHR_lights_punctual lights come with these (core/gltf_lights.py), ``origin`` saying where."""
+    file's KHR_lights_punctual lights come with these (core/scene/gltf_lights.py), ``origin`` saying where."""
 
     index: int
     type: str
