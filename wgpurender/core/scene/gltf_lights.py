@@ -3,7 +3,7 @@
 Each node with ``extensions.KHR_lights_punctual.light`` places one of the file's lights at the node's world
 position (the model's scene transform applied after the file's node hierarchy), pointing along the node's local
 -Z. Types: ``directional``, ``point``, ``spot`` (``innerConeAngle`` default 0, ``outerConeAngle`` default pi/4:
-a point light with a cone, core/scene/model.Light.shape); ``range`` (no range: the plain inverse square);
+a point light with a cone, ``Light.shape`` in core/scene/model.py); ``range`` (no range: the plain inverse square);
 ``color`` (linear) and ``intensity``.
 
 Units: the extension gives directional lights in lux (illuminance) and point and spot lights in candela
