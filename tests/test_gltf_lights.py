@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pbr_reference as ref
 import pytest
-from gltf_gen import QUAD_INDICES, GltfWriter, quad
+from gltf_gen import QUAD_INDICES, GltfWriter, quad, scene_text
 from shading_model import course_constant, srgb_encode
 
 SIZE = (64, 64)
@@ -21,21 +21,7 @@ SHIFT = (0.1, -0.05, 0.0)  # the scene's transform of the model: it moves the fi
 EYE = np.array([0.0, 0.0, 2.0])
 BASE = (0.8, 0.7, 0.6)
 ROUGHNESS = 0.7
-SCENE = f"""[camera]
-eye = [0, 0, 2]
-target = [0, 0, 0]
-fov_y = 90
-
-[render]
-size = [{SIZE[0]}, {SIZE[1]}]
-msaa = 1
-hdr = false
-clear_color = [0, 0, 0, 1]
-
-[[models]]
-path = "lit.glb"
-transform = {{ translate = [{SHIFT[0]}, {SHIFT[1]}, {SHIFT[2]}] }}
-"""
+SCENE = scene_text("lit.glb", SIZE, extra=f"transform = {{ translate = {list(SHIFT)} }}\n")  # eye (0, 0, 2), fov 90
 SPOT = {"position": (0.2, -0.1, 1.0), "inner": 0.35, "outer": 0.6, "range": 1.6, "intensity": 3.0}
 SUN = {"turn": np.radians(30), "intensity": 2.5}
 
