@@ -190,6 +190,11 @@ MUTATIONS = [
      "scale = 1.0 / max(1e-3, inner + outer)", [LIGHTS]),
     ("wgpurender/core/scene/model.py", "return (0.0, 0.0, -1.0), 0.0, 1.0, self.range",
      "return (0.0, 0.0, -1.0), 0.0, 0.0, self.range", [LIGHTS]),
+    ("wgpurender/core/scene/gltf_lights.py", "if cone[0] == outer:", "if cone[0] > outer:", [LIGHTS]),
+    ("wgpurender/core/scene/gltf_lights.py", 'f"{what} range", 0.0, lo_open=True)', 'f"{what} range", 0.0)',
+     [LIGHTS]),
+    ("wgpurender/core/scene/gltf_lights.py", "if not ok or value < lo or value > hi", "if not ok or value < lo",
+     [LIGHTS]),
     # image-based lighting maps (GPU) and the bench section
     ("shaders_wgsl/ibl.wgsl", "sum += env[y * w + x].rgb * max(dot(n, l), 0.0) * band;",
      "sum += env[y * w + x].rgb * max(dot(n, l), 0.0);", [IBL]),

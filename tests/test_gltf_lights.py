@@ -122,3 +122,27 @@ def test_explain_names_the_file_lights(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "models[0] 'lit.glb' light 0 'lamp': KHR_lights_punctual spot, intensity 1 cd -> 0.3183" in out
     assert "cone 0.0-45.0 deg, no range" in out and "KHR_lights_punctual: ignored" not in out
+
+
+BAD_LIGHTS = [
+    ({"type": "spot", "intensity": -1.0}, "intensity is -1.0"),
+    ({"type": "point", "range": 0}, "range is 0"),
+    ({"type": "point", "color": [1, 1]}, "color is [1, 1]"),
+    ({"type": "point", "color": "red"}, "color is 'red'"),
+    ({"type": "spot", "spot": {"innerConeAngle": 0.8, "outerConeAngle": 0.5}}, "innerConeAngle is 0.8"),
+    ({"type": "spot", "spot": {"outerConeAngle": 2.0}}, "outerConeAngle is 2.0"),
+    ({"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.5}}, "innerConeAngle equals"),
+    ({"type": "area"}, "type 'area' is not one of"),
+]
+
+
+@pytest.mark.parametrize("light, needle", BAD_LIGHTS, ids=[n for _, n in BAD_LIGHTS])
+def test_a_malformed_file_light_is_refused_in_one_line(tmp_path, capsys, light, needle):
+    """Values the extension forbids: exit 2, one line naming the light, the value and the allowed range."""
+    from wgpurender.cli import main
+
+    write_file(tmp_path, light, {})
+    code = main(["render", str(tmp_path / "scene.toml"), "-o", str(tmp_path / "out.png")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert code == 2 and len(err) == 1 and needle in err[0] and "light 0" in err[0], err
+    assert not (tmp_path / "out.png").exists()

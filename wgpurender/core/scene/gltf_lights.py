@@ -36,9 +36,13 @@ def placed_lights(doc: gltf_io.GltfDocument) -> list[tuple[np.ndarray, int, int]
         index, parent = stack.pop()
         node = nodes[index]
         world = parent @ gltf_geometry.node_matrix(node)
-        light = node.get("extensions", {}).get(EXTENSION, {}).get("light")
+        ext = node.get("extensions", {}).get(EXTENSION) if isinstance(node.get("extensions"), dict) else None
+        light = ext.get("light") if isinstance(ext, dict) else None
         if light is not None:
-            out.append((world, int(light), index))
+            if not isinstance(light, int) or isinstance(light, bool):
+                raise UserError(f"malformed glTF file {doc.path}: node {index}'s {EXTENSION} light is {light!r}, "
+                                "not an index; fix the file")
+            out.append((world, light, index))
         stack.extend((child, world) for child in reversed(node.get("children", [])))
     return out
 
@@ -50,7 +54,10 @@ def model_lights(model: Model, first_index: int) -> list[Light]:
     from wgpurender.core.scene.gltf_materials import document
 
     doc = document(str(model.path))
-    defined = doc.json.get("extensions", {}).get(EXTENSION, {}).get("lights", [])
+    defined = doc.json.get("extensions", {}).get(EXTENSION, {})
+    defined = defined.get("lights", []) if isinstance(defined, dict) else None
+    if not isinstance(defined, list):
+        raise UserError(f"malformed glTF file {doc.path}: extensions.{EXTENSION}.lights is not a list; fix the file")
     out = []
     for world, k, node in placed_lights(doc):
         if not 0 <= k < len(defined):
@@ -62,12 +69,25 @@ def model_lights(model: Model, first_index: int) -> list[Light]:
     return out
 
 
+def _number(value, what: str, lo: float, hi: float = math.inf, lo_open: bool = False) -> float:
+    """A JSON number within [lo, hi] ((lo, hi] with ``lo_open``), else one line naming it and its range."""
+    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or value < lo or value > hi or (lo_open and value == lo):
+        bound = f"{'>' if lo_open else '>='} {lo:g}" + (f" and <= {hi:.4g}" if hi < math.inf else "")
+        raise UserError(f"{what} is {value!r}: the extension asks for a number {bound}; fix the file")
+    return float(value)
+
+
 def _scene_light(light: dict, matrix: np.ndarray, index: int, origin: str) -> Light:
-    kind = light.get("type")
+    kind = light.get("type") if isinstance(light, dict) else None
     if kind not in KHR_TYPES:
         raise UserError(f"{origin}: {EXTENSION} type {kind!r} is not one of {', '.join(KHR_TYPES)}; fix the file")
-    color = tuple(float(c) for c in light.get("color", (1.0, 1.0, 1.0)))
-    intensity = float(light.get("intensity", 1.0)) / math.pi  # lux or candela -> the scene's units (docstring)
+    what = f"{origin}: {EXTENSION}"
+    color = light.get("color", [1.0, 1.0, 1.0])
+    if not isinstance(color, list) or len(color) != 3:
+        raise UserError(f"{what} color is {color!r}: the extension asks for [r, g, b]; fix the file")
+    color = tuple(_number(c, f"{what} color", 0.0) for c in color)
+    intensity = _number(light.get("intensity", 1.0), f"{what} intensity", 0.0) / math.pi  # lux, cd -> scene units
     axis = matrix[:3, :3] @ np.array([0.0, 0.0, -1.0])
     if not np.isfinite(axis).all() or np.linalg.norm(axis) < 1e-12:
         raise UserError(f"{origin}: its node's matrix has no direction (scale 0); fix the file")
@@ -77,10 +97,16 @@ def _scene_light(light: dict, matrix: np.ndarray, index: int, origin: str) -> Li
     cone = None
     if kind == "spot":
         spot = light.get("spot", {})
-        cone = (float(spot.get("innerConeAngle", 0.0)), float(spot.get("outerConeAngle", math.pi / 4)))
+        spot = spot if isinstance(spot, dict) else {"outerConeAngle": spot}
+        outer = _number(spot.get("outerConeAngle", math.pi / 4), f"{what} outerConeAngle", 0.0, math.pi / 2, True)
+        cone = (_number(spot.get("innerConeAngle", 0.0), f"{what} innerConeAngle", 0.0, outer), outer)
+        if cone[0] == outer:
+            raise UserError(f"{what} innerConeAngle equals outerConeAngle ({outer:g}): the extension asks for "
+                            "inner < outer; fix the file")
+    reach = _number(light["range"], f"{what} range", 0.0, lo_open=True) if "range" in light else 0.0
     position = tuple(float(p) for p in matrix[:3, 3])
     return Light(index, "point", color, intensity, direction=direction if cone else None, position=position,
-                 range=float(light.get("range", 0.0)), cone=cone, origin=origin)
+                 range=reach, cone=cone, origin=origin)
 
 
 def scene_lights(lights: tuple[Light, ...], models: tuple[Model, ...], where: Path) -> tuple[Light, ...]:
