@@ -33,8 +33,8 @@
 // Each texture has its own sampler (glTF: filters and per-axis wrap per texture). emissive adds
 // material.emissive.rgb (times the sRGB emissive texel with emissive_map) to the shaded colour;
 // occlusion_map scales the ambient term by 1 + strength * (texel.r - 1) (lit variants only).
-// pbr (a glTF file's lit metallic-roughness material): each light's term is pbr.wgsl's pbr_radiance instead of
-// blinn_phong, with metallic = material.metallic (times the metallic-roughness texture's B channel with
+// pbr (a glTF file's lit metallic-roughness material): each light's term is pbr.wgsl's pbr_radiance, not the
+// Blinn-Phong term, with metallic = material.metallic (times the metallic-roughness texture's B channel with
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 
 {{STRUCTS}}
