@@ -191,6 +191,8 @@ MUTATIONS = [
     ("wgpurender/core/scene/model.py", "return (0.0, 0.0, -1.0), 0.0, 1.0, self.range",
      "return (0.0, 0.0, -1.0), 0.0, 0.0, self.range", [LIGHTS]),
     ("wgpurender/core/scene/gltf_lights.py", "if cone[0] == outer:", "if cone[0] > outer:", [LIGHTS]),
+    ("wgpurender/core/scene/load.py", 'in (".gltf", ".glb") for m in scene.models)',
+     'in (".gltf",) for m in scene.models)', [LIGHTS]),
     ("wgpurender/core/scene/gltf_lights.py", 'f"{what} range", 0.0, lo_open=True)', 'f"{what} range", 0.0)',
      [LIGHTS]),
     ("wgpurender/core/scene/gltf_lights.py", "if not ok or value < lo or value > hi", "if not ok or value < lo",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import tomllib
 from pathlib import Path
 
@@ -32,20 +33,22 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     c.table(mats, ("materials",), tuple(mats) if isinstance(mats, dict) else ())
     for name, body in mats.items():
         materials[name] = _material(c, body, ("materials", name), name, f"[materials.{name}]")
-    from wgpurender.core.scene.gltf_lights import scene_lights  # here: it reads the scene model this package defines
-
     description = data.get("description", "")
-    models = _models(c, data.get("models", []), materials)
-    return Scene(
+    scene = Scene(
         path=path,
         camera=_camera(c, data["camera"]),
-        models=models,
+        models=_models(c, data.get("models", []), materials),
         materials=materials,
-        lights=scene_lights(_lights(c, data.get("lights", [])), models, path),  # + the glTF files' KHR lights
+        lights=_lights(c, data.get("lights", [])),
         render=_render(c, data.get("render", {})),
         post=_post(c, data.get("post", [])),
         description=c.string(description, ("description",)),
     )
+    if not any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
+        return scene
+    from wgpurender.core.scene.gltf_lights import scene_lights  # imported only for glTF models
+
+    return dataclasses.replace(scene, lights=scene_lights(scene.lights, scene.models, path))  # + KHR lights
 
 
 def load_scene(path: str | Path) -> Scene:
