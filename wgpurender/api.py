@@ -142,12 +142,15 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
 
 
-def export(target: Target, out: str | os.PathLike, size: Size = "800x600") -> Path:
+def export(target: Target, out: str | os.PathLike, size: Size = "800x600", force: bool = False) -> Path:
     """Write a static page into folder ``out`` that renders the stage or scene live with the browser's WebGPU
-    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``)."""
-    from wgpurender.export import export as write_page
+    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``).
+    ``out``: new, empty, or an earlier output (only the files wgpurender wrote there are replaced);
+    ``force=True`` writes into a non-empty folder that holds no earlier output, beside its files."""
+    from wgpurender.webpage import export as write_page
 
-    return write_page(str(target), out, _size(size)).page
+    target, out, wh, force = _target(target), checks.output_path(out, "out"), _size(size), checks.flag(force, "force")
+    return write_page(target, out, wh or (800, 600), force).page
 
 
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
@@ -344,10 +347,12 @@ def show(target: Target, size: Size = (640, 480), msaa: int | None = None, aniso
 
 def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: float = 30.0, size: Size = (640, 480),
            msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY, turn: float | None = None,
-           backend: str | None = None) -> Path:
+           backend: str | None = None, force: bool = False) -> Path:
     """Render ``seconds * fps`` frames into ``out``: an ``.mp4`` (H.264, needs imageio-ffmpeg) or a folder of PNG
     frames (``frames/``). Frame k is at animation time k / fps; ``turn``: degrees the orbit camera turns over the
-    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``."""
+    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``.
+    A video appears whole or not at all; a folder's frames of an earlier recording are replaced, the user's other
+    files kept; ``force=True`` records into a non-empty folder that holds no earlier output (docs/security.md)."""
     import math
 
     from wgpurender.core.video import check_output
@@ -356,6 +361,7 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
     if not isinstance(out, (str, os.PathLike)) or not str(out):
         raise UserError(f"out must be a .mp4 file or a folder path, got {type(out).__name__} {out!r}")
     check_output(out)
+    force = checks.flag(force, "force")
     for label, value in (("seconds", seconds), ("fps", fps), ("turn", 0.0 if turn is None else turn)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise UserError(f"{label} must be a finite number, got {value!r}")
@@ -363,9 +369,9 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
         raise UserError(f"seconds and fps must be > 0, got seconds={seconds!r}, fps={fps!r}")
     offscreen = Offscreen(*_offscreen(target, size, msaa, anisotropy, backend))
     degrees = turn if turn is not None else (360.0 if offscreen.view.is_scene else 0.0)
-    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees))
+    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees), force=force)
     return path
 
 
 __all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "plan", "explain", "stage_names",
-           "reference_stage_names", "show", "record"]
+           "reference_stage_names", "export", "show", "record"]

@@ -116,7 +116,7 @@ def output_target(path: str | os.PathLike) -> Path:
     return path
 
 
-def _pid_alive(pid: int) -> bool:
+def pid_alive(pid: int) -> bool:
     if pid == os.getpid():
         return True
     try:
@@ -137,7 +137,7 @@ def sweep_stale(folder: Path) -> list[Path]:
         return removed
     for name in names:
         m = _TEMP.match(name)
-        if m and not _pid_alive(int(m.group(1))):
+        if m and not pid_alive(int(m.group(1))):
             try:
                 (folder / name).unlink()
                 removed.append(folder / name)
