@@ -19,14 +19,18 @@ PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` w
 says how to fix it (the CLI prints the same message).
 
 One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.gpu.get_context` keeps it), so
-the adapter and device are made once. Nothing here imports wgpu, vulkan or trimesh until a render
+the adapter and device are made once. The functions are thread-safe: calls that use the GPU hold one lock,
+so threads take turns on the device (compare and heatmap, numpy only, run side by side). Nothing here imports
+wgpu, vulkan or trimesh until a render
 needs them: ``import wgpurender`` stays cheap.
 """
 
 from __future__ import annotations
 
+import functools
 import io
 import os
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,6 +48,21 @@ if TYPE_CHECKING:  # pragma: no cover
 
 Size = tuple[int, int] | str | None
 Target = str | os.PathLike
+# One lock around every use of the process's GPU contexts (wgpu's device, the raw path's Vulkan device): a device
+# used from two threads mid-frame aborted the process in wgpu-native, and the frame loop's one readback buffer
+# per context handed a call another call's image. Reentrant: record/show render through the same functions.
+_GPU = threading.RLock()
+
+
+def _one_at_a_time(function):
+    """Run ``function`` holding the API's GPU lock: thread-safe calls, one at a time on the device."""
+
+    @functools.wraps(function)
+    def locked(*args, **kwargs):
+        with _GPU:
+            return function(*args, **kwargs)
+
+    return locked
 
 
 @dataclass
@@ -108,6 +127,7 @@ def _target(target: Target) -> str:
     return str(target)
 
 
+@_one_at_a_time
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
            backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
@@ -142,6 +162,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
 
 
+@_one_at_a_time
 def export(target: Target, out: str | os.PathLike, size: Size = "800x600", force: bool = False) -> Path:
     """Write a static page into folder ``out`` that renders the stage or scene live with the browser's WebGPU
     (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``).
@@ -153,6 +174,7 @@ def export(target: Target, out: str | os.PathLike, size: Size = "800x600", force
     return write_page(target, out, wh or (800, 600), force).page
 
 
+@_one_at_a_time
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
               t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
@@ -269,6 +291,7 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
     return Image(out, " | ".join(getattr(i, "target", "array") for i in images), "derived")
 
 
+@_one_at_a_time
 def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
          backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
     """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
@@ -329,6 +352,7 @@ def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
     return get_context(checks.backend(backend)), name, wh, msaa, anisotropy
 
 
+@_one_at_a_time
 def show(target: Target, size: Size = (640, 480), msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY,
          backend: str | None = None):
     """An interactive view in Jupyter: the stage or scene drawn live, with the demo window's orbit camera (drag to
@@ -345,6 +369,7 @@ def show(target: Target, size: Size = (640, 480), msaa: int | None = None, aniso
     return Image(pixels, str(target), "wgpu", {}, ctx.describe())
 
 
+@_one_at_a_time
 def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: float = 30.0, size: Size = (640, 480),
            msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY, turn: float | None = None,
            backend: str | None = None, force: bool = False) -> Path:
