@@ -60,6 +60,7 @@ class VulkanContext:
     messenger: object = None
     pipeline_cache: object = None
     pipeline_cache_file: object = None
+    pipeline_cache_key: str = ""  # what the saved cache data depends on (pipeline_cache.py)
     device_type: str = ""  # as wgpu names adapter types: "DiscreteGPU", "IntegratedGPU", "CPU", ... (DEVICE_TYPES)
     _closed: bool = field(default=False, repr=False)
 
