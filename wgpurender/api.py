@@ -21,8 +21,7 @@ says how to fix it (the CLI prints the same message).
 One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.gpu.get_context` keeps it), so
 the adapter and device are made once. The functions are thread-safe: calls that use the GPU hold one lock,
 so threads take turns on the device (compare and heatmap, numpy only, run side by side). Nothing here imports
-wgpu, vulkan or trimesh until a render
-needs them: ``import wgpurender`` stays cheap.
+wgpu, vulkan or trimesh until a render needs them: ``import wgpurender`` stays cheap.
 """
 
 from __future__ import annotations

@@ -48,9 +48,21 @@ def course_stages() -> list[str]:
 def check_out_dir(out_dir: Path, force: bool = False) -> OwnedFolder:
     """The site's folder, checked before any step is rendered: new, empty, or an earlier output (its manifest);
     ``force`` writes beside other files. A build killed earlier left its staging folder: swept here."""
-    folder = OwnedFolder(out_dir, "report", force, "cannot write the report to")
+    folder = OwnedFolder(out_dir, "report", force or _legacy_report(out_dir), "cannot write the report to")
     sweep_stale_builds(folder.folder.parent)
     return folder
+
+
+def _legacy_report(out_dir: Path) -> bool:
+    """A report built before manifests existed (its index.html carries the generator mark, no manifest): written
+    as with --force, beside its files (none of which is deleted: which ones it wrote is not known)."""
+    from wgpurender.core.owned_files import read_manifest
+
+    index = out_dir / "index.html"
+    if not out_dir.is_dir() or out_dir.is_symlink() or index.is_symlink() or not index.is_file():
+        return False
+    head = index.open("rb").read(4096).decode("utf-8", "replace")
+    return read_manifest(out_dir) is None and page.GENERATOR_MARK in head
 
 
 def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, stages: list[str] | None = None,
