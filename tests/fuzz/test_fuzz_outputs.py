@@ -170,3 +170,22 @@ def test_a_damaged_cache_entry_is_never_served(payload, key, cuts, flips, tail, 
     outcome = _count("wrong" if (got is not None and not whole) or (whole and got != payload) else "error",
                       "cache entry", f"served {got!r} for a damaged entry")
     check(outcome, f"damaged entry served: {got!r}")
+
+
+@given(value=st.one_of(st.none(), st.text(max_size=30), st.sampled_from(["/", "/tmp", "relative", "/no/such", "~",
+                                                                            "/dev/null", "/etc/hostname"])))
+@fuzz_settings(ci=50, long=2000)
+def test_any_runtime_dir_value_ends_valid_and_a_valid_one_is_kept(value):
+    from wgpurender.core import runtime_dir
+
+    with pytest.MonkeyPatch.context() as patch:
+        if value is None or "\0" in value:
+            patch.delenv("XDG_RUNTIME_DIR", raising=False)
+        else:
+            patch.setenv("XDG_RUNTIME_DIR", value)
+        valid = runtime_dir.runtime_dir_valid(os.environ.get("XDG_RUNTIME_DIR"))
+        made = runtime_dir.ensure_runtime_dir()
+        good = os.path.isabs(made) and os.path.isdir(made) and os.environ["XDG_RUNTIME_DIR"] == made
+        kept = not valid or made == value
+        outcome = _count("render" if good and kept else "wrong", f"XDG_RUNTIME_DIR={value!r}", f"became {made!r}")
+    check(outcome, f"XDG_RUNTIME_DIR={value!r} became {made!r}")
