@@ -119,3 +119,30 @@ def test_a_manifest_entry_outside_the_folder_is_never_deleted(capsys, tmp_path):
     (out / MANIFEST).write_text(json.dumps(data))
     assert main(["export", "clear-pass", "-o", str(out), *ARGS]) == 0
     assert outside.read_text() == "keep"
+
+
+def test_an_export_killed_mid_write_leaves_the_earlier_page_whole(tmp_path):
+    """Each file goes through a temp file + rename: SIGKILL while ``data.js`` is being written leaves the earlier
+    export's files byte for byte (and one named temp file, which the next export removes)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "e"
+    assert main(["export", "triangle", "-o", str(out), *ARGS]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    env = {**os.environ, "WGPURENDER_TEST_WRITE_DELAY": "60"}
+    proc = subprocess.Popen([sys.executable, "-m", "wgpurender", "export", "clear-pass", "-o", str(out), *ARGS],
+                            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while not [p for p in out.iterdir() if p.name.startswith(".data.js.")]:
+        assert proc.poll() is None, proc.stderr.read().decode()
+        assert time.monotonic() < deadline, "the temp file never appeared"
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    after = {p.name: p.read_bytes() for p in out.iterdir() if not p.name.endswith(".tmp")}
+    assert after == before  # the manifest lists the same three files: nothing new was claimed
+    assert main(["export", "clear-pass", "-o", str(out), *ARGS]) == 0
+    assert sorted(p.name for p in out.iterdir()) == sorted(EXPORT_FILES | {MANIFEST})
