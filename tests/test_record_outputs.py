@@ -123,3 +123,16 @@ def test_a_file_size_limit_is_one_line_and_no_partial_video(tmp_path):
     assert done.returncode == 2, done.stderr
     assert len(done.stderr.strip().splitlines()) == 1 and "cannot record to" in done.stderr, done.stderr
     assert os.listdir(tmp_path / "out") == []
+
+
+def test_a_video_missing_frames_is_not_published(tmp_path, monkeypatch):
+    """A file that decodes but holds fewer frames than were sent (an encoder that stopped early) is an error too,
+    not only one that does not decode at all."""
+    import imageio_ffmpeg
+
+    real = imageio_ffmpeg.count_frames_and_secs
+    monkeypatch.setattr(imageio_ffmpeg, "count_frames_and_secs", lambda path: (real(path)[0] - 1, 0.0))
+    with pytest.raises(UserError) as caught, FrameWriter(tmp_path / "clip.mp4", 10.0) as writer:
+        for k in range(3):
+            writer.write(np.full((24, 32, 3), 60 * k, np.uint8))
+    assert "2 of 3 frames" in str(caught.value) and os.listdir(tmp_path) == []
