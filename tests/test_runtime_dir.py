@@ -51,7 +51,9 @@ def test_a_valid_runtime_dir_is_kept(monkeypatch, tmp_path):
 
 
 @pytest.mark.parametrize("value", [None, "", "run/user", "/no/such/folder"])
-def test_an_invalid_one_is_replaced_by_a_private_folder(monkeypatch, value):
+def test_an_invalid_one_is_replaced_by_a_private_folder(monkeypatch, tmp_path, value):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "run" / "user").mkdir(parents=True)  # a relative path that exists is still refused by libwayland
     if value is None:
         monkeypatch.delenv("XDG_RUNTIME_DIR", raising=False)
     else:
