@@ -136,3 +136,14 @@ def test_a_video_missing_frames_is_not_published(tmp_path, monkeypatch):
         for k in range(3):
             writer.write(np.full((24, 32, 3), 60 * k, np.uint8))
     assert "2 of 3 frames" in str(caught.value) and os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("name", ["clip.mp4", "frames"])
+def test_demo_record_into_a_read_only_folder_is_one_line_before_a_window_opens(capsys, name):
+    from wgpurender.cli import main
+
+    with _tmpfs("ro,size=16k") as folder:
+        assert main(["demo", "3d", "--record", str(folder / name), "--frames", "2"]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and ("Read-only" in err[0] or "not writable" in err[0]), err
+        assert os.listdir(folder) == []
