@@ -142,8 +142,7 @@ MUTATIONS = [
      "            self._listed |= new", [OWNED]),
     ("wgpurender/core/owned_files.py", "        os.close(fd)\n        os.unlink(probe)", "        os.close(fd)",
      [EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "if m and not pid_alive(int(m.group(1)))", "if m and pid_alive(int(m.group(1)))",
-     [REPORT_OWN]),
+    ("wgpurender/core/safe_write.py", "if not m or pid_alive(int(m.group(1))) or", "if not m or", [REPORT_OWN]),
     ("wgpurender/core/owned_files.py", "    folder.check_names(names)\n    folder.claim(names)",
      "    folder.claim(names)", [OWNED]),
     ("wgpurender/core/owned_files.py", "    try:\n        yield path\n    finally:\n        shutil.rmtree(path, "

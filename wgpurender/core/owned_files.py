@@ -29,13 +29,9 @@ from collections.abc import Iterator
 from pathlib import Path, PurePosixPath
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.safe_write import FOLLOW_SYMLINKS_ENV, atomic_write, pid_alive
+from wgpurender.core.safe_write import FOLLOW_SYMLINKS_ENV, atomic_write, follow_symlinks, sweep_stale
 
 MANIFEST = ".wgpurender-manifest.json"
-
-
-def _follow() -> bool:
-    return os.environ.get(FOLLOW_SYMLINKS_ENV, "") not in ("", "0")
 
 
 def _clean_entry(entry: object) -> str | None:
@@ -72,7 +68,7 @@ def _resolve_folder(folder: Path, flag: str) -> Path:
     except OSError as err:
         raise UserError(f"{flag} {folder}: {err.strerror or err}") from None
     if stat.S_ISLNK(mode):
-        if not _follow():
+        if not follow_symlinks():
             raise UserError(f"{flag} {folder}: refusing to write into a symbolic link (to {os.readlink(folder)}); "
                             f"give the real folder, or set {FOLLOW_SYMLINKS_ENV}=1")
         target = Path(os.path.realpath(folder))
@@ -119,7 +115,7 @@ class OwnedFolder:
         target = self.folder
         for part in PurePosixPath(clean).parts[:-1]:
             target = target / part
-            if target.is_symlink() and not _follow():
+            if target.is_symlink() and not follow_symlinks():
                 raise UserError(f"{self.flag} {self.folder}: refusing to write through the symbolic link {target}")
             try:
                 target.mkdir(exist_ok=True)
@@ -203,18 +199,7 @@ _BUILD = re.compile(r"^\..+\.wgpurender-(\d+)\.build$")
 
 def sweep_stale_builds(parent: Path) -> list[Path]:
     """Remove the staging folders of killed builds in ``parent``: ours by name, real folders, process gone."""
-    removed = []
-    try:
-        names = os.listdir(parent)
-    except OSError:
-        return removed
-    for name in names:
-        m = _BUILD.match(name)
-        path = parent / name
-        if m and not pid_alive(int(m.group(1))) and not path.is_symlink() and path.is_dir():
-            shutil.rmtree(path, ignore_errors=True)
-            removed.append(path)
-    return removed
+    return sweep_stale(parent, _BUILD, folders=True)
 
 
 @contextlib.contextmanager
