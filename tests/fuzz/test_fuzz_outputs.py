@@ -96,6 +96,8 @@ def _build(base: Path, state: dict) -> Path:
 
 
 def _judge(base: Path, out: Path, before: dict, code: int, err: str, state: dict, written: set[str]) -> str:
+    """A file the manifest listed is the writer's to replace or remove; every other file in the folder is the
+    user's (with --force and exit 0, the writer's own names may be replaced); outside the folder nothing moves."""
     label = json.dumps(state)
     if code not in (0, 2) or (code == 2 and len(err.strip().splitlines()) != 1) or "Traceback" in err:
         return _count("multiline", label, err[-400:])
@@ -104,7 +106,7 @@ def _judge(base: Path, out: Path, before: dict, code: int, err: str, state: dict
     if any(after.get(k) != v for k, v in outside.items()):
         return _count("clobbered", label, "a file outside the output folder changed")
     real = "real/" if state["kind"] == "symlink" else "out/"
-    listed = set(state["user"]) if state["manifest"] == "ours-and-users" else set()
+    listed = {"ours-and-users": set(state["user"]), "valid": set(OUR_NAMES[:3])}.get(state["manifest"], set())
     for key, digest in before.items():
         if not key.startswith(real) or key.endswith(MANIFEST):
             continue
