@@ -41,16 +41,20 @@ THREADS = "tests/test_api_threads.py"
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
     # comparison and heatmap
-    ("wgpurender/core/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
+    ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py",
+     "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
      [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
-    ("wgpurender/core/compare.py", "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
+    ("wgpurender/core/verdict/compare.py",
+     "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
+    ("wgpurender/core/verdict/compare.py",
+     "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
     ("wgpurender/cli/compare.py", "return value < limit if name == \"psnr\"", "return value > limit if name == "
      "\"psnr\"", [COMPARE, CAUSES]),
-    ("wgpurender/core/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
-    ("wgpurender/core/imageio.py", "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
+    ("wgpurender/core/files/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
+    ("wgpurender/core/files/imageio.py",
+     "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
     # the report
     ("wgpurender/report/page.py", '{_figure(files.get("wgpu"), "wgpu (WGSL', '{_figure(files.get("raw"), "wgpu (WGSL',
      [REPORT]),
@@ -62,11 +66,12 @@ MUTATIONS = [
     ("wgpurender/report/steps.py", "step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)",
      "step.heat = heatmap(step.raw, step.wgpu, 1.0)", [REPORT]),
     # trust: driver class, present modes, depth, the API's path
-    ("wgpurender/core/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
+    ("wgpurender/core/verdict/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
      'return "lavapipe" if "lavapipe" in device_name.lower()', [TRUST]),
-    ("wgpurender/core/tolerances.py", "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
+    ("wgpurender/core/verdict/tolerances.py",
+     "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
      [TRUST, "tests/test_reference_tolerances.py"]),
-    ("wgpurender/raw_path/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
+    ("wgpurender/raw_path/window/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
      '"immediate": vk.VK_PRESENT_MODE_MAILBOX_KHR', [TRUST]),
     ("wgpurender/core/plan/build.py", 'depth_compare = "greater" if knobs.reverse_z else "less"',
      'depth_compare = "greater" if knobs.reverse_z else "less-equal"', [TRUST]),
@@ -76,7 +81,8 @@ MUTATIONS = [
      'str(target), "raw"', [TRUST]),
     ("wgpurender/api.py", "        return image.rgba8()", "        return image.pixels", [API]),
     # argument checks
-    ("wgpurender/core/checks.py", "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
      "    if math.isnan(value):\n        raise UserError(f\"{name} must be a finite", [API, CAUSES]),
     ("wgpurender/core/checks.py", '    return positive(value, "gain", "32")', '    return number(value, "gain")',
      [API, COMPARE]),
@@ -89,93 +95,100 @@ MUTATIONS = [
      [API]),
     ("wgpurender/core/checks.py", "    elif not _is_number(value):", "    elif not isinstance(value, (int, float, "
      "str)):", [API]),
-    ("wgpurender/core/checks.py", "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
+    ("wgpurender/core/files/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
      "    kind = _kind(mode)\n    if kind == 'never':", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
-    ("wgpurender/core/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
-    ("wgpurender/core/input_files.py", "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
+    ("wgpurender/core/files/input_files.py",
+     "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
+    ("wgpurender/core/files/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py",
+     "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
      "depth)\n        depth = 0", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
     ("wgpurender/core/scene/load.py", "    except RecursionError:", "    except ValueError:", [CAUSES]),
-    ("wgpurender/core/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
+    ("wgpurender/core/files/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
+    ("wgpurender/core/files/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
      "    if len(os.fsencode(name)) > 1024:", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
+    ("wgpurender/core/files/safe_write.py",
+     "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
      "{os_error_reason(link, err)}\") from None", "    except OSError:\n        pass", [CAUSES + "|follow"]),
-    ("wgpurender/core/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
+    ("wgpurender/core/files/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
      "    _handlers_installed = True\n    _set_handlers(_on_signal)", [CAUSES + "|sigterm"]),
-    ("wgpurender/core/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
+    ("wgpurender/core/plan/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
      "BYTES_PER_PIXEL.get(fmt, 16)", [CAUSES + "|memory or adapter"]),
-    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
+    ("wgpurender/core/plan/gpu_memory.py",
+     "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
-    ("wgpurender/core/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
+    ("wgpurender/core/models/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
      [GLTF]),
-    ("wgpurender/core/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
+    ("wgpurender/core/models/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
      '(FLOAT,))', [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
+    ("wgpurender/core/models/gltf_rules.py",
+     "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
      " UINT, FLOAT)", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
+    ("wgpurender/core/models/gltf_rules.py",
+     "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
-    # issue 28: output folders own only what they wrote (core/owned_files.py)
-    ("wgpurender/core/owned_files.py", 'any(part in ("", ".", "..") for part', 'any(part in ("", ".") for part',
+    # issue 28: output folders own only what they wrote (core/files/owned_files.py)
+    ("wgpurender/core/files/owned_files.py", 'any(part in ("", ".", "..") for part', 'any(part in ("", ".") for part',
      [OWNED, EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "if path.is_absolute() or any(", "if any(", [OWNED, EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "if others and not self.force:", "if others and self.force:",
+    ("wgpurender/core/files/owned_files.py", "if path.is_absolute() or any(", "if any(", [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "if others and not self.force:", "if others and self.force:",
      [OWNED, EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "if rel not in self.owned and os.path.lexists(", "if os.path.lexists(",
+    ("wgpurender/core/files/owned_files.py", "if rel not in self.owned and os.path.lexists(", "if os.path.lexists(",
      [OWNED, EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "stale = sorted(self.owned - set(self.written))", "stale = sorted(self.owned)",
+    ("wgpurender/core/files/owned_files.py", "stale = sorted(self.owned - set(self.written))", "stale = sorted(self.owned)",  # noqa: E501
      [OWNED, EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "        if here.is_symlink() or not here.is_dir():",
+    ("wgpurender/core/files/owned_files.py", "        if here.is_symlink() or not here.is_dir():",
      "        if not here.is_dir():", [OWNED, EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "    if stat.S_ISLNK(mode):\n        if not _follow():",
-     "    if stat.S_ISLNK(mode):\n        if _follow():", [EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "        if not target.is_dir():\n            raise UserError(f\"{flag} {folder}: the",  # noqa: E501
+    ("wgpurender/core/files/owned_files.py", "    if stat.S_ISLNK(mode):\n        if not follow_symlinks():",
+     "    if stat.S_ISLNK(mode):\n        if follow_symlinks():", [EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "        if not target.is_dir():\n            raise UserError(f\"{flag} {folder}: the",  # noqa: E501
      "        if False:\n            raise UserError(f\"{flag} {folder}: the", [EXPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "if target.is_symlink() and not _follow():", "if False:", [OWNED]),
-    ("wgpurender/core/owned_files.py", "            self._listed |= new\n            self._save(self._listed)",
+    ("wgpurender/core/files/owned_files.py", "if target.is_symlink() and not follow_symlinks():", "if False:", [OWNED]),
+    ("wgpurender/core/files/owned_files.py", "            self._listed |= new\n            self._save(self._listed)",
      "            self._listed |= new", [OWNED]),
-    ("wgpurender/core/owned_files.py", "        os.close(fd)\n        os.unlink(probe)", "        os.close(fd)",
+    ("wgpurender/core/files/owned_files.py", "        os.close(fd)\n        os.unlink(probe)", "        os.close(fd)",
      [EXPORT_OWN]),
-    ("wgpurender/core/safe_write.py", "if not m or pid_alive(int(m.group(1))) or", "if not m or", [REPORT_OWN]),
-    ("wgpurender/core/owned_files.py", "    folder.check_names(names)\n    folder.claim(names)",
+    ("wgpurender/core/files/safe_write.py", "if not m or pid_alive(int(m.group(1))) or", "if not m or", [REPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "    folder.check_names(names)\n    folder.claim(names)",
      "    folder.claim(names)", [OWNED]),
-    ("wgpurender/core/owned_files.py", "    try:\n        yield path\n    finally:\n        shutil.rmtree(path, "
+    ("wgpurender/core/files/owned_files.py", "    try:\n        yield path\n    finally:\n        shutil.rmtree(path, "
      "ignore_errors=True)", "    yield path", [OWNED, REPORT_OWN]),
     # issue 28.5: a video is published whole or not at all
-    ("wgpurender/core/video.py", "        if frames != self.count:", "        if frames < 0:", [RECORD_OWN]),
-    ("wgpurender/core/video.py", "        if exc_type is None:\n            self.close()",
+    ("wgpurender/core/files/video.py", "        if frames != self.count:", "        if frames < 0:", [RECORD_OWN]),
+    ("wgpurender/core/files/video.py", "        if exc_type is None:\n            self.close()",
      "        if True:\n            self.close()", [RECORD_OWN]),
     # issue 28.8: verified cache entries
-    ("wgpurender/core/cache_entry.py", "    if blob[at:at + 32] != _digest(key):", "    if False:", [CACHES]),
-    ("wgpurender/core/cache_entry.py", "or blob[at + 32:at + 64] != _digest(payload):", ":", [CACHES]),
-    ("wgpurender/core/cache_entry.py", "info = os.stat(path, follow_symlinks=False)", "info = os.stat(path)",
+    ("wgpurender/core/files/cache_entry.py", "    if blob[at:at + 32] != _digest(key):", "    if False:", [CACHES]),
+    ("wgpurender/core/files/cache_entry.py", "or blob[at + 32:at + 64] != _digest(payload):", ":", [CACHES]),
+    ("wgpurender/core/files/cache_entry.py", "info = os.stat(path, follow_symlinks=False)", "info = os.stat(path)",
      [CACHES]),
-    ("wgpurender/raw_path/glsl.py", "    spirv = read_entry(cached, key)\n",
+    ("wgpurender/raw_path/device/shaders.py", "    spirv = read_entry(cached, key)\n",
      "    spirv = cached.read_bytes() if cached.is_file() else None\n", [CACHES]),
-    ("wgpurender/raw_path/pipeline_cache.py", "write_entry(ctx.pipeline_cache_file, ctx.pipeline_cache_key, bytes(",
+    ("wgpurender/raw_path/device/pipeline_cache.py", "write_entry(ctx.pipeline_cache_file, ctx.pipeline_cache_key, bytes(",  # noqa: E501
      "ctx.pipeline_cache_file.write_bytes((", [CACHES]),
-    ("wgpurender/wgpu_path/cdef_json.py", '{"t": tuple, "l": list, "s": set}', '{"t": list, "l": list, "s": set}',
+    ("wgpurender/wgpu_path/device/cdef_json.py", '{"t": tuple, "l": list, "s": set}', '{"t": list, "l": list, "s": set}',  # noqa: E501
      [CDEF]),
-    ("wgpurender/core/bandwidth.py", "if not isinstance(found, dict) or set(found) != set(FIELDS):",
+    ("wgpurender/core/files/bandwidth.py", "if not isinstance(found, dict) or set(found) != set(FIELDS):",
      "if not isinstance(found, dict):", [CACHES]),
-    ("wgpurender/core/bandwidth.py", " and not isinstance(found[name], bool) for name", " for name", [CACHES]),
-    ("wgpurender/core/bandwidth.py", "math.isfinite(found[name]) and found[name] > 0",
+    ("wgpurender/core/files/bandwidth.py", " and not isinstance(found[name], bool) for name", " for name", [CACHES]),
+    ("wgpurender/core/files/bandwidth.py", "math.isfinite(found[name]) and found[name] > 0",
      "math.isfinite(found[name]) and found[name] >= 0", [CACHES]),
-    ("wgpurender/core/bandwidth.py", "    return data if isinstance(data, dict) else {}", "    return data", [CACHES]),
+    ("wgpurender/core/files/bandwidth.py", "    return data if isinstance(data, dict) else {}", "    return data", [CACHES]),  # noqa: E501
     # issue 28.9, 28.12, 28.13
     ("wgpurender/api.py", "        with _GPU:\n", "        if True:\n", [THREADS]),
     ("wgpurender/core/checks.py", "    if not isinstance(value, str) or not value:\n        raise UserError(f\"{name} must be a folder",  # noqa: E501
      "    if not isinstance(value, str):\n        raise UserError(f\"{name} must be a folder", [API]),
     ("wgpurender/core/checks.py", "    if not isinstance(value, (bool, np.bool_)):\n        raise UserError(f\"{name} must be True",  # noqa: E501
      "    if not isinstance(value, (bool, np.bool_, int)):\n        raise UserError(f\"{name} must be True", [API]),
-    ("wgpurender/core/runtime_dir.py", "bool(value) and os.path.isabs(value) and", "bool(value) and", [RUNTIME]),
-    ("wgpurender/core/runtime_dir.py", "    os.environ[RUNTIME_ENV] = private", "    pass", [RUNTIME]),
+    ("wgpurender/core/files/runtime_dir.py", "bool(value) and os.path.isabs(value) and", "bool(value) and", [RUNTIME]),
+    ("wgpurender/core/files/runtime_dir.py", "    os.environ[RUNTIME_ENV] = private", "    pass", [RUNTIME]),
 ]
 
 

@@ -3,7 +3,7 @@
 Before: the SPIR-V cache served any file at its name (an empty one crashed vkCreateShaderModule's caller, an
 altered one was handed to the driver), the VkPipelineCache's bytes went to the driver unchecked, the cffi parse
 was a pickle (tests/test_cdef_cache.py), and a bandwidth record of another shape was a traceback in
-``render --explain``. Every cache now stores a sealed entry (core/cache_entry.py): empty, truncated, altered
+``render --explain``. Every cache now stores a sealed entry (core/files/cache_entry.py): empty, truncated, altered
 (one flipped byte) and wrong-key entries are each a miss, and what is computed again is the same.
 """
 
@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from wgpurender.core import bandwidth, cache_entry
+from wgpurender.core.files import bandwidth, cache_entry
 
 
 def _flip(data: bytes) -> bytes:
@@ -60,7 +60,7 @@ def test_special_files_and_links_are_misses(tmp_path):
 @pytest.fixture
 def private_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
-    from wgpurender.raw_path import glsl
+    from wgpurender.raw_path.device import shaders as glsl
 
     monkeypatch.setattr(glsl, "_MEMORY_CACHE", {})
     return tmp_path / "cache" / "wgpurender"
@@ -68,7 +68,7 @@ def private_cache(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("damage", sorted(DAMAGE))
 def test_a_damaged_spirv_entry_is_compiled_again_to_the_same_module(private_cache, monkeypatch, damage):
-    from wgpurender.raw_path import glsl
+    from wgpurender.raw_path.device import shaders as glsl
 
     path = glsl.glsl_path("color.frag")
     fresh = glsl.compile_glsl(path)

@@ -3,7 +3,7 @@
 ``wgpurender export triangle -o out/report`` overwrote the course report's index.html with the triangle's page
 (exit 0); later it refused any folder holding more than its three files, and wrote through a symlinked
 ``index.html`` / ``data.js`` / ``player.js`` (or into a dangling symlinked folder), not atomically. Now the folder
-carries a manifest (core/owned_files.py): an earlier export is replaced, the user's files beside it are kept
+carries a manifest (core/files/owned_files.py): an earlier export is replaced, the user's files beside it are kept
 byte for byte, a folder of other files without a manifest is refused unless ``--force`` (which writes beside
 them and deletes nothing), and symlinks are refused as ``render`` refuses them.
 """
@@ -16,7 +16,7 @@ import os
 import pytest
 
 from wgpurender.cli import main
-from wgpurender.core.owned_files import MANIFEST
+from wgpurender.core.files.owned_files import MANIFEST
 
 EXPORT_FILES = {"index.html", "data.js", "player.js"}
 ARGS = ["--size", "32x24"]

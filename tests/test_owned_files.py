@@ -1,4 +1,4 @@
-"""core/owned_files.py on its own (issue 28.4): the rules every writer (report, export, record) gets from it,
+"""core/files/owned_files.py on its own (issue 28.4): the rules every writer (report, export, record) gets from it,
 checked on folders built here, without a GPU."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import json
 import pytest
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.owned_files import MANIFEST, OwnedFolder, install, read_manifest, staging
+from wgpurender.core.files.owned_files import MANIFEST, OwnedFolder, install, read_manifest, staging
 
 
 def _listed(folder) -> list[str]:

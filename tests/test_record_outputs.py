@@ -2,7 +2,7 @@
 
 Before: a second recording into a folder left the first one's later frames beside the new ones; a recording into a
 read-only folder or onto a full disk ended in a traceback (or ffmpeg's multi-line error) and left a partial MP4.
-Now the folder has a manifest (core/owned_files.py) and a video is encoded into a temp file that is renamed into
+Now the folder has a manifest (core/files/owned_files.py) and a video is encoded into a temp file that is renamed into
 place only once it holds every frame. Full and read-only disks are real: small tmpfs mounts (root), or a file size
 limit (RLIMIT_FSIZE) in a child process where mounting is not allowed.
 """
@@ -21,7 +21,7 @@ import pytest
 
 import wgpurender as w
 from wgpurender.core.errors import UserError
-from wgpurender.core.video import FrameWriter
+from wgpurender.core.files.video import FrameWriter
 
 pytest.importorskip("imageio_ffmpeg")
 SMALL = dict(size=(32, 24), fps=10.0)

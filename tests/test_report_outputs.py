@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.owned_files import MANIFEST
+from wgpurender.core.files.owned_files import MANIFEST
 from wgpurender.report import build
 
 SMALL = dict(size=(32, 24), stages=["triangle"], scenes=[], accuracy=False)

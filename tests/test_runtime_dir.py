@@ -2,7 +2,7 @@
 
 Before: every command that made a Vulkan instance (wgpu-native's or the raw path's) printed "error:
 XDG_RUNTIME_DIR is invalid or not set in the environment." four times (libwayland, through Mesa's WSI) before its
-output: SSH as root, containers, CI, notebooks. core/runtime_dir.py gives the process a private folder first.
+output: SSH as root, containers, CI, notebooks. core/files/runtime_dir.py gives the process a private folder first.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from wgpurender.core import runtime_dir
+from wgpurender.core.files import runtime_dir
 
 COMMANDS = [  # (argv after "wgpurender", exit code, stderr lines)
     (["render", "triangle", "-o", "{out}/a.png", "--size", "32x24"], 0, 0),

@@ -20,10 +20,10 @@ from hypothesis import strategies as st
 from strategies import fuzz_settings
 
 from wgpurender.cli import main
-from wgpurender.core import cache_entry
 from wgpurender.core.errors import UserError
-from wgpurender.core.owned_files import MANIFEST
-from wgpurender.core.video import FrameWriter
+from wgpurender.core.files import cache_entry
+from wgpurender.core.files.owned_files import MANIFEST
+from wgpurender.core.files.video import FrameWriter
 
 OUR_NAMES = ("index.html", "data.js", "player.js", "frame_00000.png", "frame_00001.png", "frame_00007.png")
 USER_NAMES = ("notes.txt", "img/mine.png", "a/b/c.bin", ".hidden", "index.htm", "frame_1.png", "live/x.js")
@@ -178,7 +178,7 @@ def test_a_damaged_cache_entry_is_never_served(payload, key, cuts, flips, tail, 
                                                                             "/dev/null", "/etc/hostname"])))
 @fuzz_settings(ci=50, long=2000)
 def test_any_runtime_dir_value_ends_valid_and_a_valid_one_is_kept(value):
-    from wgpurender.core import runtime_dir
+    from wgpurender.core.files import runtime_dir
 
     with pytest.MonkeyPatch.context() as patch:
         if value is None or "\0" in value:

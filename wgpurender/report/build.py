@@ -2,7 +2,7 @@
 
 The site is built in a staging folder beside ``out_dir`` and copied into place (file by file, atomically) when
 it is complete, so a failed build leaves the previous report. ``out_dir`` is shared with the user: only the
-files a report wrote there (its manifest, core/owned_files.py) are replaced or removed.
+files a report wrote there (its manifest, core/files/owned_files.py) are replaced or removed.
 """
 
 from __future__ import annotations
@@ -12,15 +12,15 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import save_png
-from wgpurender.core.owned_files import OwnedFolder, install, staging, sweep_stale_builds
-from wgpurender.core.safe_write import cleanup_on_signal
+from wgpurender.core.files.assets import scene_dir
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.files.owned_files import OwnedFolder, install, staging, sweep_stale_builds
+from wgpurender.core.files.safe_write import cleanup_on_signal
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.report import code, extras, page
 from wgpurender.report.steps import Step, heatmap_scale, missing_scene_step, scene_step, stage_step
-from wgpurender.wgpu_path.gpu import GPUContext, get_context
+from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
@@ -56,7 +56,7 @@ def check_out_dir(out_dir: Path, force: bool = False) -> OwnedFolder:
 def _legacy_report(out_dir: Path) -> bool:
     """A report built before manifests existed (its index.html carries the generator mark, no manifest): written
     as with --force, beside its files (none of which is deleted: which ones it wrote is not known)."""
-    from wgpurender.core.owned_files import read_manifest
+    from wgpurender.core.files.owned_files import read_manifest
 
     index = out_dir / "index.html"
     if not out_dir.is_dir() or out_dir.is_symlink() or index.is_symlink() or not index.is_file():
@@ -73,8 +73,8 @@ def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, st
 
     ``size``: every step's image size (default 240x180, the tutorial's scenes 320x240). ``accuracy=False``
     leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the page says so).
-    ``anisotropy``: the scenes' rule (core/anisotropy.py), as ``render --anisotropy``. ``force``: write into a
-    non-empty folder without an earlier output, beside its files (core/owned_files.py).
+    ``anisotropy``: the scenes' rule (core/plan/anisotropy.py), as ``render --anisotropy``. ``force``: write into a
+    non-empty folder without an earlier output, beside its files (core/files/owned_files.py).
     """
     folder = check_out_dir(Path(out_dir), force)
     ctx = ctx or get_context()

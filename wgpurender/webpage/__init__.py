@@ -49,11 +49,11 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600), for
     """Write the page for a stage (by name) or a scene file into folder ``out`` (made if missing).
 
     ``out`` is checked before anything is recorded: new, empty, or holding an earlier wgpurender output (its
-    manifest, core/owned_files.py); ``force`` writes beside other files. Each file is written atomically."""
+    manifest, core/files/owned_files.py); ``force`` writes beside other files. Each file is written atomically."""
     from wgpurender.core.course.formats import is_scene_file
-    from wgpurender.core.owned_files import OwnedFolder
+    from wgpurender.core.files.owned_files import OwnedFolder
     from wgpurender.webpage.record import record_scene, record_stage
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     if target in NOT_EXPORTABLE:
         raise UserError(f"cannot export {target}: {NOT_EXPORTABLE[target]}")
