@@ -36,6 +36,8 @@
 // pbr (a glTF file's lit metallic-roughness material): each light's term is pbr.wgsl's pbr_radiance, not the
 // Blinn-Phong term, with metallic = material.metallic (times the metallic-roughness texture's B channel with
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
+// ibl (a pbr material in a scene with an [environment]): ibl_shading.wgsl's image-based lighting takes the ambient
+// term's place (times the occlusion factor with occlusion_map); the lights add to it as above.
 
 {{STRUCTS}}
 
@@ -75,6 +77,10 @@ var<private> ambient_occlusion: f32 = 1.0;
 // the metallic factor of this fragment (set by fs_main before shading)
 var<private> pbr_metallic: f32 = 0.0;
 {{PBR_FUNCTIONS}}
+#endif
+#if ibl
+@group(2) @binding(11) var<storage, read> ibl_maps: array<vec4f>;
+{{IBL_FUNCTIONS}}
 #endif
 
 struct VertexIn {
@@ -199,7 +205,11 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
 #if !pbr
     let s = shininess(roughness);
 #endif
+#if ibl
+    var color = ibl_radiance(n, v, albedo, pbr_metallic, roughness);  // the environment replaces the ambient term
+#else
     var color = camera.ambient.rgb * albedo;
+#endif
 #if occlusion_map
     color = color * ambient_occlusion;
 #endif

@@ -98,6 +98,9 @@ def left_out(scene: Scene, msaa_text: str, asked_msaa: int, targets: SceneTarget
     if scene.models and not scene.lights and not all(m.material.unlit for m in scene.models):
         out.append(("lighting", "the scene has no [[lights]]: a lit material keeps only its ambient term, drawn by "
                     "the unlit variant (no normals, light structs or lighting code)"))
+    if scene.environment is not None and not any("ibl" in v.flags for v in drawn.variants.values()):
+        out.append(("image-based lighting maps", f"[environment] {scene.environment.label} is given, but no lit glTF "
+                    "metallic-roughness material draws in this scene: no maps, no buffer, no binding"))
     if scene.models and immediates == "on":
         out.append(("scene-materials buffer", "immediates on: each draw's material factors are pushed with the "
                     "draw, so no Material buffer (and no material bind group unless it samples textures)"))

@@ -36,7 +36,7 @@ def _lights_text(lights: list) -> str:
 
 
 def material_variant(material: Material, directional: list[int], point: list[int], srgb_output: str | None,
-                     notes: list[str]) -> ShaderVariant:
+                     notes: list[str], environment=None) -> ShaderVariant:
     """The features one material needs, each with its reason; ignored settings become notes.
 
     A lit material in a scene without lights gets no lighting: what remains of the shading is the ambient
@@ -46,8 +46,9 @@ def material_variant(material: Material, directional: list[int], point: list[int
     label = material_label(material)
     reasons: list[tuple[str, str]] = []
     occluded = bool(getattr(material, "occlusion_map", None))  # it shapes the ambient term: lit shading keeps it
-    lit = not material.unlit and (bool(directional or point) or occluded)
-    if lit and not (directional or point):
+    environment_lit = environment is not None and material.shading_model == shading_models.PBR
+    lit = not material.unlit and (bool(directional or point) or occluded or environment_lit)
+    if lit and not (directional or point or environment_lit):
         notes.append(f"{label} is lit, the scene has no [[lights]], but its occlusion map scales the ambient term: "
                      "it keeps the lit variant (ambient x albedo x occlusion)")
     if material.albedo_map:
@@ -72,6 +73,7 @@ def material_variant(material: Material, directional: list[int], point: list[int
             notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
     reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
     reasons.extend(shading_models.model_reasons(material, label, lit, "roughness_map" in maps, notes))
+    reasons.extend(shading_models.ibl_reasons(material, label, lit, environment))
     if srgb_output:
         reasons.append(("srgb_output", srgb_output))
     counts = []
@@ -155,18 +157,18 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
             first_time = id(mat) not in seen_materials
             seen_materials.add(id(mat))
             out.draws.append(_plan_draw(model, mat, target, srgb_output, knobs, anisotropy_adapter,
-                                        notes if first_time else None, directional, point, out))
+                                        notes if first_time else None, directional, point, out, scene.environment))
     out.draws.sort(key=lambda d: out.pipelines[d.pipeline_key].blend)
     return out
 
 
 def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
                anisotropy_adapter: str | None, notes: list[str] | None, directional: list[int], point: list[int],
-               out: SceneDraws) -> Draw:
+               out: SceneDraws, environment=None) -> Draw:
     """The draw of one model with one material (its variant, pipeline, textures and samplers registered in
     ``out``): a scene material samples every texture with its one sampler, a file material each with its own."""
     label = material_label(mat)
-    variant = material_variant(mat, directional, point, srgb_output, notes if notes is not None else [])
+    variant = material_variant(mat, directional, point, srgb_output, notes if notes is not None else [], environment)
     out.variants.setdefault(variant.key, variant)
     pipeline = target.pipeline(variant, model, mat)
     out.pipelines.setdefault(pipeline.key, pipeline)

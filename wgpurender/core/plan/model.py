@@ -356,6 +356,11 @@ class RenderPlan:
         return counts
 
     @property
+    def uses_ibl(self) -> bool:
+        """A draw shades with image-based lighting (an ``ibl`` variant): the maps' buffer exists."""
+        return any("ibl" in v.flags for v in self.variants) and bool(self.scene_pass.draws)
+
+    @property
     def buffers(self) -> tuple[tuple[str, str], ...]:
         """(buffer, what it holds) for every GPU buffer the renderer makes for this plan (readback aside)."""
         draws = self.scene_pass.draws
@@ -370,6 +375,15 @@ class RenderPlan:
                                                for d in draws):
             out.append((f"{model.name} vertices", f"vertex attributes {', '.join(attributes)}, interleaved"))
             out.append((f"{model.name} indices", "index buffer"))
+        if self.uses_ibl:
+            from wgpurender.core.course import ibl_maps
+
+            env = self.scene.environment if self.scene is not None else None
+            source = f" of [environment] {env.label}, {env.samples} GGX samples" if env is not None else ""
+            out.append(("scene-ibl", f"storage: image-based lighting maps{source} ({ibl_maps.packed_bytes()} bytes: "
+                        f"irradiance {'x'.join(map(str, ibl_maps.IRRADIANCE_SIZE))}, {ibl_maps.LEVELS} prefiltered "
+                        f"levels {'x'.join(map(str, ibl_maps.PREFILTER_SIZE))}, BRDF table {ibl_maps.LUT_SIZE}^2; "
+                        "made in float64 on the CPU, core/course/ibl_maps.py), for the ibl variant(s)"))
         for p in self.post_passes:
             if any(s.spec.params for s in p.steps):
                 out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))

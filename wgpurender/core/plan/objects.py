@@ -50,7 +50,7 @@ def _attachments(plan: Any) -> list[GpuObject]:
 
 def material_group_needed(variant: Any, immediates: bool | None) -> bool:
     """Group 2 exists for a variant that samples textures (it reads uv) or reads its factors from a buffer."""
-    return immediates is not True or "uv" in variant.vertex_attributes
+    return immediates is not True or "uv" in variant.vertex_attributes or "ibl" in variant.flags
 
 
 def _scene_pass(plan: Any) -> list[GpuObject]:
@@ -71,7 +71,7 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
             users = [d for d in draws if d.variant_key == v.key]
             what = [feature for feature, _ in users[0].textures]
             parts = ([f"Material buffer slice{when}"] if immediates is not True else []) + (
-                ["sampler", *what] if what else [])
+                ["sampler", *what] if what else []) + (["the image-based lighting maps"] if "ibl" in v.flags else [])
             out.append(GpuObject("bind_group_layout", f"material {v.key}", 1, "group 2: " + ", ".join(parts)))
             out.append(GpuObject("bind_group", f"material {v.key}", len(users),
                                  "one per draw: " + ", ".join(d.label for d in users)))

@@ -12,6 +12,7 @@ from __future__ import annotations
 from wgpurender.core.scene import Material
 
 PBR = "pbr"
+IBL = "ibl"
 BLINN_PHONG = "blinn-phong"
 
 
@@ -37,3 +38,11 @@ def model_reasons(material: Material, label: str, lit: bool, has_metal_map: bool
 def metallic_factor(material: Material, variant_flags: frozenset[str]) -> dict:
     """The ``metallic`` material factor of a ``pbr`` variant (nothing otherwise)."""
     return {"metallic": material.metallic} if PBR in variant_flags else {}
+
+
+def ibl_reasons(material: Material, label: str, lit: bool, environment) -> list[tuple[str, str]]:
+    """The ``ibl`` variant feature (image-based lighting) for a PBR material in a scene with an [environment]."""
+    if environment is None or not uses_pbr(material, lit):
+        return []
+    return [(IBL, f"{label} is a metallic-roughness material and the scene has [environment] {environment.label}: "
+                  "diffuse irradiance + split-sum specular (prefiltered map x (F0 A + B))")]

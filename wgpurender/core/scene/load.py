@@ -10,6 +10,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import resolve_scene
 from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
 from wgpurender.core.scene.checker import Checker
+from wgpurender.core.scene.environment_block import parse_environment
 from wgpurender.core.scene.model import Scene
 from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
 
@@ -43,6 +44,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
         render=_render(c, data.get("render", {})),
         post=_post(c, data.get("post", [])),
         description=c.string(description, ("description",)),
+        environment=parse_environment(c, data.get("environment")),
     )
     if not any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
         return scene

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -245,6 +246,7 @@ class Scene:
     render: RenderSettings = field(default_factory=RenderSettings)
     post: tuple[PostStep, ...] = ()
     description: str = ""
+    environment: Any = None  # core/scene/environment_block.Environment: image-based lighting, or None
 
     @property
     def folder(self) -> Path:

@@ -36,7 +36,7 @@ from wgpurender.core.scene.model import (
 from wgpurender.core.scene.toml_locator import KeyPath, format_path
 from wgpurender.core.view import transforms
 
-TOP_KEYS = ("camera", "description", "lights", "materials", "models", "post", "render")
+TOP_KEYS = ("camera", "description", "environment", "lights", "materials", "models", "post", "render")
 CAMERA_KEYS = ("convention", "eye", "far", "fov_y", "near", "target", "up")
 MATERIAL_KEYS = (
     "albedo_color", "albedo_map", "normal_map", "roughness", "roughness_map", "sampler", "unlit", "uv_flip_v"

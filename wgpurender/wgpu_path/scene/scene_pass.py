@@ -139,6 +139,8 @@ class ScenePassRenderer:
                                 "texture": {"sample_type": "float", "view_dimension": "2d"}})
                 entries.append({"binding": L.SAMPLER_BINDINGS[feature], "visibility": frag,
                                 "sampler": {"type": "filtering"}})
+        if "ibl" in variant.flags:
+            entries.append({"binding": L.IBL_BINDING, "visibility": frag, "buffer": {"type": "read-only-storage"}})
         if not entries:
             return None
         return self.ctx.device.create_bind_group_layout(label=f"material {variant.key}", entries=entries)
@@ -157,7 +159,18 @@ class ScenePassRenderer:
             entries.append({"binding": L.TEXTURE_BINDINGS[feature], "resource": texture.view})
             entries.append({"binding": L.SAMPLER_BINDINGS[feature],
                             "resource": self.resources.sampler(draw.sampler_of(feature))})
+        if "ibl" in variant.flags:
+            entries.append({"binding": L.IBL_BINDING, "resource": {"buffer": self.ibl_buffer()}})
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
+
+    def ibl_buffer(self) -> wgpu.GPUBuffer:
+        """The image-based lighting maps of the scene's [environment] (core/course/ibl_maps.py), made once."""
+        if getattr(self, "_ibl_buffer", None) is None:
+            from wgpurender.core.course.ibl_maps import scene_maps
+
+            self._ibl_buffer = self.ctx.device.create_buffer_with_data(
+                data=scene_maps(self.scene.environment).tobytes(), usage=wgpu.BufferUsage.STORAGE, label="scene-ibl")
+        return self._ibl_buffer
 
     def shader_module(self, variant: ShaderVariant) -> wgpu.GPUShaderModule:
         return self._modules.get(variant.key, lambda: create_shader_module(

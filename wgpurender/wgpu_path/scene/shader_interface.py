@@ -12,7 +12,8 @@ Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
   group 1 Object   - every model's data in ONE buffer, picked per draw by a dynamic offset
   group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
-                     4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples
+                     4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples;
+                     11: the image-based lighting maps (storage buffer, ibl variants)
   immediates       - Material (per-draw factors) when the adapter has "immediates"
 """
 
@@ -31,6 +32,8 @@ from wgpurender.wgpu_path.device.shaders import load_wgsl
 
 SHADER = "scene.wgsl"
 PBR_FUNCTIONS = "pbr.wgsl"  # the glTF metallic-roughness BRDF, inserted for variants with the "pbr" flag
+IBL_FUNCTIONS = "ibl_shading.wgsl"  # image-based lighting, inserted for variants with the "ibl" flag
+IBL_BINDING = 11  # group 2: the image-based lighting maps (a read-only storage buffer)
 
 _CAMERA_VIEW = [("proj", MAT4), ("view", MAT4), ("eye", VEC4F)]
 DIRECTIONAL_LIGHT = Struct("DirectionalLight", [("direction", VEC4F), ("radiance", VEC4F)])
@@ -137,5 +140,6 @@ def shader_source(variant: ShaderVariant, immediates: bool) -> str:
         "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
+        "IBL_FUNCTIONS": load_wgsl(IBL_FUNCTIONS) if "ibl" in variant.flags else "",
     }
     return specialise(load_wgsl(SHADER), shader_features(variant, immediates), values, name=SHADER)
