@@ -75,6 +75,9 @@ float ambient_occlusion = 1.0;  // the ambient term's factor for this fragment (
 float pbr_metallic = 0.0;  // the metallic factor of this fragment (set by main before shading)
 #include "pbr.glsl"
 #endif
+#ifdef IBL
+#include "ibl_shading.glsl"
+#endif
 
 #ifdef LIGHTING
 layout(location = 0) in vec3 v_world_position;
@@ -156,7 +159,11 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
 #ifndef PBR
     float s = shininess(roughness);
 #endif
+#ifdef IBL
+    vec3 color = ibl_radiance(n, v, albedo, pbr_metallic, roughness);  // the environment replaces the ambient term
+#else
     vec3 color = camera.ambient.rgb * albedo;
+#endif
 #ifdef OCCLUSION_MAP
     color = color * ambient_occlusion;
 #endif

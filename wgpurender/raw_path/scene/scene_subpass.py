@@ -41,6 +41,7 @@ from wgpurender.raw_path.scene.variants import glsl_defines, is_lit
 VERTEX, FRAGMENT = vk.VK_SHADER_STAGE_VERTEX_BIT, vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS
 READ_ONLY = vk.VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+IBL_BINDING = 11  # set 2: the image-based lighting maps (scene.wgsl's group 2 binding 11)
 TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
 
 
@@ -107,8 +108,22 @@ class SceneSubpass:
 
     # -- descriptor sets ---------------------------------------------------------
     def _material_bindings(self, variant: ShaderVariant) -> list:
-        return [descriptors.binding(b, vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, FRAGMENT)
-                for feature, b in TEXTURE_BINDINGS.items() if feature in variant.flags]
+        out = [descriptors.binding(b, vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, FRAGMENT)
+               for feature, b in TEXTURE_BINDINGS.items() if feature in variant.flags]
+        if "ibl" in variant.flags:  # the image-based lighting maps (core/course/ibl_maps.py), read-only in GLSL
+            out.append(descriptors.binding(IBL_BINDING, vk.VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, FRAGMENT))
+        return out
+
+    def ibl_buffer(self):
+        """The scene's [environment] maps in one host-visible storage buffer (the same floats the wgpu path gets)."""
+        if getattr(self, "_ibl_buffer", None) is None:
+            from wgpurender.core.course.ibl_maps import scene_maps
+
+            data = scene_maps(self.scene.environment)
+            self._ibl_buffer = create_buffer(self.ctx, self.owned, data.nbytes, vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                             HOST_MEMORY)
+            write_host_buffer(self.ctx, self._ibl_buffer, data)
+        return self._ibl_buffer
 
     def _setup_sets(self) -> None:
         ctx, owned = self.ctx, self.owned
@@ -135,6 +150,10 @@ class SceneSubpass:
                                      vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC),
         ]
         for d in textured:
+            if "ibl" in self.plan.variant(d.variant_key).flags:
+                buffer = self.ibl_buffer()
+                writes.append(descriptors.write_buffer(self.material_sets[id(d)], IBL_BINDING, buffer.handle, 0,
+                                                       buffer.size, vk.VK_DESCRIPTOR_TYPE_STORAGE_BUFFER))
             for feature, path in d.textures:
                 sampler = self.resources.sampler(d.sampler_of(feature))  # each texture its own (glTF samplers)
                 texture = self.resources.texture(path, srgb=is_srgb_map(feature))
