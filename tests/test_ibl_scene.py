@@ -161,3 +161,71 @@ def test_the_ibl_scene_plans_one_maps_buffer_with_its_bytes():
     assert len(rows) == 1 and f"({16 * (32 * 16 + 5 * 64 * 32 + 32 * 32)} bytes" in rows[0]
     assert ibl_maps.packed_bytes() == 16 * (32 * 16 + 5 * 64 * 32 + 32 * 32)
     assert all("ibl" in v.flags for v in plan.variants)
+
+
+def test_an_hdr_file_round_trips_and_lights_the_scene(tmp_path):
+    """A flat .hdr written here (RGBE of known values) reads back within RGBE's step: the exponent is shared, so
+    each channel is within 1/256 of the pixel's largest channel (twice, for the rounding on both sides)."""
+    from wgpurender.core.files.hdr_io import encode_hdr, load_hdr
+
+    values = np.array([[[0.5, 0.25, 2.0], [40.0, 36.0, 30.0]], [[0.0, 0.0, 0.0], [1e-3, 0.1, 0.01]]])
+    (tmp_path / "e.hdr").write_bytes(encode_hdr(values))
+    got = load_hdr(tmp_path / "e.hdr")
+    assert got.shape == (2, 2, 3)
+    assert np.all(np.abs(got - values) <= 2 / 256 * values.max(-1, keepdims=True))
+
+
+def rle_hdr(width: int, pixel: tuple[int, int, int, int]) -> bytes:
+    """One new-style RLE scanline per row: each channel one run of ``width`` (built from the format's text)."""
+    line = bytes([2, 2, width >> 8, width & 255])
+    for value in pixel:
+        rest = width
+        while rest:
+            n = min(rest, 127)
+            line += bytes([128 + n, value])
+            rest -= n
+    return b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X %d\n" % width + line * 2
+
+
+def test_a_run_length_encoded_hdr_decodes():
+    from wgpurender.core.files.hdr_io import decode_hdr
+
+    got = decode_hdr(rle_hdr(300, (128, 64, 32, 129)))
+    assert got.shape == (2, 300, 3)
+    assert np.allclose(got, np.array([128.5, 64.5, 32.5]) / 256 * 2.0, rtol=1e-6)
+
+
+@pytest.mark.parametrize("data, says", [
+    (b"P6\n1 1\n255\n\0\0\0", "not a Radiance .hdr"),
+    (b"#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n\0\0\0\0", "not supported"),
+    (b"#?RADIANCE\n\n+Y 1 +X 1\n\0\0\0\0", "resolution line"),
+    (b"#?RADIANCE\n\n-Y 2 +X 2\n\0\0\0\0", "truncated"),
+    (b"#?RADIANCE\n\n-Y 100000 +X 100000\n", "over the limit"),
+    (b"#?RADIANCE\n\n-Y 0 +X 4\n", "at least one"),
+    (b"#?RADIANCE\n" + b"X=1\n" * 100, "header longer"),
+])
+def test_a_bad_hdr_is_one_line_and_exit_2(tmp_path, data, says):
+    import subprocess
+    import sys
+
+    (tmp_path / "bad.hdr").write_bytes(data)
+    (tmp_path / "s.toml").write_text(SCENE.read_text().replace('procedural = "sky"', 'hdr = "bad.hdr"')
+                                     .replace("../models/", str(ROOT / "assets" / "models") + "/"))
+    run = subprocess.run([sys.executable, "-m", "wgpurender", "render", str(tmp_path / "s.toml"), "-o",
+                          str(tmp_path / "o.png")], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 2, run.stderr
+    assert says in run.stderr and "Traceback" not in run.stderr and len(run.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "o.png").exists()
+
+
+def test_environment_table_mistakes_are_one_line(tmp_path):
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.scene import parse_scene
+
+    head = '[camera]\neye = [0, 0, 3]\ntarget = [0, 0, 0]\n[environment]\n'
+    for body, says in [('procedural = "sky"\nhdr = "x.hdr"\n', "exactly one"), ("", "exactly one"),
+                       ('procedural = "sea"\n', "sky"), ('hdr = "missing.hdr"\n', "not found"),
+                       ('procedural = "sky"\nsamples = 100\n', "16, 64, 256, 1024"),
+                       ('procedural = "sky"\nintensity = -1\n', "intensity")]:
+        with pytest.raises(UserError, match=says):
+            parse_scene(head + body, tmp_path / "s.toml")

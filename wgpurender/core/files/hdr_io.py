@@ -43,12 +43,12 @@ def _header(data: bytes, name: str) -> tuple[int, int, int]:
         end = data.index(b"\n", pos)
         lines.append(data[pos:end].strip())
         pos = end + 1
+        if lines[0] not in (b"#?RADIANCE", b"#?RGBE"):
+            raise UserError(f"environment image {name}: not a Radiance .hdr file (it must start with #?RADIANCE)")
         if len(lines) > 1 and lines[-1] == b"":
             break
     else:
         raise UserError(f"environment image {name}: header longer than {MAX_HEADER_LINES} lines: not a Radiance .hdr")
-    if lines[0] not in (b"#?RADIANCE", b"#?RGBE"):
-        raise UserError(f"environment image {name}: not a Radiance .hdr file (it must start with #?RADIANCE)")
     formats = [line[7:] for line in lines if line.startswith(b"FORMAT=")]
     if formats and formats[0] != b"32-bit_rle_rgbe":
         raise UserError(f"environment image {name}: FORMAT={formats[0].decode(errors='replace')} is not "
