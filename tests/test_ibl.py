@@ -101,12 +101,16 @@ def test_bench_section_error_falls_with_the_sample_count(gpu):
     from wgpurender.bench.accuracy_ibl import SAMPLE_COUNTS, run_ibl
     from wgpurender.core.course.environment import sky
 
-    rows = run_ibl(gpu, 1, TruthRow, environment=sky(W, H))
-    assert [r.setting for r in rows] == [f"{n} samples" for n in SAMPLE_COUNTS]
-    assert rows[-1].linear_mae < rows[0].linear_mae
-    relative = float(rows[-1].note.split()[-1].rstrip("%")) / 100
-    assert relative < 0.15, rows[-1].note
-    assert all(r.m.wall.median > 0 for r in rows)
+    both = run_ibl(gpu, 1, TruthRow, environment=sky(W, H))
+    assert [r.setting for r in both] == [s for n in SAMPLE_COUNTS
+                                         for s in (f"{n} samples", f"{n} samples, float64 CPU (scenes)")]
+    for rows in (both[0::2], both[1::2]):  # the GPU's compute maps, then the float64 maps scenes draw
+        assert rows[-1].linear_mae < rows[0].linear_mae
+        relative = float(rows[-1].note.split()[1].rstrip("%;")) / 100
+        assert relative < 0.15, rows[-1].note
+        assert all(r.m.wall.median > 0 for r in rows)
+    for gpu_row, cpu_row in zip(both[0::2], both[1::2], strict=True):  # the same algorithm: the same error
+        assert abs(gpu_row.linear_mae - cpu_row.linear_mae) < 0.1 * cpu_row.linear_mae
 
 
 def test_split_sum_of_a_metal_under_a_uniform_sky_is_its_directional_albedo(gpu):

@@ -128,4 +128,26 @@ def run_ibl(ctx, frames: int, row, environment: np.ndarray | None = None) -> lis
         m = Measurement(pixels, pixels.shape[1::-1], Stats.of(times), None)
         rows.append(row("image-based lighting", f"{samples} samples", m, c.flip_mean, c.psnr, mae,
                         note=f"relative error {mae / float(np.mean(exact)):.2%}"))
+        rows.append(_cpu_row(environment, normals, cases, exact, samples, frames, row))
     return rows
+
+
+def _cpu_row(environment, normals, cases, exact, samples: int, frames: int, row):
+    """The same maps made in float64 numpy (core/course/ibl_maps.py: what scenes draw, on both paths); time: the
+    CPU wall time of making them (reported in the wall column, no GPU time)."""
+    import time
+
+    from wgpurender.core.course.ibl_maps import make_arrays
+
+    times, maps = [], None
+    for _ in range(max(frames, 1)):
+        start = time.perf_counter()
+        maps = make_arrays(environment, samples)
+        times.append((time.perf_counter() - start) * 1e3)
+    got = tile([split_sum(maps, normals, m, r) for m, r in cases])
+    mae = float(np.mean(np.abs(got - exact)))
+    c = compare_images(srgb8_from_linear(np.clip(exact, 0, 1)), srgb8_from_linear(np.clip(got, 0, 1)))
+    pixels = srgb8_from_linear(np.clip(got, 0, 1))
+    m = Measurement(pixels, pixels.shape[1::-1], Stats.of(times), None)
+    return row("image-based lighting", f"{samples} samples, float64 CPU (scenes)", m, c.flip_mean, c.psnr, mae,
+               note=f"relative error {mae / float(np.mean(exact)):.2%}; time: CPU wall ms")
