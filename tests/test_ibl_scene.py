@@ -229,3 +229,12 @@ def test_environment_table_mistakes_are_one_line(tmp_path):
                        ('procedural = "sky"\nintensity = -1\n', "intensity")]:
         with pytest.raises(UserError, match=says):
             parse_scene(head + body, tmp_path / "s.toml")
+
+
+def test_explain_lists_the_maps_with_why_and_bytes():
+    from wgpurender.core.plan import build_plan
+    from wgpurender.core.scene import load_scene
+
+    text = build_plan(load_scene(SCENE)).explain()
+    assert "ibl" in text and "[environment] procedural 'sky'" in text
+    assert "scene-ibl: storage: image-based lighting maps" in text and "188416 bytes" in text
