@@ -40,6 +40,8 @@ THREADS = "tests/test_api_threads.py"
 PBR = "tests/test_pbr.py"
 LIGHTS = "tests/test_gltf_lights.py"
 IBL = "tests/test_ibl.py"
+IBL_SCENE = "tests/test_ibl_scene.py"
+PLAN_BUILT = "tests/test_plan_is_what_is_built.py|ibl"
 GLTF_RENDER = "tests/test_gltf_render.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
@@ -277,6 +279,60 @@ MUTATIONS = [
      "weight = (np.clip(dirs @ n, 0, 1))[:, None]", [IBL]),
     ("wgpurender/core/course/environment.py", "band = (2 * np.pi / (width * sub))", "band = (np.pi / (width * sub))",
      [IBL]),
+    # issue 30 item 1, image-based lighting drawn by scenes: the float64 maps, the .hdr reader, [environment], the plan
+    ("wgpurender/core/course/ibl_maps.py", "u = np.arctan2(d[..., 0], -d[..., 2])",
+     "u = np.arctan2(d[..., 0], d[..., 2])", [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "/ np.pi).reshape(size[1], size[0], 3)", ").reshape(size[1], size[0], 3)",
+     [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "light = 2 * n_dot_h[..., None] * hv - n[:, None]",
+     "light = n_dot_h[..., None] * hv - n[:, None]", [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "roughness = k / max(levels - 1, 1)", "roughness = k / levels", [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "np.stack([((1 - fc) * g_vis).sum(1),", "np.stack([(g_vis).sum(1),",
+     [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "return np.stack([(np.arange(n) + 0.5) / n,",
+     "return np.stack([np.arange(n) / n,", [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "weights = np.bincount(index, omega.reshape(-1), th * tw)",
+     "weights = np.bincount(index, None, th * tw)", [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "up = np.where((np.abs(n[:, 2]) < 0.999)[:, None]",
+     "up = np.where((np.abs(n[:, 2]) > 0.999)[:, None]", [IBL_SCENE]),
+    ("wgpurender/core/course/ibl_maps.py", "rows.append(np.concatenate([lut, np.zeros((len(lut), 2))], -1))",
+     "rows.append(np.concatenate([np.zeros((len(lut), 2)), lut], -1))", [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "np.ldexp(1.0, e - 136)", "np.ldexp(1.0, e - 128)", [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "((rgbe[..., :3] + 0.5) * scale", "((rgbe[..., :3]) * scale", [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "                count -= 128\n", "                count -= 127\n",
+     [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "if lines[0] not in (b\"#?RADIANCE\", b\"#?RGBE\"):",
+     "if lines[0] not in (b\"#?RADIANCE\", b\"#?RGBE\", b\"P6\"):", [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "    check_image_pixels(width, height, name)\n", "\n", [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "parts[0] != b\"-Y\"", "parts[0] == b\"+Z\"", [IBL_SCENE]),
+    ("wgpurender/core/files/hdr_io.py", "if height < 1 or width < 1:", "if height < 0 or width < 0:", [IBL_SCENE]),
+    ("wgpurender/core/scene/environment_block.py", "if (\"hdr\" in t) == (\"procedural\" in t):",
+     "if (\"hdr\" in t) and (\"procedural\" in t):", [IBL_SCENE]),
+    ("wgpurender/core/scene/environment_block.py", "choices=SAMPLE_CHOICES))", "lo=1))", [IBL_SCENE]),
+    ("wgpurender/core/scene/environment_block.py", "return image.astype(np.float64) * self.intensity",
+     "return image.astype(np.float64)", [IBL_SCENE]),
+    ("wgpurender/core/plan/draws.py",
+     "environment_lit = environment is not None and material.shading_model == shading_models.PBR",
+     "environment_lit = False", [IBL_SCENE]),
+    ("wgpurender/core/plan/shading_models.py", "if environment is None or not uses_pbr(material, lit):",
+     "if environment is None:", [IBL_SCENE]),
+    ("wgpurender/core/plan/objects.py", " or \"ibl\" in variant.flags", "", [PLAN_BUILT]),
+    ("wgpurender/core/plan/build.py", "and not any(\"ibl\" in v.flags for v in drawn.variants.values()):",
+     "and any(\"ibl\" in v.flags for v in drawn.variants.values()):", [IBL_SCENE]),
+    ("shaders_wgsl/ibl_shading.wgsl", "let r = 2.0 * n_dot_v * n - v;", "let r = n_dot_v * n - v;", [IBL_SCENE]),
+    ("shaders_wgsl/ibl_shading.wgsl", "let y = clamp(roughness * f32(IBL_LUT) - 0.5, 0.0, last);",
+     "let y = clamp(n_dot_v * f32(IBL_LUT) - 0.5, 0.0, last);", [IBL_SCENE]),
+    ("shaders_wgsl/ibl_shading.wgsl", "return diffuse + prefiltered * (f0 * ab.x + ab.y);",
+     "return diffuse + prefiltered * (f0 * ab.x);", [IBL_SCENE]),
+    ("shaders_glsl/ibl_shading.glsl", "uint k0 = min(uint(k), IBL_LEVELS - 2u);", "uint k0 = uint(k);", [IBL_SCENE]),
+    ("shaders_glsl/ibl_shading.glsl", "vec3 diffuse = (1.0 - m) * base * irradiance * (1.0 - fresnel);",
+     "vec3 diffuse = (1.0 - m) * base * irradiance;", [IBL_SCENE]),
+    ("shaders_glsl/ibl_shading.glsl", "vec3 f0 = mix(vec3(PBR_DIELECTRIC_F0), base, m);",
+     "vec3 f0 = mix(vec3(PBR_DIELECTRIC_F0), base, 1.0 - m);", [IBL_SCENE]),
+    ("shaders_wgsl/scene.wgsl", "var color = ibl_radiance(n, v, albedo, pbr_metallic, roughness);",
+     "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
+    ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
+     "maps = make_arrays(environment, 16)", [IBL]),
 ]
 
 

@@ -238,3 +238,25 @@ def test_explain_lists_the_maps_with_why_and_bytes():
     text = build_plan(load_scene(SCENE)).explain()
     assert "ibl" in text and "[environment] procedural 'sky'" in text
     assert "scene-ibl: storage: image-based lighting maps" in text and "188416 bytes" in text
+
+
+def test_a_large_environment_is_averaged_down_keeping_its_power():
+    """512x256 -> 256x128: a constant stays itself; a sky bright above the horizon and dark below keeps its
+    integral of L over the sphere (the solid-angle weighting) and its horizon row."""
+    from wgpurender.core.course.environment import texel_directions
+    from wgpurender.core.course.ibl_maps import MAX_ENVIRONMENT, shrink
+
+    big = np.full((256, 512, 3), 0.7)
+    assert np.allclose(shrink(big), 0.7) and shrink(big).shape == (128, 256, 3)
+    rows = np.linspace(0, 1, 256)[:, None, None] ** 3 * np.ones((1, 512, 3))
+    small = shrink(rows, MAX_ENVIRONMENT)
+    _, big_omega = texel_directions(512, 256)
+    _, small_omega = texel_directions(256, 128)
+    assert np.isclose((rows[..., 0] * big_omega).sum(), (small[..., 0] * small_omega).sum(), rtol=1e-12)
+
+
+def test_intensity_scales_the_environment():
+    from wgpurender.core.course.environment import sky
+    from wgpurender.core.scene.environment_block import Environment
+
+    assert np.allclose(Environment(procedural="sky", intensity=2.5).radiance(), 2.5 * sky().astype(np.float64))

@@ -4,8 +4,8 @@ same Hammersley samples, the same tangent frame), so the GPU's maps can be check
 
 Scenes draw with these arrays on both paths (one upload of the same float32 numbers: wgpu == raw exactly); the
 wgpu path's compute version (wgpu_path/scene/ibl.py) is what ``bench accuracy`` times, checked against these
-within a tolerance (tests/test_ibl_scene.py). Why the CPU: the raw path has no compute pipeline for it, and one
-home for the maps' numbers keeps the two paths' images identical.
+within a tolerance (tests/test_ibl_scene.py). Why the CPU: one home for the maps' numbers keeps the two paths'
+images identical, without a GLSL twin of the compute passes on the raw path (not written yet).
 
 Layout of :func:`pack` (float32 vec4 rows, what the scene shaders index): the irradiance map (IRRADIANCE_SIZE, row
 major, row 0 the zenith), then LEVELS prefiltered maps of PREFILTER_SIZE (level k at roughness k / (LEVELS - 1)),
