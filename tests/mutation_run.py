@@ -85,8 +85,8 @@ MUTATIONS = [
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
-     "    kind = _kind(mode)\n    if kind == 'never':", [CAUSES]),
+    ("wgpurender/core/input_files.py", "    kind = file_kind(mode)\n    if kind is not None:",
+     "    kind = file_kind(mode)\n    if kind == 'never':", [CAUSES]),
     ("wgpurender/core/input_files.py", "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
     ("wgpurender/core/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
     ("wgpurender/core/input_files.py", "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "

@@ -12,15 +12,14 @@ import base64
 import json
 import os
 import struct
-import urllib.parse
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_rules, gltf_schema
+from wgpurender.core import gltf_rules, gltf_schema, read_jail
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import check_file_size, input_file, resolved
+from wgpurender.core.input_files import check_file_size, input_file
 from wgpurender.core.safe_write import atomic_write
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
@@ -78,7 +77,10 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
         gltf_rules.check_rules(doc_json)
     except ValueError as err:
         raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
-    buffers = [_load_buffer(path, i, b, glb_bin) for i, b in enumerate(doc_json.get("buffers", []))]
+    files = {f"$.{kind}[{i}].uri": _uri_file(path, f"$.{kind}[{i}].uri", item["uri"])
+             for kind in ("buffers", "images") for i, item in enumerate(doc_json.get(kind, []))
+             if "uri" in item and not item["uri"].startswith("data:")}  # every file checked before one is read
+    buffers = [_load_buffer(path, i, b, glb_bin, files) for i, b in enumerate(doc_json.get("buffers", []))]
     return GltfDocument(path, doc_json, buffers)
 
 
@@ -137,7 +139,7 @@ def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
     return doc_json, binary
 
 
-def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) -> bytes:
+def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None, files: dict[str, Path]) -> bytes:
     uri = buffer.get("uri")
     if uri is None:
         if glb_bin is None:
@@ -145,7 +147,7 @@ def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) ->
         return glb_bin
     if uri.startswith("data:"):
         return _data_uri(path, f"$.buffers[{index}].uri", uri)
-    file = _uri_file(path, f"$.buffers[{index}].uri", uri)
+    file = files[f"$.buffers[{index}].uri"]
     missing = f"glTF file {path}: buffer file {file} not found (keep .bin files next to the .gltf)"
     check_file_size(input_file(file, "glTF buffer file", missing), "glTF buffer file")
     return file.read_bytes()
@@ -249,7 +251,7 @@ def _image_source(doc: GltfDocument, image: dict) -> dict:
         return {"uri": None, "data": doc.buffers[view["buffer"]][start : start + view["byteLength"]]}
     if uri.startswith("data:"):
         return {"uri": None, "data": _data_uri(doc.path, "an image uri", uri)}
-    return {"uri": resolved(_uri_file(doc.path, "an image uri", uri)), "data": None}
+    return {"uri": _uri_file(doc.path, "an image uri", uri), "data": None}
 
 
 def _data_uri(path: Path, where: str, uri: str) -> bytes:
@@ -264,11 +266,9 @@ def _data_uri(path: Path, where: str, uri: str) -> bytes:
 
 
 def _uri_file(path: Path, where: str, uri: str) -> Path:
-    """The file a relative URI names, beside the glTF file; UserError for one no file can have."""
-    name = urllib.parse.unquote(uri)
-    if not name or any(not ch.isprintable() for ch in name):
-        raise UserError(f"malformed glTF file {path}: {where} {name!r} is not a usable file name")
-    return path.parent / name
+    """The file a relative URI names in the glTF file's folder (links resolved); UserError for one outside it or
+    special (read_jail.py: a model reads only what it ships)."""
+    return read_jail.model_file(path, uri, where)
 
 
 def write_glb(

@@ -100,7 +100,7 @@ def _texture_path(doc: gltf_io.GltfDocument, texture: dict) -> Path:
     index = texture["source"]
     uri = doc.json["images"][index].get("uri")
     if uri is not None and not uri.startswith("data:"):
-        return gltf_io._uri_file(doc.path, "an image uri", uri).resolve()
+        return gltf_io._uri_file(doc.path, f"$.images[{index}].uri", uri)
     return embedded_image_path(doc.path.resolve(), index)
 
 

@@ -29,7 +29,8 @@ MAX_IMAGE_PIXELS = 4096 * 4096  # 16.8 Mpx (4K UHD fits): compare with FLIP peak
 MAX_NESTING = 32  # tables/arrays inside each other in a scene file: real scenes use 3
 
 
-def _kind(mode: int) -> str | None:
+def file_kind(mode: int) -> str | None:
+    """What a file of ``mode`` is when it is not a regular file ("a FIFO (named pipe)", ...), else None."""
     for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
                        (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
                        (stat.S_ISSOCK, "a socket")):
@@ -83,7 +84,7 @@ def input_file(path: str | os.PathLike, what: str, missing: str | None = None) -
         raise InputFileError(missing or f"{what} not found: {shown}", missing=True) from None
     except OSError as err:
         raise InputFileError(f"cannot read {what} {shown}: {os_error_reason(path, err)}") from None
-    kind = _kind(mode)
+    kind = file_kind(mode)
     if kind is not None:
         raise InputFileError(f"cannot read {what} {shown}: it is {kind}, not a regular file; give the path of a file")
     return path

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from wgpurender.core import read_jail
 from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import InputFileError, input_file, resolved
 from wgpurender.core.scene.toml_locator import KeyLines, KeyPath, format_path
@@ -95,6 +96,9 @@ class Checker:
             raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
                                   "(NUL, newline, ...): give a plain file path")
         path = resolved(self.folder / written)
+        refused = read_jail.scene_file(self.path, path)
+        if refused is not None:
+            raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
         try:
             return input_file(path, what)
         except InputFileError as err:
