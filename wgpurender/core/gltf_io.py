@@ -19,7 +19,13 @@ import numpy as np
 
 from wgpurender.core import gltf_rules, gltf_schema, read_jail
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import check_file_size, input_file
+from wgpurender.core.input_files import (
+    MAX_MODEL_VERTICES,
+    MAX_MODEL_VERTICES_ENV,
+    check_file_size,
+    env_limit,
+    input_file,
+)
 from wgpurender.core.safe_write import atomic_write
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
@@ -75,6 +81,10 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
     try:
         gltf_schema.check(doc_json)
         gltf_rules.check_rules(doc_json)
+        gltf_rules.check_budget(doc_json, env_limit(MAX_MODEL_VERTICES_ENV, MAX_MODEL_VERTICES))
+    except gltf_rules.BudgetError as err:
+        raise UserError(f"glTF file {path}: {err}; simplify the model, or raise the limit with "
+                        f"${MAX_MODEL_VERTICES_ENV}=COUNT") from None
     except ValueError as err:
         raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
     files = {f"$.{kind}[{i}].uri": _uri_file(path, f"$.{kind}[{i}].uri", item["uri"])

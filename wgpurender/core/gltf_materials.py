@@ -172,11 +172,12 @@ def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
 def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
     doc = gltf_io.read_document(path)
+    gltf_geometry.check_something_to_draw(doc)
     used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
         for prim in meshes[mesh_index].get("primitives", []):
-            if prim.get("mode", 4) in gltf_geometry.TRIANGLE_MODES:
+            if prim.get("mode", 4) in gltf_geometry.DRAWN_MODES:
                 k = prim.get("material", -1)
                 used[k] = used.get(k, False) or "COLOR_0" in prim.get("attributes", {})
     taken, ignored = [], list(gltf_geometry.geometry_notes(doc))

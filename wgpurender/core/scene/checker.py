@@ -96,14 +96,16 @@ class Checker:
             raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
                                   "(NUL, newline, ...): give a plain file path")
         path = resolved(self.folder / written)
-        refused = read_jail.scene_file(self.path, path)
-        if refused is not None:
-            raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
         try:
-            return input_file(path, what)
+            found = input_file(path, what)  # a stat only: what is missing or special is named as such
         except InputFileError as err:
             if not err.missing:
                 raise self.error(key, f"{format_path(key)}: {err}") from None
+        else:
+            refused = read_jail.scene_file(self.path, found)
+            if refused is not None:
+                raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
+            return found
         raise self.error(
             key,
             f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "
