@@ -48,7 +48,7 @@ def check_rules(document: dict) -> None:
 
 COMPONENT_BYTES = {BYTE: 1, UBYTE: 1, SHORT: 2, USHORT: 2, UINT: 4, FLOAT: 4}
 TYPE_WIDTHS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
-SPARSE_INDEX_COMPONENTS = (UBYTE, USHORT, UINT)
+SPARSE_INDEX_COMPONENTS = INDEX_COMPONENTS  # unsigned, as indices
 
 
 def check_buffer_views(document: dict) -> None:
