@@ -112,14 +112,18 @@ def test_a_special_file_inside_the_folder_is_refused_without_opening_it(world, k
     assert str(special) not in opened and "/dev/zero" not in opened
 
 
-def test_every_uri_is_checked_before_the_first_buffer_is_read(world):
-    """Buffer 0 is legal, buffer 1 is outside: the refusal comes before buffer 0's file is opened."""
+@pytest.mark.parametrize("bad", ["$.buffers[1].uri", "$.images[0].uri"])
+def test_every_uri_is_checked_before_the_first_buffer_is_read(world, bad):
+    """Buffer 0 is legal, buffer 1 or image 0 is outside: the refusal comes before buffer 0's file is opened."""
     (world / "model" / "good.bin").write_bytes(_buffer_bytes())
     doc = _external_buffer_doc("good.bin")
-    doc["buffers"].append({"uri": "../outside/secret.bin", "byteLength": 4})
+    if bad.startswith("$.buffers"):
+        doc["buffers"].append({"uri": "../outside/secret.bin", "byteLength": 4})
+    else:
+        doc["images"] = [{"uri": "../outside/secret.png"}]
     write_gltf(world / "model" / "model.gltf", doc)
     code, err, opened = _render_opening(world / "model" / "scene.toml", world / "out.png")
-    _one_line(code, err, "$.buffers[1].uri")
+    _one_line(code, err, bad)
     assert str(world / "model" / "good.bin") not in opened
 
 
