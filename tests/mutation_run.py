@@ -160,10 +160,10 @@ MUTATIONS = [
     ("wgpurender/core/gltf_rules.py", "            if node in children or node in seen:",
      "            if node in seen:", [UNTRUSTED + "|root"]),
     ("wgpurender/core/gltf_rules.py", "            total += times * sum(", "            total += sum(",
-     [UNTRUSTED + "|instancing"]),
+     [UNTRUSTED + "|instancing and nodes"]),
     ("wgpurender/core/gltf_rules.py", "    if total > limit:", "    if total > 2 * limit:", [UNTRUSTED + "|budget"]),
     ("wgpurender/core/gltf_rules.py", "            placed[node[\"mesh\"]] = placed.get(node[\"mesh\"], 0) + 1",
-     "            placed[node[\"mesh\"]] = 1", [UNTRUSTED + "|instancing"]),
+     "            placed[node[\"mesh\"]] = 1", [UNTRUSTED + "|instancing and nodes"]),
     # issue 28: flat normals, nothing to draw
     ("wgpurender/core/gltf_geometry.py", "    return flat_shaded(geometry) if geometry.normals is None else geometry",
      "    return geometry", [UNTRUSTED + "|normals"]),

@@ -194,12 +194,15 @@ def test_an_accessor_without_a_buffer_view_declaring_huge_counts_is_refused_from
     assert rss < BASE_RSS_MB, rss
 
 
-def test_node_instancing_past_the_vertex_budget_is_refused(tmp_path):
-    """One mesh of 40,000 declared vertices placed by 300 nodes: 12 M vertices, over the 8 M budget."""
+@pytest.mark.parametrize("by", ["nodes", "primitives"])
+def test_instancing_past_the_vertex_budget_is_refused(tmp_path, by):
+    """40,000 declared vertices placed 300 times (by 300 nodes, or as 300 primitives of one mesh naming the same
+    accessor): 12 M vertices, over the 8 M budget."""
     g = GltfWriter()
     g.doc["accessors"].append({"componentType": 5126, "count": 40_000, "type": "VEC3"})
-    mesh = g.mesh([{"attributes": {"POSITION": 0}}])
-    for k in range(300):
+    copies = 300 if by == "primitives" else 1
+    mesh = g.mesh([{"attributes": {"POSITION": 0}}] * copies)
+    for k in range(300 // copies):
         g.node(mesh=mesh, translation=[k, 0, 0])
     rss, result = _probe(g.write(tmp_path / "many.glb"))
     assert result.startswith("error: ") and "12,000,000" in result, result
