@@ -141,7 +141,8 @@ def test_a_file_with_nothing_to_draw_is_refused(tmp_path, kind, material):
     g = GltfWriter()
     g.write(tmp_path / "model.gltf", roots=_nothing_file(g, kind))
     code, _, err = run_cli("render", _scene(tmp_path, "model.gltf", material), "-o", tmp_path / "out.png")
-    _one_line(code, err, "model.gltf", "nothing to draw")
+    why = "places no mesh" if kind.startswith("no-") else "only"
+    _one_line(code, err, "model.gltf", "nothing to draw", why)
     assert not (tmp_path / "out.png").exists()
 
 
