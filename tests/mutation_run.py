@@ -37,16 +37,20 @@ PUBLISHED = "tests/test_export_carries_no_machine_path.py"
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
     # comparison and heatmap
-    ("wgpurender/core/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
+    ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py",
+     "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
      [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
-    ("wgpurender/core/compare.py", "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
+    ("wgpurender/core/verdict/compare.py",
+     "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
+    ("wgpurender/core/verdict/compare.py",
+     "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
     ("wgpurender/cli/compare.py", "return value < limit if name == \"psnr\"", "return value > limit if name == "
      "\"psnr\"", [COMPARE, CAUSES]),
-    ("wgpurender/core/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
-    ("wgpurender/core/imageio.py", "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
+    ("wgpurender/core/files/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
+    ("wgpurender/core/files/imageio.py",
+     "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
     # the report
     ("wgpurender/report/page.py", '{_figure(files.get("wgpu"), "wgpu (WGSL', '{_figure(files.get("raw"), "wgpu (WGSL',
      [REPORT]),
@@ -58,11 +62,12 @@ MUTATIONS = [
     ("wgpurender/report/steps.py", "step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)",
      "step.heat = heatmap(step.raw, step.wgpu, 1.0)", [REPORT]),
     # trust: driver class, present modes, depth, the API's path
-    ("wgpurender/core/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
+    ("wgpurender/core/verdict/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
      'return "lavapipe" if "lavapipe" in device_name.lower()', [TRUST]),
-    ("wgpurender/core/tolerances.py", "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
+    ("wgpurender/core/verdict/tolerances.py",
+     "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
      [TRUST, "tests/test_reference_tolerances.py"]),
-    ("wgpurender/raw_path/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
+    ("wgpurender/raw_path/window/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
      '"immediate": vk.VK_PRESENT_MODE_MAILBOX_KHR', [TRUST]),
     ("wgpurender/core/plan/build.py", 'depth_compare = "greater" if knobs.reverse_z else "less"',
      'depth_compare = "greater" if knobs.reverse_z else "less-equal"', [TRUST]),
@@ -72,7 +77,8 @@ MUTATIONS = [
      'str(target), "raw"', [TRUST]),
     ("wgpurender/api.py", "        return image.rgba8()", "        return image.pixels", [API]),
     # argument checks
-    ("wgpurender/core/checks.py", "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
      "    if math.isnan(value):\n        raise UserError(f\"{name} must be a finite", [API, CAUSES]),
     ("wgpurender/core/checks.py", '    return positive(value, "gain", "32")', '    return number(value, "gain")',
      [API, COMPARE]),
@@ -85,101 +91,108 @@ MUTATIONS = [
      [API]),
     ("wgpurender/core/checks.py", "    elif not _is_number(value):", "    elif not isinstance(value, (int, float, "
      "str)):", [API]),
-    ("wgpurender/core/checks.py", "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/input_files.py", "    kind = file_kind(mode)\n    if kind is not None:",
+    ("wgpurender/core/files/input_files.py", "    kind = file_kind(mode)\n    if kind is not None:",
      "    kind = file_kind(mode)\n    if kind == 'never':", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
-    ("wgpurender/core/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
-    ("wgpurender/core/input_files.py", "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
+    ("wgpurender/core/files/input_files.py",
+     "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
+    ("wgpurender/core/files/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py",
+     "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
      "depth)\n        depth = 0", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
     ("wgpurender/core/scene/load.py", "    except RecursionError:", "    except ValueError:", [CAUSES]),
-    ("wgpurender/core/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
+    ("wgpurender/core/files/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
+    ("wgpurender/core/files/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
      "    if len(os.fsencode(name)) > 1024:", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
+    ("wgpurender/core/files/safe_write.py",
+     "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
      "{os_error_reason(link, err)}\") from None", "    except OSError:\n        pass", [CAUSES + "|follow"]),
-    ("wgpurender/core/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
+    ("wgpurender/core/files/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
      "    _handlers_installed = True\n    _set_handlers(_on_signal)", [CAUSES + "|sigterm"]),
-    ("wgpurender/core/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
+    ("wgpurender/core/plan/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
      "BYTES_PER_PIXEL.get(fmt, 16)", [CAUSES + "|memory or adapter"]),
-    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
+    ("wgpurender/core/plan/gpu_memory.py",
+     "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
-    ("wgpurender/core/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if node in walk:", "            if node == start and False:",
+    ("wgpurender/core/models/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in walk:", "            if node == start and False:",
      [GLTF]),
-    ("wgpurender/core/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
+    ("wgpurender/core/models/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
      '(FLOAT,))', [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
+    ("wgpurender/core/models/gltf_rules.py",
+     "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
      " UINT, FLOAT)", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
+    ("wgpurender/core/models/gltf_rules.py",
+     "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
     # issue 28: a model reads only what it ships (read_jail.py and its callers)
-    ("wgpurender/core/read_jail.py", "    if not target.is_relative_to(folder):", "    if False:", [JAIL]),
-    ("wgpurender/core/read_jail.py", "    name = urllib.parse.unquote(uri) if encoded else uri", "    name = uri", [JAIL]),  # noqa: E501
-    ("wgpurender/core/read_jail.py", "    if SCHEME.match(name) or name.startswith(", "    if name.startswith(", [JAIL]),  # noqa: E501
-    ("wgpurender/core/read_jail.py", "    return file_kind(mode)", "    return None", [JAIL]),
-    ("wgpurender/core/read_jail.py", "    return assets if folder.is_relative_to(assets) else folder",
+    ("wgpurender/core/files/read_jail.py", "    if not target.is_relative_to(folder):", "    if False:", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    name = urllib.parse.unquote(uri) if encoded else uri", "    name = uri", [JAIL]),  # noqa: E501
+    ("wgpurender/core/files/read_jail.py", "    if SCHEME.match(name) or name.startswith(", "    if name.startswith(", [JAIL]),  # noqa: E501
+    ("wgpurender/core/files/read_jail.py", "    return file_kind(mode)", "    return None", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    return assets if folder.is_relative_to(assets) else folder",
      "    return folder", [JAIL]),
-    ("wgpurender/core/read_jail.py", "    project = own.parent if own.name == SCENES_FOLDER else own",
+    ("wgpurender/core/files/read_jail.py", "    project = own.parent if own.name == SCENES_FOLDER else own",
      "    project = own", [JAIL]),
-    ("wgpurender/core/read_jail.py", "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if p.strip()]",
+    ("wgpurender/core/files/read_jail.py", "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if p.strip()]",
      "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if not p]", [JAIL]),
-    ("wgpurender/core/gltf_io.py", "for kind in (\"buffers\", \"images\")", "for kind in (\"buffers\",)", [JAIL]),
-    ("wgpurender/core/mesh.py", "        mtl = read_jail.model_file(path, lib.decode(\"utf-8\", \"replace\"), \"mtllib\", "  # noqa: E501
+    ("wgpurender/core/models/gltf_io.py", "for kind in (\"buffers\", \"images\")", "for kind in (\"buffers\",)", [JAIL]),  # noqa: E501
+    ("wgpurender/core/models/mesh.py", "        mtl = read_jail.model_file(path, lib.decode(\"utf-8\", \"replace\"), \"mtllib\", "  # noqa: E501
      "encoded=False)", "        mtl = path.parent / lib.decode(\"utf-8\", \"replace\")", [JAIL]),
-    ("wgpurender/core/mesh.py", "            texture = read_jail.model_file(model or path, tokens[-1], where, "
+    ("wgpurender/core/models/mesh.py", "            texture = read_jail.model_file(model or path, tokens[-1], where, "
      "base=path.parent, encoded=False)", "            texture = path.parent / tokens[-1]", [JAIL]),
-    ("wgpurender/core/mesh.py", "            return read_jail.model_file(path, name, \"a file trimesh asked for\", "
+    ("wgpurender/core/models/mesh.py", "            return read_jail.model_file(path, name, \"a file trimesh asked for\", "  # noqa: E501
      "encoded=False).read_bytes()", "            return (path.parent / name).read_bytes()", [JAIL]),
     ("wgpurender/core/scene/checker.py", "            if refused is not None:", "            if refused is None:",
      [JAIL]),
     # issue 28: the document's shape, rules and budget
-    ("wgpurender/core/gltf_schema.py", "        if \"extensions\" in value:", "        if False:", [SHAPES]),
-    ("wgpurender/core/gltf_schema.py", "        if schema == NONNEG and value < 0:",
+    ("wgpurender/core/models/gltf_schema.py", "        if \"extensions\" in value:", "        if False:", [SHAPES]),
+    ("wgpurender/core/models/gltf_schema.py", "        if schema == NONNEG and value < 0:",
      "        if schema == NONNEG and value < -1:", [SHAPES]),
-    ("wgpurender/core/gltf_schema.py", "\"name\": str, \"sparse\": SPARSE}", "\"name\": str}", [SHAPES]),
-    ("wgpurender/core/gltf_schema.py", "    \"extensionsUsed\": Arr(str), \"extensionsRequired\": Arr(str),",
+    ("wgpurender/core/models/gltf_schema.py", "\"name\": str, \"sparse\": SPARSE}", "\"name\": str}", [SHAPES]),
+    ("wgpurender/core/models/gltf_schema.py", "    \"extensionsUsed\": Arr(str), \"extensionsRequired\": Arr(str),",
      "    \"extensionsRequired\": Arr(str),", [SHAPES]),
-    ("wgpurender/core/gltf_rules.py", "4 <= stride <= 252 and stride % 4 == 0", "4 <= stride <= 252 and stride % 2 == 0",  # noqa: E501
+    ("wgpurender/core/models/gltf_rules.py", "4 <= stride <= 252 and stride % 4 == 0", "4 <= stride <= 252 and stride % 2 == 0",  # noqa: E501
      [SHAPES]),
-    ("wgpurender/core/gltf_rules.py", "        if stride is not None and stride < size:",
+    ("wgpurender/core/models/gltf_rules.py", "        if stride is not None and stride < size:",
      "        if stride is not None and stride < size - 4:", [SHAPES]),
-    ("wgpurender/core/gltf_rules.py", "    if not 1 <= sparse[\"count\"] <= acc[\"count\"]:",
+    ("wgpurender/core/models/gltf_rules.py", "    if not 1 <= sparse[\"count\"] <= acc[\"count\"]:",
      "    if not 0 <= sparse[\"count\"] <= acc[\"count\"]:", [SHAPES]),
-    ("wgpurender/core/gltf_rules.py", "    if component not in SPARSE_INDEX_COMPONENTS:",
+    ("wgpurender/core/models/gltf_rules.py", "    if component not in SPARSE_INDEX_COMPONENTS:",
      "    if component not in SPARSE_INDEX_COMPONENTS + (FLOAT,):", [SHAPES]),
-    ("wgpurender/core/gltf_rules.py", "        if (\"uri\" in image) == (\"bufferView\" in image):",
+    ("wgpurender/core/models/gltf_rules.py", "        if (\"uri\" in image) == (\"bufferView\" in image):",
      "        if \"uri\" not in image and \"bufferView\" not in image:", [SHAPES]),
-    ("wgpurender/core/gltf_rules.py", "        while node in parent and node not in in_tree:",
+    ("wgpurender/core/models/gltf_rules.py", "        while node in parent and node not in in_tree:",
      "        while node in parent:", [UNTRUSTED + "|linearly"]),
-    ("wgpurender/core/gltf_rules.py", "        in_tree |= walk", "        pass", [UNTRUSTED + "|linearly"]),
-    ("wgpurender/core/gltf_rules.py", "            if node in children or node in seen:",
+    ("wgpurender/core/models/gltf_rules.py", "        in_tree |= walk", "        pass", [UNTRUSTED + "|linearly"]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in children or node in seen:",
      "            if node in seen:", [UNTRUSTED + "|root"]),
-    ("wgpurender/core/gltf_rules.py", "            total += times * sum(", "            total += sum(",
+    ("wgpurender/core/models/gltf_rules.py", "            total += times * sum(", "            total += sum(",
      [UNTRUSTED + "|instancing and nodes"]),
-    ("wgpurender/core/gltf_rules.py", "    if total > limit:", "    if total > 2 * limit:", [UNTRUSTED + "|budget"]),
-    ("wgpurender/core/gltf_rules.py", "            placed[node[\"mesh\"]] = placed.get(node[\"mesh\"], 0) + 1",
+    ("wgpurender/core/models/gltf_rules.py", "    if total > limit:", "    if total > 2 * limit:", [UNTRUSTED + "|budget"]),  # noqa: E501
+    ("wgpurender/core/models/gltf_rules.py", "            placed[node[\"mesh\"]] = placed.get(node[\"mesh\"], 0) + 1",
      "            placed[node[\"mesh\"]] = 1", [UNTRUSTED + "|instancing and nodes"]),
     # issue 28: flat normals, nothing to draw
-    ("wgpurender/core/gltf_geometry.py", "    return flat_shaded(geometry) if geometry.normals is None else geometry",
+    ("wgpurender/core/models/gltf_geometry.py", "    return flat_shaded(geometry) if geometry.normals is None else geometry",  # noqa: E501
      "    return geometry", [UNTRUSTED + "|normals"]),
-    ("wgpurender/core/gltf_geometry.py", "    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])",
+    ("wgpurender/core/models/gltf_geometry.py", "    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])",
      "    normal = np.cross(tri[:, 2] - tri[:, 0], tri[:, 1] - tri[:, 0])", [UNTRUSTED + "|normals"]),
-    ("wgpurender/core/gltf_geometry.py", "    if not modes & set(DRAWN_MODES):", "    if not modes:",
+    ("wgpurender/core/models/gltf_geometry.py", "    if not modes & set(DRAWN_MODES):", "    if not modes:",
      [UNTRUSTED + "|nothing"]),
-    ("wgpurender/core/gltf_geometry.py", "    if not placed:\n", "    if placed is None:\n", [UNTRUSTED + "|nothing"]),
-    ("wgpurender/core/gltf_materials.py", "    gltf_geometry.check_something_to_draw(doc)\n", "",
+    ("wgpurender/core/models/gltf_geometry.py", "    if not placed:\n", "    if placed is None:\n", [UNTRUSTED + "|nothing"]),  # noqa: E501
+    ("wgpurender/core/scene/gltf_materials.py", "    gltf_geometry.check_something_to_draw(doc)\n", "",
      [UNTRUSTED + "|nothing"]),
     # issue 28: a published page names no folder of the machine
-    ("wgpurender/core/published_text.py", "        text = text.replace(folder + os.sep, \"\")", "        pass",
+    ("wgpurender/core/files/published_text.py", "        text = text.replace(folder + os.sep, \"\")", "        pass",
      [PUBLISHED]),
-    ("wgpurender/core/published_text.py", "(?:[^\\s'\\\"/\\\\:,;()\\[\\]]+[\\\\/])+\")",
+    ("wgpurender/core/files/published_text.py", "(?:[^\\s'\\\"/\\\\:,;()\\[\\]]+[\\\\/])+\")",
      "(?:[^\\s'\\\"/\\\\:,;()\\[\\]]+[\\\\/])*\")", [PUBLISHED]),
-    ("wgpurender/core/published_text.py", "if k == \"label\" and isinstance(v, str)",
+    ("wgpurender/core/files/published_text.py", "if k == \"label\" and isinstance(v, str)",
      "if k in (\"label\", \"code\") and isinstance(v, str)", [PUBLISHED]),
     ("wgpurender/export/record.py", "    data[\"setup\"], data[\"frame\"] = (", "    _unused = (", [PUBLISHED]),
 ]

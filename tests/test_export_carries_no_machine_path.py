@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.core.published_text import labels_without_machine_paths, without_machine_paths
+from wgpurender.core.files.published_text import labels_without_machine_paths, without_machine_paths
 
 REPO = Path(__file__).resolve().parents[1]
 ASSETS = REPO / "assets"

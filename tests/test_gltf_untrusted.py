@@ -103,7 +103,7 @@ def test_a_cube_without_normals_renders_as_the_cube_with_face_normals(tmp_path):
 def test_flat_normals_split_each_triangle_and_ignore_the_files_tangents(tmp_path):
     """Loader level: 12 triangles -> 36 vertices, each with its face's normal; a TANGENT without NORMAL is
     ignored (3.7.2.1), so tangents are generated."""
-    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.models.mesh import load_mesh
 
     g = GltfWriter()
     prim = _shared_cube(g)
@@ -160,8 +160,8 @@ def test_triangles_beside_lines_still_draw(tmp_path):
 PROBE = textwrap.dedent("""
     import resource, sys
     from wgpurender.core.errors import UserError
-    from wgpurender.core.mesh import load_mesh
-    from wgpurender.core.gltf_materials import model_materials
+    from wgpurender.core.models.mesh import load_mesh
+    from wgpurender.core.scene.gltf_materials import model_materials
     try:
         model_materials(__import__("pathlib").Path(sys.argv[1]), "m")
         load_mesh(sys.argv[1], generate_tangents=False)
@@ -212,7 +212,7 @@ def test_instancing_past_the_vertex_budget_is_refused(tmp_path, by):
 
 def test_the_vertex_budget_is_an_environment_setting(tmp_path, monkeypatch):
     from wgpurender.core.errors import UserError
-    from wgpurender.core.gltf_io import read_document
+    from wgpurender.core.models.gltf_io import read_document
 
     g = GltfWriter()
     g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1))}}]))
@@ -244,8 +244,8 @@ def test_a_20000_node_chain_is_checked_in_linear_time(tmp_path):
 def _traced_lines(path: Path) -> int:
     """Python lines run in gltf_rules.py and gltf_geometry.py while the file is read and its nodes placed: a
     count of work that does not depend on the machine's speed."""
-    from wgpurender.core.gltf_geometry import placed_meshes
-    from wgpurender.core.gltf_io import read_document
+    from wgpurender.core.models.gltf_geometry import placed_meshes
+    from wgpurender.core.models.gltf_io import read_document
 
     lines = 0
 
@@ -276,7 +276,7 @@ def test_the_node_graph_work_grows_linearly_with_the_chain(tmp_path):
 
 def test_a_root_listed_twice_or_a_child_listed_as_a_root_is_refused(tmp_path):
     from wgpurender.core.errors import UserError
-    from wgpurender.core.gltf_io import read_document
+    from wgpurender.core.models.gltf_io import read_document
 
     for roots, why in (([0, 0], "listed twice"), ([0, 5], "child of another node")):
         doc = _chain(10)

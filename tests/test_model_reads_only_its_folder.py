@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 from reliab_gen import run_cli, scene_text, triangle_gltf, write_gltf
 
-from wgpurender.core import read_jail
 from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
 
 OPENED: list[str] | None = None
 
@@ -153,7 +153,7 @@ def test_files_inside_the_folder_and_data_uris_still_load(world):
     write_gltf(world / "model" / "model.gltf", _external_buffer_doc("bin/../bin/data.bin"))
     code, _, err = run_cli("render", world / "model" / "scene.toml", "-o", world / "out.png", "--size", "32x24")
     assert code == 0, err
-    from wgpurender.core.gltf_io import read_document
+    from wgpurender.core.models.gltf_io import read_document
 
     assert read_document(world / "model" / "model.gltf").buffers[0] == _buffer_bytes()
 
@@ -188,7 +188,7 @@ def test_an_obj_reads_neither_a_material_library_nor_a_texture_outside_its_folde
 def test_trimeshs_resolver_is_jailed_too(world):
     """OBJ and PLY go through trimesh with skip_materials; should trimesh ask for a file anyway, the resolver the
     loader hands it refuses one outside the model's folder."""
-    from wgpurender.core.mesh import _jailed_resolver
+    from wgpurender.core.models.mesh import _jailed_resolver
 
     (world / "model" / "model.obj").write_text(OBJ.format(lib="x.mtl"))
     (world / "model" / "x.mtl").write_text("newmtl m\n")
@@ -216,7 +216,7 @@ def test_relative_names_inside_are_kept(tmp_path, uri):
 
 def test_a_bundled_model_reads_the_bundled_assets(tmp_path):
     """brick_cube.mtl (a model the project ships) names ../textures/: assets/ is its folder."""
-    from wgpurender.core.assets import assets_dir
+    from wgpurender.core.files.assets import assets_dir
 
     model = assets_dir() / "models" / "brick_cube.obj"
     found = read_jail.model_file(model, "../textures/brick_albedo.png", "map_Kd", encoded=False)
@@ -261,7 +261,7 @@ def test_a_scene_in_a_scenes_folder_reads_its_project(tmp_path, monkeypatch):
 
 
 def test_a_scene_link_pointing_out_is_refused_and_the_bundled_assets_are_allowed(tmp_path, monkeypatch):
-    from wgpurender.core.assets import assets_dir
+    from wgpurender.core.files.assets import assets_dir
 
     monkeypatch.delenv(read_jail.ALLOW_ENV, raising=False)
     (tmp_path / "outside").mkdir()
