@@ -15,7 +15,7 @@ ASSETS = REPO / "assets"
 
 
 def test_an_exported_scene_page_names_files_but_no_folders_of_this_machine(tmp_path):
-    from wgpurender.export import export
+    from wgpurender.webpage import export
 
     folder = tmp_path / "my project"
     folder.mkdir()
