@@ -6,7 +6,9 @@ the CLI (harness.run_case) and must be a clean render or one clean error; beyond
   a read hangs (counted as "hang"), and a render that read it counts as "escaped";
 - a file whose scene places no triangle must be an error ("blank" otherwise);
 - a process whose peak memory passes 2 GB counts as "memory";
-- a cube without normals must render as the faceted cube within 8/255 ("wrong" otherwise).
+- a cube without normals must render as the faceted cube within 8/255 ("wrong" otherwise);
+- a scene naming a model outside its project folder, the assets and $WGPURENDER_ALLOW_PATHS must be an error
+  ("escaped" otherwise), one inside them must render ("wrong" otherwise).
 """
 
 from __future__ import annotations
@@ -317,3 +319,53 @@ def test_the_rich_document_is_valid(folder):
     assert run_case(render_argv(_scene(folder, "model.gltf", material=False), output), output, None, "rich") \
         == "render"
     assert json.loads((folder / "model" / "model.gltf").read_text())["accessors"][0]["sparse"]["count"] == 1
+
+
+# --- a scene's own paths ------------------------------------------------------------------------------------
+
+SCENE_KINDS = {  # kind -> (where the model is, how the scene names it, may the scene read it)
+    "same-folder": ("project/scenes/m.gltf", "m.gltf", True),
+    "project": ("project/models/m.gltf", "../models/m.gltf", True),
+    "above-project": ("m.gltf", "../../m.gltf", False),
+    "absolute-outside": ("outside/m.gltf", "{folder}/outside/m.gltf", False),
+    "link-out": ("outside/m.gltf", "link.gltf", False),
+    "allowed": ("outside/m.gltf", "{folder}/outside/m.gltf", True),
+    "assets": (None, "{assets}/models/brick_torus.glb", True),
+}
+
+
+@fuzz_settings(ci=7, long=300)
+@given(kind=st.sampled_from(sorted(SCENE_KINDS)), flat=st.booleans())
+def test_a_scene_reads_only_its_project(folder, kind, flat):
+    """``flat``: the scene sits in project/ itself (no scenes/ folder), so ../models is outside too."""
+    from strategies import ASSETS
+
+    reset_folder(folder)
+    where, named, allowed = SCENE_KINDS[kind]
+    scene_dir = folder / "project" / ("" if flat else "scenes")
+    for sub in (scene_dir, folder / "project" / "models", folder / "outside", folder / "out"):
+        sub.mkdir(parents=True, exist_ok=True)
+    if where is not None:
+        target = folder / where.replace("project/scenes", str(scene_dir.relative_to(folder)))
+        write_gltf(target, triangle_gltf())
+    if kind == "link-out":
+        (scene_dir / "link.gltf").symlink_to(folder / "outside" / "m.gltf")
+    if flat and kind == "project":
+        allowed = False  # project/../models is beside the project, not in it
+    named = named.format(folder=folder, assets=ASSETS)
+    (scene_dir / "s.toml").write_text(f"[camera]\n{SCENE_CAMERA}\n[render]\nsize = [40, 30]\nmsaa = 1\n\n"
+                                      f'[[models]]\npath = "{named}"\nmaterial = {{ unlit = true }}\n')
+    os.environ.pop("WGPURENDER_ALLOW_PATHS", None)
+    if kind == "allowed":
+        os.environ["WGPURENDER_ALLOW_PATHS"] = str(folder / "outside")
+    output = folder / "out" / "out.png"
+    label = f"scene path {kind} flat={flat}"
+    try:
+        outcome = run_case(render_argv(scene_dir / "s.toml", output), output, None, label)
+    finally:
+        os.environ.pop("WGPURENDER_ALLOW_PATHS", None)
+    if outcome == "render" and not allowed:
+        outcome = _count("escaped", label, "rendered a model outside the scene's folders")
+    elif outcome == "error" and allowed:
+        outcome = _count("wrong", label, "refused an allowed path")
+    check(outcome, f"{outcome}: {label}")
