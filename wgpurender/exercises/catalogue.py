@@ -1,0 +1,188 @@
+"""What each course step asks a learner to write, and the classic mistakes it can go wrong with: data, one row each.
+
+An exercise is the project's own stage (the reference solution) with parts cut out. Both the cut-out parts and the
+mistakes are declared here as exact snippets of the solution's source (``old`` -> ``new``), never as copies of it:
+
+- a :class:`Part` is what the learner writes. The starter replaces ``old`` with ``stub`` (code that keeps the
+  stage running, usually nothing but a comment) under a TODO line that paraphrases the course and names the
+  concept's row of ``wgpurender concepts``;
+- a :class:`Mistake` is the solution with ``old`` replaced by ``new``: rendered the same way as a learner's file,
+  it is what that mistake looks like, and ``wgpurender check`` names the nearest one.
+
+tests/test_exercises.py checks every snippet occurs exactly once in its stage, every starter fails, the solution
+passes, every mistake is diagnosed as itself and no two mistakes of a step look alike. A new mistake is one row.
+
+Mistakes left out because they do not render differently (say so here, not silently):
+- step 1a (wgpu): forgetting the clear is invisible, WebGPU zero-fills new textures and the transfer clear is to
+  zero; 3b: ``store_op`` store instead of discard keeps the same resolved image; 4: the depth test off (compare
+  always) draws the same cubes, which back-face culling already sorts and which do not overlap; 5: the uv attribute
+  at offset 8 rendered identical to the solution at both times (measured, FLIP 0).
+- mistakes wgpu refuses with a validation error (the learner sees wgpu's message, which names the fault): 2b's
+  wrong vertex stride, attribute format or an offset past the stride (wgpu checks them against the buffer and the shader).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+PATHS = ("wgpu", "raw")
+
+
+class Part(NamedTuple):
+    """A piece of the solution the learner writes."""
+
+    concept: str  # a row name of `wgpurender concepts` (wgpurender/concepts.py)
+    todo: str  # what to write, paraphrasing the course (one line)
+    old: str  # the solution's exact text (whole lines)
+    stub: str = ""  # what stands there in the starter (whole lines, indented like ``old``); empty: nothing
+
+
+class Mistake(NamedTuple):
+    """A classic mistake: the solution with one snippet changed."""
+
+    key: str  # short id, unique within its step and path (used in file names)
+    title: str  # what the learner did, as the diagnosis names it
+    concept: str  # the row of `wgpurender concepts` to read
+    old: str
+    new: str
+
+
+class Exercise(NamedTuple):
+    step: str  # the course step's number (core/course/steps.py)
+    path: str  # "wgpu" or "raw"
+    parts: tuple[Part, ...]
+    mistakes: tuple[Mistake, ...]
+    times: tuple[float, ...] = (0.0,)  # animated steps are checked at several t
+
+
+_W = "wgpu"
+_ANIMATED = (0.0, 0.75)
+
+EXERCISES: tuple[Exercise, ...] = (
+    Exercise("1a", _W, (
+        Part("clear without a render pass", "clear the whole target with a transfer command, outside any pass",
+             "        clear_texture(self.ctx, encoder, target)\n",
+             "        encoder.begin_render_pass(color_attachments=[self.color_attachment(target, (1, 0, 1, 1))]).end()\n"),
+    ), ()),
+    Exercise("1b", _W, (
+        Part("begin info and clear values", "begin a pass whose attachment is cleared to the step's colour, then end",
+             "        render_pass = encoder.begin_render_pass(color_attachments=[self.color_attachment(target, "
+             "self.clear_color)])\n        render_pass.end()\n"),
+    ), (
+        Mistake("load", "the attachment loaded instead of cleared (load_op load)", "begin info and clear values",
+                "render_pass = encoder.begin_render_pass(color_attachments=[self.color_attachment(target, "
+                "self.clear_color)])",
+                "render_pass = encoder.begin_render_pass(color_attachments=[{**self.color_attachment(target, "
+                "self.clear_color), 'load_op': 'load'}])"),
+        Mistake("bytes", "the clear colour given in 0..255 instead of 0..1", "begin info and clear values",
+                "self.color_attachment(target, self.clear_color)",
+                "self.color_attachment(target, tuple(255 * c for c in self.clear_color))"),
+    )),
+    Exercise("2a", _W, (
+        Part("draw calls", "bind the pipeline and draw the three vertices the shader makes from the vertex index",
+             "        render_pass.set_pipeline(self.pipeline)\n        render_pass.draw(3)\n"),
+    ), (
+        Mistake("background", "the clear colour left out (the attachment's default)", "begin info and clear values",
+                "self.color_attachment(target, BACKGROUND)", "self.color_attachment(target, (1, 1, 1, 1))"),
+        Mistake("count", "too few vertices drawn (draw(2): no whole triangle)", "draw calls",
+                "render_pass.draw(3)", "render_pass.draw(2)"),
+    )),
+    Exercise("2b", _W, (
+        Part("vertex input bindings and attributes",
+             "describe one per-vertex buffer: its stride, a float32x2 position and a float32x3 colour after it",
+             '    "array_stride": 5 * 4,\n    "step_mode": "vertex",\n    "attributes": [\n'
+             '        {"shader_location": 0, "format": "float32x2", "offset": 0},\n'
+             '        {"shader_location": 1, "format": "float32x3", "offset": 2 * 4},\n    ],\n',
+             '    "array_stride": 5 * 4,\n    "step_mode": "vertex",\n    "attributes": [\n'
+             '        {"shader_location": 0, "format": "float32x2", "offset": 0},\n'
+             '        {"shader_location": 1, "format": "float32x3", "offset": 0},\n    ],\n'),
+        Part("draw calls", "bind the vertex and index buffers, then draw the indexed triangle",
+             '        render_pass.set_vertex_buffer(0, self.vertex_buffer)\n'
+             '        render_pass.set_index_buffer(self.index_buffer, "uint16")\n'
+             '        render_pass.draw_indexed(len(TRIANGLE_INDICES))\n'),
+    ), (
+        Mistake("offset", "the colour attribute at offset 0 (it reads the position)",
+                "vertex input bindings and attributes", '"offset": 2 * 4}', '"offset": 0}'),
+    )),
+    Exercise("3a", _W, (
+        Part("offscreen readback", "copy the offscreen image to the output, its whole size",
+             "        encoder.copy_texture_to_texture({\"texture\": self.image}, {\"texture\": target}, "
+             "(self.size[0], self.size[1], 1))\n"),
+    ), (
+        Mistake("half", "only part of the image copied (a wrong copy size)", "offscreen readback",
+                "(self.size[0], self.size[1], 1))", "(self.size[0] // 2, self.size[1], 1))"),
+        Mistake("clear", "the offscreen image cleared to the wrong colour", "begin info and clear values",
+                '"clear_value": BACKGROUND', '"clear_value": (1, 1, 1, 1)'),
+    )),
+    Exercise("3b", _W, (
+        Part("multisample", "draw into the multisampled image and resolve it into the output, dropping the samples",
+             '            attachment = {"view": self._msaa_view, "resolve_target": output, "clear_value": BACKGROUND,\n'
+             '                          "load_op": "clear", "store_op": "discard"}\n',
+             '            attachment = {"view": self._msaa_view, "clear_value": BACKGROUND,\n'
+             '                          "load_op": "clear", "store_op": "discard"}\n'),
+    ), (
+        Mistake("resolve", "the MSAA resolve missing (no resolve target)", "multisample",
+                '"resolve_target": output, ', ""),
+        Mistake("background", "the clear colour left out of the multisampled attachment", "begin info and clear values",
+                '"resolve_target": output, "clear_value": BACKGROUND,', '"resolve_target": output, '
+                '"clear_value": (1, 1, 1, 1),'),
+    )),
+    Exercise("3c", _W, (
+        Part("input attachments", "a second pass: draw the full-screen post triangle reading the resolved image",
+             "        self._post(encoder, target)\n"),
+    ), (
+        Mistake("no-effect", "the post effect's amount left at zero (the image passes through)", "input attachments",
+                "GREY_AMOUNT = 1.0", "GREY_AMOUNT = 0.0"),
+        Mistake("half-grey", "the post effect at half strength", "push constants",
+                "GREY_AMOUNT = 1.0", "GREY_AMOUNT = 0.5"),
+    )),
+    Exercise("4", _W, (
+        Part("depth/stencil", "clear the depth attachment to the far plane each frame",
+             '        depth = {"view": self._depth_view, "depth_clear_value": 1.0, "depth_load_op": "clear",\n'
+             '                 "depth_store_op": "discard"}\n',
+             '        depth = {"view": self._depth_view, "depth_clear_value": 0.0, "depth_load_op": "clear",\n'
+             '                 "depth_store_op": "discard"}\n'),
+        Part("UBO alignment", "for each cube, bind its object data at its aligned dynamic offset",
+             "            render_pass.set_bind_group(1, self.object_group, [k * self.object_stride])\n",
+             "            render_pass.set_bind_group(1, self.object_group, [0])\n"),
+    ), (
+        Mistake("winding", "the winding wrong: front faces culled (front_face cw)", "rasterizer",
+                '"front_face": "ccw", "cull_mode": "back"', '"front_face": "cw", "cull_mode": "back"'),
+        Mistake("depth0", "depth cleared to 0 with compare less: nothing passes", "depth/stencil",
+                '"depth_clear_value": 1.0', '"depth_clear_value": 0.0'),
+        Mistake("offset0", "every cube drawn with dynamic offset 0", "UBO alignment",
+                "[k * self.object_stride]", "[0]"),
+        Mistake("stride", "a wrong vertex stride (one float too many)", "vertex input bindings and attributes",
+                '"array_stride": course.VERTEX_FLOATS * 4', '"array_stride": (course.VERTEX_FLOATS + 1) * 4'),
+    ), _ANIMATED),
+    Exercise("5", _W, (
+        Part("samplers", "swap the sampler's bind group (set 2) between the four lanes' draws",
+             "                render_pass.set_bind_group(2, group)\n",
+             "                render_pass.set_bind_group(2, self.sampler_groups[0])\n"),
+        Part("mipmaps", "upload the pattern as an sRGB texture with a generated mip chain",
+             '        self.texture = create_texture(self.ctx, course.pattern_pixels(), srgb=True, mips=True, '
+             'label="textured-pattern")\n',
+             '        self.texture = create_texture(self.ctx, course.pattern_pixels(), srgb=False, mips=False, '
+             'label="textured-pattern")\n'),
+    ), (
+        Mistake("srgb", "the sRGB view forgotten (texture read as linear: too bright)", "views",
+                "srgb=True, mips=True", "srgb=False, mips=True"),
+        Mistake("mips", "mips not generated", "mipmaps", "srgb=True, mips=True", "srgb=True, mips=False"),
+        Mistake("one-sampler", "one sampler for all four lanes", "samplers",
+                "render_pass.set_bind_group(2, group)", "render_pass.set_bind_group(2, self.sampler_groups[0])"),
+    ), _ANIMATED),
+)
+
+
+def exercise(step: str, path: str) -> Exercise:
+    """The exercise of a step on a path; a UserError naming the ones there are."""
+    from wgpurender.core.errors import UserError
+
+    if path not in PATHS:
+        raise UserError(f"unknown path {path!r}: choose {' or '.join(PATHS)}")
+    for ex in EXERCISES:
+        if ex.step == step and ex.path == path:
+            return ex
+    steps = ", ".join(ex.step for ex in EXERCISES if ex.path == path)
+    raise UserError(f"no exercise for step {step!r} on the {path} path: the steps with one are {steps} "
+                    "(wgpurender stages lists the course)")
