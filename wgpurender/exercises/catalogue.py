@@ -18,7 +18,8 @@ Mistakes left out because they do not render differently (say so here, not silen
   always) draws the same cubes, which back-face culling already sorts and which do not overlap; 5: the uv attribute
   at offset 8 rendered identical to the solution at both times (measured, FLIP 0).
 - mistakes wgpu refuses with a validation error (the learner sees wgpu's message, which names the fault): 2b's
-  wrong vertex stride, attribute format or an offset past the stride (wgpu checks them against the buffer and the shader).
+  wrong vertex stride, attribute format or an offset past the stride (wgpu checks them against the buffer and
+  the shader).
 """
 
 from __future__ import annotations
@@ -62,7 +63,8 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("1a", _W, (
         Part("clear without a render pass", "clear the whole target with a transfer command, outside any pass",
              "        clear_texture(self.ctx, encoder, target)\n",
-             "        encoder.begin_render_pass(color_attachments=[self.color_attachment(target, (1, 0, 1, 1))]).end()\n"),
+             "        placeholder = self.color_attachment(target, (1, 0, 1, 1))\n"
+             "        encoder.begin_render_pass(color_attachments=[placeholder]).end()\n"),
     ), ()),
     Exercise("1b", _W, (
         Part("begin info and clear values", "begin a pass whose attachment is cleared to the step's colour, then end",
@@ -84,7 +86,7 @@ EXERCISES: tuple[Exercise, ...] = (
     ), (
         Mistake("background", "the clear colour left out (the attachment's default)", "begin info and clear values",
                 "self.color_attachment(target, BACKGROUND)", "self.color_attachment(target, (1, 1, 1, 1))"),
-        Mistake("count", "too few vertices drawn (draw(2): no whole triangle)", "draw calls",
+        Mistake("count", "nothing drawn (no draw, or fewer than 3 vertices)", "draw calls",
                 "render_pass.draw(3)", "render_pass.draw(2)"),
     )),
     Exercise("2b", _W, (

@@ -70,7 +70,7 @@ class Verdict:
     def report(self) -> str:
         """Every line ``wgpurender check`` prints."""
         lines = [self.line()]
-        if self.status == ERROR:
+        if self.status == ERROR and "\n" in self.message.strip():
             lines.append(self.message)
         for t, m, exceeded in self.metrics:
             lines.append(f"  t={t:g}: {m.summary()}" + (f"; over the bound: {'; '.join(exceeded)}" if exceeded else ""))
@@ -122,6 +122,7 @@ def write_images(out: Path, stem: str, ex: Exercise, images: list[np.ndarray]) -
     from wgpurender.core.compare import heatmap_with_scale
 
     written = {}
+    out.mkdir(parents=True, exist_ok=True)
     for t, expected, actual in zip(ex.times, expected_images(ex), images, strict=True):
         written[f"t={t:g} image"] = save_png(out / f"{stem}-t{t:g}.png", actual)
         written[f"t={t:g} heatmap"] = save_png(out / f"{stem}-t{t:g}-heatmap.png", heatmap_with_scale(expected, actual))
@@ -165,3 +166,15 @@ def _solution_images(ex: Exercise) -> list[np.ndarray]:
 def mistake_images(ex: Exercise, key: str) -> list[np.ndarray]:
     mistake = next(m for m in ex.mistakes if m.key == key)
     return render_source(mistake_source(ex, mistake), ex)
+
+
+def learner_file(name: str) -> Path:
+    """The learner's file, checked before anything runs: a readable .py file."""
+    from wgpurender.core.errors import UserError
+
+    file = Path(name)
+    if file.suffix != ".py":
+        raise UserError(f"{name}: a stage is a Python module: give its .py file")
+    if not file.is_file():
+        raise UserError(f"{name}: no such file")
+    return file.resolve()
