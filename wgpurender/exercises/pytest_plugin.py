@@ -5,10 +5,11 @@ Two ways in:
 - the ``wgpurender_check`` fixture, which a starter's test_STEP.py uses:
   ``wgpurender_check(file, step="2a", path="wgpu")`` fails the test with the check's report unless it passes;
 - grading a folder of submissions: ``pytest --wgpurender-step 2a [--wgpurender-path raw]
-  [--wgpurender-html report.html] SUBMISSIONS/`` collects every ``*.py`` there that is not a test or conftest as
-  one item, prints one line per submission, writes an HTML summary page (images, heatmaps, diagnosis) and
-  exits 1 when any failed. With pytest-xdist (``-n auto``) the items spread over worker processes; each
-  learner's code runs in a process of its own anyway (sandbox.py), with a time limit.
+  [--wgpurender-html report.html] SUBMISSIONS/`` (or ``--wgpurender-step folder`` for SUBMISSIONS/<step>/*.py)
+  collects every ``*.py`` there that is not a test or conftest as one item, prints one line per submission,
+  writes an HTML summary page (images, heatmaps, diagnosis) and exits 1 when any failed. With pytest-xdist
+  (``-n auto``) the items spread over worker processes; each learner's code runs in a process of its own
+  anyway (sandbox.py), with a time limit.
 
 Only pytest is imported here at start-up: the renderer loads when the first item runs.
 """
@@ -23,12 +24,14 @@ from pathlib import Path
 import pytest
 
 LINE, IMAGES = "wgpurender_line", "wgpurender_images"
+BY_FOLDER = "folder"  # --wgpurender-step folder: a submission's step is its folder's name
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
     group = parser.getgroup("wgpurender", "grading course exercises (wgpurender)")
     group.addoption("--wgpurender-step", metavar="STEP", default=None,
-                    help="grade every *.py submission in the given folders as course step STEP")
+                    help="grade every *.py submission in the given folders as course step STEP; 'folder': "
+                    "each as the step its folder is named for (a class's 2a/alice.py, 4/bob.py, ...)")
     group.addoption("--wgpurender-path", metavar="PATH", default="wgpu", choices=("wgpu", "raw"),
                     help="the path the submissions are written for: wgpu (default) or raw")
     group.addoption("--wgpurender-html", metavar="FILE", default="wgpurender-grades.html",
@@ -60,8 +63,10 @@ class Submission(pytest.Item):
 
     def runtest(self) -> None:
         config = self.config
-        verdict = run_check(self.path, config.getoption("wgpurender_step"), config.getoption("wgpurender_path"),
-                            images_folder(config), config.getoption("wgpurender_timeout"))
+        step = config.getoption("wgpurender_step")
+        step = self.path.parent.name if step == BY_FOLDER else step
+        verdict = run_check(self.path, step, config.getoption("wgpurender_path"),
+                            images_folder(config) / step, config.getoption("wgpurender_timeout"))
         self.user_properties.append((LINE, verdict.line()))
         self.user_properties.append((IMAGES, json.dumps({k: str(v) for k, v in verdict.images.items()})))
         if verdict.exit_code:
