@@ -178,8 +178,12 @@ EXERCISES: tuple[Exercise, ...] = (
 
 def exercise(step: str, path: str) -> Exercise:
     """The exercise of a step on a path; a UserError naming the ones there are."""
+    from wgpurender.core.course.steps import COURSE
     from wgpurender.core.errors import UserError
 
+    numbers = [s.number for s in COURSE]
+    if step not in numbers:
+        raise UserError(f"unknown step {step!r}: the course's steps are {', '.join(numbers)} (wgpurender stages)")
     if path not in PATHS:
         raise UserError(f"unknown path {path!r}: choose {' or '.join(PATHS)}")
     for ex in EXERCISES:
