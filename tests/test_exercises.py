@@ -28,8 +28,28 @@ IDS = [f"{ex.path}-{ex.step}" for ex in EXERCISES]
 CONCEPT_NAMES = {c.name for c in CONCEPTS}
 
 
-def test_every_stage_step_has_a_wgpu_exercise():
-    assert [ex.step for ex in EXERCISES if ex.path == "wgpu"] == [s.number for s in stage_steps()]
+@pytest.mark.parametrize("path", ["wgpu", "raw"])
+def test_every_stage_step_has_an_exercise_on_both_paths(path):
+    assert [ex.step for ex in EXERCISES if ex.path == path] == [s.number for s in stage_steps()]
+
+
+def test_a_raw_learner_file_that_raises_shows_its_own_frames(tmp_path):
+    file = tmp_path / "mine.py"
+    file.write_text(textwrap.dedent("""
+        from wgpurender.raw_path.stages.base import RefStage
+
+
+        class Mine(RefStage):
+            name = "triangle"
+
+            def setup(self):
+                self.single_pass((0.0, 0.0, 0.0, 1.0))
+                return 1 / 0
+        """))
+    with pytest.raises(LearnerError) as err:
+        render_isolated(file, exercise("2a", "raw"), timeout=60)
+    assert "line 10, in setup" in str(err.value) and "ZeroDivisionError" in str(err.value)
+    assert "raw_path" not in str(err.value)
 
 
 @pytest.mark.parametrize("ex", EXERCISES, ids=IDS)

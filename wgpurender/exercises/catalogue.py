@@ -56,8 +56,12 @@ class Exercise(NamedTuple):
     times: tuple[float, ...] = (0.0,)  # animated steps are checked at several t
 
 
-_W = "wgpu"
+_W, _R = "wgpu", "raw"
 _ANIMATED = (0.0, 0.75)
+# the raw path's y-flip mistake: the viewport set as Vulkan's default (y down) after the helper's flipped one
+_UNFLIPPED = ("        set_viewport_and_scissor(cmd, self.size)\n"
+              "        vk.vkCmdSetViewport(cmd, 0, 1, [vk.VkViewport(x=0.0, y=0.0, width=float(self.size[0]), "
+              "height=float(self.size[1]), minDepth=0.0, maxDepth=1.0)])\n")
 
 EXERCISES: tuple[Exercise, ...] = (
     Exercise("1a", _W, (
@@ -172,6 +176,97 @@ EXERCISES: tuple[Exercise, ...] = (
         Mistake("mips", "mips not generated", "mipmaps", "srgb=True, mips=True", "srgb=True, mips=False"),
         Mistake("one-sampler", "one sampler for all four lanes", "samplers",
                 "render_pass.set_bind_group(2, group)", "render_pass.set_bind_group(2, self.sampler_groups[0])"),
+    ), _ANIMATED),
+    # -- the raw-Vulkan path: the same steps in Vulkan calls (raw_path/stages/) --------------------------------
+    Exercise("1a", _R, (
+        Part("clear without a render pass", "fill a VkClearColorValue with the step's colour for vkCmdClearColorImage",
+             "        color = vk.VkClearColorValue(float32=list(self.color))\n",
+             "        color = vk.VkClearColorValue(float32=[1.0, 0.0, 1.0, 1.0])\n"),
+    ), ()),
+    Exercise("1b", _R, (
+        Part("begin info and clear values", "a render pass whose colour attachment is cleared to the step's colour",
+             "        self.render_pass = single_pass(self.ctx, self.owned, self.format, 1, CLEAR_COLOR)\n",
+             "        self.render_pass = single_pass(self.ctx, self.owned, self.format, 1, (1.0, 0.0, 1.0, 1.0))\n"),
+    ), (
+        Mistake("bytes", "the clear colour given in 0..255 instead of 0..1", "begin info and clear values",
+                "self.format, 1, CLEAR_COLOR)", "self.format, 1, tuple(255 * c for c in CLEAR_COLOR))"),
+    )),
+    Exercise("2a", _R, (
+        Part("draw calls", "bind the pipeline, set the (flipped) viewport and scissor, draw three vertices",
+             "        vk.vkCmdBindPipeline(cmd, vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.pipeline)\n"
+             "        set_viewport_and_scissor(cmd, self.size)\n        vk.vkCmdDraw(cmd, 3, 1, 0, 0)\n"),
+    ), (
+        Mistake("y-flip", "the y axis flipped (the viewport not flipped for wgpu's y-up NDC)", "viewport and scissor",
+                "        set_viewport_and_scissor(cmd, self.size)\n", _UNFLIPPED),
+        Mistake("count", "nothing drawn (no draw, or fewer than 3 vertices)", "draw calls",
+                "vk.vkCmdDraw(cmd, 3, 1, 0, 0)", "vk.vkCmdDraw(cmd, 2, 1, 0, 0)"),
+    )),
+    Exercise("2b", _R, (
+        Part("vertex input bindings and attributes", "the colour attribute: location 1, three floats after the "
+             "position", "        vk.VkVertexInputAttributeDescription(location=1, binding=0, "
+             "format=vk.VK_FORMAT_R32G32B32_SFLOAT, offset=8),\n",
+             "        vk.VkVertexInputAttributeDescription(location=1, binding=0, "
+             "format=vk.VK_FORMAT_R32G32B32_SFLOAT, offset=0),\n"),
+    ), (
+        Mistake("offset", "the colour attribute at offset 0 (it reads the position)",
+                "vertex input bindings and attributes", "R32G32B32_SFLOAT, offset=8)", "R32G32B32_SFLOAT, offset=0)"),
+        Mistake("y-flip", "the y axis flipped (the viewport not flipped for wgpu's y-up NDC)", "viewport and scissor",
+                "        set_viewport_and_scissor(cmd, self.size)\n", _UNFLIPPED),
+    )),
+    Exercise("3a", _R, (
+        Part("offscreen readback", "copy the whole offscreen image into the target with vkCmdCopyImage",
+             "            extent=vk.VkExtent3D(width=self.size[0], height=self.size[1], depth=1),\n",
+             "            extent=vk.VkExtent3D(width=1, height=1, depth=1),\n"),
+    ), (
+        Mistake("y-flip", "the y axis flipped (the viewport not flipped for wgpu's y-up NDC)", "viewport and scissor",
+                "        set_viewport_and_scissor(cmd, self.size)\n", _UNFLIPPED),
+    )),
+    Exercise("3b", _R, (
+        Part("draw calls", "inside the pass that resolves the samples: bind, set the viewport, draw the triangle",
+             "        vk.vkCmdBindPipeline(cmd, vk.VK_PIPELINE_BIND_POINT_GRAPHICS, self.pipeline)\n"
+             "        set_viewport_and_scissor(cmd, self.size)\n        vk.vkCmdDraw(cmd, 3, 1, 0, 0)\n"),
+    ), (
+        Mistake("y-flip", "the y axis flipped (the viewport not flipped for wgpu's y-up NDC)", "viewport and scissor",
+                "        set_viewport_and_scissor(cmd, self.size)\n", _UNFLIPPED),
+    )),
+    Exercise("3c", _R, (
+        Part("push constants", "push the grey amount (one float) to the post subpass's fragment shader",
+             '        amount = vk.ffi.from_buffer(struct.pack("<f", GREY_AMOUNT))\n',
+             '        amount = vk.ffi.from_buffer(struct.pack("<f", 0.0))\n'),
+    ), (
+        Mistake("no-effect", "the post effect's amount left at zero (the image passes through)", "push constants",
+                'struct.pack("<f", GREY_AMOUNT)', 'struct.pack("<f", 0.0)'),
+        Mistake("half-grey", "the post effect at half strength", "push constants",
+                'struct.pack("<f", GREY_AMOUNT)', 'struct.pack("<f", 0.5 * GREY_AMOUNT)'),
+    )),
+    Exercise("4", _R, (
+        Part("UBO alignment", "for each cube, bind its object set at its aligned dynamic offset",
+             "            vk.vkCmdBindDescriptorSets(cmd, graphics, self.layout, 1, 1, [self.object_set], 1, "
+             "[k * self.object_stride])\n",
+             "            vk.vkCmdBindDescriptorSets(cmd, graphics, self.layout, 1, 1, [self.object_set], 1, [0])\n"),
+    ), (
+        Mistake("winding", "the wrong faces culled (cull mode front)", "rasterizer",
+                "cull_mode=vk.VK_CULL_MODE_BACK_BIT", "cull_mode=vk.VK_CULL_MODE_FRONT_BIT"),
+        Mistake("offset0", "every cube drawn with dynamic offset 0", "UBO alignment",
+                "[k * self.object_stride]", "[0]"),
+        Mistake("y-flip", "the y axis flipped (the viewport not flipped for wgpu's y-up NDC)", "viewport and scissor",
+                "        set_viewport_and_scissor(cmd, self.size)\n", _UNFLIPPED),
+    ), _ANIMATED),
+    Exercise("5", _R, (
+        Part("samplers", "re-bind set 2 with each lane's sampler before its draw",
+             "                vk.vkCmdBindDescriptorSets(cmd, graphics, self.separate_layout, 2, 1, [sampler_set], 0, "
+             "None)\n",
+             "                vk.vkCmdBindDescriptorSets(cmd, graphics, self.separate_layout, 2, 1, "
+             "[self.sampler_sets[0]], 0, None)\n"),
+        Part("mipmaps", "upload the pattern into an sRGB image with a full mip chain",
+             "        self.texture = upload_texture(ctx, owned, course.pattern_pixels(), srgb=True, mips=True)\n",
+             "        self.texture = upload_texture(ctx, owned, course.pattern_pixels(), srgb=False, mips=False)\n"),
+    ), (
+        Mistake("srgb", "the sRGB format forgotten (texture read as linear: too bright)", "views",
+                "srgb=True, mips=True", "srgb=False, mips=True"),
+        Mistake("mips", "mips not generated", "mipmaps", "srgb=True, mips=True", "srgb=True, mips=False"),
+        Mistake("one-sampler", "one sampler for all four lanes", "samplers",
+                "[sampler_set], 0, None)", "[self.sampler_sets[0]], 0, None)"),
     ), _ANIMATED),
 )
 
