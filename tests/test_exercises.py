@@ -99,6 +99,12 @@ def test_solution_passes_starter_fails_and_each_mistake_is_diagnosed_as_itself(e
                 assert any(tol.exceeded(m) for m in found), f"{mistake.key} looks like {other.key}"
 
 
+@pytest.mark.parametrize("ex", [ex for ex in EXERCISES if len(ex.times) > 1], ids=lambda ex: f"{ex.path}-{ex.step}")
+def test_an_animated_step_is_checked_at_times_that_look_different(ex):
+    images = check.mistake_images(ex, ex.mistakes[0].key)
+    assert len(images) == len(ex.times) and not np.array_equal(images[0], images[1])
+
+
 def test_the_starter_of_the_first_triangle_renders_the_clear_colour_only():
     ex = exercise("2a", "wgpu")
     image = render.render_source(source.starter_source(ex), ex)[0]
