@@ -124,6 +124,16 @@ def test_an_image_no_mistake_explains_is_said_so(tmp_path):
     assert load_png(verdict.images["t=0 heatmap"]).shape[1] == reference.shape[1]
 
 
+def test_an_image_near_one_mistake_but_outside_its_bounds_names_it_as_the_nearest(tmp_path):
+    ex = exercise("4", "wgpu")
+    near = [image.copy() for image in check.mistake_images(ex, "winding")]
+    for image in near:
+        image[:16, :16, :3] ^= 0x40  # a corner off by 64/255: beyond every bound, close to 'winding' elsewhere
+    diagnosis = check.judge(near, ex, tmp_path / "x.py").diagnosis
+    assert diagnosis.mistake is None and diagnosis.nearest.key == "winding"
+    assert "the nearest, 'the winding wrong" in diagnosis.text()
+
+
 LEARNER_FILES = {
     "raises": ("""
         from wgpurender.wgpu_path.stages.base import Stage
@@ -216,3 +226,11 @@ def test_bad_input_is_one_line_and_exit_2(args, message, tmp_path, capsys, monke
     code, out, err = _run_cli(capsys, *args)
     assert code == 2 and len(err.strip().splitlines()) == 1 and message in err, err
     assert not any(tmp_path.glob("check-*")) and not (tmp_path / "exercise-6").exists()
+
+
+def test_the_report_offers_each_step_with_an_exercise():
+    from wgpurender.exercises.catalogue import exercise_command
+
+    assert [exercise_command(s.stage) for s in stage_steps()] == [f"wgpurender exercise {s.number}"
+                                                                  for s in stage_steps()]
+    assert exercise_command("final") is None and exercise_command("no-such-stage") is None

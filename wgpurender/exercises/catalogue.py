@@ -287,3 +287,14 @@ def exercise(step: str, path: str) -> Exercise:
     steps = ", ".join(ex.step for ex in EXERCISES if ex.path == path)
     raise UserError(f"no exercise for step {step!r} on the {path} path: the steps with one are {steps} "
                     "(wgpurender stages lists the course)")
+
+
+def exercise_command(stage: str) -> str | None:
+    """``wgpurender exercise STEP`` for a stage (or scene step) that has an exercise, else None: the report's
+    "try it" line."""
+    from wgpurender.core.course.steps import course_step
+
+    step = course_step(stage)
+    if step is None or not any(ex.step == step.number for ex in EXERCISES):
+        return None
+    return f"wgpurender exercise {step.number}"
