@@ -119,7 +119,7 @@ MUTATIONS = [
     ("wgpurender/exercises/check.py", "        within = not any(tol.exceeded(m) for m in found)",
      "        within = True", [EX + "|no_mistake"]),
     ("wgpurender/exercises/check.py", "(within, -flip) > (best[1], -best[0])", "(within, flip) > (best[1], best[0])",
-     [EX + "|solution_passes and wgpu-4"]),
+     [EX + "|nearest or (solution_passes and wgpu-4)"]),
     ("wgpurender/exercises/check.py", "metrics.append((t, m, tol.exceeded(m)))", "metrics.append((t, m, []))",
      [EX + "|solution_passes and wgpu-2a"]),
     ("wgpurender/exercises/check.py", 'return reference_dir() / f"{course_step(ex.step).stage}.png"',
