@@ -16,21 +16,23 @@ import pytest
 
 from wgpurender.cli import main
 from wgpurender.concepts import CONCEPTS
-from wgpurender.core.course.steps import stage_steps
+from wgpurender.core.course.steps import COURSE, stage_steps
 from wgpurender.core.course.triangle import BACKGROUND
 from wgpurender.core.imageio import load_png
 from wgpurender.core.tolerances import measure
 from wgpurender.exercises import check, render, source
 from wgpurender.exercises.catalogue import EXERCISES, exercise
 from wgpurender.exercises.sandbox import LearnerError, render_isolated
+from wgpurender.exercises.source import course_step
 
 IDS = [f"{ex.path}-{ex.step}" for ex in EXERCISES]
 CONCEPT_NAMES = {c.name for c in CONCEPTS}
 
 
 @pytest.mark.parametrize("path", ["wgpu", "raw"])
-def test_every_stage_step_has_an_exercise_on_both_paths(path):
-    assert [ex.step for ex in EXERCISES if ex.path == path] == [s.number for s in stage_steps()]
+def test_every_step_has_an_exercise_on_both_paths(path):
+    assert [ex.step for ex in EXERCISES if ex.path == path] == [s.number for s in COURSE]
+    assert all(bool(ex.shader) == (course_step(ex.step).scene is not None) for ex in EXERCISES)  # step 6: a shader
 
 
 def test_a_raw_learner_file_that_raises_shows_its_own_frames(tmp_path):
@@ -56,8 +58,9 @@ def test_a_raw_learner_file_that_raises_shows_its_own_frames(tmp_path):
 def test_starter_and_mistakes_are_patches_of_the_solution(ex):
     solution = source.solution_source(ex)
     starter = source.starter_source(ex)
-    compile(starter, "starter", "exec")
-    assert starter.count("# TODO (step") == len(ex.parts) >= 1
+    if not ex.shader:
+        compile(starter, "starter", "exec")
+    assert starter.count(f"{ex.comment} TODO (step") == len(ex.parts) >= 1
     for part in ex.parts:
         assert part.concept in CONCEPT_NAMES
         assert solution.count(part.old) == 1 and part.old not in starter
@@ -66,7 +69,8 @@ def test_starter_and_mistakes_are_patches_of_the_solution(ex):
     for mistake in ex.mistakes:
         assert mistake.concept in CONCEPT_NAMES
         variant = source.mistake_source(ex, mistake)
-        compile(variant, mistake.key, "exec")
+        if not ex.shader:
+            compile(variant, mistake.key, "exec")
         assert variant != solution and mistake.new in variant
 
 
@@ -217,7 +221,8 @@ def test_cli_exercise_then_check_exit_codes(tmp_path, capsys):
     (("check", "9z", "x.py"), "unknown step"),
     (("check", "2a", "missing.py"), "no such file"),
     (("check", "2a", "notes.txt"), "give its .py file"),
-    (("exercise", "6"), "no exercise for step '6'"),
+    (("check", "6", "x.py"), "give its .wgsl file"),
+    (("exercise", "2a", "--path", "vulkan"), "invalid choice"),
     (("check", "2a", "x.py", "--timeout", "0"), "--timeout"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, message, tmp_path, capsys, monkeypatch):
@@ -233,4 +238,5 @@ def test_the_report_offers_each_step_with_an_exercise():
 
     assert [exercise_command(s.stage) for s in stage_steps()] == [f"wgpurender exercise {s.number}"
                                                                   for s in stage_steps()]
-    assert exercise_command("final") is None and exercise_command("no-such-stage") is None
+    assert exercise_command("final") == "wgpurender exercise 6"  # step 6 is the final scene
+    assert exercise_command("unlit") is None and exercise_command("no-such-stage") is None

@@ -15,7 +15,7 @@ def register(subparsers) -> None:
         description="Write a starter folder for course step STEP: step_STEP.py (the step's stage with its key parts "
         "replaced by TODOs naming the concept to read), test_STEP.py (pytest checks it), README.md and goal.png "
         "(the raw-Vulkan reference). Existing files are never overwritten.")
-    p.add_argument("step", metavar="STEP", help="the course step: 1a, 1b, 2a, 2b, 3a, 3b, 3c, 4 or 5")
+    p.add_argument("step", metavar="STEP", help="the course step: 1a, 1b, 2a, 2b, 3a, 3b, 3c, 4, 5 or 6")
     p.add_argument("-o", "--out", metavar="DIR", default=None, help="the folder to write (default: exercise-STEP)")
     p.add_argument("--path", choices=("wgpu", "raw"), default="wgpu", help=PATH_HELP)
     p.set_defaults(func=run_exercise)
@@ -27,7 +27,7 @@ def register(subparsers) -> None:
         "verdict, the metrics and the heatmaps; a wrong image is matched against the step's catalogue of classic "
         "mistakes. Exit 0: pass, 1: fail, 2: bad input.")
     c.add_argument("step", metavar="STEP", help="the course step the file is for")
-    c.add_argument("file", metavar="FILE", help="the learner's stage module (a .py file)")
+    c.add_argument("file", metavar="FILE", help="the learner's stage module (a .py file; step 6: the scene shader)")
     c.add_argument("--path", choices=("wgpu", "raw"), default="wgpu", help=PATH_HELP)
     c.add_argument("--out", metavar="DIR", default=None,
                    help="where images and heatmaps go (default: FILE's folder/check-STEM)")
@@ -52,7 +52,7 @@ def run_check(args) -> int:
     from wgpurender.exercises.sandbox import DEFAULT_TIMEOUT
 
     ex = exercise(args.step, args.path)
-    file = learner_file(args.file)
+    file = learner_file(args.file, ex)
     out = Path(args.out) if args.out else file.parent / f"check-{file.stem}"
     verdict = check_file(file, ex, out, args.timeout or DEFAULT_TIMEOUT)
     print(verdict.report())

@@ -54,6 +54,13 @@ class Exercise(NamedTuple):
     parts: tuple[Part, ...]
     mistakes: tuple[Mistake, ...]
     times: tuple[float, ...] = (0.0,)  # animated steps are checked at several t
+    shader: str = ""  # a scene step: the shader file the learner writes (else: a stage module)
+    scene: str = ""  # ... and the bundled scene it is checked with (a committed scene reference's)
+
+    @property
+    def comment(self) -> str:
+        """How the learner's file writes a comment line."""
+        return "//" if self.shader else "#"
 
 
 _W, _R = "wgpu", "raw"
@@ -268,6 +275,39 @@ EXERCISES: tuple[Exercise, ...] = (
         Mistake("one-sampler", "one sampler for all four lanes", "samplers",
                 "[sampler_set], 0, None)", "[self.sampler_sets[0]], 0, None)"),
     ), _ANIMATED),
+    # -- step 6, the final model: the learner writes the normal mapping of the scene shader ----------------------
+    Exercise("6", _W, (
+        Part("samplers", "perturb n by the normal map: Gram-Schmidt the tangent against n, the bitangent from the "
+             "tangent's w, the texel remapped to -1..1 with its xy scaled by the material's strength",
+             "    let t = normalize(t_raw);\n"
+             "    let b = select(1.0, -1.0, in.tangent.w < 0.0) * cross(n, t);\n"
+             "    var m = normal_texel * 2.0 - 1.0;\n"
+             "    m = vec3f(m.xy * material.normal_strength, m.z);\n"
+             "    return safe_normalize(t * m.x + b * m.y + n * m.z, n);\n",
+             "    return n;\n"),
+    ), (
+        Mistake("no-normal-map", "the normal map ignored (the vertex normal kept)", "samplers",
+                "    return safe_normalize(t * m.x + b * m.y + n * m.z, n);\n", "    return n;\n"),
+        Mistake("no-remap", "the normal texel not remapped from 0..1 to -1..1", "samplers",
+                "var m = normal_texel * 2.0 - 1.0;", "var m = normal_texel;"),
+        Mistake("bitangent", "the bitangent's sign flipped (the tangent's w ignored or inverted)", "samplers",
+                "select(1.0, -1.0, in.tangent.w < 0.0)", "select(-1.0, 1.0, in.tangent.w < 0.0)"),
+    ), shader="scene.wgsl", scene="final_subpass"),
+    Exercise("6", _R, (
+        Part("samplers", "perturb n by the normal map: Gram-Schmidt the tangent against n, the bitangent from the "
+             "tangent's w, the texel remapped to -1..1 with its xy scaled by the material's strength",
+             "    vec3 b = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);\n"
+             "    vec3 m = normal_texel * 2.0 - 1.0;\n"
+             "    m = vec3(m.xy * material.normal_strength, m.z);\n",
+             "    vec3 b = vec3(0.0);\n    vec3 m = vec3(0.0, 0.0, 1.0);\n"),
+    ), (
+        Mistake("no-normal-map", "the normal map ignored (the vertex normal kept)", "samplers",
+                "    vec3 m = normal_texel * 2.0 - 1.0;\n", "    vec3 m = vec3(0.0, 0.0, 1.0);\n"),
+        Mistake("no-remap", "the normal texel not remapped from 0..1 to -1..1", "samplers",
+                "vec3 m = normal_texel * 2.0 - 1.0;", "vec3 m = normal_texel;"),
+        Mistake("bitangent", "the bitangent's sign flipped (the tangent's w ignored or inverted)", "samplers",
+                "(v_tangent.w < 0.0 ? -1.0 : 1.0)", "(v_tangent.w < 0.0 ? 1.0 : -1.0)"),
+    ), shader="scene.frag", scene="final_subpass"),
 )
 
 

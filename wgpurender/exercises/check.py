@@ -129,10 +129,19 @@ def write_images(out: Path, stem: str, ex: Exercise, images: list[np.ndarray]) -
     return written
 
 
+def reference_name(ex: Exercise) -> str:
+    """The committed reference (and tolerance row) of the step: its stage's, or its scene's."""
+    if ex.scene:
+        from wgpurender.raw_path.make_references import SCENE_REFERENCES
+
+        return next(name for name, file in SCENE_REFERENCES.items() if Path(file).stem == ex.scene)
+    return course_step(ex.step).stage
+
+
 def reference_file(ex: Exercise) -> Path:
     from wgpurender.core.assets import reference_dir
 
-    return reference_dir() / f"{course_step(ex.step).stage}.png"
+    return reference_dir() / f"{reference_name(ex)}.png"
 
 
 @functools.cache
@@ -147,7 +156,7 @@ def _driver_class(path: str) -> str:
 
 
 def step_tolerance(ex: Exercise) -> Tolerance:
-    return tolerance(course_step(ex.step).stage, _driver_class(ex.path))
+    return tolerance(reference_name(ex), _driver_class(ex.path))
 
 
 def expected_images(ex: Exercise) -> list[np.ndarray]:
@@ -168,13 +177,19 @@ def mistake_images(ex: Exercise, key: str) -> list[np.ndarray]:
     return render_source(mistake_source(ex, mistake), ex)
 
 
-def learner_file(name: str) -> Path:
-    """The learner's file, checked before anything runs: a readable .py file."""
+def learner_file(name: str, ex: Exercise) -> Path:
+    """The learner's file, checked before anything runs: a readable .py file (a scene step: its shader's kind)."""
     from wgpurender.core.errors import UserError
 
     file = Path(name)
-    if file.suffix != ".py":
-        raise UserError(f"{name}: a stage is a Python module: give its .py file")
+    suffix = learner_suffix(ex)
+    if file.suffix != suffix:
+        what = f"the scene's shader ({ex.shader})" if ex.shader else "a stage is a Python module"
+        raise UserError(f"{name}: step {ex.step} is {what}: give its {suffix} file")
     if not file.is_file():
         raise UserError(f"{name}: no such file")
     return file.resolve()
+
+
+def learner_suffix(ex: Exercise) -> str:
+    return Path(ex.shader).suffix if ex.shader else ".py"

@@ -11,7 +11,8 @@ Two ways in:
   (``-n auto``) the items spread over worker processes; each learner's code runs in a process of its own
   anyway (sandbox.py), with a time limit.
 
-Only pytest is imported here at start-up: the renderer loads when the first item runs.
+Only pytest is imported here at start-up: the renderer loads when the first item runs. A scene step's
+submissions are shader files (step 6: ``*.wgsl`` on the wgpu path, ``*.frag`` on the raw path).
 """
 
 from __future__ import annotations
@@ -46,11 +47,25 @@ def pytest_configure(config: pytest.Config) -> None:
 
 def pytest_collect_file(file_path: Path, parent: pytest.Collector):
     config = parent.config
-    if not config.getoption("wgpurender_step") or file_path.suffix != ".py":
+    step = config.getoption("wgpurender_step")
+    if not step or file_path.suffix != _suffix(file_path.parent.name if step == BY_FOLDER else step,
+                                                  config.getoption("wgpurender_path")):
         return None
     if file_path.name.startswith(("test_", "conftest")) or file_path.name.endswith("_test.py"):
         return None
     return SubmissionFile.from_parent(parent, path=file_path)
+
+
+def _suffix(step: str, path: str) -> str:
+    """What a submission's file name ends with: .py, or a scene step's shader kind (.wgsl, .frag)."""
+    from wgpurender.core.errors import UserError
+    from wgpurender.exercises.catalogue import exercise
+    from wgpurender.exercises.check import learner_suffix
+
+    try:
+        return learner_suffix(exercise(step, path))
+    except UserError:
+        return ".py"  # reported when the item runs
 
 
 class SubmissionFile(pytest.File):

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import hashlib
 import importlib.util
+import os
+import shutil
 import sys
 import tempfile
 from pathlib import Path
@@ -23,6 +25,7 @@ from wgpurender.exercises.catalogue import Exercise
 from wgpurender.exercises.source import course_step
 
 CHECK_SIZE = (256, 192)  # the committed stage references' size (raw_path/make_references.REFERENCE_SIZE)
+SCENE_CHECK_SIZE = (320, 240)  # the committed scene references' size (make_references.SCENE_REFERENCE_SIZE)
 
 
 class StageFileError(Exception):
@@ -87,15 +90,53 @@ def render_class(cls: type, ex: Exercise) -> list[np.ndarray]:
 
 
 def render_file(file: Path, ex: Exercise) -> list[np.ndarray]:
+    """Render the learner's file. A scene step's shader changes the process's shader folder: call this in a
+    process of its own (sandbox.py does)."""
+    if ex.shader:
+        return render_shader(file, ex)
     return render_class(stage_class(load_module(file), ex), ex)
 
 
+def render_shader(file: Path, ex: Exercise) -> list[np.ndarray]:
+    """The step's scene drawn with the learner's shader in place of the path's own (a copy of the path's shader
+    folder with the one file replaced, named by the path's override variable) at the scene references' size."""
+    from wgpurender.core.assets import scene_dir
+    from wgpurender.exercises.source import shader_folder
+
+    folder = Path(tempfile.mkdtemp(prefix="wgpurender-shaders-"))
+    shutil.copytree(shader_folder(ex.path), folder, dirs_exist_ok=True)
+    shutil.copyfile(file, folder / ex.shader)
+    scene = scene_dir() / f"{ex.scene}.toml"
+    if ex.path == "wgpu":
+        from wgpurender.wgpu_path.scene_render import render_scene_file
+        from wgpurender.wgpu_path.shaders import SHADER_DIR_ENV
+
+        os.environ[SHADER_DIR_ENV] = str(folder)
+        image = render_scene_file(scene, size=SCENE_CHECK_SIZE, frames=1, anisotropy="scene").pixels
+    else:
+        from wgpurender.raw_path.glsl import GLSL_DIR_ENV
+        from wgpurender.raw_path.scene import render_scene_reference
+
+        os.environ[GLSL_DIR_ENV] = str(folder)
+        image = render_scene_reference(scene, size=SCENE_CHECK_SIZE, anisotropy="scene")
+    return [to_uint8(image)]
+
+
 def render_source(source: str, ex: Exercise) -> list[np.ndarray]:
-    """Render stage source text (the solution or a mistake variant: our own code, rendered in this process)."""
+    """Render source text (the solution or a mistake variant: our own code): a stage in this process, a scene
+    step's shader in a process of its own."""
     with tempfile.TemporaryDirectory(prefix="wgpurender-exercise-") as folder:
-        file = Path(folder) / f"stage_{hashlib.sha1(source.encode()).hexdigest()[:12]}.py"
+        name = ex.shader or f"stage_{hashlib.sha1(source.encode()).hexdigest()[:12]}.py"
+        file = Path(folder) / name
         file.write_text(source, encoding="utf-8")
         try:
+            if ex.shader:
+                from wgpurender.exercises.sandbox import LearnerError, render_isolated
+
+                try:
+                    return render_isolated(file, ex)
+                except LearnerError as err:
+                    raise StageFileError(str(err)) from None
             return render_file(file, ex)
         except StageFileError as err:  # our own variant is broken: a bug, not a verdict
             raise UserError(f"step {ex.step} ({ex.path}): a catalogue variant does not load: {err}") from None

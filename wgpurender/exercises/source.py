@@ -38,7 +38,18 @@ def solution_class(ex: Exercise) -> type:
 
 
 def solution_file(ex: Exercise) -> Path:
+    """The stage module's file, or for a scene step the path's shader file (the wheel's or the checkout's)."""
+    if ex.shader:
+        return shader_folder(ex.path) / ex.shader
     return Path(inspect.getsourcefile(solution_class(ex)))
+
+
+def shader_folder(path: str) -> Path:
+    """The path's shader folder as shipped (never a $WGPURENDER_SHADERS/$WGPURENDER_GLSL override)."""
+    from wgpurender.core.shader_files import checkout_folder, packaged_folder
+
+    kind = "wgsl" if path == "wgpu" else "glsl"
+    return packaged_folder(kind) or checkout_folder(kind)
 
 
 def solution_source(ex: Exercise) -> str:
@@ -55,10 +66,10 @@ def replace_once(source: str, old: str, new: str, what: str) -> str:
 
 def todo_lines(ex: Exercise, part: Part) -> str:
     """The TODO comment a starter has where a part was cut out, indented like the part."""
-    indent = part.old[: len(part.old) - len(part.old.lstrip())]
+    indent, c = part.old[: len(part.old) - len(part.old.lstrip())], ex.comment
     texts = "; ".join(f"{name} ({where})" for name, where in step_texts(course_step(ex.step))) or "the course"
-    return (f"{indent}# TODO (step {ex.step}, concept {part.concept!r} in `wgpurender concepts`): {part.todo}.\n"
-            f"{indent}#   course text: {texts}\n")
+    return (f"{indent}{c} TODO (step {ex.step}, concept {part.concept!r} in `wgpurender concepts`): {part.todo}.\n"
+            f"{indent}{c}   course text: {texts}\n")
 
 
 def starter_source(ex: Exercise) -> str:
@@ -68,10 +79,14 @@ def starter_source(ex: Exercise) -> str:
         indent = part.old[: len(part.old) - len(part.old.lstrip())]
         stub = part.stub or f"{indent}pass\n"
         source = replace_once(source, part.old, todo_lines(ex, part) + stub, f"step {ex.step} part {part.concept!r}")
-    header = (f'"""Exercise: course step {ex.step} on the {ex.path} path. Fill in the TODOs, then run\n'
-              f"    wgpurender check {ex.step} {{this file}} --path {ex.path}\n"
-              'docs/exercises.md says what a stage must provide."""\n\n')
-    return header + _without_docstring(source)
+    what = f"the scene's {ex.shader}" if ex.shader else "a stage"
+    lines = [f"Exercise: course step {ex.step} on the {ex.path} path. Fill in the TODOs, then run",
+             f"    wgpurender check {ex.step} {{this file}} --path {ex.path}",
+             f"docs/exercises.md says what {what} must provide."]
+    if ex.shader:  # a shader keeps its first line (a GLSL #version must come first)
+        first, _, rest = source.partition("\n")
+        return first + "\n" + "".join(f"// {line}\n" for line in lines) + rest
+    return '"""' + "\n".join(lines) + '"""\n\n' + _without_docstring(source)
 
 
 def _without_docstring(source: str) -> str:

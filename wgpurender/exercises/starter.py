@@ -16,7 +16,8 @@ from wgpurender.exercises.source import course_step, starter_source
 
 
 def file_names(ex: Exercise) -> dict[str, str]:
-    return {"stage": f"step_{ex.step}.py", "test": f"test_{ex.step}.py", "readme": "README.md", "goal": "goal.png"}
+    stage = ex.shader or f"step_{ex.step}.py"
+    return {"stage": stage, "test": f"test_{ex.step}.py", "readme": "README.md", "goal": "goal.png"}
 
 
 def test_source(ex: Exercise) -> str:
