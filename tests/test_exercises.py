@@ -20,7 +20,7 @@ from wgpurender.core.course.steps import COURSE, stage_steps
 from wgpurender.core.course.triangle import BACKGROUND
 from wgpurender.core.imageio import load_png
 from wgpurender.core.tolerances import measure
-from wgpurender.exercises import check, render, source
+from wgpurender.exercises import check, source
 from wgpurender.exercises.catalogue import EXERCISES, exercise
 from wgpurender.exercises.sandbox import LearnerError, render_isolated
 from wgpurender.exercises.source import course_step
@@ -85,10 +85,10 @@ def test_a_snippet_that_no_longer_matches_is_an_error_not_a_stale_copy():
 @pytest.mark.parametrize("ex", EXERCISES, ids=IDS)
 def test_solution_passes_starter_fails_and_each_mistake_is_diagnosed_as_itself(ex, tmp_path):
     file = tmp_path / "learner.py"
-    solution = check.judge(render.render_source(source.solution_source(ex), ex), ex, file)
+    solution = check.judge(check.render_variant(source.solution_source(ex), ex), ex, file)
     assert solution.status == check.PASS, solution.report()
     assert len(solution.metrics) == len(ex.times)
-    starter = check.judge(render.render_source(source.starter_source(ex), ex), ex, file)
+    starter = check.judge(check.render_variant(source.starter_source(ex), ex), ex, file)
     assert starter.status == check.FAIL, starter.report()
     tol = check.step_tolerance(ex)
     images = {m.key: check.mistake_images(ex, m.key) for m in ex.mistakes}
@@ -111,7 +111,7 @@ def test_an_animated_step_is_checked_at_times_that_look_different(ex):
 
 def test_the_starter_of_the_first_triangle_renders_the_clear_colour_only():
     ex = exercise("2a", "wgpu")
-    image = render.render_source(source.starter_source(ex), ex)[0]
+    image = check.render_variant(source.starter_source(ex), ex)[0]
     expected = np.round(np.array(BACKGROUND) * 255)
     assert np.array_equal(image.reshape(-1, 4), np.broadcast_to(expected, (image.shape[0] * image.shape[1], 4)))
 

@@ -13,11 +13,13 @@ the mistake; when none is, "no known mistake matches" (with the nearest, for a h
 from __future__ import annotations
 
 import functools
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.errors import UserError
 from wgpurender.core.imageio import load_png, save_png
 from wgpurender.core.tolerances import Metrics, Tolerance, driver_class, measure, tolerance
 from wgpurender.exercises.catalogue import Exercise, Mistake
@@ -168,19 +170,31 @@ def expected_images(ex: Exercise) -> list[np.ndarray]:
 
 @functools.cache
 def _solution_images(ex: Exercise) -> list[np.ndarray]:
-    return render_source(solution_source(ex), ex) if len(ex.times) > 1 else []
+    return render_variant(solution_source(ex), ex) if len(ex.times) > 1 else []
 
 
 @functools.cache
 def mistake_images(ex: Exercise, key: str) -> list[np.ndarray]:
     mistake = next(m for m in ex.mistakes if m.key == key)
-    return render_source(mistake_source(ex, mistake), ex)
+    return render_variant(mistake_source(ex, mistake), ex)
+
+
+def render_variant(source: str, ex: Exercise) -> list[np.ndarray]:
+    """Our own source (the solution, a starter, a mistake): a stage in this process; a scene step's shader in a
+    process of its own (it changes the process's shader folder)."""
+    if not ex.shader:
+        return render_source(source, ex)
+    with tempfile.TemporaryDirectory(prefix="wgpurender-exercise-") as folder:
+        file = Path(folder) / ex.shader
+        file.write_text(source, encoding="utf-8")
+        try:
+            return render_isolated(file, ex)
+        except LearnerError as err:  # our own variant is broken: a bug, not a verdict
+            raise UserError(f"step {ex.step} ({ex.path}): a catalogue variant does not render: {err}") from None
 
 
 def learner_file(name: str, ex: Exercise) -> Path:
     """The learner's file, checked before anything runs: a readable .py file (a scene step: its shader's kind)."""
-    from wgpurender.core.errors import UserError
-
     file = Path(name)
     suffix = learner_suffix(ex)
     if file.suffix != suffix:

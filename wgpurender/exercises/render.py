@@ -123,20 +123,11 @@ def render_shader(file: Path, ex: Exercise) -> list[np.ndarray]:
 
 
 def render_source(source: str, ex: Exercise) -> list[np.ndarray]:
-    """Render source text (the solution or a mistake variant: our own code): a stage in this process, a scene
-    step's shader in a process of its own."""
+    """Render stage source text (the solution or a mistake variant: our own code) in this process."""
     with tempfile.TemporaryDirectory(prefix="wgpurender-exercise-") as folder:
-        name = ex.shader or f"stage_{hashlib.sha1(source.encode()).hexdigest()[:12]}.py"
-        file = Path(folder) / name
+        file = Path(folder) / f"stage_{hashlib.sha1(source.encode()).hexdigest()[:12]}.py"
         file.write_text(source, encoding="utf-8")
         try:
-            if ex.shader:
-                from wgpurender.exercises.sandbox import LearnerError, render_isolated
-
-                try:
-                    return render_isolated(file, ex)
-                except LearnerError as err:
-                    raise StageFileError(str(err)) from None
             return render_file(file, ex)
         except StageFileError as err:  # our own variant is broken: a bug, not a verdict
             raise UserError(f"step {ex.step} ({ex.path}): a catalogue variant does not load: {err}") from None
