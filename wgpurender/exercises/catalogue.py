@@ -277,7 +277,7 @@ EXERCISES: tuple[Exercise, ...] = (
     ), _ANIMATED),
     # -- step 6, the final model: the learner writes the normal mapping of the scene shader ----------------------
     Exercise("6", _W, (
-        Part("samplers", "perturb n by the normal map: Gram-Schmidt the tangent against n, the bitangent from the "
+        Part("samplers", "perturb n by the normal map: the unit tangent from t_raw, the bitangent from the "
              "tangent's w, the texel remapped to -1..1 with its xy scaled by the material's strength",
              "    let t = normalize(t_raw);\n"
              "    let b = select(1.0, -1.0, in.tangent.w < 0.0) * cross(n, t);\n"
@@ -294,8 +294,8 @@ EXERCISES: tuple[Exercise, ...] = (
                 "select(1.0, -1.0, in.tangent.w < 0.0)", "select(-1.0, 1.0, in.tangent.w < 0.0)"),
     ), shader="scene.wgsl", scene="final_subpass"),
     Exercise("6", _R, (
-        Part("samplers", "perturb n by the normal map: Gram-Schmidt the tangent against n, the bitangent from the "
-             "tangent's w, the texel remapped to -1..1 with its xy scaled by the material's strength",
+        Part("samplers", "perturb n by the normal map: the bitangent from the tangent's w, the texel remapped to "
+             "-1..1 with its xy scaled by the material's strength",
              "    vec3 b = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);\n"
              "    vec3 m = normal_texel * 2.0 - 1.0;\n"
              "    m = vec3(m.xy * material.normal_strength, m.z);\n",
