@@ -35,16 +35,20 @@ EX_WHEEL = "tests/test_wheel.py|grading"
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
     # comparison and heatmap
-    ("wgpurender/core/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
+    ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py",
+     "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
      [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
-    ("wgpurender/core/compare.py", "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
+    ("wgpurender/core/verdict/compare.py",
+     "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
+    ("wgpurender/core/verdict/compare.py",
+     "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
     ("wgpurender/cli/compare.py", "return value < limit if name == \"psnr\"", "return value > limit if name == "
      "\"psnr\"", [COMPARE, CAUSES]),
-    ("wgpurender/core/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
-    ("wgpurender/core/imageio.py", "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
+    ("wgpurender/core/files/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
+    ("wgpurender/core/files/imageio.py",
+     "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
     # the report
     ("wgpurender/report/page.py", '{_figure(files.get("wgpu"), "wgpu (WGSL', '{_figure(files.get("raw"), "wgpu (WGSL',
      [REPORT]),
@@ -56,11 +60,12 @@ MUTATIONS = [
     ("wgpurender/report/steps.py", "step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)",
      "step.heat = heatmap(step.raw, step.wgpu, 1.0)", [REPORT]),
     # trust: driver class, present modes, depth, the API's path
-    ("wgpurender/core/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
+    ("wgpurender/core/verdict/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
      'return "lavapipe" if "lavapipe" in device_name.lower()', [TRUST]),
-    ("wgpurender/core/tolerances.py", "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
+    ("wgpurender/core/verdict/tolerances.py",
+     "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
      [TRUST, "tests/test_reference_tolerances.py"]),
-    ("wgpurender/raw_path/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
+    ("wgpurender/raw_path/window/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
      '"immediate": vk.VK_PRESENT_MODE_MAILBOX_KHR', [TRUST]),
     ("wgpurender/core/plan/build.py", 'depth_compare = "greater" if knobs.reverse_z else "less"',
      'depth_compare = "greater" if knobs.reverse_z else "less-equal"', [TRUST]),
@@ -70,7 +75,8 @@ MUTATIONS = [
      'str(target), "raw"', [TRUST]),
     ("wgpurender/api.py", "        return image.rgba8()", "        return image.pixels", [API]),
     # argument checks
-    ("wgpurender/core/checks.py", "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
      "    if math.isnan(value):\n        raise UserError(f\"{name} must be a finite", [API, CAUSES]),
     ("wgpurender/core/checks.py", '    return positive(value, "gain", "32")', '    return number(value, "gain")',
      [API, COMPARE]),
@@ -83,37 +89,44 @@ MUTATIONS = [
      [API]),
     ("wgpurender/core/checks.py", "    elif not _is_number(value):", "    elif not isinstance(value, (int, float, "
      "str)):", [API]),
-    ("wgpurender/core/checks.py", "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
+    ("wgpurender/core/files/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
      "    kind = _kind(mode)\n    if kind == 'never':", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
-    ("wgpurender/core/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
-    ("wgpurender/core/input_files.py", "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
+    ("wgpurender/core/files/input_files.py",
+     "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
+    ("wgpurender/core/files/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py",
+     "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
      "depth)\n        depth = 0", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
     ("wgpurender/core/scene/load.py", "    except RecursionError:", "    except ValueError:", [CAUSES]),
-    ("wgpurender/core/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
+    ("wgpurender/core/files/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
+    ("wgpurender/core/files/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
      "    if len(os.fsencode(name)) > 1024:", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
+    ("wgpurender/core/files/safe_write.py",
+     "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
      "{os_error_reason(link, err)}\") from None", "    except OSError:\n        pass", [CAUSES + "|follow"]),
-    ("wgpurender/core/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
+    ("wgpurender/core/files/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
      "    _handlers_installed = True\n    _set_handlers(_on_signal)", [CAUSES + "|sigterm"]),
-    ("wgpurender/core/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
+    ("wgpurender/core/plan/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
      "BYTES_PER_PIXEL.get(fmt, 16)", [CAUSES + "|memory or adapter"]),
-    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
+    ("wgpurender/core/plan/gpu_memory.py",
+     "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
-    ("wgpurender/core/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
+    ("wgpurender/core/models/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
      [GLTF]),
-    ("wgpurender/core/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
+    ("wgpurender/core/models/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
      '(FLOAT,))', [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
+    ("wgpurender/core/models/gltf_rules.py",
+     "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
      " UINT, FLOAT)", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
+    ("wgpurender/core/models/gltf_rules.py",
+     "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
     # exercises (issue 29): check, diagnosis, sandbox, starters, the CLI and the pytest plugin
     ("wgpurender/exercises/check.py", "        within = not any(tol.exceeded(m) for m in found)",

@@ -18,8 +18,8 @@ from wgpurender.cli import main
 from wgpurender.concepts import CONCEPTS
 from wgpurender.core.course.steps import COURSE, stage_steps
 from wgpurender.core.course.triangle import BACKGROUND
-from wgpurender.core.imageio import load_png
-from wgpurender.core.tolerances import measure
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.verdict.tolerances import measure
 from wgpurender.exercises import check, source
 from wgpurender.exercises.catalogue import EXERCISES, exercise
 from wgpurender.exercises.sandbox import LearnerError, render_isolated

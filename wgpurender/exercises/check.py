@@ -20,8 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, save_png
-from wgpurender.core.tolerances import Metrics, Tolerance, driver_class, measure, tolerance
+from wgpurender.core.files.imageio import load_png, save_png
+from wgpurender.core.verdict.tolerances import Metrics, Tolerance, driver_class, measure, tolerance
 from wgpurender.exercises.catalogue import Exercise, Mistake
 from wgpurender.exercises.render import render_source
 from wgpurender.exercises.sandbox import DEFAULT_TIMEOUT, LearnerError, render_isolated
@@ -121,7 +121,7 @@ def diagnose(images: list[np.ndarray], ex: Exercise, tol: Tolerance) -> Diagnosi
 
 
 def write_images(out: Path, stem: str, ex: Exercise, images: list[np.ndarray]) -> dict[str, Path]:
-    from wgpurender.core.compare import heatmap_with_scale
+    from wgpurender.core.verdict.compare import heatmap_with_scale
 
     written = {}
     out.mkdir(parents=True, exist_ok=True)
@@ -141,7 +141,7 @@ def reference_name(ex: Exercise) -> str:
 
 
 def reference_file(ex: Exercise) -> Path:
-    from wgpurender.core.assets import reference_dir
+    from wgpurender.core.files.assets import reference_dir
 
     return reference_dir() / f"{reference_name(ex)}.png"
 
@@ -149,10 +149,10 @@ def reference_file(ex: Exercise) -> Path:
 @functools.cache
 def _driver_class(path: str) -> str:
     if path == "wgpu":
-        from wgpurender.wgpu_path.gpu import get_context
+        from wgpurender.wgpu_path.device.context import get_context
 
         return driver_class(get_context("Vulkan").adapter.info["device"])
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.device.context import get_vulkan
 
     return driver_class(get_vulkan().device_name)
 

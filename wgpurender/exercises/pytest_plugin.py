@@ -154,7 +154,7 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config: pytest.Config)
 
 def write_page(page: Path, step: str, rows: list[tuple[str, str, str, dict]]) -> None:
     """The HTML summary: one table row per submission, its verdict line and its images (relative links)."""
-    from wgpurender.core.safe_write import atomic_write
+    from wgpurender.core.files.safe_write import atomic_write
 
     cells = []
     for _, outcome, line, images in rows:

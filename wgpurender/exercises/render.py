@@ -20,7 +20,7 @@ from types import ModuleType
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import to_uint8
+from wgpurender.core.files.imageio import to_uint8
 from wgpurender.exercises.catalogue import Exercise
 from wgpurender.exercises.source import course_step
 
@@ -72,7 +72,7 @@ def stage_class(module: ModuleType, ex: Exercise) -> type:
 def render_class(cls: type, ex: Exercise) -> list[np.ndarray]:
     """The stage's images at the step's times, 8-bit RGBA."""
     if ex.path == "wgpu":
-        from wgpurender.wgpu_path.gpu import get_context
+        from wgpurender.wgpu_path.device.context import get_context
         from wgpurender.wgpu_path.render import render_stage_class
 
         frames = render_stage_class(cls, CHECK_SIZE, None, None, ex.times, get_context("Vulkan"))
@@ -100,7 +100,7 @@ def render_file(file: Path, ex: Exercise) -> list[np.ndarray]:
 def render_shader(file: Path, ex: Exercise) -> list[np.ndarray]:
     """The step's scene drawn with the learner's shader in place of the path's own (a copy of the path's shader
     folder with the one file replaced, named by the path's override variable) at the scene references' size."""
-    from wgpurender.core.assets import scene_dir
+    from wgpurender.core.files.assets import scene_dir
     from wgpurender.exercises.source import shader_folder
 
     folder = Path(tempfile.mkdtemp(prefix="wgpurender-shaders-"))
@@ -108,13 +108,13 @@ def render_shader(file: Path, ex: Exercise) -> list[np.ndarray]:
     shutil.copyfile(file, folder / ex.shader)
     scene = scene_dir() / f"{ex.scene}.toml"
     if ex.path == "wgpu":
-        from wgpurender.wgpu_path.scene_render import render_scene_file
-        from wgpurender.wgpu_path.shaders import SHADER_DIR_ENV
+        from wgpurender.wgpu_path.device.shaders import SHADER_DIR_ENV
+        from wgpurender.wgpu_path.scene import render_scene_file
 
         os.environ[SHADER_DIR_ENV] = str(folder)
         image = render_scene_file(scene, size=SCENE_CHECK_SIZE, frames=1, anisotropy="scene").pixels
     else:
-        from wgpurender.raw_path.glsl import GLSL_DIR_ENV
+        from wgpurender.raw_path.device.shaders import GLSL_DIR_ENV
         from wgpurender.raw_path.scene import render_scene_reference
 
         os.environ[GLSL_DIR_ENV] = str(folder)

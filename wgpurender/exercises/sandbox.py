@@ -62,7 +62,7 @@ def _child(step: str, path: str, file: Path, out: Path) -> int:
 def _validation_log(path: str):
     if path != "wgpu":
         return None  # the raw path's debug messenger raises ValidationFailed itself (when validation is on)
-    from wgpurender.wgpu_path.gpu_validation import collect_validation_messages
+    from wgpurender.wgpu_path.device.validation import collect_validation_messages
 
     return collect_validation_messages()
 

@@ -46,7 +46,7 @@ def solution_file(ex: Exercise) -> Path:
 
 def shader_folder(path: str) -> Path:
     """The path's shader folder as shipped (never a $WGPURENDER_SHADERS/$WGPURENDER_GLSL override)."""
-    from wgpurender.core.shader_files import checkout_folder, packaged_folder
+    from wgpurender.core.shaders.shader_files import checkout_folder, packaged_folder
 
     kind = "wgsl" if path == "wgpu" else "glsl"
     return packaged_folder(kind) or checkout_folder(kind)

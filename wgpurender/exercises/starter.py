@@ -10,7 +10,7 @@ import shutil
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.safe_write import atomic_write
+from wgpurender.core.files.safe_write import atomic_write
 from wgpurender.exercises.catalogue import Exercise
 from wgpurender.exercises.source import course_step, starter_source
 
