@@ -163,7 +163,7 @@ MUTATIONS = [
      """'\"\"\"\\n\\n' + source""", [EX + "|patches"]),
     ("wgpurender/exercises/source.py", 'return first + "\\n" + "".join(', 'return "" + "".join(',
      [EX + "|solution_passes and raw-6"]),
-    ("wgpurender/exercises/render.py", "    shutil.copyfile(file, folder / ex.shader)\n", "",
+    ("wgpurender/exercises/render.py", "        shutil.copyfile(file, folder / ex.shader)\n", "",
      [EX + "|solution_passes and raw-6"]),
     ("wgpurender/exercises/check.py", "if Path(file).stem == ex.scene)", "if Path(file).stem != ex.scene)",
      [EX + "|solution_passes and wgpu-6"]),

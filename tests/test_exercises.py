@@ -197,13 +197,13 @@ def _run_cli(capsys, *args: str) -> tuple[int, str, str]:
 
 
 def test_cli_exercise_then_check_exit_codes(tmp_path, capsys):
-    folder = tmp_path / "ex"
-    code, out, _ = _run_cli(capsys, "exercise", "2a", "-o", folder)
+    folder, step = tmp_path / "ex", "2a"
+    code, out, _ = _run_cli(capsys, "exercise", step, "-o", folder)
     assert code == 0 and len(out.splitlines()) == 4
     names = sorted(p.name for p in folder.iterdir())
-    assert names == ["README.md", "goal.png", "step_2a.py", "test_2a.py"]
-    assert (folder / "goal.png").read_bytes() == check.reference_file(exercise("2a", "wgpu")).read_bytes()
-    compile((folder / "test_2a.py").read_text(), "test", "exec")
+    assert names == ["README.md", "goal.png", f"step_{step}.py", f"test_{step}.py"]
+    assert (folder / "goal.png").read_bytes() == check.reference_file(exercise(step, "wgpu")).read_bytes()
+    compile((folder / f"test_{step}.py").read_text(), "test", "exec")
     before = (folder / "step_2a.py").read_text()
     code, _, err = _run_cli(capsys, "exercise", "2a", "-o", folder)  # never clobbers the learner's work
     assert code == 2 and len(err.splitlines()) == 1 and "exists" in err

@@ -12,8 +12,8 @@ PATH_HELP = "which path the stage is written for: wgpu (default) or raw (the raw
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "exercise", help="write a starter for one course step: the step's stage with its key parts cut out",
-        description="Write a starter folder for course step STEP: step_STEP.py (the step's stage with its key parts "
-        "replaced by TODOs naming the concept to read), test_STEP.py (pytest checks it), README.md and goal.png "
+        description="Write a starter folder for course step STEP: step_<STEP>.py (the step's stage with its key parts "
+        "replaced by TODOs naming the concept to read), test_<STEP>.py (pytest checks it), README.md and goal.png "
         "(the raw-Vulkan reference). Existing files are never overwritten.")
     p.add_argument("step", metavar="STEP", help="the course step: 1a, 1b, 2a, 2b, 3a, 3b, 3c, 4, 5 or 6")
     p.add_argument("-o", "--out", metavar="DIR", default=None, help="the folder to write (default: exercise-STEP)")

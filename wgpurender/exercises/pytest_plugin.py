@@ -2,7 +2,7 @@
 
 Two ways in:
 
-- the ``wgpurender_check`` fixture, which a starter's test_STEP.py uses:
+- the ``wgpurender_check`` fixture, which a starter's test_<STEP>.py uses:
   ``wgpurender_check(file, step="2a", path="wgpu")`` fails the test with the check's report unless it passes;
 - grading a folder of submissions: ``pytest --wgpurender-step 2a [--wgpurender-path raw]
   [--wgpurender-html report.html] SUBMISSIONS/`` (or ``--wgpurender-step folder`` for SUBMISSIONS/<step>/*.py)

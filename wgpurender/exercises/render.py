@@ -100,26 +100,30 @@ def render_file(file: Path, ex: Exercise) -> list[np.ndarray]:
 def render_shader(file: Path, ex: Exercise) -> list[np.ndarray]:
     """The step's scene drawn with the learner's shader in place of the path's own (a copy of the path's shader
     folder with the one file replaced, named by the path's override variable) at the scene references' size."""
-    from wgpurender.core.files.assets import scene_dir
     from wgpurender.exercises.source import shader_folder
 
-    folder = Path(tempfile.mkdtemp(prefix="wgpurender-shaders-"))
-    shutil.copytree(shader_folder(ex.path), folder, dirs_exist_ok=True)
-    shutil.copyfile(file, folder / ex.shader)
+    with tempfile.TemporaryDirectory(prefix="wgpurender-shaders-") as name:
+        folder = Path(name)
+        shutil.copytree(shader_folder(ex.path), folder, dirs_exist_ok=True)
+        shutil.copyfile(file, folder / ex.shader)
+        return [to_uint8(_render_scene(ex, folder))]
+
+
+def _render_scene(ex: Exercise, folder: Path) -> np.ndarray:
+    from wgpurender.core.files.assets import scene_dir
+
     scene = scene_dir() / f"{ex.scene}.toml"
     if ex.path == "wgpu":
         from wgpurender.wgpu_path.device.shaders import SHADER_DIR_ENV
         from wgpurender.wgpu_path.scene import render_scene_file
 
         os.environ[SHADER_DIR_ENV] = str(folder)
-        image = render_scene_file(scene, size=SCENE_CHECK_SIZE, frames=1, anisotropy="scene").pixels
-    else:
-        from wgpurender.raw_path.device.shaders import GLSL_DIR_ENV
-        from wgpurender.raw_path.scene import render_scene_reference
+        return render_scene_file(scene, size=SCENE_CHECK_SIZE, frames=1, anisotropy="scene").pixels
+    from wgpurender.raw_path.device.shaders import GLSL_DIR_ENV
+    from wgpurender.raw_path.scene import render_scene_reference
 
-        os.environ[GLSL_DIR_ENV] = str(folder)
-        image = render_scene_reference(scene, size=SCENE_CHECK_SIZE, anisotropy="scene")
-    return [to_uint8(image)]
+    os.environ[GLSL_DIR_ENV] = str(folder)
+    return render_scene_reference(scene, size=SCENE_CHECK_SIZE, anisotropy="scene")
 
 
 def render_source(source: str, ex: Exercise) -> list[np.ndarray]:
