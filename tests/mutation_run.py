@@ -150,6 +150,7 @@ MUTATIONS = [
      [EX + "|broken_learner"]),
     ("wgpurender/exercises/render.py", "    if found[0].name != want:", "    if False:", [EX + "|broken_learner"]),
     ("wgpurender/exercises/render.py", "    if len(found) != 1:", "    if len(found) > 1:", [EX + "|broken_learner"]),
+    ("wgpurender/exercises/render.py", "        if result is not None:", "        if False:", [EX + "|broken_learner"]),
     ("wgpurender/exercises/render.py", "CHECK_SIZE, None, None, ex.times, get_context",
      "CHECK_SIZE, None, None, ex.times[:1], get_context", [EX + "|animated"]),
     ("wgpurender/exercises/render.py", "images = [render_stage_class(cls, CHECK_SIZE, t=t) for t in ex.times]",

@@ -153,6 +153,16 @@ LEARNER_FILES = {
                 raise ValueError("my own bug")
         """, ["line 9, in record", "line 12, in helper", "ValueError: my own bug"]),
     "no stage": ("x = 1\n", ["exactly one subclass", "found none"]),
+    "returns a value": ("""
+        from wgpurender.wgpu_path.stages.base import Stage
+
+
+        class Mine(Stage):
+            name = "triangle"
+
+            def record(self, encoder, target, t=0.0):
+                return encoder.finish()
+        """, ["Mine.record returned a GPUCommandBuffer", "returns nothing"]),
     "wrong name": ("""
         from wgpurender.wgpu_path.stages.base import Stage
 

@@ -66,7 +66,21 @@ def stage_class(module: ModuleType, ex: Exercise) -> type:
     if found[0].name != want:
         raise StageFileError(f"{found[0].__name__}.name is {found[0].name!r}: step {ex.step}'s stage is named "
                              f"{want!r}")
-    return found[0]
+    return returns_nothing(found[0])
+
+
+def returns_nothing(cls: type) -> type:
+    """``cls`` whose ``record`` is checked to return None (it records commands; a value returned is a
+    misunderstanding of the interface, said as one)."""
+    record = cls.record
+
+    def checked_record(self, *args, **kwargs) -> None:
+        result = record(self, *args, **kwargs)
+        if result is not None:
+            raise StageFileError(f"{cls.__name__}.record returned a {type(result).__name__}: it records the frame's "
+                                 "commands and returns nothing (docs/exercises.md)")
+
+    return type(cls.__name__, (cls,), {"record": checked_record, "__module__": cls.__module__})
 
 
 def render_class(cls: type, ex: Exercise) -> list[np.ndarray]:
