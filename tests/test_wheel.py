@@ -269,3 +269,13 @@ def test_grading_a_class_of_ten_submissions_with_the_wheels_pytest_plugin(instal
     page = (installed["cwd"] / "grades.html").read_text()
     assert page.count('<tr class="') == 10 and "1 of 10 passed" in page
     assert page.count("<img ") >= 9  # each rendered submission's image and heatmap
+
+
+def test_a_starters_own_test_runs_with_the_wheels_fixture(installed):
+    """`wgpurender exercise 2a` from the wheel, then pytest on the folder it wrote: the wgpurender_check fixture
+    fails the untouched starter with the check's report (exit status 1, the diagnosis in the output)."""
+    _run(installed, installed["bin"] / "wgpurender", "exercise", "2a", "-o", "starter-2a")
+    proc = subprocess.run([str(installed["python"]), "-m", "pytest", "-p", "no:cacheprovider", "starter-2a"],
+                          cwd=installed["cwd"], env=installed["env"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    assert "1 failed" in proc.stdout and "your image matches 'nothing drawn" in proc.stdout, proc.stdout
