@@ -41,6 +41,8 @@ PBR = "tests/test_pbr.py"
 LIGHTS = "tests/test_gltf_lights.py"
 IBL = "tests/test_ibl.py"
 GLTF_RENDER = "tests/test_gltf_render.py"
+EX = "tests/test_exercises.py"
+EX_WHEEL = "tests/test_wheel.py|grading"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -277,6 +279,59 @@ MUTATIONS = [
      "weight = (np.clip(dirs @ n, 0, 1))[:, None]", [IBL]),
     ("wgpurender/core/course/environment.py", "band = (2 * np.pi / (width * sub))", "band = (np.pi / (width * sub))",
      [IBL]),
+    # exercises (issue 29): check, diagnosis, sandbox, starters, the CLI and the pytest plugin
+    ("wgpurender/exercises/check.py", "        within = not any(tol.exceeded(m) for m in found)",
+     "        within = True", [EX + "|no_mistake"]),
+    ("wgpurender/exercises/check.py", "(within, -flip) > (best[1], -best[0])", "(within, flip) > (best[1], best[0])",
+     [EX + "|nearest or (solution_passes and wgpu-4)"]),
+    ("wgpurender/exercises/check.py", "metrics.append((t, m, tol.exceeded(m)))", "metrics.append((t, m, []))",
+     [EX + "|solution_passes and wgpu-2a"]),
+    ("wgpurender/exercises/check.py", 'return reference_dir() / f"{reference_name(ex)}.png"',
+     'return reference_dir() / "triangle.png"', [EX + "|solution_passes and wgpu-3c"]),
+    ("wgpurender/exercises/check.py", "    if verdict.status == FAIL:\n        verdict.diagnosis",
+     "    if verdict.status == PASS:\n        verdict.diagnosis", [EX + "|solution_passes and wgpu-1b"]),
+    ("wgpurender/exercises/check.py", "return 0 if self.status == PASS else 1",
+     "return 0 if self.status != ERROR else 1", [EX + "|cli_exercise"]),
+    ("wgpurender/exercises/check.py", '    if file.suffix != suffix:', "    if False:", [EX + "|bad_input"]),
+    ("wgpurender/exercises/check.py", "    later = _solution_images(ex)[1:]", "    later = _solution_images(ex)[:1]",
+     [EX + "|solution_passes and wgpu-5"]),
+    ("wgpurender/exercises/sandbox.py", "if str(Path(f.filename).resolve()) == target]",
+     "if str(Path(f.filename).resolve()) != target]", [EX + "|broken_learner"]),
+    ("wgpurender/exercises/sandbox.py", "if done.returncode == LEARNER_FAILED and", "if done.returncode == 0 and",
+     [EX + "|broken_learner"]),
+    ("wgpurender/exercises/render.py", "    if found[0].name != want:", "    if False:", [EX + "|broken_learner"]),
+    ("wgpurender/exercises/render.py", "    if len(found) != 1:", "    if len(found) > 1:", [EX + "|broken_learner"]),
+    ("wgpurender/exercises/render.py", "        if result is not None:", "        if False:", [EX + "|broken_learner"]),
+    ("wgpurender/exercises/render.py", "CHECK_SIZE, None, None, ex.times, get_context",
+     "CHECK_SIZE, None, None, ex.times[:1], get_context", [EX + "|animated"]),
+    ("wgpurender/exercises/render.py", "images = [render_stage_class(cls, CHECK_SIZE, t=t) for t in ex.times]",
+     "images = [render_stage_class(cls, CHECK_SIZE) for t in ex.times]", [EX + "|animated"]),
+    ("wgpurender/wgpu_path/render.py", "yield run_frames(ctx, stage.record, target, frames, t,",
+     "yield run_frames(ctx, stage.record, target, frames, 0.0,", [EX + "|animated"]),
+    ("wgpurender/exercises/source.py", "    if count != 1:", "    if count == 0:", [EX + "|snippet"]),
+    ("wgpurender/exercises/source.py", '{c} TODO (step {ex.step}, concept', '{c} TODO: step {ex.step}, concept',
+     [EX + "|patches"]),
+    ("wgpurender/exercises/source.py", """'\"\"\"\\n\\n' + _without_docstring(source)""",
+     """'\"\"\"\\n\\n' + source""", [EX + "|patches"]),
+    ("wgpurender/exercises/source.py", 'return first + "\\n" + "".join(', 'return "" + "".join(',
+     [EX + "|solution_passes and raw-6"]),
+    ("wgpurender/exercises/render.py", "        shutil.copyfile(file, folder / ex.shader)\n", "",
+     [EX + "|solution_passes and raw-6"]),
+    ("wgpurender/exercises/check.py", "if Path(file).stem == ex.scene)", "if Path(file).stem != ex.scene)",
+     [EX + "|solution_passes and wgpu-6"]),
+    ("wgpurender/exercises/check.py", 'return Path(ex.shader).suffix if ex.shader else ".py"', 'return ".py"',
+     [EX + "|bad_input"]),
+    ("wgpurender/exercises/catalogue.py", "        if ex.step == step and ex.path == path:",
+     "        if ex.step == step:", [EX + "|raw_learner"]),
+    ("wgpurender/exercises/catalogue.py", '    if step not in numbers:', "    if False:", [EX + "|bad_input"]),
+    ("wgpurender/exercises/starter.py", "    taken = [name for name in names.values() if (out / name).exists()]",
+     "    taken = []", [EX + "|cli_exercise"]),
+    ("wgpurender/exercises/starter.py", 'shutil.copyfile(reference_file(ex), out / names["goal"])',
+     'shutil.copyfile(reference_file(ex).with_name("clear.png"), out / names["goal"])', [EX + "|cli_exercise"]),
+    ("wgpurender/cli/exercise.py", "    return verdict.exit_code", "    return 0", [EX + "|cli_exercise"]),
+    ("wgpurender/exercises/pytest_plugin.py", 'if outcome == "passed")', 'if outcome == "failed")', [EX_WHEEL]),
+    ("wgpurender/exercises/pytest_plugin.py", "step = self.path.parent.name if step == BY_FOLDER else step",
+     "step = self.path.parent.parent.name if step == BY_FOLDER else step", [EX_WHEEL]),
 ]
 
 
