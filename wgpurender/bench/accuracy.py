@@ -71,6 +71,21 @@ def _run_analytic(args, preset: dict, frames: int) -> int:
     header = [f"# bench accuracy --truth analytic ({size[0]}x{size[1]})", "",
               f"- adapter: {ctx.describe()}", f"- date: {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC",
               f"- command: `{command_line()}`", f"- timed frames per setting: {frames} (median, p10..p90)"]
-    for kind, path in write_analytic_reports(rows, Path(args.out), header).items():
+    reports = write_analytic_reports(rows, Path(args.out), header)
+    reports.update(_run_shimmer(ctx, Path(args.out), size, reports["markdown"]))
+    for kind, path in reports.items():
         print(f"{kind}: {path}")
     return 0
+
+
+def _run_shimmer(ctx, out: Path, size: tuple[int, int], markdown_path: Path) -> dict[str, Path]:
+    """The temporal measure (accuracy_shimmer.py): its CSV, and its table appended to the analytic markdown."""
+    import sys
+
+    from wgpurender.bench import accuracy_shimmer as shimmer
+
+    rows = shimmer.run_shimmer(ctx, out / "analytic_scenes", size,
+                               progress=lambda text: print(text, file=sys.stderr, flush=True))
+    with markdown_path.open("a") as f:
+        f.write("\n".join(shimmer.markdown(rows, shimmer.FRAMES, size)) + "\n")
+    return {"shimmer csv": shimmer.write_shimmer_csv(rows, out / "accuracy_shimmer.csv")}

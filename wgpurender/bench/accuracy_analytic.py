@@ -89,16 +89,23 @@ def _triangle_obj(path: Path, world: np.ndarray) -> Path:
     return write_obj(path, mesh)
 
 
+def triangle_shapes(size: tuple[int, int]) -> list[tuple[np.ndarray, np.ndarray, tuple]]:
+    """Every flat shape of the AA scene: (world vertices as the OBJ holds them, pixel vertices, linear colour)."""
+    w, h = size
+    out = []
+    for points, colour in TRIANGLES + [(s, (0.95, 0.95, 0.95)) for s in SUBPIXEL]:
+        world = np.round(_to_world(np.array(points), size), 6)  # what the OBJ holds (6 decimals)
+        px = np.stack([(world[:, 0] * h / w + 1) / 2 * w, (1 - world[:, 1]) / 2 * h], axis=-1)
+        out.append((world, px, colour))
+    return out
+
+
 def write_triangles_scene(folder: Path, size: tuple[int, int], fxaa: bool) -> tuple[Path, np.ndarray]:
     """The AA scene file, and its exact linear image at ``size``."""
     folder.mkdir(parents=True, exist_ok=True)
     models, coverages, colours = [], [], []
-    shapes = TRIANGLES + [(s, (0.95, 0.95, 0.95)) for s in SUBPIXEL]
-    for i, (points, colour) in enumerate(shapes):
-        world = np.round(_to_world(np.array(points), size), 6)  # what the OBJ holds (6 decimals)
+    for i, (world, px, colour) in enumerate(triangle_shapes(size)):
         obj = _triangle_obj(folder / f"tri{i}.obj", world)
-        w, h = size
-        px = np.stack([(world[:, 0] * h / w + 1) / 2 * w, (1 - world[:, 1]) / 2 * h], axis=-1)
         coverages.append(truth.polygon_coverage(px, size))
         colours.append(colour)
         material = f"{{ albedo_color = {list(colour)}, unlit = true }}"
