@@ -196,10 +196,11 @@ def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: 
         t = _timed(ctx, depth_scene, Settings(msaa=1, depth=level), size, ("depth",), frames, warmup)
         rows.append(_score("depth", level, t, exact))
         progress(f"depth {level}: FLIP {rows[-1].flip:.4f}")
-    from wgpurender.bench import accuracy_fidelity
+    from wgpurender.bench import accuracy_fidelity, accuracy_hdr
 
-    for row in accuracy_fidelity.run_mip_chain(ctx, frames, TruthRow) + accuracy_fidelity.run_shading(
-            ctx, work, size, frames, warmup, _timed, _score):
+    for row in (accuracy_fidelity.run_mip_chain(ctx, frames, TruthRow)
+                + accuracy_fidelity.run_shading(ctx, work, size, frames, warmup, _timed, _score)
+                + accuracy_hdr.run_hdr(ctx, work, size, frames, warmup, _timed, _score)):
         rows.append(row)
         progress(f"{row.section} {row.setting}: mean linear error {row.linear_mae:.5f}")
     return mark_pareto(rows)
