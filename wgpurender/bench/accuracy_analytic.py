@@ -218,7 +218,7 @@ def mark_pareto(rows: list[TruthRow]) -> list[TruthRow]:
 
 
 CSV_COLUMNS = ("section", "setting", "render_size", "flip_mean", "psnr_db", "linear_mae", "gpu_ms_median",
-               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames", "pareto")
+               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames", "pareto", "timing")
 
 
 def _num(v: float | None, digits: int) -> str:
@@ -227,8 +227,13 @@ def _num(v: float | None, digits: int) -> str:
     return "inf" if math.isinf(v) else f"{v:.{digits}f}"
 
 
-def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str]) -> dict[str, Path]:
-    """accuracy_analytic.csv and accuracy_analytic.md in ``out_dir``."""
+def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str], floor=None) -> dict[str, Path]:
+    """accuracy_analytic.csv and accuracy_analytic.md in ``out_dir``; ``floor``: the run's accuracy_floor.Floor."""
+    from wgpurender.bench.accuracy_floor import BELOW
+
+    def below(r: TruthRow) -> bool:
+        return floor is not None and floor.below(r.m.gpu.median if r.m.gpu else None, r.m.wall.median)
+
     out_dir.mkdir(parents=True, exist_ok=True)
     csv_path, md_path = out_dir / "accuracy_analytic.csv", out_dir / "accuracy_analytic.md"
     with csv_path.open("w", newline="") as f:
@@ -239,7 +244,8 @@ def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str
             writer.writerow([r.section, r.setting, f"{r.m.render_size[0]}x{r.m.render_size[1]}", _num(r.flip, 5),
                              _num(r.psnr, 2), _num(r.linear_mae, 5), _num(g.median if g else None, 3),
                              _num(g.p10 if g else None, 3), _num(g.p90 if g else None, 3),
-                             _num(r.m.wall.median, 3), r.m.wall.n, "yes" if r.pareto else ""])
+                             _num(r.m.wall.median, 3), r.m.wall.n, "yes" if r.pareto else "",
+                             BELOW if below(r) else ""])
     lines = [*header, "", "Pareto: within each knob, no other setting is both faster and closer to the truth (time: "
              "GPU median where timestamps exist, else wall; error: mean absolute linear error).", "",
              "| knob | setting | render | FLIP | PSNR dB | mean abs. error (linear) | GPU ms | wall ms | Pareto |",
@@ -247,8 +253,11 @@ def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str
     for r in rows:
         g = r.m.gpu
         gpu = f"{g.median:.2f} ({g.p10:.2f}..{g.p90:.2f})" if g else "-"
+        gpu, wall = (BELOW, BELOW) if below(r) else (gpu, f"{r.m.wall.median:.2f}")
         lines.append(f"| {r.section} | {r.setting} | {r.m.render_size[0]}x{r.m.render_size[1]} | {r.flip:.4f} | "
-                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {r.m.wall.median:.2f} | "
+                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {wall} | "
                      f"{'**front**' if r.pareto else ''} |")
+    if floor is not None:
+        lines += ["", f"- {floor.describe()}"]
     md_path.write_text("\n".join(lines) + "\n")
     return {"csv": csv_path, "markdown": md_path}
