@@ -106,3 +106,12 @@ def test_msaa_crawls_less_than_no_anti_aliasing_on_edges(measured):
     """lavapipe 96x72, 6 frames: none 0.0128, MSAA 4x 0.0054."""
     assert measured["edges", "msaa4"].shimmer < 0.7 * measured["edges", "none"].shimmer
     assert measured["edges", "none"].truth_change > 0.0  # the truth moved: there was motion to follow
+
+
+def test_shifted_moves_eye_and_target_together():
+    from wgpurender.core.scene.model import Camera
+
+    cam = Camera(eye=(0.0, 2.0, 0.0), target=(0.0, 0.0, -2.5))
+    moved = sh.shifted(cam, (0.5, 0.0, -1.0))
+    assert moved.eye == pytest.approx((0.5, 2.0, -1.0)) and moved.target == pytest.approx((0.5, 0.0, -3.5))
+    assert moved.fov_y == cam.fov_y

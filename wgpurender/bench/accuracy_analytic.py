@@ -253,7 +253,9 @@ def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str
     for r in rows:
         g = r.m.gpu
         gpu = f"{g.median:.2f} ({g.p10:.2f}..{g.p90:.2f})" if g else "-"
-        gpu, wall = (BELOW, BELOW) if below(r) else (gpu, f"{r.m.wall.median:.2f}")
+        wall = f"{r.m.wall.median:.2f}"
+        if below(r):  # the time the front weighs (GPU where measured) says "below", the other keeps its number
+            gpu, wall = (BELOW, wall) if g else (gpu, BELOW)
         lines.append(f"| {r.section} | {r.setting} | {r.m.render_size[0]}x{r.m.render_size[1]} | {r.flip:.4f} | "
                      f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {wall} | "
                      f"{'**front**' if r.pareto else ''} |")

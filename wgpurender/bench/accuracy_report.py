@@ -64,6 +64,12 @@ def _ms(stats, below: bool = False) -> str:
     return f"{fmt(stats.median)} ({fmt(stats.p10)}..{fmt(stats.p90)})"
 
 
+def _times(r: Row) -> tuple[str, str]:
+    """GPU and wall cells; under the noise floor the time the front weighs (GPU where measured) says so."""
+    below = r.below_floor
+    return _ms(r.m.gpu, below), _ms(r.m.wall, below and r.m.gpu is None)
+
+
 def _psnr(v: float) -> str:
     return "inf" if math.isinf(v) else ("-" if math.isnan(v) else f"{v:.2f}")
 
@@ -98,14 +104,13 @@ def markdown(run: AccuracyRun, plot: Path | None) -> str:
               "Pareto")
     body = [(r.case.sweep, r.case.level, r.case.settings.label() + (f" ({r.case.note})" if r.case.note else ""),
              f"{r.m.render_size[0]}x{r.m.render_size[1]}", _flip(r.flip), _psnr(r.psnr), _flip(r.flip_isolated),
-             _ms(r.m.gpu, r.below_floor), _ms(r.m.wall, r.below_floor), "**front**" if r.pareto else "")
-            for r in final]
+             *_times(r), "**front**" if r.pareto else "") for r in final]
     lines += ["## Final scene", "", markdown_table(header, body), ""]
     stress = [r for r in run.rows if r.case.scene == DEPTH_STRESS]
     if stress:
         n = w * h
-        body = [(r.case.level, f"{r.wrong_pixels} / {n}", _flip(r.flip), _psnr(r.psnr), _ms(r.m.gpu, r.below_floor),
-                 _ms(r.m.wall, r.below_floor)) for r in stress]
+        body = [(r.case.level, f"{r.wrong_pixels} / {n}", _flip(r.flip), _psnr(r.psnr), *_times(r))
+                for r in stress]
         lines += ["## Depth stress (near 0.01, far 1e5, quads 0.05% apart at 1e4, far one drawn first)", "",
                   markdown_table(("depth", "wrong pixels", "FLIP", "PSNR dB", "GPU ms", "wall ms"), body), ""]
     front = sorted((r for r in unique_rows(final) if r.pareto), key=lambda r: r.time_ms)

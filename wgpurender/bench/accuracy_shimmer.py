@@ -131,14 +131,17 @@ def render_moving(ctx, scene_path: Path, settings: Settings, size, knobs, offset
     return np.asarray(out)
 
 
-def run_shimmer(ctx, work: Path, size: tuple[int, int], frames: int = FRAMES, progress=print) -> list[ShimmerRow]:
-    """Both cases, every setting: the rows in report order."""
+def run_shimmer(ctx, work: Path, size: tuple[int, int], frames: int = FRAMES, progress=print,
+                edge_settings: tuple[str, ...] = tuple(EDGE_SETTINGS), plane_settings: tuple[str, ...] = PLANE_SETTINGS,
+                ) -> list[ShimmerRow]:
+    """Both cases, each named setting (default all): the rows in report order."""
     rows: list[ShimmerRow] = []
     plain, _ = write_triangles_scene(work / "shimmer", size, fxaa=False)
     with_fxaa, _ = write_triangles_scene(work / "shimmer", size, fxaa=True)
     truths = edge_truths(size, frames)
     offsets = [edge_offset(f, size) for f in range(frames)]
-    for label, (msaa, ss, fxaa) in EDGE_SETTINGS.items():
+    for label in edge_settings:
+        msaa, ss, fxaa = EDGE_SETTINGS[label]
         images = render_moving(ctx, with_fxaa if fxaa else plain, Settings(msaa=msaa, ss=ss), size,
                                ("msaa", "ss"), offsets)
         rows.append(row("edges", label, images, truths))
@@ -146,7 +149,7 @@ def run_shimmer(ctx, work: Path, size: tuple[int, int], frames: int = FRAMES, pr
     ground, _ = write_ground_scene(work / "shimmer", size, n_sub=1)
     truths = ground_truths(size, frames)
     offsets = [ground_offset(f) for f in range(frames)]
-    for level in PLANE_SETTINGS:
+    for level in plane_settings:
         images = render_moving(ctx, ground, Settings(msaa=1, filter=level), size, ("filter",), offsets)
         rows.append(row("minified plane", level, images, truths))
         progress(f"shimmer minified plane {level}: {rows[-1].shimmer:.5f}")
