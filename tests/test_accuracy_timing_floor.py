@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 
-from wgpurender.bench.accuracy_floor import BELOW, FLOOR_FACTOR, Floor, measure_floor
+from wgpurender.bench.accuracy_floor import BELOW, FLOOR_FACTOR, Floor
 from wgpurender.bench.accuracy_knobs import GROUND_TRUTH_SS, SS_LEVELS
 from wgpurender.core.plan import AdapterFacts
 from wgpurender.core.plan.bench_size import accuracy_size
@@ -54,9 +54,12 @@ def test_report_prints_below_timer_resolution_instead_of_the_number():
     assert _ms(stats) == "0.1 (0.1..0.1)"
 
 
-def test_the_empty_frame_is_faster_than_a_drawn_one(ctx, tmp_path):
-    """lavapipe: the empty 8x8 frame's GPU time is a few hundredths of a ms."""
-    floor = measure_floor(ctx, tmp_path, 3)
+def test_the_empty_frame_is_timed_on_the_gpu_and_the_wall():
+    """lavapipe: the empty 8x8 frame's GPU time is a tenth of a ms or less, its wall time a few ms."""
+    from wgpurender.bench.accuracy_run import noise_floor
+    from wgpurender.wgpu_path.device.context import get_context
+
+    floor = noise_floor(get_context(), 3)
     assert floor.wall > 0.0
     if floor.gpu is not None:
         assert 0.0 < floor.gpu < floor.wall

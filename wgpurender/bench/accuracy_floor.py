@@ -1,17 +1,16 @@
 """The noise floor of ``bench accuracy``'s timings: a time below it says nothing about the setting.
 
-Measured in each run, on the same context: a frame that draws nothing (a camera-only scene, whose pass only
-clears, at 8x8) is timed like every setting. Its median is the fixed cost of any frame: submitting, waiting,
-the timestamp queries themselves. A setting whose median is below FLOOR_FACTOR times that floor is mostly that
-fixed cost, so the tables print "below timer resolution" instead of a number that would rank settings by noise
-(on an H100 at 160x120 every setting read 0.1 ms: the floor itself). The CSV keeps the number and says so in
-its ``timing`` column.
+Measured in each run, on the same context (accuracy_run.noise_floor): a frame that draws nothing (a camera-only
+scene, whose pass only clears, at 8x8) is timed like every setting. Its median is the fixed cost of any frame:
+submitting, waiting, the timestamp queries themselves. A setting whose median is below FLOOR_FACTOR times that floor
+is mostly that fixed cost, so the tables print "below timer resolution" instead of a number that would rank settings
+by noise (on an H100 at 160x120 every setting read 0.1 ms: the floor itself). The CSV keeps the number and says so
+in its ``timing`` column.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 BELOW = "below timer resolution"
 FLOOR_FACTOR = 2.0
@@ -37,18 +36,3 @@ class Floor:
         gpu = f"GPU {self.gpu:.3f} ms, " if self.gpu is not None else ""
         return (f"noise floor: a frame that draws nothing takes {gpu}wall {self.wall:.3f} ms (median); times under "
                 f"{FLOOR_FACTOR:g}x that read \"{BELOW}\"")
-
-
-def measure_floor(ctx, work: Path, frames: int, warmup: int = 1) -> Floor:
-    """Time the empty frame ``frames`` times (after ``warmup``) through the sweep's own timing."""
-    from wgpurender.bench.accuracy_knobs import Settings
-    from wgpurender.bench.accuracy_run import Timed
-    from wgpurender.core.scene import load_scene
-
-    work.mkdir(parents=True, exist_ok=True)
-    path = work / "empty.toml"
-    path.write_text(EMPTY_SCENE)
-    t = Timed(ctx, load_scene(path), Settings(msaa=1), (8, 8), ())
-    t.run(max(frames, 3), warmup=warmup)
-    m = t.measurement()
-    return Floor(m.gpu.median if m.gpu else None, m.wall.median)

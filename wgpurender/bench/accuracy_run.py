@@ -26,7 +26,7 @@ import numpy as np
 
 from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
 from wgpurender.bench.accuracy_downsample import downsample_srgb8
-from wgpurender.bench.accuracy_floor import Floor, measure_floor
+from wgpurender.bench.accuracy_floor import EMPTY_SCENE, Floor
 from wgpurender.bench.accuracy_knobs import (
     DEPTH_LEVELS,
     FILTER_LEVELS,
@@ -257,8 +257,15 @@ def noise_floor(ctx: GPUContext, frames: int) -> Floor:
     """The run's noise floor (accuracy_floor.py), its empty scene in a temporary folder (nothing left in --out)."""
     import tempfile
 
+    from wgpurender.core.scene import load_scene
+
     with tempfile.TemporaryDirectory(prefix="wgpurender-floor-") as work:
-        return measure_floor(ctx, Path(work), frames)
+        path = Path(work) / "empty.toml"
+        path.write_text(EMPTY_SCENE)
+        t = Timed(ctx, load_scene(path), Settings(msaa=1), (8, 8), ())
+    t.run(max(frames, 3), warmup=1)
+    m = t.measurement()
+    return Floor(m.gpu.median if m.gpu else None, m.wall.median)
 
 
 def unique_rows(rows: list[Row]) -> list[Row]:
