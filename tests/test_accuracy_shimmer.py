@@ -60,6 +60,13 @@ def test_moving_edge_truth_translates_the_exact_coverage():
         expected = px.mean(axis=0) - f * np.array(sh.EDGE_STEP_PX)
         assert np.abs(centroid - expected).max() < 0.02  # pixel-centre quadrature of a linear function
     assert np.abs(frames[1] - frames[0]).max() > 0.05  # the edges did move
+    # The frames themselves: (image - background) is a sum of coverages times constants, so its weighted centroid
+    # moves exactly by the step (every shape stays inside the image), left and up.
+    from wgpurender.bench.accuracy_analytic import BACKGROUND
+
+    weight = (frames - np.asarray(BACKGROUND)).sum(axis=-1)
+    centres = np.array([[(w * xs).sum() / w.sum(), (w * ys).sum() / w.sum()] for w in weight])
+    np.testing.assert_allclose(centres[1:] - centres[0], -np.outer([1, 2], sh.EDGE_STEP_PX), atol=0.01)
 
 
 def test_edge_offset_moves_the_image_by_the_step():
