@@ -47,6 +47,11 @@ IBL = "tests/test_ibl.py"
 GLTF_RENDER = "tests/test_gltf_render.py"
 EX = "tests/test_exercises.py"
 EX_WHEEL = "tests/test_wheel.py|grading"
+SHIMMER = "tests/test_accuracy_shimmer.py|not msaa and not trilinear_shimmers"
+SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
+HDR_TEST = "tests/test_accuracy_hdr.py"
+FLOOR = "tests/test_accuracy_timing_floor.py"
+TEACHING = "tests/test_report_teaching.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -336,6 +341,58 @@ MUTATIONS = [
     ("wgpurender/exercises/pytest_plugin.py", 'if outcome == "passed")', 'if outcome == "failed")', [EX_WHEEL]),
     ("wgpurender/exercises/pytest_plugin.py", "step = self.path.parent.name if step == BY_FOLDER else step",
      "step = self.path.parent.parent.name if step == BY_FOLDER else step", [EX_WHEEL]),
+    # issue 33.3: accuracy that teaches (shimmer, HDR target, sizes per adapter, the noise floor, the report section)
+    ("wgpurender/bench/accuracy_shimmer.py", "np.diff(frames, axis=0) - np.diff(truths, axis=0)",
+     "np.diff(frames, axis=0) + np.diff(truths, axis=0)", [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "if frames.shape != truths.shape or len(frames) < 2:",
+     "if len(frames) < 2:", [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "or len(frames) < 2:", "or len(frames) < 1:", [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "float(np.abs(frames - truths).mean())", "float(np.abs(frames).mean())",
+     [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "float(np.abs(np.diff(truths, axis=0)).mean())",
+     "float(np.abs(truths).mean())", [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "-frame * EDGE_STEP_PX[1] * 2.0 / h", "frame * EDGE_STEP_PX[1] * 2.0 / h",
+     [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "(frame * EDGE_STEP_PX[0] * 2.0 / h", "(frame * EDGE_STEP_PX[0] / h",
+     [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "polygon_coverage(px - move, size)", "polygon_coverage(px + move, size)",
+     [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "(target - eye) * np.array([1.0, 0.0, 1.0])", "(target - eye)",
+     [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "target=tuple(map(float, np.asarray(camera.target) + d))",
+     "target=camera.target", [SHIMMER]),
+    ("wgpurender/bench/accuracy_shimmer.py", "t.renderer.move_camera(shifted(scene.camera, offset))",
+     "t.renderer.move_camera(scene.camera)", [SHIMMER_GPU]),
+    ("wgpurender/wgpu_path/scene/frame.py", "        self.scene_pass.scene = self.scene\n", "", [SHIMMER_GPU]),
+    ("wgpurender/bench/accuracy_hdr.py", "return c / (1.0 + c)", "return c / (1.0 + c * c)", [HDR_TEST]),
+    ("wgpurender/bench/accuracy_hdr.py", "c = np.maximum(np.asarray(radiance, np.float64), 0.0)",
+     "c = np.asarray(radiance, np.float64)", [HDR_TEST]),
+    ("wgpurender/bench/accuracy_hdr.py", "return reinhard(plane_truth(size, BRIGHT))",
+     "return plane_truth(size, BRIGHT)", [HDR_TEST]),
+    ("wgpurender/bench/accuracy_hdr.py", 'operator = \"reinhard\"', 'operator = \"aces\"', [HDR_TEST]),
+    ("wgpurender/bench/accuracy_fidelity.py", "irradiance = intensity / d2", 'irradiance = PLANE["intensity"] / d2',
+     [HDR_TEST]),
+    ("wgpurender/core/plan/bench_size.py", 'SOFTWARE if adapter_type == "CPU" else HARDWARE',
+     'SOFTWARE if adapter_type != "DiscreteGPU" else HARDWARE', [FLOOR]),
+    ("wgpurender/core/plan/bench_size.py", "    if preset not in PRESETS:", "    if False:", [FLOOR]),
+    ("wgpurender/core/plan/bench_size.py", '"quick": (960, 720)', '"quick": (1280, 960)', [FLOOR]),
+    ("wgpurender/core/plan/bench_size.py", '"quick": (160, 120), "full": (400, 300)',
+     '"quick": (160, 120), "full": (160, 120)', [FLOOR]),
+    ("wgpurender/bench/accuracy_floor.py", "return gpu_ms < FLOOR_FACTOR * self.gpu",
+     "return gpu_ms <= FLOOR_FACTOR * self.gpu", [FLOOR]),
+    ("wgpurender/bench/accuracy_floor.py", "if gpu_ms is not None and self.gpu is not None:",
+     "if gpu_ms is not None:", [FLOOR]),
+    ("wgpurender/bench/accuracy_floor.py", "return wall_ms < FLOOR_FACTOR * self.wall",
+     "return wall_ms < self.wall", [FLOOR]),
+    ("wgpurender/bench/accuracy_report.py", "    if below:\n        return BELOW\n", "", [FLOOR]),
+    ("wgpurender/report/teaching.py", "for p in measured.accuracy if (p.group, p.setting) in keep]",
+     "for p in measured.accuracy]", [TEACHING]),
+    ("wgpurender/report/teaching.py", 'if p.group == "HDR target"]', "]", [TEACHING]),
+    ("wgpurender/report/teaching.py", "for r in measured.shimmer]", "for r in measured.shimmer[:1]]", [TEACHING]),
+    ("wgpurender/report/teaching.py", '<h3>A still frame</h3><p>{e(STILL_FRAME)}</p>', "<h3>A still frame</h3>",
+     [TEACHING]),
+    ("wgpurender/report/teaching.py", "<td>{r.shimmer:.4f}</td><td>{r.still_error:.4f}</td>",
+     "<td>{r.still_error:.4f}</td><td>{r.shimmer:.4f}</td>", [TEACHING]),
     # issue 28: a model reads only what it ships (read_jail.py and its callers)
     ("wgpurender/core/files/read_jail.py", "    if not target.is_relative_to(folder):", "    if False:", [JAIL]),
     ("wgpurender/core/files/read_jail.py", "    name = urllib.parse.unquote(uri) if encoded else uri", "    name = uri", [JAIL]),  # noqa: E501
