@@ -260,3 +260,19 @@ def test_intensity_scales_the_environment():
     from wgpurender.core.scene.environment_block import Environment
 
     assert np.allclose(Environment(procedural="sky", intensity=2.5).radiance(), 2.5 * sky().astype(np.float64))
+
+
+def test_an_hdr_outside_the_scene_folder_is_refused(tmp_path):
+    """The scene's read jail (core/files/read_jail.py) holds for [environment] hdr as for models and textures."""
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.files.hdr_io import encode_hdr
+    from wgpurender.core.scene import parse_scene
+
+    (tmp_path / "outside.hdr").write_bytes(encode_hdr(np.ones((2, 4, 3))))
+    (tmp_path / "project").mkdir()
+    text = '[camera]\neye = [0, 0, 3]\ntarget = [0, 0, 0]\n[environment]\nhdr = "../outside.hdr"\n'
+    with pytest.raises(UserError, match="outside.hdr"):
+        parse_scene(text, tmp_path / "project" / "s.toml")
+    (tmp_path / "project" / "inside.hdr").write_bytes(encode_hdr(np.ones((2, 4, 3))))
+    scene = parse_scene(text.replace("../outside", "inside"), tmp_path / "project" / "s.toml")
+    assert scene.environment.hdr.name == "inside.hdr"
