@@ -276,3 +276,17 @@ def test_an_hdr_outside_the_scene_folder_is_refused(tmp_path):
     (tmp_path / "project" / "inside.hdr").write_bytes(encode_hdr(np.ones((2, 4, 3))))
     scene = parse_scene(text.replace("../outside", "inside"), tmp_path / "project" / "s.toml")
     assert scene.environment.hdr.name == "inside.hdr"
+
+
+@pytest.mark.parametrize("path", ["shaders_wgsl/ibl_shading.wgsl", "shaders_glsl/ibl_shading.glsl"])
+def test_the_shaders_read_the_layout_ibl_maps_writes(path):
+    """The sizes in the shaders' constants are core/course/ibl_maps.py's (the pack() layout's one home)."""
+    import re
+
+    from wgpurender.core.course import ibl_maps
+
+    text = (ROOT / path).read_text()
+    found = {name: int(value) for name, value in re.findall(r"IBL_(\w+)(?::\s*u32)?\s*=\s*(\d+)u;", text)}
+    (iw, ih), (pw, ph) = ibl_maps.IRRADIANCE_SIZE, ibl_maps.PREFILTER_SIZE
+    assert found == {"IRRADIANCE_W": iw, "IRRADIANCE_H": ih, "PREFILTER_W": pw, "PREFILTER_H": ph,
+                     "LEVELS": ibl_maps.LEVELS, "LUT": ibl_maps.LUT_SIZE}

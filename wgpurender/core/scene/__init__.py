@@ -38,6 +38,9 @@ docs/scenes.md; in short (every path is relative to the scene file's folder)::
     color = [1, 1, 1]
     intensity = 1.0
 
+    [environment]                  # optional: image-based lighting for glTF metallic-roughness materials
+    procedural = "sky"             # or hdr = "sky.hdr" (Radiance RGBE); intensity = 1.0, samples = 256
+
     [render]
     size = [800, 600]
     msaa = 4                       # 1 or 4
