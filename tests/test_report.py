@@ -36,20 +36,11 @@ BUILT: dict[str, datetime.datetime] = {}
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    """`wgpurender report -o DIR`, as a user runs it."""
-    if shutil.which("glslc") is None:
-        pytest.skip("the raw path needs glslc (apt-get install glslc)")
-    out = tmp_path_factory.mktemp("report") / "site"
-    BUILT["start"] = datetime.datetime.now(datetime.UTC).replace(second=0, microsecond=0)
-    # A fresh bandwidth record (core/bandwidth.py): the report's timings write one after each scene's plan text,
-    # so with the user's cache the plan printed here and the one the test explains could differ by a measurement.
-    env = dict(os.environ, WGPURENDER_PERF_RECORD=str(out.parent / "bandwidth.json"))
-    result = subprocess.run([sys.executable, "-m", "wgpurender", "report", "-o", str(out)], capture_output=True,
-                            text=True, timeout=900, env=env)
-    BUILT["end"] = datetime.datetime.now(datetime.UTC)
-    assert result.returncode == 0, result.stderr
-    return out
+def site(report_run):
+    """`wgpurender report -o out/report`, as a user runs it (conftest.py's ``report_run``: the README's line)."""
+    BUILT["start"], BUILT["end"] = report_run.start, report_run.end
+    assert report_run.result.returncode == 0, report_run.result.stderr
+    return report_run.folder / "out" / "report"
 
 
 def _sections(text: str) -> list[str]:
