@@ -5,13 +5,15 @@ proxy (recorder.py), and the page's generic player (player.js, shipped with the 
 created and recorded with the browser's ``navigator.gpu``: the same specialised WGSL strings, pipelines, uniform
 bytes, textures and meshes. What changes per frame is recorded too:
 
-- an animated stage (its uploads depend on ``t``) is recorded at ``FPS`` frames per second over ``SECONDS``;
+- an animated stage (its uploads depend on ``t``) is recorded at ``FPS`` frames per second over one period of its
+  motion (core/course/loops.py: the frame at the period is the frame at 0), so the page's loop has no jump;
   the page plays those uploads back in a loop (frame ``k`` shows ``t = k / FPS``);
 - a 3D scene gets the window demo's orbit camera: the page packs the view matrix and eye into the scene's
   Camera uniform with the field offsets generated from the same ``Struct`` that packs it in Python
   (scene_render/shader_interface.CAMERA).
 
-The page: ``index.html`` + ``player.js`` + ``data.js`` (the recording, bytes as base64). Plain classic scripts,
+The page: ``index.html`` + ``player.js`` + ``data.js`` (the recording; textures and the reference frame as PNG,
+other bytes as base64: packing.py). Plain classic scripts,
 not ES modules: Chromium refuses module scripts and ``fetch`` from ``file://``, and the page must open from
 disk. ``window.wgpurender.capture()`` resolves to ``{width, height, rgba}`` (base64 RGBA8, top row first) of the
 frame at ``t = 0`` and the default camera: the frame ``wgpurender render TARGET --size WxH --anisotropy scene``
@@ -42,13 +44,14 @@ class Export:
     target: str
     size: tuple[int, int]
     calls: int
-    blob_bytes: int
+    page_bytes: int  # the three files on disk together: what a reader downloads
     animated: bool
 
 
 def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> Export:
     """Write the page for a stage (by name) or a scene file into folder ``out`` (made if missing)."""
     from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.course.loops import loop_seconds
     from wgpurender.export.record import record_scene, record_stage
     from wgpurender.wgpu_path.gpu import get_context
 
@@ -56,13 +59,15 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> 
         raise UserError(f"cannot export {target}: {NOT_EXPORTABLE[target]}")
     out = _check_out(Path(out))
     ctx = get_context()
-    data = (record_scene if is_scene_file(target) else record_stage)(ctx, target, tuple(size), FPS, SECONDS)
+    data = (record_scene if is_scene_file(target) else record_stage)(ctx, target, tuple(size), FPS,
+                                                                     loop_seconds(target) or SECONDS)
     out.mkdir(parents=True, exist_ok=True)
     (out / "data.js").write_text("window.WGPURENDER_EXPORT = " + json.dumps(data, separators=(",", ":")) + ";\n")
     shutil.copyfile(PLAYER, out / "player.js")
     (out / "index.html").write_text(page_html(data["meta"]))
+    written = sum((out / name).stat().st_size for name in EXPORT_FILES)
     return Export(out / "index.html", target, tuple(size), len(data["setup"]) + len(data["frame"]),
-                  sum(len(b) * 3 // 4 for b in data["blobs"]), data["meta"]["frames"] > 1)
+                  written, data["meta"]["frames"] > 1)
 
 
 EXPORT_FILES = frozenset({"index.html", "data.js", "player.js"})

@@ -13,6 +13,7 @@ import json
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
+from wgpurender.export.packing import pack_blobs, png_base64
 from wgpurender.export.recorder import BROWSER, Recording, recording_context
 from wgpurender.wgpu_path.gpu import GPUContext
 
@@ -74,15 +75,13 @@ def _uploads(calls: list[dict]) -> list[int]:
     return [_blob(c) for c in calls if c.get("m") in UPLOADS]
 
 
-def _reference(real: GPUContext, target) -> str:
-    """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), base64 RGBA8: the page shows
-    its difference from what the browser drew."""
-    import base64
-
+def _reference(real: GPUContext, target) -> dict:
+    """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), a PNG (packing.py): the page
+    shows its difference from what the browser drew."""
     from wgpurender.core.imageio import to_uint8
     from wgpurender.wgpu_path.targets import read_texture
 
-    return base64.b64encode(to_uint8(read_texture(real, target._raw)).tobytes()).decode("ascii")
+    return {"png": png_base64(to_uint8(read_texture(real, target._raw)))}
 
 
 def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, samples, fps, meta) -> dict:
@@ -90,7 +89,8 @@ def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, 
         "meta": {**meta, "device": 0, "target": target._id, "format": target.format, "fps": fps,
                  "frames": len(samples), "exported": f"{datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC "
                  f"from {ctx.describe()} (wgpurender export)"},
-        "setup": recording.calls[:setup_end], "frame": frame, "samples": samples, "blobs": recording.blobs_base64(),
+        "setup": recording.calls[:setup_end], "frame": frame, "samples": samples,
+        "blobs": pack_blobs(recording.calls, recording.blobs),
     }
 
 

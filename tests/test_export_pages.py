@@ -1,0 +1,119 @@
+"""Exported pages, light and loud: PNG textures and reference frame (decoded to their exact bytes in the page),
+the size printed is the size on disk, a WebGPU error or a lost device is said on the page, the animation's loop
+wraps where the stage repeats, and the plan names the adapter type."""
+
+from __future__ import annotations
+
+import base64
+import io
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from wgpurender.core.assets import assets_dir
+from wgpurender.core.course.loops import loop_seconds
+from wgpurender.export import FPS
+from wgpurender.export.chromium import Chromium, find_chromium
+from wgpurender.wgpu_path.render import render_stage
+
+SIZE = ("--size", "160x120")
+needs_chromium = pytest.mark.skipif(find_chromium() is None, reason="chromium is not installed")
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    """brick (textured scene) and 3d (animated stage), exported by the CLI as a user does: (folder, printed line)."""
+    root = tmp_path_factory.mktemp("pages")
+    out = {}
+    for target in ("brick", "3d"):
+        done = subprocess.run([sys.executable, "-m", "wgpurender", "export", target, "-o", str(root / target), *SIZE],
+                              capture_output=True, text=True, timeout=600, env=dict(os.environ))
+        assert done.returncode == 0, done.stderr
+        out[target] = (root / target, done.stdout.strip())
+    return out
+
+
+def _data(folder: Path) -> dict:
+    text = (folder / "data.js").read_text()
+    return json.loads(text[text.index("{"):text.rstrip().rindex("}") + 1])
+
+
+def _png(entry: dict) -> np.ndarray:
+    return np.asarray(Image.open(io.BytesIO(base64.b64decode(entry["png"]))))
+
+
+def test_textures_and_the_reference_travel_as_png_and_the_size_printed_is_the_size_on_disk(exported):
+    folder, line = exported["brick"]
+    data = _data(folder)
+    uploads = {c["a"][1]["#"] for c in [*data["setup"], *data["frame"]] if c.get("m") == "writeTexture"}
+    assert uploads and all(isinstance(data["blobs"][i], dict) for i in uploads)  # no raw RGBA base64
+    albedo = np.asarray(Image.open(assets_dir() / "textures" / "brick_albedo.png").convert("RGBA"))
+    assert any(np.array_equal(_png(data["blobs"][i]), albedo) for i in uploads), "the albedo's texels, exactly"
+    assert _png(data["reference"]).shape == (120, 160, 4)
+    textures = sum((assets_dir() / "textures" / f"brick_{m}.png").stat().st_size for m in ("albedo", "normal",
+                                                                                           "roughness"))
+    on_disk = sum(p.stat().st_size for p in folder.iterdir())
+    assert on_disk < 4 * textures, (on_disk, textures)  # base64 of the raw texels was 4.2 MB
+    said = float(re.search(r"([\d.]+) MB on disk", line).group(1))
+    assert said == round(on_disk / 1e6, 2), (line, on_disk)
+
+
+def test_the_loop_wraps_where_the_stage_repeats(exported):
+    period = loop_seconds("3d")
+    data = _data(exported["3d"][0])
+    assert len(data["samples"]) == round(FPS * period)  # the page's time wraps at exactly one period
+    size = (160, 120)
+    start, wrapped = (render_stage("3d", size, t=t, frames=1).pixels.astype(int) for t in (0.0, period))
+    half = render_stage("3d", size, t=period / 2, frames=1).pixels.astype(int)
+    assert np.abs(start - wrapped).max() <= 1  # t = period draws t = 0: no jump at the wrap
+    assert np.abs(start - half).max() > 50  # while in between the cubes have turned
+
+
+def test_the_plan_names_the_adapter_type(exported):
+    from wgpurender import api
+
+    plan = _data(exported["brick"][0])["meta"]["plan"]
+    assert " a  adapter" not in plan and "adapter type is not known here" in plan
+    native = api.explain("brick")
+    assert re.search(r"fragment on a (CPU|IntegratedGPU|VirtualGPU|Other) adapter|compute on a discrete GPU", native)
+
+
+def _wait_for_message(tab, seconds: float = 20.0) -> dict:
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        shown = tab.evaluate("({message: document.getElementById('message').textContent, stopped: "
+                             "!!window.wgpurender.stopped, frametime: document.getElementById('frametime')"
+                             ".textContent, frames: window.wgpurender.frames, difference: document."
+                             "getElementById('difference').textContent})")
+        if shown["message"]:
+            return shown
+        time.sleep(0.2)
+    raise AssertionError("the page said nothing")
+
+
+@needs_chromium
+def test_a_webgpu_error_and_a_lost_device_are_said_on_the_page(exported):
+    with Chromium() as browser:
+        tab = browser.open(exported["brick"][0] / "index.html")
+        tab.evaluate("window.wgpurender.ready")
+        assert tab.evaluate("document.getElementById('message').textContent") == ""
+        tab.evaluate("(window.wgpurender.device.createShaderModule({code: 'fn broken( {'}), 1)")  # a bad shader
+        shown = _wait_for_message(tab)
+        assert shown["message"].startswith("WebGPU error:") and "broken" in shown["message"]
+        assert shown["stopped"] and shown["frametime"] == "stopped" and "within the spec" not in shown["difference"]
+        frames = shown["frames"]
+        time.sleep(0.5)
+        assert tab.evaluate("window.wgpurender.frames") == frames  # the loop stopped
+        tab = browser.open(exported["3d"][0] / "index.html")
+        tab.evaluate("window.wgpurender.ready")
+        tab.evaluate("(window.wgpurender.device.destroy(), 1)")
+        shown = _wait_for_message(tab)
+        assert "device was lost" in shown["message"] and "Reload" in shown["message"] and shown["stopped"]
