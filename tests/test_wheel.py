@@ -127,6 +127,16 @@ def test_the_wheel_carries_the_whole_course(installed):
     assert len(expected) > 20 and expected <= names, sorted(expected - names)
 
 
+def test_the_wheel_carries_the_attribution_of_the_tutorial_files(installed):
+    """The wheel ships the tutorial scenes, so the CC BY attribution of the files they read ships too."""
+    from wgpurender.core.credits import all_credits
+
+    assert "wgpurender/_assets/credits.toml" in zipfile.ZipFile(installed["wheel"]).namelist()
+    code = ("from wgpurender.core.credits import scene_credits; from wgpurender.core.assets import bundled_scene; "
+            "print(scene_credits(bundled_scene('vulkan_tutorial_28'))[0].line())")
+    assert _run(installed, installed["python"], "-c", code).stdout.strip() == all_credits()[0].line()
+
+
 def test_the_installed_package_is_not_the_checkout(installed):
     out = _run(installed, installed["python"], "-c", "import wgpurender; print(wgpurender.__file__)").stdout
     assert Path(out.strip()).is_relative_to(installed["python"].parent.parent), out

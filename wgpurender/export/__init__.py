@@ -101,6 +101,7 @@ dt {{ font-weight: bold; float: left; clear: left; width: 9em; }} dd {{ margin-l
 <body>
 <h1>{title}</h1>
 <p>{escape(meta['summary'])}</p>
+{"".join(f'<p class="credit"><small>Credit: {escape(line)}</small></p>' for line in meta.get("credits", []))}
 <p id="message"></p>
 <canvas id="view" width="{meta['size'][0]}" height="{meta['size'][1]}"></canvas>
 <p>{escape(meta['controls'])}</p>

@@ -119,6 +119,8 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
 
 
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.core.assets import resolve_scene
+    from wgpurender.core.credits import scene_credits
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
     from wgpurender.wgpu_path.scene_render.frame import SceneRenderer
@@ -140,5 +142,6 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
             "orbit": {"eye": list(cam.eye), "target": list(cam.target), "up": list(cam.up), "camera": camera},
             "summary": scene.description or f"scene {Path(path).name}",
             "plan": renderer.plan.explain(),
-            "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset."}
+            "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset.",
+            "credits": [c.line() for c in scene_credits(resolve_scene(path))]}
     return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}

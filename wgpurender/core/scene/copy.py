@@ -19,14 +19,14 @@ from wgpurender.core.errors import UserError
 MODELS, TEXTURES = "models", "textures"
 
 
-def _references(node, key: str = "") -> Iterator[tuple[str, str]]:
+def file_references(node, key: str = "") -> Iterator[tuple[str, str]]:
     """(folder, written path) for every file the scene's TOML names: models' ``path`` and materials' ``*_map``."""
     if isinstance(node, dict):
         for k, v in node.items():
-            yield from _references(v, k)
+            yield from file_references(v, k)
     elif isinstance(node, list):
         for v in node:
-            yield from _references(v, key)
+            yield from file_references(v, key)
     elif isinstance(node, str) and key == "path":
         yield MODELS, node
     elif isinstance(node, str) and key.endswith("_map"):
@@ -68,7 +68,7 @@ def copy_scene(source: Path, folder: Path) -> Path:
         raise UserError(f"cannot create {folder}: folder {folder.parent} does not exist")
     text = source.read_text()
     copies: dict[str, str] = {}
-    for kind, written in _references(tomllib.loads(text)):
+    for kind, written in file_references(tomllib.loads(text)):
         original = source.parent / written
         if not original.is_file():
             raise UserError(f"{source} names {written!r}, which is absent ({original}): cannot copy this scene")
