@@ -108,6 +108,7 @@ def report_run(tmp_path_factory):
     import shutil
     import subprocess
     import sys
+    import time
     from types import SimpleNamespace
 
     if shutil.which("glslc") is None:
@@ -118,7 +119,8 @@ def report_run(tmp_path_factory):
                XDG_CACHE_HOME=str(folder / "cache"))
     start = datetime.datetime.now(datetime.UTC).replace(second=0, microsecond=0)
     argv = [sys.executable, "-m", *shlex.split(REPORT_COMMAND)]
+    began = time.perf_counter()
     result = subprocess.run(argv, cwd=folder, capture_output=True, text=True, timeout=900, env=env)
     return SimpleNamespace(folder=folder, command=REPORT_COMMAND, result=result, start=start,
-                           end=datetime.datetime.now(datetime.UTC))
+                           end=datetime.datetime.now(datetime.UTC), seconds=time.perf_counter() - began)
 

@@ -11,7 +11,8 @@ def register(subparsers) -> None:
         help="write the visual course report: a static HTML site with both paths' images per course step",
         description="Render every course step (stages, then scene files) on the wgpu path and the raw-Vulkan path, "
         "and write DIR/index.html with PNG files beside it: per step its description, both images side by side "
-        "(click: full size), the difference heatmap and its scale, PSNR and FLIP, GPU and frame time on both paths, "
+        "(click: rendered at twice the size), the difference heatmap and its scale, PSNR and FLIP, GPU and frame "
+        "time on both paths, what changed in the code from the previous step, "
         "the code that makes the step on both paths side by side (highlighted, linked to the whole file), the "
         "Vulkan -> wgpu concept rows, and for scenes the render plan; then the accuracy Pareto plot and the hard "
         "cases, both measured in this run (a quick variant). Opens from disk in any browser (no network). Needs "
@@ -20,7 +21,7 @@ def register(subparsers) -> None:
     p.add_argument("-o", "--output", required=True, metavar="DIR",
                    help="folder for the site (new, empty, or an earlier report, which is replaced)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
-                   help="every step's image size (default 240x180; the tutorial's scenes 320x240)")
+                   help="every step's image size (default 640x480, for a projector; a click opens twice that)")
     add_backend_arg(p)
     add_anisotropy_arg(p)
     p.set_defaults(func=run)
