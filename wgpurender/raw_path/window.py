@@ -44,7 +44,7 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.controls import Controls, ScriptEvent, due, install_callbacks, send
+from wgpurender.core.controls import Controls, PausableClock, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
 from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
@@ -429,7 +429,8 @@ class RawDemoLoop:
 
     def run(self, frames, screenshot: bool, fixed_time, on_frame) -> RawWindowResult:
         raw, glfw = self.raw, self.glfw
-        count, times, last_slot, start = 0, [], None, time.perf_counter()
+        count, times, last_slot = 0, [], None
+        self.controls.clock = PausableClock()
         while not glfw.window_should_close(raw.window) and (frames is None or count < frames):
             if on_frame is not None:
                 on_frame(glfw, raw.window, count)
@@ -445,7 +446,7 @@ class RawDemoLoop:
             if raw.resized:
                 raw._recreate()
             began = time.perf_counter()
-            t = fixed_time if fixed_time is not None else began - start
+            t = fixed_time if fixed_time is not None else self.controls.clock.time()  # P pauses it
             last_wanted = screenshot and (frames is None or count == frames - 1)
             slot = raw.slots[count % FRAMES_IN_FLIGHT]
             apply_camera(slot.drawable, self.orbit)

@@ -77,14 +77,19 @@ def record_frames(offscreen: Offscreen, out: str | Path, seconds: float, fps: fl
     return writer.path, count
 
 
-def widgets_available() -> bool:
-    """True in a Jupyter kernel with jupyter_rfb installed (the frontend may still lack widgets: see LiveView)."""
+def in_kernel() -> bool:
+    """True inside a Jupyter (IPython) kernel, False in a script or a terminal."""
     try:
         from IPython import get_ipython
     except ImportError:
         return False
     shell = get_ipython()
-    if shell is None or not hasattr(shell, "kernel"):
+    return shell is not None and hasattr(shell, "kernel")
+
+
+def widgets_available() -> bool:
+    """True in a Jupyter kernel with jupyter_rfb installed (the frontend may still lack widgets: see LiveView)."""
+    if not in_kernel():
         return False
     try:
         import jupyter_rfb  # noqa: F401
