@@ -12,6 +12,7 @@ import re
 import subprocess
 import sys
 import time
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -75,6 +76,38 @@ def test_the_loop_wraps_where_the_stage_repeats(exported):
     half = render_stage("3d", size, t=period / 2, frames=1).pixels.astype(int)
     assert np.abs(start - wrapped).max() <= 1  # t = period draws t = 0: no jump at the wrap
     assert np.abs(start - half).max() > 50  # while in between the cubes have turned
+
+
+def test_the_textured_stage_repeats_after_its_period():
+    """Its mirror-repeat lane repeats every second tile: 8 s at a quarter tile a second; half of it is a mirror."""
+    period, size = loop_seconds("textured"), (96, 72)
+    start, wrapped, half = (render_stage("textured", size, t=t, frames=1).pixels.astype(int)
+                            for t in (0.0, period, period / 2))
+    assert period == 8.0 and np.abs(start - wrapped).max() <= 2 and np.abs(start - half).max() > 50
+
+
+@needs_chromium
+def test_the_page_decodes_its_pngs_to_the_exact_bytes(exported):
+    """player.js's PNG decoder (all five row filters) against PIL's, on every PNG of the brick page."""
+    data = _data(exported["brick"][0])
+    pngs = [b for b in data["blobs"] if isinstance(b, dict)] + [data["reference"]]
+    with Chromium() as browser:
+        tab = browser.open(exported["brick"][0] / "index.html")
+        for entry in pngs:
+            got = base64.b64decode(tab.evaluate(f"window.wgpurender.decodePng({json.dumps(entry['png'])})"))
+            assert got == _png(entry).tobytes()
+    filters = set()
+    for entry in pngs:  # which row filters the encoder chose: the test reaches the decoder's branches
+        png = base64.b64decode(entry["png"])
+        pos, idat, width = 8, b"", 0
+        while pos < len(png):
+            length, kind = int.from_bytes(png[pos:pos + 4], "big"), png[pos + 4:pos + 8]
+            width = int.from_bytes(png[pos + 8:pos + 12], "big") if kind == b"IHDR" else width
+            idat += png[pos + 8:pos + 8 + length] if kind == b"IDAT" else b""
+            pos += 12 + length
+        rows = zlib.decompress(idat)
+        filters |= set(rows[::width * 4 + 1])
+    assert len(pngs) >= 4 and len(filters) >= 3, filters
 
 
 def test_the_plan_names_the_adapter_type(exported):

@@ -89,3 +89,14 @@ def test_every_tour_command_runs_from_an_empty_folder(tmp_path, display, report_
     for made in ("cubes.png", "ref.png", "d.png", "cubes.mp4"):
         assert (folder / made).stat().st_size > 0, made
     assert (report_run.folder / "out" / "report" / "index.html").is_file()
+
+
+def test_the_raw_window_takes_a_bundled_scene_by_name(display, tmp_path):
+    """Line 21's bug alone: `demo --raw final` resolved 'final' as a stage ("did you mean 'final'?")."""
+    if shutil.which("glslc") is None:
+        pytest.skip("the raw path needs glslc (apt-get install glslc)")
+    result = subprocess.run([sys.executable, "-m", "wgpurender", "demo", "--raw", "final", "--frames", "1", "--size",
+                             "64x48"], cwd=tmp_path, env=dict(os.environ, DISPLAY=display), capture_output=True,
+                            text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    assert "frames: 1" in result.stdout

@@ -26,6 +26,21 @@ def _demo(display, *args):
                           timeout=240, env=dict(os.environ, DISPLAY=display))
 
 
+def test_the_clock_stands_still_while_paused_and_resumes_where_it_stopped():
+    from wgpurender.core.controls import PausableClock
+
+    now = [100.0]
+    clock = PausableClock(lambda: now[0])
+    now[0] = 103.0
+    assert clock.time() == 3.0 and not clock.paused
+    clock.toggle()
+    now[0] = 110.0
+    assert clock.time() == 3.0 and clock.paused  # 7 s paused: the time stood still
+    clock.toggle()
+    now[0] = 112.0
+    assert clock.time() == 5.0  # resumed where it stopped
+
+
 def test_p_pauses_the_animation_and_says_so(display, tmp_path):
     shots = {}
     for label, keys in (("running", ""), ("paused", "1:key P; ")):

@@ -216,6 +216,14 @@
     return { width: meta.size[0], height: meta.size[1], rgba: btoa(text) };
   };
 
+  // A PNG of data.js decoded as the page decodes it (base64 bytes), for a test against another decoder.
+  api.decodePng = async (text) => {
+    const bytes = await decodePng(text);
+    let out = "";
+    for (let i = 0; i < bytes.length; i += 0x8000) out += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+    return btoa(out);
+  };
+
   // The orbit's view matrix now (column-major), for a test against the Python look-at.
   api.orbitView = () => (orbit ? Array.from(lookAt(orbit.eye(), orbit.target, orbit.up)) : null);
 
