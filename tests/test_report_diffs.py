@@ -61,3 +61,9 @@ def test_a_click_on_an_image_opens_its_larger_render():
                            wgpu=np.zeros((480, 640, 4), np.uint8), raw=None)
     html = page._figure({"wgpu": "s_wgpu.png", "wgpu_large": "s_wgpu_large.png"}, "wgpu", "", step, "wgpu")
     assert 'href="s_wgpu_large.png"' in html and 'src="s_wgpu.png"' in html and "click: 1280x960" in html
+
+
+def test_the_click_target_is_twice_the_page_image_on_both_sides():
+    from wgpurender.report.steps import larger
+
+    assert larger((640, 480)) == (1280, 960) and larger((320, 200)) == (640, 400)

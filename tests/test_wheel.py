@@ -183,6 +183,25 @@ def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
     assert scene.shape == (48, 64, 4) and scene[..., :3].std() > 10
 
 
+def test_raw_path_from_the_wheel_with_no_glslc_on_path(installed, tmp_path):
+    """A pip user has no glslc: the wheel's SPIR-V (one file per variant of shaders_glsl/variants.txt, named by
+    the hash of its source) draws a stage and the final scene, and nothing is compiled into the user's cache."""
+    from wgpurender.core.spirv_names import VARIANTS_FILE, read_variants, spirv_name
+
+    names = set(zipfile.ZipFile(installed["wheel"]).namelist())
+    glsl = REPO / "shaders_glsl"
+    for file_name, defines in read_variants((glsl / VARIANTS_FILE).read_text()):
+        shipped = f"wgpurender/_shaders/spirv/{spirv_name(file_name, (glsl / file_name).read_bytes(), defines)}"
+        assert shipped in names, (file_name, defines)
+    env = dict(installed["env"], PATH=str(installed["bin"]), XDG_CACHE_HOME=str(tmp_path / "cache"))
+    bare = dict(installed, env=env)
+    _run(bare, installed["bin"] / "wgpurender", "reference", "triangle", "-o", "t.png", "--size", "64x48")
+    _check_triangle_centre(np.asarray(Image.open(installed["cwd"] / "t.png")))
+    _run(bare, installed["bin"] / "wgpurender", "reference", "final", "-o", "f.png", "--size", "64x48")
+    assert np.asarray(Image.open(installed["cwd"] / "f.png"))[..., :3].std() > 10
+    assert not list((tmp_path / "cache").rglob("*.spv")), "compiled without glslc?"
+
+
 def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):
     """assets/scenes/unlit.toml from a folder that has no assets/: the wheel's copy; w.render('final') too."""
     _run(installed, installed["bin"] / "wgpurender", "render", "assets/scenes/unlit.toml", "-o", "u.png",

@@ -4,11 +4,13 @@ The course compiles its shaders offline with glslc (shaderc) and hands the SPIR-
 words to vkCreateShaderModule. We do the same at run time and keep the result in
 ~/.cache/wgpurender/spirv/, keyed by a hash of the source and the compiler flags,
 so that glslc runs once per shader edit (and is not needed at all on a warm cache).
+A wheel ships the SPIR-V of the bundled course's variants (``wgpurender/_shaders/spirv``, compiled by setup.py
+under the same names, core/spirv_names.py): used when its name matches this source, so a pip-installed user
+needs no glslc for the course.
 """
 
 from __future__ import annotations
 
-import hashlib
 import os
 import re
 import shutil
@@ -18,10 +20,10 @@ from pathlib import Path
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.shader_files import shader_folder
+from wgpurender.core.shader_files import packaged_folder, shader_folder
+from wgpurender.core.spirv_names import GLSLC_ARGS, glslc_args, spirv_name
 
 GLSL_DIR_ENV = "WGPURENDER_GLSL"
-GLSLC_ARGS = ("--target-env=vulkan1.1",)  # 1.1: the negative viewport height is core there (see pipeline.py)
 # glslc reports "path:LINE: error: message"
 _ERROR_LINE = re.compile(r"^(?P<file>.*?):(?P<line>\d+): error: (?P<msg>.*)$", re.MULTILINE)
 
@@ -53,11 +55,13 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     """
     path = Path(path)
     source = path.read_bytes()
-    args = (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
-    key = hashlib.sha256(b"\0".join([path.suffix.encode(), *(a.encode() for a in args), source])).hexdigest()
-    cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{key[:24]}.spv"
+    args = glslc_args(defines)
+    cached = cache_dir() / spirv_name(path.name, source, defines)
     if cached.name in _MEMORY_CACHE:
         return _MEMORY_CACHE[cached.name]
+    shipped = packaged_folder("spirv")
+    if shipped is not None and (shipped / cached.name).is_file():  # the wheel's, made from this very source
+        return (shipped / cached.name).read_bytes()
     if cached.is_file():
         return cached.read_bytes()
     spirv = _run_glslc(path, args)
@@ -87,7 +91,9 @@ def _store(cached: Path, spirv: bytes) -> None:
 def _run_glslc(path: Path, args: tuple[str, ...] = GLSLC_ARGS) -> bytes:
     glslc = shutil.which("glslc")
     if glslc is None:
-        raise UserError("glslc not found on PATH: the raw-Vulkan path compiles GLSL with it (apt install glslc)")
+        raise UserError(f"glslc not found on PATH: the raw-Vulkan path compiles GLSL with it, and {path.name} "
+                        f"{' '.join(args[len(GLSLC_ARGS):])} is not among the SPIR-V a wheel ships for the bundled "
+                        "course (apt install glslc, or the Vulkan SDK)")
     proc = subprocess.run([glslc, *args, str(path), "-o", "-"], capture_output=True)
     if proc.returncode != 0:
         raise UserError(_describe_error(path, proc.stderr.decode(errors="replace")))
