@@ -86,6 +86,43 @@ def test_the_textured_stage_repeats_after_its_period():
     assert period == 8.0 and np.abs(start - wrapped).max() <= 2 and np.abs(start - half).max() > 50
 
 
+def _png_with_every_filter(pixels: np.ndarray) -> bytes:
+    """An 8-bit RGBA PNG whose row y uses filter y % 5 (None, Sub, Up, Average, Paeth: the PNG specification's
+    definitions, written here independently of any decoder)."""
+    h, w, _ = pixels.shape
+    stride, data = w * 4, pixels.astype(np.int32).reshape(h, w * 4)
+    out = bytearray()
+    for y in range(h):
+        kind, row = y % 5, data[y]
+        up = data[y - 1] if y else np.zeros(stride, np.int32)
+        left = np.concatenate([np.zeros(4, np.int32), row[:-4]])
+        upleft = np.concatenate([np.zeros(4, np.int32), up[:-4]])
+        p = left + up - upleft
+        pa, pb, pc = np.abs(p - left), np.abs(p - up), np.abs(p - upleft)
+        paeth = np.where((pa <= pb) & (pa <= pc), left, np.where(pb <= pc, up, upleft))
+        predict = [np.zeros(stride, np.int32), left, up, (left + up) // 2, paeth][kind]
+        out += bytes([kind]) + ((row - predict) % 256).astype(np.uint8).tobytes()
+
+    def chunk(kind: bytes, body: bytes) -> bytes:
+        return len(body).to_bytes(4, "big") + kind + body + zlib.crc32(kind + body).to_bytes(4, "big")
+
+    header = w.to_bytes(4, "big") + h.to_bytes(4, "big") + bytes([8, 6, 0, 0, 0])
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(bytes(out))) + \
+        chunk(b"IEND", b"")
+
+
+@needs_chromium
+def test_the_page_decodes_every_png_row_filter_exactly(exported):
+    pixels = np.random.default_rng(7).integers(0, 256, (10, 7, 4), dtype=np.uint8)
+    png = _png_with_every_filter(pixels)
+    assert np.array_equal(np.asarray(Image.open(io.BytesIO(png))), pixels)  # a valid PNG: PIL reads it back
+    with Chromium() as browser:
+        tab = browser.open(exported["brick"][0] / "index.html")
+        text = base64.b64encode(png).decode("ascii")
+        got = base64.b64decode(tab.evaluate(f"window.wgpurender.decodePng({json.dumps(text)})"))
+    assert got == pixels.tobytes()
+
+
 @needs_chromium
 def test_the_page_decodes_its_pngs_to_the_exact_bytes(exported):
     """player.js's PNG decoder (all five row filters) against PIL's, on every PNG of the brick page."""
