@@ -5,13 +5,13 @@ layout: a reader finds the WGSL and the GLSL beside each other, the scenes and m
 code, not deep in the package). setuptools' package-data can only reach files inside a package, so
 ``build_py`` copies them into the build tree: ``wgpurender/_shaders/{wgsl,glsl}``, ``wgpurender/_assets``,
 ``wgpurender/_examples``; the installed
-package reads them from there through importlib.resources (wgpurender/core/shader_files.py,
-wgpurender/core/assets.py). An editable install (``pip install -e``)
+package reads them from there through importlib.resources (wgpurender/core/shaders/shader_files.py,
+wgpurender/core/files/assets.py). An editable install (``pip install -e``)
 builds nothing: it reads the checkout's folders. Everything else is declared in pyproject.toml.
 
 The raw path's SPIR-V ships too: every variant in ``shaders_glsl/variants.txt`` is compiled with glslc into
-``wgpurender/_shaders/spirv`` under the name wgpurender/core/spirv_names.py gives it (a hash of its GLSL source,
-flags and defines), so a pip-installed user needs no glslc. Building the wheel needs glslc (or
+``wgpurender/_shaders/spirv`` under the name wgpurender/core/shaders/spirv_names.py gives it (a hash of its GLSL
+source, flags and defines), so a pip-installed user needs no glslc. Building the wheel needs glslc (or
 WGPURENDER_WHEEL_NO_SPIRV=1 for a wheel whose raw path needs glslc at run time).
 """
 
@@ -50,8 +50,9 @@ class BuildPyWithCourseData(build_py):
 
 
 def _spirv_names():
-    """wgpurender/core/spirv_names.py loaded by its path (the package itself is not importable while it builds)."""
-    spec = importlib.util.spec_from_file_location("spirv_names", HERE / "wgpurender" / "core" / "spirv_names.py")
+    """wgpurender/core/shaders/spirv_names.py loaded by its path (the package is not importable while it builds)."""
+    spec = importlib.util.spec_from_file_location("spirv_names", HERE / "wgpurender" / "core" / "shaders" /
+                                                  "spirv_names.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

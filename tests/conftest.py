@@ -17,7 +17,7 @@ os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
 import pytest  # noqa: E402
 import wgpu  # noqa: E402,F401  (imported before logging config: wgpu installs its own logger class)
 
-from wgpurender.wgpu_path.gpu_validation import collect_validation_messages  # noqa: E402
+from wgpurender.wgpu_path.device.validation import collect_validation_messages  # noqa: E402
 
 
 def pytest_addoption(parser) -> None:
@@ -66,7 +66,7 @@ def no_gpu_validation_errors():
 @pytest.fixture(scope="session")
 def ctx():
     """The Vulkan context every GPU test shares (lavapipe in CI)."""
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     return get_context("Vulkan")
 
@@ -80,8 +80,8 @@ def raw_driver_class():
     identically, so they are compared with that class's calibrated bounds
     (assets/reference/tolerances.toml), never skipped.
     """
-    from wgpurender.core.tolerances import driver_class
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.core.verdict.tolerances import driver_class
+    from wgpurender.raw_path.device.context import get_vulkan
 
     return driver_class(get_vulkan().device_name)
 
@@ -89,7 +89,7 @@ def raw_driver_class():
 @pytest.fixture(scope="session")
 def wgpu_driver_class(ctx):
     """The tolerance table's driver class of the wgpu path's adapter."""
-    from wgpurender.core.tolerances import driver_class
+    from wgpurender.core.verdict.tolerances import driver_class
 
     return driver_class(ctx.adapter.info["device"])
 
@@ -101,7 +101,7 @@ REPORT_COMMAND = "wgpurender report -o out/report"  # the README tour's line (te
 def report_run(tmp_path_factory):
     """The README's report command, run once from an empty folder for test_report.py and test_readme_tour.py:
     ``folder`` (the cwd), ``command``, ``result`` (the CompletedProcess), ``start`` and ``end`` (UTC).
-    A fresh bandwidth record (core/bandwidth.py): the report's timings write one after each scene's plan text,
+    A fresh bandwidth record (core/files/bandwidth.py): the report's timings write one after each scene's plan text,
     so with the user's cache the plan printed and the one a test explains could differ by a measurement."""
     import datetime
     import shlex

@@ -33,8 +33,8 @@ GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
     # issue 33 (classroom): the tour, the projector's report, pages light and loud, attribution, windows
-    ("wgpurender/raw_path/window.py", "    if is_scene_file(target):  # a .toml", "    if target.endswith('.toml'):  #",
-     ["tests/test_readme_tour.py|raw_window"]),
+    ("wgpurender/raw_path/window/__init__.py", "    if is_scene_file(target):  # a .toml",
+     "    if target.endswith('.toml'):  #", ["tests/test_readme_tour.py|raw_window"]),
     ("wgpurender/cli/compare.py", "{'>=' if name == 'psnr' else '<='}", "{'<=' if name == 'psnr' else '>='}",
      [COMPARE + "|cli_threshold"]),
     ("wgpurender/cli/verify.py", "passed = len(rows) - len(failed) - skipped", "passed = len(rows) - skipped",
@@ -56,8 +56,8 @@ MUTATIONS = [
     ("wgpurender/report/page.py", 'href="{e(large or name)}"', 'href="{e(name)}"', ["tests/test_report_diffs.py"]),
     ("wgpurender/report/steps.py", "return (LARGE_SCALE * size[0], LARGE_SCALE * size[1])",
      "return (LARGE_SCALE * size[0], LARGE_SCALE * size[0])", ["tests/test_report_diffs.py", REPORT]),
-    ("wgpurender/core/compare.py", "(flip_mean(a, b)[0] if mse > 0 else 0.0)", "(flip_mean(a, b)[0] if mse > 1e-4 "
-     "else 0.0)", [COMPARE, "tests/test_accuracy_truth.py"]),
+    ("wgpurender/core/verdict/compare.py", "(flip_mean(a, b)[0] if mse > 0 else 0.0)",
+     "(flip_mean(a, b)[0] if mse > 1e-4 else 0.0)", [COMPARE, "tests/test_accuracy_truth.py"]),
     ("wgpurender/export/packing.py", "if per_row and per_row % TEXEL == 0", "if per_row and per_row % TEXEL == 1",
      ["tests/test_export_pages.py|png_and"]),
     ("wgpurender/export/__init__.py", "for name in EXPORT_FILES)", "for name in (\"data.js\",))",
@@ -67,14 +67,15 @@ MUTATIONS = [
      ["tests/test_export_pages.py|decodes"]),
     ("wgpurender/export/player.js", "b = y ? out[o - stride + x] : 0", "b = y ? out[o - stride + x] : 1",
      ["tests/test_export_pages.py|decodes"]),
-    ("wgpurender/core/spirv_names.py", "parts = [path.suffix.encode(), *(a.encode() for a in glslc_args(defines)), "
-     "source]", "parts = [path.suffix.encode(), *(a.encode() for a in glslc_args(defines))]",
+    ("wgpurender/core/shaders/spirv_names.py",
+     "parts = [path.suffix.encode(), *(a.encode() for a in glslc_args(defines)), source]",
+     "parts = [path.suffix.encode(), *(a.encode() for a in glslc_args(defines))]",
      ["tests/test_spirv_shipped.py|own_source"]),
-    ("wgpurender/raw_path/glsl.py", "    if shipped is not None and (shipped / cached.name).is_file():",
+    ("wgpurender/raw_path/device/shaders.py", "    if shipped is not None and (shipped / cached.name).is_file():",
      "    if False:", ["tests/test_spirv_shipped.py|own_source"]),
-    ("wgpurender/wgpu_path/wgpu_private.py", "    if version.startswith(WRITTEN_FOR):", "    if True:",
+    ("wgpurender/wgpu_path/device/wgpu_private.py", "    if version.startswith(WRITTEN_FOR):", "    if True:",
      ["tests/test_wgpu_private.py|version"]),
-    ("wgpurender/wgpu_path/wgpu_private.py", "        device._poller = real", "        pass",
+    ("wgpurender/wgpu_path/device/wgpu_private.py", "        device._poller = real", "        pass",
      ["tests/test_wgpu_private.py|poll"]),
     ("wgpurender/export/player.js", "      if (!api.stopped) requestAnimationFrame(tick);",
      "      requestAnimationFrame(tick);", ["tests/test_export_pages.py|webgpu_error"]),
@@ -86,11 +87,11 @@ MUTATIONS = [
      ["tests/test_export_pages.py|loop_wraps"]),
     ("wgpurender/core/plan/post.py", "    if not adapter.adapter_type:  # a browser", "    if False:  # a browser",
      ["tests/test_export_pages.py|adapter_type"]),
-    ("wgpurender/core/credits.py", "if names & set(c.files)]", "if names | set(c.files)]",
+    ("wgpurender/core/files/credits.py", "if names & set(c.files)]", "if names | set(c.files)]",
      ["tests/test_credits.py|exactly"]),
-    ("wgpurender/core/controls.py", "            self.start += self.now() - self.paused_at",
+    ("wgpurender/core/view/controls.py", "            self.start += self.now() - self.paused_at",
      "            self.start += 0.0", ["tests/test_window_keys.py|clock"]),
-    ("wgpurender/core/controls.py", "                self.overlay_shown = not self.overlay_shown",
+    ("wgpurender/core/view/controls.py", "                self.overlay_shown = not self.overlay_shown",
      "                self.overlay_shown = True", ["tests/test_window_keys.py|f1"]),
     ("wgpurender/wgpu_path/window/overlay.py", "        return self._over_panel() or self.held",
      "        return self._over_panel() or bool(self.backend.io.want_capture_mouse)",
@@ -98,16 +99,20 @@ MUTATIONS = [
     ("wgpurender/api.py", "        why = _show_window(ctx, name, wh, msaa, anisotropy, frames)",
      "        why = \"\"", ["tests/test_notebook_view.py|outside", "tests/test_window_keys.py|show"]),
     # comparison and heatmap
-    ("wgpurender/core/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
+    ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py",
+     "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
      [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
-    ("wgpurender/core/compare.py", "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
+    ("wgpurender/core/verdict/compare.py",
+     "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
+    ("wgpurender/core/verdict/compare.py",
+     "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
     ("wgpurender/cli/compare.py", "return value < limit if name == \"psnr\"", "return value > limit if name == "
      "\"psnr\"", [COMPARE, CAUSES]),
-    ("wgpurender/core/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
-    ("wgpurender/core/imageio.py", "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
+    ("wgpurender/core/files/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
+    ("wgpurender/core/files/imageio.py",
+     "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
     # the report
     ("wgpurender/report/page.py", '"wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "wgpu")',
      '"wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "raw")', [REPORT]),
@@ -119,11 +124,12 @@ MUTATIONS = [
     ("wgpurender/report/steps.py", "step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)",
      "step.heat = heatmap(step.raw, step.wgpu, 1.0)", [REPORT]),
     # trust: driver class, present modes, depth, the API's path
-    ("wgpurender/core/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
+    ("wgpurender/core/verdict/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
      'return "lavapipe" if "lavapipe" in device_name.lower()', [TRUST]),
-    ("wgpurender/core/tolerances.py", "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
+    ("wgpurender/core/verdict/tolerances.py",
+     "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
      [TRUST, "tests/test_reference_tolerances.py"]),
-    ("wgpurender/raw_path/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
+    ("wgpurender/raw_path/window/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
      '"immediate": vk.VK_PRESENT_MODE_MAILBOX_KHR', [TRUST]),
     ("wgpurender/core/plan/build.py", 'depth_compare = "greater" if knobs.reverse_z else "less"',
      'depth_compare = "greater" if knobs.reverse_z else "less-equal"', [TRUST]),
@@ -133,7 +139,8 @@ MUTATIONS = [
      'str(target), "raw"', [TRUST]),
     ("wgpurender/api.py", "        return image.rgba8()", "        return image.pixels", [API]),
     # argument checks
-    ("wgpurender/core/checks.py", "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
      "    if math.isnan(value):\n        raise UserError(f\"{name} must be a finite", [API, CAUSES]),
     ("wgpurender/core/checks.py", '    return positive(value, "gain", "32")', '    return number(value, "gain")',
      [API, COMPARE]),
@@ -146,37 +153,44 @@ MUTATIONS = [
      [API]),
     ("wgpurender/core/checks.py", "    elif not _is_number(value):", "    elif not isinstance(value, (int, float, "
      "str)):", [API]),
-    ("wgpurender/core/checks.py", "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
+    ("wgpurender/core/files/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
      "    kind = _kind(mode)\n    if kind == 'never':", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
-    ("wgpurender/core/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
-    ("wgpurender/core/input_files.py", "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
+    ("wgpurender/core/files/input_files.py",
+     "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
+    ("wgpurender/core/files/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py",
+     "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
      "depth)\n        depth = 0", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
     ("wgpurender/core/scene/load.py", "    except RecursionError:", "    except ValueError:", [CAUSES]),
-    ("wgpurender/core/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
+    ("wgpurender/core/files/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
+    ("wgpurender/core/files/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
      "    if len(os.fsencode(name)) > 1024:", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
+    ("wgpurender/core/files/safe_write.py",
+     "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
      "{os_error_reason(link, err)}\") from None", "    except OSError:\n        pass", [CAUSES + "|follow"]),
-    ("wgpurender/core/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
+    ("wgpurender/core/files/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
      "    _handlers_installed = True\n    _set_handlers(_on_signal)", [CAUSES + "|sigterm"]),
-    ("wgpurender/core/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
+    ("wgpurender/core/plan/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
      "BYTES_PER_PIXEL.get(fmt, 16)", [CAUSES + "|memory or adapter"]),
-    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
+    ("wgpurender/core/plan/gpu_memory.py",
+     "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
-    ("wgpurender/core/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
+    ("wgpurender/core/models/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
      [GLTF]),
-    ("wgpurender/core/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
+    ("wgpurender/core/models/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
      '(FLOAT,))', [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
+    ("wgpurender/core/models/gltf_rules.py",
+     "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
      " UINT, FLOAT)", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
+    ("wgpurender/core/models/gltf_rules.py",
+     "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
 ]
 

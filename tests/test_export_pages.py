@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from wgpurender.core.assets import assets_dir
 from wgpurender.core.course.loops import loop_seconds
+from wgpurender.core.files.assets import assets_dir
 from wgpurender.export import FPS
 from wgpurender.export.chromium import Chromium, find_chromium
 from wgpurender.wgpu_path.render import render_stage

@@ -1,6 +1,6 @@
 """Browser tests that look at the screen: the page's capture() hook against a DevTools screenshot of the canvas,
 and the orbit camera moving the way the window's does (zoom in: the objects grow; a drag to the right: a known
-object moves the way core/orbit.py's camera projects it), not only "the image changed"."""
+object moves the way core/view/orbit.py's camera projects it), not only "the image changed"."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from wgpurender.core.orbit import Orbit, moved_camera
 from wgpurender.core.scene import load_scene
+from wgpurender.core.view.orbit import Orbit, moved_camera
 from wgpurender.export import export
 from wgpurender.export.chromium import Chromium, find_chromium
 
@@ -129,7 +129,7 @@ def test_zooming_in_makes_the_objects_larger(pages, browser):
 
 
 def test_a_drag_to_the_right_moves_the_cubes_as_the_window_camera_does(pages, browser):
-    """The page and core/orbit.py agree: 60 px to the right turns the orbit by 24 degrees; each cube's centre
+    """The page and core/view/orbit.py agree: 60 px to the right turns the orbit by 24 degrees; each cube's centre
     moves to where the Python camera projects it, within a few pixels."""
     scene = load_scene(pages["scene"])
     tab = browser.open(pages["cubes"])

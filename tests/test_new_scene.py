@@ -9,8 +9,8 @@ import tomllib
 
 import numpy as np
 
-from wgpurender.core.assets import bundled_scene
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.assets import bundled_scene
+from wgpurender.core.files.imageio import load_png
 
 
 def _cli(*args, cwd):

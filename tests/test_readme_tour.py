@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from xvfb import xvfb_display  # noqa: F401  (the fixture ``display``)
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 
 REPO = Path(__file__).resolve().parent.parent
 TOUR_LINES = 42

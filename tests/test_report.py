@@ -25,7 +25,7 @@ import pytest
 from browser import chromium, open_page
 from PIL import Image
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 
 REPO = Path(__file__).resolve().parent.parent
 needs_chromium = pytest.mark.skipif(chromium() is None, reason="chromium is not installed (apt-get install chromium)")
@@ -114,7 +114,7 @@ def test_the_images_are_both_paths_renders_and_the_heatmap_marks_their_differenc
 
 
 def test_metrics_and_timings_are_shown_for_both_paths(site):
-    from wgpurender.core.compare import compare_images
+    from wgpurender.core.verdict.compare import compare_images
 
     text = (site / "index.html").read_text()
     part = _section(text, "3d")

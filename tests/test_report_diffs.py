@@ -50,7 +50,7 @@ def test_the_same_code_twice_is_an_empty_diff_from_the_step_just_before():
 
 
 def test_each_excerpt_line_is_its_own_numbered_element():
-    x = code.excerpt("wgpu", "scene_render.frame:SceneRenderer.record")
+    x = code.excerpt("wgpu", "scene.frame:SceneRenderer.record")
     numbers = [int(n) for n in __import__("re").findall(r'<span class="line" data-line="(\d+)">', x.html)]
     assert numbers == list(range(x.first, x.last + 1))
     assert 'id="' not in x.html  # one page shows an excerpt in several steps: no duplicate ids

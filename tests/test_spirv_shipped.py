@@ -16,14 +16,15 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.core.spirv_names import VARIANTS_FILE, read_variants, spirv_name
+from wgpurender.core.shaders.spirv_names import VARIANTS_FILE, read_variants, spirv_name
 
 REPO = Path(__file__).resolve().parent.parent
 RECORD = """
 import json, sys
-from wgpurender.raw_path import glsl, render_reference
+from wgpurender.raw_path import render_reference
+from wgpurender.raw_path.device import shaders as glsl
 from wgpurender.raw_path.stages import all_ref_stages
-from wgpurender.core.assets import bundled_scene_names, bundled_scene
+from wgpurender.core.files.assets import bundled_scene_names, bundled_scene
 from wgpurender.core.errors import UserError
 seen, real = set(), glsl.compile_glsl
 def recording(path, defines=()):
@@ -64,7 +65,7 @@ def test_variants_txt_covers_every_variant_the_course_compiles(tmp_path, monkeyp
 def test_a_shipped_file_is_used_only_for_its_own_source(tmp_path, monkeypatch):
     """glslc absent: a file named for this source is loaded; after an edit of the source it is not (one line)."""
     from wgpurender.core.errors import UserError
-    from wgpurender.raw_path import glsl
+    from wgpurender.raw_path.device import shaders as glsl
 
     shipped = tmp_path / "spirv"
     shipped.mkdir()

@@ -1,4 +1,4 @@
-"""Each reach into wgpu-py's private parts (wgpurender/wgpu_path/wgpu_private.py) holds on the installed wgpu-py,
+"""Each reach into wgpu-py's private parts (wgpurender/wgpu_path/device/wgpu_private.py) holds on the installed wgpu-py,
 and a different wgpu-py gets one line saying what to do."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 
-from wgpurender.wgpu_path import wgpu_private
+from wgpurender.wgpu_path.device import wgpu_private
 
 
 def test_the_version_check_says_in_one_line_what_to_do():
@@ -23,7 +23,7 @@ def test_reach_1_the_native_library_and_the_handles(ctx):
     ffi, lib = wgpu_private.native()
     assert float(lib.wgpuQueueGetTimestampPeriod(wgpu_private.handle(ctx.queue))) > 0
     assert ffi.typeof(wgpu_private.handle(ctx.device)).kind == "pointer"
-    from wgpurender.wgpu_path.native import timestamp_period_ns
+    from wgpurender.wgpu_path.device.native import timestamp_period_ns
 
     assert timestamp_period_ns(ctx) > 0
 
@@ -36,7 +36,7 @@ def test_reach_2_the_backend_module_parses_wgpu_h():
 
 
 def test_reach_2_in_a_fresh_process_the_cache_patch_comes_before_the_backend():
-    code = ("import sys; from wgpurender.wgpu_path import wgpu_private; "
+    code = ("import sys; from wgpurender.wgpu_path.device import wgpu_private; "
             f"print({wgpu_private.BACKEND_FFI!r} in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"  # importing the reach module does not load wgpu's backend

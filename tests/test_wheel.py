@@ -129,10 +129,11 @@ def test_the_wheel_carries_the_whole_course(installed):
 
 def test_the_wheel_carries_the_attribution_of_the_tutorial_files(installed):
     """The wheel ships the tutorial scenes, so the CC BY attribution of the files they read ships too."""
-    from wgpurender.core.credits import all_credits
+    from wgpurender.core.files.credits import all_credits
 
     assert "wgpurender/_assets/credits.toml" in zipfile.ZipFile(installed["wheel"]).namelist()
-    code = ("from wgpurender.core.credits import scene_credits; from wgpurender.core.assets import bundled_scene; "
+    code = ("from wgpurender.core.files.credits import scene_credits; "
+            "from wgpurender.core.files.assets import bundled_scene; "
             "print(scene_credits(bundled_scene('vulkan_tutorial_28'))[0].line())")
     assert _run(installed, installed["python"], "-c", code).stdout.strip() == all_credits()[0].line()
 
@@ -186,7 +187,7 @@ def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
 def test_raw_path_from_the_wheel_with_no_glslc_on_path(installed, tmp_path):
     """A pip user has no glslc: the wheel's SPIR-V (one file per variant of shaders_glsl/variants.txt, named by
     the hash of its source) draws a stage and the final scene, and nothing is compiled into the user's cache."""
-    from wgpurender.core.spirv_names import VARIANTS_FILE, read_variants, spirv_name
+    from wgpurender.core.shaders.spirv_names import VARIANTS_FILE, read_variants, spirv_name
 
     names = set(zipfile.ZipFile(installed["wheel"]).namelist())
     glsl = REPO / "shaders_glsl"
@@ -256,7 +257,7 @@ def test_the_notebook_from_the_wheel(installed):
     pytest.importorskip("nbformat", reason="nbformat is not installed (pip install -e '.[test]')")
     pytest.importorskip("nbclient", reason="nbclient is not installed (pip install -e '.[test]')")
     nb = installed["cwd"] / "tour.ipynb"
-    code = ("import shutil, nbformat, nbclient; from wgpurender.core.assets import notebook_path; "
+    code = ("import shutil, nbformat, nbclient; from wgpurender.core.files.assets import notebook_path; "
             f"shutil.copy(notebook_path(), {str(nb)!r}); nb = nbformat.read({str(nb)!r}, as_version=4); "
             "nbclient.NotebookClient(nb, timeout=300, kernel_name='python3').execute(); "
             "print(sum('final_subpass' in o.get('text', '') for c in nb.cells for o in c.get('outputs', [])))")

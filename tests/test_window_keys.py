@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from xvfb import xvfb_display  # noqa: F401  (the fixture "display": a private Xvfb)
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 
 REPO = Path(__file__).resolve().parent.parent
 SCENE = str(REPO / "assets" / "scenes" / "unlit.toml")
@@ -27,7 +27,7 @@ def _demo(display, *args):
 
 
 def test_the_clock_stands_still_while_paused_and_resumes_where_it_stopped():
-    from wgpurender.core.controls import PausableClock
+    from wgpurender.core.view.controls import PausableClock
 
     now = [100.0]
     clock = PausableClock(lambda: now[0])

@@ -18,8 +18,8 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from pathlib import Path
 
-    from wgpurender.core.assets import bundled_scene_names, resolve_scene
     from wgpurender.core.errors import UserError
+    from wgpurender.core.files.assets import bundled_scene_names, resolve_scene
     from wgpurender.core.scene.copy import copy_scene
 
     source = resolve_scene(args.source)

@@ -53,7 +53,7 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> 
     from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.course.loops import loop_seconds
     from wgpurender.export.record import record_scene, record_stage
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     if target in NOT_EXPORTABLE:
         raise UserError(f"cannot export {target}: {NOT_EXPORTABLE[target]}")

@@ -15,7 +15,7 @@ from pathlib import Path
 from wgpurender.core.errors import UserError
 from wgpurender.export.packing import pack_blobs, png_base64
 from wgpurender.export.recorder import BROWSER, Recording, recording_context
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 UPLOADS = ("writeBuffer", "writeTexture")
 
@@ -78,8 +78,8 @@ def _uploads(calls: list[dict]) -> list[int]:
 def _reference(real: GPUContext, target) -> dict:
     """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), a PNG (packing.py): the page
     shows its difference from what the browser drew."""
-    from wgpurender.core.imageio import to_uint8
-    from wgpurender.wgpu_path.targets import read_texture
+    from wgpurender.core.files.imageio import to_uint8
+    from wgpurender.wgpu_path.device.targets import read_texture
 
     return {"png": png_base64(to_uint8(read_texture(real, target._raw)))}
 
@@ -95,8 +95,8 @@ def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, 
 
 
 def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.wgpu_path.device.targets import check_format, create_target
     from wgpurender.wgpu_path.stages import get_stage
-    from wgpurender.wgpu_path.targets import check_format, create_target
 
     cls = get_stage(name)
     ctx, recording = recording_context(real)
@@ -119,12 +119,12 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
 
 
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
-    from wgpurender.core.assets import resolve_scene
-    from wgpurender.core.credits import scene_credits
+    from wgpurender.core.files.assets import resolve_scene
+    from wgpurender.core.files.credits import scene_credits
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
-    from wgpurender.wgpu_path.scene_render.frame import SceneRenderer
-    from wgpurender.wgpu_path.scene_render.shader_interface import CAMERA
+    from wgpurender.wgpu_path.scene.frame import SceneRenderer
+    from wgpurender.wgpu_path.scene.shader_interface import CAMERA
 
     scene = load_scene(path)
     ctx, recording = recording_context(real)
