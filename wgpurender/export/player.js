@@ -248,6 +248,7 @@
       api.sample = Math.max(0, Math.floor(((now - start) / 1000) * meta.fps)) % X.samples.length;
       drawFrame(api.sample, false);
       await present();
+      if (api.stopped) return;  // a WebGPU error arrived while this frame was in flight: it is not counted
       api.frameMs = performance.now() - t0;
       api.frames += 1;
       if (api.frames === 1) api.firstPixelMs = performance.now();  // since navigation start: the first frame shown
