@@ -86,14 +86,14 @@ def test_the_textured_stage_repeats_after_its_period():
     assert period == 8.0 and np.abs(start - wrapped).max() <= 2 and np.abs(start - half).max() > 50
 
 
-def _png_with_every_filter(pixels: np.ndarray) -> bytes:
-    """An 8-bit RGBA PNG whose row y uses filter y % 5 (None, Sub, Up, Average, Paeth: the PNG specification's
-    definitions, written here independently of any decoder)."""
+def _png_with_every_filter(pixels: np.ndarray, first: int = 0) -> bytes:
+    """An 8-bit RGBA PNG whose row y uses filter (first + y) % 5 (None, Sub, Up, Average, Paeth: the PNG
+    specification's definitions, written here independently of any decoder)."""
     h, w, _ = pixels.shape
     stride, data = w * 4, pixels.astype(np.int32).reshape(h, w * 4)
     out = bytearray()
     for y in range(h):
-        kind, row = y % 5, data[y]
+        kind, row = (first + y) % 5, data[y]
         up = data[y - 1] if y else np.zeros(stride, np.int32)
         left = np.concatenate([np.zeros(4, np.int32), row[:-4]])
         upleft = np.concatenate([np.zeros(4, np.int32), up[:-4]])
@@ -113,14 +113,16 @@ def _png_with_every_filter(pixels: np.ndarray) -> bytes:
 
 @needs_chromium
 def test_the_page_decodes_every_png_row_filter_exactly(exported):
+    """Each filter on the first row too (where the row above counts as zeros) and on later rows."""
     pixels = np.random.default_rng(7).integers(0, 256, (10, 7, 4), dtype=np.uint8)
-    png = _png_with_every_filter(pixels)
-    assert np.array_equal(np.asarray(Image.open(io.BytesIO(png))), pixels)  # a valid PNG: PIL reads it back
     with Chromium() as browser:
         tab = browser.open(exported["brick"][0] / "index.html")
-        text = base64.b64encode(png).decode("ascii")
-        got = base64.b64decode(tab.evaluate(f"window.wgpurender.decodePng({json.dumps(text)})"))
-    assert got == pixels.tobytes()
+        for first in range(5):
+            png = _png_with_every_filter(pixels, first)
+            assert np.array_equal(np.asarray(Image.open(io.BytesIO(png))), pixels)  # valid: PIL reads it back
+            text = base64.b64encode(png).decode("ascii")
+            got = base64.b64decode(tab.evaluate(f"window.wgpurender.decodePng({json.dumps(text)})"))
+            assert got == pixels.tobytes(), first
 
 
 @needs_chromium
