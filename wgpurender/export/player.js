@@ -248,13 +248,13 @@
       api.sample = Math.max(0, Math.floor(((now - start) / 1000) * meta.fps)) % X.samples.length;
       drawFrame(api.sample, false);
       await present();
-      if (api.stopped) return;  // a WebGPU error arrived while this frame was in flight: it is not counted
+      if (api.stopped) return;  // a WebGPU error: the loop ends (a frame in flight then is not counted)
       api.frameMs = performance.now() - t0;
       api.frames += 1;
       if (api.frames === 1) api.firstPixelMs = performance.now();  // since navigation start: the first frame shown
       api.samplesSeen.add(api.sample);
       if (api.frames % 10 === 1) $("frametime").textContent = `${api.frameMs.toFixed(2)} ms (replay, GPU, present)`;
-      if (!api.stopped) requestAnimationFrame(tick);
+      requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
   }
