@@ -53,13 +53,13 @@ def test_the_report_credits_the_tutorial_scenes_even_where_their_files_are_absen
 
 
 def test_an_exported_page_of_a_tutorial_scene_carries_the_attribution(tmp_path):
-    from wgpurender.export import page_html
+    from wgpurender.webpage import page_html
 
     anchors = REPO.parent / "shared" / "anchors" / "vulkan-tutorial"
     meta = {"name": "vulkan_tutorial_28", "summary": "s", "size": [8, 8], "controls": "", "exported": "", "plan": "",
             "credits": [c.line() for c in scene_credits(scene_dir() / "vulkan_tutorial_28.toml")]}
     assert html.escape(meta["credits"][0]) in page_html(meta)
-    from wgpurender.export import export
+    from wgpurender.webpage import export
 
     final = export("final", tmp_path / "final", (32, 24)).page
     assert "Credit:" not in final.read_text()  # only what shows the credited files

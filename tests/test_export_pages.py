@@ -21,8 +21,8 @@ from PIL import Image
 
 from wgpurender.core.course.loops import loop_seconds
 from wgpurender.core.files.assets import assets_dir
-from wgpurender.export import FPS
-from wgpurender.export.chromium import Chromium, find_chromium
+from wgpurender.webpage import FPS
+from wgpurender.webpage.chromium import Chromium, find_chromium
 from wgpurender.wgpu_path.render import render_stage
 
 SIZE = ("--size", "160x120")

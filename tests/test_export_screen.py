@@ -15,8 +15,8 @@ from PIL import Image
 
 from wgpurender.core.scene import load_scene
 from wgpurender.core.view.orbit import Orbit, moved_camera
-from wgpurender.export import export
-from wgpurender.export.chromium import Chromium, find_chromium
+from wgpurender.webpage import export
+from wgpurender.webpage.chromium import Chromium, find_chromium
 
 pytestmark = pytest.mark.skipif(find_chromium() is None, reason="chromium is not installed (apt-get install chromium)")
 REPO = Path(__file__).resolve().parent.parent

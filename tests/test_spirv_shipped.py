@@ -62,6 +62,9 @@ def test_variants_txt_covers_every_variant_the_course_compiles(tmp_path, monkeyp
     assert not missing, f"add to shaders_glsl/{VARIANTS_FILE} (python tests/test_spirv_shipped.py): {sorted(missing)}"
 
 
+SHIPPED = b"\x03\x02\x23\x07" + b"shipped module words".ljust(28, b".")  # a SPIR-V module's shape
+
+
 def test_a_shipped_file_is_used_only_for_its_own_source(tmp_path, monkeypatch):
     """glslc absent: a file named for this source is loaded; after an edit of the source it is not (one line)."""
     from wgpurender.core.errors import UserError
@@ -71,11 +74,11 @@ def test_a_shipped_file_is_used_only_for_its_own_source(tmp_path, monkeypatch):
     shipped.mkdir()
     source = tmp_path / "color.frag"
     source.write_bytes((REPO / "shaders_glsl" / "color.frag").read_bytes())
-    (shipped / spirv_name("color.frag", source.read_bytes())).write_bytes(b"\x03\x02\x23\x07shipped")
+    (shipped / spirv_name("color.frag", source.read_bytes())).write_bytes(SHIPPED)
     monkeypatch.setattr(glsl, "packaged_folder", lambda kind: shipped if kind == "spirv" else None)
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     monkeypatch.setenv("PATH", str(tmp_path / "no-bin"))
-    assert glsl.compile_glsl(source) == b"\x03\x02\x23\x07shipped"
+    assert glsl.compile_glsl(source) == SHIPPED
     source.write_bytes(source.read_bytes() + b"\n// edited\n")
     with pytest.raises(UserError, match="glslc not found.*not among the SPIR-V a wheel ships"):
         glsl.compile_glsl(source)

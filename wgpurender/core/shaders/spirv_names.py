@@ -21,12 +21,17 @@ def glslc_args(defines: tuple[str, ...] = ()) -> tuple[str, ...]:
     return (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
 
 
+def spirv_key(file_name: str, source: bytes, defines: tuple[str, ...] = ()) -> bytes:
+    """Everything the SPIR-V depends on: the stage (by suffix), glslc's flags with the defines, the GLSL source."""
+    parts = [b"spirv", Path(file_name).suffix.encode(), *(a.encode() for a in glslc_args(defines)), source]
+    return b"\0".join(parts)
+
+
 def spirv_name(file_name: str, source: bytes, defines: tuple[str, ...] = ()) -> str:
     """``scene-frag-<24 hex>.spv`` for ``scene.frag`` compiled from ``source`` with ``defines``."""
     path = Path(file_name)
-    parts = [path.suffix.encode(), *(a.encode() for a in glslc_args(defines)), source]
-    key = hashlib.sha256(b"\0".join(parts)).hexdigest()
-    return f"{path.stem}{path.suffix.replace('.', '-')}-{key[:24]}.spv"
+    digest = hashlib.sha256(spirv_key(file_name, source, defines)).hexdigest()
+    return f"{path.stem}{path.suffix.replace('.', '-')}-{digest[:24]}.spv"
 
 
 def read_variants(text: str) -> list[tuple[str, tuple[str, ...]]]:

@@ -16,7 +16,7 @@
   const bytesOf = (text) => Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
   const blob = (i) => blobs[i] || (blobs[i] = bytesOf(X.blobs[i]));
 
-  // -- PNG (export/packing.py): textures and the reference frame. Decoded here to their exact bytes (inflate with
+  // -- PNG (webpage/packing.py): textures and the reference frame. Decoded here to their exact bytes (inflate with
   // DecompressionStream, then undo each row's filter); a canvas would premultiply alpha and change them.
   async function inflate(parts) {
     const stream = new Blob(parts).stream().pipeThrough(new DecompressionStream("deflate"));

@@ -13,8 +13,8 @@ import json
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
-from wgpurender.export.packing import pack_blobs, png_base64
-from wgpurender.export.recorder import BROWSER, Recording, recording_context
+from wgpurender.webpage.packing import pack_blobs, png_base64
+from wgpurender.webpage.recorder import BROWSER, Recording, recording_context
 from wgpurender.wgpu_path.device.context import GPUContext
 
 UPLOADS = ("writeBuffer", "writeTexture")
