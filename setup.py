@@ -70,7 +70,7 @@ def compile_spirv(dest: Path) -> None:
     glsl = HERE / "shaders_glsl"
     for file_name, defines in names.read_variants((glsl / names.VARIANTS_FILE).read_text()):
         source = glsl / file_name
-        out = dest / names.spirv_name(file_name, source.read_bytes(), defines)
+        out = dest / names.spirv_name(file_name, source.read_bytes() + names.included(source), defines)
         subprocess.run([glslc, *names.glslc_args(defines), str(source), "-o", str(out)], check=True)
 
 

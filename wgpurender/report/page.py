@@ -116,6 +116,7 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 {words}
 {_credits(step.credits)}
 {f'<p class="links">{links}</p>' if links else ""}
+{_try_it(step)}
 {shots}
 {_live(files)}
 {_code(step)}
@@ -127,6 +128,14 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 def _credits(lines: list[str]) -> str:
     """The attribution of the files a step shows that the project did not make (CC BY: wherever they appear)."""
     return "".join(f'<p class="credit"><small>Credit: {e(line)}</small></p>' for line in lines)
+
+
+def _try_it(step: Step) -> str:
+    """The learner's way in: the step's exercise (docs/exercises.md), when it has one."""
+    from wgpurender.exercises.catalogue import exercise_command
+
+    command = exercise_command(step.key)
+    return f'<p class="try">try it: <code>{e(command)}</code> (docs/exercises.md)</p>' if command else ""
 
 
 def _live(files: dict[str, str]) -> str:

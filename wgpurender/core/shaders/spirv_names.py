@@ -10,11 +10,26 @@ came from (an edited shader, e.g. through $WGPURENDER_GLSL, no longer matches an
 from __future__ import annotations
 
 import hashlib
+import re
 from pathlib import Path
 
 # 1.1: the negative viewport height is core there (raw_path/device/pipeline.py)
 GLSLC_ARGS = ("--target-env=vulkan1.1",)
 VARIANTS_FILE = "variants.txt"  # in shaders_glsl/: "FILE [DEFINE ...]" per line, '#' comments
+
+
+_INCLUDE = re.compile(rb'^[ \t]*#[ \t]*include[ \t]+"([^"]+)"', re.MULTILINE)
+
+
+def included(path: Path) -> bytes:
+    """The bytes of the files ``path`` includes (``#include "name"``, beside it; one level: shaders_glsl's
+    included files include nothing), so that editing an included file changes the key (a shader's key source is
+    its own bytes followed by these)."""
+    parts = []
+    for name in _INCLUDE.findall(path.read_bytes()):
+        other = path.parent / name.decode("utf-8", "replace")
+        parts.append(other.read_bytes() if other.is_file() else b"")
+    return b"\0".join(parts)
 
 
 def glslc_args(defines: tuple[str, ...] = ()) -> tuple[str, ...]:

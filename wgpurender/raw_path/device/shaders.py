@@ -26,6 +26,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.files.cache_entry import read_entry, write_entry
 from wgpurender.core.shaders.shader_files import packaged_folder, shader_folder
 from wgpurender.core.shaders.spirv_names import GLSLC_ARGS, glslc_args, spirv_key, spirv_name
+from wgpurender.core.shaders.spirv_names import included as _included
 
 GLSL_DIR_ENV = "WGPURENDER_GLSL"
 # glslc reports "path:LINE: error: message"
@@ -58,7 +59,7 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     for shaders with variants; they are part of the cache key.
     """
     path = Path(path)
-    source = path.read_bytes()
+    source = path.read_bytes() + _included(path)
     args = glslc_args(defines)
     key = spirv_key(path.name, source, defines)
     cached = cache_dir() / spirv_name(path.name, source, defines)
