@@ -37,7 +37,8 @@ def test_the_copy_renders_like_the_bundled_scene_from_another_folder(tmp_path):
     for path in _files(written):  # every file inside the new folder, byte-equal to the bundled one
         assert (copy.parent / path).resolve().is_relative_to(copy.parent), path
     for new, old in zip(_files(written), _files(original), strict=True):
-        assert (copy.parent / new).read_bytes() == (bundled_scene("final").parent / old).read_bytes()
+        if not new.endswith(".glb"):  # a GLB's image uris are rewritten to files beside it
+            assert (copy.parent / new).read_bytes() == (bundled_scene("final").parent / old).read_bytes()
     mtl = copy.parent / "models" / "brick_cube.mtl"  # the OBJ's material library and its maps came along
     for line in mtl.read_text().splitlines():
         if line.lower().startswith("map_"):

@@ -3,11 +3,13 @@
 A bundled scene reads ``../models/...`` and ``../textures/...`` relative to ``assets/scenes/``; copied alone, those
 paths point nowhere. The copy is ``NAME/NAME.toml`` beside ``NAME/models/`` and ``NAME/textures/``: every model
 and map the scene names is copied there and its path in the TOML rewritten (the text is kept, comments included);
-an OBJ's material library comes along with the maps it names, rewritten the same way. API-free.
+an OBJ's material library comes along with the maps it names, rewritten the same way, and a GLB's external
+images are copied beside it (a model reads files of its own folder only). API-free.
 """
 
 from __future__ import annotations
 
+import json
 import re
 import shutil
 import tomllib
@@ -59,6 +61,24 @@ def _copy_mtl(obj: Path, dest: Path, folder: Path) -> None:
         (dest.parent / mtl.name).write_text("\n".join(lines) + "\n")
 
 
+def _copy_glb(original: Path, dest: Path) -> None:
+    """Copy a GLB whose images are files beside it: a model reads only files in its own folder (core/models), so
+    each external image is copied next to the copy and its uri rewritten to the bare name (JSON chunk re-padded)."""
+    data = original.read_bytes()
+    size = int.from_bytes(data[12:16], "little")
+    doc = json.loads(data[20:20 + size])
+    for image in doc.get("images", []):
+        uri = image.get("uri", "")
+        if uri and not uri.startswith("data:") and (original.parent / uri).is_file():
+            shutil.copyfile(original.parent / uri, dest.parent / Path(uri).name)
+            image["uri"] = Path(uri).name
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    rest = data[20 + size:]
+    total = 12 + 8 + len(text) + len(rest)
+    dest.write_bytes(data[:8] + total.to_bytes(4, "little") + len(text).to_bytes(4, "little") + b"JSON" + text + rest)
+
+
 def copy_scene(source: Path, folder: Path) -> Path:
     """Copy the scene file ``source`` to ``folder/<folder name>.toml`` with its models and maps; returns the new
     scene file. ``folder`` must not exist yet (nothing is overwritten)."""
@@ -77,7 +97,10 @@ def copy_scene(source: Path, folder: Path) -> Path:
     for written, new in copies.items():
         original, dest = source.parent / written, folder / new
         dest.parent.mkdir(exist_ok=True)
-        shutil.copyfile(original, dest)
+        if original.suffix.lower() == ".glb":
+            _copy_glb(original, dest)
+        else:
+            shutil.copyfile(original, dest)
         if original.suffix.lower() == ".obj":
             _copy_mtl(original, dest, folder)
         text = _replace_string(text, written, new)
