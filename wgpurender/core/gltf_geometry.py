@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from wgpurender.core import gltf_compression, gltf_extensions
 from wgpurender.core.errors import UserError
 from wgpurender.core.gltf_io import GltfDocument, read_accessor
 
@@ -81,23 +82,46 @@ def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
         node = nodes[index]
         world = parent @ node_matrix(node)
         if "mesh" in node:
-            out.append((world, node["mesh"], index))
+            out.extend((placement, node["mesh"], index) for placement in _instances(doc, node, world))
         for child in reversed(node.get("children", [])):
             stack.append((child, world, path + (index,)))
     return out
 
 
+def _instances(doc: GltfDocument, node: dict, world: np.ndarray) -> list[np.ndarray]:
+    """The world matrices a node places its mesh at: its own, or one per EXT_mesh_gpu_instancing instance
+    (world @ T @ R @ S of each instance), expanded here into placements of the one mesh."""
+    ext = node.get("extensions", {}).get(gltf_extensions.INSTANCING)
+    if not isinstance(ext, dict) or not ext.get("attributes"):
+        return [world]
+    attrs = ext["attributes"]
+    arrays = {k: read_accessor(doc, attrs[k]).astype(np.float64) if k in attrs else None
+              for k in ("TRANSLATION", "ROTATION", "SCALE")}
+    if all(a is None for a in arrays.values()):
+        return [world]
+    counts = {len(a) for a in arrays.values() if a is not None}
+    if len(counts) != 1:
+        raise UserError(f"malformed glTF file {doc.path}: {gltf_extensions.INSTANCING} attributes of a node have "
+                        f"different counts {sorted(counts)}; each needs one element per instance")
+    matrices = gltf_extensions.instance_matrices(arrays["TRANSLATION"], arrays["ROTATION"], arrays["SCALE"])
+    return list(world @ matrices)
+
+
 def _attribute(doc: GltfDocument, prim: dict, name: str, where: str) -> np.ndarray | None:
     """An attribute through the project's accessor reader, as float64. Accessor and component types were checked
-    with the document (gltf_rules.py); integer attributes must also be normalized (unnormalized ones are
-    KHR_mesh_quantization's, which is not supported)."""
+    with the document (gltf_rules.py); integer attributes must be normalized unless KHR_mesh_quantization allows
+    plain integers for the semantic (POSITION and TEXCOORD: its table lists both forms)."""
     index = prim.get("attributes", {}).get(name)
     if index is None:
         return None
     acc = doc.json["accessors"][index]
     if acc.get("componentType") != FLOAT and not acc.get("normalized", False):
-        raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not normalized "
-                        "(KHR_mesh_quantization), which is not supported; re-export without quantization")
+        semantic = name.split("_", 1)[0] if name.startswith("TEXCOORD_") else name
+        if not gltf_extensions.uses(doc.json, gltf_extensions.QUANTIZATION) or semantic not in ("POSITION",
+                                                                                              "TEXCOORD"):
+            raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not "
+                            "normalized; glTF allows that only for POSITION and TEXCOORD with "
+                            "KHR_mesh_quantization in extensionsUsed: fix or re-export the file")
     return read_accessor(doc, index).astype(np.float64)
 
 
@@ -119,19 +143,51 @@ def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
     return np.stack([idx[i + 1], idx[i + 2], np.full(n, idx[0]) if n else idx[:0]], axis=1)  # fan around idx[0]
 
 
-def texcoord_set(doc: GltfDocument, material: int | None) -> int:
-    """The TEXCOORD set a material's textures use (its base colour texture's ``texCoord``, else the first texture
-    that names one, else 0): the mesh carries one set of texture coordinates."""
+def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
+    """A material's textureInfo objects, base colour first (its choice of coordinates leads)."""
     if material is None:
-        return 0
+        return []
     mat = doc.json.get("materials", [])[material]
     infos = [mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"), mat.get("normalTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
              mat.get("occlusionTexture")]
-    return next((int(i.get("texCoord", 0)) for i in infos if isinstance(i, dict)), 0)
+    return [i for i in infos if isinstance(i, dict)]
 
 
-def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGeometry | None:
+def uv_choice(doc: GltfDocument, material: int | None) -> tuple[int, dict | None]:
+    """(TEXCOORD set, KHR_texture_transform or None) the mesh's one set of texture coordinates is made with:
+    the base colour texture's (else the first texture's); texCoord and the transform's texCoord override included.
+    A texture of the material that samples otherwise is listed as ignored (gltf_materials)."""
+    infos = texture_infos(doc, material)
+    if not infos:
+        return 0, None
+    texcoord, _ = gltf_extensions.texture_uv_choice(infos[0])
+    transform = infos[0].get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
+    return texcoord, transform if isinstance(transform, dict) else None
+
+
+def texcoord_set(doc: GltfDocument, material: int | None) -> int:
+    """The TEXCOORD set the mesh carries for a material (see :func:`uv_choice`)."""
+    return uv_choice(doc, material)[0]
+
+
+def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):
+    """POSITION, NORMAL and TANGENT with the default morph weights applied (``weights``: the node's, else the
+    mesh's; none given means all 0, the base pose)."""
+    targets = prim["targets"]
+    weights = list(weights or ())
+    if weights and len(weights) != len(targets):
+        raise UserError(f"malformed glTF file {doc.path}: {where} has {len(targets)} morph targets but "
+                        f"{len(weights)} weights; give one weight per target")
+    if not any(weights):
+        return positions, normals, tangents
+    deltas = {name: [_attribute(doc, t, name, where) for t in targets] for name in ("POSITION", "NORMAL", "TANGENT")}
+    return (gltf_extensions.morphed(positions, deltas["POSITION"], weights),
+            gltf_extensions.morphed(normals, deltas["NORMAL"], weights),
+            gltf_extensions.morphed(tangents, deltas["TANGENT"], weights))
+
+
+def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) -> PrimitiveGeometry | None:
     """One primitive's triangles and attributes in its mesh's own space (the caller applies the node's world
     matrix); None for points and lines (see :func:`geometry_notes`)."""
     mode = prim.get("mode", 4)
@@ -139,18 +195,30 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGe
         return None
     if mode not in TRIANGLE_MODES:
         raise UserError(f"malformed glTF file {doc.path}: {where} has mode {mode}; glTF 2.0 modes are 0..6")
-    positions = _attribute(doc, prim, "POSITION", where)
+    material = prim.get("material")
+    uv_set, uv_transform = uv_choice(doc, material)
+    uv_name = f"TEXCOORD_{uv_set}"
+    names = ("POSITION", "NORMAL", uv_name, "TANGENT", "COLOR_0")
+    draco = gltf_compression.DRACO in prim.get("extensions", {})
+    if draco:
+        decoded, draco_faces = gltf_compression.draco_attributes(doc, prim, where)
+        arrays = {name: decoded.get(name) for name in names}
+    else:
+        arrays = {name: _attribute(doc, prim, name, where) for name in names}
+    positions = arrays.pop("POSITION")
     if positions is None:
         raise UserError(f"malformed glTF file {doc.path}: {where} has no POSITION attribute (glTF requires it)")
     count = len(positions)
-    material = prim.get("material")
-    uv_name = f"TEXCOORD_{texcoord_set(doc, material)}"
-    arrays = {name: _attribute(doc, prim, name, where) for name in ("NORMAL", uv_name, "TANGENT", "COLOR_0")}
     for name, array in arrays.items():
         if array is not None and len(array) != count:
             raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
                             f"POSITION {count}")
-    faces = _faces(doc, prim, count)
+    if prim.get("targets") and not draco:
+        positions, arrays["NORMAL"], arrays["TANGENT"] = _morph(doc, prim, weights, where, positions,
+                                                                arrays["NORMAL"], arrays["TANGENT"])
+    if arrays[uv_name] is not None and uv_transform is not None:
+        arrays[uv_name] = gltf_extensions.transform_uvs(arrays[uv_name], uv_transform)
+    faces = draco_faces if draco else _faces(doc, prim, count)
     if len(faces) and (faces.min() < 0 or faces.max() >= count):
         raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
     colors = arrays["COLOR_0"]
@@ -164,12 +232,14 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
     """(world matrix, node label, geometry) of every triangle primitive the file's scene places."""
     meshes = doc.json.get("meshes", [])
     out = []
+    nodes = doc.json.get("nodes", [])
     for world, mesh_index, node_index in placed_meshes(doc):
         mesh = meshes[mesh_index]
         name = f" '{mesh['name']}'" if mesh.get("name") else ""
+        weights = nodes[node_index].get("weights", mesh.get("weights")) if node_index >= 0 else mesh.get("weights")
         for p, prim in enumerate(mesh.get("primitives", [])):
             where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
-            geometry = primitive_geometry(doc, prim, where)
+            geometry = primitive_geometry(doc, prim, where, weights)
             if geometry is not None and len(geometry.faces):
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
@@ -184,9 +254,9 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
             if mode in SKIPPED_MODES:
                 notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive ignored (only triangles "
                              "are drawn)")
-            if prim.get("targets"):
-                notes.append(f"mesh {mi} primitive {pi}: {len(prim['targets'])} morph target(s) ignored (drawn "
-                             "in the base pose)")
+            if prim.get("targets") and gltf_compression.DRACO in prim.get("extensions", {}):
+                notes.append(f"mesh {mi} primitive {pi}: morph targets of a Draco primitive ignored (drawn in the "
+                             "base pose)")
             used = f"TEXCOORD_{texcoord_set(doc, prim.get('material'))}"
             extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a != used)
             extra += sorted(a for a in prim.get("attributes", {})

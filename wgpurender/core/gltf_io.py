@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import gltf_rules, gltf_schema
+from wgpurender.core import gltf_compression, gltf_extensions, gltf_rules, gltf_schema
 from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import check_file_size, input_file, resolved
 from wgpurender.core.safe_write import atomic_write
@@ -79,6 +79,7 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
     except ValueError as err:
         raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
     buffers = [_load_buffer(path, i, b, glb_bin) for i, b in enumerate(doc_json.get("buffers", []))]
+    buffers = gltf_compression.meshopt_buffers(path, doc_json, buffers)
     return GltfDocument(path, doc_json, buffers)
 
 
@@ -86,8 +87,8 @@ class GltfVersionError(ValueError):
     """A GLB container of another glTF version (its header says so before any JSON is read)."""
 
 
-# Extensions a file may list in extensionsRequired: none, so far (each one changes what a correct render is).
-SUPPORTED_REQUIRED_EXTENSIONS: frozenset[str] = frozenset()
+# Extensions a file may list in extensionsRequired (each one changes what a correct render is): those implemented.
+SUPPORTED_REQUIRED_EXTENSIONS: frozenset[str] = gltf_extensions.SUPPORTED_REQUIRED
 
 
 def check_version(path: Path, doc_json: object) -> None:
@@ -110,8 +111,7 @@ def check_required_extensions(path: Path, doc_json: object) -> None:
     missing = [str(name) for name in required if name not in SUPPORTED_REQUIRED_EXTENSIONS]
     if missing:
         raise UserError(f"{path}: requires the glTF extension(s) {', '.join(missing)}, which wgpurender does not "
-                        "support; re-export the model without them (e.g. without Draco or meshopt compression, "
-                        "KHR_mesh_quantization or KHR_texture_basisu)")
+                        "support; re-export the model without them (e.g. without KHR_texture_basisu)")
 
 
 def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
@@ -139,6 +139,8 @@ def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
 
 def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) -> bytes:
     uri = buffer.get("uri")
+    if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, {}).get("fallback"):
+        return b""  # EXT_meshopt_compression's placeholder: its views are decoded from the compressed buffer
     if uri is None:
         if glb_bin is None:
             raise UserError(f"malformed glTF file {path}: buffer {index} has no uri and there is no GLB binary chunk")

@@ -16,8 +16,12 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 - ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
 - ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
 
+- the base colour texture's ``texCoord`` and ``KHR_texture_transform`` -> the mesh's texture coordinates
+  (gltf_geometry.uv_choice applies them at load).
+
 Ignored, and listed by ``--explain``: metalness (``metallicFactor``, the texture's B channel: Blinn-Phong has no
-metals), other texture coordinate sets, ``KHR_texture_transform``, and every other extension by name.
+metals), a texture that samples another coordinate set or transform than its material's base colour texture, and
+every other extension by name (the applied ones are listed as used).
 """
 
 from __future__ import annotations
@@ -28,7 +32,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from wgpurender.core import gltf_geometry, gltf_io
+from wgpurender.core import gltf_extensions, gltf_geometry, gltf_io
 from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.input_files import input_file
 from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material
@@ -41,6 +45,8 @@ ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map
          "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
          "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
 SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
+# extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
+USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
 
 
 @dataclass(frozen=True)
@@ -130,12 +136,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
-        chosen = gltf_geometry.texcoord_set(doc, index)
-        if int(info.get("texCoord", 0)) != chosen:
-            ignored.append(f"{name}: {keys[-1]} texCoord {info.get('texCoord', 0)}: ignored, sampled with "
-                           f"TEXCOORD_{chosen} (a mesh carries one set of texture coordinates)")
-        if "KHR_texture_transform" in info.get("extensions", {}):
-            ignored.append(f"{name}: {keys[-1]} KHR_texture_transform: ignored (drawn untransformed)")
+        _note_uv_choice(doc, index, info, f"{name}: {keys[-1]}", ignored)
     _note_ignored(mat, pbr, name, ignored)
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -157,6 +158,20 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         emissive_map=maps.get("emissive_map") if not unlit else None,
         occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
     )
+
+
+def _note_uv_choice(doc: gltf_io.GltfDocument, index: int, info: dict, where: str, ignored: list[str]) -> None:
+    """A texture that samples other coordinates than the material's chosen set and transform (the base colour
+    texture's; gltf_geometry.uv_choice) is drawn with those: said by name."""
+    infos = gltf_geometry.texture_infos(doc, index)
+    lead = gltf_extensions.texture_uv_choice(infos[0])
+    mine = gltf_extensions.texture_uv_choice(info)
+    if mine[0] != lead[0]:
+        ignored.append(f"{where} texCoord {mine[0]}: ignored, sampled with TEXCOORD_{lead[0]} (a mesh carries one "
+                       "set of texture coordinates per material)")
+    elif mine[1] != lead[1]:
+        ignored.append(f"{where} KHR_texture_transform: ignored, sampled with the base colour texture's transform "
+                       "(one transform per material)")
 
 
 def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
@@ -191,7 +206,9 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
     for m in materials:
         taken.append(_taken_text(m))
     for ext in doc.json.get("extensionsUsed", []):
-        if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
+        if ext in USED_EXTENSIONS:
+            taken.append(f"extensionsUsed {ext}: used")
+        else:
             ignored.append(f"extensionsUsed {ext}: ignored")
     return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
 

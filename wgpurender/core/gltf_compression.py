@@ -1,0 +1,107 @@
+"""Compressed glTF geometry: EXT_meshopt_compression buffer views and KHR_draco_mesh_compression primitives.
+
+Both decoders are optional packages (``pip install wgpurender[compressed]``): ``meshoptimizer`` (zeux's
+meshoptimizer codecs and filters) and ``DracoPy`` (Google's Draco decoder). They are imported only when a file
+uses the extension; without them the file is refused in one line naming the extension and the pip command.
+
+meshopt: every compressed view is decoded when the document is read and stands in for the view from then on
+(its bytes become a buffer of their own), so accessors read it as any other view. Draco: a primitive's
+attributes are decoded when its geometry is read (gltf_geometry), matched to the primitive's accessors by the
+extension's unique ids.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+
+MESHOPT = "EXT_meshopt_compression"
+DRACO = "KHR_draco_mesh_compression"
+PACKAGES = {MESHOPT: ("meshoptimizer", "meshoptimizer"), DRACO: ("DracoPy", "DracoPy")}
+
+
+def _decoder(path, extension: str):
+    """The decoder module for ``extension``, or the one-line refusal saying how to install it."""
+    module, pip_name = PACKAGES[extension]
+    try:
+        return __import__(module)
+    except ImportError:
+        raise UserError(f"{path}: uses {extension}, whose decoder is not installed; `pip install {pip_name}` (or "
+                        "`pip install wgpurender[compressed]`), or re-export the model without compression") from None
+
+
+def meshopt_buffers(path, doc_json: dict, buffers: list[bytes]) -> list[bytes]:
+    """Decode every EXT_meshopt_compression buffer view in place: the view then names a new buffer holding its
+    decoded bytes (byteOffset 0). Returns the buffers, extended."""
+    views = [v for v in doc_json.get("bufferViews", []) if MESHOPT in v.get("extensions", {})]
+    if not views:
+        return buffers
+    codec = _decoder(path, MESHOPT)
+    buffers = list(buffers)
+    for view in views:
+        ext = view["extensions"][MESHOPT]
+        source = buffers[ext["buffer"]]
+        start = int(ext.get("byteOffset", 0))
+        data = source[start: start + int(ext["byteLength"])]
+        count, stride = int(ext["count"]), int(ext["byteStride"])
+        try:
+            raw = _meshopt_decode(codec, ext.get("mode"), ext.get("filter", "NONE"), data, count, stride)
+        except (ValueError, RuntimeError, KeyError) as err:
+            raise UserError(f"malformed glTF file {path}: an {MESHOPT} buffer view does not decode ({err}); "
+                            "re-export the model") from None
+        buffers.append(raw)
+        view.update(buffer=len(buffers) - 1, byteOffset=0, byteLength=len(raw))
+        view.pop("extensions")
+    return buffers
+
+
+def _meshopt_decode(codec, mode: str, filter_name: str, data: bytes, count: int, stride: int) -> bytes:
+    if mode == "ATTRIBUTES":
+        out = codec.decode_vertex_buffer(count, stride, data, dtype=np.uint8)
+    elif mode == "TRIANGLES":
+        out = codec.decode_index_buffer(count, stride, data)
+    elif mode == "INDICES":
+        out = codec.decode_index_sequence(count, stride, data)
+    else:
+        raise ValueError(f"unknown mode {mode!r}")
+    filters = {"OCTAHEDRAL": "decode_filter_oct", "QUATERNION": "decode_filter_quat",
+               "EXPONENTIAL": "decode_filter_exp"}
+    if filter_name in filters:
+        out = getattr(codec, filters[filter_name])(np.frombuffer(np.ascontiguousarray(out).tobytes(), np.uint8),
+                                                   count, stride)
+    elif filter_name != "NONE":
+        raise ValueError(f"unknown filter {filter_name!r}")
+    raw = np.ascontiguousarray(out).tobytes()
+    if len(raw) != count * stride:
+        raise ValueError(f"decoded {len(raw)} bytes, expected {count} x {stride}")
+    return raw
+
+
+def draco_attributes(doc, prim: dict, where: str) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """The attributes (by semantic, float64; normalized integer accessors scaled to [0,1]/[-1,1]) and the
+    triangle indices (F, 3) of a Draco-compressed primitive."""
+    ext = prim["extensions"][DRACO]
+    codec = _decoder(doc.path, DRACO)
+    view = doc.json["bufferViews"][ext["bufferView"]]
+    start = view.get("byteOffset", 0)
+    data = doc.buffers[view["buffer"]][start: start + view["byteLength"]]
+    try:
+        mesh = codec.decode(data)
+    except Exception as err:  # DracoPy raises its own types for corrupt data
+        raise UserError(f"malformed glTF file {doc.path}: {where}: its {DRACO} data does not decode "
+                        f"({type(err).__name__}); re-export the model") from None
+    arrays = {}
+    for semantic, unique_id in ext.get("attributes", {}).items():
+        found = mesh.get_attribute_by_unique_id(int(unique_id))
+        if found is None:
+            raise UserError(f"malformed glTF file {doc.path}: {where}: {DRACO} has no attribute id {unique_id} "
+                            f"for {semantic}")
+        values = np.asarray(found["data"])
+        accessor = doc.json["accessors"][prim["attributes"][semantic]]
+        values = values.reshape(len(values), -1).astype(np.float64)
+        if accessor.get("normalized") and np.asarray(found["data"]).dtype.kind in "iu":
+            values = np.maximum(values / np.iinfo(np.asarray(found["data"]).dtype).max, -1.0)
+        arrays[semantic] = values
+    faces = np.asarray(getattr(mesh, "faces", np.zeros((0, 3))), np.int64).reshape(-1, 3)
+    return arrays, faces
