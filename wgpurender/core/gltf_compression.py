@@ -56,23 +56,33 @@ def meshopt_buffers(path, doc_json: dict, buffers: list[bytes]) -> list[bytes]:
     return buffers
 
 
+FILTERS = {"OCTAHEDRAL": ("decode_filter_oct", (4, 8)), "QUATERNION": ("decode_filter_quat", (8,)),
+           "EXPONENTIAL": ("decode_filter_exp", tuple(range(4, 257, 4)))}
+
+
 def _meshopt_decode(codec, mode: str, filter_name: str, data: bytes, count: int, stride: int) -> bytes:
+    """One view's bytes. Strides are checked before the decoder runs: it trusts them (and writes past a buffer
+    sized from a bad one)."""
     if mode == "ATTRIBUTES":
-        out = codec.decode_vertex_buffer(count, stride, data, dtype=np.uint8)
-    elif mode == "TRIANGLES":
-        out = codec.decode_index_buffer(count, stride, data)
-    elif mode == "INDICES":
-        out = codec.decode_index_sequence(count, stride, data)
+        if stride % 4 or not 0 < stride <= 256:
+            raise ValueError(f"byteStride {stride} of an ATTRIBUTES view must be a multiple of 4 up to 256")
+        out = codec.decode_vertex_buffer(count, stride, data)  # float32 (count, stride / 4); its dtype= under-allocates
+    elif mode in ("TRIANGLES", "INDICES"):
+        if stride not in (2, 4):
+            raise ValueError(f"byteStride {stride} of an index view must be 2 or 4")
+        decode = codec.decode_index_buffer if mode == "TRIANGLES" else codec.decode_index_sequence
+        out = decode(count, stride, data)
     else:
         raise ValueError(f"unknown mode {mode!r}")
-    filters = {"OCTAHEDRAL": "decode_filter_oct", "QUATERNION": "decode_filter_quat",
-               "EXPONENTIAL": "decode_filter_exp"}
-    if filter_name in filters:
-        out = getattr(codec, filters[filter_name])(np.frombuffer(np.ascontiguousarray(out).tobytes(), np.uint8),
-                                                   count, stride)
+    raw = np.ascontiguousarray(out).tobytes()[: count * stride]  # index decoders return whole uint32 words
+    if filter_name in FILTERS:
+        name, strides = FILTERS[filter_name]
+        if mode != "ATTRIBUTES" or stride not in strides:
+            raise ValueError(f"filter {filter_name} needs an ATTRIBUTES view of byteStride {strides[0]}"
+                             + (f" or {strides[-1]}" if len(strides) > 1 else ""))
+        raw = getattr(codec, name)(np.frombuffer(raw, np.uint8).copy(), count, stride).tobytes()
     elif filter_name != "NONE":
         raise ValueError(f"unknown filter {filter_name!r}")
-    raw = np.ascontiguousarray(out).tobytes()
     if len(raw) != count * stride:
         raise ValueError(f"decoded {len(raw)} bytes, expected {count} x {stride}")
     return raw

@@ -181,7 +181,8 @@ def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normal
                         f"{len(weights)} weights; give one weight per target")
     if not any(weights):
         return positions, normals, tangents
-    deltas = {name: [_attribute(doc, t, name, where) for t in targets] for name in ("POSITION", "NORMAL", "TANGENT")}
+    deltas = {name: [_attribute(doc, {"attributes": t}, name, where) for t in targets]
+              for name in ("POSITION", "NORMAL", "TANGENT")}
     return (gltf_extensions.morphed(positions, deltas["POSITION"], weights),
             gltf_extensions.morphed(normals, deltas["NORMAL"], weights),
             gltf_extensions.morphed(tangents, deltas["TANGENT"], weights))
