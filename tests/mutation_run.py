@@ -29,6 +29,7 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+EXT = "tests/test_gltf_extensions.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -113,6 +114,54 @@ MUTATIONS = [
      " UINT, FLOAT)", [GLTF]),
     ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
+    # glTF extensions (issue 30 item 2)
+    ("wgpurender/core/gltf_extensions.py", "rotation = np.array([[c, s, 0], [-s, c, 0]", "rotation = np.array([[c, -s, 0],"
+     " [s, c, 0]", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "    return translation @ rotation @ scale", "    return scale @ rotation @ "
+     "translation", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "    return uvs @ m[:2, :2].T + m[:2, 2]", "    return uvs @ m[:2, :2] + "
+     "m[:2, 2]", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "    texcoord = int(ext.get(\"texCoord\", texcoord))", "", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, None, :]",
+     "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, :, None]", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "        out[:, :3, 3] = translation", "        out[:, 3, :3] = "
+     "translation", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "2 * (x * y - z * w), 2 * (x * z + y * w)], 1)", "2 * (x * y + z * w), "
+     "2 * (x * z + y * w)], 1)", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "            out[:, :width] += float(weight) * delta[:, :width]",
+     "            out[:, :width] = float(weight) * delta[:, :width]", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", '"POSITION": (FLOAT, BYTE, UBYTE, SHORT, USHORT)', '"POSITION": (FLOAT,)',
+     [EXT]),
+    ("wgpurender/core/gltf_extensions.py", '"NORMAL": (FLOAT, BYTE, SHORT)', '"NORMAL": (FLOAT, SHORT)', [EXT]),
+    ("wgpurender/core/gltf_extensions.py", 'SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", ',
+     'SUPPORTED_REQUIRED = frozenset({', [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "    return list(world @ matrices)", "    return list(matrices @ world)",
+     [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "            out.extend((placement, node[\"mesh\"], index) for placement in "
+     "_instances(doc, node, world))", "            out.append((world, node[\"mesh\"], index))", [EXT]),
+    ("wgpurender/core/gltf_geometry.py", 'weights = nodes[node_index].get("weights", mesh.get("weights"))',
+     'weights = mesh.get("weights", nodes[node_index].get("weights"))', [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "    if arrays[uv_name] is not None and uv_transform is not None:",
+     "    if arrays[uv_name] is not None and uv_transform is None:", [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "    if not any(weights):\n", "    if len(weights) < 2:\n", [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "semantic not in (\"POSITION\",", "semantic not in (\"NORMAL\",", [EXT]),
+    ("wgpurender/core/gltf_rules.py", "        if rule is not None and widened is not None:",
+     "        if rule is not None and widened is None:", [EXT]),
+    ("wgpurender/core/gltf_compression.py", "        view.update(buffer=len(buffers) - 1, byteOffset=0",
+     "        view.update(buffer=len(buffers) - 1, byteOffset=start", [EXT]),
+    ("wgpurender/core/gltf_compression.py", "    raw = np.ascontiguousarray(out).tobytes()[: count * stride]",
+     "    raw = np.ascontiguousarray(out).tobytes()", [EXT]),
+    ("wgpurender/core/gltf_compression.py", '        decode = codec.decode_index_buffer if mode == "TRIANGLES"',
+     '        decode = codec.decode_index_sequence if mode == "TRIANGLES"', [EXT]),
+    ("wgpurender/core/gltf_compression.py", "        return __import__(module)\n    except ImportError:",
+     "        return __import__(module)\n    except ValueError:", [EXT]),
+    ("wgpurender/core/gltf_io.py", "        return b\"\"  # EXT_meshopt", "        return glb_bin  # "
+     "EXT_meshopt", [EXT]),
+    ("wgpurender/core/gltf_compression.py", "        found = mesh.get_attribute_by_unique_id(int(unique_id))",
+     "        found = mesh.get_attribute_by_unique_id(0)", [EXT]),
+    ("wgpurender/core/gltf_materials.py", "            taken.append(f\"extensionsUsed {ext}: used\")",
+     "            ignored.append(f\"extensionsUsed {ext}: ignored\")", [EXT]),
+    ("wgpurender/core/gltf_materials.py", "    elif mine[1] != lead[1]:", "    elif mine[0] != lead[1]:", [EXT]),
 ]
 
 
