@@ -115,8 +115,8 @@ MUTATIONS = [
     ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
     # glTF extensions (issue 30 item 2)
-    ("wgpurender/core/gltf_extensions.py", "rotation = np.array([[c, s, 0], [-s, c, 0]", "rotation = np.array([[c, -s, 0],"
-     " [s, c, 0]", [EXT]),
+    ("wgpurender/core/gltf_extensions.py", "rotation = np.array([[c, s, 0], [-s, c, 0]",
+     "rotation = np.array([[c, -s, 0], [s, c, 0]", [EXT]),
     ("wgpurender/core/gltf_extensions.py", "    return translation @ rotation @ scale", "    return scale @ rotation @ "
      "translation", [EXT]),
     ("wgpurender/core/gltf_extensions.py", "    return uvs @ m[:2, :2].T + m[:2, 2]", "    return uvs @ m[:2, :2] + "
