@@ -188,7 +188,7 @@ def test_default_morph_weights(ctx, tmp_path, which):
 
 
 INSTANCES_T = np.float32([[-1.2, 0.9, 0], [1.1, 0.8, 0], [-1.0, -1.0, 0], [1.0, -1.0, 0]])
-INSTANCES_S = np.float32([[1, 1, 1], [1.5, 0.5, 1], [0.5, 0.5, 1], [1, 1, 1]])
+INSTANCES_S = np.float32([[1, 1, 1], [1.5, 0.5, 1], [0.5, 0.5, 1], [1.4, 0.6, 1]])
 INSTANCES_R = np.float32([[0, 0, 0, 1], [0, 0, 0, 1], [0, 0, 0, 1],
                           [0, 0, math.sin(math.pi / 8), math.cos(math.pi / 8)]])  # the last turned 45 degrees
 

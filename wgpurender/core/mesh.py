@@ -33,12 +33,12 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.input_files import check_file_size, input_file, resolved
 from wgpurender.core.tangents import area_weighted_normals, face_uv_frames, split_mirrored_vertices, vertex_tangents
 
-SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl"}
+SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl", ".fbx": "fbx"}
 CONVERT_HINT = (
     "convert it to glTF: in Blender, File > Import the file, then File > Export > glTF 2.0 (.glb); "
     "or with assimp: `assimp export {name} {stem}.glb`"
 )
-UNSUPPORTED = {".fbx": "FBX", ".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
+UNSUPPORTED = {".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
                ".usd": "USD", ".usdz": "USDZ", ".usda": "USD", ".usdc": "USD"}
 MTL_ROLES = {  # MTL statement -> (texture role, is the image sRGB-encoded)
     "map_kd": ("base_color", True),
@@ -319,6 +319,8 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
     file_type = SUPPORTED[suffix]
     if file_type in ("gltf", "glb"):
         parts, material = _gltf_parts(path, file_type)
+    elif file_type == "fbx":
+        parts, material = _fbx_parts(path)
     else:
         if file_type == "obj":
             check_obj_records(path)
@@ -415,6 +417,20 @@ def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | Non
             mat_name, textures = gltf_io.material_textures(doc, g.material)
             material = Material(mat_name, {role: TextureRef(t["uri"], t["data"], t["srgb"])
                                            for role, t in textures.items()})
+    return parts, material
+
+
+def _fbx_parts(path: Path) -> tuple[list[_Part], Material | None]:
+    """Every triangle mesh an FBX file's node tree places, in world space (core/fbx.py: assimp, axes, units)."""
+    from wgpurender.core import fbx
+
+    placed, found = fbx.load_fbx(path)
+    parts = [_place(world, positions, faces, normals, uvs, None, str(path), name)
+             for world, positions, faces, normals, uvs, name, _ in placed]
+    material = None
+    if found is not None:
+        textures = {role: TextureRef(file, None, role == "base_color") for role, file in found["textures"].items()}
+        material = Material(found["name"], textures, color=found["color"])
     return parts, material
 
 
