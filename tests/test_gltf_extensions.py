@@ -352,3 +352,23 @@ def test_a_gltf_scene_imports_neither_trimesh_nor_scipy(tmp_path):
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.strip().splitlines()[-1] == "[]"
     assert (tmp_path / "a.png").exists() and (tmp_path / "b.png").exists()
+
+
+def test_one_morph_target_and_tangent_deltas(tmp_path):
+    """A single target with weight 0.5 (the loader's arrays, no render): POSITION moves by half its delta, the
+    TANGENT's xyz by half of its delta while w (handedness) stays the file's -1."""
+    g = GltfWriter()
+    base = quad(0, 0, 1, 1)
+    tangents = np.tile(np.float32([1, 0, 0, -1]), (4, 1))
+    delta_t = np.tile(np.float32([0, 2, 0]), (4, 1))
+    prim = {"attributes": {"POSITION": g.positions(base), "TANGENT": g.accessor(tangents),
+                           "NORMAL": g.accessor(np.tile(np.float32([0, 0, 1]), (4, 1)))},
+            "indices": g.accessor(QUAD_INDICES),
+            "targets": [{"POSITION": g.positions(np.tile(np.float32([0, 0, 0.8]), (4, 1))),
+                         "TANGENT": g.accessor(delta_t)}]}
+    g.node(mesh=g.mesh([prim]))
+    g.doc["meshes"][0]["weights"] = [0.5]
+    mesh = load_mesh(g.write(tmp_path / "one.glb"))
+    assert np.allclose(mesh.positions[:, 2], 0.4)
+    want = np.array([1, 1, 0]) / np.sqrt(2)  # (1, 0, 0) + 0.5 (0, 2, 0), normalised by the loader
+    assert np.allclose(mesh.tangents[:, :3], want, atol=1e-6) and np.all(mesh.tangents[:, 3] == -1)
