@@ -294,9 +294,9 @@ def expect_user_error(path, *fragments):
     return message
 
 
-def test_fbx_and_unknown_formats_say_how_to_convert(tmp_path):
-    (tmp_path / "model.fbx").write_bytes(b"Kaydara FBX Binary  \0")
-    expect_user_error(tmp_path / "model.fbx", "FBX", "not supported", "glTF", "Blender", "assimp export model.fbx")
+def test_blender_and_unknown_formats_say_how_to_convert(tmp_path):
+    (tmp_path / "model.blend").write_bytes(b"BLENDER-v300")
+    expect_user_error(tmp_path / "model.blend", "Blender", "not supported", "glTF", "assimp export model.blend")
     expect_user_error(tmp_path / "model.xyz123", "unknown model format", ".obj", ".glb")
 
 

@@ -310,7 +310,7 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
     suffix = path.suffix.lower()
     if suffix in UNSUPPORTED:
         kind = UNSUPPORTED[suffix]
-        raise UserError(f"cannot load {path}: {kind} files are not supported (trimesh cannot read {kind}); "
+        raise UserError(f"cannot load {path}: {kind} files are not supported (wgpurender cannot read {kind}); "
                         + CONVERT_HINT.format(name=path.name, stem=path.stem))
     if suffix not in SUPPORTED:
         raise UserError(f"cannot load {path}: unknown model format '{suffix or path.name}' "
