@@ -155,8 +155,8 @@ MUTATIONS = [
      '        decode = codec.decode_index_sequence if mode == "TRIANGLES"', [EXT]),
     ("wgpurender/core/gltf_compression.py", "        return __import__(module)\n    except ImportError:",
      "        return __import__(module)\n    except ValueError:", [EXT]),
-    ("wgpurender/core/gltf_io.py", "        return b\"\"  # EXT_meshopt", "        return glb_bin  # "
-     "EXT_meshopt", [EXT]),
+    ("wgpurender/core/gltf_io.py", 'if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, '
+     '{}).get("fallback"):', "if False:", [EXT]),
     ("wgpurender/core/gltf_compression.py", "        found = mesh.get_attribute_by_unique_id(int(unique_id))",
      "        found = mesh.get_attribute_by_unique_id(0)", [EXT]),
     ("wgpurender/core/gltf_materials.py", "            taken.append(f\"extensionsUsed {ext}: used\")",
