@@ -30,6 +30,7 @@ CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
 EXT = "tests/test_gltf_extensions.py"
+FBX = "tests/test_fbx.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
