@@ -163,6 +163,22 @@ MUTATIONS = [
     ("wgpurender/core/gltf_materials.py", "            taken.append(f\"extensionsUsed {ext}: used\")",
      "            ignored.append(f\"extensionsUsed {ext}: ignored\")", [EXT]),
     ("wgpurender/core/gltf_materials.py", "    elif mine[1] != lead[1]:", "    elif mine[0] != lead[1]:", [EXT]),
+    # FBX through assimp (issue 30 item 3)
+    ("wgpurender/core/fbx.py", '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+     '        m[axis, row] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0', [FBX]),
+    ("wgpurender/core/fbx.py", '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+     "        m[row, axis] = 1.0", [FBX]),
+    ("wgpurender/core/fbx.py", 'scale = float(meta.get("UnitScaleFactor", 1.0)) / 100.0',
+     'scale = float(meta.get("UnitScaleFactor", 1.0)) / 1.0', [FBX]),
+    ("wgpurender/core/fbx.py", "            uvs[:, 1] = 1.0 - uvs[:, 1]", "            uvs[:, 1] = uvs[:, 1]", [FBX]),
+    ("wgpurender/core/fbx.py", 'TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}',
+     'TEXTURE_TYPES = {1: "base_color", 6: "normal"}', [FBX]),
+    ("wgpurender/core/fbx.py", "    world = parent @ np.asarray(node.transformation, np.float64)",
+     "    world = np.asarray(node.transformation, np.float64)", [FBX]),
+    ("wgpurender/core/fbx.py", "    except (pyassimp.errors.AssimpError, Exception) as err:",
+     "    except Exception as err:", [FBX]),
+    ("wgpurender/core/fbx.py", "            textures[role] = (path.parent / name).resolve()",
+     "            textures[role] = Path(name)", [FBX]),
 ]
 
 
