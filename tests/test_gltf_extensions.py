@@ -375,3 +375,70 @@ def test_one_morph_target_and_tangent_deltas(tmp_path):
     assert np.allclose(mesh.positions[:, 2], 0.4)
     want = np.array([1, 1, 0]) / np.sqrt(2)  # (1, 0, 0) + 0.5 (0, 2, 0), normalised by the loader
     assert np.allclose(mesh.tangents[:, :3], want, atol=1e-6) and np.all(mesh.tangents[:, 3] == -1)
+
+
+LINE_COLOUR, POINT_COLOUR, STRIP_COLOUR = (1.0, 0.2, 0.1), (0.1, 1.0, 0.3), (0.2, 0.4, 1.0)
+
+
+def _modes_file(tmp_path):
+    """MeshPrimitiveModes' point: a triangle quad at the bottom, then LINES (two horizontal segments), a
+    LINE_LOOP (a square's outline), a LINE_STRIP (a vertical polyline) and POINTS, each its own unlit colour."""
+    g = GltfWriter()
+    mats = [g.material(pbrMetallicRoughness={"baseColorFactor": [*c, 1]}, **UNLIT)
+            for c in ((0.5, 0.5, 0.5), LINE_COLOUR, POINT_COLOUR, STRIP_COLOUR)]
+    quad_prim = {"attributes": {"POSITION": g.positions(quad(-1.6, -1.6, 1.6, -1.0))},
+                 "indices": g.accessor(QUAD_INDICES), "material": mats[0]}
+    lines = np.float32([[-1.5, 1.2, 0], [-0.3, 1.2, 0], [0.3, 1.2, 0], [1.5, 1.2, 0]])
+    loop = np.float32([[-1.2, -0.6, 0], [-0.2, -0.6, 0], [-0.2, 0.4, 0], [-1.2, 0.4, 0]])
+    strip = np.float32([[1.0, -0.7, 0], [1.0, 0.0, 0], [1.4, 0.0, 0], [1.4, 0.6, 0]])
+    points = np.float32([[0.2, 0.2, 0], [0.5, -0.4, 0], [0.6, 0.7, 0]])
+    prims = [quad_prim,
+             {"attributes": {"POSITION": g.positions(lines)}, "mode": 1, "material": mats[1]},
+             {"attributes": {"POSITION": g.positions(loop)}, "mode": 2, "material": mats[3]},
+             {"attributes": {"POSITION": g.positions(strip)}, "mode": 3, "material": mats[3]},
+             {"attributes": {"POSITION": g.positions(points)}, "mode": 0, "material": mats[2]}]
+    g.node(mesh=g.mesh(prims))
+    g.write(tmp_path / "modes.glb")
+    return lines, loop, strip, points
+
+
+def _near(image, x, y, colour, radius=1) -> bool:
+    """Some pixel within ``radius`` of where the camera puts (x, y) shows ``colour`` (sRGB-encoded, within 3)."""
+    from test_gltf_render import srgb_encode
+
+    col, row = (int(v) for v in pixel_of(x, y, SIZE))
+    patch = image[max(row - radius, 0): row + radius + 1, max(col - radius, 0): col + radius + 1, :3]
+    return bool(np.any(np.abs(patch.astype(float) - srgb_encode(colour)).max(axis=2) <= 3))
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_points_and_lines_are_drawn(ctx, tmp_path, which):
+    """Each segment's midpoint shows its primitive's colour, so does each point; the loop's closing segment
+    (last vertex back to the first) is drawn; the gap between the two LINES segments, the strip's missing
+    closing segment and the points' neighbourhood stay black; the quad still shows."""
+    lines, loop, strip, points = _modes_file(tmp_path)
+    image = render(ctx, write_scene(tmp_path, "modes.glb"), which)
+    assert_colour(image, 0.0, -1.3, (0.5, 0.5, 0.5), f"{which} quad")
+    for a, b, colour in ((lines[0], lines[1], LINE_COLOUR), (lines[2], lines[3], LINE_COLOUR),
+                         *((loop[i], loop[(i + 1) % 4], STRIP_COLOUR) for i in range(4)),
+                         *((strip[i], strip[i + 1], STRIP_COLOUR) for i in range(3))):
+        mid = (a + b) / 2
+        assert _near(image, mid[0], mid[1], colour), (which, a.tolist(), b.tolist())
+    for p in points:
+        assert _near(image, p[0], p[1], POINT_COLOUR), (which, p.tolist())
+        col, row = (int(v) for v in pixel_of(p[0], p[1], SIZE))
+        assert image[row - 3: row + 4, col - 3: col + 4, :3].max(axis=2).astype(bool).sum() <= 4  # 1-pixel points
+    black = [(0.0, 1.2), ((strip[0][0] + strip[3][0]) / 2, (strip[0][1] + strip[3][1]) / 2)]
+    for x, y in black:
+        col, row = (int(v) for v in pixel_of(x, y, SIZE))
+        assert image[row, col, :3].max() == 0, (which, x, y)
+
+
+def test_explain_says_points_and_lines_are_drawn_unlit(tmp_path, capsys):
+    from wgpurender.cli import main
+
+    _modes_file(tmp_path)
+    assert main(["render", str(write_scene(tmp_path, "modes.glb")), "--explain"]) == 0
+    out = capsys.readouterr().out
+    assert "POINTS primitive drawn unlit as a point-list" in out and "LINE_LOOP primitive drawn unlit" in out
+    assert "| line-list" in out and "| point-list" in out  # their own pipelines

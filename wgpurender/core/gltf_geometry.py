@@ -19,7 +19,10 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
-SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}
+SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}  # drawn with TOPOLOGIES
+# glTF mode -> the list topology it is drawn with (strips and loops are turned into lists at load)
+TOPOLOGIES = {0: "point-list", 1: "line-list", 2: "line-list", 3: "line-list", 4: "triangle-list",
+              5: "triangle-list", 6: "triangle-list"}
 FLOAT = 5126
 
 
@@ -35,6 +38,7 @@ class PrimitiveGeometry:
     colors: np.ndarray | None  # (N, 4) linear RGBA
     material: int | None
     where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
+    topology: str = "triangle-list"  # faces (F, 3); "line-list": (F, 2) segments; "point-list": (F, 1)
 
 
 def node_matrix(node: dict) -> np.ndarray:
@@ -132,6 +136,8 @@ def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
     else:
         idx = np.arange(count, dtype=np.int64)
     mode = prim.get("mode", 4)
+    if mode in SKIPPED_MODES:
+        return _points_and_lines(idx, mode)
     if mode == 4:
         return idx[: len(idx) // 3 * 3].reshape(-1, 3)
     n = max(len(idx) - 2, 0)
@@ -141,6 +147,16 @@ def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
         a, b = np.where(odd, idx[i + 1], idx[i]), np.where(odd, idx[i], idx[i + 1])
         return np.stack([a, b, idx[i + 2]], axis=1)
     return np.stack([idx[i + 1], idx[i + 2], np.full(n, idx[0]) if n else idx[:0]], axis=1)  # fan around idx[0]
+
+
+def _points_and_lines(idx: np.ndarray, mode: int) -> np.ndarray:
+    """POINTS as (N, 1); LINES, LINE_STRIP and LINE_LOOP as (segments, 2) of a line list."""
+    if mode == 0:
+        return idx.reshape(-1, 1)
+    if mode == 1:
+        return idx[: len(idx) // 2 * 2].reshape(-1, 2)
+    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]  # a loop closes on its first
+    return np.stack([idx[: len(ends)], ends], axis=1)
 
 
 def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
@@ -189,12 +205,10 @@ def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normal
 
 
 def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) -> PrimitiveGeometry | None:
-    """One primitive's triangles and attributes in its mesh's own space (the caller applies the node's world
-    matrix); None for points and lines (see :func:`geometry_notes`)."""
+    """One primitive's triangles (or points, or line segments: ``topology``) and attributes in its mesh's own
+    space (the caller applies the node's world matrix)."""
     mode = prim.get("mode", 4)
-    if mode in SKIPPED_MODES:
-        return None
-    if mode not in TRIANGLE_MODES:
+    if mode not in TOPOLOGIES:
         raise UserError(f"malformed glTF file {doc.path}: {where} has mode {mode}; glTF 2.0 modes are 0..6")
     material = prim.get("material")
     uv_set, uv_transform = uv_choice(doc, material)
@@ -226,11 +240,12 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
     return PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
-                             material, where)
+                             material, where, TOPOLOGIES[mode])
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
-    """(world matrix, node label, geometry) of every triangle primitive the file's scene places."""
+    """(world matrix, node label, geometry) of every primitive the file's scene places (triangles, points and
+    line segments: ``geometry.topology``)."""
     meshes = doc.json.get("meshes", [])
     out = []
     nodes = doc.json.get("nodes", [])
@@ -253,8 +268,9 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
         for pi, prim in enumerate(mesh.get("primitives", [])):
             mode = prim.get("mode", 4)
             if mode in SKIPPED_MODES:
-                notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive ignored (only triangles "
-                             "are drawn)")
+                notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive drawn unlit as a "
+                             f"{TOPOLOGIES[mode]} of 1-pixel {'points' if mode == 0 else 'lines'} (points and lines "
+                             "have no surface to light)")
             if prim.get("targets") and gltf_compression.DRACO in prim.get("extensions", {}):
                 notes.append(f"mesh {mi} primitive {pi}: morph targets of a Draco primitive ignored (drawn in the "
                              "base pose)")

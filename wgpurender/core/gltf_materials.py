@@ -187,22 +187,24 @@ def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
 def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
     doc = gltf_io.read_document(path)
-    used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
+    used: dict[tuple[str, int], bool] = {}  # (topology, file material index, -1: none) -> any has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
         for prim in meshes[mesh_index].get("primitives", []):
-            if prim.get("mode", 4) in gltf_geometry.TRIANGLE_MODES:
-                k = prim.get("material", -1)
-                used[k] = used.get(k, False) or "COLOR_0" in prim.get("attributes", {})
+            topology = gltf_geometry.TOPOLOGIES.get(prim.get("mode", 4))
+            if topology is not None:
+                key = (topology != "triangle-list", prim.get("material", -1), topology)
+                used[key] = used.get(key, False) or "COLOR_0" in prim.get("attributes", {})
     taken, ignored = [], list(gltf_geometry.geometry_notes(doc))
     materials = []
-    for k in sorted(used):
+    for (_, k, topology), colours in sorted(used.items()):  # triangles first, then points and lines
         if k < 0:
-            materials.append(dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
-                                                 origin=f"{label} primitives without a material (the default one)",
-                                                 vertex_colors=used[k], part=-1))
+            material = dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
+                                           origin=f"{label} primitives without a material (the default one)",
+                                           vertex_colors=colours, part=-1)
         else:
-            materials.append(file_material(doc, k, label, used[k], ignored))
+            material = file_material(doc, k, label, colours, ignored)
+        materials.append(material if topology == "triangle-list" else _points_or_lines(material, topology))
     for m in materials:
         taken.append(_taken_text(m))
     for ext in doc.json.get("extensionsUsed", []):
@@ -211,6 +213,14 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
         else:
             ignored.append(f"extensionsUsed {ext}: ignored")
     return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
+
+
+def _points_or_lines(material: Material, topology: str) -> Material:
+    """The material of a points or lines primitive: drawn unlit (no surface to light), its own topology."""
+    kind = "points" if topology == "point-list" else "lines"
+    return dataclasses.replace(material, name=f"{material.name} ({kind})", origin=f"{material.origin} ({kind}, "
+                               "unlit)", unlit=True, topology=topology, normal_map=None, roughness_map=None,
+                               occlusion_map=None, emissive_map=None, emissive_color=(0.0, 0.0, 0.0))
 
 
 def _taken_text(m: Material) -> str:
