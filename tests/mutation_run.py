@@ -179,6 +179,24 @@ MUTATIONS = [
      "    except Exception as err:", [FBX]),
     ("wgpurender/core/fbx.py", "            textures[role] = (path.parent / name).resolve()",
      "            textures[role] = Path(name)", [FBX]),
+    # glTF points and lines (issue 30 item 2)
+    ("wgpurender/core/gltf_geometry.py",
+     "    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]", "    ends = idx[1:]", [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "        return idx[: len(idx) // 2 * 2].reshape(-1, 2)",
+     "        return np.stack([idx[:-1], idx[1:]], axis=1)",
+     [EXT]),
+    ("wgpurender/core/gltf_geometry.py", 'TOPOLOGIES = {0: "point-list", 1: "line-list"',
+     'TOPOLOGIES = {0: "line-list", 1: "line-list"', [EXT]),
+    ("wgpurender/core/mesh.py", "        if part.material == wanted and part.topology == topology:",
+     "        if part.material == wanted:", [EXT]),
+    ("wgpurender/core/mesh.py", "        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)",
+     "        flat.append(np.asarray(p.faces, np.int64).reshape(-1))", [EXT]),
+    ("wgpurender/raw_path/scene/scene_subpass.py", "                                topology=TOPOLOGIES[topology])",
+     "                                )", [EXT]),
+    ("wgpurender/wgpu_path/scene_render/scene_pass.py", 'primitive={"topology": planned.topology,',
+     'primitive={"topology": "triangle-list",', [EXT]),
+    ("wgpurender/core/gltf_materials.py", "        materials.append(material if topology == \"triangle-list\" else "
+     "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
 ]
 
 
