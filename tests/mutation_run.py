@@ -31,6 +31,7 @@ SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
 EXT = "tests/test_gltf_extensions.py"
 FBX = "tests/test_fbx.py"
+KHRONOS = "tests/test_khronos_samples.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -188,7 +189,7 @@ MUTATIONS = [
     ("wgpurender/core/gltf_geometry.py", 'TOPOLOGIES = {0: "point-list", 1: "line-list"',
      'TOPOLOGIES = {0: "line-list", 1: "line-list"', [EXT]),
     ("wgpurender/core/mesh.py", "        if part.material == wanted and part.topology == topology:",
-     "        if part.material == wanted:", [EXT]),
+     "        if part.material == wanted:", [EXT, KHRONOS]),
     ("wgpurender/core/mesh.py", "        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)",
      "        flat.append(np.asarray(p.faces, np.int64).reshape(-1))", [EXT]),
     ("wgpurender/raw_path/scene/scene_subpass.py", "                                topology=TOPOLOGIES[topology])",
@@ -197,6 +198,10 @@ MUTATIONS = [
      'primitive={"topology": "triangle-list",', [EXT]),
     ("wgpurender/core/gltf_materials.py", "        materials.append(material if topology == \"triangle-list\" else "
      "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
+    ("wgpurender/core/gltf_geometry.py", "            out.extend((placement, node[\"mesh\"], index) for placement in "
+     "_instances(doc, node, world))", "            out.append((world, node[\"mesh\"], index))", [KHRONOS]),
+    ("wgpurender/core/gltf_extensions.py", "            out[:, :width] += float(weight) * delta[:, :width]",
+     "            out[:, :width] += delta[:, :width]", [KHRONOS]),
 ]
 
 
