@@ -442,3 +442,16 @@ def test_explain_says_points_and_lines_are_drawn_unlit(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "POINTS primitive drawn unlit as a point-list" in out and "LINE_LOOP primitive drawn unlit" in out
     assert "| line-list" in out and "| point-list" in out  # their own pipelines
+
+
+def test_meshopt_views_that_claim_too_much_are_refused_before_decoding(tmp_path):
+    """A compressed view's count x byteStride is what the decoder allocates: 2^40 vertices of a 32-byte stride
+    (32 TiB from a few bytes) is refused in one line, before any allocation."""
+    import json
+
+    path = _meshopt_quad(tmp_path)
+    doc = json.loads(path.read_text())
+    doc["bufferViews"][-2]["extensions"]["EXT_meshopt_compression"]["count"] = 2**40
+    path.write_text(json.dumps(doc))
+    with pytest.raises(UserError, match="EXT_meshopt_compression views decode to .* over the model limit"):
+        load_mesh(path)

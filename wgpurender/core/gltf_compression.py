@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.input_files import MAX_MODEL_BYTES, MAX_MODEL_BYTES_ENV, env_limit
 
 MESHOPT = "EXT_meshopt_compression"
 DRACO = "KHR_draco_mesh_compression"
@@ -39,6 +40,12 @@ def meshopt_buffers(path, doc_json: dict, buffers: list[bytes]) -> list[bytes]:
         return buffers
     codec = _decoder(path, MESHOPT)
     buffers = list(buffers)
+    limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES)
+    total = sum(int(v["extensions"][MESHOPT].get("count", 0)) * int(v["extensions"][MESHOPT].get("byteStride", 0))
+                for v in views)
+    if total > limit:  # a few compressed bytes can claim gigabytes: refused before anything is allocated
+        raise UserError(f"{path}: its {MESHOPT} views decode to {total / 2**20:.0f} MiB, over the model limit of "
+                        f"{limit / 2**20:.0f} MiB; raise it with ${MAX_MODEL_BYTES_ENV}=BYTES if the model is real")
     for view in views:
         ext = view["extensions"][MESHOPT]
         source = buffers[ext["buffer"]]
