@@ -10,6 +10,7 @@ What is not drawn is said, never dropped silently: :func:`geometry_notes` lists 
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,6 +18,7 @@ import numpy as np
 from wgpurender.core import gltf_compression, gltf_extensions
 from wgpurender.core.errors import UserError
 from wgpurender.core.gltf_io import GltfDocument, read_accessor
+from wgpurender.core.input_files import MAX_MODEL_BYTES, MAX_MODEL_BYTES_ENV, env_limit
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
 SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}  # drawn with TOPOLOGIES
@@ -245,9 +247,11 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
     """(world matrix, node label, geometry) of every primitive the file's scene places (triangles, points and
-    line segments: ``geometry.topology``)."""
+    line segments: ``geometry.topology``). A primitive placed many times (nodes, EXT_mesh_gpu_instancing) is read
+    once per set of morph weights; the placed vertices are bounded by the model limit (48 bytes each on the GPU)."""
     meshes = doc.json.get("meshes", [])
-    out = []
+    out, read, placed = [], {}, 0
+    limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES) // 48
     nodes = doc.json.get("nodes", [])
     for world, mesh_index, node_index in placed_meshes(doc):
         mesh = meshes[mesh_index]
@@ -255,8 +259,15 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
         weights = nodes[node_index].get("weights", mesh.get("weights")) if node_index >= 0 else mesh.get("weights")
         for p, prim in enumerate(mesh.get("primitives", [])):
             where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
-            geometry = primitive_geometry(doc, prim, where, weights)
+            key = (mesh_index, p, json.dumps(weights))
+            if key not in read:
+                read[key] = primitive_geometry(doc, prim, where, weights)
+            geometry = read[key]
             if geometry is not None and len(geometry.faces):
+                placed += len(geometry.positions)
+                if placed > limit:
+                    raise UserError(f"{doc.path}: its nodes and instances place over {limit} vertices, more than "
+                                    f"the model limit allows; raise ${MAX_MODEL_BYTES_ENV} if the model is real")
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
 
