@@ -198,8 +198,6 @@ MUTATIONS = [
      'primitive={"topology": "triangle-list",', [EXT]),
     ("wgpurender/core/gltf_materials.py", "        materials.append(material if topology == \"triangle-list\" else "
      "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "            out.extend((placement, node[\"mesh\"], index) for placement in "
-     "_instances(doc, node, world))", "            out.append((world, node[\"mesh\"], index))", [KHRONOS]),
     ("wgpurender/core/gltf_extensions.py", "            out[:, :width] += float(weight) * delta[:, :width]",
      "            out[:, :width] += delta[:, :width]", [KHRONOS]),
 ]
