@@ -100,6 +100,7 @@ def test_fbx_explain_takes_diffuse_and_normal_maps(tmp_path, capsys):
     assert main(["render", str(scene(tmp_path, write_fbx(tmp_path, BLENDER_AXES), lights=True)), "--explain"]) == 0
     out = capsys.readouterr().out
     assert "FBX material 'skin'" in out and "albedo_map = 'tex.png'" in out and "normal_map = 'nrm.png'" in out
+    assert "up +z turned to +y, UnitScaleFactor 1 cm per unit -> metres (x0.01)" in out
 
 
 def test_a_broken_fbx_is_one_line(tmp_path):

@@ -73,6 +73,15 @@ def axis_and_unit_matrix(meta: dict[str, float]) -> np.ndarray:
     return m
 
 
+def conversion_text(meta: dict[str, float]) -> str:
+    """What axis_and_unit_matrix did, in words (for --explain)."""
+    up = "xyz"[int(meta.get("UpAxis", 1))]
+    sign = "-" if meta.get("UpAxisSign", 1) < 0 else "+"
+    unit = float(meta.get("UnitScaleFactor", 1.0))
+    return (f"FBX GlobalSettings: up {sign}{up} turned to +y, UnitScaleFactor {unit:g} cm per unit -> metres "
+            f"(x{unit / 100:g})")
+
+
 def load_fbx(path: Path) -> tuple[list[tuple], dict | None]:
     """([(world 4x4, positions, faces, normals, uvs or None, mesh name)], first material or None).
 
@@ -81,9 +90,12 @@ def load_fbx(path: Path) -> tuple[list[tuple], dict | None]:
     flags = pp.aiProcess_Triangulate | pp.aiProcess_JoinIdenticalVertices | pp.aiProcess_SortByPType
     try:
         with pyassimp.load(str(path), processing=flags) as scene:
-            root = axis_and_unit_matrix(_metadata(scene))
+            meta = _metadata(scene)
+            root = axis_and_unit_matrix(meta)
             placed = list(_walk(scene.rootnode, root))
             material = _material(path, scene, placed)
+            if material is not None:
+                material["notes"] = (conversion_text(meta),)
     except UserError:
         raise
     except (pyassimp.errors.AssimpError, Exception) as err:  # AssimpError is a BaseException, not an Exception

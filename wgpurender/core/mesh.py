@@ -93,6 +93,7 @@ class Material:
     color: tuple[float, float, float] | None = None  # MTL Kd (diffuse colour, taken as linear)
     opacity: float | None = None  # MTL d (dissolve), or 1 - Tr
     illum: int | None = None  # MTL illumination model: 0 = colour only, no lighting
+    notes: tuple[str, ...] = ()  # what the loader converted (FBX axes and units), for --explain
 
 
 @dataclass(frozen=True)
@@ -484,7 +485,7 @@ def _fbx_parts(path: Path) -> tuple[list[_Part], Material | None]:
     material = None
     if found is not None:
         textures = {role: TextureRef(file, None, role == "base_color") for role, file in found["textures"].items()}
-        material = Material(found["name"], textures, color=found["color"])
+        material = Material(found["name"], textures, color=found["color"], notes=found["notes"])
     return parts, material
 
 

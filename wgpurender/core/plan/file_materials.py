@@ -52,6 +52,7 @@ def obj_materials(model: Model) -> ModelMaterials | None:
         taken.append(f"d {opacity:g} (alpha blended, unsorted)")
     if found.illum == 0:
         taken.append("illum 0 (unlit)")
+    taken.extend(found.notes)
     ignored = [f"{kind} '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
     used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
     if len(used) > 1:
