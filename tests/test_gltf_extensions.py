@@ -472,3 +472,43 @@ def test_instances_beyond_the_model_limit_are_refused(tmp_path, monkeypatch):
         load_mesh(path)
     monkeypatch.setattr("wgpurender.core.gltf_geometry.env_limit", lambda name, default: 16 * 48)
     assert load_mesh(path, generate_tangents=False).vertex_count == 16
+
+
+def test_draco_with_an_uncompressed_fallback_loads_without_dracopy(tmp_path, monkeypatch):
+    """KHR_draco_mesh_compression only in extensionsUsed, the accessors also pointing at plain data: without
+    DracoPy the fallback is read (with it, the Draco data)."""
+    import importlib.util
+
+    import json
+
+    from gltf_gen import write_container
+
+    path = _draco_quad(tmp_path)
+    raw = path.read_bytes()  # the GLB's JSON and BIN chunks, edited to add plain copies of the data
+    (json_len,) = np.frombuffer(raw[12:16], "<u4")
+    doc = json.loads(raw[20:20 + json_len])
+    binary = raw[20 + json_len + 8:]
+    fallback = quad(-0.5, -0.5, 0.5, 0.5)  # a smaller quad: which data was read shows in the positions
+    offset = len(binary)
+    binary += fallback.tobytes()
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": fallback.nbytes})
+    position = doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
+    doc["accessors"][position]["bufferView"] = len(doc["bufferViews"]) - 1
+    doc["accessors"][position].update(min=[-0.5, -0.5, 0], max=[0.5, 0.5, 0])
+    uv = doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"]
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": QUAD_UV.nbytes})
+    binary += QUAD_UV.tobytes()
+    doc["accessors"][uv]["bufferView"] = len(doc["bufferViews"]) - 1
+    indices = doc["meshes"][0]["primitives"][0]["indices"]
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": QUAD_INDICES.nbytes})
+    binary += QUAD_INDICES.tobytes()
+    doc["accessors"][indices]["bufferView"] = len(doc["bufferViews"]) - 1
+    doc["extensionsRequired"] = []
+    write_container(path, {k: v for k, v in doc.items() if k != "buffers"}, binary)
+    with_draco = load_mesh(path, generate_tangents=False)
+    assert np.allclose(np.abs(with_draco.positions[:, :2]).max(), HALF, atol=1e-3)
+    real_find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "DracoPy" else
+                        real_find_spec(name, *a))
+    without = load_mesh(path, generate_tangents=False)
+    assert np.allclose(np.abs(without.positions[:, :2]).max(), 0.5)

@@ -12,6 +12,8 @@ extension's unique ids.
 
 from __future__ import annotations
 
+import importlib.util
+
 import numpy as np
 
 from wgpurender.core.errors import UserError
@@ -30,6 +32,16 @@ def _decoder(path, extension: str):
     except ImportError:
         raise UserError(f"{path}: uses {extension}, whose decoder is not installed; `pip install {pip_name}` (or "
                         "`pip install wgpurender[compressed]`), or re-export the model without compression") from None
+
+
+def uses_draco(doc, prim: dict) -> bool:
+    """Whether a primitive is read from its Draco data: it has some, and either DracoPy is installed or the
+    primitive has no uncompressed fallback (an attribute accessor without a bufferView)."""
+    if DRACO not in prim.get("extensions", {}):
+        return False
+    accessors = doc.json.get("accessors", [])
+    fallback = all("bufferView" in accessors[i] for i in prim.get("attributes", {}).values())
+    return not fallback or importlib.util.find_spec(PACKAGES[DRACO][0]) is not None
 
 
 def meshopt_buffers(path, doc_json: dict, buffers: list[bytes]) -> list[bytes]:

@@ -216,7 +216,7 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     uv_set, uv_transform = uv_choice(doc, material)
     uv_name = f"TEXCOORD_{uv_set}"
     names = ("POSITION", "NORMAL", uv_name, "TANGENT", "COLOR_0")
-    draco = gltf_compression.DRACO in prim.get("extensions", {})
+    draco = gltf_compression.uses_draco(doc, prim)  # else its uncompressed fallback accessors
     if draco:
         decoded, draco_faces = gltf_compression.draco_attributes(doc, prim, where)
         arrays = {name: decoded.get(name) for name in names}
