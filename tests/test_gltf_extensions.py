@@ -478,7 +478,6 @@ def test_draco_with_an_uncompressed_fallback_loads_without_dracopy(tmp_path, mon
     """KHR_draco_mesh_compression only in extensionsUsed, the accessors also pointing at plain data: without
     DracoPy the fallback is read (with it, the Draco data)."""
     import importlib.util
-
     import json
 
     from gltf_gen import write_container
