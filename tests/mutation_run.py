@@ -200,6 +200,10 @@ MUTATIONS = [
      "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
     ("wgpurender/core/gltf_extensions.py", "            out[:, :width] += float(weight) * delta[:, :width]",
      "            out[:, :width] += delta[:, :width]", [KHRONOS]),
+    ("wgpurender/core/gltf_compression.py", 'FILTERS = {"OCTAHEDRAL": ("decode_filter_oct", (4, 8))',
+     'FILTERS = {"OCTAHEDRAL": ("decode_filter_exp", (4, 8))', [EXT]),
+    ("wgpurender/core/gltf_compression.py", "    return not fallback or importlib.util.find_spec(",
+     "    return True or importlib.util.find_spec(", [EXT]),
 ]
 
 

@@ -511,3 +511,41 @@ def test_draco_with_an_uncompressed_fallback_loads_without_dracopy(tmp_path, mon
                         real_find_spec(name, *a))
     without = load_mesh(path, generate_tangents=False)
     assert np.allclose(np.abs(without.positions[:, :2]).max(), 0.5)
+
+
+def test_meshopt_octahedral_filter_decodes_normals(tmp_path):
+    """EXT_meshopt_compression's OCTAHEDRAL filter on int16 normals (KHR_mesh_quantization's normalized SHORT):
+    the encoded (x, y, z) = (16383, 0, 32767) means oct (0.5, 0) with z = 1 - |x| - |y| = 0.5, i.e. the unit
+    normal (1, 0, 1) / sqrt(2) (the filter's definition in the extension's text)."""
+    import json
+
+    meshopt = pytest.importorskip("meshoptimizer")
+    from gltf_gen import write_container
+
+    positions = quad(-1, -1, 1, 1)
+    encoded_normals = np.tile(np.int16([16383, 0, 32767, 0]), (4, 1))
+    data = bytearray()
+    views, accessors = [], []
+    for array, stride, extra in ((positions, 12, {}), (encoded_normals, 8, {"filter": "OCTAHEDRAL"})):
+        packed = bytes(meshopt.encode_vertex_buffer(np.ascontiguousarray(array), 4, stride))
+        views.append({"buffer": 1, "byteOffset": 0, "byteLength": 4 * stride, "byteStride": stride, "extensions": {
+            "EXT_meshopt_compression": {"buffer": 0, "byteOffset": len(data), "byteLength": len(packed),
+                                        "byteStride": stride, "count": 4, "mode": "ATTRIBUTES", **extra}}})
+        data += packed + b"\0" * (-len(packed) % 4)
+    views.append({"buffer": 0, "byteOffset": len(data), "byteLength": QUAD_INDICES.nbytes})
+    data += QUAD_INDICES.tobytes()
+    accessors = [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0],
+                  "max": [1, 1, 0]},
+                 {"bufferView": 1, "componentType": 5122, "normalized": True, "count": 4, "type": "VEC3"},
+                 {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+           "bufferViews": views, "accessors": accessors,
+           "extensionsUsed": ["EXT_meshopt_compression", "KHR_mesh_quantization"]}
+    path = write_container(tmp_path / "oct.gltf", doc, bytes(data))
+    written = json.loads(path.read_text())
+    written["buffers"].append({"byteLength": 4 * 20, "extensions": {"EXT_meshopt_compression": {"fallback": True}}})
+    path.write_text(json.dumps(written))
+    mesh = load_mesh(path, generate_tangents=False)
+    np.testing.assert_allclose(mesh.normals, np.tile([1 / np.sqrt(2), 0, 1 / np.sqrt(2)], (4, 1)), atol=1e-3)
+    np.testing.assert_allclose(mesh.positions, positions)
