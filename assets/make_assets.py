@@ -21,10 +21,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from wgpurender.core import procedural as proc  # noqa: E402
-from wgpurender.core.gltf_io import write_glb  # noqa: E402
-from wgpurender.core.imageio import save_png  # noqa: E402
-from wgpurender.core.mesh import build_mesh  # noqa: E402
+from wgpurender.core.files.imageio import save_png  # noqa: E402
+from wgpurender.core.models import procedural as proc  # noqa: E402
+from wgpurender.core.models.gltf_io import write_glb  # noqa: E402
+from wgpurender.core.models.mesh import build_mesh  # noqa: E402
 
 SEED = 7
 BRICK_SIZE = 512

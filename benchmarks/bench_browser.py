@@ -67,7 +67,7 @@ def browser_numbers(page: Path, frames: int, runs: int) -> tuple[list[float], li
 def native_numbers(target: str, size: tuple[int, int], frames: int, runs: int) -> tuple[list[float], list[float]]:
     from wgpurender.bench.frames import measure
     from wgpurender.bench.startup import run_child
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     env = dict(os.environ, WGPURENDER_VALIDATION="0")
     is_scene = target.endswith(".toml")
@@ -120,7 +120,7 @@ def main() -> int:
             rows.append((target, spread(b_first), spread(n_first), ratio_first, spread(b_frames), spread(n_frames),
                          ratio_frame))
             print(f"  {target}: done", file=sys.stderr)
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     lines = [f"Browser: {version}, headless, --enable-unsafe-webgpu (Dawn on SwiftShader); wgpu-native: "
              f"{get_context().describe()}; size {size[0]}x{size[1]}; {args.runs} fresh runs per target, "

@@ -1,6 +1,6 @@
-// The scene shader: one template, specialised per material variant (wgpurender/wgpu_path/scene_render/shader_interface.py).
+// The scene shader: one template, specialised per material variant (wgpurender/wgpu_path/scene/shader_interface.py).
 //
-// Preprocessing (wgpurender/core/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
+// Preprocessing (wgpurender/core/shaders/shader_variants.specialise): "#if FEATURE" keeps code for the plan's
 // variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output; from a model file's
 // own materials: vertex_color, alpha_mask, double_sided) and the derived
 // ones (uv: any texture; directional_lights / point_lights: that count > 0; immediates: push constants
@@ -25,7 +25,7 @@
 // T = Gram-Schmidt of the tangent against N, B = w * cross(N, T) (w = tangent.w times the sign of
 // det(world)), n' = normalize(T m.x + B m.y + N m.z). Every normalisation is guarded: a zero-length
 // vector falls back to a stated default instead of producing NaN.
-// Model-file materials (core/gltf_materials.py): base = base_color * albedo texel * vertex colour;
+// Model-file materials (core/scene/gltf_materials.py): base = base_color * albedo texel * vertex colour;
 // alpha_mask discards fragments whose alpha is below material.alpha_cutoff (after every texture sample) and
 // writes the rest with alpha 1, as opaque_alpha writes every fragment (glTF OPAQUE ignores alpha);
 // double_sided turns the normal around on back faces before lighting (glTF's rule).

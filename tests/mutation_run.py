@@ -32,20 +32,33 @@ GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
 EXT = "tests/test_gltf_extensions.py"
 FBX = "tests/test_fbx.py"
 KHRONOS = "tests/test_khronos_samples.py"
+# the files issue 30's rows mutate
+G_EXT = "wgpurender/core/models/gltf_extensions.py"
+G_PACK = "wgpurender/core/models/gltf_compression.py"
+G_GEOM = "wgpurender/core/models/gltf_geometry.py"
+G_IO = "wgpurender/core/models/gltf_io.py"
+G_RULES = "wgpurender/core/models/gltf_rules.py"
+G_MAT = "wgpurender/core/scene/gltf_materials.py"
+G_FBX = "wgpurender/core/models/fbx.py"
+G_MESH = "wgpurender/core/models/mesh.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
     # comparison and heatmap
-    ("wgpurender/core/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
+    ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py",
+     "over_1=float(np.mean(per_pixel > 1))", "over_1=float(np.mean(per_pixel >= 1))",
      [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
-    ("wgpurender/core/compare.py", "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
-    ("wgpurender/core/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
+    ("wgpurender/core/verdict/compare.py",
+     "max(axis=-1) * gain / 255.0", "max(axis=-1) * 32.0 / 255.0", [API, COMPARE]),
+    ("wgpurender/core/verdict/compare.py",
+     "max_abs=int(diff.max())", "max_abs=int(diff[..., 0].max())", [COMPARE, REPORT]),
+    ("wgpurender/core/verdict/compare.py", 'psnr=float("inf") if mse == 0', 'psnr=0.0 if mse == 0', [COMPARE, API]),
     ("wgpurender/cli/compare.py", "return value < limit if name == \"psnr\"", "return value > limit if name == "
      "\"psnr\"", [COMPARE, CAUSES]),
-    ("wgpurender/core/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
-    ("wgpurender/core/imageio.py", "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
+    ("wgpurender/core/files/imageio.py", "12.92 * x, 1.055", "12.29 * x, 1.055", [API]),
+    ("wgpurender/core/files/imageio.py",
+     "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
     # the report
     ("wgpurender/report/page.py", '{_figure(files.get("wgpu"), "wgpu (WGSL', '{_figure(files.get("raw"), "wgpu (WGSL',
      [REPORT]),
@@ -57,11 +70,12 @@ MUTATIONS = [
     ("wgpurender/report/steps.py", "step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)",
      "step.heat = heatmap(step.raw, step.wgpu, 1.0)", [REPORT]),
     # trust: driver class, present modes, depth, the API's path
-    ("wgpurender/core/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
+    ("wgpurender/core/verdict/tolerances.py", 'return "lavapipe" if "llvmpipe" in device_name.lower()',
      'return "lavapipe" if "lavapipe" in device_name.lower()', [TRUST]),
-    ("wgpurender/core/tolerances.py", "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
+    ("wgpurender/core/verdict/tolerances.py",
+     "if metrics.changed > self.changed:", "if metrics.changed > 2 * self.changed:",
      [TRUST, "tests/test_reference_tolerances.py"]),
-    ("wgpurender/raw_path/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
+    ("wgpurender/raw_path/window/swapchain.py", '"immediate": vk.VK_PRESENT_MODE_IMMEDIATE_KHR',
      '"immediate": vk.VK_PRESENT_MODE_MAILBOX_KHR', [TRUST]),
     ("wgpurender/core/plan/build.py", 'depth_compare = "greater" if knobs.reverse_z else "less"',
      'depth_compare = "greater" if knobs.reverse_z else "less-equal"', [TRUST]),
@@ -71,7 +85,8 @@ MUTATIONS = [
      'str(target), "raw"', [TRUST]),
     ("wgpurender/api.py", "        return image.rgba8()", "        return image.pixels", [API]),
     # argument checks
-    ("wgpurender/core/checks.py", "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if not math.isfinite(value):\n        raise UserError(f\"{name} must be a finite",  # noqa: E501
      "    if math.isnan(value):\n        raise UserError(f\"{name} must be a finite", [API, CAUSES]),
     ("wgpurender/core/checks.py", '    return positive(value, "gain", "32")', '    return number(value, "gain")',
      [API, COMPARE]),
@@ -84,125 +99,132 @@ MUTATIONS = [
      [API]),
     ("wgpurender/core/checks.py", "    elif not _is_number(value):", "    elif not isinstance(value, (int, float, "
      "str)):", [API]),
-    ("wgpurender/core/checks.py", "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
+    ("wgpurender/core/checks.py",
+     "    if array.shape[0] == 0 or array.shape[1] == 0:", "    if array.size < 0:", [API]),  # noqa: E501
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
+    ("wgpurender/core/files/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
      "    kind = _kind(mode)\n    if kind == 'never':", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
-    ("wgpurender/core/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
-    ("wgpurender/core/input_files.py", "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
+    ("wgpurender/core/files/input_files.py",
+     "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
+    ("wgpurender/core/files/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py",
+     "        deepest = max(deepest, depth + 1)", "        deepest = max(deepest, "
      "depth)\n        depth = 0", [CAUSES]),
-    ("wgpurender/core/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
+    ("wgpurender/core/files/input_files.py", "    if size > limit:", "    if size > limit * 4:", [CAUSES]),
     ("wgpurender/core/scene/load.py", "    except RecursionError:", "    except ValueError:", [CAUSES]),
-    ("wgpurender/core/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
+    ("wgpurender/core/files/imageio.py", "    check_image_pixels(*image.size, name)\n", "", [CAUSES]),
+    ("wgpurender/core/files/safe_write.py", "    if len(os.fsencode(name)) > _name_max(path.parent):",
      "    if len(os.fsencode(name)) > 1024:", [CAUSES]),
-    ("wgpurender/core/safe_write.py", "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
+    ("wgpurender/core/files/safe_write.py",
+     "    except OSError as err:\n        raise UserError(f\"refusing to write {link}: "  # noqa: E501
      "{os_error_reason(link, err)}\") from None", "    except OSError:\n        pass", [CAUSES + "|follow"]),
-    ("wgpurender/core/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
+    ("wgpurender/core/files/safe_write.py", "    _handlers_installed = True\n    _set_handlers(signal.SIG_DFL)",
      "    _handlers_installed = True\n    _set_handlers(_on_signal)", [CAUSES + "|sigterm"]),
-    ("wgpurender/core/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
+    ("wgpurender/core/plan/gpu_memory.py", "BYTES_PER_PIXEL.get(fmt, 16) * max(int(samples), 1)",
      "BYTES_PER_PIXEL.get(fmt, 16)", [CAUSES + "|memory or adapter"]),
-    ("wgpurender/core/gpu_memory.py", "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
+    ("wgpurender/core/plan/gpu_memory.py",
+     "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
-    ("wgpurender/core/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
+    ("wgpurender/core/models/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
      [GLTF]),
-    ("wgpurender/core/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
+    ("wgpurender/core/models/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
      '(FLOAT,))', [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
+    ("wgpurender/core/models/gltf_rules.py",
+     "INDEX_COMPONENTS = (UBYTE, USHORT, UINT)", "INDEX_COMPONENTS = (UBYTE, USHORT,"
      " UINT, FLOAT)", [GLTF]),
-    ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
+    ("wgpurender/core/models/gltf_rules.py",
+     "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
     # glTF extensions (issue 30 item 2)
-    ("wgpurender/core/gltf_extensions.py", "rotation = np.array([[c, s, 0], [-s, c, 0]",
+    (G_EXT, "rotation = np.array([[c, s, 0], [-s, c, 0]",
      "rotation = np.array([[c, -s, 0], [s, c, 0]", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "    return translation @ rotation @ scale", "    return scale @ rotation @ "
+    (G_EXT, "    return translation @ rotation @ scale", "    return scale @ rotation @ "
      "translation", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "    return uvs @ m[:2, :2].T + m[:2, 2]", "    return uvs @ m[:2, :2] + "
+    (G_EXT, "    return uvs @ m[:2, :2].T + m[:2, 2]", "    return uvs @ m[:2, :2] + "
      "m[:2, 2]", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "    texcoord = int(ext.get(\"texCoord\", texcoord))", "", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, None, :]",
+    (G_EXT, "    texcoord = int(ext.get(\"texCoord\", texcoord))", "", [EXT]),
+    (G_EXT, "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, None, :]",
      "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, :, None]", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "        out[:, :3, 3] = translation", "        out[:, 3, :3] = "
+    (G_EXT, "        out[:, :3, 3] = translation", "        out[:, 3, :3] = "
      "translation", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "2 * (x * y - z * w), 2 * (x * z + y * w)], 1)", "2 * (x * y + z * w), "
+    (G_EXT, "2 * (x * y - z * w), 2 * (x * z + y * w)], 1)", "2 * (x * y + z * w), "
      "2 * (x * z + y * w)], 1)", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "            out[:, :width] += float(weight) * delta[:, :width]",
+    (G_EXT, "            out[:, :width] += float(weight) * delta[:, :width]",
      "            out[:, :width] = float(weight) * delta[:, :width]", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", '"POSITION": (FLOAT, BYTE, UBYTE, SHORT, USHORT)', '"POSITION": (FLOAT,)',
+    (G_EXT, '"POSITION": (FLOAT, BYTE, UBYTE, SHORT, USHORT)', '"POSITION": (FLOAT,)',
      [EXT]),
-    ("wgpurender/core/gltf_extensions.py", '"NORMAL": (FLOAT, BYTE, SHORT)', '"NORMAL": (FLOAT, SHORT)', [EXT]),
-    ("wgpurender/core/gltf_extensions.py", 'SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", ',
+    (G_EXT, '"NORMAL": (FLOAT, BYTE, SHORT)', '"NORMAL": (FLOAT, SHORT)', [EXT]),
+    (G_EXT, 'SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", ',
      'SUPPORTED_REQUIRED = frozenset({', [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "    return list(world @ matrices)", "    return list(matrices @ world)",
+    (G_GEOM, "    return list(world @ matrices)", "    return list(matrices @ world)",
      [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "            out.extend((placement, node[\"mesh\"], index) for placement in "
+    (G_GEOM, "            out.extend((placement, node[\"mesh\"], index) for placement in "
      "_instances(doc, node, world))", "            out.append((world, node[\"mesh\"], index))", [EXT]),
-    ("wgpurender/core/gltf_geometry.py", 'weights = nodes[node_index].get("weights", mesh.get("weights"))',
+    (G_GEOM, 'weights = nodes[node_index].get("weights", mesh.get("weights"))',
      'weights = mesh.get("weights", nodes[node_index].get("weights"))', [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "    if arrays[uv_name] is not None and uv_transform is not None:",
+    (G_GEOM, "    if arrays[uv_name] is not None and uv_transform is not None:",
      "    if arrays[uv_name] is not None and uv_transform is None:", [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "    if not any(weights):\n", "    if len(weights) < 2:\n", [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "semantic not in (\"POSITION\",", "semantic not in (\"NORMAL\",", [EXT]),
-    ("wgpurender/core/gltf_rules.py", "        if rule is not None and widened is not None:",
+    (G_GEOM, "    if not any(weights):\n", "    if len(weights) < 2:\n", [EXT]),
+    (G_GEOM, "semantic not in (\"POSITION\",", "semantic not in (\"NORMAL\",", [EXT]),
+    (G_RULES, "        if rule is not None and widened is not None:",
      "        if rule is not None and widened is None:", [EXT]),
-    ("wgpurender/core/gltf_compression.py", "        view.update(buffer=len(buffers) - 1, byteOffset=0",
+    (G_PACK, "        view.update(buffer=len(buffers) - 1, byteOffset=0",
      "        view.update(buffer=len(buffers) - 1, byteOffset=start", [EXT]),
-    ("wgpurender/core/gltf_compression.py", "    raw = np.ascontiguousarray(out).tobytes()[: count * stride]",
+    (G_PACK, "    raw = np.ascontiguousarray(out).tobytes()[: count * stride]",
      "    raw = np.ascontiguousarray(out).tobytes()", [EXT]),
-    ("wgpurender/core/gltf_compression.py", '        decode = codec.decode_index_buffer if mode == "TRIANGLES"',
+    (G_PACK, '        decode = codec.decode_index_buffer if mode == "TRIANGLES"',
      '        decode = codec.decode_index_sequence if mode == "TRIANGLES"', [EXT]),
-    ("wgpurender/core/gltf_compression.py", "        return __import__(module)\n    except ImportError:",
+    (G_PACK, "        return __import__(module)\n    except ImportError:",
      "        return __import__(module)\n    except ValueError:", [EXT]),
-    ("wgpurender/core/gltf_io.py", 'if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, '
+    (G_IO, 'if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, '
      '{}).get("fallback"):', "if False:", [EXT]),
-    ("wgpurender/core/gltf_compression.py", "        found = mesh.get_attribute_by_unique_id(int(unique_id))",
+    (G_PACK, "        found = mesh.get_attribute_by_unique_id(int(unique_id))",
      "        found = mesh.get_attribute_by_unique_id(0)", [EXT]),
-    ("wgpurender/core/gltf_materials.py", "            taken.append(f\"extensionsUsed {ext}: used\")",
+    (G_MAT, "            taken.append(f\"extensionsUsed {ext}: used\")",
      "            ignored.append(f\"extensionsUsed {ext}: ignored\")", [EXT]),
-    ("wgpurender/core/gltf_materials.py", "    elif mine[1] != lead[1]:", "    elif mine[0] != lead[1]:", [EXT]),
+    (G_MAT, "    elif mine[1] != lead[1]:", "    elif mine[0] != lead[1]:", [EXT]),
     # FBX through assimp (issue 30 item 3)
-    ("wgpurender/core/fbx.py", '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+    (G_FBX, '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
      '        m[axis, row] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0', [FBX]),
-    ("wgpurender/core/fbx.py", '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+    (G_FBX, '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
      "        m[row, axis] = 1.0", [FBX]),
-    ("wgpurender/core/fbx.py", 'scale = float(meta.get("UnitScaleFactor", 1.0)) / 100.0',
+    (G_FBX, 'scale = float(meta.get("UnitScaleFactor", 1.0)) / 100.0',
      'scale = float(meta.get("UnitScaleFactor", 1.0)) / 1.0', [FBX]),
-    ("wgpurender/core/fbx.py", "            uvs[:, 1] = 1.0 - uvs[:, 1]", "            uvs[:, 1] = uvs[:, 1]", [FBX]),
-    ("wgpurender/core/fbx.py", 'TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}',
+    (G_FBX, "            uvs[:, 1] = 1.0 - uvs[:, 1]", "            uvs[:, 1] = uvs[:, 1]", [FBX]),
+    (G_FBX, 'TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}',
      'TEXTURE_TYPES = {1: "base_color", 6: "normal"}', [FBX]),
-    ("wgpurender/core/fbx.py", "    world = parent @ np.asarray(node.transformation, np.float64)",
+    (G_FBX, "    world = parent @ np.asarray(node.transformation, np.float64)",
      "    world = np.asarray(node.transformation, np.float64)", [FBX]),
-    ("wgpurender/core/fbx.py", "    except (pyassimp.errors.AssimpError, Exception) as err:",
+    (G_FBX, "    except (pyassimp.errors.AssimpError, Exception) as err:",
      "    except Exception as err:", [FBX]),
-    ("wgpurender/core/fbx.py", "            textures[role] = (path.parent / name).resolve()",
+    (G_FBX, "            textures[role] = (path.parent / name).resolve()",
      "            textures[role] = Path(name)", [FBX]),
     # glTF points and lines (issue 30 item 2)
-    ("wgpurender/core/gltf_geometry.py",
+    (G_GEOM,
      "    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]", "    ends = idx[1:]", [EXT]),
-    ("wgpurender/core/gltf_geometry.py", "        return idx[: len(idx) // 2 * 2].reshape(-1, 2)",
+    (G_GEOM, "        return idx[: len(idx) // 2 * 2].reshape(-1, 2)",
      "        return np.stack([idx[:-1], idx[1:]], axis=1)",
      [EXT]),
-    ("wgpurender/core/gltf_geometry.py", 'TOPOLOGIES = {0: "point-list", 1: "line-list"',
+    (G_GEOM, 'TOPOLOGIES = {0: "point-list", 1: "line-list"',
      'TOPOLOGIES = {0: "line-list", 1: "line-list"', [EXT]),
-    ("wgpurender/core/mesh.py", "        if part.material == wanted and part.topology == topology:",
+    (G_MESH, "        if part.material == wanted and part.topology == topology:",
      "        if part.material == wanted:", [EXT, KHRONOS]),
-    ("wgpurender/core/mesh.py", "        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)",
+    (G_MESH, "        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)",
      "        flat.append(np.asarray(p.faces, np.int64).reshape(-1))", [EXT]),
     ("wgpurender/raw_path/scene/scene_subpass.py", "                                topology=TOPOLOGIES[topology])",
      "                                )", [EXT]),
-    ("wgpurender/wgpu_path/scene_render/scene_pass.py", 'primitive={"topology": planned.topology,',
+    ("wgpurender/wgpu_path/scene/scene_pass.py", 'primitive={"topology": planned.topology,',
      'primitive={"topology": "triangle-list",', [EXT]),
-    ("wgpurender/core/gltf_materials.py", "        materials.append(material if topology == \"triangle-list\" else "
+    (G_MAT, "        materials.append(material if topology == \"triangle-list\" else "
      "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
-    ("wgpurender/core/gltf_extensions.py", "            out[:, :width] += float(weight) * delta[:, :width]",
+    (G_EXT, "            out[:, :width] += float(weight) * delta[:, :width]",
      "            out[:, :width] += delta[:, :width]", [KHRONOS]),
-    ("wgpurender/core/gltf_compression.py", 'FILTERS = {"OCTAHEDRAL": ("decode_filter_oct", (4, 8))',
+    (G_PACK, 'FILTERS = {"OCTAHEDRAL": ("decode_filter_oct", (4, 8))',
      'FILTERS = {"OCTAHEDRAL": ("decode_filter_exp", (4, 8))', [EXT]),
-    ("wgpurender/core/gltf_compression.py", "    return not fallback or importlib.util.find_spec(",
+    (G_PACK, "    return not fallback or importlib.util.find_spec(",
      "    return True or importlib.util.find_spec(", [EXT]),
 ]
 

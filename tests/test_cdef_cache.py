@@ -1,4 +1,4 @@
-"""wgpu.h's parse cached between processes (wgpurender/wgpu_path/cdef_cache.py, issue 22.5) gives cffi the same
+"""wgpu.h's parse cached between processes (wgpurender/wgpu_path/device/cdef_cache.py, issue 22.5) gives cffi the same
 declarations as a real parse, and a context that renders.
 
 Two fresh processes share a private $XDG_CACHE_HOME: the first parses the header (and saves the parse), the
@@ -17,9 +17,9 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 CHILD = r"""
 import json
-from wgpurender.wgpu_path import cdef_cache
-from wgpurender.wgpu_path.gpu import get_context
-from wgpurender.wgpu_path.targets import create_target, read_texture
+from wgpurender.wgpu_path.device import cdef_cache
+from wgpurender.wgpu_path.device.context import get_context
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 
 ctx = get_context()
 from wgpu.backends.wgpu_native._ffi import ffi

@@ -13,7 +13,7 @@ import pytest
 from imagecheck import _assert_within
 
 from wgpurender.core.scene import load_scene
-from wgpurender.core.tolerances import Uncalibrated, driver_class, implementation_tolerance, measure
+from wgpurender.core.verdict.tolerances import Uncalibrated, driver_class, implementation_tolerance, measure
 from wgpurender.export import NOT_EXPORTABLE, export
 from wgpurender.export.chromium import Chromium, find_chromium
 from wgpurender.implementations import all_targets, render_wgpu, target_path

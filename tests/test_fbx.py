@@ -86,7 +86,7 @@ def test_fbx_in_centimetres_z_up_lands_where_its_numbers_say(ctx, tmp_path, whic
 
 def test_fbx_in_metres_y_up_is_taken_as_is(tmp_path):
     """UnitScaleFactor 100 (metres) and Y up: positions unchanged apart from the file's own numbers / 1."""
-    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.models.mesh import load_mesh
 
     settings = {**BLENDER_AXES, "UpAxis": 1, "FrontAxis": 2, "FrontAxisSign": 1, "UnitScaleFactor": 100}
     mesh = load_mesh(tmp_path / write_fbx(tmp_path, settings), generate_tangents=False)
@@ -105,7 +105,7 @@ def test_fbx_explain_takes_diffuse_and_normal_maps(tmp_path, capsys):
 
 def test_a_broken_fbx_is_one_line(tmp_path):
     from wgpurender.core.errors import UserError
-    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.models.mesh import load_mesh
 
     (tmp_path / "bad.fbx").write_bytes(b"Kaydara FBX Binary  \x00\x1a\x00" + b"\xff" * 40)
     with pytest.raises(UserError) as info:

@@ -18,7 +18,7 @@ from gltf_gen import QUAD_INDICES, GltfWriter, pixel_of, quad
 from test_gltf_render import PATHS, SIZE, UNLIT, assert_colour, render, srgb_decode, write_scene
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import load_mesh
+from wgpurender.core.models.mesh import load_mesh
 
 # a 2x2 texture, texel (row, col) a distinct colour; nearest filtering, so each quarter of UV space is one colour
 TEXELS = np.array([[[230, 30, 30, 255], [30, 200, 40, 255]], [[40, 60, 230, 255], [240, 240, 240, 255]]], np.uint8)
@@ -467,10 +467,10 @@ def test_instances_beyond_the_model_limit_are_refused(tmp_path, monkeypatch):
     g.node(mesh=mesh, extensions={"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": g.accessor(
         INSTANCES_T)}}})
     path = g.write(tmp_path / "many.glb")
-    monkeypatch.setattr("wgpurender.core.gltf_geometry.env_limit", lambda name, default: 10 * 48)
+    monkeypatch.setattr("wgpurender.core.models.gltf_geometry.env_limit", lambda name, default: 10 * 48)
     with pytest.raises(UserError, match="place over 10 vertices"):
         load_mesh(path)
-    monkeypatch.setattr("wgpurender.core.gltf_geometry.env_limit", lambda name, default: 16 * 48)
+    monkeypatch.setattr("wgpurender.core.models.gltf_geometry.env_limit", lambda name, default: 16 * 48)
     assert load_mesh(path, generate_tangents=False).vertex_count == 16
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from gltf_gen import QUAD_INDICES, GltfWriter, pixel_of, quad, scene_text
 
-from wgpurender.core.imageio import to_uint8
+from wgpurender.core.files.imageio import to_uint8
 
 SIZE = (96, 96)
 PATHS = ("wgpu", "raw")
@@ -20,7 +20,7 @@ PATHS = ("wgpu", "raw")
 def render(ctx, path, which: str, size=SIZE) -> np.ndarray:
     """The (H, W, 4) uint8 image of a scene file on one path (sRGB-encoded output)."""
     if which == "wgpu":
-        from wgpurender.wgpu_path.scene_render import render_scene_file
+        from wgpurender.wgpu_path.scene import render_scene_file
 
         pixels = render_scene_file(path, size=size, ctx=ctx, frames=1, knobs={"post_path": "fragment"}).pixels
     else:

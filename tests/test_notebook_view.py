@@ -90,7 +90,7 @@ def test_record_mp4_reads_back_as_the_animation(tmp_path):
 
 
 def test_record_png_frames_are_the_renders(tmp_path):
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     out = w.record("3d", tmp_path / "frames", seconds=0.3, fps=10, size=(64, 48))
     names = sorted(p.name for p in out.iterdir())

@@ -25,7 +25,7 @@ import pytest
 from browser import chromium, open_page
 from PIL import Image
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 
 REPO = Path(__file__).resolve().parent.parent
 needs_chromium = pytest.mark.skipif(chromium() is None, reason="chromium is not installed (apt-get install chromium)")
@@ -42,7 +42,7 @@ def site(tmp_path_factory):
         pytest.skip("the raw path needs glslc (apt-get install glslc)")
     out = tmp_path_factory.mktemp("report") / "site"
     BUILT["start"] = datetime.datetime.now(datetime.UTC).replace(second=0, microsecond=0)
-    # A fresh bandwidth record (core/bandwidth.py): the report's timings write one after each scene's plan text,
+    # A fresh bandwidth record (core/files/bandwidth.py): the report's timings write one after each scene's plan text,
     # so with the user's cache the plan printed here and the one the test explains could differ by a measurement.
     env = dict(os.environ, WGPURENDER_PERF_RECORD=str(out.parent / "bandwidth.json"))
     result = subprocess.run([sys.executable, "-m", "wgpurender", "report", "-o", str(out)], capture_output=True,
@@ -117,7 +117,7 @@ def test_the_images_are_both_paths_renders_and_the_heatmap_marks_their_differenc
 
 
 def test_metrics_and_timings_are_shown_for_both_paths(site):
-    from wgpurender.core.compare import compare_images
+    from wgpurender.core.verdict.compare import compare_images
 
     text = (site / "index.html").read_text()
     part = _section(text, "3d")

@@ -24,7 +24,7 @@ What was measured (320x240 unless said otherwise, lavapipe / Mesa 22.3):
   raw shader (``wgpu_intermediates=True``, post_chain.frag's F16_BETWEEN_STEPS) makes the two
   images bit-identical, which proves that this is the whole difference (round-to-nearest, GLSL's
   packHalf2x16, leaves 1854 pixels different: the rounding mode matters).
-- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_raw_path_neighbourhood.py.
+- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_vulkan_ref_neighbourhood.py.
 - hdr = false: the intermediates are 8-bit sRGB, stored with lavapipe's approximate linear->sRGB
   encode; grayscale -> sepia -> srgb (rgba8unorm output), 160x120: 3954 pixels differ by 1/255,
   FLIP 0.0061. No shader formula reproduces the driver's encoder, so this one is bounded, not
@@ -40,7 +40,7 @@ import pytest
 from imagecheck import assert_close, assert_same_render, assert_within_tolerance
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, to_uint8
+from wgpurender.core.files.imageio import load_png, to_uint8
 from wgpurender.raw_path import render_reference
 from wgpurender.raw_path.scene import render_scene_reference
 
@@ -78,7 +78,7 @@ def wgpu_render(ctx, path: Path, size: tuple[int, int], **knobs) -> np.ndarray:
     The post path is pinned to fragment, the chain these exactness claims are about: on a discrete GPU the auto
     path is compute, which encodes sRGB in its shader (tests/test_post_paths.py compares the two paths).
     """
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     knobs.setdefault("post_path", "fragment")
 
@@ -266,11 +266,11 @@ def test_unsupported_output_format_is_refused():
 
 def test_every_problem_is_listed_at_once(tmp_path):
     """Too many effects and an unsupported output format: both named in one message. Neighbourhood effects
-    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_raw_path_neighbourhood.py)."""
+    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_vulkan_ref_neighbourhood.py)."""
     from wgpurender.core.plan import build_plan
     from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
     from wgpurender.raw_path.scene import unsupported
-    from wgpurender.raw_path.scene.uniforms import MAX_POST_STEPS
 
     text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sepia"\n' * MAX_POST_STEPS
     plan = build_plan(load_scene(scene_file(tmp_path, "long.toml", text)), output_format="bgra8unorm-srgb")

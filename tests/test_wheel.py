@@ -227,7 +227,7 @@ def test_the_notebook_from_the_wheel(installed):
     pytest.importorskip("nbformat", reason="nbformat is not installed (pip install -e '.[test]')")
     pytest.importorskip("nbclient", reason="nbclient is not installed (pip install -e '.[test]')")
     nb = installed["cwd"] / "tour.ipynb"
-    code = ("import shutil, nbformat, nbclient; from wgpurender.core.assets import notebook_path; "
+    code = ("import shutil, nbformat, nbclient; from wgpurender.core.files.assets import notebook_path; "
             f"shutil.copy(notebook_path(), {str(nb)!r}); nb = nbformat.read({str(nb)!r}, as_version=4); "
             "nbclient.NotebookClient(nb, timeout=300, kernel_name='python3').execute(); "
             "print(sum('final_subpass' in o.get('text', '') for c in nb.cells for o in c.get('outputs', [])))")

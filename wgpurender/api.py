@@ -18,7 +18,7 @@ scene file (``*.toml``). Every call returns an :class:`Image`: ``.pixels`` (nump
 PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` with a message that
 says how to fix it (the CLI prints the same message).
 
-One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.gpu.get_context` keeps it), so
+One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.device.context.get_context` keeps it), so
 the adapter and device are made once. Nothing here imports wgpu, vulkan or trimesh until a render
 needs them: ``import wgpurender`` stays cheap.
 """
@@ -35,12 +35,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from wgpurender.core import checks
-from wgpurender.core.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 
 if TYPE_CHECKING:  # pragma: no cover
-    from wgpurender.core.compare import Comparison
     from wgpurender.core.plan import RenderPlan
+    from wgpurender.core.verdict.compare import Comparison
 
 Size = tuple[int, int] | str | None
 Target = str | os.PathLike
@@ -72,13 +72,13 @@ class Image:
 
     def rgba8(self) -> np.ndarray:
         """The pixels as 8-bit sRGB-encoded RGBA (float pixels are linear and get encoded)."""
-        from wgpurender.core.imageio import to_uint8
+        from wgpurender.core.files.imageio import to_uint8
 
         return to_uint8(np.ascontiguousarray(self.pixels))
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the image atomically; the format follows the suffix (see :func:`core.imageio.save_image`)."""
-        from wgpurender.core.imageio import save_image
+        """Write the image atomically; the format follows the suffix (see :func:`core.files.imageio.save_image`)."""
+        from wgpurender.core.files.imageio import save_image
 
         return save_image(path, self.pixels)
 
@@ -123,7 +123,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
@@ -131,7 +131,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     ctx = get_context(checks.backend(backend))
     if _is_scene(target, anisotropy, knobs, t):
-        from wgpurender.wgpu_path.scene_render import render_plan
+        from wgpurender.wgpu_path.scene import render_plan
 
         result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, knobs), t)
     else:
@@ -158,7 +158,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     same function for the raw path's device (``Image.plan``), so on one device both paths draw one plan.
     Needs ``glslc`` on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
     """
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.device.context import get_vulkan
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
@@ -184,8 +184,8 @@ def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
     """Whether ``target`` is a scene file; a stage with plan knobs, or an anisotropy rule other than the default,
     is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored; so is a
     scene at a time other than 0 (scenes are static: the time animates stages)."""
-    from wgpurender.core.anisotropy import check_applies
     from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.plan.anisotropy import check_applies
 
     if is_scene_file(target):
         check_static(target, t)
@@ -205,7 +205,7 @@ def check_static(target: str, t: float | None) -> None:
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
     """The one plan (core/plan/resolve.py) for the wgpu path on ``ctx``'s adapter (None: no adapter)."""
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.wgpu_path.scene_render import adapter_facts
+    from wgpurender.wgpu_path.scene import adapter_facts
 
     facts = adapter_facts(ctx) if ctx is not None else None
     return resolve_plan(scene, facts, size=size, output_format=format, msaa=msaa, anisotropy=anisotropy, **knobs)
@@ -213,7 +213,7 @@ def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) 
 
 def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
     """8-bit pixels from an Image, an array (float = linear) or an image file."""
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     if isinstance(image, Image):
         return image.rgba8()
@@ -229,10 +229,10 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
     """How far image ``b`` is from the reference ``a``: PSNR, largest channel difference, shares of
     pixels off by more than 1/255 and 2/255, mean FLIP (``flip=False`` skips it: NaN).
 
-    Returns a :class:`~wgpurender.core.compare.Comparison`; ``.as_dict()`` gives plain numbers,
+    Returns a :class:`~wgpurender.core.verdict.compare.Comparison`; ``.as_dict()`` gives plain numbers,
     ``.summary()`` one line.
     """
-    from wgpurender.core.compare import compare_images
+    from wgpurender.core.verdict.compare import compare_images
 
     if not isinstance(flip, (bool, np.bool_)):
         raise UserError(f"flip must be True or False, got {type(flip).__name__} {flip!r}")
@@ -242,7 +242,7 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
 def heatmap(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | str | os.PathLike,
             gain: float = 32.0) -> Image:
     """Where ``a`` and ``b`` differ, magnified by ``gain``, with its colour scale drawn below."""
-    from wgpurender.core.compare import heatmap_with_scale
+    from wgpurender.core.verdict.compare import heatmap_with_scale
 
     gain = checks.gain(gain)
     return Image(heatmap_with_scale(_pixels(a, "a"), _pixels(b, "b"), gain), "heatmap", "derived")
@@ -288,7 +288,7 @@ def explain(scene: Target, size: Size = None, msaa: int | None = None, format: s
 
 def _context_or_none(backend: str | None):
     """The wgpu context :func:`render` would use, or None when there is none (the plan is still printable)."""
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     try:
         return get_context(backend)
@@ -312,10 +312,10 @@ def reference_stage_names() -> list[str]:
 
 def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
     """The checked arguments of show and record: (the demo's drawable for them, on the context)."""
-    from wgpurender.core.anisotropy import check_applies
-    from wgpurender.core.assets import resolve_scene
     from wgpurender.core.course.formats import is_scene_file
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.assets import resolve_scene
+    from wgpurender.core.plan.anisotropy import check_applies
+    from wgpurender.wgpu_path.device.context import get_context
 
     target = _target(target)
     wh, msaa = _size(size) or (640, 480), checks.msaa(msaa)
@@ -350,7 +350,7 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
     clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``."""
     import math
 
-    from wgpurender.core.video import check_output
+    from wgpurender.core.files.video import check_output
     from wgpurender.wgpu_path.notebook import Offscreen, record_frames
 
     if not isinstance(out, (str, os.PathLike)) or not str(out):

@@ -23,8 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.assets import scene_dir
 
 REPO = Path(__file__).resolve().parent.parent
 SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
@@ -63,14 +63,14 @@ def target_path(name: str) -> str:
 
 def render_wgpu(name: str, size: tuple[int, int], backend: str | None = None, t: float = 0.0) -> np.ndarray:
     """One target on this process's wgpu backend: 8-bit RGBA, top row first."""
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
     from wgpurender.wgpu_path.render import render_any
 
     return to_uint8(render_any(target_path(name), size=size, t=t, backend=backend).pixels)
 
 
 def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
     from wgpurender.raw_path import render_reference
 
     return to_uint8(render_reference(target_path(name), size))
@@ -131,7 +131,7 @@ def _has_gl() -> bool:
 def render_in_child(implementation: str, names: list[str], size: tuple[int, int], out: Path,
                     timeout: float = 600) -> dict[str, np.ndarray]:
     """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance)."""
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     out.mkdir(parents=True, exist_ok=True)
     cmd = [sys.executable, "-m", "wgpurender.implementations", "--size", f"{size[0]}x{size[1]}", implementation,
@@ -147,12 +147,12 @@ def render_in_child(implementation: str, names: list[str], size: tuple[int, int]
 def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
     """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
     (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
-    from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
-    from wgpurender.core.tolerances import calibrate as bounds
+    from wgpurender.core.verdict.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
+    from wgpurender.core.verdict.tolerances import calibrate as bounds
 
     table = {"implementations": {}}
     if IMPLEMENTATIONS_PATH.is_file():
-        from wgpurender.core.tolerances import load_table
+        from wgpurender.core.verdict.tolerances import load_table
 
         table = load_table(IMPLEMENTATIONS_PATH)
     rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
@@ -164,7 +164,7 @@ def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "
 
 def _main(argv: list[str] | None = None) -> int:
     from wgpurender.cli._args import size_arg
-    from wgpurender.core.imageio import save_png
+    from wgpurender.core.files.imageio import save_png
 
     p = argparse.ArgumentParser(prog="python -m wgpurender.implementations")
     p.add_argument("implementation", choices=sorted(WGPU_IMPLEMENTATIONS))
@@ -176,7 +176,7 @@ def _main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     for name in args.targets or all_targets():
         save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     (args.out / "adapter.txt").write_text(get_context(backend).describe())
     return 0

@@ -26,10 +26,10 @@ def run(args) -> int:
     from wgpurender.bench.accuracy_report import write_reports
     from wgpurender.bench.accuracy_run import AccuracyConfig, run_accuracy
     from wgpurender.bench.perf import command_line
-    from wgpurender.core.assets import resolve_scene
     from wgpurender.core.errors import UserError
-    from wgpurender.core.safe_write import output_folder
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.assets import resolve_scene
+    from wgpurender.core.files.safe_write import output_folder
+    from wgpurender.wgpu_path.device.context import get_context
 
     preset = QUICK if args.quick else FULL
     frames = preset["frames"] if args.frames is None else args.frames
@@ -62,7 +62,7 @@ def _run_analytic(args, preset: dict, frames: int) -> int:
 
     from wgpurender.bench.accuracy_analytic import run_analytic, write_analytic_reports
     from wgpurender.bench.perf import command_line
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     ctx = get_context(args.backend)
     size = args.size or preset["size"]

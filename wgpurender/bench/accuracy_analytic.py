@@ -33,9 +33,9 @@ from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
 from wgpurender.bench.accuracy_downsample import linear_from_srgb8, srgb8_from_linear
 from wgpurender.bench.accuracy_knobs import DEPTH_LEVELS, FILTER_LEVELS, Settings
 from wgpurender.bench.accuracy_run import Measurement, Timed
-from wgpurender.core.compare import compare_images
-from wgpurender.core.procedural import MeshArrays, write_obj
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.core.models.procedural import MeshArrays, write_obj
+from wgpurender.core.verdict.compare import compare_images
+from wgpurender.wgpu_path.device.context import GPUContext
 
 FOV = 45.0
 BACKGROUND = (0.02, 0.025, 0.04)
@@ -126,7 +126,7 @@ def ground_texture(n: int) -> np.ndarray:
 
 def write_ground_scene(folder: Path, size: tuple[int, int], n_sub: int = 16) -> tuple[Path, np.ndarray]:
     """The filtering scene (an unlit textured ground plane at a grazing angle) and its exact linear image."""
-    from wgpurender.core.imageio import save_png
+    from wgpurender.core.files.imageio import save_png
 
     folder.mkdir(parents=True, exist_ok=True)
     texels = ground_texture(GROUND["tex"])

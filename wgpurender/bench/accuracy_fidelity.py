@@ -1,6 +1,6 @@
 """Two more knobs for ``bench accuracy --truth analytic``, each against a float64 truth no renderer made:
 
-- **mip chain**: the GPU's mip generation (wgpu_path/textures.generate_mipmaps) on an sRGB texture, read back
+- **mip chain**: the GPU's mip generation (wgpu_path/device/textures.generate_mipmaps) on an sRGB texture, read back
   level by level, against a float64 box-filtered pyramid in linear light (each level the mean of 2x2 texels of
   the one above, after decoding sRGB). Settings: ``linear light`` (the project's: an rgba8unorm-srgb texture,
   averaged after decoding), ``stored bytes`` (the same bytes uploaded as rgba8unorm: the encoded values are
@@ -23,9 +23,9 @@ import numpy as np
 from wgpurender.bench.accuracy_downsample import linear_from_srgb8, srgb8_from_linear
 from wgpurender.bench.accuracy_knobs import Settings
 from wgpurender.bench.accuracy_run import Measurement
-from wgpurender.core.compare import compare_images
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.core.verdict.compare import compare_images
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.timing import Stats
 
 MIP_SETTINGS = ("linear light", "stored bytes", "decimate")
 SHADING_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
@@ -52,7 +52,7 @@ def box_pyramid(linear: np.ndarray) -> list[np.ndarray]:
 
 
 def _gpu_chain(ctx: GPUContext, texels: np.ndarray, srgb: bool) -> list[np.ndarray]:
-    from wgpurender.wgpu_path.textures import create_texture, read_mip
+    from wgpurender.wgpu_path.device.textures import create_texture, read_mip
 
     texture = create_texture(ctx, texels, srgb=srgb, mips=True, label="accuracy-mips")
     return [read_mip(ctx, texture.texture, k) for k in range(texture.mip_level_count)]

@@ -10,7 +10,8 @@ Time per frame: ``warmup`` untimed frames, then ``frames`` timed ones, split ove
 settings (each later visit starts with one untimed frame), so a change in the machine's load during the run
 spreads over every setting instead of landing on a few; a frame is record + submit + wait (no readback, no CPU
 downsampling). GPU time is the sum of the frame's passes from timestamp queries
-(:class:`~wgpurender.wgpu_path.timing.PassTimer`); wall time is measured around the whole frame. Both: median, p10..p90.
+(:class:`~wgpurender.wgpu_path.device.timing.PassTimer`); wall time is measured around the whole
+frame. Both: median, p10..p90.
 """
 
 from __future__ import annotations
@@ -37,10 +38,10 @@ from wgpurender.bench.accuracy_knobs import (
     Settings,
     make_renderer,
 )
-from wgpurender.core.compare import compare_images
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import PassTimer, Stats
+from wgpurender.core.verdict.compare import compare_images
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats
 
 FINAL, DEPTH_STRESS = "final", "depth-stress"
 LOWEST = {"msaa": MSAA_LEVELS[0], "ss": SS_LEVELS[0], "format": FORMAT_LEVELS[0], "filter": FILTER_LEVELS[0],
@@ -170,7 +171,7 @@ class Timed:
 
     def read(self) -> None:
         """Read the image back (once: it is the same every frame) and resolve it to the base size."""
-        from wgpurender.wgpu_path.targets import read_texture
+        from wgpurender.wgpu_path.device.targets import read_texture
 
         pixels = read_texture(self.ctx, self.target)
         if pixels.dtype != np.uint8:

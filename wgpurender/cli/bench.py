@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg, size_arg
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 
 # Every suite with the few words the top-level --help shows for it (the suites' own --help says more).
 SUITES = {"perf": "speed against the raw-Vulkan path", "accuracy": "error against time per quality knob",
@@ -55,8 +55,8 @@ def _register_perf(suites) -> None:
 def run(args) -> int:
     from wgpurender.bench.perf import FAMILIES, PerfConfig, command_line, run_perf, write_reports
     from wgpurender.core.errors import UserError
-    from wgpurender.core.safe_write import output_folder
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.safe_write import output_folder
+    from wgpurender.wgpu_path.device.context import get_context
 
     families = tuple(f.strip() for arg in (args.only or FAMILIES) for f in arg.split(",") if f.strip())
     unknown = [f for f in families if f not in FAMILIES]
@@ -140,8 +140,8 @@ def _run_roofline(args) -> int:
     from wgpurender.bench.perf import command_line
     from wgpurender.bench.post_roofline import csv_text, markdown, record_bandwidth, run_roofline
     from wgpurender.core.errors import UserError
-    from wgpurender.core.safe_write import atomic_write, output_folder
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.safe_write import atomic_write, output_folder
+    from wgpurender.wgpu_path.device.context import get_context
 
     if args.frames < 1:
         raise UserError("--frames must be at least 1")

@@ -28,7 +28,7 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     from wgpurender.report import build_report
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     index = build_report(args.output, size=args.size, ctx=get_context(args.backend), anisotropy=args.anisotropy)
     print(f"wrote {index}")

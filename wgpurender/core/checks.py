@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from wgpurender.core.compare import METRICS
 from wgpurender.core.course.formats import OUTPUT_FORMATS, SAMPLE_COUNTS
 from wgpurender.core.errors import UserError
+from wgpurender.core.verdict.compare import METRICS
 
 MAX_SIZE = 16384  # per side: the largest 2D texture any adapter we support offers
 MAX_GAP = 4096
@@ -194,7 +194,7 @@ def image_array(array: Any, name: str) -> np.ndarray:
     linear light, sRGB-encoded (NaN refused: an all-NaN image compared 'identical' to zeros). Other dtypes,
     other shapes and empty images are refused.
     """
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
 
     if not isinstance(array, np.ndarray):
         raise UserError(f"{name}: expected a numpy array, got {type(array).__name__}")

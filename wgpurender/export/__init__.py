@@ -50,7 +50,7 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> 
     """Write the page for a stage (by name) or a scene file into folder ``out`` (made if missing)."""
     from wgpurender.core.course.formats import is_scene_file
     from wgpurender.export.record import record_scene, record_stage
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     if target in NOT_EXPORTABLE:
         raise UserError(f"cannot export {target}: {NOT_EXPORTABLE[target]}")

@@ -61,7 +61,7 @@
     if (call.r !== undefined) objects[call.r] = result;
   }
 
-  // -- the orbit camera (wgpurender/core/orbit.py and transforms.look_at, for the page) -----------------------
+  // -- the orbit camera (wgpurender/core/view/orbit.py and transforms.look_at, for the page) -----------------------
   const sub = (a, b) => a.map((v, i) => v - b[i]);
   const dot = (a, b) => a.reduce((s, v, i) => s + v * b[i], 0);
   const scale = (a, s) => a.map((v) => v * s);

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from wgpurender.core.errors import UserError
 from wgpurender.export.recorder import BROWSER, Recording, recording_context
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 UPLOADS = ("writeBuffer", "writeTexture")
 
@@ -79,8 +79,8 @@ def _reference(real: GPUContext, target) -> str:
     its difference from what the browser drew."""
     import base64
 
-    from wgpurender.core.imageio import to_uint8
-    from wgpurender.wgpu_path.targets import read_texture
+    from wgpurender.core.files.imageio import to_uint8
+    from wgpurender.wgpu_path.device.targets import read_texture
 
     return base64.b64encode(to_uint8(read_texture(real, target._raw)).tobytes()).decode("ascii")
 
@@ -95,8 +95,8 @@ def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, 
 
 
 def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.wgpu_path.device.targets import check_format, create_target
     from wgpurender.wgpu_path.stages import get_stage
-    from wgpurender.wgpu_path.targets import check_format, create_target
 
     cls = get_stage(name)
     ctx, recording = recording_context(real)
@@ -121,8 +121,8 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
-    from wgpurender.wgpu_path.scene_render.frame import SceneRenderer
-    from wgpurender.wgpu_path.scene_render.shader_interface import CAMERA
+    from wgpurender.wgpu_path.scene.frame import SceneRenderer
+    from wgpurender.wgpu_path.scene.shader_interface import CAMERA
 
     scene = load_scene(path)
     ctx, recording = recording_context(real)

@@ -25,7 +25,7 @@ import numpy as np
 import wgpu
 
 from wgpurender.core.plan.model import AdapterFacts
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 NOT_RECORDED = {"map_async", "map_sync", "read_mapped", "write_mapped", "unmap", "read_texture", "read_buffer",
                 "on_submitted_work_done_sync", "on_submitted_work_done_async", "get_mapped_range"}

@@ -6,14 +6,14 @@ from contextlib import ExitStack
 
 import numpy as np
 
-from wgpurender.core import gpu_memory
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path.checks import check_msaa, check_size
-from wgpurender.raw_path.command_buffers import one_shot
-from wgpurender.raw_path.images import FORMATS, create_image
-from wgpurender.raw_path.instance import get_vulkan
-from wgpurender.raw_path.readback import buffer_to_pixels, record_copy_to_buffer
+from wgpurender.core.plan import gpu_memory
+from wgpurender.raw_path.device.checks import check_msaa, check_size
+from wgpurender.raw_path.device.command_buffers import one_shot
+from wgpurender.raw_path.device.context import get_vulkan
+from wgpurender.raw_path.device.images import FORMATS, create_image
+from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to_buffer
 from wgpurender.raw_path.stages import get_ref_stage
 from wgpurender.raw_path.stages.base import TARGET_USAGE
 

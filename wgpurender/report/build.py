@@ -14,14 +14,14 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import save_png
-from wgpurender.core.safe_write import cleanup_on_signal
+from wgpurender.core.files.assets import scene_dir
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.files.safe_write import cleanup_on_signal
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.report import code, extras, page
 from wgpurender.report.steps import Step, heatmap_scale, missing_scene_step, scene_step, stage_step
-from wgpurender.wgpu_path.gpu import GPUContext, get_context
+from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
@@ -68,7 +68,7 @@ def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, st
 
     ``size``: every step's image size (default 240x180, the tutorial's scenes 320x240). ``accuracy=False``
     leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the page says so).
-    ``anisotropy``: the scenes' rule (core/anisotropy.py), as ``render --anisotropy``.
+    ``anisotropy``: the scenes' rule (core/plan/anisotropy.py), as ``render --anisotropy``.
     """
     out_dir = check_out_dir(Path(out_dir))
     ctx = ctx or get_context()

@@ -20,8 +20,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.core.assets import scene_dir
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.core.files.assets import scene_dir
+from wgpurender.wgpu_path.device.context import GPUContext
 
 SCENE = scene_dir() / "final.toml"
 SIZE = (128, 96)  # small: the ground truth renders 8x it

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from wgpurender.core import gpu_memory
 from wgpurender.core.course.formats import is_scene_file
-from wgpurender.wgpu_path.frame_loop import RenderResult, run_frames
-from wgpurender.wgpu_path.gpu import GPUContext, get_context
+from wgpurender.core.plan import gpu_memory
+from wgpurender.wgpu_path.device.context import GPUContext, get_context
+from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frames
+from wgpurender.wgpu_path.device.targets import check_format, create_target
 from wgpurender.wgpu_path.stages import get_stage
-from wgpurender.wgpu_path.targets import check_format, create_target
 
 __all__ = ["RenderResult", "render_any", "render_stage"]
 
@@ -50,10 +50,10 @@ def render_any(
 ) -> RenderResult:
     """A stage by name, or a scene file (:func:`wgpurender.core.course.formats.is_scene_file`).
 
-    ``anisotropy``: "scene" or "auto" (per adapter, wgpurender/core/anisotropy.py), for scene files."""
+    ``anisotropy``: "scene" or "auto" (per adapter, wgpurender/core/plan/anisotropy.py), for scene files."""
     ctx = get_context(backend)
     if is_scene_file(target):
-        from wgpurender.wgpu_path.scene_render import render_scene_file  # the final-scene renderer
+        from wgpurender.wgpu_path.scene import render_scene_file  # the final-scene renderer
 
         return render_scene_file(target, size=size, fmt=fmt, msaa=msaa, t=t, ctx=ctx, anisotropy=anisotropy)
     return render_stage(target, size or (800, 600), fmt, msaa, t, ctx)

@@ -1,6 +1,6 @@
 """The final scene's shading constants, material defaults and depth convention.
 
-Both scene renderers (wgpurender/wgpu_path/scene_render/ on wgpu, wgpurender/raw_path/scene/ on raw
+Both scene renderers (wgpurender/wgpu_path/scene/ on wgpu, wgpurender/raw_path/scene/ on raw
 Vulkan) pack these into their own uniform blocks; tests check the images against formulas
 written with them.
 """

@@ -115,7 +115,7 @@ class TextureUse:
 
 @dataclass(frozen=True)
 class SamplerUse:
-    spec: object  # wgpurender.wgpu_path.textures.SamplerSpec (frozen, hashable)
+    spec: object  # wgpurender.wgpu_path.device.textures.SamplerSpec (frozen, hashable)
     used_by: tuple[str, ...]
 
 
@@ -272,7 +272,7 @@ class Knobs:
     immediates: str = "auto"
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
-    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/anisotropy.py)
+    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/plan/anisotropy.py)
     anisotropy_adapter: str | None = None  # the adapter type that rule reads when ``adapter`` is not given
 
     def check(self) -> None:

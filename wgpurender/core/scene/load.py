@@ -5,9 +5,9 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
-from wgpurender.core.assets import resolve_scene
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import MAX_NESTING, input_file, nesting_depth
+from wgpurender.core.files.assets import resolve_scene
+from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.model import Scene
 from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
@@ -46,7 +46,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.assets`)."""
+    """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.files.assets`)."""
     path = input_file(resolve_scene(path), "scene file")
     try:
         text = path.read_text(encoding="utf-8")

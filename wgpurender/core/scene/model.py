@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import transforms
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.view import transforms
 
 MAX_LIGHTS = 8
 CONVENTIONS = ("wgpu", "glm-vulkan")
@@ -108,7 +108,7 @@ class Material:
     sampler: SamplerSettings = field(default_factory=SamplerSettings)
     origin: str = "default"
     written: tuple[tuple[str, str], ...] = ()
-    # What a model file's own material can say beyond the scene keys (core/gltf_materials.py makes these):
+    # What a model file's own material can say beyond the scene keys (core/scene/gltf_materials.py makes these):
     vertex_colors: bool = False  # multiply the base colour by the vertex colour (glTF COLOR_0)
     double_sided: bool = False  # no back-face culling; back faces are lit with the normal turned around
     alpha_mode: str = "opaque"  # "opaque", "mask" (discard below alpha_cutoff) or "blend" (unsorted, see docs)
@@ -162,7 +162,7 @@ class Model:
     written_path: str  # as in the file
     material: Material
     transform: Transform = IDENTITY
-    # True when the scene names no material: a glTF model then draws with its own materials (core/gltf_materials)
+    # True when the scene names no material: a glTF model then draws with its own materials (core/scene/gltf_materials)
     material_from_file: bool = False
 
     @property

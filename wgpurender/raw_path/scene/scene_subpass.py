@@ -28,15 +28,15 @@ from wgpurender.core.course.formats import is_srgb_map
 from wgpurender.core.course.shading import AMBIENT
 from wgpurender.core.plan import Draw, RenderPlan, ShaderVariant
 from wgpurender.core.scene import Scene
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, write_host_buffer
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
-from wgpurender.raw_path.renderpass import RenderPass
-from wgpurender.raw_path.scene import uniforms as U
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device import uniforms as U
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, write_host_buffer
+from wgpurender.raw_path.device.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
+from wgpurender.raw_path.device.renderpass import RenderPass
+from wgpurender.raw_path.device.ubo import dynamic_stride, pack_many
 from wgpurender.raw_path.scene.resources import SceneResources, vertex_input
 from wgpurender.raw_path.scene.variants import glsl_defines, is_lit
-from wgpurender.raw_path.ubo import dynamic_stride, pack_many
 
 VERTEX, FRAGMENT = vk.VK_SHADER_STAGE_VERTEX_BIT, vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS

@@ -1,0 +1,300 @@
+"""glTF 2.0 geometry read by the project itself: the node graph, and every primitive's attributes and indices.
+
+Nothing here goes through trimesh: positions, normals, TEXCOORD_n, TANGENT, COLOR_0 and indices all come from
+:func:`wgpurender.core.models.gltf_io.read_accessor` (byteStride, normalized integer types and sparse accessors
+supported), node transforms from the file's ``matrix`` or ``translation``/``rotation``/``scale``.
+
+What is not drawn is said, never dropped silently: :func:`geometry_notes` lists it for ``--explain``
+(points and lines primitives, morph targets, skins, unused texture coordinate sets).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files.input_files import MAX_MODEL_BYTES, MAX_MODEL_BYTES_ENV, env_limit
+from wgpurender.core.models import gltf_compression, gltf_extensions
+from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
+
+TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
+SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}  # drawn with TOPOLOGIES
+# glTF mode -> the list topology it is drawn with (strips and loops are turned into lists at load)
+TOPOLOGIES = {0: "point-list", 1: "line-list", 2: "line-list", 3: "line-list", 4: "triangle-list",
+              5: "triangle-list", 6: "triangle-list"}
+FLOAT = 5126
+
+
+@dataclass
+class PrimitiveGeometry:
+    """One triangle primitive's arrays, in its mesh's own space (mesh_primitives pairs it with the world matrix)."""
+
+    positions: np.ndarray  # (N, 3) float64
+    faces: np.ndarray  # (F, 3) int64, counter-clockwise front faces
+    normals: np.ndarray | None
+    uvs: np.ndarray | None  # (N, 2), glTF convention: v = 0 at the top
+    tangents: np.ndarray | None  # (N, 4)
+    colors: np.ndarray | None  # (N, 4) linear RGBA
+    material: int | None
+    where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
+    topology: str = "triangle-list"  # faces (F, 3); "line-list": (F, 2) segments; "point-list": (F, 1)
+
+
+def node_matrix(node: dict) -> np.ndarray:
+    """A node's local matrix: ``matrix`` (column-major) or T @ R @ S from translation, rotation (x, y, z, w), scale."""
+    if "matrix" in node:
+        return np.asarray(node["matrix"], np.float64).reshape(4, 4).T
+    x, y, z, w = node.get("rotation", (0.0, 0.0, 0.0, 1.0))
+    q = np.array([x, y, z, w], np.float64)
+    norm = np.linalg.norm(q)
+    x, y, z, w = q / norm if norm > 0 else (0.0, 0.0, 0.0, 1.0)
+    rot = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    m = np.eye(4)
+    m[:3, :3] = rot * np.asarray(node.get("scale", (1.0, 1.0, 1.0)), np.float64)[None, :]
+    m[:3, 3] = node.get("translation", (0.0, 0.0, 0.0))
+    return m
+
+
+def root_nodes(doc: GltfDocument) -> list[int]:
+    """The nodes the file asks to draw: those of ``scene`` (or scene 0); without scenes, every node no other node
+    lists as a child; without nodes, none (meshes are then placed once each, see :func:`placed_meshes`)."""
+    gltf = doc.json
+    scenes = gltf.get("scenes", [])
+    if scenes:
+        return list(scenes[gltf.get("scene", 0)].get("nodes", []))
+    children = {c for node in gltf.get("nodes", []) for c in node.get("children", [])}
+    return [i for i in range(len(gltf.get("nodes", []))) if i not in children]
+
+
+def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
+    """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
+    The graph is a forest (gltf_rules.check_node_graph refuses loops and second parents before this runs); a
+    loop is still refused here rather than followed forever."""
+    nodes = doc.json.get("nodes", [])
+    if not nodes:
+        return [(np.eye(4), i, -1) for i in range(len(doc.json.get("meshes", [])))]
+    out: list[tuple[np.ndarray, int, int]] = []
+    stack = [(index, np.eye(4), ()) for index in reversed(root_nodes(doc))]
+    while stack:
+        index, parent, path = stack.pop()
+        if index in path:
+            raise UserError(f"malformed glTF file {doc.path}: node {index} is its own ancestor "
+                            f"(children cycle {' -> '.join(map(str, path + (index,)))}); re-export the file")
+        node = nodes[index]
+        world = parent @ node_matrix(node)
+        if "mesh" in node:
+            out.extend((placement, node["mesh"], index) for placement in _instances(doc, node, world))
+        for child in reversed(node.get("children", [])):
+            stack.append((child, world, path + (index,)))
+    return out
+
+
+def _instances(doc: GltfDocument, node: dict, world: np.ndarray) -> list[np.ndarray]:
+    """The world matrices a node places its mesh at: its own, or one per EXT_mesh_gpu_instancing instance
+    (world @ T @ R @ S of each instance), expanded here into placements of the one mesh."""
+    ext = node.get("extensions", {}).get(gltf_extensions.INSTANCING)
+    if not isinstance(ext, dict) or not ext.get("attributes"):
+        return [world]
+    attrs = ext["attributes"]
+    arrays = {k: read_accessor(doc, attrs[k]).astype(np.float64) if k in attrs else None
+              for k in ("TRANSLATION", "ROTATION", "SCALE")}
+    if all(a is None for a in arrays.values()):
+        return [world]
+    counts = {len(a) for a in arrays.values() if a is not None}
+    if len(counts) != 1:
+        raise UserError(f"malformed glTF file {doc.path}: {gltf_extensions.INSTANCING} attributes of a node have "
+                        f"different counts {sorted(counts)}; each needs one element per instance")
+    matrices = gltf_extensions.instance_matrices(arrays["TRANSLATION"], arrays["ROTATION"], arrays["SCALE"])
+    return list(world @ matrices)
+
+
+def _attribute(doc: GltfDocument, prim: dict, name: str, where: str) -> np.ndarray | None:
+    """An attribute through the project's accessor reader, as float64. Accessor and component types were checked
+    with the document (gltf_rules.py); integer attributes must be normalized unless KHR_mesh_quantization allows
+    plain integers for the semantic (POSITION and TEXCOORD: its table lists both forms)."""
+    index = prim.get("attributes", {}).get(name)
+    if index is None:
+        return None
+    acc = doc.json["accessors"][index]
+    if acc.get("componentType") != FLOAT and not acc.get("normalized", False):
+        semantic = name.split("_", 1)[0] if name.startswith("TEXCOORD_") else name
+        if not gltf_extensions.uses(doc.json, gltf_extensions.QUANTIZATION) or semantic not in ("POSITION",
+                                                                                              "TEXCOORD"):
+            raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not "
+                            "normalized; glTF allows that only for POSITION and TEXCOORD with "
+                            "KHR_mesh_quantization in extensionsUsed: fix or re-export the file")
+    return read_accessor(doc, index).astype(np.float64)
+
+
+def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
+    """Triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive, counter-clockwise as the file means."""
+    if "indices" in prim:  # SCALAR unsigned integers: checked with the document (gltf_rules.py)
+        idx = read_accessor(doc, prim["indices"]).reshape(-1).astype(np.int64)
+    else:
+        idx = np.arange(count, dtype=np.int64)
+    mode = prim.get("mode", 4)
+    if mode in SKIPPED_MODES:
+        return _points_and_lines(idx, mode)
+    if mode == 4:
+        return idx[: len(idx) // 3 * 3].reshape(-1, 3)
+    n = max(len(idx) - 2, 0)
+    i = np.arange(n)
+    if mode == 5:  # strip: triangle i is (i, i+1, i+2), every odd one turned around to keep the winding
+        odd = (i % 2).astype(bool)
+        a, b = np.where(odd, idx[i + 1], idx[i]), np.where(odd, idx[i], idx[i + 1])
+        return np.stack([a, b, idx[i + 2]], axis=1)
+    return np.stack([idx[i + 1], idx[i + 2], np.full(n, idx[0]) if n else idx[:0]], axis=1)  # fan around idx[0]
+
+
+def _points_and_lines(idx: np.ndarray, mode: int) -> np.ndarray:
+    """POINTS as (N, 1); LINES, LINE_STRIP and LINE_LOOP as (segments, 2) of a line list."""
+    if mode == 0:
+        return idx.reshape(-1, 1)
+    if mode == 1:
+        return idx[: len(idx) // 2 * 2].reshape(-1, 2)
+    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]  # a loop closes on its first
+    return np.stack([idx[: len(ends)], ends], axis=1)
+
+
+def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
+    """A material's textureInfo objects, base colour first (its choice of coordinates leads)."""
+    if material is None:
+        return []
+    mat = doc.json.get("materials", [])[material]
+    infos = [mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"), mat.get("normalTexture"),
+             mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
+             mat.get("occlusionTexture")]
+    return [i for i in infos if isinstance(i, dict)]
+
+
+def uv_choice(doc: GltfDocument, material: int | None) -> tuple[int, dict | None]:
+    """(TEXCOORD set, KHR_texture_transform or None) the mesh's one set of texture coordinates is made with:
+    the base colour texture's (else the first texture's); texCoord and the transform's texCoord override included.
+    A texture of the material that samples otherwise is listed as ignored (gltf_materials)."""
+    infos = texture_infos(doc, material)
+    if not infos:
+        return 0, None
+    texcoord, _ = gltf_extensions.texture_uv_choice(infos[0])
+    transform = infos[0].get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
+    return texcoord, transform if isinstance(transform, dict) else None
+
+
+def texcoord_set(doc: GltfDocument, material: int | None) -> int:
+    """The TEXCOORD set the mesh carries for a material (see :func:`uv_choice`)."""
+    return uv_choice(doc, material)[0]
+
+
+def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):
+    """POSITION, NORMAL and TANGENT with the default morph weights applied (``weights``: the node's, else the
+    mesh's; none given means all 0, the base pose)."""
+    targets = prim["targets"]
+    weights = list(weights or ())
+    if weights and len(weights) != len(targets):
+        raise UserError(f"malformed glTF file {doc.path}: {where} has {len(targets)} morph targets but "
+                        f"{len(weights)} weights; give one weight per target")
+    if not any(weights):
+        return positions, normals, tangents
+    deltas = {name: [_attribute(doc, {"attributes": t}, name, where) for t in targets]
+              for name in ("POSITION", "NORMAL", "TANGENT")}
+    return (gltf_extensions.morphed(positions, deltas["POSITION"], weights),
+            gltf_extensions.morphed(normals, deltas["NORMAL"], weights),
+            gltf_extensions.morphed(tangents, deltas["TANGENT"], weights))
+
+
+def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) -> PrimitiveGeometry | None:
+    """One primitive's triangles (or points, or line segments: ``topology``) and attributes in its mesh's own
+    space (the caller applies the node's world matrix)."""
+    mode = prim.get("mode", 4)
+    if mode not in TOPOLOGIES:
+        raise UserError(f"malformed glTF file {doc.path}: {where} has mode {mode}; glTF 2.0 modes are 0..6")
+    material = prim.get("material")
+    uv_set, uv_transform = uv_choice(doc, material)
+    uv_name = f"TEXCOORD_{uv_set}"
+    names = ("POSITION", "NORMAL", uv_name, "TANGENT", "COLOR_0")
+    draco = gltf_compression.uses_draco(doc, prim)  # else its uncompressed fallback accessors
+    if draco:
+        decoded, draco_faces = gltf_compression.draco_attributes(doc, prim, where)
+        arrays = {name: decoded.get(name) for name in names}
+    else:
+        arrays = {name: _attribute(doc, prim, name, where) for name in names}
+    positions = arrays.pop("POSITION")
+    if positions is None:
+        raise UserError(f"malformed glTF file {doc.path}: {where} has no POSITION attribute (glTF requires it)")
+    count = len(positions)
+    for name, array in arrays.items():
+        if array is not None and len(array) != count:
+            raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
+                            f"POSITION {count}")
+    if prim.get("targets") and not draco:
+        positions, arrays["NORMAL"], arrays["TANGENT"] = _morph(doc, prim, weights, where, positions,
+                                                                arrays["NORMAL"], arrays["TANGENT"])
+    if arrays[uv_name] is not None and uv_transform is not None:
+        arrays[uv_name] = gltf_extensions.transform_uvs(arrays[uv_name], uv_transform)
+    faces = draco_faces if draco else _faces(doc, prim, count)
+    if len(faces) and (faces.min() < 0 or faces.max() >= count):
+        raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
+    colors = arrays["COLOR_0"]
+    if colors is not None and colors.shape[1] == 3:
+        colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
+    return PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
+                             material, where, TOPOLOGIES[mode])
+
+
+def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
+    """(world matrix, node label, geometry) of every primitive the file's scene places (triangles, points and
+    line segments: ``geometry.topology``). A primitive placed many times (nodes, EXT_mesh_gpu_instancing) is read
+    once per set of morph weights; the placed vertices are bounded by the model limit (48 bytes each on the GPU)."""
+    meshes = doc.json.get("meshes", [])
+    out, read, placed = [], {}, 0
+    limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES) // 48
+    nodes = doc.json.get("nodes", [])
+    for world, mesh_index, node_index in placed_meshes(doc):
+        mesh = meshes[mesh_index]
+        name = f" '{mesh['name']}'" if mesh.get("name") else ""
+        weights = nodes[node_index].get("weights", mesh.get("weights")) if node_index >= 0 else mesh.get("weights")
+        for p, prim in enumerate(mesh.get("primitives", [])):
+            where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
+            key = (mesh_index, p, json.dumps(weights))
+            if key not in read:
+                read[key] = primitive_geometry(doc, prim, where, weights)
+            geometry = read[key]
+            if geometry is not None and len(geometry.faces):
+                placed += len(geometry.positions)
+                if placed > limit:
+                    raise UserError(f"{doc.path}: its nodes and instances place over {limit} vertices, more than "
+                                    f"the model limit allows; raise ${MAX_MODEL_BYTES_ENV} if the model is real")
+                out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
+    return out
+
+
+def geometry_notes(doc: GltfDocument) -> list[str]:
+    """What the file has that is not drawn, one line each (for ``--explain``)."""
+    notes, gltf = [], doc.json
+    for mi, mesh in enumerate(gltf.get("meshes", [])):
+        for pi, prim in enumerate(mesh.get("primitives", [])):
+            mode = prim.get("mode", 4)
+            if mode in SKIPPED_MODES:
+                notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive drawn unlit as a "
+                             f"{TOPOLOGIES[mode]} of 1-pixel {'points' if mode == 0 else 'lines'} (points and lines "
+                             "have no surface to light)")
+            if prim.get("targets") and gltf_compression.DRACO in prim.get("extensions", {}):
+                notes.append(f"mesh {mi} primitive {pi}: morph targets of a Draco primitive ignored (drawn in the "
+                             "base pose)")
+            used = f"TEXCOORD_{texcoord_set(doc, prim.get('material'))}"
+            extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a != used)
+            extra += sorted(a for a in prim.get("attributes", {})
+                            if a.startswith(("JOINTS_", "WEIGHTS_")) or (a.startswith("COLOR_") and a != "COLOR_0"))
+            if extra:
+                notes.append(f"mesh {mi} primitive {pi}: attribute(s) {', '.join(extra)} ignored")
+    if gltf.get("skins"):
+        notes.append(f"{len(gltf['skins'])} skin(s) ignored (drawn in the bind pose, no skinning)")
+    if gltf.get("animations"):
+        notes.append(f"{len(gltf['animations'])} animation(s) ignored (drawn at rest)")
+    if gltf.get("cameras"):
+        notes.append(f"{len(gltf['cameras'])} camera(s) ignored (the scene file's [camera] is used)")
+    return notes

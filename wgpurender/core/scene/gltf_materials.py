@@ -1,0 +1,249 @@
+"""A glTF model's own materials as scene materials: what the file's author meant, mapped onto the course's shading.
+
+A model in a scene file without ``material = ...`` draws with its file's materials (the scene's ``material``
+still overrides). Each file material its placed triangles use becomes one :class:`~wgpurender.core.scene.Material`
+and one draw. What is taken, and how it maps onto the course's normalized Blinn-Phong (scene.wgsl):
+
+- ``baseColorFactor`` x ``baseColorTexture`` (sRGB) -> base colour (x ``COLOR_0`` when the primitive has one);
+- ``normalTexture`` with its ``scale`` -> normal map and its strength;
+- ``roughnessFactor`` x the metallic-roughness texture's G channel -> the Blinn-Phong exponent's roughness;
+- ``doubleSided`` -> no culling, back faces lit with the normal turned around;
+- ``alphaMode`` OPAQUE / MASK (``alphaCutoff``: fragments below are discarded) / BLEND (alpha blending, drawn
+  after the opaque draws, not sorted by depth);
+- each texture's own sampler: mag/min/mipmap filters and per-axis wrap (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT);
+- ``emissiveFactor`` (x ``KHR_materials_emissive_strength``) x ``emissiveTexture`` (sRGB) -> added to the shaded
+  colour;
+- ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
+- ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
+
+- the base colour texture's ``texCoord`` and ``KHR_texture_transform`` -> the mesh's texture coordinates
+  (gltf_geometry.uv_choice applies them at load).
+
+Ignored, and listed by ``--explain``: metalness (``metallicFactor``, the texture's B channel: Blinn-Phong has no
+metals), a texture that samples another coordinate set or transform than its material's base colour texture, and
+every other extension by name (the applied ones are listed as used).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from wgpurender.core.course.samplers import SamplerSpec
+from wgpurender.core.files.input_files import input_file
+from wgpurender.core.models import gltf_extensions, gltf_geometry, gltf_io
+from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material
+
+EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
+WRAP = {10497: "repeat", 33071: "clamp-to-edge", 33648: "mirror-repeat"}
+MIN_FILTERS = {9728: ("nearest", None), 9729: ("linear", None), 9984: ("nearest", "nearest"),
+               9985: ("linear", "nearest"), 9986: ("nearest", "linear"), 9987: ("linear", "linear")}
+ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map": ("normalTexture",),
+         "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
+         "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
+SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
+# extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
+USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
+
+
+@dataclass(frozen=True)
+class ModelMaterials:
+    """The materials a model draws with (one per file material its triangles use, in file order; ``part`` is the
+    file's material index, -1 for primitives without one) and what was taken and ignored, for ``--explain``."""
+
+    materials: tuple[Material, ...]
+    taken: tuple[str, ...]
+    ignored: tuple[str, ...]
+
+
+def embedded_image_path(model: Path, image: int) -> Path:
+    return Path(f"{model}{EMBEDDED_MARK}{image}]")
+
+
+def _document(path: str) -> gltf_io.GltfDocument:
+    """The parsed model, read once while the file is unchanged (the plan asks each embedded image's size, the
+    upload its pixels: one read of a large GLB each, not one per image)."""
+    stat = os.stat(path)
+    return _read_cached(path, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=4)
+def _read_cached(path: str, mtime_ns: int, size: int) -> gltf_io.GltfDocument:
+    return gltf_io.read_document(path)
+
+
+def embedded_image_bytes(path: Path) -> bytes | None:
+    """The encoded bytes of an image a ``model.glb#images[k]`` path names, or None for an ordinary path."""
+    text = str(path)
+    if EMBEDDED_MARK not in text or not text.endswith("]"):
+        return None
+    model, _, index = text.rpartition(EMBEDDED_MARK)
+    if not os.path.isfile(model):
+        return None
+    doc = _document(model)
+    image = doc.json["images"][int(index[:-1])]
+    source = gltf_io._image_source(doc, image)
+    return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
+
+
+def sampler_spec(doc: gltf_io.GltfDocument, texture: dict) -> tuple[SamplerSpec, bool]:
+    """A glTF texture's sampler as a SamplerSpec, and whether it samples a mip chain (a *_MIPMAP_* minFilter, or
+    none given: glTF leaves it to the renderer, we build mips)."""
+    sampler = doc.json.get("samplers", [])[texture["sampler"]] if "sampler" in texture else {}
+    mag = "nearest" if sampler.get("magFilter") == 9728 else "linear"
+    min_filter, mip = MIN_FILTERS.get(sampler.get("minFilter", 9987), ("linear", "linear"))
+    spec = SamplerSpec(mag_filter=mag, min_filter=min_filter, mipmap_filter=mip or "nearest",
+                       address_mode_u=WRAP.get(sampler.get("wrapS", 10497), "repeat"),
+                       address_mode_v=WRAP.get(sampler.get("wrapT", 10497), "repeat"),
+                       lod_max_clamp=32.0 if mip else 0.0)
+    return spec, mip is not None
+
+
+def _texture_path(doc: gltf_io.GltfDocument, texture: dict) -> Path:
+    index = texture["source"]
+    uri = doc.json["images"][index].get("uri")
+    if uri is not None and not uri.startswith("data:"):
+        return gltf_io._uri_file(doc.path, "an image uri", uri).resolve()
+    return embedded_image_path(doc.path.resolve(), index)
+
+
+def _info(material: dict, keys: tuple[str, ...]) -> dict | None:
+    info = material
+    for key in keys:
+        info = info.get(key) if isinstance(info, dict) else None
+    return info if isinstance(info, dict) else None
+
+
+def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colors: bool,
+                  ignored: list[str]) -> Material:
+    """File material ``index`` as a scene Material (see the module docstring for the mapping)."""
+    mat = doc.json["materials"][index]
+    pbr = mat.get("pbrMetallicRoughness", {})
+    name = f"{label} material {index}" + (f" '{mat['name']}'" if mat.get("name") else "")
+    maps, samplers, mipmaps = {}, [], []
+    for feature, keys in ROLES.items():
+        info = _info(mat, keys)
+        if info is None:
+            continue
+        texture = doc.json["textures"][info["index"]]
+        if "source" not in texture:
+            ignored.append(f"{name}: {keys[-1]} has no image source (ignored)")
+            continue
+        maps[feature] = _texture_path(doc, texture)
+        spec, mips = sampler_spec(doc, texture)
+        samplers.append((feature, spec))
+        mipmaps.append((feature, mips))
+        _note_uv_choice(doc, index, info, f"{name}: {keys[-1]}", ignored)
+    _note_ignored(mat, pbr, name, ignored)
+    unlit = "KHR_materials_unlit" in mat.get("extensions", {})
+    roughness = float(pbr.get("roughnessFactor", 1.0))
+    normal = _info(mat, ("normalTexture",)) or {}
+    occlusion = _info(mat, ("occlusionTexture",)) or {}
+    strength = mat.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+    emissive = (0.0, 0.0, 0.0) if unlit else tuple(float(c) * float(strength) for c in mat.get("emissiveFactor",
+                                                                                               (0, 0, 0)))
+    if unlit and ("emissiveTexture" in mat or any(mat.get("emissiveFactor", (0, 0, 0)))):
+        ignored.append(f"{name}: emissive: ignored (KHR_materials_unlit draws the base colour only)")
+    return Material(
+        name=name, albedo_color=tuple(float(v) for v in pbr.get("baseColorFactor", (1.0, 1.0, 1.0, 1.0))),
+        albedo_map=maps.get("albedo_map"), normal_map=maps.get("normal_map"), roughness_map=maps.get("roughness_map"),
+        roughness=roughness, unlit=unlit, origin=name, vertex_colors=vertex_colors,
+        double_sided=bool(mat.get("doubleSided", False)), alpha_mode=str(mat.get("alphaMode", "OPAQUE")).lower(),
+        alpha_cutoff=float(mat.get("alphaCutoff", 0.5)), normal_strength=float(normal.get("scale", 1.0)),
+        roughness_map_scale=roughness, texture_samplers=tuple(samplers), texture_mipmaps=tuple(mipmaps),
+        part=index, written=tuple((f, str(p.name)) for f, p in maps.items()), emissive_color=emissive,
+        emissive_map=maps.get("emissive_map") if not unlit else None,
+        occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
+    )
+
+
+def _note_uv_choice(doc: gltf_io.GltfDocument, index: int, info: dict, where: str, ignored: list[str]) -> None:
+    """A texture that samples other coordinates than the material's chosen set and transform (the base colour
+    texture's; gltf_geometry.uv_choice) is drawn with those: said by name."""
+    infos = gltf_geometry.texture_infos(doc, index)
+    lead = gltf_extensions.texture_uv_choice(infos[0])
+    mine = gltf_extensions.texture_uv_choice(info)
+    if mine[0] != lead[0]:
+        ignored.append(f"{where} texCoord {mine[0]}: ignored, sampled with TEXCOORD_{lead[0]} (a mesh carries one "
+                       "set of texture coordinates per material)")
+    elif mine[1] != lead[1]:
+        ignored.append(f"{where} KHR_texture_transform: ignored, sampled with the base colour texture's transform "
+                       "(one transform per material)")
+
+
+def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
+    if pbr.get("metallicFactor", 1.0) != 0.0 or "metallicRoughnessTexture" in pbr:
+        ignored.append(f"{name}: metalness (metallicFactor {pbr.get('metallicFactor', 1.0):g}, the metallic-"
+                       "roughness texture's B channel): ignored (the course's Blinn-Phong has no metals; drawn as "
+                       "a dielectric)")
+    for ext in mat.get("extensions", {}):
+        if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
+            ignored.append(f"{name}: {ext}: ignored")
+
+
+def model_materials(path: Path, label: str) -> ModelMaterials:
+    """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
+    doc = gltf_io.read_document(path)
+    used: dict[tuple[str, int], bool] = {}  # (topology, file material index, -1: none) -> any has COLOR_0
+    meshes = doc.json.get("meshes", [])
+    for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
+        for prim in meshes[mesh_index].get("primitives", []):
+            topology = gltf_geometry.TOPOLOGIES.get(prim.get("mode", 4))
+            if topology is not None:
+                key = (topology != "triangle-list", prim.get("material", -1), topology)
+                used[key] = used.get(key, False) or "COLOR_0" in prim.get("attributes", {})
+    taken, ignored = [], list(gltf_geometry.geometry_notes(doc))
+    materials = []
+    for (_, k, topology), colours in sorted(used.items()):  # triangles first, then points and lines
+        if k < 0:
+            material = dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
+                                           origin=f"{label} primitives without a material (the default one)",
+                                           vertex_colors=colours, part=-1)
+        else:
+            material = file_material(doc, k, label, colours, ignored)
+        materials.append(material if topology == "triangle-list" else _points_or_lines(material, topology))
+    for m in materials:
+        taken.append(_taken_text(m))
+    for ext in doc.json.get("extensionsUsed", []):
+        if ext in USED_EXTENSIONS:
+            taken.append(f"extensionsUsed {ext}: used")
+        else:
+            ignored.append(f"extensionsUsed {ext}: ignored")
+    return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
+
+
+def _points_or_lines(material: Material, topology: str) -> Material:
+    """The material of a points or lines primitive: drawn unlit (no surface to light), its own topology."""
+    kind = "points" if topology == "point-list" else "lines"
+    return dataclasses.replace(material, name=f"{material.name} ({kind})", origin=f"{material.origin} ({kind}, "
+                               "unlit)", unlit=True, topology=topology, normal_map=None, roughness_map=None,
+                               occlusion_map=None, emissive_map=None, emissive_color=(0.0, 0.0, 0.0))
+
+
+def _taken_text(m: Material) -> str:
+    items = [f"baseColorFactor {tuple(round(c, 4) for c in m.albedo_color)}"]
+    for feature, path in m.textures.items():
+        spec = dict(m.texture_samplers).get(feature)
+        how = ""
+        if spec is not None:
+            how = f" ({spec.min_filter}/{spec.mag_filter}, wrap {spec.address_mode_u}/{spec.address_mode_v})"
+        items.append(f"{feature} {Path(path).name}{how}")
+    if m.vertex_colors:
+        items.append("COLOR_0 vertex colours")
+    if m.double_sided:
+        items.append("doubleSided")
+    if m.alpha_mode != "opaque":
+        items.append(f"alphaMode {m.alpha_mode.upper()}" + (f" cutoff {m.alpha_cutoff:g}" if m.alpha_mode == "mask"
+                                                             else " (unsorted)"))
+    if any(m.emissive_color):
+        items.append(f"emissiveFactor {tuple(round(c, 4) for c in m.emissive_color)}")
+    if m.occlusion_map:
+        items.append(f"occlusion strength {m.occlusion_strength:g}")
+    if m.unlit:
+        items.append("KHR_materials_unlit")
+    elif m.part is not None and m.part >= 0:
+        items.append(f"roughnessFactor {m.roughness:g}")
+    return f"{m.origin}: " + ", ".join(items)
