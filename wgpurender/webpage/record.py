@@ -13,7 +13,7 @@ import json
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
-from wgpurender.export.recorder import BROWSER, Recording, recording_context
+from wgpurender.webpage.recorder import BROWSER, Recording, recording_context
 from wgpurender.wgpu_path.device.context import GPUContext
 
 UPLOADS = ("writeBuffer", "writeTexture")
