@@ -96,6 +96,9 @@ def test_one_section_per_course_step_in_course_order(site):
     assert keys[: len(stages)] == stages
     scenes = keys[len(stages):]
     assert scenes[:5] == ["unlit", "retro", "brick", "final_subpass", "final"]
+    for step in COURSE:  # each step says how to try it yourself (wgpurender exercise), step 6 in its scene
+        assert f"try it: <code>wgpurender exercise {step.number}</code>" in _section(text, step.scene or step.stage)
+    assert "try it" not in _section(text, "unlit")  # a scene that is not a course step has no exercise
     for key in ("triangle", "3d", "final"):  # the steps' words and the summary are there
         cls = all_stages().get(key)
         if cls is not None:

@@ -167,8 +167,9 @@ def _timed(ctx: GPUContext, scene_path: Path, settings: Settings, size, knobs, f
 
 
 def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: int, warmup: int,
-                 progress=print) -> list[TruthRow]:
-    """Render, time and score the three sections; returns the rows in report order."""
+                 progress=print, ibl: bool = True) -> list[TruthRow]:
+    """Render, time and score the sections (``ibl``: with image-based lighting's, bench/accuracy_ibl.py);
+    returns the rows in report order."""
     rows: list[TruthRow] = []
     work = out_dir / "analytic_scenes"
     plain, aa_truth = write_triangles_scene(work, size, fxaa=False)
@@ -195,6 +196,12 @@ def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: 
             ctx, work, size, frames, warmup, _timed, _score):
         rows.append(row)
         progress(f"{row.section} {row.setting}: mean linear error {row.linear_mae:.5f}")
+    if ibl:
+        from wgpurender.bench.accuracy_ibl import run_ibl
+
+        for row in run_ibl(ctx, frames, TruthRow):
+            rows.append(row)
+            progress(f"{row.section} {row.setting}: mean linear error {row.linear_mae:.5f} ({row.note})")
     return mark_pareto(rows)
 
 

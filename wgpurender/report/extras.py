@@ -78,7 +78,7 @@ def measure(ctx: GPUContext, site: Path, log: Callable[[str], None] = print, siz
             write_plot(run, site / PLOT)
             out.plot = PLOT
         log("hard cases: anti-aliasing, texture filtering and depth against exact answers")
-        truth = run_analytic(ctx, Path(work), size, FRAMES, WARMUP, progress=lambda _text: None)
+        truth = run_analytic(ctx, Path(work), size, FRAMES, WARMUP, progress=lambda _text: None, ibl=False)
         out.hard_cases = [Point(r.section, r.setting, r.flip, r.psnr,
                                 r.m.gpu.median if r.m.gpu is not None else r.m.wall.median) for r in truth]
     out.seconds = time.perf_counter() - start

@@ -107,12 +107,21 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 <p><strong>{e(step.summary)}</strong></p>
 {words}
 {f'<p class="links">{links}</p>' if links else ""}
+{_try_it(step)}
 {shots}
 {_live(files)}
 {_code(step)}
 {plan}
 {_concepts(step.concepts)}
 </section>"""
+
+
+def _try_it(step: Step) -> str:
+    """The learner's way in: the step's exercise (docs/exercises.md), when it has one."""
+    from wgpurender.exercises.catalogue import exercise_command
+
+    command = exercise_command(step.key)
+    return f'<p class="try">try it: <code>{e(command)}</code> (docs/exercises.md)</p>' if command else ""
 
 
 def _live(files: dict[str, str]) -> str:

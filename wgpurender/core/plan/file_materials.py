@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 
+from wgpurender.core.plan.shading_models import metallic_factor
 from wgpurender.core.scene import Material, Model
 from wgpurender.core.scene.gltf_materials import ModelMaterials, model_materials
 
@@ -115,7 +116,7 @@ def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
         options["occlusion_strength"] = material.occlusion_strength
     if "emissive" in variant_flags:
         options["emissive"] = tuple(material.emissive_color)
-    return options
+    return options | metallic_factor(material, variant_flags)
 
 
 def texture_samplers(material: Material, sampled: tuple[tuple[str, object], ...], spec) -> tuple:
