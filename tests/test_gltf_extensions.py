@@ -458,20 +458,20 @@ def test_meshopt_views_that_claim_too_much_are_refused_before_decoding(tmp_path)
 
 
 def test_instances_beyond_the_model_limit_are_refused(tmp_path, monkeypatch):
-    """EXT_mesh_gpu_instancing multiplies vertices: 4 instances of a 4-vertex quad under a budget of 10 vertices
-    (480 bytes at 48 per vertex) is one line, not an allocation that grows with the instance count; 3 instances
-    fit (12 > 10 > 8 is checked as the vertices are placed)."""
+    """EXT_mesh_gpu_instancing multiplies vertices: 4 instances of a 4-vertex quad under a budget of 10 placed
+    vertices ($WGPURENDER_MAX_MODEL_VERTICES) is one line, not an allocation that grows with the instance count;
+    under 24 they fit (without NORMAL each quad is flat-shaded: 6 vertices, glTF 2.0 3.7.2.1)."""
     g = GltfWriter()
     mesh = g.mesh([{"attributes": {"POSITION": g.positions(quad(-0.3, -0.3, 0.3, 0.3))},
                     "indices": g.accessor(QUAD_INDICES)}])
     g.node(mesh=mesh, extensions={"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": g.accessor(
         INSTANCES_T)}}})
     path = g.write(tmp_path / "many.glb")
-    monkeypatch.setattr("wgpurender.core.models.gltf_geometry.env_limit", lambda name, default: 10 * 48)
+    monkeypatch.setattr("wgpurender.core.models.gltf_geometry.env_limit", lambda name, default: 10)
     with pytest.raises(UserError, match="place over 10 vertices"):
         load_mesh(path)
-    monkeypatch.setattr("wgpurender.core.models.gltf_geometry.env_limit", lambda name, default: 16 * 48)
-    assert load_mesh(path, generate_tangents=False).vertex_count == 16
+    monkeypatch.setattr("wgpurender.core.models.gltf_geometry.env_limit", lambda name, default: 24)
+    assert load_mesh(path, generate_tangents=False).vertex_count == 24
 
 
 def test_draco_with_an_uncompressed_fallback_loads_without_dracopy(tmp_path, monkeypatch):

@@ -16,8 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.input_files import MAX_MODEL_BYTES, MAX_MODEL_BYTES_ENV, env_limit
-from wgpurender.core.models import gltf_compression, gltf_extensions
+from wgpurender.core.files.input_files import MAX_MODEL_VERTICES, MAX_MODEL_VERTICES_ENV, env_limit
+from wgpurender.core.models import gltf_compression, gltf_extensions, gltf_rules
 from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
@@ -61,36 +61,32 @@ def node_matrix(node: dict) -> np.ndarray:
 
 
 def root_nodes(doc: GltfDocument) -> list[int]:
-    """The nodes the file asks to draw: those of ``scene`` (or scene 0); without scenes, every node no other node
-    lists as a child; without nodes, none (meshes are then placed once each, see :func:`placed_meshes`)."""
-    gltf = doc.json
-    scenes = gltf.get("scenes", [])
-    if scenes:
-        return list(scenes[gltf.get("scene", 0)].get("nodes", []))
-    children = {c for node in gltf.get("nodes", []) for c in node.get("children", [])}
-    return [i for i in range(len(gltf.get("nodes", []))) if i not in children]
+    """The nodes the file asks to draw (gltf_rules.root_nodes)."""
+    return gltf_rules.root_nodes(doc.json)
 
 
 def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
-    The graph is a forest (gltf_rules.check_node_graph refuses loops and second parents before this runs); a
-    loop is still refused here rather than followed forever."""
+    The graph is a forest with unique roots (gltf_rules refuses loops, second parents and repeated roots before
+    this runs), so each node is visited once; a second visit is still refused rather than followed."""
     nodes = doc.json.get("nodes", [])
     if not nodes:
         return [(np.eye(4), i, -1) for i in range(len(doc.json.get("meshes", [])))]
     out: list[tuple[np.ndarray, int, int]] = []
-    stack = [(index, np.eye(4), ()) for index in reversed(root_nodes(doc))]
+    stack = [(index, np.eye(4)) for index in reversed(root_nodes(doc))]
+    visited: set[int] = set()
     while stack:
-        index, parent, path = stack.pop()
-        if index in path:
-            raise UserError(f"malformed glTF file {doc.path}: node {index} is its own ancestor "
-                            f"(children cycle {' -> '.join(map(str, path + (index,)))}); re-export the file")
+        index, parent = stack.pop()
+        if index in visited:
+            raise UserError(f"malformed glTF file {doc.path}: node {index} is reached twice (a cycle or a second "
+                            "parent); nodes must form trees: re-export the file")
+        visited.add(index)
         node = nodes[index]
         world = parent @ node_matrix(node)
         if "mesh" in node:
             out.extend((placement, node["mesh"], index) for placement in _instances(doc, node, world))
         for child in reversed(node.get("children", [])):
-            stack.append((child, world, path + (index,)))
+            stack.append((child, world))
     return out
 
 
@@ -241,17 +237,33 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     colors = arrays["COLOR_0"]
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
-    return PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
-                             material, where, TOPOLOGIES[mode])
+    geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
+                                 material, where, TOPOLOGIES[mode])
+    return flat_shaded(geometry) if geometry.normals is None and geometry.topology == "triangle-list" else geometry
+
+
+def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
+    """glTF 2.0, 3.7.2.1: "When normals are not specified, client implementations MUST calculate flat normals and
+    the provided tangents (if present) MUST be ignored." Each triangle gets its own three vertices with its face
+    normal (counter-clockwise front); smooth vertex normals would round a cube's edges."""
+    corners = g.faces.reshape(-1)
+    tri = g.positions[g.faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])  # unnormalised: build_mesh normalises
+    uvs = None if g.uvs is None else g.uvs[corners]
+    colors = None if g.colors is None else g.colors[corners]
+    faces = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
+    return PrimitiveGeometry(g.positions[corners], faces, np.repeat(normal, 3, axis=0), uvs, None, colors,
+                             g.material, g.where)
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
     """(world matrix, node label, geometry) of every primitive the file's scene places (triangles, points and
     line segments: ``geometry.topology``). A primitive placed many times (nodes, EXT_mesh_gpu_instancing) is read
-    once per set of morph weights; the placed vertices are bounded by the model limit (48 bytes each on the GPU)."""
+    once per set of morph weights; the placed vertices (instances multiply them) are bounded like the file's own."""
+    check_something_to_draw(doc)
     meshes = doc.json.get("meshes", [])
     out, read, placed = [], {}, 0
-    limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES) // 48
+    limit = env_limit(MAX_MODEL_VERTICES_ENV, MAX_MODEL_VERTICES)
     nodes = doc.json.get("nodes", [])
     for world, mesh_index, node_index in placed_meshes(doc):
         mesh = meshes[mesh_index]
@@ -267,9 +279,29 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
                 placed += len(geometry.positions)
                 if placed > limit:
                     raise UserError(f"{doc.path}: its nodes and instances place over {limit} vertices, more than "
-                                    f"the model limit allows; raise ${MAX_MODEL_BYTES_ENV} if the model is real")
+                                    f"the model limit allows; raise ${MAX_MODEL_VERTICES_ENV} if the model is real")
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
+
+
+DRAWN_MODES = TRIANGLE_MODES  # the modes a file needs one of: points and lines are drawn only beside triangles
+MODE_NAMES = {**SKIPPED_MODES, **TRIANGLE_MODES}
+
+
+def check_something_to_draw(doc: GltfDocument) -> None:
+    """Refuse, in one line, a file whose scene places no mesh or only primitives of modes not drawn (points,
+    lines): it would render an empty image with exit 0. Both the mesh loader and the file's materials ask here."""
+    placed = gltf_rules.mesh_placements(doc.json)
+    if not placed:
+        raise UserError(f"glTF file {doc.path}: nothing to draw: its scene places no mesh (no node of the drawn "
+                        "scene has a 'mesh'); add the mesh's node to the scene's nodes and re-export")
+    meshes = doc.json.get("meshes", [])
+    modes = {prim.get("mode", 4) for m in placed for prim in meshes[m]["primitives"]}
+    if not modes & set(DRAWN_MODES):
+        found = ", ".join(MODE_NAMES.get(m, str(m)) for m in sorted(modes))
+        raise UserError(f"glTF file {doc.path}: nothing to draw: its placed primitives are {found} only, and "
+                        f"wgpurender draws {', '.join(MODE_NAMES[m] for m in DRAWN_MODES)} (points and lines only "
+                        "beside them); export faces")
 
 
 def geometry_notes(doc: GltfDocument) -> list[str]:

@@ -255,6 +255,12 @@ class AdapterFacts:
     name: str = ""
     backend: str = ""
 
+    def accuracy_size(self, preset: str) -> tuple[int, int]:
+        """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""
+        from wgpurender.core.plan.bench_size import accuracy_size
+
+        return accuracy_size(self.adapter_type, preset)
+
 
 @dataclass(frozen=True)
 class Knobs:

@@ -108,7 +108,7 @@ def _texture_path(doc: gltf_io.GltfDocument, texture: dict) -> Path:
     index = texture["source"]
     uri = doc.json["images"][index].get("uri")
     if uri is not None and not uri.startswith("data:"):
-        return gltf_io._uri_file(doc.path, "an image uri", uri).resolve()
+        return gltf_io._uri_file(doc.path, f"$.images[{index}].uri", uri)
     return embedded_image_path(doc.path.resolve(), index)
 
 
@@ -186,6 +186,7 @@ def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
 def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
     doc = document(str(path))
+    gltf_geometry.check_something_to_draw(doc)
     used: dict[tuple[str, int], bool] = {}  # (topology, file material index, -1: none) -> any has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
