@@ -29,6 +29,18 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+EXT = "tests/test_gltf_extensions.py"
+FBX = "tests/test_fbx.py"
+KHRONOS = "tests/test_khronos_samples.py"
+# the files issue 30's rows mutate
+G_EXT = "wgpurender/core/models/gltf_extensions.py"
+G_PACK = "wgpurender/core/models/gltf_compression.py"
+G_GEOM = "wgpurender/core/models/gltf_geometry.py"
+G_IO = "wgpurender/core/models/gltf_io.py"
+G_RULES = "wgpurender/core/models/gltf_rules.py"
+G_MAT = "wgpurender/core/scene/gltf_materials.py"
+G_FBX = "wgpurender/core/models/fbx.py"
+G_MESH = "wgpurender/core/models/mesh.py"
 JAIL = "tests/test_model_reads_only_its_folder.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
@@ -524,6 +536,94 @@ MUTATIONS = [
      ["tests/test_window_keys.py|first_drag"]),
     ("wgpurender/api.py", "        why = _show_window(ctx, name, wh, msaa, anisotropy, frames)",
      "        why = \"\"", ["tests/test_notebook_view.py|outside", "tests/test_window_keys.py|show"]),
+    # glTF extensions (issue 30 item 2)
+    (G_EXT, "rotation = np.array([[c, s, 0], [-s, c, 0]",
+     "rotation = np.array([[c, -s, 0], [s, c, 0]", [EXT]),
+    (G_EXT, "    return translation @ rotation @ scale", "    return scale @ rotation @ "
+     "translation", [EXT]),
+    (G_EXT, "    return uvs @ m[:2, :2].T + m[:2, 2]", "    return uvs @ m[:2, :2] + "
+     "m[:2, 2]", [EXT]),
+    (G_EXT, "    texcoord = int(ext.get(\"texCoord\", texcoord))", "", [EXT]),
+    (G_EXT, "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, None, :]",
+     "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, :, None]", [EXT]),
+    (G_EXT, "        out[:, :3, 3] = translation", "        out[:, 3, :3] = "
+     "translation", [EXT]),
+    (G_EXT, "2 * (x * y - z * w), 2 * (x * z + y * w)], 1)", "2 * (x * y + z * w), "
+     "2 * (x * z + y * w)], 1)", [EXT]),
+    (G_EXT, "            out[:, :width] += float(weight) * delta[:, :width]",
+     "            out[:, :width] = float(weight) * delta[:, :width]", [EXT]),
+    (G_EXT, '"POSITION": (FLOAT, BYTE, UBYTE, SHORT, USHORT)', '"POSITION": (FLOAT,)',
+     [EXT]),
+    (G_EXT, '"NORMAL": (FLOAT, BYTE, SHORT)', '"NORMAL": (FLOAT, SHORT)', [EXT]),
+    (G_EXT, 'SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", ',
+     'SUPPORTED_REQUIRED = frozenset({', [EXT]),
+    (G_GEOM, "    return list(world @ matrices)", "    return list(matrices @ world)",
+     [EXT]),
+    (G_GEOM, "            out.extend((placement, node[\"mesh\"], index) for placement in "
+     "_instances(doc, node, world))", "            out.append((world, node[\"mesh\"], index))", [EXT]),
+    (G_GEOM, 'weights = nodes[node_index].get("weights", mesh.get("weights"))',
+     'weights = mesh.get("weights", nodes[node_index].get("weights"))', [EXT]),
+    (G_GEOM, "    if arrays[uv_name] is not None and uv_transform is not None:",
+     "    if arrays[uv_name] is not None and uv_transform is None:", [EXT]),
+    (G_GEOM, "    if not any(weights):\n", "    if len(weights) < 2:\n", [EXT]),
+    (G_GEOM, "semantic not in (\"POSITION\",", "semantic not in (\"NORMAL\",", [EXT]),
+    (G_RULES, "        if rule is not None and widened is not None:",
+     "        if rule is not None and widened is None:", [EXT]),
+    (G_PACK, "        view.update(buffer=len(buffers) - 1, byteOffset=0",
+     "        view.update(buffer=len(buffers) - 1, byteOffset=start", [EXT]),
+    (G_PACK, "    raw = np.ascontiguousarray(out).tobytes()[: count * stride]",
+     "    raw = np.ascontiguousarray(out).tobytes()", [EXT]),
+    (G_PACK, '        decode = codec.decode_index_buffer if mode == "TRIANGLES"',
+     '        decode = codec.decode_index_sequence if mode == "TRIANGLES"', [EXT]),
+    (G_PACK, "        return __import__(module)\n    except ImportError:",
+     "        return __import__(module)\n    except ValueError:", [EXT]),
+    (G_IO, 'if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, '
+     '{}).get("fallback"):', "if False:", [EXT]),
+    (G_PACK, "        found = mesh.get_attribute_by_unique_id(int(unique_id))",
+     "        found = mesh.get_attribute_by_unique_id(0)", [EXT]),
+    (G_MAT, "            taken.append(f\"extensionsUsed {ext}: used\")",
+     "            ignored.append(f\"extensionsUsed {ext}: ignored\")", [EXT]),
+    (G_MAT, "    elif mine[1] != lead[1]:", "    elif mine[0] != lead[1]:", [EXT]),
+    # FBX through assimp (issue 30 item 3)
+    (G_FBX, '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+     '        m[axis, row] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0', [FBX]),
+    (G_FBX, '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+     "        m[row, axis] = 1.0", [FBX]),
+    (G_FBX, 'scale = float(meta.get("UnitScaleFactor", 1.0)) / 100.0',
+     'scale = float(meta.get("UnitScaleFactor", 1.0)) / 1.0', [FBX]),
+    (G_FBX, "            uvs[:, 1] = 1.0 - uvs[:, 1]", "            uvs[:, 1] = uvs[:, 1]", [FBX]),
+    (G_FBX, 'TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}',
+     'TEXTURE_TYPES = {1: "base_color", 6: "normal"}', [FBX]),
+    (G_FBX, "    world = parent @ np.asarray(node.transformation, np.float64)",
+     "    world = np.asarray(node.transformation, np.float64)", [FBX]),
+    (G_FBX, "    except (pyassimp.errors.AssimpError, Exception) as err:",
+     "    except Exception as err:", [FBX]),
+    (G_FBX, "            textures[role] = (path.parent / name).resolve()",
+     "            textures[role] = Path(name)", [FBX]),
+    # glTF points and lines (issue 30 item 2)
+    (G_GEOM,
+     "    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]", "    ends = idx[1:]", [EXT]),
+    (G_GEOM, "        return idx[: len(idx) // 2 * 2].reshape(-1, 2)",
+     "        return np.stack([idx[:-1], idx[1:]], axis=1)",
+     [EXT]),
+    (G_GEOM, 'TOPOLOGIES = {0: "point-list", 1: "line-list"',
+     'TOPOLOGIES = {0: "line-list", 1: "line-list"', [EXT]),
+    (G_MESH, "        if part.material == wanted and part.topology == topology:",
+     "        if part.material == wanted:", [EXT, KHRONOS]),
+    (G_MESH, "        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)",
+     "        flat.append(np.asarray(p.faces, np.int64).reshape(-1))", [EXT]),
+    ("wgpurender/raw_path/scene/scene_subpass.py", "                                topology=TOPOLOGIES[topology])",
+     "                                )", [EXT]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", 'primitive={"topology": planned.topology,',
+     'primitive={"topology": "triangle-list",', [EXT]),
+    (G_MAT, "        materials.append(material if topology == \"triangle-list\" else "
+     "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
+    (G_EXT, "            out[:, :width] += float(weight) * delta[:, :width]",
+     "            out[:, :width] += delta[:, :width]", [KHRONOS]),
+    (G_PACK, 'FILTERS = {"OCTAHEDRAL": ("decode_filter_oct", (4, 8))',
+     'FILTERS = {"OCTAHEDRAL": ("decode_filter_exp", (4, 8))', [EXT]),
+    (G_PACK, "    return not fallback or importlib.util.find_spec(",
+     "    return True or importlib.util.find_spec(", [EXT]),
 ]
 
 
