@@ -58,7 +58,6 @@ HELPERS = {
     "raw_path.ubo:pack_camera": "std140 packer",
     "raw_path.ubo:pack_object": "std140 packer",
     "raw_path.scene.uniforms:pack_camera": "std140 packer",
-    "raw_path.scene.uniforms:pack_object": "std140 packer",
     "raw_path.readback:buffer_to_pixels": "reads the buffer that vkCmdCopyImageToBuffer filled",
     "raw_path.textures:MipGenerator.record": "draws each level in a render pass (the row says: not vkCmdBlitImage)",
     "raw_path.textures:level_count": "mip chain arithmetic",

@@ -306,7 +306,7 @@ def test_a_lit_material_without_lights_builds_the_unlit_variant(ctx, monkeypatch
     path = write_scene(tmp_path, "lit_no_lights")
     plan, recorder, _, pixels = build_and_record(ctx, monkeypatch, path, post_path)
     modules = [m["code"] for m in recorder.of("shader_module")]
-    scene_modules = [code for code in modules if "fn vs_main(in: VertexIn)" in code]
+    scene_modules = [code for code in modules if "fn vs_main(in: VertexIn" in code]
     assert len(scene_modules) == 1 and "blinn_phong" not in scene_modules[0] and "fn shade(" not in scene_modules[0]
     (pipeline,) = [p for p in recorder.of("render_pipeline") if p["vertex"]["buffers"]]
     assert pipeline["vertex"]["buffers"][0]["array_stride"] == (3 + 2) * 4, "position and uv only: no normal"

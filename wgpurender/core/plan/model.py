@@ -10,11 +10,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.explain import explain
-from wgpurender.core.scene import Scene
+from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
 LDR_SCENE_FORMAT = "rgba8unorm-srgb"  # 8-bit scene image for a post chain: shaders still see linear values
@@ -133,6 +135,23 @@ class Draw:
     factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
     part: int | None = None  # the model file's material whose triangles this draws (-1: none); None: all of them
     samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): each texture's own sampler
+    worlds: Placements | None = None  # every instance's world matrix when the draw is instanced (core/plan/batches)
+    first_instance: int = 0  # where its instances start in the scene's one Object storage buffer
+    batch: str = ""  # why these instances are one draw (explain)
+
+    @property
+    def instance_count(self) -> int:
+        return 1 if self.worlds is None else self.worlds.count
+
+    def world_matrices(self) -> np.ndarray:
+        """(instance_count, 4, 4) float64 world matrices: ``worlds``, or the one ``transform``."""
+        if self.worlds is None:
+            return np.array(self.transform, dtype=np.float64)[None]
+        return self.worlds.array().astype(np.float64)
+
+    def material_key(self) -> tuple:
+        """Draws with equal keys read the same material: they share one material bind group / descriptor set."""
+        return (self.variant_key, self.textures, self.samplers, self.sampler, self.factors)
 
     def sampler_of(self, feature: str) -> object | None:
         """The sampler a texture is sampled with (its own, else the draw's one sampler)."""
@@ -362,10 +381,14 @@ class RenderPlan:
         out = []
         if draws:
             out.append(("scene-camera", "uniform: Camera (view, projection, eye, lights), written when they change"))
-            out.append(("scene-objects", f"uniform: {len(draws)} Object slice(s), one per draw (dynamic offsets)"))
+            instances = sum(d.instance_count for d in draws)
+            out.append(("scene-objects", f"storage: {instances} Object block(s), one per instance, read at "
+                                         "instance_index (128 bytes each)"))
             if self.immediates is not True:
                 when = "no immediates" if self.immediates is False else "only if the device lacks immediates"
-                out.append(("scene-materials", f"uniform: {len(draws)} Material slice(s), one per draw ({when})"))
+                materials = len({d.material_key() for d in draws})
+                out.append(("scene-materials", f"uniform: {materials} Material slice(s), one per distinct material "
+                                               f"({when})"))
         for model, attributes in dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes)
                                                for d in draws):
             out.append((f"{model.name} vertices", f"vertex attributes {', '.join(attributes)}, interleaved"))

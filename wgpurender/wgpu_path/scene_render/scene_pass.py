@@ -1,11 +1,12 @@
 """The scene pass: every model of the plan drawn with its variant's pipeline, depth-tested.
 
 Uniform data follows the cube3d stage (wgpurender/wgpu_path/stages/cube3d.py): group 0 the camera
-(proj, view, eye, lights) rewritten every frame; group 1 every model's world and normal
-matrix in ONE buffer, each draw picking its slice with a dynamic offset (the stride is the
-struct size rounded up to min-uniform-buffer-offset-alignment); per-draw material factors
-as immediates (push constants), or, without the "immediates" feature, from a uniform
-buffer bound in the material's group 2 (one slice per draw, the same struct and values).
+(proj, view, eye, lights) rewritten every frame; group 1 every instance's world and normal
+matrix in ONE storage buffer, read at instance_index: each draw is one instanced draw_indexed
+whose first_instance points at its instances (core/plan/batches.py batches the plan's draws);
+per-draw material factors as immediates (push constants), or, without the "immediates"
+feature, from a uniform buffer bound in the material's group 2 (one slice per distinct
+material, Draw.material_key: equal materials share the slice and the group).
 
 Pipelines are cached by variant key (plus the winding, which a mirroring world matrix
 turns around): models whose materials need the same features share one pipeline.
@@ -16,10 +17,10 @@ from __future__ import annotations
 import numpy as np
 import wgpu
 
-from wgpurender.core import transforms as tf
 from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
 from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
+from wgpurender.core.plan.batches import instance_blocks
 from wgpurender.core.scene import Scene
 from wgpurender.wgpu_path.bind_groups import uniform_group, uniform_layout
 from wgpurender.wgpu_path.gpu import GPUContext
@@ -51,12 +52,6 @@ def camera_values(scene: Scene, aspect: float) -> dict:
     }
 
 
-def object_values(draw: Draw) -> dict:
-    world = np.array(draw.transform, dtype=np.float64)
-    return {"world": world, "normal": tf.normal_matrix(world), "mirror": 1.0 if np.linalg.det(world[:3, :3]) >= 0
-            else -1.0}
-
-
 def material_values(scene: Scene, draw: Draw, variant: ShaderVariant) -> dict:
     """The draw's Material values: the plan's factors (course.shading.material_factors, decided there)."""
     return dict(draw.factors)
@@ -83,39 +78,47 @@ class ScenePassRenderer:
 
     # -- uniforms ----------------------------------------------------------------
     def _setup_uniforms(self) -> None:
-        dev, n = self.ctx.device, len(self.draws)
+        dev = self.ctx.device
         usage = wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST
         self.alignment = self.ctx.limit("min-uniform-buffer-offset-alignment")
-        self.object_stride = L.OBJECT.stride(self.alignment)
         self.camera_buffer = dev.create_buffer(label="scene-camera", size=L.CAMERA.size, usage=usage)
-        self.object_buffer = dev.create_buffer(label="scene-objects", size=self.object_stride * n, usage=usage)
+        # Every instance's Object block, written once (static): one storage buffer read at instance_index.
+        blocks = instance_blocks(self.draws)
+        self.object_buffer = dev.create_buffer_with_data(
+            label="scene-objects", data=blocks, usage=wgpu.BufferUsage.STORAGE | wgpu.BufferUsage.COPY_DST)
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
         self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
-        self.object_layout = uniform_layout(dev, L.OBJECT, wgpu.ShaderStage.VERTEX, dynamic=True)
+        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=[{
+            "binding": 0, "visibility": wgpu.ShaderStage.VERTEX,
+            "buffer": {"type": "read-only-storage", "min_binding_size": L.OBJECT.size}}])
         self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
-        self.object_group = uniform_group(dev, self.object_layout, self.object_buffer, L.OBJECT)
-        # World matrices are static: written once. The camera is written per frame (aspect, lights).
-        self.ctx.queue.write_buffer(self.object_buffer, 0,
-                                    L.OBJECT.pack_many([object_values(d) for d in self.draws], self.alignment))
+        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=[
+            {"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": blocks.nbytes}}])
+        # Equal materials share one slice and one group (Draw.material_key): first-use order.
+        self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
         self.material_stride = L.MATERIAL.stride(self.alignment)
         self.material_buffer = None
         if not self.uses_immediates:
-            self.material_buffer = dev.create_buffer(label="scene-materials", size=self.material_stride * n,
-                                                     usage=usage)
+            self.material_buffer = dev.create_buffer(label="scene-materials", usage=usage,
+                                                     size=self.material_stride * len(self.material_slots))
 
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
         self.draw_state = []
-        for k, draw in enumerate(self.draws):
+        groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
+        for draw in self.draws:
             variant = self.plan.variant(draw.variant_key)
             material = L.material_struct(variant)
             data = material.pack(material_values(self.scene, draw, variant))
-            if self.material_buffer is not None:
-                self.ctx.queue.write_buffer(self.material_buffer, k * self.material_stride, data)
+            key = draw.material_key()
+            if key not in groups:
+                slot = self.material_slots[key]
+                if self.material_buffer is not None:
+                    self.ctx.queue.write_buffer(self.material_buffer, slot * self.material_stride, data)
+                groups[key] = self._material_group(variant, draw, slot)
             pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
-            group = self._material_group(variant, draw, k)
             buffers = self.resources.mesh_buffers(draw)
-            self.draw_state.append((draw, pipeline, group, data, buffers, self.resources.index_range(draw)))
+            self.draw_state.append((draw, pipeline, groups[key], data, buffers, self.resources.index_range(draw)))
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
@@ -232,18 +235,25 @@ class ScenePassRenderer:
         return encoder.finish(label="scene-draws")
 
     def record_draws(self, encoder) -> None:
-        """Record every draw into a render pass or render bundle encoder (the bundle is made with this)."""
-        for k, (_draw, pipeline, group, data, buffers, (first, count)) in enumerate(getattr(self, "draw_state", [])):
-            encoder.set_pipeline(pipeline)
-            encoder.set_bind_group(0, self.camera_group)
-            encoder.set_bind_group(1, self.object_group, [k * self.object_stride])
-            if group is not None:
+        """Record every draw into a render pass or render bundle encoder (the bundle is made with this): state
+        that does not change from the previous draw is not set again; each draw is one instanced draw_indexed."""
+        last: list = [None] * 4
+        for draw, pipeline, group, data, buffers, (first, count) in getattr(self, "draw_state", []):
+            if pipeline is not last[0]:
+                encoder.set_pipeline(pipeline)
+                encoder.set_bind_group(0, self.camera_group)
+                encoder.set_bind_group(1, self.object_group)
+                last[2] = None  # a new layout: group 2 is set again
+            if group is not None and group is not last[2]:
                 encoder.set_bind_group(2, group)
             if self.uses_immediates:
                 encoder.set_immediates(0, data, 0, len(data))
-            encoder.set_vertex_buffer(0, buffers.vertex)
-            encoder.set_index_buffer(buffers.index, buffers.index_format)
-            encoder.draw_indexed(count, 1, first)  # the draw's part of the mesh (a file material's triangles)
+            if buffers is not last[3]:
+                encoder.set_vertex_buffer(0, buffers.vertex)
+                encoder.set_index_buffer(buffers.index, buffers.index_format)
+            last = [pipeline, None, group, buffers]
+            # the draw's part of the mesh (a file material's triangles), once per instance
+            encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)
 
 
 def _color_target(planned: ScenePipeline) -> dict:

@@ -3,14 +3,14 @@
 Every struct is declared once here with :mod:`wgpurender.core.uniforms`; the WGSL declarations
 are generated into shaders_wgsl/scene.wgsl's ``{{STRUCTS}}``. Lit and unlit variants see
 different declarations of the same buffers: the unlit ``Camera`` is only the first fields
-of the lit one (proj, view, eye), the unlit ``Object`` only ``world``, the unlit
-``Material`` only the base colour. Offsets of the shared prefix are identical (asserted
-below), so one camera buffer and one object buffer serve every variant of a scene, and
-the unlit shader contains no light struct, no normal matrix and no lighting code.
+of the lit one (proj, view, eye), the unlit ``Material`` only the base colour. Offsets of the
+shared prefix are identical (asserted below), so one camera buffer serves every variant of a
+scene, and the unlit shader contains no light struct and no lighting code. ``Object`` is the
+whole struct in every variant: it is the element of a storage array, whose stride is its size.
 
 Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
-  group 1 Object   - every model's data in ONE buffer, picked per draw by a dynamic offset
+  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py)
   group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
                      4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples
   immediates       - Material (per-draw factors) when the adapter has "immediates"
@@ -76,7 +76,7 @@ def camera_struct(variant: ShaderVariant) -> Struct:
 
 
 def object_struct(variant: ShaderVariant) -> Struct:
-    return OBJECT if is_lit(variant) else OBJECT_UNLIT
+    return OBJECT  # an array element: the same stride for every variant
 
 
 def material_struct(variant: ShaderVariant) -> Struct:
