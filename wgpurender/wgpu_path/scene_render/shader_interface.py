@@ -3,10 +3,11 @@
 Every struct is declared once here with :mod:`wgpurender.core.uniforms`; the WGSL declarations
 are generated into shaders_wgsl/scene.wgsl's ``{{STRUCTS}}``. Lit and unlit variants see
 different declarations of the same buffers: the unlit ``Camera`` is only the first fields
-of the lit one (proj, view, eye), the unlit ``Material`` only the base colour. Offsets of the
-shared prefix are identical (asserted below), so one camera buffer serves every variant of a
-scene, and the unlit shader contains no light struct and no lighting code. ``Object`` is the
-whole struct in every variant: it is the element of a storage array, whose stride is its size.
+of the lit one (proj, view, eye), the unlit ``Object`` only ``world`` (then padding: it is the
+element of a storage array, whose stride is its size, 128 bytes in every variant), the unlit
+``Material`` only the base colour. Offsets of the shared prefix are identical (asserted
+below), so one camera buffer and one object buffer serve every variant of a scene, and
+the unlit shader contains no light struct, no normal matrix and no lighting code.
 
 Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
@@ -41,7 +42,8 @@ CAMERA = Struct("Camera", _CAMERA_VIEW + [
     ("directional", Array(DIRECTIONAL_LIGHT, MAX_LIGHTS)),
     ("point", Array(POINT_LIGHT, MAX_LIGHTS)),
 ])
-OBJECT_UNLIT = Struct("Object", [("world", MAT4)])
+# Unlit: only world is read; the rest is padding, so the storage array's stride (the struct's size) stays 128
+OBJECT_UNLIT = Struct("Object", [("world", MAT4), ("unused", Array(VEC4F, 4))])
 OBJECT = Struct("Object", [("world", MAT4), ("normal", MAT3), ("mirror", F32)])  # mirror: sign of det(world)
 _MATERIAL_UNLIT_FIELDS = [("base_color", VEC4F)]
 _MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("specular", F32)]
@@ -53,7 +55,8 @@ _MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occl
                     ("emissive", "emissive", VEC4F))
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
-    assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items()), _small
+    assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items() if name != "unused"), _small
+assert OBJECT_UNLIT.size == OBJECT.size == 128
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
 ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
@@ -76,7 +79,7 @@ def camera_struct(variant: ShaderVariant) -> Struct:
 
 
 def object_struct(variant: ShaderVariant) -> Struct:
-    return OBJECT  # an array element: the same stride for every variant
+    return OBJECT if is_lit(variant) else OBJECT_UNLIT
 
 
 def material_struct(variant: ShaderVariant) -> Struct:
