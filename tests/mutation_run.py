@@ -29,6 +29,7 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+INST = "tests/test_instancing.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -113,6 +114,53 @@ MUTATIONS = [
      " UINT, FLOAT)", [GLTF]),
     ("wgpurender/core/gltf_rules.py", "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
+    # instancing and batching (issue 31.1)
+    ("wgpurender/core/scene/instances.py", "axes = [(np.arange(k) - (k - 1) / 2.0) * s",
+     "axes = [(np.arange(k) - k / 2.0) * s", [INST]),
+    ("wgpurender/core/scene/instances.py", "z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing=\"ij\")",
+     "x, y, z = np.meshgrid(axes[0], axes[1], axes[2], indexing=\"ij\")", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if count > MAX_INSTANCES:", "    if count > 10 * MAX_INSTANCES:", [INST]),  # noqa: E501
+    ("wgpurender/core/scene/instances.py", "    if len(forms) != 1:", "    if len(forms) > 1:", [INST]),
+    ("wgpurender/core/scene/instances.py", "if \"spacing\" in t and forms[0] != \"grid\":",
+     "if \"spacing\" in t and forms[0] == \"file\":", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if not np.isfinite(a).all():", "    if np.isinf(a).all():", [INST]),
+    ("wgpurender/core/scene/instances.py", "(np.abs(np.linalg.det(matrices[:, :3, :3])) < 1e-12).any()",
+     "(np.abs(np.linalg.det(matrices[:, :3, :3])) < 1e-12).all() and False", [INST]),
+    ("wgpurender/core/scene/instances.py", "    m[:, :3, 3] = offsets", "    m[:, 3, :3] = offsets", [INST]),
+    ("wgpurender/core/scene/model.py", "        return parent @ self.placements.array().astype(np.float64)",
+     "        return self.placements.array().astype(np.float64) @ parent", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return (draw.model_path, draw.part, draw.pipeline_key, draw.material_key())",  # noqa: E501
+     "    return (draw.model_path, draw.part, draw.pipeline_key)", [INST]),
+    ("wgpurender/core/plan/batches.py", "        first += merged.instance_count", "        first += 1", [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, :16] = worlds.transpose(0, 2, 1).reshape(-1, 16)",
+     "out[:, :16] = worlds.reshape(-1, 16)", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return np.where((det >= 0)[:, None, None], cof, -cof)", "    return cof",
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, 28] = np.where(np.linalg.det(worlds[:, :3, :3]) >= 0, 1.0, -1.0)",
+     "out[:, 28] = 1.0", [INST]),
+    ("wgpurender/core/plan/batches.py", "        return (\"blend\", id(draw))", "        return (\"blend\",)",
+     [INST]),
+    ("wgpurender/core/plan/draws.py", "    return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]",  # noqa: E501
+     "    return [(None, worlds)]", [INST]),
+    ("wgpurender/core/plan/model.py", "        return (self.variant_key, self.textures, self.samplers, self.sampler, self.factors)",  # noqa: E501
+     "        return (self.variant_key, self.textures, self.samplers, self.sampler)", [INST]),
+    ("wgpurender/core/plan/explain.py", "lines.append(f\"         batch: instances {d.first_instance}..",
+     "lines.append(f\"         batch: instances {d.first_instance}...", [INST]),
+    ("wgpurender/core/plan/objects.py", "            materials = len({d.material_key() for d in users})",
+     "            materials = len(users)", [INST]),
+    ("wgpurender/wgpu_path/scene_render/scene_pass.py",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, 0)", [INST]),
+    ("wgpurender/wgpu_path/scene_render/scene_pass.py", "            if buffers is not last[3]:",
+     "            if last[3] is None:", [INST]),
+    ("wgpurender/wgpu_path/scene_render/scene_pass.py", "            if group is not None and group is not last[2]:",
+     "            if group is not None and last[2] is None:", ["tests/test_scene_render.py"]),
+    ("wgpurender/raw_path/scene/scene_subpass.py",
+     "vk.vkCmdDrawIndexed(cmd, count, draw.instance_count, first, 0, draw.first_instance)",
+     "vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, draw.first_instance)", [INST]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[instance];", "    let object_data = objects[0];", [INST]),  # noqa: E501
+    ("shaders_glsl/scene.vert", "    Object object_data = objects[gl_InstanceIndex];",
+     "    Object object_data = objects[gl_VertexIndex % 3];", [INST]),
 ]
 
 

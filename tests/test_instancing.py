@@ -148,6 +148,21 @@ def test_equal_materials_share_one_bind_group(cube, tmp_path):
     assert [g.count for g in groups] == [1]
 
 
+def test_blended_draws_are_never_batched(cube):
+    from dataclasses import replace
+
+    from wgpurender.core.plan.batches import batch_draws
+
+    plan = build_plan(parse_scene(HEAD + model(cube), cube.parent / "s.toml"))
+    (draw,) = plan.scene_pass.draws
+    twins = [replace(draw, label=f"twin {k}", transform=tuple(map(tuple, transforms.translate((k, 0, 0)))))
+             for k in range(3)]
+    assert [d.instance_count for d in batch_draws(twins, {draw.pipeline_key: False})] == [3]
+    blended = batch_draws(twins, {draw.pipeline_key: True})  # glTF BLEND: scene order kept, one draw each
+    assert [(d.label, d.instance_count, d.first_instance) for d in blended] == [
+        ("twin 0", 1, 0), ("twin 1", 1, 1), ("twin 2", 1, 2)]
+
+
 def test_mirrored_copies_get_their_own_draw(cube, tmp_path):
     np.save(tmp_path / "m.npy", np.stack([np.eye(4), np.diag([-1.0, 1, 1, 1]), transforms.translate((2, 0, 0))]))
     plan = build_plan(parse_scene(HEAD + model(cube, extra='instances = { file = "m.npy" }'), tmp_path / "s.toml"))
