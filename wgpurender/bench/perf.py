@@ -77,12 +77,15 @@ class PerfRun:
 def machine_info(ctx: GPUContext) -> dict[str, str]:
     import wgpu
 
+    from wgpurender.wgpu_path.binding import name as binding_name
+
     info = {
         "adapter": ctx.describe(),
         "cpu cores": str(os.cpu_count()),
         "platform": platform.platform(),
         "python": platform.python_version(),
         "wgpu-py": wgpu.__version__,
+        "binding": binding_name(),
         "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
     }
     try:
@@ -218,10 +221,11 @@ def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     """N instanced copies and N distinct meshes of a lit, textured cube; pygfx beside (bench/scale.py)."""
     from wgpurender.bench.scale import COUNTS, QUICK_COUNTS, bench_scale, ratio_rows
+    from wgpurender.bench.scale_pygfx import pygfx_peer
 
     counts = QUICK_COUNTS if config.quick else COUNTS
     size = QUICK_SIZES[0] if config.quick else (800, 600)
-    results, notes = bench_scale(ctx, list(counts), config.timed_frames(), size, log)
+    results, notes = bench_scale(ctx, list(counts), config.timed_frames(), size, log, pygfx_peer())
     run.results += results + ratio_rows(results)
     run.notes += notes
 

@@ -124,14 +124,14 @@ def bench_case(ctx: GPUContext, scene: Path, case: str, size: tuple[int, int], f
 
 
 def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int, int],
-                log: Callable[[str], None] = print) -> tuple[list[Result], list[str]]:
-    """(results, notes) of every case; pygfx's when it is installed (one line says so otherwise)."""
+                log: Callable[[str], None] = print, peer=None) -> tuple[list[Result], list[str]]:
+    """(results, notes) of every case; ``peer(ctx, n, size, frames)`` (bench/scale_pygfx.py's, or None when pygfx
+    is not installed: one line says so) beside each count up to :data:`PYGFX_LIMIT`."""
     kind = "CPU" if ctx.adapter.info["adapter_type"] == "CPU" else "GPU"
     limit = DISTINCT_LIMITS[kind]
     out: list[Result] = []
     notes = [f"scene-scale: distinct meshes stop at {limit} on a {kind} adapter (each mesh file is loaded and "
              "uploaded on its own: seconds per thousand)"]
-    peer = pygfx_peer()
     if peer is None:
         notes.append("scene-scale: pygfx is not installed (pip install 'wgpurender[bench]'): no pygfx rows")
     with tempfile.TemporaryDirectory(prefix="wgpurender-scale-") as tmp:
@@ -149,17 +149,6 @@ def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int
         notes.append(f"scene-scale: pygfx stops at {PYGFX_LIMIT} instances (InstancedMesh claims a pick id per "
                      "instance from a pool of 2**20, in a Python loop)")
     return out, notes
-
-
-def pygfx_peer():
-    """The pygfx runner (bench/scale_pygfx.py) or None when pygfx is not installed."""
-    try:
-        import pygfx  # noqa: F401
-    except ImportError:
-        return None
-    from wgpurender.bench.scale_pygfx import bench_pygfx
-
-    return bench_pygfx
 
 
 def ratio_rows(results: list[Result]) -> list[Result]:

@@ -78,6 +78,15 @@ class _Runner:
         return 0.0, None
 
 
+def pygfx_peer():
+    """:func:`bench_pygfx`, or None when pygfx is not installed (``pip install 'wgpurender[bench]'``)."""
+    try:
+        import pygfx  # noqa: F401
+    except ImportError:
+        return None
+    return bench_pygfx
+
+
 def bench_pygfx(ctx: GPUContext, n: int, size: tuple[int, int], frames: int) -> list[Result]:
     _select(ctx)
     start = time.perf_counter()

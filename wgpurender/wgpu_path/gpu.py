@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import wgpu
 
 from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path import binding
 
 if TYPE_CHECKING:
     from wgpurender.core.plan.model import AdapterFacts
@@ -225,6 +226,9 @@ def _configure_instance_once(backend: str) -> None:
             raise UserError(f"this process already created its wgpu instance for {made} only; the {backend} "
                             f"backend needs its own process (or start with --backend auto)")
         return
+    if binding.requested() == "dawn":  # Dawn has no wgpu-native instance extras: it picks its own backends
+        _instance_backend.append(backend)
+        return
     from wgpurender.wgpu_path.cdef_cache import cached_wgpu_header
 
     with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
@@ -241,7 +245,27 @@ def _configure_instance_once(backend: str) -> None:
 
 @functools.cache
 def _enumerate() -> tuple:
+    if binding.name() == "dawn":
+        adapters = _quietly(wgpu.gpu.enumerate_adapters_sync)  # Dawn prints its refusals on stderr itself
+        if not adapters:
+            raise UserError(binding.refusal([]))
+        return tuple(adapters)
     return tuple(wgpu.gpu.enumerate_adapters_sync())
+
+
+def _quietly(call):
+    """``call()`` with file descriptor 2 sent to /dev/null (C code's warnings), restored after."""
+    import sys
+
+    sys.stderr.flush()
+    saved, null = os.dup(2), os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 2)
+    try:
+        return call()
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(null)
 
 
 def _adapters(backend: str | None = None) -> tuple:

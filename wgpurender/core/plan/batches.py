@@ -23,6 +23,7 @@ import numpy as np
 
 from wgpurender.core.plan.model import Draw
 from wgpurender.core.scene import Placements
+from wgpurender.core.transforms import determinants3
 
 OBJECT_BYTES = 128  # world (64) + normal matrix as 3 padded columns (48) + mirror (4) + padding (12)
 
@@ -85,5 +86,5 @@ def instance_blocks(draws: list[Draw] | tuple[Draw, ...]) -> np.ndarray:
     normals = normal_matrices(worlds).transpose(0, 2, 1)  # columns
     for c in range(3):
         out[:, 16 + 4 * c: 19 + 4 * c] = normals[:, c]
-    out[:, 28] = np.where(np.linalg.det(worlds[:, :3, :3]) >= 0, 1.0, -1.0)
+    out[:, 28] = np.where(determinants3(worlds) >= 0, 1.0, -1.0)
     return out

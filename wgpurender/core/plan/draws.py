@@ -10,8 +10,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from wgpurender.core.course.shading import AMBIENT, material_factors
 from wgpurender.core.plan import batches, file_materials
 from wgpurender.core.plan.model import (
@@ -25,6 +23,7 @@ from wgpurender.core.plan.model import (
 )
 from wgpurender.core.plan.textures import TextureTable, material_sampler
 from wgpurender.core.scene import Material, Model, Scene
+from wgpurender.core.transforms import determinants3
 
 
 def material_label(m: Material) -> str:
@@ -173,7 +172,7 @@ def _copies(model: Model) -> list[tuple[bool | None, object]]:
     if model.placements is None:
         return [(None, None)]
     worlds = model.worlds()
-    mirrored = np.linalg.det(worlds[:, :3, :3]) < 0
+    mirrored = determinants3(worlds) < 0
     return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]
 
 
