@@ -156,7 +156,7 @@ MUTATIONS = [
     ("wgpurender/wgpu_path/scene_render/scene_pass.py", "            if buffers is not last[3]:",
      "            if last[3] is None:", [INST]),
     ("wgpurender/wgpu_path/scene_render/scene_pass.py", "            if group is not None and group is not last[2]:",
-     "            if group is not None and last[2] is None:", ["tests/test_scene_render.py"]),
+     "            if group is not None and last[2] is None:", [INST]),
     ("wgpurender/raw_path/scene/scene_subpass.py",
      "vk.vkCmdDrawIndexed(cmd, count, draw.instance_count, first, 0, draw.first_instance)",
      "vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, draw.first_instance)", [INST]),

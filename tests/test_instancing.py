@@ -248,3 +248,33 @@ def test_grid_copies_are_where_the_camera_projects_them(ctx, cube, tmp_path):
             if 0 <= gx < SIZE[0]:
                 assert not lit[int(gy), int(gx)], (i, j)
     assert lit.sum() < 0.5 * lit.size
+
+
+def test_consecutive_draws_of_one_pipeline_bind_their_own_mesh_and_textures(ctx, cube, tmp_path):
+    """Two draws in a row on one pipeline: a small box with a red texture on the left, a big box with a blue one
+    on the right. The bundle skips state that did not change; what did change must be set again."""
+    from wgpurender.core.imageio import save_png
+    from wgpurender.wgpu_path.scene_render import render_scene_file
+
+    big = tmp_path / "big.obj"
+    procedural.write_obj(big, procedural.box(2.0))
+    for name, rgb in (("red", (255, 0, 0)), ("blue", (0, 0, 255))):
+        save_png(tmp_path / f"{name}.png", np.full((4, 4, 4), (*rgb, 255), np.uint8))
+    body = (model(cube, f'{{ albedo_map = "{(tmp_path / "red.png").as_posix()}", unlit = true }}',
+                  "transform = { translate = [-2, 0, 0] }")
+            + model(big, f'{{ albedo_map = "{(tmp_path / "blue.png").as_posix()}", unlit = true }}',
+                    "transform = { translate = [2, 0, 0] }"))
+    path = scene_file(tmp_path, body)
+    plan = build_plan(parse_scene(path.read_text(), path))
+    assert len(plan.pipelines) == 1 and len(plan.scene_pass.draws) == 2
+    img = render_scene_file(path, ctx=ctx, frames=1).pixels
+    scene = parse_scene(path.read_text(), path)
+    clip_from_world = scene.camera.projection(SIZE[0] / SIZE[1]) @ scene.camera.view()
+
+    def pixel(p):
+        c = clip_from_world @ np.array([*p, 1.0])
+        return img[int((1 - c[1] / c[3]) / 2 * SIZE[1]), int((c[0] / c[3] + 1) / 2 * SIZE[0]), :3].tolist()
+
+    assert pixel((-2, 0, 0)) == [255, 0, 0]
+    assert pixel((2, 0, 0)) == [0, 0, 255]
+    assert pixel((2.8, 0.8, 1.0)) == [0, 0, 255]  # inside the big box's front face only (the small one ends at 0.5)
