@@ -163,6 +163,24 @@ MUTATIONS = [
     ("shaders_wgsl/scene.wgsl", "    let object_data = objects[instance];", "    let object_data = objects[0];", [INST]),  # noqa: E501
     ("shaders_glsl/scene.vert", "    Object object_data = objects[gl_InstanceIndex];",
      "    Object object_data = objects[gl_VertexIndex % 3];", [INST]),
+    # GPU culling (issue 31.2)
+    ("wgpurender/core/plan/culling.py", "    least = 2 if knob == \"gpu\" else GPU_CULL_MIN",
+     "    least = 2 if knob == \"gpu\" else 2", ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/culling.py", "        del pipelines[key]", "        pass", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene_render/culling.py", "planes = np.array([r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1],",  # noqa: E501
+     "planes = np.array([r[3] + r[0], r[3] + r[0], r[3] + r[1], r[3] - r[1],", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene_render/culling.py", "return centre, float(np.linalg.norm(p - centre, axis=1).max())",
+     "return centre, float(np.linalg.norm(p - centre, axis=1).min())", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene_render/culling.py", "(d.first_instance, d.instance_count, k * 5 + 1, 0)",
+     "(d.first_instance, d.instance_count, k * 5, 0)", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene_render/culling.py", "cpass.dispatch_workgroups(-(-d.instance_count // WORKGROUP))",
+     "cpass.dispatch_workgroups(d.instance_count // WORKGROUP)", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene_cull.wgsl", "        if (dot(plane.xyz, centre) + plane.w < -radius) {",
+     "        if (dot(plane.xyz, centre) + plane.w < 0.0) {", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[visible[instance]];", "    let object_data = objects[instance];",  # noqa: E501
+     ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/objects.py", "        out.append(GpuObject(\"bind_group\", \"cull\", len(culled),",
+     "        out.append(GpuObject(\"bind_group\", \"cull\", 1,", ["tests/test_plan_is_what_is_built.py|culled"]),
 ]
 
 

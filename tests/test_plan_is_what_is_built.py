@@ -231,7 +231,7 @@ def listed(plan) -> Counter:
     want["texture"] = sum(a.role != "output" for a in plan.attachments) + len(plan.textures)
     want["render_pipeline"] = (len(plan.pipelines) + len(plan.mipmap_formats)
                                + sum(p.stage == "fragment" for p in plan.post_pipelines))
-    want["compute_pipeline"] = sum(p.stage == "compute" for p in plan.post_pipelines)
+    want["compute_pipeline"] = sum(p.stage == "compute" for p in plan.post_pipelines) + bool(plan.culled_draws)
     want["buffer"] = len(plan.buffers)
     return +want
 
@@ -263,6 +263,17 @@ def test_new_scenes_create_what_the_plan_lists(ctx, monkeypatch, tmp_path, name,
     plan, recorder, _, _ = build_and_record(ctx, monkeypatch, write_scene(tmp_path, name), post_path, size)
     check_counts(plan, recorder)
     assert recorder.made["bind_group"] == plan.object_counts().get("bind_group", 0)
+
+
+def test_a_culled_scene_creates_what_the_plan_lists(ctx, monkeypatch, tmp_path):
+    """GPU culling (core/plan/culling.py) adds its buffers, compute pipeline and bind groups: all listed."""
+    text = NEW_SCENES["no_post"]
+    path = write_scene(tmp_path, "culled", text.replace("[[models]]", "[[models]]\ninstances = { grid = [3, 2, 1] }",
+                                                          1))
+    monkeypatch.setattr("wgpurender.core.plan.culling.GPU_CULL_MIN", 2)
+    plan, recorder, _, _ = build_and_record(ctx, monkeypatch, path, "fragment")
+    assert plan.culled_draws, plan.explain()
+    check_counts(plan, recorder)
 
 
 @pytest.mark.parametrize("post_path", ["fragment", "compute"])

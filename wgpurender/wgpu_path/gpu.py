@@ -38,6 +38,7 @@ OPTIONAL_FEATURES = (
     "clear-texture",
     "float32-filterable",
     "pipeline-cache",
+    "indirect-first-instance",  # GPU-culled draws (core/plan/culling.py)
 )
 
 INSTALL_HINT = (

@@ -87,6 +87,7 @@ class ScenePipeline:
     front_face: str = "ccw"
     depth_compare: str = "less"
     blend: bool = False  # alpha blending (glTF alphaMode BLEND): source-over, no depth writes
+    culled: bool = False  # instances culled on the GPU, drawn indirectly through a visible list (core/plan/culling)
 
     @property
     def key(self) -> str:
@@ -94,7 +95,9 @@ class ScenePipeline:
         winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
         culling = " | double-sided (no culling)" if self.cull_mode == "none" else ""
         blending = " | alpha blend, no depth write" if self.blend else ""
-        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}{blending}"
+        frustum = " | GPU frustum culling" if self.culled else ""
+        return (f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}{blending}"
+                f"{frustum}")
 
 
 @dataclass(frozen=True)
@@ -289,11 +292,13 @@ class Knobs:
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
     anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/anisotropy.py)
     anisotropy_adapter: str | None = None  # the adapter type that rule reads when ``adapter`` is not given
+    culling: str = "auto"  # "auto", "gpu" or "off": which instanced draws the GPU culls (core/plan/culling.py)
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (
             ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
+            ("culling", self.culling, ("auto", "gpu", "off")),
         ) if value not in allowed]
         for name, value, allowed in bad:
             raise UserError(f"plan knob {name} = {value!r}: choose one of "
@@ -384,6 +389,14 @@ class RenderPlan:
             instances = sum(d.instance_count for d in draws)
             out.append(("scene-objects", f"storage: {instances} Object block(s), one per instance, read at "
                                          "instance_index (128 bytes each)"))
+            culled = self.culled_draws
+            if culled:
+                n = sum(d.instance_count for d in culled)
+                out.append(("scene-visible", f"storage: the visible instances' indices, up to {n} (GPU culling)"))
+                out.append(("scene-indirect", f"indirect: {len(culled)} draw_indexed_indirect argument block(s), "
+                                              "instance_count written by the culling pass"))
+                out.append(("scene-cull", f"uniform: {len(culled)} Cull block(s) (frustum planes, the mesh's "
+                                          "bounding sphere, the instance range)"))
             if self.immediates is not True:
                 when = "no immediates" if self.immediates is False else "only if the device lacks immediates"
                 materials = len({d.material_key() for d in draws})
@@ -397,6 +410,12 @@ class RenderPlan:
             if any(s.spec.params for s in p.steps):
                 out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))
         return tuple(out)
+
+    @property
+    def culled_draws(self) -> tuple[Draw, ...]:
+        """The draws whose instances the GPU culls each frame (core/plan/culling.py)."""
+        culled = {p.key for p in self.pipelines if p.culled}
+        return tuple(d for d in self.scene_pass.draws if d.pipeline_key in culled)
 
     @property
     def post_steps(self) -> tuple[EffectStep, ...]:

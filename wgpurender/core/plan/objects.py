@@ -81,6 +81,10 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
                                  + ", ".join(d.label for d in users)))
     for v in plan.variants:
         out.append(GpuObject("shader_module", f"scene {v.key}", 1, "scene.wgsl specialised for this variant"))
+    culled = plan.culled_draws
+    for key in dict.fromkeys(p.variant.key for p in plan.pipelines if p.culled):
+        out.append(GpuObject("shader_module", f"scene {key} culled", 1, "the variant reading its instances through "
+                             "the visible list (GPU culling)"))
     for p in plan.pipelines:
         out.append(GpuObject("pipeline_layout", f"scene {p.key}", 1, "groups 0-2 (+ immediates) of its variant"))
         out.append(GpuObject("render_pipeline", f"scene {p.key}", 1, "a scene pipeline of the plan"))
@@ -88,6 +92,12 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         out.append(GpuObject("sampler", f"sampler anisotropy {s.spec.max_anisotropy}", 1, "; ".join(s.used_by)))
     out.append(GpuObject("render_bundle_encoder", "scene-draws", 1, f"the {len(draws)} draw(s) recorded once "
                          "(pipeline, bind groups, buffers, draw); each frame replays them with one call"))
+    if culled:
+        why = "GPU frustum culling (scene_cull.wgsl): one invocation per instance of a culled draw"
+        out += [GpuObject(kind, "scene-cull", 1, why) for kind in ("bind_group_layout", "pipeline_layout",
+                                                                   "shader_module", "compute_pipeline")]
+        out.append(GpuObject("bind_group", "cull", len(culled), "one per culled draw: its Cull block, the objects, "
+                             "the visible list and the indirect arguments"))
     return out
 
 

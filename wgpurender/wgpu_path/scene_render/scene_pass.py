@@ -26,6 +26,7 @@ from wgpurender.wgpu_path.bind_groups import uniform_group, uniform_layout
 from wgpurender.wgpu_path.gpu import GPUContext
 from wgpurender.wgpu_path.gpu_cache import GpuCache
 from wgpurender.wgpu_path.scene_render import shader_interface as L
+from wgpurender.wgpu_path.scene_render.culling import GpuCuller
 from wgpurender.wgpu_path.scene_render.resources import SceneResources
 from wgpurender.wgpu_path.shaders import create_shader_module
 
@@ -67,6 +68,7 @@ class ScenePassRenderer:
         self.uses_immediates = ctx.use_immediates(use_immediates)
         self.draws = plan.scene_pass.draws
         self.depth_clear = plan.scene_pass.depth_clear
+        self.culler = None
         # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
         self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
@@ -88,12 +90,18 @@ class ScenePassRenderer:
             label="scene-objects", data=blocks, usage=wgpu.BufferUsage.STORAGE | wgpu.BufferUsage.COPY_DST)
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
         self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
-        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=[{
-            "binding": 0, "visibility": wgpu.ShaderStage.VERTEX,
-            "buffer": {"type": "read-only-storage", "min_binding_size": L.OBJECT.size}}])
+        self.culler = (GpuCuller(self.ctx, self.plan, self.resources.meshes, self.object_buffer, len(blocks))
+                       if self.plan.culled_draws else None)
+        read = {"type": "read-only-storage"}
+        vertex = wgpu.ShaderStage.VERTEX
+        entries = [{"binding": 0, "visibility": vertex, "buffer": {**read, "min_binding_size": L.OBJECT.size}}]
+        resources = [{"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": blocks.nbytes}}]
+        if self.culler is not None:  # binding 1: the culled draws' visible lists (unread by the other pipelines)
+            entries.append({"binding": 1, "visibility": vertex, "buffer": read})
+            resources.append({"binding": 1, "resource": {"buffer": self.culler.visible}})
+        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=entries)
         self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
-        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=[
-            {"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": blocks.nbytes}}])
+        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=resources)
         # Equal materials share one slice and one group (Draw.material_key): first-use order.
         self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
         self.material_stride = L.MATERIAL.stride(self.alignment)
@@ -156,9 +164,9 @@ class ScenePassRenderer:
                             "resource": self.resources.sampler(draw.sampler_of(feature))})
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
 
-    def shader_module(self, variant: ShaderVariant) -> wgpu.GPUShaderModule:
-        return self._modules.get(variant.key, lambda: create_shader_module(
-            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates)))
+    def shader_module(self, variant: ShaderVariant, culled: bool = False) -> wgpu.GPUShaderModule:
+        return self._modules.get(variant.key + (" culled" if culled else ""), lambda: create_shader_module(
+            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates, culled)))
 
     def pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
         """A pipeline the plan lists (a variant, formats, winding, depth test), made once."""
@@ -173,7 +181,7 @@ class ScenePassRenderer:
         immediate_size = L.material_struct(variant).size if self.uses_immediates else 0
         dev = self.ctx.device
         pipeline_layout = dev.create_pipeline_layout(bind_group_layouts=layouts, immediate_size=immediate_size)
-        module = self.shader_module(variant)
+        module = self.shader_module(variant, planned.culled)
         return dev.create_render_pipeline(
             label=f"scene {variant.key}",
             layout=pipeline_layout,
@@ -199,6 +207,8 @@ class ScenePassRenderer:
         if self.reverse_z:
             camera["proj"] = REVERSE_Z @ camera["proj"]
         self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
+        if self.culler is not None:
+            self.culler.write_planes(camera["proj"] @ camera["view"])
         self._camera_key = key
 
     def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
@@ -210,6 +220,8 @@ class ScenePassRenderer:
                      "depth_load_op": "clear", "depth_store_op": "discard"}
         if self.draws:
             self._write_camera(aspect)
+            if self.culler is not None:
+                self.culler.record(encoder)
         render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
         if self.bundle is not None:
@@ -252,6 +264,9 @@ class ScenePassRenderer:
                 encoder.set_vertex_buffer(0, buffers.vertex)
                 encoder.set_index_buffer(buffers.index, buffers.index_format)
             last = [pipeline, None, group, buffers]
+            if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
+                encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
+                continue
             # the draw's part of the mesh (a file material's triangles), once per instance
             encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)
 

@@ -111,9 +111,9 @@ def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
 
 
-def shader_features(variant: ShaderVariant, immediates: bool) -> set[str]:
-    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates)."""
-    features = set(variant.flags)
+def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
+    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled)."""
+    features = set(variant.flags) | ({"culled"} if culled else set())
     if samples_textures(variant):
         features.add("uv")
     for name, n in variant.counts:
@@ -124,7 +124,7 @@ def shader_features(variant: ShaderVariant, immediates: bool) -> set[str]:
     return features
 
 
-def shader_source(variant: ShaderVariant, immediates: bool) -> str:
+def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
     """scene.wgsl specialised for one variant: only its attributes, bindings, structs and code."""
     structs = [camera_struct(variant), object_struct(variant), material_struct(variant)]
     values = {
@@ -132,4 +132,4 @@ def shader_source(variant: ShaderVariant, immediates: bool) -> str:
         "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
         "POINT_LIGHTS": str(variant.count("point_lights")),
     }
-    return specialise(load_wgsl(SHADER), shader_features(variant, immediates), values, name=SHADER)
+    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled), values, name=SHADER)
