@@ -6,6 +6,7 @@ Targets, each judged from the run's rows (never from a number written here):
 - a 10k-object scene loads in at most 1 s (the instanced one; the distinct one where it was measured);
 - CPU per frame does not grow with the instance count: the largest count's CPU median at most
   :data:`CPU_GROWTH` x the smallest's;
+- the first pixel at most 1.2x raw's with Python bytecode cached (and the ratio without, reported);
 - frame rows' p99 at most 2x their median (``frame_ms`` and ``cpu_ms`` of the frames, scene and scene-scale
   families: the tail check covers the CPU metric too).
 """
@@ -47,6 +48,15 @@ def targets(res: list[Result], verdict) -> list[tuple[str, str, str]]:
         out.append(("CPU per frame does not grow with the instance count",
                     f"{fmt_ms(lo.median)} ms at {min(cpu)}, {fmt_ms(hi.median)} ms at {max(cpu)} ({growth:.2f}x)",
                     verdict(growth <= CPU_GROWTH)))
+    for label, judged in (("no caches", True), ("no caches, no bytecode", False)):
+        totals = {r.path: r for r in res if r.family == "startup" and r.metric == "total_ms"
+                  and r.case.split(": ", 1)[-1] == label}
+        if "wgpu" in totals and "raw" in totals and totals["raw"].median > 0:
+            q = totals["wgpu"].median / totals["raw"].median
+            what = "bytecode cached" if judged else "no bytecode (every module compiled)"
+            out.append((f"first pixel <= 1.2x raw ({what})" if judged else f"first pixel vs raw ({what})",
+                        f"{fmt_ms(totals['wgpu'].median)} / {fmt_ms(totals['raw'].median)} ms = {q:.2f}x",
+                        verdict(q <= 1.2) if judged else "reported"))
     frames = [r for r in res if r.family in TAIL_FAMILIES and r.metric in ("frame_ms", "cpu_ms") and r.n >= 5
               and r.p99 == r.p99 and r.median > 0]
     if frames:
