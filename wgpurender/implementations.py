@@ -149,7 +149,8 @@ def _dawn_missing() -> str:
 
 def render_in_child(implementation: str, names: list[str], size: tuple[int, int], out: Path,
                     timeout: float = 600) -> dict[str, np.ndarray]:
-    """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance)."""
+    """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance); a target the
+    implementation refuses is left out (:func:`child_skipped` says why)."""
     from wgpurender.core.imageio import load_png
 
     out.mkdir(parents=True, exist_ok=True)
@@ -161,7 +162,14 @@ def render_in_child(implementation: str, names: list[str], size: tuple[int, int]
     if done.returncode != 0:
         tail = (done.stderr or done.stdout).strip().splitlines()[-1:] or ["(no output)"]
         raise UserError(f"{implementation} renderer failed: {tail[0]}")
-    return {name: load_png(out / f"{name}.png") for name in names}
+    return {name: load_png(out / f"{name}.png") for name in names if (out / f"{name}.png").is_file()}
+
+
+def child_skipped(out: Path) -> dict[str, str]:
+    """The targets a child process refused, with its one line each (``skipped.txt``)."""
+    path = out / "skipped.txt"
+    lines = path.read_text().splitlines() if path.is_file() else []
+    return dict(line.split("\t", 1) for line in lines if "\t" in line)
 
 
 def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
@@ -194,8 +202,13 @@ def _main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     backend = WGPU_IMPLEMENTATIONS[args.implementation]
     args.out.mkdir(parents=True, exist_ok=True)
+    skipped = []
     for name in args.targets or all_targets():
-        save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+        try:
+            save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+        except UserError as err:  # this implementation cannot draw it (e.g. Dawn has no clear-texture): said why
+            skipped.append(f"{name}\t{err}")
+    (args.out / "skipped.txt").write_text("".join(f"{line}\n" for line in skipped))
     from wgpurender.wgpu_path.gpu import get_context
 
     (args.out / "adapter.txt").write_text(get_context(backend).describe())

@@ -125,6 +125,7 @@ def render_all(implementations: list[str], targets: list[str], size: tuple[int, 
             continue
         if impl in ("wgpu-gl", "wgpu-dawn"):
             images[impl] = impls.render_in_child(impl, targets, size, work / impl)
+            skipped[impl] = impls.child_skipped(work / impl)
             native = "Dawn through wgpudawn" if impl == "wgpu-dawn" else "wgpu-native"
             who[impl] = (work / impl / "adapter.txt").read_text() + f" ({native}, child process)"
             continue

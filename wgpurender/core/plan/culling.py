@@ -1,6 +1,7 @@
 """Frustum culling: which instanced draws the GPU culls, decided by their instance count.
 
-A culled draw (``ScenePipeline.culled``) is drawn with ``draw_indexed_indirect``: each frame a compute pass tests
+A culled draw (``ScenePipeline.culled``) is drawn with ``draw_indexed_indirect``: when the camera changes (the
+objects are static: the first frame, a resize, an orbit step; a still camera costs nothing) a compute pass tests
 every instance's bounding sphere (the mesh's, moved and scaled by the instance's world matrix) against the six
 planes of the camera's frustum and appends the index of each instance that may be seen to a ``visible`` list,
 counting them into the indirect draw's ``instance_count``; the vertex shader reads ``objects[visible[i]]``.

@@ -1,6 +1,7 @@
 """GPU frustum culling of the plan's culled draws (core/plan/culling.py decides which; shaders_wgsl/scene_cull.wgsl).
 
-Per frame, before the scene pass: the indirect argument blocks are reset (``queue.write_buffer``: index count,
+When the camera changes (scene_pass.py; the objects are static), before the scene pass: the indirect argument
+blocks are reset (``queue.write_buffer``: index count,
 instance_count 0, first index, base vertex, first instance), one compute pass dispatches one invocation per
 instance of each culled draw, and the scene pass draws each with ``draw_indexed_indirect`` (recorded once in the
 bundle: only the buffer's contents change). The frustum planes are written when the camera changes.

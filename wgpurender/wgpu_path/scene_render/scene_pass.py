@@ -194,7 +194,7 @@ class ScenePassRenderer:
         )
 
     # -- the pass ------------------------------------------------------------------
-    def _write_camera(self, aspect: float) -> None:
+    def _write_camera(self, aspect: float) -> bool:
         """Pack and upload the camera UBO, only when its inputs changed since the last upload.
 
         The scene (camera, lights) is frozen, so the inputs are the objects themselves, the aspect
@@ -202,7 +202,7 @@ class ScenePassRenderer:
         """
         key = (self.scene.camera, self.scene.lights, aspect, self.reverse_z)
         if key == getattr(self, "_camera_key", None):
-            return
+            return False
         camera = camera_values(self.scene, aspect)
         if self.reverse_z:
             camera["proj"] = REVERSE_Z @ camera["proj"]
@@ -210,6 +210,7 @@ class ScenePassRenderer:
         if self.culler is not None:
             self.culler.write_planes(camera["proj"] @ camera["view"])
         self._camera_key = key
+        return True
 
     def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
                timestamp_writes: dict | None = None) -> None:
@@ -218,10 +219,10 @@ class ScenePassRenderer:
         if depth_view is not None:
             depth = {"view": depth_view, "depth_clear_value": self.depth_clear,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
-        if self.draws:
-            self._write_camera(aspect)
-            if self.culler is not None:
-                self.culler.record(encoder)
+        # The objects never move: the visible lists change only with the camera, so the culling pass runs then
+        # (the first frame, a resize, an orbit step), and a still frame costs no call for culling.
+        if self.draws and self._write_camera(aspect) and self.culler is not None:
+            self.culler.record(encoder)
         render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
         if self.bundle is not None:
