@@ -20,7 +20,7 @@ END = "<!-- figures:issue31 end -->"
 # (title, the run's folder under docs/, its CSV, the Dawn binding's CSV of the same call or None)
 RUNS = (
     ("NVIDIA H100 (few graphics units: render passes are raster-bound there)", "perf-h100/2026-11-27-issue31",
-     "perf/results.csv", "dawn/results.csv"),
+     "perf/results.csv", None),
     ("lavapipe (this 2-core machine, shared by 8 engineers: noisy; LP_NUM_THREADS=1)",
      "perf-lavapipe/2026-11-27-issue31", "results.csv", None),
 )
