@@ -5,8 +5,8 @@ layout: a reader finds the WGSL and the GLSL beside each other, the scenes and m
 code, not deep in the package). setuptools' package-data can only reach files inside a package, so
 ``build_py`` copies them into the build tree: ``wgpurender/_shaders/{wgsl,glsl}``, ``wgpurender/_assets``,
 ``wgpurender/_examples``; the installed
-package reads them from there through importlib.resources (wgpurender/core/shader_files.py,
-wgpurender/core/assets.py). An editable install (``pip install -e``)
+package reads them from there through importlib.resources (wgpurender/core/shaders/shader_files.py,
+wgpurender/core/files/assets.py). An editable install (``pip install -e``)
 builds nothing: it reads the checkout's folders. Everything else is declared in pyproject.toml.
 """
 

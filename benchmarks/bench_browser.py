@@ -4,7 +4,7 @@ wgpu-native on this machine, for the same targets and size.
     python benchmarks/bench_browser.py [--targets triangle,3d,assets/scenes/final.toml] [--size 800x600]
                                        [--frames 60] [--runs 3] [--out FILE.md]
 
-Per target: ``wgpurender export`` writes the page (wgpurender/export/); a fresh headless Chromium
+Per target: ``wgpurender export`` writes the page (wgpurender/webpage/); a fresh headless Chromium
 (``--enable-unsafe-webgpu``: Dawn on SwiftShader here, no GPU) opens it, and the page reports
 
 - **first pixel**: ``performance.now()`` (ms since the navigation started) when the player's first frame is done:
@@ -52,7 +52,7 @@ FRAMES_JS = """new Promise((resolve) => {
 
 
 def browser_numbers(page: Path, frames: int, runs: int) -> tuple[list[float], list[float], str]:
-    from wgpurender.export.chromium import Chromium
+    from wgpurender.webpage.chromium import Chromium
 
     firsts, frame_ms, version = [], [], ""
     for _ in range(runs):
@@ -67,7 +67,7 @@ def browser_numbers(page: Path, frames: int, runs: int) -> tuple[list[float], li
 def native_numbers(target: str, size: tuple[int, int], frames: int, runs: int) -> tuple[list[float], list[float]]:
     from wgpurender.bench.frames import measure
     from wgpurender.bench.startup import run_child
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     env = dict(os.environ, WGPURENDER_VALIDATION="0")
     is_scene = target.endswith(".toml")
@@ -107,7 +107,7 @@ def main() -> int:
     p.add_argument("--out", type=Path)
     args = p.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
-    from wgpurender.export import export
+    from wgpurender.webpage import export
 
     rows, version = [], ""
     with tempfile.TemporaryDirectory(prefix="wgpurender-browser-bench-") as tmp:
@@ -120,7 +120,7 @@ def main() -> int:
             rows.append((target, spread(b_first), spread(n_first), ratio_first, spread(b_frames), spread(n_frames),
                          ratio_frame))
             print(f"  {target}: done", file=sys.stderr)
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     lines = [f"Browser: {version}, headless, --enable-unsafe-webgpu (Dawn on SwiftShader); wgpu-native: "
              f"{get_context().describe()}; size {size[0]}x{size[1]}; {args.runs} fresh runs per target, "

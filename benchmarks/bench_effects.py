@@ -6,7 +6,7 @@
 Per configuration: ``warmup`` untimed frames, then ``frames`` timed ones. A frame is record +
 submit + wait for the GPU (the timestamp readback waits), no image readback. Reported: wall
 time (median, p10, p90) and the GPU time of every pass from timestamp queries
-(wgpurender.wgpu_path.timing.PassTimer; on lavapipe "GPU" time is CPU rasterisation time). An effect's
+(wgpurender.wgpu_path.device.timing.PassTimer; on lavapipe "GPU" time is CPU rasterisation time). An effect's
 cost is the difference between the full chain and the chain without it, and its own pass time.
 
 ``--tutorial`` also times the Vulkan-tutorial scenes (chapters 28 and 30), to set beside the
@@ -31,11 +31,11 @@ os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
 from wgpurender.core.plan import build_plan  # noqa: E402
 from wgpurender.core.scene import Scene, load_scene  # noqa: E402
-from wgpurender.wgpu_path.frame_loop import run_frame  # noqa: E402
-from wgpurender.wgpu_path.gpu import get_context  # noqa: E402
-from wgpurender.wgpu_path.scene_render import SceneRenderer  # noqa: E402
-from wgpurender.wgpu_path.targets import create_target  # noqa: E402
-from wgpurender.wgpu_path.timing import PassTimer, Stats  # noqa: E402
+from wgpurender.wgpu_path.device.context import get_context  # noqa: E402
+from wgpurender.wgpu_path.device.frame_loop import run_frame  # noqa: E402
+from wgpurender.wgpu_path.device.targets import create_target  # noqa: E402
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats  # noqa: E402
+from wgpurender.wgpu_path.scene import SceneRenderer  # noqa: E402
 
 
 def time_scene(ctx, scene: Scene, size, frames: int, warmup: int) -> tuple[Stats, dict[str, Stats]]:

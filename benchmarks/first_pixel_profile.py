@@ -43,7 +43,7 @@ def main(out: Path) -> None:
                               timeout=300)
         (out / f"first-pixel-profile-{path}.txt").write_text(proc.stdout + proc.stderr[-3000:])
     proc = subprocess.run([sys.executable, "-X", "importtime", "-c",
-                           "from wgpurender.wgpu_path.gpu import get_context; get_context()"],
+                           "from wgpurender.wgpu_path.device.context import get_context; get_context()"],
                           env=env, capture_output=True, text=True, timeout=300)
     lines = [ln for ln in proc.stderr.splitlines() if ln.startswith("import time:")]
     rows = sorted(lines[1:], key=lambda ln: -int(ln.split("|")[1]))[:60]

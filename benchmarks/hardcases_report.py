@@ -33,8 +33,8 @@ def main() -> int:
     from numerics.normals import analytic_normals
     from numerics.uv_tiling import exact_uvs, wrap_uvs
 
-    from wgpurender.core import transforms as T
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.view import transforms as T
+    from wgpurender.wgpu_path.device.context import get_context
 
     ctx = get_context(args.backend)
     print(f"adapter: {ctx.describe()}")

@@ -1,7 +1,7 @@
 #version 450
 // Course step 4: cubes with two UBOs in two descriptor sets and per-draw push constants.
 // The same computation as shaders_wgsl/cube3d.wgsl; the std140 offsets are spelled out in
-// wgpurender/raw_path/ubo.py.
+// wgpurender/raw_path/device/ubo.py.
 
 layout(std140, set = 0, binding = 0) uniform Camera {
     mat4 proj;

@@ -5,7 +5,7 @@
 // subpassLoad reads only the pixel under the fragment (it takes no coordinates), so only effects
 // that are functions of one pixel (plus its position) can run here: tonemap, vignette, grayscale,
 // sepia, srgb. FXAA and sharpen read neighbours: each runs in a render pass of its own that samples
-// the previous result (post_fxaa.frag, post_sharpen.frag; wgpurender/raw_path/scene/neighbourhood.py).
+// the previous result (post_fxaa.frag, post_sharpen.frag; wgpurender/raw_path/post/neighbourhood.py).
 // Each effect's arithmetic is its WGSL twin's (shaders_wgsl/post_<effect>.wgsl), operation for operation.
 //
 // The chain is data, not code: a uniform block lists the steps (kind + up to three parameters) and

@@ -1,16 +1,16 @@
 #version 450
 // FXAA on the raw path: the algorithm of shaders_wgsl/post_fxaa.wgsl (FXAA 3.11-style, quality),
-// operation for operation, so that both paths compute the same image (tests/test_raw_path_neighbourhood.py).
+// operation for operation, so that both paths compute the same image (tests/test_vulkan_ref_neighbourhood.py).
 // Read the WGSL file for the steps; only the API differs:
 //
 // - the previous result is a COMBINED_IMAGE_SAMPLER (set 0, binding 0: linear filter, clamp to edge),
 //   not an input attachment: FXAA samples neighbours and between pixels, which subpassLoad cannot
 //   (it reads only the pixel under the fragment). So FXAA runs in a render pass of its own, after a
 //   barrier that makes the previous pass's colour writes visible to this fragment shader
-//   (wgpurender/raw_path/scene/neighbourhood.py);
+//   (wgpurender/raw_path/post/neighbourhood.py);
 // - the parameters are push constants (12 bytes), not a uniform buffer;
 // - one draw: the wgpu path's mark-then-FXAA pair of draws (a speed-up for llvmpipe) gives the
-//   same pixels as this single draw (wgpurender/wgpu_path/post/fxaa.py).
+//   same pixels as this single draw (wgpurender/wgpu_path/post/passes.py).
 
 layout(set = 0, binding = 0) uniform sampler2D src;
 

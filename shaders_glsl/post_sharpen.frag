@@ -3,7 +3,7 @@
 // neighbours -k, clamp-to-edge at the borders, result clamped at 0), operation for operation.
 // It reads four neighbours, which an input attachment cannot give (subpassLoad reads only the pixel
 // under the fragment): the previous result is a sampled image in a render pass of its own
-// (wgpurender/raw_path/scene/neighbourhood.py); the strength is a push constant.
+// (wgpurender/raw_path/post/neighbourhood.py); the strength is a push constant.
 
 layout(set = 0, binding = 0) uniform sampler2D src;
 

@@ -2,13 +2,13 @@
 // The scene's vertex shader on the raw path: the GLSL twin of shaders_wgsl/scene.wgsl's vs_main.
 //
 // Variants are made like the wgpu path's: one source, preprocessed per material variant. wgpu's
-// template uses "#if feature" (wgpurender/core/shader_variants.py); here glslc's own preprocessor does it,
+// template uses "#if feature" (wgpurender/core/shaders/shader_variants.py); here glslc's own preprocessor does it,
 // with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
 //   VERTEX_COLOR, ALPHA_MASK, OPAQUE_ALPHA, DOUBLE_SIDED, EMISSIVE, EMISSIVE_MAP, OCCLUSION_MAP (a model
 //   file's own materials),
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
-// The std140 offsets of the blocks are spelled out in wgpurender/raw_path/scene/uniforms.py.
+// The std140 offsets of the blocks are spelled out in wgpurender/raw_path/device/uniforms.py.
 
 layout(std140, set = 0, binding = 0) uniform Camera {
     mat4 proj;   // @0

@@ -1,6 +1,6 @@
 #version 450
 // Course step 5: one mip level from the previous one, drawn by a render pass per level
-// (wgpurender/raw_path/textures.py). The same arithmetic as shaders_wgsl/mipmap.wgsl, in the
+// (wgpurender/raw_path/device/textures.py). The same arithmetic as shaders_wgsl/mipmap.wgsl, in the
 // same order, so that both paths build bit-identical mip chains:
 // an exact area-weighted box filter in integers. Along one axis, source texel i covers
 // [i*dst, (i+1)*dst) and destination texel x covers [x*src, (x+1)*src) in units of

@@ -9,7 +9,7 @@
 // [i*dst, (i+1)*dst) and destination texel x covers [x*src, (x+1)*src) in units of
 // 1/(src*dst) of the axis. A destination texel overlaps at most 3 source texels
 // (src/dst <= 3 when dst = max(1, src >> 1)); each weight is overlap / src. For even
-// sizes this is the plain 2x2 average. wgpurender/wgpu_path/textures.py documents the rule and
+// sizes this is the plain 2x2 average. wgpurender/wgpu_path/device/textures.py documents the rule and
 // tests/test_textures.py checks it against numpy.
 
 @group(0) @binding(0) var src: texture_2d<f32>;

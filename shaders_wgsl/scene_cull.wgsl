@@ -1,4 +1,4 @@
-// GPU frustum culling of one instanced draw (wgpurender/wgpu_path/scene_render/culling.py; the rule in
+// GPU frustum culling of one instanced draw (wgpurender/wgpu_path/scene/culling.py; the rule in
 // wgpurender/core/plan/culling.py). One invocation per instance: the mesh's bounding sphere is moved by the
 // instance's world matrix and scaled by its largest axis scale; if it lies wholly outside any of the six frustum
 // planes (normal pointing inwards, n.p + d >= 0 inside) the instance is dropped, else its index is appended to

@@ -17,7 +17,7 @@ os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
 import pytest  # noqa: E402
 import wgpu  # noqa: E402,F401  (imported before logging config: wgpu installs its own logger class)
 
-from wgpurender.wgpu_path.gpu_validation import collect_validation_messages  # noqa: E402
+from wgpurender.wgpu_path.device.validation import collect_validation_messages  # noqa: E402
 
 
 def pytest_addoption(parser) -> None:
@@ -66,7 +66,7 @@ def no_gpu_validation_errors():
 @pytest.fixture(scope="session")
 def ctx():
     """The Vulkan context every GPU test shares (lavapipe in CI)."""
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     return get_context("Vulkan")
 
@@ -80,8 +80,8 @@ def raw_driver_class():
     identically, so they are compared with that class's calibrated bounds
     (assets/reference/tolerances.toml), never skipped.
     """
-    from wgpurender.core.tolerances import driver_class
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.core.verdict.tolerances import driver_class
+    from wgpurender.raw_path.device.context import get_vulkan
 
     return driver_class(get_vulkan().device_name)
 
@@ -89,6 +89,6 @@ def raw_driver_class():
 @pytest.fixture(scope="session")
 def wgpu_driver_class(ctx):
     """The tolerance table's driver class of the wgpu path's adapter."""
-    from wgpurender.core.tolerances import driver_class
+    from wgpurender.core.verdict.tolerances import driver_class
 
     return driver_class(ctx.adapter.info["device"])

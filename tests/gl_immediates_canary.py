@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import wgpu
 
-from wgpurender.wgpu_path.gpu import get_context
+from wgpurender.wgpu_path.device.context import get_context
 
 OTHER = "struct Camera { proj: mat4x4f, view: mat4x4f, eye: vec4f, }\n"
 MATERIAL = "struct Material { base_color: vec4f, }\n"

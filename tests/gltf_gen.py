@@ -1,4 +1,4 @@
-"""Small glTF 2.0 files written by the tests themselves, independent of wgpurender.core.gltf_io.
+"""Small glTF 2.0 files written by the tests themselves, independent of wgpurender.core.models.gltf_io.
 
 :class:`GltfWriter` packs numpy arrays into one buffer (accessors, sparse accessors, interleaved views with a
 byteStride, normalized integer types), PNG images into buffer views, and writes ``.gltf`` (base64 buffer) or

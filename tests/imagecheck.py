@@ -6,7 +6,7 @@ Two tiers (issue 12):
   Vulkan): exact, byte for byte (float16 included).
 - :func:`assert_within_tolerance`: a fresh render against a committed reference (or the C++
   tutorial's frame), within the bounds of ``assets/reference/tolerances.toml`` for this
-  driver class (wgpurender.core.tolerances).
+  driver class (wgpurender.core.verdict.tolerances).
 
 A failing comparison writes ``out/test-diffs/<test-id>/`` with expected.png, actual.png,
 heatmap.png and metrics.json, and the failure message gives the metrics and that folder.
@@ -22,9 +22,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core.compare import heatmap
-from wgpurender.core.imageio import save_png, to_uint8
-from wgpurender.core.tolerances import Metrics, Tolerance, measure, tolerance
+from wgpurender.core.files.imageio import save_png, to_uint8
+from wgpurender.core.verdict.compare import heatmap
+from wgpurender.core.verdict.tolerances import Metrics, Tolerance, measure, tolerance
 
 REPO = Path(__file__).resolve().parent.parent
 DIFF_ROOT = REPO / "out" / "test-diffs"

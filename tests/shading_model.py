@@ -99,7 +99,7 @@ def render_wgpu(ctx, text: str, folder: Path) -> np.ndarray:
     """Render a scene text on the wgpu path (paths in it relative to ``folder``): (H, W, 4) pixels."""
     from wgpurender.core.plan import build_plan
     from wgpurender.core.scene import parse_scene
-    from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
+    from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
     scene = parse_scene(text, folder / "scene.toml")
     renderer = SceneRenderer(ctx, scene, build_plan(scene))

@@ -184,7 +184,7 @@ def depth_scene(tmp_path_factory):
 
 
 def _render(ctx, scene, settings, size=(64, 48), knobs=("depth",)):
-    from wgpurender.wgpu_path.scene_render import render_frame
+    from wgpurender.wgpu_path.scene import render_frame
 
     renderer = make_renderer(ctx, scene, settings, size, knobs=knobs)
     target = renderer.create_output()

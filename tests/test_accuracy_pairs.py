@@ -18,7 +18,7 @@ import pytest
 from wgpurender.bench.accuracy_knobs import Settings
 from wgpurender.bench.accuracy_report import csv_row
 from wgpurender.bench.accuracy_run import FINAL, Measurement, plan_cases, score
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.wgpu_path.device.timing import Stats
 
 SIZE = (24, 16)
 # Written out here: the highest level of each knob, and the ground truth (all highest, 8x supersampled).

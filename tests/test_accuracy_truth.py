@@ -15,8 +15,8 @@ from wgpurender.bench.accuracy_analytic import write_triangles_scene
 from wgpurender.bench.accuracy_downsample import linear_from_srgb8, srgb8_from_linear
 from wgpurender.bench.accuracy_knobs import Settings
 from wgpurender.bench.accuracy_run import Timed
-from wgpurender.core.compare import compare_images
 from wgpurender.core.scene import load_scene
+from wgpurender.core.verdict.compare import compare_images
 
 
 def _shoelace(tri: np.ndarray) -> float:

@@ -1,4 +1,4 @@
-"""The per-adapter anisotropy rule (wgpurender/core/anisotropy.py) and how the plan shows it.
+"""The per-adapter anisotropy rule (wgpurender/core/plan/anisotropy.py) and how the plan shows it.
 
 Expected values come from the rule as the docs state it: on a CPU adapter an anisotropic sampler gets
 anisotropy 1, on a GPU it keeps the scene's value, and "scene" (the default of the library API, the
@@ -11,10 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.core.anisotropy import resolve_anisotropy
 from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import build_plan
+from wgpurender.core.plan.anisotropy import resolve_anisotropy
 from wgpurender.core.scene import load_scene
 
 FINAL = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "final.toml"

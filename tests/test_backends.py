@@ -19,9 +19,9 @@ from xvfb import xvfb_display  # noqa: F401  (the fixture "display": a private X
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, Knobs
 from wgpurender.core.plan.post import resolve_immediates
-from wgpurender.core.tolerances import Uncalibrated, driver_class, implementation_tolerance
+from wgpurender.core.verdict.tolerances import Uncalibrated, driver_class, implementation_tolerance
 from wgpurender.implementations import REPO, all_targets, render_in_child
-from wgpurender.wgpu_path.gpu import requested_backend
+from wgpurender.wgpu_path.device.context import requested_backend
 
 SIZE = (160, 120)
 
@@ -125,7 +125,7 @@ def test_a_pair_past_its_bound_fails_with_a_heatmap(tmp_path, monkeypatch):
     import numpy as np
 
     from wgpurender import verify_matrix
-    from wgpurender.core.tolerances import Tolerance
+    from wgpurender.core.verdict.tolerances import Tolerance
 
     tight = Tolerance("t", "lavapipe", 1, 0.01, 0.002, "test", "test", False)
     monkeypatch.setattr(verify_matrix, "_bound", lambda a, b, target: tight)
@@ -141,7 +141,7 @@ def test_a_pair_past_its_bound_fails_with_a_heatmap(tmp_path, monkeypatch):
 def test_the_instance_is_made_for_the_chosen_backend_only():
     """No OpenGL/EGL enumeration when Vulkan is asked for (start-up time), and a second backend in the same
     process is refused in one line (wgpu-py keeps one instance per process)."""
-    code = ("from wgpurender.wgpu_path import gpu\n"
+    code = ("from wgpurender.wgpu_path.device import context as gpu\n"
             "gpu.get_context('vulkan')\n"
             "print(gpu.available_backends())\n"
             "try:\n    gpu.get_context('opengl')\nexcept gpu.UserError as err:\n    print('refused:', err)\n")

@@ -1,6 +1,6 @@
 """``render --explain`` shows each pass's bytes and what the last benchmark on this adapter measured (issue 22.4).
 
-The record (wgpurender/core/bandwidth.py) lives in a file per test here ($WGPURENDER_PERF_RECORD). Checked:
+The record (wgpurender/core/files/bandwidth.py) lives in a file per test here ($WGPURENDER_PERF_RECORD). Checked:
 "not measured" before any run and for another adapter; after a record, the pass's line shows the time, GB/s
 and the % of a same-run copy computed from the recorded numbers (formulas written here); and the
 post-roofline benchmark, run for real at a tiny size, records every pass of the plan it measured.
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.core import bandwidth
+from wgpurender.core.files import bandwidth
 from wgpurender.core.plan import AdapterFacts, build_plan
 from wgpurender.core.scene import load_scene
 
@@ -45,7 +45,7 @@ def test_explain_says_not_measured_then_shows_the_record():
 
 def test_post_roofline_records_what_it_measured(ctx):
     from wgpurender.bench.post_roofline import record_bandwidth, run_roofline
-    from wgpurender.wgpu_path.scene_render.frame import adapter_facts
+    from wgpurender.wgpu_path.scene.frame import adapter_facts
 
     if not ctx.has("timestamp-query"):
         pytest.skip("post-roofline needs timestamp queries")

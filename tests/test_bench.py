@@ -49,7 +49,7 @@ def test_tails_are_reported_beside_the_median():
     """p99 catches a stall in 5 of 100 frames; p90 > 3x the median flags the case in the report."""
     from wgpurender.bench.markdown import _tails
     from wgpurender.bench.report import Result
-    from wgpurender.wgpu_path.timing import Stats
+    from wgpurender.wgpu_path.device.timing import Stats
 
     rare = Stats.of([1.0] * 95 + [20.0] * 5)
     assert (rare.median, rare.p90, rare.p99) == (1.0, 1.0, 20.0)
@@ -151,7 +151,7 @@ def test_families_produce_their_rows(quick_run):
 
 
 def run_ctx_has_immediates(run) -> bool:
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     return get_context("Vulkan").has("immediates")
 

@@ -1,4 +1,4 @@
-"""wgpu_path/cffi_types.py: the fast answer for a typedef name equals cffi's own parse, for every typedef of wgpu.h.
+"""wgpu_path/device/cffi_types.py: the fast answer for a typedef equals cffi's own parse, for every typedef of wgpu.h.
 
 The reference is cffi's real parser (pycparser), not the module under test: for each typedef name and each
 of the three shapes (a sample of the names: each real parse takes ~0.1 s), both answers must be equal model
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import pytest
 
-from wgpurender.wgpu_path import cffi_types
+from wgpurender.wgpu_path.device import cffi_types
 
 
 @pytest.fixture(scope="module")

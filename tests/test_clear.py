@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from wgpurender.core.course.triangle import CLEAR_COLOR
-from wgpurender.core.imageio import srgb_encode
+from wgpurender.core.files.imageio import srgb_encode
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 from wgpurender.wgpu_path.render import render_stage
 from wgpurender.wgpu_path.stages import get_stage
-from wgpurender.wgpu_path.targets import create_target, read_texture
 
 ODD_SIZES = [(257, 13), (1, 1), (63, 65)]  # 257 * 4 bytes = 1028: not a multiple of 256
 

@@ -7,7 +7,7 @@ import pytest
 from PIL import Image
 
 from wgpurender.cli import main
-from wgpurender.core import imageio
+from wgpurender.core.files import imageio
 
 
 def _run(capsys, *argv):

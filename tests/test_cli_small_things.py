@@ -18,7 +18,7 @@ import pytest
 from PIL import Image
 
 from wgpurender.cli import main
-from wgpurender.core.imageio import load_png, save_png
+from wgpurender.core.files.imageio import load_png, save_png
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -74,7 +74,7 @@ def test_compare_json(capsys, tmp_path):
 
 def test_heatmap_has_a_colour_scale(capsys, tmp_path):
     """The image is the heatmap on top, then a bar from black (equal) to white (saturated), labelled."""
-    from wgpurender.core.compare import SCALE_BAR, heatmap
+    from wgpurender.core.verdict.compare import SCALE_BAR, heatmap
 
     a, b = _pair(tmp_path)
     heat = tmp_path / "h.png"
@@ -135,7 +135,7 @@ def test_broken_pipe_prints_no_traceback():
 def test_no_material_library_warning_when_the_scene_gives_the_material(tmp_path, caplog, ctx):
     """An OBJ whose MTL is missing: loading it alone says so (INFO); rendering it from a scene, which names the
     texture, says nothing about it."""
-    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.models.mesh import load_mesh
     from wgpurender.wgpu_path.render import render_any
 
     obj = tmp_path / "quad.obj"

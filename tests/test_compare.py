@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from wgpurender.cli import main
-from wgpurender.core.compare import compare_images, heatmap
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.verdict.compare import compare_images, heatmap
 
 
 def _image(seed=0, size=(48, 64)):

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from wgpurender.cli import main
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
 
 
 def _pair(tmp_path):

@@ -37,7 +37,7 @@ REQUIRED = (
 REQUIRED_CALLS = ("vkCmdClearColorImage", "vkCreateBuffer", "vkCmdDraw", "vkCmdDrawIndexed",
                   "vkGetBufferMemoryRequirements", "vkDeviceWaitIdle", "vkCreateComputePipelines", "vkCmdDispatch")
 # Concepts the raw path has no code for: their rows must say so (events: no natural use; the raw window,
-# wgpurender/raw_path/window.py, has the surface, swapchain, semaphores and frames in flight).
+# wgpurender/raw_path/window/__init__.py, has the surface, swapchain, semaphores and frames in flight).
 NOT_IN_RAW_PATH = {"events", "compute pipelines", "storage images"}
 # Concepts no path has code for: shown as "not demonstrated".
 NOT_DEMONSTRATED = {"events"}
@@ -96,7 +96,7 @@ def test_rows_without_raw_code_say_why():
 
 def test_resolve_rejects_missing_names():
     with pytest.raises(AttributeError):
-        resolve("wgpurender.raw_path.instance:no_such_function")
+        resolve("wgpurender.raw_path.device.context:no_such_function")
     with pytest.raises(AttributeError):
         resolve("wgpurender.wgpu_path.stages.cube3d:Cube3D.no_such_method")
     with pytest.raises(ImportError):

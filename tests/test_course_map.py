@@ -43,9 +43,9 @@ def test_every_named_file_exists_and_every_step_is_on_both_paths_with_a_referenc
 
 def test_the_wgsl_column_is_what_each_stage_loads(rows, ctx):
     """Independent of the map's source reading: record the WGSL files a stage loads while it renders a frame."""
-    from wgpurender.wgpu_path.gpu_cache import clear_caches
+    from wgpurender.wgpu_path.device.gpu_cache import clear_caches
+    from wgpurender.wgpu_path.device.shaders import recording_loads
     from wgpurender.wgpu_path.render import render_stage
-    from wgpurender.wgpu_path.shaders import recording_loads
 
     for r in rows:
         if r.step.scene is not None:
@@ -59,7 +59,8 @@ def test_the_wgsl_column_is_what_each_stage_loads(rows, ctx):
 @pytest.mark.skipif(shutil.which("glslc") is None, reason="glslc not installed (apt install glslc)")
 def test_the_glsl_column_is_what_each_raw_stage_compiles(rows, monkeypatch):
     """The raw path's counterpart: every GLSL file a raw stage turns into a shader module while it renders."""
-    from wgpurender.raw_path import glsl, render_reference
+    from wgpurender.raw_path import render_reference
+    from wgpurender.raw_path.device import shaders as glsl
 
     loaded: set[str] = set()
     real = glsl.glsl_path
@@ -104,9 +105,9 @@ def test_the_named_course_texts_are_the_ones_the_course_folder_indexes():
 
 def test_bundled_scenes_are_found_by_name_and_never_shadow_a_stage(tmp_path, monkeypatch):
     """`render final` is step 6's scene; a stage's name stays a stage even if a bundled scene took it."""
-    from wgpurender.core import assets
     from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.course.steps import stage_steps
+    from wgpurender.core.files import assets
 
     assert is_scene_file("final") and assets.resolve_scene("final") == REPO / "assets" / "scenes" / "final.toml"
     assert assets.resolve_scene("assets/scenes/unlit.toml").is_file()

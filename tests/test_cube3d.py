@@ -26,9 +26,9 @@ from wgpurender.core.course.cubes import (
     permute_channels,
 )
 from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 from wgpurender.wgpu_path.render import render_stage
 from wgpurender.wgpu_path.stages.cube3d import Cube3D
-from wgpurender.wgpu_path.targets import create_target, read_texture
 
 FMT = "rgba8unorm"
 COLOR_TOL = 2  # /255: float32 GPU maths vs float64 here, plus 8-bit rounding (0.5)

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core import procedural
+from wgpurender.core.models import procedural
 from wgpurender.core.plan import build_plan
 from wgpurender.core.plan.culling import GPU_CULL_MIN
 from wgpurender.core.scene import parse_scene
@@ -58,7 +58,7 @@ def spheres_in_view(path: Path) -> int:
 
 def test_culled_image_equals_the_unculled_and_raw_and_counts_what_is_in_view(ctx, tmp_path):
     from wgpurender.raw_path.render import render_reference
-    from wgpurender.wgpu_path.scene_render import load_renderer, render_frame
+    from wgpurender.wgpu_path.scene import load_renderer, render_frame
 
     path = write_scene(tmp_path)
     culled = load_renderer(path, ctx, knobs={"culling": "gpu"})

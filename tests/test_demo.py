@@ -21,8 +21,8 @@ import numpy as np
 import pytest
 from xvfb import xvfb_display  # noqa: F401  (the fixture "display": a private Xvfb)
 
-from wgpurender.core.imageio import load_png
-from wgpurender.core.orbit import Orbit
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.view.orbit import Orbit
 from wgpurender.wgpu_path.render import render_stage
 
 REPO = Path(__file__).resolve().parent.parent
@@ -99,7 +99,7 @@ def test_scene_camera_comes_from_the_scene_file_and_moves(display, tmp_path):
     script = f"0:shot {still}; " + "1:key LEFT; " * 6 + f"1:key UP; 2:shot {moved}"  # 30 degrees round, 5 up
     result = _demo(display, scene, "--frames", "3", "--size", SIZE, "--no-overlay", "--test-input", script)
     assert result.returncode == 0, result.stderr
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     want = render_scene_file(scene, size=(160, 120)).pixels.astype(int)
     a, b = load_png(still).astype(int), load_png(moved).astype(int)

@@ -11,7 +11,7 @@ import pytest
 
 from wgpurender.cli import main
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, save_png
+from wgpurender.core.files.imageio import load_png, save_png
 
 
 def test_compare_with_an_empty_path(capsys, tmp_path):

@@ -224,7 +224,7 @@ def test_raw_demo_validation_counts_messages_or_refuses(display):
 
 def test_raw_demo_anisotropy_reaches_the_raw_plan(display, tmp_path):
     """--anisotropy scene vs the default: each screenshot equals the offscreen raw render of that rule."""
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
     from wgpurender.raw_path import render_reference
 
     scene = str(REPO / "assets" / "scenes" / "brick.toml")
@@ -238,7 +238,7 @@ def test_raw_demo_anisotropy_reaches_the_raw_plan(display, tmp_path):
         want = render_reference(scene, (96, 72), anisotropy=rule)
         assert (load_png(shot) == want).all(), rule
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.device.context import get_vulkan
 
     facts = get_vulkan().adapter_facts()
     if facts.adapter_type == "CPU":  # the rule changes the sampler here, so the two images must differ

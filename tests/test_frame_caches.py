@@ -1,5 +1,5 @@
 """Per-frame caches (issue 7) never serve a stale object: post-chain bind groups and views, the scene's
-camera upload and attachment views; and the one GPU cache type (wgpurender/wgpu_path/gpu_cache.py) is bounded,
+camera upload and attachment views; and the one GPU cache type (wgpurender/wgpu_path/device/gpu_cache.py) is bounded,
 counts hits and misses, and goes with its device.
 
 Each check renders with a renderer or chain that has cached objects from an earlier frame and compares
@@ -19,10 +19,10 @@ from test_post import ATOL, RTOL, ref_aces, ref_vignette, upload
 
 from wgpurender.core.plan import build_plan
 from wgpurender.core.scene import parse_scene
-from wgpurender.wgpu_path.gpu_cache import GpuCache, cache_stats, device_cache
+from wgpurender.wgpu_path.device.gpu_cache import GpuCache, cache_stats, device_cache
+from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target, read_texture
 from wgpurender.wgpu_path.post import PostChain, create_effect
-from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
-from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target, read_texture
+from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
 CUBE = Path(__file__).resolve().parents[1] / "assets" / "models" / "brick_cube.obj"
 SCENE = f"""

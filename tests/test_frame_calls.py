@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from wgpurender.bench.calls import count_frame, steady_calls
-from wgpurender.wgpu_path.scene_render import load_renderer
+from wgpurender.wgpu_path.scene import load_renderer
 
 FINAL = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "final.toml"
 # encoder 1 + scene pass (begin, execute_bundles, end) 3 + finish 1 + submit 1, then the post chain:
@@ -49,6 +49,6 @@ def test_bundles_are_recorded_once_and_survive_a_resize(ctx, monkeypatch):
 
 
 def _output(ctx, renderer, size):
-    from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
+    from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
 
     return create_target(ctx, size, renderer.plan.output_format, usage=TARGET_USAGE | renderer.target_usage)

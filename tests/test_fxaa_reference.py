@@ -17,8 +17,8 @@ import numpy as np
 from fxaa_reference import fxaa
 from shading_model import camera_toml, render_wgpu, srgb_decode, srgb_encode, view_distance
 
-from wgpurender.core import procedural
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.models import procedural
 
 W, H = 96, 72
 # Measured on lavapipe (Mesa 22.3.6, AMD EPYC): 0 pixels off by more than 0.01, max 0.0041, mean 0.00076.

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from test_post import aliased_edge, hdr_image, run_chain, upload  # noqa: F401  (hdr_image is a fixture)
 
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 from wgpurender.wgpu_path.post import FragmentPass, PostChain, create_effect
-from wgpurender.wgpu_path.targets import create_target, read_texture
 
 
 def single_draw(ctx, img: np.ndarray, fmt: str = "rgba16float", **params) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""The glTF loader reads every attribute itself (wgpurender/core/gltf_geometry.py, gltf_io.read_accessor).
+"""The glTF loader reads every attribute itself (wgpurender/core/models/gltf_geometry.py, gltf_io.read_accessor).
 
 Each file is generated here (tests/gltf_gen.py); each expectation comes from the arrays written into it: sparse
 accessors, normalized integer types, interleaved views (byteStride), strips and fans, the node hierarchy, COLOR_0,
@@ -16,7 +16,7 @@ import pytest
 from gltf_gen import QUAD_INDICES, GltfWriter, quad
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import load_mesh
+from wgpurender.core.models.mesh import load_mesh
 
 STRIP_TOP = np.array([2.0, 3.0, 4.0], np.float32)  # the heights the sparse block lifts the top vertices to
 
@@ -185,7 +185,7 @@ def test_unnormalized_integer_attributes_are_refused(tmp_path):
 
 def test_mtl_colour_opacity_and_illum_are_read(tmp_path):
     """Kd (a single value is grey), d and Tr, illum; a Kd that is not a number is refused with FILE:LINE."""
-    from wgpurender.core.mesh import parse_mtl
+    from wgpurender.core.models.mesh import parse_mtl
 
     (tmp_path / "m.mtl").write_text("newmtl a\nKd 0.5 0.25 1\nd 0.4\nillum 0\nnewmtl b\nKd 0.3\nTr 0.25\n")
     found = parse_mtl(tmp_path / "m.mtl")

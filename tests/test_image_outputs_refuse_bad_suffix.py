@@ -11,7 +11,7 @@ import pytest
 from PIL import Image
 
 from wgpurender.cli import main
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
 
 
 def _code(argv: list[str]) -> int:

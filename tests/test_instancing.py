@@ -2,7 +2,7 @@
 
 Expectations come from the scene text (grid formula, counts) and from independent renders: the same copies
 written as separate models of *different* mesh files (so nothing batches and each is its own draw), and the
-raw Vulkan path; per-instance blocks against the raw path's hand packer (raw_path/scene/uniforms.pack_object).
+raw Vulkan path; per-instance blocks against the raw path's hand packer (raw_path/device/uniforms.pack_object).
 """
 
 from __future__ import annotations
@@ -13,12 +13,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core import procedural, transforms
 from wgpurender.core.errors import UserError
+from wgpurender.core.models import procedural
 from wgpurender.core.plan import build_plan
 from wgpurender.core.plan.batches import instance_blocks
 from wgpurender.core.scene import parse_scene
-from wgpurender.raw_path.scene.uniforms import pack_object
+from wgpurender.core.view import transforms
+from wgpurender.raw_path.device.uniforms import pack_object
 
 SIZE = (96, 64)
 HEAD = """
@@ -138,7 +139,7 @@ def test_equal_materials_share_one_bind_group(cube, tmp_path):
     other = tmp_path / "other.obj"
     shutil.copy(cube, other)
     tex = tmp_path / "t.png"
-    from wgpurender.core.imageio import save_png
+    from wgpurender.core.files.imageio import save_png
     save_png(tex, np.full((4, 4, 4), 200, np.uint8))
     textured = f'{{ albedo_map = "{tex.as_posix()}", unlit = true }}'
     body = model(cube, material=textured) + model(other, material=textured)  # two meshes: two draws
@@ -187,7 +188,7 @@ def test_instance_blocks_match_the_hand_packer(cube, tmp_path):
 # -- pixels, both paths ------------------------------------------------------------------------------------------
 def render_both(path: Path, ctx):
     from wgpurender.raw_path.render import render_reference
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     return render_scene_file(path, ctx=ctx, frames=1).pixels, render_reference(str(path), size=None)
 
@@ -228,7 +229,7 @@ def test_instanced_scene_equals_separate_models_on_both_paths(ctx, cube, tmp_pat
 
 
 def test_grid_copies_are_where_the_camera_projects_them(ctx, cube, tmp_path):
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     path = scene_file(tmp_path, model(cube, extra="transform = { scale = 0.5 }\n"
                                                   "instances = { grid = [4, 3, 1], spacing = [2, 1.5, 1] }"))
@@ -253,8 +254,8 @@ def test_grid_copies_are_where_the_camera_projects_them(ctx, cube, tmp_path):
 def test_consecutive_draws_of_one_pipeline_bind_their_own_mesh_and_textures(ctx, cube, tmp_path):
     """Two draws in a row on one pipeline: a small box with a red texture on the left, a big box with a blue one
     on the right. The bundle skips state that did not change; what did change must be set again."""
-    from wgpurender.core.imageio import save_png
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.core.files.imageio import save_png
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     big = tmp_path / "big.obj"
     procedural.write_obj(big, procedural.box(2.0))

@@ -24,7 +24,7 @@ CORE, WGPU, RAW = "wgpurender.core", "wgpurender.wgpu_path", "wgpurender.raw_pat
 STAGE_PACKAGES = ("wgpurender.wgpu_path.stages", "wgpurender.raw_path.stages")
 STAGE_IMPORTERS = ("wgpurender.cli", "wgpurender.bench", "wgpurender.wgpu_path.render", "wgpurender.raw_path.render",
                    "wgpurender.wgpu_path.window", "wgpurender.concepts")  # registry, CLI/runners, bench, mapping table
-RENDERERS = ("wgpurender.wgpu_path.scene_render", "wgpurender.raw_path.scene", "wgpurender.wgpu_path.render",
+RENDERERS = ("wgpurender.wgpu_path.scene", "wgpurender.raw_path.scene", "wgpurender.wgpu_path.render",
              "wgpurender.raw_path.render")
 MAX_STAGE_LINES = 150
 # Known breaks, each named with its owner. The test fails when one is gone (delete its line then), so this list
@@ -202,21 +202,21 @@ def test_the_course_core_is_api_free():
 INJECTED = [
     ("raw_path/stages/cube3d.py", "from wgpurender.wgpu_path.stages import cube3d\n",
      "(raw path) imports wgpurender.wgpu_path.stages.cube3d"),
-    ("wgpu_path/stages/cube3d.py", "from wgpurender.raw_path import images\n",
-     "(wgpu path) imports wgpurender.raw_path.images"),
+    ("wgpu_path/stages/cube3d.py", "from wgpurender.raw_path.device import images\n",
+     "(wgpu path) imports wgpurender.raw_path.device.images"),
     ("core/course/cubes.py", "import wgpu\n", "(core) imports a GPU API"),
     ("core/course/cubes.py", "from wgpurender.wgpu_path.stages import triangle\n",
      "(core) imports wgpurender.wgpu_path.stages.triangle"),
     ("core/course/cubes.py", "from wgpurender.cli import _args\n", "only the tools"),
-    ("core/course/cubes.py", "import importlib\nimportlib.import_module('wgpurender.wgpu_path.gpu')\n",
-     "(core) imports wgpurender.wgpu_path.gpu"),
+    ("core/course/cubes.py", "import importlib\nimportlib.import_module('wgpurender.wgpu_path.device.context')\n",
+     "(core) imports wgpurender.wgpu_path.device.context"),
     ("core/plan/build.py", "from importlib import import_module\nimport_module(f'wgpurender.raw_path.stages.{x}')\n",
      "(core) imports wgpurender.raw_path.stages"),
-    ("core/transforms.py", "from wgpurender.core.course import cubes\n", "import cycle"),
+    ("core/view/transforms.py", "from wgpurender.core.course import cubes\n", "import cycle"),
     ("wgpu_path/stages/base.py", "from wgpurender.wgpu_path.stages import all_stages\n",
      "import cycle: wgpurender.wgpu_path.stages <-> wgpurender.wgpu_path.stages.base"),
     ("wgpu_path/stages/msaa.py", "from wgpurender.wgpu_path.stages.triangle import Triangle\n", "stages are leaves"),
-    ("wgpu_path/scene_render/scene_pass.py", "from wgpurender.wgpu_path.stages.cube3d import Cube3D\n",
+    ("wgpu_path/scene/scene_pass.py", "from wgpurender.wgpu_path.stages.cube3d import Cube3D\n",
      "only the registry"),
     ("wgpu_path/stages/triangle.py", "\n" * 200, "lines: a stage module"),
 ]

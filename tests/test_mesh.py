@@ -1,4 +1,4 @@
-"""Mesh loading (wgpurender/core/mesh.py): formats, the UV convention, indices, normals, errors, a 1M-triangle load.
+"""Mesh loading (core/models/mesh.py): formats, the UV convention, indices, normals, errors, a 1M-triangle load.
 
 The UV convention (v = 0 at the TOP of the image) is proven against values written by hand into each file:
 glTF's TEXCOORD_0 must come back exactly (float32 equality), OBJ/PLY's v must come back as 1 - v (1e-7).
@@ -19,10 +19,10 @@ import pytest
 import trimesh
 from gltf_gen import write_container
 
-from wgpurender.core import procedural as proc
 from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import build_mesh, index_dtype, load_mesh, parse_mtl
-from wgpurender.core.tangents import area_weighted_normals
+from wgpurender.core.models import procedural as proc
+from wgpurender.core.models.mesh import build_mesh, index_dtype, load_mesh, parse_mtl
+from wgpurender.core.models.tangents import area_weighted_normals
 
 ROOT = Path(__file__).resolve().parent.parent
 QUAD_POS = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], np.float32)
@@ -34,7 +34,7 @@ QUAD_UV = np.array([[0.1, 0.8], [0.9, 0.85], [0.8, 0.05], [0.05, 0.3]], np.float
 def write_gltf(path: Path, attributes: dict, indices: np.ndarray, *, material: bool = False, nodes=None) -> Path:
     """A glTF written by hand: JSON plus one buffer (base64 data URI for .gltf, BIN chunk for .glb).
 
-    Independent of wgpurender.core.gltf_io, so the loader is checked against the file format, not against itself.
+    Independent of wgpurender.core.models.gltf_io, so the loader is checked against the file format, not against itself.
     """
     names = list(attributes)
     blobs = [np.asarray(attributes[n], np.float32) for n in names] + [np.asarray(indices, np.uint16)]
@@ -356,7 +356,7 @@ def test_million_triangle_binary_ply_loads_vectorised(tmp_path):
 def test_assets_are_reproducible(tmp_path):
     """assets/make_assets.py regenerated into tmp_path: models byte-identical to the committed ones, PNG pixels
     identical (PNG bytes may legitimately differ between zlib versions)."""
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     spec = importlib.util.spec_from_file_location("make_assets", ROOT / "assets" / "make_assets.py")
     module = importlib.util.module_from_spec(spec)

@@ -3,7 +3,7 @@
 Both run on lavapipe in this process with the same triangle, the same resolve and the same grey
 formula (GLSL subpassLoad vs WGSL textureLoad of the stored resolve), so the images must be equal
 bit for bit (threshold 0). Measured: 0 pixels differ at 800x600, 64x48 and 97x61 in every format.
-The pixel values themselves are checked against numpy in tests/test_raw_path.py
+The pixel values themselves are checked against numpy in tests/test_vulkan_ref.py
 (test_msaa_post_is_grey_of_msaa), so equality here also checks the wgpu stage's values.
 """
 
@@ -51,7 +51,7 @@ def test_msaa_post_needs_msaa(ctx):
 
 def test_cli_lists_and_renders_msaa_post(tmp_path, capsys):
     from wgpurender.cli import main
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     assert main(["stages"]) == 0
     assert "msaa-post" in capsys.readouterr().out

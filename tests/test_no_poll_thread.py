@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 import wgpu
 
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.targets import create_target, read_texture
-from wgpurender.wgpu_path.timing import PassTimer
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
+from wgpurender.wgpu_path.device.timing import PassTimer
 
 RED = (1.0, 0.0, 0.0, 1.0)
 

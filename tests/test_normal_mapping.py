@@ -11,12 +11,12 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import procedural
 from wgpurender.core.course.shading import AMBIENT, SPECULAR
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.models import procedural
 from wgpurender.core.plan import build_plan
 from wgpurender.core.scene import parse_scene
-from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
+from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
 ROOT = Path(__file__).resolve().parents[1]
 ASSETS = ROOT / "assets"

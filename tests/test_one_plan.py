@@ -22,7 +22,7 @@ import pytest
 
 import wgpurender as w
 from wgpurender.cli import main
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 
 REPO = Path(__file__).resolve().parent.parent
 SCENES = sorted((REPO / "assets" / "scenes").glob("*.toml"))
@@ -55,7 +55,7 @@ def test_every_entry_point_draws_one_plan(scene, ctx, capsys, tmp_path):
     import dataclasses
 
     from wgpurender.core.scene import load_scene
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.device.context import get_vulkan
     from wgpurender.raw_path.window import window_plan
     from wgpurender.wgpu_path.window.view import DemoView
 
@@ -86,7 +86,7 @@ def test_every_entry_point_draws_one_plan(scene, ctx, capsys, tmp_path):
 
     # -- bench perf and the report's timings: both paths' runners draw the same plan -----------------------
     from wgpurender.bench.scene import RawSceneRunner, SceneRunner
-    from wgpurender.wgpu_path.scene_render import load_renderer
+    from wgpurender.wgpu_path.scene import load_renderer
 
     assert SceneRunner(ctx, scene, planned.size).renderer.plan == planned
     with RawSceneRunner(scene, planned.size) as runner:
@@ -97,13 +97,13 @@ def test_every_entry_point_draws_one_plan(scene, ctx, capsys, tmp_path):
 
 def test_the_anisotropy_rule_is_resolved_per_adapter_on_both_paths(ctx):
     """What made render and reference differ before (issue 20): the raw path now applies the same rule."""
-    from wgpurender.raw_path.instance import get_vulkan
-    from wgpurender.wgpu_path.scene_render import adapter_facts
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.wgpu_path.scene import adapter_facts
 
     final = REPO / "assets" / "scenes" / "final.toml"
     facts = adapter_facts(ctx)
     assert get_vulkan().adapter_facts() == facts  # one device, two paths, the same facts
-    wanted = 1 if facts.adapter_type == "CPU" else 8  # core/anisotropy.py's rule; final.toml asks for 8
+    wanted = 1 if facts.adapter_type == "CPU" else 8  # core/plan/anisotropy.py's rule; final.toml asks for 8
     assert [s.spec.max_anisotropy for s in w.plan(final).samplers] == [wanted]
     assert [s.spec.max_anisotropy for s in w.plan(final, anisotropy="scene").samplers] == [8]
     assert w.reference(final, size=(64, 48)).plan.samplers == w.plan(final, size=(64, 48)).samplers

@@ -15,7 +15,7 @@ import pytest
 from PIL import Image
 from reliab_gen import run_cli
 
-from wgpurender.core.compare import SCALE_BAR
+from wgpurender.core.verdict.compare import SCALE_BAR
 
 
 @pytest.fixture

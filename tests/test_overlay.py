@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from xvfb import xvfb_display  # noqa: F401  (the fixture "display": a private Xvfb)
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 
 pytest.importorskip("imgui_bundle")
 REPO = Path(__file__).resolve().parent.parent

@@ -40,10 +40,10 @@ import pytest
 
 from wgpurender.core.plan import build_plan
 from wgpurender.core.scene import load_scene
+from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target, read_texture
 from wgpurender.wgpu_path.post import output_usage
-from wgpurender.wgpu_path.scene_render import SceneRenderer
-from wgpurender.wgpu_path.scene_render.frame import adapter_facts
-from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target, read_texture
+from wgpurender.wgpu_path.scene import SceneRenderer
+from wgpurender.wgpu_path.scene.frame import adapter_facts
 
 REPO = Path(__file__).resolve().parent.parent
 ASSETS = REPO / "assets"
@@ -279,7 +279,7 @@ def test_a_culled_scene_creates_what_the_plan_lists(ctx, monkeypatch, tmp_path):
 @pytest.mark.parametrize("post_path", ["fragment", "compute"])
 def test_a_timed_frame_creates_nothing_more(ctx, monkeypatch, post_path):
     """Timestamps on every pass (a benchmark's timer, whose query set is its own) add no object to the plan's."""
-    from wgpurender.wgpu_path.timing import PassTimer
+    from wgpurender.wgpu_path.device.timing import PassTimer
 
     if not ctx.has("timestamp-query"):
         pytest.skip("this adapter has no timestamp queries")

@@ -16,9 +16,9 @@ import wgpu
 from shading_model import srgb_encode  # the test's own sRGB formula, not the package's
 
 from wgpurender.core.errors import UserError
-from wgpurender.wgpu_path.gpu_cache import cache_stats
+from wgpurender.wgpu_path.device.gpu_cache import cache_stats
+from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target, read_texture
 from wgpurender.wgpu_path.post import EFFECTS, PostChain, create_effect, effect_names, output_usage, steps_for_target
-from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target, read_texture
 
 W, H = 32, 24
 RTOL, ATOL = 2e-3, 1e-3

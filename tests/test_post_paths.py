@@ -15,7 +15,7 @@ Measured on lavapipe (Mesa 22.3, AMD EPYC), 2026-11-23, differing pixels of 7680
 
 Why they differ at all: fused, the colour stays float32 between effects, where the unfused chain stores
 it in rgba16float (lavapipe rounds that store toward zero; the fused chain is bit-identical to the raw
-path's subpass, tests/test_raw_path_scene.py). On the compute path an -srgb output cannot be a storage
+path's subpass, tests/test_vulkan_ref_scene.py). On the compute path an -srgb output cannot be a storage
 texture, so the shader applies the sRGB curve and the image is copied, where the fragment path lets
 lavapipe's (approximate) hardware encoder do it: retro.toml, whose rgba8unorm output is encoded by the
 shader on both paths, is bit-identical between the unfused paths.
@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.wgpu_path.scene_render import render_scene_file
+from wgpurender.wgpu_path.scene import render_scene_file
 
 SCENES = Path(__file__).resolve().parent.parent / "assets" / "scenes"
 SIZE = (320, 240)

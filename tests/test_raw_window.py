@@ -1,4 +1,4 @@
-"""The raw-Vulkan window (wgpurender/raw_path/window.py) under a private Xvfb, on lavapipe, validation on.
+"""The raw-Vulkan window (wgpurender/raw_path/window/__init__.py) under a private Xvfb, on lavapipe, validation on.
 
 Every run here has the validation layer with synchronisation validation on ($WGPURENDER_VALIDATION,
 set by conftest.py and passed to the subprocess): any message makes the window raise, so exit code 0
@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.files.owned_files import MANIFEST
 from wgpurender.raw_path import render_reference
 
 REPO = Path(__file__).resolve().parent.parent
@@ -162,7 +163,7 @@ def test_raw_benchmark_csv_and_fps_title(display, tmp_path, monkeypatch):
     """In-process: --benchmark's CSV has every timed frame, and the title shows an FPS the frame times agree with."""
     import glfw
 
-    from wgpurender.core.frame_times import BenchmarkSpec
+    from wgpurender.core.view.frame_times import BenchmarkSpec
     from wgpurender.raw_path import window as raw_window
 
     monkeypatch.setenv("DISPLAY", display)
@@ -200,7 +201,8 @@ def test_demo_record_writes_every_presented_frame(display, tmp_path, window):
     assert result.returncode == 0, result.stderr
     assert f"wrote {frames} (3 frames)" in result.stdout
     want = render_reference("3d", SIZE).astype(int)
-    names = sorted(p.name for p in frames.iterdir())
+    names = sorted(p.name for p in frames.iterdir() if p.name != MANIFEST)  # the folder's manifest of owned files
+    assert (frames / MANIFEST).is_file()
     assert names == [f"frame_{k:05d}.png" for k in range(3)]
     for name in names:
         diff = np.abs(load_png(frames / name).astype(int)[..., :3] - want[..., :3]).max(axis=2)

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from imagecheck import check
 
-from wgpurender.core.imageio import load_png, to_uint8
-from wgpurender.core.tolerances import (
+from wgpurender.core.files.imageio import load_png, to_uint8
+from wgpurender.core.verdict.tolerances import (
     DRIVER_CLASSES,
     TABLE_PATH,
     Metrics,
@@ -158,12 +158,12 @@ def test_regenerate_references_uses_the_raw_path_and_reports_changes(tmp_path, r
     spoiled = copy / "assets" / "reference" / "triangle.png"
     pixels = load_png(spoiled).copy()
     pixels[10:20, 10:30, :3] = 255 - pixels[10:20, 10:30, :3]  # 200 pixels inverted
-    from wgpurender.core.imageio import save_png
+    from wgpurender.core.files.imageio import save_png
 
     save_png(spoiled, pixels)
     probe = copy / "tests" / "test_probe.py"
     probe.write_text(  # the regeneration made no wgpu device: the wgpu path drew nothing
-        "import sys\n\ndef test_probe():\n    gpu = sys.modules.get('wgpurender.wgpu_path.gpu')\n"
+        "import sys\n\ndef test_probe():\n    gpu = sys.modules.get('wgpurender.wgpu_path.device.context')\n"
         "    assert gpu is None or gpu.get_context.cache_info().currsize == 0\n")
     import os
 

@@ -20,7 +20,7 @@ import pytest
 from PIL import Image
 from reliab_gen import run_cli, scene_text, triangle_gltf, write_gltf
 
-from wgpurender.core import safe_write
+from wgpurender.core.files import safe_write
 
 LONG = "n" * 300  # a path component over the 255 bytes any Linux file system allows
 
@@ -267,7 +267,7 @@ def test_explain_shows_the_memory_estimate(tmp_path):
 
 LONG_NATIVE_WORK = """
 import os, sys, zlib
-import wgpurender.core.compare as compare
+import wgpurender.core.verdict.compare as compare
 from wgpurender.cli import main
 
 def busy_flip(a, b):  # one long call into C that never checks for signals, like FLIP, numpy or a lavapipe frame

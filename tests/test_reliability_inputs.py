@@ -109,7 +109,7 @@ def test_nul_in_texture_path_is_one_line(tmp_path):
 
 def test_nul_in_a_material_library_texture_path_is_a_user_error(tmp_path):
     from wgpurender.core.errors import UserError
-    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.models.mesh import load_mesh
 
     (tmp_path / "model.mtl").write_bytes(b"newmtl m\nmap_Kd a\x00b.png\n")
     (tmp_path / "model.obj").write_text("mtllib model.mtl\nusemtl m\n" + OBJ_TRIANGLE + "f 1 2 3\n")

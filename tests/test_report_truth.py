@@ -4,8 +4,8 @@ other's captions, passed every earlier test because the two paths draw these sta
 
 So that the paths differ, the "raw" image here is the wgpu render with a marked block (the test's own pixels): the
 figure captioned wgpu must hold a fresh wgpu render, the one captioned raw the marked image, and every metric must
-be what core.compare says about the two images the page shows. The page is read with an HTML parser by the visible
-text (captions, row labels), so it does not depend on the report's class names.
+be what core.verdict.compare says about the two images the page shows. The page is read with an HTML parser by the
+visible text (captions, row labels), so it does not depend on the report's class names.
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from html.parser import HTMLParser
 import numpy as np
 import pytest
 
-from wgpurender.core.compare import compare_images
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.verdict.compare import compare_images
 
 MARK = (slice(4, 20), slice(6, 30))  # rows, columns of the block the fake raw path changes
 STAGES = ("triangle", "3d")
@@ -100,7 +100,7 @@ def page(tmp_path_factory, ctx_module):
 
 @pytest.fixture(scope="module")
 def ctx_module():
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     return get_context()
 

@@ -12,13 +12,13 @@ import numpy as np
 import pytest
 
 from wgpurender.cli import main
-from wgpurender.core import procedural
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.models import procedural
 from wgpurender.core.plan import build_plan
 from wgpurender.core.scene import parse_scene
-from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame, render_scene_file, shader_source
-from wgpurender.wgpu_path.targets import read_texture
+from wgpurender.wgpu_path.device.targets import read_texture
+from wgpurender.wgpu_path.scene import SceneRenderer, render_frame, render_scene_file, shader_source
 
 ROOT = Path(__file__).resolve().parents[1]
 ASSETS = ROOT / "assets"
@@ -194,7 +194,7 @@ def test_variant_without_normal_map_has_no_tangent_attribute(ctx, tmp_path):
     assert variant.vertex_attributes == ("position", "normal", "uv")
     source = _code(shader_source(variant, ctx.has("immediates")))
     assert "tangent" not in source and "@location(3)" not in source and "var normal_tex" not in source
-    from wgpurender.wgpu_path.scene_render.shader_interface import vertex_layout
+    from wgpurender.wgpu_path.scene.shader_interface import vertex_layout
 
     layout = vertex_layout(variant)
     assert layout["array_stride"] == 4 * (3 + 3 + 2)

@@ -29,8 +29,8 @@ from shading_model import (
     view_distance,
 )
 
-from wgpurender.core import procedural
-from wgpurender.core.imageio import save_png
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.models import procedural
 
 W, H = 64, 48
 PATHS = ("wgpu", "raw")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.shader_variants import specialise
+from wgpurender.core.shaders.shader_variants import specialise
 
 TEMPLATE = """a
 #if lit

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from wgpurender.core import slow_frames
 from wgpurender.core.scene import load_scene
+from wgpurender.core.view import slow_frames
 
 SCENES = Path(__file__).resolve().parents[1] / "assets" / "scenes"
 CPU = {"adapter_type": "CPU", "device": "llvmpipe (LLVM 15.0.7, 256 bits)", "description": "Mesa"}

@@ -27,7 +27,7 @@ def _rss_mb() -> float:
 
 @pytest.mark.skipif(not Path("/proc/self/statm").exists(), reason="needs Linux /proc for RSS")
 def test_final_scene_soak_has_flat_memory(ctx):
-    from wgpurender.wgpu_path.scene_render.frame import load_renderer, render_frame
+    from wgpurender.wgpu_path.scene.frame import load_renderer, render_frame
 
     renderer = load_renderer(FINAL, ctx, size=(160, 120))
     target = renderer.create_output()

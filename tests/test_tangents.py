@@ -1,4 +1,4 @@
-"""Tangent frames (core/tangents.py) against analytic directions, handedness, degenerate input and glTF files.
+"""Tangent frames (core/models/tangents.py) against analytic directions, handedness, degenerate input and glTF files.
 
 Tolerances: flat (planar) cases are exact up to float32 rounding (1e-6); the torus compares against its analytic
 dP/du: 1e-3 rad at interior vertices (measured 5.9e-4: each quad is split along one diagonal, so vertex
@@ -15,9 +15,14 @@ import json
 import numpy as np
 import pytest
 
-from wgpurender.core import procedural as proc
-from wgpurender.core.mesh import build_mesh, load_mesh
-from wgpurender.core.tangents import area_weighted_normals, face_uv_frames, split_mirrored_vertices, vertex_tangents
+from wgpurender.core.models import procedural as proc
+from wgpurender.core.models.mesh import build_mesh, load_mesh
+from wgpurender.core.models.tangents import (
+    area_weighted_normals,
+    face_uv_frames,
+    split_mirrored_vertices,
+    vertex_tangents,
+)
 
 
 def rotation(axis, angle):

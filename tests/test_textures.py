@@ -17,8 +17,8 @@ from PIL import Image
 
 from wgpurender.core.course.textured import BACKGROUND, SCREEN_QUAD
 from wgpurender.core.errors import UserError
-from wgpurender.wgpu_path.targets import create_target, read_texture
-from wgpurender.wgpu_path.textures import (
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
+from wgpurender.wgpu_path.device.textures import (
     BILINEAR,
     NEAREST,
     TRILINEAR,

@@ -17,7 +17,7 @@ import time
 import pytest
 
 from wgpurender.bench.frames import RawStageRunner, WgpuStageRunner
-from wgpurender.wgpu_path.timing import wall_time
+from wgpurender.wgpu_path.device.timing import wall_time
 
 SIZE = (1024, 1024)
 

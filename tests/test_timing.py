@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
+from wgpurender.wgpu_path.device.targets import create_target
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats, wall_time
 from wgpurender.wgpu_path.stages import get_stage
-from wgpurender.wgpu_path.targets import create_target
-from wgpurender.wgpu_path.timing import PassTimer, Stats, wall_time
 
 
 def test_stats_of_known_samples():

@@ -53,7 +53,7 @@ def test_render_is_the_wgpu_paths_image_and_reference_the_raw_paths(ctx, monkeyp
 
 
 def test_a_scene_render_is_the_wgpu_paths_and_carries_its_plan(ctx, monkeypatch):
-    import wgpurender.wgpu_path.scene_render as scene_render
+    import wgpurender.wgpu_path.scene as scene_render
 
     real = scene_render.render_plan
 
@@ -76,7 +76,7 @@ GPU_NAMES = ("NVIDIA H100 80GB HBM3", "NVIDIA H200", "AMD Radeon RX 7900 XTX (RA
 
 @pytest.mark.parametrize("name", LAVAPIPE_NAMES + GPU_NAMES)
 def test_driver_class_of_the_names_drivers_report(name):
-    from wgpurender.core.tolerances import driver_class
+    from wgpurender.core.verdict.tolerances import driver_class
 
     assert driver_class(name) == ("lavapipe" if name in LAVAPIPE_NAMES else "gpu")
 
@@ -84,7 +84,7 @@ def test_driver_class_of_the_names_drivers_report(name):
 def test_this_machines_adapters_get_the_class_their_type_says(ctx):
     """lavapipe reports 'llvmpipe (...)' as its device name: a class matched on 'lavapipe' silently used the
     looser GPU row on every lavapipe run."""
-    from wgpurender.core.tolerances import driver_class, load_table, tolerance
+    from wgpurender.core.verdict.tolerances import driver_class, load_table, tolerance
 
     info = ctx.adapter.info
     expected = "lavapipe" if info["adapter_type"] == "CPU" else "gpu"
@@ -97,8 +97,8 @@ def test_this_machines_adapters_get_the_class_their_type_says(ctx):
 
 @needs_glslc
 def test_the_raw_paths_device_gets_the_class_its_type_says():
-    from wgpurender.core.tolerances import driver_class
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.core.verdict.tolerances import driver_class
+    from wgpurender.raw_path.device.context import get_vulkan
 
     vk = get_vulkan()
     assert driver_class(vk.device_name) == ("lavapipe" if vk.device_type == "CPU" else "gpu")
@@ -111,14 +111,14 @@ SPEC_PRESENT_MODES = {"immediate": 0, "mailbox": 1, "fifo": 2, "fifo-relaxed": 3
 
 
 def test_present_mode_names_map_to_the_specifications_values():
-    from wgpurender.raw_path.swapchain import MODE_NAMES, PRESENT_MODES
+    from wgpurender.raw_path.window.swapchain import MODE_NAMES, PRESENT_MODES
 
     assert {k: int(v) for k, v in PRESENT_MODES.items()} == SPEC_PRESENT_MODES
     assert {int(k): v for k, v in MODE_NAMES.items()} == {v: k for k, v in SPEC_PRESENT_MODES.items()}
 
 
 def test_check_present_mode_returns_the_value_of_the_name_asked():
-    from wgpurender.raw_path.swapchain import SurfaceOffer, check_present_mode
+    from wgpurender.raw_path.window.swapchain import SurfaceOffer, check_present_mode
 
     fields = SurfaceOffer.__dataclass_fields__
     offer = SurfaceOffer(**{f: () for f in fields} | {"present_modes": tuple(SPEC_PRESENT_MODES)})
@@ -205,7 +205,7 @@ def test_coplanar_geometry_keeps_what_was_drawn_first_on_the_wgpu_path(ctx, copl
 
 
 def test_coplanar_geometry_keeps_what_was_drawn_first_with_reverse_z(ctx, coplanar):
-    from wgpurender.wgpu_path.scene_render import render_plan
+    from wgpurender.wgpu_path.scene import render_plan
 
     plan = w.plan(coplanar).with_knobs(reverse_z=True)
     assert plan.pipelines[0].depth_compare == "greater"
@@ -221,7 +221,7 @@ def test_coplanar_geometry_keeps_what_was_drawn_first_on_the_raw_path(coplanar):
 # --- the tolerance check at its bounds ---------------------------------------------------------------------------
 
 def test_a_tolerance_fails_just_over_each_bound_and_passes_at_it():
-    from wgpurender.core.tolerances import Metrics, Tolerance
+    from wgpurender.core.verdict.tolerances import Metrics, Tolerance
 
     bound = Tolerance("x", "lavapipe", max_abs=2, changed=0.01, flip_mean=0.002, measured="", bounded_by="",
                       provisional=False)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from numerics.wgsl import load_wgsl as load_test_wgsl
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.uniforms import (
+from wgpurender.core.shaders.uniforms import (
     F32,
     I32,
     MAT3,
@@ -35,7 +35,7 @@ from wgpurender.core.uniforms import (
     roundtrip_wgsl,
     wgsl_structs,
 )
-from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.wgpu_path.device.shaders import create_shader_module
 
 FOO = Struct("Foo", [("v", VEC2F)])
 
@@ -193,7 +193,7 @@ def _run_roundtrip(ctx, struct: Struct, values: dict) -> np.ndarray:
     cpass.end()
     enc.copy_buffer_to_buffer(out, 0, readback, 0, out_size)
     ctx.queue.submit([enc.finish()])
-    ctx.map_read(readback)  # on this thread (gpu.py), as every readback
+    ctx.map_read(readback)  # on this thread (wgpu_path/device/context.py), as every readback
     words = np.frombuffer(readback.read_mapped(), dtype="<u4").copy()
     readback.unmap()
     return words, leaves

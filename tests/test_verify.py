@@ -2,7 +2,7 @@
 
 A --quick run (stages triangle and 3d, scene unlit) on this adapter: the wgpu and raw renders are
 identical, and the raw renders are within the table's bounds of the committed references (as
-tests/test_raw_path.py checks too). A real change (the committed triangle shifted by one pixel,
+tests/test_vulkan_ref.py checks too). A real change (the committed triangle shifted by one pixel,
 handed to verify in place of the file) must turn its row into FAIL, write a heatmap, and exit 1.
 """
 
@@ -15,8 +15,8 @@ import numpy as np
 
 from wgpurender import verify
 from wgpurender.cli import main
-from wgpurender.core.imageio import load_png
-from wgpurender.core.tolerances import load_table
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.verdict.tolerances import load_table
 
 
 def _rows(out) -> list[dict]:
@@ -80,7 +80,7 @@ def test_an_output_path_that_is_a_file_is_a_user_error(tmp_path, capsys):
 def test_recalibration_fills_provisional_rows_and_only_widens_measured_ones():
     """One GPU run replaces the provisional gpu rows (and the class's provenance); on a measured class the
     bounds never shrink, and the new measurement is appended to the row's provenance."""
-    from wgpurender.core.tolerances import Metrics
+    from wgpurender.core.verdict.tolerances import Metrics
 
     table = load_table()
     # the state before any GPU run, whatever GPU calibrated the committed table since

@@ -19,7 +19,7 @@ import pytest
 from imagecheck import assert_same_render, assert_within_tolerance
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, srgb_decode, srgb_encode, to_uint8
+from wgpurender.core.files.imageio import load_png, srgb_decode, srgb_encode, to_uint8
 from wgpurender.raw_path import reference_stage_names, render_reference
 
 SIZE = (67, 45)  # small, odd, not square: exposes half-pixel and y-flip mistakes
@@ -68,7 +68,7 @@ def test_3d_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage '3d' (depth, culling, two UBOs, dynamic offsets, push constants): exact (threshold 0).
 
     The scene is the course core's (wgpurender/core/course/cubes.py), as on both paths; the
-    UBO bytes are packed independently (raw_path/ubo.py, hand-written std140
+    UBO bytes are packed independently (raw_path/device/ubo.py, hand-written std140
     offsets) from the same float64 matrices, and the shaders come from different
     compilers (naga from WGSL, glslc from GLSL). Measured: bit-identical in all 12
     cases, t = 0 and 0.7: the Lambert term (normalize, dot, max) compiles to the
@@ -203,7 +203,7 @@ def test_missing_glslc_is_a_user_error(monkeypatch, tmp_path):
 
 def test_spirv_cache_spares_glslc(monkeypatch, tmp_path):
     """Once compiled, a shader comes from the cache: glslc is not needed again until the source changes."""
-    from wgpurender.raw_path.glsl import cache_dir, compile_glsl, glsl_path
+    from wgpurender.raw_path.device.shaders import cache_dir, compile_glsl, glsl_path
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     spirv = compile_glsl(glsl_path("color.frag"))
@@ -214,7 +214,7 @@ def test_spirv_cache_spares_glslc(monkeypatch, tmp_path):
 
 
 def test_glsl_compile_error_names_file_and_line(monkeypatch, tmp_path):
-    from wgpurender.raw_path.glsl import compile_glsl
+    from wgpurender.raw_path.device.shaders import compile_glsl
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     broken = tmp_path / "broken.frag"
@@ -228,8 +228,8 @@ def test_validation_messages_are_caught():
     """The messenger is live: an invalid call (a zero-size buffer) is reported and check_validation raises."""
     import vulkan as vk
 
-    from wgpurender.raw_path.instance import get_vulkan
-    from wgpurender.raw_path.validation import ValidationFailed
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.raw_path.device.validation import ValidationFailed
 
     ctx = get_vulkan()
     assert ctx.log is not None, "tests run with $WGPURENDER_VALIDATION set"
@@ -250,7 +250,7 @@ def test_validation_messages_are_caught():
 def test_textured_matches_wgpu_path(request, ctx, fmt, msaa, t):
     """Stage 'textured' on both paths, 160x96: exact (threshold 0).
 
-    Same driver, same sampler state (raw_path/textures.sampler_info fills VkSamplerCreateInfo
+    Same driver, same sampler state (raw_path/device/textures.sampler_info fills VkSamplerCreateInfo
     as wgpu's Vulkan backend does: LOD clamps, anisotropy 16 with samplerAnisotropy enabled),
     and a bit-identical mip chain: the raw path draws each level with the same integer-weight
     box filter in GLSL (textured_mipmap.frag) as mipmap.wgsl, in the same order of float
@@ -300,9 +300,9 @@ def test_raw_mip_chain(ctx, srgb, shape):
     """
     from contextlib import ExitStack
 
-    from wgpurender.raw_path.instance import get_vulkan
-    from wgpurender.raw_path.textures import read_level, upload_texture
-    from wgpurender.wgpu_path.textures import create_texture, read_mip
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.raw_path.device.textures import read_level, upload_texture
+    from wgpurender.wgpu_path.device.textures import create_texture, read_mip
 
     h, w = shape
     pixels = np.random.default_rng(7 * h + w).integers(0, 256, (h, w, 4), dtype=np.uint8)
@@ -327,7 +327,7 @@ def test_sampler_info_mirrors_the_spec():
     import vulkan as vk
 
     from wgpurender.core.course.textured import COMBINED_SAMPLER, SEPARATE_SAMPLERS
-    from wgpurender.raw_path.textures import sampler_info
+    from wgpurender.raw_path.device.textures import sampler_info
 
     info = sampler_info(COMBINED_SAMPLER)
     assert (info.magFilter, info.minFilter, info.mipmapMode) == (

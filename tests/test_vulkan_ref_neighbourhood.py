@@ -2,12 +2,12 @@
 
 The raw path runs the per-pixel post effects in an input-attachment subpass and each neighbourhood
 effect (fxaa, sharpen) in a render pass of its own that samples the previous result after an
-explicit image barrier (wgpurender/raw_path/scene/neighbourhood.py); its FXAA and sharpen are
+explicit image barrier (wgpurender/raw_path/post/neighbourhood.py); its FXAA and sharpen are
 GLSL written as the same algorithm as shaders_wgsl/post_fxaa.wgsl and post_sharpen.wgsl. Both
 paths run on lavapipe in this process, so exact equality is the expectation wherever the
 arithmetic is the same.
 
-The one known difference (tests/test_raw_path_scene.py explains it): several per-pixel effects
+The one known difference (tests/test_vulkan_ref_scene.py explains it): several per-pixel effects
 in one subpass keep float32 between them, where the wgpu path stores each effect's result in an
 rgba16float texture, which lavapipe rounds toward zero. Measured at 160x120 (lavapipe, Mesa 22.3.6,
 AMD EPYC, 2026-11-23):
@@ -38,10 +38,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core.compare import compare_images
 from wgpurender.core.plan import plan_scene_file
+from wgpurender.core.verdict.compare import compare_images
+from wgpurender.raw_path.post.neighbourhood import split_chain
 from wgpurender.raw_path.scene import render_scene_reference
-from wgpurender.raw_path.scene.neighbourhood import split_chain
 
 REPO = Path(__file__).resolve().parent.parent
 SCENES = REPO / "assets" / "scenes"
@@ -78,7 +78,7 @@ def neighbourhood_then_pixel(effects: list[str]) -> bool:
 
 @pytest.fixture(scope="module")
 def wgpu_images(ctx):
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     cache = {}
 
@@ -174,8 +174,8 @@ def test_split_chain_cuts_before_each_neighbourhood_effect():
 def test_reference_command_renders_final(tmp_path):
     """`wgpurender reference assets/scenes/final.toml -o ref.png` writes the raw render (final: fxaa included)."""
     from wgpurender.cli import main
-    from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-    from wgpurender.core.imageio import load_png, to_uint8
+    from wgpurender.core.files.imageio import load_png, to_uint8
+    from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 
     out = tmp_path / "ref.png"
     assert main(["reference", str(SCENES / "final.toml"), "-o", str(out), "--size", "96x72"]) == 0

@@ -24,7 +24,7 @@ What was measured (320x240 unless said otherwise, lavapipe / Mesa 22.3):
   raw shader (``wgpu_intermediates=True``, post_chain.frag's F16_BETWEEN_STEPS) makes the two
   images bit-identical, which proves that this is the whole difference (round-to-nearest, GLSL's
   packHalf2x16, leaves 1854 pixels different: the rounding mode matters).
-- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_raw_path_neighbourhood.py.
+- Neighbourhood effects (fxaa, sharpen) and every repository scene: tests/test_vulkan_ref_neighbourhood.py.
 - hdr = false: the intermediates are 8-bit sRGB, stored with lavapipe's approximate linear->sRGB
   encode; grayscale -> sepia -> srgb (rgba8unorm output), 160x120: 3954 pixels differ by 1/255,
   FLIP 0.0061. No shader formula reproduces the driver's encoder, so this one is bounded, not
@@ -40,7 +40,7 @@ import pytest
 from imagecheck import assert_close, assert_same_render, assert_within_tolerance
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, to_uint8
+from wgpurender.core.files.imageio import load_png, to_uint8
 from wgpurender.raw_path import render_reference
 from wgpurender.raw_path.scene import render_scene_reference
 
@@ -78,7 +78,7 @@ def wgpu_render(ctx, path: Path, size: tuple[int, int], **knobs) -> np.ndarray:
     The post path is pinned to fragment, the chain these exactness claims are about: on a discrete GPU the auto
     path is compute, which encodes sRGB in its shader (tests/test_post_paths.py compares the two paths).
     """
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     knobs.setdefault("post_path", "fragment")
 
@@ -230,7 +230,8 @@ def test_glm_vulkan_scene_matches_wgpu(request, ctx, tmp_path):
 
 # -- references ----------------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit", "scene_gltf_features"])
+@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit", "scene_gltf_features",
+                                  "scene_metal_rough_spheres"])
 def test_scene_references_are_current(request, name, raw_driver_class):
     """assets/reference/scene_*.png against a fresh raw render at 320x240, within the table's bounds
     (assets/reference/tolerances.toml, this driver class's row); written only by the raw path."""
@@ -266,11 +267,11 @@ def test_unsupported_output_format_is_refused():
 
 def test_every_problem_is_listed_at_once(tmp_path):
     """Too many effects and an unsupported output format: both named in one message. Neighbourhood effects
-    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_raw_path_neighbourhood.py)."""
+    (fxaa, sharpen) are no longer problems: they run in passes of their own (test_vulkan_ref_neighbourhood.py)."""
     from wgpurender.core.plan import build_plan
     from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
     from wgpurender.raw_path.scene import unsupported
-    from wgpurender.raw_path.scene.uniforms import MAX_POST_STEPS
 
     text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sepia"\n' * MAX_POST_STEPS
     plan = build_plan(load_scene(scene_file(tmp_path, "long.toml", text)), output_format="bgra8unorm-srgb")

@@ -31,8 +31,8 @@ import numpy as np
 import pytest
 from imagecheck import assert_same_render, assert_within_tolerance
 
-from wgpurender.core.imageio import load_png
-from wgpurender.core.tolerances import load_table
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.verdict.tolerances import load_table
 
 ROOT = Path(__file__).resolve().parents[1]
 ANCHORS = ROOT.parent / "shared" / "anchors" / "vulkan-tutorial"
@@ -49,7 +49,7 @@ pytestmark = pytest.mark.skipif(
 
 
 def _render(ctx, chapter: str) -> tuple[np.ndarray, np.ndarray]:
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     scene, ref = CHAPTERS[chapter]
     result = render_scene_file(ROOT / "assets" / "scenes" / scene, ctx=ctx, frames=1)
@@ -90,7 +90,7 @@ def _tinyobj_uvs(load):
 
 
 def _use_tutorial_inputs_on_wgpu(monkeypatch, glm) -> None:
-    from wgpurender.wgpu_path.scene_render import scene_pass
+    from wgpurender.wgpu_path.scene import scene_pass
 
     camera_values = scene_pass.camera_values
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from xvfb import private_display
 
-from wgpurender.core.imageio import load_png
+from wgpurender.core.files.imageio import load_png
 from wgpurender.wgpu_path.render import render_stage
 
 

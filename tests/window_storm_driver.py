@@ -8,7 +8,7 @@ import sys
 
 import glfw
 
-from wgpurender.wgpu_path.gpu import get_context
+from wgpurender.wgpu_path.device.context import get_context
 from wgpurender.wgpu_path.window import run_window
 from wgpurender.wgpu_path.window.view import DemoView
 

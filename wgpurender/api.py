@@ -18,15 +18,18 @@ scene file (``*.toml``). Every call returns an :class:`Image`: ``.pixels`` (nump
 PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` with a message that
 says how to fix it (the CLI prints the same message).
 
-One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.gpu.get_context` keeps it), so
-the adapter and device are made once. Nothing here imports wgpu, vulkan or trimesh until a render
-needs them: ``import wgpurender`` stays cheap.
+One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.device.context.get_context` keeps it), so
+the adapter and device are made once. The functions are thread-safe: calls that use the GPU hold one lock,
+so threads take turns on the device (compare and heatmap, numpy only, run side by side). Nothing here imports
+wgpu, vulkan or trimesh until a render needs them: ``import wgpurender`` stays cheap.
 """
 
 from __future__ import annotations
 
+import functools
 import io
 import os
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -35,15 +38,30 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from wgpurender.core import checks
-from wgpurender.core.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 
 if TYPE_CHECKING:  # pragma: no cover
-    from wgpurender.core.compare import Comparison
     from wgpurender.core.plan import RenderPlan
+    from wgpurender.core.verdict.compare import Comparison
 
 Size = tuple[int, int] | str | None
 Target = str | os.PathLike
+# One lock around every use of the process's GPU contexts (wgpu's device, the raw path's Vulkan device): a device
+# used from two threads mid-frame aborted the process in wgpu-native, and the frame loop's one readback buffer
+# per context handed a call another call's image. Reentrant: record/show render through the same functions.
+_GPU = threading.RLock()
+
+
+def _one_at_a_time(function):
+    """Run ``function`` holding the API's GPU lock: thread-safe calls, one at a time on the device."""
+
+    @functools.wraps(function)
+    def locked(*args, **kwargs):
+        with _GPU:
+            return function(*args, **kwargs)
+
+    return locked
 
 
 @dataclass
@@ -72,13 +90,13 @@ class Image:
 
     def rgba8(self) -> np.ndarray:
         """The pixels as 8-bit sRGB-encoded RGBA (float pixels are linear and get encoded)."""
-        from wgpurender.core.imageio import to_uint8
+        from wgpurender.core.files.imageio import to_uint8
 
         return to_uint8(np.ascontiguousarray(self.pixels))
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the image atomically; the format follows the suffix (see :func:`core.imageio.save_image`)."""
-        from wgpurender.core.imageio import save_image
+        """Write the image atomically; the format follows the suffix (see :func:`core.files.imageio.save_image`)."""
+        from wgpurender.core.files.imageio import save_image
 
         return save_image(path, self.pixels)
 
@@ -108,6 +126,7 @@ def _target(target: Target) -> str:
     return str(target)
 
 
+@_one_at_a_time
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
            backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
@@ -123,7 +142,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
@@ -131,7 +150,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     ctx = get_context(checks.backend(backend))
     if _is_scene(target, anisotropy, knobs, t):
-        from wgpurender.wgpu_path.scene_render import render_plan
+        from wgpurender.wgpu_path.scene import render_plan
 
         result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, knobs), t)
     else:
@@ -142,14 +161,19 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
 
 
-def export(target: Target, out: str | os.PathLike, size: Size = "800x600") -> Path:
+@_one_at_a_time
+def export(target: Target, out: str | os.PathLike, size: Size = "800x600", force: bool = False) -> Path:
     """Write a static page into folder ``out`` that renders the stage or scene live with the browser's WebGPU
-    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``)."""
-    from wgpurender.export import export as write_page
+    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``).
+    ``out``: new, empty, or an earlier output (only the files wgpurender wrote there are replaced);
+    ``force=True`` writes into a non-empty folder that holds no earlier output, beside its files."""
+    from wgpurender.webpage import export as write_page
 
-    return write_page(str(target), out, _size(size)).page
+    target, out, wh, force = _target(target), checks.output_path(out, "out"), _size(size), checks.flag(force, "force")
+    return write_page(target, out, wh or (800, 600), force).page
 
 
+@_one_at_a_time
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
               t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
@@ -158,7 +182,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     same function for the raw path's device (``Image.plan``), so on one device both paths draw one plan.
     Needs ``glslc`` on PATH the first time a shader is compiled (the SPIR-V is cached in ~/.cache/wgpurender).
     """
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.device.context import get_vulkan
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
@@ -184,8 +208,8 @@ def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
     """Whether ``target`` is a scene file; a stage with plan knobs, or an anisotropy rule other than the default,
     is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored; so is a
     scene at a time other than 0 (scenes are static: the time animates stages)."""
-    from wgpurender.core.anisotropy import check_applies
     from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.plan.anisotropy import check_applies
 
     if is_scene_file(target):
         check_static(target, t)
@@ -205,7 +229,7 @@ def check_static(target: str, t: float | None) -> None:
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
     """The one plan (core/plan/resolve.py) for the wgpu path on ``ctx``'s adapter (None: no adapter)."""
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.wgpu_path.scene_render import adapter_facts
+    from wgpurender.wgpu_path.scene import adapter_facts
 
     facts = adapter_facts(ctx) if ctx is not None else None
     return resolve_plan(scene, facts, size=size, output_format=format, msaa=msaa, anisotropy=anisotropy, **knobs)
@@ -213,7 +237,7 @@ def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) 
 
 def _pixels(image: Image | np.ndarray | str | os.PathLike, name: str) -> np.ndarray:
     """8-bit pixels from an Image, an array (float = linear) or an image file."""
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     if isinstance(image, Image):
         return image.rgba8()
@@ -229,10 +253,10 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
     """How far image ``b`` is from the reference ``a``: PSNR, largest channel difference, shares of
     pixels off by more than 1/255 and 2/255, mean FLIP (``flip=False`` skips it: NaN).
 
-    Returns a :class:`~wgpurender.core.compare.Comparison`; ``.as_dict()`` gives plain numbers,
+    Returns a :class:`~wgpurender.core.verdict.compare.Comparison`; ``.as_dict()`` gives plain numbers,
     ``.summary()`` one line.
     """
-    from wgpurender.core.compare import compare_images
+    from wgpurender.core.verdict.compare import compare_images
 
     if not isinstance(flip, (bool, np.bool_)):
         raise UserError(f"flip must be True or False, got {type(flip).__name__} {flip!r}")
@@ -242,7 +266,7 @@ def compare(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | s
 def heatmap(a: Image | np.ndarray | str | os.PathLike, b: Image | np.ndarray | str | os.PathLike,
             gain: float = 32.0) -> Image:
     """Where ``a`` and ``b`` differ, magnified by ``gain``, with its colour scale drawn below."""
-    from wgpurender.core.compare import heatmap_with_scale
+    from wgpurender.core.verdict.compare import heatmap_with_scale
 
     gain = checks.gain(gain)
     return Image(heatmap_with_scale(_pixels(a, "a"), _pixels(b, "b"), gain), "heatmap", "derived")
@@ -266,6 +290,7 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
     return Image(out, " | ".join(getattr(i, "target", "array") for i in images), "derived")
 
 
+@_one_at_a_time
 def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
          backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
     """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
@@ -288,7 +313,7 @@ def explain(scene: Target, size: Size = None, msaa: int | None = None, format: s
 
 def _context_or_none(backend: str | None):
     """The wgpu context :func:`render` would use, or None when there is none (the plan is still printable)."""
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     try:
         return get_context(backend)
@@ -312,10 +337,10 @@ def reference_stage_names() -> list[str]:
 
 def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
     """The checked arguments of show and record: (the demo's drawable for them, on the context)."""
-    from wgpurender.core.anisotropy import check_applies
-    from wgpurender.core.assets import resolve_scene
     from wgpurender.core.course.formats import is_scene_file
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.assets import resolve_scene
+    from wgpurender.core.plan.anisotropy import check_applies
+    from wgpurender.wgpu_path.device.context import get_context
 
     target = _target(target)
     wh, msaa = _size(size) or (640, 480), checks.msaa(msaa)
@@ -326,6 +351,7 @@ def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
     return get_context(checks.backend(backend)), name, wh, msaa, anisotropy
 
 
+@_one_at_a_time
 def show(target: Target, size: Size = (640, 480), msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY,
          backend: str | None = None):
     """An interactive view in Jupyter: the stage or scene drawn live, with the demo window's orbit camera (drag to
@@ -342,20 +368,24 @@ def show(target: Target, size: Size = (640, 480), msaa: int | None = None, aniso
     return Image(pixels, str(target), "wgpu", {}, ctx.describe())
 
 
+@_one_at_a_time
 def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: float = 30.0, size: Size = (640, 480),
            msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY, turn: float | None = None,
-           backend: str | None = None) -> Path:
+           backend: str | None = None, force: bool = False) -> Path:
     """Render ``seconds * fps`` frames into ``out``: an ``.mp4`` (H.264, needs imageio-ffmpeg) or a folder of PNG
     frames (``frames/``). Frame k is at animation time k / fps; ``turn``: degrees the orbit camera turns over the
-    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``."""
+    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``.
+    A video appears whole or not at all; a folder's frames of an earlier recording are replaced, the user's other
+    files kept; ``force=True`` records into a non-empty folder that holds no earlier output (docs/security.md)."""
     import math
 
-    from wgpurender.core.video import check_output
+    from wgpurender.core.files.video import check_output
     from wgpurender.wgpu_path.notebook import Offscreen, record_frames
 
     if not isinstance(out, (str, os.PathLike)) or not str(out):
         raise UserError(f"out must be a .mp4 file or a folder path, got {type(out).__name__} {out!r}")
     check_output(out)
+    force = checks.flag(force, "force")
     for label, value in (("seconds", seconds), ("fps", fps), ("turn", 0.0 if turn is None else turn)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise UserError(f"{label} must be a finite number, got {value!r}")
@@ -363,9 +393,9 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
         raise UserError(f"seconds and fps must be > 0, got seconds={seconds!r}, fps={fps!r}")
     offscreen = Offscreen(*_offscreen(target, size, msaa, anisotropy, backend))
     degrees = turn if turn is not None else (360.0 if offscreen.view.is_scene else 0.0)
-    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees))
+    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees), force=force)
     return path
 
 
 __all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "plan", "explain", "stage_names",
-           "reference_stage_names", "show", "record"]
+           "reference_stage_names", "export", "show", "record"]

@@ -54,9 +54,10 @@ CONCEPTS: list[Concept] = [
         "instance",
         ("vkCreateInstance", "VkApplicationInfo", "ppEnabledLayerNames / ppEnabledExtensionNames",
          "vkCreateDebugUtilsMessengerEXT"),
-        _raw("instance:create_instance", "validation:create_messenger", "validation:validation_features"),
+        _raw("device.context:create_instance", "device.validation:create_messenger",
+             "device.validation:validation_features"),
         ("wgpu.gpu (created on first use)", "set_instance_extras(backends=[...], flags=['Validation'])"),
-        _wgpu("gpu:_configure_instance_once", "gpu:_enumerate"),
+        _wgpu("device.context:_configure_instance_once", "device.context:_enumerate"),
         "wgpu-py creates the instance itself on first use: no application info, no layer or extension lists. "
         "The validation layer is one instance flag, and its messages arrive on the Python 'wgpu' logger instead "
         "of a debug messenger callback (tests/conftest.py collects them).",
@@ -65,9 +66,9 @@ CONCEPTS: list[Concept] = [
         "physical device",
         ("vkEnumeratePhysicalDevices", "vkGetPhysicalDeviceProperties (deviceType, apiVersion, limits)",
          "vkGetPhysicalDeviceFeatures"),
-        _raw("instance:pick_physical_device", "instance:copy_limits", "instance:create_device"),
+        _raw("device.context:pick_physical_device", "device.context:copy_limits", "device.context:create_device"),
         ("wgpu.gpu.enumerate_adapters_sync", "GPUAdapter.info / .features / .limits"),
-        _wgpu("gpu:select_adapter", "gpu:available_backends"),
+        _wgpu("device.context:select_adapter", "device.context:available_backends"),
         "An adapter is a physical device seen through one backend (Vulkan, Metal, D3D12, GL). Its features and "
         "limits are WebGPU's portable names (max-texture-dimension-2d), not VkPhysicalDeviceLimits fields; "
         "adapter_type ranks like deviceType.",
@@ -75,18 +76,18 @@ CONCEPTS: list[Concept] = [
     Concept(
         "queue families",
         ("vkGetPhysicalDeviceQueueFamilyProperties", "VK_QUEUE_GRAPHICS_BIT", "vkGetDeviceQueue"),
-        _raw("instance:find_queue_family", "instance:create_device"),
+        _raw("device.context:find_queue_family", "device.context:create_device"),
         ("GPUDevice.queue",),
-        _wgpu("gpu:GPUContext.queue"),
+        _wgpu("device.context:GPUContext.queue"),
         "No queue families: wgpu picks a family that does graphics, compute and transfer and gives the device "
         "exactly one queue. No transfer-only or async-compute queues, so no queue family ownership transfers.",
     ),
     Concept(
         "device",
         ("vkCreateDevice", "VkDeviceQueueCreateInfo", "VkPhysicalDeviceFeatures (pEnabledFeatures)"),
-        _raw("instance:create_device", "instance:get_vulkan"),
+        _raw("device.context:create_device", "device.context:get_vulkan"),
         ("GPUAdapter.request_device_sync(required_features=, required_limits=)",),
-        _wgpu("gpu:_context", "gpu:OPTIONAL_FEATURES"),
+        _wgpu("device.context:_context", "device.context:OPTIONAL_FEATURES"),
         "Features are requested by WebGPU name ('timestamp-query', 'immediates'), limits by name; there are no "
         "device extensions to list. Core capabilities such as sampler anisotropy need no request: wgpu turns on "
         "the Vulkan feature itself when the adapter has it.",
@@ -96,8 +97,8 @@ CONCEPTS: list[Concept] = [
         ("glfwCreateWindowSurface (GLFW makes the platform's surface: Xlib or XCB, Wayland, Win32)",
          "vkGetPhysicalDeviceSurfaceSupportKHR", "vkGetPhysicalDeviceSurfaceFormatsKHR",
          "vkGetPhysicalDeviceSurfaceCapabilitiesKHR", "vkDestroySurfaceKHR"),
-        _raw("window:create_window_context", "swapchain:presentation_family", "swapchain:surface_offer",
-             "swapchain:destroy_surface"),
+        _raw("window:create_window_context", "window.swapchain:presentation_family", "window.swapchain:surface_offer",
+             "window.swapchain:destroy_surface"),
         ("wgpu.utils.get_glfw_present_info(window)", "wgpu.gpu.get_canvas_context(present_info)",
          "GPUCanvasContext.get_preferred_format"),
         _wgpu("window:present_info", "window:surface_format", "window:DemoWindow.__init__"),
@@ -110,7 +111,7 @@ CONCEPTS: list[Concept] = [
         "presentation and present modes",
         ("vkQueuePresentKHR", "VkPresentModeKHR (FIFO, MAILBOX, IMMEDIATE)", "VkSwapchainCreateInfoKHR.presentMode",
          "vkGetPhysicalDeviceSurfacePresentModesKHR"),
-        _raw("swapchain:surface_offer", "swapchain:create_swapchain", "swapchain:present"),
+        _raw("window.swapchain:surface_offer", "window.swapchain:create_swapchain", "window.swapchain:present"),
         ("GPUCanvasContext.present()", "get_glfw_present_info(window, vsync=True / False)"),
         _wgpu("window:present_info", "window:PRESENT_MODES", "window:DemoWindow.frame"),
         "Present modes are chosen through the canvas context: wgpu-py 0.32 only exposes vsync on/off, so fifo "
@@ -123,10 +124,11 @@ CONCEPTS: list[Concept] = [
         "heaps and memory types",
         ("vkGetPhysicalDeviceMemoryProperties", "VkMemoryRequirements.memoryTypeBits", "vkAllocateMemory",
          "vkBindBufferMemory / vkBindImageMemory"),
-        _raw("instance:memory_types", "memory:find_memory_type", "memory:allocate", "memory:create_buffer",
-             "images:create_image"),
+        _raw("device.context:memory_types", "device.memory:find_memory_type", "device.memory:allocate",
+             "device.memory:create_buffer",
+             "device.images:create_image"),
         ("device.create_buffer(usage=)", "device.create_texture(usage=)", "BufferUsage.MAP_READ / MAP_WRITE"),
-        _wgpu("targets:create_target", "targets:read_texture"),
+        _wgpu("device.targets:create_target", "device.targets:read_texture"),
         "No heaps or memory types are visible: wgpu allocates (and sub-allocates) memory for each resource and "
         "picks the type from the usage flags; MAP_READ / MAP_WRITE buffers land in host-visible memory. There is "
         "no LAZILY_ALLOCATED choice for transient attachments.",
@@ -135,9 +137,11 @@ CONCEPTS: list[Concept] = [
         "staging",
         ("staging VkBuffer in HOST_VISIBLE | HOST_COHERENT memory", "vkMapMemory / vkUnmapMemory",
          "vkCmdCopyBuffer", "vkCmdCopyBufferToImage"),
-        _raw("memory:upload_buffer", "memory:write_host_buffer", "textures:upload_texture", "textures:record_upload"),
+        _raw("device.memory:upload_buffer", "device.memory:write_host_buffer", "device.textures:upload_texture",
+             "device.textures:record_upload"),
         ("queue.write_buffer", "queue.write_texture", "device.create_buffer_with_data"),
-        _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "textures:upload_level", "stages.cube3d:Cube3D.record"),
+        _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "device.textures:upload_level",
+              "stages.cube3d:Cube3D.record"),
         "wgpu stages the bytes in its own upload buffer, records the copy before the next submit and inserts the "
         "barrier after it. write_texture has no 256-byte row alignment (copy_buffer_to_texture has).",
     ),
@@ -145,9 +149,10 @@ CONCEPTS: list[Concept] = [
         "command pool and buffers",
         ("vkCreateCommandPool", "vkAllocateCommandBuffers", "vkBeginCommandBuffer / vkEndCommandBuffer",
          "vkQueueSubmit"),
-        _raw("command_buffers:create_command_pool", "command_buffers:one_shot", "command_buffers:submit_and_wait"),
+        _raw("device.command_buffers:create_command_pool", "device.command_buffers:one_shot",
+             "device.command_buffers:submit_and_wait"),
         ("device.create_command_encoder", "GPUCommandEncoder.finish() -> GPUCommandBuffer", "queue.submit"),
-        _wgpu("render:render_stage", "frame_loop:run_frame"),
+        _wgpu("render:render_stage", "device.frame_loop:run_frame"),
         "No pools and no reset: an encoder records once and finish() gives a single-use command buffer. No "
         "secondary command buffers (render bundles come closest). The states initial -> recording -> "
         "executable -> pending are the encoder's life, unnamed.",
@@ -155,18 +160,19 @@ CONCEPTS: list[Concept] = [
     Concept(
         "descriptor pool",
         ("vkCreateDescriptorPool", "VkDescriptorPoolSize", "maxSets"),
-        _raw("descriptors:create_pool"),
+        _raw("device.descriptors:create_pool"),
         ("(none: device.create_bind_group allocates)",),
-        _wgpu("bind_groups:uniform_group"),
+        _wgpu("device.bind_groups:uniform_group"),
         "wgpu manages descriptor pools itself: no pool sizes to count, no pool exhaustion, and a bind group's "
         "descriptors are freed when it is dropped.",
     ),
     Concept(
         "set layouts",
         ("VkDescriptorSetLayoutBinding", "vkCreateDescriptorSetLayout"),
-        _raw("descriptors:binding", "descriptors:create_set_layout", "stages.textured:Textured._setup_descriptors"),
+        _raw("device.descriptors:binding", "device.descriptors:create_set_layout",
+             "stages.textured:Textured._setup_descriptors"),
         ("device.create_bind_group_layout(entries=)", "GPURenderPipeline.get_bind_group_layout (layout 'auto')"),
-        _wgpu("bind_groups:uniform_layout", "stages.textured:TexturedPipelines.__init__",
+        _wgpu("device.bind_groups:uniform_layout", "stages.textured:TexturedPipelines.__init__",
               "post.passes:PlannedPass._entries"),
         "An entry says more than a descriptor type: a texture's sample type (filterable float or not) and a "
         "buffer's min_binding_size and has_dynamic_offset. No combined image sampler type, no immutable "
@@ -176,11 +182,11 @@ CONCEPTS: list[Concept] = [
         "sets and updates",
         ("vkAllocateDescriptorSets", "VkWriteDescriptorSet + vkUpdateDescriptorSets",
          "vkCmdBindDescriptorSets (dynamic offsets)"),
-        _raw("descriptors:allocate_sets", "descriptors:write_buffer", "descriptors:write_image",
-             "descriptors:update", "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record",
+        _raw("device.descriptors:allocate_sets", "device.descriptors:write_buffer", "device.descriptors:write_image",
+             "device.descriptors:update", "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record",
              "stages.textured:Textured._setup_descriptors", "stages.textured:Textured.record"),
         ("device.create_bind_group(layout=, entries=)", "GPURenderPassEncoder.set_bind_group(index, group, offsets)"),
-        _wgpu("bind_groups:uniform_group", "stages.cube3d:Cube3D.record",
+        _wgpu("device.bind_groups:uniform_group", "stages.cube3d:Cube3D.record",
               "stages.textured:TexturedPipelines.group"),
         "Allocation and writes are one call, and a bind group is immutable: to point at other resources, make a "
         "new one. Dynamic offsets work the same way (one group, one offset per draw).",
@@ -188,28 +194,29 @@ CONCEPTS: list[Concept] = [
     Concept(
         "images",
         ("vkCreateImage", "VkImageCreateInfo (format, extent, mipLevels, samples, tiling, usage)"),
-        _raw("images:create_image", "images:FORMATS", "textures:create_texture_image"),
+        _raw("device.images:create_image", "device.images:FORMATS", "device.textures:create_texture_image"),
         ("device.create_texture(size=, format=, usage=, mip_level_count=, sample_count=)",),
-        _wgpu("targets:create_target", "textures:create_texture"),
+        _wgpu("device.targets:create_target", "device.textures:create_texture"),
         "Memory comes with the texture, tiling is always optimal and the initial layout is not given. Usage "
         "names differ: RENDER_ATTACHMENT, TEXTURE_BINDING, COPY_SRC / COPY_DST.",
     ),
     Concept(
         "views",
         ("vkCreateImageView", "VkImageViewCreateInfo (viewType, format, components)"),
-        _raw("images:create_view", "textures:TextureImage.level"),
+        _raw("device.images:create_view", "device.textures:TextureImage.level"),
         ("GPUTexture.create_view(format=, dimension=, base_mip_level=, mip_level_count=, ...)",),
-        _wgpu("textures:_level_view", "stages.base:Stage.target_view"),
+        _wgpu("device.textures:_level_view", "stages.base:Stage.target_view"),
         "The same object; a default view covers the whole texture. A view is kept alive by what uses it, so "
         "there is no destroy order to get right.",
     ),
     Concept(
         "subresources",
         ("VkImageSubresourceRange", "VkImageSubresourceLayers"),
-        _raw("images:subresource_range", "images:subresource_layers", "textures:level_range", "textures:level_layers"),
+        _raw("device.images:subresource_range", "device.images:subresource_layers", "device.textures:level_range",
+             "device.textures:level_layers"),
         ("create_view(base_mip_level, mip_level_count, base_array_layer, array_layer_count, aspect)",
          "copy info {'texture', 'mip_level', 'origin', 'aspect'}"),
-        _wgpu("textures:_level_view", "textures:read_mip", "native:clear_texture"),
+        _wgpu("device.textures:_level_view", "device.textures:read_mip", "device.native:clear_texture"),
         "The same ideas with keyword names; aspect defaults to 'all'. wgpu tracks usage per subresource, which "
         "is what lets it read one mip level while rendering into the next.",
     ),
@@ -217,10 +224,10 @@ CONCEPTS: list[Concept] = [
         "layouts and transitions",
         ("VkImageLayout", "VkImageMemoryBarrier oldLayout -> newLayout",
          "VkAttachmentDescription initialLayout / finalLayout"),
-        _raw("images:transition", "images:LAYOUT_ACCESS", "textures:transition_level",
-             "textures:MipGenerator.__init__"),
+        _raw("device.images:transition", "device.images:LAYOUT_ACCESS", "device.textures:transition_level",
+             "device.textures:MipGenerator.__init__"),
         ("(none: implicit from usage)",),
-        _wgpu("textures:upload_level", "textures:generate_mipmaps"),
+        _wgpu("device.textures:upload_level", "device.textures:generate_mipmaps"),
         "wgpu has no image layouts: it tracks how each subresource was last used (copy destination, attachment, "
         "sampled) and records the transition itself before the next different use.",
     ),
@@ -228,7 +235,7 @@ CONCEPTS: list[Concept] = [
         "swapchain",
         ("vkCreateSwapchainKHR", "vkGetSwapchainImagesKHR", "vkAcquireNextImageKHR",
          "re-creation on VK_ERROR_OUT_OF_DATE_KHR (the binding raises VkErrorOutOfDateKhr, VkSuboptimalKhr)"),
-        _raw("swapchain:create_swapchain", "swapchain:acquire_next_image", "window:RawWindow.frame",
+        _raw("window.swapchain:create_swapchain", "window.swapchain:acquire_next_image", "window:RawWindow.frame",
              "window:RawWindow._recreate"),
         ("GPUCanvasContext.configure(device=, format=, usage=)", "GPUCanvasContext.get_current_texture()",
          "set_physical_size"),
@@ -245,7 +252,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "attachment descriptions and references",
         ("VkAttachmentDescription (format, samples, loadOp, storeOp, layouts)", "VkAttachmentReference"),
-        _raw("renderpass:attachment", "renderpass:ref"),
+        _raw("device.renderpass:attachment", "device.renderpass:ref"),
         ("color_attachments=[{view, resolve_target, load_op, store_op, clear_value}]", "depth_stencil_attachment"),
         _wgpu("stages.base:Stage.color_attachment", "stages.cube3d:Cube3D.record"),
         "Attachments are given when the pass begins, not described in advance: the format comes from the view, "
@@ -254,12 +261,13 @@ CONCEPTS: list[Concept] = [
     Concept(
         "subpasses and dependencies",
         ("VkSubpassDescription", "VkSubpassDependency (VK_SUBPASS_EXTERNAL, BY_REGION)", "vkCmdNextSubpass"),
-        _raw("renderpass:single_pass", "renderpass:msaa_post_pass", "renderpass:dependency",
-             "renderpass:into_pass", "renderpass:out_to_transfer", "scene.renderpass:create_scene_render_pass",
-             "scene.frame:SceneFrame.record", "scene.neighbourhood:NeighbourhoodPass"),
+        _raw("device.renderpass:single_pass", "device.renderpass:msaa_post_pass", "device.renderpass:dependency",
+             "device.renderpass:into_pass", "device.renderpass:out_to_transfer",
+             "scene.renderpass:create_scene_render_pass",
+             "scene.frame:SceneFrame.record", "post.neighbourhood:NeighbourhoodPass"),
         ("(none: one subpass per render pass)",),
         _wgpu("stages.msaa_post:MsaaPost.record", "post.chain:PostRunner.run", "post.shaders:pass_source",
-              "scene_render.frame:SceneRenderer.record"),
+              "scene.frame:SceneRenderer.record"),
         "WebGPU cannot express subpasses (Metal and D3D12 have none; gfx-rs/wgpu#10148): each step is its own "
         "render pass, and the dependencies between passes are implied by their order in the encoder. The "
         "msaa-post stage shows it at its smallest: one render pass with two subpasses on the raw path, two "
@@ -269,17 +277,17 @@ CONCEPTS: list[Concept] = [
         "bit-identical to the raw path. Unfused (render.post_fuse = false) the image goes through an "
         "rgba16float texture between effects (lavapipe rounds that store toward zero): 2697 pixels off by "
         "1/255, FLIP 0.00176, and bit-identical once the raw shader rounds the same way "
-        "(tests/test_raw_path_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
+        "(tests/test_vulkan_ref_scene.py). A neighbourhood effect (fxaa, sharpen) is a render pass of its own "
         "on the raw path too, behind an explicit barrier, with the per-pixel effects after it in its subpass 1.",
     ),
     Concept(
         "barriers with stage and access masks",
         ("vkCmdPipelineBarrier", "VkBufferMemoryBarrier / VkImageMemoryBarrier",
          "VkPipelineStageFlags + VkAccessFlags (availability and visibility)"),
-        _raw("images:transition", "memory:upload_buffer", "readback:record_copy_to_buffer",
-             "textures:transition_level", "window:image_barrier"),
+        _raw("device.images:transition", "device.memory:upload_buffer", "device.readback:record_copy_to_buffer",
+             "device.textures:transition_level", "window:image_barrier"),
         ("(none: inserted by wgpu)",),
-        _wgpu("textures:generate_mipmaps", "post.chain:PostRunner.run"),
+        _wgpu("device.textures:generate_mipmaps", "post.chain:PostRunner.run"),
         "No barrier is ever written: wgpu inserts them between passes and copies from its usage tracking, with "
         "stage and access masks of its own choice. The cost: no control over how narrow a barrier is, no "
         "barriers inside a render pass.",
@@ -287,10 +295,10 @@ CONCEPTS: list[Concept] = [
     Concept(
         "fences",
         ("vkCreateFence", "vkQueueSubmit(..., fence)", "vkWaitForFences"),
-        _raw("command_buffers:submit_and_wait", "swapchain:owned_fence", "window:FrameSlot.wait",
+        _raw("device.command_buffers:submit_and_wait", "window.swapchain:owned_fence", "window:FrameSlot.wait",
              "window:RawWindow.frame"),
         ("(no fence object)", "GPUBuffer.map_sync", "queue.on_submitted_work_done (broken in wgpu-py 0.32)"),
-        _wgpu("gpu:GPUContext.wait_idle", "targets:read_texture"),
+        _wgpu("device.context:GPUContext.wait_idle", "device.targets:read_texture"),
         "The host waits by mapping a buffer that the last submission wrote: submissions complete in order, so "
         "once the map resolves everything before it has finished. WebGPU has no fence object because it has no "
         "host-visible per-submission handle: the browser API it follows only promises a callback "
@@ -300,7 +308,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "semaphores",
         ("vkCreateSemaphore", "VkSubmitInfo pWaitSemaphores / pSignalSemaphores / pWaitDstStageMask"),
-        _raw("swapchain:owned_semaphore", "window:RawWindow.frame", "swapchain:present"),
+        _raw("window.swapchain:owned_semaphore", "window:RawWindow.frame", "window.swapchain:present"),
         ("(none: queue submission order)",),
         _wgpu("window:DemoWindow.frame"),
         "No semaphores in wgpu: one queue, whose submissions run in order, and the acquire/present semaphores "
@@ -338,7 +346,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "render pass",
         ("vkCreateRenderPass", "vkCmdBeginRenderPass / vkCmdEndRenderPass"),
-        _raw("renderpass:create_render_pass", "renderpass:RenderPass", "renderpass:begin",
+        _raw("device.renderpass:create_render_pass", "device.renderpass:RenderPass", "device.renderpass:begin",
              "stages.cube3d:Cube3D.record"),
         ("GPUCommandEncoder.begin_render_pass(...) -> GPURenderPassEncoder", "GPURenderPassEncoder.end()"),
         _wgpu("stages.triangle:Triangle.record", "stages.clear_pass:ClearPass.record"),
@@ -348,7 +356,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "framebuffer",
         ("vkCreateFramebuffer",),
-        _raw("renderpass:create_framebuffer"),
+        _raw("device.renderpass:create_framebuffer"),
         ("(none: the views go to begin_render_pass)",),
         _wgpu("stages.base:Stage.color_attachment"),
         "No framebuffer object: the views of a pass are listed when it begins.",
@@ -356,7 +364,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "begin info and clear values",
         ("VkRenderPassBeginInfo (renderArea, pClearValues)", "VkClearValue", "VK_ATTACHMENT_LOAD_OP_CLEAR"),
-        _raw("renderpass:begin", "renderpass:clear_color"),
+        _raw("device.renderpass:begin", "device.renderpass:clear_color"),
         ("attachment {'load_op': 'clear', 'clear_value': ...}", "depth_clear_value"),
         _wgpu("stages.clear_pass:ClearPass.record", "stages.base:Stage.color_attachment"),
         "The clear value sits in each attachment instead of an array indexed like the attachments. The render "
@@ -365,7 +373,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "pipeline",
         ("vkCreateGraphicsPipelines", "VkGraphicsPipelineCreateInfo"),
-        _raw("pipeline:create_pipeline", "pipeline:PipelineDesc"),
+        _raw("device.pipeline:create_pipeline", "device.pipeline:PipelineDesc"),
         ("device.create_render_pipeline(layout=, vertex=, primitive=, depth_stencil=, multisample=, fragment=)",),
         _wgpu("stages.base:Stage.basic_pipeline", "stages.cube3d:Cube3D._pipeline",
               "stages.textured:TexturedPipelines._pipeline"),
@@ -375,7 +383,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "pipeline layout",
         ("vkCreatePipelineLayout (pSetLayouts, pPushConstantRanges)",),
-        _raw("pipeline:create_pipeline_layout"),
+        _raw("device.pipeline:create_pipeline_layout"),
         ("device.create_pipeline_layout(bind_group_layouts=, immediate_size=)", "layout='auto'"),
         _wgpu("stages.cube3d:Cube3D.setup", "stages.textured:TexturedPipelines.__init__"),
         "Same shape; push constant ranges become one immediate_size shared by all stages. 'auto' derives the "
@@ -384,19 +392,21 @@ CONCEPTS: list[Concept] = [
     Concept(
         "pipeline cache",
         ("vkCreatePipelineCache", "vkGetPipelineCacheData", "VkPipelineCacheCreateInfo (pInitialData)"),
-        _raw("pipeline_cache:create_pipeline_cache", "pipeline_cache:save_pipeline_cache",
-             "pipeline_cache:pipeline_cache_path"),
+        _raw("device.pipeline_cache:create_pipeline_cache", "device.pipeline_cache:save_pipeline_cache",
+             "device.pipeline_cache:pipeline_cache_path"),
         ("native feature 'pipeline-cache' (requested when offered)",),
-        _wgpu("gpu:_context", "gpu:OPTIONAL_FEATURES"),
+        _wgpu("device.context:_context", "device.context:OPTIONAL_FEATURES"),
         "wgpu-native has the feature but wgpu-py 0.32 has no call to create a cache, so the wgpu path only "
         "requests it; naga's compiled modules are not kept across runs.",
     ),
     Concept(
         "shader modules and SPIR-V",
         ("glslc (GLSL -> SPIR-V)", "vkCreateShaderModule (codeSize, pCode)"),
-        _raw("glsl:compile_glsl", "glsl:create_shader_module", "glsl:glsl_path", "scene.variants:glsl_defines"),
+        _raw("device.shaders:compile_glsl", "device.shaders:create_shader_module", "device.shaders:glsl_path",
+             "scene.variants:glsl_defines"),
         ("device.create_shader_module(code=WGSL or SPIR-V)",),
-        _wgpu("shaders:create_shader_module", "shaders:load_wgsl", "core.shader_variants:specialise"),
+        _wgpu("device.shaders:create_shader_module", "device.shaders:load_wgsl",
+              "core.shaders.shader_variants:specialise"),
         "WGSL text compiled by naga at run time (errors with line and column). naga also takes SPIR-V, but not "
         "a combined sampler2D and not subpassInput. Shader variants: WGSL has no preprocessor, so the wgpu path "
         "specialises its template in Python; the raw path passes glslc -D flags to one GLSL source.",
@@ -416,7 +426,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "input assembly",
         ("VkPipelineInputAssemblyStateCreateInfo (topology, primitiveRestartEnable)",),
-        _raw("pipeline:create_pipeline"),
+        _raw("device.pipeline:create_pipeline"),
         ("primitive={'topology': ..., 'strip_index_format': ...}",),
         _wgpu("stages.base:Stage.basic_pipeline"),
         "No adjacency or patch topologies; primitive restart is implied for strips by strip_index_format.",
@@ -424,7 +434,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "viewport and scissor",
         ("vkCmdSetViewport", "vkCmdSetScissor", "VkPipelineViewportStateCreateInfo"),
-        _raw("pipeline:set_viewport_and_scissor", "stages.textured:set_viewport"),
+        _raw("device.pipeline:set_viewport_and_scissor", "stages.textured:set_viewport"),
         ("GPURenderPassEncoder.set_viewport(x, y, w, h, min_depth, max_depth)", "set_scissor_rect"),
         _wgpu("stages.textured:Textured.record"),
         "Always dynamic, defaulting to the whole attachment; one viewport. wgpu's NDC y points up, Vulkan's down: "
@@ -434,7 +444,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "rasterizer",
         ("VkPipelineRasterizationStateCreateInfo (polygonMode, cullMode, frontFace, lineWidth, depthBias)",),
-        _raw("pipeline:create_pipeline"),
+        _raw("device.pipeline:create_pipeline"),
         ("primitive={'front_face': ..., 'cull_mode': ...}", "depth_stencil depth_bias*"),
         _wgpu("stages.cube3d:Cube3D._pipeline", "stages.base:Stage.basic_pipeline"),
         "No polygon modes other than fill (line/point need native features), line width always 1, no "
@@ -444,7 +454,8 @@ CONCEPTS: list[Concept] = [
         "multisample",
         ("VkPipelineMultisampleStateCreateInfo (rasterizationSamples)", "VkImageCreateInfo.samples",
          "VkSubpassDescription.pResolveAttachments"),
-        _raw("pipeline:create_pipeline", "renderpass:single_pass", "stages.base:RefStage.transient_msaa_image",
+        _raw("device.pipeline:create_pipeline", "device.renderpass:single_pass",
+             "stages.base:RefStage.transient_msaa_image",
              "render:check_msaa"),
         ("multisample={'count', 'mask', 'alpha_to_coverage_enabled'}", "create_texture(sample_count=)",
          "attachment 'resolve_target'"),
@@ -455,7 +466,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "dynamic state",
         ("VkPipelineDynamicStateCreateInfo", "VK_DYNAMIC_STATE_VIEWPORT / SCISSOR / ..."),
-        _raw("pipeline:create_pipeline"),
+        _raw("device.pipeline:create_pipeline"),
         ("(no list: set_viewport, set_scissor_rect, set_blend_constant, set_stencil_reference are always dynamic)",),
         _wgpu("stages.textured:Textured.record"),
         "Nothing to declare: those four are always pass commands, everything else is baked into the pipeline "
@@ -464,7 +475,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "depth/stencil",
         ("VkPipelineDepthStencilStateCreateInfo", "depth attachment (D32_SFLOAT)", "VkClearDepthStencilValue"),
-        _raw("pipeline:create_pipeline", "renderpass:single_pass", "stages.cube3d:Cube3D.setup"),
+        _raw("device.pipeline:create_pipeline", "device.renderpass:single_pass", "stages.cube3d:Cube3D.setup"),
         ("depth_stencil={'format', 'depth_write_enabled', 'depth_compare', 'stencil_front', ...}",
          "depth_stencil_attachment={'view', 'depth_load_op', 'depth_clear_value', ...}"),
         _wgpu("stages.cube3d:Cube3D._pipeline", "stages.cube3d:Cube3D.on_resize", "stages.cube3d:Cube3D.record"),
@@ -473,7 +484,7 @@ CONCEPTS: list[Concept] = [
     Concept(
         "blending",
         ("VkPipelineColorBlendAttachmentState", "VkPipelineColorBlendStateCreateInfo (logicOp)"),
-        _raw("pipeline:create_pipeline", "pipeline:ALL_COLOR"),
+        _raw("device.pipeline:create_pipeline", "device.pipeline:ALL_COLOR"),
         ("fragment targets [{'format', 'blend': {'color', 'alpha'}, 'write_mask'}]",),
         _wgpu("stages.base:Stage.basic_pipeline", "stages.cube3d:Cube3D._pipeline"),
         "Per-target blend state like Vulkan's per-attachment one; no logic ops. None of our stages blend yet: "
@@ -482,8 +493,8 @@ CONCEPTS: list[Concept] = [
     Concept(
         "input attachments",
         ("VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT", "VkSubpassDescription.pInputAttachments", "GLSL subpassLoad"),
-        _raw("renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post", "scene.post:PostSubpass",
-             "scene.neighbourhood:NeighbourhoodPass._create_render_pass"),
+        _raw("device.renderpass:msaa_post_pass", "stages.msaa_post:MsaaPost._setup_post", "post.chain:PostSubpass",
+             "post.neighbourhood:NeighbourhoodPass._create_render_pass"),
         ("(none: the previous pass's texture, sampled in a new pass)",),
         _wgpu("stages.msaa_post:MsaaPost._post", "post.passes:FragmentPass.encode", "post.chain:PostRunner.run"),
         "Cannot be expressed (no subpasses; gfx-rs/wgpu#10148). The image goes through memory between passes, "
@@ -499,22 +510,24 @@ CONCEPTS: list[Concept] = [
         "push constants",
         ("VkPushConstantRange", "vkCmdPushConstants", "GLSL layout(push_constant)"),
         _raw("stages.msaa_post:MsaaPost._setup_post", "stages.msaa_post:MsaaPost.record",
-             "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record", "ubo:pack_draw",
-             "scene.scene_subpass:SceneSubpass.record", "scene.uniforms:pack_material"),
+             "stages.cube3d:Cube3D._setup_descriptors", "stages.cube3d:Cube3D.record", "device.ubo:pack_draw",
+             "scene.scene_subpass:SceneSubpass.record", "device.uniforms:pack_material"),
         ("native feature 'immediates'", "create_pipeline_layout(immediate_size=)",
          "GPURenderPassEncoder.set_immediates(offset, data, data_offset, size)", "WGSL var<immediate>"),
-        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "gpu:_context"),
+        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "device.context:_context"),
         "Not in WebGPU proper: a wgpu-native feature ('immediates', up to max-immediate-size bytes), one range "
         "for all stages. Without it the 3d stage reads the same struct from a dynamic-offset uniform buffer.",
     ),
     Concept(
         "UBO alignment",
         ("std140 layout", "VkPhysicalDeviceLimits.minUniformBufferOffsetAlignment"),
-        _raw("ubo:dynamic_stride", "ubo:pack_camera", "ubo:pack_object", "instance:copy_limits",
-             "scene.uniforms:pack_camera"),
+        _raw("device.ubo:dynamic_stride", "device.ubo:pack_camera", "device.ubo:pack_object",
+             "device.context:copy_limits",
+             "device.uniforms:pack_camera"),
         ("WGSL uniform address space layout", "limit 'min-uniform-buffer-offset-alignment'"),
-        _wgpu("core.uniforms:Struct.stride", "core.uniforms:Struct.pack", "core.uniforms:Struct.pack_many",
-              "core.uniforms:wgsl_structs"),
+        _wgpu("core.shaders.uniforms:Struct.stride", "core.shaders.uniforms:Struct.pack",
+              "core.shaders.uniforms:Struct.pack_many",
+              "core.shaders.uniforms:wgsl_structs"),
         "WGSL's uniform layout equals std140 for these types and naga rejects a struct that breaks it. The wgpu "
         "path declares each struct once and generates both the packer and the WGSL text; the raw path packs by "
         "hand, as an independent check.",
@@ -522,9 +535,9 @@ CONCEPTS: list[Concept] = [
     Concept(
         "offscreen readback",
         ("vkCmdCopyImageToBuffer", "VkBufferImageCopy (bufferRowLength)", "HOST_CACHED memory"),
-        _raw("readback:record_copy_to_buffer", "readback:buffer_to_pixels"),
+        _raw("device.readback:record_copy_to_buffer", "device.readback:buffer_to_pixels"),
         ("GPUCommandEncoder.copy_texture_to_buffer", "GPUBuffer.map_sync / read_mapped"),
-        _wgpu("targets:Readback.record", "targets:Readback.read", "targets:padded_bytes_per_row"),
+        _wgpu("device.targets:Readback.record", "device.targets:Readback.read", "device.targets:padded_bytes_per_row"),
         "Rows in the buffer must start at multiples of 256 bytes in wgpu (Vulkan packs them tightly), so the "
         "wgpu path pads and unpads.",
     ),
@@ -532,11 +545,12 @@ CONCEPTS: list[Concept] = [
         "samplers",
         ("vkCreateSampler", "VkSamplerCreateInfo (filters, mipmapMode, addressMode*, minLod/maxLod, anisotropy)",
          "samplerAnisotropy device feature", "VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER / SAMPLED_IMAGE + SAMPLER"),
-        _raw("textures:sampler_info", "textures:create_sampler", "instance:create_device",
+        _raw("device.textures:sampler_info", "device.textures:create_sampler", "device.context:create_device",
              "stages.textured:Textured._setup_descriptors"),
         ("device.create_sampler(mag_filter=, min_filter=, mipmap_filter=, address_mode_*=, lod_*_clamp=, "
          "max_anisotropy=)", "bind group entries {'sampler'} and {'texture'}"),
-        _wgpu("textures:create_sampler", "textures:SamplerSpec", "stages.textured:TexturedPipelines.__init__"),
+        _wgpu("device.textures:create_sampler", "device.textures:SamplerSpec",
+              "stages.textured:TexturedPipelines.__init__"),
         "wgpu requires all three filters linear when max_anisotropy > 1 and turns on the anisotropy device "
         "feature itself; Vulkan needs samplerAnisotropy enabled at device creation. WGSL has no combined image "
         "sampler: the wgpu path's 'combined' half puts texture and sampler in one bind group instead.",
@@ -544,9 +558,9 @@ CONCEPTS: list[Concept] = [
     Concept(
         "mipmaps",
         ("VkImageCreateInfo.mipLevels", "vkCmdBlitImage per level (the course)", "a render pass per level (here)"),
-        _raw("textures:MipGenerator.record", "textures:level_count", "textures:level_size"),
+        _raw("device.textures:MipGenerator.record", "device.textures:level_count", "device.textures:level_size"),
         ("create_texture(mip_level_count=)", "a render pass per level into create_view(base_mip_level=)"),
-        _wgpu("textures:generate_mipmaps", "textures:mip_level_count"),
+        _wgpu("device.textures:generate_mipmaps", "device.textures:mip_level_count"),
         "WebGPU has no blit, so the wgpu path draws each level in a render pass (an exact box filter in linear "
         "light) and wgpu orders the passes; the raw path does the same in GLSL rather than the course's "
         "vkCmdBlitImage, whose bilinear filter differs, so the two chains compare bit for bit.",
@@ -555,7 +569,7 @@ CONCEPTS: list[Concept] = [
         "buffer objects",
         ("vkCreateBuffer", "VkBufferCreateInfo (size, usage, sharingMode)", "vkBindBufferMemory",
          "VkBuffer and its memory freed with their owner (an ExitStack)"),
-        _raw("memory:create_buffer"),
+        _raw("device.memory:create_buffer"),
         ("device.create_buffer(size=, usage=)", "device.create_buffer_with_data(data=, usage=)",
          "BufferUsage.VERTEX / INDEX / UNIFORM / COPY_DST"),
         _wgpu("stages.triangle_buffers:TriangleBuffers.setup", "stages.cube3d:Cube3D.setup"),
@@ -567,10 +581,10 @@ CONCEPTS: list[Concept] = [
         "memory requirements",
         ("vkGetBufferMemoryRequirements", "vkGetImageMemoryRequirements", "VkMemoryRequirements (size, alignment, "
          "memoryTypeBits)"),
-        _raw("memory:create_buffer", "images:create_image"),
+        _raw("device.memory:create_buffer", "device.images:create_image"),
         ("device.create_buffer(size=, usage=) (wgpu asks for the requirements and allocates inside)",
          "device.create_texture(size=, usage=)"),
-        _wgpu("stages.cube3d:Cube3D.setup", "targets:create_target"),
+        _wgpu("stages.cube3d:Cube3D.setup", "device.targets:create_target"),
         "Never visible: wgpu queries the requirements, rounds the size up to the alignment and picks a memory type "
         "from memoryTypeBits inside create_buffer / create_texture. The raw path allocates exactly "
         "requirements.size (often more than the buffer's size) from a type the mask allows.",
@@ -581,7 +595,7 @@ CONCEPTS: list[Concept] = [
         _raw("stages.clear:ClearTransfer.record"),
         ("GPUCommandEncoder.clear_texture (wgpu-native's wgpuCommandEncoderClearTexture, feature 'clear-texture', "
          "reached through the cffi handle)",),
-        _wgpu("native:clear_texture", "stages.clear:ClearTransfer.record"),
+        _wgpu("device.native:clear_texture", "stages.clear:ClearTransfer.record"),
         "WebGPU's clear is outside any pass like vkCmdClearColorImage, but takes no colour: it always writes "
         "zeros (a colour needs a render pass with load_op 'clear', the stage clear-pass). wgpu-py 0.32 does not "
         "wrap it, so the wgpu path calls wgpu-native through cffi; wgpu places the layout transition itself.",
@@ -606,8 +620,8 @@ CONCEPTS: list[Concept] = [
         _raw("scene.scene_subpass:SceneSubpass.record", "scene.scene_subpass:SceneSubpass._setup_sets"),
         ("GPURenderPassEncoder.draw_indexed(index_count, instance_count, first_index, base_vertex, first_instance)",
          "WGSL @builtin(instance_index)", "bind group entry {'buffer'} of type 'read-only-storage'"),
-        _wgpu("scene_render.scene_pass:ScenePassRenderer.record_draws",
-              "scene_render.scene_pass:ScenePassRenderer._setup_uniforms"),
+        _wgpu("scene.scene_pass:ScenePassRenderer.record_draws",
+              "scene.scene_pass:ScenePassRenderer._setup_uniforms"),
         "The same numbers on both paths: the plan batches draws of one mesh, pipeline and material into one "
         "instanced draw (core/plan/batches.py), and every instance's world matrix sits in ONE storage buffer "
         "indexed by the instance index, which includes first_instance in WGSL as gl_InstanceIndex does in "
@@ -616,9 +630,9 @@ CONCEPTS: list[Concept] = [
     Concept(
         "device idle",
         ("vkDeviceWaitIdle",),
-        _raw("window:RawWindow._recreate", "window:RawWindow.close", "instance:VulkanContext.close"),
+        _raw("window:RawWindow._recreate", "window:RawWindow.close", "device.context:VulkanContext.close"),
         ("wgpu-native's device poll with wait (wgpu-py's private _poll_wait)", "a fence buffer: map_sync"),
-        _wgpu("gpu:GPUContext.wait_idle"),
+        _wgpu("device.context:GPUContext.wait_idle"),
         "WebGPU has no wait-idle: a program waits for a mapped buffer or queue.on_submitted_work_done (which "
         "raises TypeError in wgpu-py 0.32.0). The wgpu path waits in one place, on the calling thread; the raw "
         "window waits for the device before it re-creates the swapchain or destroys anything.",

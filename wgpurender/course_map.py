@@ -8,7 +8,7 @@ never read). ``wgpurender stages --map`` prints it; docs/course-map.md is this o
 
 How each column is found:
 - modules: the stage registries (the stage class's module); step 6 (a scene) is drawn by the scene
-  renderer's packages, wgpu_path/scene_render + post and raw_path/scene;
+  renderer's packages, wgpu_path/scene + post and raw_path/scene;
 - shaders: string constants in those modules, and in the loose modules of their path folder they import
   (textures.py's mip-chain shader), and defaults of the base-class methods they call, that are whole shader
   file names; an f-string such as ``f"post_{name}.wgsl"`` stands for the files it can match;
@@ -29,15 +29,15 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-from wgpurender.core.assets import CHECKOUT, reference_dir, scene_dir
 from wgpurender.core.course.steps import COURSE, Step, step_texts
-from wgpurender.core.shader_files import shader_folder
+from wgpurender.core.files.assets import CHECKOUT, reference_dir, scene_dir
+from wgpurender.core.shaders.shader_files import shader_folder
 
 PACKAGE = Path(__file__).resolve().parent
 TESTS = CHECKOUT / "tests"
 SHADER_NAME = re.compile(r"[\w*]+\.(wgsl|vert|frag|comp)")
 META_TESTS = ("test_course_map.py", "test_layering.py")  # they check the map and the tree, not a step
-SCENE_PACKAGES = {"wgpu": ("wgpu_path/scene_render", "wgpu_path/post"), "raw": ("raw_path/scene",)}
+SCENE_PACKAGES = {"wgpu": ("wgpu_path/scene", "wgpu_path/post"), "raw": ("raw_path/scene", "raw_path/post")}
 
 
 @dataclass(frozen=True)
@@ -123,7 +123,7 @@ def _shaders(files: Iterable[Path], kind: str) -> tuple[str, ...]:
 
 
 def _helpers(files: list[Path]) -> list[Path]:
-    """The loose modules of the same path folder that ``files`` import (``wgpu_path/textures.py`` makes the
+    """The device-layer modules of the same path that ``files`` import (``wgpu_path/device/textures.py`` makes the
     mip chain with mipmap.wgsl for the textured stage): their shaders are the step's too."""
     if not files:
         return []
@@ -131,8 +131,9 @@ def _helpers(files: list[Path]) -> list[Path]:
     prefix = f"wgpurender.{folder}."
     out = []
     for name in sorted(_imports(files)):
-        path = PACKAGE / folder / (name[len(prefix):] + ".py") if name.startswith(prefix) else None
-        if path is not None and "." not in name[len(prefix):] and path.is_file() and path not in files:
+        rest = name[len(prefix):].removeprefix("device.") if name.startswith(prefix) else None
+        path = PACKAGE / folder / "device" / (rest + ".py") if rest else None
+        if path is not None and "." not in rest and path.is_file() and path not in files:
             out.append(path)
     return out
 

@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.assets import scene_dir
 
 REPO = Path(__file__).resolve().parent.parent
 SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
@@ -66,14 +66,14 @@ def target_path(name: str) -> str:
 
 def render_wgpu(name: str, size: tuple[int, int], backend: str | None = None, t: float = 0.0) -> np.ndarray:
     """One target on this process's wgpu backend: 8-bit RGBA, top row first."""
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
     from wgpurender.wgpu_path.render import render_any
 
     return to_uint8(render_any(target_path(name), size=size, t=t, backend=backend).pixels)
 
 
 def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
     from wgpurender.raw_path import render_reference
 
     return to_uint8(render_reference(target_path(name), size))
@@ -82,8 +82,8 @@ def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
 def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple[dict, dict, str]:
     """Export each target to ``work/NAME`` and read its frame back in headless Chromium (one browser):
     (images by name, reasons for the targets that could not be drawn, the browser and adapter)."""
-    from wgpurender.export import export
-    from wgpurender.export.chromium import Chromium
+    from wgpurender.webpage import export
+    from wgpurender.webpage.chromium import Chromium
 
     images, skipped, pages = {}, {}, {}
     for name in names:
@@ -109,7 +109,7 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
     """The implementations this machine has (of ``wanted``, default all) and why each other one is missing."""
     import shutil
 
-    from wgpurender.export.chromium import find_chromium
+    from wgpurender.webpage.chromium import find_chromium
 
     missing = {}
     for name in wanted or IMPLEMENTATIONS:
@@ -151,7 +151,7 @@ def render_in_child(implementation: str, names: list[str], size: tuple[int, int]
                     timeout: float = 600) -> dict[str, np.ndarray]:
     """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance); a target the
     implementation refuses is left out (:func:`child_skipped` says why)."""
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     out.mkdir(parents=True, exist_ok=True)
     cmd = [sys.executable, "-m", "wgpurender.implementations", "--size", f"{size[0]}x{size[1]}", implementation,
@@ -175,12 +175,12 @@ def child_skipped(out: Path) -> dict[str, str]:
 def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
     """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
     (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
-    from wgpurender.core.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
-    from wgpurender.core.tolerances import calibrate as bounds
+    from wgpurender.core.verdict.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
+    from wgpurender.core.verdict.tolerances import calibrate as bounds
 
     table = {"implementations": {}}
     if IMPLEMENTATIONS_PATH.is_file():
-        from wgpurender.core.tolerances import load_table
+        from wgpurender.core.verdict.tolerances import load_table
 
         table = load_table(IMPLEMENTATIONS_PATH)
     rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
@@ -192,7 +192,7 @@ def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "
 
 def _main(argv: list[str] | None = None) -> int:
     from wgpurender.cli._args import size_arg
-    from wgpurender.core.imageio import save_png
+    from wgpurender.core.files.imageio import save_png
 
     p = argparse.ArgumentParser(prog="python -m wgpurender.implementations")
     p.add_argument("implementation", choices=sorted(WGPU_IMPLEMENTATIONS))
@@ -209,7 +209,7 @@ def _main(argv: list[str] | None = None) -> int:
         except UserError as err:  # this implementation cannot draw it (e.g. Dawn has no clear-texture): said why
             skipped.append(f"{name}\t{err}")
     (args.out / "skipped.txt").write_text("".join(f"{line}\n" for line in skipped))
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     (args.out / "adapter.txt").write_text(get_context(backend).describe())
     return 0

@@ -7,7 +7,7 @@ checked on the raw bytes):
 - ``wgpu vs raw``: every stage both paths have, and every repository scene the raw path can draw,
   rendered here in this run. Exact, except scenes whose post chain has two or more effects: the wgpu
   path stores the colour between effects (float16, or 8-bit sRGB), the raw path keeps float32 in one
-  shader (tests/test_raw_path_scene.py explains and measures it), bounded by CHAIN_BOUND.
+  shader (tests/test_vulkan_ref_scene.py explains and measures it), bounded by CHAIN_BOUND.
 - ``raw vs committed``: the raw path's render against assets/reference/<name>.png, with this
   driver class's row of the table.
 - ``wgpu vs C++ frame``: the Vulkan tutorial scenes against the C++ program's frames in
@@ -32,10 +32,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.assets import scene_dir
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import load_png, save_png, to_uint8
-from wgpurender.core.tolerances import (
+from wgpurender.core.files.assets import scene_dir
+from wgpurender.core.files.imageio import load_png, save_png, to_uint8
+from wgpurender.core.verdict.tolerances import (
     Metrics,
     Tolerance,
     calibrate,
@@ -53,11 +53,11 @@ TUTORIAL_FRAMES = {"vulkan_tutorial_28": "ref_28_model_loading_1x.png",
                    "vulkan_tutorial_30": "ref_30_multisampling_4xMSAA.png"}
 QUICK = {"stages": ("triangle", "3d"), "scenes": ("unlit",)}
 # wgpu vs raw, scenes with a chain of 2+ post effects: float16 / 8-bit sRGB intermediates on the wgpu path only.
-# Measured on lavapipe (tests/test_raw_path_scene.py): max 1/255, FLIP <= 0.0061.
+# Measured on lavapipe (tests/test_vulkan_ref_scene.py): max 1/255, FLIP <= 0.0061.
 CHAIN_BOUND = Tolerance("post chain", "same device", 1, 1.0, 0.01,
-                        "lavapipe: max 1/255, FLIP 0.0018-0.0061 (tests/test_raw_path_scene.py)",
+                        "lavapipe: max 1/255, FLIP 0.0018-0.0061 (tests/test_vulkan_ref_scene.py)",
                         "wgpu's stored intermediates vs the raw path's float32", False)
-EXACT = Tolerance("exact", "same device", 0, 0.0, 0.0, "0 pixels differ (tests/test_raw_path*.py)",
+EXACT = Tolerance("exact", "same device", 0, 0.0, 0.0, "0 pixels differ (tests/test_vulkan_ref*.py)",
                   "same driver, same run", False)
 CSV_FIELDS = ("device", "kind", "name", "comparison", "status", "max_abs", "changed_pixels", "changed", "flip_mean",
               "bound", "note", "heatmap")
@@ -139,7 +139,7 @@ class Matrix:
         self.rows.append(Row(kind, name, comparison, "skipped", note=reason))
 
     def _heatmap(self, row: Row, expected: np.ndarray, actual: np.ndarray) -> str:
-        from wgpurender.core.compare import heatmap
+        from wgpurender.core.verdict.compare import heatmap
 
         path = self.out / "heatmaps" / f"{_slug(row.kind, row.name, row.comparison)}.png"
         save_png(path, heatmap(expected, actual))
@@ -201,7 +201,7 @@ def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) ->
     from wgpurender.core.scene import load_scene
     from wgpurender.raw_path.make_references import reference_path
     from wgpurender.raw_path.scene import render_scene_reference
-    from wgpurender.wgpu_path.scene_render import render_scene_file
+    from wgpurender.wgpu_path.scene import render_scene_file
 
     name = scene_file.stem
     if _needs_anchors(scene_file):
@@ -232,9 +232,9 @@ def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) ->
 def run_verify(out: Path, quick: bool = False) -> Report:
     """Render and compare everything (``quick``: two stages and one scene); write the outputs to ``out``."""
     from wgpurender.raw_path import reference_stage_names
-    from wgpurender.raw_path.instance import get_vulkan
+    from wgpurender.raw_path.device.context import get_vulkan
     from wgpurender.raw_path.make_references import SCENE_REFERENCES
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     ctx, vctx = get_context("Vulkan"), get_vulkan()
     cls = driver_class(vctx.device_name)
@@ -255,7 +255,7 @@ def run_verify(out: Path, quick: bool = False) -> Report:
 
 def write_outputs(out: Path, report: Report, table: dict) -> None:
     """verify.csv, verify.md and tolerances.toml, each written whole or not at all."""
-    from wgpurender.core.safe_write import atomic_write
+    from wgpurender.core.files.safe_write import atomic_write
 
     text = io.StringIO(newline="")
     writer = csv.DictWriter(text, fieldnames=CSV_FIELDS)

@@ -2,7 +2,7 @@
 and repository scene rendered on each implementation at one size, and every pair compared.
 
 Metrics per pair: max (largest channel difference, 1/255), the share of pixels off by more than 1/255, PSNR and
-mean FLIP (core/compare.py). Bounds: each implementation against the reference one, ``wgpu-vulkan``, with the
+mean FLIP (core/verdict/compare.py). Bounds: each implementation against the reference one, ``wgpu-vulkan``, with the
 calibrated rows of assets/reference/implementations.toml (``raw`` against ``wgpu-vulkan``: exact on one device,
 except the post-chain bound that verify.py explains). Pairs of two non-reference implementations are reported
 without a bound (``info``): their distance is at most the sum of their two bounded distances.
@@ -22,10 +22,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.compare import Comparison, compare_images, heatmap
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import save_png
-from wgpurender.core.tolerances import Tolerance, Uncalibrated, driver_class, implementation_tolerance, measure
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.verdict.compare import Comparison, compare_images, heatmap
+from wgpurender.core.verdict.tolerances import Tolerance, Uncalibrated, driver_class, implementation_tolerance, measure
 
 REFERENCE = "wgpu-vulkan"
 FIELDS = ("target", "a", "b", "status", "max_abs", "over_1", "psnr", "flip_mean", "bound", "note", "heatmap")
@@ -75,7 +75,7 @@ def _bound(a: str, b: str, target: str) -> Tolerance | None:
 
         scene = scene_files().get(target)
         return CHAIN_BOUND if scene is not None and len(load_scene(scene).post) >= 2 else EXACT
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     return implementation_tolerance(other, target, cls=driver_class(get_context("Vulkan").adapter.info["device"]))
 
@@ -115,7 +115,7 @@ def _text(tol: Tolerance | None) -> str:
 def render_all(implementations: list[str], targets: list[str], size: tuple[int, int], work: Path):
     """(images[impl][target], skipped[impl][target] = reason, who[impl])."""
     from wgpurender import implementations as impls
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.wgpu_path.device.context import get_context
 
     images, skipped, who = {}, {}, {}
     for impl in implementations:

@@ -131,7 +131,7 @@ def asks_for_a_picture(scene_path: Path, width: int, height: int) -> bool:
 
 def visible_triangle(scene_path: Path, width: int, height: int) -> bool:
     """Whether some model triangle lies wholly inside the view frustum and projects to >= BLANK_MIN_AREA pixels."""
-    from wgpurender.core.mesh import load_mesh
+    from wgpurender.core.models.mesh import load_mesh
     from wgpurender.core.scene import load_scene
 
     scene = load_scene(scene_path)

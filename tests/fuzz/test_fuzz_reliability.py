@@ -20,7 +20,7 @@ from strategies import ASSETS, fuzz_settings
 
 import wgpurender.api as api
 from wgpurender.core.errors import UserError
-from wgpurender.core.imageio import srgb_encode
+from wgpurender.core.files.imageio import srgb_encode
 
 
 @pytest.fixture

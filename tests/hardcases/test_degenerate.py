@@ -4,7 +4,7 @@ A 6x6-vertex grid (50 triangles) facing the camera, rendered lit and normal-mapp
 into rgba32float (64x64), where non-finite values are stored as they are instead of being clamped. Degenerate on
 purpose: one row of vertices collapsed onto its neighbours (zero-area triangles), a 2x2 block of vertices with
 zero-length normals (the triangles between them interpolate an exact zero normal), and a patch where all UVs are
-equal (no tangent direction). Tangents come from wgpurender.core.tangents.vertex_tangents.
+equal (no tangent direction). Tangents come from wgpurender.core.models.tangents.vertex_tangents.
 
 - ours (safe_normalize, SAFE = true): every pixel finite, tolerance 0 non-finite pixels; covered pixels lit (> 0).
 - counter-example (plain WGSL normalize, SAFE = false): normalize(vec3(0)) = 0 * inverseSqrt(0) gives NaN pixels
@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 from numerics.lit import interleave, render_lit
 
-from wgpurender.core import transforms as T
-from wgpurender.core.tangents import vertex_tangents
+from wgpurender.core.models.tangents import vertex_tangents
+from wgpurender.core.view import transforms as T
 
 N = 6  # vertices per side
 

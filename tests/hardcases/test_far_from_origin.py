@@ -18,7 +18,7 @@ import pytest
 from numerics.camera_relative import camera_relative, eye_position, model_view
 from numerics.gpu_eval import run_compute
 
-from wgpurender.core import transforms as T
+from wgpurender.core.view import transforms as T
 
 SIZE = (256, 256)
 ORIGIN = np.array([1e6, 12.3, -1e6 + 0.37])

@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 from wgpurender.wgpu_path.post import PostChain, create_effect
-from wgpurender.wgpu_path.targets import create_target, read_texture
 
 RAMP = np.array(
     [0.0, 1e-45, 1e-40, 1e-38, 1e-6, 0.01, 0.18, 1.0, 4.0, 100.0, 6e4, 1e6, 1e12, 1e19, 1e20, 1e30, 3.4e38, np.inf],

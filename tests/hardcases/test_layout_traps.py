@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import pytest
 
-from wgpurender.core.uniforms import F32, MAT3, MAT4, VEC2F, VEC3F, Array, Matrix, Scalar, Struct, Vector
+from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC2F, VEC3F, Array, Matrix, Scalar, Struct, Vector
 
 FOO = Struct("Foo", [("v", VEC2F)])
 

@@ -20,7 +20,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numerics import quaternions as Q
 
-from wgpurender.core.transforms import rotate
+from wgpurender.core.view.transforms import rotate
 
 STEPS = 100_000
 AXIS = np.array([1.0, 2.0, 3.0]) / np.linalg.norm([1.0, 2.0, 3.0])

@@ -23,8 +23,8 @@ from numerics.gpu_eval import run_compute
 from numerics.lit import interleave, render_lit
 from numerics.normals import analytic_normals, gpu_normal_matrix
 
-from wgpurender.core import transforms as T
-from wgpurender.core.tangents import vertex_tangents
+from wgpurender.core.models.tangents import vertex_tangents
+from wgpurender.core.view import transforms as T
 
 R = T.rotate((0.2, 1.0, 0.4), 0.9) @ T.rotate((1.0, 0.0, 0.0), 0.3)
 SCALES = {

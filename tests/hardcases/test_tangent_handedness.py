@@ -1,7 +1,7 @@
 """Mirrored UVs: tangent handedness (w) and the reconstructed bitangent agree with the analytic frame.
 
 Quads in the z = 0 plane, normal +z, in this project's UV convention (v = 0 at the top of the image, see
-wgpurender/core/tangents.py). Analytic frame: t = dP/du normalised; "up in the image" = -dP/dv normalised; the
+wgpurender/core/models/tangents.py). Analytic frame: t = dP/du normalised; "up in the image" = -dP/dv normalised; the
 bitangent a shader reconstructs, b = w * cross(n, t), must equal "up in the image". Tolerance 1e-6 (float32 output).
 
 - plain quad (u = x, v = 1 - y): t = +x, b = +y, w = +1;
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wgpurender.core.tangents import face_uv_frames, split_mirrored_vertices, vertex_tangents
+from wgpurender.core.models.tangents import face_uv_frames, split_mirrored_vertices, vertex_tangents
 
 QUAD = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]])
 QUAD_IDX = np.array([[0, 1, 2], [0, 2, 3]])

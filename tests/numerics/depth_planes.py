@@ -15,10 +15,10 @@ import wgpu
 
 from numerics.wgsl import load_wgsl
 from wgpurender.bench.accuracy_depth import wrong_pixels  # noqa: F401  (re-exported: its one home)
-from wgpurender.core.transforms import perspective, to_gpu
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module
-from wgpurender.wgpu_path.targets import create_target, read_texture
+from wgpurender.core.view.transforms import perspective, to_gpu
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 
 NEAR_COLOR = (1.0, 0.0, 0.0, 1.0)  # red: the plane that should win everywhere
 FAR_COLOR = (0.0, 1.0, 0.0, 1.0)  # green: seen only where depth failed

@@ -13,8 +13,8 @@ import numpy as np
 import wgpu
 
 from numerics.wgsl import load_wgsl
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module
 
 WORKGROUP_SIZE = 64  # the @workgroup_size of every numerics_*.wgsl compute entry point
 

@@ -10,10 +10,10 @@ import numpy as np
 import wgpu
 
 from numerics.wgsl import load_wgsl
-from wgpurender.core.transforms import to_gpu
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module
-from wgpurender.wgpu_path.targets import create_target, read_texture
+from wgpurender.core.view.transforms import to_gpu
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+from wgpurender.wgpu_path.device.targets import create_target, read_texture
 
 SHADERS = ("numerics_safe.wgsl", "numerics_lit.wgsl")
 FORMAT = "rgba32float"

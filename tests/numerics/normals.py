@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wgpurender.core.transforms import normal_matrix
+from wgpurender.core.view.transforms import normal_matrix
 
 
 def gpu_normal_matrix(world: np.ndarray) -> np.ndarray:

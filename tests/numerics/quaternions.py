@@ -1,7 +1,7 @@
 """Quaternions (w, x, y, z), unit length, acting as rotations; conversions that stay exact near 180 degrees.
 
 Convention: q = (w, x, y, z) with w = cos(angle/2), (x, y, z) = sin(angle/2) * axis, so the matrix is the same
-rotation as :func:`wgpurender.core.transforms.rotate(axis, angle)` (right-hand rule, column vectors).
+rotation as :func:`wgpurender.core.view.transforms.rotate(axis, angle)` (right-hand rule, column vectors).
 
 Why Shepperd's method: the textbook conversion reads w from the trace, w = sqrt(1 + trace) / 2, and divides
 the off-diagonal differences by 4w. Near a half turn the trace is -1, w -> 0, and the division amplifies rounding

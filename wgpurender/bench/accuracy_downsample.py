@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wgpurender.core.imageio import srgb_decode, srgb_encode
+from wgpurender.core.files.imageio import srgb_decode, srgb_encode
 
 _DECODE = srgb_decode(np.arange(256, dtype=np.float64) / 255.0)  # uint8 sRGB -> linear float64
 

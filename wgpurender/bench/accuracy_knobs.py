@@ -104,7 +104,7 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
     The depth-stress scene, for instance, has no textures and no post chain: there only the depth knob applies.
     """
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.wgpu_path.scene_render import SceneRenderer, adapter_facts
+    from wgpurender.wgpu_path.scene import SceneRenderer, adapter_facts
 
     problem = settings.problem()
     if problem:

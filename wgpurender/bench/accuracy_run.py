@@ -10,7 +10,8 @@ Time per frame: ``warmup`` untimed frames, then ``frames`` timed ones, split ove
 settings (each later visit starts with one untimed frame), so a change in the machine's load during the run
 spreads over every setting instead of landing on a few; a frame is record + submit + wait (no readback, no CPU
 downsampling). GPU time is the sum of the frame's passes from timestamp queries
-(:class:`~wgpurender.wgpu_path.timing.PassTimer`); wall time is measured around the whole frame. Both: median, p10..p90.
+(:class:`~wgpurender.wgpu_path.device.timing.PassTimer`); wall time is measured around the whole
+frame. Both: median, p10..p90.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ import numpy as np
 
 from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
 from wgpurender.bench.accuracy_downsample import downsample_srgb8
+from wgpurender.bench.accuracy_floor import EMPTY_SCENE, Floor
 from wgpurender.bench.accuracy_knobs import (
     DEPTH_LEVELS,
     FILTER_LEVELS,
@@ -37,10 +39,10 @@ from wgpurender.bench.accuracy_knobs import (
     Settings,
     make_renderer,
 )
-from wgpurender.core.compare import compare_images
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import PassTimer, Stats
+from wgpurender.core.verdict.compare import compare_images
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats
 
 FINAL, DEPTH_STRESS = "final", "depth-stress"
 LOWEST = {"msaa": MSAA_LEVELS[0], "ss": SS_LEVELS[0], "format": FORMAT_LEVELS[0], "filter": FILTER_LEVELS[0],
@@ -112,6 +114,7 @@ class Row:
     psnr_isolated: float = float("nan")
     wrong_pixels: int | None = None
     pareto: bool = False
+    below_floor: bool = False  # its time is under the run's noise floor (accuracy_floor.py)
 
     @property
     def time_ms(self) -> float:
@@ -170,7 +173,7 @@ class Timed:
 
     def read(self) -> None:
         """Read the image back (once: it is the same every frame) and resolve it to the base size."""
-        from wgpurender.wgpu_path.targets import read_texture
+        from wgpurender.wgpu_path.device.targets import read_texture
 
         pixels = read_texture(self.ctx, self.target)
         if pixels.dtype != np.uint8:
@@ -203,6 +206,7 @@ class AccuracyRun:
     rows: list[Row]
     seconds: float
     notes: list[str] = field(default_factory=list)
+    floor: Floor | None = None
 
 
 def run_accuracy(config: AccuracyConfig, ctx: GPUContext, progress_stream=None) -> AccuracyRun:
@@ -238,12 +242,30 @@ def run_accuracy(config: AccuracyConfig, ctx: GPUContext, progress_stream=None) 
             progress.step(f"round {r + 1}/{rounds} {scene_name}: {what} at {size[0]}x{size[1]}: {took:.1f} ms")
     measured = {key: t.measurement() for key, t in timed.items()}
     rows = [score(c, measured, config.base_size) for c in cases]
+    floor = noise_floor(ctx, config.frames)
+    for r in rows:
+        r.below_floor = floor.below(r.m.gpu.median if r.m.gpu else None, r.m.wall.median)
     final_rows = unique_rows([r for r in rows if r.case.scene == FINAL and r.case.sweep != "ground truth"])
     for i in pareto_front([(r.time_ms, r.flip) for r in final_rows]):
         for r in rows:
             if r.case.key == final_rows[i].case.key:
                 r.pareto = True
-    return AccuracyRun(config, ctx.describe(), rows, time.perf_counter() - start)
+    return AccuracyRun(config, ctx.describe(), rows, time.perf_counter() - start, floor=floor)
+
+
+def noise_floor(ctx: GPUContext, frames: int) -> Floor:
+    """The run's noise floor (accuracy_floor.py), its empty scene in a temporary folder (nothing left in --out)."""
+    import tempfile
+
+    from wgpurender.core.scene import load_scene
+
+    with tempfile.TemporaryDirectory(prefix="wgpurender-floor-") as work:
+        path = Path(work) / "empty.toml"
+        path.write_text(EMPTY_SCENE)
+        t = Timed(ctx, load_scene(path), Settings(msaa=1), (8, 8), ())
+    t.run(max(frames, 3), warmup=1)
+    m = t.measurement()
+    return Floor(m.gpu.median if m.gpu else None, m.wall.median)
 
 
 def unique_rows(rows: list[Row]) -> list[Row]:

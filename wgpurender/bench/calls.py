@@ -18,7 +18,7 @@ from contextlib import contextmanager
 
 import wgpu
 
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 _PASS_MAKERS = ("begin_render_pass", "begin_compute_pass")
 _ABSENT = object()

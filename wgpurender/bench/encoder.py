@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import wgpu
 
-from wgpurender.wgpu_path.frame_loop import Record, run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import PassTimer
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import Record, run_frame
+from wgpurender.wgpu_path.device.timing import PassTimer
 
 
 class TimedEncoder:

@@ -30,8 +30,8 @@ from dataclasses import dataclass, field
 
 from wgpurender.bench.encoder import gpu_total, timed_frame
 from wgpurender.bench.report import Result, size_text
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import PassTimer, Stats
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats
 
 TIMER_SLOTS = 1024  # frames between two PassTimer.collect() calls: far more than one measure() makes
 
@@ -187,8 +187,8 @@ class WgpuStageRunner:
 
     def __init__(self, ctx: GPUContext, name: str, size: tuple[int, int], fmt: str | None = None,
                  msaa: int | None = None) -> None:
+        from wgpurender.wgpu_path.device.targets import create_target
         from wgpurender.wgpu_path.stages import get_stage
-        from wgpurender.wgpu_path.targets import create_target
 
         cls = get_stage(name)
         self.ctx = ctx
@@ -219,8 +219,8 @@ class RawStageRunner:
     """A raw-Vulkan stage drawn into one image, frame after frame, with one command buffer and fence reused."""
 
     def __init__(self, name: str, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None) -> None:
-        from wgpurender.raw_path.checks import check_msaa, check_size
-        from wgpurender.raw_path.instance import get_vulkan
+        from wgpurender.raw_path.device.checks import check_msaa, check_size
+        from wgpurender.raw_path.device.context import get_vulkan
         from wgpurender.raw_path.stages import get_ref_stage
 
         ctx = get_vulkan()
@@ -235,8 +235,8 @@ class RawStageRunner:
         """The target image, one command buffer, a fence and a timestamp pool, reused every frame."""
         import vulkan as vk
 
-        from wgpurender.raw_path.command_buffers import create_command_pool
-        from wgpurender.raw_path.images import create_image
+        from wgpurender.raw_path.device.command_buffers import create_command_pool
+        from wgpurender.raw_path.device.images import create_image
         from wgpurender.raw_path.stages.base import TARGET_USAGE
 
         self.vk, self.ctx, self.format = vk, ctx, fmt
@@ -270,8 +270,8 @@ class RawStageRunner:
 
     def _readback_buffer(self):
         if self._readback is None:
-            from wgpurender.raw_path.images import FORMATS
-            from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer
+            from wgpurender.raw_path.device.images import FORMATS
+            from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer
 
             vk = self.vk
             nbytes = self.size[0] * self.size[1] * FORMATS[self.format][1]
@@ -281,8 +281,8 @@ class RawStageRunner:
 
     def _record_copy(self, cmd) -> None:
         """vkCmdCopyImageToBuffer into the reused host buffer + a barrier for the host read."""
-        from wgpurender.raw_path.images import subresource_layers
-        from wgpurender.raw_path.memory import WHOLE_SIZE
+        from wgpurender.raw_path.device.images import subresource_layers
+        from wgpurender.raw_path.device.memory import WHOLE_SIZE
 
         vk, buffer = self.vk, self._readback_buffer()
         region = vk.VkBufferImageCopy(
@@ -319,7 +319,7 @@ class RawStageRunner:
                                      vk.VK_QUERY_RESULT_64_BIT | vk.VK_QUERY_RESULT_WAIT_BIT)
         gpu_ms = (int(self._ticks[1]) - int(self._ticks[0])) * self.period_ns / 1e6
         if readback:
-            from wgpurender.raw_path.memory import read_host_buffer
+            from wgpurender.raw_path.device.memory import read_host_buffer
 
             read_host_buffer(ctx, self._readback)
         return cpu_ms, gpu_ms

@@ -30,12 +30,12 @@ from wgpurender.bench.frames import measure
 from wgpurender.bench.objects_data import BACKGROUND, FORMAT, HALF_SIZE, object_params
 from wgpurender.bench.report import Result, size_text
 from wgpurender.core.errors import UserError
-from wgpurender.core.shader_variants import specialise
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
-from wgpurender.wgpu_path.targets import create_target
-from wgpurender.wgpu_path.timing import PassTimer, Stats
+from wgpurender.core.shaders.shader_variants import specialise
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.device.targets import create_target
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats
 
 SHADER = "bench_objects.wgsl"
 MODES = ("dynamic", "immediates", "instancing", "bundle")
@@ -171,7 +171,7 @@ class ObjectsRenderer:
         rp.end()
 
     def pixels(self) -> np.ndarray:
-        from wgpurender.wgpu_path.targets import read_texture
+        from wgpurender.wgpu_path.device.targets import read_texture
 
         self.frame()
         return read_texture(self.ctx, self.target)

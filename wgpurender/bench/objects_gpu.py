@@ -31,12 +31,12 @@ import wgpu
 
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.objects_data import BACKGROUND, FORMAT, HALF_SIZE, object_params
-from wgpurender.core.shader_variants import specialise
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
-from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
-from wgpurender.wgpu_path.timing import PassTimer
+from wgpurender.core.shaders.shader_variants import specialise
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
+from wgpurender.wgpu_path.device.timing import PassTimer
 
 SHADER = "bench_objects_gpu.wgsl"
 MODE = "gpu-animated"
@@ -196,7 +196,7 @@ class GpuAnimatedRenderer:
         return int(np.frombuffer(self.ctx.read_buffer(self.indirect, 4, 4), dtype=np.uint32)[0])
 
     def pixels(self) -> np.ndarray:
-        from wgpurender.wgpu_path.targets import read_texture
+        from wgpurender.wgpu_path.device.targets import read_texture
 
         self.frame()
         return read_texture(self.ctx, self.target)

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_line: the CLI's import)
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.wgpu_path.gpu import GPUContext, get_context
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
 FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "scene-scale", "startup")
 FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
@@ -53,7 +53,7 @@ class PerfConfig:
     frames: int | None = None  # timed frames per case (default 20, quick 4)
     scene_file: Path = SCENE_FILE
     command: str = ""
-    anisotropy: str = DEFAULT_ANISOTROPY  # the scene families' rule (core/anisotropy.py), as render's --anisotropy
+    anisotropy: str = DEFAULT_ANISOTROPY  # the scene families' rule (core/plan/anisotropy.py), as render's --anisotropy
 
     def timed_frames(self) -> int:
         return self.frames or (4 if self.quick else 20)
@@ -89,7 +89,7 @@ def machine_info(ctx: GPUContext) -> dict[str, str]:
         "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
     }
     try:
-        from wgpurender.raw_path.instance import get_vulkan
+        from wgpurender.raw_path.device.context import get_vulkan
 
         info["raw Vulkan device"] = get_vulkan().describe()
     except Exception as err:  # the raw path is a peer, not a requirement

@@ -24,11 +24,11 @@ from wgpurender.bench.encoder import gpu_total, timed_frame
 from wgpurender.bench.frames import RawStageRunner, Samples, WgpuStageRunner, measure
 from wgpurender.bench.report import Result
 from wgpurender.core.course.formats import BYTES_PER_PIXEL
-from wgpurender.core.shader_variants import specialise
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
-from wgpurender.wgpu_path.targets import create_target
-from wgpurender.wgpu_path.timing import PassTimer, Stats
+from wgpurender.core.shaders.shader_variants import specialise
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module, load_wgsl
+from wgpurender.wgpu_path.device.targets import create_target
+from wgpurender.wgpu_path.device.timing import PassTimer, Stats
 
 PROBE_SHADER = "bench_post_probe.wgsl"
 SOURCE_USAGE = wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.TEXTURE_BINDING

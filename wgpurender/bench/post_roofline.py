@@ -26,9 +26,9 @@ import wgpu
 
 from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, resolve_plan
 from wgpurender.core.scene import load_scene
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.targets import TARGET_USAGE, create_target
-from wgpurender.wgpu_path.timing import PassTimer, wall_time
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
+from wgpurender.wgpu_path.device.timing import PassTimer, wall_time
 
 VARIANTS = (("fragment", False), ("fragment", True), ("compute", False), ("compute", True))
 COPY_WGSL = """
@@ -121,8 +121,8 @@ class CopyKernel:
 
 def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse: bool, frames: int,
                  copy: CopyKernel) -> list[PassTime]:
-    from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
-    from wgpurender.wgpu_path.scene_render.frame import adapter_facts
+    from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
+    from wgpurender.wgpu_path.scene.frame import adapter_facts
 
     plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path=path, post_fuse=fuse)
     renderer = SceneRenderer(ctx, scene, plan)
@@ -164,8 +164,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
                 shapes=SHAPES) -> list[PassTime]:
     """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run."""
     from wgpurender.wgpu_path.post.passes import ComputePass
-    from wgpurender.wgpu_path.scene_render import SceneRenderer, render_frame
-    from wgpurender.wgpu_path.scene_render.frame import adapter_facts
+    from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
+    from wgpurender.wgpu_path.scene.frame import adapter_facts
 
     plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path="compute", post_fuse=True)
     renderer = SceneRenderer(ctx, scene, plan)
@@ -240,10 +240,11 @@ def csv_text(rows: list[PassTime]) -> str:
 
 def record_bandwidth(ctx: GPUContext, scene_path: Path, size: tuple[int, int], rows: list[PassTime],
                      command: str) -> Path:
-    """Keep each pass's numbers (not the shape sweep's) for ``render --explain`` on this adapter (core/bandwidth.py)."""
+    """Keep each pass's numbers (not the shape sweep's) for ``render --explain`` on this adapter
+    (core/files/bandwidth.py)."""
     import datetime
 
-    from wgpurender.core import bandwidth
+    from wgpurender.core.files import bandwidth
 
     date = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
     records = {bandwidth.pass_key(Path(scene_path).stem, r.effects, r.path): bandwidth.PassRecord(

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.wgpu_path.device.timing import Stats
 
 CSV_COLUMNS = ("family", "case", "path", "size", "metric", "median", "p10", "p90", "n", "note", "p99")
 TAIL_FACTOR = 3.0  # a case whose p90 exceeds this many medians has stalls, whatever its median says

@@ -28,9 +28,9 @@ import numpy as np
 
 from wgpurender.bench.frames import measure
 from wgpurender.bench.report import Result, size_text
-from wgpurender.core import procedural
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.core.models import procedural
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.timing import Stats
 
 COUNTS = (1_000, 10_000, 100_000, 1_000_000)
 QUICK_COUNTS = (50, 200)

@@ -16,8 +16,8 @@ import numpy as np
 from wgpurender.bench.frames import frames_without_gc, settle_garbage, warm_up
 from wgpurender.bench.report import Result, size_text
 from wgpurender.bench.scale import TEXTURE, camera_distance, grid_offsets
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.timing import Stats
 
 _selected = False
 
@@ -37,7 +37,7 @@ def build(n: int, size: tuple[int, int]):
     import pygfx as gfx
     from rendercanvas.offscreen import RenderCanvas
 
-    from wgpurender.core.imageio import load_png
+    from wgpurender.core.files.imageio import load_png
 
     canvas = RenderCanvas(size=size, pixel_ratio=1)
     renderer = gfx.WgpuRenderer(canvas, pixel_ratio=1, ppaa="none")

@@ -17,11 +17,11 @@ from pathlib import Path
 from wgpurender.bench.encoder import gpu_total
 from wgpurender.bench.frames import TIMER_SLOTS, RawStageRunner, measure, measure_interleaved
 from wgpurender.bench.report import Result, command_line, size_text
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.assets import resolve_scene
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import Stats
+from wgpurender.core.files.assets import resolve_scene
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.timing import Stats
 
 
 class SceneRunner:
@@ -29,8 +29,8 @@ class SceneRunner:
 
     def __init__(self, ctx: GPUContext, path: Path, size: tuple[int, int],
                  anisotropy: str = DEFAULT_ANISOTROPY) -> None:
-        from wgpurender.wgpu_path.scene_render import load_renderer
-        from wgpurender.wgpu_path.timing import PassTimer
+        from wgpurender.wgpu_path.device.timing import PassTimer
+        from wgpurender.wgpu_path.scene import load_renderer
 
         self.ctx = ctx
         self.renderer = load_renderer(path, ctx, size=size, anisotropy=anisotropy)  # resolve_plan's plan
@@ -71,8 +71,8 @@ class RawSceneRunner(RawStageRunner):
 
         from wgpurender.core.plan import resolve_plan
         from wgpurender.core.scene import load_scene
-        from wgpurender.raw_path.checks import check_size
-        from wgpurender.raw_path.instance import get_vulkan
+        from wgpurender.raw_path.device.checks import check_size
+        from wgpurender.raw_path.device.context import get_vulkan
         from wgpurender.raw_path.scene.frame import SceneFrame
 
         ctx = get_vulkan()
@@ -143,12 +143,13 @@ def untimed_results(ctx: GPUContext, runner: SceneRunner, case: str, size: tuple
 
 
 def record_passes(ctx: GPUContext, runner: SceneRunner, scene: str, size: tuple[int, int], frames: int) -> None:
-    """Each pass's median GPU time beside a same-run copy of its bytes, for ``render --explain`` (core/bandwidth.py)."""
+    """Each pass's median GPU time beside a same-run copy of its bytes, for ``render --explain``
+    (core/files/bandwidth.py)."""
     import datetime
     import statistics
 
     from wgpurender.bench.post_roofline import CopyKernel, dispatch_bytes
-    from wgpurender.core import bandwidth
+    from wgpurender.core.files import bandwidth
     from wgpurender.core.plan.explain import scene_pass_bytes
 
     if not runner.passes or not ctx.has("timestamp-query"):

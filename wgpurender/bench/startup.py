@@ -10,7 +10,7 @@ Caches compared ("no caches" clears exactly what :data:`NO_CACHES` says):
 - both paths: Mesa's on-disk shader cache (the driver's own, below any API) disabled
   ($MESA_SHADER_CACHE_DISABLE) vs warm (a private $MESA_SHADER_CACHE_DIR filled by a
   first run);
-- wgpu: wgpu.h's cffi parse, cached by the first run (wgpu_path/cdef_cache.py), present (as in every
+- wgpu: wgpu.h's cffi parse, cached by the first run (wgpu_path/device/cdef_cache.py), present (as in every
   second run) vs removed (a first run on the machine);
 - wgpu: wgpu-native 0.32 offers the "pipeline-cache" device feature, but neither its C
   header nor wgpu-py 0.32 has a function to create a pipeline cache (wgpu's Rust API has
@@ -43,9 +43,9 @@ def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
     marks = {}
     if path == "wgpu":
         from wgpurender.bench.frames import WgpuStageRunner  # noqa: F401  (imports wgpu + the stages)
-        from wgpurender.wgpu_path.frame_loop import run_frame
-        from wgpurender.wgpu_path.gpu import get_context
-        from wgpurender.wgpu_path.targets import create_target
+        from wgpurender.wgpu_path.device.context import get_context
+        from wgpurender.wgpu_path.device.frame_loop import run_frame
+        from wgpurender.wgpu_path.device.targets import create_target
 
         marks["import_ms"] = time.perf_counter()
         ctx = get_context()
@@ -62,7 +62,7 @@ def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
             marks[name] = time.perf_counter()
     else:
         from wgpurender.bench.frames import RawStageRunner
-        from wgpurender.raw_path.instance import get_vulkan
+        from wgpurender.raw_path.device.context import get_vulkan
 
         marks["import_ms"] = time.perf_counter()
         get_vulkan()
@@ -90,7 +90,7 @@ def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str])
 
 
 # wgpu's "no caches" rows start, as a second run of the same command does, with wgpu.h's parse cached
-# (wgpu_path/cdef_cache.py); this row removes that file first: a first run on the machine.
+# (wgpu_path/device/cdef_cache.py); this row removes that file first: a first run on the machine.
 PARSED = "no caches, wgpu.h parsed (first run)"
 NO_BYTECODE = "no caches, no bytecode"
 # Exactly what "no caches" clears (issue 31.7), every run: the drivers' shader caches (Mesa's on-disk cache, and
@@ -129,7 +129,7 @@ def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool =
                   log=print) -> list:
     """Each configuration ``repeats`` times, after one warming run of each. ``quick``: the no-cache rows only."""
     from wgpurender.bench.report import Result, size_text
-    from wgpurender.wgpu_path.timing import Stats
+    from wgpurender.wgpu_path.device.timing import Stats
 
     out = []
     with tempfile.TemporaryDirectory(prefix="wgpurender-startup-") as tmp:
@@ -149,7 +149,7 @@ def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool =
                     for f in (work / "xdg" / "wgpurender").glob("vk-pipeline-cache-*.bin"):
                         f.unlink()
                 if label == PARSED:
-                    for f in (work / "xdg" / "wgpurender").glob("cffi-wgpu-h-*.pickle"):
+                    for f in (work / "xdg" / "wgpurender").glob("cffi-wgpu-h-*.json"):
                         f.unlink()
                 shutil.rmtree(work / "no-pyc", ignore_errors=True)
                 result = run_child(path, stage, size, {**base, **extra})

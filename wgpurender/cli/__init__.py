@@ -18,8 +18,8 @@ import numpy as np
 
 from wgpurender import __version__
 from wgpurender.core.errors import UserError
-from wgpurender.core.safe_write import install_signal_handlers
-from wgpurender.wgpu_path import shader_errors
+from wgpurender.core.files.safe_write import install_signal_handlers
+from wgpurender.wgpu_path.device import shader_errors
 
 
 class OneLineParser(argparse.ArgumentParser):

@@ -50,7 +50,7 @@ def add_backend_arg(parser: argparse.ArgumentParser) -> None:
 
 def add_anisotropy_arg(parser: argparse.ArgumentParser) -> None:
     """--anisotropy, with the same choices and default on every command that draws a scene."""
-    from wgpurender.core.anisotropy import ANISOTROPY_HELP, ANISOTROPY_RULES, DEFAULT_ANISOTROPY
+    from wgpurender.core.plan.anisotropy import ANISOTROPY_HELP, ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 
     parser.add_argument("--anisotropy", choices=ANISOTROPY_RULES, default=DEFAULT_ANISOTROPY, help=ANISOTROPY_HELP)
 

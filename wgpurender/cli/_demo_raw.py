@@ -1,8 +1,8 @@
-"""``wgpurender demo --raw``: the demo's flags, run by the raw-Vulkan window (wgpurender/raw_path/window.py).
+"""``wgpurender demo --raw``: the demo's flags, run by the raw-Vulkan window (wgpurender/raw_path/window/__init__.py).
 
 Every demo flag either works here as it does for the wgpu window or is refused with one line (exit 2):
 ``--backend`` (a wgpu choice) is refused; the orbit camera, keys, FPS title, ``--test-input`` and the
-``--benchmark`` CSV are the wgpu window's, from the core (core/controls.py, core/frame_times.py);
+``--benchmark`` CSV are the wgpu window's, from the core (core/view/controls.py, core/view/frame_times.py);
 ``--anisotropy`` is resolved for the raw device by the same function (core/plan/resolve.py);
 ``--validation`` turns on the Vulkan validation layer and counts its messages.
 """
@@ -21,10 +21,10 @@ def run_raw(args, benchmark, size: tuple[int, int], video=None) -> int:
     """``benchmark``: the demo's BenchmarkSpec (None without --benchmark), checked by the caller; ``size``: the
     window size the demo chose (--size, else a scene's [render] size); ``video``: the --record FrameWriter (None
     without it)."""
-    from wgpurender.core.controls import parse_script
     from wgpurender.core.errors import UserError
-    from wgpurender.core.imageio import check_writable, image_format, save_image
-    from wgpurender.raw_path.validation import ENV
+    from wgpurender.core.files.imageio import check_writable, image_format, save_image
+    from wgpurender.core.view.controls import parse_script
+    from wgpurender.raw_path.device.validation import ENV
     from wgpurender.raw_path.window import run_raw_window
 
     for dest, why in REFUSED.items():

@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from wgpurender.cli._args import add_anisotropy_arg, add_backend_arg, size_arg
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 
 # Every suite with the few words the top-level --help shows for it (the suites' own --help says more).
 SUITES = {"perf": "speed against the raw-Vulkan path", "accuracy": "error against time per quality knob",
@@ -55,8 +55,8 @@ def _register_perf(suites) -> None:
 def run(args) -> int:
     from wgpurender.bench.perf import FAMILIES, PerfConfig, command_line, run_perf, write_reports
     from wgpurender.core.errors import UserError
-    from wgpurender.core.safe_write import output_folder
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.safe_write import output_folder
+    from wgpurender.wgpu_path.device.context import get_context
 
     families = tuple(f.strip() for arg in (args.only or FAMILIES) for f in arg.split(",") if f.strip())
     unknown = [f for f in families if f not in FAMILIES]
@@ -78,9 +78,16 @@ def run(args) -> int:
     return 0
 
 
+def _sizes(preset: str) -> str:
+    from wgpurender.core.plan.bench_size import HARDWARE, SOFTWARE
+
+    (sw, sh), (hw, hh) = SOFTWARE[preset], HARDWARE[preset]
+    return f"lavapipe {sw}x{sh}, a GPU {hw}x{hh}"
+
+
 def _register_accuracy(suites) -> None:
     """``wgpurender bench accuracy``: wgpurender/bench/accuracy.py runs it."""
-    from wgpurender.bench.accuracy import FULL, QUICK, SCENE_FILE, run
+    from wgpurender.bench.accuracy import QUICK, SCENE_FILE, run
     from wgpurender.bench.accuracy_knobs import KNOBS
 
     p = suites.add_parser(
@@ -93,11 +100,11 @@ def _register_accuracy(suites) -> None:
     p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
                    help=f"scene file with a post chain, or a bundled scene's name (default {SCENE_FILE})")
     p.add_argument("--quick", action="store_true",
-                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
+                   help=f"the adapter's quick base size ({_sizes('quick')}), {QUICK['frames']} timed frames, 1 round")
     p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
                    help="where results go (default ./bench-results/accuracy)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
-                   help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
+                   help=f"base size (default the adapter's: {_sizes('full')}; the ground truth renders 8x it)")
     p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
     p.add_argument("--rounds", type=int, default=None, metavar="R",
                    help="split the timed frames over R passes through all settings (default 3; --quick 1)")
@@ -140,8 +147,8 @@ def _run_roofline(args) -> int:
     from wgpurender.bench.perf import command_line
     from wgpurender.bench.post_roofline import csv_text, markdown, record_bandwidth, run_roofline
     from wgpurender.core.errors import UserError
-    from wgpurender.core.safe_write import atomic_write, output_folder
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.safe_write import atomic_write, output_folder
+    from wgpurender.wgpu_path.device.context import get_context
 
     if args.frames < 1:
         raise UserError("--frames must be at least 1")

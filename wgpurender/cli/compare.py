@@ -47,8 +47,8 @@ SHARES = ("over_1", "over_2")  # fractions of the pixels: printed as %
 
 
 def run(args) -> int:
-    from wgpurender.core.compare import compare_images, heatmap_with_scale
-    from wgpurender.core.imageio import check_writable, image_format, load_png, save_image
+    from wgpurender.core.files.imageio import check_writable, image_format, load_png, save_image
+    from wgpurender.core.verdict.compare import compare_images, heatmap_with_scale
 
     if args.heatmap:
         image_format(args.heatmap)  # the suffix picks the format; refuse an unknown one before reading

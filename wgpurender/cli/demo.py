@@ -53,7 +53,7 @@ def register(subparsers) -> None:
     add_anisotropy_arg(p)
     p.add_argument("--raw", action="store_true",
                    help="draw with the raw-Vulkan path: its own surface, swapchain, semaphores, fences and frames "
-                   "in flight (wgpurender/raw_path/window.py); stages as 'wgpurender reference' has them; "
+                   "in flight (wgpurender/raw_path/window/__init__.py); stages as 'wgpurender reference' has them; "
                    "--anisotropy, --validation and --benchmark work there too, --backend is refused")
     p.add_argument("--validation", action="store_true",
                    help="turn on the Vulkan validation layer (as $WGPURENDER_VALIDATION=1) and count its messages")
@@ -74,14 +74,16 @@ def register(subparsers) -> None:
                    "(--raw too)")
     p.add_argument("--record-fps", type=float, default=None, metavar="N",
                    help="the video's frame rate (default 30; each presented frame is one video frame)")
-    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic input for tests (core/controls.py)
+    p.add_argument("--force", action="store_true",
+                   help="--record into a non-empty folder that holds no earlier recording, beside its files")
+    p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic test input (core/view/controls.py)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from wgpurender.core.anisotropy import check_applies
     from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.errors import UserError
+    from wgpurender.core.plan.anisotropy import check_applies
 
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
@@ -100,10 +102,12 @@ def run(args) -> int:
             code = run_raw(args, benchmark, size, video)
         else:
             code = _run_wgpu(args, benchmark, size, video)
-    finally:
+    except BaseException:
         if video is not None:
-            video.close()
+            video.abort()  # a failed run publishes no partial video
+        raise
     if video is not None:
+        video.close()
         print(f"wrote {video.path} ({video.count} frames)")
     return code
 
@@ -111,25 +115,27 @@ def run(args) -> int:
 def _video(args):
     """The --record writer (its output checked now, before a window opens), or None."""
     from wgpurender.core.errors import UserError
-    from wgpurender.core.video import FrameWriter, check_output
+    from wgpurender.core.files.video import FrameWriter, check_output
 
     if args.record is None:
         if args.record_fps is not None:
             raise UserError("--record-fps sets the frame rate of --record: add --record OUT, or leave it out")
+        if args.force:
+            raise UserError("--force applies to --record: add --record OUT, or leave it out")
         return None
     check_output(args.record)
-    return FrameWriter(args.record, 30.0 if args.record_fps is None else args.record_fps)
+    return FrameWriter(args.record, 30.0 if args.record_fps is None else args.record_fps, force=args.force)
 
 
 def _run_wgpu(args, benchmark, size, video) -> int:
     import os
 
-    from wgpurender.wgpu_path.gpu import VALIDATION_ENV
+    from wgpurender.wgpu_path.device.context import VALIDATION_ENV
 
     if args.validation:
         os.environ[VALIDATION_ENV] = "1"  # read when the first adapter is made, just below
     if args.validation:
-        from wgpurender.wgpu_path.gpu_validation import collect_validation_messages
+        from wgpurender.wgpu_path.device.validation import collect_validation_messages
 
         counter = collect_validation_messages()
     else:
@@ -141,7 +147,7 @@ def _run_wgpu(args, benchmark, size, video) -> int:
         print(result.benchmark.summary())
         print(f"wrote {result.benchmark.write_csv()}")
     if args.screenshot and result.last_frame is not None:
-        from wgpurender.core.imageio import save_image
+        from wgpurender.core.files.imageio import save_image
 
         print(f"wrote {save_image(args.screenshot, result.last_frame)}")
     if counter is not None:
@@ -155,8 +161,8 @@ def _benchmark(args):
     from pathlib import Path
 
     from wgpurender.core.errors import UserError
-    from wgpurender.core.frame_times import BenchmarkSpec
-    from wgpurender.core.imageio import check_writable
+    from wgpurender.core.files.imageio import check_writable
+    from wgpurender.core.view.frame_times import BenchmarkSpec
 
     if not args.benchmark:
         given = [f"--{name.replace('_', '-')}" for name, default in BENCHMARK_DEFAULTS.items()
@@ -183,9 +189,9 @@ def _window_size(target: str, asked: tuple[int, int] | None) -> tuple[int, int]:
 
 
 def _show(args, benchmark, size, video):
-    from wgpurender.core.controls import parse_script
-    from wgpurender.core.imageio import check_writable, image_format
-    from wgpurender.wgpu_path.gpu import get_context
+    from wgpurender.core.files.imageio import check_writable, image_format
+    from wgpurender.core.view.controls import parse_script
+    from wgpurender.wgpu_path.device.context import get_context
     from wgpurender.wgpu_path.window import run_window
     from wgpurender.wgpu_path.window.view import DemoView
 

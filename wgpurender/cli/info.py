@@ -13,7 +13,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from wgpurender.wgpu_path.gpu import _adapters, get_context
+    from wgpurender.wgpu_path.device.context import _adapters, get_context
 
     print("adapters:")
     for a in _adapters(args.backend):
@@ -36,7 +36,7 @@ def run(args) -> int:
 
 def _course_data() -> None:
     """Where the bundled course is (the checkout's folders, or the wheel's copies)."""
-    from wgpurender.core.assets import assets_dir, bundled_scene_names, notebook_path
+    from wgpurender.core.files.assets import assets_dir, bundled_scene_names, notebook_path
 
     print(f"course data: {assets_dir()}")
     print(f"  bundled scenes (by name: wgpurender render final -o f.png): {', '.join(bundled_scene_names())}")

@@ -33,7 +33,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     """The API's reference (wgpurender/api.py): a scene's plan resolved for the raw device by the one function."""
     from wgpurender import api
-    from wgpurender.core.imageio import check_writable, image_format
+    from wgpurender.core.files.imageio import check_writable, image_format
 
     image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)

@@ -28,7 +28,7 @@ def run(args) -> int:
     from wgpurender import api
     from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.errors import UserError
-    from wgpurender.core.imageio import check_writable, image_format
+    from wgpurender.core.files.imageio import check_writable, image_format
 
     scene = is_scene_file(args.target)
     if args.explain and not scene:

@@ -5,7 +5,7 @@ Run ``python -m wgpurender.raw_path.make_references`` (``make references``).
 Every stage this path knows, at REFERENCE_SIZE, in its default format and MSAA; and
 scene_<name>.png for each scene file of SCENE_REFERENCES, at SCENE_REFERENCE_SIZE.
 Only this path ever writes these files (also through ``pytest --regenerate-references``);
-tests/test_raw_path*.py re-render them and compare within the calibrated bounds of
+tests/test_vulkan_ref*.py re-render them and compare within the calibrated bounds of
 assets/reference/tolerances.toml. Float images (rgba16float) are stored as 8-bit sRGB PNGs
 (imageio.to_uint8). A file whose pixels did not change is left untouched, and each run says, per
 image, how many pixels changed and by how much at most.
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core.assets import reference_dir, scene_dir
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.assets import reference_dir, scene_dir
 
 REFERENCE_SIZE = (256, 192)
 REFERENCE_DIR = reference_dir()  # the checkout's assets/reference, or the wheel's copy
@@ -30,7 +30,8 @@ SCENE_DIR = scene_dir()
 SCENE_REFERENCE_SIZE = (320, 240)
 # reference name -> scene file in assets/scenes/ (only scenes the raw path can draw: per-pixel post effects)
 SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml",
-                    "scene_gltf_features": "gltf_features.toml"}
+                    "scene_gltf_features": "gltf_features.toml",
+                    "scene_metal_rough_spheres": "metal_rough_spheres.toml"}
 
 
 def reference_path(stage: str, directory: Path = REFERENCE_DIR) -> Path:
@@ -57,7 +58,7 @@ class Change:
 
 def render_named_reference(name: str) -> np.ndarray:
     """The 8-bit image of reference ``name`` (a stage or a SCENE_REFERENCES key), by the raw path only."""
-    from wgpurender.core.imageio import to_uint8
+    from wgpurender.core.files.imageio import to_uint8
     from wgpurender.raw_path import render_reference
 
     if name in SCENE_REFERENCES:
@@ -73,7 +74,7 @@ def all_reference_names() -> list[str]:
 
 def regenerate(directory: Path = REFERENCE_DIR, names: list[str] | None = None) -> list[Change]:
     """Re-render the references with the raw path; write those whose pixels changed (or are new)."""
-    from wgpurender.core.imageio import load_png, save_png
+    from wgpurender.core.files.imageio import load_png, save_png
 
     directory.mkdir(parents=True, exist_ok=True)
     changes = []

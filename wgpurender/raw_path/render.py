@@ -6,14 +6,14 @@ from contextlib import ExitStack
 
 import numpy as np
 
-from wgpurender.core import gpu_memory
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path.checks import check_msaa, check_size
-from wgpurender.raw_path.command_buffers import one_shot
-from wgpurender.raw_path.images import FORMATS, create_image
-from wgpurender.raw_path.instance import get_vulkan
-from wgpurender.raw_path.readback import buffer_to_pixels, record_copy_to_buffer
+from wgpurender.core.plan import gpu_memory
+from wgpurender.raw_path.device.checks import check_msaa, check_size
+from wgpurender.raw_path.device.command_buffers import one_shot
+from wgpurender.raw_path.device.context import get_vulkan
+from wgpurender.raw_path.device.images import FORMATS, create_image
+from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to_buffer
 from wgpurender.raw_path.stages import get_ref_stage
 from wgpurender.raw_path.stages.base import TARGET_USAGE
 
@@ -39,8 +39,13 @@ def render_reference(
         from wgpurender.raw_path.scene import render_scene_reference
 
         return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t, anisotropy=anisotropy)
-    cls = get_ref_stage(stage)
-    size = size or (800, 600)
+    return render_stage_class(get_ref_stage(stage), size or (800, 600), fmt, msaa, t)
+
+
+def render_stage_class(cls: type, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None,
+                       t: float = 0.0) -> np.ndarray:
+    """Render one RefStage subclass (a registered one, or a learner's: wgpurender/exercises/) headless."""
+    stage = cls.name
     fmt = fmt or cls.default_format
     if fmt not in FORMATS:
         raise UserError(f"unsupported colour format {fmt!r}: choose one of {', '.join(FORMATS)}")

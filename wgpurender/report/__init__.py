@@ -6,7 +6,7 @@ Per course step, in course order:
 
 - the step's words (the stage's summary and its module docstring; a scene's description);
 - the wgpu image and the raw-Vulkan image side by side, the difference heatmap
-  (wgpurender/core/compare.py) with its colour scale, PSNR and FLIP;
+  (wgpurender/core/verdict/compare.py) with its colour scale, PSNR and FLIP;
 - the median GPU time and frame time on both paths (the benchmark runners of
   wgpurender/bench/frames.py, a few frames each: a quick look, not the benchmark);
 - the code that makes the step on both paths, side by side, highlighted (Pygments) and linked

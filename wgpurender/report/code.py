@@ -27,7 +27,7 @@ CSS_CLASS = "hl"
 PATHS = {"wgpu": "wgpurender.wgpu_path.", "raw": "wgpurender.raw_path."}
 # What makes a scene on each path: the frame (passes in order) and the scene pass (the draws).
 SCENE_CODE = {
-    "wgpu": ("scene_render.frame:SceneRenderer.record", "scene_render.scene_pass:ScenePassRenderer.record"),
+    "wgpu": ("scene.frame:SceneRenderer.record", "scene.scene_pass:ScenePassRenderer.record"),
     "raw": ("scene.frame:SceneFrame.record", "scene.scene_subpass:SceneSubpass.record"),
 }
 STAGE_METHODS = ("setup", "record")  # each where the stage class defines it itself

@@ -16,13 +16,13 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.concepts import Concept
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.compare import Comparison, compare_images, heatmap
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.verdict.compare import Comparison, compare_images, heatmap
 from wgpurender.report import code, timings
 from wgpurender.report.concept_rows import REPO_ROOT, rows_for
 from wgpurender.report.timings import Timing
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 
 HEATMAP_GAIN = 32.0  # as `wgpurender compare`: a 1/255 difference shows as 32/255
 
@@ -123,7 +123,7 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
     path's plan resolved for its own adapter by the one function, core/plan/resolve.py)."""
     from wgpurender.core.plan import resolve_plan
     from wgpurender.raw_path import render_reference
-    from wgpurender.wgpu_path.scene_render import adapter_facts, render_plan
+    from wgpurender.wgpu_path.scene import adapter_facts, render_plan
 
     plan = resolve_plan(path, adapter_facts(ctx), size=size, anisotropy=anisotropy)
     text = plan.explain().replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
@@ -165,7 +165,7 @@ def _compare(step: Step) -> None:
 
 
 def heatmap_scale(block: int = 24, height: int = 14) -> tuple[np.ndarray, list[int]]:
-    """The heatmap's colour scale, drawn by :func:`~wgpurender.core.compare.heatmap` itself: (image, levels).
+    """The heatmap's colour scale, drawn by :func:`~wgpurender.core.verdict.compare.heatmap` itself: (image, levels).
 
     8-bit images differ in whole steps of 1/255, so the scale is one block per step, from 0 to
     the first step that saturates (255 / gain rounded up: 8 at gain 32, white and above).

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from wgpurender.bench.frames import RawStageRunner, WgpuStageRunner, measure
-from wgpurender.core.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.wgpu_path.device.context import GPUContext
 
 FRAMES = 5
 WARMUP = 1

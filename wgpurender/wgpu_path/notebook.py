@@ -2,10 +2,10 @@
 
 - :class:`Offscreen` draws the demo's drawable (window/view.py: the same stage or scene renderer, the same orbit
   camera) into an offscreen texture and reads it back; :func:`record_frames` turns it into an MP4 or PNG frames
-  (core/video.py), the camera turning once round a scene over the clip (stages animate with time instead).
+  (core/files/video.py), the camera turning once round a scene over the clip (stages animate with time instead).
 - :class:`LiveView` is rendercanvas's Jupyter canvas (a jupyter_rfb widget; rendercanvas comes with wgpu,
   jupyter_rfb is the optional ``notebook`` extra) drawing that drawable on demand, with the demo's mouse and key
-  controls (core/controls.py, fed browser events). Its display carries a PNG of the first frame beside the
+  controls (core/view/controls.py, fed browser events). Its display carries a PNG of the first frame beside the
   widget, so a frontend without widgets (nbclient, nbconvert, a notebook viewer) shows the still image.
 """
 
@@ -18,16 +18,16 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from wgpurender.core.controls import Controls
-from wgpurender.core.video import FrameWriter
-from wgpurender.wgpu_path.frame_loop import run_frame
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.targets import create_target
+from wgpurender.core.files.video import FrameWriter
+from wgpurender.core.view.controls import Controls
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.targets import create_target
 from wgpurender.wgpu_path.window.view import DemoView
 
 FORMAT = "rgba8unorm-srgb"
 # The browser's names (KeyboardEvent.key, MouseEvent.button + 1 as rendercanvas numbers them) for what
-# core/controls.py reads as GLFW's codes.
+# core/view/controls.py reads as GLFW's codes.
 BROWSER = SimpleNamespace(
     PRESS="down", RELEASE="up", REPEAT="repeat", MOUSE_BUTTON_LEFT=1, MOUSE_BUTTON_RIGHT=2, MOUSE_BUTTON_MIDDLE=3,
     KEY_ESCAPE="Escape", KEY_LEFT="ArrowLeft", KEY_RIGHT="ArrowRight", KEY_UP="ArrowUp", KEY_DOWN="ArrowDown",
@@ -62,12 +62,12 @@ class Offscreen:
 
 
 def record_frames(offscreen: Offscreen, out: str | Path, seconds: float, fps: float, turn_degrees: float,
-                  progress=None) -> tuple[Path, int]:
+                  progress=None, force: bool = False) -> tuple[Path, int]:
     """Render ``seconds * fps`` frames at t = k / fps, turning the orbit by ``turn_degrees`` over the clip."""
     count = max(1, round(seconds * fps))
     orbit = offscreen.orbit
     yaw = orbit.yaw if orbit is not None else 0.0
-    with FrameWriter(out, fps) as writer:
+    with FrameWriter(out, fps, force) as writer:
         for k in range(count):
             if orbit is not None and turn_degrees:
                 orbit.yaw = yaw + math.radians(turn_degrees) * k / count

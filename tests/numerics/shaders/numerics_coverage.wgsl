@@ -1,4 +1,4 @@
-// Coverage probe (wgpurender/numerics/coverage.py): flat white triangles from NDC positions.
+// Coverage probe (tests/numerics/coverage.py): flat white triangles from NDC positions.
 // Resolved MSAA value of a pixel = covered samples / sample count.
 
 @vertex

@@ -1,4 +1,4 @@
-// Depth-precision scene (wgpurender/numerics/depth_planes.py): flat-coloured squares facing the camera,
+// Depth-precision scene (tests/numerics/depth_planes.py): flat-coloured squares facing the camera,
 // one per instance, each from a row of `planes`: half-extent and view-space z, colour, and the
 // projection (the camera sits at the origin looking down -z, so view is the identity).
 

@@ -1,5 +1,5 @@
 // Lit, normal-mapped surface for the degenerate-geometry and scale hard cases
-// (wgpurender/numerics/lit.py), after numerics_safe.wgsl. Writes linear radiance to a float target,
+// (tests/numerics/lit.py), after numerics_safe.wgsl. Writes linear radiance to a float target,
 // so a NaN or inf computed here reaches the image instead of being clamped away by a unorm format.
 // SAFE = true: every normalisation goes through safe_normalize; false: plain normalize (counter-example).
 

@@ -1,4 +1,4 @@
-// Normal-transform probe (wgpurender/numerics/gpu_eval.py), after numerics_safe.wgsl.
+// Normal-transform probe (tests/numerics/gpu_eval.py), after numerics_safe.wgsl.
 // matrices[0] is the world matrix, matrices[1] the normal matrix from the CPU (upper-left 3x3 used).
 // MODE 0: ours, the CPU's (scaled) cofactor normal matrix + safe_normalize;
 // MODE 1: naive, inverse-transpose computed here in f32 (cofactor / determinant) + normalize;

@@ -1,5 +1,5 @@
 // Guarded vector normalisation for the hard-case shaders (prepended to numerics_normals.wgsl and
-// numerics_lit.wgsl by wgpurender/numerics; see docs/numerics.md).
+// numerics_lit.wgsl by tests/numerics; see docs/numerics.md).
 //
 // normalize(v) is v * inverseSqrt(dot(v, v)): for v = 0 that is 0 * inf = NaN, and for a tiny v
 // (|v| < 1e-19) dot(v, v) underflows to 0 with the same result, although v has a direction.

@@ -1,4 +1,4 @@
-// Hard-case probe (wgpurender/numerics/gpu_eval.py): clip = second * (first * p) in float32,
+// Hard-case probe (tests/numerics/gpu_eval.py): clip = second * (first * p) in float32,
 // as a vertex shader would compute it from two uniform matrices. Which matrices are passed
 // decides naive (world, proj*view) or camera-relative (view*world composed in float64, proj).
 

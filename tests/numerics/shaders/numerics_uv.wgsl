@@ -1,4 +1,4 @@
-// UV-precision probe (wgpurender/numerics/uv_tiling.py): a quad with the given UVs; each pixel
+// UV-precision probe (tests/numerics/uv_tiling.py): a quad with the given UVs; each pixel
 // writes its interpolated texel coordinate fract(uv) * size (.xy) and the texel the sampler
 // fetched with nearest filtering and repeat addressing (.zw: the texture stores its own indices).
 

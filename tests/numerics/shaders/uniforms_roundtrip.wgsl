@@ -1,6 +1,6 @@
 // Uniform layout self-check: read every scalar of a uniform struct and write its bits out.
 //
-// Filled in by wgpurender/core/uniforms.py:roundtrip_wgsl() with shader_variants.specialise():
+// Filled in by wgpurender/core/shaders/uniforms.py:roundtrip_wgsl() with shader_variants.specialise():
 //   STRUCTS  the struct declarations generated from the Python definition;
 //   STRUCT   the name of the struct under test;
 //   COPIES   one statement per scalar, in declaration order:

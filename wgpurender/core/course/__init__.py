@@ -3,7 +3,7 @@
 Plain numpy and dataclasses, no GPU API: geometry, cameras, lights, colours,
 generated textures, sampler settings, shading constants, formats and sample
 counts. Both rendering paths import it (``wgpurender/wgpu_path/stages/``,
-``wgpurender/wgpu_path/scene_render/`` on wgpu; ``wgpurender/raw_path/`` on raw Vulkan)
+``wgpurender/wgpu_path/scene/`` on wgpu; ``wgpurender/raw_path/`` on raw Vulkan)
 and neither imports the other, so a "wgpu == raw Vulkan" comparison checks two
 independent implementations of the same data. Tests take their expected values
 from here (or from formulas), never from the module they check.

@@ -1,6 +1,6 @@
 """Course step 4: the rotating cubes, their camera and their light.
 
-Matrices are float64 (:mod:`wgpurender.core.transforms`); each path packs them its own way.
+Matrices are float64 (:mod:`wgpurender.core.view.transforms`); each path packs them its own way.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wgpurender.core import transforms as tf
+from wgpurender.core.view import transforms as tf
 
 BACKGROUND = (0.02, 0.02, 0.03, 1.0)
 DEPTH_FORMAT = "depth32float"

@@ -7,8 +7,8 @@ Both rendering paths read this module and nothing else to learn which effects ex
 - the render plan (wgpurender/core/plan/) lists :class:`EffectStep` values (an effect, its validated
   parameters, and the scene key that asked for it) and groups them into passes;
 - each path runs them with its own code: the wgpu path (wgpurender/wgpu_path/post/) generates its WGSL parameter
-  structs from :attr:`EffectSpec.params` with wgpurender/core/uniforms.py; the raw path keeps its own GLSL
-  and packers (wgpurender/raw_path/scene/post.py) but takes the effect list from the plan.
+  structs from :attr:`EffectSpec.params` with wgpurender/core/shaders/uniforms.py; the raw path keeps its own GLSL
+  and packers (wgpurender/raw_path/post/chain.py) but takes the effect list from the plan.
 
 ``reach`` is what decides fusion: a ``"pixel"`` effect reads only the pixel it writes (and its position),
 so several of them compose as functions in one shader; a ``"neighbourhood"`` effect (FXAA, sharpen)

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from pathlib import PurePath
 
-from wgpurender.core.assets import bundled_scene
 from wgpurender.core.course.steps import course_step
+from wgpurender.core.files.assets import bundled_scene
 
 # MSAA: what WebGPU guarantees without extensions, and all that lavapipe offers.
 SAMPLE_COUNTS = (1, 4)
@@ -47,7 +47,7 @@ SCENE_SUFFIX = ".toml"
 
 def is_scene_file(target: str | PurePath) -> bool:
     """Whether a render target names a scene file (rather than a stage): it ends in ``.toml``, or it is a
-    bundled scene's name (``final``: :func:`wgpurender.core.assets.bundled_scene`) that no stage step has."""
+    bundled scene's name (``final``: :func:`wgpurender.core.files.assets.bundled_scene`) that no stage step has."""
     if str(target).endswith(SCENE_SUFFIX):
         return True
     step = course_step(str(target))

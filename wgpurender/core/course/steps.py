@@ -6,7 +6,7 @@ the listed ones (in name order), so a new stage is listed before it is given its
 
 Steps 1 to 5 are stage modules (one per path). Step 6, the course's goal, is the final model: a scene
 file (``scene``: a bundled scene's name, ``assets/scenes/<scene>.toml``) drawn by each path's scene renderer
-(wgpu_path/scene_render/ and post/; raw_path/scene/).
+(wgpu_path/scene/ and post/; raw_path/scene/).
 
 MSAA is a fact of the step, so both paths' stages read it from here: ``msaa`` is the sample count a step
 renders with by default, and ``takes_msaa`` whether ``--msaa 4`` applies to it at all.

@@ -12,7 +12,7 @@ import dataclasses
 import numpy as np
 
 from wgpurender.core.course.samplers import BILINEAR, NEAREST, TRILINEAR, SamplerSpec, anisotropic
-from wgpurender.core.transforms import look_at, perspective
+from wgpurender.core.view.transforms import look_at, perspective
 
 BACKGROUND = (0.02, 0.03, 0.06, 1.0)
 VERTEX_FLOATS = 5  # vec3 position, vec2 uv

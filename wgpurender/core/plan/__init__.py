@@ -28,7 +28,7 @@ its plan from, the knobs decided per adapter). ``python -m wgpurender.core.plan 
 :func:`explain_scene` is what ``render --explain`` and the API's ``explain`` call.
 
 Variant flags are plain identifiers so a template can test them with
-``#if normal_map`` (wgpurender/core/shader_variants.py); the light counts are separate
+``#if normal_map`` (wgpurender/core/shaders/shader_variants.py); the light counts are separate
 numbers (``ShaderVariant.counts``) for array sizes.
 """
 

@@ -23,7 +23,7 @@ import numpy as np
 
 from wgpurender.core.plan.model import Draw
 from wgpurender.core.scene import Placements
-from wgpurender.core.transforms import determinants3
+from wgpurender.core.view.transforms import determinants3
 
 OBJECT_BYTES = 128  # world (64) + normal matrix as 3 padded columns (48) + mirror (4) + padding (12)
 
@@ -71,7 +71,7 @@ def instanced(draw: Draw, worlds: np.ndarray, description: str) -> Draw:
 
 
 def normal_matrices(worlds: np.ndarray) -> np.ndarray:
-    """(N, 3, 3) cofactor matrices, sign-corrected: :func:`wgpurender.core.transforms.normal_matrix` for N."""
+    """(N, 3, 3) cofactor matrices, sign-corrected: :func:`wgpurender.core.view.transforms.normal_matrix` for N."""
     m = worlds[:, :3, :3]
     cof = np.cross(m[:, [1, 2, 0]], m[:, [2, 0, 1]])
     det = np.einsum("ij,ij->i", m[:, 0], cof[:, 0])

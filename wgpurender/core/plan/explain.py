@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
-from wgpurender.core import gpu_memory
+from wgpurender.core.plan import gpu_memory
 
 # No import of .model: RenderPlan.explain() calls this module, so it reads the plan's passes by their ``kind``.
 
@@ -154,7 +154,7 @@ def scene_pass_bytes(plan: Any) -> tuple[int, int]:
 
 def _measured(plan: Any, p: Any, adapter: str | None) -> str:
     """The pass's bytes (the scene pass's; a post pass lists its own above) and the last measurement here."""
-    from wgpurender.core import bandwidth
+    from wgpurender.core.files import bandwidth
 
     if p.kind == "scene":
         written, read = scene_pass_bytes(plan)

@@ -1,5 +1,5 @@
 """The plan's side of a model file's own materials: which materials a model draws with, the variant features and
-pipeline state they add, and each texture's sampler. The mapping itself is core/gltf_materials.py.
+pipeline state they add, and each texture's sampler. The mapping itself is core/scene/gltf_materials.py.
 
 A model whose scene entry names no material and whose file is glTF draws one draw per file material its
 triangles use (``Draw.part``); every other model draws once with its scene material, as before.
@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import re
 
-from wgpurender.core.gltf_materials import ModelMaterials, model_materials
+from wgpurender.core.plan.shading_models import metallic_factor
 from wgpurender.core.scene import Material, Model
+from wgpurender.core.scene.gltf_materials import ModelMaterials, model_materials
 
 GLTF_SUFFIXES = (".gltf", ".glb")
 MTL_FEATURES = {"base_color": "albedo_map", "normal": "normal_map", "roughness": "roughness_map"}
@@ -32,7 +33,7 @@ def obj_materials(model: Model) -> ModelMaterials | None:
     """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
     normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
     an MTL."""
-    from wgpurender.core.mesh import obj_material
+    from wgpurender.core.models.mesh import obj_material
 
     found = obj_material(model.path)
     if found is None:
@@ -108,7 +109,7 @@ def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
         options["occlusion_strength"] = material.occlusion_strength
     if "emissive" in variant_flags:
         options["emissive"] = tuple(material.emissive_color)
-    return options
+    return options | metallic_factor(material, variant_flags)
 
 
 def texture_samplers(material: Material, sampled: tuple[tuple[str, object], ...], spec) -> tuple:

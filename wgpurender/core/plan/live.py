@@ -12,8 +12,8 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 
-from wgpurender.core.anisotropy import ANISOTROPY_RULES
 from wgpurender.core.course.formats import POST_PATHS
+from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES
 from wgpurender.core.plan.model import DEPTH_FORMATS, RenderPlan
 from wgpurender.core.scene import Scene
 

@@ -3,7 +3,7 @@
 Both paths upload the same triangles, so what is loaded (tangents only where a variant drawing the model has a
 normal map; the scene file, not the OBJ's MTL, gives the material) and what a draw may ask of its mesh (uvs for
 textures, tangents for a normal map) is decided here, once; each path turns a :class:`Mesh` into its own
-buffers (wgpu_path/scene_render/resources.py, raw_path/scene/resources.py).
+buffers (wgpu_path/scene/resources.py, raw_path/scene/resources.py).
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.mesh import Mesh, index_range, load_mesh
+from wgpurender.core.models.mesh import Mesh, index_range, load_mesh
 from wgpurender.core.plan.model import Draw, RenderPlan
 
 

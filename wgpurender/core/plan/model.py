@@ -117,7 +117,7 @@ class TextureUse:
 
 @dataclass(frozen=True)
 class SamplerUse:
-    spec: object  # wgpurender.wgpu_path.textures.SamplerSpec (frozen, hashable)
+    spec: object  # wgpurender.wgpu_path.device.textures.SamplerSpec (frozen, hashable)
     used_by: tuple[str, ...]
 
 
@@ -273,6 +273,12 @@ class AdapterFacts:
     name: str = ""
     backend: str = ""
 
+    def accuracy_size(self, preset: str) -> tuple[int, int]:
+        """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""
+        from wgpurender.core.plan.bench_size import accuracy_size
+
+        return accuracy_size(self.adapter_type, preset)
+
 
 @dataclass(frozen=True)
 class Knobs:
@@ -290,7 +296,7 @@ class Knobs:
     immediates: str = "auto"
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
-    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/anisotropy.py)
+    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/plan/anisotropy.py)
     anisotropy_adapter: str | None = None  # the adapter type that rule reads when ``adapter`` is not given
     culling: str = "auto"  # "auto", "gpu" or "off": which instanced draws the GPU culls (core/plan/culling.py)
 

@@ -2,13 +2,13 @@
 
 ``wgpurender render``, ``reference``, ``demo`` (both windows), the Python API (``render``, ``reference``,
 ``explain``), ``report``, ``verify`` and ``bench`` all draw the plan this function returns, each for the
-adapter it draws on (the wgpu path: :func:`wgpurender.wgpu_path.scene_render.frame.adapter_facts`; the raw
-path: :func:`wgpurender.raw_path.instance.adapter_facts`). So the same scene and flags on the same device give
+adapter it draws on (the wgpu path: :func:`wgpurender.wgpu_path.scene.frame.adapter_facts`; the raw
+path: :func:`wgpurender.raw_path.device.context.adapter_facts`). So the same scene and flags on the same device give
 the same plan whichever way it is asked for, and ``--explain`` prints the plan that was drawn.
 
 The flags: ``size``, ``output_format``, ``msaa`` (the scene's [render] overridden, as the CLI's --size,
 --format, --msaa), ``anisotropy`` (:data:`DEFAULT_ANISOTROPY`, the per-adapter rule of
-wgpurender/core/anisotropy.py, or "scene") and any other :class:`~wgpurender.core.plan.model.Knobs` field
+wgpurender/core/plan/anisotropy.py, or "scene") and any other :class:`~wgpurender.core.plan.model.Knobs` field
 (post_path, post_fuse, immediates, depth_format, reverse_z, scene_format, output_storage).
 """
 
@@ -18,8 +18,8 @@ import os
 import sys
 from collections.abc import Iterable
 
-from wgpurender.core.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.plan.build import build_plan
 from wgpurender.core.plan.model import AdapterFacts, Knobs, RenderPlan
 from wgpurender.core.scene import Scene, load_scene

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from wgpurender.core.anisotropy import resolve_anisotropy
 from wgpurender.core.course.formats import map_format
+from wgpurender.core.plan.anisotropy import resolve_anisotropy
 from wgpurender.core.plan.model import Knobs, SamplerUse, TextureUse
 from wgpurender.core.scene import Material
-from wgpurender.core.texture_pixels import image_size, mip_level_count
+from wgpurender.core.scene.texture_pixels import image_size, mip_level_count
 
 
 class TextureTable:

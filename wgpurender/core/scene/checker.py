@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import InputFileError, input_file, resolved
+from wgpurender.core.files.input_files import InputFileError, input_file, resolved
 from wgpurender.core.scene.toml_locator import KeyLines, KeyPath, format_path
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)

@@ -16,10 +16,10 @@ from typing import Any
 
 import numpy as np
 
-from wgpurender.core import transforms
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.model import MAX_INSTANCES, Placements
 from wgpurender.core.scene.toml_locator import KeyPath, format_path
+from wgpurender.core.view import transforms
 
 INSTANCE_KEYS = ("file", "grid", "spacing", "translate")
 _FORMS = ("grid", "translate", "file")

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import dataclasses
 import tomllib
 from pathlib import Path
 
-from wgpurender.core.assets import resolve_scene
 from wgpurender.core.errors import UserError
-from wgpurender.core.input_files import MAX_NESTING, input_file, nesting_depth
+from wgpurender.core.files.assets import resolve_scene
+from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.model import Scene
 from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
@@ -33,7 +34,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     for name, body in mats.items():
         materials[name] = _material(c, body, ("materials", name), name, f"[materials.{name}]")
     description = data.get("description", "")
-    return Scene(
+    scene = Scene(
         path=path,
         camera=_camera(c, data["camera"]),
         models=_models(c, data.get("models", []), materials),
@@ -43,10 +44,15 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
         post=_post(c, data.get("post", [])),
         description=c.string(description, ("description",)),
     )
+    if not any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
+        return scene
+    from wgpurender.core.scene.gltf_lights import scene_lights  # imported only for glTF models
+
+    return dataclasses.replace(scene, lights=scene_lights(scene.lights, scene.models, path))  # + KHR lights
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.assets`)."""
+    """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.files.assets`)."""
     path = input_file(resolve_scene(path), "scene file")
     try:
         text = path.read_text(encoding="utf-8")

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wgpurender.core import transforms
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.view import transforms
 
 MAX_LIGHTS = 8
 CONVENTIONS = ("wgpu", "glm-vulkan")
@@ -108,7 +108,7 @@ class Material:
     sampler: SamplerSettings = field(default_factory=SamplerSettings)
     origin: str = "default"
     written: tuple[tuple[str, str], ...] = ()
-    # What a model file's own material can say beyond the scene keys (core/gltf_materials.py makes these):
+    # What a model file's own material can say beyond the scene keys (core/scene/gltf_materials.py makes these):
     vertex_colors: bool = False  # multiply the base colour by the vertex colour (glTF COLOR_0)
     double_sided: bool = False  # no back-face culling; back faces are lit with the normal turned around
     alpha_mode: str = "opaque"  # "opaque", "mask" (discard below alpha_cutoff) or "blend" (unsorted, see docs)
@@ -122,6 +122,10 @@ class Material:
     emissive_map: Path | None = None  # sRGB, multiplies emissive_color (glTF emissiveTexture)
     occlusion_map: Path | None = None  # linear, R channel scales the ambient term (glTF occlusionTexture)
     occlusion_strength: float = 1.0
+    # The material model (core/plan/shading_models.py): "blinn-phong" (the course's) or "pbr" (glTF
+    # metallic-roughness, shaders_wgsl/pbr.wgsl), with the metallic factor (times the roughness map's B channel).
+    shading_model: str = "blinn-phong"
+    metallic: float = 0.0
 
     @property
     def textures(self) -> dict[str, Path]:
@@ -187,7 +191,7 @@ class Model:
     written_path: str  # as in the file
     material: Material
     transform: Transform = IDENTITY
-    # True when the scene names no material: a glTF model then draws with its own materials (core/gltf_materials)
+    # True when the scene names no material: a glTF model then draws with its own materials (core/scene/gltf_materials)
     material_from_file: bool = False
     placements: Placements | None = None  # None: one copy, at ``transform``
 
@@ -209,7 +213,12 @@ class Model:
 
 @dataclass(frozen=True)
 class Light:
-    """``direction`` (directional: the way the light travels) or ``position`` (point), linear colour."""
+    """``direction`` (directional: the way the light travels) or ``position`` (point), linear colour.
+
+    A point light may also have a ``range`` (> 0: the KHR_lights_punctual window, E x clamp(1 - (d / range)^4, 0,
+    1)) and a spot ``cone`` (inner, outer half-angles in radians, around ``direction``, the way the spot points:
+    E x clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1)^2, a the angle off the axis); the model
+    file's KHR_lights_punctual lights come with these (core/scene/gltf_lights.py), ``origin`` saying where."""
 
     index: int
     type: str
@@ -217,6 +226,24 @@ class Light:
     intensity: float = 1.0
     direction: Vec3 | None = None
     position: Vec3 | None = None
+    range: float = 0.0
+    cone: tuple[float, float] | None = None
+    origin: str = ""
+
+    @property
+    def label(self) -> str:
+        return self.origin or f"lights[{self.index}]"
+
+    def shape(self) -> tuple[tuple[float, float, float], float, float, float]:
+        """A point light's window as the shaders take it: (spot axis, cone scale, cone offset, range), with
+        cone factor clamp(dot(axis, -l) * scale + offset, 0, 1)^2 (scale 0, offset 1: no cone) and range 0 for
+        none (the plain inverse square)."""
+        if self.cone is None:
+            return (0.0, 0.0, -1.0), 0.0, 1.0, self.range
+        inner, outer = np.cos(self.cone[0]), np.cos(self.cone[1])
+        scale = 1.0 / max(1e-3, inner - outer)
+        axis = np.asarray(self.direction, np.float64) / np.linalg.norm(self.direction)
+        return tuple(float(a) for a in axis), float(scale), float(-outer * scale), self.range
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,6 @@ from typing import Any
 
 import numpy as np
 
-from wgpurender.core import transforms
 from wgpurender.core.course.formats import POST_PATHS, SAMPLE_COUNTS
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 from wgpurender.core.errors import UserError
@@ -36,6 +35,7 @@ from wgpurender.core.scene.model import (
     _rows,
 )
 from wgpurender.core.scene.toml_locator import KeyPath, format_path
+from wgpurender.core.view import transforms
 
 TOP_KEYS = ("camera", "description", "lights", "materials", "models", "post", "render")
 CAMERA_KEYS = ("convention", "eye", "far", "fov_y", "near", "target", "up")
@@ -193,7 +193,7 @@ def _rotation(c: _Checker, data: Any, key: KeyPath) -> tuple[np.ndarray, str]:
 
 
 def _model_path(c: _Checker, value: Any, key: KeyPath) -> Path:
-    from wgpurender.core.mesh import SUPPORTED, UNSUPPORTED
+    from wgpurender.core.models.mesh import SUPPORTED, UNSUPPORTED
 
     written = c.string(value, key)
     suffix = Path(written).suffix.lower()

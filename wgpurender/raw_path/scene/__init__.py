@@ -12,7 +12,7 @@ pixels``; :func:`render_scene_plan` ``(plan) -> pixels`` (a plan that
 :func:`wgpurender.core.plan.resolve_plan` resolved for ``get_vulkan().adapter_facts()``);
 :func:`unsupported` ``(plan) -> [reasons]``.
 
-Modules, one idea each, like wgpurender/wgpu_path/scene_render/: ``support`` (what can be drawn),
+Modules, one idea each, like wgpurender/wgpu_path/scene/: ``support`` (what can be drawn),
 ``uniforms`` (std140 blocks and push constants, offsets by hand), ``variants`` (a plan's shader
 variant as glslc -D flags), ``resources`` (meshes, textures, samplers), ``renderpass`` (attachments,
 the two subpasses, dependencies), ``scene_subpass`` (descriptor sets, pipelines per variant, the

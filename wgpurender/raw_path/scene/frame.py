@@ -15,17 +15,16 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
-from wgpurender.core import gpu_memory
-from wgpurender.core.plan import RenderPlan, resolve_plan
+from wgpurender.core.plan import RenderPlan, gpu_memory, resolve_plan
 from wgpurender.core.scene import Scene
-from wgpurender.raw_path.checks import check_size
-from wgpurender.raw_path.command_buffers import one_shot
-from wgpurender.raw_path.images import Image, create_image
-from wgpurender.raw_path.instance import VulkanContext, get_vulkan
-from wgpurender.raw_path.readback import buffer_to_pixels, record_copy_to_buffer
-from wgpurender.raw_path.renderpass import begin, create_framebuffer
-from wgpurender.raw_path.scene.neighbourhood import HANDOFF_USAGE, NeighbourhoodPass, split_chain
-from wgpurender.raw_path.scene.post import PostSubpass
+from wgpurender.raw_path.device.checks import check_size
+from wgpurender.raw_path.device.command_buffers import one_shot
+from wgpurender.raw_path.device.context import VulkanContext, get_vulkan
+from wgpurender.raw_path.device.images import Image, create_image
+from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to_buffer
+from wgpurender.raw_path.device.renderpass import begin, create_framebuffer
+from wgpurender.raw_path.post.chain import PostSubpass
+from wgpurender.raw_path.post.neighbourhood import HANDOFF_USAGE, NeighbourhoodPass, split_chain
 from wgpurender.raw_path.scene.renderpass import create_scene_render_pass
 from wgpurender.raw_path.scene.resources import SceneResources
 from wgpurender.raw_path.scene.scene_subpass import SceneSubpass

@@ -22,7 +22,7 @@ output; an explicit image barrier then makes it readable by the neighbourhood pa
 resolves straight into ``handoff``.
 
 wgpu cannot express any of this: its scene pass resolves into a texture that the first post
-pass samples in a render pass of its own (wgpurender/wgpu_path/scene_render/frame.py).
+pass samples in a render pass of its own (wgpurender/wgpu_path/scene/frame.py).
 """
 
 from __future__ import annotations
@@ -35,9 +35,9 @@ import vulkan as vk
 
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.plan import RenderPlan
-from wgpurender.raw_path.images import DEPTH_FORMAT, vk_format
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.renderpass import (
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import DEPTH_FORMAT, vk_format
+from wgpurender.raw_path.device.renderpass import (
     COLOR_STAGE,
     COLOR_WRITE,
     DEPTH_OPTIMAL,

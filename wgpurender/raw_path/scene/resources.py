@@ -1,9 +1,9 @@
 """The scene's models and materials on the raw path: vertex/index buffers, textures, samplers.
 
-Meshes come from :func:`wgpurender.core.mesh.load_mesh` (the same loader as the wgpu path: both paths
+Meshes come from :func:`wgpurender.core.models.mesh.load_mesh` (the same loader as the wgpu path: both paths
 must draw the same triangles), interleaved with exactly the attributes of the variant that draws
 them and uploaded through staging buffers (memory.upload_buffer: vkCmdCopyBuffer into
-DEVICE_LOCAL memory). Textures go through raw_path/textures.py (staging upload, mip chain drawn
+DEVICE_LOCAL memory). Textures go through raw_path/device/textures.py (staging upload, mip chain drawn
 level by level with the wgpu path's box filter), samplers are VkSamplers made from the plan's
 SamplerSpec. Everything is cached, so models sharing a file or a texture share the copy.
 """
@@ -17,13 +17,13 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
-from wgpurender.core.mesh import Mesh
+from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import Draw, RenderPlan
 from wgpurender.core.plan.meshes import PlanMeshes
-from wgpurender.core.texture_pixels import load_image
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import Buffer, upload_buffer
-from wgpurender.raw_path.textures import TextureImage, create_sampler, upload_texture
+from wgpurender.core.scene.texture_pixels import load_image
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.memory import Buffer, upload_buffer
+from wgpurender.raw_path.device.textures import TextureImage, create_sampler, upload_texture
 
 # attribute -> (shader location, float count): the locations of shaders_glsl/scene.vert
 ATTRIBUTES = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}

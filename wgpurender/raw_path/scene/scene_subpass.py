@@ -29,12 +29,12 @@ from wgpurender.core.course.shading import AMBIENT
 from wgpurender.core.plan import Draw, RenderPlan, ShaderVariant
 from wgpurender.core.plan.batches import instance_blocks
 from wgpurender.core.scene import Scene
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, write_host_buffer
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
-from wgpurender.raw_path.renderpass import RenderPass
-from wgpurender.raw_path.scene import uniforms as U
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device import uniforms as U
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, write_host_buffer
+from wgpurender.raw_path.device.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
+from wgpurender.raw_path.device.renderpass import RenderPass
 from wgpurender.raw_path.scene.resources import SceneResources, vertex_input
 from wgpurender.raw_path.scene.variants import glsl_defines, is_lit
 
@@ -53,7 +53,8 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
     cam = scene.camera
     directional = [(np.asarray(lt.direction) / np.linalg.norm(lt.direction), np.asarray(lt.color) * lt.intensity)
                    for lt in scene.lights if lt.type == "directional"]
-    point = [(lt.position, np.asarray(lt.color) * lt.intensity) for lt in scene.lights if lt.type == "point"]
+    point = [(lt.position, np.asarray(lt.color) * lt.intensity, lt.shape()) for lt in scene.lights
+             if lt.type == "point"]
     return U.pack_camera(cam.source_projection(aspect), cam.view(), cam.eye, AMBIENT, directional, point)
 
 
@@ -67,7 +68,8 @@ def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
               "emissive": f.get("emissive")}
     if not is_lit(variant):
         return U.pack_material(f["base_color"], lit=False, **extras)
-    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"], **extras)
+    reflectance = f["metallic"] if "metallic" in f else f["specular"]  # PBR: metallic in specular's place
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], reflectance, **extras)
 
 
 def material_block_size(variant: ShaderVariant) -> int:

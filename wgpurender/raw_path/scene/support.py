@@ -24,9 +24,9 @@ from __future__ import annotations
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import DEPTH_FORMAT, RenderPlan
-from wgpurender.raw_path.images import FORMATS
-from wgpurender.raw_path.scene.neighbourhood import NEIGHBOUR_SHADERS
-from wgpurender.raw_path.scene.uniforms import MAX_POST_STEPS
+from wgpurender.raw_path.device.images import FORMATS
+from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
+from wgpurender.raw_path.post.neighbourhood import NEIGHBOUR_SHADERS
 
 PIXEL_EFFECTS = ("tonemap", "vignette", "grayscale", "sepia", "srgb")  # post_chain.frag, in a subpass
 NEIGHBOUR_EFFECTS = tuple(NEIGHBOUR_SHADERS)  # a render pass each (neighbourhood.py)

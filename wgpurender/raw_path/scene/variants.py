@@ -1,6 +1,6 @@
 """A plan's shader variant as glslc -D flags: the raw path's counterpart of scene.wgsl's "#if feature".
 
-The wgpu path specialises one WGSL template per variant (wgpurender/core/shader_variants.py keeps the
+The wgpu path specialises one WGSL template per variant (wgpurender/core/shaders/shader_variants.py keeps the
 "#if FEATURE" blocks of the variant's flags); the raw path hands the same decision to glslc's own
 preprocessor: each flag becomes a definition (``-DALBEDO_MAP``), the light counts become numbers
 (``-DPOINT_LIGHTS=2``), so each variant is its own SPIR-V module, cached by source and flags.
@@ -9,10 +9,10 @@ preprocessor: each flag becomes a definition (``-DALBEDO_MAP``), the light count
 from __future__ import annotations
 
 from wgpurender.core.plan import ShaderVariant
-from wgpurender.raw_path.scene.uniforms import MAX_LIGHTS
+from wgpurender.raw_path.device.uniforms import MAX_LIGHTS
 
 FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output", "vertex_color",
-         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha")
+         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr")
 TEXTURE_FLAGS = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
 
 

@@ -16,10 +16,10 @@ import vulkan as vk
 
 from wgpurender.core.course.formats import DEFAULT_FORMAT
 from wgpurender.core.course.steps import step_msaa
-from wgpurender.raw_path.images import Image, create_image
-from wgpurender.raw_path.instance import VulkanContext
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
-from wgpurender.raw_path.renderpass import begin, create_framebuffer, single_pass
+from wgpurender.raw_path.device.context import VulkanContext
+from wgpurender.raw_path.device.images import Image, create_image
+from wgpurender.raw_path.device.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
+from wgpurender.raw_path.device.renderpass import begin, create_framebuffer, single_pass
 
 TARGET_USAGE = (
     vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSFER_SRC_BIT | vk.VK_IMAGE_USAGE_TRANSFER_DST_BIT

@@ -16,7 +16,7 @@ from __future__ import annotations
 import vulkan as vk
 
 from wgpurender.core.course.triangle import TRANSFER_CLEAR_COLOR
-from wgpurender.raw_path.images import Image, subresource_range, transition
+from wgpurender.raw_path.device.images import Image, subresource_range, transition
 from wgpurender.raw_path.stages.base import RefStage
 
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 import vulkan as vk
 
 from wgpurender.core.course.triangle import CLEAR_COLOR  # exact in every format
-from wgpurender.raw_path.images import Image
-from wgpurender.raw_path.renderpass import begin, create_framebuffer, single_pass
+from wgpurender.raw_path.device.images import Image
+from wgpurender.raw_path.device.renderpass import begin, create_framebuffer, single_pass
 from wgpurender.raw_path.stages.base import RefStage
 
 

@@ -17,10 +17,15 @@ from __future__ import annotations
 import vulkan as vk
 
 from wgpurender.core.course import cubes as course
-from wgpurender.raw_path import descriptors, ubo
-from wgpurender.raw_path.images import Image, create_image
-from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
+from wgpurender.raw_path.device import descriptors, ubo
+from wgpurender.raw_path.device.images import Image, create_image
+from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
+from wgpurender.raw_path.device.pipeline import (
+    PipelineDesc,
+    create_pipeline,
+    create_pipeline_layout,
+    set_viewport_and_scissor,
+)
 from wgpurender.raw_path.stages.base import RefStage
 
 STRIDE = course.VERTEX_FLOATS * 4  # position, normal, colour: three vec3

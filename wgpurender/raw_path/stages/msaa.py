@@ -13,9 +13,9 @@ from __future__ import annotations
 import vulkan as vk
 
 from wgpurender.core.course.triangle import BACKGROUND
-from wgpurender.raw_path.images import Image
-from wgpurender.raw_path.pipeline import set_viewport_and_scissor
-from wgpurender.raw_path.renderpass import begin, create_framebuffer, single_pass
+from wgpurender.raw_path.device.images import Image
+from wgpurender.raw_path.device.pipeline import set_viewport_and_scissor
+from wgpurender.raw_path.device.renderpass import begin, create_framebuffer, single_pass
 from wgpurender.raw_path.stages.base import RefStage
 
 

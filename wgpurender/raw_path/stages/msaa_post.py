@@ -20,10 +20,15 @@ import vulkan as vk
 
 from wgpurender.core.course.triangle import BACKGROUND, GREY_AMOUNT
 from wgpurender.core.errors import UserError
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.images import Image, create_image
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
-from wgpurender.raw_path.renderpass import begin, create_framebuffer, msaa_post_pass
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device.images import Image, create_image
+from wgpurender.raw_path.device.pipeline import (
+    PipelineDesc,
+    create_pipeline,
+    create_pipeline_layout,
+    set_viewport_and_scissor,
+)
+from wgpurender.raw_path.device.renderpass import begin, create_framebuffer, msaa_post_pass
 from wgpurender.raw_path.stages.base import RefStage
 
 

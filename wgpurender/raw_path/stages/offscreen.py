@@ -11,8 +11,8 @@ from __future__ import annotations
 import vulkan as vk
 
 from wgpurender.core.course.triangle import BACKGROUND
-from wgpurender.raw_path.images import Image, create_image, subresource_layers, transition
-from wgpurender.raw_path.pipeline import set_viewport_and_scissor
+from wgpurender.raw_path.device.images import Image, create_image, subresource_layers, transition
+from wgpurender.raw_path.device.pipeline import set_viewport_and_scissor
 from wgpurender.raw_path.stages.base import RefStage
 
 

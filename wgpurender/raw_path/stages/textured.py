@@ -1,10 +1,9 @@
 """Course step 5: a textured plane at a grazing angle, combined vs separate image samplers.
 
 The scene is the course core's (course/textured.py: pattern, plane, lanes, camera, samplers), as
-on the wgpu path; everything Vulkan is spelled out here and in raw_path/textures.py:
-- the texture: a staging upload into an R8G8B8A8_SRGB image with a full mip chain, each
-  level drawn from the previous one by a render pass (the wgpu path's filter; see textures.py
-  for why not vkCmdBlitImage);
+on the wgpu path; everything Vulkan is spelled out here and in raw_path/device/textures.py:
+- the texture: a staging upload into an R8G8B8A8_SRGB image with a full mip chain, each level drawn
+  from the previous one by a render pass (the wgpu path's filter; see textures.py for why not vkCmdBlitImage);
 - left half: set 1 holds ONE descriptor of type COMBINED_IMAGE_SAMPLER (image view + sampler,
   GLSL sampler2D), the course's combined variant, which wgpu cannot express;
 - right half: set 1 holds a SAMPLED_IMAGE (GLSL texture2D), bound once, and set 2 a SAMPLER,
@@ -21,13 +20,18 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.course import textured as course
-from wgpurender.core.transforms import to_gpu
-from wgpurender.raw_path import descriptors
-from wgpurender.raw_path.images import Image
-from wgpurender.raw_path.memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
-from wgpurender.raw_path.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout, set_viewport_and_scissor
+from wgpurender.core.view.transforms import to_gpu
+from wgpurender.raw_path.device import descriptors
+from wgpurender.raw_path.device.images import Image
+from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, upload_buffer, write_host_buffer
+from wgpurender.raw_path.device.pipeline import (
+    PipelineDesc,
+    create_pipeline,
+    create_pipeline_layout,
+    set_viewport_and_scissor,
+)
+from wgpurender.raw_path.device.textures import create_sampler, upload_texture
 from wgpurender.raw_path.stages.base import RefStage
-from wgpurender.raw_path.textures import create_sampler, upload_texture
 
 STRIDE = course.VERTEX_FLOATS * 4  # vec3 position, vec2 uv
 # layout(std140) uniform Uniforms { mat4 mvp; vec4 uv_offset; }

@@ -11,9 +11,9 @@ from __future__ import annotations
 import vulkan as vk
 
 from wgpurender.core.course.triangle import BACKGROUND, TRIANGLE_INDICES, triangle_vertices
-from wgpurender.raw_path.images import Image
-from wgpurender.raw_path.memory import upload_buffer
-from wgpurender.raw_path.pipeline import set_viewport_and_scissor
+from wgpurender.raw_path.device.images import Image
+from wgpurender.raw_path.device.memory import upload_buffer
+from wgpurender.raw_path.device.pipeline import set_viewport_and_scissor
 from wgpurender.raw_path.stages.base import RefStage
 
 STRIDE = 5 * 4

@@ -22,7 +22,7 @@ import wgpu
 
 from wgpurender.core.course.effects import EffectStep, check_order, steps_for_target
 from wgpurender.core.plan import STORAGE_FORMATS, Attachment, PostPass, plan_post_passes
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.post.passes import ComputePass, FragmentPass, planned_pass
 
 POST_USAGE = {
@@ -65,7 +65,8 @@ class PostRunner:
     def run(self, encoder: wgpu.GPUCommandEncoder, textures: Mapping[str, wgpu.GPUTexture], timer=None) -> None:
         """Record every pass; ``textures``: attachment name -> texture ("output" included).
 
-        ``timer``: an optional :class:`wgpurender.wgpu_path.timing.PassTimer`; each pass is timed as "post:EFFECTS".
+        ``timer``: an optional :class:`wgpurender.wgpu_path.device.timing.PassTimer`; each pass is timed as
+        "post:EFFECTS".
         """
         if timer is None:
             self._run_untimed(encoder, textures)

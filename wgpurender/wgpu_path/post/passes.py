@@ -4,7 +4,7 @@ Both run the shader that wgpu_path/post/shaders.py generates for the plan's :cla
 with the same bindings: 0 the input texture, 1 a linear clamp sampler (effects that filter), 2 the pass's
 parameter struct (steps with parameters), and on the compute path 3 the storage texture written.
 
-Pipelines and layouts are made once per device and shader text (wgpurender/wgpu_path/gpu_cache.py); bind groups
+Pipelines and layouts are made once per device and shader text (wgpurender/wgpu_path/device/gpu_cache.py); bind groups
 and views once per (source, target) texture pair, in a small cache that a swapchain cannot grow. A fragment
 pass's draws are a render bundle recorded once per source texture: a frame replays it with one call.
 """
@@ -17,9 +17,9 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import PostPass
-from wgpurender.wgpu_path.gpu_cache import GpuCache, device_cache
+from wgpurender.wgpu_path.device.gpu_cache import GpuCache, device_cache
+from wgpurender.wgpu_path.device.shaders import create_shader_module
 from wgpurender.wgpu_path.post.shaders import dispatch_groups, pack_pass, pass_source, srgb_constant
-from wgpurender.wgpu_path.shaders import create_shader_module
 
 FRAGMENT, COMPUTE = wgpu.ShaderStage.FRAGMENT, wgpu.ShaderStage.COMPUTE
 

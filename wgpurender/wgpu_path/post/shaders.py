@@ -3,8 +3,8 @@
 Each effect's file (shaders_wgsl/post_<name>.wgsl) holds only functions: a per-pixel effect
 ``<name>_pixel(texel, pos, size, params) -> vec4f``, a neighbourhood effect ``<name>_at(p, pos, params)``
 (FXAA also ``fxaa_marks(p, params) -> bool`` for its mask). Their parameter structs are generated here
-from the GPU-free specs (wgpurender/core/course/effects.py) with :mod:`wgpurender.core.uniforms`, like the scene's
-structs, so Python and WGSL cannot disagree on a field (a choice parameter is ``<name>_index``).
+from the GPU-free specs (wgpurender/core/course/effects.py) with :mod:`wgpurender.core.shaders.uniforms`, like the
+scene's structs, so Python and WGSL cannot disagree on a field (a choice parameter is ``<name>_index``).
 
 A pass's shader is post_common.wgsl, the structs, ``struct PassParams { s0: ..., s1: ... }`` (one member
 per step that has parameters), the effects' functions, and a generated ``pass_color``: the first step's
@@ -27,8 +27,8 @@ from __future__ import annotations
 
 from wgpurender.core.course.effects import EffectSpec, encoding_of, needs_shader_encoding
 from wgpurender.core.plan import PostPass
-from wgpurender.core.uniforms import F32, Struct, wgsl_structs
-from wgpurender.wgpu_path.shaders import load_wgsl
+from wgpurender.core.shaders.uniforms import F32, Struct, wgsl_structs
+from wgpurender.wgpu_path.device.shaders import load_wgsl
 
 COMMON_WGSL = "post_common.wgsl"
 SRGB_WGSL = "post_srgb.wgsl"

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import functools
 
-from wgpurender.core.assets import unknown_target
-from wgpurender.core.discovery import subclasses_in_package
+from wgpurender.core.course.discovery import subclasses_in_package
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.assets import unknown_target
 from wgpurender.wgpu_path.stages.base import Stage
 
 

@@ -16,8 +16,8 @@ import wgpu
 from wgpurender.core.course.formats import DEFAULT_FORMAT, SAMPLE_COUNTS
 from wgpurender.core.course.steps import course_step, msaa_steps, step_msaa
 from wgpurender.core.errors import UserError
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module
 
 
 def check_sample_count(ctx: GPUContext, msaa: int) -> int:

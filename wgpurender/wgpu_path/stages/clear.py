@@ -5,7 +5,7 @@ from __future__ import annotations
 import wgpu
 
 from wgpurender.core.course.triangle import TRANSFER_CLEAR_COLOR
-from wgpurender.wgpu_path.native import clear_texture
+from wgpurender.wgpu_path.device.native import clear_texture
 from wgpurender.wgpu_path.stages.base import Stage
 
 

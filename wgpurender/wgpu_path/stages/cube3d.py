@@ -14,7 +14,7 @@ The course's UBO chapter maps onto wgpu like this:
   group 2 and the image is the same.
 
 The scene is the course core's (course/cubes.py). Uniform structs are declared once below
-(:mod:`wgpurender.core.uniforms`), which generates their WGSL into shaders_wgsl/cube3d.wgsl.
+(:mod:`wgpurender.core.shaders.uniforms`), which generates their WGSL into shaders_wgsl/cube3d.wgsl.
 """
 
 from __future__ import annotations
@@ -25,11 +25,11 @@ import wgpu
 
 from wgpurender.core.course import cubes as course
 from wgpurender.core.errors import UserError
-from wgpurender.core.shader_variants import specialise
-from wgpurender.core.uniforms import F32, MAT3, MAT4, U32, VEC3F, VEC4F, Struct, wgsl_structs
-from wgpurender.wgpu_path.bind_groups import uniform_group, uniform_layout
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.shaders import create_shader_module, load_wgsl
+from wgpurender.core.shaders.shader_variants import specialise
+from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, U32, VEC3F, VEC4F, Struct, wgsl_structs
+from wgpurender.wgpu_path.device.bind_groups import uniform_group, uniform_layout
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module, load_wgsl
 from wgpurender.wgpu_path.stages.base import Stage
 
 CAMERA = Struct("Camera", [("proj", MAT4), ("view", MAT4), ("light_dir", VEC3F), ("ambient", F32)])

@@ -31,7 +31,7 @@ import wgpu
 
 from wgpurender.core.course.triangle import BACKGROUND
 from wgpurender.core.errors import UserError
-from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.wgpu_path.device.shaders import create_shader_module
 from wgpurender.wgpu_path.stages.base import Stage
 
 GREY_AMOUNT = 1.0  # fully grey: the simplest effect to check against numpy (the raw stage's value)

@@ -18,11 +18,11 @@ import numpy as np
 import wgpu
 
 from wgpurender.core.course import textured as course
-from wgpurender.core.transforms import to_gpu
-from wgpurender.wgpu_path.gpu_cache import device_cache
-from wgpurender.wgpu_path.shaders import create_shader_module
+from wgpurender.core.view.transforms import to_gpu
+from wgpurender.wgpu_path.device.gpu_cache import device_cache
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+from wgpurender.wgpu_path.device.textures import create_sampler, create_texture
 from wgpurender.wgpu_path.stages.base import Stage
-from wgpurender.wgpu_path.textures import create_sampler, create_texture
 
 VERTEX_LAYOUT = {
     "array_stride": course.VERTEX_FLOATS * 4,
@@ -88,7 +88,7 @@ class TexturedPipelines:
 
 
 def textured_pipelines(device: wgpu.GPUDevice, fmt: str, sample_count: int = 1) -> TexturedPipelines:
-    """Made once per device, format and sample count (the device's cache, wgpurender/wgpu_path/gpu_cache.py)."""
+    """Made once per device, format and sample count (the device's cache, wgpurender/wgpu_path/device/gpu_cache.py)."""
     return device_cache(device, "textured-pipelines", 16).get(
         (fmt, sample_count), lambda: TexturedPipelines(device, fmt, sample_count))
 

@@ -14,10 +14,10 @@ else mailbox, else fifo, whichever the surface offers first) map onto it; ``mail
 be asked for without reaching into the context's private configuration, so it is not offered.
 
 The demo on top (wgpurender/cli/demo.py), one module each in this package: ``view`` (what is
-shown: a stage or a scene, rebuilt from its files, with the orbit camera of wgpurender/core/orbit.py),
+shown: a stage or a scene, rebuilt from its files, with the orbit camera of wgpurender/core/view/orbit.py),
 ``live_reload`` (which files changed; a broken file leaves the last good pipeline on screen and
-prints ``file:line: message`` once). Shared with the raw-Vulkan window (raw_path/window.py), from the
-core: ``core/controls.py`` (mouse and keys, and the tests' synthetic input) and ``core/frame_times.py``
+prints ``file:line: message`` once). Shared with the raw-Vulkan window (raw_path/window/__init__.py), from the
+core: ``core/view/controls.py`` (mouse and keys, and the tests' synthetic input) and ``core/view/frame_times.py``
 (FPS and frame time in the title, the benchmark mode).
 """
 
@@ -31,11 +31,11 @@ from pathlib import Path
 import numpy as np
 import wgpu
 
-from wgpurender.core import slow_frames
-from wgpurender.core.controls import Controls, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.errors import UserError
-from wgpurender.core.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.core.view import slow_frames
+from wgpurender.core.view.controls import Controls, ScriptEvent, due, install_callbacks, send
+from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
+from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.window.live_reload import FileWatcher, error_line
 from wgpurender.wgpu_path.window.view import DemoView
 
@@ -81,7 +81,7 @@ def present_info(window, present_mode: str) -> dict:
 
 def surface_format(context, adapter) -> str:
     """The sRGB variant of the surface's preferred format, as the Vulkan tutorial picks (B8G8R8A8_SRGB)."""
-    from wgpurender.wgpu_path.native import surface_supports
+    from wgpurender.wgpu_path.device.native import surface_supports
 
     preferred = context.get_preferred_format(adapter)
     if not surface_supports(context, adapter):
@@ -108,7 +108,7 @@ def run_window(
     overlay: bool = False,
 ) -> WindowResult:
     """Open a window and draw ``view`` until it closes (Esc, close button), ``frames`` frames were shown,
-    or the benchmark's run time is over. ``video``: a core.video.FrameWriter that gets every presented frame.
+    or the benchmark's run time is over. ``video``: a core.files.video.FrameWriter that gets every presented frame.
     ``overlay``: the settings overlay (window/overlay.py; the CLI's default, --no-overlay hides it)."""
     glfw = _glfw()
     glfw.window_hint(glfw.CLIENT_API, glfw.NO_API)  # wgpu owns the surface, GLFW makes no GL context
@@ -216,12 +216,12 @@ class DemoWindow:
 
     # -- a frame ----------------------------------------------------------------------
     def _run_frame(self, texture, t: float, capture: bool):
-        """One frame through the shared frame loop (wgpurender/wgpu_path/frame_loop.py) into the swapchain image.
+        """One frame through the shared frame loop (wgpurender/wgpu_path/device/frame_loop.py) into the swapchain image.
 
         A rebuilt drawable's first frame may still fail (pipelines made on first use); then the last
         good drawable draws this frame and stays, and the error is printed once.
         """
-        from wgpurender.wgpu_path.frame_loop import run_frame
+        from wgpurender.wgpu_path.device.frame_loop import run_frame
 
         while True:
             self.view.apply_camera(self.drawable)
@@ -292,7 +292,7 @@ class DemoWindow:
             if video is not None:
                 video.write(pixels)
             for path in shots:
-                from wgpurender.core.imageio import save_png
+                from wgpurender.core.files.imageio import save_png
 
                 save_png(path, pixels)
             if screenshot and pixels is not None:

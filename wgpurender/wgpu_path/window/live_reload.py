@@ -52,11 +52,11 @@ class FileWatcher:
 def drop_shader_caches(device) -> None:
     """Forget pipelines cached on the device across drawables, so a rebuild compiles the files again.
 
-    The device keeps its GPU caches (wgpurender/wgpu_path/gpu_cache.py: the textured stage's pipelines, mip
+    The device keeps its GPU caches (wgpurender/wgpu_path/device/gpu_cache.py: the textured stage's pipelines, mip
     generation, the post passes' modules, layouts and pipelines); a rebuilt drawable would otherwise
     reuse the old shader. Only the demo window calls this, before each (re)build.
     """
-    from wgpurender.wgpu_path.gpu_cache import clear_caches
+    from wgpurender.wgpu_path.device.gpu_cache import clear_caches
 
     clear_caches(device)
 

@@ -14,10 +14,10 @@ import functools
 
 import wgpu
 
-from wgpurender.core import gpu_memory
+from wgpurender.core.plan import gpu_memory
 from wgpurender.core.plan.live import changed
-from wgpurender.wgpu_path.gpu import GPUContext
-from wgpurender.wgpu_path.timing import PassTimer
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.timing import PassTimer
 from wgpurender.wgpu_path.window.overlay import Overlay
 
 

@@ -1,7 +1,7 @@
 """What the demo window shows: a stage or a scene file, rebuilt from its files on demand, with an orbit camera.
 
 A :class:`DemoView` builds the drawable (a :class:`~wgpurender.wgpu_path.stages.base.Stage` or a
-:class:`~wgpurender.wgpu_path.scene_render.SceneRenderer`) for the surface's format, records which
+:class:`~wgpurender.wgpu_path.scene.SceneRenderer`) for the surface's format, records which
 WGSL files that took (plus the scene file itself) for live reload, and moves the drawable's
 camera to the orbit's pose. Scenes and the 3d stage have a camera; the other stages are
 flat and ignore camera input.
@@ -15,8 +15,8 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from wgpurender.core.orbit import Orbit, moved_camera
-from wgpurender.wgpu_path.gpu import GPUContext
+from wgpurender.core.view.orbit import Orbit, moved_camera
+from wgpurender.wgpu_path.device.context import GPUContext
 
 
 class DemoView:
@@ -65,7 +65,7 @@ class DemoView:
     def build(self, fmt: str, keep_caches: bool = False):
         """A new drawable, its first frame's shaders included (pipelines made lazily are made in ``warm``).
         ``keep_caches``: a knob changed, not a file: the device's cached pipelines and samplers are reused."""
-        from wgpurender.wgpu_path.shaders import recording_loads
+        from wgpurender.wgpu_path.device.shaders import recording_loads
         from wgpurender.wgpu_path.window.live_reload import drop_shader_caches
 
         if not keep_caches:
@@ -80,7 +80,7 @@ class DemoView:
         """A context manager for the first draw of a new drawable: shaders it loads join ``watched``."""
         from contextlib import contextmanager
 
-        from wgpurender.wgpu_path.shaders import recording_loads
+        from wgpurender.wgpu_path.device.shaders import recording_loads
 
         @contextmanager
         def block():
@@ -95,7 +95,7 @@ class DemoView:
         from the file as it is now; a swapchain image is not a storage texture, so a compute post path writes
         it through a scratch copy (``output_storage=False``)."""
         from wgpurender.core.plan import resolve_plan
-        from wgpurender.wgpu_path.scene_render import adapter_facts
+        from wgpurender.wgpu_path.scene import adapter_facts
 
         if self.live is not None:  # the overlay's knobs, through the same resolution function
             from wgpurender.core.scene import load_scene
@@ -106,7 +106,7 @@ class DemoView:
 
     def _make(self, fmt: str):
         if self.is_scene:
-            from wgpurender.wgpu_path.scene_render import SceneRenderer
+            from wgpurender.wgpu_path.scene import SceneRenderer
 
             plan = self.plan(fmt)
             return SceneRenderer(self.ctx, plan.scene, plan)

@@ -1,0 +1,202 @@
+"""glTF 2.0 geometry read by the project itself: the node graph, and every primitive's attributes and indices.
+
+Nothing here goes through trimesh: positions, normals, TEXCOORD_n, TANGENT, COLOR_0 and indices all come from
+:func:`wgpurender.core.models.gltf_io.read_accessor` (byteStride, normalized integer types and sparse accessors
+supported), node transforms from the file's ``matrix`` or ``translation``/``rotation``/``scale``.
+
+What is not drawn is said, never dropped silently: :func:`geometry_notes` lists it for ``--explain``
+(points and lines primitives, morph targets, skins, unused texture coordinate sets).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
+
+TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
+SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}
+FLOAT = 5126
+
+
+@dataclass
+class PrimitiveGeometry:
+    """One triangle primitive's arrays, in its mesh's own space (mesh_primitives pairs it with the world matrix)."""
+
+    positions: np.ndarray  # (N, 3) float64
+    faces: np.ndarray  # (F, 3) int64, counter-clockwise front faces
+    normals: np.ndarray | None
+    uvs: np.ndarray | None  # (N, 2), glTF convention: v = 0 at the top
+    tangents: np.ndarray | None  # (N, 4)
+    colors: np.ndarray | None  # (N, 4) linear RGBA
+    material: int | None
+    where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
+
+
+def node_matrix(node: dict) -> np.ndarray:
+    """A node's local matrix: ``matrix`` (column-major) or T @ R @ S from translation, rotation (x, y, z, w), scale."""
+    if "matrix" in node:
+        return np.asarray(node["matrix"], np.float64).reshape(4, 4).T
+    x, y, z, w = node.get("rotation", (0.0, 0.0, 0.0, 1.0))
+    q = np.array([x, y, z, w], np.float64)
+    norm = np.linalg.norm(q)
+    x, y, z, w = q / norm if norm > 0 else (0.0, 0.0, 0.0, 1.0)
+    rot = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    m = np.eye(4)
+    m[:3, :3] = rot * np.asarray(node.get("scale", (1.0, 1.0, 1.0)), np.float64)[None, :]
+    m[:3, 3] = node.get("translation", (0.0, 0.0, 0.0))
+    return m
+
+
+def root_nodes(doc: GltfDocument) -> list[int]:
+    """The nodes the file asks to draw: those of ``scene`` (or scene 0); without scenes, every node no other node
+    lists as a child; without nodes, none (meshes are then placed once each, see :func:`placed_meshes`)."""
+    gltf = doc.json
+    scenes = gltf.get("scenes", [])
+    if scenes:
+        return list(scenes[gltf.get("scene", 0)].get("nodes", []))
+    children = {c for node in gltf.get("nodes", []) for c in node.get("children", [])}
+    return [i for i in range(len(gltf.get("nodes", []))) if i not in children]
+
+
+def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
+    """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
+    The graph is a forest (gltf_rules.check_node_graph refuses loops and second parents before this runs); a
+    loop is still refused here rather than followed forever."""
+    nodes = doc.json.get("nodes", [])
+    if not nodes:
+        return [(np.eye(4), i, -1) for i in range(len(doc.json.get("meshes", [])))]
+    out: list[tuple[np.ndarray, int, int]] = []
+    stack = [(index, np.eye(4), ()) for index in reversed(root_nodes(doc))]
+    while stack:
+        index, parent, path = stack.pop()
+        if index in path:
+            raise UserError(f"malformed glTF file {doc.path}: node {index} is its own ancestor "
+                            f"(children cycle {' -> '.join(map(str, path + (index,)))}); re-export the file")
+        node = nodes[index]
+        world = parent @ node_matrix(node)
+        if "mesh" in node:
+            out.append((world, node["mesh"], index))
+        for child in reversed(node.get("children", [])):
+            stack.append((child, world, path + (index,)))
+    return out
+
+
+def _attribute(doc: GltfDocument, prim: dict, name: str, where: str) -> np.ndarray | None:
+    """An attribute through the project's accessor reader, as float64. Accessor and component types were checked
+    with the document (gltf_rules.py); integer attributes must also be normalized (unnormalized ones are
+    KHR_mesh_quantization's, which is not supported)."""
+    index = prim.get("attributes", {}).get(name)
+    if index is None:
+        return None
+    acc = doc.json["accessors"][index]
+    if acc.get("componentType") != FLOAT and not acc.get("normalized", False):
+        raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not normalized "
+                        "(KHR_mesh_quantization), which is not supported; re-export without quantization")
+    return read_accessor(doc, index).astype(np.float64)
+
+
+def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
+    """Triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive, counter-clockwise as the file means."""
+    if "indices" in prim:  # SCALAR unsigned integers: checked with the document (gltf_rules.py)
+        idx = read_accessor(doc, prim["indices"]).reshape(-1).astype(np.int64)
+    else:
+        idx = np.arange(count, dtype=np.int64)
+    mode = prim.get("mode", 4)
+    if mode == 4:
+        return idx[: len(idx) // 3 * 3].reshape(-1, 3)
+    n = max(len(idx) - 2, 0)
+    i = np.arange(n)
+    if mode == 5:  # strip: triangle i is (i, i+1, i+2), every odd one turned around to keep the winding
+        odd = (i % 2).astype(bool)
+        a, b = np.where(odd, idx[i + 1], idx[i]), np.where(odd, idx[i], idx[i + 1])
+        return np.stack([a, b, idx[i + 2]], axis=1)
+    return np.stack([idx[i + 1], idx[i + 2], np.full(n, idx[0]) if n else idx[:0]], axis=1)  # fan around idx[0]
+
+
+def texcoord_set(doc: GltfDocument, material: int | None) -> int:
+    """The TEXCOORD set a material's textures use (its base colour texture's ``texCoord``, else the first texture
+    that names one, else 0): the mesh carries one set of texture coordinates."""
+    if material is None:
+        return 0
+    mat = doc.json.get("materials", [])[material]
+    infos = [mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"), mat.get("normalTexture"),
+             mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
+             mat.get("occlusionTexture")]
+    return next((int(i.get("texCoord", 0)) for i in infos if isinstance(i, dict)), 0)
+
+
+def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGeometry | None:
+    """One primitive's triangles and attributes in its mesh's own space (the caller applies the node's world
+    matrix); None for points and lines (see :func:`geometry_notes`)."""
+    mode = prim.get("mode", 4)
+    if mode in SKIPPED_MODES:
+        return None
+    if mode not in TRIANGLE_MODES:
+        raise UserError(f"malformed glTF file {doc.path}: {where} has mode {mode}; glTF 2.0 modes are 0..6")
+    positions = _attribute(doc, prim, "POSITION", where)
+    if positions is None:
+        raise UserError(f"malformed glTF file {doc.path}: {where} has no POSITION attribute (glTF requires it)")
+    count = len(positions)
+    material = prim.get("material")
+    uv_name = f"TEXCOORD_{texcoord_set(doc, material)}"
+    arrays = {name: _attribute(doc, prim, name, where) for name in ("NORMAL", uv_name, "TANGENT", "COLOR_0")}
+    for name, array in arrays.items():
+        if array is not None and len(array) != count:
+            raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
+                            f"POSITION {count}")
+    faces = _faces(doc, prim, count)
+    if len(faces) and (faces.min() < 0 or faces.max() >= count):
+        raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
+    colors = arrays["COLOR_0"]
+    if colors is not None and colors.shape[1] == 3:
+        colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
+    return PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
+                             material, where)
+
+
+def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
+    """(world matrix, node label, geometry) of every triangle primitive the file's scene places."""
+    meshes = doc.json.get("meshes", [])
+    out = []
+    for world, mesh_index, node_index in placed_meshes(doc):
+        mesh = meshes[mesh_index]
+        name = f" '{mesh['name']}'" if mesh.get("name") else ""
+        for p, prim in enumerate(mesh.get("primitives", [])):
+            where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
+            geometry = primitive_geometry(doc, prim, where)
+            if geometry is not None and len(geometry.faces):
+                out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
+    return out
+
+
+def geometry_notes(doc: GltfDocument) -> list[str]:
+    """What the file has that is not drawn, one line each (for ``--explain``)."""
+    notes, gltf = [], doc.json
+    for mi, mesh in enumerate(gltf.get("meshes", [])):
+        for pi, prim in enumerate(mesh.get("primitives", [])):
+            mode = prim.get("mode", 4)
+            if mode in SKIPPED_MODES:
+                notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive ignored (only triangles "
+                             "are drawn)")
+            if prim.get("targets"):
+                notes.append(f"mesh {mi} primitive {pi}: {len(prim['targets'])} morph target(s) ignored (drawn "
+                             "in the base pose)")
+            used = f"TEXCOORD_{texcoord_set(doc, prim.get('material'))}"
+            extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a != used)
+            extra += sorted(a for a in prim.get("attributes", {})
+                            if a.startswith(("JOINTS_", "WEIGHTS_")) or (a.startswith("COLOR_") and a != "COLOR_0"))
+            if extra:
+                notes.append(f"mesh {mi} primitive {pi}: attribute(s) {', '.join(extra)} ignored")
+    if gltf.get("skins"):
+        notes.append(f"{len(gltf['skins'])} skin(s) ignored (drawn in the bind pose, no skinning)")
+    if gltf.get("animations"):
+        notes.append(f"{len(gltf['animations'])} animation(s) ignored (drawn at rest)")
+    if gltf.get("cameras"):
+        notes.append(f"{len(gltf['cameras'])} camera(s) ignored (the scene file's [camera] is used)")
+    return notes

@@ -1,0 +1,548 @@
+"""Triangle meshes from OBJ (+MTL), glTF/GLB, PLY and STL files, loaded through trimesh into plain numpy arrays.
+
+UV convention of :class:`Mesh` (the glTF / Vulkan / wgpu one): u = 0 at the left, **v = 0 at the TOP** of the
+image, so ``uv * (width, height)`` addresses texels with row 0 being the first row of the PNG, which is also
+texel row 0 of a wgpu texture written from that PNG. Per format:
+
+- glTF/GLB stores exactly this convention. glTF files do not go through trimesh at all: the node graph and every
+  attribute (POSITION, NORMAL, TEXCOORD_n, TANGENT, COLOR_0, indices) are read by the project's own accessor
+  reader (gltf_geometry.py, gltf_io.read_accessor: byteStride, normalized integers, sparse accessors).
+  trimesh still reads OBJ, PLY and STL.
+- OBJ and PLY store v = 0 at the BOTTOM; trimesh passes them through, we convert with v -> 1 - v.
+- STL has no UVs (uvs are zeros, ``has_uvs`` False).
+
+Tangents (N, 4) follow tangents.py (glTF convention, w = handedness). They come from the file's TANGENT when it
+has one, otherwise they are generated; vertices shared by mirrored and unmirrored triangles are split first.
+
+Everything is vectorised: no Python loop runs per vertex or per triangle (a 1M-triangle binary PLY loads in
+seconds).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files.input_files import check_file_size, input_file, resolved
+from wgpurender.core.models import gltf_geometry, gltf_io
+from wgpurender.core.models.tangents import (
+    area_weighted_normals,
+    face_uv_frames,
+    split_mirrored_vertices,
+    vertex_tangents,
+)
+
+SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl"}
+CONVERT_HINT = (
+    "convert it to glTF: in Blender, File > Import the file, then File > Export > glTF 2.0 (.glb); "
+    "or with assimp: `assimp export {name} {stem}.glb`"
+)
+UNSUPPORTED = {".fbx": "FBX", ".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
+               ".usd": "USD", ".usdz": "USDZ", ".usda": "USD", ".usdc": "USD"}
+MTL_ROLES = {  # MTL statement -> (texture role, is the image sRGB-encoded)
+    "map_kd": ("base_color", True),
+    "map_bump": ("normal", False),
+    "bump": ("normal", False),
+    "norm": ("normal", False),
+    "map_pr": ("roughness", False),
+    "map_ao": ("occlusion", False),
+    "map_ke": ("emissive", True),
+}
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class TextureRef:
+    """One texture a material refers to: a file on disk, or image bytes embedded in a glTF."""
+
+    path: Path | None
+    data: bytes | None = None
+    srgb: bool = False
+
+    def load(self) -> np.ndarray:
+        """The image as (H, W, 4) uint8 (still encoded: decode sRGB in the sampler when ``srgb``)."""
+        if self.data is None:
+            from wgpurender.core.files.imageio import load_png
+
+            missing = f"texture not found: {self.path} (keep textures where the model file refers to them)"
+            if self.path is None:
+                raise UserError(missing)
+            return load_png(input_file(self.path, "texture", missing))
+        import io
+
+        from PIL import Image
+
+        from wgpurender.core.files.imageio import decode_image
+
+        try:
+            with Image.open(io.BytesIO(self.data)) as im:
+                return decode_image(im, "an image embedded in the model")
+        except (OSError, ValueError, Image.DecompressionBombError) as err:
+            raise UserError(f"cannot read an image embedded in the model: {err}") from None
+
+
+@dataclass
+class Material:
+    """Texture references of a material. Roles: base_color, normal, roughness, metallic_roughness, occlusion,
+    emissive (whichever the file names)."""
+
+    name: str | None = None
+    textures: dict[str, TextureRef] = field(default_factory=dict)
+    color: tuple[float, float, float] | None = None  # MTL Kd (diffuse colour, taken as linear)
+    opacity: float | None = None  # MTL d (dissolve), or 1 - Tr
+    illum: int | None = None  # MTL illumination model: 0 = colour only, no lighting
+
+
+@dataclass(frozen=True)
+class MeshPart:
+    """A run of triangles drawn with one material of the model file: ``material`` indexes the file's materials
+    (glTF; None = the primitive names none), ``first_index``/``index_count`` count indices (3 per triangle)."""
+
+    material: int | None
+    first_index: int
+    index_count: int
+
+
+@dataclass
+class Mesh:
+    """An indexed triangle mesh in plain arrays, ready for vertex/index buffers.
+
+    positions (N, 3) float32; normals (N, 3) float32 unit; uvs (N, 2) float32, v = 0 at the top of the image
+    (zeros when the file has none: ``has_uvs`` False); tangents (N, 4) float32 or None; indices (F, 3) uint16 when
+    the largest index is below 65535, else uint32 (``index_format`` names the wgpu format); colors (N, 4) float32
+    linear RGBA (glTF COLOR_0) or None; parts: the triangles of each file material, contiguous, in index order.
+    """
+
+    positions: np.ndarray
+    normals: np.ndarray
+    uvs: np.ndarray
+    indices: np.ndarray
+    tangents: np.ndarray | None = None
+    has_uvs: bool = True
+    tangents_source: str | None = None  # "file", "generated" or None
+    material: Material | None = None
+    source: Path | None = None
+    colors: np.ndarray | None = None
+    parts: tuple[MeshPart, ...] = ()
+
+    @property
+    def vertex_count(self) -> int:
+        return len(self.positions)
+
+    @property
+    def triangle_count(self) -> int:
+        return len(self.indices)
+
+    @property
+    def index_format(self) -> str:
+        """The wgpu IndexFormat matching ``indices.dtype``."""
+        return "uint16" if self.indices.dtype == np.uint16 else "uint32"
+
+    def index_bytes(self) -> bytes:
+        """Indices as bytes, zero-padded to a multiple of 4 (queue.write_buffer needs it; draw only F*3 of them)."""
+        data = np.ascontiguousarray(self.indices).tobytes()
+        return data + b"\0" * (-len(data) % 4)
+
+    def vertex_data(self) -> np.ndarray:
+        """Interleaved (N, 12) float32: position xyz @0, normal xyz @12, uv @24, tangent xyzw @32; stride 48 bytes."""
+        tangents = self.tangents if self.tangents is not None else np.zeros((self.vertex_count, 4), np.float32)
+        return np.ascontiguousarray(np.concatenate([self.positions, self.normals, self.uvs, tangents], axis=1),
+                                    dtype=np.float32)
+
+
+def index_range(mesh: Mesh, draw) -> tuple[int, int]:
+    """(first index, index count) a plan Draw covers: the mesh part of its file material (``draw.part``, -1 for
+    primitives without one), or the whole mesh when ``part`` is None."""
+    if draw.part is None:
+        return 0, int(mesh.indices.size)
+    wanted = None if draw.part < 0 else draw.part
+    for part in mesh.parts:
+        if part.material == wanted:
+            return part.first_index, part.index_count
+    raise UserError(f"{draw.label}: the model file has no triangles with material {draw.part}")
+
+
+def index_dtype(max_index: int) -> type:
+    """uint16 when every index fits below 65535 (0xFFFF is kept free: it is the strip-restart value), else uint32."""
+    return np.uint16 if max_index < 65535 else np.uint32
+
+
+def build_mesh(
+    positions: np.ndarray,
+    indices: np.ndarray,
+    normals: np.ndarray | None = None,
+    uvs: np.ndarray | None = None,
+    tangents: np.ndarray | None = None,
+    *,
+    generate_tangents: bool = True,
+    material: Material | None = None,
+    source: str | os.PathLike | None = None,
+    colors: np.ndarray | None = None,
+    parts: tuple[MeshPart, ...] = (),
+) -> Mesh:
+    """Validate arrays and complete them into a :class:`Mesh` (the vectorised pipeline every loader ends in).
+
+    uvs must already be in the Mesh convention (v = 0 at the top). Missing normals become area-weighted vertex
+    normals (zero or non-finite file normals are replaced the same way). Missing tangents are generated when
+    ``generate_tangents``; vertices shared by triangles of opposite UV handedness are split for that.
+    """
+    what = f"mesh {source}" if source is not None else "mesh"
+    positions = np.asarray(positions, np.float64).reshape(-1, 3)
+    indices = np.asarray(indices).reshape(-1, 3).astype(np.int64)
+    if len(positions) == 0 or len(indices) == 0:
+        raise UserError(f"{what} is empty: {len(positions)} vertices, {len(indices)} triangles "
+                        "(faces with fewer than 3 vertices, lines and points are not triangles)")
+    _check_gpu_range(what, "vertex position", positions, MAX_COORDINATE)
+    if indices.min() < 0 or indices.max() >= len(positions):
+        raise UserError(f"{what} has triangle indices outside 0..{len(positions) - 1}; the file is malformed")
+    for label, array, width in (("normals", normals, 3), ("uvs", uvs, 2), ("tangents", tangents, 4),
+                                ("colors", colors, 4)):
+        if array is not None and np.shape(array) != (len(positions), width):
+            raise UserError(f"{what}: {label} have shape {np.shape(array)}, expected ({len(positions)}, {width})")
+    has_uvs = uvs is not None
+    uvs = np.zeros((len(positions), 2)) if uvs is None else np.asarray(uvs, np.float64).reshape(-1, 2)
+    _check_gpu_range(what, "texture coordinate", uvs, FLOAT32_MAX)
+    normals = _complete_normals(positions, indices, normals)
+
+    tangents_source = None
+    if tangents is not None:
+        tangents = np.asarray(tangents, np.float64).reshape(-1, 4)
+        tangents = _checked_tangents(tangents, positions, normals, uvs, indices)
+        tangents_source = "file"
+    elif generate_tangents:
+        _, _, _, handed = face_uv_frames(positions, uvs, indices)
+        indices, src = split_mirrored_vertices(indices, handed, len(positions))
+        if len(src) != len(positions):
+            positions, normals, uvs = positions[src], normals[src], uvs[src]
+            colors = None if colors is None else np.asarray(colors)[src]
+        tangents = vertex_tangents(positions, normals, uvs, indices)
+        tangents_source = "generated"
+
+    return Mesh(
+        positions=positions.astype(np.float32),
+        normals=normals.astype(np.float32),
+        uvs=uvs.astype(np.float32),
+        indices=np.ascontiguousarray(indices.astype(index_dtype(int(indices.max())))),
+        tangents=None if tangents is None else tangents.astype(np.float32),
+        has_uvs=has_uvs,
+        tangents_source=tangents_source,
+        material=material,
+        source=None if source is None else Path(source),
+        colors=None if colors is None else _checked_colors(what, colors),
+        parts=tuple(parts),
+    )
+
+
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+MAX_COORDINATE = 1e18  # squared distances stay finite in the GPU's float32 (sqrt(3.4e38) = 1.8e19)
+
+
+def _check_gpu_range(what: str, label: str, values: np.ndarray, limit: float) -> None:
+    """Values must be finite in float32, the type the GPU gets (a float64 check misses 1e39), and within limit."""
+    with np.errstate(all="ignore"):
+        wide = np.asarray(values, np.float64)
+        bad = ~np.isfinite(wide.astype(np.float32)) | (np.abs(wide) > limit)
+    if np.any(bad):
+        rows = int(np.count_nonzero(np.any(bad.reshape(len(wide), -1), axis=1)))
+        worst = wide[bad][0]
+        raise UserError(f"{what} has {rows} {label}(s) that are NaN or infinite, or beyond {limit:.3g}, in float32 "
+                        f"(the GPU's type), e.g. {worst:g}; fix the model or scale it down before export")
+
+
+def _checked_colors(what: str, colors: np.ndarray) -> np.ndarray:
+    """Vertex colours as float32; NaN or infinite ones are refused (the GPU would blend them into every pixel)."""
+    colors = np.asarray(colors, np.float64)
+    if not np.all(np.isfinite(colors)):
+        raise UserError(f"{what} has vertex colours (COLOR_0) that are NaN or infinite; fix the model")
+    return colors.astype(np.float32)
+
+
+def _complete_normals(positions: np.ndarray, indices: np.ndarray, normals: np.ndarray | None) -> np.ndarray:
+    computed = None
+    if normals is not None:
+        normals = np.asarray(normals, np.float64).reshape(-1, 3)
+        length = np.linalg.norm(normals, axis=1, keepdims=True)
+        good = np.isfinite(length[:, 0]) & (length[:, 0] > 1e-12)
+        if np.all(good):
+            return normals / length
+        computed = area_weighted_normals(positions, indices).astype(np.float64)
+        return np.where(good[:, None], normals / np.where(good[:, None], length, 1.0), computed)
+    return area_weighted_normals(positions, indices).astype(np.float64)
+
+
+def _checked_tangents(
+    tangents: np.ndarray, positions: np.ndarray, normals: np.ndarray, uvs: np.ndarray, indices: np.ndarray
+) -> np.ndarray:
+    """File tangents, normalised, w snapped to +-1; rows that are zero or non-finite are replaced by generated ones."""
+    xyz = tangents[:, :3]
+    length = np.linalg.norm(xyz, axis=1, keepdims=True)
+    good = np.isfinite(length[:, 0]) & (length[:, 0] > 1e-12) & np.isfinite(tangents[:, 3])
+    w = np.where(tangents[:, 3:] < 0, -1.0, 1.0)
+    out = np.concatenate([xyz / np.where(good[:, None], length, 1.0), w], axis=1)
+    if not np.all(good):
+        out[~good] = vertex_tangents(positions, normals, uvs, indices)[~good]
+    return out
+
+
+@dataclass
+class _Part:
+    """One placed piece of geometry, already in world space."""
+
+    positions: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray | None
+    uvs: np.ndarray | None
+    tangents: np.ndarray | None
+    colors: np.ndarray | None = None
+    material: int | None = None
+
+
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_material: bool = True) -> Mesh:
+    """Load a model file into one :class:`Mesh` (all its meshes and nodes merged, node transforms applied).
+
+    The material is the first one the file's triangles use; ``obj_material=False`` skips an OBJ's MTL
+    (and its "material library not found" warning) for callers whose scene supplies the material.
+    Raises UserError for missing, unsupported, malformed or empty files and for non-finite positions.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix in UNSUPPORTED:
+        kind = UNSUPPORTED[suffix]
+        raise UserError(f"cannot load {path}: {kind} files are not supported (trimesh cannot read {kind}); "
+                        + CONVERT_HINT.format(name=path.name, stem=path.stem))
+    if suffix not in SUPPORTED:
+        raise UserError(f"cannot load {path}: unknown model format '{suffix or path.name}' "
+                        f"(supported: {', '.join(SUPPORTED)})")
+    check_file_size(input_file(path, "model file"), "model file")
+    file_type = SUPPORTED[suffix]
+    if file_type in ("gltf", "glb"):
+        parts, material = _gltf_parts(path, file_type)
+    else:
+        if file_type == "obj":
+            check_obj_records(path)
+        parts = _trimesh_parts(path, file_type)
+        material = _obj_material(path) if file_type == "obj" and obj_material else None
+    if not parts:
+        raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
+                        "points are not triangles)")
+    positions, faces, normals, uvs, tangents, colors, mesh_parts = _concatenate(parts)
+    return build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
+                      material=material, source=path, colors=colors, parts=mesh_parts)
+
+
+OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least numbers each record needs
+
+
+def check_obj_records(path: Path) -> None:
+    """Vertex records of an OBJ file carry enough numbers: trimesh fails with an IndexError (or reads a wrong
+    array) on ``vt 0.5``. Raises ``FILE:LINE: ...`` for the first bad record."""
+    with open(path, "rb") as f:
+        for number, raw in enumerate(f, start=1):
+            tokens = raw.split(b"#", 1)[0].split()
+            if not tokens or tokens[0] not in (b"v", b"vt", b"vn"):
+                continue
+            kind = tokens[0].decode()
+            need, form = OBJ_RECORDS[kind]
+            try:
+                values = [float(t) for t in tokens[1:]]
+            except ValueError:
+                values = None
+            if values is None or len(values) < need:
+                written = raw.decode("utf-8", "replace").strip()
+                raise UserError(f"{path}:{number}: OBJ record {written[:60]!r} needs {need} numbers "
+                                f"('{kind} {form}'); fix the line or re-export the model")
+
+
+def _load_scene(path: Path, file_type: str, **kwargs):
+    import trimesh
+
+    try:
+        # process=False: no vertex merging, so per-corner UVs and normals survive; maintain_order must stay False
+        # for OBJ (trimesh 5.2 then keys vertices by position index only and loses per-corner UVs).
+        return trimesh.load_scene(str(path), file_type=file_type, process=False, **kwargs)
+    except UserError:
+        raise
+    except Exception as err:  # trimesh raises many types for bad files; the user needs only the file and reason
+        detail = str(err).strip().splitlines()[0] if str(err).strip() else ""
+        reason = f"{type(err).__name__}: {detail}" if detail else type(err).__name__
+        raise UserError(f"cannot read {path} as {file_type.upper()}: the file is malformed ({reason})") from None
+
+
+def _placed(scene):
+    """(transform (4, 4), geometry name, Trimesh) for every node that places a triangle mesh, in graph order."""
+    import trimesh
+
+    for node in scene.graph.nodes_geometry:
+        transform, name = scene.graph[node]
+        geom = scene.geometry.get(name)
+        if isinstance(geom, trimesh.Trimesh) and len(geom.faces) > 0:
+            yield np.asarray(transform, np.float64), name, geom
+
+
+def _file_normals(geom) -> np.ndarray | None:
+    """Vertex normals the file supplied, or None. trimesh computes normals lazily on access; only normals given
+    at construction sit in its cache beforehand, so look there instead of touching ``geom.vertex_normals``."""
+    return np.asarray(geom.vertex_normals, np.float64) if "vertex_normals" in geom._cache else None
+
+
+def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
+    kwargs = {"skip_materials": True} if file_type in ("obj", "ply") else {}
+    scene = _load_scene(path, file_type, **kwargs)
+    parts = []
+    for transform, name, geom in _placed(scene):
+        uv = getattr(geom.visual, "uv", None)
+        if uv is not None and len(uv) == len(geom.vertices):
+            uv = np.asarray(uv, np.float64).copy()
+            uv[:, 1] = 1.0 - uv[:, 1]  # OBJ / PLY: v = 0 at the bottom -> Mesh convention, v = 0 at the top
+        else:
+            uv = None
+        parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, None, str(path), name))
+    return parts
+
+
+def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | None]:
+    """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space."""
+    doc = gltf_io.read_document(path)
+    parts, material = [], None
+    for world, node, geometry in gltf_geometry.mesh_primitives(doc):
+        g = geometry
+        part = _place(world, g.positions, g.faces, g.normals, g.uvs, g.tangents, str(path), node)
+        part.colors, part.material = g.colors, g.material
+        parts.append(part)
+        if material is None and g.material is not None:
+            mat_name, textures = gltf_io.material_textures(doc, g.material)
+            material = Material(mat_name, {role: TextureRef(t["uri"], t["data"], t["srgb"])
+                                           for role, t in textures.items()})
+    return parts, material
+
+
+def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "model", node: str = "?") -> _Part:
+    """Apply a node transform: positions by the matrix, normals by the inverse transpose of its 3x3 (renormalised
+    later), tangent xyz by the 3x3; when the transform mirrors (det < 0) w is negated and the winding reversed."""
+    positions = np.asarray(vertices, np.float64)
+    faces = np.asarray(faces, np.int64)
+    if not np.allclose(transform, np.eye(4)):
+        m = transform[:3, :3]
+        with np.errstate(all="ignore"):
+            det = np.linalg.det(m)
+        if not np.all(np.isfinite(transform.astype(np.float32))) or not np.isfinite(det):
+            raise UserError(f"{where}: the node placing mesh '{node}' has a transform beyond float32's range "
+                            "(e.g. a 1e308 matrix); fix the node's matrix, translation, rotation or scale")
+        if abs(det) < 1e-12 * max(1.0, float(np.abs(m).max()) ** 3):
+            raise UserError(f"{where}: the node placing mesh '{node}' has a singular transform (determinant "
+                            f"{det:.3g}: a scale of 0 on some axis, or a flat matrix), which flattens the mesh and "
+                            "leaves its normals undefined; give every axis a non-zero scale")
+        positions = positions @ m.T + transform[:3, 3]
+        if normals is not None:
+            normals = normals @ np.linalg.inv(m)  # rows: (M^-T n)^T, the inverse transpose keeps them outward
+        if tangents is not None:
+            xyz = np.asarray(tangents[:, :3], np.float64) @ m.T
+            tangents = np.concatenate([xyz, np.asarray(tangents[:, 3:], np.float64) * np.sign(det)], axis=1)
+        if det < 0:
+            faces = faces[:, ::-1]
+    return _Part(positions, faces, normals, uvs, tangents)
+
+
+def _concatenate(parts: list[_Part]):
+    """One set of arrays from several parts, grouped by material (stable: file order within a material), and the
+    index range of each material; a part without normals/uvs/colours gets computed, zero or white ones."""
+    parts = sorted(parts, key=lambda p: -1 if p.material is None else p.material)
+    offsets = np.cumsum([0] + [len(p.positions) for p in parts[:-1]])
+    positions = np.concatenate([p.positions for p in parts])
+    faces = np.concatenate([p.faces + o for p, o in zip(parts, offsets, strict=True)])
+    normals = None
+    if any(p.normals is not None for p in parts):
+        normals = np.concatenate([p.normals if p.normals is not None else area_weighted_normals(p.positions, p.faces)
+                                  for p in parts])
+    uvs = None
+    if any(p.uvs is not None for p in parts):
+        uvs = np.concatenate([p.uvs if p.uvs is not None else np.zeros((len(p.positions), 2)) for p in parts])
+    colors = None
+    if any(p.colors is not None for p in parts):
+        colors = np.concatenate([p.colors if p.colors is not None else np.ones((len(p.positions), 4)) for p in parts])
+    # tangents from the file only when every part has them; otherwise all are generated consistently
+    tangents = np.concatenate([p.tangents for p in parts]) if all(p.tangents is not None for p in parts) else None
+    mesh_parts, first = [], 0
+    for p in parts:
+        count = 3 * len(p.faces)
+        if mesh_parts and mesh_parts[-1].material == p.material:
+            mesh_parts[-1] = MeshPart(p.material, mesh_parts[-1].first_index, mesh_parts[-1].index_count + count)
+        else:
+            mesh_parts.append(MeshPart(p.material, first, count))
+        first += count
+    return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts)
+
+
+def obj_material(path: Path) -> Material | None:
+    """The OBJ's first ``usemtl`` material from its MTL (Kd, d/Tr and texture files), or None."""
+    return _obj_material(path)
+
+
+def _obj_material(path: Path) -> Material | None:
+    """The material of the first `usemtl` in an OBJ, with the texture files its MTL names (paths resolved)."""
+    text = path.read_bytes()
+    libraries = re.findall(rb"^[ \t]*mtllib[ \t]+(.+?)[ \t]*$", text, re.M)
+    used = re.search(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", text, re.M)
+    if not libraries:
+        return None
+    wanted = used.group(1).decode("utf-8", "replace") if used else None
+    for lib in libraries:
+        mtl = path.parent / lib.decode("utf-8", "replace")
+        if not os.path.isfile(mtl):
+            # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
+            log.info("%s: material library %s not found; loading without textures", path, mtl)
+            continue
+        materials = parse_mtl(mtl)
+        if wanted in materials:
+            return materials[wanted]
+        if wanted is None and materials:
+            return next(iter(materials.values()))
+    return None
+
+
+def parse_mtl(path: Path) -> dict[str, Material]:
+    """Texture references of every material in an MTL file. Map options (``-bm 1.0`` ...) are skipped: the file
+    name is the last token. Paths are resolved relative to the MTL file."""
+    materials: dict[str, Material] = {}
+    current = None
+    for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
+        tokens = raw.strip().split()
+        if not tokens or tokens[0].startswith("#"):
+            continue
+        key = tokens[0].lower()
+        if key == "newmtl":
+            current = Material(" ".join(tokens[1:]))
+            materials[current.name] = current
+        elif key in MTL_ROLES and current is not None and len(tokens) > 1:
+            role, srgb = MTL_ROLES[key]
+            if not tokens[-1].isprintable():
+                raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
+                                "fix the material library")
+            current.textures.setdefault(role, TextureRef(resolved(path.parent / tokens[-1]), None, srgb))
+        elif key in ("kd", "d", "tr", "illum") and current is not None:
+            _mtl_number(current, key, tokens[1:], f"{path}:{number}")
+    return materials
+
+
+def _mtl_number(material: Material, key: str, values: list[str], where: str) -> None:
+    """Kd r g b (a single value means grey), d / Tr (opacity, transparency) and illum; a bad number is one line."""
+    try:
+        numbers = [float(v) for v in values[:3]]
+    except ValueError:
+        raise UserError(f"{where}: {key.capitalize()} needs numbers, got {' '.join(values)!r}; fix the material "
+                        "library") from None
+    if not numbers or not all(np.isfinite(numbers)):
+        raise UserError(f"{where}: {key.capitalize()} needs finite numbers; fix the material library")
+    if key == "kd":
+        material.color = tuple(max(0.0, v) for v in (numbers * 3)[:3])
+    elif key == "illum":
+        material.illum = int(numbers[0])
+    else:
+        material.opacity = min(1.0, max(0.0, numbers[0] if key == "d" else 1.0 - numbers[0]))

@@ -1,0 +1,223 @@
+"""A glTF model's own materials as scene materials: what the file's author meant, mapped onto the course's shading.
+
+A model in a scene file without ``material = ...`` draws with its file's materials (the scene's ``material``
+still overrides). Each file material its placed triangles use becomes one :class:`~wgpurender.core.scene.Material`
+and one draw. What is taken, and how it maps onto the course's normalized Blinn-Phong (scene.wgsl):
+
+- ``baseColorFactor`` x ``baseColorTexture`` (sRGB) -> base colour (x ``COLOR_0`` when the primitive has one);
+- ``normalTexture`` with its ``scale`` -> normal map and its strength;
+- ``roughnessFactor`` x the metallic-roughness texture's G channel -> the roughness;
+- ``doubleSided`` -> no culling, back faces lit with the normal turned around;
+- ``alphaMode`` OPAQUE / MASK (``alphaCutoff``: fragments below are discarded) / BLEND (alpha blending, drawn
+  after the opaque draws, not sorted by depth);
+- each texture's own sampler: mag/min/mipmap filters and per-axis wrap (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT);
+- ``emissiveFactor`` (x ``KHR_materials_emissive_strength``) x ``emissiveTexture`` (sRGB) -> added to the shaded
+  colour;
+- ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
+- ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
+
+- a lit material -> the glTF metallic-roughness model (``shading_model = "pbr"``, shaders_wgsl/pbr.wgsl: the
+  spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
+  course's scene materials and primitives without a file material keep Blinn-Phong.
+
+Ignored, and listed by ``--explain``: other texture coordinate sets, ``KHR_texture_transform``, and every other
+extension by name.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from wgpurender.core.course.samplers import SamplerSpec
+from wgpurender.core.files.input_files import input_file
+from wgpurender.core.models import gltf_geometry, gltf_io
+from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material
+
+EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
+WRAP = {10497: "repeat", 33071: "clamp-to-edge", 33648: "mirror-repeat"}
+MIN_FILTERS = {9728: ("nearest", None), 9729: ("linear", None), 9984: ("nearest", "nearest"),
+               9985: ("linear", "nearest"), 9986: ("nearest", "linear"), 9987: ("linear", "linear")}
+ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map": ("normalTexture",),
+         "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
+         "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
+SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
+
+
+@dataclass(frozen=True)
+class ModelMaterials:
+    """The materials a model draws with (one per file material its triangles use, in file order; ``part`` is the
+    file's material index, -1 for primitives without one) and what was taken and ignored, for ``--explain``."""
+
+    materials: tuple[Material, ...]
+    taken: tuple[str, ...]
+    ignored: tuple[str, ...]
+
+
+def embedded_image_path(model: Path, image: int) -> Path:
+    return Path(f"{model}{EMBEDDED_MARK}{image}]")
+
+
+def document(path: str) -> gltf_io.GltfDocument:
+    """The parsed model, read once while the file is unchanged (the plan asks each embedded image's size, the
+    upload its pixels: one read of a large GLB each, not one per image)."""
+    stat = os.stat(path)
+    return _read_cached(path, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=4)
+def _read_cached(path: str, mtime_ns: int, size: int) -> gltf_io.GltfDocument:
+    return gltf_io.read_document(path)
+
+
+def embedded_image_bytes(path: Path) -> bytes | None:
+    """The encoded bytes of an image a ``model.glb#images[k]`` path names, or None for an ordinary path."""
+    text = str(path)
+    if EMBEDDED_MARK not in text or not text.endswith("]"):
+        return None
+    model, _, index = text.rpartition(EMBEDDED_MARK)
+    if not os.path.isfile(model):
+        return None
+    doc = document(model)
+    image = doc.json["images"][int(index[:-1])]
+    source = gltf_io._image_source(doc, image)
+    return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
+
+
+def sampler_spec(doc: gltf_io.GltfDocument, texture: dict) -> tuple[SamplerSpec, bool]:
+    """A glTF texture's sampler as a SamplerSpec, and whether it samples a mip chain (a *_MIPMAP_* minFilter, or
+    none given: glTF leaves it to the renderer, we build mips)."""
+    sampler = doc.json.get("samplers", [])[texture["sampler"]] if "sampler" in texture else {}
+    mag = "nearest" if sampler.get("magFilter") == 9728 else "linear"
+    min_filter, mip = MIN_FILTERS.get(sampler.get("minFilter", 9987), ("linear", "linear"))
+    spec = SamplerSpec(mag_filter=mag, min_filter=min_filter, mipmap_filter=mip or "nearest",
+                       address_mode_u=WRAP.get(sampler.get("wrapS", 10497), "repeat"),
+                       address_mode_v=WRAP.get(sampler.get("wrapT", 10497), "repeat"),
+                       lod_max_clamp=32.0 if mip else 0.0)
+    return spec, mip is not None
+
+
+def _texture_path(doc: gltf_io.GltfDocument, texture: dict) -> Path:
+    index = texture["source"]
+    uri = doc.json["images"][index].get("uri")
+    if uri is not None and not uri.startswith("data:"):
+        return gltf_io._uri_file(doc.path, "an image uri", uri).resolve()
+    return embedded_image_path(doc.path.resolve(), index)
+
+
+def _info(material: dict, keys: tuple[str, ...]) -> dict | None:
+    info = material
+    for key in keys:
+        info = info.get(key) if isinstance(info, dict) else None
+    return info if isinstance(info, dict) else None
+
+
+def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colors: bool,
+                  ignored: list[str]) -> Material:
+    """File material ``index`` as a scene Material (see the module docstring for the mapping)."""
+    mat = doc.json["materials"][index]
+    pbr = mat.get("pbrMetallicRoughness", {})
+    name = f"{label} material {index}" + (f" '{mat['name']}'" if mat.get("name") else "")
+    maps, samplers, mipmaps = {}, [], []
+    for feature, keys in ROLES.items():
+        info = _info(mat, keys)
+        if info is None:
+            continue
+        texture = doc.json["textures"][info["index"]]
+        if "source" not in texture:
+            ignored.append(f"{name}: {keys[-1]} has no image source (ignored)")
+            continue
+        maps[feature] = _texture_path(doc, texture)
+        spec, mips = sampler_spec(doc, texture)
+        samplers.append((feature, spec))
+        mipmaps.append((feature, mips))
+        chosen = gltf_geometry.texcoord_set(doc, index)
+        if int(info.get("texCoord", 0)) != chosen:
+            ignored.append(f"{name}: {keys[-1]} texCoord {info.get('texCoord', 0)}: ignored, sampled with "
+                           f"TEXCOORD_{chosen} (a mesh carries one set of texture coordinates)")
+        if "KHR_texture_transform" in info.get("extensions", {}):
+            ignored.append(f"{name}: {keys[-1]} KHR_texture_transform: ignored (drawn untransformed)")
+    _note_ignored(mat, name, ignored)
+    unlit = "KHR_materials_unlit" in mat.get("extensions", {})
+    roughness = float(pbr.get("roughnessFactor", 1.0))
+    normal = _info(mat, ("normalTexture",)) or {}
+    occlusion = _info(mat, ("occlusionTexture",)) or {}
+    strength = mat.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+    emissive = (0.0, 0.0, 0.0) if unlit else tuple(float(c) * float(strength) for c in mat.get("emissiveFactor",
+                                                                                               (0, 0, 0)))
+    if unlit and ("emissiveTexture" in mat or any(mat.get("emissiveFactor", (0, 0, 0)))):
+        ignored.append(f"{name}: emissive: ignored (KHR_materials_unlit draws the base colour only)")
+    return Material(
+        name=name, albedo_color=tuple(float(v) for v in pbr.get("baseColorFactor", (1.0, 1.0, 1.0, 1.0))),
+        albedo_map=maps.get("albedo_map"), normal_map=maps.get("normal_map"), roughness_map=maps.get("roughness_map"),
+        roughness=roughness, unlit=unlit, origin=name, vertex_colors=vertex_colors,
+        double_sided=bool(mat.get("doubleSided", False)), alpha_mode=str(mat.get("alphaMode", "OPAQUE")).lower(),
+        alpha_cutoff=float(mat.get("alphaCutoff", 0.5)), normal_strength=float(normal.get("scale", 1.0)),
+        roughness_map_scale=roughness, texture_samplers=tuple(samplers), texture_mipmaps=tuple(mipmaps),
+        part=index, written=tuple((f, str(p.name)) for f, p in maps.items()), emissive_color=emissive,
+        emissive_map=maps.get("emissive_map") if not unlit else None,
+        occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
+        shading_model="blinn-phong" if unlit else "pbr", metallic=float(pbr.get("metallicFactor", 1.0)),
+    )
+
+
+def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
+    for ext in mat.get("extensions", {}):
+        if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
+            ignored.append(f"{name}: {ext}: ignored")
+
+
+def model_materials(path: Path, label: str) -> ModelMaterials:
+    """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
+    doc = document(str(path))
+    used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
+    meshes = doc.json.get("meshes", [])
+    for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
+        for prim in meshes[mesh_index].get("primitives", []):
+            if prim.get("mode", 4) in gltf_geometry.TRIANGLE_MODES:
+                k = prim.get("material", -1)
+                used[k] = used.get(k, False) or "COLOR_0" in prim.get("attributes", {})
+    taken, ignored = [], list(gltf_geometry.geometry_notes(doc))
+    materials = []
+    for k in sorted(used):
+        if k < 0:
+            materials.append(dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
+                                                 origin=f"{label} primitives without a material (the default one)",
+                                                 vertex_colors=used[k], part=-1))
+        else:
+            materials.append(file_material(doc, k, label, used[k], ignored))
+    for m in materials:
+        taken.append(_taken_text(m))
+    for ext in doc.json.get("extensionsUsed", []):
+        if ext not in SUPPORTED_MATERIAL_EXTENSIONS and ext != "KHR_lights_punctual":  # lights: gltf_lights.py
+            ignored.append(f"extensionsUsed {ext}: ignored")
+    return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
+
+
+def _taken_text(m: Material) -> str:
+    items = [f"baseColorFactor {tuple(round(c, 4) for c in m.albedo_color)}"]
+    for feature, path in m.textures.items():
+        spec = dict(m.texture_samplers).get(feature)
+        how = ""
+        if spec is not None:
+            how = f" ({spec.min_filter}/{spec.mag_filter}, wrap {spec.address_mode_u}/{spec.address_mode_v})"
+        items.append(f"{feature} {Path(path).name}{how}")
+    if m.vertex_colors:
+        items.append("COLOR_0 vertex colours")
+    if m.double_sided:
+        items.append("doubleSided")
+    if m.alpha_mode != "opaque":
+        items.append(f"alphaMode {m.alpha_mode.upper()}" + (f" cutoff {m.alpha_cutoff:g}" if m.alpha_mode == "mask"
+                                                             else " (unsorted)"))
+    if any(m.emissive_color):
+        items.append(f"emissiveFactor {tuple(round(c, 4) for c in m.emissive_color)}")
+    if m.occlusion_map:
+        items.append(f"occlusion strength {m.occlusion_strength:g}")
+    if m.unlit:
+        items.append("KHR_materials_unlit")
+    elif m.part is not None and m.part >= 0:
+        items.append(f"metallicFactor {m.metallic:g}, roughnessFactor {m.roughness:g}")
+    return f"{m.origin}: " + ", ".join(items)

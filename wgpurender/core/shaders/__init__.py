@@ -1,0 +1,1 @@
+"""The shader sources' files, their variants and the uniform layouts generated for them."""

@@ -1,0 +1,1 @@
+"""The camera and what moves it: transforms, the orbit, the controls, frame times and slow frames."""

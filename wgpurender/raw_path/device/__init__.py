@@ -1,0 +1,1 @@
+"""The Vulkan device layer: the context (instance), memory, images, pipelines, render passes, textures, readback."""

@@ -1,0 +1,1 @@
+"""The wgpu device layer: the context, its caches and validation, cffi access, shaders, textures, targets, timing."""

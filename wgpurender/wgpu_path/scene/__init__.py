@@ -1,0 +1,45 @@
+"""The scene renderer: a scene file (core/scene/) drawn exactly as its render plan (core/plan/) says.
+
+Public API:
+
+- :func:`render_plan` ``(ctx, plan, t=0.0) -> RenderResult``: headless, a plan resolved by
+  :func:`wgpurender.core.plan.resolve_plan` for ``adapter_facts(ctx)`` (what ``wgpurender render SCENE.toml``
+  and the API call); :func:`render_scene_file` ``(path, size=None, fmt=None, msaa=None, t=0.0, ctx=None)``
+  resolves and renders in one call;
+- :func:`scene_drawable_factory` ``(path, ctx, msaa=None) -> make(fmt) -> SceneRenderer``: for the window;
+- :class:`SceneRenderer` ``(ctx, scene, plan)``: ``resize(size)``, ``record(encoder, target, t, timer=None)``;
+  :func:`load_renderer` makes one from a file;
+- :func:`shader_source` ``(variant, immediates) -> str``: the specialised WGSL of a plan's variant.
+
+Modules, one idea each: ``shader_interface`` (what the shader and Python agree on: uniform structs, vertex
+layouts, bindings, the WGSL variant), ``resources``
+(meshes, buffers, textures, samplers), ``scene_pass`` (pipelines, UBOs, bind groups, the scene pass),
+``frame`` (attachments, the post chain, a whole frame).
+
+Model files' own materials (an OBJ's MTL, a glTF material) are not used: the plan is derived
+from the scene file alone (``python -m wgpurender.core.plan`` never opens a model), and the renderer
+draws only what the plan lists, so a model without a scene material is drawn with the default
+material (white, lit). Name a model's textures in a scene material (docs/scenes.md).
+"""
+
+from wgpurender.wgpu_path.scene.frame import (
+    SceneRenderer,
+    adapter_facts,
+    load_renderer,
+    render_frame,
+    render_plan,
+    render_scene_file,
+    scene_drawable_factory,
+)
+from wgpurender.wgpu_path.scene.shader_interface import shader_source
+
+__all__ = [
+    "SceneRenderer",
+    "adapter_facts",
+    "load_renderer",
+    "render_frame",
+    "render_plan",
+    "render_scene_file",
+    "scene_drawable_factory",
+    "shader_source",
+]

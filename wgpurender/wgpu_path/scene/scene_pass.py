@@ -1,0 +1,289 @@
+"""The scene pass: every model of the plan drawn with its variant's pipeline, depth-tested.
+
+Uniform data follows the cube3d stage (wgpurender/wgpu_path/stages/cube3d.py): group 0 the camera
+(proj, view, eye, lights) rewritten every frame; group 1 every instance's world and normal
+matrix in ONE storage buffer, read at instance_index: each draw is one instanced draw_indexed
+whose first_instance points at its instances (core/plan/batches.py batches the plan's draws);
+per-draw material factors as immediates (push constants), or, without the "immediates"
+feature, from a uniform buffer bound in the material's group 2 (one slice per distinct
+material, Draw.material_key: equal materials share the slice and the group).
+
+Pipelines are cached by variant key (plus the winding, which a mirroring world matrix
+turns around): models whose materials need the same features share one pipeline.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import wgpu
+
+from wgpurender.core.course.formats import map_format
+from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
+from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
+from wgpurender.core.plan.batches import instance_blocks
+from wgpurender.core.scene import Scene
+from wgpurender.wgpu_path.device.bind_groups import uniform_group, uniform_layout
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.gpu_cache import GpuCache
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+from wgpurender.wgpu_path.scene import shader_interface as L
+from wgpurender.wgpu_path.scene.culling import GpuCuller
+from wgpurender.wgpu_path.scene.resources import SceneResources
+
+
+def camera_values(scene: Scene, aspect: float) -> dict:
+    """The lit Camera struct's values for a frame (the unlit shader reads only the first fields)."""
+    directional = [lt for lt in scene.lights if lt.type == "directional"]
+    point = [lt for lt in scene.lights if lt.type == "point"]
+    empty = {"direction": (0.0, 0.0, 0.0, 0.0), "radiance": (0.0, 0.0, 0.0, 0.0)}
+    dir_items = [{"direction": (*(np.asarray(lt.direction) / np.linalg.norm(lt.direction)), 0.0),
+                  "radiance": (*(np.asarray(lt.color) * lt.intensity), 0.0)} for lt in directional]
+    point_items = [_point_light(lt) for lt in point]
+    cam = scene.camera
+    return {
+        "proj": cam.projection(aspect),
+        "view": cam.view(),
+        "eye": (*cam.eye, 1.0),
+        "ambient": (*AMBIENT, 0.0),
+        "light_counts": (len(directional), len(point), 0, 0),
+        "directional": dir_items + [empty] * (L.MAX_LIGHTS - len(dir_items)),
+        "point": point_items + [{"position": (0.0,) * 4, "radiance": (0.0,) * 4, "spot": (0.0,) * 4}]
+        * (L.MAX_LIGHTS - len(point_items)),
+    }
+
+
+def _point_light(light) -> dict:
+    """A point (or spot) light's PointLight values: range in position.w, the cone in radiance.w and spot."""
+    axis, scale, offset, reach = light.shape()
+    return {"position": (*light.position, reach), "radiance": (*(np.asarray(light.color) * light.intensity), offset),
+            "spot": (*axis, scale)}
+
+
+def material_values(scene: Scene, draw: Draw, variant: ShaderVariant) -> dict:
+    """The draw's Material values: the plan's factors (course.shading.material_factors, decided there)."""
+    return dict(draw.factors)
+
+
+class ScenePassRenderer:
+    """Pipelines, uniform buffers and bind groups of a plan's scene pass, and the pass itself."""
+
+    def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan, resources: SceneResources,
+                 use_immediates: bool | None = None) -> None:
+        self.ctx, self.scene, self.plan, self.resources = ctx, scene, plan, resources
+        self.reverse_z = plan.reverse_z  # depth 1 at near, 0 at far: compare "greater", clear 0 (plan knob)
+        self.uses_immediates = ctx.use_immediates(use_immediates)
+        self.draws = plan.scene_pass.draws
+        self.depth_clear = plan.scene_pass.depth_clear
+        self.culler = None
+        # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
+        self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
+        self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
+        self._material_layouts: GpuCache[tuple] = GpuCache("scene-material-layouts")
+        if self.draws:
+            self._setup_uniforms()
+            self._setup_draws()
+        self.bundle = self._make_bundle()
+
+    # -- uniforms ----------------------------------------------------------------
+    def _setup_uniforms(self) -> None:
+        dev = self.ctx.device
+        usage = wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST
+        self.alignment = self.ctx.limit("min-uniform-buffer-offset-alignment")
+        self.camera_buffer = dev.create_buffer(label="scene-camera", size=L.CAMERA.size, usage=usage)
+        # Every instance's Object block, written once (static): one storage buffer read at instance_index.
+        blocks = instance_blocks(self.draws)
+        self.object_buffer = dev.create_buffer_with_data(
+            label="scene-objects", data=blocks, usage=wgpu.BufferUsage.STORAGE | wgpu.BufferUsage.COPY_DST)
+        stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
+        self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
+        self.culler = (GpuCuller(self.ctx, self.plan, self.resources.meshes, self.object_buffer, len(blocks))
+                       if self.plan.culled_draws else None)
+        read = {"type": "read-only-storage"}
+        vertex = wgpu.ShaderStage.VERTEX
+        entries = [{"binding": 0, "visibility": vertex, "buffer": {**read, "min_binding_size": L.OBJECT.size}}]
+        resources = [{"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": blocks.nbytes}}]
+        if self.culler is not None:  # binding 1: the culled draws' visible lists (unread by the other pipelines)
+            entries.append({"binding": 1, "visibility": vertex, "buffer": read})
+            resources.append({"binding": 1, "resource": {"buffer": self.culler.visible}})
+        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=entries)
+        self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
+        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=resources)
+        # Equal materials share one slice and one group (Draw.material_key): first-use order.
+        self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
+        self.material_stride = L.MATERIAL.stride(self.alignment)
+        self.material_buffer = None
+        if not self.uses_immediates:
+            self.material_buffer = dev.create_buffer(label="scene-materials", usage=usage,
+                                                     size=self.material_stride * len(self.material_slots))
+
+    # -- per draw: pipeline, material group, immediates --------------------------
+    def _setup_draws(self) -> None:
+        self.draw_state = []
+        groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
+        for draw in self.draws:
+            variant = self.plan.variant(draw.variant_key)
+            material = L.material_struct(variant)
+            data = material.pack(material_values(self.scene, draw, variant))
+            key = draw.material_key()
+            if key not in groups:
+                slot = self.material_slots[key]
+                if self.material_buffer is not None:
+                    self.ctx.queue.write_buffer(self.material_buffer, slot * self.material_stride, data)
+                groups[key] = self._material_group(variant, draw, slot)
+            pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
+            buffers = self.resources.mesh_buffers(draw)
+            self.draw_state.append((draw, pipeline, groups[key], data, buffers, self.resources.index_range(draw)))
+
+    def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
+        """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
+        return self._material_layouts.get(variant.key, lambda: (self._make_material_layout(variant),))[0]
+
+    def _make_material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
+        frag = wgpu.ShaderStage.FRAGMENT
+        entries = []
+        if not self.uses_immediates:
+            entries.append({"binding": L.MATERIAL_BINDING, "visibility": frag,
+                            "buffer": {"type": "uniform", "min_binding_size": L.material_struct(variant).size}})
+        for feature, binding in L.TEXTURE_BINDINGS.items():
+            if feature in variant.flags:
+                entries.append({"binding": binding, "visibility": frag,
+                                "texture": {"sample_type": "float", "view_dimension": "2d"}})
+                entries.append({"binding": L.SAMPLER_BINDINGS[feature], "visibility": frag,
+                                "sampler": {"type": "filtering"}})
+        if not entries:
+            return None
+        return self.ctx.device.create_bind_group_layout(label=f"material {variant.key}", entries=entries)
+
+    def _material_group(self, variant: ShaderVariant, draw: Draw, k: int) -> wgpu.GPUBindGroup | None:
+        bgl = self.material_layout(variant)
+        if bgl is None:
+            return None
+        entries = []
+        if not self.uses_immediates:
+            size = L.material_struct(variant).size
+            entries.append({"binding": L.MATERIAL_BINDING, "resource": {
+                "buffer": self.material_buffer, "offset": k * self.material_stride, "size": size}})
+        for feature, path in draw.textures:
+            texture = self.resources.texture(path, map_format(feature))
+            entries.append({"binding": L.TEXTURE_BINDINGS[feature], "resource": texture.view})
+            entries.append({"binding": L.SAMPLER_BINDINGS[feature],
+                            "resource": self.resources.sampler(draw.sampler_of(feature))})
+        return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
+
+    def shader_module(self, variant: ShaderVariant, culled: bool = False) -> wgpu.GPUShaderModule:
+        return self._modules.get(variant.key + (" culled" if culled else ""), lambda: create_shader_module(
+            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates, culled)))
+
+    def pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
+        """A pipeline the plan lists (a variant, formats, winding, depth test), made once."""
+        return self.pipelines.get(planned.key, lambda: self._make_pipeline(planned))
+
+    def _make_pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
+        variant = planned.variant
+        layouts = [self.camera_layout, self.object_layout]
+        material_bgl = self.material_layout(variant)
+        if material_bgl is not None:
+            layouts.append(material_bgl)
+        immediate_size = L.material_struct(variant).size if self.uses_immediates else 0
+        dev = self.ctx.device
+        pipeline_layout = dev.create_pipeline_layout(bind_group_layouts=layouts, immediate_size=immediate_size)
+        module = self.shader_module(variant, planned.culled)
+        return dev.create_render_pipeline(
+            label=f"scene {variant.key}",
+            layout=pipeline_layout,
+            vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
+            primitive={"topology": "triangle-list", "front_face": planned.front_face, "cull_mode": planned.cull_mode},
+            depth_stencil={"format": planned.depth_format, "depth_write_enabled": not planned.blend,
+                           "depth_compare": planned.depth_compare},
+            multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},
+            fragment={"module": module, "entry_point": "fs_main", "targets": [_color_target(planned)]},
+        )
+
+    # -- the pass ------------------------------------------------------------------
+    def _write_camera(self, aspect: float) -> bool:
+        """Pack and upload the camera UBO, only when its inputs changed since the last upload.
+
+        The scene (camera, lights) is frozen, so the inputs are the objects themselves, the aspect
+        and the depth convention; packing is Python work per field, so it is skipped, not redone.
+        """
+        key = (self.scene.camera, self.scene.lights, aspect, self.reverse_z)
+        if key == getattr(self, "_camera_key", None):
+            return False
+        camera = camera_values(self.scene, aspect)
+        if self.reverse_z:
+            camera["proj"] = REVERSE_Z @ camera["proj"]
+        self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
+        if self.culler is not None:
+            self.culler.write_planes(camera["proj"] @ camera["view"])
+        self._camera_key = key
+        return True
+
+    def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
+               timestamp_writes: dict | None = None) -> None:
+        """Write the camera UBO for this frame and record the scene pass."""
+        depth = None
+        if depth_view is not None:
+            depth = {"view": depth_view, "depth_clear_value": self.depth_clear,
+                     "depth_load_op": "clear", "depth_store_op": "discard"}
+        # The objects never move: the visible lists change only with the camera, so the culling pass runs then
+        # (the first frame, a resize, an orbit step), and a still frame costs no call for culling.
+        if self.draws and self._write_camera(aspect) and self.culler is not None:
+            self.culler.record(encoder)
+        render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
+                                                depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
+        if self.bundle is not None:
+            render_pass.execute_bundles([self.bundle])
+        render_pass.end()
+
+    # -- the draws, recorded once ----------------------------------------------------
+    def _make_bundle(self) -> wgpu.GPURenderBundle | None:
+        """Every draw of the pass in one render bundle, recorded once: the frame replays it with one call.
+
+        The draws are static (pipelines, bind groups, buffers, dynamic offsets and immediates never change
+        between frames; the camera changes through its buffer's contents), so recording them per frame was
+        ~8 wgpu-py calls per draw for nothing (issue 22.2). A bundle depends only on the attachments'
+        formats and sample count, not on the textures, so a resize or a new swapchain image keeps it.
+        """
+        if not self.draws:
+            return None
+        first = self.plan.pipeline(self.draws[0].pipeline_key)
+        encoder = self.ctx.device.create_render_bundle_encoder(
+            label="scene-draws", color_formats=[first.color_format], depth_stencil_format=first.depth_format,
+            sample_count=first.sample_count)
+        self.record_draws(encoder)
+        return encoder.finish(label="scene-draws")
+
+    def record_draws(self, encoder) -> None:
+        """Record every draw into a render pass or render bundle encoder (the bundle is made with this): state
+        that does not change from the previous draw is not set again; each draw is one instanced draw_indexed."""
+        last: list = [None] * 4
+        for draw, pipeline, group, data, buffers, (first, count) in getattr(self, "draw_state", []):
+            if pipeline is not last[0]:
+                encoder.set_pipeline(pipeline)
+                encoder.set_bind_group(0, self.camera_group)
+                encoder.set_bind_group(1, self.object_group)
+                last[2] = None  # a new layout: group 2 is set again
+            if group is not None and group is not last[2]:
+                encoder.set_bind_group(2, group)
+            if self.uses_immediates:
+                encoder.set_immediates(0, data, 0, len(data))
+            if buffers is not last[3]:
+                encoder.set_vertex_buffer(0, buffers.vertex)
+                encoder.set_index_buffer(buffers.index, buffers.index_format)
+            last = [pipeline, None, group, buffers]
+            if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
+                encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
+                continue
+            # the draw's part of the mesh (a file material's triangles), once per instance
+            encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)
+
+
+def _color_target(planned: ScenePipeline) -> dict:
+    """The colour target; alpha blending (glTF alphaMode BLEND) is source-over: rgb * a + dst * (1 - a)."""
+    target = {"format": planned.color_format}
+    if planned.blend:
+        target["blend"] = {
+            "color": {"src_factor": "src-alpha", "dst_factor": "one-minus-src-alpha", "operation": "add"},
+            "alpha": {"src_factor": "one", "dst_factor": "one-minus-src-alpha", "operation": "add"},
+        }
+    return target

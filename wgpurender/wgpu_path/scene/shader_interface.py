@@ -1,0 +1,144 @@
+"""What the scene shader and Python agree on: uniform structs, vertex layouts, and the specialised WGSL.
+
+Every struct is declared once here with :mod:`wgpurender.core.shaders.uniforms`; the WGSL declarations
+are generated into shaders_wgsl/scene.wgsl's ``{{STRUCTS}}``. Lit and unlit variants see
+different declarations of the same buffers: the unlit ``Camera`` is only the first fields
+of the lit one (proj, view, eye), the unlit ``Object`` only ``world`` (then padding: it is the
+element of a storage array, whose stride is its size, 128 bytes in every variant), the unlit
+``Material`` only the base colour. Offsets of the shared prefix are identical (asserted
+below), so one camera buffer and one object buffer serve every variant of a scene, and
+the unlit shader contains no light struct, no normal matrix and no lighting code.
+
+Bindings (the course's descriptor sets):
+  group 0 Camera   - written once per frame (non-dynamic)
+  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py)
+  group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
+                     4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples
+  immediates       - Material (per-draw factors) when the adapter has "immediates"
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from wgpurender.core.models.mesh import Mesh
+from wgpurender.core.plan import ShaderVariant
+from wgpurender.core.scene import MAX_LIGHTS
+from wgpurender.core.shaders.shader_variants import specialise
+from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struct, wgsl_structs
+from wgpurender.wgpu_path.device.shaders import load_wgsl
+
+SHADER = "scene.wgsl"
+PBR_FUNCTIONS = "pbr.wgsl"  # the glTF metallic-roughness BRDF, inserted for variants with the "pbr" flag
+
+_CAMERA_VIEW = [("proj", MAT4), ("view", MAT4), ("eye", VEC4F)]
+DIRECTIONAL_LIGHT = Struct("DirectionalLight", [("direction", VEC4F), ("radiance", VEC4F)])
+# position.w: range (0: none); radiance.w: spot cone offset; spot: the spot's axis and cone scale (Light.shape)
+POINT_LIGHT = Struct("PointLight", [("position", VEC4F), ("radiance", VEC4F), ("spot", VEC4F)])
+CAMERA_UNLIT = Struct("Camera", _CAMERA_VIEW)
+CAMERA = Struct("Camera", _CAMERA_VIEW + [
+    ("ambient", VEC4F),  # rgb: ambient radiance multiplied by albedo (see scene.wgsl)
+    ("light_counts", VEC4U),  # x: directional, y: point (the loops use the variant's compile-time counts)
+    ("directional", Array(DIRECTIONAL_LIGHT, MAX_LIGHTS)),
+    ("point", Array(POINT_LIGHT, MAX_LIGHTS)),
+])
+# Unlit: only world is read; the rest is padding, so the storage array's stride (the struct's size) stays 128
+OBJECT_UNLIT = Struct("Object", [("world", MAT4), ("unused", Array(VEC4F, 4))])
+OBJECT = Struct("Object", [("world", MAT4), ("normal", MAT3), ("mirror", F32)])  # mirror: sign of det(world)
+_MATERIAL_UNLIT_FIELDS = [("base_color", VEC4F)]
+_MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("specular", F32)]
+# The glTF metallic-roughness variant ("pbr") has no use for Blinn-Phong's specular reflectance: its metallic factor
+# takes that slot, so a PBR material's block is no larger than a Blinn-Phong one.
+_MATERIAL_PBR_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("metallic", F32)]
+MATERIAL_UNLIT = Struct("Material", _MATERIAL_UNLIT_FIELDS)
+MATERIAL = Struct("Material", _MATERIAL_FIELDS)
+MATERIAL_PBR = Struct("Material", _MATERIAL_PBR_FIELDS)
+
+# Model-file materials append, when their variant has the feature, in core/course/shading.material_factors' order:
+_MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occlusion_strength", F32),
+                    ("emissive", "emissive", VEC4F))
+
+for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
+    assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items() if name != "unused"), _small
+assert OBJECT_UNLIT.size == OBJECT.size == 128
+
+# Vertex attributes: location and float count (position always; the plan decides the others).
+ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
+TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
+SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6, "emissive_map": 8,
+                    "occlusion_map": 10}  # each texture's own sampler
+MATERIAL_BINDING = 0
+
+
+def is_lit(variant: ShaderVariant) -> bool:
+    return "lighting" in variant.flags
+
+
+def samples_textures(variant: ShaderVariant) -> bool:
+    return any(f in variant.flags for f in TEXTURE_BINDINGS)
+
+
+def camera_struct(variant: ShaderVariant) -> Struct:
+    return CAMERA if is_lit(variant) else CAMERA_UNLIT
+
+
+def object_struct(variant: ShaderVariant) -> Struct:
+    return OBJECT if is_lit(variant) else OBJECT_UNLIT
+
+
+def material_struct(variant: ShaderVariant) -> Struct:
+    extras = tuple((name, kind) for flag, name, kind in _MATERIAL_EXTRAS if flag in variant.flags)
+    pbr = "pbr" in variant.flags
+    if not extras:
+        return (MATERIAL_PBR if pbr else MATERIAL) if is_lit(variant) else MATERIAL_UNLIT
+    return _extended_material(is_lit(variant), pbr, extras)
+
+
+@functools.cache
+def _extended_material(lit: bool, pbr: bool, extras: tuple) -> Struct:
+    fields = (_MATERIAL_PBR_FIELDS if pbr else _MATERIAL_FIELDS) if lit else _MATERIAL_UNLIT_FIELDS
+    return Struct("Material", fields + list(extras))
+
+
+def vertex_layout(variant: ShaderVariant) -> dict:
+    """One interleaved buffer holding exactly the variant's attributes, in ATTRIBUTE_LOCATIONS order."""
+    attributes, offset = [], 0
+    for name in variant.vertex_attributes:
+        location, n = ATTRIBUTE_LOCATIONS[name]
+        attributes.append({"shader_location": location, "format": f"float32x{n}", "offset": offset})
+        offset += 4 * n
+    return {"array_stride": offset, "step_mode": "vertex", "attributes": attributes}
+
+
+def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
+    """(N, floats) float32 vertex data with the given attributes, for :func:`vertex_layout`."""
+    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
+              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32)}
+    return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
+
+
+def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
+    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled)."""
+    features = set(variant.flags) | ({"culled"} if culled else set())
+    if samples_textures(variant):
+        features.add("uv")
+    for name, n in variant.counts:
+        if n > 0:
+            features.add(name)
+    if immediates:
+        features.add("immediates")
+    return features
+
+
+def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
+    """scene.wgsl specialised for one variant: only its attributes, bindings, structs and code."""
+    structs = [camera_struct(variant), object_struct(variant), material_struct(variant)]
+    values = {
+        "STRUCTS": wgsl_structs(*structs),
+        "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
+        "POINT_LIGHTS": str(variant.count("point_lights")),
+        "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
+    }
+    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled), values, name=SHADER)
