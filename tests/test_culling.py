@@ -114,3 +114,12 @@ def test_bad_culling_knob_is_refused(tmp_path):
     path = write_scene(tmp_path)
     with pytest.raises(UserError, match="culling"):
         build_plan(parse_scene(path.read_text(), path), knobs=Knobs(culling="cpu"))
+
+
+def test_bounding_sphere_holds_every_vertex():
+    from wgpurender.wgpu_path.scene.culling import bounding_sphere
+
+    points = np.array([(0.0, 0.0, 0.0), (4.0, 0.0, 0.0), (2.0, 0.1, 0.0), (0.0, 2.0, 0.0)])
+    centre, radius = bounding_sphere(points)
+    np.testing.assert_array_equal(centre, (2.0, 1.0, 0.0))  # the bounding box's centre
+    assert radius == pytest.approx(np.sqrt(5.0))  # the farthest vertex (0.9 is the nearest)
