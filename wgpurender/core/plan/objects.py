@@ -79,8 +79,10 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
             out.append(GpuObject("bind_group", f"material {v.key}", materials,
                                  "one per distinct material (equal materials share it): "
                                  + ", ".join(d.label for d in users)))
+    plain = {p.variant.key for p in plan.pipelines if not p.culled}  # a variant all of whose draws are culled: none
     for v in plan.variants:
-        out.append(GpuObject("shader_module", f"scene {v.key}", 1, "scene.wgsl specialised for this variant"))
+        if v.key in plain:
+            out.append(GpuObject("shader_module", f"scene {v.key}", 1, "scene.wgsl specialised for this variant"))
     culled = plan.culled_draws
     for key in dict.fromkeys(p.variant.key for p in plan.pipelines if p.culled):
         out.append(GpuObject("shader_module", f"scene {key} culled", 1, "the variant reading its instances through "
