@@ -34,6 +34,12 @@ unlit = true
 RENDER = f"\n[render]\nsize = [{SIZE[0]}, {SIZE[1]}]\nmsaa = 1\n"
 
 
+@pytest.fixture(autouse=True)
+def read_the_shared_cube(monkeypatch, tmp_path_factory):
+    """The cube is written once for the module; scenes in other temporary folders may read it."""
+    monkeypatch.setenv("WGPURENDER_ALLOW_PATHS", str(tmp_path_factory.getbasetemp()))
+
+
 @pytest.fixture(scope="module")
 def cube(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("inst")
