@@ -59,6 +59,7 @@ void main() {
     Object object_data = objects[gl_InstanceIndex];
     // proj * view * world * p, left to right, as the WGSL (and the tutorial's GLSL) writes it.
     gl_Position = camera.proj * camera.view * object_data.world * vec4(a_position, 1.0);
+    gl_PointSize = 1.0;  // a point-list pipeline (glTF POINTS) must write it; WebGPU's points are 1 pixel too
 #ifdef LIGHTING
     v_world_position = (object_data.world * vec4(a_position, 1.0)).xyz;
     v_normal = object_data.normal * a_normal;  // cofactor matrix: right direction, any length

@@ -58,10 +58,16 @@ def run(args) -> int:
     print(f"{report.device}; {report.cpu}; driver class {report.driver_class}")
     print(f"wrote {args.out / 'verify.csv'}, {args.out / 'verify.md'}, {args.out / 'heatmaps'}/, "
           f"{args.out / 'tolerances.toml'}")
-    if report.failed:
-        print(f"{len(report.failed)} comparison(s) exceed their bound")
-        return 1
-    return 0
+    return _summary(report.rows, report.failed)
+
+
+def _summary(rows, failed) -> int:
+    """The last line: how many comparisons passed, failed and were skipped, and the exit status it means."""
+    skipped = sum(1 for row in rows if row.status == "skipped")
+    passed = len(rows) - len(failed) - skipped
+    verdict = "FAIL" if failed else "ok"
+    print(f"verify: {verdict}: {passed} passed, {len(failed)} over their bound, {skipped} skipped")
+    return 1 if failed else 0
 
 
 def run_implementations(args) -> int:
@@ -85,7 +91,4 @@ def run_implementations(args) -> int:
     for impl, why in missing.items():
         print(f"  not available: {impl} ({why})")
     print(f"wrote {args.out / 'implementations.md'}, {args.out / 'implementations.csv'}, {args.out / 'heatmaps'}/")
-    if report.failed:
-        print(f"{len(report.failed)} comparison(s) exceed their bound")
-        return 1
-    return 0
+    return _summary(report.cells, report.failed)

@@ -87,6 +87,7 @@ class ScenePipeline:
     front_face: str = "ccw"
     depth_compare: str = "less"
     blend: bool = False  # alpha blending (glTF alphaMode BLEND): source-over, no depth writes
+    topology: str = "triangle-list"  # "line-list" / "point-list": glTF lines and points
     culled: bool = False  # instances culled on the GPU, drawn indirectly through a visible list (core/plan/culling)
 
     @property
@@ -96,8 +97,9 @@ class ScenePipeline:
         culling = " | double-sided (no culling)" if self.cull_mode == "none" else ""
         blending = " | alpha blend, no depth write" if self.blend else ""
         frustum = " | GPU frustum culling" if self.culled else ""
-        return (f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}{blending}"
-                f"{frustum}")
+        shape = f" | {self.topology}" if self.topology != "triangle-list" else ""
+        return (f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}"
+                f"{blending}{shape}{frustum}")
 
 
 @dataclass(frozen=True)
@@ -138,6 +140,7 @@ class Draw:
     factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
     part: int | None = None  # the model file's material whose triangles this draws (-1: none); None: all of them
     samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): each texture's own sampler
+    topology: str = "triangle-list"  # which of the part's primitives: triangles, or glTF lines / points
     worlds: Placements | None = None  # every instance's world matrix when the draw is instanced (core/plan/batches)
     first_instance: int = 0  # where its instances start in the scene's one Object storage buffer
     batch: str = ""  # why these instances are one draw (explain)
