@@ -139,7 +139,6 @@ def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
         except UserError as err:  # this binding cannot draw the stage (Dawn has no clear-texture): a row says so
             run.results.append(not_offered("frames", name, size_text(size), str(err)))
             log(f"  frames: {name} {size[0]}x{size[1]} not offered by this binding: {err}")
-            continue
         progress.step(f"frames: {name} {size[0]}x{size[1]}")
     skipped = sorted({f"{r.case} ({r.note})" for r in run.results if r.family == "frames" and r.metric == NOT_OFFERED})
     if skipped:
