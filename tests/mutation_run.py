@@ -702,6 +702,20 @@ MUTATIONS = [
     ("wgpurender/bench/perf.py", "    if skipped:\n", "    if not skipped:\n", ["tests/test_bench.py|not_offered"]),
     ("wgpurender/bench/report.py", "    return Result(family, case, \"wgpu\", size, NOT_OFFERED, nan, nan, nan, 0, why)",  # noqa: E501
      "    return Result(family, case, \"wgpu\", size, \"frame_ms\", nan, nan, nan, 0, why)", ["tests/test_bench.py|not_offered"]),  # noqa: E501
+    # issue 31 (perf2): the second H100 run's generated figures
+    ("wgpurender/bench/figures_post.py", 'out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],',  # noqa: E501
+     'out.append({"variant": " ".join(text[:-2]), "effects": text[-2], "path": text[-1],', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", 'out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],',  # noqa: E501
+     'out.append({"variant": ",".join(text[:-2]), "effects": text[-1], "path": text[-1],', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", "        numbers, text = row[-len(NUMBERS):], row[:-len(NUMBERS)]",
+     "        numbers, text = row[-len(NUMBERS) + 1:], row[:-len(NUMBERS)]", ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", 'return sum(r["ms"] for r in mine), sum(r["copy_ms"] for r in mine), len(mine)',  # noqa: E501
+     'return sum(r["ms"] for r in mine), sum(r["ms"] for r in mine), len(mine)', ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", '    mine = [r for r in rows if r["variant"] == FUSED]', '    mine = [r for r in rows if r["variant"] != FUSED]',  # noqa: E501
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", "judge(ms <= CHAIN_LIMIT * copy)", "judge(ms >= CHAIN_LIMIT * copy)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", "judge(r.median <= CPU_LIMIT_MS)", "judge(r.p99 <= CPU_LIMIT_MS)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", 'if r.metric == "not offered"})', 'if r.metric == "frame_ms"})', ["tests/test_benchmark_figures.py"]),  # noqa: E501
 ]
 
 
