@@ -716,6 +716,10 @@ MUTATIONS = [
     ("wgpurender/bench/figures_post.py", "judge(ms <= CHAIN_LIMIT * copy)", "judge(ms >= CHAIN_LIMIT * copy)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
     ("wgpurender/bench/figures_post.py", "judge(r.median <= CPU_LIMIT_MS)", "judge(r.p99 <= CPU_LIMIT_MS)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
     ("wgpurender/bench/figures_post.py", 'if r.metric == "not offered"})', 'if r.metric == "frame_ms"})', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/post_roofline.py", '    writer = csv.writer(out, lineterminator="\\n")',
+     '    writer = csv.writer(out, lineterminator="\\n", quoting=csv.QUOTE_NONE, escapechar="\\\\")',
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/post_roofline.py", "    writer.writerow(fields)\n", "", ["tests/test_benchmark_figures.py"]),
 ]
 
 

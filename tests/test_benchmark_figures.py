@@ -47,3 +47,16 @@ def test_perf2_run_has_its_files_and_consistent_roofline_columns():
         assert {r["variant"] for r in rows} >= {"compute, fused", "fragment, fused"}
         for r in rows:  # GB/s is bytes / time: the columns are where the reader put them
             assert abs(r["gbps"] - r["bytes_moved"] / (r["ms"] * 1e6)) <= 0.01 * r["gbps"]
+
+
+def test_roofline_csv_is_a_csv_a_reader_splits_right():
+    """A variant with a comma is quoted: csv.DictReader gives every column its own value."""
+    import csv
+    import io
+
+    from wgpurender.bench.post_roofline import PassTime, csv_text
+
+    text = csv_text([PassTime("compute, fused", "fxaa+vignette", "compute", 4_000_000, 0.25, 0.125, 2_000_000)])
+    [row] = list(csv.DictReader(io.StringIO(text)))
+    assert (row["variant"], row["effects"], row["bytes_moved"], row["ms"], row["copy_bytes"]) == (
+        "compute, fused", "fxaa+vignette", "4000000", "0.25", "2000000")

@@ -21,8 +21,9 @@ NUMBERS = ("bytes_moved", "ms", "copy_ms", "copy_bytes", "chain_wall_ms", "gbps"
 
 
 def roofline_rows(path: Path) -> list[dict]:
-    """post_roofline.csv_text's rows; the variant ("compute, fused") holds a comma and is not quoted in the
-    committed files, so the numeric fields are taken from the right and the text ones from the left."""
+    """post_roofline.csv_text's rows; the variant ("compute, fused") holds a comma, unquoted in files written
+    before csv_text quoted it (the committed runs): the numeric fields are taken from the right, the text ones
+    from the left, which reads both."""
     with path.open(newline="") as f:
         rows = list(csv.reader(f))[1:]
     out = []
