@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
+from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.imageio import save_png
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
@@ -116,7 +117,7 @@ def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
     file drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders; ``camera`` its
     start camera (eye, target, up), None for a flat stage. A scene's plan is
     :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: the per-adapter rule or "scene")."""
-    if target.endswith(".toml"):
+    if is_scene_file(target):  # a .toml file or a bundled scene's name (final), as the wgpu window takes it
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.scene.frame import SceneFrame
         from wgpurender.raw_path.scene.support import check_supported
