@@ -229,6 +229,8 @@ def test_cli_exercise_then_check_exit_codes(tmp_path, capsys):
 
 @pytest.mark.parametrize("args, message", [
     (("check", "9z", "x.py"), "unknown step"),
+    (("exercise", "3d"), "'3d' is step 4's stage: give 4"),  # the stage names every other command takes
+    (("check", "msaa-post", "x.py"), "'msaa-post' is step 3c's stage: give 3c"),
     (("check", "2a", "missing.py"), "no such file"),
     (("check", "2a", "notes.txt"), "give its .py file"),
     (("check", "6", "x.py"), "give its .wgsl file"),
