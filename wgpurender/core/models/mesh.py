@@ -29,7 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.input_files import check_file_size, input_file, resolved
+from wgpurender.core.files import read_jail
+from wgpurender.core.files.input_files import check_file_size, input_file
 from wgpurender.core.models import gltf_geometry, gltf_io
 from wgpurender.core.models.tangents import (
     area_weighted_normals,
@@ -366,13 +367,26 @@ def _load_scene(path: Path, file_type: str, **kwargs):
     try:
         # process=False: no vertex merging, so per-corner UVs and normals survive; maintain_order must stay False
         # for OBJ (trimesh 5.2 then keys vertices by position index only and loses per-corner UVs).
-        return trimesh.load_scene(str(path), file_type=file_type, process=False, **kwargs)
+        return trimesh.load_scene(str(path), file_type=file_type, process=False, resolver=_jailed_resolver(path),
+                                  **kwargs)
     except UserError:
         raise
     except Exception as err:  # trimesh raises many types for bad files; the user needs only the file and reason
         detail = str(err).strip().splitlines()[0] if str(err).strip() else ""
         reason = f"{type(err).__name__}: {detail}" if detail else type(err).__name__
         raise UserError(f"cannot read {path} as {file_type.upper()}: the file is malformed ({reason})") from None
+
+
+def _jailed_resolver(path: Path):
+    """trimesh's resolver for the files a model names (an MTL, a PLY's TextureFile), through read_jail: OBJ and PLY
+    are loaded with skip_materials, so this is the guard should trimesh ever ask."""
+    from trimesh.resolvers import FilePathResolver
+
+    class JailedResolver(FilePathResolver):
+        def get(self, name: str) -> bytes:
+            return read_jail.model_file(path, name, "a file trimesh asked for", encoded=False).read_bytes()
+
+    return JailedResolver(str(path))
 
 
 def _placed(scene):
@@ -494,12 +508,12 @@ def _obj_material(path: Path) -> Material | None:
         return None
     wanted = used.group(1).decode("utf-8", "replace") if used else None
     for lib in libraries:
-        mtl = path.parent / lib.decode("utf-8", "replace")
+        mtl = read_jail.model_file(path, lib.decode("utf-8", "replace"), "mtllib", encoded=False)
         if not os.path.isfile(mtl):
             # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
             log.info("%s: material library %s not found; loading without textures", path, mtl)
             continue
-        materials = parse_mtl(mtl)
+        materials = parse_mtl(mtl, path)
         if wanted in materials:
             return materials[wanted]
         if wanted is None and materials:
@@ -507,9 +521,10 @@ def _obj_material(path: Path) -> Material | None:
     return None
 
 
-def parse_mtl(path: Path) -> dict[str, Material]:
-    """Texture references of every material in an MTL file. Map options (``-bm 1.0`` ...) are skipped: the file
-    name is the last token. Paths are resolved relative to the MTL file."""
+def parse_mtl(path: Path, model: Path | None = None) -> dict[str, Material]:
+    """Texture references of every material in the MTL file of OBJ ``model`` (default: the MTL's own folder is
+    the model's). Map options (``-bm 1.0`` ...) are skipped: the file name is the last token. Paths are resolved
+    relative to the MTL file and must stay in the model's folder (read_jail.py)."""
     materials: dict[str, Material] = {}
     current = None
     for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
@@ -525,7 +540,9 @@ def parse_mtl(path: Path) -> dict[str, Material]:
             if not tokens[-1].isprintable():
                 raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
                                 "fix the material library")
-            current.textures.setdefault(role, TextureRef(resolved(path.parent / tokens[-1]), None, srgb))
+            where = f"{path}:{number} {tokens[0]}"
+            texture = read_jail.model_file(model or path, tokens[-1], where, base=path.parent, encoded=False)
+            current.textures.setdefault(role, TextureRef(texture, None, srgb))
         elif key in ("kd", "d", "tr", "illum") and current is not None:
             _mtl_number(current, key, tokens[1:], f"{path}:{number}")
     return materials
