@@ -52,6 +52,8 @@ SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
 HDR_TEST = "tests/test_accuracy_hdr.py"
 FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
+RAW_WINDOW_NAME = "tests/test_raw_window.py|bundled"
+EX_INPUT = "tests/test_exercises.py|bad_input or broken_learner"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -458,6 +460,21 @@ MUTATIONS = [
     ("wgpurender/core/files/published_text.py", "if k == \"label\" and isinstance(v, str)",
      "if k in (\"label\", \"code\") and isinstance(v, str)", [PUBLISHED]),
     ("wgpurender/webpage/record.py", "    data[\"setup\"], data[\"frame\"] = (", "    _unused = (", [PUBLISHED]),
+    # the newcomer's findings: a bundled scene by name in the raw window, a stage name as a step, a misspelt
+    # record, a syntax error in the learner's file, export's size line, the report's progress stream
+    ("wgpurender/raw_path/window/__init__.py", "    if is_scene_file(target):", '    if target.endswith(".toml"):',
+     [RAW_WINDOW_NAME]),
+    ("wgpurender/exercises/catalogue.py", "if s.stage == step), None)", "if s.number == step), None)", [EX_INPUT]),
+    ("wgpurender/exercises/catalogue.py", "is step {named.number}'s stage", "is step {named.stage}'s stage",
+     [EX_INPUT]),
+    ("wgpurender/exercises/render.py", "inherited=found[0].record is base.record", "inherited=False", [EX_INPUT]),
+    ("wgpurender/exercises/sandbox.py", "if isinstance(err, SyntaxError) and",
+     "if isinstance(err, IndentationError) and",
+     [EX_INPUT]),
+    ("wgpurender/cli/export.py", "(done.page.parent / name).stat().st_size", "(done.page.parent / name).stat().st_ino",
+     ["tests/test_export_size_line.py"]),
+    ("wgpurender/report/extras.py", "progress_stream=sys.stdout)", "progress_stream=None)",
+     ["tests/test_report_progress_stream.py"]),
 ]
 
 
