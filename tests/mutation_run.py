@@ -475,6 +475,8 @@ MUTATIONS = [
      ["tests/test_export_size_line.py"]),
     ("wgpurender/report/extras.py", "progress_stream=sys.stdout)", "progress_stream=None)",
      ["tests/test_report_progress_stream.py"]),
+    ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
+     ["tests/test_report_anchors_line.py"]),
 ]
 
 
