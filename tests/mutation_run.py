@@ -477,6 +477,11 @@ MUTATIONS = [
      ["tests/test_report_progress_stream.py"]),
     ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
      ["tests/test_report_anchors_line.py"]),
+    ("wgpurender/core/models/mesh.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",
+     ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", "(most == 3 and taken and not _is_number(tokens[k]))",
+     "(most == 3 and taken and _is_number(tokens[k]))", ["tests/test_mesh.py|map_file_name"]),
 ]
 
 
