@@ -54,17 +54,6 @@ def test_raw_window_screenshot_equals_offscreen(display, tmp_path, target):
     assert np.array_equal(got, want), f"{int((got != want).any(-1).sum())} pixels differ"
 
 
-def test_raw_window_takes_a_bundled_scene_by_name(display, tmp_path):
-    """`demo --raw final` (the README's tour) draws the bundled scene the name stands for, as `demo final`
-    and `reference final` do: the screenshot is the offscreen raw render of the scene's file."""
-    shot = tmp_path / "shot.png"
-    result = raw_demo(display, "unlit", "--frames", "1", "--size", f"{SIZE[0]}x{SIZE[1]}", "--screenshot", str(shot),
-                      "--anisotropy", "scene")
-    assert result.returncode == 0, result.stderr
-    want = render_reference(str(REPO / "assets" / "scenes" / "unlit.toml"), SIZE)
-    assert np.array_equal(load_png(shot), want)
-
-
 @pytest.mark.parametrize("mode", ["fifo", "mailbox", "immediate"])
 def test_raw_present_modes(display, mode):
     """Each requested present mode is used where offered; otherwise one line naming what is, exit code 2."""

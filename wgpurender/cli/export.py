@@ -24,11 +24,10 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from wgpurender.webpage import EXPORT_FILES, export
+    from wgpurender.webpage import export
 
     done = export(args.target, args.output, args.size, force=args.force)
     kind = "animated" if done.animated else "still"
-    written = sum((done.page.parent / name).stat().st_size for name in EXPORT_FILES)  # what a user sees on disk
     print(f"wrote {done.page} ({done.size[0]}x{done.size[1]}, {kind}; {done.calls} recorded calls, "
-          f"{written / 1e6:.2f} MB written)")
+          f"{done.page_bytes / 1e6:.2f} MB on disk)")
     return 0
