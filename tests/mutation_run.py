@@ -64,6 +64,7 @@ SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
 HDR_TEST = "tests/test_accuracy_hdr.py"
 FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
+EX_INPUT = "tests/test_exercises.py|bad_input or broken_learner"
 INST = "tests/test_instancing.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
@@ -692,6 +693,24 @@ MUTATIONS = [
      ["tests/test_culling.py"]),
     ("wgpurender/core/plan/objects.py", "        out.append(GpuObject(\"bind_group\", \"cull\", len(culled),",
      "        out.append(GpuObject(\"bind_group\", \"cull\", 1,", ["tests/test_plan_is_what_is_built.py|culled"]),
+    # the newcomer's findings: a stage name as a step, a misspelt record, a syntax error in the learner's file,
+    # the report's progress stream and its tutorial line, MTL map names with spaces
+    ("wgpurender/exercises/catalogue.py", "if s.stage == step), None)", "if s.number == step), None)", [EX_INPUT]),
+    ("wgpurender/exercises/catalogue.py", "is step {named.number}'s stage", "is step {named.stage}'s stage",
+     [EX_INPUT]),
+    ("wgpurender/exercises/render.py", "inherited=found[0].record is base.record", "inherited=False", [EX_INPUT]),
+    ("wgpurender/exercises/sandbox.py", "if isinstance(err, SyntaxError) and",
+     "if isinstance(err, IndentationError) and",
+     [EX_INPUT]),
+    ("wgpurender/report/extras.py", "progress_stream=sys.stdout)", "progress_stream=None)",
+     ["tests/test_report_progress_stream.py"]),
+    ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
+     ["tests/test_report_anchors_line.py"]),
+    ("wgpurender/core/models/mesh.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",
+     ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", "(most == 3 and taken and not _is_number(tokens[k]))",
+     "(most == 3 and taken and _is_number(tokens[k]))", ["tests/test_mesh.py|map_file_name"]),
     # issue 31 B (perf2): bench perf goes on past a stage the binding cannot draw
     ("wgpurender/bench/perf.py", "        except UserError as err:  # this binding", "        except KeyError as err:  # this binding",  # noqa: E501
      ["tests/test_bench.py|not_offered"]),
