@@ -66,6 +66,8 @@ SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
 HDR_TEST = "tests/test_accuracy_hdr.py"
 FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
+EX_INPUT = "tests/test_exercises.py|bad_input or broken_learner"
+INST = "tests/test_instancing.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -626,6 +628,119 @@ MUTATIONS = [
      'FILTERS = {"OCTAHEDRAL": ("decode_filter_exp", (4, 8))', [EXT]),
     (G_PACK, "    return not fallback or importlib.util.find_spec(",
      "    return True or importlib.util.find_spec(", [EXT]),
+    # instancing and batching (issue 31.1)
+    ("wgpurender/core/scene/instances.py", "axes = [(np.arange(k) - (k - 1) / 2.0) * s",
+     "axes = [(np.arange(k) - k / 2.0) * s", [INST]),
+    ("wgpurender/core/scene/instances.py", "z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing=\"ij\")",
+     "x, y, z = np.meshgrid(axes[0], axes[1], axes[2], indexing=\"ij\")", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if count > MAX_INSTANCES:", "    if count > 10 * MAX_INSTANCES:", [INST]),  # noqa: E501
+    ("wgpurender/core/scene/instances.py", "    if len(forms) != 1:", "    if len(forms) > 1:", [INST]),
+    ("wgpurender/core/scene/instances.py", "if \"spacing\" in t and forms[0] != \"grid\":",
+     "if \"spacing\" in t and forms[0] == \"file\":", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if not np.isfinite(a).all():", "    if np.isinf(a).all():", [INST]),
+    ("wgpurender/core/scene/instances.py", "(np.abs(transforms.determinants3(matrices)) < 1e-12).any()",
+     "(np.abs(transforms.determinants3(matrices)) < 1e-12).all() and False", [INST]),
+    ("wgpurender/core/scene/instances.py", "    m[:, :3, 3] = offsets", "    m[:, 3, :3] = offsets", [INST]),
+    ("wgpurender/core/scene/model.py", "        return parent @ self.placements.array().astype(np.float64)",
+     "        return self.placements.array().astype(np.float64) @ parent", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return (draw.model_path, draw.part, draw.pipeline_key, draw.material_key())",  # noqa: E501
+     "    return (draw.model_path, draw.part, draw.pipeline_key)", [INST]),
+    ("wgpurender/core/plan/batches.py", "        first += merged.instance_count", "        first += 1", [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, :16] = worlds.transpose(0, 2, 1).reshape(-1, 16)",
+     "out[:, :16] = worlds.reshape(-1, 16)", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return np.where((det >= 0)[:, None, None], cof, -cof)", "    return cof",
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, 28] = np.where(determinants3(worlds) >= 0, 1.0, -1.0)",
+     "out[:, 28] = 1.0", [INST]),
+    ("wgpurender/core/view/transforms.py", "np.cross(m[..., 1, :], m[..., 2, :]))", "np.cross(m[..., 2, :], m[..., 1, :]))",  # noqa: E501
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "        return (\"blend\", id(draw))", "        return (\"blend\",)",
+     [INST]),
+    ("wgpurender/core/plan/draws.py", "    return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]",  # noqa: E501
+     "    return [(None, worlds)]", [INST]),
+    ("wgpurender/core/plan/model.py", "        return (self.variant_key, self.textures, self.samplers, self.sampler, self.factors)",  # noqa: E501
+     "        return (self.variant_key, self.textures, self.samplers, self.sampler)", [INST]),
+    ("wgpurender/core/plan/explain.py", "lines.append(f\"         batch: instances {d.first_instance}..",
+     "lines.append(f\"         batch: instances {d.first_instance}...", [INST]),
+    ("wgpurender/core/plan/objects.py", "            materials = len({d.material_key() for d in users})",
+     "            materials = len(users)", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, 0)", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            if buffers is not last[3]:",
+     "            if last[3] is None:", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            if group is not None and group is not last[2]:",
+     "            if group is not None and last[2] is None:", [INST]),
+    ("wgpurender/raw_path/scene/scene_subpass.py",
+     "vk.vkCmdDrawIndexed(cmd, count, draw.instance_count, first, 0, draw.first_instance)",
+     "vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, draw.first_instance)", [INST]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[instance];", "    let object_data = objects[0];", [INST]),  # noqa: E501
+    ("shaders_glsl/scene.vert", "    Object object_data = objects[gl_InstanceIndex];",
+     "    Object object_data = objects[gl_VertexIndex % 3];", [INST]),
+    # GPU culling (issue 31.2)
+    ("wgpurender/core/plan/culling.py", "    least = 2 if knob == \"gpu\" else GPU_CULL_MIN",
+     "    least = 2 if knob == \"gpu\" else 2", ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/culling.py", "        del pipelines[key]", "        pass", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "planes = np.array([r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1],",  # noqa: E501
+     "planes = np.array([r[3] + r[0], r[3] + r[0], r[3] + r[1], r[3] - r[1],", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "return centre, float(np.linalg.norm(p - centre, axis=1).max())",
+     "return centre, float(np.linalg.norm(p - centre, axis=1).min())", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "(d.first_instance, d.instance_count, k * 5 + 1, 0)",
+     "(d.first_instance, d.instance_count, k * 5, 0)", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "cpass.dispatch_workgroups(-(-d.instance_count // WORKGROUP))",
+     "cpass.dispatch_workgroups(d.instance_count // WORKGROUP)", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene_cull.wgsl", "        if (dot(plane.xyz, centre) + plane.w < -radius) {",
+     "        if (dot(plane.xyz, centre) + plane.w < 0.0) {", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[visible[instance]];", "    let object_data = objects[instance];",  # noqa: E501
+     ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/objects.py", "        out.append(GpuObject(\"bind_group\", \"cull\", len(culled),",
+     "        out.append(GpuObject(\"bind_group\", \"cull\", 1,", ["tests/test_plan_is_what_is_built.py|culled"]),
+    # the newcomer's findings: a stage name as a step, a misspelt record, a syntax error in the learner's file,
+    # the report's progress stream and its tutorial line, MTL map names with spaces
+    ("wgpurender/exercises/catalogue.py", "if s.stage == step), None)", "if s.number == step), None)", [EX_INPUT]),
+    ("wgpurender/exercises/catalogue.py", "is step {named.number}'s stage", "is step {named.stage}'s stage",
+     [EX_INPUT]),
+    ("wgpurender/exercises/render.py", "inherited=found[0].record is base.record", "inherited=False", [EX_INPUT]),
+    ("wgpurender/exercises/sandbox.py", "if isinstance(err, SyntaxError) and",
+     "if isinstance(err, IndentationError) and",
+     [EX_INPUT]),
+    ("wgpurender/report/extras.py", "progress_stream=sys.stdout)", "progress_stream=None)",
+     ["tests/test_report_progress_stream.py"]),
+    ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
+     ["tests/test_report_anchors_line.py"]),
+    ("wgpurender/core/models/mesh.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",
+     ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", "(most == 3 and taken and not _is_number(tokens[k]))",
+     "(most == 3 and taken and _is_number(tokens[k]))", ["tests/test_mesh.py|map_file_name"]),
+    # issue 31 B (perf2): bench perf goes on past a stage the binding cannot draw
+    ("wgpurender/bench/perf.py", "        except UserError as err:  # this binding", "        except KeyError as err:  # this binding",  # noqa: E501
+     ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/perf.py", '            log(f"  frames: {name} {size[0]}x{size[1]} not offered by this binding: {err}")',  # noqa: E501
+     "            pass", ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/perf.py", 'run.results.append(not_offered("frames", name, size_text(size), str(err)))',
+     'run.results.append(not_offered("frames", name, size_text(size), ""))', ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/perf.py", "    if skipped:\n", "    if not skipped:\n", ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/report.py", "    return Result(family, case, \"wgpu\", size, NOT_OFFERED, nan, nan, nan, 0, why)",  # noqa: E501
+     "    return Result(family, case, \"wgpu\", size, \"frame_ms\", nan, nan, nan, 0, why)", ["tests/test_bench.py|not_offered"]),  # noqa: E501
+    # issue 31 (perf2): the second H100 run's generated figures
+    ("wgpurender/bench/figures_post.py", 'out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],',  # noqa: E501
+     'out.append({"variant": " ".join(text[:-2]), "effects": text[-2], "path": text[-1],', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", 'out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],',  # noqa: E501
+     'out.append({"variant": ",".join(text[:-2]), "effects": text[-1], "path": text[-1],', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", "        numbers, text = row[-len(NUMBERS):], row[:-len(NUMBERS)]",
+     "        numbers, text = row[-len(NUMBERS) + 1:], row[:-len(NUMBERS)]", ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", 'return sum(r["ms"] for r in mine), sum(r["copy_ms"] for r in mine), len(mine)',  # noqa: E501
+     'return sum(r["ms"] for r in mine), sum(r["ms"] for r in mine), len(mine)', ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", '    mine = [r for r in rows if r["variant"] == FUSED]', '    mine = [r for r in rows if r["variant"] != FUSED]',  # noqa: E501
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", "judge(ms <= CHAIN_LIMIT * copy)", "judge(ms >= CHAIN_LIMIT * copy)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", "judge(r.median <= CPU_LIMIT_MS)", "judge(r.p99 <= CPU_LIMIT_MS)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", 'if r.metric == "not offered"})', 'if r.metric == "frame_ms"})', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/post_roofline.py", '    writer = csv.writer(out, lineterminator="\\n")',
+     '    writer = csv.writer(out, lineterminator="\\n", quoting=csv.QUOTE_NONE, escapechar="\\\\")',
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/post_roofline.py", "    writer.writerow(fields)\n", "", ["tests/test_benchmark_figures.py"]),
     # issue 30 item 1, image-based lighting drawn by scenes: the float64 maps, the .hdr reader, [environment], the plan
     ("wgpurender/core/course/ibl_maps.py", "u = np.arctan2(d[..., 0], -d[..., 2])",
      "u = np.arctan2(d[..., 0], d[..., 2])", [IBL_SCENE]),
