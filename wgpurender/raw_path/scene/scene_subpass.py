@@ -155,9 +155,9 @@ class SceneSubpass:
         ]
         for d in textured:
             if "ibl" in self.plan.variant(d.variant_key).flags:
-                buffer = self.ibl_buffer()
-                writes.append(descriptors.write_buffer(self.material_sets[id(d)], IBL_BINDING, buffer.handle, 0,
-                                                       buffer.size, vk.VK_DESCRIPTOR_TYPE_STORAGE_BUFFER))
+                buffer, target = self.ibl_buffer(), self.material_sets[d.material_key()]
+                writes.append(descriptors.write_buffer(target, IBL_BINDING, buffer.handle, 0, buffer.size,
+                                                       vk.VK_DESCRIPTOR_TYPE_STORAGE_BUFFER))
             for feature, path in d.textures:
                 sampler = self.resources.sampler(d.sampler_of(feature))  # each texture its own (glTF samplers)
                 texture = self.resources.texture(path, srgb=is_srgb_map(feature))
