@@ -31,6 +31,7 @@ import struct
 import subprocess
 import sys
 import time
+import urllib.parse
 from pathlib import Path
 
 import numpy as np
@@ -245,17 +246,27 @@ def plant(model: Path, outside: Path, name: str, data: bytes) -> None:
     (model / f"ü {name}").write_bytes(data)
 
 
-def spelled(kind: str, name: str, outside: Path) -> str:
-    import urllib.parse
+def spelled(kind: str, name: str, outside: Path, raw: bool = False) -> str:
+    """``kind``'s spelling of the file ``name``: percent-encoded as a glTF URI must be, or ``raw`` (OBJ, MTL)."""
+    quote = (lambda s: s) if raw else urllib.parse.quote
+    return REF_KINDS[kind][1].format(name=quote(name), outside=outside,
+                                     pname="".join(f"%{b:02X}" for b in name.encode()), uname=quote(f"ü {name}"))
 
-    return REF_KINDS[kind][1].format(name=name, outside=outside, pname="".join(f"%{b:02X}" for b in name.encode()),
-                                     uname=urllib.parse.quote(f"ü {name}"))
+
+NAME_CHARS = list("abcXYZ019_-.~+=,;&@!$'()") + ["ü", "€", "日", " ", "%", "#", "?"]
+
+
+def file_name(suffix: str, raw: bool = False):
+    """Random file names (an OBJ/MTL name, ``raw``, has no spaces: its readers split options at them)."""
+    chars = [c for c in NAME_CHARS if not (raw and c in " #")]
+    return st.text(st.sampled_from(chars), min_size=1, max_size=10).map(lambda s: s + suffix)
 
 
 # names of files that do not exist inside the folder: an OBJ without its MTL renders in the default material
 # (as every OBJ reader does), so either outcome passes there, as long as nothing outside was read; OBJ names are
 # plain paths: a percent-encoded or fullwidth spelling is such a missing name
-MISSING_KINDS = ("missing", "empty", "backslash", "pct-dots", "pct-slash", "pct-upper", "double-pct", "fullwidth-dots")
+MISSING_KINDS = ("missing", "empty", "dir", "link-loop", "link-self", "backslash", "pct-dots", "pct-slash",
+                 "pct-upper", "double-pct", "fullwidth-dots")
 
 
 def judge_reference(kind: str, outcome: str, opened: list, outside: Path, out: Path, label: str, expect,
@@ -294,19 +305,20 @@ def _plain_gltf(source: str):
 
 
 @given(source=st.sampled_from(["tri", "tex"]), role=st.sampled_from(["buffer", "image"]),
-       kind=st.sampled_from(sorted(REF_KINDS)))
+       kind=st.sampled_from(sorted(REF_KINDS)), bin_name=file_name(".bin"), png_name=file_name(".png"))
 @fuzz_settings(ci=30, long=2600)
-def test_gltf_references(base, source, role, kind):
+def test_gltf_references(base, source, role, kind, bin_name, png_name):
     if role == "image" and source == "tri":
         source = "tex"
     expect = baseline(f"gltf-{source}", base, _plain_gltf(source))
     model, outside = layout(base)
     doc, data = tri_source() if source == "tri" else textured_source()
-    plant(model, outside, "buf.bin", data)
-    plant(model, outside, "tex.png", checker_png())
-    name = "buf.bin" if role == "buffer" else "tex.png"
+    plant(model, outside, bin_name, data)
+    plant(model, outside, png_name, checker_png())
+    name = bin_name if role == "buffer" else png_name
     uri = spelled(kind, name, outside)
-    scene = write_gltf_source(model, source, uri if role == "buffer" else None, uri if role == "image" else None)
+    scene = write_gltf_source(model, source, uri if role == "buffer" else urllib.parse.quote(bin_name),
+                              uri if role == "image" else urllib.parse.quote(png_name))
     out = base / "out.png"
     label = f"gltf {source} {role} {kind} {uri!r}"
     outcome, opened = audited(render_argv(scene, out), out, label, scene)
@@ -336,21 +348,22 @@ def _plain_obj(model: Path) -> Path:
 
 
 @given(role=st.sampled_from(["mtllib", "map_Kd"]), kind=st.sampled_from(sorted(REF_KINDS)),
-       option=st.sampled_from(MAP_OPTIONS))
+       option=st.sampled_from(MAP_OPTIONS), mtl_name=file_name(".mtl", raw=True),
+       png_name=file_name(".png", raw=True))
 @fuzz_settings(ci=20, long=1600)
-def test_obj_references(base, role, kind, option):
+def test_obj_references(base, role, kind, option, mtl_name, png_name):
     expect = baseline("obj", base, _plain_obj)
     model, outside = layout(base)
-    plant(model, outside, "tex.png", checker_png())
-    plant(model, outside, "m.mtl", mtl_text(f"map_Kd {option}tex.png").encode())
-    if kind in ("nul", "pct-nul") or (role == "mtllib" and kind in ("percent-name", "unicode")):
+    plant(model, outside, png_name, checker_png())
+    plant(model, outside, mtl_name, mtl_text(f"map_Kd {option}{png_name}").encode())
+    if kind in ("nul", "pct-nul", "percent-name"):
         kind = "plain"  # OBJ/MTL names are plain paths, not URIs: no percent-decoding, no NUL in a text line
-    ref = spelled(kind, "m.mtl" if role == "mtllib" else "tex.png", outside)
+    ref = spelled(kind, mtl_name if role == "mtllib" else png_name, outside, raw=True)
     if kind == "unicode":
-        ref = "ü m.mtl" if role == "mtllib" else "ü tex.png"
-    (model / "model.obj").write_text(obj_text(ref if role == "mtllib" else "m.mtl"))
+        kind = "plain"  # a raw name is unicode already (file_name)
+    (model / "model.obj").write_text(obj_text(ref if role == "mtllib" else mtl_name))
     if role == "map_Kd":
-        (model / "m.mtl").write_text(mtl_text(f"map_Kd {option}{ref}"))
+        (model / mtl_name).write_text(mtl_text(f"map_Kd {option}{ref}"))
     scene = scene_for(model, "model.obj", unlit=False)
     out = base / "out.png"
     label = f"obj {role} {kind} {option!r}{ref!r}"
@@ -515,48 +528,52 @@ def test_glb_containers(base, case):
 # --- scene TOML paths of every kind -------------------------------------------------------------------------------
 
 SCENE_KINDS = {  # kind -> (allowed, path relative to the scene in base/project/[scenes/]scene.toml)
-    "same-folder": (True, "m.gltf"),
-    "sub": (True, "models/m.gltf"),
-    "absolute-in": (True, "{project}/m.gltf"),
-    "link-in": (True, "li.gltf"),
+    "same-folder": (True, "{m}.gltf"),
+    "sub": (True, "models/{m}.gltf"),
+    "absolute-in": (True, "{project}/{m}.gltf"),
+    "link-in": (True, "li-{m}.gltf"),
     "assets": (True, "{assets}/models/mirrored_quad.glb"),
-    "allowed-env": (True, "{outside}/m.gltf"),
-    "outside": (False, "{outside}/m.gltf"),
-    "dotdot": (False, "../outside/m.gltf"),
-    "link-out": (False, "lo.gltf"),
-    "link-dir-out": (False, "ldo/m.gltf"),
-    "file-url": (False, "file://{outside}/m.gltf"),
-    "tilde": (False, "~/m.gltf"),
-    "env-var": (False, "$HOME/m.gltf"),
+    "allowed-env": (True, "{outside}/{m}.gltf"),
+    "outside": (False, "{outside}/{m}.gltf"),
+    "dotdot": (False, "../outside/{m}.gltf"),
+    "link-out": (False, "lo-{m}.gltf"),
+    "link-dir-out": (False, "ldo/{m}.gltf"),
+    "file-url": (False, "file://{outside}/{m}.gltf"),
+    "tilde": (False, "~/{m}.gltf"),
+    "env-var": (False, "$HOME/{m}.gltf"),
     "proc": (False, "/proc/self/environ"),
     "loop": (False, "loop-a"),
-    "backslash": (False, "..\\outside\\m.gltf"),
+    "backslash": (False, "..\\outside\\{m}.gltf"),
 }
 
 
 @given(kind=st.sampled_from(sorted(SCENE_KINDS)), role=st.sampled_from(["model", "albedo_map"]),
-       nested=st.booleans())
+       nested=st.booleans(), stem=file_name(""))
 @fuzz_settings(ci=16, long=1200)
-def test_scene_paths(base, kind, role, nested, monkeypatch):
+def test_scene_paths(base, kind, role, nested, stem, monkeypatch):
     reset_folder(base)
     project, outside = base / "project", base / "outside"
     where = project / "scenes" if nested else project
     (where / "models").mkdir(parents=True)
     outside.mkdir()
-    doc = triangle_gltf()
+    doc, data = textured_source()  # with UVs: a scene's albedo_map needs them
+    doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
     for folder in (where, where / "models", outside):
-        (folder / "m.gltf").write_text(json.dumps(doc))
-        (folder / "tex.png").write_bytes(checker_png())
-    (where / "li.gltf").symlink_to("m.gltf")
-    (where / "lo.gltf").symlink_to(outside / "m.gltf")
+        (folder / f"{stem}.gltf").write_text(json.dumps(doc))
+        (folder / f"{stem}.png").write_bytes(checker_png())
+        (folder / "tex.png").write_bytes(checker_png())  # the model's own texture
+    for ext in (".gltf", ".png"):
+        (where / f"li-{stem}{ext}").symlink_to(f"{stem}{ext}")
+        (where / f"lo-{stem}{ext}").symlink_to(outside / f"{stem}{ext}")
     (where / "ldo").symlink_to(outside)
     (where / "loop-a").symlink_to("loop-b")
     (where / "loop-b").symlink_to("loop-a")
     allowed, path = SCENE_KINDS[kind]
-    path = path.format(project=where, outside=outside, assets=ASSETS)
     if role == "albedo_map":
-        path = path.replace("m.gltf", "tex.png").replace("mirrored_quad.glb", "../textures/brick_albedo.png")
-        model = 'path = "m.gltf"\nmaterial = "mat"\n'
+        path = path.replace(".gltf", ".png").replace("mirrored_quad.glb", "../textures/brick_albedo.png")
+    path = path.format(project=where, outside=outside, assets=ASSETS, m=stem)
+    if role == "albedo_map":
+        model = f"path = {json.dumps(stem + '.gltf')}\nmaterial = \"mat\"\n"
         extra = f'[materials.mat]\nalbedo_map = {json.dumps(path)}\n'
     else:
         model, extra = f"path = {json.dumps(path)}\nmaterial = {{ unlit = true }}\n", ""
