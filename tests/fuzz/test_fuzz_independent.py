@@ -774,3 +774,81 @@ def test_damaged_cffi_cache(base, damage, r):
     else:
         outcome = _count("render", label, "")
     check(memory_checked(outcome, label), label)
+
+
+# --- record into folders holding an earlier recording and the user's files ------------------------------------------
+
+@given(first=st.integers(0, 5), second=st.integers(1, 4), files=st.lists(st.sampled_from(
+    ("notes.txt", "frame_1.png", "frame_00002.png", "frames.txt", "sub/keep.bin")), max_size=3, unique=True),
+       force=st.booleans())
+@fuzz_settings(ci=3, long=200)
+def test_record_folders(base, first, second, files, force):
+    """An earlier recording of ``first`` frames, then one of ``second``: the folder holds exactly the new frames,
+    the user's files intact (a name the recorder writes may be replaced only with force)."""
+    import wgpurender as w
+    from wgpurender.core.errors import UserError
+
+    reset_folder(base)
+    out = user_folder(base, files, "none")
+    (base / "model").mkdir()
+    (base / "model" / "m.gltf").write_text(json.dumps(triangle_gltf()))
+    scene = scene_for(base / "model", "m.gltf")
+    label = f"record first={first} second={second} files={files} force={force}"
+    try:
+        if first:
+            w.record(scene, out, seconds=first, fps=1, size=(16, 12), turn=0, force=True)
+        before = snapshot(base)
+        w.record(scene, out, seconds=second, fps=1, size=(16, 12), turn=0, force=force)
+    except UserError as err:
+        outcome = _count("error", label, "") if len(str(err).splitlines()) == 1 else _count("multiline", label,
+                                                                                             str(err))
+        check(outcome, label)
+        return
+    except Exception as exc:  # noqa: BLE001 - any other escape is the finding
+        check(_count("traceback", label, repr(exc)[-500:]), label)
+        return
+    frames = sorted(p.name for p in out.glob("frame_*.png"))
+    ours = {f"out/frame_{k:05d}.png" for k in range(max(first, second))} | {"out/.wgpurender-manifest.json"}
+    lost = lost_files(before, snapshot(base), ours)
+    users = {Path(f).name for f in files if f.startswith("frame_")}
+    expect = sorted({f"frame_{k:05d}.png" for k in range(second)} | users)
+    if lost:
+        outcome = _count("clobbered", label, f"changed or deleted {lost}")
+    elif frames != expect:
+        outcome = _count("wrong", label, f"frames {frames}, expected {expect}")
+    else:
+        outcome = _count("render", label, "")
+    check(memory_checked(outcome, label), label)
+
+
+# --- the public API with arguments of every type ------------------------------------------------------------------
+
+ODD = [None, 0, -1, 5, 2 ** 70, 1.5, float("nan"), float("inf"), True, "", " ", "x", "\0", "a\0b", b"bytes",
+       "40x30", "0x0", "-4x4", "99999x99999", (40, 30), (0, 0), (-1, 5), [40], {}, [], object(), Path(""),
+       Path("/proc/self/environ"), Path("/dev/null"), "triangle", "../../outside/x.toml"]
+
+
+@given(fn=st.sampled_from(["render", "export", "reference", "compare", "plan", "explain", "record", "heatmap"]),
+       a=st.sampled_from(range(len(ODD))), b=st.sampled_from(range(len(ODD))), c=st.sampled_from(range(len(ODD))))
+@fuzz_settings(ci=10, long=600)
+def test_api_argument_types(base, fn, a, b, c):
+    """Each public function with odd values: a result or one UserError line, never another exception."""
+    import wgpurender as w
+    from wgpurender.core.errors import UserError
+
+    reset_folder(base)
+    args = [ODD[a], ODD[b]]
+    kwargs = {"size": ODD[c]} if fn in ("render", "export", "reference", "plan", "explain", "record") else {}
+    if fn in ("export", "record") and isinstance(args[1], (str, Path)) and str(args[1]) not in ("", "\0", "a\0b"):
+        args[1] = base / "o" / Path(str(args[1])).name  # never write outside the case folder
+    if fn in ("render", "export", "reference", "plan", "explain"):
+        args = args[:1] + ([args[1]] if fn == "export" else [])
+    label = f"api {fn}{tuple(map(repr, args))} {kwargs!r}"
+    try:
+        getattr(w, fn)(*args, **kwargs)
+        outcome = _count("render", label, "")
+    except UserError as err:
+        outcome = _count("error" if len(str(err).splitlines()) == 1 else "multiline", label, str(err))
+    except Exception as exc:  # noqa: BLE001 - any other escape is the finding
+        outcome = _count("traceback", label, f"{type(exc).__name__}: {exc}"[-500:])
+    check(memory_checked(outcome, label), label)
