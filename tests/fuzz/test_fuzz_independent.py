@@ -610,7 +610,10 @@ def snapshot(root: Path) -> dict[str, str]:
     return out
 
 
-def user_folder(base: Path, files: list[str], link: str) -> Path:
+LINKED = ("index.html", "data.js", "step_1a.py", "README.md", "goal.png", "player.js")
+
+
+def user_folder(base: Path, files: list[str], link: str, which: int = 0) -> Path:
     """``base/out`` holding the user's ``files`` (random bytes); ``link``: the folder or a file is a symlink."""
     out, outside = base / "out", base / "outside"
     outside.mkdir()
@@ -622,32 +625,37 @@ def user_folder(base: Path, files: list[str], link: str) -> Path:
     for name in files:
         (target / name).parent.mkdir(parents=True, exist_ok=True)
         (target / name).write_bytes(os.urandom(24))
-    if link == "file-link":
-        for name in ("index.html", "data.js", "step_1a.py", "README.md"):
+    if link == "file-link":  # the writer's names as links to a file outside
+        for name in LINKED:
             if not os.path.lexists(target / name):
                 (target / name).symlink_to(outside / "secret.txt")
+    if link == "dangling-link" and not os.path.lexists(target / LINKED[which % 6]):  # one name, to nothing yet
+        (target / LINKED[which % 6]).symlink_to(outside / f"new-{LINKED[which % 6]}")
     return out
 
 
 def lost_files(before: dict, after: dict, ours: set) -> list[str]:
-    return [k for k, v in before.items() if after.get(k) != v and k not in ours]
+    """Files changed or deleted (but ``ours``), and any file that appeared in ``outside`` (but in ``outside/real``,
+    the target of a symlinked output folder: the folder the user named)."""
+    return [k for k, v in before.items() if after.get(k) != v and k not in ours] + [
+        k for k in after if k.startswith("outside/") and not k.startswith("outside/real/") and k not in before]
 
 
 @given(command=st.sampled_from(["export", "exercise"]), files=st.lists(st.sampled_from(USER_FILES), max_size=4,
                                                                         unique=True),
-       link=st.sampled_from(["none", "none", "folder-link", "file-link"]), force=st.booleans(),
-       twice=st.booleans())
+       link=st.sampled_from(["none", "none", "folder-link", "file-link", "dangling-link"]), force=st.booleans(),
+       twice=st.booleans(), which=st.integers(0, 5))
 @fuzz_settings(ci=16, long=1200)
-def test_output_folders(base, command, files, link, force, twice):
+def test_output_folders(base, command, files, link, force, twice, which):
     reset_folder(base)
-    out = user_folder(base, files, link)
+    out = user_folder(base, files, link, which)
     (base / "model").mkdir()
     (base / "model" / "m.gltf").write_text(json.dumps(triangle_gltf()))
     scene = scene_for(base / "model", "m.gltf")
     before = snapshot(base)
     argv = ["export", scene, "-o", out, "--size", "40x30"] if command == "export" else ["exercise", "1a", "-o", out]
     argv += ["--force"] if force and command == "export" else []
-    label = f"{command} files={files} link={link} force={force} twice={twice}"
+    label = f"{command} files={files} link={link}:{LINKED[which]} force={force} twice={twice}"
     outcome, _ = audited(argv, None, label)
     if twice and outcome == "render":  # a rebuild over its own earlier output (counted as a case of its own)
         outcome, _ = audited(argv, None, label + " (again)")
