@@ -333,10 +333,11 @@ MUTATIONS = [
     ("wgpurender/exercises/catalogue.py", "        if ex.step == step and ex.path == path:",
      "        if ex.step == step:", [EX + "|raw_learner"]),
     ("wgpurender/exercises/catalogue.py", '    if step not in numbers:', "    if False:", [EX + "|bad_input"]),
-    ("wgpurender/exercises/starter.py", "    taken = [name for name in names.values() if (out / name).exists()]",
+    ("wgpurender/exercises/starter.py", "    taken = [name for name in names.values() if os.path.lexists(out / name)]",
      "    taken = []", [EX + "|cli_exercise"]),
-    ("wgpurender/exercises/starter.py", 'shutil.copyfile(reference_file(ex), out / names["goal"])',
-     'shutil.copyfile(reference_file(ex).with_name("clear.png"), out / names["goal"])', [EX + "|cli_exercise"]),
+    ("wgpurender/exercises/starter.py", 'atomic_write(out / names["goal"], reference_file(ex).read_bytes())',
+     'atomic_write(out / names["goal"], reference_file(ex).with_name("clear.png").read_bytes())',
+     [EX + "|cli_exercise"]),
     ("wgpurender/cli/exercise.py", "    return verdict.exit_code", "    return 0", [EX + "|cli_exercise"]),
     ("wgpurender/exercises/pytest_plugin.py", 'if outcome == "passed")', 'if outcome == "failed")', [EX_WHEEL]),
     ("wgpurender/exercises/pytest_plugin.py", "step = self.path.parent.name if step == BY_FOLDER else step",
@@ -458,6 +459,14 @@ MUTATIONS = [
     ("wgpurender/core/files/published_text.py", "if k == \"label\" and isinstance(v, str)",
      "if k in (\"label\", \"code\") and isinstance(v, str)", [PUBLISHED]),
     ("wgpurender/webpage/record.py", "    data[\"setup\"], data[\"frame\"] = (", "    _unused = (", [PUBLISHED]),
+    # issue 28's independent fuzz: the bugs it found (exercise through a dangling link, the cache's temp file)
+    ("wgpurender/exercises/starter.py", "if os.path.lexists(out / name)]", "if (out / name).exists()]",
+     [EX + "|dangling"]),
+    ("wgpurender/core/files/cache_entry.py", "        tmp.unlink(missing_ok=True)\n        fd = os.open(tmp, "
+     "os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, \"O_NOFOLLOW\", 0), 0o600)",
+     "        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)", [CACHES + "|planted"]),
+    ("wgpurender/core/files/cache_entry.py", "        tmp.unlink(missing_ok=True)\n        fd =", "        fd =",
+     [CACHES + "|planted"]),
 ]
 
 
