@@ -29,6 +29,18 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+EXT = "tests/test_gltf_extensions.py"
+FBX = "tests/test_fbx.py"
+KHRONOS = "tests/test_khronos_samples.py"
+# the files issue 30's rows mutate
+G_EXT = "wgpurender/core/models/gltf_extensions.py"
+G_PACK = "wgpurender/core/models/gltf_compression.py"
+G_GEOM = "wgpurender/core/models/gltf_geometry.py"
+G_IO = "wgpurender/core/models/gltf_io.py"
+G_RULES = "wgpurender/core/models/gltf_rules.py"
+G_MAT = "wgpurender/core/scene/gltf_materials.py"
+G_FBX = "wgpurender/core/models/fbx.py"
+G_MESH = "wgpurender/core/models/mesh.py"
 JAIL = "tests/test_model_reads_only_its_folder.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
@@ -52,6 +64,8 @@ SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
 HDR_TEST = "tests/test_accuracy_hdr.py"
 FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
+EX_INPUT = "tests/test_exercises.py|bad_input or broken_learner"
+INST = "tests/test_instancing.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -71,8 +85,8 @@ MUTATIONS = [
     ("wgpurender/core/files/imageio.py",
      "gray = np.round(wide / 257.0)", "gray = np.round(wide / 256.0)", [INPUTS, COMPARE]),
     # the report
-    ("wgpurender/report/page.py", '{_figure(files.get("wgpu"), "wgpu (WGSL', '{_figure(files.get("raw"), "wgpu (WGSL',
-     [REPORT]),
+    ("wgpurender/report/page.py", '"wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "wgpu")',
+     '"wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "raw")', [REPORT]),
     ("wgpurender/report/page.py", "<tr><th>PSNR</th><td colspan=2>{psnr}</td></tr>",
      "<tr><th>PSNR</th><td colspan=2>{c.flip_mean:.5f}</td></tr>", [REPORT]),
     ("wgpurender/report/page.py", "{100 * c.over_1:.3f}%</td></tr>", "{100 * c.over_2:.3f}%</td></tr>", [REPORT]),
@@ -459,6 +473,273 @@ MUTATIONS = [
     ("wgpurender/core/files/published_text.py", "if k == \"label\" and isinstance(v, str)",
      "if k in (\"label\", \"code\") and isinstance(v, str)", [PUBLISHED]),
     ("wgpurender/webpage/record.py", "    data[\"setup\"], data[\"frame\"] = (", "    _unused = (", [PUBLISHED]),
+    # issue 33 (classroom): the tour, the projector's report, pages light and loud, attribution, windows
+    ("wgpurender/raw_path/window/__init__.py", "    if is_scene_file(target):  # a .toml",
+     "    if target.endswith('.toml'):  #", ["tests/test_readme_tour.py|raw_window"]),
+    ("wgpurender/cli/compare.py", "{'>=' if name == 'psnr' else '<='}", "{'<=' if name == 'psnr' else '>='}",
+     [COMPARE + "|cli_threshold"]),
+    ("wgpurender/cli/verify.py", "passed = len(rows) - len(failed) - skipped", "passed = len(rows) - skipped",
+     ["tests/test_verify.py|real_change"]),
+    ("wgpurender/core/scene/copy.py", "        yield MODELS, node", "        yield TEXTURES, node",
+     ["tests/test_new_scene.py"]),
+    ("wgpurender/core/scene/copy.py", 'f"../{TEXTURES}/{texture.name}"', 'f"{TEXTURES}/{texture.name}"',
+     ["tests/test_new_scene.py"]),
+    ("wgpurender/core/scene/copy.py", "    if folder.exists():", "    if folder.is_file():",
+     ["tests/test_new_scene.py"]),
+    ("wgpurender/report/diffs.py", "difflib.unified_diff(before, now,", "difflib.unified_diff(now, before,",
+     ["tests/test_report_diffs.py"]),
+    ("wgpurender/report/diffs.py", "            last[side] = (step.key, now)", "            last.setdefault(side, "
+     "(step.key, now))", ["tests/test_report_diffs.py"]),
+    ("wgpurender/report/diffs.py", 'x.startswith("+") and not x.startswith("+++")', 'x.startswith("+")',
+     ["tests/test_report_diffs.py"]),
+    ("wgpurender/report/code.py", "'<span class=\"line\" data-line=\"')", "'<span data-line=\"')",
+     ["tests/test_report_diffs.py"]),
+    ("wgpurender/report/page.py", 'href="{e(large or name)}"', 'href="{e(name)}"', ["tests/test_report_diffs.py"]),
+    ("wgpurender/report/steps.py", "return (LARGE_SCALE * size[0], LARGE_SCALE * size[1])",
+     "return (LARGE_SCALE * size[0], LARGE_SCALE * size[0])", ["tests/test_report_diffs.py", REPORT]),
+    ("wgpurender/core/verdict/compare.py", "(flip_mean(a, b)[0] if mse > 0 else 0.0)",
+     "(flip_mean(a, b)[0] if mse > 1e-4 else 0.0)", [COMPARE, "tests/test_accuracy_truth.py"]),
+    ("wgpurender/webpage/packing.py", "if per_row and per_row % TEXEL == 0", "if per_row and per_row % TEXEL == 1",
+     ["tests/test_export_pages.py|png_and"]),
+    ("wgpurender/webpage/__init__.py", "for name in EXPORT_FILES)", "for name in (\"data.js\",))",
+     ["tests/test_export_pages.py|png_and"]),
+    ("wgpurender/webpage/player.js", "(a + b) >> 1,", "(a + b) >> 2,", ["tests/test_export_pages.py|decodes"]),
+    ("wgpurender/webpage/player.js", "pa <= pb && pa <= pc ? a : pb <= pc ? b : c", "pa <= pb && pa <= pc ? a : b",
+     ["tests/test_export_pages.py|decodes"]),
+    ("wgpurender/webpage/player.js", "b = y ? out[o - stride + x] : 0", "b = y ? out[o - stride + x] : 1",
+     ["tests/test_export_pages.py|decodes"]),
+    ("wgpurender/core/shaders/spirv_names.py",
+     'parts = [b"spirv", Path(file_name).suffix.encode(), *(a.encode() for a in glslc_args(defines)), source]',
+     'parts = [b"spirv", Path(file_name).suffix.encode(), *(a.encode() for a in glslc_args(defines))]',
+     ["tests/test_spirv_shipped.py|own_source"]),
+    ("wgpurender/raw_path/device/shaders.py", "    if shipped is not None and (shipped / cached.name).is_file():",
+     "    if False:", ["tests/test_spirv_shipped.py|own_source"]),
+    ("wgpurender/wgpu_path/device/wgpu_private.py", "    if version.startswith(WRITTEN_FOR):", "    if True:",
+     ["tests/test_wgpu_private.py|version"]),
+    ("wgpurender/wgpu_path/device/wgpu_private.py", "        device._poller = real", "        pass",
+     ["tests/test_wgpu_private.py|poll"]),
+    ("wgpurender/webpage/player.js", "      if (api.stopped) return;  // a WebGPU error",
+     "      if (false) return;  // a WebGPU error", ["tests/test_export_pages.py|webgpu_error"]),
+    ("wgpurender/webpage/player.js", "    device.lost.then((info) => broken(", "    device.lost.then((info) => "
+     "info.reason === \"destroyed\" || broken(", ["tests/test_export_pages.py|webgpu_error"]),
+    ("wgpurender/core/course/loops.py", "MIRROR_TILES = 2", "MIRROR_TILES = 1",
+     ["tests/test_export_pages.py|textured"]),
+    ("wgpurender/core/course/loops.py", "Fraction(360) / Fraction", "Fraction(180) / Fraction",
+     ["tests/test_export_pages.py|loop_wraps"]),
+    ("wgpurender/core/plan/post.py", "    if not adapter.adapter_type:  # a browser", "    if False:  # a browser",
+     ["tests/test_export_pages.py|adapter_type"]),
+    ("wgpurender/core/files/credits.py", "if names & set(c.files)]", "if names | set(c.files)]",
+     ["tests/test_credits.py|exactly"]),
+    ("wgpurender/core/view/controls.py", "            self.start += self.now() - self.paused_at",
+     "            self.start += 0.0", ["tests/test_window_keys.py|clock"]),
+    ("wgpurender/core/view/controls.py", "                self.overlay_shown = not self.overlay_shown",
+     "                self.overlay_shown = True", ["tests/test_window_keys.py|f1"]),
+    ("wgpurender/wgpu_path/window/overlay.py", "        return self._over_panel() or self.held",
+     "        return self._over_panel() or bool(self.backend.io.want_capture_mouse)",
+     ["tests/test_window_keys.py|first_drag"]),
+    ("wgpurender/api.py", "        why = _show_window(ctx, name, wh, msaa, anisotropy, frames)",
+     "        why = \"\"", ["tests/test_notebook_view.py|outside", "tests/test_window_keys.py|show"]),
+    # glTF extensions (issue 30 item 2)
+    (G_EXT, "rotation = np.array([[c, s, 0], [-s, c, 0]",
+     "rotation = np.array([[c, -s, 0], [s, c, 0]", [EXT]),
+    (G_EXT, "    return translation @ rotation @ scale", "    return scale @ rotation @ "
+     "translation", [EXT]),
+    (G_EXT, "    return uvs @ m[:2, :2].T + m[:2, 2]", "    return uvs @ m[:2, :2] + "
+     "m[:2, 2]", [EXT]),
+    (G_EXT, "    texcoord = int(ext.get(\"texCoord\", texcoord))", "", [EXT]),
+    (G_EXT, "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, None, :]",
+     "        out[:, :3, :3] *= np.asarray(scale, np.float64)[:, :, None]", [EXT]),
+    (G_EXT, "        out[:, :3, 3] = translation", "        out[:, 3, :3] = "
+     "translation", [EXT]),
+    (G_EXT, "2 * (x * y - z * w), 2 * (x * z + y * w)], 1)", "2 * (x * y + z * w), "
+     "2 * (x * z + y * w)], 1)", [EXT]),
+    (G_EXT, "            out[:, :width] += float(weight) * delta[:, :width]",
+     "            out[:, :width] = float(weight) * delta[:, :width]", [EXT]),
+    (G_EXT, '"POSITION": (FLOAT, BYTE, UBYTE, SHORT, USHORT)', '"POSITION": (FLOAT,)',
+     [EXT]),
+    (G_EXT, '"NORMAL": (FLOAT, BYTE, SHORT)', '"NORMAL": (FLOAT, SHORT)', [EXT]),
+    (G_EXT, 'SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", ',
+     'SUPPORTED_REQUIRED = frozenset({', [EXT]),
+    (G_GEOM, "    return list(world @ matrices)", "    return list(matrices @ world)",
+     [EXT]),
+    (G_GEOM, "            out.extend((placement, node[\"mesh\"], index) for placement in "
+     "_instances(doc, node, world))", "            out.append((world, node[\"mesh\"], index))", [EXT]),
+    (G_GEOM, 'weights = nodes[node_index].get("weights", mesh.get("weights"))',
+     'weights = mesh.get("weights", nodes[node_index].get("weights"))', [EXT]),
+    (G_GEOM, "    if arrays[uv_name] is not None and uv_transform is not None:",
+     "    if arrays[uv_name] is not None and uv_transform is None:", [EXT]),
+    (G_GEOM, "    if not any(weights):\n", "    if len(weights) < 2:\n", [EXT]),
+    (G_GEOM, "semantic not in (\"POSITION\",", "semantic not in (\"NORMAL\",", [EXT]),
+    (G_RULES, "        if rule is not None and widened is not None:",
+     "        if rule is not None and widened is None:", [EXT]),
+    (G_PACK, "        view.update(buffer=len(buffers) - 1, byteOffset=0",
+     "        view.update(buffer=len(buffers) - 1, byteOffset=start", [EXT]),
+    (G_PACK, "    raw = np.ascontiguousarray(out).tobytes()[: count * stride]",
+     "    raw = np.ascontiguousarray(out).tobytes()", [EXT]),
+    (G_PACK, '        decode = codec.decode_index_buffer if mode == "TRIANGLES"',
+     '        decode = codec.decode_index_sequence if mode == "TRIANGLES"', [EXT]),
+    (G_PACK, "        return __import__(module)\n    except ImportError:",
+     "        return __import__(module)\n    except ValueError:", [EXT]),
+    (G_IO, 'if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, '
+     '{}).get("fallback"):', "if False:", [EXT]),
+    (G_PACK, "        found = mesh.get_attribute_by_unique_id(int(unique_id))",
+     "        found = mesh.get_attribute_by_unique_id(0)", [EXT]),
+    (G_MAT, "            taken.append(f\"extensionsUsed {ext}: used\")",
+     "            ignored.append(f\"extensionsUsed {ext}: ignored\")", [EXT]),
+    (G_MAT, "    elif mine[1] != lead[1]:", "    elif mine[0] != lead[1]:", [EXT]),
+    # FBX through assimp (issue 30 item 3)
+    (G_FBX, '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+     '        m[axis, row] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0', [FBX]),
+    (G_FBX, '        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0',
+     "        m[row, axis] = 1.0", [FBX]),
+    (G_FBX, 'scale = float(meta.get("UnitScaleFactor", 1.0)) / 100.0',
+     'scale = float(meta.get("UnitScaleFactor", 1.0)) / 1.0', [FBX]),
+    (G_FBX, "            uvs[:, 1] = 1.0 - uvs[:, 1]", "            uvs[:, 1] = uvs[:, 1]", [FBX]),
+    (G_FBX, 'TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}',
+     'TEXTURE_TYPES = {1: "base_color", 6: "normal"}', [FBX]),
+    (G_FBX, "    world = parent @ np.asarray(node.transformation, np.float64)",
+     "    world = np.asarray(node.transformation, np.float64)", [FBX]),
+    (G_FBX, "    except (pyassimp.errors.AssimpError, Exception) as err:",
+     "    except Exception as err:", [FBX]),
+    (G_FBX, "            textures[role] = (path.parent / name).resolve()",
+     "            textures[role] = Path(name)", [FBX]),
+    # glTF points and lines (issue 30 item 2)
+    (G_GEOM,
+     "    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]", "    ends = idx[1:]", [EXT]),
+    (G_GEOM, "        return idx[: len(idx) // 2 * 2].reshape(-1, 2)",
+     "        return np.stack([idx[:-1], idx[1:]], axis=1)",
+     [EXT]),
+    (G_GEOM, 'TOPOLOGIES = {0: "point-list", 1: "line-list"',
+     'TOPOLOGIES = {0: "line-list", 1: "line-list"', [EXT]),
+    (G_MESH, "        if part.material == wanted and part.topology == topology:",
+     "        if part.material == wanted:", [EXT, KHRONOS]),
+    (G_MESH, "        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)",
+     "        flat.append(np.asarray(p.faces, np.int64).reshape(-1))", [EXT]),
+    ("wgpurender/raw_path/scene/scene_subpass.py", "                                topology=TOPOLOGIES[topology])",
+     "                                )", [EXT]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", 'primitive={"topology": planned.topology,',
+     'primitive={"topology": "triangle-list",', [EXT]),
+    (G_MAT, "        materials.append(material if topology == \"triangle-list\" else "
+     "_points_or_lines(material, topology))", "        materials.append(material)", [EXT]),
+    (G_EXT, "            out[:, :width] += float(weight) * delta[:, :width]",
+     "            out[:, :width] += delta[:, :width]", [KHRONOS]),
+    (G_PACK, 'FILTERS = {"OCTAHEDRAL": ("decode_filter_oct", (4, 8))',
+     'FILTERS = {"OCTAHEDRAL": ("decode_filter_exp", (4, 8))', [EXT]),
+    (G_PACK, "    return not fallback or importlib.util.find_spec(",
+     "    return True or importlib.util.find_spec(", [EXT]),
+    # instancing and batching (issue 31.1)
+    ("wgpurender/core/scene/instances.py", "axes = [(np.arange(k) - (k - 1) / 2.0) * s",
+     "axes = [(np.arange(k) - k / 2.0) * s", [INST]),
+    ("wgpurender/core/scene/instances.py", "z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing=\"ij\")",
+     "x, y, z = np.meshgrid(axes[0], axes[1], axes[2], indexing=\"ij\")", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if count > MAX_INSTANCES:", "    if count > 10 * MAX_INSTANCES:", [INST]),  # noqa: E501
+    ("wgpurender/core/scene/instances.py", "    if len(forms) != 1:", "    if len(forms) > 1:", [INST]),
+    ("wgpurender/core/scene/instances.py", "if \"spacing\" in t and forms[0] != \"grid\":",
+     "if \"spacing\" in t and forms[0] == \"file\":", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if not np.isfinite(a).all():", "    if np.isinf(a).all():", [INST]),
+    ("wgpurender/core/scene/instances.py", "(np.abs(transforms.determinants3(matrices)) < 1e-12).any()",
+     "(np.abs(transforms.determinants3(matrices)) < 1e-12).all() and False", [INST]),
+    ("wgpurender/core/scene/instances.py", "    m[:, :3, 3] = offsets", "    m[:, 3, :3] = offsets", [INST]),
+    ("wgpurender/core/scene/model.py", "        return parent @ self.placements.array().astype(np.float64)",
+     "        return self.placements.array().astype(np.float64) @ parent", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return (draw.model_path, draw.part, draw.pipeline_key, draw.material_key())",  # noqa: E501
+     "    return (draw.model_path, draw.part, draw.pipeline_key)", [INST]),
+    ("wgpurender/core/plan/batches.py", "        first += merged.instance_count", "        first += 1", [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, :16] = worlds.transpose(0, 2, 1).reshape(-1, 16)",
+     "out[:, :16] = worlds.reshape(-1, 16)", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return np.where((det >= 0)[:, None, None], cof, -cof)", "    return cof",
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, 28] = np.where(determinants3(worlds) >= 0, 1.0, -1.0)",
+     "out[:, 28] = 1.0", [INST]),
+    ("wgpurender/core/view/transforms.py", "np.cross(m[..., 1, :], m[..., 2, :]))", "np.cross(m[..., 2, :], m[..., 1, :]))",  # noqa: E501
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "        return (\"blend\", id(draw))", "        return (\"blend\",)",
+     [INST]),
+    ("wgpurender/core/plan/draws.py", "    return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]",  # noqa: E501
+     "    return [(None, worlds)]", [INST]),
+    ("wgpurender/core/plan/model.py", "        return (self.variant_key, self.textures, self.samplers, self.sampler, self.factors)",  # noqa: E501
+     "        return (self.variant_key, self.textures, self.samplers, self.sampler)", [INST]),
+    ("wgpurender/core/plan/explain.py", "lines.append(f\"         batch: instances {d.first_instance}..",
+     "lines.append(f\"         batch: instances {d.first_instance}...", [INST]),
+    ("wgpurender/core/plan/objects.py", "            materials = len({d.material_key() for d in users})",
+     "            materials = len(users)", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, 0)", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            if buffers is not last[3]:",
+     "            if last[3] is None:", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            if group is not None and group is not last[2]:",
+     "            if group is not None and last[2] is None:", [INST]),
+    ("wgpurender/raw_path/scene/scene_subpass.py",
+     "vk.vkCmdDrawIndexed(cmd, count, draw.instance_count, first, 0, draw.first_instance)",
+     "vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, draw.first_instance)", [INST]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[instance];", "    let object_data = objects[0];", [INST]),  # noqa: E501
+    ("shaders_glsl/scene.vert", "    Object object_data = objects[gl_InstanceIndex];",
+     "    Object object_data = objects[gl_VertexIndex % 3];", [INST]),
+    # GPU culling (issue 31.2)
+    ("wgpurender/core/plan/culling.py", "    least = 2 if knob == \"gpu\" else GPU_CULL_MIN",
+     "    least = 2 if knob == \"gpu\" else 2", ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/culling.py", "        del pipelines[key]", "        pass", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "planes = np.array([r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1],",  # noqa: E501
+     "planes = np.array([r[3] + r[0], r[3] + r[0], r[3] + r[1], r[3] - r[1],", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "return centre, float(np.linalg.norm(p - centre, axis=1).max())",
+     "return centre, float(np.linalg.norm(p - centre, axis=1).min())", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "(d.first_instance, d.instance_count, k * 5 + 1, 0)",
+     "(d.first_instance, d.instance_count, k * 5, 0)", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "cpass.dispatch_workgroups(-(-d.instance_count // WORKGROUP))",
+     "cpass.dispatch_workgroups(d.instance_count // WORKGROUP)", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene_cull.wgsl", "        if (dot(plane.xyz, centre) + plane.w < -radius) {",
+     "        if (dot(plane.xyz, centre) + plane.w < 0.0) {", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[visible[instance]];", "    let object_data = objects[instance];",  # noqa: E501
+     ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/objects.py", "        out.append(GpuObject(\"bind_group\", \"cull\", len(culled),",
+     "        out.append(GpuObject(\"bind_group\", \"cull\", 1,", ["tests/test_plan_is_what_is_built.py|culled"]),
+    # the newcomer's findings: a stage name as a step, a misspelt record, a syntax error in the learner's file,
+    # the report's progress stream and its tutorial line, MTL map names with spaces
+    ("wgpurender/exercises/catalogue.py", "if s.stage == step), None)", "if s.number == step), None)", [EX_INPUT]),
+    ("wgpurender/exercises/catalogue.py", "is step {named.number}'s stage", "is step {named.stage}'s stage",
+     [EX_INPUT]),
+    ("wgpurender/exercises/render.py", "inherited=found[0].record is base.record", "inherited=False", [EX_INPUT]),
+    ("wgpurender/exercises/sandbox.py", "if isinstance(err, SyntaxError) and",
+     "if isinstance(err, IndentationError) and",
+     [EX_INPUT]),
+    ("wgpurender/report/extras.py", "progress_stream=sys.stdout)", "progress_stream=None)",
+     ["tests/test_report_progress_stream.py"]),
+    ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
+     ["tests/test_report_anchors_line.py"]),
+    ("wgpurender/core/models/mesh.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",
+     ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/models/mesh.py", "(most == 3 and taken and not _is_number(tokens[k]))",
+     "(most == 3 and taken and _is_number(tokens[k]))", ["tests/test_mesh.py|map_file_name"]),
+    # issue 31 B (perf2): bench perf goes on past a stage the binding cannot draw
+    ("wgpurender/bench/perf.py", "        except UserError as err:  # this binding", "        except KeyError as err:  # this binding",  # noqa: E501
+     ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/perf.py", '            log(f"  frames: {name} {size[0]}x{size[1]} not offered by this binding: {err}")',  # noqa: E501
+     "            pass", ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/perf.py", 'run.results.append(not_offered("frames", name, size_text(size), str(err)))',
+     'run.results.append(not_offered("frames", name, size_text(size), ""))', ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/perf.py", "    if skipped:\n", "    if not skipped:\n", ["tests/test_bench.py|not_offered"]),
+    ("wgpurender/bench/report.py", "    return Result(family, case, \"wgpu\", size, NOT_OFFERED, nan, nan, nan, 0, why)",  # noqa: E501
+     "    return Result(family, case, \"wgpu\", size, \"frame_ms\", nan, nan, nan, 0, why)", ["tests/test_bench.py|not_offered"]),  # noqa: E501
+    # issue 31 (perf2): the second H100 run's generated figures
+    ("wgpurender/bench/figures_post.py", 'out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],',  # noqa: E501
+     'out.append({"variant": " ".join(text[:-2]), "effects": text[-2], "path": text[-1],', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", 'out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],',  # noqa: E501
+     'out.append({"variant": ",".join(text[:-2]), "effects": text[-1], "path": text[-1],', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", "        numbers, text = row[-len(NUMBERS):], row[:-len(NUMBERS)]",
+     "        numbers, text = row[-len(NUMBERS) + 1:], row[:-len(NUMBERS)]", ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", 'return sum(r["ms"] for r in mine), sum(r["copy_ms"] for r in mine), len(mine)',  # noqa: E501
+     'return sum(r["ms"] for r in mine), sum(r["ms"] for r in mine), len(mine)', ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", '    mine = [r for r in rows if r["variant"] == FUSED]', '    mine = [r for r in rows if r["variant"] != FUSED]',  # noqa: E501
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/figures_post.py", "judge(ms <= CHAIN_LIMIT * copy)", "judge(ms >= CHAIN_LIMIT * copy)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", "judge(r.median <= CPU_LIMIT_MS)", "judge(r.p99 <= CPU_LIMIT_MS)", ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/figures_post.py", 'if r.metric == "not offered"})', 'if r.metric == "frame_ms"})', ["tests/test_benchmark_figures.py"]),  # noqa: E501
+    ("wgpurender/bench/post_roofline.py", '    writer = csv.writer(out, lineterminator="\\n")',
+     '    writer = csv.writer(out, lineterminator="\\n", quoting=csv.QUOTE_NONE, escapechar="\\\\")',
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/post_roofline.py", "    writer.writerow(fields)\n", "", ["tests/test_benchmark_figures.py"]),
     # issue 28's independent fuzz: the bugs it found (exercise through a dangling link, the cache's temp file)
     ("wgpurender/exercises/starter.py", "if os.path.lexists(out / name)]", "if (out / name).exists()]",
      [EX + "|dangling"]),

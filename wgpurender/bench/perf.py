@@ -16,11 +16,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_line: the CLI's import)
+from wgpurender.bench.report import NOT_OFFERED, Result, command_line, not_offered, size_text  # noqa: F401 (command_line: the CLI's import)
+from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
-FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
+FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "scene-scale", "startup")
 FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
 BIG_SIZE = (3840, 2160)
 QUICK_SIZES = ((96, 64),)
@@ -77,12 +78,15 @@ class PerfRun:
 def machine_info(ctx: GPUContext) -> dict[str, str]:
     import wgpu
 
+    from wgpurender.wgpu_path.binding import name as binding_name
+
     info = {
         "adapter": ctx.describe(),
         "cpu cores": str(os.cpu_count()),
         "platform": platform.platform(),
         "python": platform.python_version(),
         "wgpu-py": wgpu.__version__,
+        "binding": binding_name(),
         "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
     }
     try:
@@ -99,7 +103,7 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
     start = time.perf_counter()
     run = PerfRun(config, machine_info(ctx))
     steps = {"frames": _frames, "scene": _scene, "post": _post, "msaa-post": _msaa_post, "objects": _objects,
-             "startup": _startup}
+             "scene-scale": _scene_scale, "startup": _startup}
     for family in config.families:
         log(f"[{family}]")
         steps[family](ctx, config, run, log)
@@ -130,8 +134,15 @@ def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     cases = [(size, name) for size in config.sizes(ctx) for name in common_stages()]
     progress = Progress(len(cases), log)
     for size, name in cases:
-        run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+        try:
+            run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+        except UserError as err:  # this binding cannot draw the stage (Dawn has no clear-texture): a row says so
+            run.results.append(not_offered("frames", name, size_text(size), str(err)))
+            log(f"  frames: {name} {size[0]}x{size[1]} not offered by this binding: {err}")
         progress.step(f"frames: {name} {size[0]}x{size[1]}")
+    skipped = sorted({f"{r.case} ({r.note})" for r in run.results if r.family == "frames" and r.metric == NOT_OFFERED})
+    if skipped:
+        run.notes.append("frames: not offered by this binding (rows with metric 'not offered'): " + "; ".join(skipped))
     run.notes.append("frames: wgpu-only stages (no raw counterpart) are left out: "
                      + ", ".join(_wgpu_only_stages()) + ".")
 
@@ -213,6 +224,18 @@ def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
                          f"{CPU_PER_DRAW_LIMIT} objects; 100k runs instancing and the bundle only.")
     if not ctx.has("immediates"):
         run.notes.append("objects: the adapter lacks 'immediates', that mode was skipped.")
+
+
+def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    """N instanced copies and N distinct meshes of a lit, textured cube; pygfx beside (bench/scale.py)."""
+    from wgpurender.bench.scale import COUNTS, QUICK_COUNTS, bench_scale, ratio_rows
+    from wgpurender.bench.scale_pygfx import pygfx_peer
+
+    counts = QUICK_COUNTS if config.quick else COUNTS
+    size = QUICK_SIZES[0] if config.quick else (800, 600)
+    results, notes = bench_scale(ctx, list(counts), config.timed_frames(), size, log, pygfx_peer())
+    run.results += results + ratio_rows(results)
+    run.notes += notes
 
 
 def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:

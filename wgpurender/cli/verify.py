@@ -23,10 +23,10 @@ def register(subparsers) -> None:
                    help="output folder (default out/verify)")
     p.add_argument("--quick", action="store_true", help="a subset: stages triangle and 3d, scene unlit")
     p.add_argument("--implementations", metavar="LIST", default=None,
-                   help="the implementation matrix instead: a comma list of raw, wgpu-vulkan, wgpu-gl, browser, or "
-                   "'all' (every one available here); each renders every stage and scene at --size, every pair is "
-                   "compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded by "
-                   "assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
+                   help="the implementation matrix instead: a comma list of raw, wgpu-vulkan, wgpu-gl, browser, "
+                   "wgpu-dawn, or 'all' (every one available here); each renders every stage and scene at --size, "
+                   "every pair is compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded "
+                   "by assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="size for --implementations (default 160x120, the size the bounds were calibrated at)")
     p.add_argument("--calibrate", action="store_true",
@@ -58,10 +58,16 @@ def run(args) -> int:
     print(f"{report.device}; {report.cpu}; driver class {report.driver_class}")
     print(f"wrote {args.out / 'verify.csv'}, {args.out / 'verify.md'}, {args.out / 'heatmaps'}/, "
           f"{args.out / 'tolerances.toml'}")
-    if report.failed:
-        print(f"{len(report.failed)} comparison(s) exceed their bound")
-        return 1
-    return 0
+    return _summary(report.rows, report.failed)
+
+
+def _summary(rows, failed) -> int:
+    """The last line: how many comparisons passed, failed and were skipped, and the exit status it means."""
+    skipped = sum(1 for row in rows if row.status == "skipped")
+    passed = len(rows) - len(failed) - skipped
+    verdict = "FAIL" if failed else "ok"
+    print(f"verify: {verdict}: {passed} passed, {len(failed)} over their bound, {skipped} skipped")
+    return 1 if failed else 0
 
 
 def run_implementations(args) -> int:
@@ -85,7 +91,4 @@ def run_implementations(args) -> int:
     for impl, why in missing.items():
         print(f"  not available: {impl} ({why})")
     print(f"wrote {args.out / 'implementations.md'}, {args.out / 'implementations.csv'}, {args.out / 'heatmaps'}/")
-    if report.failed:
-        print(f"{len(report.failed)} comparison(s) exceed their bound")
-        return 1
-    return 0
+    return _summary(report.cells, report.failed)

@@ -22,7 +22,7 @@ def draw_materials(model: Model) -> tuple[list[Material], ModelMaterials | None]
     if model.material_from_file and model.path.suffix.lower() in GLTF_SUFFIXES:
         found = model_materials(model.path, model.label)
         return list(found.materials), found
-    if model.material_from_file and model.path.suffix.lower() == ".obj":
+    if model.material_from_file and model.path.suffix.lower() in (".obj", ".fbx"):
         found = obj_materials(model)
         if found is not None:
             return list(found.materials), found
@@ -33,13 +33,17 @@ def obj_materials(model: Model) -> ModelMaterials | None:
     """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
     normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
     an MTL."""
-    from wgpurender.core.models.mesh import obj_material
+    from wgpurender.core.models.mesh import load_mesh, obj_material
 
-    found = obj_material(model.path)
+    if model.path.suffix.lower() == ".fbx":  # the FBX's first material: diffuse colour, diffuse and normal maps
+        found = load_mesh(model.path, generate_tangents=False).material
+    else:
+        found = obj_material(model.path)
     if found is None:
         return None
     maps = {MTL_FEATURES[role]: ref.path for role, ref in found.textures.items() if role in MTL_FEATURES}
-    name = f"{model.label} MTL material '{found.name}'"
+    kind = "FBX" if model.path.suffix.lower() == ".fbx" else "MTL"
+    name = f"{model.label} {kind} material '{found.name}'"
     opacity = 1.0 if found.opacity is None else found.opacity
     material = Material(name, albedo_color=(*(found.color or (1.0, 1.0, 1.0)), opacity), origin=name,
                         alpha_mode="blend" if opacity < 1.0 else "opaque", unlit=found.illum == 0,
@@ -49,7 +53,8 @@ def obj_materials(model: Model) -> ModelMaterials | None:
         taken.append(f"d {opacity:g} (alpha blended, unsorted)")
     if found.illum == 0:
         taken.append("illum 0 (unlit)")
-    ignored = [f"MTL '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
+    taken.extend(found.notes)
+    ignored = [f"{kind} '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
     used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
     if len(used) > 1:
         ignored.append(f"usemtl {', '.join(repr(u.decode('utf-8', 'replace')) for u in list(used)[1:])}: ignored "
@@ -96,8 +101,10 @@ def _alpha_varies(material: Material) -> bool:
 
 
 def pipeline_state(material: Material) -> dict:
-    """ScenePipeline fields a material decides: culling (doubleSided) and blending (alphaMode BLEND)."""
-    return {"cull_mode": "none" if material.double_sided else "back", "blend": material.alpha_mode == "blend"}
+    """ScenePipeline fields a material decides: culling (doubleSided), blending (alphaMode BLEND) and the
+    topology (glTF points and lines)."""
+    return {"cull_mode": "none" if material.double_sided else "back", "blend": material.alpha_mode == "blend",
+            "topology": material.topology}
 
 
 def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:

@@ -24,7 +24,7 @@ from wgpurender.core.plan.build import build_plan
 from wgpurender.core.plan.model import AdapterFacts, Knobs, RenderPlan
 from wgpurender.core.scene import Scene, load_scene
 
-PLAN_FEATURES = ("immediates",)  # the adapter features a plan reads; the rest do not change it
+PLAN_FEATURES = ("immediates", "indirect-first-instance")  # the adapter features a plan reads (the rest: none)
 _NOT_FLAGS = ("adapter", "anisotropy", "anisotropy_adapter")  # set from the arguments, never passed as a knob
 KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
 

@@ -118,6 +118,7 @@ class Material:
     texture_samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): a sampler per texture
     texture_mipmaps: tuple[tuple[str, bool], ...] = ()  # (feature, builds a mip chain) when per texture
     part: int | None = None  # the model file's material index this stands for (None: the whole model)
+    topology: str = "triangle-list"  # glTF points ("point-list") and lines ("line-list") draw with their own
     emissive_color: Vec3 = (0.0, 0.0, 0.0)  # linear radiance added to the shaded colour (glTF emissiveFactor)
     emissive_map: Path | None = None  # sRGB, multiplies emissive_color (glTF emissiveTexture)
     occlusion_map: Path | None = None  # linear, R channel scales the ambient term (glTF occlusionTexture)
@@ -157,6 +158,32 @@ def _rows(m: np.ndarray) -> tuple[tuple[float, ...], ...]:
 
 IDENTITY = Transform(_rows(np.eye(4)))
 
+MAX_INSTANCES = 4_000_000  # copies of one model: 64 bytes each here, 128 on the GPU (bounded memory)
+
+
+@dataclass(frozen=True)
+class Placements:
+    """N copies of one model, compactly: each copy's matrix, relative to the model's ``transform``.
+
+    Copy i is drawn with world matrix ``model.transform @ matrix(i)``: the model's transform is the parent of
+    its copies, as a glTF node is the parent of EXT_mesh_gpu_instancing's per-instance TRS. Made from a scene's
+    ``instances`` block (core/scene/instances.py) or a glTF file's instancing extension; the plan batches
+    them into one instanced draw. ``data`` is float32 (N, 4, 4) row-major (acting on column vectors): bytes, so
+    the frozen scene stays comparable and hashable."""
+
+    data: bytes
+    count: int
+    description: str
+
+    @classmethod
+    def of(cls, matrices: np.ndarray, description: str) -> Placements:
+        m = np.ascontiguousarray(matrices, dtype=np.float32).reshape(-1, 4, 4)
+        return cls(m.tobytes(), int(m.shape[0]), description)
+
+    def array(self) -> np.ndarray:
+        """(count, 4, 4) float32, read-only (a view of ``data``)."""
+        return np.frombuffer(self.data, dtype=np.float32).reshape(self.count, 4, 4)
+
 
 @dataclass(frozen=True)
 class Model:
@@ -167,10 +194,22 @@ class Model:
     transform: Transform = IDENTITY
     # True when the scene names no material: a glTF model then draws with its own materials (core/scene/gltf_materials)
     material_from_file: bool = False
+    placements: Placements | None = None  # None: one copy, at ``transform``
 
     @property
     def label(self) -> str:
         return f"models[{self.index}] '{self.written_path}'"
+
+    @property
+    def instance_count(self) -> int:
+        return 1 if self.placements is None else self.placements.count
+
+    def worlds(self) -> np.ndarray:
+        """(N, 4, 4) float64: every copy's world matrix (``transform @ placement``), or the transform alone."""
+        parent = self.transform.array()
+        if self.placements is None:
+            return parent[None]
+        return parent @ self.placements.array().astype(np.float64)
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,8 @@ from typing import TYPE_CHECKING
 import wgpu
 
 from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path import binding
+from wgpurender.wgpu_path.device import wgpu_private
 
 if TYPE_CHECKING:
     from wgpurender.core.plan.model import AdapterFacts
@@ -37,6 +39,7 @@ OPTIONAL_FEATURES = (
     "clear-texture",
     "float32-filterable",
     "pipeline-cache",
+    "indirect-first-instance",  # GPU-culled draws (core/plan/culling.py)
 )
 
 INSTALL_HINT = (
@@ -139,18 +142,15 @@ class GPUContext:
         wgpu-py), this is plain ``map_sync``.
         """
         device = self.device
-        poller = getattr(device, "_poller", None)
-        if poller is None or not hasattr(device, "_poll_wait"):
+        poller = wgpu_private.poller(device)
+        if poller is None:
             buffer.map_sync(wgpu.MapMode.READ, offset, size)
             return
-        device._poller = CallerPolls(poller)
-        try:
+        with wgpu_private.poller_replaced(device, CallerPolls(poller)):
             promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
-        finally:
-            device._poller = poller
         for _ in range(3):  # one blocking poll completes every submission: the callback has run
-            device._poll_wait()
-            if getattr(promise, "_state", "") != "pending":
+            wgpu_private.poll_wait(device)
+            if not wgpu_private.pending(promise):
                 break
         else:  # never seen: hand the wait to the poll thread after all rather than block forever
             token = poller.get_token()
@@ -226,9 +226,12 @@ def _configure_instance_once(backend: str) -> None:
                             f"backend needs its own process (or start with --backend auto)")
         return
     from wgpurender.core.files.runtime_dir import ensure_runtime_dir
-    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
 
     ensure_runtime_dir()  # before the instance: no "XDG_RUNTIME_DIR is invalid" lines from the driver
+    if binding.requested() == "dawn":  # Dawn has no wgpu-native instance extras: it picks its own backends
+        _instance_backend.append(backend)
+        return
+    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
 
     with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
         from wgpu.backends.wgpu_native.extras import set_instance_extras
@@ -244,7 +247,27 @@ def _configure_instance_once(backend: str) -> None:
 
 @functools.cache
 def _enumerate() -> tuple:
+    if binding.name() == "dawn":
+        adapters = _quietly(wgpu.gpu.enumerate_adapters_sync)  # Dawn prints its refusals on stderr itself
+        if not adapters:
+            raise UserError(binding.refusal([]))
+        return tuple(adapters)
     return tuple(wgpu.gpu.enumerate_adapters_sync())
+
+
+def _quietly(call):
+    """``call()`` with file descriptor 2 sent to /dev/null (C code's warnings), restored after."""
+    import sys
+
+    sys.stderr.flush()
+    saved, null = os.dup(2), os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 2)
+    try:
+        return call()
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(null)
 
 
 def _adapters(backend: str | None = None) -> tuple:
@@ -282,6 +305,11 @@ def get_context(backend: str | None = None) -> GPUContext:
 
 @functools.cache
 def _context(backend: str) -> GPUContext:
+    note = wgpu_private.version_note()
+    if note:  # once per process: the private reaches may not hold on this wgpu-py
+        import sys
+
+        print(note, file=sys.stderr, flush=True)
     adapter = select_adapter(backend)
     features = frozenset(f for f in OPTIONAL_FEATURES if f in adapter.features)
     limits = {}
