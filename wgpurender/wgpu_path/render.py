@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.plan import gpu_memory
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frames
 from wgpurender.wgpu_path.device.targets import check_format, create_target
@@ -46,7 +47,7 @@ def render_any(
     msaa: int | None = None,
     t: float = 0.0,
     backend: str | None = None,
-    anisotropy: str = "scene",
+    anisotropy: str = DEFAULT_ANISOTROPY,
 ) -> RenderResult:
     """A stage by name, or a scene file (:func:`wgpurender.core.course.formats.is_scene_file`).
 

@@ -3,7 +3,7 @@
 Public API:
 
 - :func:`render_plan` ``(ctx, plan, t=0.0) -> RenderResult``: headless, a plan resolved by
-  :func:`wgpurender.core.plan.resolve_plan` for ``adapter_facts(ctx)`` (what ``wgpurender render SCENE.toml``
+  :func:`wgpurender.core.plan.resolve_plan` for ``ctx.adapter_facts()`` (what ``wgpurender render SCENE.toml``
   and the API call); :func:`render_scene_file` ``(path, size=None, fmt=None, msaa=None, t=0.0, ctx=None)``
   resolves and renders in one call;
 - :func:`scene_drawable_factory` ``(path, ctx, msaa=None) -> make(fmt) -> SceneRenderer``: for the window;
@@ -24,7 +24,6 @@ material (white, lit). Name a model's textures in a scene material (docs/scenes.
 
 from wgpurender.wgpu_path.scene.frame import (
     SceneRenderer,
-    adapter_facts,
     load_renderer,
     render_frame,
     render_plan,
@@ -35,7 +34,6 @@ from wgpurender.wgpu_path.scene.shader_interface import shader_source
 
 __all__ = [
     "SceneRenderer",
-    "adapter_facts",
     "load_renderer",
     "render_frame",
     "render_plan",
