@@ -22,14 +22,13 @@ from __future__ import annotations
 
 import logging
 import os
-import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.input_files import check_file_size, input_file, resolved
+from wgpurender.core.files.input_files import check_file_size, input_file
 from wgpurender.core.models import gltf_geometry, gltf_io
 from wgpurender.core.models.tangents import (
     area_weighted_normals,
@@ -45,59 +44,7 @@ CONVERT_HINT = (
 )
 UNSUPPORTED = {".fbx": "FBX", ".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
                ".usd": "USD", ".usdz": "USDZ", ".usda": "USD", ".usdc": "USD"}
-MTL_ROLES = {  # MTL statement -> (texture role, is the image sRGB-encoded)
-    "map_kd": ("base_color", True),
-    "map_bump": ("normal", False),
-    "bump": ("normal", False),
-    "norm": ("normal", False),
-    "map_pr": ("roughness", False),
-    "map_ao": ("occlusion", False),
-    "map_ke": ("emissive", True),
-}
-
 log = logging.getLogger(__name__)
-
-
-@dataclass
-class TextureRef:
-    """One texture a material refers to: a file on disk, or image bytes embedded in a glTF."""
-
-    path: Path | None
-    data: bytes | None = None
-    srgb: bool = False
-
-    def load(self) -> np.ndarray:
-        """The image as (H, W, 4) uint8 (still encoded: decode sRGB in the sampler when ``srgb``)."""
-        if self.data is None:
-            from wgpurender.core.files.imageio import load_png
-
-            missing = f"texture not found: {self.path} (keep textures where the model file refers to them)"
-            if self.path is None:
-                raise UserError(missing)
-            return load_png(input_file(self.path, "texture", missing))
-        import io
-
-        from PIL import Image
-
-        from wgpurender.core.files.imageio import decode_image
-
-        try:
-            with Image.open(io.BytesIO(self.data)) as im:
-                return decode_image(im, "an image embedded in the model")
-        except (OSError, ValueError, Image.DecompressionBombError) as err:
-            raise UserError(f"cannot read an image embedded in the model: {err}") from None
-
-
-@dataclass
-class Material:
-    """Texture references of a material. Roles: base_color, normal, roughness, metallic_roughness, occlusion,
-    emissive (whichever the file names)."""
-
-    name: str | None = None
-    textures: dict[str, TextureRef] = field(default_factory=dict)
-    color: tuple[float, float, float] | None = None  # MTL Kd (diffuse colour, taken as linear)
-    opacity: float | None = None  # MTL d (dissolve), or 1 - Tr
-    illum: int | None = None  # MTL illumination model: 0 = colour only, no lighting
 
 
 @dataclass(frozen=True)
@@ -127,7 +74,6 @@ class Mesh:
     tangents: np.ndarray | None = None
     has_uvs: bool = True
     tangents_source: str | None = None  # "file", "generated" or None
-    material: Material | None = None
     source: Path | None = None
     colors: np.ndarray | None = None
     parts: tuple[MeshPart, ...] = ()
@@ -182,7 +128,6 @@ def build_mesh(
     tangents: np.ndarray | None = None,
     *,
     generate_tangents: bool = True,
-    material: Material | None = None,
     source: str | os.PathLike | None = None,
     colors: np.ndarray | None = None,
     parts: tuple[MeshPart, ...] = (),
@@ -233,7 +178,6 @@ def build_mesh(
         tangents=None if tangents is None else tangents.astype(np.float32),
         has_uvs=has_uvs,
         tangents_source=tangents_source,
-        material=material,
         source=None if source is None else Path(source),
         colors=None if colors is None else _checked_colors(what, colors),
         parts=tuple(parts),
@@ -304,11 +248,11 @@ class _Part:
     material: int | None = None
 
 
-def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_material: bool = True) -> Mesh:
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
     """Load a model file into one :class:`Mesh` (all its meshes and nodes merged, node transforms applied).
 
-    The material is the first one the file's triangles use; ``obj_material=False`` skips an OBJ's MTL
-    (and its "material library not found" warning) for callers whose scene supplies the material.
+    The geometry only: a model file's materials are the scene's (core/scene/file_materials.py reads them once,
+    when the scene loads); ``Mesh.parts`` says which triangles each file material covers.
     Raises UserError for missing, unsupported, malformed or empty files and for non-finite positions.
     """
     path = Path(path)
@@ -323,18 +267,17 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
     check_file_size(input_file(path, "model file"), "model file")
     file_type = SUPPORTED[suffix]
     if file_type in ("gltf", "glb"):
-        parts, material = _gltf_parts(path, file_type)
+        parts = _gltf_parts(path)
     else:
         if file_type == "obj":
             check_obj_records(path)
         parts = _trimesh_parts(path, file_type)
-        material = _obj_material(path) if file_type == "obj" and obj_material else None
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
     positions, faces, normals, uvs, tangents, colors, mesh_parts = _concatenate(parts)
     return build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
-                      material=material, source=path, colors=colors, parts=mesh_parts)
+                      source=path, colors=colors, parts=mesh_parts)
 
 
 OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least numbers each record needs
@@ -407,20 +350,16 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
     return parts
 
 
-def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | None]:
+def _gltf_parts(path: Path) -> list[_Part]:
     """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space."""
     doc = gltf_io.read_document(path)
-    parts, material = [], None
+    parts = []
     for world, node, geometry in gltf_geometry.mesh_primitives(doc):
         g = geometry
         part = _place(world, g.positions, g.faces, g.normals, g.uvs, g.tangents, str(path), node)
         part.colors, part.material = g.colors, g.material
         parts.append(part)
-        if material is None and g.material is not None:
-            mat_name, textures = gltf_io.material_textures(doc, g.material)
-            material = Material(mat_name, {role: TextureRef(t["uri"], t["data"], t["srgb"])
-                                           for role, t in textures.items()})
-    return parts, material
+    return parts
 
 
 def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "model", node: str = "?") -> _Part:
@@ -478,71 +417,3 @@ def _concatenate(parts: list[_Part]):
             mesh_parts.append(MeshPart(p.material, first, count))
         first += count
     return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts)
-
-
-def obj_material(path: Path) -> Material | None:
-    """The OBJ's first ``usemtl`` material from its MTL (Kd, d/Tr and texture files), or None."""
-    return _obj_material(path)
-
-
-def _obj_material(path: Path) -> Material | None:
-    """The material of the first `usemtl` in an OBJ, with the texture files its MTL names (paths resolved)."""
-    text = path.read_bytes()
-    libraries = re.findall(rb"^[ \t]*mtllib[ \t]+(.+?)[ \t]*$", text, re.M)
-    used = re.search(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", text, re.M)
-    if not libraries:
-        return None
-    wanted = used.group(1).decode("utf-8", "replace") if used else None
-    for lib in libraries:
-        mtl = path.parent / lib.decode("utf-8", "replace")
-        if not os.path.isfile(mtl):
-            # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
-            log.info("%s: material library %s not found; loading without textures", path, mtl)
-            continue
-        materials = parse_mtl(mtl)
-        if wanted in materials:
-            return materials[wanted]
-        if wanted is None and materials:
-            return next(iter(materials.values()))
-    return None
-
-
-def parse_mtl(path: Path) -> dict[str, Material]:
-    """Texture references of every material in an MTL file. Map options (``-bm 1.0`` ...) are skipped: the file
-    name is the last token. Paths are resolved relative to the MTL file."""
-    materials: dict[str, Material] = {}
-    current = None
-    for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
-        tokens = raw.strip().split()
-        if not tokens or tokens[0].startswith("#"):
-            continue
-        key = tokens[0].lower()
-        if key == "newmtl":
-            current = Material(" ".join(tokens[1:]))
-            materials[current.name] = current
-        elif key in MTL_ROLES and current is not None and len(tokens) > 1:
-            role, srgb = MTL_ROLES[key]
-            if not tokens[-1].isprintable():
-                raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
-                                "fix the material library")
-            current.textures.setdefault(role, TextureRef(resolved(path.parent / tokens[-1]), None, srgb))
-        elif key in ("kd", "d", "tr", "illum") and current is not None:
-            _mtl_number(current, key, tokens[1:], f"{path}:{number}")
-    return materials
-
-
-def _mtl_number(material: Material, key: str, values: list[str], where: str) -> None:
-    """Kd r g b (a single value means grey), d / Tr (opacity, transparency) and illum; a bad number is one line."""
-    try:
-        numbers = [float(v) for v in values[:3]]
-    except ValueError:
-        raise UserError(f"{where}: {key.capitalize()} needs numbers, got {' '.join(values)!r}; fix the material "
-                        "library") from None
-    if not numbers or not all(np.isfinite(numbers)):
-        raise UserError(f"{where}: {key.capitalize()} needs finite numbers; fix the material library")
-    if key == "kd":
-        material.color = tuple(max(0.0, v) for v in (numbers * 3)[:3])
-    elif key == "illum":
-        material.illum = int(numbers[0])
-    else:
-        material.opacity = min(1.0, max(0.0, numbers[0] if key == "d" else 1.0 - numbers[0]))

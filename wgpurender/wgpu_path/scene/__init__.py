@@ -16,10 +16,9 @@ layouts, bindings, the WGSL variant), ``resources``
 (meshes, buffers, textures, samplers), ``scene_pass`` (pipelines, UBOs, bind groups, the scene pass),
 ``frame`` (attachments, the post chain, a whole frame).
 
-Model files' own materials (an OBJ's MTL, a glTF material) are not used: the plan is derived
-from the scene file alone (``python -m wgpurender.core.plan`` never opens a model), and the renderer
-draws only what the plan lists, so a model without a scene material is drawn with the default
-material (white, lit). Name a model's textures in a scene material (docs/scenes.md).
+A model without a scene material draws with its file's own materials (a glTF's, an OBJ's MTL), read once
+when the scene loads (core/scene/file_materials.py); the plan reads them from the scene model and never opens a
+model file, and the renderer draws only what the plan lists (docs/scenes.md).
 """
 
 from wgpurender.wgpu_path.scene.frame import (
