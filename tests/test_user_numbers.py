@@ -1,0 +1,114 @@
+"""Numbers a user reads and rules a check applies, pinned by values from outside the code (issue 32 item 7).
+
+Expected values come from the documentation (docs/guide.md's compare default, the calibration rule in the header
+of assets/reference/tolerances.toml) or are worked out here by hand or by numpy's own percentile.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wgpurender.core.verdict.tolerances import Metrics, calibrate
+from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def test_compare_fails_above_the_documented_default_flip(monkeypatch, tmp_path):
+    """docs/guide.md documents compare's default threshold; just above it exits 1, just below 0."""
+    from wgpurender.cli import main
+    from wgpurender.core.files.imageio import save_png
+    from wgpurender.core.verdict import compare as compare_module
+
+    documented = float(re.search(r"exceeds `flip_mean=([0-9.]+)`", (REPO / "docs" / "guide.md").read_text())[1])
+    a, b = tmp_path / "a.png", tmp_path / "b.png"
+    save_png(a, np.zeros((4, 4, 4), np.uint8))
+    save_png(b, np.full((4, 4, 4), 9, np.uint8))
+    real = compare_module.compare_images
+    for flip, code in ((documented * 1.02, 1), (documented * 0.98, 0)):
+        monkeypatch.setattr(compare_module, "compare_images",
+                            lambda x, y, f=flip, **_: dataclasses.replace(real(x, y, with_flip=False), flip_mean=f))
+        assert main(["compare", str(a), str(b)]) == code
+
+
+def test_the_calibration_rule_of_the_table_header():
+    """The header of tolerances.toml: max_abs = worst + 1, at least 2 (lavapipe) or 1.5 x worst + 1 (gpu);
+    changed, flip_mean = 2 x worst, at least 1% and 0.002."""
+    worst = [Metrics(5, 0.03, 30, 0.004, 1000), Metrics(1, 0.001, 1, 0.0001, 1000)]
+    assert calibrate(worst, "lavapipe") == {"max_abs": 6, "changed": 0.06, "flip_mean": 0.008}
+    assert calibrate(worst, "gpu")["max_abs"] == 9  # ceil(7.5) + 1
+    tiny = [Metrics(0, 0.0, 0, 0.0, 1000)]
+    assert calibrate(tiny, "lavapipe") == {"max_abs": 2, "changed": 0.01, "flip_mean": 0.002}
+
+
+def test_benchmark_frames_leave_out_the_warm_up():
+    """Warm-up 1 s: frames ending at 0.5 and 1.0 s are warm-up; the intervals after are 100, 200, 300 ms."""
+    rec = FrameRecorder(BenchmarkSpec(warmup_s=1.0, runtime_s=0.6))
+    for now in (0.0, 0.5, 1.0, 1.1, 1.3):
+        rec.frame_done(now)
+        assert not rec.finished()
+    rec.frame_done(1.6)
+    assert rec.frame_ms == pytest.approx([100.0, 200.0, 300.0]) and rec.finished()
+
+
+def test_benchmark_summary_statistics():
+    """101 frames of 1..101 ms: mean 51 ms = 19.6 FPS, p50 51, p99 100.98 (numpy's 'weibull' percentile: the
+    (n + 1) p rank that statistics.quantiles uses), min 1, max 101."""
+    rec = FrameRecorder(BenchmarkSpec())
+    rec.frame_ms = [float(v) for v in range(1, 102)]
+    times = np.array(rec.frame_ms)
+    p50, p99 = np.percentile(times, [50, 99], method="weibull")
+    text = rec.summary()
+    assert f"{1e3 / times.mean():.1f} FPS" in text and "19.6 FPS" in text
+    assert f"p50 {p50:.3f}, p99 {p99:.3f}" in text and "p99 100.980" in text
+    assert "min 1.000" in text and "max 101.000" in text and "101 frames in 5.15 s" in text
+
+
+def test_title_fps_counts_each_frame_once():
+    """Frames ending at 0, 0.2, 0.4 and 0.5 s (the title refreshes every 0.5 s): 3 frames in 500 ms, so
+    166.67 ms and 6.0 FPS; the first call only starts the clock."""
+    counter = TitleCounter("demo")
+    titles = [counter.frame_done(now) for now in (0.0, 0.2, 0.4, 0.5)]
+    assert titles == [None, None, None, "demo  |  6.0 FPS  166.67 ms"]
+
+
+# glTF 2.0 specification, "samplers": minFilter codes -> (minification filter, mipmap filter or None)
+SPEC_MIN_FILTERS = {9728: ("nearest", None), 9729: ("linear", None), 9984: ("nearest", "nearest"),
+                    9985: ("linear", "nearest"), 9986: ("nearest", "linear"), 9987: ("linear", "linear")}
+
+
+def _doc(material: dict, samplers: list | None = None, tmp: Path = Path("/nonexistent")):
+    from wgpurender.core.models.gltf_io import GltfDocument
+
+    texture = {"source": 0, **({"sampler": 0} if samplers else {})}
+    return GltfDocument(tmp / "m.gltf", {"asset": {"version": "2.0"}, "images": [{"uri": "t.png"}],
+                                         "textures": [texture], "samplers": samplers or [],
+                                         "materials": [material]}, [])
+
+
+@pytest.mark.parametrize(("code", "want"), SPEC_MIN_FILTERS.items())
+def test_gltf_min_filter_codes(code, want):
+    from wgpurender.core.scene.gltf_materials import sampler_spec
+
+    doc = _doc({}, [{"minFilter": code, "magFilter": 9728}])
+    spec, mips = sampler_spec(doc, doc.json["textures"][0])
+    assert (spec.min_filter, mips) == (want[0], want[1] is not None) and spec.mag_filter == "nearest"
+    if want[1] is not None:
+        assert spec.mipmap_filter == want[1]
+
+
+def test_gltf_normal_scale_and_emissive_strength():
+    """normalTexture.scale 0.3 is the normal map's strength; emissiveFactor (0.5, 0.25, 1) x emissiveStrength 4
+    (KHR_materials_emissive_strength) is (2, 1, 4)."""
+    from wgpurender.core.scene.gltf_materials import file_material
+
+    doc = _doc({"normalTexture": {"index": 0, "scale": 0.3}, "emissiveFactor": [0.5, 0.25, 1.0],
+                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}})
+    material = file_material(doc, 0, "m", False, [])
+    assert material.normal_strength == pytest.approx(0.3)
+    assert material.emissive_color == pytest.approx((2.0, 1.0, 4.0))
