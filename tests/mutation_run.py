@@ -29,6 +29,13 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+NOBACK = "tests/test_no_back_doors.py"
+BANDWIDTH = "tests/test_bandwidth_record.py"
+LOUD = "tests/test_loud_checks.py"
+DOCFIG = "tests/test_doc_figures.py"
+USERNUM = "tests/test_user_numbers.py"
+STAGESTATE = "tests/test_stage_state.py"
+MATERIALS = INPUTS + "|material_library"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -126,6 +133,59 @@ MUTATIONS = [
     ("wgpurender/core/models/gltf_rules.py",
      "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
+    # issue 32: one plan without back doors (item 1)
+    ("wgpurender/core/plan/resolve.py", "    return dataclasses.replace(plan, rebuild=resolve_knobs)",
+     "    return plan", [NOBACK]),
+    ("wgpurender/core/plan/resolve.py", "    flags = {k: getattr(knobs, k) for k in KNOB_FLAGS}", "    flags = {}",
+     [NOBACK]),
+    ("wgpurender/core/plan/model.py", "    anisotropy: str = DEFAULT_ANISOTROPY  #", '    anisotropy: str = "scene"  #',
+     [NOBACK]),
+    ("wgpurender/wgpu_path/scene/frame.py", "                  knobs: dict | None = None, anisotropy: str = "
+     "DEFAULT_ANISOTROPY) -> SceneRenderer:", "                  knobs: dict | None = None, anisotropy: str = "
+     "\"scene\") -> SceneRenderer:", [NOBACK]),
+    ("wgpurender/core/plan/anisotropy.py", '    if adapter_type != "CPU":', '    if adapter_type == "CPU":', [NOBACK]),
+    ("wgpurender/core/plan/model.py", "frozenset(f for f in features if f in PLAN_FEATURES)", "frozenset(features)",
+     ["tests/test_one_plan.py|resolved_per_adapter"]),
+    # --explain's truth (item 5)
+    ("wgpurender/core/plan/explain.py", "    if found is None or found.size != size:", "    if found is None:",
+     [BANDWIDTH]),
+    ("wgpurender/core/plan/objects.py", '{True: " + immediates",', '{True: "",', [BANDWIDTH]),
+    ("wgpurender/bench/report.py", '    if program.name == "wgpurender" or', "    if True or", [BANDWIDTH]),
+    # a check that cannot go quiet (item 8)
+    ("wgpurender/verify_matrix.py", 'Cell(target, a, b, "FAIL", comparison, "uncalibrated"',
+     'Cell(target, a, b, "info", comparison, "uncalibrated"', [LOUD]),
+    ("tests/skips.py", "        return uncalibrated.group(1) != uncalibrated.group(2)", "        return True", [LOUD]),
+    ("tests/skips.py", "    if len(reasons) > max_skips():", "    if len(reasons) > max_skips() + 1:", [LOUD]),
+    ("tests/conftest.py", "            session.exitstatus = 1", "            session.exitstatus = 0", [LOUD]),
+    ("wgpurender/core/verdict/tolerances.py", "    if cls is not None and impl and cls != measured_on:",
+     "    if cls is not None and impl and cls == measured_on:", [LOUD]),
+    # every figure from a run (item 4)
+    ("docs/backends.md", "agg=count -->10<!-- /figure -->", "agg=count -->12<!-- /figure -->", [DOCFIG]),
+    ("docs/benchmarks.md", "per=1000 fmt=.0f -->1233<!-- /figure -->", "per=1000 fmt=.0f -->1234<!-- /figure -->",
+     [DOCFIG]),
+    # one materials reader, stages' state (item 2)
+    ("wgpurender/core/scene/load.py", "dataclasses.replace(m, file_materials=read_file_materials(m))",
+     "dataclasses.replace(m, file_materials=None)", [MATERIALS]),
+    ("wgpurender/core/scene/file_materials.py", "    if not model.material_from_file:",
+     "    if model.material_from_file:", [MATERIALS]),
+    ("wgpurender/wgpu_path/stages/cube3d.py", "        if camera != self._camera_bytes:",
+     "        if self._camera_bytes is None:", [STAGESTATE]),
+    # what users read (item 7)
+    ("wgpurender/cli/compare.py", '[("flip_mean", 0.005)]', '[("flip_mean", 0.01)]', [USERNUM]),
+    ("wgpurender/core/view/frame_times.py", "p99 {q[98]:.3f}", "p99 {q[97]:.3f}", [USERNUM]),
+    ("wgpurender/core/view/frame_times.py",
+     "            if self._last is not None and self._last - self._start >= self.spec.warmup_s:",
+     "            if self._last is not None:", [USERNUM]),
+    ("wgpurender/core/view/frame_times.py", "        ms = (now - self._at) * 1e3 / self._frames",
+     "        ms = (now - self._at) * 1e3 / (self._frames + 1)", [USERNUM]),
+    ("wgpurender/core/scene/gltf_materials.py", '9986: ("nearest", "linear")', '9986: ("linear", "nearest")',
+     [USERNUM]),
+    ("wgpurender/core/scene/gltf_materials.py", "tuple(float(c) * float(strength) for c",
+     "tuple(float(c) for c", [USERNUM]),
+    ("wgpurender/core/scene/gltf_materials.py", 'normal_strength=float(normal.get("scale", 1.0))',
+     "normal_strength=1.0", [USERNUM]),
+    ("wgpurender/core/verdict/tolerances.py", "    changed = max(0.01, _round_up(2 * max(",
+     "    changed = max(0.01, _round_up(1 * max(", [USERNUM]),
 ]
 
 
