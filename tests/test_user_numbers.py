@@ -112,3 +112,48 @@ def test_gltf_normal_scale_and_emissive_strength():
     material = file_material(doc, 0, "m", False, [])
     assert material.normal_strength == pytest.approx(0.3)
     assert material.emissive_color == pytest.approx((2.0, 1.0, 4.0))
+
+
+def test_gltf_signed_normalized_integers():
+    """glTF 2.0 accessor rules: a normalized signed component c is max(c / (2^(n-1) - 1), -1), an
+    unsigned one c / (2^n - 1): BYTE -128 and -127 are -1, 64 is 64/127; SHORT 16384 is 16384/32767."""
+    from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
+
+    data = np.array([-128, -127, 64, 127], np.int8).tobytes() + np.array([16384, -32768], "<i2").tobytes()
+    doc = GltfDocument(Path("m.gltf"), {"bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 4},
+                                                        {"buffer": 0, "byteOffset": 4, "byteLength": 4}],
+                                        "accessors": [{"bufferView": 0, "componentType": 5120, "type": "SCALAR",
+                                                       "count": 4, "normalized": True},
+                                                      {"bufferView": 1, "componentType": 5122, "type": "SCALAR",
+                                                       "count": 2, "normalized": True}]}, [data])
+    np.testing.assert_allclose(read_accessor(doc, 0).ravel(), [-1.0, -1.0, 64 / 127, 1.0], rtol=1e-6)
+    np.testing.assert_allclose(read_accessor(doc, 1).ravel(), [16384 / 32767, -1.0], rtol=1e-6)
+
+
+def test_gltf_node_transform_scales_before_it_moves():
+    """glTF: a node's matrix is T * R * S, so the point (1, 0, 0) of a node scaled by 2 and moved by (1, 0, 0)
+    lands at (3, 0, 0) (moving first, then scaling, would give 4)."""
+    from wgpurender.core.models.gltf_geometry import node_matrix
+
+    m = node_matrix({"translation": [1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "rotation": [0.0, 0.0, 0.0, 1.0]})
+    np.testing.assert_allclose(m @ [1.0, 0.0, 0.0, 1.0], [3.0, 0.0, 0.0, 1.0])
+
+
+@pytest.mark.parametrize(("adapter_type", "want"), [("DiscreteGPU", "compute"), ("IntegratedGPU", "fragment"),
+                                                    ("CPU", "fragment"), ("", "fragment")])
+def test_the_automatic_post_path_per_adapter(adapter_type, want):
+    """docs/scenes.md: post_path "auto" is compute on a discrete GPU, fragment on every other adapter (an
+    integrated GPU, a CPU driver, the browser page's unknown adapter)."""
+    from wgpurender.core.plan import AdapterFacts, resolve_plan
+
+    plan = resolve_plan(REPO / "assets" / "scenes" / "final_subpass.toml", AdapterFacts(adapter_type, name="x"))
+    assert {p.path for p in plan.post_passes} == {want}
+
+
+def test_the_browser_page_draws_the_fragment_post_path():
+    """The exported page's plan is made for the browser's adapter (unknown type): fragment post passes."""
+    from wgpurender.core.plan import resolve_plan
+    from wgpurender.export.recorder import BROWSER
+
+    plan = resolve_plan(REPO / "assets" / "scenes" / "final_subpass.toml", BROWSER)
+    assert plan.post_passes and {p.path for p in plan.post_passes} == {"fragment"}
