@@ -186,6 +186,11 @@ MUTATIONS = [
      "normal_strength=1.0", [USERNUM]),
     ("wgpurender/core/verdict/tolerances.py", "    changed = max(0.01, _round_up(2 * max(",
      "    changed = max(0.01, _round_up(1 * max(", [USERNUM]),
+    ("wgpurender/core/models/gltf_io.py", "        out = np.maximum(out.astype(np.float32) / info.max, -1.0)",
+     "        out = out.astype(np.float32) / info.max", [USERNUM]),
+    ("wgpurender/core/models/gltf_geometry.py", 'np.float64)[None, :]', 'np.float64)[:, None]', [USERNUM]),
+    ("wgpurender/core/plan/post.py", '    if adapter.adapter_type == "DiscreteGPU":',
+     '    if adapter.adapter_type != "CPU":', [USERNUM]),
 ]
 
 

@@ -131,12 +131,14 @@ def test_gltf_signed_normalized_integers():
 
 
 def test_gltf_node_transform_scales_before_it_moves():
-    """glTF: a node's matrix is T * R * S, so the point (1, 0, 0) of a node scaled by 2 and moved by (1, 0, 0)
-    lands at (3, 0, 0) (moving first, then scaling, would give 4)."""
+    """glTF: a node's matrix is T * R * S. The point (1, 0, 0) of a node scaled by (2, 1, 1), turned 90 degrees
+    about z and moved by (1, 0, 0): scaled (2, 0, 0), turned (0, 2, 0), moved (1, 2, 0). Turning before scaling
+    would give (1, 1, 0); moving before either, (0, 4, 0)."""
     from wgpurender.core.models.gltf_geometry import node_matrix
 
-    m = node_matrix({"translation": [1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "rotation": [0.0, 0.0, 0.0, 1.0]})
-    np.testing.assert_allclose(m @ [1.0, 0.0, 0.0, 1.0], [3.0, 0.0, 0.0, 1.0])
+    half = np.sqrt(0.5)
+    m = node_matrix({"translation": [1.0, 0.0, 0.0], "scale": [2.0, 1.0, 1.0], "rotation": [0.0, 0.0, half, half]})
+    np.testing.assert_allclose(m @ [1.0, 0.0, 0.0, 1.0], [1.0, 2.0, 0.0, 1.0], atol=1e-12)
 
 
 @pytest.mark.parametrize(("adapter_type", "want"), [("DiscreteGPU", "compute"), ("IntegratedGPU", "fragment"),
