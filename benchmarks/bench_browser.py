@@ -4,7 +4,7 @@ wgpu-native on this machine, for the same targets and size.
     python benchmarks/bench_browser.py [--targets triangle,3d,assets/scenes/final.toml] [--size 800x600]
                                        [--frames 60] [--runs 3] [--out FILE.md]
 
-Per target: ``wgpurender export`` writes the page (wgpurender/export/); a fresh headless Chromium
+Per target: ``wgpurender export`` writes the page (wgpurender/webpage/); a fresh headless Chromium
 (``--enable-unsafe-webgpu``: Dawn on SwiftShader here, no GPU) opens it, and the page reports
 
 - **first pixel**: ``performance.now()`` (ms since the navigation started) when the player's first frame is done:
@@ -52,7 +52,7 @@ FRAMES_JS = """new Promise((resolve) => {
 
 
 def browser_numbers(page: Path, frames: int, runs: int) -> tuple[list[float], list[float], str]:
-    from wgpurender.export.chromium import Chromium
+    from wgpurender.webpage.chromium import Chromium
 
     firsts, frame_ms, version = [], [], ""
     for _ in range(runs):
@@ -107,7 +107,7 @@ def main() -> int:
     p.add_argument("--out", type=Path)
     args = p.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
-    from wgpurender.export import export
+    from wgpurender.webpage import export
 
     rows, version = [], ""
     with tempfile.TemporaryDirectory(prefix="wgpurender-browser-bench-") as tmp:

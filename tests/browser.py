@@ -22,7 +22,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.export.chromium import DevToolsPipe
+from wgpurender.webpage.chromium import DevToolsPipe
 
 CHROMIUM_NAMES = ("chromium", "chromium-browser", "google-chrome")
 

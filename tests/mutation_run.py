@@ -29,6 +29,14 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+OWNED = "tests/test_owned_files.py"
+EXPORT_OWN = "tests/test_export_keeps_other_folders.py"
+RECORD_OWN = "tests/test_record_outputs.py"
+REPORT_OWN = "tests/test_report_outputs.py"
+CACHES = "tests/test_cache_entries.py"
+CDEF = "tests/test_cdef_cache.py"
+RUNTIME = "tests/test_runtime_dir.py|invalid or valid"
+THREADS = "tests/test_api_threads.py"
 NOBACK = "tests/test_no_back_doors.py"
 BANDWIDTH = "tests/test_bandwidth_record.py"
 LOUD = "tests/test_loud_checks.py"
@@ -133,6 +141,61 @@ MUTATIONS = [
     ("wgpurender/core/models/gltf_rules.py",
      "            if count != counts[\"POSITION\"]:", "            if count < 0:",
      [GLTF]),
+    # issue 28: output folders own only what they wrote (core/files/owned_files.py)
+    ("wgpurender/core/files/owned_files.py", 'any(part in ("", ".", "..") for part', 'any(part in ("", ".") for part',
+     [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "if path.is_absolute() or any(", "if any(", [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "if others and not self.force:", "if others and self.force:",
+     [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "if rel not in self.owned and os.path.lexists(", "if os.path.lexists(",
+     [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "stale = sorted(self.owned - set(self.written))", "stale = sorted(self.owned)",  # noqa: E501
+     [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "        if here.is_symlink() or not here.is_dir():",
+     "        if not here.is_dir():", [OWNED, EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "    if stat.S_ISLNK(mode):\n        if not follow_symlinks():",
+     "    if stat.S_ISLNK(mode):\n        if follow_symlinks():", [EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "        if not target.is_dir():\n            raise UserError(f\"{flag} {folder}: the",  # noqa: E501
+     "        if False:\n            raise UserError(f\"{flag} {folder}: the", [EXPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "if target.is_symlink() and not follow_symlinks():", "if False:", [OWNED]),
+    ("wgpurender/core/files/owned_files.py", "            self._listed |= new\n            self._save(self._listed)",
+     "            self._listed |= new", [OWNED]),
+    ("wgpurender/core/files/owned_files.py", "        os.close(fd)\n        os.unlink(probe)", "        os.close(fd)",
+     [EXPORT_OWN]),
+    ("wgpurender/core/files/safe_write.py", "if not m or pid_alive(int(m.group(1))) or", "if not m or", [REPORT_OWN]),
+    ("wgpurender/core/files/owned_files.py", "    folder.check_names(names)\n    folder.claim(names)",
+     "    folder.claim(names)", [OWNED]),
+    ("wgpurender/core/files/owned_files.py", "    try:\n        yield path\n    finally:\n        shutil.rmtree(path, "
+     "ignore_errors=True)", "    yield path", [OWNED, REPORT_OWN]),
+    # issue 28.5: a video is published whole or not at all
+    ("wgpurender/core/files/video.py", "        if frames != self.count:", "        if frames < 0:", [RECORD_OWN]),
+    ("wgpurender/core/files/video.py", "        if exc_type is None:\n            self.close()",
+     "        if True:\n            self.close()", [RECORD_OWN]),
+    # issue 28.8: verified cache entries
+    ("wgpurender/core/files/cache_entry.py", "    if blob[at:at + 32] != _digest(key):", "    if False:", [CACHES]),
+    ("wgpurender/core/files/cache_entry.py", "or blob[at + 32:at + 64] != _digest(payload):", ":", [CACHES]),
+    ("wgpurender/core/files/cache_entry.py", "info = os.stat(path, follow_symlinks=False)", "info = os.stat(path)",
+     [CACHES]),
+    ("wgpurender/raw_path/device/shaders.py", "    spirv = read_entry(cached, key)\n",
+     "    spirv = cached.read_bytes() if cached.is_file() else None\n", [CACHES]),
+    ("wgpurender/raw_path/device/pipeline_cache.py", "write_entry(ctx.pipeline_cache_file, ctx.pipeline_cache_key, bytes(",  # noqa: E501
+     "ctx.pipeline_cache_file.write_bytes((", [CACHES]),
+    ("wgpurender/wgpu_path/device/cdef_json.py", '{"t": tuple, "l": list, "s": set}', '{"t": list, "l": list, "s": set}',  # noqa: E501
+     [CDEF]),
+    ("wgpurender/core/files/bandwidth.py", "if not isinstance(found, dict) or set(found) != set(FIELDS):",
+     "if not isinstance(found, dict):", [CACHES]),
+    ("wgpurender/core/files/bandwidth.py", " and not isinstance(found[name], bool) for name", " for name", [CACHES]),
+    ("wgpurender/core/files/bandwidth.py", "math.isfinite(found[name]) and found[name] > 0",
+     "math.isfinite(found[name]) and found[name] >= 0", [CACHES]),
+    ("wgpurender/core/files/bandwidth.py", "    return data if isinstance(data, dict) else {}", "    return data", [CACHES]),  # noqa: E501
+    # issue 28.9, 28.12, 28.13
+    ("wgpurender/api.py", "        with _GPU:\n", "        if True:\n", [THREADS]),
+    ("wgpurender/core/checks.py", "    if not isinstance(value, str) or not value:\n        raise UserError(f\"{name} must be a folder",  # noqa: E501
+     "    if not isinstance(value, str):\n        raise UserError(f\"{name} must be a folder", [API]),
+    ("wgpurender/core/checks.py", "    if not isinstance(value, (bool, np.bool_)):\n        raise UserError(f\"{name} must be True",  # noqa: E501
+     "    if not isinstance(value, (bool, np.bool_, int)):\n        raise UserError(f\"{name} must be True", [API]),
+    ("wgpurender/core/files/runtime_dir.py", "bool(value) and os.path.isabs(value) and", "bool(value) and", [RUNTIME]),
+    ("wgpurender/core/files/runtime_dir.py", "    os.environ[RUNTIME_ENV] = private", "    pass", [RUNTIME]),
     # issue 32: one plan without back doors (item 1)
     ("wgpurender/core/plan/resolve.py", "    return dataclasses.replace(plan, rebuild=resolve_knobs)",
      "    return plan", [NOBACK]),

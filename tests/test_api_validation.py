@@ -43,10 +43,10 @@ IMAGES = [  # a bad image argument -> words
 
 def _rows():
     rows = []
-    for name in ("render", "reference", "plan", "explain", "show", "record"):
+    for name in ("render", "reference", "plan", "explain", "show", "record", "export"):
         params = inspect.signature(getattr(api, name)).parameters
         first = next(iter(params))
-        extra = {"out": "frames"} if name == "record" else {}  # a good output: only the argument under test is bad
+        extra = {"out": "frames" if name == "record" else "page"} if "out" in params else {}  # only one bad argument
         rows += [(name, {first: bad, **extra}, needle) for bad, needle in TARGETS]
         good = SCENE if name in ("plan", "explain") else "triangle"
         for arg, cases in ARGUMENTS.items():
@@ -56,7 +56,12 @@ def _rows():
         ("clip.gif", "give a .mp4 file or a folder"), (5, "out must be"), ("no/such/clip.mp4", "does not exist")]]
     rows += [("record", {"target": "3d", "out": "frames", arg: bad}, needle) for arg, bad, needle in [
         ("seconds", 0, "> 0"), ("seconds", NAN, "finite"), ("fps", "30", "finite number"), ("fps", -1, "> 0"),
-        ("turn", INF, "finite"), ("seconds", True, "finite number")]]
+        ("turn", INF, "finite"), ("seconds", True, "finite number"), ("force", 1, "force must be True or False")]]
+    rows += [("export", {"target": "triangle", "out": bad}, needle) for bad, needle in [  # issue 28.12
+        (5, "out must be a folder or file path"), (None, "out must be a folder or file path"),
+        ("", "out must be a folder or file path"), ("pa\0ge", "NUL character"), (b"page", "out must be")]]
+    rows += [("export", {"target": "triangle", "out": "page", "force": bad}, "force must be True or False")
+             for bad in ("yes", 1, None)]
     for name in ("compare", "heatmap"):
         rows += [(name, {"a": bad, "b": GREY}, needle) for bad, needle in IMAGES]
         rows += [(name, {"a": GREY, "b": bad}, needle) for bad, needle in IMAGES]

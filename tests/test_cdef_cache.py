@@ -14,6 +14,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 REPO = Path(__file__).resolve().parent.parent
 CHILD = r"""
 import json
@@ -55,12 +57,51 @@ def test_restored_parse_equals_a_real_parse(tmp_path):
     assert first["ints"] == second["ints"] and len(first["ints"]) > 100
     for run in (first, second):
         assert run["pixels"] == [[[0, 255, 0, 255]] * 4] * 4
-    assert len(list((tmp_path / "wgpurender").glob("cffi-wgpu-h-*.pickle"))) == 1
+    assert len(list((tmp_path / "wgpurender").glob("cffi-wgpu-h-*.json"))) == 1
 
 
-def test_a_damaged_cache_file_is_parsed_again(tmp_path):
-    _run(tmp_path)
-    (cached,) = (tmp_path / "wgpurender").glob("cffi-wgpu-h-*.pickle")
-    cached.write_bytes(b"not a pickle")
+def _flip(data: bytes) -> bytes:
+    middle = len(data) // 2
+    return data[:middle] + bytes([data[middle] ^ 0x20]) + data[middle + 1:]
+
+
+DAMAGE = {  # issue 28.8: each is a miss, parsed again, and the same context
+    "empty": lambda data: b"",
+    "truncated": lambda data: data[: len(data) - 100],
+    "flipped byte": _flip,
+    "wrong key": lambda data: __import__("wgpurender.core.files.cache_entry", fromlist=["seal"]).seal(
+        "another header", data[__import__("wgpurender.core.files.cache_entry", fromlist=["HEADER"]).HEADER:]),
+}
+
+
+@pytest.mark.parametrize("damage", sorted(DAMAGE))
+def test_a_damaged_cache_file_is_parsed_again(tmp_path, damage):
+    first = _run(tmp_path)
+    (cached,) = (tmp_path / "wgpurender").glob("cffi-wgpu-h-*.json")
+    cached.write_bytes(DAMAGE[damage](cached.read_bytes()))
     again = _run(tmp_path)
     assert again["status"] == "parsed and saved" and again["pixels"][0][0] == [0, 255, 0, 255]
+    assert again["decl"] == first["decl"]
+
+
+class _Planted:
+    def __init__(self, marker: str) -> None:
+        self.marker = marker
+
+    def __reduce__(self):
+        return (os.mkdir, (self.marker,))
+
+
+def test_a_planted_pickle_never_runs(tmp_path):
+    """The cache held a pickle, loaded at every start: a file planted there ran code as the user. Whatever is
+    planted (the old pickle name, or a pickle under the new name) is never unpickled."""
+    import pickle
+
+    marker = tmp_path / "ran"
+    first = _run(tmp_path)
+    (cached,) = (tmp_path / "wgpurender").glob("cffi-wgpu-h-*.json")
+    planted = pickle.dumps({"_declarations": _Planted(str(marker))})
+    cached.write_bytes(planted)
+    cached.with_suffix(".pickle").write_bytes(planted)
+    again = _run(tmp_path)
+    assert not marker.exists() and again["decl"] == first["decl"]

@@ -7,8 +7,8 @@ import json
 import pytest
 
 from wgpurender.core.errors import UserError
-from wgpurender.export import NOT_EXPORTABLE, export
 from wgpurender.implementations import render_wgpu, target_path
+from wgpurender.webpage import NOT_EXPORTABLE, export
 
 
 def _data(page) -> dict:

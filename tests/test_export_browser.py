@@ -14,9 +14,9 @@ from imagecheck import _assert_within
 
 from wgpurender.core.scene import load_scene
 from wgpurender.core.verdict.tolerances import Uncalibrated, driver_class, implementation_tolerance, measure
-from wgpurender.export import NOT_EXPORTABLE, export
-from wgpurender.export.chromium import Chromium, find_chromium
 from wgpurender.implementations import all_targets, render_wgpu, target_path
+from wgpurender.webpage import NOT_EXPORTABLE, export
+from wgpurender.webpage.chromium import Chromium, find_chromium
 
 SIZE = (160, 120)
 TARGETS = [n for n in all_targets() if n not in NOT_EXPORTABLE]

@@ -155,7 +155,7 @@ def test_the_automatic_post_path_per_adapter(adapter_type, want):
 def test_the_browser_page_draws_the_fragment_post_path():
     """The exported page's plan is made for the browser's adapter (unknown type): fragment post passes."""
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.export.recorder import BROWSER
+    from wgpurender.webpage.recorder import BROWSER
 
     plan = resolve_plan(REPO / "assets" / "scenes" / "final_subpass.toml", BROWSER)
     assert plan.post_passes and {p.path for p in plan.post_passes} == {"fragment"}

@@ -19,14 +19,17 @@ PNG representation for Jupyter. Bad input raises :class:`wgpurender.UserError` w
 says how to fix it (the CLI prints the same message).
 
 One GPU context serves every call in a process (:func:`wgpurender.wgpu_path.device.context.get_context` keeps it), so
-the adapter and device are made once. Nothing here imports wgpu, vulkan or trimesh until a render
-needs them: ``import wgpurender`` stays cheap.
+the adapter and device are made once. The functions are thread-safe: calls that use the GPU hold one lock,
+so threads take turns on the device (compare and heatmap, numpy only, run side by side). Nothing here imports
+wgpu, vulkan or trimesh until a render needs them: ``import wgpurender`` stays cheap.
 """
 
 from __future__ import annotations
 
+import functools
 import io
 import os
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,6 +47,21 @@ if TYPE_CHECKING:  # pragma: no cover
 
 Size = tuple[int, int] | str | None
 Target = str | os.PathLike
+# One lock around every use of the process's GPU contexts (wgpu's device, the raw path's Vulkan device): a device
+# used from two threads mid-frame aborted the process in wgpu-native, and the frame loop's one readback buffer
+# per context handed a call another call's image. Reentrant: record/show render through the same functions.
+_GPU = threading.RLock()
+
+
+def _one_at_a_time(function):
+    """Run ``function`` holding the API's GPU lock: thread-safe calls, one at a time on the device."""
+
+    @functools.wraps(function)
+    def locked(*args, **kwargs):
+        with _GPU:
+            return function(*args, **kwargs)
+
+    return locked
 
 
 @dataclass
@@ -108,6 +126,7 @@ def _target(target: Target) -> str:
     return str(target)
 
 
+@_one_at_a_time
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
            backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
@@ -142,14 +161,19 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)
 
 
-def export(target: Target, out: str | os.PathLike, size: Size = "800x600") -> Path:
+@_one_at_a_time
+def export(target: Target, out: str | os.PathLike, size: Size = "800x600", force: bool = False) -> Path:
     """Write a static page into folder ``out`` that renders the stage or scene live with the browser's WebGPU
-    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``)."""
-    from wgpurender.export import export as write_page
+    (what ``wgpurender export`` does; docs/backends.md). Returns the page's path (``out/index.html``).
+    ``out``: new, empty, or an earlier output (only the files wgpurender wrote there are replaced);
+    ``force=True`` writes into a non-empty folder that holds no earlier output, beside its files."""
+    from wgpurender.webpage import export as write_page
 
-    return write_page(str(target), out, _size(size)).page
+    target, out, wh, force = _target(target), checks.output_path(out, "out"), _size(size), checks.flag(force, "force")
+    return write_page(target, out, wh or (800, 600), force).page
 
 
+@_one_at_a_time
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
               t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
     """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
@@ -265,6 +289,7 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
     return Image(out, " | ".join(getattr(i, "target", "array") for i in images), "derived")
 
 
+@_one_at_a_time
 def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
          backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
     """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
@@ -325,6 +350,7 @@ def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
     return get_context(checks.backend(backend)), name, wh, msaa, anisotropy
 
 
+@_one_at_a_time
 def show(target: Target, size: Size = (640, 480), msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY,
          backend: str | None = None):
     """An interactive view in Jupyter: the stage or scene drawn live, with the demo window's orbit camera (drag to
@@ -341,12 +367,15 @@ def show(target: Target, size: Size = (640, 480), msaa: int | None = None, aniso
     return Image(pixels, str(target), "wgpu", {}, ctx.describe())
 
 
+@_one_at_a_time
 def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: float = 30.0, size: Size = (640, 480),
            msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY, turn: float | None = None,
-           backend: str | None = None) -> Path:
+           backend: str | None = None, force: bool = False) -> Path:
     """Render ``seconds * fps`` frames into ``out``: an ``.mp4`` (H.264, needs imageio-ffmpeg) or a folder of PNG
     frames (``frames/``). Frame k is at animation time k / fps; ``turn``: degrees the orbit camera turns over the
-    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``."""
+    clip (default: once round a scene, 0 for a stage, which animates with time). Returns ``out``.
+    A video appears whole or not at all; a folder's frames of an earlier recording are replaced, the user's other
+    files kept; ``force=True`` records into a non-empty folder that holds no earlier output (docs/security.md)."""
     import math
 
     from wgpurender.core.files.video import check_output
@@ -355,6 +384,7 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
     if not isinstance(out, (str, os.PathLike)) or not str(out):
         raise UserError(f"out must be a .mp4 file or a folder path, got {type(out).__name__} {out!r}")
     check_output(out)
+    force = checks.flag(force, "force")
     for label, value in (("seconds", seconds), ("fps", fps), ("turn", 0.0 if turn is None else turn)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise UserError(f"{label} must be a finite number, got {value!r}")
@@ -362,9 +392,9 @@ def record(target: Target, out: str | os.PathLike, seconds: float = 2.0, fps: fl
         raise UserError(f"seconds and fps must be > 0, got seconds={seconds!r}, fps={fps!r}")
     offscreen = Offscreen(*_offscreen(target, size, msaa, anisotropy, backend))
     degrees = turn if turn is not None else (360.0 if offscreen.view.is_scene else 0.0)
-    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees))
+    path, _ = record_frames(offscreen, out, float(seconds), float(fps), float(degrees), force=force)
     return path
 
 
 __all__ = ["Image", "render", "reference", "compare", "heatmap", "side_by_side", "plan", "explain", "stage_names",
-           "reference_stage_names", "show", "record"]
+           "reference_stage_names", "export", "show", "record"]

@@ -83,8 +83,8 @@ def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
 def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple[dict, dict, str]:
     """Export each target to ``work/NAME`` and read its frame back in headless Chromium (one browser):
     (images by name, reasons for the targets that could not be drawn, the browser and adapter)."""
-    from wgpurender.export import export
-    from wgpurender.export.chromium import Chromium
+    from wgpurender.webpage import export
+    from wgpurender.webpage.chromium import Chromium
 
     images, skipped, pages = {}, {}, {}
     for name in names:
@@ -110,7 +110,7 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
     """The implementations this machine has (of ``wanted``, default all) and why each other one is missing."""
     import shutil
 
-    from wgpurender.export.chromium import find_chromium
+    from wgpurender.webpage.chromium import find_chromium
 
     missing = {}
     for name in wanted or IMPLEMENTATIONS:

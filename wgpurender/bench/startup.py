@@ -127,7 +127,7 @@ def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool =
                     for f in (work / "xdg" / "wgpurender").glob("vk-pipeline-cache-*.bin"):
                         f.unlink()
                 if label == PARSED:
-                    for f in (work / "xdg" / "wgpurender").glob("cffi-wgpu-h-*.pickle"):
+                    for f in (work / "xdg" / "wgpurender").glob("cffi-wgpu-h-*.json"):
                         f.unlink()
                 result = run_child(path, stage, size, {**base, **extra})
                 for name in PHASES:

@@ -74,6 +74,8 @@ def register(subparsers) -> None:
                    "(--raw too)")
     p.add_argument("--record-fps", type=float, default=None, metavar="N",
                    help="the video's frame rate (default 30; each presented frame is one video frame)")
+    p.add_argument("--force", action="store_true",
+                   help="--record into a non-empty folder that holds no earlier recording, beside its files")
     p.add_argument("--test-input", default="", help=argparse.SUPPRESS)  # synthetic test input (core/view/controls.py)
     p.set_defaults(func=run)
 
@@ -100,10 +102,12 @@ def run(args) -> int:
             code = run_raw(args, benchmark, size, video)
         else:
             code = _run_wgpu(args, benchmark, size, video)
-    finally:
+    except BaseException:
         if video is not None:
-            video.close()
+            video.abort()  # a failed run publishes no partial video
+        raise
     if video is not None:
+        video.close()
         print(f"wrote {video.path} ({video.count} frames)")
     return code
 
@@ -116,9 +120,11 @@ def _video(args):
     if args.record is None:
         if args.record_fps is not None:
             raise UserError("--record-fps sets the frame rate of --record: add --record OUT, or leave it out")
+        if args.force:
+            raise UserError("--force applies to --record: add --record OUT, or leave it out")
         return None
     check_output(args.record)
-    return FrameWriter(args.record, 30.0 if args.record_fps is None else args.record_fps)
+    return FrameWriter(args.record, 30.0 if args.record_fps is None else args.record_fps, force=args.force)
 
 
 def _run_wgpu(args, benchmark, size, video) -> int:

@@ -14,15 +14,19 @@ def register(subparsers) -> None:
         "disk or any static server. window.wgpurender.capture() returns the frame at t = 0 (docs/backends.md).",
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
-    p.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for the page (made if missing)")
+    p.add_argument("-o", "--output", required=True, metavar="DIR",
+                   help="folder for the page (made if missing; new, empty, or an earlier output: only the files "
+                   "wgpurender wrote there are replaced)")
     p.add_argument("--size", type=size_arg, default=(800, 600), metavar="WxH", help="canvas size (default 800x600)")
+    p.add_argument("--force", action="store_true",
+                   help="write into a non-empty folder that holds no earlier output, beside its files (none deleted)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from wgpurender.export import export
+    from wgpurender.webpage import export
 
-    done = export(args.target, args.output, args.size)
+    done = export(args.target, args.output, args.size, force=args.force)
     kind = "animated" if done.animated else "still"
     print(f"wrote {done.page} ({done.size[0]}x{done.size[1]}, {kind}; {done.calls} recorded calls, "
           f"{done.blob_bytes / 1e6:.2f} MB of data)")

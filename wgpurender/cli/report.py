@@ -18,9 +18,12 @@ def register(subparsers) -> None:
         "glslc for the raw path.",
     )
     p.add_argument("-o", "--output", required=True, metavar="DIR",
-                   help="folder for the site (new, empty, or an earlier report, which is replaced)")
+                   help="folder for the site (new, empty, or an earlier report: only the files the report wrote are "
+                   "replaced, the user's own files are kept)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="every step's image size (default 240x180; the tutorial's scenes 320x240)")
+    p.add_argument("--force", action="store_true",
+                   help="write into a non-empty folder that holds no earlier output, beside its files (none deleted)")
     add_backend_arg(p)
     add_anisotropy_arg(p)
     p.set_defaults(func=run)
@@ -30,6 +33,7 @@ def run(args) -> int:
     from wgpurender.report import build_report
     from wgpurender.wgpu_path.device.context import get_context
 
-    index = build_report(args.output, size=args.size, ctx=get_context(args.backend), anisotropy=args.anisotropy)
+    index = build_report(args.output, size=args.size, ctx=get_context(args.backend), anisotropy=args.anisotropy,
+                         force=args.force)
     print(f"wrote {index}")
     return 0

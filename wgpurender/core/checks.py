@@ -213,3 +213,23 @@ def image_array(array: Any, name: str) -> np.ndarray:
         return to_uint8(np.ascontiguousarray(array))
     raise UserError(f"{name}: pixels of dtype {array.dtype} are not supported: give uint8, uint16 or float "
                     "(linear) pixels")
+
+
+def output_path(value: Any, name: str) -> str:
+    """A file or folder path to write: a non-empty ``str`` or ``os.PathLike`` without NUL characters."""
+    import os
+
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if not isinstance(value, str) or not value:
+        raise UserError(f"{name} must be a folder or file path (str or pathlib.Path), got {_shown(value)}")
+    if "\0" in value:
+        raise UserError(f"{name} {_shown(value)}: the path contains a NUL character")
+    return value
+
+
+def flag(value: Any, name: str) -> bool:
+    """True or False (numpy's bool too); anything else, 1 and "yes" among them, is refused."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise UserError(f"{name} must be True or False, got {type(value).__name__} {_shown(value)}")
+    return bool(value)

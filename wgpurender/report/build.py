@@ -1,15 +1,13 @@
 """Build the report site: every step rendered, compared and timed, then the page and its PNGs written at once.
 
-The site is written into a temporary folder beside ``out_dir`` and moved into place when it
-is complete, so a failed build leaves the previous report (or nothing), never half a site.
-An existing ``out_dir`` is replaced only when it is empty or a previous report.
+The site is built in a staging folder beside ``out_dir`` and copied into place (file by file, atomically) when
+it is complete, so a failed build leaves the previous report. ``out_dir`` is shared with the user: only the
+files a report wrote there (its manifest, core/files/owned_files.py) are replaced or removed.
 """
 
 from __future__ import annotations
 
 import datetime
-import shutil
-import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -17,6 +15,7 @@ from pathlib import Path
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import scene_dir
 from wgpurender.core.files.imageio import save_png
+from wgpurender.core.files.owned_files import OwnedFolder, install, staging, sweep_stale_builds
 from wgpurender.core.files.safe_write import cleanup_on_signal
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.report import code, extras, page
@@ -46,31 +45,38 @@ def course_stages() -> list[str]:
     return sorted(set(all_stages()) | set(all_ref_stages()), key=course_position)
 
 
-def check_out_dir(out_dir: Path) -> Path:
-    out_dir = Path(out_dir)
-    if out_dir.exists():
-        if not out_dir.is_dir():
-            raise UserError(f"cannot write the report to {out_dir}: it is a file, give a folder")
-        index = out_dir / "index.html"
-        ours = index.is_file() and page.GENERATOR_MARK in index.read_text(encoding="utf-8", errors="replace")
-        if any(out_dir.iterdir()) and not ours:
-            raise UserError(f"{out_dir} is not empty and holds no earlier report: give a new or empty folder")
-    elif not out_dir.parent.is_dir():
-        raise UserError(f"cannot write the report to {out_dir}: folder {out_dir.parent} does not exist")
-    return out_dir
+def check_out_dir(out_dir: Path, force: bool = False) -> OwnedFolder:
+    """The site's folder, checked before any step is rendered: new, empty, or an earlier output (its manifest);
+    ``force`` writes beside other files. A build killed earlier left its staging folder: swept here."""
+    folder = OwnedFolder(out_dir, "report", force or _legacy_report(out_dir), "cannot write the report to")
+    sweep_stale_builds(folder.folder.parent)
+    return folder
+
+
+def _legacy_report(out_dir: Path) -> bool:
+    """A report built before manifests existed (its index.html carries the generator mark, no manifest): written
+    as with --force, beside its files (none of which is deleted: which ones it wrote is not known)."""
+    from wgpurender.core.files.owned_files import read_manifest
+
+    index = out_dir / "index.html"
+    if not out_dir.is_dir() or out_dir.is_symlink() or index.is_symlink() or not index.is_file():
+        return False
+    head = index.open("rb").read(4096).decode("utf-8", "replace")
+    return read_manifest(out_dir) is None and page.GENERATOR_MARK in head
 
 
 def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, stages: list[str] | None = None,
                  scenes: list[Path] | None = None, ctx: GPUContext | None = None,
                  log: Callable[[str], None] = print, accuracy: bool = True,
-                 anisotropy: str = DEFAULT_ANISOTROPY) -> Path:
+                 anisotropy: str = DEFAULT_ANISOTROPY, force: bool = False) -> Path:
     """Render every step on both paths, measure accuracy, and write the site; returns the path of index.html.
 
     ``size``: every step's image size (default 240x180, the tutorial's scenes 320x240). ``accuracy=False``
     leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the page says so).
-    ``anisotropy``: the scenes' rule (core/plan/anisotropy.py), as ``render --anisotropy``.
+    ``anisotropy``: the scenes' rule (core/plan/anisotropy.py), as ``render --anisotropy``. ``force``: write into a
+    non-empty folder without an earlier output, beside its files (core/files/owned_files.py).
     """
-    out_dir = check_out_dir(Path(out_dir))
+    folder = check_out_dir(Path(out_dir), force)
     ctx = ctx or get_context()
     start = time.perf_counter()
     steps: list[Step] = []
@@ -83,16 +89,11 @@ def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, st
             steps.append(missing_scene_step(path, missing))
         else:
             steps.append(scene_step(ctx, path, size or SCENE_SIZES.get(path.stem, SCENE_SIZE), log, anisotropy))
-    with cleanup_on_signal():  # SIGTERM while the temp folder exists ends through finally
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-        try:
-            measured = extras.measure(ctx, tmp, log) if accuracy else None
-            _write_site(tmp, steps, ctx, time.perf_counter() - start, measured, size)
-            if out_dir.exists():
-                shutil.rmtree(out_dir)
-            tmp.rename(out_dir)
-        finally:
-            shutil.rmtree(tmp, ignore_errors=True)
+    with cleanup_on_signal(), staging(folder) as tmp:  # SIGTERM while the staging folder exists ends via finally
+        measured = extras.measure(ctx, tmp, log) if accuracy else None
+        _write_site(tmp, steps, ctx, time.perf_counter() - start, measured, size)
+        install(folder, tmp)
+    out_dir = folder.folder
     log(f"report: {len(steps)} steps in {time.perf_counter() - start:.1f} s")
     return out_dir / "index.html"
 
@@ -126,13 +127,14 @@ def missing_line(path: Path, error: str) -> str:
 def _live_page(site: Path, step: Step) -> dict[str, str]:
     """The step exported as a live WebGPU page (wgpurender export) under live/KEY/, linked from its section;
     none (with the reason logged on the page) where the browser cannot draw it."""
-    from wgpurender.export import export
+    from wgpurender.webpage import export
 
     if step.missing:
         return {}
 
     size = (step.wgpu.shape[1], step.wgpu.shape[0]) if step.wgpu is not None else STAGE_SIZE
     target = str(SCENE_DIR / f"{step.key}.toml") if (SCENE_DIR / f"{step.key}.toml").is_file() else step.key
+    (site / "live").mkdir(exist_ok=True)
     try:
         export(target, site / "live" / step.key, size)
     except UserError as err:

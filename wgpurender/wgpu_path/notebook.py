@@ -63,12 +63,12 @@ class Offscreen:
 
 
 def record_frames(offscreen: Offscreen, out: str | Path, seconds: float, fps: float, turn_degrees: float,
-                  progress=None) -> tuple[Path, int]:
+                  progress=None, force: bool = False) -> tuple[Path, int]:
     """Render ``seconds * fps`` frames at t = k / fps, turning the orbit by ``turn_degrees`` over the clip."""
     count = max(1, round(seconds * fps))
     orbit = offscreen.orbit
     yaw = orbit.yaw if orbit is not None else 0.0
-    with FrameWriter(out, fps) as writer:
+    with FrameWriter(out, fps, force) as writer:
         for k in range(count):
             if orbit is not None and turn_degrees:
                 orbit.yaw = yaw + math.radians(turn_degrees) * k / count

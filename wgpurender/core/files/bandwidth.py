@@ -11,6 +11,7 @@ The file is ``$WGPURENDER_PERF_RECORD``, else ``$XDG_CACHE_HOME/wgpurender/bandw
 from __future__ import annotations
 
 import json
+import math
 import os
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -44,6 +45,9 @@ class PassRecord:
                 f"same bytes ({self.copy_gbps:.3g} GB/s) at {self.size}, {self.date} (`{self.command}`)")
 
 
+FIELDS = {"ms": (int, float), "mb": (int, float), "copy_ms": (int, float), "size": str, "date": str, "command": str}
+
+
 def record_path() -> Path:
     if os.environ.get(RECORD_ENV):
         return Path(os.environ[RECORD_ENV])
@@ -57,9 +61,10 @@ def pass_key(scene: str, effects: str, path: str) -> str:
 
 def _read() -> dict:
     try:
-        return json.loads(record_path().read_text())
+        data = json.loads(record_path().read_text())
     except (OSError, ValueError):
         return {}  # absent or unreadable: nothing measured
+    return data if isinstance(data, dict) else {}  # another shape: nothing measured (and replaced on save)
 
 
 def save(adapter: str, records: dict[str, PassRecord]) -> Path:
@@ -67,7 +72,9 @@ def save(adapter: str, records: dict[str, PassRecord]) -> Path:
     from wgpurender.core.files.safe_write import atomic_write
 
     data = _read()
-    entry = data.setdefault(adapter, {})
+    entry = data.get(adapter)
+    if not isinstance(entry, dict):
+        entry = data[adapter] = {}
     entry.update({key: asdict(r) for key, r in records.items()})
     path = record_path()
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -75,10 +82,17 @@ def save(adapter: str, records: dict[str, PassRecord]) -> Path:
 
 
 def lookup(adapter: str | None, key: str) -> PassRecord | None:
+    """The record of a pass, or None ("not measured"): also for a file of another shape (another version wrote
+    it, or it was edited): a record is data read from disk, and only a complete one of the right types counts."""
     if not adapter:
         return None
-    found = _read().get(adapter, {}).get(key)
-    try:
-        return PassRecord(**found) if found else None
-    except TypeError:
-        return None  # written by another version: not measured, as far as we know
+    data = _read()
+    entry = data.get(adapter) if isinstance(data, dict) else None
+    found = entry.get(key) if isinstance(entry, dict) else None
+    if not isinstance(found, dict) or set(found) != set(FIELDS):
+        return None
+    if not all(isinstance(found[name], kind) and not isinstance(found[name], bool) for name, kind in FIELDS.items()):
+        return None
+    if not all(math.isfinite(found[name]) and found[name] > 0 for name in ("ms", "mb", "copy_ms")):
+        return None
+    return PassRecord(**found)

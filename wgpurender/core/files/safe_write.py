@@ -22,6 +22,7 @@ import contextlib
 import hashlib
 import os
 import re
+import shutil
 import signal
 import stat
 import time
@@ -46,7 +47,8 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def _follow_symlinks() -> bool:
+def follow_symlinks() -> bool:
+    """Whether $WGPURENDER_FOLLOW_SYMLINKS asks to write through symbolic links."""
     return os.environ.get(FOLLOW_SYMLINKS_ENV, "") not in ("", "0")
 
 
@@ -101,7 +103,7 @@ def output_target(path: str | os.PathLike) -> Path:
     except OSError as err:
         raise UserError(f"cannot write {path}: {err.strerror or err}") from None
     if mode is not None and stat.S_ISLNK(mode):
-        if not _follow_symlinks():
+        if not follow_symlinks():
             raise UserError(f"refusing to write {path}: it is a symbolic link (to {os.readlink(path)}); give the "
                             f"real file name, or set {FOLLOW_SYMLINKS_ENV}=1 to write through links")
         path, mode = _link_target(path)
@@ -116,7 +118,7 @@ def output_target(path: str | os.PathLike) -> Path:
     return path
 
 
-def _pid_alive(pid: int) -> bool:
+def pid_alive(pid: int) -> bool:
     if pid == os.getpid():
         return True
     try:
@@ -128,21 +130,24 @@ def _pid_alive(pid: int) -> bool:
     return True
 
 
-def sweep_stale(folder: Path) -> list[Path]:
-    """Remove temp files that a killed run (SIGKILL) left in ``folder``: ours by name, their process gone."""
+def sweep_stale(folder: Path, pattern: re.Pattern = _TEMP, folders: bool = False) -> list[Path]:
+    """Remove what a killed run (SIGKILL) left in ``folder``: ours by name (``pattern``, whose group 1 is the
+    process id), their process gone. Temp files; with ``folders``, real folders (a report's staging folder)."""
     removed = []
     try:
         names = os.listdir(folder)
     except OSError:
         return removed
     for name in names:
-        m = _TEMP.match(name)
-        if m and not _pid_alive(int(m.group(1))):
-            try:
-                (folder / name).unlink()
-                removed.append(folder / name)
-            except OSError:
-                pass
+        m = pattern.match(name)
+        path = folder / name
+        if not m or pid_alive(int(m.group(1))) or folders != (path.is_dir() and not path.is_symlink()):
+            continue
+        try:
+            shutil.rmtree(path) if folders else path.unlink()
+            removed.append(path)
+        except OSError:
+            pass
     return removed
 
 

@@ -9,11 +9,15 @@ API-free: numpy, Pillow and imageio-ffmpeg only.
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import os
 from pathlib import Path
 
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.safe_write import output_target
 
 VIDEO_SUFFIXES = (".mp4",)
 
@@ -43,51 +47,134 @@ def check_output(path: str | Path) -> Path:
 
 
 class FrameWriter:
-    """``write(pixels)`` for each (H, W, 3 or 4) uint8 frame, then ``close()``; also a context manager."""
+    """``write(pixels)`` for each (H, W, 3 or 4) uint8 frame, then ``close()``; also a context manager.
 
-    def __init__(self, path: str | Path, fps: float) -> None:
+    A video is encoded into a temp file beside ``path`` (``.NAME.wgpurender-PID.tmp``) and renamed onto it by
+    ``close()``, so a failed recording (read-only folder, full disk, an error, Ctrl-C) leaves no partial MP4:
+    ``abort()`` (or leaving the ``with`` block by an exception) removes it. A PNG folder is an owned folder
+    (core/files/owned_files.py): frames of an earlier recording that this one did not write are removed at
+    ``close()``, the user's other files are never touched; ``force`` writes into a folder without a manifest.
+    """
+
+    def __init__(self, path: str | Path, fps: float, force: bool = False) -> None:
         self.path, self.fps = check_output(path), float(fps)
-        if self.fps <= 0:
+        if not np.isfinite(self.fps) or self.fps <= 0:
             raise UserError(f"fps must be > 0, got {fps}")
         self.count = 0
         self._video = None
         self._size: tuple[int, int] | None = None
-        if not is_video(self.path):
-            self.path.mkdir(exist_ok=True)
+        self._tmp: Path | None = None
+        self._folder = None
+        if is_video(self.path):
+            from wgpurender.core.files.owned_files import probe_writable
+
+            self.path = output_target(self.path)
+            probe_writable(self.path.parent, "cannot record to")
+        else:
+            from wgpurender.core.files.owned_files import OwnedFolder
+
+            self._folder = OwnedFolder(self.path, "record", force, "cannot record to")
+            self.path = self._folder.folder
 
     def write(self, pixels: np.ndarray) -> None:
         rgb = np.ascontiguousarray(pixels[..., :3], dtype=np.uint8)
-        if is_video(self.path):
+        if self._folder is None:
             self._write_video(rgb)
         else:
-            from wgpurender.core.files.imageio import save_png
+            from wgpurender.core.files.imageio import encode_png
 
-            save_png(self.path / f"frame_{self.count:05d}.png", rgb)
+            self._folder.write(f"frame_{self.count:05d}.png", encode_png(rgb))
         self.count += 1
 
     def _write_video(self, rgb: np.ndarray) -> None:
         h, w = rgb.shape[:2]
         padded = np.pad(rgb, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge")
         if self._video is None:
-            import imageio_ffmpeg
-
             self._size = (padded.shape[1], padded.shape[0])
-            self._video = imageio_ffmpeg.write_frames(str(self.path), self._size, fps=self.fps, codec="libx264",
-                                                      pix_fmt_in="rgb24", pix_fmt_out="yuv420p", quality=8,
-                                                      macro_block_size=2, ffmpeg_log_level="error")
-            self._video.send(None)  # start the generator
+            self._start_video()
         elif (padded.shape[1], padded.shape[0]) != self._size:
             raise UserError(f"the frame size changed while recording {self.path} (resize the window before)")
-        self._video.send(padded)
+        try:
+            self._video.send(padded)
+        except (OSError, RuntimeError) as err:
+            self.abort()
+            raise UserError(f"cannot record to {self.path}: {_reason(err)}") from None
+
+    def _start_video(self) -> None:
+        import imageio_ffmpeg
+
+        from wgpurender.core.files.safe_write import temp_name
+
+        self._tmp = temp_name(self.path)
+        self._video = imageio_ffmpeg.write_frames(str(self._tmp), self._size, fps=self.fps, codec="libx264",
+                                                  pix_fmt_in="rgb24", pix_fmt_out="yuv420p", quality=8,
+                                                  macro_block_size=2, ffmpeg_log_level="quiet",
+                                                  output_params=["-f", "mp4"])
+        self._video.send(None)  # start the generator
 
     def close(self) -> Path:
-        if self._video is not None:
+        """Finish: the video renamed into place, or the folder's stale frames removed and its manifest written."""
+        if self._folder is not None:
+            self._folder.finish()
+            return self.path
+        if self._video is None:
+            return self.path
+        try:
             self._video.close()
             self._video = None
+            self._check_whole()
+            os.replace(self._tmp, output_target(self.path))
+        except (OSError, RuntimeError) as err:
+            self.abort()
+            raise UserError(f"cannot record to {self.path}: {_reason(err)}") from None
+        finally:
+            self.abort()
         return self.path
+
+    def _check_whole(self) -> None:
+        """The encoder's exit status is not reported (imageio-ffmpeg): count the frames of the written file, so
+        that a full disk (ffmpeg stops writing, quietly) is an error, not a truncated video."""
+        import imageio_ffmpeg
+
+        try:
+            frames, _ = imageio_ffmpeg.count_frames_and_secs(str(self._tmp))
+        except (OSError, RuntimeError):
+            frames = -1
+        if frames != self.count:
+            raise OSError(errno.ENOSPC if _disk_full(self._tmp.parent) else errno.EIO,
+                          f"the video came out with {max(frames, 0)} of {self.count} frames "
+                          f"({'the disk is full' if _disk_full(self._tmp.parent) else 'the encoder stopped'})")
+
+    def abort(self) -> None:
+        """Stop without publishing: the temp video removed (frames written to a folder stay listed)."""
+        video, self._video = self._video, None
+        if video is not None:
+            with contextlib.suppress(Exception):
+                video.close()
+        if self._tmp is not None:
+            with contextlib.suppress(OSError):
+                self._tmp.unlink(missing_ok=True)
 
     def __enter__(self) -> FrameWriter:
         return self
 
-    def __exit__(self, *exc) -> None:
-        self.close()
+    def __exit__(self, exc_type, *exc) -> None:
+        if exc_type is None:
+            self.close()
+        else:
+            self.abort()
+
+
+def _disk_full(folder: Path) -> bool:
+    try:
+        return os.statvfs(folder).f_bavail == 0
+    except OSError:
+        return False
+
+
+def _reason(err: BaseException) -> str:
+    """One line for an encoder failure: the OS's words when there are some (a full disk: ENOSPC, EFBIG)."""
+    if isinstance(err, OSError) and err.strerror:
+        return err.strerror
+    first = (str(err).strip().splitlines() or ["the encoder failed"])[0]
+    return f"the encoder failed ({first[:120]})"

@@ -60,6 +60,7 @@ class VulkanContext:
     messenger: object = None
     pipeline_cache: object = None
     pipeline_cache_file: object = None
+    pipeline_cache_key: str = ""  # what the saved cache data depends on (pipeline_cache.py)
     device_type: str = ""  # as wgpu names adapter types: "DiscreteGPU", "IntegratedGPU", "CPU", ... (DEVICE_TYPES)
     _closed: bool = field(default=False, repr=False)
 
@@ -195,6 +196,9 @@ def create_context(instance_extensions: tuple[str, ...] = (), device_extensions:
     """A new context: headless by default. The window (window.py) asks for the surface and swapchain
     extensions, and picks a queue family that can also present: ``pick_family(instance, physical_device)
     -> index``, called once the instance exists (the surface it checks is made from the instance)."""
+    from wgpurender.core.files.runtime_dir import ensure_runtime_dir
+
+    ensure_runtime_dir()  # before the instance: no "XDG_RUNTIME_DIR is invalid" lines from the driver
     log = _process_log() if validation.validation_requested() else None
     instance = create_instance(log, instance_extensions)
     messenger = validation.create_messenger(instance, log) if log is not None else None

@@ -3,7 +3,10 @@
 The course compiles its shaders offline with glslc (shaderc) and hands the SPIR-V
 words to vkCreateShaderModule. We do the same at run time and keep the result in
 ~/.cache/wgpurender/spirv/, keyed by a hash of the source and the compiler flags,
-so that glslc runs once per shader edit (and is not needed at all on a warm cache).
+so that glslc runs once per shader edit (and is not needed at all on a warm cache). Each file is a verified
+cache entry (core/files/cache_entry.py): empty, truncated, altered or written for another source is a miss and
+glslc runs again. The key leaves out glslc's version: SPIR-V is portable, and any glslc's output for the same
+source and flags is a valid module of the same shader.
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from pathlib import Path
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.cache_entry import read_entry, write_entry
 from wgpurender.core.shaders.shader_files import shader_folder
 
 GLSL_DIR_ENV = "WGPURENDER_GLSL"
@@ -54,34 +58,26 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     path = Path(path)
     source = path.read_bytes()
     args = (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
-    key = hashlib.sha256(b"\0".join([path.suffix.encode(), *(a.encode() for a in args), source])).hexdigest()
-    cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{key[:24]}.spv"
+    key = b"\0".join([b"spirv", path.suffix.encode(), *(a.encode() for a in args), source])
+    digest = hashlib.sha256(key).hexdigest()
+    cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{digest[:24]}.spv"
     if cached.name in _MEMORY_CACHE:
         return _MEMORY_CACHE[cached.name]
-    if cached.is_file():
-        return cached.read_bytes()
+    spirv = read_entry(cached, key)
+    if spirv is not None and is_spirv(spirv):
+        return spirv
     spirv = _run_glslc(path, args)
-    _store(cached, spirv)
+    if not write_entry(cached, key, spirv):  # not writable (read-only home, $XDG_CACHE_HOME a file)
+        _MEMORY_CACHE[cached.name] = spirv
     return spirv
 
 
+def is_spirv(data: bytes) -> bool:
+    """A SPIR-V module's shape: whole 32-bit words, the magic number first (the hashes already vouch for it)."""
+    return len(data) >= 20 and len(data) % 4 == 0 and data[:4] == b"\x03\x02\x23\x07"
+
+
 _MEMORY_CACHE: dict[str, bytes] = {}  # where SPIR-V goes when the cache folder is not writable
-
-
-def _store(cached: Path, spirv: bytes) -> None:
-    """Cache on disk atomically (a parallel run never reads half a file); in memory when the folder is not
-    writable (read-only home, $XDG_CACHE_HOME a file): glslc then runs once per process instead of once ever."""
-    tmp = cached.with_suffix(f".{os.getpid()}.tmp")
-    try:
-        cached.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_bytes(spirv)
-        os.replace(tmp, cached)
-    except OSError:
-        _MEMORY_CACHE[cached.name] = spirv
-        try:
-            tmp.unlink(missing_ok=True)
-        except OSError:
-            pass
 
 
 def _run_glslc(path: Path, args: tuple[str, ...] = GLSLC_ARGS) -> bytes:

@@ -4,7 +4,10 @@ Importing wgpu-py's wgpu-native backend runs ``ffi.cdef(wgpu.h)``: cffi parses t
 pycparser (~440 typedefs, ~200 functions, ~600 constants), 0.4-1.7 s per process here and most of the
 first pixel's gap to raw Vulkan (issue 22.5, docs/benchmarks.md). The result of that parse is plain data
 in cffi's parser (``ffi._parser``: declarations as ``cffi.model`` types, integer constants), so the first
-process pickles it next to the header's hash and later ones load it (~2 ms) instead of parsing.
+process stores it and later ones load it instead of parsing. It is stored as JSON (cdef_json.py), never as a
+pickle: loading a pickle runs code, so anyone who could write the cache folder ran code as the user (issue
+28.8). The file is a verified cache entry (core/files/cache_entry.py): empty, truncated, altered or keyed for other
+versions, it is a miss, and the header is parsed again.
 
 What a second run of the same command finds, no more: the file lives in ``$XDG_CACHE_HOME/wgpurender``
 (``~/.cache``), keyed by the header's SHA-256 and the cffi, pycparser and Python versions, so a new
@@ -19,7 +22,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import pickle
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -42,7 +44,15 @@ def cache_file(csource: str) -> Path:
 
     versions = f"cffi {cffi.__version__} pycparser {pycparser.__version__} python {sys.version_info[:3]}"
     digest = hashlib.sha256((versions + "\n" + csource).encode()).hexdigest()[:24]
-    return cache_dir() / f"cffi-wgpu-h-{digest}.pickle"
+    return cache_dir() / f"cffi-wgpu-h-{digest}.json"
+
+
+def cache_key(csource: str) -> str:
+    """What the parse depends on: the header's text and the versions of cffi, pycparser and Python."""
+    import cffi
+    import pycparser
+
+    return f"wgpu.h parse\0cffi {cffi.__version__}\0pycparser {pycparser.__version__}\0{sys.version}\0{csource}"
 
 
 @contextmanager
@@ -86,8 +96,8 @@ def _cdef_cached(ffi, csource: str, real) -> None:
 
 def _restore_or_parse(ffi, csource: str, real) -> None:
     global status
-    path = cache_file(csource)
-    state = _load(path)
+    path, key = cache_file(csource), cache_key(csource)
+    state = _load(path, key)
     if state is not None:
         with ffi._lock:
             ffi._cdef_version = object()
@@ -98,25 +108,30 @@ def _restore_or_parse(ffi, csource: str, real) -> None:
         return
     real(ffi, csource)
     status = "parsed"
-    if not ffi._parser._recomplete and _save(path, {name: getattr(ffi._parser, name) for name in STATE}):
+    if not ffi._parser._recomplete and _save(path, key, {name: getattr(ffi._parser, name) for name in STATE}):
         status = "parsed and saved"
 
 
-def _load(path: Path) -> dict | None:
-    try:
-        state = pickle.loads(path.read_bytes())
-    except Exception:  # absent, truncated, or written by other versions of the classes: parse instead
+def _load(path: Path, key: str) -> dict | None:
+    from wgpurender.core.files.cache_entry import read_entry
+    from wgpurender.wgpu_path.device import cdef_json
+
+    payload = read_entry(path, key)
+    if payload is None:
         return None
-    return state if isinstance(state, dict) and all(name in state for name in STATE) else None
-
-
-def _save(path: Path, state: dict) -> bool:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_bytes(pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL))
-        os.replace(tmp, path)
-        return True
-    except Exception:  # a read-only cache or an unpicklable type: the next process parses again, nothing worse
-        tmp.unlink(missing_ok=True)
+        state = cdef_json.loads(payload)
+    except (ValueError, KeyError, TypeError, IndexError, AttributeError):  # a miss: parse instead
+        return None
+    return state if all(name in state for name in STATE) else None
+
+
+def _save(path: Path, key: str, state: dict) -> bool:
+    from wgpurender.core.files.cache_entry import write_entry
+    from wgpurender.wgpu_path.device import cdef_json
+
+    try:
+        payload = cdef_json.dumps(state)
+    except (cdef_json.Unsupported, ValueError, TypeError):  # a cffi with other internals: parse every time
         return False
+    return write_entry(path, key, payload)

@@ -225,7 +225,10 @@ def _configure_instance_once(backend: str) -> None:
             raise UserError(f"this process already created its wgpu instance for {made} only; the {backend} "
                             f"backend needs its own process (or start with --backend auto)")
         return
+    from wgpurender.core.files.runtime_dir import ensure_runtime_dir
     from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
+
+    ensure_runtime_dir()  # before the instance: no "XDG_RUNTIME_DIR is invalid" lines from the driver
 
     with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
         from wgpu.backends.wgpu_native.extras import set_instance_extras

@@ -21,7 +21,6 @@ makes here (docs/backends.md).
 from __future__ import annotations
 
 import json
-import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -46,38 +45,32 @@ class Export:
     animated: bool
 
 
-def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600)) -> Export:
-    """Write the page for a stage (by name) or a scene file into folder ``out`` (made if missing)."""
+def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600), force: bool = False) -> Export:
+    """Write the page for a stage (by name) or a scene file into folder ``out`` (made if missing).
+
+    ``out`` is checked before anything is recorded: new, empty, or holding an earlier wgpurender output (its
+    manifest, core/files/owned_files.py); ``force`` writes beside other files. Each file is written atomically."""
     from wgpurender.core.course.formats import is_scene_file
-    from wgpurender.export.record import record_scene, record_stage
+    from wgpurender.core.files.owned_files import OwnedFolder
+    from wgpurender.webpage.record import record_scene, record_stage
     from wgpurender.wgpu_path.device.context import get_context
 
     if target in NOT_EXPORTABLE:
         raise UserError(f"cannot export {target}: {NOT_EXPORTABLE[target]}")
-    out = _check_out(Path(out))
+    folder = OwnedFolder(out, "export", force, "cannot export to")
+    folder.check_names(EXPORT_FILES)
     ctx = get_context()
     data = (record_scene if is_scene_file(target) else record_stage)(ctx, target, tuple(size), FPS, SECONDS)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "data.js").write_text("window.WGPURENDER_EXPORT = " + json.dumps(data, separators=(",", ":")) + ";\n")
-    shutil.copyfile(PLAYER, out / "player.js")
-    (out / "index.html").write_text(page_html(data["meta"]))
-    return Export(out / "index.html", target, tuple(size), len(data["setup"]) + len(data["frame"]),
+    folder.claim(EXPORT_FILES)
+    folder.write("data.js", ("window.WGPURENDER_EXPORT = " + json.dumps(data, separators=(",", ":")) + ";\n").encode())
+    folder.write("player.js", PLAYER.read_bytes())
+    page = folder.write("index.html", page_html(data["meta"]).encode())
+    folder.finish()
+    return Export(page, target, tuple(size), len(data["setup"]) + len(data["frame"]),
                   sum(len(b) * 3 // 4 for b in data["blobs"]), data["meta"]["frames"] > 1)
 
 
-EXPORT_FILES = frozenset({"index.html", "data.js", "player.js"})
-
-
-def _check_out(out: Path) -> Path:
-    """A new folder, an empty one, or one holding an earlier export only (its three files, player.js among
-    them): export into the course report's folder overwrote the report's index.html."""
-    if out.exists() and not out.is_dir():
-        raise UserError(f"cannot export to {out}: it is a file, not a folder")
-    names = {p.name for p in out.iterdir()} if out.is_dir() else set()
-    if names and not (names <= EXPORT_FILES and "player.js" in names):
-        raise UserError(f"cannot export to {out}: it holds other files than an earlier export "
-                        "(index.html, data.js, player.js); give a new or empty folder")
-    return out
+EXPORT_FILES = ("data.js", "player.js", "index.html")
 
 
 def page_html(meta: dict) -> str:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
-from wgpurender.export.recorder import BROWSER, Recording, recording_context
+from wgpurender.webpage.recorder import BROWSER, Recording, recording_context
 from wgpurender.wgpu_path.device.context import GPUContext
 
 UPLOADS = ("writeBuffer", "writeTexture")
