@@ -1,14 +1,18 @@
-import dataclasses, sys, time
+import dataclasses
+import sys
+import time
 from pathlib import Path
+
 import numpy as np
-from wgpurender.core.scene import load_scene
+
+from wgpurender import implementations as impls
+from wgpurender.core.files.imageio import to_uint8
 from wgpurender.core.plan import resolve_plan
 from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
-from wgpurender.core.files.imageio import to_uint8
+from wgpurender.core.scene import load_scene
+from wgpurender.core.verdict.tolerances import implementation_tolerance, measure
 from wgpurender.wgpu_path.device.context import get_context
 from wgpurender.wgpu_path.scene import render_plan
-from wgpurender.core.verdict.tolerances import implementation_tolerance, measure
-from wgpurender import implementations as impls
 
 size = tuple(int(v) for v in sys.argv[1].split("x"))
 ctx = get_context("Vulkan")
@@ -32,8 +36,11 @@ for name in names:
     b = browser.get(name)
     if b is not None:
         m = measure(full, b)
-        print(f"{name}: browser vs native max {m.max_abs} changed {m.changed:.3f} flip {m.flip_mean:.4f} mae {mae(full, b):.3f} exceeded {tol.exceeded(m)}", flush=True)
+        print(f"{name}: browser vs native max {m.max_abs} changed {m.changed:.3f} flip {m.flip_mean:.4f} "
+              f"mae {mae(full, b):.3f} exceeded {tol.exceeded(m)}", flush=True)
     for k, step in enumerate(scene.post):
         dropped = draw(dataclasses.replace(scene, post=tuple(s for j, s in enumerate(scene.post) if j != k)))
         m = measure(full, dropped)
-        print(f"  drop {k} {step.effect if hasattr(step,'effect') else step}: max {m.max_abs} changed {m.changed:.3f} flip {m.flip_mean:.4f} mae {mae(full, dropped):.3f} exceeded {tol.exceeded(m)}", flush=True)
+        print(f"  drop {k} {step.effect if hasattr(step,'effect') else step}: max {m.max_abs} "
+              f"changed {m.changed:.3f} flip {m.flip_mean:.4f} mae {mae(full, dropped):.3f} "
+              f"exceeded {tol.exceeded(m)}", flush=True)
