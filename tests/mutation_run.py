@@ -254,6 +254,16 @@ MUTATIONS = [
     ("wgpurender/core/models/gltf_geometry.py", 'np.float64)[None, :]', 'np.float64)[:, None]', [USERNUM]),
     ("wgpurender/core/plan/post.py", '    if adapter.adapter_type == "DiscreteGPU":',
      '    if adapter.adapter_type != "CPU":', [USERNUM]),
+    ("wgpurender/wgpu_path/device/context.py", "            device._poller = poller", "            pass",
+     ["tests/test_no_poll_thread.py"]),
+    ("wgpurender/wgpu_path/device/context.py", "encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, size)",
+     "encoder.copy_buffer_to_buffer(buffer, 0, staging, 0, size)", ["tests/test_no_poll_thread.py"]),
+    ("wgpurender/raw_path/device/ubo.py", "np.uint32(object_index).tobytes()", "np.uint16(object_index).tobytes()",
+     [USERNUM]),
+    ("wgpurender/raw_path/post/neighbourhood.py", "*(float(params[name]) for name in NEIGHBOUR_SHADERS[p.effect][1]))",
+     "*(float(v) for v in params.values()))", [USERNUM]),
+    ("wgpurender/raw_path/device/ubo.py", "round_up(size, max(16, min_offset_alignment))",
+     "round_up(size, min_offset_alignment)", [USERNUM]),
 ]
 
 

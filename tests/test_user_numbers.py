@@ -159,3 +159,40 @@ def test_the_browser_page_draws_the_fragment_post_path():
 
     plan = resolve_plan(REPO / "assets" / "scenes" / "final_subpass.toml", BROWSER)
     assert plan.post_passes and {p.path for p in plan.post_passes} == {"fragment"}
+
+
+def _push_block(shader: str) -> list[tuple[str, str]]:
+    """(type, name) of each member of a GLSL shader's push_constant block, in declaration order."""
+    text = (REPO / "shaders_glsl" / shader).read_text()
+    body = re.search(r"layout\(push_constant\)\s*uniform\s+\w+\s*\{(.*?)\}", text, re.S)[1]
+    return re.findall(r"^\s*(\w+)\s+(\w+)\s*;", body, re.M)
+
+
+def test_raw_push_constants_follow_the_shaders_blocks():
+    """The raw path's push constants, packed as the GLSL blocks declare them (std430: tightly packed scalars,
+    a vec4 at 0 and the uint after it at 16): cube3d.vert's Draw, post_fxaa.frag's and post_sharpen.frag's Params."""
+    import struct
+
+    from wgpurender.core.course.effects import EffectStep
+    from wgpurender.raw_path.device.ubo import DRAW_SIZE, pack_draw
+    from wgpurender.raw_path.post.neighbourhood import push_constants
+
+    assert _push_block("cube3d.vert") == [("vec4", "tint"), ("uint", "object_index")]
+    assert pack_draw((0.25, 0.5, 0.75, 1.0), 7) == struct.pack("<4fI", 0.25, 0.5, 0.75, 1.0, 7)
+    assert DRAW_SIZE == 20
+    for shader, effect in (("post_fxaa.frag", "fxaa"), ("post_sharpen.frag", "sharpen")):
+        members = _push_block(shader)
+        assert all(kind == "float" for kind, _ in members)
+        values = {name: 0.125 * (k + 1) for k, (_, name) in enumerate(members)}
+        step = EffectStep(effect, tuple(reversed(list(values.items()))))  # the order of params must not matter
+        assert push_constants(step) == struct.pack(f"<{len(members)}f", *values.values())
+
+
+def test_dynamic_offsets_are_aligned():
+    """Copies of a uniform block in one buffer sit at multiples of the device's minimum offset alignment (at
+    least 16 bytes): a 144-byte block at 256 on a 256-aligned device, 160 at 16 where 16 is allowed."""
+    from wgpurender.raw_path.device.ubo import dynamic_stride, pack_many
+
+    assert dynamic_stride(144, 256) == 256 and dynamic_stride(300, 256) == 512 and dynamic_stride(144, 4) == 144
+    assert dynamic_stride(150, 1) == 160
+    assert pack_many([b"ab", b"c"], 4) == b"ab\x00\x00c\x00\x00\x00"
