@@ -264,6 +264,12 @@ MUTATIONS = [
      "*(float(v) for v in params.values()))", [USERNUM]),
     ("wgpurender/raw_path/device/ubo.py", "round_up(size, max(16, min_offset_alignment))",
      "round_up(size, min_offset_alignment)", [USERNUM]),
+    ("wgpurender/report/page.py", "_ms(wgpu and wgpu.gpu_ms), _ms(raw and raw.gpu_ms)",
+     "_ms(raw and raw.gpu_ms), _ms(wgpu and wgpu.gpu_ms)", [USERNUM]),
+    ("wgpurender/report/page.py", '_metric("frame-ms", "frame time (median)", _ms(wgpu and wgpu.frame_ms)',
+     '_metric("frame-ms", "frame time (median)", _ms(wgpu and wgpu.gpu_ms)', [USERNUM]),
+    ("wgpurender/report/timings.py", "    return Timing(statistics.median(samples.frame), gpu)",
+     "    return Timing(gpu, statistics.median(samples.frame))", [USERNUM]),
 ]
 
 

@@ -196,3 +196,33 @@ def test_dynamic_offsets_are_aligned():
     assert dynamic_stride(144, 256) == 256 and dynamic_stride(300, 256) == 512 and dynamic_stride(144, 4) == 144
     assert dynamic_stride(150, 1) == 160
     assert pack_many([b"ab", b"c"], 4) == b"ab\x00\x00c\x00\x00\x00"
+
+
+def test_the_report_shows_each_paths_times_in_its_own_column():
+    """A step timed wgpu GPU 1.25 / frame 2.5 ms and raw GPU 3.75 / frame 5.0 ms: the GPU-time row reads
+    1.250 then 3.750 (wgpu, raw Vulkan: the header's order), the frame-time row 2.500 then 5.000; a path without
+    timestamps reads n/a."""
+    from wgpurender.report.page import _numbers
+    from wgpurender.report.steps import Step
+    from wgpurender.report.timings import Timing
+
+    step = Step("3d", "3d", "4", "", [], timing={"wgpu": Timing(2.5, 1.25), "raw": Timing(5.0, 3.75)})
+    html = _numbers(step)
+    assert '<th class="label">wgpu</th><th class="label">raw Vulkan</th>' in html
+    rows = dict(re.findall(r'data-metric="([\w-]+)">(.*?)</tr>', html))
+    cells = {key: re.findall(r'<td class="value">([^<]*)</td>', row) for key, row in rows.items()}
+    assert cells["gpu-ms"] == ["1.250 ms", "3.750 ms"] and cells["frame-ms"] == ["2.500 ms", "5.000 ms"]
+    step.timing["raw"] = Timing(5.0, None)
+    assert re.findall(r'<td class="value">([^<]*)</td>', dict(re.findall(
+        r'data-metric="([\w-]+)">(.*?)</tr>', _numbers(step)))["gpu-ms"]) == ["1.250 ms", "n/a"]
+
+
+def test_report_timing_medians(monkeypatch):
+    """A run of frames 3, 1, 2 ms with GPU times 30, 10, 20 ms: Timing(frame 2, GPU 20); no GPU samples: None."""
+    from types import SimpleNamespace
+
+    from wgpurender.report import timings
+
+    monkeypatch.setattr(timings, "measure", lambda runner, frames, warmup: runner)
+    assert timings._timing(SimpleNamespace(frame=[3.0, 1.0, 2.0], gpu=[30.0, 10.0, 20.0])) == timings.Timing(2.0, 20.0)
+    assert timings._timing(SimpleNamespace(frame=[3.0, 1.0, 2.0], gpu=[])) == timings.Timing(2.0, None)
