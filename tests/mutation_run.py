@@ -270,6 +270,12 @@ MUTATIONS = [
      '_metric("frame-ms", "frame time (median)", _ms(wgpu and wgpu.gpu_ms)', [USERNUM]),
     ("wgpurender/report/timings.py", "    return Timing(statistics.median(samples.frame), gpu)",
      "    return Timing(gpu, statistics.median(samples.frame))", [USERNUM]),
+    ("wgpurender/webpage/record.py", "        _frame(ctx, record, target, k / fps)",
+     "        _frame(ctx, record, target, (k + 1) / fps)", [USERNUM]),
+    ("wgpurender/webpage/player.js", "      if (d > 1) over += 1;", "      if (d >= 1) over += 1;",
+     ["tests/test_export_browser.py|agrees"]),
+    ("wgpurender/webpage/player.js", "ZOOM ** (e.deltaY < 0 ? 1 : -1)", "ZOOM ** (e.deltaY < 0 ? -1 : 1)",
+     ["tests/test_export_browser.py|scrolling"]),
 ]
 
 

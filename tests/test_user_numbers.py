@@ -226,3 +226,25 @@ def test_report_timing_medians(monkeypatch):
     monkeypatch.setattr(timings, "measure", lambda runner, frames, warmup: runner)
     assert timings._timing(SimpleNamespace(frame=[3.0, 1.0, 2.0], gpu=[30.0, 10.0, 20.0])) == timings.Timing(2.0, 20.0)
     assert timings._timing(SimpleNamespace(frame=[3.0, 1.0, 2.0], gpu=[])) == timings.Timing(2.0, None)
+
+
+def test_the_recorder_samples_frame_k_at_k_over_fps():
+    """An animated target recorded at 4 fps for 1 s: frames drawn at t = 0, 0.25, 0.5, 0.75 and one sample each,
+    sample k holding the upload made at t = k / 4."""
+    from types import SimpleNamespace
+
+    from wgpurender.webpage.record import _record_frames
+
+    recording = SimpleNamespace(calls=[])
+    encoder = SimpleNamespace(finish=lambda: None)
+    ctx = SimpleNamespace(device=SimpleNamespace(create_command_encoder=lambda label: encoder),
+                          queue=SimpleNamespace(submit=lambda buffers: None))
+    seen = []
+
+    def record(enc, target, t):
+        seen.append(t)
+        recording.calls += [{"m": "writeBuffer", "a": [7, 0, {"#": int(t * 100)}]}, {"m": "draw", "a": [3]}]
+
+    template, samples = _record_frames(ctx, recording, record, None, fps=4, seconds=1.0)
+    assert seen == [0.0, 0.25, 0.5, 0.75]
+    assert samples == [[0], [25], [50], [75]]
