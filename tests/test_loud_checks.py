@@ -93,3 +93,43 @@ def test_tests_keep_off_the_machine_cache():
     from wgpurender.core.files.bandwidth import record_path
 
     assert not record_path().is_relative_to(Path.home() / ".cache")
+
+
+def test_the_matrix_picks_its_bound_by_the_rules(monkeypatch):
+    """raw vs wgpu-vulkan: the post-chain bound for a scene with two or more post effects (brick has 2), exact for
+    one without (unlit); another implementation: its row, for the driver class the Vulkan adapter's *device name*
+    gives (an llvmpipe device is lavapipe whatever its description says)."""
+    from types import SimpleNamespace
+
+    from wgpurender import verify_matrix
+    from wgpurender.verify import CHAIN_BOUND, EXACT
+
+    assert verify_matrix._bound("raw", "wgpu-vulkan", "brick") is CHAIN_BOUND
+    assert verify_matrix._bound("wgpu-vulkan", "raw", "unlit") is EXACT
+    assert verify_matrix._bound("raw", "browser", "brick") is None  # two non-reference implementations: info
+    adapter = SimpleNamespace(info={"device": "llvmpipe (LLVM 15.0.6, 256 bits)", "description": "NVIDIA 580"})
+    monkeypatch.setattr("wgpurender.wgpu_path.device.context.get_context", lambda backend=None: SimpleNamespace(
+        adapter=adapter))
+    asked = []
+    monkeypatch.setattr(verify_matrix, "implementation_tolerance", lambda impl, name, cls=None: asked.append(
+        (impl, name, cls)))
+    verify_matrix._bound("browser", "wgpu-vulkan", "final")
+    assert asked == [("browser", "final", "lavapipe")]
+
+
+def test_implementation_calibration_keeps_its_margin(tmp_path, monkeypatch):
+    """verify --calibrate's rows follow the header's rule (CPU drivers): a measured spread of max 5/255, 3% of
+    pixels, FLIP 0.004 becomes max 6, changed 6%, FLIP 0.008, with the spread and the driver class written."""
+    import tomllib
+
+    from wgpurender import implementations
+    from wgpurender.core.verdict import tolerances
+    from wgpurender.core.verdict.tolerances import Metrics
+
+    path = tmp_path / "implementations.toml"
+    monkeypatch.setattr(tolerances, "IMPLEMENTATIONS_PATH", path)
+    implementations.calibrate("browser", {"final": Metrics(5, 0.03, 576, 0.004, 19200)}, "here, today", "lavapipe")
+    table = tomllib.loads(path.read_text())["implementations"]["browser"]
+    row = table["targets"]["final"]
+    assert (row["max_abs"], row["changed"], row["flip_mean"]) == (6, 0.06, 0.008)
+    assert table["driver_class"] == "lavapipe" and "576 of 19200" in row["measured"]
