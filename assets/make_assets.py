@@ -156,6 +156,51 @@ def gltf_features(out: Path) -> None:
     g.write(out / "gltf_features.glb", roots=[0, 2, 3, 4])
 
 
+SPHERE_GRID = 5  # metal_rough_spheres.glb: GRID x GRID spheres
+SPHERE_SPACING, SPHERE_RADIUS = 1.0, 0.42
+SPHERE_BASE = (1.0, 0.71, 0.29, 1.0)  # a gold-like base colour: metals reflect it, dielectrics' highlights stay white
+
+
+def uv_sphere(radius: float, segments: int = 64, rings: int = 32) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions, unit normals and triangle indices (counter-clockwise seen from outside) of a UV sphere."""
+    theta = np.linspace(0, np.pi, rings + 1)[:, None]  # from +y down to -y
+    phi = np.linspace(0, 2 * np.pi, segments + 1)[None, :]
+    normals = np.stack([np.sin(theta) * np.sin(phi), np.cos(theta) * np.ones_like(phi),
+                        np.sin(theta) * np.cos(phi)], axis=-1).reshape(-1, 3)
+    quads = []
+    for r in range(rings):
+        for c in range(segments):
+            a, b = r * (segments + 1) + c, (r + 1) * (segments + 1) + c
+            quads += [a, b, b + 1, a, b + 1, a + 1]
+    return (normals * radius).astype(np.float32), normals.astype(np.float32), np.asarray(quads, np.uint16)
+
+
+def metal_rough_spheres(out: Path) -> None:
+    """metal_rough_spheres.glb: the Khronos MetalRoughSpheres sample's idea, generated (assets/scenes/
+    metal_rough_spheres.toml): a GRID x GRID grid of spheres in the z = 0 plane, metallicFactor rising from 0 (bottom
+    row) to 1 (top row), roughnessFactor from 0 (left column) to 1 (right column), one base colour. Written by
+    tests/gltf_gen.py's GltfWriter, independent of the project's loader."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from gltf_gen import GltfWriter
+
+    g = GltfWriter()
+    positions, normals, indices = uv_sphere(SPHERE_RADIUS)
+    attributes = {"POSITION": g.positions(positions), "NORMAL": g.accessor(normals)}
+    index_accessor = g.accessor(indices)
+    steps = np.linspace(0.0, 1.0, SPHERE_GRID)
+    offset = (SPHERE_GRID - 1) / 2 * SPHERE_SPACING
+    for row, metallic in enumerate(steps):
+        for col, roughness in enumerate(steps):
+            material = g.material(name=f"metal {metallic:g} rough {roughness:g}",
+                                  pbrMetallicRoughness={"baseColorFactor": list(SPHERE_BASE),
+                                                        "metallicFactor": float(metallic),
+                                                        "roughnessFactor": float(roughness)})
+            mesh = g.mesh([{"attributes": attributes, "indices": index_accessor, "material": material}])
+            g.node(mesh=mesh, name=f"sphere m{row} r{col}",
+                   translation=[col * SPHERE_SPACING - offset, row * SPHERE_SPACING - offset, 0.0])
+    g.write(out / "metal_rough_spheres.glb")
+
+
 def generate(root: Path) -> list[Path]:
     (root / "models").mkdir(parents=True, exist_ok=True)
     (root / "textures").mkdir(parents=True, exist_ok=True)
@@ -163,6 +208,7 @@ def generate(root: Path) -> list[Path]:
     mirror_textures(root / "textures")
     models(root / "models")
     gltf_features(root / "models")
+    metal_rough_spheres(root / "models")
     return sorted(p.relative_to(root) for d in ("models", "textures") for p in (root / d).iterdir() if p.is_file())
 
 

@@ -1,8 +1,9 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // The scene's fragment shader on the raw path: the GLSL twin of shaders_wgsl/scene.wgsl's fs_main,
 // normalized Blinn-Phong in linear light with normal and roughness maps (the model is explained in
-// scene.wgsl's header; the arithmetic here follows it operation for operation). Variants: -D flags,
-// see scene.vert.
+// scene.wgsl's header; the arithmetic here follows it operation for operation), or with -DPBR the glTF
+// metallic-roughness BRDF of pbr.glsl (pbr.wgsl's twin). Variants: -D flags, see scene.vert.
 //
 // Material data is the course's way: per-draw factors in push constants, textures as
 // COMBINED_IMAGE_SAMPLER descriptors in set 2 (the wgpu path, which cannot express combined
@@ -14,8 +15,9 @@ struct DirectionalLight {
     vec4 radiance;
 };
 struct PointLight {
-    vec4 position;
-    vec4 radiance;
+    vec4 position;  // w: range (0: none)
+    vec4 radiance;  // w: spot cone offset
+    vec4 spot;      // the spot's axis, w: cone scale (a plain point light: scale 0, offset 1)
 };
 #endif
 
@@ -27,7 +29,7 @@ layout(std140, set = 0, binding = 0) uniform Camera {
     vec4 ambient;       // @144
     uvec4 light_counts; // @160 (the loops use the compile-time counts)
     DirectionalLight directional[MAX_LIGHTS];  // @176, 32 bytes each
-    PointLight point[MAX_LIGHTS];              // @176 + 32 * MAX_LIGHTS
+    PointLight point[MAX_LIGHTS];              // @176 + 32 * MAX_LIGHTS, 48 bytes each
 #endif
 } camera;
 
@@ -36,7 +38,11 @@ layout(push_constant) uniform Material {
 #ifdef LIGHTING
     float roughness;        // @16
     float normal_strength;  // @20
+#ifdef PBR
+    float metallic;         // @24 (the glTF metallic factor takes specular's place)
+#else
     float specular;         // @24
+#endif
 #endif
 #ifdef ALPHA_MASK
     float alpha_cutoff;     // @28 lit, @16 unlit
@@ -64,6 +70,10 @@ layout(set = 2, binding = 7) uniform sampler2D emissive_tex;
 #ifdef OCCLUSION_MAP
 layout(set = 2, binding = 9) uniform sampler2D occlusion_tex;
 float ambient_occlusion = 1.0;  // the ambient term's factor for this fragment (set by main before shading)
+#endif
+#ifdef PBR
+float pbr_metallic = 0.0;  // the metallic factor of this fragment (set by main before shading)
+#include "pbr.glsl"
 #endif
 
 #ifdef LIGHTING
@@ -114,6 +124,7 @@ vec3 surface_normal(vec3 normal_texel) {
 #endif
 }
 
+#ifndef PBR
 float shininess(float roughness) {
     float r = clamp(roughness, 0.0, 1.0);
     float r4 = r * r * r * r;
@@ -126,11 +137,25 @@ vec3 blinn_phong(vec3 n, vec3 l, vec3 v, vec3 albedo, float s, vec3 irradiance) 
     float spec = material.specular * (s + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), s);
     return irradiance * n_dot_l * (albedo + vec3(spec));
 }
+#endif
+
+// A point light's range window and spot cone (scene.wgsl's light_window).
+float light_window(PointLight light, float d2, vec3 l) {
+    float window = 1.0;
+    if (light.position.w > 0.0) {
+        float x = d2 / (light.position.w * light.position.w);
+        window = clamp(1.0 - x * x, 0.0, 1.0);
+    }
+    float cone = clamp(dot(light.spot.xyz, -l) * light.spot.w + light.radiance.w, 0.0, 1.0);
+    return window * cone * cone;
+}
 
 vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
     vec3 n = surface_normal(normal_texel);
     vec3 v = safe_normalize(camera.eye.xyz - v_world_position, n);
+#ifndef PBR
     float s = shininess(roughness);
+#endif
     vec3 color = camera.ambient.rgb * albedo;
 #ifdef OCCLUSION_MAP
     color = color * ambient_occlusion;
@@ -138,7 +163,11 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
 #if DIRECTIONAL_LIGHTS > 0
     for (uint i = 0u; i < uint(DIRECTIONAL_LIGHTS); i++) {
         vec3 l = safe_normalize(-camera.directional[i].direction.xyz, n);
+#ifdef PBR
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, camera.directional[i].radiance.rgb);
+#else
         color += blinn_phong(n, l, v, albedo, s, camera.directional[i].radiance.rgb);
+#endif
     }
 #endif
 #if POINT_LIGHTS > 0
@@ -146,7 +175,12 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
         vec3 to_light = camera.point[i].position.xyz - v_world_position;
         float d2 = max(dot(to_light, to_light), 1e-4);
         vec3 l = safe_normalize(to_light, n);
-        color += blinn_phong(n, l, v, albedo, s, camera.point[i].radiance.rgb / d2);
+        vec3 irradiance = camera.point[i].radiance.rgb / d2 * light_window(camera.point[i], d2, l);
+#ifdef PBR
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, irradiance);
+#else
+        color += blinn_phong(n, l, v, albedo, s, irradiance);
+#endif
     }
 #endif
     return color;
@@ -183,9 +217,16 @@ void main() {
     vec3 normal_texel = vec3(0.5, 0.5, 1.0);
 #endif
 #ifdef ROUGHNESS_MAP
-    float roughness = material.roughness * texture(roughness_tex, v_uv).g;
+    vec4 roughness_texel = texture(roughness_tex, v_uv);
+    float roughness = material.roughness * roughness_texel.g;
+#ifdef PBR
+    pbr_metallic = material.metallic * roughness_texel.b;
+#endif
 #else
     float roughness = material.roughness;
+#ifdef PBR
+    pbr_metallic = material.metallic;
+#endif
 #endif
 #ifdef OCCLUSION_MAP
     float occlusion_texel = texture(occlusion_tex, v_uv).r;

@@ -19,8 +19,9 @@
 //     s = clamp(2 / r^4 - 2, 1, 4096)     (the Beckmann-matched Blinn-Phong exponent)
 // `specular` is the dielectric reflectance 0.04 (no Fresnel term).
 // Lights: E = colour * intensity. Directional lights travel along `direction` (l = -direction).
-// Point lights fall off with the plain inverse square, E = colour * intensity / max(d^2, 1e-4):
-// no range cut-off, so intensity is the irradiance at 1 unit.
+// Point lights fall off with the inverse square, E = colour * intensity / max(d^2, 1e-4), so intensity is
+// the irradiance at 1 unit; a model file's KHR_lights_punctual lights may add a range window and a spot cone
+// (light_window; core/scene/gltf_lights.py converts their units).
 // Normal mapping (tangent space, +Y up, linear texels): m = texel * 2 - 1, m.xy *= normal_strength,
 // T = Gram-Schmidt of the tangent against N, B = w * cross(N, T) (w = tangent.w times the sign of
 // det(world)), n' = normalize(T m.x + B m.y + N m.z). Every normalisation is guarded: a zero-length
@@ -32,6 +33,9 @@
 // Each texture has its own sampler (glTF: filters and per-axis wrap per texture). emissive adds
 // material.emissive.rgb (times the sRGB emissive texel with emissive_map) to the shaded colour;
 // occlusion_map scales the ambient term by 1 + strength * (texel.r - 1) (lit variants only).
+// pbr (a glTF file's lit metallic-roughness material): each light's term is pbr.wgsl's pbr_radiance, not the
+// Blinn-Phong term, with metallic = material.metallic (times the metallic-roughness texture's B channel with
+// roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 
 {{STRUCTS}}
 
@@ -66,6 +70,11 @@ var<immediate> material: Material;
 @group(2) @binding(10) var occlusion_sampler: sampler;
 // the ambient term's factor for this fragment (set by fs_main before shading)
 var<private> ambient_occlusion: f32 = 1.0;
+#endif
+#if pbr
+// the metallic factor of this fragment (set by fs_main before shading)
+var<private> pbr_metallic: f32 = 0.0;
+{{PBR_FUNCTIONS}}
 #endif
 
 struct VertexIn {
@@ -156,6 +165,7 @@ fn surface_normal(in: VertexOut, normal_texel: vec3f) -> vec3f {
 #endif
 }
 
+#if !pbr
 fn shininess(roughness: f32) -> f32 {
     let r = clamp(roughness, 0.0, 1.0);
     let r4 = r * r * r * r;
@@ -169,11 +179,26 @@ fn blinn_phong(n: vec3f, l: vec3f, v: vec3f, albedo: vec3f, s: f32, irradiance: 
     let spec = material.specular * (s + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), s);
     return irradiance * n_dot_l * (albedo + vec3f(spec));
 }
+#endif
+
+// A point light's range window and spot cone (KHR_lights_punctual; 1 exactly for a plain point light):
+// clamp(1 - (d / range)^4, 0, 1) when range > 0, times clamp(dot(axis, -l) * scale + offset, 0, 1)^2.
+fn light_window(light: PointLight, d2: f32, l: vec3f) -> f32 {
+    var window = 1.0;
+    if (light.position.w > 0.0) {
+        let x = d2 / (light.position.w * light.position.w);
+        window = clamp(1.0 - x * x, 0.0, 1.0);
+    }
+    let cone = clamp(dot(light.spot.xyz, -l) * light.spot.w + light.radiance.w, 0.0, 1.0);
+    return window * cone * cone;
+}
 
 fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> vec3f {
     let n = surface_normal(in, normal_texel);
     let v = safe_normalize(camera.eye.xyz - in.world_position, n);
+#if !pbr
     let s = shininess(roughness);
+#endif
     var color = camera.ambient.rgb * albedo;
 #if occlusion_map
     color = color * ambient_occlusion;
@@ -182,7 +207,11 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
     for (var i = 0u; i < DIRECTIONAL_LIGHTS; i++) {
         let light = camera.directional[i];
         let l = safe_normalize(-light.direction.xyz, n);
+#if pbr
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, light.radiance.rgb);
+#else
         color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb);
+#endif
     }
 #endif
 #if point_lights
@@ -191,7 +220,12 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
         let to_light = light.position.xyz - in.world_position;
         let d2 = max(dot(to_light, to_light), 1e-4);
         let l = safe_normalize(to_light, n);
-        color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb / d2);
+        let irradiance = light.radiance.rgb / d2 * light_window(light, d2, l);
+#if pbr
+        color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, irradiance);
+#else
+        color += blinn_phong(n, l, v, albedo, s, irradiance);
+#endif
     }
 #endif
     return color;
@@ -238,9 +272,16 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let normal_texel = vec3f(0.5, 0.5, 1.0);
 #endif
 #if roughness_map
-    let roughness = material.roughness * textureSample(roughness_tex, roughness_sampler, in.uv).g;
+    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.uv);
+    let roughness = material.roughness * roughness_texel.g;
+#if pbr
+    pbr_metallic = material.metallic * roughness_texel.b;
+#endif
 #else
     let roughness = material.roughness;
+#if pbr
+    pbr_metallic = material.metallic;
+#endif
 #endif
 #if occlusion_map
     let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.uv).r;

@@ -319,10 +319,11 @@ def test_alpha_blend_is_drawn_over_the_opaque_draws(ctx, tmp_path, which):
 
 @pytest.mark.parametrize("which", PATHS)
 def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, which):
-    """A lit quad whose front faces away from the camera, doubleSided, albedo a, roughnessFactor 1; a directional
-    light shining along -z (from behind the camera). At the centre l = v = n' (the turned normal), so scene.wgsl's
-    model gives L = ambient * a + a + 0.04 * (s + 8) / 8 with s = 1 (roughness 1): without the turn n.l would be
-    -1 and only ambient * a would remain."""
+    """A lit quad whose front faces away from the camera, doubleSided, albedo a, metallicFactor 0, roughnessFactor
+    1; a directional light shining along -z (from behind the camera). At the centre l = v = h = n' (the turned
+    normal), so glTF's metallic-roughness BRDF (Appendix B; alpha = 1: D = 1 / pi, V = 0.5 / (1 + 1), F = 0.04)
+    gives L = ambient * a + pi * (0.96 * a / pi + 0.04 * D * V) = ambient * a + 0.96 a + 0.01: without the turn n.l
+    would be -1 and only ambient * a would remain."""
     albedo = np.array([0.4, 0.3, 0.2])
     g = GltfWriter()
     mat = g.material(doubleSided=True, pbrMetallicRoughness={"baseColorFactor": [*albedo, 1], "metallicFactor": 0,
@@ -332,7 +333,7 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
     light = '\n[[lights]]\ntype = "directional"\ndirection = [0, 0, -1]\n'
     image = render(ctx, write_scene(tmp_path, "lit.glb", extra=light), which)
     ambient = np.array([0.03, 0.03, 0.035])  # course.shading.AMBIENT, written in docs/scenes.md's shading model
-    want = ambient * albedo + albedo + 0.04 * (1 + 8) / 8
+    want = ambient * albedo + 0.96 * albedo + 0.04 * np.pi * (1 / np.pi) * (0.5 / 2)
     assert_colour(image, 0.0, 0.0, want, f"{which} lit back face")
 
 
@@ -361,11 +362,13 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
     assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
-    for ignored in ("KHR_materials_clearcoat: ignored", "metalness",
+    for ignored in ("KHR_materials_clearcoat: ignored",
                     "TEXCOORD_1 ignored", "LINES primitive ignored", "occlusionTexture texCoord 1: ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out
+    assert "metallicFactor 1" in out and "metalness" not in out  # metalness is taken: the metallic-roughness model
+    assert "pbr: " in out and "glTF metallic-roughness material" in out
 
 
 def test_cli_refuses_gltf_1_and_unknown_required_extensions(tmp_path, capsys):

@@ -114,3 +114,11 @@ def test_show_falls_back_to_a_still_and_record_writes_a_video(executed):
     assert "recorded 3d.mp4" in _text(record)
     videos = [o for o in record.outputs if "text/html" in o.get("data", {}) and "video/mp4" in o.data["text/html"]]
     assert len(videos) == 1
+
+
+def test_the_exercise_cell_checks_a_starter_and_diagnoses_it(executed):
+    """Section 6: the untouched starter of step 2a fails, diagnosed as drawing nothing; the goal beside it."""
+    cell = next(c for c in executed if "write_exercise(" in c.source)
+    lines = _text(cell).splitlines()
+    assert lines[0].startswith("step_2a.py: step 2a (wgpu) FAIL: your image matches 'nothing drawn"), lines
+    assert len(_pngs(cell)) == 1

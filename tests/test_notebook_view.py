@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import wgpurender as w
+from wgpurender.core.files.owned_files import MANIFEST
 
 SIZE = (160, 120)
 
@@ -93,7 +94,8 @@ def test_record_png_frames_are_the_renders(tmp_path):
     from wgpurender.core.files.imageio import load_png
 
     out = w.record("3d", tmp_path / "frames", seconds=0.3, fps=10, size=(64, 48))
-    names = sorted(p.name for p in out.iterdir())
+    names = sorted(p.name for p in out.iterdir() if p.name != MANIFEST)  # the folder's manifest of owned files
+    assert (out / MANIFEST).is_file()
     assert names == ["frame_00000.png", "frame_00001.png", "frame_00002.png"]
     for k, name in enumerate(names):
         want = w.render("3d", size=(64, 48), t=k / 10).pixels[..., :3]

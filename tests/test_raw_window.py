@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from wgpurender.core.files.imageio import load_png
+from wgpurender.core.files.owned_files import MANIFEST
 from wgpurender.raw_path import render_reference
 
 REPO = Path(__file__).resolve().parent.parent
@@ -200,7 +201,8 @@ def test_demo_record_writes_every_presented_frame(display, tmp_path, window):
     assert result.returncode == 0, result.stderr
     assert f"wrote {frames} (3 frames)" in result.stdout
     want = render_reference("3d", SIZE).astype(int)
-    names = sorted(p.name for p in frames.iterdir())
+    names = sorted(p.name for p in frames.iterdir() if p.name != MANIFEST)  # the folder's manifest of owned files
+    assert (frames / MANIFEST).is_file()
     assert names == [f"frame_{k:05d}.png" for k in range(3)]
     for name in names:
         diff = np.abs(load_png(frames / name).astype(int)[..., :3] - want[..., :3]).max(axis=2)

@@ -96,6 +96,9 @@ def test_one_section_per_course_step_in_course_order(site):
     assert keys[: len(stages)] == stages
     scenes = keys[len(stages):]
     assert scenes[:5] == ["unlit", "retro", "brick", "final_subpass", "final"]
+    for step in COURSE:  # each step says how to try it yourself (wgpurender exercise), step 6 in its scene
+        assert f"try it: <code>wgpurender exercise {step.number}</code>" in _section(text, step.scene or step.stage)
+    assert "try it" not in _section(text, "unlit")  # a scene that is not a course step has no exercise
     for key in ("triangle", "3d", "final"):  # the steps' words and the summary are there
         cls = all_stages().get(key)
         if cls is not None:
@@ -258,6 +261,25 @@ def test_accuracy_and_hard_cases_are_measured_in_the_run(site):
     assert flip[("depth", "depth24plus")] > 0.5
     assert flip[("anti-aliasing", "ssaa4")] < flip[("anti-aliasing", "none")]
     assert flip[("texture filtering", "trilinear")] < flip[("texture filtering", "nearest")]
+
+
+def test_the_teaching_cases_show_what_each_knob_is_for(site):
+    """The section explains the still-frame sweep in the words docs/accuracy.md carries, and its measured rows
+    obey what the knobs are for: trilinear shimmers less than nearest and bilinear on the minified plane, MSAA 4x
+    crawls less than none on edges, a float scene image is closer to the tone-mapped truth than an 8-bit one."""
+    from wgpurender.bench.accuracy_teaching import STILL_FRAME
+
+    text = (site / "index.html").read_text()
+    section = text[text.index('<section id="teaching"'):]
+    section = section[:section.index("</section>")]
+    assert html.escape(STILL_FRAME) in section
+    shimmer = {(g, s): float(v) for g, s, v in re.findall(
+        r'<tr data-group="([^"]+)" data-setting="([^"]+)"><td>[^<]*</td><td>[^<]*</td><td>([0-9.]+)</td>', section)}
+    assert shimmer[("minified plane", "trilinear")] < shimmer[("minified plane", "nearest")]
+    assert shimmer[("minified plane", "trilinear")] < shimmer[("minified plane", "linear")]
+    assert shimmer[("edges", "msaa4")] < shimmer[("edges", "none")]
+    hdr = dict(re.findall(r"<tr><td>(rgba[^<]+)</td><td>[0-9.]+</td><td>([0-9.]+)</td></tr>", section))
+    assert float(hdr["rgba16float"]) > float(hdr["rgba8unorm-srgb"]) + 10  # PSNR dB
 
 
 @needs_chromium

@@ -230,7 +230,8 @@ def test_glm_vulkan_scene_matches_wgpu(request, ctx, tmp_path):
 
 # -- references ----------------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit", "scene_gltf_features"])
+@pytest.mark.parametrize("name", ["scene_final_subpass", "scene_unlit", "scene_gltf_features",
+                                  "scene_metal_rough_spheres"])
 def test_scene_references_are_current(request, name, raw_driver_class):
     """assets/reference/scene_*.png against a fresh raw render at 320x240, within the table's bounds
     (assets/reference/tolerances.toml, this driver class's row); written only by the raw path."""

@@ -232,3 +232,50 @@ def test_the_notebook_from_the_wheel(installed):
             "nbclient.NotebookClient(nb, timeout=300, kernel_name='python3').execute(); "
             "print(sum('final_subpass' in o.get('text', '') for c in nb.cells for o in c.get('outputs', [])))")
     assert int(_run(installed, installed["python"], "-c", code).stdout.split()[-1]) >= 1
+
+
+def test_grading_a_class_of_ten_submissions_with_the_wheels_pytest_plugin(installed):
+    """The plugin from the wheel's pytest11 entry point, in the empty folder, two xdist workers: 10 generated
+    submissions (the 3c solution, the 1b starter, 8 mistakes drawn with a fixed seed), one folder per step. Each
+    verdict is right, one line each, the HTML page lists them all, and the exit status says some failed."""
+    import random
+
+    from wgpurender.exercises import source
+    from wgpurender.exercises.catalogue import EXERCISES, exercise
+
+    rows = [(ex, m) for ex in EXERCISES if ex.path == "wgpu" and not ex.shader for m in ex.mistakes]  # stages: fast
+    seeded = random.Random(29).sample(rows, 8)
+    submissions = installed["cwd"] / "class"
+    expected = {}
+
+    def submit(step: str, name: str, text: str, verdict: str) -> None:
+        (submissions / step).mkdir(parents=True, exist_ok=True)
+        (submissions / step / f"{name}.py").write_text(text)
+        expected[f"{name}.py"] = verdict
+
+    submit("3c", "solution", source.solution_source(exercise("3c", "wgpu")), "PASS")
+    submit("1b", "starter", source.starter_source(exercise("1b", "wgpu")), "FAIL")
+    for ex, mistake in seeded:
+        submit(ex.step, f"mistake_{ex.step}_{mistake.key}", source.mistake_source(ex, mistake),
+               f"FAIL: your image matches '{mistake.title}'")
+    proc = subprocess.run([str(installed["python"]), "-m", "pytest", "-p", "no:cacheprovider", "-n", "2",
+                           "--wgpurender-step", "folder", "--wgpurender-html", "grades.html", "class"],
+                          cwd=installed["cwd"], env=installed["env"], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    grades = proc.stdout.split("wgpurender grades")[1].splitlines()
+    for name, verdict in expected.items():
+        lines = [line for line in grades if line.startswith(f"{name}: step")]
+        assert len(lines) == 1 and verdict in lines[0], (name, lines)
+    page = (installed["cwd"] / "grades.html").read_text()
+    assert page.count('<tr class="') == 10 and "1 of 10 passed" in page
+    assert page.count("<img ") >= 9  # each rendered submission's image and heatmap
+
+
+def test_a_starters_own_test_runs_with_the_wheels_fixture(installed):
+    """`wgpurender exercise 2a` from the wheel, then pytest on the folder it wrote: the wgpurender_check fixture
+    fails the untouched starter with the check's report (exit status 1, the diagnosis in the output)."""
+    _run(installed, installed["bin"] / "wgpurender", "exercise", "2a", "-o", "starter-2a")
+    proc = subprocess.run([str(installed["python"]), "-m", "pytest", "-p", "no:cacheprovider", "starter-2a"],
+                          cwd=installed["cwd"], env=installed["env"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    assert "1 failed" in proc.stdout and "your image matches 'nothing drawn" in proc.stdout, proc.stdout

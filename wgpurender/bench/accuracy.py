@@ -17,8 +17,9 @@ from __future__ import annotations
 from pathlib import Path
 
 SCENE_FILE = Path("assets/scenes/final.toml")
-QUICK = {"size": (160, 120), "frames": 3, "warmup": 1, "rounds": 1}
-FULL = {"size": (400, 300), "frames": 18, "warmup": 2, "rounds": 3}
+# The base size is the adapter's (AdapterFacts.accuracy_size: core/plan/bench_size.py), unless --size gives one.
+QUICK = {"preset": "quick", "frames": 3, "warmup": 1, "rounds": 1}
+FULL = {"preset": "full", "frames": 18, "warmup": 2, "rounds": 3}
 
 
 def run(args) -> int:
@@ -47,10 +48,12 @@ def run(args) -> int:
     if args.truth == "analytic":
         return _run_analytic(args, preset, frames)
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
-    config = AccuracyConfig(scene_path=scene, base_size=args.size or preset["size"], frames=frames,
-                            warmup=preset["warmup"], rounds=rounds, knobs=knobs, combinations=args.combinations,
+    ctx = get_context(args.backend)
+    size = args.size or ctx.facts().accuracy_size(preset["preset"])
+    config = AccuracyConfig(scene_path=scene, base_size=size, frames=frames, warmup=preset["warmup"], rounds=rounds,
+                            knobs=knobs, combinations=args.combinations,
                             out_dir=Path(args.out), command=command_line())
-    result = run_accuracy(config, get_context(args.backend))
+    result = run_accuracy(config, ctx)
     for kind, path in write_reports(result, config.out_dir).items():
         print(f"{kind}: {path}")
     return 0
@@ -65,12 +68,29 @@ def _run_analytic(args, preset: dict, frames: int) -> int:
     from wgpurender.wgpu_path.device.context import get_context
 
     ctx = get_context(args.backend)
-    size = args.size or preset["size"]
+    size = args.size or ctx.facts().accuracy_size(preset["preset"])
     rows = run_analytic(ctx, Path(args.out), size, frames, preset["warmup"],
                         progress=lambda text: print(text, file=sys.stderr, flush=True))
     header = [f"# bench accuracy --truth analytic ({size[0]}x{size[1]})", "",
               f"- adapter: {ctx.describe()}", f"- date: {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC",
               f"- command: `{command_line()}`", f"- timed frames per setting: {frames} (median, p10..p90)"]
-    for kind, path in write_analytic_reports(rows, Path(args.out), header).items():
+    from wgpurender.bench.accuracy_run import noise_floor
+
+    reports = write_analytic_reports(rows, Path(args.out), header, noise_floor(ctx, frames))
+    reports.update(_run_shimmer(ctx, Path(args.out), size, reports["markdown"]))
+    for kind, path in reports.items():
         print(f"{kind}: {path}")
     return 0
+
+
+def _run_shimmer(ctx, out: Path, size: tuple[int, int], markdown_path: Path) -> dict[str, Path]:
+    """The temporal measure (accuracy_shimmer.py): its CSV, and its table appended to the analytic markdown."""
+    import sys
+
+    from wgpurender.bench import accuracy_shimmer as shimmer
+
+    rows = shimmer.run_shimmer(ctx, out / "analytic_scenes", size,
+                               progress=lambda text: print(text, file=sys.stderr, flush=True))
+    with markdown_path.open("a") as f:
+        f.write("\n".join(shimmer.markdown(rows, shimmer.FRAMES, size)) + "\n")
+    return {"shimmer csv": shimmer.write_shimmer_csv(rows, out / "accuracy_shimmer.csv")}

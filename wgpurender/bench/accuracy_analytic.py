@@ -89,16 +89,23 @@ def _triangle_obj(path: Path, world: np.ndarray) -> Path:
     return write_obj(path, mesh)
 
 
+def triangle_shapes(size: tuple[int, int]) -> list[tuple[np.ndarray, np.ndarray, tuple]]:
+    """Every flat shape of the AA scene: (world vertices as the OBJ holds them, pixel vertices, linear colour)."""
+    w, h = size
+    out = []
+    for points, colour in TRIANGLES + [(s, (0.95, 0.95, 0.95)) for s in SUBPIXEL]:
+        world = np.round(_to_world(np.array(points), size), 6)  # what the OBJ holds (6 decimals)
+        px = np.stack([(world[:, 0] * h / w + 1) / 2 * w, (1 - world[:, 1]) / 2 * h], axis=-1)
+        out.append((world, px, colour))
+    return out
+
+
 def write_triangles_scene(folder: Path, size: tuple[int, int], fxaa: bool) -> tuple[Path, np.ndarray]:
     """The AA scene file, and its exact linear image at ``size``."""
     folder.mkdir(parents=True, exist_ok=True)
     models, coverages, colours = [], [], []
-    shapes = TRIANGLES + [(s, (0.95, 0.95, 0.95)) for s in SUBPIXEL]
-    for i, (points, colour) in enumerate(shapes):
-        world = np.round(_to_world(np.array(points), size), 6)  # what the OBJ holds (6 decimals)
+    for i, (world, px, colour) in enumerate(triangle_shapes(size)):
         obj = _triangle_obj(folder / f"tri{i}.obj", world)
-        w, h = size
-        px = np.stack([(world[:, 0] * h / w + 1) / 2 * w, (1 - world[:, 1]) / 2 * h], axis=-1)
         coverages.append(truth.polygon_coverage(px, size))
         colours.append(colour)
         material = f"{{ albedo_color = {list(colour)}, unlit = true }}"
@@ -167,8 +174,9 @@ def _timed(ctx: GPUContext, scene_path: Path, settings: Settings, size, knobs, f
 
 
 def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: int, warmup: int,
-                 progress=print) -> list[TruthRow]:
-    """Render, time and score the three sections; returns the rows in report order."""
+                 progress=print, ibl: bool = True) -> list[TruthRow]:
+    """Render, time and score the sections (``ibl``: with image-based lighting's, bench/accuracy_ibl.py);
+    returns the rows in report order."""
     rows: list[TruthRow] = []
     work = out_dir / "analytic_scenes"
     plain, aa_truth = write_triangles_scene(work, size, fxaa=False)
@@ -189,12 +197,19 @@ def run_analytic(ctx: GPUContext, out_dir: Path, size: tuple[int, int], frames: 
         t = _timed(ctx, depth_scene, Settings(msaa=1, depth=level), size, ("depth",), frames, warmup)
         rows.append(_score("depth", level, t, exact))
         progress(f"depth {level}: FLIP {rows[-1].flip:.4f}")
-    from wgpurender.bench import accuracy_fidelity
+    from wgpurender.bench import accuracy_fidelity, accuracy_hdr
 
-    for row in accuracy_fidelity.run_mip_chain(ctx, frames, TruthRow) + accuracy_fidelity.run_shading(
-            ctx, work, size, frames, warmup, _timed, _score):
+    for row in (accuracy_fidelity.run_mip_chain(ctx, frames, TruthRow)
+                + accuracy_fidelity.run_shading(ctx, work, size, frames, warmup, _timed, _score)
+                + accuracy_hdr.run_hdr(ctx, work, size, frames, warmup, _timed, _score)):
         rows.append(row)
         progress(f"{row.section} {row.setting}: mean linear error {row.linear_mae:.5f}")
+    if ibl:
+        from wgpurender.bench.accuracy_ibl import run_ibl
+
+        for row in run_ibl(ctx, frames, TruthRow):
+            rows.append(row)
+            progress(f"{row.section} {row.setting}: mean linear error {row.linear_mae:.5f} ({row.note})")
     return mark_pareto(rows)
 
 
@@ -210,7 +225,7 @@ def mark_pareto(rows: list[TruthRow]) -> list[TruthRow]:
 
 
 CSV_COLUMNS = ("section", "setting", "render_size", "flip_mean", "psnr_db", "linear_mae", "gpu_ms_median",
-               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames", "pareto")
+               "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "frames", "pareto", "timing")
 
 
 def _num(v: float | None, digits: int) -> str:
@@ -219,8 +234,13 @@ def _num(v: float | None, digits: int) -> str:
     return "inf" if math.isinf(v) else f"{v:.{digits}f}"
 
 
-def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str]) -> dict[str, Path]:
-    """accuracy_analytic.csv and accuracy_analytic.md in ``out_dir``."""
+def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str], floor=None) -> dict[str, Path]:
+    """accuracy_analytic.csv and accuracy_analytic.md in ``out_dir``; ``floor``: the run's accuracy_floor.Floor."""
+    from wgpurender.bench.accuracy_floor import BELOW
+
+    def below(r: TruthRow) -> bool:
+        return floor is not None and floor.below(r.m.gpu.median if r.m.gpu else None, r.m.wall.median)
+
     out_dir.mkdir(parents=True, exist_ok=True)
     csv_path, md_path = out_dir / "accuracy_analytic.csv", out_dir / "accuracy_analytic.md"
     with csv_path.open("w", newline="") as f:
@@ -231,7 +251,8 @@ def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str
             writer.writerow([r.section, r.setting, f"{r.m.render_size[0]}x{r.m.render_size[1]}", _num(r.flip, 5),
                              _num(r.psnr, 2), _num(r.linear_mae, 5), _num(g.median if g else None, 3),
                              _num(g.p10 if g else None, 3), _num(g.p90 if g else None, 3),
-                             _num(r.m.wall.median, 3), r.m.wall.n, "yes" if r.pareto else ""])
+                             _num(r.m.wall.median, 3), r.m.wall.n, "yes" if r.pareto else "",
+                             BELOW if below(r) else ""])
     lines = [*header, "", "Pareto: within each knob, no other setting is both faster and closer to the truth (time: "
              "GPU median where timestamps exist, else wall; error: mean absolute linear error).", "",
              "| knob | setting | render | FLIP | PSNR dB | mean abs. error (linear) | GPU ms | wall ms | Pareto |",
@@ -239,8 +260,13 @@ def write_analytic_reports(rows: list[TruthRow], out_dir: Path, header: list[str
     for r in rows:
         g = r.m.gpu
         gpu = f"{g.median:.2f} ({g.p10:.2f}..{g.p90:.2f})" if g else "-"
+        wall = f"{r.m.wall.median:.2f}"
+        if below(r):  # the time the front weighs (GPU where measured) says "below", the other keeps its number
+            gpu, wall = (BELOW, wall) if g else (gpu, BELOW)
         lines.append(f"| {r.section} | {r.setting} | {r.m.render_size[0]}x{r.m.render_size[1]} | {r.flip:.4f} | "
-                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {r.m.wall.median:.2f} | "
+                     f"{_num(r.psnr, 2)} | {r.linear_mae:.5f} | {gpu} | {wall} | "
                      f"{'**front**' if r.pareto else ''} |")
+    if floor is not None:
+        lines += ["", f"- {floor.describe()}"]
     md_path.write_text("\n".join(lines) + "\n")
     return {"csv": csv_path, "markdown": md_path}

@@ -92,7 +92,7 @@ def run_mip_chain(ctx: GPUContext, frames: int, row) -> list:
     return rows
 
 
-def plane_truth(size: tuple[int, int]) -> np.ndarray:
+def plane_truth(size: tuple[int, int], intensity: float = PLANE["intensity"]) -> np.ndarray:
     """The lit plane's linear radiance at every pixel centre, in float64 (scene.wgsl's documented model)."""
     w, h = size
     d = 1.0 / np.tan(np.radians(PLANE["fov"]) / 2.0)
@@ -111,11 +111,12 @@ def plane_truth(size: tuple[int, int]) -> np.ndarray:
     n_dot_l = np.maximum(l_dir @ n, 0.0)
     spec = PLANE["specular"] * (s + 8.0) / 8.0 * np.maximum(half @ n, 0.0) ** s
     albedo, ambient = np.asarray(PLANE["albedo"]), np.asarray(PLANE["ambient"])
-    irradiance = PLANE["intensity"] / d2
+    irradiance = intensity / d2
     return ambient * albedo + (irradiance * n_dot_l)[..., None] * (albedo + spec[..., None])
 
 
-def write_plane_scene(folder: Path, size: tuple[int, int]) -> Path:
+def write_plane_scene(folder: Path, size: tuple[int, int], intensity: float = PLANE["intensity"],
+                      post: str = 'effect = "vignette"\nstrength = 0.0', name: str = "plane") -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     w, h = size
     a = w / h
@@ -126,10 +127,10 @@ def write_plane_scene(folder: Path, size: tuple[int, int]) -> Path:
             f"[camera]\neye = [0.0, 0.0, {float(d)!r}]\ntarget = [0.0, 0.0, 0.0]\nfov_y = {PLANE['fov']}\n\n"
             f'[[models]]\npath = "plane.obj"\nmaterial = {{ albedo_color = {list(PLANE["albedo"])}, '
             f'roughness = {PLANE["roughness"]} }}\n\n'
-            f'[[lights]]\ntype = "point"\nposition = {list(PLANE["light"])}\nintensity = {PLANE["intensity"]}\n\n'
+            f'[[lights]]\ntype = "point"\nposition = {list(PLANE["light"])}\nintensity = {intensity}\n\n'
             f"[render]\nsize = [{w}, {h}]\nmsaa = 1\nhdr = true\nclear_color = [0.0, 0.0, 0.0, 1.0]\n"
-            f'output_format = "rgba8unorm-srgb"\n\n[[post]]\neffect = "vignette"\nstrength = 0.0\n')
-    path = folder / "plane.toml"
+            f'output_format = "rgba8unorm-srgb"\n\n[[post]]\n{post}\n')
+    path = folder / f"{name}.toml"
     path.write_text(text)
     return path
 

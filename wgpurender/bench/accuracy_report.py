@@ -6,6 +6,7 @@ import csv
 import math
 from pathlib import Path
 
+from wgpurender.bench.accuracy_floor import BELOW
 from wgpurender.bench.accuracy_knobs import GROUND_TRUTH
 from wgpurender.bench.accuracy_run import DEPTH_STRESS, AccuracyRun, Row, unique_rows
 from wgpurender.bench.report import have_matplotlib, markdown_table
@@ -14,7 +15,7 @@ CSV_COLUMNS = (
     "scene", "sweep", "level", "msaa", "ss", "format", "filter", "depth", "render_size",
     "flip_mean", "psnr_db", "flip_vs_knob_top", "psnr_vs_knob_top", "wrong_pixels",
     "gpu_ms_median", "gpu_ms_p10", "gpu_ms_p90", "wall_ms_median", "wall_ms_p10", "wall_ms_p90", "frames",
-    "pareto", "note",
+    "pareto", "timing", "note",
 )
 PLOT_NAME = "accuracy_pareto.png"
 
@@ -40,7 +41,7 @@ def csv_row(r: Row) -> dict:
         "gpu_ms_median": _num(gpu.median if gpu else None, 3), "gpu_ms_p10": _num(gpu.p10 if gpu else None, 3),
         "gpu_ms_p90": _num(gpu.p90 if gpu else None, 3), "wall_ms_median": _num(m.wall.median, 3),
         "wall_ms_p10": _num(m.wall.p10, 3), "wall_ms_p90": _num(m.wall.p90, 3), "frames": m.wall.n,
-        "pareto": "yes" if r.pareto else "", "note": r.case.note,
+        "pareto": "yes" if r.pareto else "", "timing": BELOW if r.below_floor else "", "note": r.case.note,
     }
 
 
@@ -54,11 +55,19 @@ def write_csv(run: AccuracyRun, path: Path) -> Path:
     return path
 
 
-def _ms(stats) -> str:
+def _ms(stats, below: bool = False) -> str:
     if stats is None:
         return "-"
+    if below:
+        return BELOW
     fmt = (lambda v: f"{v:.1f}") if stats.median < 1000 else (lambda v: f"{v:.0f}")
     return f"{fmt(stats.median)} ({fmt(stats.p10)}..{fmt(stats.p90)})"
+
+
+def _times(r: Row) -> tuple[str, str]:
+    """GPU and wall cells; under the noise floor the time the front weighs (GPU where measured) says so."""
+    below = r.below_floor
+    return _ms(r.m.gpu, below), _ms(r.m.wall, below and r.m.gpu is None)
 
 
 def _psnr(v: float) -> str:
@@ -95,12 +104,12 @@ def markdown(run: AccuracyRun, plot: Path | None) -> str:
               "Pareto")
     body = [(r.case.sweep, r.case.level, r.case.settings.label() + (f" ({r.case.note})" if r.case.note else ""),
              f"{r.m.render_size[0]}x{r.m.render_size[1]}", _flip(r.flip), _psnr(r.psnr), _flip(r.flip_isolated),
-             _ms(r.m.gpu), _ms(r.m.wall), "**front**" if r.pareto else "") for r in final]
+             *_times(r), "**front**" if r.pareto else "") for r in final]
     lines += ["## Final scene", "", markdown_table(header, body), ""]
     stress = [r for r in run.rows if r.case.scene == DEPTH_STRESS]
     if stress:
         n = w * h
-        body = [(r.case.level, f"{r.wrong_pixels} / {n}", _flip(r.flip), _psnr(r.psnr), _ms(r.m.gpu), _ms(r.m.wall))
+        body = [(r.case.level, f"{r.wrong_pixels} / {n}", _flip(r.flip), _psnr(r.psnr), *_times(r))
                 for r in stress]
         lines += ["## Depth stress (near 0.01, far 1e5, quads 0.05% apart at 1e4, far one drawn first)", "",
                   markdown_table(("depth", "wrong pixels", "FLIP", "PSNR dB", "GPU ms", "wall ms"), body), ""]
@@ -111,7 +120,7 @@ def markdown(run: AccuracyRun, plot: Path | None) -> str:
                   ""]
     lines.append(f"![error against time]({plot.name})" if plot else
                  "Plot skipped: matplotlib is not installed (pip install 'wgpurender[bench]').")
-    lines += [f"- {note}" for note in run.notes]
+    lines += [f"- {note}" for note in run.notes + ([run.floor.describe()] if run.floor else [])]
     return "\n".join(lines) + "\n"
 
 

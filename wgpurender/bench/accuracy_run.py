@@ -26,6 +26,7 @@ import numpy as np
 
 from wgpurender.bench.accuracy_depth import analytic_image, write_depth_scene
 from wgpurender.bench.accuracy_downsample import downsample_srgb8
+from wgpurender.bench.accuracy_floor import EMPTY_SCENE, Floor
 from wgpurender.bench.accuracy_knobs import (
     DEPTH_LEVELS,
     FILTER_LEVELS,
@@ -113,6 +114,7 @@ class Row:
     psnr_isolated: float = float("nan")
     wrong_pixels: int | None = None
     pareto: bool = False
+    below_floor: bool = False  # its time is under the run's noise floor (accuracy_floor.py)
 
     @property
     def time_ms(self) -> float:
@@ -204,6 +206,7 @@ class AccuracyRun:
     rows: list[Row]
     seconds: float
     notes: list[str] = field(default_factory=list)
+    floor: Floor | None = None
 
 
 def run_accuracy(config: AccuracyConfig, ctx: GPUContext, progress_stream=None) -> AccuracyRun:
@@ -239,12 +242,30 @@ def run_accuracy(config: AccuracyConfig, ctx: GPUContext, progress_stream=None) 
             progress.step(f"round {r + 1}/{rounds} {scene_name}: {what} at {size[0]}x{size[1]}: {took:.1f} ms")
     measured = {key: t.measurement() for key, t in timed.items()}
     rows = [score(c, measured, config.base_size) for c in cases]
+    floor = noise_floor(ctx, config.frames)
+    for r in rows:
+        r.below_floor = floor.below(r.m.gpu.median if r.m.gpu else None, r.m.wall.median)
     final_rows = unique_rows([r for r in rows if r.case.scene == FINAL and r.case.sweep != "ground truth"])
     for i in pareto_front([(r.time_ms, r.flip) for r in final_rows]):
         for r in rows:
             if r.case.key == final_rows[i].case.key:
                 r.pareto = True
-    return AccuracyRun(config, ctx.describe(), rows, time.perf_counter() - start)
+    return AccuracyRun(config, ctx.describe(), rows, time.perf_counter() - start, floor=floor)
+
+
+def noise_floor(ctx: GPUContext, frames: int) -> Floor:
+    """The run's noise floor (accuracy_floor.py), its empty scene in a temporary folder (nothing left in --out)."""
+    import tempfile
+
+    from wgpurender.core.scene import load_scene
+
+    with tempfile.TemporaryDirectory(prefix="wgpurender-floor-") as work:
+        path = Path(work) / "empty.toml"
+        path.write_text(EMPTY_SCENE)
+        t = Timed(ctx, load_scene(path), Settings(msaa=1), (8, 8), ())
+    t.run(max(frames, 3), warmup=1)
+    m = t.measurement()
+    return Floor(m.gpu.median if m.gpu else None, m.wall.median)
 
 
 def unique_rows(rows: list[Row]) -> list[Row]:

@@ -78,9 +78,16 @@ def run(args) -> int:
     return 0
 
 
+def _sizes(preset: str) -> str:
+    from wgpurender.core.plan.bench_size import HARDWARE, SOFTWARE
+
+    (sw, sh), (hw, hh) = SOFTWARE[preset], HARDWARE[preset]
+    return f"lavapipe {sw}x{sh}, a GPU {hw}x{hh}"
+
+
 def _register_accuracy(suites) -> None:
     """``wgpurender bench accuracy``: wgpurender/bench/accuracy.py runs it."""
-    from wgpurender.bench.accuracy import FULL, QUICK, SCENE_FILE, run
+    from wgpurender.bench.accuracy import QUICK, SCENE_FILE, run
     from wgpurender.bench.accuracy_knobs import KNOBS
 
     p = suites.add_parser(
@@ -93,11 +100,11 @@ def _register_accuracy(suites) -> None:
     p.add_argument("scene", nargs="?", type=Path, default=SCENE_FILE, metavar="SCENE",
                    help=f"scene file with a post chain, or a bundled scene's name (default {SCENE_FILE})")
     p.add_argument("--quick", action="store_true",
-                   help=f"base size {QUICK['size'][0]}x{QUICK['size'][1]}, {QUICK['frames']} timed frames, 1 round")
+                   help=f"the adapter's quick base size ({_sizes('quick')}), {QUICK['frames']} timed frames, 1 round")
     p.add_argument("--out", type=Path, default=Path("bench-results/accuracy"), metavar="DIR",
                    help="where results go (default ./bench-results/accuracy)")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
-                   help=f"base size (default {FULL['size'][0]}x{FULL['size'][1]}; the ground truth renders 8x it)")
+                   help=f"base size (default the adapter's: {_sizes('full')}; the ground truth renders 8x it)")
     p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per setting")
     p.add_argument("--rounds", type=int, default=None, metavar="R",
                    help="split the timed frames over R passes through all settings (default 3; --quick 1)")

@@ -30,7 +30,8 @@ SCENE_DIR = scene_dir()
 SCENE_REFERENCE_SIZE = (320, 240)
 # reference name -> scene file in assets/scenes/ (only scenes the raw path can draw: per-pixel post effects)
 SCENE_REFERENCES = {"scene_final_subpass": "final_subpass.toml", "scene_unlit": "unlit.toml",
-                    "scene_gltf_features": "gltf_features.toml"}
+                    "scene_gltf_features": "gltf_features.toml",
+                    "scene_metal_rough_spheres": "metal_rough_spheres.toml"}
 
 
 def reference_path(stage: str, directory: Path = REFERENCE_DIR) -> Path:

@@ -40,8 +40,13 @@ def render_reference(
         from wgpurender.raw_path.scene import render_scene_reference
 
         return render_scene_reference(stage, size=size, fmt=fmt, msaa=msaa, t=t, anisotropy=anisotropy)
-    cls = get_ref_stage(stage)
-    size = size or (800, 600)
+    return render_stage_class(get_ref_stage(stage), size or (800, 600), fmt, msaa, t)
+
+
+def render_stage_class(cls: type, size: tuple[int, int], fmt: str | None = None, msaa: int | None = None,
+                       t: float = 0.0) -> np.ndarray:
+    """Render one RefStage subclass (a registered one, or a learner's: wgpurender/exercises/) headless."""
+    stage = cls.name
     fmt = fmt or cls.default_format
     if fmt not in FORMATS:
         raise UserError(f"unsupported colour format {fmt!r}: choose one of {', '.join(FORMATS)}")

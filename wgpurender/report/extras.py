@@ -27,6 +27,9 @@ SCENE = scene_dir() / "final.toml"
 SIZE = (128, 96)  # small: the ground truth renders 8x it
 FRAMES, WARMUP = 2, 1
 PLOT = "accuracy_pareto.png"
+# The shimmer cases, small and few (a report build runs in CI on 2 cores): the settings whose order teaches.
+SHIMMER_SIZE, SHIMMER_FRAMES = (64, 48), 4
+SHIMMER_EDGES, SHIMMER_PLANE = ("none", "msaa4"), ("nearest", "linear", "trilinear")
 
 
 @dataclass(frozen=True)
@@ -51,6 +54,9 @@ class Measured:
     hard_cases: list[Point] = field(default_factory=list)
     plot: str | None = None  # the plot's file name in the site; None without matplotlib
     timer: str = "GPU"
+    shimmer: list = field(default_factory=list)  # bench/accuracy_shimmer.ShimmerRow
+    shimmer_size: tuple[int, int] = SHIMMER_SIZE
+    shimmer_frames: int = SHIMMER_FRAMES
 
 
 def measure(ctx: GPUContext, site: Path, log: Callable[[str], None] = print, size: tuple[int, int] = SIZE
@@ -78,9 +84,14 @@ def measure(ctx: GPUContext, site: Path, log: Callable[[str], None] = print, siz
             write_plot(run, site / PLOT)
             out.plot = PLOT
         log("hard cases: anti-aliasing, texture filtering and depth against exact answers")
-        truth = run_analytic(ctx, Path(work), size, FRAMES, WARMUP, progress=lambda _text: None)
+        truth = run_analytic(ctx, Path(work), size, FRAMES, WARMUP, progress=lambda _text: None, ibl=False)
         out.hard_cases = [Point(r.section, r.setting, r.flip, r.psnr,
                                 r.m.gpu.median if r.m.gpu is not None else r.m.wall.median) for r in truth]
+        log("shimmer: edges and a minified plane under slow motion against their moving truths")
+        from wgpurender.bench.accuracy_shimmer import run_shimmer
+
+        out.shimmer = run_shimmer(ctx, Path(work), SHIMMER_SIZE, SHIMMER_FRAMES, lambda _text: None,
+                                  SHIMMER_EDGES, SHIMMER_PLANE)
     out.seconds = time.perf_counter() - start
     return out
 

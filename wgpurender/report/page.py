@@ -9,6 +9,7 @@ import html
 from collections.abc import Sequence
 
 from wgpurender.concepts import Concept
+from wgpurender.report import teaching
 from wgpurender.report.code import style_css
 from wgpurender.report.concept_rows import locate
 from wgpurender.report.steps import HEATMAP_GAIN, Step
@@ -77,7 +78,7 @@ def page(title: str, meta: str, steps: Sequence[Step], images: dict[str, dict[st
 <body>
 <h1>{e(title)}</h1>
 <p class="meta">{meta}</p>
-<nav>{nav} <a href="#accuracy">accuracy</a> <a href="#hard-cases">hard cases</a></nav>
+<nav>{nav} <a href="#accuracy">accuracy</a> <a href="#hard-cases">hard cases</a> <a href="#teaching">knobs</a></nav>
 {body}
 {closing}
 </body>
@@ -107,12 +108,21 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 <p><strong>{e(step.summary)}</strong></p>
 {words}
 {f'<p class="links">{links}</p>' if links else ""}
+{_try_it(step)}
 {shots}
 {_live(files)}
 {_code(step)}
 {plan}
 {_concepts(step.concepts)}
 </section>"""
+
+
+def _try_it(step: Step) -> str:
+    """The learner's way in: the step's exercise (docs/exercises.md), when it has one."""
+    from wgpurender.exercises.catalogue import exercise_command
+
+    command = exercise_command(step.key)
+    return f'<p class="try">try it: <code>{e(command)}</code> (docs/exercises.md)</p>' if command else ""
 
 
 def _live(files: dict[str, str]) -> str:
@@ -237,7 +247,7 @@ def closing(measured) -> str:
     if measured is None:
         return ('<section id="accuracy"><h2>Accuracy: error against cost</h2><p class="note">Not measured in this '
                 'build (accuracy=False).</p></section><section id="hard-cases"><h2>Hard cases against exact answers'
-                '</h2><p class="note">Not measured in this build.</p></section>')
+                '</h2><p class="note">Not measured in this build.</p></section>' + teaching.section(None))
     m = measured
     source = (f"Measured in this run ({e(m.when)}, {e(m.adapter)}, {m.size[0]}x{m.size[1]}, a quick variant: "
               f"{m.seconds:.0f} s). Full runs with more frames: docs/accuracy.md (<code>wgpurender bench accuracy"
@@ -263,6 +273,7 @@ def closing(measured) -> str:
     parts.append(_points_table("hard-cases", ("case", "setting", "FLIP", "PSNR dB", f"{m.timer} ms"),
                                [(p, None) for p in m.hard_cases], number))
     parts.append("</section>")
+    parts.append(teaching.section(m))
     return "\n".join(parts)
 
 

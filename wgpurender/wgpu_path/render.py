@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
+
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.plan import gpu_memory
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
-from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frames
+from wgpurender.wgpu_path.device.frame_loop import Frame, RenderResult, run_frames
 from wgpurender.wgpu_path.device.targets import check_format, create_target
 from wgpurender.wgpu_path.stages import get_stage
+from wgpurender.wgpu_path.stages.base import Stage
 
-__all__ = ["RenderResult", "render_any", "render_stage"]
+__all__ = ["RenderResult", "render_any", "render_stage", "render_stage_class"]
 
 
 def render_stage(
@@ -28,7 +31,15 @@ def render_stage(
     reported time is the last frame's.
     """
     ctx = ctx or get_context()
-    cls = get_stage(name)
+    frame = next(render_stage_class(get_stage(name), size, fmt, msaa, (t,), ctx, frames))
+    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
+
+
+def render_stage_class(cls: type[Stage], size: tuple[int, int], fmt: str | None, msaa: int | None,
+                       times: Sequence[float], ctx: GPUContext, frames: int = 1) -> Iterator[Frame]:
+    """One stage object of ``cls`` (a registered stage, or a learner's: wgpurender/exercises/), set up once, its
+    frame at each of ``times`` (``frames`` frames each, the last kept)."""
+    name = cls.name
     fmt = check_format(fmt or cls.default_format)
     stage = cls(ctx, fmt, msaa)
     gpu_memory.check_dimensions([size], ctx.limit("max-texture-dimension-2d"), f"stage {name}")
@@ -36,8 +47,8 @@ def render_stage(
                             f"stage {name} at {size[0]}x{size[1]}, msaa {stage.msaa}")
     stage.resize(size)
     target = create_target(ctx, size, fmt)
-    frame = run_frames(ctx, stage.record, target, frames, t, label=f"{name}-frame")
-    return RenderResult(pixels=frame.pixels, frame_ms=frame.frame_ms, adapter=ctx.describe())
+    for t in times:
+        yield run_frames(ctx, stage.record, target, frames, t, label=f"{name}-frame")
 
 
 def render_any(

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.shading import AMBIENT, material_factors
-from wgpurender.core.plan import file_materials
+from wgpurender.core.plan import file_materials, shading_models
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
     Draw,
@@ -23,14 +23,16 @@ from wgpurender.core.plan.model import (
 )
 from wgpurender.core.plan.textures import TextureTable, material_sampler
 from wgpurender.core.scene import Material, Model, Scene
+from wgpurender.core.scene.gltf_lights import light_note
 
 
 def material_label(m: Material) -> str:
     return f"material '{m.name}'" if m.origin.startswith("[materials.") else m.origin
 
 
-def _lights_text(lights: list[int]) -> str:
-    return ", ".join(f"lights[{i}]" for i in lights)
+def _lights_text(lights: list) -> str:
+    """Light labels (``lights[i]``, or a model file's light) as one list; indices are scene lights."""
+    return ", ".join(f"lights[{i}]" if isinstance(i, int) else str(i) for i in lights)
 
 
 def material_variant(material: Material, directional: list[int], point: list[int], srgb_output: str | None,
@@ -69,6 +71,7 @@ def material_variant(material: Material, directional: list[int], point: list[int
         else:
             notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
     reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
+    reasons.extend(shading_models.model_reasons(material, label, lit, "roughness_map" in maps, notes))
     if srgb_output:
         reasons.append(("srgb_output", srgb_output))
     counts = []
@@ -139,8 +142,9 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
                anisotropy_adapter: str | None, notes: list[str]) -> SceneDraws:
     """One draw per model and material; a material's notes are added the first time it is drawn. Alpha-blended
     draws (glTF alphaMode BLEND) go last, in scene order among themselves: not sorted by depth."""
-    directional = [light.index for light in scene.lights if light.type == "directional"]
-    point = [light.index for light in scene.lights if light.type == "point"]
+    directional = [light.label for light in scene.lights if light.type == "directional"]
+    point = [light.label for light in scene.lights if light.type == "point"]
+    notes.extend(light_note(light) for light in scene.lights if light.origin)
     out = SceneDraws()
     seen_materials: set[int] = set()
     for model in scene.models:

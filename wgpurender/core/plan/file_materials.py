@@ -8,6 +8,7 @@ triangles use (``Draw.part``); every other model draws once with its scene mater
 
 from __future__ import annotations
 
+from wgpurender.core.plan.shading_models import metallic_factor
 from wgpurender.core.scene import Material, Model
 from wgpurender.core.scene.model import ModelMaterials
 
@@ -72,7 +73,7 @@ def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
         options["occlusion_strength"] = material.occlusion_strength
     if "emissive" in variant_flags:
         options["emissive"] = tuple(material.emissive_color)
-    return options
+    return options | metallic_factor(material, variant_flags)
 
 
 def texture_samplers(material: Material, sampled: tuple[tuple[str, object], ...], spec) -> tuple:

@@ -260,6 +260,12 @@ class AdapterFacts:
         path's facts of one device are equal), its name and the API under it ("Vulkan", "OpenGL", ...)."""
         return cls(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend)
 
+    def accuracy_size(self, preset: str) -> tuple[int, int]:
+        """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""
+        from wgpurender.core.plan.bench_size import accuracy_size
+
+        return accuracy_size(self.adapter_type, preset)
+
 
 @dataclass(frozen=True)
 class Knobs:

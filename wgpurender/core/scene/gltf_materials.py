@@ -6,7 +6,7 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 
 - ``baseColorFactor`` x ``baseColorTexture`` (sRGB) -> base colour (x ``COLOR_0`` when the primitive has one);
 - ``normalTexture`` with its ``scale`` -> normal map and its strength;
-- ``roughnessFactor`` x the metallic-roughness texture's G channel -> the Blinn-Phong exponent's roughness;
+- ``roughnessFactor`` x the metallic-roughness texture's G channel -> the roughness;
 - ``doubleSided`` -> no culling, back faces lit with the normal turned around;
 - ``alphaMode`` OPAQUE / MASK (``alphaCutoff``: fragments below are discarded) / BLEND (alpha blending, drawn
   after the opaque draws, not sorted by depth);
@@ -16,8 +16,12 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 - ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
 - ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
 
-Ignored, and listed by ``--explain``: metalness (``metallicFactor``, the texture's B channel: Blinn-Phong has no
-metals), other texture coordinate sets, ``KHR_texture_transform``, and every other extension by name.
+- a lit material -> the glTF metallic-roughness model (``shading_model = "pbr"``, shaders_wgsl/pbr.wgsl: the
+  spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
+  course's scene materials and primitives without a file material keep Blinn-Phong.
+
+Ignored, and listed by ``--explain``: other texture coordinate sets, ``KHR_texture_transform``, and every other
+extension by name.
 """
 
 from __future__ import annotations
@@ -46,7 +50,7 @@ def embedded_image_path(model: Path, image: int) -> Path:
     return Path(f"{model}{EMBEDDED_MARK}{image}]")
 
 
-def _document(path: str) -> gltf_io.GltfDocument:
+def document(path: str) -> gltf_io.GltfDocument:
     """The parsed model, read once while the file is unchanged (the plan asks each embedded image's size, the
     upload its pixels: one read of a large GLB each, not one per image)."""
     stat = os.stat(path)
@@ -66,7 +70,7 @@ def embedded_image_bytes(path: Path) -> bytes | None:
     model, _, index = text.rpartition(EMBEDDED_MARK)
     if not os.path.isfile(model):
         return None
-    doc = _document(model)
+    doc = document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io.image_source(doc, image)
     return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
@@ -125,7 +129,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
                            f"TEXCOORD_{chosen} (a mesh carries one set of texture coordinates)")
         if "KHR_texture_transform" in info.get("extensions", {}):
             ignored.append(f"{name}: {keys[-1]} KHR_texture_transform: ignored (drawn untransformed)")
-    _note_ignored(mat, pbr, name, ignored)
+    _note_ignored(mat, name, ignored)
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
     normal = _info(mat, ("normalTexture",)) or {}
@@ -145,14 +149,11 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         part=index, written=tuple((f, str(p.name)) for f, p in maps.items()), emissive_color=emissive,
         emissive_map=maps.get("emissive_map") if not unlit else None,
         occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
+        shading_model="blinn-phong" if unlit else "pbr", metallic=float(pbr.get("metallicFactor", 1.0)),
     )
 
 
-def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
-    if pbr.get("metallicFactor", 1.0) != 0.0 or "metallicRoughnessTexture" in pbr:
-        ignored.append(f"{name}: metalness (metallicFactor {pbr.get('metallicFactor', 1.0):g}, the metallic-"
-                       "roughness texture's B channel): ignored (the course's Blinn-Phong has no metals; drawn as "
-                       "a dielectric)")
+def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
     for ext in mat.get("extensions", {}):
         if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
             ignored.append(f"{name}: {ext}: ignored")
@@ -160,7 +161,7 @@ def _note_ignored(mat: dict, pbr: dict, name: str, ignored: list[str]) -> None:
 
 def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
-    doc = gltf_io.read_document(path)
+    doc = document(str(path))
     used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
@@ -180,7 +181,7 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
     for m in materials:
         taken.append(_taken_text(m))
     for ext in doc.json.get("extensionsUsed", []):
-        if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
+        if ext not in SUPPORTED_MATERIAL_EXTENSIONS and ext != "KHR_lights_punctual":  # lights: gltf_lights.py
             ignored.append(f"extensionsUsed {ext}: ignored")
     return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
 
@@ -207,5 +208,5 @@ def _taken_text(m: Material) -> str:
     if m.unlit:
         items.append("KHR_materials_unlit")
     elif m.part is not None and m.part >= 0:
-        items.append(f"roughnessFactor {m.roughness:g}")
+        items.append(f"metallicFactor {m.metallic:g}, roughnessFactor {m.roughness:g}")
     return f"{m.origin}: " + ", ".join(items)

@@ -35,7 +35,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     for name, body in mats.items():
         materials[name] = _material(c, body, ("materials", name), name, f"[materials.{name}]")
     description = data.get("description", "")
-    return Scene(
+    scene = Scene(
         path=path,
         camera=_camera(c, data["camera"]),
         models=tuple(dataclasses.replace(m, file_materials=read_file_materials(m))
@@ -46,6 +46,11 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
         post=_post(c, data.get("post", [])),
         description=c.string(description, ("description",)),
     )
+    if not any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
+        return scene
+    from wgpurender.core.scene.gltf_lights import scene_lights  # imported only for glTF models
+
+    return dataclasses.replace(scene, lights=scene_lights(scene.lights, scene.models, path))  # + KHR lights
 
 
 def load_scene(path: str | Path) -> Scene:

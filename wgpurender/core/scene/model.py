@@ -122,6 +122,10 @@ class Material:
     emissive_map: Path | None = None  # sRGB, multiplies emissive_color (glTF emissiveTexture)
     occlusion_map: Path | None = None  # linear, R channel scales the ambient term (glTF occlusionTexture)
     occlusion_strength: float = 1.0
+    # The material model (core/plan/shading_models.py): "blinn-phong" (the course's) or "pbr" (glTF
+    # metallic-roughness, shaders_wgsl/pbr.wgsl), with the metallic factor (times the roughness map's B channel).
+    shading_model: str = "blinn-phong"
+    metallic: float = 0.0
 
     @property
     def textures(self) -> dict[str, Path]:
@@ -184,7 +188,12 @@ class Model:
 
 @dataclass(frozen=True)
 class Light:
-    """``direction`` (directional: the way the light travels) or ``position`` (point), linear colour."""
+    """``direction`` (directional: the way the light travels) or ``position`` (point), linear colour.
+
+    A point light may also have a ``range`` (> 0: the KHR_lights_punctual window, E x clamp(1 - (d / range)^4, 0,
+    1)) and a spot ``cone`` (inner, outer half-angles in radians, around ``direction``, the way the spot points:
+    E x clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1)^2, a the angle off the axis); the model
+    file's KHR_lights_punctual lights come with these (core/scene/gltf_lights.py), ``origin`` saying where."""
 
     index: int
     type: str
@@ -192,6 +201,24 @@ class Light:
     intensity: float = 1.0
     direction: Vec3 | None = None
     position: Vec3 | None = None
+    range: float = 0.0
+    cone: tuple[float, float] | None = None
+    origin: str = ""
+
+    @property
+    def label(self) -> str:
+        return self.origin or f"lights[{self.index}]"
+
+    def shape(self) -> tuple[tuple[float, float, float], float, float, float]:
+        """A point light's window as the shaders take it: (spot axis, cone scale, cone offset, range), with
+        cone factor clamp(dot(axis, -l) * scale + offset, 0, 1)^2 (scale 0, offset 1: no cone) and range 0 for
+        none (the plain inverse square)."""
+        if self.cone is None:
+            return (0.0, 0.0, -1.0), 0.0, 1.0, self.range
+        inner, outer = np.cos(self.cone[0]), np.cos(self.cone[1])
+        scale = 1.0 / max(1e-3, inner - outer)
+        axis = np.asarray(self.direction, np.float64) / np.linalg.norm(self.direction)
+        return tuple(float(a) for a in axis), float(scale), float(-outer * scale), self.range
 
 
 @dataclass(frozen=True)

@@ -56,7 +56,7 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     for shaders with variants; they are part of the cache key.
     """
     path = Path(path)
-    source = path.read_bytes()
+    source = path.read_bytes() + _included(path)
     args = (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
     key = b"\0".join([b"spirv", path.suffix.encode(), *(a.encode() for a in args), source])
     digest = hashlib.sha256(key).hexdigest()
@@ -70,6 +70,19 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     if not write_entry(cached, key, spirv):  # not writable (read-only home, $XDG_CACHE_HOME a file)
         _MEMORY_CACHE[cached.name] = spirv
     return spirv
+
+
+_INCLUDE = re.compile(rb'^[ \t]*#[ \t]*include[ \t]+"([^"]+)"', re.MULTILINE)
+
+
+def _included(path: Path) -> bytes:
+    """The bytes of the files ``path`` includes (``#include "name"``, beside it; one level: shaders_glsl's
+    included files include nothing), so that editing an included file changes the cache key."""
+    parts = []
+    for name in _INCLUDE.findall(path.read_bytes()):
+        included = path.parent / name.decode("utf-8", "replace")
+        parts.append(included.read_bytes() if included.is_file() else b"")
+    return b"\0".join(parts)
 
 
 def is_spirv(data: bytes) -> bool:

@@ -18,14 +18,17 @@ from wgpurender.core.view.transforms import normal_matrix, to_gpu
 MAX_LIGHTS = 8  # array sizes in the camera block; scene.MAX_LIGHTS bounds what a scene may have
 
 # layout(std140) uniform Camera: proj @0, view @64, eye @128, ambient @144, light_counts @160,
-# directional[MAX_LIGHTS] @176 (direction, radiance: 32 bytes each), point[MAX_LIGHTS] after them.
+# directional[MAX_LIGHTS] @176 (direction, radiance: 32 bytes each), point[MAX_LIGHTS] after them (position with
+# the range in w, radiance with the spot cone offset in w, spot axis with the cone scale in w: 48 bytes each).
 CAMERA_DIRECTIONAL = 176
 LIGHT_STRIDE = 32
+POINT_STRIDE = 48
 CAMERA_POINT = CAMERA_DIRECTIONAL + LIGHT_STRIDE * MAX_LIGHTS  # 432
-CAMERA_SIZE = CAMERA_POINT + LIGHT_STRIDE * MAX_LIGHTS  # 688
+CAMERA_SIZE = CAMERA_POINT + POINT_STRIDE * MAX_LIGHTS  # 816
 # layout(std140) uniform Object: world @0, normal (mat3) @64, mirror @112; 116 bytes, rounded up to 128.
 OBJECT_SIZE = 128
-# push_constant Material: base_color @0, roughness @16, normal_strength @20, specular @24 (lit); 16 bytes unlit.
+# push_constant Material: base_color @0, roughness @16, normal_strength @20, specular (PBR: metallic) @24 (lit);
+# 16 bytes unlit.
 MATERIAL_SIZE_LIT, MATERIAL_SIZE_UNLIT = 28, 16  # + 4 (alpha_cutoff) in alpha-masked variants
 # layout(std140) uniform Chain: size (vec2) @0, count @8, steps[MAX_POST_STEPS] @16 (kind, p0, p1, p2: 16 bytes).
 MAX_POST_STEPS = 8
@@ -40,7 +43,8 @@ def _put(buf: bytearray, offset: int, values, dtype=np.float32) -> None:
 
 def pack_camera(proj: np.ndarray, view: np.ndarray, eye, ambient, directional: list[tuple],
                 point: list[tuple]) -> bytes:
-    """``directional``: (unit direction, radiance) pairs; ``point``: (position, radiance) pairs."""
+    """``directional``: (unit direction, radiance) pairs; ``point``: (position, radiance, (spot axis, cone scale,
+    cone offset, range)) triples (core.scene.Light.shape)."""
     buf = bytearray(CAMERA_SIZE)
     _put(buf, 0, to_gpu(proj).reshape(-1))
     _put(buf, 64, to_gpu(view).reshape(-1))
@@ -49,8 +53,8 @@ def pack_camera(proj: np.ndarray, view: np.ndarray, eye, ambient, directional: l
     _put(buf, 160, [len(directional), len(point), 0, 0], np.uint32)
     for k, (direction, radiance) in enumerate(directional):
         _put(buf, CAMERA_DIRECTIONAL + LIGHT_STRIDE * k, [*direction, 0.0, *radiance, 0.0])
-    for k, (position, radiance) in enumerate(point):
-        _put(buf, CAMERA_POINT + LIGHT_STRIDE * k, [*position, 1.0, *radiance, 0.0])
+    for k, (position, radiance, (axis, scale, offset, reach)) in enumerate(point):
+        _put(buf, CAMERA_POINT + POINT_STRIDE * k, [*position, reach, *radiance, offset, *axis, scale])
     return bytes(buf)
 
 
@@ -67,8 +71,9 @@ def pack_object(world: np.ndarray) -> bytes:
 def pack_material(base_color, lit: bool, roughness: float = 0.0, normal_strength: float = 0.0,
                   specular: float = 0.0, alpha_cutoff: float | None = None, occlusion_strength: float | None = None,
                   emissive=None) -> bytes:
-    """The push constant block (std430). Model-file variants append, in scene.frag's order: alpha_cutoff and
-    occlusion_strength (floats, each right after the last), emissive (a vec4 on the next 16-byte boundary)."""
+    """The push constant block (std430); a PBR variant's metallic factor goes where ``specular`` is. Model-file
+    variants append, in scene.frag's order: alpha_cutoff and occlusion_strength (floats, each right after the
+    last), emissive (a vec4 on the next 16-byte boundary)."""
     values = [*base_color, roughness, normal_strength, specular] if lit else list(base_color)
     values += [v for v in (alpha_cutoff, occlusion_strength) if v is not None]
     if emissive is not None:

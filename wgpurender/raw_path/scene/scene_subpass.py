@@ -53,7 +53,8 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
     cam = scene.camera
     directional = [(np.asarray(lt.direction) / np.linalg.norm(lt.direction), np.asarray(lt.color) * lt.intensity)
                    for lt in scene.lights if lt.type == "directional"]
-    point = [(lt.position, np.asarray(lt.color) * lt.intensity) for lt in scene.lights if lt.type == "point"]
+    point = [(lt.position, np.asarray(lt.color) * lt.intensity, lt.shape()) for lt in scene.lights
+             if lt.type == "point"]
     return U.pack_camera(cam.source_projection(aspect), cam.view(), cam.eye, AMBIENT, directional, point)
 
 
@@ -67,7 +68,8 @@ def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
               "emissive": f.get("emissive")}
     if not is_lit(variant):
         return U.pack_material(f["base_color"], lit=False, **extras)
-    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], f["specular"], **extras)
+    reflectance = f["metallic"] if "metallic" in f else f["specular"]  # PBR: metallic in specular's place
+    return U.pack_material(f["base_color"], True, f["roughness"], f["normal_strength"], reflectance, **extras)
 
 
 def material_block_size(variant: ShaderVariant) -> int:

@@ -12,7 +12,7 @@ from wgpurender.core.plan import ShaderVariant
 from wgpurender.raw_path.device.uniforms import MAX_LIGHTS
 
 FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output", "vertex_color",
-         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha")
+         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr")
 TEXTURE_FLAGS = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
 
 

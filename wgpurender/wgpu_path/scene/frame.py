@@ -17,6 +17,7 @@ subpasses, and what fusing them changes: wgpurender/wgpu_path/post/chain.py.
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import wgpu
@@ -66,6 +67,11 @@ class SceneRenderer:
         self.attachments: dict[str, wgpu.GPUTexture] = {}
         self._scene_pass = plan.scene_pass
         self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
+
+    def move_camera(self, camera) -> None:
+        """Use ``camera`` from the next frame on (the pass uploads it when it changed): slow-motion measurements."""
+        self.scene = dataclasses.replace(self.scene, camera=camera)
+        self.scene_pass.scene = self.scene
 
     def create_output(self, label: str = "scene-output") -> wgpu.GPUTexture:
         """An offscreen output texture for this plan: its size, format and every usage the plan's passes need.

@@ -36,8 +36,7 @@ def camera_values(scene: Scene, aspect: float) -> dict:
     empty = {"direction": (0.0, 0.0, 0.0, 0.0), "radiance": (0.0, 0.0, 0.0, 0.0)}
     dir_items = [{"direction": (*(np.asarray(lt.direction) / np.linalg.norm(lt.direction)), 0.0),
                   "radiance": (*(np.asarray(lt.color) * lt.intensity), 0.0)} for lt in directional]
-    point_items = [{"position": (*lt.position, 1.0), "radiance": (*(np.asarray(lt.color) * lt.intensity), 0.0)}
-                   for lt in point]
+    point_items = [_point_light(lt) for lt in point]
     cam = scene.camera
     return {
         "proj": cam.projection(aspect),
@@ -46,9 +45,16 @@ def camera_values(scene: Scene, aspect: float) -> dict:
         "ambient": (*AMBIENT, 0.0),
         "light_counts": (len(directional), len(point), 0, 0),
         "directional": dir_items + [empty] * (L.MAX_LIGHTS - len(dir_items)),
-        "point": point_items + [{"position": (0.0, 0.0, 0.0, 0.0), "radiance": (0.0, 0.0, 0.0, 0.0)}]
+        "point": point_items + [{"position": (0.0,) * 4, "radiance": (0.0,) * 4, "spot": (0.0,) * 4}]
         * (L.MAX_LIGHTS - len(point_items)),
     }
+
+
+def _point_light(light) -> dict:
+    """A point (or spot) light's PointLight values: range in position.w, the cone in radiance.w and spot."""
+    axis, scale, offset, reach = light.shape()
+    return {"position": (*light.position, reach), "radiance": (*(np.asarray(light.color) * light.intensity), offset),
+            "spot": (*axis, scale)}
 
 
 def object_values(draw: Draw) -> dict:

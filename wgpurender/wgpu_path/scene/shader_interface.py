@@ -30,10 +30,12 @@ from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Arra
 from wgpurender.wgpu_path.device.shaders import load_wgsl
 
 SHADER = "scene.wgsl"
+PBR_FUNCTIONS = "pbr.wgsl"  # the glTF metallic-roughness BRDF, inserted for variants with the "pbr" flag
 
 _CAMERA_VIEW = [("proj", MAT4), ("view", MAT4), ("eye", VEC4F)]
 DIRECTIONAL_LIGHT = Struct("DirectionalLight", [("direction", VEC4F), ("radiance", VEC4F)])
-POINT_LIGHT = Struct("PointLight", [("position", VEC4F), ("radiance", VEC4F)])
+# position.w: range (0: none); radiance.w: spot cone offset; spot: the spot's axis and cone scale (Light.shape)
+POINT_LIGHT = Struct("PointLight", [("position", VEC4F), ("radiance", VEC4F), ("spot", VEC4F)])
 CAMERA_UNLIT = Struct("Camera", _CAMERA_VIEW)
 CAMERA = Struct("Camera", _CAMERA_VIEW + [
     ("ambient", VEC4F),  # rgb: ambient radiance multiplied by albedo (see scene.wgsl)
@@ -45,8 +47,12 @@ OBJECT_UNLIT = Struct("Object", [("world", MAT4)])
 OBJECT = Struct("Object", [("world", MAT4), ("normal", MAT3), ("mirror", F32)])  # mirror: sign of det(world)
 _MATERIAL_UNLIT_FIELDS = [("base_color", VEC4F)]
 _MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("specular", F32)]
+# The glTF metallic-roughness variant ("pbr") has no use for Blinn-Phong's specular reflectance: its metallic factor
+# takes that slot, so a PBR material's block is no larger than a Blinn-Phong one.
+_MATERIAL_PBR_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("metallic", F32)]
 MATERIAL_UNLIT = Struct("Material", _MATERIAL_UNLIT_FIELDS)
 MATERIAL = Struct("Material", _MATERIAL_FIELDS)
+MATERIAL_PBR = Struct("Material", _MATERIAL_PBR_FIELDS)
 
 # Model-file materials append, when their variant has the feature, in core/course/shading.material_factors' order:
 _MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occlusion_strength", F32),
@@ -81,14 +87,16 @@ def object_struct(variant: ShaderVariant) -> Struct:
 
 def material_struct(variant: ShaderVariant) -> Struct:
     extras = tuple((name, kind) for flag, name, kind in _MATERIAL_EXTRAS if flag in variant.flags)
+    pbr = "pbr" in variant.flags
     if not extras:
-        return MATERIAL if is_lit(variant) else MATERIAL_UNLIT
-    return _extended_material(is_lit(variant), extras)
+        return (MATERIAL_PBR if pbr else MATERIAL) if is_lit(variant) else MATERIAL_UNLIT
+    return _extended_material(is_lit(variant), pbr, extras)
 
 
 @functools.cache
-def _extended_material(lit: bool, extras: tuple) -> Struct:
-    return Struct("Material", (_MATERIAL_FIELDS if lit else _MATERIAL_UNLIT_FIELDS) + list(extras))
+def _extended_material(lit: bool, pbr: bool, extras: tuple) -> Struct:
+    fields = (_MATERIAL_PBR_FIELDS if pbr else _MATERIAL_FIELDS) if lit else _MATERIAL_UNLIT_FIELDS
+    return Struct("Material", fields + list(extras))
 
 
 def vertex_layout(variant: ShaderVariant) -> dict:
@@ -128,5 +136,6 @@ def shader_source(variant: ShaderVariant, immediates: bool) -> str:
         "STRUCTS": wgsl_structs(*structs),
         "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
         "POINT_LIGHTS": str(variant.count("point_lights")),
+        "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
     }
     return specialise(load_wgsl(SHADER), shader_features(variant, immediates), values, name=SHADER)

@@ -1,0 +1,252 @@
+"""The exercises (wgpurender/exercises/): for every step and path, the solution passes against the committed
+raw-Vulkan reference, the starter fails, every catalogued mistake is diagnosed as itself and looks unlike every
+other; a learner's file that raises, hangs, crashes or trips GPU validation gets a message about their own code.
+
+The references are the raw-Vulkan path's PNGs (assets/reference/), never made by the wgpu path checked here; the
+bounds are the table's rows (assets/reference/tolerances.toml). Renders are at the references' 256x192.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wgpurender.cli import main
+from wgpurender.concepts import CONCEPTS
+from wgpurender.core.course.steps import COURSE, stage_steps
+from wgpurender.core.course.triangle import BACKGROUND
+from wgpurender.core.files.imageio import load_png
+from wgpurender.core.verdict.tolerances import measure
+from wgpurender.exercises import check, source
+from wgpurender.exercises.catalogue import EXERCISES, exercise
+from wgpurender.exercises.sandbox import LearnerError, render_isolated
+from wgpurender.exercises.source import course_step
+
+IDS = [f"{ex.path}-{ex.step}" for ex in EXERCISES]
+CONCEPT_NAMES = {c.name for c in CONCEPTS}
+
+
+@pytest.mark.parametrize("path", ["wgpu", "raw"])
+def test_every_step_has_an_exercise_on_both_paths(path):
+    assert [ex.step for ex in EXERCISES if ex.path == path] == [s.number for s in COURSE]
+    assert all(bool(ex.shader) == (course_step(ex.step).scene is not None) for ex in EXERCISES)  # step 6: a shader
+
+
+def test_a_raw_learner_file_that_raises_shows_its_own_frames(tmp_path):
+    file = tmp_path / "mine.py"
+    file.write_text(textwrap.dedent("""
+        from wgpurender.raw_path.stages.base import RefStage
+
+
+        class Mine(RefStage):
+            name = "triangle"
+
+            def setup(self):
+                self.single_pass((0.0, 0.0, 0.0, 1.0))
+                return 1 / 0
+        """))
+    with pytest.raises(LearnerError) as err:
+        render_isolated(file, exercise("2a", "raw"), timeout=60)
+    assert "line 10, in setup" in str(err.value) and "ZeroDivisionError" in str(err.value)
+    assert "raw_path" not in str(err.value)
+
+
+@pytest.mark.parametrize("ex", EXERCISES, ids=IDS)
+def test_starter_and_mistakes_are_patches_of_the_solution(ex):
+    solution = source.solution_source(ex)
+    starter = source.starter_source(ex)
+    if not ex.shader:
+        compile(starter, "starter", "exec")
+    assert starter.count(f"{ex.comment} TODO (step") == len(ex.parts) >= 1
+    for part in ex.parts:
+        assert part.concept in CONCEPT_NAMES
+        assert solution.count(part.old) == 1 and part.old not in starter
+    keys = [m.key for m in ex.mistakes]
+    assert len(set(keys)) == len(keys)
+    for mistake in ex.mistakes:
+        assert mistake.concept in CONCEPT_NAMES
+        variant = source.mistake_source(ex, mistake)
+        if not ex.shader:
+            compile(variant, mistake.key, "exec")
+        assert variant != solution and mistake.new in variant
+
+
+def test_a_snippet_that_no_longer_matches_is_an_error_not_a_stale_copy():
+    with pytest.raises(ValueError, match="occurs 0 times"):
+        source.replace_once("a = 1\n", "b = 2", "c", "row")
+    with pytest.raises(ValueError, match="occurs 2 times"):
+        source.replace_once("a\na\n", "a", "c", "row")
+    assert source.replace_once("a = 1\nb = 2\n", "b = 2", "b = 3", "row") == "a = 1\nb = 3\n"
+
+
+@pytest.mark.parametrize("ex", EXERCISES, ids=IDS)
+def test_solution_passes_starter_fails_and_each_mistake_is_diagnosed_as_itself(ex, tmp_path):
+    file = tmp_path / "learner.py"
+    solution = check.judge(check.render_variant(source.solution_source(ex), ex), ex, file)
+    assert solution.status == check.PASS, solution.report()
+    assert len(solution.metrics) == len(ex.times)
+    starter = check.judge(check.render_variant(source.starter_source(ex), ex), ex, file)
+    assert starter.status == check.FAIL, starter.report()
+    tol = check.step_tolerance(ex)
+    images = {m.key: check.mistake_images(ex, m.key) for m in ex.mistakes}
+    for mistake in ex.mistakes:
+        verdict = check.judge(images[mistake.key], ex, file)
+        assert verdict.status == check.FAIL, f"{mistake.key} renders like the solution"
+        assert verdict.diagnosis.mistake == mistake, verdict.report()
+        assert mistake.title in verdict.line()
+        for other in ex.mistakes:  # distinguishable: some time of the step exceeds the bounds between the two
+            if other is not mistake:
+                found = [measure(a, b) for a, b in zip(images[other.key], images[mistake.key], strict=True)]
+                assert any(tol.exceeded(m) for m in found), f"{mistake.key} looks like {other.key}"
+
+
+@pytest.mark.parametrize("ex", [ex for ex in EXERCISES if len(ex.times) > 1], ids=lambda ex: f"{ex.path}-{ex.step}")
+def test_an_animated_step_is_checked_at_times_that_look_different(ex):
+    images = check.mistake_images(ex, ex.mistakes[0].key)
+    assert len(images) == len(ex.times) and not np.array_equal(images[0], images[1])
+
+
+def test_the_starter_of_the_first_triangle_renders_the_clear_colour_only():
+    ex = exercise("2a", "wgpu")
+    image = check.render_variant(source.starter_source(ex), ex)[0]
+    expected = np.round(np.array(BACKGROUND) * 255)
+    assert np.array_equal(image.reshape(-1, 4), np.broadcast_to(expected, (image.shape[0] * image.shape[1], 4)))
+
+
+def test_an_image_no_mistake_explains_is_said_so(tmp_path):
+    ex = exercise("2a", "wgpu")
+    reference = load_png(check.reference_file(ex))
+    inverted = reference.copy()
+    inverted[..., :3] = 255 - inverted[..., :3]
+    verdict = check.judge([inverted], ex, tmp_path / "x.py", tmp_path / "out")
+    assert verdict.status == check.FAIL and verdict.diagnosis.mistake is None
+    assert "no known mistake matches" in verdict.line()
+    assert np.array_equal(load_png(verdict.images["t=0 image"]), inverted)
+    assert load_png(verdict.images["t=0 heatmap"]).shape[1] == reference.shape[1]
+
+
+def test_an_image_near_one_mistake_but_outside_its_bounds_names_it_as_the_nearest(tmp_path):
+    ex = exercise("4", "wgpu")
+    near = [image.copy() for image in check.mistake_images(ex, "winding")]
+    for image in near:
+        image[:16, :16, :3] ^= 0x40  # a corner off by 64/255: beyond every bound, close to 'winding' elsewhere
+    diagnosis = check.judge(near, ex, tmp_path / "x.py").diagnosis
+    assert diagnosis.mistake is None and diagnosis.nearest.key == "winding"
+    assert "the nearest, 'the winding wrong" in diagnosis.text()
+
+
+LEARNER_FILES = {
+    "raises": ("""
+        from wgpurender.wgpu_path.stages.base import Stage
+
+
+        class Mine(Stage):
+            name = "triangle"
+
+            def record(self, encoder, target, t=0.0):
+                self.helper()
+
+            def helper(self):
+                raise ValueError("my own bug")
+        """, ["line 9, in record", "line 12, in helper", "ValueError: my own bug"]),
+    "no stage": ("x = 1\n", ["exactly one subclass", "found none"]),
+    "returns a value": ("""
+        from wgpurender.wgpu_path.stages.base import Stage
+
+
+        class Mine(Stage):
+            name = "triangle"
+
+            def record(self, encoder, target, t=0.0):
+                return encoder.finish()
+        """, ["Mine.record returned a GPUCommandBuffer", "returns nothing"]),
+    "wrong name": ("""
+        from wgpurender.wgpu_path.stages.base import Stage
+
+
+        class Mine(Stage):
+            name = "msaa"
+        """, ["Mine.name is 'msaa'", "named 'triangle'"]),
+    "validation": ("""
+        from wgpurender.wgpu_path.stages.base import Stage
+
+
+        class Mine(Stage):
+            name = "triangle"
+
+            def setup(self):
+                layout = {"array_stride": 4, "step_mode": "vertex",
+                          "attributes": [{"shader_location": 0, "format": "float32x2", "offset": 0}]}
+                self.pipeline = self.basic_pipeline("triangle_buffers.wgsl", [layout])
+        """, ["line 11, in setup", "Validation"]),
+    "crash": ("import os\nos._exit(7)\n", ["exit status 7"]),
+    "hangs": ("while True:\n    pass\n", ["did not finish within 5 s"]),
+}
+
+
+@pytest.mark.parametrize("case", LEARNER_FILES)
+def test_a_broken_learner_file_gets_a_message_about_their_own_code(case, tmp_path):
+    text, expected = LEARNER_FILES[case]
+    file = tmp_path / "mine.py"
+    file.write_text(textwrap.dedent(text))
+    with pytest.raises(LearnerError) as err:
+        render_isolated(file, exercise("2a", "wgpu"), timeout=5 if case == "hangs" else 60)
+    message = str(err.value)
+    for part in expected:
+        assert part in message, message
+    assert "wgpurender/" not in message.split("Validation")[0], message  # our frames never shown
+
+
+def _run_cli(capsys, *args: str) -> tuple[int, str, str]:
+    code = main([str(a) for a in args])
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_cli_exercise_then_check_exit_codes(tmp_path, capsys):
+    folder, step = tmp_path / "ex", "2a"
+    code, out, _ = _run_cli(capsys, "exercise", step, "-o", folder)
+    assert code == 0 and len(out.splitlines()) == 4
+    names = sorted(p.name for p in folder.iterdir())
+    assert names == ["README.md", "goal.png", f"step_{step}.py", f"test_{step}.py"]
+    assert (folder / "goal.png").read_bytes() == check.reference_file(exercise(step, "wgpu")).read_bytes()
+    compile((folder / f"test_{step}.py").read_text(), "test", "exec")
+    before = (folder / "step_2a.py").read_text()
+    code, _, err = _run_cli(capsys, "exercise", "2a", "-o", folder)  # never clobbers the learner's work
+    assert code == 2 and len(err.splitlines()) == 1 and "exists" in err
+    assert (folder / "step_2a.py").read_text() == before
+    code, out, _ = _run_cli(capsys, "check", "2a", folder / "step_2a.py")
+    assert code == 1 and "FAIL" in out.splitlines()[0] and "heatmap:" in out
+    solution = folder / "solution.py"
+    solution.write_text(source.solution_source(exercise("2a", "wgpu")))
+    code, out, _ = _run_cli(capsys, "check", "2a", solution, "--out", tmp_path / "o", "--timeout", "60")
+    assert code == 0 and "PASS" in out.splitlines()[0]
+    assert (tmp_path / "o" / "solution-t0.png").is_file()
+
+
+@pytest.mark.parametrize("args, message", [
+    (("check", "9z", "x.py"), "unknown step"),
+    (("check", "2a", "missing.py"), "no such file"),
+    (("check", "2a", "notes.txt"), "give its .py file"),
+    (("check", "6", "x.py"), "give its .wgsl file"),
+    (("exercise", "2a", "--path", "vulkan"), "invalid choice"),
+    (("check", "2a", "x.py", "--timeout", "0"), "--timeout"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    Path("x.py").write_text("x = 1\n")
+    code, out, err = _run_cli(capsys, *args)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and message in err, err
+    assert not any(tmp_path.glob("check-*")) and not (tmp_path / "exercise-6").exists()
+
+
+def test_the_report_offers_each_step_with_an_exercise():
+    from wgpurender.exercises.catalogue import exercise_command
+
+    assert [exercise_command(s.stage) for s in stage_steps()] == [f"wgpurender exercise {s.number}"
+                                                                  for s in stage_steps()]
+    assert exercise_command("final") == "wgpurender exercise 6"  # step 6 is the final scene
+    assert exercise_command("unlit") is None and exercise_command("no-such-stage") is None

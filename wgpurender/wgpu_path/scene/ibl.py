@@ -1,0 +1,82 @@
+"""Image-based lighting maps made on the GPU (shaders_wgsl/ibl.wgsl's compute passes): the irradiance map, the
+prefiltered specular levels by roughness and the split-sum BRDF lookup table, from an equirectangular
+environment (wgpurender/core/course/environment.py). Storage buffers in, storage buffers out, read back as float32.
+
+So far only ``bench accuracy --truth analytic`` uses them (their cost and their error against a float64
+integral); scenes do not yet draw with image-based lighting.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import wgpu
+
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.shaders import create_shader_module
+
+SHADER = "ibl.wgsl"
+WORKGROUP = 8
+
+
+@dataclass
+class IblMaps:
+    irradiance: np.ndarray  # (h, w, 3) E / pi per normal direction
+    prefiltered: np.ndarray  # (levels, h, w, 3), level k at roughness k / (levels - 1)
+    lut: np.ndarray  # (n, n, 2): [roughness row, n.v column] -> (A, B)
+    gpu_wall_ms: float  # encode, submit and wait for the three passes (readback excluded)
+
+
+def _params(env_size, out_size, samples: int, levels: int) -> bytes:
+    return np.array([*env_size, *out_size, samples, levels, 0, 0], np.uint32).tobytes()
+
+
+def _pass(ctx: GPUContext, module, entry: str, params: bytes, env: wgpu.GPUBuffer, count: int,
+          groups: tuple[int, int, int]) -> tuple[wgpu.GPUCommandBuffer, wgpu.GPUBuffer]:
+    device = ctx.device
+    uniform = device.create_buffer_with_data(data=params, usage=wgpu.BufferUsage.UNIFORM)
+    out = device.create_buffer(size=16 * count, usage=wgpu.BufferUsage.STORAGE | wgpu.BufferUsage.COPY_SRC)
+    layout = device.create_bind_group_layout(entries=[
+        {"binding": 0, "visibility": wgpu.ShaderStage.COMPUTE, "buffer": {"type": "uniform"}},
+        {"binding": 1, "visibility": wgpu.ShaderStage.COMPUTE, "buffer": {"type": "read-only-storage"}},
+        {"binding": 2, "visibility": wgpu.ShaderStage.COMPUTE, "buffer": {"type": "storage"}}])
+    pipeline = device.create_compute_pipeline(
+        label=f"ibl-{entry}", layout=device.create_pipeline_layout(bind_group_layouts=[layout]),
+        compute={"module": module, "entry_point": entry})
+    group = device.create_bind_group(layout=layout, entries=[
+        {"binding": 0, "resource": {"buffer": uniform}}, {"binding": 1, "resource": {"buffer": env}},
+        {"binding": 2, "resource": {"buffer": out}}])
+    encoder = device.create_command_encoder(label=f"ibl-{entry}")
+    compute = encoder.begin_compute_pass()
+    compute.set_pipeline(pipeline)
+    compute.set_bind_group(0, group)
+    compute.dispatch_workgroups(*groups)
+    compute.end()
+    return encoder.finish(), out
+
+
+def make_maps(ctx: GPUContext, environment: np.ndarray, samples: int, levels: int = 5,
+              irradiance_size=(32, 16), prefilter_size=(64, 32), lut_size: int = 32) -> IblMaps:
+    """The three maps of ``environment`` ((h, w, 3) linear float) with ``samples`` GGX samples per texel."""
+    h, w = environment.shape[:2]
+    rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)
+    env = ctx.device.create_buffer_with_data(data=rgba.tobytes(), usage=wgpu.BufferUsage.STORAGE)
+    module = create_shader_module(ctx.device, SHADER)
+    iw, ih = irradiance_size
+    pw, ph = prefilter_size
+    groups = lambda x, y, z=1: (-(-x // WORKGROUP), -(-y // WORKGROUP), z)  # noqa: E731
+    start = time.perf_counter()
+    passes = [_pass(ctx, module, "irradiance", _params((w, h), (iw, ih), samples, 1), env, iw * ih, groups(iw, ih)),
+              _pass(ctx, module, "prefilter", _params((w, h), (pw, ph), samples, levels), env, pw * ph * levels,
+                    groups(pw, ph, levels)),
+              _pass(ctx, module, "brdf_lut", _params((w, h), (lut_size, lut_size), samples, 1), env,
+                    lut_size * lut_size, groups(lut_size, lut_size))]
+    ctx.device.queue.submit([command for command, _ in passes])
+    ctx.wait_idle()
+    wall = (time.perf_counter() - start) * 1e3
+    irr, pre, lut = (np.frombuffer(ctx.read_buffer(out), np.float32).reshape(-1, 4) for _, out in passes)
+    return IblMaps(irr.reshape(ih, iw, 4)[..., :3], pre.reshape(levels, ph, pw, 4)[..., :3],
+                   lut.reshape(lut_size, lut_size, 4)[..., :2], wall)
+
