@@ -29,6 +29,10 @@ COMPARE = "tests/test_compare.py"
 CLI = "tests/test_cli.py"
 SAFETY = "tests/test_output_safety.py"
 GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
+JAIL = "tests/test_model_reads_only_its_folder.py"
+UNTRUSTED = "tests/test_gltf_untrusted.py"
+SHAPES = UNTRUSTED + "|json_path"
+PUBLISHED = "tests/test_export_carries_no_machine_path.py"
 OWNED = "tests/test_owned_files.py"
 EXPORT_OWN = "tests/test_export_keeps_other_folders.py"
 RECORD_OWN = "tests/test_record_outputs.py"
@@ -118,8 +122,8 @@ MUTATIONS = [
     ("wgpurender/core/checks.py", "    return integer(value, \"gap\", 0, MAX_GAP)", "    return int(value)", [API]),
     ("wgpurender/api.py", "    gain = checks.gain(gain)\n", "", [API]),
     # input files and bounds
-    ("wgpurender/core/files/input_files.py", "    kind = _kind(mode)\n    if kind is not None:",
-     "    kind = _kind(mode)\n    if kind == 'never':", [CAUSES]),
+    ("wgpurender/core/files/input_files.py", "    kind = file_kind(mode)\n    if kind is not None:",
+     "    kind = file_kind(mode)\n    if kind == 'never':", [CAUSES]),
     ("wgpurender/core/files/input_files.py",
      "    if err.errno == errno.ELOOP:", "    if err.errno == errno.EEXIST:", [CAUSES]),  # noqa: E501
     ("wgpurender/core/files/input_files.py", "    if width * height > limit:", "    if width > limit:", [CAUSES]),
@@ -142,7 +146,7 @@ MUTATIONS = [
      "CPU_MAX_ALLOCATION = 2**31", "CPU_MAX_ALLOCATION = 2**33", [CAUSES + "|adapter"]),  # noqa: E501
     # glTF rules
     ("wgpurender/core/models/gltf_rules.py", "            if child == i:", "            if child == j:", [GLTF]),
-    ("wgpurender/core/models/gltf_rules.py", "            if node in seen:", "            if node == start and False:",
+    ("wgpurender/core/models/gltf_rules.py", "            if node in walk:", "            if node == start and False:",
      [GLTF]),
     ("wgpurender/core/models/gltf_rules.py", '(r"POSITION", ("VEC3",), (FLOAT,))', '(r"POSITION", ("VEC3", "SCALAR"), '
      '(FLOAT,))', [GLTF]),
@@ -396,6 +400,71 @@ MUTATIONS = [
      [TEACHING]),
     ("wgpurender/report/teaching.py", "<td>{r.shimmer:.4f}</td><td>{r.still_error:.4f}</td>",
      "<td>{r.still_error:.4f}</td><td>{r.shimmer:.4f}</td>", [TEACHING]),
+    # issue 28: a model reads only what it ships (read_jail.py and its callers)
+    ("wgpurender/core/files/read_jail.py", "    if not target.is_relative_to(folder):", "    if False:", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    name = urllib.parse.unquote(uri) if encoded else uri", "    name = uri", [JAIL]),  # noqa: E501
+    ("wgpurender/core/files/read_jail.py", "    if SCHEME.match(name) or name.startswith(", "    if name.startswith(", [JAIL]),  # noqa: E501
+    ("wgpurender/core/files/read_jail.py", "    return file_kind(mode)", "    return None", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    return assets if folder.is_relative_to(assets) else folder",
+     "    return folder", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    project = own.parent if own.name == SCENES_FOLDER else own",
+     "    project = own", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if p.strip()]",
+     "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if not p]", [JAIL]),
+    ("wgpurender/core/models/gltf_io.py", "for kind in (\"buffers\", \"images\")", "for kind in (\"buffers\",)", [JAIL]),  # noqa: E501
+    ("wgpurender/core/scene/file_materials.py", "        mtl = read_jail.model_file(path, lib.decode(\"utf-8\", \"replace\"), \"mtllib\", "  # noqa: E501
+     "encoded=False)", "        mtl = path.parent / lib.decode(\"utf-8\", \"replace\")", [JAIL]),
+    ("wgpurender/core/scene/file_materials.py", "            texture = read_jail.model_file(model or path, tokens[-1], where, "  # noqa: E501
+     "base=path.parent, encoded=False)", "            texture = path.parent / tokens[-1]", [JAIL]),
+    ("wgpurender/core/models/mesh.py", "            return read_jail.model_file(path, name, \"a file trimesh asked for\", "  # noqa: E501
+     "encoded=False).read_bytes()", "            return (path.parent / name).read_bytes()", [JAIL]),
+    ("wgpurender/core/scene/checker.py", "            if refused is not None:", "            if refused is None:",
+     [JAIL]),
+    # issue 28: the document's shape, rules and budget
+    ("wgpurender/core/models/gltf_schema.py", "        if \"extensions\" in value:", "        if False:", [SHAPES]),
+    ("wgpurender/core/models/gltf_schema.py", "        if schema == NONNEG and value < 0:",
+     "        if schema == NONNEG and value < -1:", [SHAPES]),
+    ("wgpurender/core/models/gltf_schema.py", "\"name\": str, \"sparse\": SPARSE}", "\"name\": str}", [SHAPES]),
+    ("wgpurender/core/models/gltf_schema.py", "    \"extensionsUsed\": Arr(str), \"extensionsRequired\": Arr(str),",
+     "    \"extensionsRequired\": Arr(str),", [SHAPES]),
+    ("wgpurender/core/models/gltf_rules.py", "4 <= stride <= 252 and stride % 4 == 0", "4 <= stride <= 252 and stride % 2 == 0",  # noqa: E501
+     [SHAPES]),
+    ("wgpurender/core/models/gltf_rules.py", "        if stride is not None and stride < size:",
+     "        if stride is not None and stride < size - 4:", [SHAPES]),
+    ("wgpurender/core/models/gltf_rules.py", "    if not 1 <= sparse[\"count\"] <= acc[\"count\"]:",
+     "    if not 0 <= sparse[\"count\"] <= acc[\"count\"]:", [SHAPES]),
+    ("wgpurender/core/models/gltf_rules.py", "    if component not in SPARSE_INDEX_COMPONENTS:",
+     "    if component not in SPARSE_INDEX_COMPONENTS + (FLOAT,):", [SHAPES]),
+    ("wgpurender/core/models/gltf_rules.py", "        if (\"uri\" in image) == (\"bufferView\" in image):",
+     "        if \"uri\" not in image and \"bufferView\" not in image:", [SHAPES]),
+    ("wgpurender/core/models/gltf_rules.py", "        while node in parent and node not in in_tree:",
+     "        while node in parent:", [UNTRUSTED + "|linearly"]),
+    ("wgpurender/core/models/gltf_rules.py", "        in_tree |= walk", "        pass", [UNTRUSTED + "|linearly"]),
+    ("wgpurender/core/models/gltf_rules.py", "            if node in children or node in seen:",
+     "            if node in seen:", [UNTRUSTED + "|root"]),
+    ("wgpurender/core/models/gltf_rules.py", "            total += times * sum(", "            total += sum(",
+     [UNTRUSTED + "|instancing and nodes"]),
+    ("wgpurender/core/models/gltf_rules.py", "    if total > limit:", "    if total > 2 * limit:", [UNTRUSTED + "|budget"]),  # noqa: E501
+    ("wgpurender/core/models/gltf_rules.py", "            placed[node[\"mesh\"]] = placed.get(node[\"mesh\"], 0) + 1",
+     "            placed[node[\"mesh\"]] = 1", [UNTRUSTED + "|instancing and nodes"]),
+    # issue 28: flat normals, nothing to draw
+    ("wgpurender/core/models/gltf_geometry.py", "    return flat_shaded(geometry) if geometry.normals is None else geometry",  # noqa: E501
+     "    return geometry", [UNTRUSTED + "|normals"]),
+    ("wgpurender/core/models/gltf_geometry.py", "    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])",
+     "    normal = np.cross(tri[:, 2] - tri[:, 0], tri[:, 1] - tri[:, 0])", [UNTRUSTED + "|normals"]),
+    ("wgpurender/core/models/gltf_geometry.py", "    if not modes & set(DRAWN_MODES):", "    if not modes:",
+     [UNTRUSTED + "|nothing"]),
+    ("wgpurender/core/models/gltf_geometry.py", "    if not placed:\n", "    if placed is None:\n", [UNTRUSTED + "|nothing"]),  # noqa: E501
+    ("wgpurender/core/scene/gltf_materials.py", "    gltf_geometry.check_something_to_draw(doc)\n", "",
+     [UNTRUSTED + "|nothing"]),
+    # issue 28: a published page names no folder of the machine
+    ("wgpurender/core/files/published_text.py", "        text = text.replace(folder + os.sep, \"\")", "        pass",
+     [PUBLISHED]),
+    ("wgpurender/core/files/published_text.py", "(?:[^\\s'\\\"/\\\\:,;()\\[\\]]+[\\\\/])+\")",
+     "(?:[^\\s'\\\"/\\\\:,;()\\[\\]]+[\\\\/])*\")", [PUBLISHED]),
+    ("wgpurender/core/files/published_text.py", "if k == \"label\" and isinstance(v, str)",
+     "if k in (\"label\", \"code\") and isinstance(v, str)", [PUBLISHED]),
+    ("wgpurender/webpage/record.py", "    data[\"setup\"], data[\"frame\"] = (", "    _unused = (", [PUBLISHED]),
     # issue 32: one plan without back doors (item 1)
     ("wgpurender/core/plan/resolve.py", "    return dataclasses.replace(plan, rebuild=resolve_knobs)",
      "    return plan", [NOBACK]),

@@ -21,6 +21,12 @@ from wgpurender.core.models.mesh import load_mesh
 STRIP_TOP = np.array([2.0, 3.0, 4.0], np.float32)  # the heights the sparse block lifts the top vertices to
 
 
+def up(g: GltfWriter) -> int:
+    """A NORMAL accessor (+z) for a quad: with normals given, a mesh keeps the file's vertices (without, glTF asks
+    for flat normals, which split every vertex per triangle)."""
+    return g.accessor(np.tile(np.float32([0, 0, 1]), (4, 1)))
+
+
 def _strip_file(tmp_path, suffix=".glb"):
     """A strip of 3 quads along x (8 vertices: bottom row y = 0, top row y = 1), then a sparse block that
     replaces top vertices 5, 6, 7 with heights STRIP_TOP. Returns (path, the positions the file means)."""
@@ -31,7 +37,8 @@ def _strip_file(tmp_path, suffix=".glb"):
     g = GltfWriter()
     pos = g.positions(base, sparse=(changed, values))
     faces = np.array([[k, k + 1, k + 5, k, k + 5, k + 4] for k in range(3)], np.uint16).ravel()
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": pos}, "indices": g.accessor(faces)}]))
+    up = g.accessor(np.tile(np.float32([0, 0, 1]), (8, 1)))  # given normals: vertices stay as the file has them
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": pos, "NORMAL": up}, "indices": g.accessor(faces)}]))
     want = base.copy()
     want[changed] = values  # what the file means: glTF 2.0 section 3.6.2.3
     return g.write(tmp_path / f"strip{suffix}"), want
@@ -50,7 +57,7 @@ def test_sparse_accessor_without_a_buffer_view_starts_from_zeros(tmp_path):
     g = GltfWriter()
     uv_values = np.array([[0.25, 0.75], [0.5, 0.125]], np.float32)
     uv = g.accessor(None, count=4, width=2, sparse=(np.array([1, 3], np.uint8), uv_values))
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)), "TEXCOORD_0": uv},
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)), "TEXCOORD_0": uv, "NORMAL": up(g)},
                          "indices": g.accessor(QUAD_INDICES)}]))
     mesh = load_mesh(g.write(tmp_path / "zeros.gltf"))
     want = np.zeros((4, 2), np.float32)
@@ -64,7 +71,7 @@ def test_normalized_integer_colours_and_uvs(tmp_path):
     colors = np.array([[255, 0, 0], [0, 128, 0], [0, 0, 255], [10, 20, 30]], np.uint8)
     uvs = np.array([[0, 65535], [65535, 65535], [65535, 0], [32768, 1]], np.uint16)
     g = GltfWriter()
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)),
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)), "NORMAL": up(g),
                                         "COLOR_0": g.accessor(colors, normalized=True),
                                         "TEXCOORD_0": g.accessor(uvs, normalized=True)},
                          "indices": g.accessor(QUAD_INDICES)}]))
@@ -109,7 +116,8 @@ def test_node_hierarchy_composes_parent_and_child(tmp_path):
     """Parent: translation (10, 0, 0); child: rotation 90 degrees about z, scale 2. A vertex (1, 0, 0) lands at
     (10, 2, 0): parent @ child, T @ R @ S, written here with the quaternion's own formula."""
     g = GltfWriter()
-    mesh = g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1))}, "indices": g.accessor(QUAD_INDICES)}])
+    mesh = g.mesh([{"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1)), "NORMAL": up(g)},
+                    "indices": g.accessor(QUAD_INDICES)}])
     s = math.sin(math.pi / 4)
     child = g.node(mesh=mesh, rotation=[0, 0, s, s], scale=[2, 2, 2])
     parent = g.node(children=[child], translation=[10, 0, 0])

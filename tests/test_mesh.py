@@ -30,6 +30,7 @@ QUAD_POS = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], np.float32)
 QUAD_IDX = np.array([0, 1, 2, 0, 2, 3], np.uint16)
 # deliberately asymmetric values so any flip or swap shows; glTF convention (v = 0 at the top)
 QUAD_UV = np.array([[0.1, 0.8], [0.9, 0.85], [0.8, 0.05], [0.05, 0.3]], np.float32)
+UP = np.tile(np.float32([0, 0, 1]), (4, 1))  # given normals: the loader keeps the file's vertices (no flat split)
 
 
 def write_gltf(path: Path, attributes: dict, indices: np.ndarray, *, material: bool = False, nodes=None) -> Path:
@@ -70,8 +71,8 @@ def test_gltf_uvs_come_back_exactly_as_the_file_stores_them(tmp_path, suffix, ma
     """glTF stores v = 0 at the top, our convention: loaded uvs equal the file's TEXCOORD_0 bit for bit, with or
     without a material. trimesh alone flips v (1 - v) when there is a material and drops the uvs when there is
     none; asserting that here shows what the loader undoes (and fails loudly should trimesh change)."""
-    path = write_gltf(tmp_path / f"quad{suffix}", {"POSITION": QUAD_POS, "TEXCOORD_0": QUAD_UV}, QUAD_IDX,
-                      material=material)
+    path = write_gltf(tmp_path / f"quad{suffix}", {"POSITION": QUAD_POS, "NORMAL": UP, "TEXCOORD_0": QUAD_UV},
+                      QUAD_IDX, material=material)
     mesh = load_mesh(path)
     assert mesh.has_uvs
     np.testing.assert_array_equal(mesh.uvs, QUAD_UV)
@@ -120,7 +121,8 @@ def test_obj_v_is_converted_and_per_corner_attributes_survive(tmp_path):
 
 def test_obj_and_gltf_of_the_same_quad_load_identically(tmp_path):
     """Same surface, each format in its own V convention: after loading, uvs agree (1e-7) per corner."""
-    gl = load_mesh(write_gltf(tmp_path / "q.gltf", {"POSITION": QUAD_POS, "TEXCOORD_0": QUAD_UV}, QUAD_IDX))
+    gl = load_mesh(write_gltf(tmp_path / "q.gltf", {"POSITION": QUAD_POS, "NORMAL": UP, "TEXCOORD_0": QUAD_UV},
+                              QUAD_IDX))
     (tmp_path / "q.obj").write_text("\n".join([*[f"v {x} {y} {z}" for x, y, z in QUAD_POS],
                                                *[f"vt {u:.7f} {1 - v:.7f}" for u, v in QUAD_UV],
                                                "f 1/1 2/2 3/3", "f 1/1 3/3 4/4"]) + "\n")
@@ -216,10 +218,10 @@ def test_gltf_several_meshes_primitives_and_instances(tmp_path):
             accessors[-1].update(min=array.min(0).tolist(), max=array.max(0).tolist())
         return len(accessors) - 1
 
-    pos, idx = add(QUAD_POS), add(QUAD_IDX, 5123)
-    tri_a = {"attributes": {"POSITION": pos, "TEXCOORD_0": add(QUAD_UV)}, "indices": idx}
+    pos, idx, up = add(QUAD_POS), add(QUAD_IDX, 5123), add(UP)
+    tri_a = {"attributes": {"POSITION": pos, "NORMAL": up, "TEXCOORD_0": add(QUAD_UV)}, "indices": idx}
     points = {"attributes": {"POSITION": add(QUAD_POS + 5)}, "mode": 0}
-    tri_b = {"attributes": {"POSITION": pos, "TEXCOORD_0": add(QUAD_UV / 2)}, "indices": idx}
+    tri_b = {"attributes": {"POSITION": pos, "NORMAL": up, "TEXCOORD_0": add(QUAD_UV / 2)}, "indices": idx}
     doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
            "nodes": [{"mesh": 0}, {"mesh": 1, "translation": [10, 0, 0]}, {"mesh": 1, "translation": [20, 0, 0]}],
            "meshes": [{"name": "a", "primitives": [tri_a, points]}, {"name": "b", "primitives": [tri_b]}],

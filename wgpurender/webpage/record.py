@@ -119,7 +119,20 @@ def record_stage(real: GPUContext, name: str, size: tuple[int, int], fps: int, s
     return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}
 
 
+def _machine_folders(scene, plan) -> list[Path]:
+    """The folders a scene's page could name (issue 28, item 2): the scene's, its models' and textures', home."""
+    files = [scene.path, *(m.path for m in scene.models), *(t.path for t in plan.textures)]
+    return [Path.home(), Path.cwd(), *(Path(f).parent for f in files)]
+
+
+def _published(text: str, scene, plan) -> str:
+    from wgpurender.core.files.published_text import without_machine_paths
+
+    return without_machine_paths(text, _machine_folders(scene, plan))
+
+
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.core.files.published_text import labels_without_machine_paths
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
     from wgpurender.wgpu_path.scene.frame import SceneRenderer
@@ -139,7 +152,10 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
               "fields": {f: CAMERA.offsets[f] for f in ("view", "eye")}} if renderer.scene_pass.draws else None
     meta = {"name": Path(path).stem, "kind": "scene", "size": list(size),
             "orbit": {"eye": list(cam.eye), "target": list(cam.target), "up": list(cam.up), "camera": camera},
-            "summary": scene.description or f"scene {Path(path).name}",
-            "plan": renderer.plan.explain(),
+            "summary": _published(scene.description or f"scene {Path(path).name}", scene, plan),
+            "plan": _published(renderer.plan.explain(), scene, plan),
             "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset."}
-    return {**_base(real, recording, target, setup_end, frame, samples, fps, meta), "reference": reference}
+    data = _base(real, recording, target, setup_end, frame, samples, fps, meta)
+    folders = _machine_folders(scene, plan)
+    data["setup"], data["frame"] = (labels_without_machine_paths(data[k], folders) for k in ("setup", "frame"))
+    return {**data, "reference": reference}

@@ -10,6 +10,8 @@ The bounds (each can be raised through its environment variable, e.g. for a mach
 - :data:`MAX_MODEL_BYTES`: a model file (or a glTF buffer file) larger than this is refused before parsing;
 - :data:`MAX_IMAGE_PIXELS`: an image whose header declares more pixels is refused before decoding (a 560 KB PNG
   can declare 12000x12000, which took 20 GB to compare);
+- :data:`MAX_MODEL_VERTICES`: a glTF whose drawn scene declares more vertices plus indices (each mesh counted once
+  per node that places it) is refused from the declared counts, before any accessor is copied;
 - :data:`MAX_NESTING`: scene TOML nested deeper is refused (the parser and the checker recurse).
 """
 
@@ -26,10 +28,13 @@ MAX_MODEL_BYTES_ENV = "WGPURENDER_MAX_MODEL_BYTES"
 MAX_IMAGE_PIXELS_ENV = "WGPURENDER_MAX_IMAGE_PIXELS"
 MAX_MODEL_BYTES = 512 * 1024 * 1024  # 512 MiB: a 2 GB sparse OBJ took ~60 s before its error
 MAX_IMAGE_PIXELS = 4096 * 4096  # 16.8 Mpx (4K UHD fits): compare with FLIP peaks at ~160 B/px (2.7 GB here)
+MAX_MODEL_VERTICES_ENV = "WGPURENDER_MAX_MODEL_VERTICES"
+MAX_MODEL_VERTICES = 8_000_000  # vertices + indices a model's scene declares (~250 B each while loading: 2 GB)
 MAX_NESTING = 32  # tables/arrays inside each other in a scene file: real scenes use 3
 
 
-def _kind(mode: int) -> str | None:
+def file_kind(mode: int) -> str | None:
+    """What a file of ``mode`` is when it is not a regular file ("a FIFO (named pipe)", ...), else None."""
     for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
                        (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
                        (stat.S_ISSOCK, "a socket")):
@@ -83,7 +88,7 @@ def input_file(path: str | os.PathLike, what: str, missing: str | None = None) -
         raise InputFileError(missing or f"{what} not found: {shown}", missing=True) from None
     except OSError as err:
         raise InputFileError(f"cannot read {what} {shown}: {os_error_reason(path, err)}") from None
-    kind = _kind(mode)
+    kind = file_kind(mode)
     if kind is not None:
         raise InputFileError(f"cannot read {what} {shown}: it is {kind}, not a regular file; give the path of a file")
     return path

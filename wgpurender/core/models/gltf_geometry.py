@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.models import gltf_rules
 from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
@@ -54,36 +55,32 @@ def node_matrix(node: dict) -> np.ndarray:
 
 
 def root_nodes(doc: GltfDocument) -> list[int]:
-    """The nodes the file asks to draw: those of ``scene`` (or scene 0); without scenes, every node no other node
-    lists as a child; without nodes, none (meshes are then placed once each, see :func:`placed_meshes`)."""
-    gltf = doc.json
-    scenes = gltf.get("scenes", [])
-    if scenes:
-        return list(scenes[gltf.get("scene", 0)].get("nodes", []))
-    children = {c for node in gltf.get("nodes", []) for c in node.get("children", [])}
-    return [i for i in range(len(gltf.get("nodes", []))) if i not in children]
+    """The nodes the file asks to draw (gltf_rules.root_nodes)."""
+    return gltf_rules.root_nodes(doc.json)
 
 
 def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
-    The graph is a forest (gltf_rules.check_node_graph refuses loops and second parents before this runs); a
-    loop is still refused here rather than followed forever."""
+    The graph is a forest with unique roots (gltf_rules refuses loops, second parents and repeated roots before
+    this runs), so each node is visited once; a second visit is still refused rather than followed."""
     nodes = doc.json.get("nodes", [])
     if not nodes:
         return [(np.eye(4), i, -1) for i in range(len(doc.json.get("meshes", [])))]
     out: list[tuple[np.ndarray, int, int]] = []
-    stack = [(index, np.eye(4), ()) for index in reversed(root_nodes(doc))]
+    stack = [(index, np.eye(4)) for index in reversed(root_nodes(doc))]
+    visited: set[int] = set()
     while stack:
-        index, parent, path = stack.pop()
-        if index in path:
-            raise UserError(f"malformed glTF file {doc.path}: node {index} is its own ancestor "
-                            f"(children cycle {' -> '.join(map(str, path + (index,)))}); re-export the file")
+        index, parent = stack.pop()
+        if index in visited:
+            raise UserError(f"malformed glTF file {doc.path}: node {index} is reached twice (a cycle or a second "
+                            "parent); nodes must form trees: re-export the file")
+        visited.add(index)
         node = nodes[index]
         world = parent @ node_matrix(node)
         if "mesh" in node:
             out.append((world, node["mesh"], index))
         for child in reversed(node.get("children", [])):
-            stack.append((child, world, path + (index,)))
+            stack.append((child, world))
     return out
 
 
@@ -156,23 +153,61 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGe
     colors = arrays["COLOR_0"]
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
-    return PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
-                             material, where)
+    geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
+                                 material, where)
+    return flat_shaded(geometry) if geometry.normals is None else geometry
+
+
+def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
+    """glTF 2.0, 3.7.2.1: "When normals are not specified, client implementations MUST calculate flat normals and
+    the provided tangents (if present) MUST be ignored." Each triangle gets its own three vertices with its face
+    normal (counter-clockwise front); smooth vertex normals would round a cube's edges."""
+    corners = g.faces.reshape(-1)
+    tri = g.positions[g.faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])  # unnormalised: build_mesh normalises
+    uvs = None if g.uvs is None else g.uvs[corners]
+    colors = None if g.colors is None else g.colors[corners]
+    faces = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
+    return PrimitiveGeometry(g.positions[corners], faces, np.repeat(normal, 3, axis=0), uvs, None, colors,
+                             g.material, g.where)
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
-    """(world matrix, node label, geometry) of every triangle primitive the file's scene places."""
+    """(world matrix, node label, geometry) of every triangle primitive the file's scene places; a mesh placed
+    by several nodes is read once."""
+    check_something_to_draw(doc)
     meshes = doc.json.get("meshes", [])
-    out = []
+    out, read = [], {}
     for world, mesh_index, node_index in placed_meshes(doc):
         mesh = meshes[mesh_index]
         name = f" '{mesh['name']}'" if mesh.get("name") else ""
         for p, prim in enumerate(mesh.get("primitives", [])):
             where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
-            geometry = primitive_geometry(doc, prim, where)
+            if (mesh_index, p) not in read:
+                read[mesh_index, p] = primitive_geometry(doc, prim, where)
+            geometry = read[mesh_index, p]
             if geometry is not None and len(geometry.faces):
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
+
+
+DRAWN_MODES = TRIANGLE_MODES  # the primitive modes drawn: the one place to widen (e.g. points and lines)
+MODE_NAMES = {**SKIPPED_MODES, **TRIANGLE_MODES}
+
+
+def check_something_to_draw(doc: GltfDocument) -> None:
+    """Refuse, in one line, a file whose scene places no mesh or only primitives of modes not drawn (points,
+    lines): it would render an empty image with exit 0. Both the mesh loader and the file's materials ask here."""
+    placed = gltf_rules.mesh_placements(doc.json)
+    if not placed:
+        raise UserError(f"glTF file {doc.path}: nothing to draw: its scene places no mesh (no node of the drawn "
+                        "scene has a 'mesh'); add the mesh's node to the scene's nodes and re-export")
+    meshes = doc.json.get("meshes", [])
+    modes = {prim.get("mode", 4) for m in placed for prim in meshes[m]["primitives"]}
+    if not modes & set(DRAWN_MODES):
+        found = ", ".join(MODE_NAMES.get(m, str(m)) for m in sorted(modes))
+        raise UserError(f"glTF file {doc.path}: nothing to draw: its placed primitives are {found} only, and "
+                        f"wgpurender draws {', '.join(MODE_NAMES[m] for m in DRAWN_MODES)}; export faces")
 
 
 def geometry_notes(doc: GltfDocument) -> list[str]:

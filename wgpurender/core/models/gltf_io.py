@@ -12,14 +12,20 @@ import base64
 import json
 import os
 import struct
-import urllib.parse
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.input_files import check_file_size, input_file, resolved
+from wgpurender.core.files import read_jail
+from wgpurender.core.files.input_files import (
+    MAX_MODEL_VERTICES,
+    MAX_MODEL_VERTICES_ENV,
+    check_file_size,
+    env_limit,
+    input_file,
+)
 from wgpurender.core.files.safe_write import atomic_write
 from wgpurender.core.models import gltf_rules, gltf_schema
 
@@ -76,9 +82,16 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
     try:
         gltf_schema.check(doc_json)
         gltf_rules.check_rules(doc_json)
+        gltf_rules.check_budget(doc_json, env_limit(MAX_MODEL_VERTICES_ENV, MAX_MODEL_VERTICES))
+    except gltf_rules.BudgetError as err:
+        raise UserError(f"glTF file {path}: {err}; simplify the model, or raise the limit with "
+                        f"${MAX_MODEL_VERTICES_ENV}=COUNT") from None
     except ValueError as err:
         raise UserError(f"malformed glTF file {path}: {err} (glTF 2.0 schema); fix or re-export the file") from None
-    buffers = [_load_buffer(path, i, b, glb_bin) for i, b in enumerate(doc_json.get("buffers", []))]
+    files = {f"$.{kind}[{i}].uri": _uri_file(path, f"$.{kind}[{i}].uri", item["uri"])
+             for kind in ("buffers", "images") for i, item in enumerate(doc_json.get(kind, []))
+             if "uri" in item and not item["uri"].startswith("data:")}  # every file checked before one is read
+    buffers = [_load_buffer(path, i, b, glb_bin, files) for i, b in enumerate(doc_json.get("buffers", []))]
     return GltfDocument(path, doc_json, buffers)
 
 
@@ -137,7 +150,7 @@ def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
     return doc_json, binary
 
 
-def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) -> bytes:
+def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None, files: dict[str, Path]) -> bytes:
     uri = buffer.get("uri")
     if uri is None:
         if glb_bin is None:
@@ -145,7 +158,7 @@ def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None) ->
         return glb_bin
     if uri.startswith("data:"):
         return _data_uri(path, f"$.buffers[{index}].uri", uri)
-    file = _uri_file(path, f"$.buffers[{index}].uri", uri)
+    file = files[f"$.buffers[{index}].uri"]
     missing = f"glTF file {path}: buffer file {file} not found (keep .bin files next to the .gltf)"
     check_file_size(input_file(file, "glTF buffer file", missing), "glTF buffer file")
     return file.read_bytes()
@@ -226,7 +239,7 @@ def image_source(doc: GltfDocument, image: dict) -> dict:
         return {"uri": None, "data": doc.buffers[view["buffer"]][start : start + view["byteLength"]]}
     if uri.startswith("data:"):
         return {"uri": None, "data": _data_uri(doc.path, "an image uri", uri)}
-    return {"uri": resolved(_uri_file(doc.path, "an image uri", uri)), "data": None}
+    return {"uri": _uri_file(doc.path, "an image uri", uri), "data": None}
 
 
 def _data_uri(path: Path, where: str, uri: str) -> bytes:
@@ -241,11 +254,9 @@ def _data_uri(path: Path, where: str, uri: str) -> bytes:
 
 
 def _uri_file(path: Path, where: str, uri: str) -> Path:
-    """The file a relative URI names, beside the glTF file; UserError for one no file can have."""
-    name = urllib.parse.unquote(uri)
-    if not name or any(not ch.isprintable() for ch in name):
-        raise UserError(f"malformed glTF file {path}: {where} {name!r} is not a usable file name")
-    return path.parent / name
+    """The file a relative URI names in the glTF file's folder (links resolved); UserError for one outside it or
+    special (read_jail.py: a model reads only what it ships)."""
+    return read_jail.model_file(path, uri, where)
 
 
 def write_glb(

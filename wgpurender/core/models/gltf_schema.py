@@ -6,8 +6,15 @@ arrays. A file that breaks one gets one message naming its JSON path, e.g.
 ``$.buffers[0].uri must be a string, got 5``, instead of a TypeError deep inside a loader.
 
 A schema here is a small value: a Python type (``str``, ``bool``), ``INT`` (a non-negative integer), ``NUM``
-(a finite number), ``Ref("meshes")`` (an index into that top-level array), ``Arr(item, n)`` (an array, of length n
-when given), ``Map(value)`` (an object with any keys), or ``Obj(props, required)``.
+(a finite number), ``NONNEG`` (a finite number >= 0), ``Ref("meshes")`` (an index into that top-level array),
+``Arr(item, n)`` (an array, of length n when given), ``Map(value)`` (an object with any keys), or
+``Obj(props, required)``. The ``extensions`` of every object is an object of objects (glTFProperty.schema.json).
+
+Why not the official JSON schema with the ``jsonschema`` package (issue 28, item 11): it would be a new
+dependency plus ~40 vendored schema files, its messages are multi-line and name schema paths rather than the
+file's, and it cannot check what most often breaks a loader here: an index past the end of another array
+(``Ref``), or the cross-field rules of gltf_rules.py (byteStride against the element size, sparse counts, a
+scene's roots). The properties we and trimesh read are checked here with one-line messages naming the JSON path.
 """
 
 from __future__ import annotations
@@ -40,12 +47,19 @@ class Obj:
     required: tuple[str, ...] = ()
 
 
-INT, NUM = "non-negative integer", "number"
+INT, NUM, NONNEG = "non-negative integer", "number", "non-negative number"
 TEXTURE_INFO = Obj({"index": Ref("textures"), "texCoord": INT}, ("index",))
+SPARSE = Obj({"count": INT, "indices": Obj({"bufferView": Ref("bufferViews"), "byteOffset": INT,
+                                            "componentType": INT}, ("bufferView", "componentType")),
+              "values": Obj({"bufferView": Ref("bufferViews"), "byteOffset": INT}, ("bufferView",))},
+             ("count", "indices", "values"))
+MATERIAL_EXTENSIONS = Obj({"KHR_materials_emissive_strength": Obj({"emissiveStrength": NONNEG}),
+                           "KHR_materials_unlit": Obj({})})
 PRIMITIVE = Obj({"attributes": Map(Ref("accessors")), "indices": Ref("accessors"), "material": Ref("materials"),
                  "mode": INT, "targets": Arr(Map(Ref("accessors")))}, ("attributes",))
 DOCUMENT = Obj({
     "asset": Obj({"version": str, "generator": str}),
+    "extensionsUsed": Arr(str), "extensionsRequired": Arr(str),
     "scene": Ref("scenes"),
     "scenes": Arr(Obj({"nodes": Arr(Ref("nodes")), "name": str})),
     "nodes": Arr(Obj({"mesh": Ref("meshes"), "children": Arr(Ref("nodes")), "matrix": Arr(NUM, 16),
@@ -54,14 +68,14 @@ DOCUMENT = Obj({
     "meshes": Arr(Obj({"primitives": Arr(PRIMITIVE, nonempty=True), "name": str}, ("primitives",))),
     "accessors": Arr(Obj({"bufferView": Ref("bufferViews"), "byteOffset": INT, "componentType": INT,
                           "normalized": bool, "count": INT, "type": str, "min": Arr(NUM), "max": Arr(NUM),
-                          "name": str}, ("componentType", "count", "type"))),
+                          "name": str, "sparse": SPARSE}, ("componentType", "count", "type"))),
     "bufferViews": Arr(Obj({"buffer": Ref("buffers"), "byteOffset": INT, "byteLength": INT, "byteStride": INT,
                             "target": INT, "name": str}, ("buffer", "byteLength"))),
     "buffers": Arr(Obj({"uri": str, "byteLength": INT, "name": str}, ("byteLength",))),
     "materials": Arr(Obj({
         "name": str, "normalTexture": TEXTURE_INFO, "occlusionTexture": TEXTURE_INFO,
-        "emissiveTexture": TEXTURE_INFO, "emissiveFactor": Arr(NUM, 3), "alphaMode": str, "alphaCutoff": NUM,
-        "doubleSided": bool,
+        "emissiveTexture": TEXTURE_INFO, "emissiveFactor": Arr(NUM, 3), "alphaMode": str, "alphaCutoff": NONNEG,
+        "doubleSided": bool, "extensions": MATERIAL_EXTENSIONS,
         "pbrMetallicRoughness": Obj({"baseColorFactor": Arr(NUM, 4), "baseColorTexture": TEXTURE_INFO,
                                      "metallicFactor": NUM, "roughnessFactor": NUM,
                                      "metallicRoughnessTexture": TEXTURE_INFO}),
@@ -72,6 +86,8 @@ DOCUMENT = Obj({
     "cameras": Arr(Obj({"type": str})),
     "skins": Arr(Obj({"joints": Arr(Ref("nodes"))})),
 })
+
+EXTENSIONS = Map(Obj({}))
 
 _TYPE_NAMES = {dict: "an object", list: "an array", str: "a string", bool: "a boolean", int: "an integer",
                float: "a number", type(None): "null"}
@@ -97,6 +113,8 @@ def _check(value: Any, schema: Any, where: str, root: dict) -> None:
         for name, sub in schema.props.items():
             if name in value:
                 _check(value[name], sub, f"{where}.{name}", root)
+        if "extensions" in value:  # every glTF property: an object of extension objects (glTFProperty.schema.json)
+            _check(value["extensions"], EXTENSIONS, f"{where}.extensions", root)
     elif isinstance(schema, Arr):
         if not isinstance(value, list):
             raise ValueError(f"{where} must be an array, got {_show(value)}")
@@ -122,8 +140,10 @@ def _check(value: Any, schema: Any, where: str, root: dict) -> None:
     elif schema == INT:
         if isinstance(value, bool) or not isinstance(value, int) or value < 0:
             raise ValueError(f"{where} must be a non-negative integer, got {_show(value)}")
-    elif schema == NUM:
+    elif schema in (NUM, NONNEG):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise ValueError(f"{where} must be a finite number, got {_show(value)}")
+        if schema == NONNEG and value < 0:
+            raise ValueError(f"{where} must not be negative, got {_show(value)}")
     elif not isinstance(value, schema) or (schema is not bool and isinstance(value, bool)):
         raise ValueError(f"{where} must be {_TYPE_NAMES[schema]}, got {_show(value)}")

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import check_file_size, input_file
 from wgpurender.core.models import gltf_geometry, gltf_io
 from wgpurender.core.models.tangents import (
@@ -309,13 +310,26 @@ def _load_scene(path: Path, file_type: str, **kwargs):
     try:
         # process=False: no vertex merging, so per-corner UVs and normals survive; maintain_order must stay False
         # for OBJ (trimesh 5.2 then keys vertices by position index only and loses per-corner UVs).
-        return trimesh.load_scene(str(path), file_type=file_type, process=False, **kwargs)
+        return trimesh.load_scene(str(path), file_type=file_type, process=False, resolver=_jailed_resolver(path),
+                                  **kwargs)
     except UserError:
         raise
     except Exception as err:  # trimesh raises many types for bad files; the user needs only the file and reason
         detail = str(err).strip().splitlines()[0] if str(err).strip() else ""
         reason = f"{type(err).__name__}: {detail}" if detail else type(err).__name__
         raise UserError(f"cannot read {path} as {file_type.upper()}: the file is malformed ({reason})") from None
+
+
+def _jailed_resolver(path: Path):
+    """trimesh's resolver for the files a model names (an MTL, a PLY's TextureFile), through read_jail: OBJ and PLY
+    are loaded with skip_materials, so this is the guard should trimesh ever ask."""
+    from trimesh.resolvers import FilePathResolver
+
+    class JailedResolver(FilePathResolver):
+        def get(self, name: str) -> bytes:
+            return read_jail.model_file(path, name, "a file trimesh asked for", encoded=False).read_bytes()
+
+    return JailedResolver(str(path))
 
 
 def _placed(scene):

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import InputFileError, input_file, resolved
 from wgpurender.core.scene.toml_locator import KeyLines, KeyPath, format_path
 
@@ -96,10 +97,15 @@ class Checker:
                                   "(NUL, newline, ...): give a plain file path")
         path = resolved(self.folder / written)
         try:
-            return input_file(path, what)
+            found = input_file(path, what)  # a stat only: what is missing or special is named as such
         except InputFileError as err:
             if not err.missing:
                 raise self.error(key, f"{format_path(key)}: {err}") from None
+        else:
+            refused = read_jail.scene_file(self.path, found)
+            if refused is not None:
+                raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
+            return found
         raise self.error(
             key,
             f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.input_files import resolved
+from wgpurender.core.files import read_jail
 from wgpurender.core.scene.gltf_materials import model_materials
 from wgpurender.core.scene.model import Material, Model, ModelMaterials
 
@@ -84,12 +84,12 @@ def obj_mtl_entry(path: Path) -> MtlEntry | None:
     used = re.search(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", text, re.M)
     wanted = used.group(1).decode("utf-8", "replace") if used else None
     for lib in libraries:
-        mtl = path.parent / lib.decode("utf-8", "replace")
+        mtl = read_jail.model_file(path, lib.decode("utf-8", "replace"), "mtllib", encoded=False)
         if not os.path.isfile(mtl):
             # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
             log.info("%s: material library %s not found; loading without textures", path, mtl)
             continue
-        materials = parse_mtl(mtl)
+        materials = parse_mtl(mtl, path)
         if wanted in materials:
             return materials[wanted]
         if wanted is None and materials:
@@ -97,9 +97,10 @@ def obj_mtl_entry(path: Path) -> MtlEntry | None:
     return None
 
 
-def parse_mtl(path: Path) -> dict[str, MtlEntry]:
-    """Every material in an MTL file. Map options (``-bm 1.0`` ...) are skipped: the file name is the last token.
-    Paths are resolved relative to the MTL file."""
+def parse_mtl(path: Path, model: Path | None = None) -> dict[str, MtlEntry]:
+    """Every material in the MTL file of OBJ ``model`` (default: the MTL's own folder is the model's). Map options
+    (``-bm 1.0`` ...) are skipped: the file name is the last token. Paths are resolved relative to the MTL file and
+    must stay in the model's folder (core/files/read_jail.py)."""
     materials: dict[str, MtlEntry] = {}
     current = None
     for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
@@ -114,7 +115,9 @@ def parse_mtl(path: Path) -> dict[str, MtlEntry]:
             if not tokens[-1].isprintable():
                 raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
                                 "fix the material library")
-            current.textures.setdefault(MTL_ROLES[key], resolved(path.parent / tokens[-1]))
+            where = f"{path}:{number} {tokens[0]}"
+            texture = read_jail.model_file(model or path, tokens[-1], where, base=path.parent, encoded=False)
+            current.textures.setdefault(MTL_ROLES[key], texture)
         elif key in ("kd", "d", "tr", "illum") and current is not None:
             _mtl_number(current, key, tokens[1:], f"{path}:{number}")
     return materials

@@ -93,7 +93,7 @@ def _texture_path(doc: gltf_io.GltfDocument, texture: dict) -> Path:
     index = texture["source"]
     uri = doc.json["images"][index].get("uri")
     if uri is not None and not uri.startswith("data:"):
-        return gltf_io._uri_file(doc.path, "an image uri", uri).resolve()
+        return gltf_io._uri_file(doc.path, f"$.images[{index}].uri", uri)
     return embedded_image_path(doc.path.resolve(), index)
 
 
@@ -162,11 +162,12 @@ def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
 def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
     doc = document(str(path))
+    gltf_geometry.check_something_to_draw(doc)
     used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
         for prim in meshes[mesh_index].get("primitives", []):
-            if prim.get("mode", 4) in gltf_geometry.TRIANGLE_MODES:
+            if prim.get("mode", 4) in gltf_geometry.DRAWN_MODES:
                 k = prim.get("material", -1)
                 used[k] = used.get(k, False) or "COLOR_0" in prim.get("attributes", {})
     taken, ignored = [], list(gltf_geometry.geometry_notes(doc))

@@ -1,0 +1,109 @@
+"""What a model or scene file may read: the one home of the rule (docs/scenes.md, "What a file may read").
+
+A model file is untrusted input, as a web page is to a browser. It reads only what it ships:
+
+- files under the model's own folder, after resolving symbolic links (``textures/a.png``, ``sub/../b.bin``); a
+  model shipped in the bundled ``assets/`` may read all of ``assets/`` (the project's own files);
+- ``data:`` URIs and the GLB binary chunk (the callers read those without a file).
+
+Refused, in one line naming the URI, before any byte of any file the model names is read: an absolute path, a
+URI with a scheme (``file://``, ``http:``, ``C:``), a path that climbs out of the folder (``../``, also
+percent-encoded as ``%2e%2e``, or through a link that points out), and a special file (a FIFO, a device, a
+socket, a directory) even inside the folder. glTF ``buffers[].uri`` and ``images[].uri``, an OBJ's ``mtllib``
+and the texture files its MTL names all go through :func:`model_file`.
+
+A scene file is the user's own, but may be shared as well: the files it names (models, textures) must lie, after
+resolving links, under the scene's project folder (its own folder, or the folder above it when that is named
+``scenes``, as in the bundled layout), the bundled ``assets/`` folder, or a folder the user allows with
+``$WGPURENDER_ALLOW_PATHS`` (folders separated by ``os.pathsep``), see :func:`scene_file`. The scenes that ship
+with the package (``assets/scenes``) are the project's own and may read anything their authors wrote.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import urllib.parse
+from pathlib import Path, PureWindowsPath
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files.input_files import file_kind, resolved
+
+ALLOW_ENV = "WGPURENDER_ALLOW_PATHS"
+SCENES_FOLDER = "scenes"  # a scene in PROJECT/scenes/ reads PROJECT/models, PROJECT/textures (the bundled layout)
+SCHEME = re.compile(r"[A-Za-z][A-Za-z0-9+.\-]*:")  # RFC 3986 scheme (also matches a Windows drive "C:")
+
+
+def model_file(model: Path, uri: str, where: str, *, base: Path | None = None, encoded: bool = True) -> Path:
+    """The file a model's relative ``uri`` names (links resolved), inside the model's folder.
+
+    ``where`` is the JSON path or ``FILE:LINE`` of the reference; ``base`` the folder the name is relative to
+    (default the model's: an MTL's textures are relative to the MTL); ``encoded``: percent-encoded, as glTF URIs
+    are (RFC 3986: ``%2e%2e`` is ``..``), not as OBJ/MTL names are. Nothing is opened; a missing file is returned
+    as is (the reader says "not found"). UserError, naming the URI, for anything outside the folder or special.
+    """
+    name = urllib.parse.unquote(uri) if encoded else uri
+    if not name or any(not ch.isprintable() for ch in name):
+        raise UserError(f"malformed model file {model}: {where} {uri!r} is not a usable file name")
+    folder = model_folder(model)
+    if SCHEME.match(name) or name.startswith(("/", "\\")) or PureWindowsPath(name).is_absolute():
+        _refuse(model, uri, where, folder, "is absolute or has a scheme (file://, http:, a drive)")
+    target = resolved((base or model.parent) / name)
+    if not target.is_relative_to(folder):
+        _refuse(model, uri, where, folder, f"leads out of the model's folder (to {target})")
+    kind = special_kind(target)
+    if kind is not None:
+        _refuse(model, uri, where, folder, f"is {kind}, not a regular file")
+    return target
+
+
+def model_folder(model: Path) -> Path:
+    """The folder a model may read from: its own, or the whole bundled ``assets/`` for a model shipped there (the
+    project's own files: brick_cube.mtl names ../textures)."""
+    from wgpurender.core.files.assets import assets_dir
+
+    folder, assets = resolved(model.parent), resolved(assets_dir())
+    return assets if folder.is_relative_to(assets) else folder
+
+
+def _refuse(model: Path, uri: str, where: str, folder: Path, why: str) -> None:
+    raise UserError(f"model file {model}: {where} {uri!r} {why}; a model reads only regular files in its own folder "
+                    f"{folder}, data: URIs and GLB chunks: copy the file beside the model and name it relatively")
+
+
+def special_kind(path: Path) -> str | None:
+    """What ``path`` is when it exists and is not a regular file (a FIFO would block the reader), else None."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return None  # missing, a loop, too long: the reader's input_file says what it is
+    return file_kind(mode)
+
+
+def allowed_folders(scene: Path) -> list[Path]:
+    """The folders a scene file's paths may lead into: its project folder (its own folder, or the one above a
+    folder named ``scenes``: the bundled layout scenes/, models/, textures/), the bundled assets, and the folders
+    of $WGPURENDER_ALLOW_PATHS."""
+    from wgpurender.core.files.assets import assets_dir
+
+    own = resolved(scene.parent)
+    project = own.parent if own.name == SCENES_FOLDER else own
+    extra = [resolved(p) for p in os.environ.get(ALLOW_ENV, "").split(os.pathsep) if p.strip()]
+    return [project, resolved(assets_dir()), *extra]
+
+
+def is_bundled_scene(scene: Path) -> bool:
+    from wgpurender.core.files.assets import scene_dir
+
+    return resolved(scene).parent == resolved(scene_dir())
+
+
+def scene_file(scene: Path, path: Path) -> str | None:
+    """Why a scene file may not read ``path`` (already resolved), or None when it may (see the module docstring)."""
+    if is_bundled_scene(scene):
+        return None
+    folders = allowed_folders(scene)
+    if any(resolved(path).is_relative_to(folder) for folder in folders):
+        return None
+    return (f"{path} is outside the folders a scene may read ({', '.join(map(str, folders))}); move the file "
+            f"under the scene's folder, or allow its folder with ${ALLOW_ENV}=FOLDER")
