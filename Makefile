@@ -7,7 +7,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 APT_PACKAGES := python3 python3-venv mesa-vulkan-drivers libvulkan1 libglfw3 xvfb xauth \
-                vulkan-validationlayers glslc vulkan-tools xdotool chromium
+                vulkan-validationlayers glslc vulkan-tools xdotool chromium libassimp5 assimp-utils
 STAMP := $(VENV)/.installed
 export XDG_RUNTIME_DIR ?= /tmp
 

@@ -56,6 +56,7 @@ layout(location = 4) out vec4 v_color;
 void main() {
     // proj * view * world * p, left to right, as the WGSL (and the tutorial's GLSL) writes it.
     gl_Position = camera.proj * camera.view * object_data.world * vec4(a_position, 1.0);
+    gl_PointSize = 1.0;  // a point-list pipeline (glTF POINTS) must write it; WebGPU's points are 1 pixel too
 #ifdef LIGHTING
     v_world_position = (object_data.world * vec4(a_position, 1.0)).xyz;
     v_normal = object_data.normal * a_normal;  // cofactor matrix: right direction, any length

@@ -108,7 +108,7 @@ def _inspect(pipe: DevToolsPipe, path: Path, size: tuple[int, int], timeout: flo
         "expression": "JSON.stringify(Array.from(document.images, i => "
                       "({src: i.getAttribute('src'), complete: i.complete, width: i.naturalWidth})))",
         "returnByValue": True}, session=session)["result"]["value"]
-    values = {name: pipe.send("Runtime.evaluate", {"expression": expr, "returnByValue": True},
+    values = {name: pipe.send("Runtime.evaluate", {"expression": expr, "returnByValue": True, "awaitPromise": True},
                               session=session)["result"].get("value") for name, expr in evaluate.items()}
     if scroll_to:
         scroll = f"document.getElementById({json.dumps(scroll_to)}).scrollIntoView()"

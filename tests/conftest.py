@@ -128,3 +128,35 @@ def wgpu_driver_class(ctx):
     from wgpurender.core.verdict.tolerances import driver_class
 
     return driver_class(ctx.adapter.info["device"])
+
+
+REPORT_COMMAND = "wgpurender report -o out/report"  # the README tour's line (tests/test_readme_tour.py)
+
+
+@pytest.fixture(scope="session")
+def report_run(tmp_path_factory):
+    """The README's report command, run once from an empty folder for test_report.py and test_readme_tour.py:
+    ``folder`` (the cwd), ``command``, ``result`` (the CompletedProcess), ``start`` and ``end`` (UTC).
+    A fresh bandwidth record (core/files/bandwidth.py): the report's timings write one after each scene's plan text,
+    so with the user's cache the plan printed and the one a test explains could differ by a measurement."""
+    import datetime
+    import shlex
+    import shutil
+    import subprocess
+    import sys
+    import time
+    from types import SimpleNamespace
+
+    if shutil.which("glslc") is None:
+        pytest.skip("the raw path needs glslc (apt-get install glslc)")
+    folder = tmp_path_factory.mktemp("report_run")
+    (folder / "out").mkdir()  # as `make demo` leaves it (the README's tour runs after it)
+    env = dict(os.environ, WGPURENDER_PERF_RECORD=str(folder / "bandwidth.json"),
+               XDG_CACHE_HOME=str(folder / "cache"))
+    start = datetime.datetime.now(datetime.UTC).replace(second=0, microsecond=0)
+    argv = [sys.executable, "-m", *shlex.split(REPORT_COMMAND)]
+    began = time.perf_counter()
+    result = subprocess.run(argv, cwd=folder, capture_output=True, text=True, timeout=900, env=env)
+    return SimpleNamespace(folder=folder, command=REPORT_COMMAND, result=result, start=start,
+                           end=datetime.datetime.now(datetime.UTC), seconds=time.perf_counter() - began)
+

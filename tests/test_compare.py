@@ -62,6 +62,12 @@ def test_cli_threshold_exit_codes(tmp_path, capsys):
     save_png(tmp_path / "a.png", a)
     save_png(tmp_path / "b.png", b)
     assert main(["compare", str(tmp_path / "a.png"), str(tmp_path / "a.png")]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == "within threshold: flip_mean 0 <= 0.005"
+    assert main(["compare", str(tmp_path / "a.png"), str(tmp_path / "b.png"), "--threshold", "max_abs=255",
+                 "--threshold", "psnr=1"]) == 0
+    got = compare_images(a, b)
+    assert capsys.readouterr().out.splitlines()[-1] == (f"within threshold: max_abs {got.max_abs:.6g} <= 255; "
+                                                        f"psnr {got.psnr:.6g} >= 1")
     code = main(["compare", str(tmp_path / "a.png"), str(tmp_path / "b.png"), "--threshold", "max_abs=0",
                  "--heatmap", str(tmp_path / "h.png")])
     assert code == 1 and (tmp_path / "h.png").is_file()

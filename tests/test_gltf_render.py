@@ -363,7 +363,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
     assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
     for ignored in ("KHR_materials_clearcoat: ignored",
-                    "TEXCOORD_1 ignored", "LINES primitive ignored", "occlusionTexture texCoord 1: ignored",
+                    "TEXCOORD_1 ignored", "LINES primitive drawn unlit", "occlusionTexture texCoord 1: ignored",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out
@@ -380,10 +380,10 @@ def test_cli_refuses_gltf_1_and_unknown_required_extensions(tmp_path, capsys):
     (tmp_path / "old.gltf").write_text(json.dumps({"asset": {"version": "1.0"}, "scene": "defaultScene"}))
     g = GltfWriter()
     g.node(mesh=g.mesh([quad_primitive(g, -1, -1, 1, 1)]))
-    g.doc["extensionsRequired"] = g.doc["extensionsUsed"] = ["EXT_meshopt_compression"]
+    g.doc["extensionsRequired"] = g.doc["extensionsUsed"] = ["KHR_texture_basisu"]
     g.write(tmp_path / "packed.glb")
     for model, needle in (("old.gltf", "glTF 1.0 is not supported (glTF 2.0 only)"),
-                          ("packed.glb", "EXT_meshopt_compression")):
+                          ("packed.glb", "KHR_texture_basisu")):
         scene = write_scene(tmp_path, model)
         code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
         err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]

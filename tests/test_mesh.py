@@ -202,9 +202,10 @@ def test_gltf_node_transform_applies_to_positions_normals_tangents(tmp_path):
 
 
 def test_gltf_several_meshes_primitives_and_instances(tmp_path):
-    """Mesh "a" = a triangle primitive + a POINTS primitive (trimesh makes a point cloud of it: skipped), mesh "b" =
-    one triangle primitive placed by two nodes (translated by +10 and +20 in x). Each placed part must keep its own
-    file uvs (a: QUAD_UV, b: QUAD_UV / 2): 4 + 4 + 4 vertices, positions offset per node."""
+    """Mesh "a" = a triangle primitive + a POINTS primitive (its 4 vertices come after the triangles', drawn as a
+    point list), mesh "b" = one triangle primitive placed by two nodes (translated by +10 and +20 in x). Each placed
+    part must keep its own file uvs (a: QUAD_UV, b: QUAD_UV / 2): 4 + 4 + 4 triangle vertices, positions offset
+    per node."""
     data, views, accessors = b"", [], []
 
     def add(array, component=5126):
@@ -230,7 +231,10 @@ def test_gltf_several_meshes_primitives_and_instances(tmp_path):
            "bufferViews": views, "accessors": accessors}
     (tmp_path / "multi.gltf").write_text(json.dumps(doc))
     mesh = load_mesh(tmp_path / "multi.gltf")
-    assert mesh.vertex_count == 12 and mesh.triangle_count == 6
+    assert mesh.vertex_count == 16 and mesh.triangle_count == 6
+    np.testing.assert_allclose(mesh.positions[12:], QUAD_POS + 5)
+    assert mesh.parts[-1].topology == "point-list" and mesh.parts[-1].index_count == 4
+    np.testing.assert_array_equal(mesh.all_indices()[mesh.parts[-1].first_index:], [12, 13, 14, 15])
     for offset in (0.0, 10.0, 20.0):
         part = np.flatnonzero(np.abs(mesh.positions[:, 0] - offset - 0.5) < 1)
         assert len(part) == 4
@@ -293,9 +297,9 @@ def expect_user_error(path, *fragments):
     return message
 
 
-def test_fbx_and_unknown_formats_say_how_to_convert(tmp_path):
-    (tmp_path / "model.fbx").write_bytes(b"Kaydara FBX Binary  \0")
-    expect_user_error(tmp_path / "model.fbx", "FBX", "not supported", "glTF", "Blender", "assimp export model.fbx")
+def test_blender_and_unknown_formats_say_how_to_convert(tmp_path):
+    (tmp_path / "model.blend").write_bytes(b"BLENDER-v300")
+    expect_user_error(tmp_path / "model.blend", "Blender", "not supported", "glTF", "assimp export model.blend")
     expect_user_error(tmp_path / "model.xyz123", "unknown model format", ".obj", ".glb")
 
 

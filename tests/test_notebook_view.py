@@ -67,8 +67,14 @@ def test_show_in_a_kernel_is_the_live_widget_with_a_still_for_frontends_without_
     assert "reset 0" in text
 
 
-def test_show_outside_a_kernel_is_the_still_image():
+def test_show_outside_a_kernel_without_a_display_is_the_still_image(monkeypatch, capsys):
+    """No kernel and no display: one line says why no window opens, and the still frame comes back (a window
+    where there is a display: tests/test_window_keys.py)."""
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     img = w.show("triangle", size=SIZE)
+    said = capsys.readouterr().err.strip().splitlines()
+    assert len(said) == 1 and said[0].startswith("w.show: no window (no display"), said
     assert isinstance(img, w.Image) and img._repr_png_()
     assert np.abs(img.pixels.astype(int) - w.render("triangle", size=SIZE).pixels.astype(int)).max() <= 1
 

@@ -36,20 +36,11 @@ BUILT: dict[str, datetime.datetime] = {}
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    """`wgpurender report -o DIR`, as a user runs it."""
-    if shutil.which("glslc") is None:
-        pytest.skip("the raw path needs glslc (apt-get install glslc)")
-    out = tmp_path_factory.mktemp("report") / "site"
-    BUILT["start"] = datetime.datetime.now(datetime.UTC).replace(second=0, microsecond=0)
-    # A fresh bandwidth record (core/files/bandwidth.py): the report's timings write one after each scene's plan text,
-    # so with the user's cache the plan printed here and the one the test explains could differ by a measurement.
-    env = dict(os.environ, WGPURENDER_PERF_RECORD=str(out.parent / "bandwidth.json"))
-    result = subprocess.run([sys.executable, "-m", "wgpurender", "report", "-o", str(out)], capture_output=True,
-                            text=True, timeout=900, env=env)
-    BUILT["end"] = datetime.datetime.now(datetime.UTC)
-    assert result.returncode == 0, result.stderr
-    return out
+def site(report_run):
+    """`wgpurender report -o out/report`, as a user runs it (conftest.py's ``report_run``: the README's line)."""
+    BUILT["start"], BUILT["end"] = report_run.start, report_run.end
+    assert report_run.result.returncode == 0, report_run.result.stderr
+    return report_run.folder / "out" / "report"
 
 
 def _sections(text: str) -> list[str]:
@@ -112,8 +103,14 @@ def test_the_images_are_both_paths_renders_and_the_heatmap_marks_their_differenc
 
     for stage in ("triangle", "3d", "textured"):
         wgpu_img, raw_img = load_png(site / f"{stage}_wgpu.png"), load_png(site / f"{stage}_raw.png")
-        assert (wgpu_img == render_stage(stage, (240, 180), ctx=ctx, frames=1).pixels).all()
-        assert (raw_img == render_reference(stage, (240, 180))).all()
+        assert wgpu_img.shape[1] >= 640  # a projector's page
+        size = (wgpu_img.shape[1], wgpu_img.shape[0])
+        assert (wgpu_img == render_stage(stage, size, ctx=ctx, frames=1).pixels).all()
+        assert (raw_img == render_reference(stage, size)).all()
+        large = (2 * size[0], 2 * size[1])  # what a click opens: the same step rendered at twice the size
+        wgpu_large = render_stage(stage, large, ctx=ctx, frames=1).pixels
+        assert (load_png(site / f"{stage}_wgpu_large.png") == wgpu_large).all()
+        assert (load_png(site / f"{stage}_raw_large.png") == render_reference(stage, large)).all()
         heat = load_png(site / f"{stage}_heat.png")
         differs = np.abs(wgpu_img[..., :3].astype(int) - raw_img[..., :3].astype(int)).max(axis=2) > 0
         assert ((heat[..., :3] > 0).any(axis=2) == differs).all()
@@ -155,7 +152,8 @@ def test_scene_sections_show_the_render_plan(site, monkeypatch, tmp_path):
 
     text = (site / "index.html").read_text()
     # the plan drawn on this adapter, as `render --explain` prints it (the one resolved plan, issue 20)
-    plan = w.explain(REPO / "assets" / "scenes" / "final.toml", size=(240, 180)).splitlines()
+    shown = load_png(site / "final_wgpu.png").shape
+    plan = w.explain(REPO / "assets" / "scenes" / "final.toml", size=(shown[1], shown[0])).splitlines()
     assert plan[0].startswith("scene: ") and "scene: assets/scenes/final.toml" in _section(text, "final")
     assert html.escape("\n".join(plan[1:])) in _section(text, "final")  # the plan, all but the file's path
     part = _section(text, "final")
@@ -180,16 +178,17 @@ def _steps_with_images(text: str) -> list[str]:
 
 
 def test_every_step_has_its_images_code_on_both_paths_and_labelled_metrics(site):
-    """Each rendered step: wgpu, raw and heatmap images that open full size, highlighted code excerpts of both
+    """Each rendered step: wgpu, raw and heatmap images that open larger, highlighted code excerpts of both
     paths linked to listings whose anchored line is the excerpt's first line, and each metric in a labelled row."""
     text = (site / "index.html").read_text()
     keys = _steps_with_images(text)
     assert len(keys) >= 14
     for key in keys:
         part = _section(text, key)
-        for kind in ("wgpu", "raw", "heat"):
-            name = f"{key}_{kind}.png"
-            assert f'<a class="full" href="{name}"' in part and (site / name).is_file(), f"{key}: {kind} image"
+        for kind, opens in (("wgpu", "wgpu_large"), ("raw", "raw_large"), ("heat", "heat")):
+            name, large = f"{key}_{kind}.png", f"{key}_{opens}.png"
+            assert f'<a class="full" href="{large}"' in part and f'<img src="{name}"' in part, f"{key}: {kind} image"
+            assert (site / name).is_file() and (site / large).is_file(), f"{key}: {kind} image"
         columns = {"wgpu": part[part.index('data-path="wgpu"'):part.index('data-path="raw"')],
                    "raw": part[part.index('data-path="raw"'):]}
         for side, column in columns.items():
@@ -321,3 +320,75 @@ def test_size_option_and_absent_tutorial_files(tmp_path, monkeypatch, ctx):
     note = re.findall(r'<p class="note missing">([^<]+)</p>', part)
     assert len(note) == 1 and "absent" in note[0] and "anchors" in note[0]
     assert "Not measured in this build" in text
+
+
+PROJECTOR = (1280, 720)
+LARGE_WIDTHS = """Promise.all(Array.from(document.querySelectorAll('figure.shot a.full'), a => new Promise(done => {
+  const shown = a.querySelector('img'); const big = new Image();
+  big.onload = () => done([a.getAttribute('href'), shown.getAttribute('src'), shown.naturalWidth, big.naturalWidth]);
+  big.onerror = () => done([a.getAttribute('href'), shown.getAttribute('src'), shown.naturalWidth, 0]);
+  big.src = a.href; })))"""
+CLIPPED_LINES = """(() => { const out = [];
+  document.querySelectorAll('details').forEach(d => d.open = true);
+  document.querySelectorAll('.excerpt pre, pre.diff').forEach(pre => {
+    if (pre.scrollWidth > pre.clientWidth + 1) out.push('box ' + pre.textContent.slice(0, 60));
+    pre.querySelectorAll('.line, span.add, span.del, span.same').forEach(line => {
+      const r = line.getBoundingClientRect(), box = pre.getBoundingClientRect();
+      if (line.scrollWidth > line.clientWidth + 1 || r.right > box.right + 1) out.push(line.textContent.slice(0, 60));
+    });
+  });
+  return {clipped: out, lines: document.querySelectorAll('.excerpt .line').length,
+          numbered: Array.from(document.querySelectorAll('.excerpt .line'), l => l.querySelector('.linenos') ? 1 : 0)
+                         .reduce((a, b) => a + b, 0)}; })()"""
+
+
+@needs_chromium
+def test_the_page_reads_on_a_projector(site, tmp_path):
+    """Chromium at 1280x720: every step's image is at least 640 px wide, its click opens a larger render (another
+    file), and no line of code (excerpts or diffs) is cut: each fits its box, wrapped under its line number."""
+    report = open_page(site / "index.html", size=PROJECTOR, scroll_to="3d-code",
+                       evaluate={"large": LARGE_WIDTHS, "code": CLIPPED_LINES})
+    (tmp_path / "projector.png").write_bytes(report.screenshot)
+    assert report.errors == []
+    shots = [i for i in report.images if i["src"].endswith(("_wgpu.png", "_raw.png", "_heat.png"))]
+    assert len(shots) >= 30 and all(i["width"] >= 640 for i in shots), [(i["src"], i["width"]) for i in shots]
+    for href, src, shown, big in report.values["large"]:
+        if src.endswith(("_wgpu.png", "_raw.png")):
+            assert href != src and big == 2 * shown, (href, src, shown, big)
+    code = report.values["code"]
+    assert code["lines"] > 500 and code["numbered"] == code["lines"]
+    assert code["clipped"] == [], f"{len(code['clipped'])} code lines cut at 1280 px: {code['clipped'][:3]}"
+
+
+def test_the_stated_build_time_is_the_build_time(site, report_run):
+    """The page's "in N s" is the run's wall time at most (the accuracy time was counted twice: 85 s for 62.5)."""
+    stated = int(re.search(r"in (\d+) s with", (site / "index.html").read_text()).group(1))
+    assert 0.6 * report_run.seconds - 1 <= stated <= report_run.seconds + 0.5, (stated, report_run.seconds)
+
+
+def _excerpt_lines(part: str, side: str) -> set[str]:
+    """The code lines a section shows on one path, read back from its HTML (tags dropped, numbers cut off)."""
+    body = part[part.index(f'<div class="code-side" data-path="{side}">'):]
+    body = body[:body.index('<div class="code-side"', 10)] if '<div class="code-side"' in body[10:] else body
+    lines = re.findall(r'<span class="line" data-line="\d+"><span class="linenos">\s*\d+</span>(.*?)\n</span>',
+                       body, re.S)
+    return {html.unescape(re.sub(r"<[^>]+>", "", x)).strip() for x in lines}
+
+
+def test_each_step_shows_what_changed_in_the_code_from_the_previous_one(site):
+    """triangle-buffers after triangle: on both paths, every added line of the diff is a line of this step's code
+    and not of the previous step's, every removed line the reverse (read from the page's own excerpts)."""
+    text = (site / "index.html").read_text()
+    now, before = _section(text, "triangle-buffers"), _section(text, "triangle")
+    for side in ("wgpu", "raw"):
+        diff = now[now.index(f'<div class="code-side diff-side" data-path="{side}">'):]
+        diff = diff[:diff.index("</pre>")]
+        assert "what changed from triangle" in diff
+        added = [html.unescape(x)[1:].strip() for x in re.findall(r'<span class="add">([^<]*)</span>', diff)]
+        removed = [html.unescape(x)[1:].strip() for x in re.findall(r'<span class="del">([^<]*)</span>', diff)]
+        assert added and removed, side
+        mine, theirs = _excerpt_lines(now, side), _excerpt_lines(before, side)
+        added_code = [x for x in added if x and not x.startswith("# ")]
+        removed_code = [x for x in removed if x and not x.startswith("# ")]
+        assert all(x in mine for x in added_code) and any(x not in theirs for x in added_code), side
+        assert all(x in theirs for x in removed_code) and any(x not in mine for x in removed_code), side

@@ -307,9 +307,9 @@ def test_missing_texture_file(project):
 
 
 def test_unsupported_model_format(project):
-    (project / "models" / "thing.fbx").write_text("")
-    path = write(project, CAMERA + '\n[[models]]\npath = "../models/thing.fbx"\n')
-    assert "'../models/thing.fbx' is FBX, which cannot be loaded: convert it to glTF" in error_of(path)
+    (project / "models" / "thing.blend").write_text("")
+    path = write(project, CAMERA + '\n[[models]]\npath = "../models/thing.blend"\n')
+    assert "'../models/thing.blend' is Blender, which cannot be loaded: convert it to glTF" in error_of(path)
 
 
 def test_too_many_lights(project):

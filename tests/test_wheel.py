@@ -127,6 +127,17 @@ def test_the_wheel_carries_the_whole_course(installed):
     assert len(expected) > 20 and expected <= names, sorted(expected - names)
 
 
+def test_the_wheel_carries_the_attribution_of_the_tutorial_files(installed):
+    """The wheel ships the tutorial scenes, so the CC BY attribution of the files they read ships too."""
+    from wgpurender.core.files.credits import all_credits
+
+    assert "wgpurender/_assets/credits.toml" in zipfile.ZipFile(installed["wheel"]).namelist()
+    code = ("from wgpurender.core.files.credits import scene_credits; "
+            "from wgpurender.core.files.assets import bundled_scene; "
+            "print(scene_credits(bundled_scene('vulkan_tutorial_28'))[0].line())")
+    assert _run(installed, installed["python"], "-c", code).stdout.strip() == all_credits()[0].line()
+
+
 def test_the_installed_package_is_not_the_checkout(installed):
     out = _run(installed, installed["python"], "-c", "import wgpurender; print(wgpurender.__file__)").stdout
     assert Path(out.strip()).is_relative_to(installed["python"].parent.parent), out
@@ -171,6 +182,26 @@ def test_raw_path_from_the_wheel_compiles_into_the_user_cache(installed):
     _run(installed, installed["bin"] / "wgpurender", "reference", "final_subpass", "-o", "s.png", "--size", "64x48")
     scene = np.asarray(Image.open(installed["cwd"] / "s.png"))
     assert scene.shape == (48, 64, 4) and scene[..., :3].std() > 10
+
+
+def test_raw_path_from_the_wheel_with_no_glslc_on_path(installed, tmp_path):
+    """A pip user has no glslc: the wheel's SPIR-V (one file per variant of shaders_glsl/variants.txt, named by
+    the hash of its source) draws a stage and the final scene, and nothing is compiled into the user's cache."""
+    from wgpurender.core.shaders.spirv_names import VARIANTS_FILE, included, read_variants, spirv_name
+
+    names = set(zipfile.ZipFile(installed["wheel"]).namelist())
+    glsl = REPO / "shaders_glsl"
+    for file_name, defines in read_variants((glsl / VARIANTS_FILE).read_text()):
+        source = (glsl / file_name).read_bytes() + included(glsl / file_name)
+        shipped = f"wgpurender/_shaders/spirv/{spirv_name(file_name, source, defines)}"
+        assert shipped in names, (file_name, defines)
+    env = dict(installed["env"], PATH=str(installed["bin"]), XDG_CACHE_HOME=str(tmp_path / "cache"))
+    bare = dict(installed, env=env)
+    _run(bare, installed["bin"] / "wgpurender", "reference", "triangle", "-o", "t.png", "--size", "64x48")
+    _check_triangle_centre(np.asarray(Image.open(installed["cwd"] / "t.png")))
+    _run(bare, installed["bin"] / "wgpurender", "reference", "final", "-o", "f.png", "--size", "64x48")
+    assert np.asarray(Image.open(installed["cwd"] / "f.png"))[..., :3].std() > 10
+    assert not list((tmp_path / "cache").rglob("*.spv")), "compiled without glslc?"
 
 
 def test_a_bundled_scene_by_its_repository_path_and_through_the_api(installed):

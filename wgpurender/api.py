@@ -29,6 +29,7 @@ from __future__ import annotations
 import functools
 import io
 import os
+import sys
 import threading
 import time
 from dataclasses import dataclass, field
@@ -352,19 +353,45 @@ def _offscreen(target: Target, size: Size, msaa, anisotropy, backend):
 
 @_one_at_a_time
 def show(target: Target, size: Size = (640, 480), msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY,
-         backend: str | None = None):
-    """An interactive view in Jupyter: the stage or scene drawn live, with the demo window's orbit camera (drag to
-    orbit, right-drag to pan, scroll to zoom, arrows/WASD, R resets). rendercanvas's Jupyter canvas (jupyter_rfb:
-    ``pip install 'wgpurender[notebook]'``); its display carries the first frame as PNG as well, so a frontend
-    without widgets (nbclient, nbconvert, GitHub) shows that still. Outside a Jupyter kernel, or without
-    jupyter_rfb, the still :class:`Image` is returned instead."""
-    from wgpurender.wgpu_path.notebook import LiveView, Offscreen, widgets_available
+         backend: str | None = None, frames: int | None = None):
+    """An interactive view: the stage or scene drawn live, with the demo window's orbit camera (drag to orbit,
+    right-drag to pan, scroll to zoom, arrows/WASD, R resets).
+
+    In Jupyter: rendercanvas's Jupyter canvas (jupyter_rfb: ``pip install 'wgpurender[notebook]'``); its display
+    carries the first frame as PNG as well, so a frontend without widgets (nbclient, nbconvert, GitHub) shows that
+    still. In a script or a terminal: the demo's window (``wgpurender demo``; F1 the overlay, P pause, Esc closes;
+    ``frames``: close after that many), then None. Where neither can be (no display, or a kernel without
+    jupyter_rfb), one line on stderr says why and the still :class:`Image` is returned."""
+    from wgpurender.wgpu_path.notebook import LiveView, Offscreen, in_kernel, widgets_available
 
     ctx, name, wh, msaa, anisotropy = _offscreen(target, size, msaa, anisotropy, backend)
+    if frames is not None and (isinstance(frames, bool) or not isinstance(frames, int) or frames < 1):
+        raise UserError(f"frames must be a whole number >= 1 (or None: until the window closes), got {frames!r}")
     if widgets_available():
         return LiveView(ctx, name, wh, msaa, anisotropy)
+    if not in_kernel():
+        why = _show_window(ctx, name, wh, msaa, anisotropy, frames)
+        if not why:
+            return None
+        print(f"w.show: no window ({why}); returning the still frame (Image.save writes it)", file=sys.stderr)
     pixels = Offscreen(ctx, name, wh, msaa, anisotropy).frame(0.0)
     return Image(pixels, str(target), "wgpu", {}, ctx.describe())
+
+
+def _show_window(ctx, name: str, size, msaa, anisotropy, frames) -> str:
+    """Draw ``name`` in the demo's window until it closes; "" when it did, else why no window could open."""
+    from wgpurender.wgpu_path.window import run_window
+    from wgpurender.wgpu_path.window.view import DemoView
+
+    view = DemoView(ctx, name, msaa, anisotropy=anisotropy)
+    view.check()
+    if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        return "no display: $DISPLAY and $WAYLAND_DISPLAY are unset"
+    try:
+        run_window(ctx, view, title=f"wgpurender: {Path(name).name}", size=size, frames=frames)
+    except UserError as err:
+        return str(err).splitlines()[0]
+    return ""
 
 
 @_one_at_a_time

@@ -57,7 +57,8 @@ def add_anisotropy_arg(parser: argparse.ArgumentParser) -> None:
 
 def add_render_args(parser: argparse.ArgumentParser) -> None:
     """--size, --msaa, --format, --time: how a stage or scene is rendered."""
-    parser.add_argument("--size", type=size_arg, default=None, metavar="WxH", help="image size (default 800x600)")
+    parser.add_argument("--size", type=size_arg, default=None, metavar="WxH",
+                        help="image size (default: a stage 800x600, a scene its own [render] size)")
     parser.add_argument(
         "--msaa", type=msaa_arg, default=None, metavar="N", help="MSAA sample count, 1 or 4 (default: the stage's)"
     )

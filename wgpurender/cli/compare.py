@@ -69,6 +69,10 @@ def run(args) -> int:
             print("over threshold: " + "; ".join(
                 f"{name} {_shown(name, getattr(result, name))} {'<' if name == 'psnr' else '>'} {_shown(name, limit)}"
                 for name, limit in failed))
+        else:
+            print("within threshold: " + "; ".join(
+                f"{name} {_shown(name, getattr(result, name))} {'>=' if name == 'psnr' else '<='} "
+                f"{_shown(name, limit)}" for name, limit in thresholds))
     return 1 if failed else 0
 
 

@@ -8,7 +8,7 @@ from wgpurender.cli._args import add_anisotropy_arg, size_arg, time_arg
 
 BENCHMARK_DEFAULTS = {"benchmark_warmup": 2.0, "benchmark_runtime": 10.0, "benchmark_result_file": "benchmark.csv"}
 CONTROLS = ("left drag orbits, right/middle drag pans, scroll zooms; arrows/WASD orbit, +/- (Q/E) zoom, "
-            "R or Home resets the camera, Esc quits")
+            "R or Home resets the camera, F1 shows/hides the overlay, P pauses the animation, Esc quits")
 
 
 def _positive(text: str) -> float:

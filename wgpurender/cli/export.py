@@ -29,5 +29,5 @@ def run(args) -> int:
     done = export(args.target, args.output, args.size, force=args.force)
     kind = "animated" if done.animated else "still"
     print(f"wrote {done.page} ({done.size[0]}x{done.size[1]}, {kind}; {done.calls} recorded calls, "
-          f"{done.blob_bytes / 1e6:.2f} MB of data)")
+          f"{done.page_bytes / 1e6:.2f} MB on disk)")
     return 0

@@ -19,6 +19,7 @@ from wgpurender.core.files.owned_files import OwnedFolder, install, staging, swe
 from wgpurender.core.files.safe_write import cleanup_on_signal
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.report import code, extras, page
+from wgpurender.report.diffs import step_diffs
 from wgpurender.report.steps import Step, heatmap_scale, missing_scene_step, scene_step, stage_step
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
@@ -27,12 +28,14 @@ SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
 # Scene files in course order: the minimal plan first, the complete scene, then the C++ tutorial's chapters
 # (those read the tutorial's model from ../shared/anchors and are left out where it is missing).
 SCENES = ("unlit", "retro", "brick", "final_subpass", "final", "vulkan_tutorial_28", "vulkan_tutorial_30")
-STAGE_SIZE = (240, 180)
-SCENE_SIZE = (240, 180)
-# lavapipe's anisotropic filtering is pathological at some sizes (notes/facts.md): brick.toml takes 11 s a frame
-# at 320x240 but 0.2 s at 240x180; vulkan_tutorial_28.toml 17 s a frame at 240x180 but 0.5 s at 320x240.
-SCENE_SIZES = {"vulkan_tutorial_28": (320, 240), "vulkan_tutorial_30": (320, 240)}
-MAX_SHOT_WIDTH = 360  # images wider than this are shown at this width; a click opens them at full size
+# A projector's page (1280 px wide): every image at least 640 px wide; a click opens the wgpu image at twice that
+# size (steps.larger). lavapipe's anisotropic filtering is pathological at some sizes (notes/facts.md): brick.toml
+# took 11 s a frame at 320x240 but 0.2 s at 240x180; vulkan_tutorial_28.toml 17 s a frame at 240x180 but 0.5 s at
+# 320x240, 0.08 s at 800x600.
+STAGE_SIZE = (640, 480)
+SCENE_SIZE = (640, 480)
+SCENE_SIZES: dict[str, tuple[int, int]] = {}
+MAX_SHOT_WIDTH = 640  # images wider than this are shown at this width; a click opens the larger render
 ANCHORS = REPO_ROOT.parent / "shared" / "anchors" / "vulkan-tutorial"
 
 
@@ -71,10 +74,11 @@ def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, st
                  anisotropy: str = DEFAULT_ANISOTROPY, force: bool = False) -> Path:
     """Render every step on both paths, measure accuracy, and write the site; returns the path of index.html.
 
-    ``size``: every step's image size (default 240x180, the tutorial's scenes 320x240). ``accuracy=False``
-    leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the page says so).
-    ``anisotropy``: the scenes' rule (core/plan/anisotropy.py), as ``render --anisotropy``. ``force``: write into a
-    non-empty folder without an earlier output, beside its files (core/files/owned_files.py).
+    ``size``: every step's image size (default 640x480; a click opens each path's render at twice it).
+    ``accuracy=False`` leaves out the accuracy and hard-case measurements (about half a minute on lavapipe; the
+    page says so). ``anisotropy``: the scenes' rule (core/plan/anisotropy.py), as ``render --anisotropy``.
+    ``force``: write into a non-empty folder without an earlier output, beside its files
+    (core/files/owned_files.py).
     """
     folder = check_out_dir(Path(out_dir), force)
     ctx = ctx or get_context()
@@ -89,9 +93,10 @@ def build_report(out_dir: str | Path, *, size: tuple[int, int] | None = None, st
             steps.append(missing_scene_step(path, missing))
         else:
             steps.append(scene_step(ctx, path, size or SCENE_SIZES.get(path.stem, SCENE_SIZE), log, anisotropy))
+    step_diffs(steps)
     with cleanup_on_signal(), staging(folder) as tmp:  # SIGTERM while the staging folder exists ends via finally
         measured = extras.measure(ctx, tmp, log) if accuracy else None
-        _write_site(tmp, steps, ctx, time.perf_counter() - start, measured, size)
+        _write_site(tmp, steps, ctx, start, measured, size)
         install(folder, tmp)
     out_dir = folder.folder
     log(f"report: {len(steps)} steps in {time.perf_counter() - start:.1f} s")
@@ -142,8 +147,10 @@ def _live_page(site: Path, step: Step) -> dict[str, str]:
     return {"live": f"live/{step.key}/index.html"}
 
 
-def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float, measured: extras.Measured | None,
+def _write_site(site: Path, steps: list[Step], ctx: GPUContext, start: float, measured: extras.Measured | None,
                 size: tuple[int, int] | None) -> None:
+    """``start``: the build's perf_counter at its start; the page states the time from there to its writing, once
+    (the accuracy measurement is inside it: it was added a second time)."""
     images: dict[str, dict[str, str]] = {}
     for step in steps:
         files = images[step.key] = {}
@@ -153,18 +160,22 @@ def _write_site(site: Path, steps: list[Step], ctx: GPUContext, seconds: float, 
                 name = f"{step.key}_{kind}.png"
                 save_png(site / name, pixels)
                 files[kind] = name
+        for kind, pixels in step.large.items():
+            name = f"{step.key}_{kind}_large.png"
+            save_png(site / name, pixels)
+            files[f"{kind}_large"] = name
         files.update(_live_page(site, step))
     scale, levels = heatmap_scale()
     save_png(site / "heatmap_scale.png", scale)
     _write_listings(site, steps)
     stamp = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
     sizes = (f"every step at {size[0]}x{size[1]}" if size else f"stages at {STAGE_SIZE[0]}x{STAGE_SIZE[1]}, "
-             f"scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]} (the tutorial's at 320x240)")
-    took = seconds + (measured.seconds if measured else 0.0)
-    meta = (f"Built {page.e(stamp)} on {page.e(ctx.describe())} in {took:.0f} s with "
+             f"scenes at {SCENE_SIZE[0]}x{SCENE_SIZE[1]}")
+    meta = (f"Built {page.e(stamp)} on {page.e(ctx.describe())} in {time.perf_counter() - start:.0f} s with "
             f"<code>wgpurender report</code>: {sizes}. Times are medians of a few frames on this machine (a quick "
             "look: <code>wgpurender bench</code> measures). The heatmap compares the raw-Vulkan image (reference) "
-            "with the wgpu one. Click an image to see it at full size, a file name to read the whole file.")
+            "with the wgpu one. Click an image to open it rendered at twice the size, a file name to read the whole "
+            "file.")
     width = min((size or STAGE_SIZE)[0], MAX_SHOT_WIDTH)
     text = page.page("wgpurender: the Vulkan course on wgpu, step by step", meta, steps, images,
                      ("heatmap_scale.png", levels), page.closing(measured), shot_width=width)

@@ -31,6 +31,10 @@ SCENE_CODE = {
     "raw": ("scene.frame:SceneFrame.record", "scene.scene_subpass:SceneSubpass.record"),
 }
 STAGE_METHODS = ("setup", "record")  # each where the stage class defines it itself
+# Pygments wraps each excerpt line in <span id="LINE-n">; the ids become data-line attributes (one page holds the
+# same function's excerpt in several steps, and ids must be unique), and the CSS wraps each long line under itself
+# with its number hanging at the left, so no line is cut at a projector's 1280 px.
+LINE_MARK = "excerpt-line"
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,7 @@ class Excerpt:
     first: int
     last: int
     html: str
+    source: str = ""  # the dedented lines, for the step-to-step diff (report/diffs.py)
 
     @property
     def listing(self) -> str:
@@ -74,8 +79,11 @@ def excerpt(side: str, location: str) -> Excerpt:
     lines, first = inspect.getsourcelines(obj)
     path = Path(inspect.getsourcefile(obj)).resolve().relative_to(REPO_ROOT).as_posix()
     code = textwrap.dedent("".join(lines))
-    formatter = HtmlFormatter(style=STYLE, cssclass=CSS_CLASS, linenos="inline", linenostart=first)
-    return Excerpt(location, path, first, first + len(lines) - 1, highlight(code, PythonLexer(), formatter))
+    formatter = HtmlFormatter(style=STYLE, cssclass=CSS_CLASS, linenos="inline", linenostart=first,
+                              linespans=LINE_MARK)
+    text = highlight(code, PythonLexer(), formatter)
+    text = text.replace(f'<span id="{LINE_MARK}-', '<span class="line" data-line="')
+    return Excerpt(location, path, first, first + len(lines) - 1, text, code)
 
 
 def excerpts(locations: dict[str, list[str]]) -> dict[str, list[Excerpt]]:

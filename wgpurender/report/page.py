@@ -53,6 +53,14 @@ details summary { cursor: pointer; color: #333; }
 .excerpt .hl pre { margin: 0; padding: 6px; font-size: 11.5px; line-height: 1.35; max-height: 420px; overflow: auto;
                    background: transparent; }
 .hl .linenos { color: #999; padding-right: 6px; }
+.excerpt .hl pre { white-space: pre-wrap; overflow-wrap: anywhere; }  /* long lines wrap under themselves */
+.excerpt .hl .line { display: block; padding-left: 6ch; text-indent: -6ch; }
+.excerpt .hl .line .linenos { display: inline-block; width: 5ch; text-indent: 0; text-align: right;
+                              padding-right: 1ch; }
+pre.diff { white-space: pre-wrap; overflow-wrap: anywhere; font-size: 11.5px; line-height: 1.35; margin: 0; }
+pre.diff .add { background: #dcf5dc; } pre.diff .del { background: #f8dcdc; } pre.diff .hunk { color: #36c; }
+pre.diff .file { color: #666; }
+.diff-none { font-size: 12px; color: #555; margin: 2px 0; }
 figure.plot figcaption { max-width: 760px; }
 """
 
@@ -98,8 +106,8 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
         shots = f'<p class="note missing">{e(step.missing)}</p>'
     else:
         shots = f"""<div class="images">
-{_figure(files.get("wgpu"), "wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "wgpu")}
-{_figure(files.get("raw"), "raw Vulkan (GLSL, vulkan binding)", step.raw_note, step, "raw")}
+{_figure(files, "wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "wgpu")}
+{_figure(files, "raw Vulkan (GLSL, vulkan binding)", step.raw_note, step, "raw")}
 {_heat(files.get("heat"), scale, step)}
 </div>
 {_numbers(step)}"""
@@ -107,6 +115,7 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 <h2>{e(step.title)} <small class="meta">{e(step.course_step)}</small></h2>
 <p><strong>{e(step.summary)}</strong></p>
 {words}
+{_credits(step.credits)}
 {f'<p class="links">{links}</p>' if links else ""}
 {_try_it(step)}
 {shots}
@@ -115,6 +124,11 @@ def section(step: Step, files: dict[str, str], scale: tuple[str, list[int]]) -> 
 {plan}
 {_concepts(step.concepts)}
 </section>"""
+
+
+def _credits(lines: list[str]) -> str:
+    """The attribution of the files a step shows that the project did not make (CC BY: wherever they appear)."""
+    return "".join(f'<p class="credit"><small>Credit: {e(line)}</small></p>' for line in lines)
 
 
 def _try_it(step: Step) -> str:
@@ -149,13 +163,18 @@ def _lanes(step: Step) -> str:
     return f'<div class="lanes">{spans}</div><div class="lane-legend caption">{legend}</div>'
 
 
-def _figure(name: str | None, caption: str, note: str, step: Step, kind: str) -> str:
+def _figure(files: dict[str, str], caption: str, note: str, step: Step, kind: str) -> str:
+    """One path's image; the click opens its render at twice the size (``KIND_large``), else the image itself."""
+    name = files.get(kind)
     if name is None:
         return (f'<figure class="shot" data-image="{kind}"><figcaption class="caption">{e(caption)}</figcaption>'
                 f'<p class="note">{e(note or "not rendered")}</p></figure>')
-    return (f'<figure class="shot" data-image="{kind}"><a class="full" href="{e(name)}" title="full size">'
+    large = files.get(f"{kind}_large")
+    image = step.large.get(kind)
+    click = f"click: {image.shape[1]}x{image.shape[0]}" if large else "click: full size"
+    return (f'<figure class="shot" data-image="{kind}"><a class="full" href="{e(large or name)}" title="{click}">'
             f'<img src="{e(name)}" alt="{e(caption)}"></a>{_lanes(step)}'
-            f'<figcaption class="caption">{e(caption)}, {_size(step)} (click: full size)</figcaption></figure>')
+            f'<figcaption class="caption">{e(caption)}, {_size(step)} ({click})</figcaption></figure>')
 
 
 def _heat(name: str | None, scale: tuple[str, list[int]], step: Step) -> str:
@@ -189,7 +208,32 @@ def _code(step: Step) -> str:
         body = "".join(parts) or f'<p class="note">no {label} code for this step</p>'
         sides.append(f'<div class="code-side" data-path="{side}"><h4>{label}</h4>{body}</div>')
     return (f'<details class="code-block" open><summary>the code that makes this step, both paths side by side'
-            f'</summary><div class="code" id="{e(step.key)}-code">{"".join(sides)}</div></details>')
+            f'</summary><div class="code" id="{e(step.key)}-code">{"".join(sides)}</div>{_diffs(step)}</details>')
+
+
+DIFF_CLASSES = (("+++", "file"), ("---", "file"), ("@@", "hunk"), ("+", "add"), ("-", "del"))
+
+
+def _diff_line(line: str) -> str:
+    kind = next((cls for mark, cls in DIFF_CLASSES if line.startswith(mark)), "same")
+    return f'<span class="{kind}">{e(line)}</span>'
+
+
+def _diffs(step: Step) -> str:
+    """Per path, what changed in the code from the previous step (report/diffs.py), side by side."""
+    sides = []
+    for side, label in (("wgpu", "wgpu path"), ("raw", "raw-Vulkan path")):
+        d = step.diffs.get(side)
+        if d is None:
+            body = f'<p class="diff-none">{label}: the first step with code here</p>'
+        elif not d.lines:
+            body = f'<p class="diff-none">{label}: the same code as {e(d.previous)}</p>'
+        else:
+            body = (f'<details class="diff"><summary>{label}: what changed from {e(d.previous)} '
+                    f'(+{d.added} / -{d.removed} lines)</summary>'
+                    f'<pre class="diff">{chr(10).join(_diff_line(x) for x in d.lines)}</pre></details>')
+        sides.append(f'<div class="code-side diff-side" data-path="{side}">{body}</div>')
+    return f'<div class="code diffs">{"".join(sides)}</div>'
 
 
 def _ms(value: float | None) -> str:

@@ -17,6 +17,7 @@ import numpy as np
 
 from wgpurender.concepts import Concept
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.credits import scene_credits
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.verdict.compare import Comparison, compare_images, heatmap
 from wgpurender.report import code, timings
@@ -24,6 +25,7 @@ from wgpurender.report.concept_rows import REPO_ROOT, rows_for
 from wgpurender.report.timings import Timing
 from wgpurender.wgpu_path.device.context import GPUContext
 
+LARGE_SCALE = 2
 HEATMAP_GAIN = 32.0  # as `wgpurender compare`: a 1/255 difference shows as 32/255
 
 
@@ -49,6 +51,14 @@ class Step:
     lanes: list[tuple[str, float]] = field(default_factory=list)  # labels under the images: (text, width share)
     links: list[tuple[str, str]] = field(default_factory=list)  # (text, href): more views of this step (a hook)
     missing: str = ""  # one line: why this step is not rendered (the tutorial's files are absent)
+    diffs: dict = field(default_factory=dict)  # "wgpu"/"raw": report.diffs.CodeDiff from the previous step
+    large: dict = field(default_factory=dict)  # "wgpu"/"raw": the image at twice the size, what a click opens
+    credits: list[str] = field(default_factory=list)  # attribution lines for files it shows (core/files/credits.py)
+
+
+def larger(size: tuple[int, int]) -> tuple[int, int]:
+    """The size of the image a click on a step's picture opens: twice the page's, for a projector's zoom."""
+    return (LARGE_SCALE * size[0], LARGE_SCALE * size[1])
 
 
 def textured_lanes() -> list[tuple[str, float]]:
@@ -92,12 +102,15 @@ def stage_step(ctx: GPUContext, name: str, size: tuple[int, int], log=print) -> 
                 _paragraphs(module.__doc__))
     if cls is not None:
         step.wgpu = render_stage(name, size, ctx=ctx, frames=1).pixels
+        step.large["wgpu"] = render_stage(name, larger(size), ctx=ctx, frames=1).pixels
         step.timing["wgpu"] = timings.stage_wgpu(ctx, name, size)
     else:
         step.wgpu_note = "the wgpu path has no stage of this name yet"
     if ref_cls is not None:
         step.raw, step.raw_note = _try(lambda: render_reference(name, size), log)
         step.timing["raw"] = timings.stage_raw(name, size) if step.raw is not None else None
+        if step.raw is not None:
+            step.large["raw"] = render_reference(name, larger(size))
     else:
         step.raw_note = "the raw-Vulkan path has no stage of this name"
     modules = tuple(m for m in (cls and cls.__module__, ref_cls and ref_cls.__module__) if m)
@@ -129,11 +142,16 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
     text = plan.explain().replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
     step = Step(path.stem, path.name, _scene_course_step(path), plan.scene.description, _scene_words(path), plan=text)
     step.wgpu = render_plan(ctx, plan, frames=1).pixels
+    large = resolve_plan(path, ctx.adapter_facts(), size=larger(plan.size), anisotropy=anisotropy)
+    step.large["wgpu"] = render_plan(ctx, large, frames=1).pixels
     step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size, anisotropy)
     step.raw, step.raw_note = _try(lambda: render_reference(str(path), size, anisotropy=anisotropy), log)
     step.timing["raw"] = timings.scene_raw(path, size, anisotropy) if step.raw is not None else None
+    if step.raw is not None:
+        step.large["raw"] = render_reference(str(path), large.size, anisotropy=anisotropy)
     step.concepts = rows_for("scene")
     step.code = code.excerpts(code.scene_locations())
+    step.credits = [c.line() for c in scene_credits(path)]
     _compare(step)
     return step
 
@@ -141,7 +159,7 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
 def missing_scene_step(path: Path, reason: str) -> Step:
     """A scene that cannot be rendered here (the tutorial's model and texture are absent): one line says so."""
     return Step(path.stem, path.name, "scene file", "not rendered on this machine", [], missing=reason,
-                code=code.excerpts(code.scene_locations()))
+                code=code.excerpts(code.scene_locations()), credits=[c.line() for c in scene_credits(path)])
 
 
 def _scene_words(path: Path) -> list[str]:

@@ -5,13 +5,15 @@ proxy (recorder.py), and the page's generic player (player.js, shipped with the 
 created and recorded with the browser's ``navigator.gpu``: the same specialised WGSL strings, pipelines, uniform
 bytes, textures and meshes. What changes per frame is recorded too:
 
-- an animated stage (its uploads depend on ``t``) is recorded at ``FPS`` frames per second over ``SECONDS``;
+- an animated stage (its uploads depend on ``t``) is recorded at ``FPS`` frames per second over one period of its
+  motion (core/course/loops.py: the frame at the period is the frame at 0), so the page's loop has no jump;
   the page plays those uploads back in a loop (frame ``k`` shows ``t = k / FPS``);
 - a 3D scene gets the window demo's orbit camera: the page packs the view matrix and eye into the scene's
   Camera uniform with the field offsets generated from the same ``Struct`` that packs it in Python
   (scene_render/shader_interface.CAMERA).
 
-The page: ``index.html`` + ``player.js`` + ``data.js`` (the recording, bytes as base64). Plain classic scripts,
+The page: ``index.html`` + ``player.js`` + ``data.js`` (the recording; textures and the reference frame as PNG,
+other bytes as base64: packing.py). Plain classic scripts,
 not ES modules: Chromium refuses module scripts and ``fetch`` from ``file://``, and the page must open from
 disk. ``window.wgpurender.capture()`` resolves to ``{width, height, rgba}`` (base64 RGBA8, top row first) of the
 frame at ``t = 0`` and the default camera: the frame ``wgpurender render TARGET --size WxH --anisotropy scene``
@@ -41,7 +43,7 @@ class Export:
     target: str
     size: tuple[int, int]
     calls: int
-    blob_bytes: int
+    page_bytes: int  # the three files on disk together: what a reader downloads
     animated: bool
 
 
@@ -51,6 +53,7 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600), for
     ``out`` is checked before anything is recorded: new, empty, or holding an earlier wgpurender output (its
     manifest, core/files/owned_files.py); ``force`` writes beside other files. Each file is written atomically."""
     from wgpurender.core.course.formats import is_scene_file
+    from wgpurender.core.course.loops import loop_seconds
     from wgpurender.core.files.owned_files import OwnedFolder
     from wgpurender.webpage.record import record_scene, record_stage
     from wgpurender.wgpu_path.device.context import get_context
@@ -60,14 +63,16 @@ def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600), for
     folder = OwnedFolder(out, "export", force, "cannot export to")
     folder.check_names(EXPORT_FILES)
     ctx = get_context()
-    data = (record_scene if is_scene_file(target) else record_stage)(ctx, target, tuple(size), FPS, SECONDS)
+    data = (record_scene if is_scene_file(target) else record_stage)(ctx, target, tuple(size), FPS,
+                                                                     loop_seconds(target) or SECONDS)
     folder.claim(EXPORT_FILES)
     folder.write("data.js", ("window.WGPURENDER_EXPORT = " + json.dumps(data, separators=(",", ":")) + ";\n").encode())
     folder.write("player.js", PLAYER.read_bytes())
     page = folder.write("index.html", page_html(data["meta"]).encode())
     folder.finish()
-    return Export(page, target, tuple(size), len(data["setup"]) + len(data["frame"]),
-                  sum(len(b) * 3 // 4 for b in data["blobs"]), data["meta"]["frames"] > 1)
+    written = sum((page.parent / name).stat().st_size for name in EXPORT_FILES)  # what a reader downloads
+    return Export(page, target, tuple(size), len(data["setup"]) + len(data["frame"]), written,
+                  data["meta"]["frames"] > 1)
 
 
 EXPORT_FILES = ("data.js", "player.js", "index.html")
@@ -89,6 +94,7 @@ dt {{ font-weight: bold; float: left; clear: left; width: 9em; }} dd {{ margin-l
 <body>
 <h1>{title}</h1>
 <p>{escape(meta['summary'])}</p>
+{"".join(f'<p class="credit"><small>Credit: {escape(line)}</small></p>' for line in meta.get("credits", []))}
 <p id="message"></p>
 <canvas id="view" width="{meta['size'][0]}" height="{meta['size'][1]}"></canvas>
 <p>{escape(meta['controls'])}</p>

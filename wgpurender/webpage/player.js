@@ -13,7 +13,45 @@
   window.wgpurender = api;
   const $ = (id) => document.getElementById(id);
   const blobs = [];
-  const blob = (i) => blobs[i] || (blobs[i] = Uint8Array.from(atob(X.blobs[i]), (c) => c.charCodeAt(0)));
+  const bytesOf = (text) => Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  const blob = (i) => blobs[i] || (blobs[i] = bytesOf(X.blobs[i]));
+
+  // -- PNG (webpage/packing.py): textures and the reference frame. Decoded here to their exact bytes (inflate with
+  // DecompressionStream, then undo each row's filter); a canvas would premultiply alpha and change them.
+  async function inflate(parts) {
+    const stream = new Blob(parts).stream().pipeThrough(new DecompressionStream("deflate"));
+    return new Uint8Array(await new Response(stream).arrayBuffer());
+  }
+
+  async function decodePng(text) {
+    const png = bytesOf(text), view = new DataView(png.buffer);
+    let pos = 8, width = 0, height = 0;
+    const idat = [];
+    while (pos < png.length) {
+      const length = view.getUint32(pos), type = String.fromCharCode(...png.subarray(pos + 4, pos + 8));
+      if (type === "IHDR") {
+        width = view.getUint32(pos + 8);
+        height = view.getUint32(pos + 12);
+        if (png[pos + 16] !== 8 || png[pos + 17] !== 6 || png[pos + 20] !== 0) throw new Error("not an 8-bit RGBA PNG");
+      } else if (type === "IDAT") idat.push(png.subarray(pos + 8, pos + 8 + length));
+      pos += 12 + length;
+    }
+    const raw = await inflate(idat), stride = width * 4, out = new Uint8Array(stride * height);
+    for (let y = 0; y < height; y++) {
+      const filter = raw[y * (stride + 1)], line = y * (stride + 1) + 1, o = y * stride;
+      for (let x = 0; x < stride; x++) {
+        const a = x >= 4 ? out[o + x - 4] : 0, b = y ? out[o - stride + x] : 0, c = x >= 4 && y ? out[o - stride + x - 4] : 0;
+        const p = a + b - c, pa = Math.abs(p - a), pb = Math.abs(p - b), pc = Math.abs(p - c);
+        const predict = [0, a, b, (a + b) >> 1, pa <= pb && pa <= pc ? a : pb <= pc ? b : c][filter];
+        out[o + x] = (raw[line + x] + predict) & 255;
+      }
+    }
+    return out;
+  }
+
+  async function decodeBlobs() {
+    await Promise.all(X.blobs.map(async (b, i) => { if (typeof b !== "string") blobs[i] = await decodePng(b.png); }));
+  }
   const objects = [];
 
   function fail(text) {
@@ -21,6 +59,18 @@
     $("message").textContent = text;
     $("adapter").textContent = "none";
     $("view").style.display = "none";
+  }
+
+  // A WebGPU validation error or a lost device after start: say so on the page and stop drawing (a blank canvas
+  // with a ticking frame time and a "may differ within the spec" caption said nothing was wrong).
+  function broken(text) {
+    if (api.stopped) return;
+    api.stopped = true;
+    api.error = text;
+    console.error(text);
+    $("message").textContent = text;
+    $("frametime").textContent = "stopped";
+    $("difference").textContent = "not compared: the page hit a WebGPU error";
   }
 
   function resolve(value, blobFor) {
@@ -166,6 +216,14 @@
     return { width: meta.size[0], height: meta.size[1], rgba: btoa(text) };
   };
 
+  // A PNG of data.js decoded as the page decodes it (base64 bytes), for a test against another decoder.
+  api.decodePng = async (text) => {
+    const bytes = await decodePng(text);
+    let out = "";
+    for (let i = 0; i < bytes.length; i += 0x8000) out += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+    return btoa(out);
+  };
+
   // The orbit's view matrix now (column-major), for a test against the Python look-at.
   api.orbitView = () => (orbit ? Array.from(lookAt(orbit.eye(), orbit.target, orbit.up)) : null);
 
@@ -190,6 +248,7 @@
       api.sample = Math.max(0, Math.floor(((now - start) / 1000) * meta.fps)) % X.samples.length;
       drawFrame(api.sample, false);
       await present();
+      if (api.stopped) return;  // a WebGPU error: the loop ends (a frame in flight then is not counted)
       api.frameMs = performance.now() - t0;
       api.frames += 1;
       if (api.frames === 1) api.firstPixelMs = performance.now();  // since navigation start: the first frame shown
@@ -211,10 +270,19 @@
     $("adapter").textContent = [info.vendor, info.architecture, info.device, info.description].filter(Boolean).join(" / ");
     api.gpuAdapter = adapter;  // kept: Chromium fails later async work with "no valid external Instance" otherwise
     device = await adapter.requestDevice();
-    device.addEventListener("uncapturederror", (e) => { console.error("WebGPU: " + e.error.message); api.error = e.error.message; });
-    device.lost.then((info) => { if (info.reason !== "destroyed") fail("The WebGPU device was lost: " + info.message); });
+    api.device = device;
+    device.addEventListener("uncapturederror", (e) => broken("WebGPU error: " + e.error.message +
+      " (the picture is not to be trusted; the browser's console has the details)"));
+    device.lost.then((info) => broken(`The WebGPU device was lost (${info.reason || "unknown reason"}): ` +
+      `${(info.message || "no message").replace(/\.+$/, "")}. Reload the page to start again.`));
     objects[meta.device] = device;
+    $("plan").textContent += `\nthis page's adapter: ${$("adapter").textContent || "unnamed"}` +
+      (info.isFallbackAdapter ? " (a fallback, software adapter)" : "");
+    await decodeBlobs();
+    device.pushErrorScope("validation");
     for (const call of X.setup) run(call, blob);
+    const setupError = await device.popErrorScope();
+    if (setupError) return broken("WebGPU error while setting up: " + setupError.message);
     const cam = meta.orbit && meta.orbit.camera;
     if (cam) {
       const writes = X.setup.filter((c) => c.m === "writeBuffer" && c.a[0].$ === cam.buffer);
@@ -234,9 +302,10 @@
 
   // This page's t = 0 frame against wgpu-native's frame of the same recording (data.js "reference").
   async function compareWithWgpuNative() {
-    if (!X.reference) return;
+    if (!X.reference || api.stopped) return;
     drawFrame(0, true);
-    const mine = await readPixels(), theirs = Uint8Array.from(atob(X.reference), (c) => c.charCodeAt(0));
+    const mine = await readPixels(), theirs = await decodePng(X.reference.png);
+    if (api.stopped) return;
     let max = 0, over = 0;
     for (let i = 0; i < mine.length; i += 4) {
       let d = 0;

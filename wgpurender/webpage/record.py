@@ -14,6 +14,7 @@ from pathlib import Path
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
+from wgpurender.webpage.packing import pack_blobs, png_base64
 from wgpurender.webpage.recorder import BROWSER, Recording, recording_context
 from wgpurender.wgpu_path.device.context import GPUContext
 
@@ -75,15 +76,13 @@ def _uploads(calls: list[dict]) -> list[int]:
     return [_blob(c) for c in calls if c.get("m") in UPLOADS]
 
 
-def _reference(real: GPUContext, target) -> str:
-    """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), base64 RGBA8: the page shows
-    its difference from what the browser drew."""
-    import base64
-
+def _reference(real: GPUContext, target) -> dict:
+    """wgpu-native's own frame of the recording (t = 0, set-up just replayed here), a PNG (packing.py): the page
+    shows its difference from what the browser drew."""
     from wgpurender.core.files.imageio import to_uint8
     from wgpurender.wgpu_path.device.targets import read_texture
 
-    return base64.b64encode(to_uint8(read_texture(real, target._raw)).tobytes()).decode("ascii")
+    return {"png": png_base64(to_uint8(read_texture(real, target._raw)))}
 
 
 def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, samples, fps, meta) -> dict:
@@ -91,7 +90,8 @@ def _base(ctx: GPUContext, recording: Recording, target, setup_end: int, frame, 
         "meta": {**meta, "device": 0, "target": target._id, "format": target.format, "fps": fps,
                  "frames": len(samples), "exported": f"{datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC "
                  f"from {ctx.describe()} (wgpurender export)"},
-        "setup": recording.calls[:setup_end], "frame": frame, "samples": samples, "blobs": recording.blobs_base64(),
+        "setup": recording.calls[:setup_end], "frame": frame, "samples": samples,
+        "blobs": pack_blobs(recording.calls, recording.blobs),
     }
 
 
@@ -132,6 +132,8 @@ def _published(text: str, scene, plan) -> str:
 
 
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
+    from wgpurender.core.files.assets import resolve_scene
+    from wgpurender.core.files.credits import scene_credits
     from wgpurender.core.files.published_text import labels_without_machine_paths
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
@@ -154,7 +156,8 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
             "orbit": {"eye": list(cam.eye), "target": list(cam.target), "up": list(cam.up), "camera": camera},
             "summary": _published(scene.description or f"scene {Path(path).name}", scene, plan),
             "plan": _published(renderer.plan.explain(), scene, plan),
-            "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset."}
+            "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset.",
+            "credits": [c.line() for c in scene_credits(resolve_scene(path))]}
     data = _base(real, recording, target, setup_end, frame, samples, fps, meta)
     folders = _machine_folders(scene, plan)
     data["setup"], data["frame"] = (labels_without_machine_paths(data[k], folders) for k in ("setup", "frame"))

@@ -15,7 +15,6 @@ browser would: immediates, clear-texture, timestamps) and WebGPU's default limit
 
 from __future__ import annotations
 
-import base64
 import hashlib
 import inspect
 import re
@@ -98,9 +97,6 @@ class Recording:
         if isinstance(value, (np.integer, np.floating)):
             return value.item()
         return value
-
-    def blobs_base64(self) -> list[str]:
-        return [base64.b64encode(b).decode("ascii") for b in self.blobs]
 
 
 def _unwrap(value):

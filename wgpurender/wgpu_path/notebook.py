@@ -12,7 +12,6 @@
 from __future__ import annotations
 
 import math
-import time
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -33,7 +32,7 @@ BROWSER = SimpleNamespace(
     PRESS="down", RELEASE="up", REPEAT="repeat", MOUSE_BUTTON_LEFT=1, MOUSE_BUTTON_RIGHT=2, MOUSE_BUTTON_MIDDLE=3,
     KEY_ESCAPE="Escape", KEY_LEFT="ArrowLeft", KEY_RIGHT="ArrowRight", KEY_UP="ArrowUp", KEY_DOWN="ArrowDown",
     KEY_A="a", KEY_D="d", KEY_W="w", KEY_S="s", KEY_Q="q", KEY_E="e", KEY_R="r", KEY_HOME="Home",
-    KEY_EQUAL="=", KEY_KP_ADD="+", KEY_MINUS="-", KEY_KP_SUBTRACT="_",
+    KEY_F1="F1", KEY_P="p", KEY_EQUAL="=", KEY_KP_ADD="+", KEY_MINUS="-", KEY_KP_SUBTRACT="_",
 )
 WHEEL_PIXELS_PER_STEP = 100.0  # a browser's wheel notch; one zoom step, as one GLFW scroll unit
 
@@ -78,14 +77,19 @@ def record_frames(offscreen: Offscreen, out: str | Path, seconds: float, fps: fl
     return writer.path, count
 
 
-def widgets_available() -> bool:
-    """True in a Jupyter kernel with jupyter_rfb installed (the frontend may still lack widgets: see LiveView)."""
+def in_kernel() -> bool:
+    """True inside a Jupyter (IPython) kernel, False in a script or a terminal."""
     try:
         from IPython import get_ipython
     except ImportError:
         return False
     shell = get_ipython()
-    if shell is None or not hasattr(shell, "kernel"):
+    return shell is not None and hasattr(shell, "kernel")
+
+
+def widgets_available() -> bool:
+    """True in a Jupyter kernel with jupyter_rfb installed (the frontend may still lack widgets: see LiveView)."""
+    if not in_kernel():
         return False
     try:
         import jupyter_rfb  # noqa: F401
@@ -103,7 +107,6 @@ class LiveView:
 
         self.offscreen = Offscreen(ctx, target, size, msaa, anisotropy)
         self.still = self.offscreen.frame(0.0) if still is None else still
-        self.start = time.perf_counter()
         self.fixed_time: float | None = None  # freeze the animation (as demo --time)
         self.canvas = RenderCanvas(size=size, update_mode="ondemand", title=str(Path(target).name))
         self.context = self.canvas.get_context("wgpu")
@@ -114,7 +117,7 @@ class LiveView:
         self.canvas.request_draw(self._draw)
 
     def _draw(self) -> None:
-        t = self.fixed_time if self.fixed_time is not None else time.perf_counter() - self.start
+        t = self.fixed_time if self.fixed_time is not None else self.controls.clock.time()  # P pauses it
         self.offscreen.draw(self.context.get_current_texture(), t, False)
 
     def _on_event(self, event: dict) -> None:

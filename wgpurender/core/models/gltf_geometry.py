@@ -10,16 +10,21 @@ What is not drawn is said, never dropped silently: :func:`geometry_notes` lists 
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
 
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models import gltf_rules
+from wgpurender.core.files.input_files import MAX_MODEL_VERTICES, MAX_MODEL_VERTICES_ENV, env_limit
+from wgpurender.core.models import gltf_compression, gltf_extensions, gltf_rules
 from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
-SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}
+SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}  # drawn with TOPOLOGIES
+# glTF mode -> the list topology it is drawn with (strips and loops are turned into lists at load)
+TOPOLOGIES = {0: "point-list", 1: "line-list", 2: "line-list", 3: "line-list", 4: "triangle-list",
+              5: "triangle-list", 6: "triangle-list"}
 FLOAT = 5126
 
 
@@ -35,6 +40,7 @@ class PrimitiveGeometry:
     colors: np.ndarray | None  # (N, 4) linear RGBA
     material: int | None
     where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
+    topology: str = "triangle-list"  # faces (F, 3); "line-list": (F, 2) segments; "point-list": (F, 1)
 
 
 def node_matrix(node: dict) -> np.ndarray:
@@ -78,23 +84,46 @@ def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
         node = nodes[index]
         world = parent @ node_matrix(node)
         if "mesh" in node:
-            out.append((world, node["mesh"], index))
+            out.extend((placement, node["mesh"], index) for placement in _instances(doc, node, world))
         for child in reversed(node.get("children", [])):
             stack.append((child, world))
     return out
 
 
+def _instances(doc: GltfDocument, node: dict, world: np.ndarray) -> list[np.ndarray]:
+    """The world matrices a node places its mesh at: its own, or one per EXT_mesh_gpu_instancing instance
+    (world @ T @ R @ S of each instance), expanded here into placements of the one mesh."""
+    ext = node.get("extensions", {}).get(gltf_extensions.INSTANCING)
+    if not isinstance(ext, dict) or not ext.get("attributes"):
+        return [world]
+    attrs = ext["attributes"]
+    arrays = {k: read_accessor(doc, attrs[k]).astype(np.float64) if k in attrs else None
+              for k in ("TRANSLATION", "ROTATION", "SCALE")}
+    if all(a is None for a in arrays.values()):
+        return [world]
+    counts = {len(a) for a in arrays.values() if a is not None}
+    if len(counts) != 1:
+        raise UserError(f"malformed glTF file {doc.path}: {gltf_extensions.INSTANCING} attributes of a node have "
+                        f"different counts {sorted(counts)}; each needs one element per instance")
+    matrices = gltf_extensions.instance_matrices(arrays["TRANSLATION"], arrays["ROTATION"], arrays["SCALE"])
+    return list(world @ matrices)
+
+
 def _attribute(doc: GltfDocument, prim: dict, name: str, where: str) -> np.ndarray | None:
     """An attribute through the project's accessor reader, as float64. Accessor and component types were checked
-    with the document (gltf_rules.py); integer attributes must also be normalized (unnormalized ones are
-    KHR_mesh_quantization's, which is not supported)."""
+    with the document (gltf_rules.py); integer attributes must be normalized unless KHR_mesh_quantization allows
+    plain integers for the semantic (POSITION and TEXCOORD: its table lists both forms)."""
     index = prim.get("attributes", {}).get(name)
     if index is None:
         return None
     acc = doc.json["accessors"][index]
     if acc.get("componentType") != FLOAT and not acc.get("normalized", False):
-        raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not normalized "
-                        "(KHR_mesh_quantization), which is not supported; re-export without quantization")
+        semantic = name.split("_", 1)[0] if name.startswith("TEXCOORD_") else name
+        if not gltf_extensions.uses(doc.json, gltf_extensions.QUANTIZATION) or semantic not in ("POSITION",
+                                                                                              "TEXCOORD"):
+            raise UserError(f"glTF file {doc.path}: {where} {name} has integer components that are not "
+                            "normalized; glTF allows that only for POSITION and TEXCOORD with "
+                            "KHR_mesh_quantization in extensionsUsed: fix or re-export the file")
     return read_accessor(doc, index).astype(np.float64)
 
 
@@ -105,6 +134,8 @@ def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
     else:
         idx = np.arange(count, dtype=np.int64)
     mode = prim.get("mode", 4)
+    if mode in SKIPPED_MODES:
+        return _points_and_lines(idx, mode)
     if mode == 4:
         return idx[: len(idx) // 3 * 3].reshape(-1, 3)
     n = max(len(idx) - 2, 0)
@@ -116,46 +147,99 @@ def _faces(doc: GltfDocument, prim: dict, count: int) -> np.ndarray:
     return np.stack([idx[i + 1], idx[i + 2], np.full(n, idx[0]) if n else idx[:0]], axis=1)  # fan around idx[0]
 
 
-def texcoord_set(doc: GltfDocument, material: int | None) -> int:
-    """The TEXCOORD set a material's textures use (its base colour texture's ``texCoord``, else the first texture
-    that names one, else 0): the mesh carries one set of texture coordinates."""
+def _points_and_lines(idx: np.ndarray, mode: int) -> np.ndarray:
+    """POINTS as (N, 1); LINES, LINE_STRIP and LINE_LOOP as (segments, 2) of a line list."""
+    if mode == 0:
+        return idx.reshape(-1, 1)
+    if mode == 1:
+        return idx[: len(idx) // 2 * 2].reshape(-1, 2)
+    ends = np.append(idx[1:], idx[:1]) if mode == 2 and len(idx) > 2 else idx[1:]  # a loop closes on its first
+    return np.stack([idx[: len(ends)], ends], axis=1)
+
+
+def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
+    """A material's textureInfo objects, base colour first (its choice of coordinates leads)."""
     if material is None:
-        return 0
+        return []
     mat = doc.json.get("materials", [])[material]
     infos = [mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"), mat.get("normalTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
              mat.get("occlusionTexture")]
-    return next((int(i.get("texCoord", 0)) for i in infos if isinstance(i, dict)), 0)
+    return [i for i in infos if isinstance(i, dict)]
 
 
-def primitive_geometry(doc: GltfDocument, prim: dict, where: str) -> PrimitiveGeometry | None:
-    """One primitive's triangles and attributes in its mesh's own space (the caller applies the node's world
-    matrix); None for points and lines (see :func:`geometry_notes`)."""
+def uv_choice(doc: GltfDocument, material: int | None) -> tuple[int, dict | None]:
+    """(TEXCOORD set, KHR_texture_transform or None) the mesh's one set of texture coordinates is made with:
+    the base colour texture's (else the first texture's); texCoord and the transform's texCoord override included.
+    A texture of the material that samples otherwise is listed as ignored (gltf_materials)."""
+    infos = texture_infos(doc, material)
+    if not infos:
+        return 0, None
+    texcoord, _ = gltf_extensions.texture_uv_choice(infos[0])
+    transform = infos[0].get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
+    return texcoord, transform if isinstance(transform, dict) else None
+
+
+def texcoord_set(doc: GltfDocument, material: int | None) -> int:
+    """The TEXCOORD set the mesh carries for a material (see :func:`uv_choice`)."""
+    return uv_choice(doc, material)[0]
+
+
+def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):
+    """POSITION, NORMAL and TANGENT with the default morph weights applied (``weights``: the node's, else the
+    mesh's; none given means all 0, the base pose)."""
+    targets = prim["targets"]
+    weights = list(weights or ())
+    if weights and len(weights) != len(targets):
+        raise UserError(f"malformed glTF file {doc.path}: {where} has {len(targets)} morph targets but "
+                        f"{len(weights)} weights; give one weight per target")
+    if not any(weights):
+        return positions, normals, tangents
+    deltas = {name: [_attribute(doc, {"attributes": t}, name, where) for t in targets]
+              for name in ("POSITION", "NORMAL", "TANGENT")}
+    return (gltf_extensions.morphed(positions, deltas["POSITION"], weights),
+            gltf_extensions.morphed(normals, deltas["NORMAL"], weights),
+            gltf_extensions.morphed(tangents, deltas["TANGENT"], weights))
+
+
+def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) -> PrimitiveGeometry | None:
+    """One primitive's triangles (or points, or line segments: ``topology``) and attributes in its mesh's own
+    space (the caller applies the node's world matrix)."""
     mode = prim.get("mode", 4)
-    if mode in SKIPPED_MODES:
-        return None
-    if mode not in TRIANGLE_MODES:
+    if mode not in TOPOLOGIES:
         raise UserError(f"malformed glTF file {doc.path}: {where} has mode {mode}; glTF 2.0 modes are 0..6")
-    positions = _attribute(doc, prim, "POSITION", where)
+    material = prim.get("material")
+    uv_set, uv_transform = uv_choice(doc, material)
+    uv_name = f"TEXCOORD_{uv_set}"
+    names = ("POSITION", "NORMAL", uv_name, "TANGENT", "COLOR_0")
+    draco = gltf_compression.uses_draco(doc, prim)  # else its uncompressed fallback accessors
+    if draco:
+        decoded, draco_faces = gltf_compression.draco_attributes(doc, prim, where)
+        arrays = {name: decoded.get(name) for name in names}
+    else:
+        arrays = {name: _attribute(doc, prim, name, where) for name in names}
+    positions = arrays.pop("POSITION")
     if positions is None:
         raise UserError(f"malformed glTF file {doc.path}: {where} has no POSITION attribute (glTF requires it)")
     count = len(positions)
-    material = prim.get("material")
-    uv_name = f"TEXCOORD_{texcoord_set(doc, material)}"
-    arrays = {name: _attribute(doc, prim, name, where) for name in ("NORMAL", uv_name, "TANGENT", "COLOR_0")}
     for name, array in arrays.items():
         if array is not None and len(array) != count:
             raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
                             f"POSITION {count}")
-    faces = _faces(doc, prim, count)
+    if prim.get("targets") and not draco:
+        positions, arrays["NORMAL"], arrays["TANGENT"] = _morph(doc, prim, weights, where, positions,
+                                                                arrays["NORMAL"], arrays["TANGENT"])
+    if arrays[uv_name] is not None and uv_transform is not None:
+        arrays[uv_name] = gltf_extensions.transform_uvs(arrays[uv_name], uv_transform)
+    faces = draco_faces if draco else _faces(doc, prim, count)
     if len(faces) and (faces.min() < 0 or faces.max() >= count):
         raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
     colors = arrays["COLOR_0"]
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
     geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
-                                 material, where)
-    return flat_shaded(geometry) if geometry.normals is None else geometry
+                                 material, where, TOPOLOGIES[mode])
+    return flat_shaded(geometry) if geometry.normals is None and geometry.topology == "triangle-list" else geometry
 
 
 def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
@@ -173,25 +257,34 @@ def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
-    """(world matrix, node label, geometry) of every triangle primitive the file's scene places; a mesh placed
-    by several nodes is read once."""
+    """(world matrix, node label, geometry) of every primitive the file's scene places (triangles, points and
+    line segments: ``geometry.topology``). A primitive placed many times (nodes, EXT_mesh_gpu_instancing) is read
+    once per set of morph weights; the placed vertices (instances multiply them) are bounded like the file's own."""
     check_something_to_draw(doc)
     meshes = doc.json.get("meshes", [])
-    out, read = [], {}
+    out, read, placed = [], {}, 0
+    limit = env_limit(MAX_MODEL_VERTICES_ENV, MAX_MODEL_VERTICES)
+    nodes = doc.json.get("nodes", [])
     for world, mesh_index, node_index in placed_meshes(doc):
         mesh = meshes[mesh_index]
         name = f" '{mesh['name']}'" if mesh.get("name") else ""
+        weights = nodes[node_index].get("weights", mesh.get("weights")) if node_index >= 0 else mesh.get("weights")
         for p, prim in enumerate(mesh.get("primitives", [])):
             where = f"mesh {mesh_index}{name} primitive {p}" + (f" (node {node_index})" if node_index >= 0 else "")
-            if (mesh_index, p) not in read:
-                read[mesh_index, p] = primitive_geometry(doc, prim, where)
-            geometry = read[mesh_index, p]
+            key = (mesh_index, p, json.dumps(weights))
+            if key not in read:
+                read[key] = primitive_geometry(doc, prim, where, weights)
+            geometry = read[key]
             if geometry is not None and len(geometry.faces):
+                placed += len(geometry.positions)
+                if placed > limit:
+                    raise UserError(f"{doc.path}: its nodes and instances place over {limit} vertices, more than "
+                                    f"the model limit allows; raise ${MAX_MODEL_VERTICES_ENV} if the model is real")
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
 
 
-DRAWN_MODES = TRIANGLE_MODES  # the primitive modes drawn: the one place to widen (e.g. points and lines)
+DRAWN_MODES = TRIANGLE_MODES  # the modes a file needs one of: points and lines are drawn only beside triangles
 MODE_NAMES = {**SKIPPED_MODES, **TRIANGLE_MODES}
 
 
@@ -207,7 +300,8 @@ def check_something_to_draw(doc: GltfDocument) -> None:
     if not modes & set(DRAWN_MODES):
         found = ", ".join(MODE_NAMES.get(m, str(m)) for m in sorted(modes))
         raise UserError(f"glTF file {doc.path}: nothing to draw: its placed primitives are {found} only, and "
-                        f"wgpurender draws {', '.join(MODE_NAMES[m] for m in DRAWN_MODES)}; export faces")
+                        f"wgpurender draws {', '.join(MODE_NAMES[m] for m in DRAWN_MODES)} (points and lines only "
+                        "beside them); export faces")
 
 
 def geometry_notes(doc: GltfDocument) -> list[str]:
@@ -217,11 +311,12 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
         for pi, prim in enumerate(mesh.get("primitives", [])):
             mode = prim.get("mode", 4)
             if mode in SKIPPED_MODES:
-                notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive ignored (only triangles "
-                             "are drawn)")
-            if prim.get("targets"):
-                notes.append(f"mesh {mi} primitive {pi}: {len(prim['targets'])} morph target(s) ignored (drawn "
-                             "in the base pose)")
+                notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive drawn unlit as a "
+                             f"{TOPOLOGIES[mode]} of 1-pixel {'points' if mode == 0 else 'lines'} (points and lines "
+                             "have no surface to light)")
+            if prim.get("targets") and gltf_compression.DRACO in prim.get("extensions", {}):
+                notes.append(f"mesh {mi} primitive {pi}: morph targets of a Draco primitive ignored (drawn in the "
+                             "base pose)")
             used = f"TEXCOORD_{texcoord_set(doc, prim.get('material'))}"
             extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a != used)
             extra += sorted(a for a in prim.get("attributes", {})

@@ -27,7 +27,7 @@ from wgpurender.core.files.input_files import (
     input_file,
 )
 from wgpurender.core.files.safe_write import atomic_write
-from wgpurender.core.models import gltf_rules, gltf_schema
+from wgpurender.core.models import gltf_compression, gltf_extensions, gltf_rules, gltf_schema
 
 GLB_MAGIC = 0x46546C67  # b"glTF"
 CHUNK_JSON = 0x4E4F534A
@@ -92,6 +92,7 @@ def read_document(path: str | os.PathLike) -> GltfDocument:
              for kind in ("buffers", "images") for i, item in enumerate(doc_json.get(kind, []))
              if "uri" in item and not item["uri"].startswith("data:")}  # every file checked before one is read
     buffers = [_load_buffer(path, i, b, glb_bin, files) for i, b in enumerate(doc_json.get("buffers", []))]
+    buffers = gltf_compression.meshopt_buffers(path, doc_json, buffers)
     return GltfDocument(path, doc_json, buffers)
 
 
@@ -99,8 +100,8 @@ class GltfVersionError(ValueError):
     """A GLB container of another glTF version (its header says so before any JSON is read)."""
 
 
-# Extensions a file may list in extensionsRequired: none, so far (each one changes what a correct render is).
-SUPPORTED_REQUIRED_EXTENSIONS: frozenset[str] = frozenset()
+# Extensions a file may list in extensionsRequired (each one changes what a correct render is): those implemented.
+SUPPORTED_REQUIRED_EXTENSIONS: frozenset[str] = gltf_extensions.SUPPORTED_REQUIRED
 
 
 def check_version(path: Path, doc_json: object) -> None:
@@ -123,8 +124,7 @@ def check_required_extensions(path: Path, doc_json: object) -> None:
     missing = [str(name) for name in required if name not in SUPPORTED_REQUIRED_EXTENSIONS]
     if missing:
         raise UserError(f"{path}: requires the glTF extension(s) {', '.join(missing)}, which wgpurender does not "
-                        "support; re-export the model without them (e.g. without Draco or meshopt compression, "
-                        "KHR_mesh_quantization or KHR_texture_basisu)")
+                        "support; re-export the model without them (e.g. without KHR_texture_basisu)")
 
 
 def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
@@ -152,6 +152,8 @@ def _split_glb(raw: bytes) -> tuple[dict, bytes | None]:
 
 def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None, files: dict[str, Path]) -> bytes:
     uri = buffer.get("uri")
+    if uri is None and buffer.get("extensions", {}).get(gltf_compression.MESHOPT, {}).get("fallback"):
+        return b""  # EXT_meshopt_compression's placeholder: its views are decoded from the compressed buffer
     if uri is None:
         if glb_bin is None:
             raise UserError(f"malformed glTF file {path}: buffer {index} has no uri and there is no GLB binary chunk")

@@ -18,6 +18,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from wgpurender.core.models import gltf_extensions
+
 FLOAT, BYTE, UBYTE, SHORT, USHORT, UINT = 5126, 5120, 5121, 5122, 5123, 5125
 COMPONENT_NAMES = {BYTE: "BYTE", UBYTE: "UNSIGNED_BYTE", SHORT: "SHORT", USHORT: "UNSIGNED_SHORT",
                    UINT: "UNSIGNED_INT", FLOAT: "FLOAT"}
@@ -141,18 +143,22 @@ def _semantic_rule(name: str) -> tuple[tuple[str, ...], tuple[int, ...]] | None:
 
 def check_primitives(document: dict) -> None:
     accessors = document.get("accessors", [])
+    quantized = gltf_extensions.uses(document, gltf_extensions.QUANTIZATION)
     for m, mesh in enumerate(document.get("meshes", [])):
         for p, prim in enumerate(mesh["primitives"]):
             where = f"$.meshes[{m}].primitives[{p}]"
-            _check_attributes(accessors, prim, where)
+            _check_attributes(accessors, prim, where, quantized)
             if "indices" in prim:
                 _check_accessor(accessors[prim["indices"]], ("SCALAR",), INDEX_COMPONENTS, f"{where}.indices")
 
 
-def _check_attributes(accessors: list[Any], prim: dict, where: str) -> None:
+def _check_attributes(accessors: list[Any], prim: dict, where: str, quantized: bool = False) -> None:
     counts = {}
     for name, index in prim["attributes"].items():
         rule = _semantic_rule(name)
+        widened = gltf_extensions.quantized_components(name) if quantized else None
+        if rule is not None and widened is not None:  # KHR_mesh_quantization's table replaces the core one
+            rule = (rule[0], widened)
         if rule is not None:
             _check_accessor(accessors[index], *rule, f"{where}.attributes.{name}")
         counts[name] = accessors[index]["count"]

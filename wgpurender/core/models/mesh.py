@@ -38,24 +38,26 @@ from wgpurender.core.models.tangents import (
     vertex_tangents,
 )
 
-SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl"}
+SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl", ".fbx": "fbx"}
 CONVERT_HINT = (
     "convert it to glTF: in Blender, File > Import the file, then File > Export > glTF 2.0 (.glb); "
     "or with assimp: `assimp export {name} {stem}.glb`"
 )
-UNSUPPORTED = {".fbx": "FBX", ".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
+UNSUPPORTED = {".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
                ".usd": "USD", ".usdz": "USDZ", ".usda": "USD", ".usdc": "USD"}
 log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
 class MeshPart:
-    """A run of triangles drawn with one material of the model file: ``material`` indexes the file's materials
-    (glTF; None = the primitive names none), ``first_index``/``index_count`` count indices (3 per triangle)."""
+    """A run of triangles (or points, or line segments: ``topology``) drawn with one material of the model file:
+    ``material`` indexes the file's materials (glTF; None = the primitive names none), ``first_index`` /
+    ``index_count`` count indices in :meth:`Mesh.index_bytes` (3 per triangle, 2 per segment, 1 per point)."""
 
     material: int | None
     first_index: int
     index_count: int
+    topology: str = "triangle-list"
 
 
 @dataclass
@@ -78,6 +80,7 @@ class Mesh:
     source: Path | None = None
     colors: np.ndarray | None = None
     parts: tuple[MeshPart, ...] = ()
+    extra_indices: np.ndarray | None = None  # glTF points and line segments, flat, after the triangles' indices
 
     @property
     def vertex_count(self) -> int:
@@ -94,8 +97,14 @@ class Mesh:
 
     def index_bytes(self) -> bytes:
         """Indices as bytes, zero-padded to a multiple of 4 (queue.write_buffer needs it; draw only F*3 of them)."""
-        data = np.ascontiguousarray(self.indices).tobytes()
+        data = self.all_indices().tobytes()
         return data + b"\0" * (-len(data) % 4)
+
+    def all_indices(self) -> np.ndarray:
+        """Every index, flat: the triangles', then the glTF points' and line segments' (``parts`` address both)."""
+        if self.extra_indices is None:
+            return np.ascontiguousarray(self.indices).reshape(-1)
+        return np.concatenate([self.indices.reshape(-1), self.extra_indices.astype(self.indices.dtype)])
 
     def vertex_data(self) -> np.ndarray:
         """Interleaved (N, 12) float32: position xyz @0, normal xyz @12, uv @24, tangent xyzw @32; stride 48 bytes."""
@@ -110,10 +119,11 @@ def index_range(mesh: Mesh, draw) -> tuple[int, int]:
     if draw.part is None:
         return 0, int(mesh.indices.size)
     wanted = None if draw.part < 0 else draw.part
+    topology = getattr(draw, "topology", "triangle-list")
     for part in mesh.parts:
-        if part.material == wanted:
+        if part.material == wanted and part.topology == topology:
             return part.first_index, part.index_count
-    raise UserError(f"{draw.label}: the model file has no triangles with material {draw.part}")
+    raise UserError(f"{draw.label}: the model file has no {topology} with material {draw.part}")
 
 
 def index_dtype(max_index: int) -> type:
@@ -247,6 +257,7 @@ class _Part:
     tangents: np.ndarray | None
     colors: np.ndarray | None = None
     material: int | None = None
+    topology: str = "triangle-list"
 
 
 def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
@@ -260,7 +271,7 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     suffix = path.suffix.lower()
     if suffix in UNSUPPORTED:
         kind = UNSUPPORTED[suffix]
-        raise UserError(f"cannot load {path}: {kind} files are not supported (trimesh cannot read {kind}); "
+        raise UserError(f"cannot load {path}: {kind} files are not supported (wgpurender cannot read {kind}); "
                         + CONVERT_HINT.format(name=path.name, stem=path.stem))
     if suffix not in SUPPORTED:
         raise UserError(f"cannot load {path}: unknown model format '{suffix or path.name}' "
@@ -269,6 +280,8 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     file_type = SUPPORTED[suffix]
     if file_type in ("gltf", "glb"):
         parts = _gltf_parts(path)
+    elif file_type == "fbx":
+        parts = _fbx_parts(path)
     else:
         if file_type == "obj":
             check_obj_records(path)
@@ -276,9 +289,52 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
+    others = [p for p in parts if p.topology != "triangle-list"]
+    parts = [p for p in parts if p.topology == "triangle-list"]
+    if not parts:
+        raise UserError(f"mesh {path} has only points and lines, no triangles; wgpurender draws points and lines "
+                        "beside a model's triangles: add a surface or export the triangles too")
     positions, faces, normals, uvs, tangents, colors, mesh_parts = _concatenate(parts)
-    return build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
+    mesh = build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
                       source=path, colors=colors, parts=mesh_parts)
+    return _with_points_and_lines(mesh, others) if others else mesh
+
+
+def _with_points_and_lines(mesh: Mesh, others: list[_Part]) -> Mesh:
+    """Append glTF points and line segments: their vertices after the triangles' (normal +z, white colour,
+    zero UVs where the file has none: they are drawn unlit), their indices after the triangles' indices, one
+    part per (material, topology) in material order."""
+    others = sorted(others, key=lambda p: (p.topology, -1 if p.material is None else p.material))
+    count = mesh.vertex_count
+    flat, parts, first = [], list(mesh.parts), int(mesh.indices.size)
+    colors = mesh.colors
+    if colors is None and any(p.colors is not None for p in others):
+        colors = np.ones((count, 4), np.float32)  # the triangles' white, beside the points' or lines' COLOR_0
+    arrays = {"positions": [mesh.positions], "normals": [mesh.normals], "uvs": [mesh.uvs],
+              "tangents": [mesh.tangents], "colors": [colors]}
+    for p in others:
+        n = len(p.positions)
+        arrays["positions"].append(p.positions)
+        arrays["normals"].append(np.tile([0.0, 0.0, 1.0], (n, 1)))
+        arrays["uvs"].append(p.uvs if p.uvs is not None else np.zeros((n, 2)))
+        arrays["tangents"].append(np.tile([1.0, 0.0, 0.0, 1.0], (n, 1)))
+        arrays["colors"].append(p.colors if p.colors is not None else np.ones((n, 4)))
+        flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)
+        size = int(flat[-1].size)
+        last = parts[-1] if parts else None
+        if last is not None and (last.material, last.topology) == (p.material, p.topology):
+            parts[-1] = MeshPart(p.material, last.first_index, last.index_count + size, p.topology)
+        else:
+            parts.append(MeshPart(p.material, first, size, p.topology))
+        first += size
+        count += n
+    _check_gpu_range(f"mesh {mesh.source}", "vertex position", np.concatenate(arrays["positions"][1:]),
+                     MAX_COORDINATE)
+    dtype = index_dtype(count - 1)
+    joined = {k: np.concatenate(v).astype(np.float32) for k, v in arrays.items() if v[0] is not None}
+    return Mesh(joined["positions"], joined["normals"], joined["uvs"], mesh.indices.astype(dtype),
+                joined.get("tangents"), mesh.has_uvs, mesh.tangents_source, mesh.source,
+                joined.get("colors"), tuple(parts), np.concatenate(flat).astype(dtype))
 
 
 OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least numbers each record needs
@@ -371,9 +427,19 @@ def _gltf_parts(path: Path) -> list[_Part]:
     for world, node, geometry in gltf_geometry.mesh_primitives(doc):
         g = geometry
         part = _place(world, g.positions, g.faces, g.normals, g.uvs, g.tangents, str(path), node)
-        part.colors, part.material = g.colors, g.material
+        part.colors, part.material, part.topology = g.colors, g.material, g.topology
         parts.append(part)
     return parts
+
+
+def _fbx_parts(path: Path) -> list[_Part]:
+    """Every triangle mesh an FBX file's node tree places, in world space (core/models/fbx.py: assimp, axes, units);
+    its material is the scene's (core/scene/file_materials.py)."""
+    from wgpurender.core.models import fbx
+
+    placed, _ = fbx.load_fbx(path)
+    return [_place(world, positions, faces, normals, uvs, None, str(path), name)
+            for world, positions, faces, normals, uvs, name, _ in placed]
 
 
 def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "model", node: str = "?") -> _Part:

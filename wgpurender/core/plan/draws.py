@@ -185,4 +185,4 @@ def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output:
     draw_label = model.label if mat.part is None else f"{model.label} {mat.name.removeprefix(model.label).strip()}"
     return Draw(model.index, model.path, draw_label, mat.name, variant.key, pipeline.key, sampled,
                 own[0][1] if own else None, model.transform.matrix, label, tuple(factors.items()), part=mat.part,
-                samplers=tuple(own))
+                samplers=tuple(own), topology=mat.topology)

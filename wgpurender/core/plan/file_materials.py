@@ -60,8 +60,10 @@ def _alpha_varies(material: Material) -> bool:
 
 
 def pipeline_state(material: Material) -> dict:
-    """ScenePipeline fields a material decides: culling (doubleSided) and blending (alphaMode BLEND)."""
-    return {"cull_mode": "none" if material.double_sided else "back", "blend": material.alpha_mode == "blend"}
+    """ScenePipeline fields a material decides: culling (doubleSided), blending (alphaMode BLEND) and the
+    topology (glTF points and lines)."""
+    return {"cull_mode": "none" if material.double_sided else "back", "blend": material.alpha_mode == "blend",
+            "topology": material.topology}
 
 
 def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:

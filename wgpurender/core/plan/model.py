@@ -87,6 +87,7 @@ class ScenePipeline:
     front_face: str = "ccw"
     depth_compare: str = "less"
     blend: bool = False  # alpha blending (glTF alphaMode BLEND): source-over, no depth writes
+    topology: str = "triangle-list"  # "line-list" / "point-list": glTF lines and points
 
     @property
     def key(self) -> str:
@@ -94,7 +95,9 @@ class ScenePipeline:
         winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
         culling = " | double-sided (no culling)" if self.cull_mode == "none" else ""
         blending = " | alpha blend, no depth write" if self.blend else ""
-        return f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}{blending}"
+        shape = f" | {self.topology}" if self.topology != "triangle-list" else ""
+        return (f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}"
+                f"{blending}{shape}")
 
 
 @dataclass(frozen=True)
@@ -135,6 +138,7 @@ class Draw:
     factors: tuple[tuple[str, object], ...] = ()  # the per-draw Material values (course.shading.material_factors)
     part: int | None = None  # the model file's material whose triangles this draws (-1: none); None: all of them
     samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): each texture's own sampler
+    topology: str = "triangle-list"  # which of the part's primitives: triangles, or glTF lines / points
 
     def sampler_of(self, feature: str) -> object | None:
         """The sampler a texture is sampled with (its own, else the draw's one sampler)."""

@@ -38,6 +38,9 @@ def resolve_post_path(r, knobs: Knobs) -> tuple[str, str]:
         return "fragment", f"{origin}, adapter not known yet: fragment (the renderer re-plans for its adapter)"
     if adapter.adapter_type == "DiscreteGPU":
         return "compute", f"{origin}: compute on a discrete GPU ({adapter.name or adapter.adapter_type})"
+    if not adapter.adapter_type:  # a browser's WebGPU: the page's adapter is picked there and has no type in WebGPU
+        return "fragment", (f"{origin}: fragment on {adapter.name or 'an unnamed adapter'}, whose adapter type is "
+                            "not known here (WebGPU does not report one)")
     return "fragment", f"{origin}: fragment on a {adapter.adapter_type} adapter ({adapter.name or 'unnamed'})"
 
 

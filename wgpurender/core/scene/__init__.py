@@ -27,7 +27,7 @@ docs/scenes.md; in short (every path is relative to the scene file's folder)::
     sampler = { filter = "linear", mipmaps = true, anisotropy = 1, address_mode = "repeat" }
 
     [[models]]                     # zero or more, drawn in order
-    path = "models/cube.glb"       # .obj .gltf .glb .ply .stl
+    path = "models/cube.glb"       # .obj .gltf .glb .ply .stl .fbx
     material = "brick"             # a [materials] name, an inline table, or omitted (white, lit)
     transform = { translate = [0, 0, 0], rotate = { axis = [0, 1, 0], degrees = 30 }, scale = 1.0 }
     # or rotate = { euler = [x, y, z] } (degrees, X then Y then Z), or matrix = 4 rows of 4 (alone)

@@ -38,6 +38,7 @@ class MtlEntry:
     color: tuple[float, float, float] | None = None
     opacity: float | None = None
     illum: int | None = None
+    notes: tuple[str, ...] = ()  # what the loader converted (FBX axes and units), for --explain
 
 
 def read_file_materials(model: Model) -> ModelMaterials | None:
@@ -46,7 +47,7 @@ def read_file_materials(model: Model) -> ModelMaterials | None:
         return None
     if model.path.suffix.lower() in GLTF_SUFFIXES:
         return model_materials(model.path, model.label)
-    if model.path.suffix.lower() == ".obj":
+    if model.path.suffix.lower() in (".obj", ".fbx"):
         return obj_materials(model)
     return None
 
@@ -54,12 +55,14 @@ def read_file_materials(model: Model) -> ModelMaterials | None:
 def obj_materials(model: Model) -> ModelMaterials | None:
     """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
     normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
-    an MTL."""
-    found = obj_mtl_entry(model.path)
+    an MTL. An FBX's first material (diffuse colour, diffuse and normal maps: core/models/fbx.py) the same way."""
+    fbx = model.path.suffix.lower() == ".fbx"
+    found = fbx_entry(model.path) if fbx else obj_mtl_entry(model.path)
     if found is None:
         return None
     maps = {MTL_FEATURES[role]: path for role, path in found.textures.items() if role in MTL_FEATURES}
-    name = f"{model.label} MTL material '{found.name}'"
+    kind = "FBX" if fbx else "MTL"
+    name = f"{model.label} {kind} material '{found.name}'"
     opacity = 1.0 if found.opacity is None else found.opacity
     material = Material(name, albedo_color=(*(found.color or (1.0, 1.0, 1.0)), opacity), origin=name,
                         alpha_mode="blend" if opacity < 1.0 else "opaque", unlit=found.illum == 0,
@@ -69,12 +72,24 @@ def obj_materials(model: Model) -> ModelMaterials | None:
         taken.append(f"d {opacity:g} (alpha blended, unsorted)")
     if found.illum == 0:
         taken.append("illum 0 (unlit)")
-    ignored = [f"MTL '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
-    used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
+    taken.extend(found.notes)
+    ignored = [f"{kind} '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
+    used = {} if fbx else dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(),
+                                                   re.M))
     if len(used) > 1:
         ignored.append(f"usemtl {', '.join(repr(u.decode('utf-8', 'replace')) for u in list(used)[1:])}: ignored "
                        f"(an OBJ draws with its first material, '{found.name}')")
     return ModelMaterials((material,), (f"{name}: " + ", ".join(taken),), tuple(ignored))
+
+
+def fbx_entry(path: Path) -> MtlEntry | None:
+    """An FBX file's first material as assimp reads it (core/models/fbx.py), or None."""
+    from wgpurender.core.models import fbx
+
+    _, found = fbx.load_fbx(path)
+    if found is None:
+        return None
+    return MtlEntry(found["name"], dict(found["textures"]), found["color"], notes=tuple(found.get("notes", ())))
 
 
 def obj_mtl_entry(path: Path) -> MtlEntry | None:

@@ -19,9 +19,11 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 - a lit material -> the glTF metallic-roughness model (``shading_model = "pbr"``, shaders_wgsl/pbr.wgsl: the
   spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
   course's scene materials and primitives without a file material keep Blinn-Phong.
+- the base colour texture's ``texCoord`` and ``KHR_texture_transform`` -> the mesh's texture coordinates
+  (gltf_geometry.uv_choice applies them at load).
 
-Ignored, and listed by ``--explain``: other texture coordinate sets, ``KHR_texture_transform``, and every other
-extension by name.
+Ignored, and listed by ``--explain``: a texture that samples another coordinate set or transform than its
+material's base colour texture, and every other extension by name (the applied ones are listed as used).
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ from pathlib import Path
 
 from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.files.input_files import input_file
-from wgpurender.core.models import gltf_geometry, gltf_io
+from wgpurender.core.models import gltf_extensions, gltf_geometry, gltf_io
 from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material, ModelMaterials
 
 EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
@@ -44,6 +46,8 @@ ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map
          "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
          "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
 SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
+# extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
+USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
 
 
 def embedded_image_path(model: Path, image: int) -> Path:
@@ -123,12 +127,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
-        chosen = gltf_geometry.texcoord_set(doc, index)
-        if int(info.get("texCoord", 0)) != chosen:
-            ignored.append(f"{name}: {keys[-1]} texCoord {info.get('texCoord', 0)}: ignored, sampled with "
-                           f"TEXCOORD_{chosen} (a mesh carries one set of texture coordinates)")
-        if "KHR_texture_transform" in info.get("extensions", {}):
-            ignored.append(f"{name}: {keys[-1]} KHR_texture_transform: ignored (drawn untransformed)")
+        _note_uv_choice(doc, index, info, f"{name}: {keys[-1]}", ignored)
     _note_ignored(mat, name, ignored)
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -153,6 +152,20 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     )
 
 
+def _note_uv_choice(doc: gltf_io.GltfDocument, index: int, info: dict, where: str, ignored: list[str]) -> None:
+    """A texture that samples other coordinates than the material's chosen set and transform (the base colour
+    texture's; gltf_geometry.uv_choice) is drawn with those: said by name."""
+    infos = gltf_geometry.texture_infos(doc, index)
+    lead = gltf_extensions.texture_uv_choice(infos[0])
+    mine = gltf_extensions.texture_uv_choice(info)
+    if mine[0] != lead[0]:
+        ignored.append(f"{where} texCoord {mine[0]}: ignored, sampled with TEXCOORD_{lead[0]} (a mesh carries one "
+                       "set of texture coordinates per material)")
+    elif mine[1] != lead[1]:
+        ignored.append(f"{where} KHR_texture_transform: ignored, sampled with the base colour texture's transform "
+                       "(one transform per material)")
+
+
 def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
     for ext in mat.get("extensions", {}):
         if ext not in SUPPORTED_MATERIAL_EXTENSIONS:
@@ -163,28 +176,40 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
     """The materials of the placed triangle primitives of glTF file ``path`` (``label`` names the model)."""
     doc = document(str(path))
     gltf_geometry.check_something_to_draw(doc)
-    used: dict[int, bool] = {}  # file material index (-1: none) -> any of its primitives has COLOR_0
+    used: dict[tuple[str, int], bool] = {}  # (topology, file material index, -1: none) -> any has COLOR_0
     meshes = doc.json.get("meshes", [])
     for _, mesh_index, _ in gltf_geometry.placed_meshes(doc):
         for prim in meshes[mesh_index].get("primitives", []):
-            if prim.get("mode", 4) in gltf_geometry.DRAWN_MODES:
-                k = prim.get("material", -1)
-                used[k] = used.get(k, False) or "COLOR_0" in prim.get("attributes", {})
+            topology = gltf_geometry.TOPOLOGIES.get(prim.get("mode", 4))
+            if topology is not None:
+                key = (topology != "triangle-list", prim.get("material", -1), topology)
+                used[key] = used.get(key, False) or "COLOR_0" in prim.get("attributes", {})
     taken, ignored = [], list(gltf_geometry.geometry_notes(doc))
     materials = []
-    for k in sorted(used):
+    for (_, k, topology), colours in sorted(used.items()):  # triangles first, then points and lines
         if k < 0:
-            materials.append(dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
-                                                 origin=f"{label} primitives without a material (the default one)",
-                                                 vertex_colors=used[k], part=-1))
+            material = dataclasses.replace(DEFAULT_MATERIAL, name=f"{label} without material",
+                                           origin=f"{label} primitives without a material (the default one)",
+                                           vertex_colors=colours, part=-1)
         else:
-            materials.append(file_material(doc, k, label, used[k], ignored))
+            material = file_material(doc, k, label, colours, ignored)
+        materials.append(material if topology == "triangle-list" else _points_or_lines(material, topology))
     for m in materials:
         taken.append(_taken_text(m))
     for ext in doc.json.get("extensionsUsed", []):
-        if ext not in SUPPORTED_MATERIAL_EXTENSIONS and ext != "KHR_lights_punctual":  # lights: gltf_lights.py
+        if ext in USED_EXTENSIONS:
+            taken.append(f"extensionsUsed {ext}: used")
+        elif ext != "KHR_lights_punctual":  # lights: gltf_lights.py
             ignored.append(f"extensionsUsed {ext}: ignored")
     return ModelMaterials(tuple(materials), tuple(taken), tuple(dict.fromkeys(ignored)))
+
+
+def _points_or_lines(material: Material, topology: str) -> Material:
+    """The material of a points or lines primitive: drawn unlit (no surface to light), its own topology."""
+    kind = "points" if topology == "point-list" else "lines"
+    return dataclasses.replace(material, name=f"{material.name} ({kind})", origin=f"{material.origin} ({kind}, "
+                               "unlit)", unlit=True, topology=topology, normal_map=None, roughness_map=None,
+                               occlusion_map=None, emissive_map=None, emissive_color=(0.0, 0.0, 0.0))
 
 
 def _taken_text(m: Material) -> str:

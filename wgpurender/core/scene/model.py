@@ -118,6 +118,7 @@ class Material:
     texture_samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): a sampler per texture
     texture_mipmaps: tuple[tuple[str, bool], ...] = ()  # (feature, builds a mip chain) when per texture
     part: int | None = None  # the model file's material index this stands for (None: the whole model)
+    topology: str = "triangle-list"  # glTF points ("point-list") and lines ("line-list") draw with their own
     emissive_color: Vec3 = (0.0, 0.0, 0.0)  # linear radiance added to the shaded colour (glTF emissiveFactor)
     emissive_map: Path | None = None  # sRGB, multiplies emissive_color (glTF emissiveTexture)
     occlusion_map: Path | None = None  # linear, R channel scales the ambient term (glTF occlusionTexture)

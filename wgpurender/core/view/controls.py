@@ -11,6 +11,8 @@ scroll                 zoom (closer / farther)
 arrow keys, W A S D    orbit by 5 degrees
 + / -  (or Q / E)      zoom by one step
 R or Home              reset to the scene's (or stage's) camera
+F1                     show / hide the settings overlay (as in Sascha Willems' Vulkan examples)
+P                      pause / resume the animation
 Esc                    close the window
 =====================  ===========================================
 
@@ -22,6 +24,8 @@ positions), so the window's GLFW callbacks and the tests' synthetic input
 from __future__ import annotations
 
 import math
+import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from wgpurender.core.errors import UserError
@@ -40,9 +44,16 @@ class Controls:
         self.dragging: int | None = None  # the held mouse button
         self.cursor: tuple[float, float] | None = None
         self.close_requested = False
+        self.overlay_shown = True  # F1 toggles
+        self.clock = PausableClock()  # P pauses the animation time
 
     def _orbit(self) -> Orbit | None:
         return self.orbit_of()
+
+    def toggles(self) -> str:
+        """The line a toggle prints: what F1 and P set now."""
+        return (f"overlay {'shown' if self.overlay_shown else 'hidden'} (F1), "
+                f"animation {'paused' if self.clock.paused else 'running'} (P)")
 
     def mouse_button(self, button: int, action: int) -> None:
         g = self.glfw
@@ -74,6 +85,13 @@ class Controls:
         if key == g.KEY_ESCAPE:
             self.close_requested = True
             return
+        if action == g.PRESS and key in (g.KEY_F1, g.KEY_P):  # a toggle: not on key repeat
+            if key == g.KEY_F1:
+                self.overlay_shown = not self.overlay_shown
+            else:
+                self.clock.toggle()
+            print(self.toggles(), flush=True)
+            return
         orbit = self._orbit()
         if orbit is None:
             return
@@ -90,6 +108,29 @@ class Controls:
         }
         if key in moves:
             moves[key]()
+
+
+class PausableClock:
+    """The animation's time in seconds since the window opened, standing still while paused (P)."""
+
+    def __init__(self, now: Callable[[], float] = time.perf_counter) -> None:
+        self.now = now
+        self.start = now()
+        self.paused_at: float | None = None
+
+    @property
+    def paused(self) -> bool:
+        return self.paused_at is not None
+
+    def toggle(self) -> None:
+        if self.paused_at is None:
+            self.paused_at = self.now()
+        else:  # resume where it stopped: the pause does not count
+            self.start += self.now() - self.paused_at
+            self.paused_at = None
+
+    def time(self) -> float:
+        return (self.paused_at if self.paused_at is not None else self.now()) - self.start
 
 
 # -- synthetic input (the tests' hook) ---------------------------------------------------------

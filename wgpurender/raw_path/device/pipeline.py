@@ -43,6 +43,7 @@ class PipelineDesc:
     subpass: int = 0
     defines: tuple[str, ...] = ()  # glslc -D definitions for both shaders (shader variants)
     blend: bool = False  # source-over alpha blending, no depth writes (glTF alphaMode BLEND)
+    topology: int = vk.VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST  # POINT_LIST / LINE_LIST: glTF points and lines
 
 
 # -- layout and pipeline --------------------------------------------------------------
@@ -79,7 +80,7 @@ def create_pipeline(ctx: VulkanContext, owned: ExitStack, desc: PipelineDesc, la
             pVertexBindingDescriptions=desc.vertex_bindings, pVertexAttributeDescriptions=desc.vertex_attributes
         )
         assembly = vk.VkPipelineInputAssemblyStateCreateInfo(
-            topology=vk.VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, primitiveRestartEnable=vk.VK_FALSE
+            topology=desc.topology, primitiveRestartEnable=vk.VK_FALSE
         )
         viewport = vk.VkPipelineViewportStateCreateInfo(viewportCount=1, scissorCount=1)  # both dynamic
         raster = vk.VkPipelineRasterizationStateCreateInfo(

@@ -7,11 +7,13 @@ so that glslc runs once per shader edit (and is not needed at all on a warm cach
 cache entry (core/files/cache_entry.py): empty, truncated, altered or written for another source is a miss and
 glslc runs again. The key leaves out glslc's version: SPIR-V is portable, and any glslc's output for the same
 source and flags is a valid module of the same shader.
+A wheel ships the SPIR-V of the bundled course's variants (``wgpurender/_shaders/spirv``, compiled by setup.py
+under the same names, core/shaders/spirv_names.py): used when its name (a hash of this very source, the flags
+and the defines) matches, so a pip-installed user needs no glslc for the course.
 """
 
 from __future__ import annotations
 
-import hashlib
 import os
 import re
 import shutil
@@ -22,10 +24,11 @@ import vulkan as vk
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.cache_entry import read_entry, write_entry
-from wgpurender.core.shaders.shader_files import shader_folder
+from wgpurender.core.shaders.shader_files import packaged_folder, shader_folder
+from wgpurender.core.shaders.spirv_names import GLSLC_ARGS, glslc_args, spirv_key, spirv_name
+from wgpurender.core.shaders.spirv_names import included as _included
 
 GLSL_DIR_ENV = "WGPURENDER_GLSL"
-GLSLC_ARGS = ("--target-env=vulkan1.1",)  # 1.1: the negative viewport height is core there (see pipeline.py)
 # glslc reports "path:LINE: error: message"
 _ERROR_LINE = re.compile(r"^(?P<file>.*?):(?P<line>\d+): error: (?P<msg>.*)$", re.MULTILINE)
 
@@ -57,12 +60,16 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     """
     path = Path(path)
     source = path.read_bytes() + _included(path)
-    args = (*GLSLC_ARGS, *(f"-D{d}" for d in defines))
-    key = b"\0".join([b"spirv", path.suffix.encode(), *(a.encode() for a in args), source])
-    digest = hashlib.sha256(key).hexdigest()
-    cached = cache_dir() / f"{path.stem}{path.suffix.replace('.', '-')}-{digest[:24]}.spv"
+    args = glslc_args(defines)
+    key = spirv_key(path.name, source, defines)
+    cached = cache_dir() / spirv_name(path.name, source, defines)
     if cached.name in _MEMORY_CACHE:
         return _MEMORY_CACHE[cached.name]
+    shipped = packaged_folder("spirv")
+    if shipped is not None and (shipped / cached.name).is_file():  # the wheel's, made from this very source
+        spirv = (shipped / cached.name).read_bytes()
+        if is_spirv(spirv):
+            return spirv
     spirv = read_entry(cached, key)
     if spirv is not None and is_spirv(spirv):
         return spirv
@@ -70,19 +77,6 @@ def compile_glsl(path: str | os.PathLike, defines: tuple[str, ...] = ()) -> byte
     if not write_entry(cached, key, spirv):  # not writable (read-only home, $XDG_CACHE_HOME a file)
         _MEMORY_CACHE[cached.name] = spirv
     return spirv
-
-
-_INCLUDE = re.compile(rb'^[ \t]*#[ \t]*include[ \t]+"([^"]+)"', re.MULTILINE)
-
-
-def _included(path: Path) -> bytes:
-    """The bytes of the files ``path`` includes (``#include "name"``, beside it; one level: shaders_glsl's
-    included files include nothing), so that editing an included file changes the cache key."""
-    parts = []
-    for name in _INCLUDE.findall(path.read_bytes()):
-        included = path.parent / name.decode("utf-8", "replace")
-        parts.append(included.read_bytes() if included.is_file() else b"")
-    return b"\0".join(parts)
 
 
 def is_spirv(data: bytes) -> bool:
@@ -96,7 +90,9 @@ _MEMORY_CACHE: dict[str, bytes] = {}  # where SPIR-V goes when the cache folder 
 def _run_glslc(path: Path, args: tuple[str, ...] = GLSLC_ARGS) -> bytes:
     glslc = shutil.which("glslc")
     if glslc is None:
-        raise UserError("glslc not found on PATH: the raw-Vulkan path compiles GLSL with it (apt install glslc)")
+        raise UserError(f"glslc not found on PATH: the raw-Vulkan path compiles GLSL with it, and {path.name} "
+                        f"{' '.join(args[len(GLSLC_ARGS):])} is not among the SPIR-V a wheel ships for the bundled "
+                        "course (apt install glslc, or the Vulkan SDK)")
     proc = subprocess.run([glslc, *args, str(path), "-o", "-"], capture_output=True)
     if proc.returncode != 0:
         raise UserError(_describe_error(path, proc.stderr.decode(errors="replace")))

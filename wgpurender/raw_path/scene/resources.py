@@ -77,7 +77,7 @@ class SceneResources:
             vertex = upload_buffer(self.ctx, self.owned, interleave(mesh, attributes),
                                    vk.VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertex_stage,
                                    vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT)
-            indices = np.ascontiguousarray(mesh.indices)
+            indices = mesh.all_indices()  # the triangles', then any glTF points' and lines'
             index = upload_buffer(self.ctx, self.owned, indices, vk.VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vertex_stage,
                                   vk.VK_ACCESS_INDEX_READ_BIT)
             self._buffers[key] = MeshBuffers(vertex, index, INDEX_TYPES[indices.dtype], indices.size)

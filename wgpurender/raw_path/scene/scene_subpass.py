@@ -41,6 +41,8 @@ from wgpurender.raw_path.scene.variants import glsl_defines, is_lit
 VERTEX, FRAGMENT = vk.VK_SHADER_STAGE_VERTEX_BIT, vk.VK_SHADER_STAGE_FRAGMENT_BIT
 GRAPHICS = vk.VK_PIPELINE_BIND_POINT_GRAPHICS
 READ_ONLY = vk.VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+TOPOLOGIES = {"triangle-list": vk.VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, "line-list": vk.VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
+              "point-list": vk.VK_PRIMITIVE_TOPOLOGY_POINT_LIST}  # the plan's (WebGPU's) names
 TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
 
 
@@ -154,14 +156,16 @@ class SceneSubpass:
             self.layouts[variant.key] = create_pipeline_layout(self.ctx, self.owned, set_layouts, [push])
         return self.layouts[variant.key]
 
-    def pipeline(self, variant: ShaderVariant, front_face: int, double_sided: bool = False, blend: bool = False):
-        key = (variant.key, front_face, double_sided, blend)
+    def pipeline(self, variant: ShaderVariant, front_face: int, double_sided: bool = False, blend: bool = False,
+                 topology: str = "triangle-list"):
+        key = (variant.key, front_face, double_sided, blend, topology)
         if key not in self.pipelines:
             bindings, attributes = vertex_input(variant.vertex_attributes)
             cull = vk.VK_CULL_MODE_NONE if double_sided else vk.VK_CULL_MODE_BACK_BIT
             desc = PipelineDesc("scene.vert", "scene.frag", bindings, attributes, samples=self.plan.msaa,
                                 cull_mode=cull, front_face=front_face, depth_test=True,
-                                subpass=0, defines=glsl_defines(variant), blend=blend)
+                                subpass=0, defines=glsl_defines(variant), blend=blend,
+                                topology=TOPOLOGIES[topology])
             self.pipelines[key] = create_pipeline(self.ctx, self.owned, desc, self.pipeline_layout(variant),
                                                   self.render_pass)
         return self.pipelines[key]
@@ -172,7 +176,7 @@ class SceneSubpass:
         front = vk.VK_FRONT_FACE_CLOCKWISE if mirror else vk.VK_FRONT_FACE_COUNTER_CLOCKWISE
         material = vk.ffi.from_buffer(material_block(self.scene, draw, variant))
         planned = self.plan.pipeline(draw.pipeline_key)
-        pipeline = self.pipeline(variant, front, planned.cull_mode == "none", planned.blend)
+        pipeline = self.pipeline(variant, front, planned.cull_mode == "none", planned.blend, planned.topology)
         return (pipeline, self.pipeline_layout(variant), self.material_sets.get(id(draw)),
                 material, self.resources.mesh_buffers(draw), self.resources.index_range(draw))
 

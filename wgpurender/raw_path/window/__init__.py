@@ -43,10 +43,11 @@ from pathlib import Path
 import numpy as np
 import vulkan as vk
 
+from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.imageio import save_png
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.view.controls import Controls, ScriptEvent, due, install_callbacks, send
+from wgpurender.core.view.controls import Controls, PausableClock, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
 from wgpurender.core.view.orbit import Orbit, moved_camera
 from wgpurender.raw_path.device.checks import check_msaa, check_size
@@ -116,7 +117,7 @@ def drawable_factory(ctx: VulkanContext, target: str, msaa: int | None,
     file drawn by raw_path/scene/, for one size; ``format`` is the colour format it renders; ``camera`` its
     start camera (eye, target, up), None for a flat stage. A scene's plan is
     :func:`wgpurender.core.plan.resolve_plan`'s for this device (``anisotropy``: the per-adapter rule or "scene")."""
-    if target.endswith(".toml"):
+    if is_scene_file(target):  # a .toml file or a bundled scene's name, as ``render`` resolves it
         from wgpurender.core.scene import load_scene
         from wgpurender.raw_path.scene.frame import SceneFrame
         from wgpurender.raw_path.scene.support import check_supported
@@ -428,7 +429,8 @@ class RawDemoLoop:
 
     def run(self, frames, screenshot: bool, fixed_time, on_frame) -> RawWindowResult:
         raw, glfw = self.raw, self.glfw
-        count, times, last_slot, start = 0, [], None, time.perf_counter()
+        count, times, last_slot = 0, [], None
+        self.controls.clock = PausableClock()
         while not glfw.window_should_close(raw.window) and (frames is None or count < frames):
             if on_frame is not None:
                 on_frame(glfw, raw.window, count)
@@ -444,7 +446,7 @@ class RawDemoLoop:
             if raw.resized:
                 raw._recreate()
             began = time.perf_counter()
-            t = fixed_time if fixed_time is not None else began - start
+            t = fixed_time if fixed_time is not None else self.controls.clock.time()  # P pauses it
             last_wanted = screenshot and (frames is None or count == frames - 1)
             slot = raw.slots[count % FRAMES_IN_FLIGHT]
             apply_camera(slot.drawable, self.orbit)

@@ -27,10 +27,11 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from wgpurender.wgpu_path.device.wgpu_private import BACKEND_FFI  # the module whose import parses wgpu.h
+
 # The parser attributes a parse fills (cffi.cparser.Parser.__init__); _structnode2type only serves the parse.
 STATE = ("_declarations", "_included_declarations", "_anonymous_counter", "_options", "_int_constants",
          "_uses_new_feature")
-BACKEND_FFI = "wgpu.backends.wgpu_native._ffi"
 status = "not used"  # "restored", "parsed and saved", "parsed" (could not save), or "not used": for tests and bench
 
 

@@ -113,8 +113,10 @@ def install(ffi) -> bool:
 
 
 def install_for_wgpu() -> bool:
+    from wgpurender.wgpu_path.device.wgpu_private import native
+
     try:
-        from wgpu.backends.wgpu_native._ffi import ffi
+        ffi, _ = native()
     except ImportError:
         return False
     return install(ffi)

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import wgpu
 
 from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path.device import wgpu_private
 
 if TYPE_CHECKING:
     from wgpurender.core.plan.model import AdapterFacts
@@ -139,18 +140,15 @@ class GPUContext:
         wgpu-py), this is plain ``map_sync``.
         """
         device = self.device
-        poller = getattr(device, "_poller", None)
-        if poller is None or not hasattr(device, "_poll_wait"):
+        poller = wgpu_private.poller(device)
+        if poller is None:
             buffer.map_sync(wgpu.MapMode.READ, offset, size)
             return
-        device._poller = CallerPolls(poller)
-        try:
+        with wgpu_private.poller_replaced(device, CallerPolls(poller)):
             promise = buffer.map_async(wgpu.MapMode.READ, offset, size)
-        finally:
-            device._poller = poller
         for _ in range(3):  # one blocking poll completes every submission: the callback has run
-            device._poll_wait()
-            if getattr(promise, "_state", "") != "pending":
+            wgpu_private.poll_wait(device)
+            if not wgpu_private.pending(promise):
                 break
         else:  # never seen: hand the wait to the poll thread after all rather than block forever
             token = poller.get_token()
@@ -282,6 +280,11 @@ def get_context(backend: str | None = None) -> GPUContext:
 
 @functools.cache
 def _context(backend: str) -> GPUContext:
+    note = wgpu_private.version_note()
+    if note:  # once per process: the private reaches may not hold on this wgpu-py
+        import sys
+
+        print(note, file=sys.stderr, flush=True)
     adapter = select_adapter(backend)
     features = frozenset(f for f in OPTIONAL_FEATURES if f in adapter.features)
     limits = {}

@@ -1,6 +1,7 @@
 """wgpu-native calls that wgpu-py 0.32 does not wrap, reached through its cffi handle.
 
-Kept in one module so that the day wgpu-py wraps them, one file changes.
+Kept in one module so that the day wgpu-py wraps them, one file changes; the reach itself (the native library and
+the objects' handles) is wgpu_private.py's.
 """
 
 from __future__ import annotations
@@ -9,6 +10,7 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.wgpu_private import handle, native, surface_handle
 
 
 def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgpu.GPUTexture) -> None:
@@ -19,8 +21,7 @@ def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgp
     """
     if not ctx.has("clear-texture"):
         raise UserError("this adapter lacks the 'clear-texture' feature: use the stage 'clear-pass' instead")
-    from wgpu.backends.wgpu_native._ffi import ffi, lib
-
+    ffi, lib = native()
     subresources = ffi.new(
         "WGPUImageSubresourceRange *",
         {
@@ -31,14 +32,13 @@ def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgp
             "arrayLayerCount": texture.size[2],
         },
     )
-    lib.wgpuCommandEncoderClearTexture(encoder._internal, texture._internal, subresources)
+    lib.wgpuCommandEncoderClearTexture(handle(encoder), handle(texture), subresources)
 
 
 def timestamp_period_ns(ctx: GPUContext) -> float:
     """Nanoseconds per timestamp tick (wgpuQueueGetTimestampPeriod; VkPhysicalDeviceLimits::timestampPeriod)."""
-    from wgpu.backends.wgpu_native._ffi import lib
-
-    return float(lib.wgpuQueueGetTimestampPeriod(ctx.queue._internal))
+    _, lib = native()
+    return float(lib.wgpuQueueGetTimestampPeriod(handle(ctx.queue)))
 
 
 
@@ -46,13 +46,12 @@ def surface_supports(context, adapter) -> bool:
     """Whether a window's surface can present frames of ``adapter`` (wgpuSurfaceGetCapabilities gives no formats
     when it cannot). wgpu-py 0.32 hides that answer (it substitutes a minimal format list), and configuring such a
     surface aborts the process in wgpu-native; True when the surface is not made yet (nothing to ask)."""
-    from wgpu.backends.wgpu_native._ffi import ffi, lib
-
-    surface_id = getattr(context, "_surface_id", None)
+    ffi, lib = native()
+    surface_id = surface_handle(context)
     if not surface_id:
         return True
     caps = ffi.new("WGPUSurfaceCapabilities *")
-    if lib.wgpuSurfaceGetCapabilities(surface_id, adapter._internal, caps) != lib.WGPUStatus_Success:
+    if lib.wgpuSurfaceGetCapabilities(surface_id, handle(adapter), caps) != lib.WGPUStatus_Success:
         return False
     supported = caps.formats != ffi.NULL and caps.formatCount > 0
     lib.wgpuSurfaceCapabilitiesFreeMembers(caps[0])

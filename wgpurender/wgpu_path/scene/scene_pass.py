@@ -181,7 +181,7 @@ class ScenePassRenderer:
             label=f"scene {variant.key}",
             layout=pipeline_layout,
             vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
-            primitive={"topology": "triangle-list", "front_face": planned.front_face, "cull_mode": planned.cull_mode},
+            primitive={"topology": planned.topology, "front_face": planned.front_face, "cull_mode": planned.cull_mode},
             depth_stencil={"format": planned.depth_format, "depth_write_enabled": not planned.blend,
                            "depth_compare": planned.depth_compare},
             multisample={"count": planned.sample_count, "mask": 0xFFFFFFFF, "alpha_to_coverage_enabled": False},

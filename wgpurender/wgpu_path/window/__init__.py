@@ -33,7 +33,7 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.view import slow_frames
-from wgpurender.core.view.controls import Controls, ScriptEvent, due, install_callbacks, send
+from wgpurender.core.view.controls import Controls, PausableClock, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.window.live_reload import FileWatcher, error_line
@@ -262,7 +262,8 @@ class DemoWindow:
         frame = self._run_frame(texture, t, capture)  # read back before present hands the image away
         if self.settings is not None:  # the panel goes over the frame after its readback: shots are the scene
             self.settings.frame_done(frame.gpu_ms, frame.frame_ms)
-            self.settings.draw(texture)
+            if self.controls.overlay_shown:  # F1 hides it
+                self.settings.draw(texture)
         self.context.present()
         return True, frame.pixels
 
@@ -276,6 +277,7 @@ class DemoWindow:
     def run(self, frames, fixed_time, screenshot, benchmark, script, video=None) -> WindowResult:
         recorder = FrameRecorder(benchmark) if benchmark else None
         start, shown, last = time.perf_counter(), 0, None
+        self.controls.clock = PausableClock()  # P pauses it
         while not self.glfw.window_should_close(self.window) and (frames is None or shown < frames):
             self.glfw.poll_events()
             shots = self._run_script(script, shown)
@@ -284,7 +286,7 @@ class DemoWindow:
             if self.settings is not None and self.settings.pending:
                 self._replan()
             self.poll_files()
-            t = fixed_time if fixed_time is not None else time.perf_counter() - start
+            t = fixed_time if fixed_time is not None else self.controls.clock.time()
             want = bool(shots) or video is not None or (screenshot and (frames is None or shown == frames - 1))
             drawn, pixels = self.frame(t, want)
             if not drawn:

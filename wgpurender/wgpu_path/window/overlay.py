@@ -59,6 +59,7 @@ class Overlay:
         self.rects: dict[str, tuple[float, float]] = {}
         self.panel = (0.0, 0.0, 0.0, 0.0)  # x0, y0, x1, y1 of the panel as last drawn
         self.pointer = (-1.0, -1.0)
+        self.held = False  # a button went down on the panel and is still down (a slider being dragged)
 
     # -- input ------------------------------------------------------------------------
     def mouse_pos(self, x: float, y: float) -> None:
@@ -68,14 +69,21 @@ class Overlay:
 
     def mouse_button(self, button: int, down: bool) -> None:
         self.imgui.set_current_context(self.context)
+        self.held = down and self._over_panel()
         self.backend.io.add_mouse_button_event(button, down)
+
+    def _over_panel(self) -> bool:
+        x, y = self.pointer
+        x0, y0, x1, y1 = self.panel
+        return x0 <= x < x1 and y0 <= y < y1
 
     @property
     def wants_mouse(self) -> bool:
-        """The pointer is over the panel (as last drawn), or ImGui holds the mouse (a drag that began on it)."""
-        x, y = self.pointer
-        x0, y0, x1, y1 = self.panel
-        return (x0 <= x < x1 and y0 <= y < y1) or bool(self.backend.io.want_capture_mouse)
+        """The pointer is over the panel (as last drawn), or a press that began on it is still held. Decided from
+        the events themselves, not from ImGui's want_capture_mouse: that is updated only when the panel is drawn,
+        so at a low frame rate a click on the panel, its release and a press on the scene can all arrive before
+        the next frame, and the stale flag swallowed the press that starts the drag."""
+        return self._over_panel() or self.held
 
     # -- drawing ----------------------------------------------------------------------
     def record(self, encoder: wgpu.GPUCommandEncoder, texture: wgpu.GPUTexture) -> None:

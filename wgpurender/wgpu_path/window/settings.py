@@ -88,6 +88,9 @@ class Settings:
     # -- input: the panel first ----------------------------------------------------------
     def mouse_button(self, controls, button: int, action) -> None:
         g = controls.glfw
+        if not controls.overlay_shown:  # hidden with F1: every click is the camera's
+            controls.mouse_button(button, action)
+            return
         if action in (g.PRESS, g.RELEASE):
             self.overlay.mouse_button(button, action == g.PRESS)
         if action == g.PRESS and self.overlay.wants_mouse:
@@ -99,5 +102,5 @@ class Settings:
         controls.cursor_pos(x, y)
 
     def scroll(self, controls, dy: float) -> None:
-        if not self.overlay.wants_mouse:
+        if not controls.overlay_shown or not self.overlay.wants_mouse:
             controls.scroll(dy)

@@ -1,0 +1,136 @@
+"""FBX models through assimp (Debian's libassimp5 via the ``pyassimp`` ctypes binding), into the same mesh model.
+
+Chosen over the PyPI ``ufbx`` 0.0.5 binding, which segfaults when Python releases objects it returned
+(the team's checked facts say so): pyassimp copies every array into numpy inside ``pyassimp.load``'s context and
+releases the scene once, so nothing dangles. assimp 5.2 (Debian 12) applies neither the file's axes nor its
+units, so both are applied here from the scene metadata FBX carries (GlobalSettings):
+
+- axes: ``UpAxis``/``FrontAxis``/``CoordAxis`` with their signs map the file's right, up and front onto +x, +y,
+  +z (a Blender export, Z up, turns into Y up);
+- units: ``UnitScaleFactor`` is centimetres per file unit (1 = cm, 100 = m); positions become metres.
+
+Taken: meshes (triangulated), node transforms (parent @ child), normals (the file's, else smooth), UVs (assimp's
+v = 0 at the bottom turned to the mesh convention, v = 0 at the top), tangents (generated, as for every format
+without them), the first material's diffuse and normal (or bump) texture files and diffuse colour.
+"""
+
+from __future__ import annotations
+
+import ctypes
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.core.errors import UserError
+
+INSTALL = "`apt-get install libassimp5` and `pip install pyassimp` (make demo installs both)"
+TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}  # aiTextureType DIFFUSE, NORMALS, HEIGHT (bump)
+AI_INT32, AI_FLOAT, AI_DOUBLE = 1, 3, 4
+
+
+def _assimp():
+    try:
+        import pyassimp
+        import pyassimp.errors
+        from pyassimp import postprocess
+    except ImportError as err:  # pyassimp raises ImportError too when it finds no libassimp
+        raise UserError(f"FBX needs assimp, which is not installed ({err}); {INSTALL}") from None
+    return pyassimp, postprocess
+
+
+def _metadata(scene) -> dict[str, float]:
+    """The scene's numeric metadata (FBX GlobalSettings: UnitScaleFactor, UpAxis, ...)."""
+    found: dict[str, float] = {}
+    pointer = getattr(scene, "metadata", None)
+    if not pointer:
+        return found
+    data = pointer.contents
+    types = {AI_INT32: ctypes.c_int32, AI_FLOAT: ctypes.c_float, AI_DOUBLE: ctypes.c_double}
+    for i in range(data.mNumProperties):
+        key, value = data.mKeys[i], data.mValues[i]
+        if value.mType in types:
+            name = bytes(key.data[: key.length]).decode("utf-8", "replace")
+            found[name] = float(ctypes.cast(value.mData, ctypes.POINTER(types[value.mType])).contents.value)
+    return found
+
+
+def axis_and_unit_matrix(meta: dict[str, float]) -> np.ndarray:
+    """4x4: the file's (right, up, front) axes onto (+x, +y, +z), scaled from UnitScaleFactor cm to metres."""
+    m = np.zeros((4, 4))
+    m[3, 3] = 1.0
+    rows = (("CoordAxis", 0, 0), ("UpAxis", 1, 1), ("FrontAxis", 2, 2))
+    for key, row, default in rows:
+        axis = int(meta.get(key, default))
+        if axis not in (0, 1, 2):
+            raise UserError(f"FBX GlobalSettings {key} is {axis}; it must be 0, 1 or 2 (x, y or z)")
+        m[row, axis] = 1.0 if meta.get(key + "Sign", 1) >= 0 else -1.0
+    if abs(np.linalg.det(m[:3, :3])) < 0.5:
+        raise UserError("FBX GlobalSettings name one axis twice (UpAxis, FrontAxis, CoordAxis); fix the export")
+    scale = float(meta.get("UnitScaleFactor", 1.0)) / 100.0
+    if not scale > 0 or not np.isfinite(scale):
+        raise UserError(f"FBX UnitScaleFactor {meta.get('UnitScaleFactor')} must be a positive number of cm")
+    m[:3, :3] *= scale
+    return m
+
+
+def conversion_text(meta: dict[str, float]) -> str:
+    """What axis_and_unit_matrix did, in words (for --explain)."""
+    up = "xyz"[int(meta.get("UpAxis", 1))]
+    sign = "-" if meta.get("UpAxisSign", 1) < 0 else "+"
+    unit = float(meta.get("UnitScaleFactor", 1.0))
+    return (f"FBX GlobalSettings: up {sign}{up} turned to +y, UnitScaleFactor {unit:g} cm per unit -> metres "
+            f"(x{unit / 100:g})")
+
+
+def load_fbx(path: Path) -> tuple[list[tuple], dict | None]:
+    """([(world 4x4, positions, faces, normals, uvs or None, mesh name)], first material or None).
+
+    The material: {"name", "color", "textures": {role: Path}} with texture paths beside the file."""
+    pyassimp, pp = _assimp()
+    flags = pp.aiProcess_Triangulate | pp.aiProcess_JoinIdenticalVertices | pp.aiProcess_SortByPType
+    try:
+        with pyassimp.load(str(path), processing=flags) as scene:
+            meta = _metadata(scene)
+            root = axis_and_unit_matrix(meta)
+            placed = list(_walk(scene.rootnode, root))
+            material = _material(path, scene, placed)
+            if material is not None:
+                material["notes"] = (conversion_text(meta),)
+    except UserError:
+        raise
+    except (pyassimp.errors.AssimpError, Exception) as err:  # AssimpError is a BaseException, not an Exception
+        raise UserError(f"cannot read {path} as FBX: {str(err).strip() or type(err).__name__}; re-export it "
+                        "(e.g. from Blender as FBX 7.4 binary) or convert it to glTF") from None
+    return placed, material
+
+
+def _walk(node, parent: np.ndarray):
+    world = parent @ np.asarray(node.transformation, np.float64)
+    for mesh in node.meshes:
+        faces = np.asarray(mesh.faces, np.int64)
+        if faces.ndim != 2 or faces.shape[1] != 3 or not len(faces):
+            continue  # points and lines (SortByPType puts them in meshes of their own)
+        positions = np.asarray(mesh.vertices, np.float64)
+        normals = np.asarray(mesh.normals, np.float64) if len(mesh.normals) else None
+        uvs = None
+        if len(mesh.texturecoords):
+            uvs = np.asarray(mesh.texturecoords[0], np.float64)[:, :2].copy()
+            uvs[:, 1] = 1.0 - uvs[:, 1]  # assimp: v = 0 at the bottom -> the mesh's v = 0 at the top
+        yield world, positions, faces, normals, uvs, str(mesh.name), int(mesh.materialindex)
+    for child in node.children:
+        yield from _walk(child, world)
+
+
+def _material(path: Path, scene, placed: list) -> dict | None:
+    if not placed or not scene.materials:
+        return None
+    props = scene.materials[placed[0][6]].properties
+    textures = {}
+    for (key, semantic), value in dict.items(props):  # pyassimp's items() drops the texture type
+        role = TEXTURE_TYPES.get(semantic)
+        if key == "file" and role is not None and role not in textures:
+            name = str(value).replace("\\", "/")
+            textures[role] = (path.parent / name).resolve()
+    color = dict.get(props, ("diffuse", 0))
+    return {"name": str(dict.get(props, ("name", 0), "")), "textures": textures,
+            "color": tuple(float(c) for c in color[:3]) if color is not None else None}
