@@ -16,14 +16,16 @@ layout(std140, set = 0, binding = 0) uniform Camera {
     vec4 eye;    // @128
 } camera;
 
-// Every model's block in one buffer; a dynamic offset picks one per draw.
-layout(std140, set = 1, binding = 0) uniform Object {
+// Every instance's block in one storage buffer, read at gl_InstanceIndex (which includes the draw's
+// firstInstance): core/plan/batches.py packs it, 128 bytes per instance, the same bytes as the wgpu path's.
+struct Object {
     mat4 world;   // @0
-#ifdef LIGHTING
     mat3 normal;  // @64: three vec4-padded columns (48 bytes)
     float mirror; // @112: sign of det(world)
-#endif
-} object_data;
+};
+layout(std430, set = 1, binding = 0) readonly buffer Objects {
+    Object objects[];
+};
 
 layout(location = 0) in vec3 a_position;
 #ifdef LIGHTING
@@ -54,6 +56,7 @@ layout(location = 4) out vec4 v_color;
 #endif
 
 void main() {
+    Object object_data = objects[gl_InstanceIndex];
     // proj * view * world * p, left to right, as the WGSL (and the tutorial's GLSL) writes it.
     gl_Position = camera.proj * camera.view * object_data.world * vec4(a_position, 1.0);
     gl_PointSize = 1.0;  // a point-list pipeline (glTF POINTS) must write it; WebGPU's points are 1 pixel too

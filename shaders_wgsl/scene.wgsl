@@ -43,7 +43,13 @@ const DIRECTIONAL_LIGHTS: u32 = {{DIRECTIONAL_LIGHTS}}u;
 const POINT_LIGHTS: u32 = {{POINT_LIGHTS}}u;
 
 @group(0) @binding(0) var<uniform> camera: Camera;
-@group(1) @binding(0) var<uniform> object_data: Object;
+// Every instance's Object (world, normal matrix, mirror) in one storage buffer: a draw's instances start at
+// its first_instance, which instance_index includes (core/plan/batches.py packs the array).
+@group(1) @binding(0) var<storage, read> objects: array<Object>;
+#if culled
+// A GPU-culled draw (scene_cull.wgsl): its visible instances' indices, from its first_instance on.
+@group(1) @binding(1) var<storage, read> visible: array<u32>;
+#endif
 #if immediates
 var<immediate> material: Material;
 #else
@@ -111,7 +117,12 @@ struct VertexOut {
 };
 
 @vertex
-fn vs_main(in: VertexIn) -> VertexOut {
+fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
+#if culled
+    let object_data = objects[visible[instance]];
+#else
+    let object_data = objects[instance];
+#endif
     var out: VertexOut;
     // Written as the tutorial's GLSL does (proj * view * model * p, evaluated left to right), so the
     // float32 arithmetic matches it operation for operation.

@@ -64,6 +64,7 @@ SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
 HDR_TEST = "tests/test_accuracy_hdr.py"
 FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
+INST = "tests/test_instancing.py"
 NOBACK = "tests/test_no_back_doors.py"
 BANDWIDTH = "tests/test_bandwidth_record.py"
 LOUD = "tests/test_loud_checks.py"
@@ -631,6 +632,73 @@ MUTATIONS = [
      'FILTERS = {"OCTAHEDRAL": ("decode_filter_exp", (4, 8))', [EXT]),
     (G_PACK, "    return not fallback or importlib.util.find_spec(",
      "    return True or importlib.util.find_spec(", [EXT]),
+    # instancing and batching (issue 31.1)
+    ("wgpurender/core/scene/instances.py", "axes = [(np.arange(k) - (k - 1) / 2.0) * s",
+     "axes = [(np.arange(k) - k / 2.0) * s", [INST]),
+    ("wgpurender/core/scene/instances.py", "z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing=\"ij\")",
+     "x, y, z = np.meshgrid(axes[0], axes[1], axes[2], indexing=\"ij\")", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if count > MAX_INSTANCES:", "    if count > 10 * MAX_INSTANCES:", [INST]),  # noqa: E501
+    ("wgpurender/core/scene/instances.py", "    if len(forms) != 1:", "    if len(forms) > 1:", [INST]),
+    ("wgpurender/core/scene/instances.py", "if \"spacing\" in t and forms[0] != \"grid\":",
+     "if \"spacing\" in t and forms[0] == \"file\":", [INST]),
+    ("wgpurender/core/scene/instances.py", "    if not np.isfinite(a).all():", "    if np.isinf(a).all():", [INST]),
+    ("wgpurender/core/scene/instances.py", "(np.abs(transforms.determinants3(matrices)) < 1e-12).any()",
+     "(np.abs(transforms.determinants3(matrices)) < 1e-12).all() and False", [INST]),
+    ("wgpurender/core/scene/instances.py", "    m[:, :3, 3] = offsets", "    m[:, 3, :3] = offsets", [INST]),
+    ("wgpurender/core/scene/model.py", "        return parent @ self.placements.array().astype(np.float64)",
+     "        return self.placements.array().astype(np.float64) @ parent", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return (draw.model_path, draw.part, draw.pipeline_key, draw.material_key())",  # noqa: E501
+     "    return (draw.model_path, draw.part, draw.pipeline_key)", [INST]),
+    ("wgpurender/core/plan/batches.py", "        first += merged.instance_count", "        first += 1", [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, :16] = worlds.transpose(0, 2, 1).reshape(-1, 16)",
+     "out[:, :16] = worlds.reshape(-1, 16)", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return np.where((det >= 0)[:, None, None], cof, -cof)", "    return cof",
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "out[:, 28] = np.where(determinants3(worlds) >= 0, 1.0, -1.0)",
+     "out[:, 28] = 1.0", [INST]),
+    ("wgpurender/core/view/transforms.py", "np.cross(m[..., 1, :], m[..., 2, :]))", "np.cross(m[..., 2, :], m[..., 1, :]))",  # noqa: E501
+     [INST]),
+    ("wgpurender/core/plan/batches.py", "        return (\"blend\", id(draw))", "        return (\"blend\",)",
+     [INST]),
+    ("wgpurender/core/plan/draws.py", "    return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]",  # noqa: E501
+     "    return [(None, worlds)]", [INST]),
+    ("wgpurender/core/plan/model.py", "        return (self.variant_key, self.textures, self.samplers, self.sampler, self.factors)",  # noqa: E501
+     "        return (self.variant_key, self.textures, self.samplers, self.sampler)", [INST]),
+    ("wgpurender/core/plan/explain.py", "lines.append(f\"         batch: instances {d.first_instance}..",
+     "lines.append(f\"         batch: instances {d.first_instance}...", [INST]),
+    ("wgpurender/core/plan/objects.py", "            materials = len({d.material_key() for d in users})",
+     "            materials = len(users)", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)",
+     "encoder.draw_indexed(count, draw.instance_count, first, 0, 0)", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            if buffers is not last[3]:",
+     "            if last[3] is None:", [INST]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            if group is not None and group is not last[2]:",
+     "            if group is not None and last[2] is None:", [INST]),
+    ("wgpurender/raw_path/scene/scene_subpass.py",
+     "vk.vkCmdDrawIndexed(cmd, count, draw.instance_count, first, 0, draw.first_instance)",
+     "vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, draw.first_instance)", [INST]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[instance];", "    let object_data = objects[0];", [INST]),  # noqa: E501
+    ("shaders_glsl/scene.vert", "    Object object_data = objects[gl_InstanceIndex];",
+     "    Object object_data = objects[gl_VertexIndex % 3];", [INST]),
+    # GPU culling (issue 31.2)
+    ("wgpurender/core/plan/culling.py", "    least = 2 if knob == \"gpu\" else GPU_CULL_MIN",
+     "    least = 2 if knob == \"gpu\" else 2", ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/culling.py", "        del pipelines[key]", "        pass", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "planes = np.array([r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1],",  # noqa: E501
+     "planes = np.array([r[3] + r[0], r[3] + r[0], r[3] + r[1], r[3] - r[1],", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "return centre, float(np.linalg.norm(p - centre, axis=1).max())",
+     "return centre, float(np.linalg.norm(p - centre, axis=1).min())", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "(d.first_instance, d.instance_count, k * 5 + 1, 0)",
+     "(d.first_instance, d.instance_count, k * 5, 0)", ["tests/test_culling.py"]),
+    ("wgpurender/wgpu_path/scene/culling.py", "cpass.dispatch_workgroups(-(-d.instance_count // WORKGROUP))",
+     "cpass.dispatch_workgroups(d.instance_count // WORKGROUP)", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene_cull.wgsl", "        if (dot(plane.xyz, centre) + plane.w < -radius) {",
+     "        if (dot(plane.xyz, centre) + plane.w < 0.0) {", ["tests/test_culling.py"]),
+    ("shaders_wgsl/scene.wgsl", "    let object_data = objects[visible[instance]];", "    let object_data = objects[instance];",  # noqa: E501
+     ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/objects.py", "        out.append(GpuObject(\"bind_group\", \"cull\", len(culled),",
+     "        out.append(GpuObject(\"bind_group\", \"cull\", 1,", ["tests/test_plan_is_what_is_built.py|culled"]),
     # issue 32: one plan without back doors (item 1)
     ("wgpurender/core/plan/resolve.py", "    return dataclasses.replace(plan, rebuild=resolve_knobs)",
      "    return plan", [NOBACK]),

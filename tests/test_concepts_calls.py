@@ -60,7 +60,6 @@ HELPERS = {
     "raw_path.device.ubo:pack_camera": "std140 packer",
     "raw_path.device.ubo:pack_object": "std140 packer",
     "raw_path.device.uniforms:pack_camera": "std140 packer",
-    "raw_path.device.uniforms:pack_object": "std140 packer",
     "raw_path.device.readback:buffer_to_pixels": "reads the buffer that vkCmdCopyImageToBuffer filled",
     "raw_path.device.textures:MipGenerator.record":
         "draws each level in a render pass (the row says: not vkCmdBlitImage)",

@@ -99,7 +99,8 @@ def test_full_scene(make):
     assert variant.vertex_attributes == ("position", "normal", "uv", "tangent")
     (pipeline,) = plan.pipelines
     assert (pipeline.color_format, pipeline.sample_count, pipeline.depth_format) == ("rgba16float", 4, "depth32float")
-    assert [d.pipeline_key for d in sp.draws] == [pipeline.key, pipeline.key]
+    # the same mesh and material twice: one instanced draw of 2 (core/plan/batches.py)
+    assert [(d.pipeline_key, d.instance_count) for d in sp.draws] == [(pipeline.key, 2)]
     assert [(pl.effects, pl.stage, pl.entry_point, pl.target_format, pl.depth_format)
             for pl in plan.post_pipelines] == [
         ("tonemap", "fragment", "fs_main", "rgba16float", None),

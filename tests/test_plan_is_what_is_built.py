@@ -230,7 +230,7 @@ def listed(plan) -> Counter:
     want["texture"] = sum(a.role != "output" for a in plan.attachments) + len(plan.textures)
     want["render_pipeline"] = (len(plan.pipelines) + len(plan.mipmap_formats)
                                + sum(p.stage == "fragment" for p in plan.post_pipelines))
-    want["compute_pipeline"] = sum(p.stage == "compute" for p in plan.post_pipelines)
+    want["compute_pipeline"] = sum(p.stage == "compute" for p in plan.post_pipelines) + bool(plan.culled_draws)
     want["buffer"] = len(plan.buffers)
     return +want
 
@@ -262,6 +262,16 @@ def test_new_scenes_create_what_the_plan_lists(ctx, monkeypatch, tmp_path, name,
     plan, recorder, _, _ = build_and_record(ctx, monkeypatch, write_scene(tmp_path, name), post_path, size)
     check_counts(plan, recorder)
     assert recorder.made["bind_group"] == plan.object_counts().get("bind_group", 0)
+
+
+def test_a_culled_scene_creates_what_the_plan_lists(ctx, monkeypatch, tmp_path):
+    """GPU culling (core/plan/culling.py) adds its buffers, compute pipeline and bind groups: all listed."""
+    text = NEW_SCENES["no_post"]
+    path = write_scene(tmp_path, "culled", text.replace("[[models]]", "[[models]]\ninstances = { grid = [3, 2, 1] }"))
+    monkeypatch.setattr("wgpurender.core.plan.culling.GPU_CULL_MIN", 2)
+    plan, recorder, _, _ = build_and_record(ctx, monkeypatch, path, "fragment")
+    assert len(plan.culled_draws) == 2, plan.explain()  # the mirrored model's copies are a draw of their own
+    check_counts(plan, recorder)
 
 
 @pytest.mark.parametrize("post_path", ["fragment", "compute"])
@@ -305,7 +315,7 @@ def test_a_lit_material_without_lights_builds_the_unlit_variant(ctx, monkeypatch
     path = write_scene(tmp_path, "lit_no_lights")
     plan, recorder, _, pixels = build_and_record(ctx, monkeypatch, path, post_path)
     modules = [m["code"] for m in recorder.of("shader_module")]
-    scene_modules = [code for code in modules if "fn vs_main(in: VertexIn)" in code]
+    scene_modules = [code for code in modules if "fn vs_main(in: VertexIn" in code]
     assert len(scene_modules) == 1 and "blinn_phong" not in scene_modules[0] and "fn shade(" not in scene_modules[0]
     (pipeline,) = [p for p in recorder.of("render_pipeline") if p["vertex"]["buffers"]]
     assert pipeline["vertex"]["buffers"][0]["array_stride"] == (3 + 2) * 4, "position and uv only: no normal"

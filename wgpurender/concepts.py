@@ -523,7 +523,7 @@ CONCEPTS: list[Concept] = [
         ("std140 layout", "VkPhysicalDeviceLimits.minUniformBufferOffsetAlignment"),
         _raw("device.ubo:dynamic_stride", "device.ubo:pack_camera", "device.ubo:pack_object",
              "device.context:copy_limits",
-             "device.uniforms:pack_camera", "device.uniforms:pack_object"),
+             "device.uniforms:pack_camera"),
         ("WGSL uniform address space layout", "limit 'min-uniform-buffer-offset-alignment'"),
         _wgpu("core.shaders.uniforms:Struct.stride", "core.shaders.uniforms:Struct.pack",
               "core.shaders.uniforms:Struct.pack_many",
@@ -612,6 +612,20 @@ CONCEPTS: list[Concept] = [
         "The same calls with the same arguments, recorded on a pass encoder instead of a command buffer; the index "
         "format is given when the index buffer is bound ('uint16'), as in vkCmdBindIndexBuffer. Each draw is "
         "validated by wgpu (buffer sizes against the counts), which costs CPU time per call (docs/benchmarks.md).",
+    ),
+    Concept(
+        "instanced draws",
+        ("vkCmdDrawIndexed (instanceCount, firstInstance)", "GLSL gl_InstanceIndex",
+         "VK_DESCRIPTOR_TYPE_STORAGE_BUFFER (per-instance data)"),
+        _raw("scene.scene_subpass:SceneSubpass.record", "scene.scene_subpass:SceneSubpass._setup_sets"),
+        ("GPURenderPassEncoder.draw_indexed(index_count, instance_count, first_index, base_vertex, first_instance)",
+         "WGSL @builtin(instance_index)", "bind group entry {'buffer'} of type 'read-only-storage'"),
+        _wgpu("scene.scene_pass:ScenePassRenderer.record_draws",
+              "scene.scene_pass:ScenePassRenderer._setup_uniforms"),
+        "The same numbers on both paths: the plan batches draws of one mesh, pipeline and material into one "
+        "instanced draw (core/plan/batches.py), and every instance's world matrix sits in ONE storage buffer "
+        "indexed by the instance index, which includes first_instance in WGSL as gl_InstanceIndex does in "
+        "Vulkan. 10k copies cost one draw call: the CPU's work no longer grows with the count.",
     ),
     Concept(
         "device idle",

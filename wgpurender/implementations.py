@@ -6,7 +6,9 @@ A *target* is a stage (by name) or a repository scene (assets/scenes/NAME.toml, 
 - ``wgpu-vulkan``: wgpu-native over Vulkan (the default of ``wgpurender render``);
 - ``wgpu-gl``: wgpu-native over OpenGL (``--backend opengl``);
 - ``raw``: the raw-Vulkan reference path (wgpurender/raw_path);
-- ``browser``: the exported page (``wgpurender export``) in headless Chromium's WebGPU (Dawn).
+- ``browser``: the exported page (``wgpurender export``) in headless Chromium's WebGPU (Dawn);
+- ``wgpu-dawn``: the wgpu path on Dawn through wgpudawn (``$WGPURENDER_BINDING=dawn``, wgpu_path/binding.py),
+  a GPU driver only: Dawn refuses lavapipe.
 
 wgpu-py keeps one wgpu instance per process, made for one backend (gpu.py), so a second wgpu backend
 renders in a child process: ``python -m wgpurender.implementations IMPL DIR --size WxH [TARGET ...]``
@@ -28,8 +30,9 @@ from wgpurender.core.files.assets import scene_dir
 
 REPO = Path(__file__).resolve().parent.parent
 SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
-WGPU_IMPLEMENTATIONS = {"wgpu-vulkan": "vulkan", "wgpu-gl": "opengl"}
-IMPLEMENTATIONS = ("raw", "wgpu-vulkan", "wgpu-gl", "browser")
+WGPU_IMPLEMENTATIONS = {"wgpu-vulkan": "vulkan", "wgpu-gl": "opengl", "wgpu-dawn": "vulkan"}
+IMPLEMENTATIONS = ("raw", "wgpu-vulkan", "wgpu-gl", "browser", "wgpu-dawn")
+CHILD_ENV = {"wgpu-dawn": {"WGPURENDER_BINDING": "dawn"}}  # what a child process needs to be that implementation
 QUICK = ("triangle", "3d", "unlit")  # verify --quick
 
 
@@ -122,6 +125,10 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
             missing[name] = "glslc is not on PATH (the raw path compiles its GLSL with it)"
         elif name == "wgpu-gl" and not _has_gl():
             missing[name] = "no OpenGL adapter (wgpurender info --backend opengl)"
+        elif name == "wgpu-dawn":
+            why = _dawn_missing()
+            if why:
+                missing[name] = why
     return [n for n in (wanted or IMPLEMENTATIONS) if n not in missing], missing
 
 
@@ -132,20 +139,41 @@ def _has_gl() -> bool:
     return probe.returncode == 0
 
 
+def _dawn_missing() -> str:
+    """Why the Dawn binding cannot render here ('' when it can): not installed, or its one-line refusal."""
+    import importlib.util
+
+    if importlib.util.find_spec("wgpudawn") is None:
+        return "wgpudawn is not installed (pip install 'wgpurender[dawn]')"
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp", **CHILD_ENV["wgpu-dawn"]}
+    probe = subprocess.run([sys.executable, "-m", "wgpurender", "info"], capture_output=True, text=True, env=env,
+                           timeout=120)
+    return "" if probe.returncode == 0 else (probe.stderr.strip().splitlines() or ["Dawn failed"])[-1]
+
+
 def render_in_child(implementation: str, names: list[str], size: tuple[int, int], out: Path,
                     timeout: float = 600) -> dict[str, np.ndarray]:
-    """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance)."""
+    """Render ``names`` on a wgpu implementation in a child process (its own wgpu instance); a target the
+    implementation refuses is left out (:func:`child_skipped` says why)."""
     from wgpurender.core.files.imageio import load_png
 
     out.mkdir(parents=True, exist_ok=True)
     cmd = [sys.executable, "-m", "wgpurender.implementations", "--size", f"{size[0]}x{size[1]}", implementation,
            str(out), *names]
-    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp"}
+    env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp",
+           **CHILD_ENV.get(implementation, {})}
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=REPO)
     if done.returncode != 0:
         tail = (done.stderr or done.stdout).strip().splitlines()[-1:] or ["(no output)"]
         raise UserError(f"{implementation} renderer failed: {tail[0]}")
-    return {name: load_png(out / f"{name}.png") for name in names}
+    return {name: load_png(out / f"{name}.png") for name in names if (out / f"{name}.png").is_file()}
+
+
+def child_skipped(out: Path) -> dict[str, str]:
+    """The targets a child process refused, with its one line each (``skipped.txt``)."""
+    path = out / "skipped.txt"
+    lines = path.read_text().splitlines() if path.is_file() else []
+    return dict(line.split("\t", 1) for line in lines if "\t" in line)
 
 
 def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
@@ -178,8 +206,13 @@ def _main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     backend = WGPU_IMPLEMENTATIONS[args.implementation]
     args.out.mkdir(parents=True, exist_ok=True)
+    skipped = []
     for name in args.targets or all_targets():
-        save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+        try:
+            save_png(args.out / f"{name}.png", render_wgpu(name, args.size, backend))
+        except UserError as err:  # this implementation cannot draw it (e.g. Dawn has no clear-texture): said why
+            skipped.append(f"{name}\t{err}")
+    (args.out / "skipped.txt").write_text("".join(f"{line}\n" for line in skipped))
     from wgpurender.wgpu_path.device.context import get_context
 
     (args.out / "adapter.txt").write_text(get_context(backend).describe())

@@ -121,9 +121,11 @@ def render_all(implementations: list[str], targets: list[str], size: tuple[int, 
         if impl == "browser":
             images[impl], skipped[impl], who[impl] = impls.render_browser(targets, size, work / "pages")
             continue
-        if impl == "wgpu-gl":
-            images[impl] = impls.render_in_child("wgpu-gl", targets, size, work / "wgpu-gl")
-            who[impl] = (work / "wgpu-gl" / "adapter.txt").read_text() + " (wgpu-native, child process)"
+        if impl in ("wgpu-gl", "wgpu-dawn"):
+            images[impl] = impls.render_in_child(impl, targets, size, work / impl)
+            skipped[impl] = impls.child_skipped(work / impl)
+            native = "Dawn through wgpudawn" if impl == "wgpu-dawn" else "wgpu-native"
+            who[impl] = (work / impl / "adapter.txt").read_text() + f" ({native}, child process)"
             continue
         for name in targets:
             try:

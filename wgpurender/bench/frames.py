@@ -82,26 +82,73 @@ GC_ENV = "WGPURENDER_BENCH_GC"
 
 
 def settle_garbage() -> None:
-    """Before timed frames: with $WGPURENDER_BENCH_GC=freeze, collect and freeze what set-up made (``gc.freeze``),
-    so a collection during the frames scans only what the frames allocate. An experiment switch for the tails
-    (issue 22): the default leaves the collector as an application has it."""
+    """Before timed frames: collect and freeze what set-up made (``gc.freeze``), so no collection ever scans
+    the renderer's objects again; what an application should do after loading a scene (docs/benchmarks.md).
+    $WGPURENDER_BENCH_GC=default leaves the collector as Python sets it (the 4-5 ms tails of issue 22)."""
     import gc
     import os
 
-    if os.environ.get(GC_ENV) == "freeze":
+    if os.environ.get(GC_ENV) != "default":
         gc.collect()
         gc.freeze()
 
 
-def measure(runner, frames: int, warmup: int = 2, readback_frames: int = 0) -> Samples:
-    """``warmup`` untimed frames, then ``frames`` timed ones; the first ``readback_frames`` of them each
-    followed by a frame with readback (paired). A runner with ``collect_gpu()`` reports GPU times at the end."""
-    for _ in range(warmup):
+class frames_without_gc:
+    """The collector paused for the timed frames (a frame allocates a few hundred small objects; a collection
+    runs after the block, outside the timings), unless $WGPURENDER_BENCH_GC=default."""
+
+    def __enter__(self) -> None:
+        import gc
+        import os
+
+        self.was = gc.isenabled()
+        if os.environ.get(GC_ENV) != "default":
+            gc.disable()
+
+    def __exit__(self, *exc) -> None:
+        import gc
+
+        if self.was:
+            gc.enable()
+        gc.unfreeze()  # the next case's settle_garbage collects what this one left, then freezes again
+
+
+WARM_WINDOW, WARM_SPREAD, WARM_MAX_FRAMES, WARM_BUDGET_S = 4, 1.25, 60, 3.0
+
+
+def warm_up(runner, min_frames: int = 2) -> int:
+    """Untimed frames until the frame time is stable: the last :data:`WARM_WINDOW` frames within
+    :data:`WARM_SPREAD` x of each other (at least ``min_frames``; at most :data:`WARM_MAX_FRAMES` frames or
+    :data:`WARM_BUDGET_S` seconds). A fixed count was not enough: a GPU-animated 1M-object frame read 32 ms
+    after one warm-up frame and 5.8 ms after ten (issue 31.7). Returns the number of frames drawn."""
+    times: list[float] = []
+    start = time.perf_counter()
+    while True:
+        t = time.perf_counter()
         runner.frame()
+        times.append(time.perf_counter() - t)
+        last = times[-WARM_WINDOW:]
+        if len(times) >= max(min_frames, WARM_WINDOW) and max(last) <= WARM_SPREAD * min(last):
+            return len(times)
+        if len(times) >= WARM_MAX_FRAMES or time.perf_counter() - start > WARM_BUDGET_S:
+            return len(times)
+
+
+def measure(runner, frames: int, warmup: int = 2, readback_frames: int = 0) -> Samples:
+    """Warm-up frames until stable (:func:`warm_up`, at least ``warmup``), then ``frames`` timed ones; the first
+    ``readback_frames`` of them each followed by a frame with readback (paired). A runner with ``collect_gpu()``
+    reports GPU times at the end. The collector is frozen before and paused during the timed frames
+    (:func:`settle_garbage`, :func:`frames_without_gc`)."""
+    warm_up(runner, warmup)
     settle_garbage()
     collect = getattr(runner, "collect_gpu", None)
     if collect is not None:
         collect()  # drop the warm-up frames' timestamps
+    with frames_without_gc():
+        return _timed_frames(runner, frames, readback_frames, collect)
+
+
+def _timed_frames(runner, frames: int, readback_frames: int, collect) -> Samples:
     samples, kinds = Samples(), []
     for i in range(frames):
         frame_ms, cpu_ms, gpu_ms = _timed(runner)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from wgpurender.bench import markdown_scale
 from wgpurender.bench.report import Result, comparison_table, fmt_ms, markdown_table, results_table, spread
 
 # Numbers given for the C++ tutorial program (we cannot build it here): ms per frame at 800x600, 2 cores.
@@ -109,6 +110,7 @@ def _targets(run) -> str:
         worst = max(inc)
         rows.append(("post pass no more expensive than the raw subpass (GPU ms, msaa-post minus msaa)",
                      f"worst wgpu/raw {worst:.2f}x", _verdict(run, worst <= 1.0)))
+    rows += markdown_scale.targets(res, lambda met, applies="": _verdict(run, met, applies))
     return markdown_table(("target", "measured", "status"), rows)
 
 
@@ -208,6 +210,9 @@ def render_markdown(run, plots: dict[str, str]) -> str:
                                       for s, w, r in inc]), ""]
     if _pick(res, "objects"):
         lines += ["## Many objects (800x600, quads of ~4 px)", "", _objects_table(res), ""]
+    if _pick(res, "scene-scale"):
+        lines += ["## Scene scale: N copies of a lit, textured cube (instanced), N distinct meshes, pygfx beside", "",
+                  markdown_scale.table(res), ""]
     if _pick(res, "startup"):
         lines += ["## First frame (fresh process per run)", "", _startup_table(res), ""]
     if plots:

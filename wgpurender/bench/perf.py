@@ -20,7 +20,7 @@ from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
-FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "startup")
+FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "scene-scale", "startup")
 FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
 BIG_SIZE = (3840, 2160)
 QUICK_SIZES = ((96, 64),)
@@ -77,12 +77,15 @@ class PerfRun:
 def machine_info(ctx: GPUContext) -> dict[str, str]:
     import wgpu
 
+    from wgpurender.wgpu_path.binding import name as binding_name
+
     info = {
         "adapter": ctx.describe(),
         "cpu cores": str(os.cpu_count()),
         "platform": platform.platform(),
         "python": platform.python_version(),
         "wgpu-py": wgpu.__version__,
+        "binding": binding_name(),
         "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
     }
     try:
@@ -99,7 +102,7 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
     start = time.perf_counter()
     run = PerfRun(config, machine_info(ctx))
     steps = {"frames": _frames, "scene": _scene, "post": _post, "msaa-post": _msaa_post, "objects": _objects,
-             "startup": _startup}
+             "scene-scale": _scene_scale, "startup": _startup}
     for family in config.families:
         log(f"[{family}]")
         steps[family](ctx, config, run, log)
@@ -213,6 +216,18 @@ def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
                          f"{CPU_PER_DRAW_LIMIT} objects; 100k runs instancing and the bundle only.")
     if not ctx.has("immediates"):
         run.notes.append("objects: the adapter lacks 'immediates', that mode was skipped.")
+
+
+def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    """N instanced copies and N distinct meshes of a lit, textured cube; pygfx beside (bench/scale.py)."""
+    from wgpurender.bench.scale import COUNTS, QUICK_COUNTS, bench_scale, ratio_rows
+    from wgpurender.bench.scale_pygfx import pygfx_peer
+
+    counts = QUICK_COUNTS if config.quick else COUNTS
+    size = QUICK_SIZES[0] if config.quick else (800, 600)
+    results, notes = bench_scale(ctx, list(counts), config.timed_frames(), size, log, pygfx_peer())
+    run.results += results + ratio_rows(results)
+    run.notes += notes
 
 
 def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:

@@ -4,7 +4,7 @@ Phases measured inside the child: imports, context (instance, adapter, device),
 set-up (shader modules and pipelines: where compilation happens), the first frame
 (encode, submit, wait, readback) and a second frame for comparison.
 
-Caches compared:
+Caches compared ("no caches" clears exactly what :data:`NO_CACHES` says):
 
 - raw path: its VkPipelineCache file (saved at exit, loaded at start) absent vs present;
 - both paths: Mesa's on-disk shader cache (the driver's own, below any API) disabled
@@ -17,7 +17,9 @@ Caches compared:
   ``Device::create_pipeline_cache``), so the wgpu path cannot use one; measured without.
 
 SPIR-V from glslc is cached on disk by the raw path; every configuration here starts
-with that cache warm (glslc time is not pipeline creation).
+with that cache warm (glslc time is not pipeline creation). Python's bytecode is cached (a private
+$PYTHONPYCACHEPREFIX) except in the "no bytecode" rows, which compile every module from source, as a
+machine with PYTHONDONTWRITEBYTECODE=1 does (the raw path's ``vulkan`` binding is a 2 MB module).
 
 Run as a child: ``python -m wgpurender.bench.startup wgpu|raw STAGE WxH`` prints JSON.
 """
@@ -90,20 +92,37 @@ def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str])
 # wgpu's "no caches" rows start, as a second run of the same command does, with wgpu.h's parse cached
 # (wgpu_path/device/cdef_cache.py); this row removes that file first: a first run on the machine.
 PARSED = "no caches, wgpu.h parsed (first run)"
+NO_BYTECODE = "no caches, no bytecode"
+# Exactly what "no caches" clears (issue 31.7), every run: the drivers' shader caches (Mesa's on-disk cache, and
+# NVIDIA's, which serves Vulkan too), the raw path's VkPipelineCache file. Kept: Python's bytecode (a fresh
+# prefix, compiled by the warming run: an installed package has its .pyc) and glslc's SPIR-V; NO_BYTECODE also
+# compiles every module from source, as the GPU machine's image does (PYTHONDONTWRITEBYTECODE=1).
+NO_CACHES = ("the drivers' shader caches (Mesa: MESA_SHADER_CACHE_DISABLE; NVIDIA: __GL_SHADER_DISK_CACHE=0) and "
+             "the VkPipelineCache file; Python bytecode and SPIR-V cached")
 
 
 def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
     """(path, label, extra env, remove the VkPipelineCache file first)."""
-    off = {"MESA_SHADER_CACHE_DISABLE": "true"}
+    off = {"MESA_SHADER_CACHE_DISABLE": "true", "__GL_SHADER_DISK_CACHE": "0"}
     warm = {"MESA_SHADER_CACHE_DISABLE": "false", "MESA_SHADER_CACHE_DIR": str(work / "mesa")}
+    source = {**off, "PYTHONDONTWRITEBYTECODE": "1", "PYTHONPYCACHEPREFIX": str(work / "no-pyc")}
     return [
         ("wgpu", "no caches", off, True),
+        ("wgpu", NO_BYTECODE, source, True),
         ("wgpu", PARSED, off, True),
         ("wgpu", "Mesa shader cache warm", warm, True),
         ("raw", "no caches", off, True),
+        ("raw", NO_BYTECODE, source, True),
         ("raw", "VkPipelineCache warm", off, False),
         ("raw", "Mesa shader cache warm", warm, True),
     ]
+
+
+def _note(label: str) -> str:
+    if label == NO_BYTECODE:
+        return "fresh process each; cleared: " + NO_CACHES.replace("Python bytecode and SPIR-V cached",
+                                                                   "every Python module compiled from source")
+    return "fresh process each" + ("; cleared: " + NO_CACHES if label in ("no caches", PARSED) else "")
 
 
 def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool = False, raw: bool = True,
@@ -115,9 +134,12 @@ def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool =
     out = []
     with tempfile.TemporaryDirectory(prefix="wgpurender-startup-") as tmp:
         work = Path(tmp)
-        base = dict(os.environ, XDG_CACHE_HOME=str(work / "xdg"), WGPURENDER_VALIDATION="0")
+        base = dict(os.environ, XDG_CACHE_HOME=str(work / "xdg"), WGPURENDER_VALIDATION="0",
+                    PYTHONPYCACHEPREFIX=str(work / "pyc"))
+        base.pop("PYTHONDONTWRITEBYTECODE", None)  # cached bytecode unless a row says otherwise
         base.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
         configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")]
+        import shutil
         for path, _, extra, _ in configs:  # warm every cache once: SPIR-V, VkPipelineCache, Mesa's
             run_child(path, stage, size, {**base, **extra})
         for path, label, extra, cold_vk in configs:
@@ -129,12 +151,13 @@ def bench_startup(stage: str, size: tuple[int, int], repeats: int, quick: bool =
                 if label == PARSED:
                     for f in (work / "xdg" / "wgpurender").glob("cffi-wgpu-h-*.json"):
                         f.unlink()
+                shutil.rmtree(work / "no-pyc", ignore_errors=True)
                 result = run_child(path, stage, size, {**base, **extra})
                 for name in PHASES:
                     samples[name].append(result[name])
             for name in PHASES:
                 out.append(Result.of("startup", f"{stage}: {label}", path, size_text(size), name,
-                                     Stats.of(samples[name]), note="fresh process each"))
+                                     Stats.of(samples[name]), note=_note(label)))
             log(f"  startup: {path} {label}: total {Stats.of(samples['total_ms'])}")
     return out
 

@@ -39,7 +39,7 @@ def _register_perf(suites) -> None:
                    help="where results go (default ./bench-results)")
     p.add_argument("--only", "--families", dest="only", action="append", default=None, metavar="FAMILY",
                    help="run only these families (repeatable, or comma-separated): frames, scene, post, msaa-post, "
-                   "objects, startup")
+                   "objects, scene-scale, startup")
     big = p.add_mutually_exclusive_group()
     big.add_argument("--big", dest="big", action="store_true", default=None,
                      help="add 3840x2160 (default: when the adapter is not a CPU)")

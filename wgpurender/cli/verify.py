@@ -23,10 +23,10 @@ def register(subparsers) -> None:
                    help="output folder (default out/verify)")
     p.add_argument("--quick", action="store_true", help="a subset: stages triangle and 3d, scene unlit")
     p.add_argument("--implementations", metavar="LIST", default=None,
-                   help="the implementation matrix instead: a comma list of raw, wgpu-vulkan, wgpu-gl, browser, or "
-                   "'all' (every one available here); each renders every stage and scene at --size, every pair is "
-                   "compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded by "
-                   "assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
+                   help="the implementation matrix instead: a comma list of raw, wgpu-vulkan, wgpu-gl, browser, "
+                   "wgpu-dawn, or 'all' (every one available here); each renders every stage and scene at --size, "
+                   "every pair is compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded "
+                   "by assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
                    help="size for --implementations (default 160x120, the size the bounds were calibrated at)")
     p.add_argument("--calibrate", action="store_true",

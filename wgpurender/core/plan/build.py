@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from wgpurender.core.course.effects import steps_for_target
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan import culling
 from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
@@ -125,6 +126,9 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     targets = plan_scene_targets(scene, steps, out_fmt, size, msaa, src("msaa", msaa), knobs, depth_compare, notes)
     drawn = plan_draws(scene, PipelineTarget(targets.format, msaa, knobs.depth_format, depth_compare),
                        targets.srgb_output, knobs, aniso_adapter, notes)
+    features = knobs.adapter.features if knobs.adapter is not None else None
+    drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features)
+    settings = (*settings, ("culling", cull, cull_why))
     scene_pass = ScenePass(targets.color, targets.target if msaa > 1 else None, targets.depth, r.clear_color,
                            tuple(drawn.draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
     post_passes, post_attachments = plan_post_passes(steps, setting["post_fuse"] == "on", setting["post_path"],

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.shading import AMBIENT, material_factors
-from wgpurender.core.plan import file_materials, shading_models
+from wgpurender.core.plan import batches, file_materials, shading_models
 from wgpurender.core.plan.model import (
     TEXTURE_FEATURES,
     Draw,
@@ -24,6 +24,7 @@ from wgpurender.core.plan.model import (
 from wgpurender.core.plan.textures import TextureTable, material_sampler
 from wgpurender.core.scene import Material, Model, Scene
 from wgpurender.core.scene.gltf_lights import light_note
+from wgpurender.core.view.transforms import determinants3
 
 
 def material_label(m: Material) -> str:
@@ -112,9 +113,12 @@ class PipelineTarget:
     depth_format: str
     depth_compare: str
 
-    def pipeline(self, variant: ShaderVariant, model: Model, material: Material) -> ScenePipeline:
+    def pipeline(self, variant: ShaderVariant, model: Model, material: Material,
+                 mirror: bool | None = None) -> ScenePipeline:
         # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
-        front_face = "cw" if _determinant3(model.transform.matrix) < 0 else "ccw"
+        if mirror is None:
+            mirror = _determinant3(model.transform.matrix) < 0
+        front_face = "cw" if mirror else "ccw"
         return ScenePipeline(variant, self.color_format, self.sample_count, self.depth_format,
                              front_face=front_face, depth_compare=self.depth_compare,
                              **file_materials.pipeline_state(material))
@@ -141,7 +145,9 @@ class SceneDraws:
 def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
                anisotropy_adapter: str | None, notes: list[str]) -> SceneDraws:
     """One draw per model and material; a material's notes are added the first time it is drawn. Alpha-blended
-    draws (glTF alphaMode BLEND) go last, in scene order among themselves: not sorted by depth."""
+    draws (glTF alphaMode BLEND) go last, in scene order among themselves: not sorted by depth. Then draws of
+    the same mesh, pipeline and material values become one instanced draw (:mod:`.batches`)."""
+
     directional = [light.label for light in scene.lights if light.type == "directional"]
     point = [light.label for light in scene.lights if light.type == "point"]
     notes.extend(light_note(light) for light in scene.lights if light.origin)
@@ -154,21 +160,36 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
         for mat in materials:
             first_time = id(mat) not in seen_materials
             seen_materials.add(id(mat))
-            out.draws.append(_plan_draw(model, mat, target, srgb_output, knobs, anisotropy_adapter,
-                                        notes if first_time else None, directional, point, out))
+            for mirror, worlds in _copies(model):
+                draw = _plan_draw(model, mat, target, srgb_output, knobs, anisotropy_adapter,
+                                  notes if first_time else None, directional, point, out, mirror)
+                out.draws.append(draw if worlds is None else batches.instanced(
+                    draw, worlds, model.placements.description))
+                first_time = False
     out.draws.sort(key=lambda d: out.pipelines[d.pipeline_key].blend)
+    out.draws = batches.batch_draws(out.draws, {k: p.blend for k, p in out.pipelines.items()})
     return out
+
+
+def _copies(model: Model) -> list[tuple[bool | None, object]]:
+    """A model's copies as (mirror, world matrices) groups: one group per winding (a mirroring copy needs the
+    clockwise pipeline); (None, None) for a model without ``instances`` (its transform decides)."""
+    if model.placements is None:
+        return [(None, None)]
+    worlds = model.worlds()
+    mirrored = determinants3(worlds) < 0
+    return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]
 
 
 def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
                anisotropy_adapter: str | None, notes: list[str] | None, directional: list[int], point: list[int],
-               out: SceneDraws) -> Draw:
+               out: SceneDraws, mirror: bool | None = None) -> Draw:
     """The draw of one model with one material (its variant, pipeline, textures and samplers registered in
     ``out``): a scene material samples every texture with its one sampler, a file material each with its own."""
     label = material_label(mat)
     variant = material_variant(mat, directional, point, srgb_output, notes if notes is not None else [])
     out.variants.setdefault(variant.key, variant)
-    pipeline = target.pipeline(variant, model, mat)
+    pipeline = target.pipeline(variant, model, mat, mirror)
     out.pipelines.setdefault(pipeline.key, pipeline)
     sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
     spec = material_sampler(mat, label, knobs, anisotropy_adapter, notes) if sampled else None

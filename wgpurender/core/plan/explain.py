@@ -110,13 +110,16 @@ def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
         clear = ", ".join(f"{c:g}" for c in p.clear_color)
         if not p.draws:
             return [f"  {number}. scene: clear {into} to ({clear}), nothing to draw (no models)"]
-        models = len({d.model_index for d in p.draws})
-        what = f"{models} model(s)" if models == len(p.draws) else f"{models} model(s) in {len(p.draws)} draws"
+        instances = sum(d.instance_count for d in p.draws)
+        what = f"{instances} object(s) in {len(p.draws)} draw(s)"
         lines = [f"  {number}. scene: draw {what} into {into}{depth}, clear ({clear})"]
         for d in p.draws:
             who = d.label if d.material_label == d.label else f"{d.label}: {d.material_label}"  # file materials: once
             lines.append(f"       {who}, variant {d.variant_key}")
             lines.append(f"         material factors: {d.factors_text()}")
+            if d.batch:
+                lines.append(f"         batch: instances {d.first_instance}..{d.first_instance + d.instance_count - 1}"
+                             f" <- {d.batch}")
         return lines
     steps = " + ".join(s.label() for s in p.steps)
     into = f"{p.output} ({p.output_format})" + (f", copied into {p.copy_to}" if p.copy_to else "")

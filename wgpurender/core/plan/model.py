@@ -10,12 +10,14 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.plan.explain import explain
-from wgpurender.core.scene import Scene
+from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
 LDR_SCENE_FORMAT = "rgba8unorm-srgb"  # 8-bit scene image for a post chain: shaders still see linear values
@@ -23,7 +25,7 @@ PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8uno
 DEPTH_FORMATS = ("depth32float", "depth24plus")
 SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
 IMMEDIATES = ("auto", "on", "off")
-PLAN_FEATURES = ("immediates",)  # the adapter features a plan reads; the rest do not change it
+PLAN_FEATURES = ("immediates", "indirect-first-instance")  # the adapter features a plan reads (the rest: none)
 # Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
 # the "bgra8unorm-storage" feature, which the renderer does not ask for.
 STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
@@ -88,6 +90,7 @@ class ScenePipeline:
     depth_compare: str = "less"
     blend: bool = False  # alpha blending (glTF alphaMode BLEND): source-over, no depth writes
     topology: str = "triangle-list"  # "line-list" / "point-list": glTF lines and points
+    culled: bool = False  # instances culled on the GPU, drawn indirectly through a visible list (core/plan/culling)
 
     @property
     def key(self) -> str:
@@ -95,9 +98,10 @@ class ScenePipeline:
         winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""
         culling = " | double-sided (no culling)" if self.cull_mode == "none" else ""
         blending = " | alpha blend, no depth write" if self.blend else ""
+        frustum = " | GPU frustum culling" if self.culled else ""
         shape = f" | {self.topology}" if self.topology != "triangle-list" else ""
         return (f"{self.variant.key} | {self.color_format} x{self.sample_count} | {depth}{winding}{culling}"
-                f"{blending}{shape}")
+                f"{blending}{shape}{frustum}")
 
 
 @dataclass(frozen=True)
@@ -139,6 +143,23 @@ class Draw:
     part: int | None = None  # the model file's material whose triangles this draws (-1: none); None: all of them
     samplers: tuple[tuple[str, object], ...] = ()  # (feature, SamplerSpec): each texture's own sampler
     topology: str = "triangle-list"  # which of the part's primitives: triangles, or glTF lines / points
+    worlds: Placements | None = None  # every instance's world matrix when the draw is instanced (core/plan/batches)
+    first_instance: int = 0  # where its instances start in the scene's one Object storage buffer
+    batch: str = ""  # why these instances are one draw (explain)
+
+    @property
+    def instance_count(self) -> int:
+        return 1 if self.worlds is None else self.worlds.count
+
+    def world_matrices(self) -> np.ndarray:
+        """(instance_count, 4, 4) float64 world matrices: ``worlds``, or the one ``transform``."""
+        if self.worlds is None:
+            return np.array(self.transform, dtype=np.float64)[None]
+        return self.worlds.array().astype(np.float64)
+
+    def material_key(self) -> tuple:
+        """Draws with equal keys read the same material: they share one material bind group / descriptor set."""
+        return (self.variant_key, self.textures, self.samplers, self.sampler, self.factors)
 
     def sampler_of(self, feature: str) -> object | None:
         """The sampler a texture is sampled with (its own, else the draw's one sampler)."""
@@ -288,11 +309,13 @@ class Knobs:
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
     anisotropy: str = DEFAULT_ANISOTROPY  # the anisotropy rule (wgpurender/core/plan/anisotropy.py), for ``adapter``
+    culling: str = "auto"  # "auto", "gpu" or "off": which instanced draws the GPU culls (core/plan/culling.py)
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (
             ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
+            ("culling", self.culling, ("auto", "gpu", "off")),
         ) if value not in allowed]
         for name, value, allowed in bad:
             raise UserError(f"plan knob {name} = {value!r}: choose one of "
@@ -381,10 +404,22 @@ class RenderPlan:
         out = []
         if draws:
             out.append(("scene-camera", "uniform: Camera (view, projection, eye, lights), written when they change"))
-            out.append(("scene-objects", f"uniform: {len(draws)} Object slice(s), one per draw (dynamic offsets)"))
+            instances = sum(d.instance_count for d in draws)
+            out.append(("scene-objects", f"storage: {instances} Object block(s), one per instance, read at "
+                                         "instance_index (128 bytes each)"))
+            culled = self.culled_draws
+            if culled:
+                n = sum(d.instance_count for d in culled)
+                out.append(("scene-visible", f"storage: the visible instances' indices, up to {n} (GPU culling)"))
+                out.append(("scene-indirect", f"indirect: {len(culled)} draw_indexed_indirect argument block(s), "
+                                              "instance_count written by the culling pass"))
+                out.append(("scene-cull", f"uniform: {len(culled)} Cull block(s) (frustum planes, the mesh's "
+                                          "bounding sphere, the instance range)"))
             if self.immediates is not True:
                 when = "no immediates" if self.immediates is False else "only if the device lacks immediates"
-                out.append(("scene-materials", f"uniform: {len(draws)} Material slice(s), one per draw ({when})"))
+                materials = len({d.material_key() for d in draws})
+                out.append(("scene-materials", f"uniform: {materials} Material slice(s), one per distinct material "
+                                               f"({when})"))
         for model, attributes in dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes)
                                                for d in draws):
             out.append((f"{model.name} vertices", f"vertex attributes {', '.join(attributes)}, interleaved"))
@@ -393,6 +428,12 @@ class RenderPlan:
             if any(s.spec.params for s in p.steps):
                 out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))
         return tuple(out)
+
+    @property
+    def culled_draws(self) -> tuple[Draw, ...]:
+        """The draws whose instances the GPU culls each frame (core/plan/culling.py)."""
+        culled = {p.key for p in self.pipelines if p.culled}
+        return tuple(d for d in self.scene_pass.draws if d.pipeline_key in culled)
 
     @property
     def post_steps(self) -> tuple[EffectStep, ...]:

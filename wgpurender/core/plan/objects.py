@@ -7,8 +7,9 @@ chain's passes, so the whole of what a renderer makes for a scene can be compare
 call without ``create_`` (``create_buffer_with_data`` counts as ``buffer``).
 
 How the wgpu path builds (wgpurender/wgpu_path/): the scene pass has a camera group (0) and an object
-group (1, one buffer with dynamic offsets) shared by every draw, a material group (2) per draw whose
-variant samples textures or reads its factors from a buffer (no immediates), a shader module per
+group (1, one storage buffer of every instance's block) shared by every draw, a material group (2) per
+distinct material (Draw.material_key) whose variant samples textures or reads its factors from a buffer
+(no immediates), a shader module per
 variant and a pipeline layout per pipeline; a mip chain is one render pass per level, each reading
 the level above through its own bind group; a post pass has its shader, layout, parameter buffer
 and one bind group. The scene pass's draws and each fragment post pass's draws are a render bundle, recorded
@@ -61,9 +62,10 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
     out = [GpuObject("buffer", name, 1, what) for name, what in plan.buffers if not name.startswith("post-")]
     out += [
         GpuObject("bind_group_layout", "Camera-layout", 1, "group 0: the camera, shared by every scene pipeline"),
-        GpuObject("bind_group_layout", "Object-layout", 1, "group 1: world matrices, one buffer, dynamic offsets"),
-        GpuObject("bind_group", "camera", 1, "group 0, bound once per draw, written once per frame"),
-        GpuObject("bind_group", "objects", 1, f"group 1, one for all {len(draws)} draw(s) (dynamic offsets)"),
+        GpuObject("bind_group_layout", "Object-layout", 1, "group 1: world matrices, one read-only storage buffer"),
+        GpuObject("bind_group", "camera", 1, "group 0, bound once per pipeline, written when the camera changes"),
+        GpuObject("bind_group", "objects", 1, f"group 1, one for all {len(draws)} draw(s) "
+                  f"({sum(d.instance_count for d in draws)} instances, read at instance_index)"),
     ]
     when = " (if the device lacks immediates)" if immediates is None else ""
     pushed = {True: " + immediates", None: " (+ immediates if the device has them)", False: ""}[immediates]
@@ -74,10 +76,18 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
             parts = ([f"Material buffer slice{when}"] if immediates is not True else []) + (
                 ["sampler", *what] if what else [])
             out.append(GpuObject("bind_group_layout", f"material {v.key}", 1, "group 2: " + ", ".join(parts)))
-            out.append(GpuObject("bind_group", f"material {v.key}", len(users),
-                                 "one per draw: " + ", ".join(d.label for d in users)))
+            materials = len({d.material_key() for d in users})
+            out.append(GpuObject("bind_group", f"material {v.key}", materials,
+                                 "one per distinct material (equal materials share it): "
+                                 + ", ".join(d.label for d in users)))
+    plain = {p.variant.key for p in plan.pipelines if not p.culled}  # a variant all of whose draws are culled: none
     for v in plan.variants:
-        out.append(GpuObject("shader_module", f"scene {v.key}", 1, "scene.wgsl specialised for this variant"))
+        if v.key in plain:
+            out.append(GpuObject("shader_module", f"scene {v.key}", 1, "scene.wgsl specialised for this variant"))
+    culled = plan.culled_draws
+    for key in dict.fromkeys(p.variant.key for p in plan.pipelines if p.culled):
+        out.append(GpuObject("shader_module", f"scene {key} culled", 1, "the variant reading its instances through "
+                             "the visible list (GPU culling)"))
     for p in plan.pipelines:
         out.append(GpuObject("pipeline_layout", f"scene {p.key}", 1, f"groups 0-2{pushed} of its variant"))
         out.append(GpuObject("render_pipeline", f"scene {p.key}", 1, "a scene pipeline of the plan"))
@@ -85,6 +95,12 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         out.append(GpuObject("sampler", f"sampler anisotropy {s.spec.max_anisotropy}", 1, "; ".join(s.used_by)))
     out.append(GpuObject("render_bundle_encoder", "scene-draws", 1, f"the {len(draws)} draw(s) recorded once "
                          "(pipeline, bind groups, buffers, draw); each frame replays them with one call"))
+    if culled:
+        why = "GPU frustum culling (scene_cull.wgsl): one invocation per instance of a culled draw"
+        out += [GpuObject(kind, "scene-cull", 1, why) for kind in ("bind_group_layout", "pipeline_layout",
+                                                                   "shader_module", "compute_pipeline")]
+        out.append(GpuObject("bind_group", "cull", len(culled), "one per culled draw: its Cull block, the objects, "
+                             "the visible list and the indirect arguments"))
     return out
 
 

@@ -30,6 +30,7 @@ docs/scenes.md; in short (every path is relative to the scene file's folder)::
     path = "models/cube.glb"       # .obj .gltf .glb .ply .stl .fbx
     material = "brick"             # a [materials] name, an inline table, or omitted (white, lit)
     transform = { translate = [0, 0, 0], rotate = { axis = [0, 1, 0], degrees = 30 }, scale = 1.0 }
+    instances = { grid = [10, 10, 1], spacing = [2, 2, 2] }  # optional: N copies (core/scene/instances.py)
     # or rotate = { euler = [x, y, z] } (degrees, X then Y then Z), or matrix = 4 rows of 4 (alone)
 
     [[lights]]                     # at most MAX_LIGHTS
@@ -67,12 +68,14 @@ from wgpurender.core.scene.model import (
     IDENTITY,
     LIGHT_TYPES,
     MAX_ANISOTROPY,
+    MAX_INSTANCES,
     MAX_LIGHTS,
     OUTPUT_FORMATS,
     Camera,
     Light,
     Material,
     Model,
+    Placements,
     PostStep,
     RenderSettings,
     SamplerSettings,
@@ -95,8 +98,9 @@ from wgpurender.core.scene.validate import (
 
 __all__ = [
     "ADDRESS_MODES", "CAMERA_KEYS", "CONVENTIONS", "Camera", "Checker", "DEFAULT_MATERIAL", "FILTERS", "IDENTITY",
-    "KeyLines", "KeyPath", "LIGHT_KEYS", "LIGHT_TYPES", "Light", "MATERIAL_KEYS", "MAX_ANISOTROPY", "MAX_LIGHTS",
-    "MODEL_KEYS", "Material", "Model", "OUTPUT_FORMATS", "PostStep", "RENDER_KEYS", "RenderSettings",
+    "KeyLines", "KeyPath", "LIGHT_KEYS", "LIGHT_TYPES", "Light", "MATERIAL_KEYS", "MAX_ANISOTROPY", "MAX_INSTANCES",
+    "MAX_LIGHTS", "MODEL_KEYS", "Material", "Model", "OUTPUT_FORMATS", "Placements", "PostStep", "RENDER_KEYS",
+    "RenderSettings",
     "SAMPLER_KEYS", "SamplerSettings", "Scene", "TOP_KEYS", "TRANSFORM_KEYS", "Transform", "Vec3", "Vec4",
     "format_path", "load_scene", "parse_scene",
 ]

@@ -158,6 +158,32 @@ def _rows(m: np.ndarray) -> tuple[tuple[float, ...], ...]:
 
 IDENTITY = Transform(_rows(np.eye(4)))
 
+MAX_INSTANCES = 4_000_000  # copies of one model: 64 bytes each here, 128 on the GPU (bounded memory)
+
+
+@dataclass(frozen=True)
+class Placements:
+    """N copies of one model, compactly: each copy's matrix, relative to the model's ``transform``.
+
+    Copy i is drawn with world matrix ``model.transform @ matrix(i)``: the model's transform is the parent of
+    its copies, as a glTF node is the parent of EXT_mesh_gpu_instancing's per-instance TRS. Made from a scene's
+    ``instances`` block (core/scene/instances.py) or a glTF file's instancing extension; the plan batches
+    them into one instanced draw. ``data`` is float32 (N, 4, 4) row-major (acting on column vectors): bytes, so
+    the frozen scene stays comparable and hashable."""
+
+    data: bytes
+    count: int
+    description: str
+
+    @classmethod
+    def of(cls, matrices: np.ndarray, description: str) -> Placements:
+        m = np.ascontiguousarray(matrices, dtype=np.float32).reshape(-1, 4, 4)
+        return cls(m.tobytes(), int(m.shape[0]), description)
+
+    def array(self) -> np.ndarray:
+        """(count, 4, 4) float32, read-only (a view of ``data``)."""
+        return np.frombuffer(self.data, dtype=np.float32).reshape(self.count, 4, 4)
+
 
 @dataclass(frozen=True)
 class ModelMaterials:
@@ -181,10 +207,22 @@ class Model:
     material_from_file: bool = False
     # those materials, read once when the scene loads (core/scene/file_materials.py); None: the scene's material
     file_materials: ModelMaterials | None = None
+    placements: Placements | None = None  # None: one copy, at ``transform``
 
     @property
     def label(self) -> str:
         return f"models[{self.index}] '{self.written_path}'"
+
+    @property
+    def instance_count(self) -> int:
+        return 1 if self.placements is None else self.placements.count
+
+    def worlds(self) -> np.ndarray:
+        """(N, 4, 4) float64: every copy's world matrix (``transform @ placement``), or the transform alone."""
+        parent = self.transform.array()
+        if self.placements is None:
+            return parent[None]
+        return parent @ self.placements.array().astype(np.float64)
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_C
 from wgpurender.core.errors import UserError
 from wgpurender.core.scene.checker import Checker as _Checker
 from wgpurender.core.scene.checker import _type_name
+from wgpurender.core.scene.instances import instances
 from wgpurender.core.scene.model import (
     ADDRESS_MODES,
     CONVENTIONS,
@@ -42,7 +43,7 @@ MATERIAL_KEYS = (
     "albedo_color", "albedo_map", "normal_map", "roughness", "roughness_map", "sampler", "unlit", "uv_flip_v"
 )
 SAMPLER_KEYS = ("address_mode", "anisotropy", "filter", "mipmaps")
-MODEL_KEYS = ("material", "path", "transform")
+MODEL_KEYS = ("instances", "material", "path", "transform")
 TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
 LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
 RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
@@ -231,6 +232,7 @@ def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Mod
                 material=material,
                 transform=_transform(c, t.get("transform", {}), key + ("transform",)),
                 material_from_file="material" not in t,
+                placements=instances(c, t["instances"], key + ("instances",)) if "instances" in t else None,
             )
         )
     return tuple(out)

@@ -74,8 +74,9 @@ class VulkanContext:
 
     def adapter_facts(self) -> AdapterFacts:
         """What the plan's "auto" knobs need to know about this device (:func:`wgpurender.core.plan.resolve_plan`):
-        the same facts the wgpu path reports for the same device. Push constants (immediates) are core Vulkan."""
-        return AdapterFacts.of(self.device_type, ("immediates",), self.device_name, "Vulkan")
+        the same facts the wgpu path reports for the same device. Push constants (immediates) are core Vulkan, and
+        so is drawIndirectFirstInstance (the culling plan's feature; lavapipe and NVIDIA have it)."""
+        return AdapterFacts.of(self.device_type, ("immediates", "indirect-first-instance"), self.device_name, "Vulkan")
 
     def close(self) -> None:
         if self._closed:

@@ -59,6 +59,8 @@ def pack_camera(proj: np.ndarray, view: np.ndarray, eye, ambient, directional: l
 
 
 def pack_object(world: np.ndarray) -> bytes:
+    """One Object block packed by hand, field by field: the independent check of core/plan/batches.py's
+    vectorised instance_blocks, which both paths upload (tests/test_instancing.py compares them)."""
     buf = bytearray(OBJECT_SIZE)
     _put(buf, 0, to_gpu(world).reshape(-1))
     columns = to_gpu(normal_matrix(world))  # (3 columns, 3 rows)

@@ -4,11 +4,11 @@ The course's descriptor sets and push constants, as the cube3d stage uses them:
 
 - set 0: the camera UBO (proj, view, eye, ambient, lights), UNIFORM_BUFFER seen by vertex and
   fragment stages, in HOST_VISIBLE memory written through a mapping;
-- set 1: the object UBO (world, normal matrix, mirror sign), UNIFORM_BUFFER_DYNAMIC: every model's
-  block in one buffer at a stride aligned to minUniformBufferOffsetAlignment, picked per draw with
-  a dynamic offset in vkCmdBindDescriptorSets;
+- set 1: the objects (world, normal matrix, mirror sign), STORAGE_BUFFER: every instance's block in
+  one buffer (core/plan/batches.py), read by the vertex shader at gl_InstanceIndex; each draw is one
+  vkCmdDrawIndexed with instanceCount = its instances and firstInstance = where they start;
 - set 2 (variants that sample textures): one COMBINED_IMAGE_SAMPLER per map (albedo 2, normal 3,
-  roughness 4), one set per draw, written with vkUpdateDescriptorSets;
+  roughness 4), one set per distinct material (Draw.material_key), written with vkUpdateDescriptorSets;
 - push constants: the material factors (base colour, roughness, normal strength, specular),
   vkCmdPushConstants per draw, fragment stage.
 
@@ -27,6 +27,7 @@ import vulkan as vk
 from wgpurender.core.course.formats import is_srgb_map
 from wgpurender.core.course.shading import AMBIENT
 from wgpurender.core.plan import Draw, RenderPlan, ShaderVariant
+from wgpurender.core.plan.batches import instance_blocks
 from wgpurender.core.scene import Scene
 from wgpurender.raw_path.device import descriptors
 from wgpurender.raw_path.device import uniforms as U
@@ -34,7 +35,6 @@ from wgpurender.raw_path.device.context import VulkanContext
 from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, write_host_buffer
 from wgpurender.raw_path.device.pipeline import PipelineDesc, create_pipeline, create_pipeline_layout
 from wgpurender.raw_path.device.renderpass import RenderPass
-from wgpurender.raw_path.device.ubo import dynamic_stride, pack_many
 from wgpurender.raw_path.scene.resources import SceneResources, vertex_input
 from wgpurender.raw_path.scene.variants import glsl_defines, is_lit
 
@@ -95,17 +95,18 @@ class SceneSubpass:
         if self.draws:
             self._setup_uniforms()
             self._setup_sets()
-            self.draw_state = [self._draw_state(k, d) for k, d in enumerate(self.draws)]
+            self.draw_state = [self._draw_state(d) for d in self.draws]
 
     # -- uniform buffers -------------------------------------------------------
     def _setup_uniforms(self) -> None:
-        ctx, owned, n = self.ctx, self.owned, len(self.draws)
+        ctx, owned = self.ctx, self.owned
         uniform = vk.VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
-        self.object_stride = dynamic_stride(U.OBJECT_SIZE, ctx.limits.min_uniform_buffer_offset_alignment)
         self.camera_buffer = create_buffer(ctx, owned, U.CAMERA_SIZE, uniform, HOST_MEMORY)
-        self.object_buffer = create_buffer(ctx, owned, self.object_stride * n, uniform, HOST_MEMORY)
-        blocks = [U.pack_object(np.array(d.transform, dtype=np.float64)) for d in self.draws]
-        write_host_buffer(ctx, self.object_buffer, pack_many(blocks, self.object_stride))
+        blocks = instance_blocks(self.draws)
+        self.objects_size = blocks.nbytes
+        self.object_buffer = create_buffer(ctx, owned, blocks.nbytes, vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           HOST_MEMORY)
+        write_host_buffer(ctx, self.object_buffer, blocks)
 
     # -- descriptor sets ---------------------------------------------------------
     def _material_bindings(self, variant: ShaderVariant) -> list:
@@ -115,7 +116,7 @@ class SceneSubpass:
     def _setup_sets(self) -> None:
         ctx, owned = self.ctx, self.owned
         self.camera_bindings = [descriptors.binding(0, vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VERTEX | FRAGMENT)]
-        self.object_bindings = [descriptors.binding(0, vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, VERTEX)]
+        self.object_bindings = [descriptors.binding(0, vk.VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VERTEX)]
         self.camera_layout = descriptors.create_set_layout(ctx, owned, self.camera_bindings)
         self.object_layout = descriptors.create_set_layout(ctx, owned, self.object_bindings)
         self.material_layouts = {}
@@ -123,24 +124,25 @@ class SceneSubpass:
             bindings = self._material_bindings(v)
             self.material_layouts[v.key] = (bindings, descriptors.create_set_layout(ctx, owned, bindings)
                                             if bindings else None)
-        textured = [d for d in self.draws if self.material_layouts[d.variant_key][1] is not None]
+        # Equal materials share one set (Draw.material_key): one per distinct material, first-use order.
+        textured = list({d.material_key(): d for d in reversed(self.draws)
+                         if self.material_layouts[d.variant_key][1] is not None}.values())[::-1]
         pool = descriptors.create_pool(ctx, owned, [self.camera_bindings, self.object_bindings]
                                        + [self.material_layouts[d.variant_key][0] for d in textured])
         sets = descriptors.allocate_sets(ctx, pool, [self.camera_layout, self.object_layout]
                                          + [self.material_layouts[d.variant_key][1] for d in textured])
         self.camera_set, self.object_set = sets[:2]
-        self.material_sets = {id(d): s for d, s in zip(textured, sets[2:], strict=True)}
+        self.material_sets = {d.material_key(): s for d, s in zip(textured, sets[2:], strict=True)}
         writes = [
             descriptors.write_buffer(self.camera_set, 0, self.camera_buffer.handle, 0, U.CAMERA_SIZE),
-            # range = one block: with a dynamic offset the descriptor is a window sliding over the buffer
-            descriptors.write_buffer(self.object_set, 0, self.object_buffer.handle, 0, U.OBJECT_SIZE,
-                                     vk.VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC),
+            descriptors.write_buffer(self.object_set, 0, self.object_buffer.handle, 0, self.objects_size,
+                                     vk.VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
         ]
         for d in textured:
             for feature, path in d.textures:
                 sampler = self.resources.sampler(d.sampler_of(feature))  # each texture its own (glTF samplers)
                 texture = self.resources.texture(path, srgb=is_srgb_map(feature))
-                writes.append(descriptors.write_image(self.material_sets[id(d)], TEXTURE_BINDINGS[feature],
+                writes.append(descriptors.write_image(self.material_sets[d.material_key()], TEXTURE_BINDINGS[feature],
                                                       texture.view, READ_ONLY,
                                                       vk.VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sampler))
         descriptors.update(ctx, writes)
@@ -170,15 +172,15 @@ class SceneSubpass:
                                                   self.render_pass)
         return self.pipelines[key]
 
-    def _draw_state(self, k: int, draw: Draw) -> tuple:
+    def _draw_state(self, draw: Draw) -> tuple:
         variant = self.plan.variant(draw.variant_key)
-        mirror = np.linalg.det(np.array(draw.transform)[:3, :3]) < 0
+        mirror = np.linalg.det(np.array(draw.transform)[:3, :3]) < 0  # every instance of a draw has this sign
         front = vk.VK_FRONT_FACE_CLOCKWISE if mirror else vk.VK_FRONT_FACE_COUNTER_CLOCKWISE
         material = vk.ffi.from_buffer(material_block(self.scene, draw, variant))
         planned = self.plan.pipeline(draw.pipeline_key)
         pipeline = self.pipeline(variant, front, planned.cull_mode == "none", planned.blend, planned.topology)
-        return (pipeline, self.pipeline_layout(variant), self.material_sets.get(id(draw)),
-                material, self.resources.mesh_buffers(draw), self.resources.index_range(draw))
+        return (pipeline, self.pipeline_layout(variant), self.material_sets.get(draw.material_key()),
+                material, self.resources.mesh_buffers(draw), self.resources.index_range(draw), draw)
 
     # -- recording ---------------------------------------------------------------------
     def record(self, cmd, size: tuple[int, int]) -> None:
@@ -186,13 +188,13 @@ class SceneSubpass:
         if not self.draws:
             return
         write_host_buffer(self.ctx, self.camera_buffer, camera_block(self.scene, size[0] / size[1]))
-        for k, (pipeline, layout, material_set, material, buffers, (first, count)) in enumerate(self.draw_state):
+        for pipeline, layout, material_set, material, buffers, (first, count), draw in self.draw_state:
             vk.vkCmdBindPipeline(cmd, GRAPHICS, pipeline)
-            vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 0, 1, [self.camera_set], 0, None)
-            vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 1, 1, [self.object_set], 1, [k * self.object_stride])
+            vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 0, 2, [self.camera_set, self.object_set], 0, None)
             if material_set is not None:
                 vk.vkCmdBindDescriptorSets(cmd, GRAPHICS, layout, 2, 1, [material_set], 0, None)
             vk.vkCmdPushConstants(cmd, layout, FRAGMENT, 0, len(material), material)
             vk.vkCmdBindVertexBuffers(cmd, 0, 1, [buffers.vertex.handle], [0])
             vk.vkCmdBindIndexBuffer(cmd, buffers.index.handle, 0, buffers.index_type)
-            vk.vkCmdDrawIndexed(cmd, count, 1, first, 0, 0)
+            # instanceCount copies; gl_InstanceIndex starts at firstInstance (this draw's blocks in set 1)
+            vk.vkCmdDrawIndexed(cmd, count, draw.instance_count, first, 0, draw.first_instance)

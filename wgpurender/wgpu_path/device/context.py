@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import wgpu
 
 from wgpurender.core.errors import UserError
+from wgpurender.wgpu_path import binding
 from wgpurender.wgpu_path.device import wgpu_private
 
 if TYPE_CHECKING:
@@ -38,6 +39,7 @@ OPTIONAL_FEATURES = (
     "clear-texture",
     "float32-filterable",
     "pipeline-cache",
+    "indirect-first-instance",  # GPU-culled draws (core/plan/culling.py)
 )
 
 INSTALL_HINT = (
@@ -224,9 +226,12 @@ def _configure_instance_once(backend: str) -> None:
                             f"backend needs its own process (or start with --backend auto)")
         return
     from wgpurender.core.files.runtime_dir import ensure_runtime_dir
-    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
 
     ensure_runtime_dir()  # before the instance: no "XDG_RUNTIME_DIR is invalid" lines from the driver
+    if binding.requested() == "dawn":  # Dawn has no wgpu-native instance extras: it picks its own backends
+        _instance_backend.append(backend)
+        return
+    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
 
     with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
         from wgpu.backends.wgpu_native.extras import set_instance_extras
@@ -242,7 +247,27 @@ def _configure_instance_once(backend: str) -> None:
 
 @functools.cache
 def _enumerate() -> tuple:
+    if binding.name() == "dawn":
+        adapters = _quietly(wgpu.gpu.enumerate_adapters_sync)  # Dawn prints its refusals on stderr itself
+        if not adapters:
+            raise UserError(binding.refusal([]))
+        return tuple(adapters)
     return tuple(wgpu.gpu.enumerate_adapters_sync())
+
+
+def _quietly(call):
+    """``call()`` with file descriptor 2 sent to /dev/null (C code's warnings), restored after."""
+    import sys
+
+    sys.stderr.flush()
+    saved, null = os.dup(2), os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 2)
+    try:
+        return call()
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(null)
 
 
 def _adapters(backend: str | None = None) -> tuple:

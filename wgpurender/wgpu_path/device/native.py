@@ -36,7 +36,12 @@ def clear_texture(ctx: GPUContext, encoder: wgpu.GPUCommandEncoder, texture: wgp
 
 
 def timestamp_period_ns(ctx: GPUContext) -> float:
-    """Nanoseconds per timestamp tick (wgpuQueueGetTimestampPeriod; VkPhysicalDeviceLimits::timestampPeriod)."""
+    """Nanoseconds per timestamp tick (wgpuQueueGetTimestampPeriod; VkPhysicalDeviceLimits::timestampPeriod).
+    Dawn resolves timestamps in nanoseconds already, as WebGPU specifies (and has no such function): 1."""
+    from wgpurender.wgpu_path import binding
+
+    if binding.name() == "dawn":
+        return 1.0
     _, lib = native()
     return float(lib.wgpuQueueGetTimestampPeriod(handle(ctx.queue)))
 

@@ -1,11 +1,12 @@
 """The scene pass: every model of the plan drawn with its variant's pipeline, depth-tested.
 
 Uniform data follows the cube3d stage (wgpurender/wgpu_path/stages/cube3d.py): group 0 the camera
-(proj, view, eye, lights) rewritten every frame; group 1 every model's world and normal
-matrix in ONE buffer, each draw picking its slice with a dynamic offset (the stride is the
-struct size rounded up to min-uniform-buffer-offset-alignment); per-draw material factors
-as immediates (push constants), or, without the "immediates" feature, from a uniform
-buffer bound in the material's group 2 (one slice per draw, the same struct and values).
+(proj, view, eye, lights) rewritten every frame; group 1 every instance's world and normal
+matrix in ONE storage buffer, read at instance_index: each draw is one instanced draw_indexed
+whose first_instance points at its instances (core/plan/batches.py batches the plan's draws);
+per-draw material factors as immediates (push constants), or, without the "immediates"
+feature, from a uniform buffer bound in the material's group 2 (one slice per distinct
+material, Draw.material_key: equal materials share the slice and the group).
 
 Pipelines are cached by variant key (plus the winding, which a mirroring world matrix
 turns around): models whose materials need the same features share one pipeline.
@@ -19,13 +20,14 @@ import wgpu
 from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
 from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
+from wgpurender.core.plan.batches import instance_blocks
 from wgpurender.core.scene import Scene
-from wgpurender.core.view import transforms as tf
 from wgpurender.wgpu_path.device.bind_groups import uniform_group, uniform_layout
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache
 from wgpurender.wgpu_path.device.shaders import create_shader_module
 from wgpurender.wgpu_path.scene import shader_interface as L
+from wgpurender.wgpu_path.scene.culling import GpuCuller
 from wgpurender.wgpu_path.scene.resources import SceneResources
 
 
@@ -57,12 +59,6 @@ def _point_light(light) -> dict:
             "spot": (*axis, scale)}
 
 
-def object_values(draw: Draw) -> dict:
-    world = np.array(draw.transform, dtype=np.float64)
-    return {"world": world, "normal": tf.normal_matrix(world), "mirror": 1.0 if np.linalg.det(world[:3, :3]) >= 0
-            else -1.0}
-
-
 def material_values(scene: Scene, draw: Draw, variant: ShaderVariant) -> dict:
     """The draw's Material values: the plan's factors (course.shading.material_factors, decided there)."""
     return dict(draw.factors)
@@ -78,6 +74,7 @@ class ScenePassRenderer:
         self.uses_immediates = ctx.use_immediates(use_immediates)
         self.draws = plan.scene_pass.draws
         self.depth_clear = plan.scene_pass.depth_clear
+        self.culler = None
         # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
         self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
@@ -89,39 +86,53 @@ class ScenePassRenderer:
 
     # -- uniforms ----------------------------------------------------------------
     def _setup_uniforms(self) -> None:
-        dev, n = self.ctx.device, len(self.draws)
+        dev = self.ctx.device
         usage = wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST
         self.alignment = self.ctx.limit("min-uniform-buffer-offset-alignment")
-        self.object_stride = L.OBJECT.stride(self.alignment)
         self.camera_buffer = dev.create_buffer(label="scene-camera", size=L.CAMERA.size, usage=usage)
-        self.object_buffer = dev.create_buffer(label="scene-objects", size=self.object_stride * n, usage=usage)
+        # Every instance's Object block, written once (static): one storage buffer read at instance_index.
+        blocks = instance_blocks(self.draws)
+        self.object_buffer = dev.create_buffer_with_data(
+            label="scene-objects", data=blocks, usage=wgpu.BufferUsage.STORAGE | wgpu.BufferUsage.COPY_DST)
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
         self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
-        self.object_layout = uniform_layout(dev, L.OBJECT, wgpu.ShaderStage.VERTEX, dynamic=True)
+        self.culler = (GpuCuller(self.ctx, self.plan, self.resources.meshes, self.object_buffer, len(blocks))
+                       if self.plan.culled_draws else None)
+        read = {"type": "read-only-storage"}
+        vertex = wgpu.ShaderStage.VERTEX
+        entries = [{"binding": 0, "visibility": vertex, "buffer": {**read, "min_binding_size": L.OBJECT.size}}]
+        resources = [{"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": blocks.nbytes}}]
+        if self.culler is not None:  # binding 1: the culled draws' visible lists (unread by the other pipelines)
+            entries.append({"binding": 1, "visibility": vertex, "buffer": read})
+            resources.append({"binding": 1, "resource": {"buffer": self.culler.visible}})
+        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=entries)
         self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
-        self.object_group = uniform_group(dev, self.object_layout, self.object_buffer, L.OBJECT)
-        # World matrices are static: written once. The camera is written per frame (aspect, lights).
-        self.ctx.queue.write_buffer(self.object_buffer, 0,
-                                    L.OBJECT.pack_many([object_values(d) for d in self.draws], self.alignment))
+        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=resources)
+        # Equal materials share one slice and one group (Draw.material_key): first-use order.
+        self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
         self.material_stride = L.MATERIAL.stride(self.alignment)
         self.material_buffer = None
         if not self.uses_immediates:
-            self.material_buffer = dev.create_buffer(label="scene-materials", size=self.material_stride * n,
-                                                     usage=usage)
+            self.material_buffer = dev.create_buffer(label="scene-materials", usage=usage,
+                                                     size=self.material_stride * len(self.material_slots))
 
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
         self.draw_state = []
-        for k, draw in enumerate(self.draws):
+        groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
+        for draw in self.draws:
             variant = self.plan.variant(draw.variant_key)
             material = L.material_struct(variant)
             data = material.pack(material_values(self.scene, draw, variant))
-            if self.material_buffer is not None:
-                self.ctx.queue.write_buffer(self.material_buffer, k * self.material_stride, data)
+            key = draw.material_key()
+            if key not in groups:
+                slot = self.material_slots[key]
+                if self.material_buffer is not None:
+                    self.ctx.queue.write_buffer(self.material_buffer, slot * self.material_stride, data)
+                groups[key] = self._material_group(variant, draw, slot)
             pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
-            group = self._material_group(variant, draw, k)
             buffers = self.resources.mesh_buffers(draw)
-            self.draw_state.append((draw, pipeline, group, data, buffers, self.resources.index_range(draw)))
+            self.draw_state.append((draw, pipeline, groups[key], data, buffers, self.resources.index_range(draw)))
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
@@ -159,9 +170,9 @@ class ScenePassRenderer:
                             "resource": self.resources.sampler(draw.sampler_of(feature))})
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
 
-    def shader_module(self, variant: ShaderVariant) -> wgpu.GPUShaderModule:
-        return self._modules.get(variant.key, lambda: create_shader_module(
-            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates)))
+    def shader_module(self, variant: ShaderVariant, culled: bool = False) -> wgpu.GPUShaderModule:
+        return self._modules.get(variant.key + (" culled" if culled else ""), lambda: create_shader_module(
+            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates, culled)))
 
     def pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
         """A pipeline the plan lists (a variant, formats, winding, depth test), made once."""
@@ -176,7 +187,7 @@ class ScenePassRenderer:
         immediate_size = L.material_struct(variant).size if self.uses_immediates else 0
         dev = self.ctx.device
         pipeline_layout = dev.create_pipeline_layout(bind_group_layouts=layouts, immediate_size=immediate_size)
-        module = self.shader_module(variant)
+        module = self.shader_module(variant, planned.culled)
         return dev.create_render_pipeline(
             label=f"scene {variant.key}",
             layout=pipeline_layout,
@@ -189,7 +200,7 @@ class ScenePassRenderer:
         )
 
     # -- the pass ------------------------------------------------------------------
-    def _write_camera(self, aspect: float) -> None:
+    def _write_camera(self, aspect: float) -> bool:
         """Pack and upload the camera UBO, only when its inputs changed since the last upload.
 
         The scene (camera, lights) is frozen, so the inputs are the objects themselves, the aspect
@@ -197,12 +208,15 @@ class ScenePassRenderer:
         """
         key = (self.scene.camera, self.scene.lights, aspect, self.reverse_z)
         if key == getattr(self, "_camera_key", None):
-            return
+            return False
         camera = camera_values(self.scene, aspect)
         if self.reverse_z:
             camera["proj"] = REVERSE_Z @ camera["proj"]
         self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
+        if self.culler is not None:
+            self.culler.write_planes(camera["proj"] @ camera["view"])
         self._camera_key = key
+        return True
 
     def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
                timestamp_writes: dict | None = None) -> None:
@@ -211,8 +225,10 @@ class ScenePassRenderer:
         if depth_view is not None:
             depth = {"view": depth_view, "depth_clear_value": self.depth_clear,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
-        if self.draws:
-            self._write_camera(aspect)
+        # The objects never move: the visible lists change only with the camera, so the culling pass runs then
+        # (the first frame, a resize, an orbit step), and a still frame costs no call for culling.
+        if self.draws and self._write_camera(aspect) and self.culler is not None:
+            self.culler.record(encoder)
         render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
         if self.bundle is not None:
@@ -238,18 +254,28 @@ class ScenePassRenderer:
         return encoder.finish(label="scene-draws")
 
     def record_draws(self, encoder) -> None:
-        """Record every draw into a render pass or render bundle encoder (the bundle is made with this)."""
-        for k, (_draw, pipeline, group, data, buffers, (first, count)) in enumerate(getattr(self, "draw_state", [])):
-            encoder.set_pipeline(pipeline)
-            encoder.set_bind_group(0, self.camera_group)
-            encoder.set_bind_group(1, self.object_group, [k * self.object_stride])
-            if group is not None:
+        """Record every draw into a render pass or render bundle encoder (the bundle is made with this): state
+        that does not change from the previous draw is not set again; each draw is one instanced draw_indexed."""
+        last: list = [None] * 4
+        for draw, pipeline, group, data, buffers, (first, count) in getattr(self, "draw_state", []):
+            if pipeline is not last[0]:
+                encoder.set_pipeline(pipeline)
+                encoder.set_bind_group(0, self.camera_group)
+                encoder.set_bind_group(1, self.object_group)
+                last[2] = None  # a new layout: group 2 is set again
+            if group is not None and group is not last[2]:
                 encoder.set_bind_group(2, group)
             if self.uses_immediates:
                 encoder.set_immediates(0, data, 0, len(data))
-            encoder.set_vertex_buffer(0, buffers.vertex)
-            encoder.set_index_buffer(buffers.index, buffers.index_format)
-            encoder.draw_indexed(count, 1, first)  # the draw's part of the mesh (a file material's triangles)
+            if buffers is not last[3]:
+                encoder.set_vertex_buffer(0, buffers.vertex)
+                encoder.set_index_buffer(buffers.index, buffers.index_format)
+            last = [pipeline, None, group, buffers]
+            if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
+                encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
+                continue
+            # the draw's part of the mesh (a file material's triangles), once per instance
+            encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)
 
 
 def _color_target(planned: ScenePipeline) -> dict:

@@ -3,14 +3,15 @@
 Every struct is declared once here with :mod:`wgpurender.core.shaders.uniforms`; the WGSL declarations
 are generated into shaders_wgsl/scene.wgsl's ``{{STRUCTS}}``. Lit and unlit variants see
 different declarations of the same buffers: the unlit ``Camera`` is only the first fields
-of the lit one (proj, view, eye), the unlit ``Object`` only ``world``, the unlit
+of the lit one (proj, view, eye), the unlit ``Object`` only ``world`` (then padding: it is the
+element of a storage array, whose stride is its size, 128 bytes in every variant), the unlit
 ``Material`` only the base colour. Offsets of the shared prefix are identical (asserted
 below), so one camera buffer and one object buffer serve every variant of a scene, and
 the unlit shader contains no light struct, no normal matrix and no lighting code.
 
 Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
-  group 1 Object   - every model's data in ONE buffer, picked per draw by a dynamic offset
+  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py)
   group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
                      4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples
   immediates       - Material (per-draw factors) when the adapter has "immediates"
@@ -43,7 +44,8 @@ CAMERA = Struct("Camera", _CAMERA_VIEW + [
     ("directional", Array(DIRECTIONAL_LIGHT, MAX_LIGHTS)),
     ("point", Array(POINT_LIGHT, MAX_LIGHTS)),
 ])
-OBJECT_UNLIT = Struct("Object", [("world", MAT4)])
+# Unlit: only world is read; the rest is padding, so the storage array's stride (the struct's size) stays 128
+OBJECT_UNLIT = Struct("Object", [("world", MAT4), ("unused", Array(VEC4F, 4))])
 OBJECT = Struct("Object", [("world", MAT4), ("normal", MAT3), ("mirror", F32)])  # mirror: sign of det(world)
 _MATERIAL_UNLIT_FIELDS = [("base_color", VEC4F)]
 _MATERIAL_FIELDS = _MATERIAL_UNLIT_FIELDS + [("roughness", F32), ("normal_strength", F32), ("specular", F32)]
@@ -59,7 +61,8 @@ _MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occl
                     ("emissive", "emissive", VEC4F))
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
-    assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items()), _small
+    assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items() if name != "unused"), _small
+assert OBJECT_UNLIT.size == OBJECT.size == 128
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
 ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
@@ -116,9 +119,9 @@ def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
 
 
-def shader_features(variant: ShaderVariant, immediates: bool) -> set[str]:
-    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates)."""
-    features = set(variant.flags)
+def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
+    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled)."""
+    features = set(variant.flags) | ({"culled"} if culled else set())
     if samples_textures(variant):
         features.add("uv")
     for name, n in variant.counts:
@@ -129,7 +132,7 @@ def shader_features(variant: ShaderVariant, immediates: bool) -> set[str]:
     return features
 
 
-def shader_source(variant: ShaderVariant, immediates: bool) -> str:
+def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
     """scene.wgsl specialised for one variant: only its attributes, bindings, structs and code."""
     structs = [camera_struct(variant), object_struct(variant), material_struct(variant)]
     values = {
@@ -138,4 +141,4 @@ def shader_source(variant: ShaderVariant, immediates: bool) -> str:
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
     }
-    return specialise(load_wgsl(SHADER), shader_features(variant, immediates), values, name=SHADER)
+    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled), values, name=SHADER)

@@ -1,0 +1,85 @@
+"""The scene-scale family's part of the perf report (issue 31): its targets and its table.
+
+Targets, each judged from the run's rows (never from a number written here):
+
+- 10k instances at most 0.5x pygfx ``InstancedMesh``'s frame time (both timed with the readback);
+- a 10k-object scene loads in at most 1 s (the instanced one; the distinct one where it was measured);
+- CPU per frame does not grow with the instance count: the largest count's CPU median at most
+  :data:`CPU_GROWTH` x the smallest's;
+- the first pixel at most 1.2x raw's with Python bytecode cached (and the ratio without, reported);
+- frame rows' p99 at most 2x their median (``frame_ms`` and ``cpu_ms`` of the frames, scene and scene-scale
+  families: the tail check covers the CPU metric too).
+"""
+
+from __future__ import annotations
+
+from wgpurender.bench.report import Result, fmt_ms, markdown_table
+
+CPU_GROWTH = 1.5  # "does not grow": the noise of a sub-millisecond median between two cases, not a trend
+P99_FACTOR = 2.0
+TAIL_FAMILIES = ("frames", "scene", "scene-scale")
+
+
+def _rows(res: list[Result], metric: str, path: str = "wgpu") -> dict[str, Result]:
+    return {r.case: r for r in res if r.family == "scene-scale" and r.metric == metric and r.path == path}
+
+
+def _count(case: str) -> int:
+    return int(case.split("/")[1])
+
+
+def targets(res: list[Result], verdict) -> list[tuple[str, str, str]]:
+    """(target, measured, status) rows; ``verdict(met, applies="")`` is the report's judge."""
+    out = []
+    ratio = next((r for r in res if r.family == "scene-scale" and r.case == "ratio/10000"), None)
+    if ratio is not None:
+        out.append(("10k instances <= 0.5x pygfx InstancedMesh frame time",
+                    f"{ratio.median:.2f}x (frame with readback, same adapter, same run)", verdict(ratio.median <= 0.5)))
+    loads = _rows(res, "load_ms")
+    for kind in ("instanced", "distinct"):
+        r = loads.get(f"{kind}/10000")
+        if r is not None:
+            out.append((f"a 10k-object scene loads in <= 1 s ({kind})", f"{r.median / 1e3:.2f} s",
+                        verdict(r.median <= 1000.0)))
+    cpu = {_count(c): r for c, r in _rows(res, "cpu_ms").items() if c.startswith("instanced/")}
+    if len(cpu) >= 2:
+        lo, hi = cpu[min(cpu)], cpu[max(cpu)]
+        growth = hi.median / lo.median
+        out.append(("CPU per frame does not grow with the instance count",
+                    f"{fmt_ms(lo.median)} ms at {min(cpu)}, {fmt_ms(hi.median)} ms at {max(cpu)} ({growth:.2f}x)",
+                    verdict(growth <= CPU_GROWTH)))
+    for label, judged in (("no caches", True), ("no caches, no bytecode", False)):
+        totals = {r.path: r for r in res if r.family == "startup" and r.metric == "total_ms"
+                  and r.case.split(": ", 1)[-1] == label}
+        if "wgpu" in totals and "raw" in totals and totals["raw"].median > 0:
+            q = totals["wgpu"].median / totals["raw"].median
+            what = "bytecode cached" if judged else "no bytecode (every module compiled)"
+            out.append((f"first pixel <= 1.2x raw ({what})" if judged else f"first pixel vs raw ({what})",
+                        f"{fmt_ms(totals['wgpu'].median)} / {fmt_ms(totals['raw'].median)} ms = {q:.2f}x",
+                        verdict(q <= 1.2) if judged else "reported"))
+    frames = [r for r in res if r.family in TAIL_FAMILIES and r.metric in ("frame_ms", "cpu_ms") and r.n >= 5
+              and r.p99 == r.p99 and r.median > 0]
+    if frames:
+        over = [r for r in frames if r.p99 > P99_FACTOR * r.median]
+        worst = max(frames, key=lambda r: r.p99 / r.median)
+        out.append(("p99 <= 2x median in the frame rows (frame and CPU)",
+                    f"{len(over)} of {len(frames)} rows over; worst {worst.p99 / worst.median:.1f}x "
+                    f"({worst.family} {worst.case} {worst.path} {worst.size} {worst.metric})", verdict(not over)))
+    return out
+
+
+def table(res: list[Result]) -> str:
+    """One row per case: frame, CPU, frame with readback, load, memory."""
+    rows = []
+    for path in ("wgpu", "pygfx"):
+        frame, cpu, rb = _rows(res, "frame_ms", path), _rows(res, "cpu_ms", path), _rows(res, "frame_readback_ms", path)
+        load, mem = _rows(res, "load_ms", path), _rows(res, "memory_mb", path)
+        for case in sorted(set(cpu) | set(rb), key=lambda c: (c.split("/")[0], _count(c))):
+            def ms(d: dict, case: str = case) -> str:
+                return fmt_ms(d[case].median) if case in d else "-"
+
+            note = frame[case].note if case in frame else (rb[case].note if case in rb else "")
+            rows.append((case, path, ms(frame), ms(cpu), ms(rb), ms(load),
+                         f"{mem[case].median:.0f}" if case in mem else "-", note))
+    return markdown_table(("case", "path", "frame ms", "CPU ms", "frame + readback ms", "load ms", "memory MB",
+                           "note"), rows)

@@ -1,0 +1,167 @@
+"""``bench perf``'s scene-scale family: N copies of one lit, textured cube, N distinct meshes, and pygfx beside.
+
+Cases (each a scene file written into a temporary folder, drawn by the scene renderer as any scene is):
+
+- ``instanced/N``: one ``[[models]]`` entry with ``instances = { grid = ... }``: one instanced draw;
+- ``distinct/N``: N models of N different mesh files (each cube moved a little in its own file): N draws,
+  capped at :data:`DISTINCT_LIMITS` (every mesh file is loaded and uploaded on its own, ~1 ms each here);
+- ``pygfx/N`` (path ``pygfx``): pygfx 0.17's ``InstancedMesh`` of the same cube, texture, light and camera, in
+  the same process on the same adapter, when pygfx is installed (``pip install 'wgpurender[bench]'``).
+
+Metrics per case: ``frame_ms`` (record + submit + wait), ``cpu_ms`` (record + submit), ``frame_readback_ms``
+(with the image read back: the only frame pygfx's offscreen canvas offers, so the ratio uses this row),
+``load_ms`` (scene file to the first frame read back, once), ``memory_mb`` (resident memory the load added).
+The grid is square in x and y, 1.5 units apart, the camera framing it; at 100k and more copies a cube covers
+less than a pixel: the frame is then vertex- and draw-bound, as intended.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.bench.frames import measure
+from wgpurender.bench.report import Result, size_text
+from wgpurender.core.models import procedural
+from wgpurender.wgpu_path.device.context import GPUContext
+from wgpurender.wgpu_path.device.timing import Stats
+
+COUNTS = (1_000, 10_000, 100_000, 1_000_000)
+QUICK_COUNTS = (50, 200)
+DISTINCT_LIMITS = {"CPU": 1_000, "GPU": 10_000}  # N mesh files loaded one by one: seconds per thousand
+PYGFX_LIMIT = 100_000  # pygfx gives every instance a pick id from a 2**20 pool (and sets them in a Python loop)
+SPACING = 1.5
+TEXTURE = Path(__file__).resolve().parents[2] / "assets" / "textures" / "brick_albedo.png"
+
+
+def grid_side(n: int) -> tuple[int, int]:
+    cols = math.ceil(math.sqrt(n))
+    return cols, math.ceil(n / cols)
+
+
+def camera_distance(n: int, fov_y: float = 40.0) -> float:
+    cols, rows = grid_side(n)
+    return 0.6 * max(cols, rows) * SPACING / math.tan(math.radians(fov_y) / 2) + 2.0
+
+
+def _head(n: int, size: tuple[int, int], texture: Path) -> str:
+    d = camera_distance(n)
+    return (f'[camera]\neye = [0.0, 0.0, {d!r}]\ntarget = [0.0, 0.0, 0.0]\nfov_y = 40.0\nfar = {2 * d + 10!r}\n\n'
+            f'[materials.brick]\nalbedo_map = "{texture.as_posix()}"\n\n'
+            '[[lights]]\ntype = "directional"\ndirection = [-0.5, -0.6, -1.0]\nintensity = 2.0\n\n'
+            f'[render]\nsize = [{size[0]}, {size[1]}]\nmsaa = 1\nhdr = false\n')
+
+
+def instanced_scene(folder: Path, n: int, size: tuple[int, int], texture: Path = TEXTURE) -> Path:
+    """N cubes as one model with a grid ``instances`` block (exactly N: the grid is cut to its first N)."""
+    cube = folder / "cube.obj"
+    if not cube.exists():
+        procedural.write_obj(cube, procedural.box(1.0))
+    offsets = grid_offsets(n)
+    np.save(folder / f"grid_{n}.npy", offsets)
+    path = folder / f"instanced_{n}.toml"
+    path.write_text(_head(n, size, texture) + f'\n[[models]]\npath = "cube.obj"\nmaterial = "brick"\n'
+                    f'instances = {{ file = "grid_{n}.npy" }}\n')
+    return path
+
+
+def distinct_scene(folder: Path, n: int, size: tuple[int, int], texture: Path = TEXTURE) -> Path:
+    """N models, each its own mesh file (a cube moved to its grid place inside the file): nothing batches."""
+    mesh = procedural.box(1.0)
+    lines = []
+    for k, offset in enumerate(grid_offsets(n)):
+        name = f"m{k}.obj"
+        if not (folder / name).exists():
+            procedural.write_obj(folder / name, dataclasses.replace(mesh, positions=mesh.positions + offset))
+        lines.append(f'[[models]]\npath = "{name}"\nmaterial = "brick"\n')
+    path = folder / f"distinct_{n}.toml"
+    path.write_text(_head(n, size, texture) + "\n" + "\n".join(lines))
+    return path
+
+
+def grid_offsets(n: int) -> np.ndarray:
+    cols, rows = grid_side(n)
+    k = np.arange(n)
+    return np.stack([(k % cols - (cols - 1) / 2) * SPACING, (k // cols - (rows - 1) / 2) * SPACING,
+                     np.zeros(n)], axis=1)
+
+
+def _rss_mb() -> float:
+    try:
+        pages = int(Path("/proc/self/statm").read_text().split()[1])
+    except (OSError, IndexError, ValueError):
+        return float("nan")
+    import os
+
+    return pages * os.sysconf("SC_PAGE_SIZE") / 1e6
+
+
+def _one_off(case: str, path: str, size: str, metric: str, value: float, note: str) -> Result:
+    return Result("scene-scale", case, path, size, metric, value, value, value, 1, note)
+
+
+def bench_case(ctx: GPUContext, scene: Path, case: str, size: tuple[int, int], frames: int) -> list[Result]:
+    from wgpurender.bench.scene import SceneRunner
+
+    before, start = _rss_mb(), time.perf_counter()
+    runner = SceneRunner(ctx, scene, size)
+    runner.frame(readback=True)
+    load_ms = (time.perf_counter() - start) * 1e3
+    memory = _rss_mb() - before
+    s = size_text(size)
+    draws = len(runner.renderer.plan.scene_pass.draws)
+    samples = measure(runner, frames, readback_frames=max(3, frames // 2))
+    out = samples.results("scene-scale", case, "wgpu", size, note=f"{draws} draw(s)")
+    out.append(_one_off(case, "wgpu", s, "load_ms", load_ms, "scene file to the first frame read back"))
+    out.append(_one_off(case, "wgpu", s, "memory_mb", memory, "resident memory the load added"))
+    return out
+
+
+def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int, int],
+                log: Callable[[str], None] = print, peer=None) -> tuple[list[Result], list[str]]:
+    """(results, notes) of every case; ``peer(ctx, n, size, frames)`` (bench/scale_pygfx.py's, or None when pygfx
+    is not installed: one line says so) beside each count up to :data:`PYGFX_LIMIT`."""
+    kind = "CPU" if ctx.adapter.info["adapter_type"] == "CPU" else "GPU"
+    limit = DISTINCT_LIMITS[kind]
+    out: list[Result] = []
+    notes = [f"scene-scale: distinct meshes stop at {limit} on a {kind} adapter (each mesh file is loaded and "
+             "uploaded on its own: seconds per thousand)"]
+    if peer is None:
+        notes.append("scene-scale: pygfx is not installed (pip install 'wgpurender[bench]'): no pygfx rows")
+    with tempfile.TemporaryDirectory(prefix="wgpurender-scale-") as tmp:
+        folder = Path(tmp)
+        for n in counts:
+            out += bench_case(ctx, instanced_scene(folder, n, size), f"instanced/{n}", size, frames)
+            log(f"  scene-scale: instanced {n}")
+            if n <= limit:
+                out += bench_case(ctx, distinct_scene(folder, n, size), f"distinct/{n}", size, frames)
+                log(f"  scene-scale: distinct {n}")
+            if peer is not None and n <= PYGFX_LIMIT:
+                out += peer(ctx, n, size, frames)
+                log(f"  scene-scale: pygfx {n}")
+    if peer is not None and max(counts) > PYGFX_LIMIT:
+        notes.append(f"scene-scale: pygfx stops at {PYGFX_LIMIT} instances (InstancedMesh claims a pick id per "
+                     "instance from a pool of 2**20, in a Python loop)")
+    return out, notes
+
+
+def ratio_rows(results: list[Result]) -> list[Result]:
+    """wgpu instanced / pygfx InstancedMesh frame time (with readback, the frame both can time) per count."""
+    rows = {(r.case, r.path): r for r in results if r.metric == "frame_readback_ms"}
+    out = []
+    for (case, path), r in rows.items():
+        if path == "pygfx" and (f"instanced/{case.split('/')[1]}", "wgpu") in rows:
+            mine = rows[(f"instanced/{case.split('/')[1]}", "wgpu")]
+            v = mine.median / r.median
+            out.append(Result("scene-scale", f"ratio/{case.split('/')[1]}", "wgpu/pygfx", r.size, "frame_ratio",
+                              v, v, v, 1, "wgpu instanced frame_readback_ms / pygfx InstancedMesh's (goal <= 0.5)"))
+    return out
+
+
+__all__ = ["COUNTS", "QUICK_COUNTS", "Stats", "bench_scale", "distinct_scene", "instanced_scene", "ratio_rows"]
