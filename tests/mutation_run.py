@@ -64,6 +64,7 @@ SHIMMER_GPU = "tests/test_accuracy_shimmer.py"
 HDR_TEST = "tests/test_accuracy_hdr.py"
 FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
+EX_INPUT = "tests/test_exercises.py|bad_input or broken_learner"
 INST = "tests/test_instancing.py"
 NOBACK = "tests/test_no_back_doors.py"
 BANDWIDTH = "tests/test_bandwidth_record.py"
@@ -427,8 +428,8 @@ MUTATIONS = [
     ("wgpurender/core/models/gltf_io.py", "for kind in (\"buffers\", \"images\")", "for kind in (\"buffers\",)", [JAIL]),  # noqa: E501
     ("wgpurender/core/scene/file_materials.py", "        mtl = read_jail.model_file(path, lib.decode(\"utf-8\", \"replace\"), \"mtllib\", "  # noqa: E501
      "encoded=False)", "        mtl = path.parent / lib.decode(\"utf-8\", \"replace\")", [JAIL]),
-    ("wgpurender/core/scene/file_materials.py", "            texture = read_jail.model_file(model or path, tokens[-1], where, "  # noqa: E501
-     "base=path.parent, encoded=False)", "            texture = path.parent / tokens[-1]", [JAIL]),
+    ("wgpurender/core/scene/file_materials.py", "            texture = read_jail.model_file(model or path, name, where, "  # noqa: E501
+     "base=path.parent, encoded=False)", "            texture = path.parent / name", [JAIL]),
     ("wgpurender/core/models/mesh.py", "            return read_jail.model_file(path, name, \"a file trimesh asked for\", "  # noqa: E501
      "encoded=False).read_bytes()", "            return (path.parent / name).read_bytes()", [JAIL]),
     ("wgpurender/core/scene/checker.py", "            if refused is not None:", "            if refused is None:",
@@ -699,6 +700,24 @@ MUTATIONS = [
      ["tests/test_culling.py"]),
     ("wgpurender/core/plan/objects.py", "        out.append(GpuObject(\"bind_group\", \"cull\", len(culled),",
      "        out.append(GpuObject(\"bind_group\", \"cull\", 1,", ["tests/test_plan_is_what_is_built.py|culled"]),
+    # the newcomer's findings: a stage name as a step, a misspelt record, a syntax error in the learner's file,
+    # the report's progress stream and its tutorial line, MTL map names with spaces
+    ("wgpurender/exercises/catalogue.py", "if s.stage == step), None)", "if s.number == step), None)", [EX_INPUT]),
+    ("wgpurender/exercises/catalogue.py", "is step {named.number}'s stage", "is step {named.stage}'s stage",
+     [EX_INPUT]),
+    ("wgpurender/exercises/render.py", "inherited=found[0].record is base.record", "inherited=False", [EX_INPUT]),
+    ("wgpurender/exercises/sandbox.py", "if isinstance(err, SyntaxError) and",
+     "if isinstance(err, IndentationError) and",
+     [EX_INPUT]),
+    ("wgpurender/report/extras.py", "progress_stream=sys.stdout)", "progress_stream=None)",
+     ["tests/test_report_progress_stream.py"]),
+    ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
+     ["tests/test_report_anchors_line.py"]),
+    ("wgpurender/core/scene/file_materials.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",  # noqa: E501
+     ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/scene/file_materials.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/scene/file_materials.py", "(most == 3 and taken and not _is_number(tokens[k]))",
+     "(most == 3 and taken and _is_number(tokens[k]))", ["tests/test_mesh.py|map_file_name"]),
     # issue 32: one plan without back doors (item 1)
     ("wgpurender/core/plan/resolve.py", "    return dataclasses.replace(plan, rebuild=resolve_knobs)",
      "    return plan", [NOBACK]),

@@ -182,6 +182,17 @@ LEARNER_FILES = {
                           "attributes": [{"shader_location": 0, "format": "float32x2", "offset": 0}]}
                 self.pipeline = self.basic_pipeline("triangle_buffers.wgsl", [layout])
         """, ["line 11, in setup", "Validation"]),
+    "misspelt record": ("""
+        from wgpurender.wgpu_path.stages.base import Stage
+
+
+        class Mine(Stage):
+            name = "triangle"
+
+            def recrod(self, encoder, target, t=0.0):
+                pass
+        """, ["Mine has no record method", "misspelt"]),
+    "syntax error": ("x = 1\ndef broken(:\n", ["does not parse", "line 2", "SyntaxError"]),
     "crash": ("import os\nos._exit(7)\n", ["exit status 7"]),
     "hangs": ("while True:\n    pass\n", ["did not finish within 5 s"]),
 }
@@ -229,6 +240,8 @@ def test_cli_exercise_then_check_exit_codes(tmp_path, capsys):
 
 @pytest.mark.parametrize("args, message", [
     (("check", "9z", "x.py"), "unknown step"),
+    (("exercise", "3d"), "'3d' is step 4's stage: give 4"),  # the stage names every other command takes
+    (("check", "msaa-post", "x.py"), "'msaa-post' is step 3c's stage: give 3c"),
     (("check", "2a", "missing.py"), "no such file"),
     (("check", "2a", "notes.txt"), "give its .py file"),
     (("check", "6", "x.py"), "give its .wgsl file"),

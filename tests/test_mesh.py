@@ -417,3 +417,18 @@ def test_glb_embedded_texture_is_returned_as_bytes(tmp_path):
     albedo = model_materials(path, "tex").materials[0].albedo_map
     assert albedo == embedded_image_path(path, 0)
     np.testing.assert_array_equal(load_image(albedo), pixels)
+
+
+@pytest.mark.parametrize("statement, name", [
+    ("map_Kd textures/brick albedo.png", "textures/brick albedo.png"),  # Blender: a name with spaces, unquoted
+    ("map_Kd -bm 1.0 -o 0.5 0.5 my  tex.png", "my  tex.png"),  # options first; the name's own spacing kept
+    ("map_Kd -clamp on -s 2 tex 1.png", "tex 1.png"),  # -s with one value, then a name that starts like a word
+    ("map_Kd plain.png", "plain.png"),
+])
+def test_a_map_file_name_is_the_rest_of_the_line_after_its_options(tmp_path, statement, name):
+    """The MTL's texture path is what follows the map options, spaces kept (it was the last word only: a Blender
+    material whose texture's name has a space read 'albedo.png' for 'brick albedo.png')."""
+    (tmp_path / "m.mtl").write_text(f"newmtl m\n{statement}\n")
+    texture = parse_mtl(tmp_path / "m.mtl")["m"].textures["base_color"]
+    assert texture == (tmp_path / name).resolve()
+

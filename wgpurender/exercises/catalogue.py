@@ -318,7 +318,9 @@ def exercise(step: str, path: str) -> Exercise:
 
     numbers = [s.number for s in COURSE]
     if step not in numbers:
-        raise UserError(f"unknown step {step!r}: the course's steps are {', '.join(numbers)} (wgpurender stages)")
+        named = next((s for s in COURSE if s.stage == step), None)  # a stage's name: 3d is step 4
+        hint = f"; {step!r} is step {named.number}'s stage: give {named.number}" if named else " (wgpurender stages)"
+        raise UserError(f"unknown step {step!r}: the course's steps are {', '.join(numbers)}{hint}")
     if path not in PATHS:
         raise UserError(f"unknown path {path!r}: choose {' or '.join(PATHS)}")
     for ex in EXERCISES:

@@ -66,15 +66,19 @@ def stage_class(module: ModuleType, ex: Exercise) -> type:
     if found[0].name != want:
         raise StageFileError(f"{found[0].__name__}.name is {found[0].name!r}: step {ex.step}'s stage is named "
                              f"{want!r}")
-    return returns_nothing(found[0])
+    return returns_nothing(found[0], inherited=found[0].record is base.record)
 
 
-def returns_nothing(cls: type) -> type:
+def returns_nothing(cls: type, inherited: bool = False) -> type:
     """``cls`` whose ``record`` is checked to return None (it records commands; a value returned is a
-    misunderstanding of the interface, said as one)."""
+    misunderstanding of the interface, said as one). ``inherited``: the class has no record of its own (the
+    base's only raises NotImplementedError), said when the frame is recorded, after setup's own errors."""
     record = cls.record
 
     def checked_record(self, *args, **kwargs) -> None:
+        if inherited:
+            raise StageFileError(f"{cls.__name__} has no record method: define record(self, ...) as the starter "
+                                 "has it (a misspelt name?)")
         result = record(self, *args, **kwargs)
         if result is not None:
             raise StageFileError(f"{cls.__name__}.record returned a {type(result).__name__}: it records the frame's "

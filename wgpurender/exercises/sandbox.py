@@ -32,7 +32,10 @@ def learner_traceback(err: BaseException, file: Path) -> str:
     """The exception as the learner should see it: only the frames of their file, then the error itself."""
     target = str(file.resolve())
     frames = [f for f in traceback.extract_tb(err.__traceback__) if str(Path(f.filename).resolve()) == target]
-    lines = ["Traceback (your code):"] if frames else ["(raised outside your file, from what your code passed on)"]
+    if isinstance(err, SyntaxError) and err.filename and str(Path(err.filename).resolve()) == target:
+        lines = ["your file does not parse (the line is below):"]  # it never ran: no frames, yet it is theirs
+    else:
+        lines = ["Traceback (your code):"] if frames else ["(raised outside your file, from what your code passed on)"]
     lines += [line.rstrip("\n") for line in traceback.format_list(frames)]
     lines.append("".join(traceback.format_exception_only(type(err), err)).strip())
     return "\n".join(lines)

@@ -36,7 +36,6 @@ STAGE_SIZE = (640, 480)
 SCENE_SIZE = (640, 480)
 SCENE_SIZES: dict[str, tuple[int, int]] = {}
 MAX_SHOT_WIDTH = 640  # images wider than this are shown at this width; a click opens the larger render
-ANCHORS = REPO_ROOT.parent / "shared" / "anchors" / "vulkan-tutorial"
 
 
 def course_stages() -> list[str]:
@@ -122,9 +121,14 @@ def _scene_files() -> list[tuple[Path, str]]:
 
 def missing_line(path: Path, error: str) -> str:
     """One line for a scene that cannot load: what is missing, and where to get it."""
-    if "anchors" in path.read_text(encoding="utf-8"):
+    text = path.read_text(encoding="utf-8")
+    if "anchors" in text:
+        import tomllib
+
+        # where the scene itself looks (its model's path, relative to it): beside a wheel's site-packages too
+        where = (path.parent / tomllib.loads(text)["models"][0]["path"]).resolve().parent
         return (f"Not rendered: {path.name} draws the Vulkan tutorial's viking room, whose model and texture "
-                f"are not in the repository and are absent here (looked for in {ANCHORS}); docs/guide.md, \"Where the "
+                f"are not in the repository and are absent here (looked for in {where}); docs/guide.md, \"Where the "
                 f"tutorial's files come from\", says how to fetch them.")
     return f"Not rendered: {error}"
 

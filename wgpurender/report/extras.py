@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import datetime
 import math
+import sys
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -76,7 +77,7 @@ def measure(ctx: GPUContext, site: Path, log: Callable[[str], None] = print, siz
         log(f"accuracy: every knob of {SCENE.name} at {size[0]}x{size[1]}, {FRAMES} frames each")
         config = AccuracyConfig(scene_path=SCENE, base_size=size, frames=FRAMES, warmup=WARMUP, rounds=1,
                                 combinations=False, out_dir=Path(work), command="wgpurender report")
-        run = run_accuracy(config, ctx)
+        run = run_accuracy(config, ctx, progress_stream=sys.stdout)  # beside the report's other progress lines
         rows = unique_rows([r for r in run.rows if r.case.scene == "final" and r.case.sweep != "ground truth"])
         out.timer = "GPU" if all(r.m.gpu is not None for r in rows) else "wall"
         out.accuracy = [Point(r.case.sweep, r.case.level, r.flip, r.psnr, r.time_ms, r.pareto) for r in rows]

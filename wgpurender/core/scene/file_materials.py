@@ -114,8 +114,8 @@ def obj_mtl_entry(path: Path) -> MtlEntry | None:
 
 def parse_mtl(path: Path, model: Path | None = None) -> dict[str, MtlEntry]:
     """Every material in the MTL file of OBJ ``model`` (default: the MTL's own folder is the model's). Map options
-    (``-bm 1.0`` ...) are skipped: the file name is the last token. Paths are resolved relative to the MTL file and
-    must stay in the model's folder (core/files/read_jail.py)."""
+    (``-bm 1.0`` ...) are skipped: the file name is the rest (:func:`map_file_name`). Paths are resolved relative to
+    the MTL file and must stay in the model's folder (core/files/read_jail.py)."""
     materials: dict[str, MtlEntry] = {}
     current = None
     for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
@@ -127,11 +127,12 @@ def parse_mtl(path: Path, model: Path | None = None) -> dict[str, MtlEntry]:
             current = MtlEntry(" ".join(tokens[1:]))
             materials[current.name] = current
         elif key in MTL_ROLES and current is not None and len(tokens) > 1:
-            if not tokens[-1].isprintable():
-                raise UserError(f"{path}:{number}: texture path {tokens[-1]!r} contains a control character; "
+            name = map_file_name(raw)
+            if not name.isprintable():
+                raise UserError(f"{path}:{number}: texture path {name!r} contains a control character; "
                                 "fix the material library")
             where = f"{path}:{number} {tokens[0]}"
-            texture = read_jail.model_file(model or path, tokens[-1], where, base=path.parent, encoded=False)
+            texture = read_jail.model_file(model or path, name, where, base=path.parent, encoded=False)
             current.textures.setdefault(MTL_ROLES[key], texture)
         elif key in ("kd", "d", "tr", "illum") and current is not None:
             _mtl_number(current, key, tokens[1:], f"{path}:{number}")
@@ -153,3 +154,30 @@ def _mtl_number(entry: MtlEntry, key: str, values: list[str], where: str) -> Non
         entry.illum = int(numbers[0])
     else:
         entry.opacity = min(1.0, max(0.0, numbers[0] if key == "d" else 1.0 - numbers[0]))
+
+
+# a map statement's options and how many values each takes (-o, -s, -t: 1 to 3 numbers)
+MAP_OPTIONS = {"-blendu": 1, "-blendv": 1, "-boost": 1, "-mm": 2, "-texres": 1, "-clamp": 1, "-bm": 1,
+               "-imfchan": 1, "-type": 1, "-cc": 1, "-o": 3, "-s": 3, "-t": 3}
+
+
+def map_file_name(line: str) -> str:
+    """The file name of an MTL map statement: what follows its options, spaces kept (Blender writes a name with
+    spaces unquoted: ``map_Kd -bm 1.0 my brick.png``)."""
+    tokens = line.split()
+    k = 1
+    while k < len(tokens) - 1 and tokens[k].lower() in MAP_OPTIONS:
+        most, k = MAP_OPTIONS[tokens[k].lower()], k + 1
+        for taken in range(most):
+            if k >= len(tokens) - 1 or (most == 3 and taken and not _is_number(tokens[k])):
+                break
+            k += 1
+    return line.strip().split(None, k)[-1]
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
