@@ -282,3 +282,29 @@ def test_cli_lists_perf_and_rejects_unknown_family(capsys):
     assert main(["bench", "perf", "--only", "nonsense", "--out", "unused"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "unknown benchmark family 'nonsense'" in err
+
+
+def test_stage_a_binding_cannot_draw_is_a_not_offered_row(ctx, monkeypatch, tmp_path):
+    """Dawn has no 'clear-texture' (issue 31, its H100 run stopped there): bench perf goes on past the stage
+    and says so in one line and one CSV row, the other stages still measured."""
+    import dataclasses
+
+    import wgpurender.bench.frames as frames
+    from wgpurender.bench.perf import PerfRun as Run
+    from wgpurender.bench.perf import _frames
+
+    no_clear = dataclasses.replace(ctx, features=ctx.features - {"clear-texture"})
+    monkeypatch.setattr(frames, "common_stages", lambda: ["clear", "clear-pass"])
+    config = PerfConfig(quick=True, raw=False, families=("frames",), frames=2)
+    run, lines = Run(config, {}), []
+    _frames(no_clear, config, run, lines.append)
+    skipped = [r for r in run.results if r.metric == "not offered"]
+    assert [(r.case, r.path, r.size, r.n) for r in skipped] == [("clear", "wgpu", "96x64", 0)]
+    assert "clear-texture" in skipped[0].note
+    assert [line for line in lines if "not offered" in line] == [
+        f"  frames: clear 96x64 not offered by this binding: {skipped[0].note}"]
+    assert {r.case for r in run.results if r.metric == "frame_ms"} == {"clear-pass"}
+    assert any("not offered" in n and "clear (" in n for n in run.notes)
+    write_reports(run, tmp_path)
+    rows = [r for r in read_csv(tmp_path / "results.csv") if r.case == "clear"]
+    assert [(r.metric, r.n) for r in rows] == [("not offered", 0)]

@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from wgpurender.bench import markdown_scale
+from wgpurender.bench import figures_post, markdown_scale
 from wgpurender.bench.report import Result, fmt_ms, markdown_table, read_csv
 
 REPO = Path(__file__).resolve().parents[2]
@@ -65,6 +65,7 @@ def section() -> str:
         if dawn and (base / dawn).is_file():
             lines += ["The Dawn binding (`WGPURENDER_BINDING=dawn`, wgpudawn 0.32) beside wgpu-native, same call:", "",
                       _dawn_table(rows, read_csv(base / dawn)), ""]
+    lines += figures_post.section(REPO, _judge, _dawn_table)
     return "\n".join(lines + [END])
 
 

@@ -16,7 +16,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.bench.report import Result, command_line  # noqa: F401 (command_line: the CLI's import)
+from wgpurender.bench.report import NOT_OFFERED, Result, command_line, not_offered, size_text  # noqa: F401 (command_line: the CLI's import)
+from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
@@ -133,8 +134,15 @@ def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     cases = [(size, name) for size in config.sizes(ctx) for name in common_stages()]
     progress = Progress(len(cases), log)
     for size, name in cases:
-        run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+        try:
+            run.results += bench_stage(ctx, name, size, n, readback_frames=max(3, n // 2), raw=config.raw)
+        except UserError as err:  # this binding cannot draw the stage (Dawn has no clear-texture): a row says so
+            run.results.append(not_offered("frames", name, size_text(size), str(err)))
+            log(f"  frames: {name} {size[0]}x{size[1]} not offered by this binding: {err}")
         progress.step(f"frames: {name} {size[0]}x{size[1]}")
+    skipped = sorted({f"{r.case} ({r.note})" for r in run.results if r.family == "frames" and r.metric == NOT_OFFERED})
+    if skipped:
+        run.notes.append("frames: not offered by this binding (rows with metric 'not offered'): " + "; ".join(skipped))
     run.notes.append("frames: wgpu-only stages (no raw counterpart) are left out: "
                      + ", ".join(_wgpu_only_stages()) + ".")
 

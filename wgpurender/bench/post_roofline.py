@@ -17,7 +17,9 @@ Run it where the question is (NVIDIA, 3840x2160): ``wgpurender bench post-roofli
 
 from __future__ import annotations
 
+import csv
 import dataclasses
+import io
 import statistics
 from dataclasses import dataclass
 from pathlib import Path
@@ -229,11 +231,13 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
 
 def csv_text(rows: list[PassTime]) -> str:
     fields = [f.name for f in dataclasses.fields(PassTime)] + ["gbps", "copy_gbps", "percent_of_copy"]
-    out = [",".join(fields)]
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")  # quoted where a field holds a comma ("compute, fused")
+    writer.writerow(fields)
     for r in rows:
         values = [getattr(r, f) for f in fields]
-        out.append(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in values))
-    return "\n".join(out) + "\n"
+        writer.writerow(f"{v:.6g}" if isinstance(v, float) else str(v) for v in values)
+    return out.getvalue()
 
 
 def record_bandwidth(ctx: GPUContext, scene_path: Path, size: tuple[int, int], rows: list[PassTime],

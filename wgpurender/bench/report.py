@@ -46,6 +46,15 @@ class Result:
         return self.family, self.case, self.size, self.metric
 
 
+NOT_OFFERED = "not offered"  # the metric of a row whose case this binding cannot run (its note says why)
+
+
+def not_offered(family: str, case: str, size: str, why: str) -> Result:
+    """A row saying the wgpu path on this binding cannot run ``case`` (e.g. Dawn has no clear-texture)."""
+    nan = float("nan")
+    return Result(family, case, "wgpu", size, NOT_OFFERED, nan, nan, nan, 0, why)
+
+
 def command_line() -> str:
     """The command that is running, as a person would type it (for reports); a bench run from another program
     (pytest, a script) says which, never labelling that program's arguments as a wgpurender command."""
