@@ -137,14 +137,14 @@ def test_gpu_compute_maps_match_the_float64_maps():
 
 
 def test_an_environment_without_pbr_materials_builds_no_ibl(tmp_path):
-    from wgpurender.core.plan import build_plan
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
 
     (tmp_path / "cube.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     (tmp_path / "s.toml").write_text('[camera]\neye = [0, 0, 3]\ntarget = [0, 0, 0]\n[[models]]\npath = "cube.obj"\n'
                                      '[[lights]]\ntype = "directional"\ndirection = [0, 0, -1]\n'
                                      '[environment]\nprocedural = "sky"\n')
-    plan = build_plan(load_scene(tmp_path / "s.toml"))
+    plan = resolve_plan(load_scene(tmp_path / "s.toml"), None)
     assert not plan.uses_ibl
     assert not any("ibl" in name for name, _ in plan.buffers)
     assert all("ibl" not in v.flags for v in plan.variants)
@@ -153,10 +153,10 @@ def test_an_environment_without_pbr_materials_builds_no_ibl(tmp_path):
 
 def test_the_ibl_scene_plans_one_maps_buffer_with_its_bytes():
     from wgpurender.core.course import ibl_maps
-    from wgpurender.core.plan import build_plan
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
 
-    plan = build_plan(load_scene(SCENE))
+    plan = resolve_plan(load_scene(SCENE), None)
     rows = [what for name, what in plan.buffers if name == "scene-ibl"]
     assert len(rows) == 1 and f"({16 * (32 * 16 + 5 * 64 * 32 + 32 * 32)} bytes" in rows[0]
     assert ibl_maps.packed_bytes() == 16 * (32 * 16 + 5 * 64 * 32 + 32 * 32)
@@ -232,10 +232,10 @@ def test_environment_table_mistakes_are_one_line(tmp_path):
 
 
 def test_explain_lists_the_maps_with_why_and_bytes():
-    from wgpurender.core.plan import build_plan
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
 
-    text = build_plan(load_scene(SCENE)).explain()
+    text = resolve_plan(load_scene(SCENE), None).explain()
     assert "ibl" in text and "[environment] procedural 'sky'" in text
     assert "scene-ibl: storage: image-based lighting maps" in text and "188416 bytes" in text
 
