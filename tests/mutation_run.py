@@ -739,6 +739,21 @@ MUTATIONS = [
      '    writer = csv.writer(out, lineterminator="\\n", quoting=csv.QUOTE_NONE, escapechar="\\\\")',
      ["tests/test_benchmark_figures.py"]),
     ("wgpurender/bench/post_roofline.py", "    writer.writerow(fields)\n", "", ["tests/test_benchmark_figures.py"]),
+    # polish: the newcomer's small fixes (allow-list for models, the refusal naming the given path, info's scenes)
+    ("wgpurender/core/files/read_jail.py", "for f in (folder, *allowed_by_user())):", "for f in (folder,)):",
+     [JAIL + "|blender"]),
+    ("wgpurender/core/files/read_jail.py", "allow its folder with ${ALLOW_ENV}={target.parent}",
+     "allow its folder with ${ALLOW_ENV}={target}", [JAIL + "|blender"]),
+    ("wgpurender/core/files/read_jail.py", 'os.environ.get(ALLOW_ENV, "").split(os.pathsep) if p.strip()]',
+     'os.environ.get(ALLOW_ENV, "").split(os.pathsep) if not p.strip()]', [JAIL + "|blender or allowed_folders"]),
+    ("wgpurender/core/files/owned_files.py", "        if named is not None and named != folder:",
+     "        if named is None and named != folder:", [OWNED]),
+    ("wgpurender/core/files/assets.py", "if not (scene.parent / name).is_file()]",
+     "if (scene.parent / name).is_file()]", ["tests/test_info_scenes.py"]),
+    ("wgpurender/core/files/assets.py", 'key == "path" or key.endswith("_map")', 'key == "path"',
+     ["tests/test_info_scenes.py"]),
+    ("wgpurender/cli/info.py", '    return [name + (NEEDS_FILES if absent_files(',
+     '    return [name + ("" if absent_files(', ["tests/test_info_scenes.py"]),
 ]
 
 
