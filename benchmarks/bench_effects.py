@@ -29,7 +29,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
-from wgpurender.core.plan import build_plan  # noqa: E402
+from wgpurender.core.plan import resolve_plan  # noqa: E402
 from wgpurender.core.scene import Scene, load_scene  # noqa: E402
 from wgpurender.wgpu_path.device.context import get_context  # noqa: E402
 from wgpurender.wgpu_path.device.frame_loop import run_frame  # noqa: E402
@@ -40,7 +40,7 @@ from wgpurender.wgpu_path.scene import SceneRenderer  # noqa: E402
 
 def time_scene(ctx, scene: Scene, size, frames: int, warmup: int) -> tuple[Stats, dict[str, Stats]]:
     """Wall-time stats of whole frames and GPU-time stats of each pass."""
-    plan = build_plan(scene, size=size)
+    plan = resolve_plan(scene, None, size=size)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, plan.size, plan.output_format)
     timer = PassTimer(ctx)

@@ -1,6 +1,11 @@
 """Shared test set-up: the GPU context, failing any test that triggers a GPU validation message, the
 driver class that picks the reference tolerances, and ``--regenerate-references``.
 
+Tests never read or write the machine-wide caches (~/.cache/wgpurender: SPIR-V, pipeline cache, cffi cdefs, the
+bandwidth record): $XDG_CACHE_HOME points at a folder of this session's own, made here before anything imports
+the package (subprocesses inherit it), and $WGPURENDER_PERF_RECORD is dropped. The suite fails when more tests
+skip than tests/skips.py expects (:func:`pytest_sessionfinish`).
+
 The Vulkan validation layer (apt: vulkan-validationlayers) is switched on through
 $WGPURENDER_VALIDATION before the first adapter is made; its messages arrive on
 the ``wgpu`` logger, and a test during which one arrives fails.
@@ -13,6 +18,8 @@ import tempfile
 
 os.environ.setdefault("WGPURENDER_VALIDATION", "1")
 os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
+os.environ["XDG_CACHE_HOME"] = tempfile.mkdtemp(prefix="wgpurender-test-cache-")  # never ~/.cache/wgpurender
+os.environ.pop("WGPURENDER_PERF_RECORD", None)
 
 import pytest  # noqa: E402
 import wgpu  # noqa: E402,F401  (imported before logging config: wgpu installs its own logger class)
@@ -49,6 +56,28 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
         terminalreporter.section("regenerated references (raw-Vulkan path)")
         for line in lines:
             terminalreporter.write_line(line)
+    problems = getattr(config, "_skip_problems", None)
+    if problems:
+        terminalreporter.section("unexpected skips (tests/skips.py)")
+        for line in problems:
+            terminalreporter.write_line(line)
+
+
+def pytest_sessionfinish(session, exitstatus) -> None:
+    """A suite whose skips grew fails: each skip's reason must be an environment lack tests/skips.py lists, and
+    an uncalibrated bound may skip only where the machine's driver class really differs (override the total with
+    $WGPURENDER_MAX_SKIPS where the environment lacks more, e.g. no anchors, no browser)."""
+    from skips import skip_problems
+
+    reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+    skipped = reporter.stats.get("skipped", []) if reporter is not None else []
+    reasons = [(r.longrepr[2] if isinstance(r.longrepr, tuple) else str(r.longrepr)).removeprefix("Skipped: ")
+               for r in skipped]
+    problems = skip_problems(reasons, session.testscollected)
+    if problems:
+        session.config._skip_problems = problems
+        if session.exitstatus == 0:
+            session.exitstatus = 1
 
 
 _collector = collect_validation_messages()
@@ -61,6 +90,13 @@ def no_gpu_validation_errors():
     yield
     if _collector.messages:
         pytest.fail("GPU validation errors:\n" + "\n".join(_collector.messages[:5]), pytrace=False)
+
+
+@pytest.fixture(autouse=True)
+def own_bandwidth_record(tmp_path_factory, monkeypatch):
+    """Each test its own bandwidth record (core/files/bandwidth.py): a plan's --explain quotes it, so a record one
+    test's benchmark wrote made another test's two explains differ (test_one_plan was flaky so)."""
+    monkeypatch.setenv("WGPURENDER_PERF_RECORD", str(tmp_path_factory.mktemp("bandwidth") / "bandwidth.json"))
 
 
 @pytest.fixture(scope="session")

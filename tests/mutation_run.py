@@ -66,6 +66,13 @@ FLOOR = "tests/test_accuracy_timing_floor.py"
 TEACHING = "tests/test_report_teaching.py"
 EX_INPUT = "tests/test_exercises.py|bad_input or broken_learner"
 INST = "tests/test_instancing.py"
+NOBACK = "tests/test_no_back_doors.py"
+BANDWIDTH = "tests/test_bandwidth_record.py"
+LOUD = "tests/test_loud_checks.py"
+DOCFIG = "tests/test_doc_figures.py"
+USERNUM = "tests/test_user_numbers.py"
+STAGESTATE = "tests/test_stage_state.py"
+MATERIALS = INPUTS + "|material_library"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -419,10 +426,10 @@ MUTATIONS = [
     ("wgpurender/core/files/read_jail.py", "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if p.strip()]",
      "os.environ.get(ALLOW_ENV, \"\").split(os.pathsep) if not p]", [JAIL]),
     ("wgpurender/core/models/gltf_io.py", "for kind in (\"buffers\", \"images\")", "for kind in (\"buffers\",)", [JAIL]),  # noqa: E501
-    ("wgpurender/core/models/mesh.py", "        mtl = read_jail.model_file(path, lib.decode(\"utf-8\", \"replace\"), \"mtllib\", "  # noqa: E501
+    ("wgpurender/core/scene/file_materials.py", "        mtl = read_jail.model_file(path, lib.decode(\"utf-8\", \"replace\"), \"mtllib\", "  # noqa: E501
      "encoded=False)", "        mtl = path.parent / lib.decode(\"utf-8\", \"replace\")", [JAIL]),
-    ("wgpurender/core/models/mesh.py", "            texture = read_jail.model_file(model or path, tokens[-1], where, "
-     "base=path.parent, encoded=False)", "            texture = path.parent / tokens[-1]", [JAIL]),
+    ("wgpurender/core/scene/file_materials.py", "            texture = read_jail.model_file(model or path, name, where, "  # noqa: E501
+     "base=path.parent, encoded=False)", "            texture = path.parent / name", [JAIL]),
     ("wgpurender/core/models/mesh.py", "            return read_jail.model_file(path, name, \"a file trimesh asked for\", "  # noqa: E501
      "encoded=False).read_bytes()", "            return (path.parent / name).read_bytes()", [JAIL]),
     ("wgpurender/core/scene/checker.py", "            if refused is not None:", "            if refused is None:",
@@ -706,10 +713,10 @@ MUTATIONS = [
      ["tests/test_report_progress_stream.py"]),
     ("wgpurender/report/build.py", '["models"][0]["path"]).resolve().parent', '["models"][0]["path"]).resolve()',
      ["tests/test_report_anchors_line.py"]),
-    ("wgpurender/core/models/mesh.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",
+    ("wgpurender/core/scene/file_materials.py", "    return line.strip().split(None, k)[-1]", "    return line.split()[-1]",  # noqa: E501
      ["tests/test_mesh.py|map_file_name"]),
-    ("wgpurender/core/models/mesh.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
-    ("wgpurender/core/models/mesh.py", "(most == 3 and taken and not _is_number(tokens[k]))",
+    ("wgpurender/core/scene/file_materials.py", '"-clamp": 1,', '"-clamp": 0,', ["tests/test_mesh.py|map_file_name"]),
+    ("wgpurender/core/scene/file_materials.py", "(most == 3 and taken and not _is_number(tokens[k]))",
      "(most == 3 and taken and _is_number(tokens[k]))", ["tests/test_mesh.py|map_file_name"]),
     # issue 31 B (perf2): bench perf goes on past a stage the binding cannot draw
     ("wgpurender/bench/perf.py", "        except UserError as err:  # this binding", "        except KeyError as err:  # this binding",  # noqa: E501
@@ -739,6 +746,92 @@ MUTATIONS = [
      '    writer = csv.writer(out, lineterminator="\\n", quoting=csv.QUOTE_NONE, escapechar="\\\\")',
      ["tests/test_benchmark_figures.py"]),
     ("wgpurender/bench/post_roofline.py", "    writer.writerow(fields)\n", "", ["tests/test_benchmark_figures.py"]),
+    # issue 32: one plan without back doors (item 1)
+    ("wgpurender/core/plan/resolve.py", "    return dataclasses.replace(plan, rebuild=resolve_knobs)",
+     "    return plan", [NOBACK]),
+    ("wgpurender/core/plan/resolve.py", "    flags = {k: getattr(knobs, k) for k in KNOB_FLAGS}", "    flags = {}",
+     [NOBACK]),
+    ("wgpurender/core/plan/model.py", "    anisotropy: str = DEFAULT_ANISOTROPY  #", '    anisotropy: str = "scene"  #',
+     [NOBACK]),
+    ("wgpurender/wgpu_path/scene/frame.py", "                  knobs: dict | None = None, anisotropy: str = "
+     "DEFAULT_ANISOTROPY) -> SceneRenderer:", "                  knobs: dict | None = None, anisotropy: str = "
+     "\"scene\") -> SceneRenderer:", [NOBACK]),
+    ("wgpurender/core/plan/anisotropy.py", '    if adapter_type != "CPU":', '    if adapter_type == "CPU":', [NOBACK]),
+    ("wgpurender/core/plan/model.py", "frozenset(f for f in features if f in PLAN_FEATURES)", "frozenset(features)",
+     ["tests/test_one_plan.py|resolved_per_adapter"]),
+    # --explain's truth (item 5)
+    ("wgpurender/core/plan/explain.py", "    if found is None or found.size != size:", "    if found is None:",
+     [BANDWIDTH]),
+    ("wgpurender/core/plan/objects.py", '{True: " + immediates",', '{True: "",', [BANDWIDTH]),
+    ("wgpurender/bench/report.py", '    if program.name == "wgpurender" or', "    if True or", [BANDWIDTH]),
+    # a check that cannot go quiet (item 8)
+    ("wgpurender/verify_matrix.py", 'Cell(target, a, b, "FAIL", comparison, "uncalibrated"',
+     'Cell(target, a, b, "info", comparison, "uncalibrated"', [LOUD]),
+    ("tests/skips.py", "        return uncalibrated.group(1) != uncalibrated.group(2)", "        return True", [LOUD]),
+    ("tests/skips.py", "    if len(reasons) > max_skips():", "    if len(reasons) > max_skips() + 1:", [LOUD]),
+    ("tests/conftest.py", "            session.exitstatus = 1", "            session.exitstatus = 0", [LOUD]),
+    ("wgpurender/core/verdict/tolerances.py", "    if cls is not None and impl and cls != measured_on:",
+     "    if cls is not None and impl and cls == measured_on:", [LOUD]),
+    # every figure from a run (item 4)
+    ("docs/backends.md", "agg=count -->10<!-- /figure -->", "agg=count -->12<!-- /figure -->", [DOCFIG]),
+    ("docs/benchmarks.md", "per=1000 fmt=.0f -->1233<!-- /figure -->", "per=1000 fmt=.0f -->1234<!-- /figure -->",
+     [DOCFIG]),
+    # one materials reader, stages' state (item 2)
+    ("wgpurender/core/scene/load.py", "dataclasses.replace(m, file_materials=read_file_materials(m))",
+     "dataclasses.replace(m, file_materials=None)", [MATERIALS]),
+    ("wgpurender/core/scene/file_materials.py", "    if not model.material_from_file:",
+     "    if model.material_from_file:", [MATERIALS]),
+    ("wgpurender/wgpu_path/stages/cube3d.py", "        if camera != self._camera_bytes:",
+     "        if self._camera_bytes is None:", [STAGESTATE]),
+    # what users read (item 7)
+    ("wgpurender/cli/compare.py", '[("flip_mean", 0.005)]', '[("flip_mean", 0.01)]', [USERNUM]),
+    ("wgpurender/core/view/frame_times.py", "p99 {q[98]:.3f}", "p99 {q[97]:.3f}", [USERNUM]),
+    ("wgpurender/core/view/frame_times.py",
+     "            if self._last is not None and self._last - self._start >= self.spec.warmup_s:",
+     "            if self._last is not None:", [USERNUM]),
+    ("wgpurender/core/view/frame_times.py", "        ms = (now - self._at) * 1e3 / self._frames",
+     "        ms = (now - self._at) * 1e3 / (self._frames + 1)", [USERNUM]),
+    ("wgpurender/core/scene/gltf_materials.py", '9986: ("nearest", "linear")', '9986: ("linear", "nearest")',
+     [USERNUM]),
+    ("wgpurender/core/scene/gltf_materials.py", "tuple(float(c) * float(strength) for c",
+     "tuple(float(c) for c", [USERNUM]),
+    ("wgpurender/core/scene/gltf_materials.py", 'normal_strength=float(normal.get("scale", 1.0))',
+     "normal_strength=1.0", [USERNUM]),
+    ("wgpurender/core/verdict/tolerances.py", "    changed = max(0.01, _round_up(2 * max(",
+     "    changed = max(0.01, _round_up(1 * max(", [USERNUM]),
+    ("wgpurender/core/models/gltf_io.py", "        out = np.maximum(out.astype(np.float32) / info.max, -1.0)",
+     "        out = out.astype(np.float32) / info.max", [USERNUM]),
+    ("wgpurender/core/models/gltf_geometry.py", 'np.float64)[None, :]', 'np.float64)[:, None]', [USERNUM]),
+    ("wgpurender/core/plan/post.py", '    if adapter.adapter_type == "DiscreteGPU":',
+     '    if adapter.adapter_type != "CPU":', [USERNUM]),
+    ("wgpurender/wgpu_path/device/wgpu_private.py", "        device._poller = real", "        pass",
+     ["tests/test_no_poll_thread.py"]),
+    ("wgpurender/wgpu_path/device/context.py", "encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, size)",
+     "encoder.copy_buffer_to_buffer(buffer, 0, staging, 0, size)", ["tests/test_no_poll_thread.py"]),
+    ("wgpurender/raw_path/device/ubo.py", "np.uint32(object_index).tobytes()", "np.uint16(object_index).tobytes()",
+     [USERNUM]),
+    ("wgpurender/raw_path/post/neighbourhood.py", "*(float(params[name]) for name in NEIGHBOUR_SHADERS[p.effect][1]))",
+     "*(float(v) for v in params.values()))", [USERNUM]),
+    ("wgpurender/raw_path/device/ubo.py", "round_up(size, max(16, min_offset_alignment))",
+     "round_up(size, min_offset_alignment)", [USERNUM]),
+    ("wgpurender/report/page.py", "_ms(wgpu and wgpu.gpu_ms), _ms(raw and raw.gpu_ms)",
+     "_ms(raw and raw.gpu_ms), _ms(wgpu and wgpu.gpu_ms)", [USERNUM]),
+    ("wgpurender/report/page.py", '_metric("frame-ms", "frame time (median)", _ms(wgpu and wgpu.frame_ms)',
+     '_metric("frame-ms", "frame time (median)", _ms(wgpu and wgpu.gpu_ms)', [USERNUM]),
+    ("wgpurender/report/timings.py", "    return Timing(statistics.median(samples.frame), gpu)",
+     "    return Timing(gpu, statistics.median(samples.frame))", [USERNUM]),
+    ("wgpurender/webpage/record.py", "        _frame(ctx, record, target, k / fps)",
+     "        _frame(ctx, record, target, (k + 1) / fps)", [USERNUM]),
+    ("wgpurender/webpage/player.js", "      if (d > 1) over += 1;", "      if (d >= 1) over += 1;",
+     ["tests/test_export_browser.py|agrees"]),
+    ("wgpurender/webpage/player.js", "ZOOM ** (e.deltaY < 0 ? 1 : -1)", "ZOOM ** (e.deltaY < 0 ? -1 : 1)",
+     ["tests/test_export_browser.py|scrolling"]),
+    ("wgpurender/verify_matrix.py", "len(load_scene(scene).post) >= 2 else EXACT",
+     "len(load_scene(scene).post) > 2 else EXACT", [LOUD]),
+    ("wgpurender/verify_matrix.py", 'driver_class(get_context("Vulkan").adapter.info["device"])',
+     'driver_class(get_context("Vulkan").adapter.info["description"])', [LOUD]),
+    ("wgpurender/implementations.py", 'rows = {name: {**bounds([m], "lavapipe")', 'rows = {name: {**bounds([m], "gpu")',
+     [LOUD]),
     # polish: the newcomer's small fixes (allow-list for models, the refusal naming the given path, info's scenes)
     ("wgpurender/core/files/read_jail.py", "for f in (folder, *allowed_by_user())):", "for f in (folder,)):",
      [JAIL + "|blender"]),

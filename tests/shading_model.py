@@ -97,12 +97,12 @@ fov_y = {FOV}
 
 def render_wgpu(ctx, text: str, folder: Path) -> np.ndarray:
     """Render a scene text on the wgpu path (paths in it relative to ``folder``): (H, W, 4) pixels."""
-    from wgpurender.core.plan import build_plan
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import parse_scene
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
     scene = parse_scene(text, folder / "scene.toml")
-    renderer = SceneRenderer(ctx, scene, build_plan(scene))
+    renderer = SceneRenderer(ctx, scene, resolve_plan(scene, None))
     target = renderer.create_output()
     return render_frame(ctx, renderer, target)[0]
 

@@ -13,7 +13,7 @@ import pytest
 
 from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import AdapterFacts, resolve_plan
 from wgpurender.core.plan.anisotropy import resolve_anisotropy
 from wgpurender.core.scene import load_scene
 
@@ -44,9 +44,9 @@ def test_unknown_rule_is_one_clear_error():
 def test_plan_uses_and_explains_the_rule():
     """final.toml asks for anisotropy 8: 1 on a CPU adapter with the reason in --explain, 8 on a GPU."""
     scene = load_scene(FINAL)
-    cpu = build_plan(scene, anisotropy="auto", adapter_type="CPU")
-    gpu = build_plan(scene, anisotropy="auto", adapter_type="DiscreteGPU")
-    default = build_plan(scene)
+    cpu = resolve_plan(scene, AdapterFacts("CPU"))
+    gpu = resolve_plan(scene, AdapterFacts("DiscreteGPU"))
+    default = resolve_plan(scene, None)  # no adapter known: the scene's value
     assert {s.spec.max_anisotropy for s in cpu.samplers} == {1}
     assert {s.spec.max_anisotropy for s in gpu.samplers} == {8}
     assert {s.spec.max_anisotropy for s in default.samplers} == {8}

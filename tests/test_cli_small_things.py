@@ -133,9 +133,9 @@ def test_broken_pipe_prints_no_traceback():
 
 
 def test_no_material_library_warning_when_the_scene_gives_the_material(tmp_path, caplog, ctx):
-    """An OBJ whose MTL is missing: loading it alone says so (INFO); rendering it from a scene, which names the
-    texture, says nothing about it."""
-    from wgpurender.core.models.mesh import load_mesh
+    """An OBJ whose MTL is missing: reading its material says so (INFO); rendering it from a scene, which names
+    the texture, says nothing about it."""
+    from wgpurender.core.scene.file_materials import obj_mtl_entry
     from wgpurender.wgpu_path.render import render_any
 
     obj = tmp_path / "quad.obj"
@@ -146,7 +146,7 @@ def test_no_material_library_warning_when_the_scene_gives_the_material(tmp_path,
     scene.write_text('[camera]\neye = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n'
                      '[[models]]\npath = "quad.obj"\nmaterial = { albedo_map = "tex.png", unlit = true }\n')
     with caplog.at_level(logging.INFO):
-        load_mesh(obj)
+        obj_mtl_entry(obj)
     assert any("material library" in r.getMessage() for r in caplog.records)  # the check below can fail
     caplog.clear()
     with caplog.at_level(logging.INFO):

@@ -14,13 +14,19 @@ import numpy as np
 import pytest
 
 from wgpurender.core.models import procedural
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import Knobs as _Knobs
+from wgpurender.core.plan import resolve_knobs
 from wgpurender.core.plan.culling import GPU_CULL_MIN
 from wgpurender.core.scene import parse_scene
 
 SIZE = (96, 48)
 COPIES = 15
 SPACING = 3.0
+
+
+def _resolved(scene, knobs=None, **overrides):
+    """The plan through resolve_plan (core/plan/resolve.py), the knobs as one Knobs."""
+    return resolve_knobs(scene, knobs or _Knobs(), **overrides)
 
 
 def write_scene(folder: Path, copies: int = COPIES) -> Path:
@@ -90,20 +96,20 @@ def test_plan_culls_large_draws_only(tmp_path):
     from wgpurender.core.plan.model import AdapterFacts, Knobs
 
     facts = AdapterFacts("DiscreteGPU", frozenset({"indirect-first-instance"}))
-    small = build_plan(parse_scene(write_scene(tmp_path).read_text(), tmp_path / "row.toml"),
+    small = _resolved(parse_scene(write_scene(tmp_path).read_text(), tmp_path / "row.toml"),
                        knobs=Knobs(adapter=facts))
     assert small.setting("culling") == "off" and not small.culled_draws
     assert "no draw qualifies" in small.explain()
     big_path = write_scene(tmp_path, GPU_CULL_MIN)
-    big = build_plan(parse_scene(big_path.read_text(), big_path), knobs=Knobs(adapter=facts))
+    big = _resolved(parse_scene(big_path.read_text(), big_path), knobs=Knobs(adapter=facts))
     assert big.setting("culling") == "gpu" and len(big.culled_draws) == 1
     assert [p.culled for p in big.pipelines] == [True]  # the unculled pipeline is no longer listed
     text = big.explain()
     assert f"({GPU_CULL_MIN} instances)" in text and "GPU frustum culling" in text
     assert "scene-visible" in text and "scene-indirect" in text
-    bare = build_plan(parse_scene(big_path.read_text(), big_path), knobs=Knobs(adapter=AdapterFacts("DiscreteGPU")))
+    bare = _resolved(parse_scene(big_path.read_text(), big_path), knobs=Knobs(adapter=AdapterFacts("DiscreteGPU")))
     assert bare.setting("culling") == "off" and "lacks 'indirect-first-instance'" in bare.explain()
-    off = build_plan(parse_scene(big_path.read_text(), big_path), knobs=Knobs(adapter=facts, culling="off"))
+    off = _resolved(parse_scene(big_path.read_text(), big_path), knobs=Knobs(adapter=facts, culling="off"))
     assert off.setting("culling") == "off" and not off.culled_draws
 
 
@@ -113,7 +119,7 @@ def test_bad_culling_knob_is_refused(tmp_path):
 
     path = write_scene(tmp_path)
     with pytest.raises(UserError, match="culling"):
-        build_plan(parse_scene(path.read_text(), path), knobs=Knobs(culling="cpu"))
+        _resolved(parse_scene(path.read_text(), path), knobs=Knobs(culling="cpu"))
 
 
 def test_bounding_sphere_holds_every_vertex():

@@ -65,6 +65,8 @@ def test_the_browser_agrees_with_wgpu_native(request, ctx, captures, name):
     wgpu_native = render_wgpu(name, SIZE)
     _assert_within(request, wgpu_native, image, tol)
     assert shown["difference"]["max"] == measure(wgpu_native, image).max_abs  # what the page says about itself
+    over_1 = np.mean(np.abs(wgpu_native.astype(int) - image.astype(int)).max(axis=-1) > 1)  # any channel > 1/255
+    assert shown["difference"]["over1"] == pytest.approx(over_1, abs=0.5 / image[..., 0].size)
 
 
 def test_a_scene_page_shows_its_plan_with_the_browser_fallbacks(captures):
@@ -115,3 +117,29 @@ def test_without_webgpu_the_page_says_so(pages):
                              "canvas: getComputedStyle(document.getElementById('view')).display}))")
     assert "WebGPU" in shown["message"] and shown["error"] == shown["message"]
     assert shown["canvas"] == "none"
+
+
+def test_scrolling_up_on_the_page_moves_the_camera_closer(pages, browser):
+    """As the desktop window (core/view/controls.py: "scroll  zoom (closer / farther)"): a wheel turned up
+    (deltaY < 0) brings the eye closer to the target, turned down moves it away; the view matrix's translation
+    length is the eye's distance."""
+    tab = browser.open(pages["final"])
+    tab.evaluate("window.wgpurender.ready")
+    box = tab.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
+                       "return [r.left + r.width / 2, r.top + r.height / 2]; })()")
+
+    def distance() -> float:
+        view = np.array(tab.evaluate("window.wgpurender.orbitView()"), np.float64).reshape(4, 4).T
+        return float(np.linalg.norm(view[:3, 3]))
+
+    def wheel(delta_y: float) -> None:
+        tab.pipe.send("Input.dispatchMouseEvent", {"type": "mouseWheel", "x": box[0], "y": box[1], "deltaX": 0,
+                                                   "deltaY": delta_y}, session=tab.session)
+        tab.evaluate("new Promise((done) => requestAnimationFrame(() => done(true)))")
+
+    start = distance()
+    wheel(-100)
+    closer = distance()
+    wheel(100)
+    wheel(100)
+    assert closer < start < distance()

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from test_post import ATOL, RTOL, ref_aces, ref_vignette, upload
 
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import parse_scene
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache, cache_stats, device_cache
 from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target, read_texture
@@ -135,9 +135,9 @@ def test_device_caches_go_with_their_device():
 def test_renderer_pipelines_live_in_named_device_caches(ctx, tmp_path):
     """A second renderer of the same scene on the same device compiles no post pipeline again."""
     scene = parse_scene(SCENE, tmp_path / "scene.toml")
-    SceneRenderer(ctx, scene, build_plan(scene))
+    SceneRenderer(ctx, scene, resolve_plan(scene, None))
     before = cache_stats(ctx.device)["post-pipelines"]
-    SceneRenderer(ctx, scene, build_plan(scene))
+    SceneRenderer(ctx, scene, resolve_plan(scene, None))
     after = cache_stats(ctx.device)["post-pipelines"]
     assert after["misses"] == before["misses"] and after["hits"] > before["hits"]
 
@@ -147,12 +147,12 @@ def test_scene_renderer_resized_equals_a_fresh_renderer(ctx, tmp_path, sizes):
     """A renderer drawn at one size, then another (new aspect: the cached camera upload must be redone; new
     attachments: cached views must be remade), gives exactly the bytes a new renderer gives at that size."""
     scene = parse_scene(SCENE, tmp_path / "scene.toml")
-    reused = SceneRenderer(ctx, scene, build_plan(scene))
+    reused = SceneRenderer(ctx, scene, resolve_plan(scene, None))
     first, second = sizes
     for size in (first, second):
         target = create_target(ctx, size, reused.plan.output_format, usage=TARGET_USAGE | reused.target_usage)
         got = render_frame(ctx, reused, target)[0]
         fresh_target = create_target(ctx, size, reused.plan.output_format, usage=TARGET_USAGE | reused.target_usage)
-        want = render_frame(ctx, SceneRenderer(ctx, scene, build_plan(scene)), fresh_target)[0]
+        want = render_frame(ctx, SceneRenderer(ctx, scene, resolve_plan(scene, None)), fresh_target)[0]
         np.testing.assert_array_equal(got, want)
         assert got[..., :3].max() > 0, "something was drawn"

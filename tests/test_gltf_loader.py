@@ -193,7 +193,7 @@ def test_unnormalized_integer_attributes_are_refused(tmp_path):
 
 def test_mtl_colour_opacity_and_illum_are_read(tmp_path):
     """Kd (a single value is grey), d and Tr, illum; a Kd that is not a number is refused with FILE:LINE."""
-    from wgpurender.core.models.mesh import parse_mtl
+    from wgpurender.core.scene.file_materials import parse_mtl
 
     (tmp_path / "m.mtl").write_text("newmtl a\nKd 0.5 0.25 1\nd 0.4\nillum 0\nnewmtl b\nKd 0.3\nTr 0.25\n")
     found = parse_mtl(tmp_path / "m.mtl")

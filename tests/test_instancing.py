@@ -15,7 +15,8 @@ import pytest
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.models import procedural
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import Knobs as _Knobs
+from wgpurender.core.plan import resolve_knobs
 from wgpurender.core.plan.batches import instance_blocks
 from wgpurender.core.scene import parse_scene
 from wgpurender.core.view import transforms
@@ -32,6 +33,11 @@ albedo_color = [1, 1, 1]
 unlit = true
 """
 RENDER = f"\n[render]\nsize = [{SIZE[0]}, {SIZE[1]}]\nmsaa = 1\n"
+
+
+def _resolved(scene, knobs=None, **overrides):
+    """The plan through resolve_plan (core/plan/resolve.py), the knobs as one Knobs."""
+    return resolve_knobs(scene, knobs or _Knobs(), **overrides)
 
 
 @pytest.fixture(autouse=True)
@@ -121,10 +127,10 @@ def test_bad_instances_block_is_one_line(cube, tmp_path, block, words):
 # -- the plan --------------------------------------------------------------------------------------------------
 def test_ten_thousand_copies_are_one_draw(cube):
     scene = parse_scene(HEAD + model(cube, extra="instances = { grid = [100, 100, 1] }"), cube.parent / "s.toml")
-    plan = build_plan(scene)
+    plan = _resolved(scene)
     assert len(plan.scene_pass.draws) == 1
     assert plan.scene_pass.draws[0].instance_count == 10_000
-    small = build_plan(parse_scene(HEAD + model(cube, extra="instances = { grid = [2, 1, 1] }"),
+    small = _resolved(parse_scene(HEAD + model(cube, extra="instances = { grid = [2, 1, 1] }"),
                                    cube.parent / "s.toml"))
     assert plan.object_counts() == small.object_counts()  # O(1) in the count: every GPU object, by kind
 
@@ -132,7 +138,7 @@ def test_ten_thousand_copies_are_one_draw(cube):
 def test_separate_models_of_one_mesh_and_material_batch(cube):
     body = "".join(model(cube, extra=f"transform = {{ translate = [{k}, 0, 0] }}") for k in range(5))
     body += model(cube, material='{ albedo_color = [1, 0, 0], unlit = true }')  # other values: its own draw
-    plan = build_plan(parse_scene(HEAD + body, cube.parent / "s.toml"))
+    plan = _resolved(parse_scene(HEAD + body, cube.parent / "s.toml"))
     draws = plan.scene_pass.draws
     assert [d.instance_count for d in draws] == [5, 1]
     assert [d.first_instance for d in draws] == [0, 5]
@@ -149,7 +155,7 @@ def test_equal_materials_share_one_bind_group(cube, tmp_path):
     save_png(tex, np.full((4, 4, 4), 200, np.uint8))
     textured = f'{{ albedo_map = "{tex.as_posix()}", unlit = true }}'
     body = model(cube, material=textured) + model(other, material=textured)  # two meshes: two draws
-    plan = build_plan(parse_scene(HEAD + body, tmp_path / "s.toml"))
+    plan = _resolved(parse_scene(HEAD + body, tmp_path / "s.toml"))
     assert len(plan.scene_pass.draws) == 2
     groups = [o for o in plan.objects if o.kind == "bind_group" and o.name.startswith("material")]
     assert [g.count for g in groups] == [1]
@@ -160,7 +166,7 @@ def test_blended_draws_are_never_batched(cube):
 
     from wgpurender.core.plan.batches import batch_draws
 
-    plan = build_plan(parse_scene(HEAD + model(cube), cube.parent / "s.toml"))
+    plan = _resolved(parse_scene(HEAD + model(cube), cube.parent / "s.toml"))
     (draw,) = plan.scene_pass.draws
     twins = [replace(draw, label=f"twin {k}", transform=tuple(map(tuple, transforms.translate((k, 0, 0)))))
              for k in range(3)]
@@ -172,7 +178,7 @@ def test_blended_draws_are_never_batched(cube):
 
 def test_mirrored_copies_get_their_own_draw(cube, tmp_path):
     np.save(tmp_path / "m.npy", np.stack([np.eye(4), np.diag([-1.0, 1, 1, 1]), transforms.translate((2, 0, 0))]))
-    plan = build_plan(parse_scene(HEAD + model(cube, extra='instances = { file = "m.npy" }'), tmp_path / "s.toml"))
+    plan = _resolved(parse_scene(HEAD + model(cube, extra='instances = { file = "m.npy" }'), tmp_path / "s.toml"))
     draws = plan.scene_pass.draws
     assert [d.instance_count for d in draws] == [2, 1]
     assert [plan.pipeline(d.pipeline_key).front_face for d in draws] == ["ccw", "cw"]
@@ -183,7 +189,7 @@ def test_instance_blocks_match_the_hand_packer(cube, tmp_path):
     mats = np.stack([transforms.translate(rng.normal(size=3)) @ transforms.rotate(rng.normal(size=3), k)
                      @ transforms.scale(rng.uniform(0.2, 2, 3) * (-1 if k % 2 else 1)) for k in range(6)])
     np.save(tmp_path / "m.npy", mats)
-    plan = build_plan(parse_scene(HEAD + model(cube, extra='instances = { file = "m.npy" }'), tmp_path / "s.toml"))
+    plan = _resolved(parse_scene(HEAD + model(cube, extra='instances = { file = "m.npy" }'), tmp_path / "s.toml"))
     blocks = instance_blocks(plan.scene_pass.draws)
     order = np.concatenate([d.world_matrices() for d in plan.scene_pass.draws])
     assert blocks.tobytes() == b"".join(pack_object(w) for w in order)
@@ -225,7 +231,7 @@ def test_instanced_scene_equals_separate_models_on_both_paths(ctx, cube, tmp_pat
     sep.mkdir()
     b_text = separate_copies(sep, cube, worlds).replace('material = "white"', f"material = {material}")
     b = scene_file(sep, b_text, lit)
-    assert len(build_plan(parse_scene(b.read_text(), b)).scene_pass.draws) == 3  # the reference is unbatched
+    assert len(_resolved(parse_scene(b.read_text(), b)).scene_pass.draws) == 3  # the reference is unbatched
     wgpu_a, raw_a = render_both(a, ctx)
     wgpu_b, raw_b = render_both(b, ctx)
     assert (wgpu_a.reshape(-1, 4)[:, :3] > 0).any(axis=1).mean() > 0.03  # the copies cover ~5% of it
@@ -272,7 +278,7 @@ def test_consecutive_draws_of_one_pipeline_bind_their_own_mesh_and_textures(ctx,
             + model(big, f'{{ albedo_map = "{(tmp_path / "blue.png").as_posix()}", unlit = true }}',
                     "transform = { translate = [2, 0, 0] }"))
     path = scene_file(tmp_path, body)
-    plan = build_plan(parse_scene(path.read_text(), path))
+    plan = _resolved(parse_scene(path.read_text(), path))
     assert len(plan.pipelines) == 1 and len(plan.scene_pass.draws) == 2
     img = render_scene_file(path, ctx=ctx, frames=1).pixels
     scene = parse_scene(path.read_text(), path)

@@ -21,8 +21,9 @@ from gltf_gen import write_container
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.models import procedural as proc
-from wgpurender.core.models.mesh import build_mesh, index_dtype, load_mesh, parse_mtl
+from wgpurender.core.models.mesh import build_mesh, index_dtype, load_mesh
 from wgpurender.core.models.tangents import area_weighted_normals
+from wgpurender.core.scene.file_materials import obj_mtl_entry, parse_mtl
 
 ROOT = Path(__file__).resolve().parent.parent
 QUAD_POS = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], np.float32)
@@ -81,12 +82,8 @@ def test_gltf_uvs_come_back_exactly_as_the_file_stores_them(tmp_path, suffix, ma
     geom = next(iter(trimesh.load_scene(str(path), process=False).geometry.values()))
     if material:
         np.testing.assert_allclose(geom.visual.uv, np.c_[QUAD_UV[:, 0], 1 - QUAD_UV[:, 1]], atol=1e-7)
-        assert set(mesh.material.textures) == {"base_color", "normal"}
-        assert mesh.material.textures["base_color"].path == (tmp_path / "albedo.png").resolve()
-        assert mesh.material.textures["base_color"].srgb and not mesh.material.textures["normal"].srgb
     else:
         assert getattr(geom.visual, "uv", None) is None
-        assert mesh.material is None
 
 
 def write_quad_obj(tmp_path: Path) -> Path:
@@ -114,11 +111,11 @@ def test_obj_v_is_converted_and_per_corner_attributes_survive(tmp_path):
     np.testing.assert_allclose(mesh.positions[mesh.indices.ravel()],
                                QUAD_POS[[0, 1, 2, 0, 2, 3, 1, 2, 3]], atol=1e-7)
     np.testing.assert_allclose(mesh.normals, np.tile([0, 0.6, 0.8], (5, 1)), atol=1e-6)
-    tex = mesh.material.textures
-    assert mesh.material.name == "brick"
-    assert tex["base_color"].path == (tmp_path / "textures/albedo.png").resolve() and tex["base_color"].srgb
-    assert tex["normal"].path == (tmp_path / "textures/normal.png").resolve() and not tex["normal"].srgb
-    assert tex["roughness"].path == (tmp_path / "rough.png").resolve()
+    entry = obj_mtl_entry(tmp_path / "quad.obj")  # the scene's reader of the OBJ's material (its first usemtl)
+    assert entry.name == "brick"
+    assert entry.textures == {"base_color": (tmp_path / "textures/albedo.png").resolve(),
+                              "normal": (tmp_path / "textures/normal.png").resolve(),
+                              "roughness": (tmp_path / "rough.png").resolve()}
     assert set(parse_mtl(tmp_path / "quad.mtl")) == {"brick", "other"}
 
 
@@ -144,7 +141,7 @@ def test_ply_with_normals_and_uvs(tmp_path):
     mesh = load_mesh(tmp_path / "q.ply")
     np.testing.assert_allclose(mesh.uvs, QUAD_UV, atol=1e-7)
     np.testing.assert_allclose(mesh.normals, np.tile([0, 0, 1], (4, 1)))
-    assert mesh.has_uvs and mesh.material is None
+    assert mesh.has_uvs
 
 
 def test_stl_has_flat_normals_and_no_uvs(tmp_path):
@@ -388,14 +385,17 @@ def test_committed_obj_asset_loads_with_its_textures():
     np.testing.assert_allclose(mesh.uvs, box.uvs, atol=1e-6)
     np.testing.assert_allclose(mesh.normals, box.normals, atol=1e-6)
     assert mesh.index_format == "uint16" and mesh.triangle_count == 12
-    assert set(mesh.material.textures) == {"base_color", "normal", "roughness"}
-    for ref in mesh.material.textures.values():
-        assert ref.load().shape == (512, 512, 4)
+    from wgpurender.core.scene.texture_pixels import load_image
+
+    textures = obj_mtl_entry(ROOT / "assets" / "models" / "brick_cube.obj").textures
+    assert set(textures) == {"base_color", "normal", "roughness"}
+    for path in textures.values():
+        assert load_image(path).shape == (512, 512, 4)
 
 
 def test_glb_embedded_texture_is_returned_as_bytes(tmp_path):
-    """A GLB whose base-colour image lives in a bufferView (no file): the TextureRef carries the PNG bytes and
-    load() decodes them to the exact pixels written (2x3 RGBA)."""
+    """A GLB whose base-colour image lives in a bufferView (no file): the scene's material names it as
+    ``tex.glb#images[0]`` and the texture loader decodes it to the exact pixels written (2x3 RGBA)."""
     import io
 
     from PIL import Image
@@ -411,9 +411,12 @@ def test_glb_embedded_texture_is_returned_as_bytes(tmp_path):
     doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(png.getvalue())})
     doc["images"][0] = {"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"}
     write_container(path, doc, binary + png.getvalue())
-    ref = load_mesh(path).material.textures["base_color"]
-    assert ref.path is None and ref.data == png.getvalue() and ref.srgb
-    np.testing.assert_array_equal(ref.load(), pixels)
+    from wgpurender.core.scene.gltf_materials import embedded_image_path, model_materials
+    from wgpurender.core.scene.texture_pixels import load_image
+
+    albedo = model_materials(path, "tex").materials[0].albedo_map
+    assert albedo == embedded_image_path(path, 0)
+    np.testing.assert_array_equal(load_image(albedo), pixels)
 
 
 @pytest.mark.parametrize("statement, name", [
@@ -427,4 +430,5 @@ def test_a_map_file_name_is_the_rest_of_the_line_after_its_options(tmp_path, sta
     material whose texture's name has a space read 'albedo.png' for 'brick albedo.png')."""
     (tmp_path / "m.mtl").write_text(f"newmtl m\n{statement}\n")
     texture = parse_mtl(tmp_path / "m.mtl")["m"].textures["base_color"]
-    assert texture.path == (tmp_path / name).resolve()
+    assert texture == (tmp_path / name).resolve()
+

@@ -87,3 +87,12 @@ def test_read_buffer_wakes_no_thread(ctx, wakes):
     got = np.frombuffer(ctx.read_buffer(src, 4, 20), dtype=np.uint32)
     np.testing.assert_array_equal(got, words[1:6])
     assert wakes == []
+
+
+def test_the_poll_thread_is_restored_after_a_readback(ctx):
+    """The stand-in poller lives for one map_async only: after a readback the device's own poller is back, so
+    wgpu-py's own maps (and anything else asking it for a token) still wake the thread."""
+    poller = ctx.device._poller
+    src = ctx.device.create_buffer_with_data(data=bytes(range(16)), usage=wgpu.BufferUsage.COPY_SRC)
+    assert ctx.read_buffer(src, 8) == bytes(range(8, 16))
+    assert ctx.device._poller is poller

@@ -14,7 +14,7 @@ import numpy as np
 from wgpurender.core.course.shading import AMBIENT, SPECULAR
 from wgpurender.core.files.imageio import save_png
 from wgpurender.core.models import procedural
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import parse_scene
 from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
@@ -28,7 +28,7 @@ ROUGHNESS = 0.3
 
 def _render(ctx, text: str, folder: Path) -> np.ndarray:
     scene = parse_scene(text, folder / "scene.toml")
-    renderer = SceneRenderer(ctx, scene, build_plan(scene))
+    renderer = SceneRenderer(ctx, scene, resolve_plan(scene, None))
     target = renderer.create_output()
     return render_frame(ctx, renderer, target)[0].astype(np.float64)
 

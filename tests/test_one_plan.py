@@ -98,10 +98,9 @@ def test_every_entry_point_draws_one_plan(scene, ctx, capsys, tmp_path):
 def test_the_anisotropy_rule_is_resolved_per_adapter_on_both_paths(ctx):
     """What made render and reference differ before (issue 20): the raw path now applies the same rule."""
     from wgpurender.raw_path.device.context import get_vulkan
-    from wgpurender.wgpu_path.scene import adapter_facts
 
     final = REPO / "assets" / "scenes" / "final.toml"
-    facts = adapter_facts(ctx)
+    facts = ctx.adapter_facts()
     assert get_vulkan().adapter_facts() == facts  # one device, two paths, the same facts
     wanted = 1 if facts.adapter_type == "CPU" else 8  # core/plan/anisotropy.py's rule; final.toml asks for 8
     assert [s.spec.max_anisotropy for s in w.plan(final).samplers] == [wanted]

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import AdapterFacts, Knobs, build_plan, explain_scene, main, plan_scene_file
+from wgpurender.core.plan import AdapterFacts, Knobs, explain_scene, main, resolve_knobs, resolve_plan
 from wgpurender.core.scene import load_scene
 
 REPO = Path(__file__).resolve().parent.parent
@@ -67,7 +67,7 @@ def make(tmp_path: Path):
     def _make(body: str, **overrides):
         path = tmp_path / "scene.toml"
         path.write_text(textwrap.dedent(HEAD + body))
-        return build_plan(load_scene(path), **overrides)
+        return resolve_knobs(load_scene(path), overrides.pop("knobs", None) or Knobs(), **overrides)
 
     return _make
 
@@ -336,7 +336,7 @@ def test_example_scenes_explain(capsys):
     for path in scenes:
         if path not in needs_anchors:
             assert "passes:" in explain_scene(path)
-    unlit = plan_scene_file(REPO / "assets" / "scenes" / "unlit.toml")
+    unlit = resolve_plan(REPO / "assets" / "scenes" / "unlit.toml", None)
     assert [v.key for v in unlit.variants] == ["base"] and unlit.post_passes == ()
     assert main([str(REPO / "assets" / "scenes" / "brick.toml")]) == 0
     assert "tonemap" in capsys.readouterr().out

@@ -38,12 +38,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import load_scene
 from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target, read_texture
 from wgpurender.wgpu_path.post import output_usage
 from wgpurender.wgpu_path.scene import SceneRenderer
-from wgpurender.wgpu_path.scene.frame import adapter_facts
 
 REPO = Path(__file__).resolve().parent.parent
 ASSETS = REPO / "assets"
@@ -208,7 +207,7 @@ def build_and_record(ctx, monkeypatch, scene_path: Path, post_path: str, size=SI
     scene = load_scene(scene_path)
     knobs = {"post_path": "compute", "output_storage": False} if post_path == "compute-swapchain" else {
         "post_path": post_path}
-    plan = build_plan(scene, size=size).with_knobs(**knobs, adapter=adapter_facts(ctx))
+    plan = resolve_plan(scene, None, size=size).with_knobs(**knobs, adapter=ctx.adapter_facts())
     target = create_target(ctx, plan.size, plan.output_format, usage=TARGET_USAGE | output_usage(plan.post_passes))
     encoder = Encoder(ctx.device.create_command_encoder())
     monkeypatch.delattr(ctx.device, "_wgpurender_caches", raising=False)  # a fresh device, as far as caches go
@@ -377,7 +376,7 @@ def test_the_raw_path_builds_the_plans_images_and_pipelines(monkeypatch, tmp_pat
     monkeypatch.setattr(scene_subpass, "create_pipeline", pipeline)
     size = None if name == "empty" else SIZE
     raw_frame.render_scene_reference(path, size=size)
-    plan = build_plan(load_scene(path), size=size)
+    plan = resolve_plan(load_scene(path), None, size=size)
     shared = [(a.format, a.sample_count) for a in plan.attachments
               if a.role in ("msaa-color", "depth") or (a.role == "scene-color" and plan.post_steps)]
     target = (plan.output_format, 1)

@@ -22,12 +22,10 @@ from wgpurender.core.verdict.tolerances import (
     load_table,
     tolerance,
 )
-from wgpurender.raw_path import reference_stage_names, render_reference
+from wgpurender.raw_path import reference_stage_names
 from wgpurender.raw_path.make_references import (
     REFERENCE_DIR,
     REFERENCE_SIZE,
-    SCENE_DIR,
-    SCENE_REFERENCE_SIZE,
     SCENE_REFERENCES,
 )
 
@@ -36,9 +34,9 @@ PERTURBED = ["triangle", "msaa", "msaa-post", "3d", "textured", "scene_final_sub
 
 
 def _fresh(name: str) -> np.ndarray:
-    if name in SCENE_REFERENCES:
-        return to_uint8(render_reference(str(SCENE_DIR / SCENE_REFERENCES[name]), size=SCENE_REFERENCE_SIZE))
-    return to_uint8(render_reference(name, REFERENCE_SIZE))
+    from wgpurender.raw_path.make_references import render_named_reference
+
+    return render_named_reference(name)  # as make_references renders it (scenes: their own anisotropy)
 
 
 def _busiest_block(image: np.ndarray, size: int) -> tuple[int, int]:

@@ -109,12 +109,14 @@ def test_nul_in_texture_path_is_one_line(tmp_path):
 
 def test_nul_in_a_material_library_texture_path_is_a_user_error(tmp_path):
     from wgpurender.core.errors import UserError
-    from wgpurender.core.models.mesh import load_mesh
+    from wgpurender.core.scene import load_scene
 
     (tmp_path / "model.mtl").write_bytes(b"newmtl m\nmap_Kd a\x00b.png\n")
     (tmp_path / "model.obj").write_text("mtllib model.mtl\nusemtl m\n" + OBJ_TRIANGLE + "f 1 2 3\n")
+    scene = tmp_path / "scene.toml"  # the model names no material: it draws with the OBJ's, read when the scene loads
+    scene.write_text(scene_text(None) + '\n[[models]]\npath = "model.obj"\n')
     with pytest.raises(UserError, match=r"model\.mtl:2: texture path 'a\\x00b\.png' contains a control character"):
-        load_mesh(tmp_path / "model.obj")  # was a ValueError from Path.resolve
+        load_scene(scene)  # the scene reads the OBJ's own material (was a ValueError from Path.resolve)
 
 
 def test_newline_in_a_value_is_escaped_onto_one_line(tmp_path):

@@ -15,7 +15,7 @@ from wgpurender.cli import main
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.imageio import save_png
 from wgpurender.core.models import procedural
-from wgpurender.core.plan import build_plan
+from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import parse_scene
 from wgpurender.wgpu_path.device.targets import read_texture
 from wgpurender.wgpu_path.scene import SceneRenderer, render_frame, render_scene_file, shader_source
@@ -51,7 +51,7 @@ clear_color = [0.0, 0.0, 0.0, 1.0]
 
 def _renderer(ctx, text: str, folder: Path, **overrides) -> SceneRenderer:
     scene = parse_scene(text, folder / "scene.toml")
-    return SceneRenderer(ctx, scene, build_plan(scene, **overrides))
+    return SceneRenderer(ctx, scene, resolve_plan(scene, None, **overrides))
 
 
 def _render(ctx, renderer: SceneRenderer) -> np.ndarray:
@@ -95,7 +95,7 @@ def _scene_and_plan(path, **overrides):
     from wgpurender.core.scene import load_scene
 
     scene = load_scene(path)
-    return scene, build_plan(scene, **overrides)
+    return scene, resolve_plan(scene, None, **overrides)
 
 
 # -- post chain and MSAA ----------------------------------------------------------------------
@@ -251,7 +251,7 @@ def test_immediates_and_uniform_fallback_give_the_same_image(ctx, tmp_path):
     if not ctx.has("immediates"):
         pytest.skip("adapter has no immediates: only the fallback can run")
     scene = parse_scene(LIT_CUBE, tmp_path / "scene.toml")
-    plan = build_plan(scene)
+    plan = resolve_plan(scene, None)
     with_immediates = _render(ctx, SceneRenderer(ctx, scene, plan.with_knobs(immediates="on")))
     fallback_renderer = SceneRenderer(ctx, scene, plan.with_knobs(immediates="off"))
     assert "immediates: off <- knob immediates" in fallback_renderer.plan.explain()

@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wgpurender.core.plan import plan_scene_file
+from wgpurender.core.plan import resolve_plan
 from wgpurender.core.verdict.compare import compare_images
 from wgpurender.raw_path.post.neighbourhood import split_chain
 from wgpurender.raw_path.scene import render_scene_reference
@@ -94,7 +94,7 @@ def wgpu_images(ctx):
 
 def test_every_repository_scene_is_covered():
     """The scenes with neighbourhood effects are among those compared: final (fxaa), brick (fxaa), retro (sharpen)."""
-    effects = {name: [s.effect for s in plan_scene_file(SCENES / name).post_steps]
+    effects = {name: [s.effect for s in resolve_plan(SCENES / name, None).post_steps]
                for name in ALL_SCENES if not needs_anchors(name)}
     assert "fxaa" in effects["final.toml"] and "fxaa" in effects["brick.toml"] and "sharpen" in effects["retro.toml"]
 
@@ -117,7 +117,7 @@ def test_scene_matches_wgpu(wgpu_images, name):
     and FLIP <= 0.005."""
     path = scene_path(name)
     raw, wgpu_pixels = render_scene_reference(path, size=SIZE), wgpu_images(name)
-    effects = [s.effect for s in plan_scene_file(path).post_steps]
+    effects = [s.effect for s in resolve_plan(path, None).post_steps]
     if neighbourhood_then_pixel(effects):
         result = compare_images(wgpu_pixels, raw)
         assert result.max_abs <= 1 and result.flip_mean <= FLIP_THRESHOLD, result.summary()
@@ -163,10 +163,10 @@ def test_sharpen_matches_a_numpy_laplacian(tmp_path):
 
 def test_split_chain_cuts_before_each_neighbourhood_effect():
     """retro.toml: tonemap, sepia, vignette | sharpen, srgb; final.toml: tonemap | fxaa, vignette."""
-    head, segments = split_chain(plan_scene_file(SCENES / "retro.toml").post_steps)
+    head, segments = split_chain(resolve_plan(SCENES / "retro.toml", None).post_steps)
     assert [p.effect for p in head] == ["tonemap", "sepia", "vignette"]
     assert [(s.effect.effect, [p.effect for p in s.tail]) for s in segments] == [("sharpen", ["srgb"])]
-    head, segments = split_chain(plan_scene_file(SCENES / "final.toml").post_steps)
+    head, segments = split_chain(resolve_plan(SCENES / "final.toml", None).post_steps)
     assert [p.effect for p in head] == ["tonemap"]
     assert [(s.effect.effect, [p.effect for p in s.tail]) for s in segments] == [("fxaa", ["vignette"])]
 

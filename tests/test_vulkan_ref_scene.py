@@ -40,7 +40,7 @@ import pytest
 from imagecheck import assert_close, assert_same_render, assert_within_tolerance
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.imageio import load_png, to_uint8
+from wgpurender.core.files.imageio import load_png
 from wgpurender.raw_path import render_reference
 from wgpurender.raw_path.scene import render_scene_reference
 
@@ -235,17 +235,12 @@ def test_glm_vulkan_scene_matches_wgpu(request, ctx, tmp_path):
 def test_scene_references_are_current(request, name, raw_driver_class):
     """assets/reference/scene_*.png against a fresh raw render at 320x240, within the table's bounds
     (assets/reference/tolerances.toml, this driver class's row); written only by the raw path."""
-    from wgpurender.raw_path.make_references import (
-        SCENE_DIR,
-        SCENE_REFERENCE_SIZE,
-        SCENE_REFERENCES,
-        reference_path,
-    )
+    from wgpurender.raw_path.make_references import reference_path, render_named_reference
 
     path = reference_path(name)
     assert path.is_file(), f"{path} missing: run pytest --regenerate-references"
-    fresh = render_reference(str(SCENE_DIR / SCENE_REFERENCES[name]), size=SCENE_REFERENCE_SIZE)
-    assert_within_tolerance(request, name, load_png(path), to_uint8(fresh), raw_driver_class)
+    fresh = render_named_reference(name)  # as make_references renders it: the scene's anisotropy (it says so)
+    assert_within_tolerance(request, name, load_png(path), fresh, raw_driver_class)
 
 
 def test_reference_command_renders_a_scene(tmp_path):
@@ -268,19 +263,19 @@ def test_unsupported_output_format_is_refused():
 def test_every_problem_is_listed_at_once(tmp_path):
     """Too many effects and an unsupported output format: both named in one message. Neighbourhood effects
     (fxaa, sharpen) are no longer problems: they run in passes of their own (test_vulkan_ref_neighbourhood.py)."""
-    from wgpurender.core.plan import build_plan
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
     from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
     from wgpurender.raw_path.scene import unsupported
 
     text = (SCENES / "final.toml").read_text() + '\n[[post]]\neffect = "sepia"\n' * MAX_POST_STEPS
-    plan = build_plan(load_scene(scene_file(tmp_path, "long.toml", text)), output_format="bgra8unorm-srgb")
+    plan = resolve_plan(load_scene(scene_file(tmp_path, "long.toml", text)), None, output_format="bgra8unorm-srgb")
     problems = unsupported(plan)
     assert len(problems) == 2 and "post effects" in problems[0] and "bgra8unorm-srgb" in problems[1], problems
     assert unsupported(plan_of(SCENES / "final.toml")) == [] and unsupported(plan_of(SCENES / "retro.toml")) == []
 
 
 def plan_of(path: Path):
-    from wgpurender.core.plan import plan_scene_file
+    from wgpurender.core.plan import resolve_plan
 
-    return plan_scene_file(path)
+    return resolve_plan(path, None)

@@ -49,10 +49,13 @@ pytestmark = pytest.mark.skipif(
 
 
 def _render(ctx, chapter: str) -> tuple[np.ndarray, np.ndarray]:
+    from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
     from wgpurender.wgpu_path.scene import render_scene_file
 
     scene, ref = CHAPTERS[chapter]
-    result = render_scene_file(ROOT / "assets" / "scenes" / scene, ctx=ctx, frames=1)
+    # the C++ frames filter with the scene's anisotropy 16: so does this render (REFERENCE_ANISOTROPY), where
+    # `wgpurender render` on a CPU adapter draws 1 (core/plan/anisotropy.py, reference_difference)
+    result = render_scene_file(ROOT / "assets" / "scenes" / scene, ctx=ctx, frames=1, anisotropy=REFERENCE_ANISOTROPY)
     return load_png(ANCHORS / ref)[..., :3], result.pixels[..., :3]
 
 

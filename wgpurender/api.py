@@ -230,9 +230,8 @@ def check_static(target: str, t: float | None) -> None:
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
     """The one plan (core/plan/resolve.py) for the wgpu path on ``ctx``'s adapter (None: no adapter)."""
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.wgpu_path.scene import adapter_facts
 
-    facts = adapter_facts(ctx) if ctx is not None else None
+    facts = ctx.adapter_facts() if ctx is not None else None
     return resolve_plan(scene, facts, size=size, output_format=format, msaa=msaa, anisotropy=anisotropy, **knobs)
 
 

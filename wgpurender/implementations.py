@@ -65,18 +65,22 @@ def target_path(name: str) -> str:
 
 
 def render_wgpu(name: str, size: tuple[int, int], backend: str | None = None, t: float = 0.0) -> np.ndarray:
-    """One target on this process's wgpu backend: 8-bit RGBA, top row first."""
+    """One target on this process's wgpu backend: 8-bit RGBA, top row first; drawn with the browser page's
+    anisotropy (REFERENCE_ANISOTROPY: the matrix's note says what that changes against ``render T``)."""
     from wgpurender.core.files.imageio import to_uint8
+    from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
     from wgpurender.wgpu_path.render import render_any
 
-    return to_uint8(render_any(target_path(name), size=size, t=t, backend=backend).pixels)
+    return to_uint8(render_any(target_path(name), size=size, t=t, backend=backend,
+                               anisotropy=REFERENCE_ANISOTROPY).pixels)
 
 
 def render_raw(name: str, size: tuple[int, int]) -> np.ndarray:
     from wgpurender.core.files.imageio import to_uint8
+    from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
     from wgpurender.raw_path import render_reference
 
-    return to_uint8(render_reference(target_path(name), size))
+    return to_uint8(render_reference(target_path(name), size, anisotropy=REFERENCE_ANISOTROPY))
 
 
 def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple[dict, dict, str]:

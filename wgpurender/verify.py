@@ -35,6 +35,7 @@ import numpy as np
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import scene_dir
 from wgpurender.core.files.imageio import load_png, save_png, to_uint8
+from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY, reference_difference
 from wgpurender.core.verdict.tolerances import (
     Metrics,
     Tolerance,
@@ -92,6 +93,7 @@ class Report:
     driver_class: str
     date: str
     rows: list[Row] = field(default_factory=list)
+    differs: str = ""  # what this run draws unlike `wgpurender render T` on this adapter, and why ('' when nothing)
 
     @property
     def failed(self) -> list[Row]:
@@ -208,11 +210,11 @@ def verify_scene(matrix: Matrix, scene_file: Path, committed: dict[str, str]) ->
         matrix.skip("scene", name, "wgpu vs raw", f"needs {ANCHORS} (the tutorial's model and texture), absent")
         return
     size = _scene_size(scene_file)
-    # Both paths draw resolve_plan's plan for their adapter, with the scene's own anisotropy ("scene"): the
-    # committed references and the C++ tutorial frames were made with it, on every adapter.
-    ours = render_scene_file(scene_file, size=size, frames=1, anisotropy="scene").pixels
+    # Both paths draw resolve_plan's plan for their adapter, with the scene's own anisotropy: the committed
+    # references and the C++ tutorial frames were made with it, on every adapter (run_verify's note says so).
+    ours = render_scene_file(scene_file, size=size, frames=1, anisotropy=REFERENCE_ANISOTROPY).pixels
     try:
-        raw = render_scene_reference(scene_file, size=size, anisotropy="scene")
+        raw = render_scene_reference(scene_file, size=size, anisotropy=REFERENCE_ANISOTROPY)
     except UserError as err:
         why = str(err).split("cannot render this scene: ")[-1].split(";")[0]  # the first reason, no path
         matrix.skip("scene", name, "wgpu vs raw", f"the raw path cannot render it yet: {why}")
@@ -240,7 +242,8 @@ def run_verify(out: Path, quick: bool = False) -> Report:
     cls = driver_class(vctx.device_name)
     info = ctx.adapter.info
     now = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    report = Report(f"{info['device']} ({info['description']})", cpu_name(), cls, now)
+    report = Report(f"{info['device']} ({info['description']})", cpu_name(), cls, now,
+                    differs=reference_difference(info.get("adapter_type")))
     matrix = Matrix(out, cls, load_table())
     stages = [s for s in reference_stage_names() if not quick or s in QUICK["stages"]]
     verify_stages(matrix, stages)
@@ -269,7 +272,8 @@ def write_outputs(out: Path, report: Report, table: dict) -> None:
 def markdown(report: Report) -> str:
     lines = [f"# wgpurender verify: {report.device}", "",
              f"- date: {report.date}", f"- CPU: {report.cpu}", f"- driver class: {report.driver_class}",
-             f"- result: {len(report.failed)} of {len(report.rows)} comparisons exceed their bound", "",
+             f"- result: {len(report.failed)} of {len(report.rows)} comparisons exceed their bound",
+             *([f"- unlike `render T`: {report.differs}"] if report.differs else []), "",
              "| kind | name | comparison | status | max diff | changed pixels | FLIP mean | bound | note |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in report.rows:

@@ -49,7 +49,7 @@ def run(args) -> int:
         return _run_analytic(args, preset, frames)
     knobs = tuple(k for k in KNOBS if k in (args.knobs or KNOBS))
     ctx = get_context(args.backend)
-    size = args.size or ctx.facts().accuracy_size(preset["preset"])
+    size = args.size or ctx.adapter_facts().accuracy_size(preset["preset"])
     config = AccuracyConfig(scene_path=scene, base_size=size, frames=frames, warmup=preset["warmup"], rounds=rounds,
                             knobs=knobs, combinations=args.combinations,
                             out_dir=Path(args.out), command=command_line())
@@ -68,7 +68,7 @@ def _run_analytic(args, preset: dict, frames: int) -> int:
     from wgpurender.wgpu_path.device.context import get_context
 
     ctx = get_context(args.backend)
-    size = args.size or ctx.facts().accuracy_size(preset["preset"])
+    size = args.size or ctx.adapter_facts().accuracy_size(preset["preset"])
     rows = run_analytic(ctx, Path(args.out), size, frames, preset["warmup"],
                         progress=lambda text: print(text, file=sys.stderr, flush=True))
     header = [f"# bench accuracy --truth analytic ({size[0]}x{size[1]})", "",

@@ -104,7 +104,7 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
     The depth-stress scene, for instance, has no textures and no post chain: there only the depth knob applies.
     """
     from wgpurender.core.plan import resolve_plan
-    from wgpurender.wgpu_path.scene import SceneRenderer, adapter_facts
+    from wgpurender.wgpu_path.scene import SceneRenderer
 
     problem = settings.problem()
     if problem:
@@ -113,7 +113,7 @@ def make_renderer(ctx, scene: Scene, settings: Settings, base_size: tuple[int, i
         scene = with_filter(scene, settings.filter)
     size = (base_size[0] * settings.ss, base_size[1] * settings.ss)
     # anisotropy "scene": the filter sweep sets each level's anisotropy itself, on every adapter
-    plan = resolve_plan(scene, adapter_facts(ctx), size=size, msaa=settings.msaa if "msaa" in knobs else None,
+    plan = resolve_plan(scene, ctx.adapter_facts(), size=size, msaa=settings.msaa if "msaa" in knobs else None,
                         anisotropy="scene", **plan_knobs(settings, knobs))
     return SceneRenderer(ctx, scene, plan)
 

@@ -124,9 +124,8 @@ class CopyKernel:
 def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse: bool, frames: int,
                  copy: CopyKernel) -> list[PassTime]:
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
-    from wgpurender.wgpu_path.scene.frame import adapter_facts
 
-    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path=path, post_fuse=fuse)
+    plan = resolve_plan(scene, ctx.adapter_facts(), size=size, post_path=path, post_fuse=fuse)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
     render_frame(ctx, renderer, target)  # the scene image the chain reads, and every pipeline made
@@ -167,9 +166,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run."""
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
-    from wgpurender.wgpu_path.scene.frame import adapter_facts
 
-    plan = resolve_plan(scene, adapter_facts(ctx), size=size, post_path="compute", post_fuse=True)
+    plan = resolve_plan(scene, ctx.adapter_facts(), size=size, post_path="compute", post_fuse=True)
     renderer = SceneRenderer(ctx, scene, plan)
     target = create_target(ctx, size, plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
     render_frame(ctx, renderer, target)

@@ -56,11 +56,16 @@ def not_offered(family: str, case: str, size: str, why: str) -> Result:
 
 
 def command_line() -> str:
-    """The command that is running, as a person would type it (for reports)."""
+    """The command that is running, as a person would type it (for reports); a bench run from another program
+    (pytest, a script) says which, never labelling that program's arguments as a wgpurender command."""
     import shlex
     import sys
+    from pathlib import Path
 
-    return "wgpurender " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    program = Path(sys.argv[0])
+    if program.name == "wgpurender" or (program.name == "__main__.py" and program.parent.name == "wgpurender"):
+        return "wgpurender " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    return f"run from {program.name or 'python'}, not a wgpurender command"
 
 
 def size_text(size: tuple[int, int]) -> str:

@@ -87,10 +87,10 @@ class RawSceneRunner(RawStageRunner):
 
 def raw_refusal(path: Path) -> str:
     """Why the raw path cannot draw this scene ('' when it can)."""
-    from wgpurender.core.plan import plan_scene_file
+    from wgpurender.core.plan import resolve_plan
     from wgpurender.raw_path.scene import unsupported
 
-    return "; ".join(unsupported(plan_scene_file(path)))
+    return "; ".join(unsupported(resolve_plan(path, None)))
 
 
 def bench_scene(ctx: GPUContext, path: Path, size: tuple[int, int], frames: int,

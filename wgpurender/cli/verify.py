@@ -56,6 +56,8 @@ def run(args) -> int:
         detail = row.note if row.status in ("skipped", "FAIL") else (row.metrics.summary() if row.metrics else "")
         print(f"{row.status:>9}  {row.kind:<8} {row.name:<20} {row.comparison:<18} {detail}")
     print(f"{report.device}; {report.cpu}; driver class {report.driver_class}")
+    if report.differs:
+        print(f"unlike `wgpurender render T`: {report.differs}")
     print(f"wrote {args.out / 'verify.csv'}, {args.out / 'verify.md'}, {args.out / 'heatmaps'}/, "
           f"{args.out / 'tolerances.toml'}")
     return _summary(report.rows, report.failed)
@@ -90,5 +92,7 @@ def run_implementations(args) -> int:
         print(f"{c.status:>9}  {c.target:<20} {c.a + ' / ' + c.b:<24} {detail}")
     for impl, why in missing.items():
         print(f"  not available: {impl} ({why})")
+    if report.differs:
+        print(f"unlike `wgpurender render T`: {report.differs}")
     print(f"wrote {args.out / 'implementations.md'}, {args.out / 'implementations.csv'}, {args.out / 'heatmaps'}/")
     return _summary(report.cells, report.failed)

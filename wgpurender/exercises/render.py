@@ -128,7 +128,10 @@ def render_shader(file: Path, ex: Exercise) -> list[np.ndarray]:
 
 
 def _render_scene(ex: Exercise, folder: Path) -> np.ndarray:
+    """The learner's scene, drawn as the references were made: the scene's own anisotropy (REFERENCE_ANISOTROPY,
+    core/plan/anisotropy.py)."""
     from wgpurender.core.files.assets import scene_dir
+    from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
 
     scene = scene_dir() / f"{ex.scene}.toml"
     if ex.path == "wgpu":
@@ -136,12 +139,12 @@ def _render_scene(ex: Exercise, folder: Path) -> np.ndarray:
         from wgpurender.wgpu_path.scene import render_scene_file
 
         os.environ[SHADER_DIR_ENV] = str(folder)
-        return render_scene_file(scene, size=SCENE_CHECK_SIZE, frames=1, anisotropy="scene").pixels
+        return render_scene_file(scene, size=SCENE_CHECK_SIZE, frames=1, anisotropy=REFERENCE_ANISOTROPY).pixels
     from wgpurender.raw_path.device.shaders import GLSL_DIR_ENV
     from wgpurender.raw_path.scene import render_scene_reference
 
     os.environ[GLSL_DIR_ENV] = str(folder)
-    return render_scene_reference(scene, size=SCENE_CHECK_SIZE, anisotropy="scene")
+    return render_scene_reference(scene, size=SCENE_CHECK_SIZE, anisotropy=REFERENCE_ANISOTROPY)
 
 
 def render_source(source: str, ex: Exercise) -> list[np.ndarray]:

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+
 
 def render_reference(
     stage: str,
@@ -25,7 +27,7 @@ def render_reference(
     fmt: str | None = None,
     msaa: int | None = None,
     t: float = 0.0,
-    anisotropy: str = "scene",
+    anisotropy: str = DEFAULT_ANISOTROPY,
 ) -> np.ndarray:
     """Render ``stage`` (or a scene file, ``*.toml``) on the raw-Vulkan path; see
     :func:`wgpurender.raw_path.render.render_reference`."""

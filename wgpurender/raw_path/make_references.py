@@ -57,12 +57,15 @@ class Change:
 
 
 def render_named_reference(name: str) -> np.ndarray:
-    """The 8-bit image of reference ``name`` (a stage or a SCENE_REFERENCES key), by the raw path only."""
+    """The 8-bit image of reference ``name`` (a stage or a SCENE_REFERENCES key), by the raw path only; scenes
+    with their own anisotropic filtering (REFERENCE_ANISOTROPY: :func:`main` says what that changes)."""
     from wgpurender.core.files.imageio import to_uint8
+    from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
     from wgpurender.raw_path import render_reference
 
     if name in SCENE_REFERENCES:
-        return to_uint8(render_reference(str(SCENE_DIR / SCENE_REFERENCES[name]), size=SCENE_REFERENCE_SIZE))
+        return to_uint8(render_reference(str(SCENE_DIR / SCENE_REFERENCES[name]), size=SCENE_REFERENCE_SIZE,
+                                         anisotropy=REFERENCE_ANISOTROPY))
     return to_uint8(render_reference(name, size=REFERENCE_SIZE))
 
 
@@ -107,6 +110,12 @@ def main(argv: list[str] | None = None) -> int:
     try:
         for change in regenerate(args.dir, args.stages or None):
             print(change.describe())
+        from wgpurender.core.plan.anisotropy import reference_difference
+        from wgpurender.raw_path.device.context import get_vulkan
+
+        differs = reference_difference(get_vulkan().adapter_facts().adapter_type)
+        if differs:
+            print(f"unlike `wgpurender render T`: {differs}")
     except UserError as err:
         print(f"make_references: error: {err}", file=sys.stderr)
         return 2

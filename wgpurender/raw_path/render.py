@@ -9,6 +9,7 @@ import numpy as np
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import gpu_memory
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.raw_path.device.checks import check_msaa, check_size
 from wgpurender.raw_path.device.command_buffers import one_shot
 from wgpurender.raw_path.device.context import get_vulkan
@@ -25,7 +26,7 @@ def render_reference(
     fmt: str | None = None,
     msaa: int | None = None,
     t: float = 0.0,
-    anisotropy: str = "scene",
+    anisotropy: str = DEFAULT_ANISOTROPY,
 ) -> np.ndarray:
     """Render one stage (or a scene file, ``*.toml``: size None = its [render] size) with raw Vulkan calls
     and return its pixels, (H, W, 4).

@@ -136,13 +136,13 @@ def scene_step(ctx: GPUContext, path: Path, size: tuple[int, int] | None, log=pr
     path's plan resolved for its own adapter by the one function, core/plan/resolve.py)."""
     from wgpurender.core.plan import resolve_plan
     from wgpurender.raw_path import render_reference
-    from wgpurender.wgpu_path.scene import adapter_facts, render_plan
+    from wgpurender.wgpu_path.scene import render_plan
 
-    plan = resolve_plan(path, adapter_facts(ctx), size=size, anisotropy=anisotropy)
+    plan = resolve_plan(path, ctx.adapter_facts(), size=size, anisotropy=anisotropy)
     text = plan.explain().replace(f"{REPO_ROOT}{os.sep}", "")  # no build machine's paths
     step = Step(path.stem, path.name, _scene_course_step(path), plan.scene.description, _scene_words(path), plan=text)
     step.wgpu = render_plan(ctx, plan, frames=1).pixels
-    large = resolve_plan(path, adapter_facts(ctx), size=larger(plan.size), anisotropy=anisotropy)
+    large = resolve_plan(path, ctx.adapter_facts(), size=larger(plan.size), anisotropy=anisotropy)
     step.large["wgpu"] = render_plan(ctx, large, frames=1).pixels
     step.timing["wgpu"] = timings.scene_wgpu(ctx, path, size, anisotropy)
     step.raw, step.raw_note = _try(lambda: render_reference(str(path), size, anisotropy=anisotropy), log)

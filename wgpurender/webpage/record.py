@@ -13,6 +13,7 @@ import json
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.anisotropy import REFERENCE_ANISOTROPY
 from wgpurender.webpage.packing import pack_blobs, png_base64
 from wgpurender.webpage.recorder import BROWSER, Recording, recording_context
 from wgpurender.wgpu_path.device.context import GPUContext
@@ -141,7 +142,7 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
 
     scene = load_scene(path)
     ctx, recording = recording_context(real)
-    plan = resolve_plan(scene, BROWSER, size=size, anisotropy="scene")  # the scene's filtering, as authored
+    plan = resolve_plan(scene, BROWSER, size=size, anisotropy=REFERENCE_ANISOTROPY)  # the scene as authored
     renderer = SceneRenderer(ctx, scene, plan)
     target = renderer.create_output()
     _frame(ctx, renderer.record, target, 0.0)

@@ -182,7 +182,7 @@ class Rec:
 class RecordingContext(GPUContext):
     """The context the wgpu path renders through while it is recorded for a browser (see the module doc)."""
 
-    def facts(self) -> AdapterFacts:
+    def adapter_facts(self) -> AdapterFacts:
         return BROWSER
 
     def limit(self, name: str) -> int:

@@ -18,6 +18,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from wgpurender.core.files.video import FrameWriter
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.view.controls import Controls
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.frame_loop import run_frame
@@ -40,7 +41,7 @@ class Offscreen:
     """The demo's drawable and orbit camera, drawing into an offscreen ``size`` texture."""
 
     def __init__(self, ctx: GPUContext, target: str, size: tuple[int, int], msaa: int | None = None,
-                 anisotropy: str = "auto") -> None:
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> None:
         self.ctx, self.size = ctx, size
         self.view = DemoView(ctx, target, msaa, anisotropy)
         self.view.check()
@@ -101,7 +102,7 @@ class LiveView:
     """rendercanvas's Jupyter canvas drawing a stage or scene on demand, turned with the mouse and keys."""
 
     def __init__(self, ctx: GPUContext, target: str, size: tuple[int, int], msaa: int | None = None,
-                 anisotropy: str = "auto", still: np.ndarray | None = None) -> None:
+                 anisotropy: str = DEFAULT_ANISOTROPY, still: np.ndarray | None = None) -> None:
         from rendercanvas.jupyter import RenderCanvas
 
         self.offscreen = Offscreen(ctx, target, size, msaa, anisotropy)

@@ -6,6 +6,7 @@ from collections.abc import Iterator, Sequence
 
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.plan import gpu_memory
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 from wgpurender.wgpu_path.device.frame_loop import Frame, RenderResult, run_frames
 from wgpurender.wgpu_path.device.targets import check_format, create_target
@@ -57,7 +58,7 @@ def render_any(
     msaa: int | None = None,
     t: float = 0.0,
     backend: str | None = None,
-    anisotropy: str = "scene",
+    anisotropy: str = DEFAULT_ANISOTROPY,
 ) -> RenderResult:
     """A stage by name, or a scene file (:func:`wgpurender.core.course.formats.is_scene_file`).
 

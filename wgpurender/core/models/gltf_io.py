@@ -233,30 +233,7 @@ def primitive_attribute(doc: GltfDocument, prim: dict, name: str) -> np.ndarray 
     return None if index is None else read_accessor(doc, index).astype(np.float32)
 
 
-def material_textures(doc: GltfDocument, material_index: int | None) -> tuple[str | None, dict[str, dict]]:
-    """Material name and its textures: role -> {"uri": path-or-None, "data": bytes-or-None, "srgb": bool}."""
-    if material_index is None:
-        return None, {}
-    try:
-        material = doc.json["materials"][material_index]
-        found = {}
-        for role, (keys, srgb) in TEXTURE_ROLES.items():
-            info = material
-            for key in keys:
-                info = info.get(key, {}) if isinstance(info, dict) else {}
-            if "index" not in info:
-                continue
-            image_index = doc.json["textures"][info["index"]].get("source")
-            if image_index is None:
-                continue
-            image = doc.json["images"][image_index]
-            found[role] = {**_image_source(doc, image), "srgb": srgb}
-    except (KeyError, IndexError, TypeError) as err:
-        raise UserError(f"malformed glTF file {doc.path}: material {material_index}: {err!r}") from None
-    return material.get("name"), found
-
-
-def _image_source(doc: GltfDocument, image: dict) -> dict:
+def image_source(doc: GltfDocument, image: dict) -> dict:
     uri = image.get("uri")
     if uri is None:
         view = doc.json["bufferViews"][image["bufferView"]]

@@ -22,8 +22,7 @@ from __future__ import annotations
 
 import logging
 import os
-import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -46,60 +45,7 @@ CONVERT_HINT = (
 )
 UNSUPPORTED = {".blend": "Blender", ".3ds": "3DS", ".max": "3ds Max", ".c4d": "Cinema 4D",
                ".usd": "USD", ".usdz": "USDZ", ".usda": "USD", ".usdc": "USD"}
-MTL_ROLES = {  # MTL statement -> (texture role, is the image sRGB-encoded)
-    "map_kd": ("base_color", True),
-    "map_bump": ("normal", False),
-    "bump": ("normal", False),
-    "norm": ("normal", False),
-    "map_pr": ("roughness", False),
-    "map_ao": ("occlusion", False),
-    "map_ke": ("emissive", True),
-}
-
 log = logging.getLogger(__name__)
-
-
-@dataclass
-class TextureRef:
-    """One texture a material refers to: a file on disk, or image bytes embedded in a glTF."""
-
-    path: Path | None
-    data: bytes | None = None
-    srgb: bool = False
-
-    def load(self) -> np.ndarray:
-        """The image as (H, W, 4) uint8 (still encoded: decode sRGB in the sampler when ``srgb``)."""
-        if self.data is None:
-            from wgpurender.core.files.imageio import load_png
-
-            missing = f"texture not found: {self.path} (keep textures where the model file refers to them)"
-            if self.path is None:
-                raise UserError(missing)
-            return load_png(input_file(self.path, "texture", missing))
-        import io
-
-        from PIL import Image
-
-        from wgpurender.core.files.imageio import decode_image
-
-        try:
-            with Image.open(io.BytesIO(self.data)) as im:
-                return decode_image(im, "an image embedded in the model")
-        except (OSError, ValueError, Image.DecompressionBombError) as err:
-            raise UserError(f"cannot read an image embedded in the model: {err}") from None
-
-
-@dataclass
-class Material:
-    """Texture references of a material. Roles: base_color, normal, roughness, metallic_roughness, occlusion,
-    emissive (whichever the file names)."""
-
-    name: str | None = None
-    textures: dict[str, TextureRef] = field(default_factory=dict)
-    color: tuple[float, float, float] | None = None  # MTL Kd (diffuse colour, taken as linear)
-    opacity: float | None = None  # MTL d (dissolve), or 1 - Tr
-    illum: int | None = None  # MTL illumination model: 0 = colour only, no lighting
-    notes: tuple[str, ...] = ()  # what the loader converted (FBX axes and units), for --explain
 
 
 @dataclass(frozen=True)
@@ -131,7 +77,6 @@ class Mesh:
     tangents: np.ndarray | None = None
     has_uvs: bool = True
     tangents_source: str | None = None  # "file", "generated" or None
-    material: Material | None = None
     source: Path | None = None
     colors: np.ndarray | None = None
     parts: tuple[MeshPart, ...] = ()
@@ -194,7 +139,6 @@ def build_mesh(
     tangents: np.ndarray | None = None,
     *,
     generate_tangents: bool = True,
-    material: Material | None = None,
     source: str | os.PathLike | None = None,
     colors: np.ndarray | None = None,
     parts: tuple[MeshPart, ...] = (),
@@ -245,7 +189,6 @@ def build_mesh(
         tangents=None if tangents is None else tangents.astype(np.float32),
         has_uvs=has_uvs,
         tangents_source=tangents_source,
-        material=material,
         source=None if source is None else Path(source),
         colors=None if colors is None else _checked_colors(what, colors),
         parts=tuple(parts),
@@ -317,11 +260,11 @@ class _Part:
     topology: str = "triangle-list"
 
 
-def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_material: bool = True) -> Mesh:
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
     """Load a model file into one :class:`Mesh` (all its meshes and nodes merged, node transforms applied).
 
-    The material is the first one the file's triangles use; ``obj_material=False`` skips an OBJ's MTL
-    (and its "material library not found" warning) for callers whose scene supplies the material.
+    The geometry only: a model file's materials are the scene's (core/scene/file_materials.py reads them once,
+    when the scene loads); ``Mesh.parts`` says which triangles each file material covers.
     Raises UserError for missing, unsupported, malformed or empty files and for non-finite positions.
     """
     path = Path(path)
@@ -336,14 +279,13 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
     check_file_size(input_file(path, "model file"), "model file")
     file_type = SUPPORTED[suffix]
     if file_type in ("gltf", "glb"):
-        parts, material = _gltf_parts(path, file_type)
+        parts = _gltf_parts(path)
     elif file_type == "fbx":
-        parts, material = _fbx_parts(path)
+        parts = _fbx_parts(path)
     else:
         if file_type == "obj":
             check_obj_records(path)
         parts = _trimesh_parts(path, file_type)
-        material = _obj_material(path) if file_type == "obj" and obj_material else None
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
@@ -354,7 +296,7 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, obj_ma
                         "beside a model's triangles: add a surface or export the triangles too")
     positions, faces, normals, uvs, tangents, colors, mesh_parts = _concatenate(parts)
     mesh = build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
-                      material=material, source=path, colors=colors, parts=mesh_parts)
+                      source=path, colors=colors, parts=mesh_parts)
     return _with_points_and_lines(mesh, others) if others else mesh
 
 
@@ -391,7 +333,7 @@ def _with_points_and_lines(mesh: Mesh, others: list[_Part]) -> Mesh:
     dtype = index_dtype(count - 1)
     joined = {k: np.concatenate(v).astype(np.float32) for k, v in arrays.items() if v[0] is not None}
     return Mesh(joined["positions"], joined["normals"], joined["uvs"], mesh.indices.astype(dtype),
-                joined.get("tangents"), mesh.has_uvs, mesh.tangents_source, mesh.material, mesh.source,
+                joined.get("tangents"), mesh.has_uvs, mesh.tangents_source, mesh.source,
                 joined.get("colors"), tuple(parts), np.concatenate(flat).astype(dtype))
 
 
@@ -478,34 +420,26 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
     return parts
 
 
-def _gltf_parts(path: Path, file_type: str) -> tuple[list[_Part], Material | None]:
+def _gltf_parts(path: Path) -> list[_Part]:
     """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space."""
     doc = gltf_io.read_document(path)
-    parts, material = [], None
+    parts = []
     for world, node, geometry in gltf_geometry.mesh_primitives(doc):
         g = geometry
         part = _place(world, g.positions, g.faces, g.normals, g.uvs, g.tangents, str(path), node)
         part.colors, part.material, part.topology = g.colors, g.material, g.topology
         parts.append(part)
-        if material is None and g.material is not None:
-            mat_name, textures = gltf_io.material_textures(doc, g.material)
-            material = Material(mat_name, {role: TextureRef(t["uri"], t["data"], t["srgb"])
-                                           for role, t in textures.items()})
-    return parts, material
+    return parts
 
 
-def _fbx_parts(path: Path) -> tuple[list[_Part], Material | None]:
-    """Every triangle mesh an FBX file's node tree places, in world space (core/models/fbx.py: assimp, axes, units)."""
+def _fbx_parts(path: Path) -> list[_Part]:
+    """Every triangle mesh an FBX file's node tree places, in world space (core/models/fbx.py: assimp, axes, units);
+    its material is the scene's (core/scene/file_materials.py)."""
     from wgpurender.core.models import fbx
 
-    placed, found = fbx.load_fbx(path)
-    parts = [_place(world, positions, faces, normals, uvs, None, str(path), name)
-             for world, positions, faces, normals, uvs, name, _ in placed]
-    material = None
-    if found is not None:
-        textures = {role: TextureRef(file, None, role == "base_color") for role, file in found["textures"].items()}
-        material = Material(found["name"], textures, color=found["color"], notes=found["notes"])
-    return parts, material
+    placed, _ = fbx.load_fbx(path)
+    return [_place(world, positions, faces, normals, uvs, None, str(path), name)
+            for world, positions, faces, normals, uvs, name, _ in placed]
 
 
 def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "model", node: str = "?") -> _Part:
@@ -563,102 +497,3 @@ def _concatenate(parts: list[_Part]):
             mesh_parts.append(MeshPart(p.material, first, count))
         first += count
     return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts)
-
-
-def obj_material(path: Path) -> Material | None:
-    """The OBJ's first ``usemtl`` material from its MTL (Kd, d/Tr and texture files), or None."""
-    return _obj_material(path)
-
-
-def _obj_material(path: Path) -> Material | None:
-    """The material of the first `usemtl` in an OBJ, with the texture files its MTL names (paths resolved)."""
-    text = path.read_bytes()
-    libraries = re.findall(rb"^[ \t]*mtllib[ \t]+(.+?)[ \t]*$", text, re.M)
-    used = re.search(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", text, re.M)
-    if not libraries:
-        return None
-    wanted = used.group(1).decode("utf-8", "replace") if used else None
-    for lib in libraries:
-        mtl = read_jail.model_file(path, lib.decode("utf-8", "replace"), "mtllib", encoded=False)
-        if not os.path.isfile(mtl):
-            # info, not warning: a missing MTL is legal (the model loads untextured) and must not add stderr lines
-            log.info("%s: material library %s not found; loading without textures", path, mtl)
-            continue
-        materials = parse_mtl(mtl, path)
-        if wanted in materials:
-            return materials[wanted]
-        if wanted is None and materials:
-            return next(iter(materials.values()))
-    return None
-
-
-def parse_mtl(path: Path, model: Path | None = None) -> dict[str, Material]:
-    """Texture references of every material in the MTL file of OBJ ``model`` (default: the MTL's own folder is
-    the model's). Map options (``-bm 1.0`` ...) are skipped: the file name is the rest (:func:`map_file_name`).
-    Paths are resolved relative to the MTL file and must stay in the model's folder (read_jail.py)."""
-    materials: dict[str, Material] = {}
-    current = None
-    for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
-        tokens = raw.strip().split()
-        if not tokens or tokens[0].startswith("#"):
-            continue
-        key = tokens[0].lower()
-        if key == "newmtl":
-            current = Material(" ".join(tokens[1:]))
-            materials[current.name] = current
-        elif key in MTL_ROLES and current is not None and len(tokens) > 1:
-            role, srgb = MTL_ROLES[key]
-            name = map_file_name(raw)
-            if not name.isprintable():
-                raise UserError(f"{path}:{number}: texture path {name!r} contains a control character; "
-                                "fix the material library")
-            where = f"{path}:{number} {tokens[0]}"
-            texture = read_jail.model_file(model or path, name, where, base=path.parent, encoded=False)
-            current.textures.setdefault(role, TextureRef(texture, None, srgb))
-        elif key in ("kd", "d", "tr", "illum") and current is not None:
-            _mtl_number(current, key, tokens[1:], f"{path}:{number}")
-    return materials
-
-
-# a map statement's options and how many values each takes (-o, -s, -t: 1 to 3 numbers)
-MAP_OPTIONS = {"-blendu": 1, "-blendv": 1, "-boost": 1, "-mm": 2, "-texres": 1, "-clamp": 1, "-bm": 1,
-               "-imfchan": 1, "-type": 1, "-cc": 1, "-o": 3, "-s": 3, "-t": 3}
-
-
-def map_file_name(line: str) -> str:
-    """The file name of an MTL map statement: what follows its options, spaces kept (Blender writes a name with
-    spaces unquoted: ``map_Kd -bm 1.0 my brick.png``)."""
-    tokens = line.split()
-    k = 1
-    while k < len(tokens) - 1 and tokens[k].lower() in MAP_OPTIONS:
-        most, k = MAP_OPTIONS[tokens[k].lower()], k + 1
-        for taken in range(most):
-            if k >= len(tokens) - 1 or (most == 3 and taken and not _is_number(tokens[k])):
-                break
-            k += 1
-    return line.strip().split(None, k)[-1]
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
-
-
-def _mtl_number(material: Material, key: str, values: list[str], where: str) -> None:
-    """Kd r g b (a single value means grey), d / Tr (opacity, transparency) and illum; a bad number is one line."""
-    try:
-        numbers = [float(v) for v in values[:3]]
-    except ValueError:
-        raise UserError(f"{where}: {key.capitalize()} needs numbers, got {' '.join(values)!r}; fix the material "
-                        "library") from None
-    if not numbers or not all(np.isfinite(numbers)):
-        raise UserError(f"{where}: {key.capitalize()} needs finite numbers; fix the material library")
-    if key == "kd":
-        material.color = tuple(max(0.0, v) for v in (numbers * 3)[:3])
-    elif key == "illum":
-        material.illum = int(numbers[0])
-    else:
-        material.opacity = min(1.0, max(0.0, numbers[0] if key == "d" else 1.0 - numbers[0]))

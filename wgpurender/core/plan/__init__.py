@@ -1,6 +1,6 @@
 """The render plan: what a scene needs on the GPU, derived from the scene and nothing else.
 
-:func:`build_plan` turns a :class:`~wgpurender.core.scene.Scene` into pure data (no GPU
+:func:`resolve_plan` turns a :class:`~wgpurender.core.scene.Scene` into pure data (no GPU
 objects): attachments with formats and sample counts, passes in order, shader
 variants and pipelines, textures and samplers. The scene renderer builds exactly
 these; everything a scene does not use is left out:
@@ -32,12 +32,12 @@ Variant flags are plain identifiers so a template can test them with
 numbers (``ShaderVariant.counts``) for array sizes.
 """
 
-from wgpurender.core.plan.build import build_plan, material_variant, plan_scene_file
+from wgpurender.core.plan.build import material_variant
 from wgpurender.core.plan.model import *  # noqa: F403  (every dataclass and constant of the plan)
 from wgpurender.core.plan.model import __all__ as _model_names
 from wgpurender.core.plan.objects import GpuObject
 from wgpurender.core.plan.post import plan_post_passes
-from wgpurender.core.plan.resolve import KNOB_FLAGS, adapter_facts, explain_scene, main, resolve_plan
+from wgpurender.core.plan.resolve import KNOB_FLAGS, explain_scene, main, resolve_knobs, resolve_plan
 
-__all__ = [*_model_names, "KNOB_FLAGS", "GpuObject", "adapter_facts", "build_plan", "explain_scene", "main",
-           "material_variant", "plan_post_passes", "plan_scene_file", "resolve_plan"]
+__all__ = [*_model_names, "KNOB_FLAGS", "GpuObject", "explain_scene", "main", "material_variant", "plan_post_passes",
+           "resolve_knobs", "resolve_plan"]

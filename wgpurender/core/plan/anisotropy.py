@@ -10,10 +10,13 @@ which is also why ``vulkan_tutorial_28.toml`` (one mip level, anisotropy 16) tak
 value and the scene's look. The mip chain stays as the scene asks: with anisotropy 1, a trilinear
 filter over the mip chain is what keeps minified texels from aliasing.
 
-Rules: ``"scene"`` keeps the scene file's anisotropy everywhere (tests, the raw-path cross-checks,
-benchmarks that compare with the C++ tutorial); ``"auto"`` applies the per-adapter rule (the default of
-every command and API call, on both paths, each for its own adapter), ``"auto"`` with no adapter known keeps
-the scene's value.
+Rules: ``"auto"`` applies the per-adapter rule: :data:`DEFAULT_ANISOTROPY`, the one default of every command,
+API call, inner render function, test and plan knob, on both paths, each for its own adapter (``"auto"`` with no
+adapter known keeps the scene's value). ``"scene"`` keeps the scene file's anisotropy everywhere:
+:data:`REFERENCE_ANISOTROPY`, what ``verify`` (both modes), ``make_references`` and the browser export draw,
+because the committed references, the C++ tutorial frames and the exported page (whose plan is made before its
+adapter is known) are the scene as authored; each says so where its image differs from ``wgpurender render T``
+(:func:`reference_difference`).
 """
 
 from __future__ import annotations
@@ -28,6 +31,18 @@ DEFAULT_ANISOTROPY = "auto"  # every command's and API call's default (core/plan
 ANISOTROPY_HELP = ("auto (default): the scene's anisotropic filtering on a GPU, 1 on a CPU driver such as lavapipe "
                    "(seconds per frame there otherwise; render --explain says why); scene: always the scene's")
 CPU_ANISOTROPY = 1
+REFERENCE_ANISOTROPY = "scene"  # verify, make_references, the browser export: the scene as authored (see above)
+
+
+def reference_difference(adapter_type: str | None) -> str:
+    """What drawing with :data:`REFERENCE_ANISOTROPY` changes against ``wgpurender render T`` (the default rule) on
+    an adapter of this type, in one line; '' where the two rules draw the same (a GPU, or no adapter known)."""
+    if adapter_type != "CPU":
+        return ""
+    return (f"anisotropy: drawn as the scene asks (--anisotropy {REFERENCE_ANISOTROPY}), as the committed references, "
+            f"the C++ tutorial frames and the browser page are; `wgpurender render T` on this CPU adapter draws "
+            f"anisotropy {CPU_ANISOTROPY} (--anisotropy {DEFAULT_ANISOTROPY}), so scenes with anisotropic samplers "
+            "differ from what it makes")
 
 
 def check_applies(target: str, is_scene: bool, rule: str) -> None:
@@ -38,8 +53,7 @@ def check_applies(target: str, is_scene: bool, rule: str) -> None:
                         "(leave --anisotropy out)")
 
 
-def resolve_anisotropy(spec: SamplerSpec, rule: str = "scene",
-                       adapter_type: str | None = None) -> tuple[SamplerSpec, str]:
+def resolve_anisotropy(spec: SamplerSpec, rule: str, adapter_type: str | None) -> tuple[SamplerSpec, str]:
     """(the sampler to use, why; '' when nothing needs saying)."""
     if rule not in ANISOTROPY_RULES:
         raise UserError(f"anisotropy rule {rule!r}: choose one of {', '.join(ANISOTROPY_RULES)}")

@@ -1,14 +1,14 @@
 """Building the plan: :func:`build_plan` turns a scene (and knobs) into a :class:`~.model.RenderPlan`.
 
+Only :func:`wgpurender.core.plan.resolve.resolve_plan` calls it (tests/test_one_plan.py checks): every plan is
+resolved for its adapter there, so no entry point, tool or test builds a plan another way.
+
 It reads like the plan's sections, each its own function: the knobs (:func:`knob_settings`), the scene
 pass's targets (:mod:`.targets`), its draws with their materials, variants and pipelines (:mod:`.draws`),
 textures and samplers (:mod:`.textures`), the post chain (:mod:`.post`) and the output.
 """
 
 from __future__ import annotations
-
-import dataclasses
-from pathlib import Path
 
 from wgpurender.core.course.effects import steps_for_target
 from wgpurender.core.errors import UserError
@@ -25,9 +25,9 @@ from wgpurender.core.plan.model import (
 )
 from wgpurender.core.plan.post import plan_post_passes, post_pipelines_of, resolve_immediates, resolve_post_path
 from wgpurender.core.plan.targets import SceneTargets, output_attachment, plan_scene_targets
-from wgpurender.core.scene import Scene, load_scene
+from wgpurender.core.scene import Scene
 
-__all__ = ["build_plan", "knob_settings", "material_variant", "plan_scene_file"]
+__all__ = ["build_plan", "knob_settings", "material_variant"]
 
 
 def _check_overrides(size, output_format, msaa) -> None:
@@ -37,15 +37,6 @@ def _check_overrides(size, output_format, msaa) -> None:
         raise UserError(f"MSAA {msaa}x is not supported: choose 1 or 4")
     if size is not None and (len(size) != 2 or min(size) < 1):
         raise UserError(f"bad size {size!r}: give (width, height), both at least 1")
-
-
-def _resolve_knobs(knobs: Knobs | None, anisotropy: str | None, adapter_type: str | None) -> Knobs:
-    knobs = knobs or Knobs()
-    if anisotropy is not None or adapter_type is not None:  # the anisotropy rule's arguments (perf's knob)
-        knobs = dataclasses.replace(knobs, anisotropy=anisotropy or knobs.anisotropy,
-                                    anisotropy_adapter=adapter_type or knobs.anisotropy_adapter)
-    knobs.check()
-    return knobs
 
 
 def knob_settings(scene: Scene, knobs: Knobs) -> tuple[tuple[str, str, str], ...]:
@@ -109,16 +100,16 @@ def left_out(scene: Scene, msaa_text: str, asked_msaa: int, targets: SceneTarget
 
 
 def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_format: str | None = None,
-               msaa: int | None = None, knobs: Knobs | None = None, anisotropy: str | None = None,
-               adapter_type: str | None = None) -> RenderPlan:
+               msaa: int | None = None, knobs: Knobs | None = None) -> RenderPlan:
     """The plan for ``scene``; ``size``, ``output_format`` and ``msaa`` override [render] (CLI flags);
     ``knobs`` (:class:`Knobs`) make the choices a scene file does not (depth, post path, adapter...).
 
     Sections, in order: knobs; targets (scene image, MSAA colour, depth); the scene pass's draws
     (variants, pipelines, materials, textures, samplers); the post chain; the output."""
     _check_overrides(size, output_format, msaa)
-    knobs = _resolve_knobs(knobs, anisotropy, adapter_type)
-    aniso_adapter = knobs.adapter.adapter_type if knobs.adapter is not None else knobs.anisotropy_adapter
+    knobs = knobs or Knobs()
+    knobs.check()
+    aniso_adapter = knobs.adapter.adapter_type if knobs.adapter is not None else None
     r = scene.render
     size = tuple(size or r.size)
     out_fmt = output_format or r.output_format
@@ -166,10 +157,5 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         settings=settings,
         absent=absent,
         scene=scene,
-        rebuild=build_plan,
     )
-
-
-def plan_scene_file(path: str | Path, **overrides) -> RenderPlan:
-    return build_plan(load_scene(path), **overrides)
 

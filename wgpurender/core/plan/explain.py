@@ -156,18 +156,20 @@ def _measured(plan: Any, p: Any, adapter: str | None) -> str:
     """The pass's bytes (the scene pass's; a post pass lists its own above) and the last measurement here."""
     from wgpurender.core.files import bandwidth
 
+    size = f"{plan.size[0]}x{plan.size[1]}"
     if p.kind == "scene":
         written, read = scene_pass_bytes(plan)
         head = (f"bytes: {_megabytes(written)} written (the stored image) + up to {_megabytes(read)} of textures "
                 f"read; ")
         key = bandwidth.pass_key(plan.scene_path.stem, "scene", "render")
+        measure = "wgpurender bench perf --only scene (at the bench's own sizes)"
     else:
         head = ""
         key = bandwidth.pass_key(plan.scene_path.stem, p.effect, p.path)
+        measure = f"wgpurender bench post-roofline SCENE --size {size}"  # SCENE: the first line's file
     if adapter is None:
         return head + "bandwidth: not measured (no adapter known to this plan)"
     found = bandwidth.lookup(adapter, key)
-    if found is None:
-        return head + (f"bandwidth: not measured on {adapter} (wgpurender bench post-roofline / bench perf "
-                       "record it)")
+    if found is None or found.size != size:  # a measurement at another size is not this plan's
+        return head + f"bandwidth: not measured at {size} on {adapter} (`{measure}` measures it)"
     return head + "bandwidth: " + found.text()

@@ -1,5 +1,6 @@
 """The plan's side of a model file's own materials: which materials a model draws with, the variant features and
-pipeline state they add, and each texture's sampler. The mapping itself is core/scene/gltf_materials.py.
+pipeline state they add, and each texture's sampler. The materials were read when the scene loaded
+(core/scene/file_materials.py, ``Model.file_materials``): the plan never opens a model file.
 
 A model whose scene entry names no material and whose file is glTF draws one draw per file material its
 triangles use (``Draw.part``); every other model draws once with its scene material, as before.
@@ -7,59 +8,17 @@ triangles use (``Draw.part``); every other model draws once with its scene mater
 
 from __future__ import annotations
 
-import re
-
 from wgpurender.core.plan.shading_models import metallic_factor
 from wgpurender.core.scene import Material, Model
-from wgpurender.core.scene.gltf_materials import ModelMaterials, model_materials
-
-GLTF_SUFFIXES = (".gltf", ".glb")
-MTL_FEATURES = {"base_color": "albedo_map", "normal": "normal_map", "roughness": "roughness_map"}
+from wgpurender.core.scene.model import ModelMaterials
 
 
 def draw_materials(model: Model) -> tuple[list[Material], ModelMaterials | None]:
     """The materials ``model`` is drawn with (one draw each) and, for a model file's own, what was taken/ignored."""
-    if model.material_from_file and model.path.suffix.lower() in GLTF_SUFFIXES:
-        found = model_materials(model.path, model.label)
+    found = model.file_materials
+    if found is not None:
         return list(found.materials), found
-    if model.material_from_file and model.path.suffix.lower() in (".obj", ".fbx"):
-        found = obj_materials(model)
-        if found is not None:
-            return list(found.materials), found
     return [model.material], None
-
-
-def obj_materials(model: Model) -> ModelMaterials | None:
-    """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
-    normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
-    an MTL."""
-    from wgpurender.core.models.mesh import load_mesh, obj_material
-
-    if model.path.suffix.lower() == ".fbx":  # the FBX's first material: diffuse colour, diffuse and normal maps
-        found = load_mesh(model.path, generate_tangents=False).material
-    else:
-        found = obj_material(model.path)
-    if found is None:
-        return None
-    maps = {MTL_FEATURES[role]: ref.path for role, ref in found.textures.items() if role in MTL_FEATURES}
-    kind = "FBX" if model.path.suffix.lower() == ".fbx" else "MTL"
-    name = f"{model.label} {kind} material '{found.name}'"
-    opacity = 1.0 if found.opacity is None else found.opacity
-    material = Material(name, albedo_color=(*(found.color or (1.0, 1.0, 1.0)), opacity), origin=name,
-                        alpha_mode="blend" if opacity < 1.0 else "opaque", unlit=found.illum == 0,
-                        written=tuple((f, p.name) for f, p in maps.items()), **maps)
-    taken = [f"Kd {material.albedo_color[:3]}"] + [f"{f} {p.name}" for f, p in maps.items()]
-    if opacity < 1.0:
-        taken.append(f"d {opacity:g} (alpha blended, unsorted)")
-    if found.illum == 0:
-        taken.append("illum 0 (unlit)")
-    taken.extend(found.notes)
-    ignored = [f"{kind} '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
-    used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
-    if len(used) > 1:
-        ignored.append(f"usemtl {', '.join(repr(u.decode('utf-8', 'replace')) for u in list(used)[1:])}: ignored "
-                       f"(an OBJ draws with its first material, '{found.name}')")
-    return ModelMaterials((material,), (f"{name}: " + ", ".join(taken),), tuple(ignored))
 
 
 def extra_reasons(material: Material, label: str, lit: bool, samples: bool, notes: list[str]) -> list[tuple]:

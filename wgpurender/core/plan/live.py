@@ -13,7 +13,7 @@ import dataclasses
 from dataclasses import dataclass, field
 
 from wgpurender.core.course.formats import POST_PATHS
-from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES
+from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.plan.model import DEPTH_FORMATS, RenderPlan
 from wgpurender.core.scene import Scene
 
@@ -26,7 +26,7 @@ class LiveKnobs:
     """The knobs' current values; ``effects`` says per [[post]] entry whether it runs."""
 
     msaa: int | None = None  # None: the scene's
-    anisotropy: str = "auto"
+    anisotropy: str = DEFAULT_ANISOTROPY
     depth_format: str = DEPTH_FORMATS[0]
     reverse_z: bool = False
     post_fuse: bool | None = None
@@ -34,7 +34,7 @@ class LiveKnobs:
     effects: list[bool] = field(default_factory=list)
 
     @classmethod
-    def for_scene(cls, scene: Scene, msaa: int | None = None, anisotropy: str = "auto") -> LiveKnobs:
+    def for_scene(cls, scene: Scene, msaa: int | None = None, anisotropy: str = DEFAULT_ANISOTROPY) -> LiveKnobs:
         return cls(msaa=msaa, anisotropy=anisotropy, effects=[True] * len(scene.post))
 
     def scene(self, scene: Scene) -> Scene:

@@ -1,8 +1,8 @@
 """The meshes a plan draws, loaded once each and checked against what each draw's shader variant reads.
 
 Both paths upload the same triangles, so what is loaded (tangents only where a variant drawing the model has a
-normal map; the scene file, not the OBJ's MTL, gives the material) and what a draw may ask of its mesh (uvs for
-textures, tangents for a normal map) is decided here, once; each path turns a :class:`Mesh` into its own
+normal map; geometry only: the materials are the scene's, read when it loads) and what a draw may ask of its mesh
+(uvs for textures, tangents for a normal map) is decided here, once; each path turns a :class:`Mesh` into its own
 buffers (wgpu_path/scene/resources.py, raw_path/scene/resources.py).
 """
 
@@ -27,8 +27,7 @@ class PlanMeshes:
     def mesh(self, path: Path) -> Mesh:
         """The loaded mesh; tangents only when a variant drawing it has a normal map."""
         if path not in self._meshes:
-            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents,
-                                           obj_material=False)  # the scene file gives the material
+            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
         return self._meshes[path]
 
     def mesh_for(self, draw: Draw) -> Mesh:

@@ -6,7 +6,7 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -15,6 +15,7 @@ import numpy as np
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.plan.explain import explain
 from wgpurender.core.scene import Placements, Scene
 
@@ -24,6 +25,7 @@ PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8uno
 DEPTH_FORMATS = ("depth32float", "depth24plus")
 SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
 IMMEDIATES = ("auto", "on", "off")
+PLAN_FEATURES = ("immediates", "indirect-first-instance")  # the adapter features a plan reads (the rest: none)
 # Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
 # the "bgra8unorm-storage" feature, which the renderer does not ask for.
 STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
@@ -276,6 +278,13 @@ class AdapterFacts:
     name: str = ""
     backend: str = ""
 
+    @classmethod
+    def of(cls, adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "") -> AdapterFacts:
+        """The facts from what a device reports: its type as wgpu names it ("DiscreteGPU", "IntegratedGPU",
+        "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
+        path's facts of one device are equal), its name and the API under it ("Vulkan", "OpenGL", ...)."""
+        return cls(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend)
+
     def accuracy_size(self, preset: str) -> tuple[int, int]:
         """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""
         from wgpurender.core.plan.bench_size import accuracy_size
@@ -299,8 +308,7 @@ class Knobs:
     immediates: str = "auto"
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
-    anisotropy: str = "scene"  # "scene" or "auto": the per-adapter anisotropy rule (wgpurender/core/plan/anisotropy.py)
-    anisotropy_adapter: str | None = None  # the adapter type that rule reads when ``adapter`` is not given
+    anisotropy: str = DEFAULT_ANISOTROPY  # the anisotropy rule (wgpurender/core/plan/anisotropy.py), for ``adapter``
     culling: str = "auto"  # "auto", "gpu" or "off": which instanced draws the GPU culls (core/plan/culling.py)
 
     def check(self) -> None:
@@ -334,22 +342,23 @@ class RenderPlan:
     msaa_asked: int = 0  # the msaa the scene or the caller asked for (``msaa`` is what is drawn: 1 with no models)
     absent: tuple[tuple[str, str], ...] = ()  # (what a renderer could have made but does not, why), explain() shows
     scene: Scene | None = field(default=None, repr=False, compare=False)
-    rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # build_plan
+    rebuild: Callable[..., RenderPlan] | None = field(default=None, repr=False, compare=False)  # resolve.resolve_knobs
 
     # -- knobs -----------------------------------------------------------------
     def with_knobs(self, **changes) -> RenderPlan:
         """The plan of the same scene with knobs changed: any :class:`Knobs` field, or ``size``,
         ``output_format``, ``msaa`` (the CLI's overrides). This is how a benchmark or a renderer asks for a
-        knob: the result is a whole new plan, so ``explain()`` stays true."""
+        knob: the result is a whole new plan, resolved again by :func:`~wgpurender.core.plan.resolve.resolve_plan`
+        (``rebuild``), so ``explain()`` stays true."""
         overrides = {k: changes.pop(k) for k in ("size", "output_format", "msaa") if k in changes}
         unknown = sorted(set(changes) - set(Knobs.__dataclass_fields__))
         if unknown:
             raise UserError(f"unknown plan knob {unknown[0]!r}: knobs are "
                             f"{', '.join(Knobs.__dataclass_fields__)}, size, output_format, msaa")
         if self.scene is None or self.rebuild is None:
-            raise UserError("this plan was not built from a scene: build it with build_plan(scene, ...)")
+            raise UserError("this plan was not resolved from a scene: resolve it with resolve_plan(scene, adapter)")
         current = {"size": self.size, "output_format": self.output_format, "msaa": self.msaa_asked or self.msaa}
-        return self.rebuild(self.scene, **{**current, **overrides}, knobs=dataclasses.replace(self.knobs, **changes))
+        return self.rebuild(self.scene, dataclasses.replace(self.knobs, **changes), **{**current, **overrides})
 
     def setting(self, name: str) -> str:
         """A resolved knob's value as text, e.g. ``setting("post_path") == "compute"``."""

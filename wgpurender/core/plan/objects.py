@@ -68,6 +68,7 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
                   f"({sum(d.instance_count for d in draws)} instances, read at instance_index)"),
     ]
     when = " (if the device lacks immediates)" if immediates is None else ""
+    pushed = {True: " + immediates", None: " (+ immediates if the device has them)", False: ""}[immediates]
     for v in plan.variants:
         if material_group_needed(v, immediates):
             users = [d for d in draws if d.variant_key == v.key]
@@ -88,7 +89,7 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         out.append(GpuObject("shader_module", f"scene {key} culled", 1, "the variant reading its instances through "
                              "the visible list (GPU culling)"))
     for p in plan.pipelines:
-        out.append(GpuObject("pipeline_layout", f"scene {p.key}", 1, "groups 0-2 (+ immediates) of its variant"))
+        out.append(GpuObject("pipeline_layout", f"scene {p.key}", 1, f"groups 0-2{pushed} of its variant"))
         out.append(GpuObject("render_pipeline", f"scene {p.key}", 1, "a scene pipeline of the plan"))
     for s in plan.samplers:
         out.append(GpuObject("sampler", f"sampler anisotropy {s.spec.max_anisotropy}", 1, "; ".join(s.used_by)))

@@ -2,9 +2,12 @@
 
 ``wgpurender render``, ``reference``, ``demo`` (both windows), the Python API (``render``, ``reference``,
 ``explain``), ``report``, ``verify`` and ``bench`` all draw the plan this function returns, each for the
-adapter it draws on (the wgpu path: :func:`wgpurender.wgpu_path.scene.frame.adapter_facts`; the raw
-path: :func:`wgpurender.raw_path.device.context.adapter_facts`). So the same scene and flags on the same device give
-the same plan whichever way it is asked for, and ``--explain`` prints the plan that was drawn.
+adapter it draws on (the wgpu path: :meth:`wgpurender.wgpu_path.device.context.GPUContext.adapter_facts`; the raw
+path: :meth:`wgpurender.raw_path.device.context.VulkanContext.adapter_facts`; both made by
+:meth:`~wgpurender.core.plan.model.AdapterFacts.of`). No other function builds a plan: ``build_plan`` is called
+here only, and :meth:`RenderPlan.with_knobs` resolves again through :func:`resolve_knobs`. So the same scene and
+flags on the same device give the same plan whichever way it is asked for, and ``--explain`` prints the plan that
+was drawn.
 
 The flags: ``size``, ``output_format``, ``msaa`` (the scene's [render] overridden, as the CLI's --size,
 --format, --msaa), ``anisotropy`` (:data:`DEFAULT_ANISOTROPY`, the per-adapter rule of
@@ -14,9 +17,9 @@ wgpurender/core/plan/anisotropy.py, or "scene") and any other :class:`~wgpurende
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import sys
-from collections.abc import Iterable
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
@@ -24,16 +27,8 @@ from wgpurender.core.plan.build import build_plan
 from wgpurender.core.plan.model import AdapterFacts, Knobs, RenderPlan
 from wgpurender.core.scene import Scene, load_scene
 
-PLAN_FEATURES = ("immediates", "indirect-first-instance")  # the adapter features a plan reads (the rest: none)
-_NOT_FLAGS = ("adapter", "anisotropy", "anisotropy_adapter")  # set from the arguments, never passed as a knob
+_NOT_FLAGS = ("adapter", "anisotropy")  # set from the arguments, never passed as a knob
 KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
-
-
-def adapter_facts(adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "") -> AdapterFacts:
-    """What a plan needs to know about an adapter: its type as wgpu names it ("DiscreteGPU", "IntegratedGPU",
-    "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
-    path's facts of one device are equal), its name and the API under it ("Vulkan", "OpenGL", ...)."""
-    return AdapterFacts(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend)
 
 
 def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None, *,
@@ -50,8 +45,15 @@ def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None
     if anisotropy not in ANISOTROPY_RULES:
         raise UserError(f"anisotropy {anisotropy!r}: choose one of {', '.join(ANISOTROPY_RULES)}")
     scene = target if isinstance(target, Scene) else load_scene(target)
-    return build_plan(scene, size=size, output_format=output_format, msaa=msaa,
+    plan = build_plan(scene, size=size, output_format=output_format, msaa=msaa,
                       knobs=Knobs(adapter=adapter, anisotropy=anisotropy, **knobs))
+    return dataclasses.replace(plan, rebuild=resolve_knobs)
+
+
+def resolve_knobs(scene: Scene, knobs: Knobs, **overrides) -> RenderPlan:
+    """:func:`resolve_plan` with the knobs as one :class:`Knobs` (what :meth:`RenderPlan.with_knobs` calls)."""
+    flags = {k: getattr(knobs, k) for k in KNOB_FLAGS}
+    return resolve_plan(scene, knobs.adapter, anisotropy=knobs.anisotropy, **flags, **overrides)
 
 
 def explain_scene(path: str | os.PathLike, adapter: AdapterFacts | None = None, **flags) -> str:

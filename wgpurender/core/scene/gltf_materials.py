@@ -31,13 +31,12 @@ from __future__ import annotations
 import dataclasses
 import functools
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.files.input_files import input_file
 from wgpurender.core.models import gltf_extensions, gltf_geometry, gltf_io
-from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material
+from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material, ModelMaterials
 
 EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
 WRAP = {10497: "repeat", 33071: "clamp-to-edge", 33648: "mirror-repeat"}
@@ -49,16 +48,6 @@ ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map
 SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
 # extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
 USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
-
-
-@dataclass(frozen=True)
-class ModelMaterials:
-    """The materials a model draws with (one per file material its triangles use, in file order; ``part`` is the
-    file's material index, -1 for primitives without one) and what was taken and ignored, for ``--explain``."""
-
-    materials: tuple[Material, ...]
-    taken: tuple[str, ...]
-    ignored: tuple[str, ...]
 
 
 def embedded_image_path(model: Path, image: int) -> Path:
@@ -87,7 +76,7 @@ def embedded_image_bytes(path: Path) -> bytes | None:
         return None
     doc = document(model)
     image = doc.json["images"][int(index[:-1])]
-    source = gltf_io._image_source(doc, image)
+    source = gltf_io.image_source(doc, image)
     return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
 
 

@@ -10,6 +10,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import resolve_scene
 from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
 from wgpurender.core.scene.checker import Checker
+from wgpurender.core.scene.file_materials import read_file_materials
 from wgpurender.core.scene.model import Scene
 from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
 
@@ -37,7 +38,8 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     scene = Scene(
         path=path,
         camera=_camera(c, data["camera"]),
-        models=_models(c, data.get("models", []), materials),
+        models=tuple(dataclasses.replace(m, file_materials=read_file_materials(m))
+                     for m in _models(c, data.get("models", []), materials)),
         materials=materials,
         lights=_lights(c, data.get("lights", [])),
         render=_render(c, data.get("render", {})),

@@ -186,6 +186,17 @@ class Placements:
 
 
 @dataclass(frozen=True)
+class ModelMaterials:
+    """The materials a model draws with from its file (one per file material its triangles use, in file order;
+    ``part`` is the file's material index, -1 for primitives without one) and what was taken and ignored, for
+    ``--explain``. Read once when the scene loads (core/scene/file_materials.py)."""
+
+    materials: tuple[Material, ...]
+    taken: tuple[str, ...]
+    ignored: tuple[str, ...]
+
+
+@dataclass(frozen=True)
 class Model:
     index: int
     path: Path  # resolved
@@ -194,6 +205,8 @@ class Model:
     transform: Transform = IDENTITY
     # True when the scene names no material: a glTF model then draws with its own materials (core/scene/gltf_materials)
     material_from_file: bool = False
+    # those materials, read once when the scene loads (core/scene/file_materials.py); None: the scene's material
+    file_materials: ModelMaterials | None = None
     placements: Placements | None = None  # None: one copy, at ``transform``
 
     @property

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import AdapterFacts, adapter_facts
+from wgpurender.core.plan import AdapterFacts
 from wgpurender.raw_path.device import validation
 from wgpurender.raw_path.device.pipeline_cache import create_pipeline_cache, save_pipeline_cache
 
@@ -76,7 +76,7 @@ class VulkanContext:
         """What the plan's "auto" knobs need to know about this device (:func:`wgpurender.core.plan.resolve_plan`):
         the same facts the wgpu path reports for the same device. Push constants (immediates) are core Vulkan, and
         so is drawIndirectFirstInstance (the culling plan's feature; lavapipe and NVIDIA have it)."""
-        return adapter_facts(self.device_type, ("immediates", "indirect-first-instance"), self.device_name, "Vulkan")
+        return AdapterFacts.of(self.device_type, ("immediates", "indirect-first-instance"), self.device_name, "Vulkan")
 
     def close(self) -> None:
         if self._closed:

@@ -16,6 +16,7 @@ import numpy as np
 import vulkan as vk
 
 from wgpurender.core.plan import RenderPlan, gpu_memory, resolve_plan
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.scene import Scene
 from wgpurender.raw_path.device.checks import check_size
 from wgpurender.raw_path.device.command_buffers import one_shot
@@ -106,7 +107,7 @@ class SceneFrame:
 
 def render_scene_reference(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
                            msaa: int | None = None, t: float = 0.0, *, wgpu_intermediates: bool = False,
-                           anisotropy: str = "scene") -> np.ndarray:
+                           anisotropy: str = DEFAULT_ANISOTROPY) -> np.ndarray:
     """Render a scene file with raw Vulkan calls: (H, W, 4) pixels like wgpurender.render_scene_file's.
 
     ``size``, ``fmt`` (output format) and ``msaa`` override the scene's [render] table, as on the wgpu

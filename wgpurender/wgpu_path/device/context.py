@@ -75,12 +75,12 @@ class GPUContext:
     def has(self, feature: str) -> bool:
         return feature in self.features
 
-    def facts(self) -> AdapterFacts:
+    def adapter_facts(self) -> AdapterFacts:
         """What the plan's "auto" knobs need to know about this adapter and device (plain values)."""
-        from wgpurender.core.plan.resolve import adapter_facts  # lazily: the plan package costs ~0.3 s to import
+        from wgpurender.core.plan.model import AdapterFacts  # lazily: the plan package costs ~0.3 s to import
 
         info = self.info
-        return adapter_facts(info.get("adapter_type", ""), self.features, info.get("device", ""),
+        return AdapterFacts.of(info.get("adapter_type", ""), self.features, info.get("device", ""),
                              info.get("backend_type", ""))
 
     def use_immediates(self, requested: bool | None = None) -> bool:
@@ -88,7 +88,7 @@ class GPUContext:
         this backend: core/plan/post.py); ``True`` where the rule says no is refused with its reason."""
         from wgpurender.core.plan.post import immediates_rule
 
-        usable, why = immediates_rule(self.facts())
+        usable, why = immediates_rule(self.adapter_facts())
         if requested and not usable:
             raise UserError(f"immediates cannot be used on {self.describe()}: {why.split('; ')[0]}; "
                             "leave them unset (or off) to use a uniform buffer")

@@ -3,7 +3,7 @@
 Public API:
 
 - :func:`render_plan` ``(ctx, plan, t=0.0) -> RenderResult``: headless, a plan resolved by
-  :func:`wgpurender.core.plan.resolve_plan` for ``adapter_facts(ctx)`` (what ``wgpurender render SCENE.toml``
+  :func:`wgpurender.core.plan.resolve_plan` for ``ctx.adapter_facts()`` (what ``wgpurender render SCENE.toml``
   and the API call); :func:`render_scene_file` ``(path, size=None, fmt=None, msaa=None, t=0.0, ctx=None)``
   resolves and renders in one call;
 - :func:`scene_drawable_factory` ``(path, ctx, msaa=None) -> make(fmt) -> SceneRenderer``: for the window;
@@ -16,15 +16,13 @@ layouts, bindings, the WGSL variant), ``resources``
 (meshes, buffers, textures, samplers), ``scene_pass`` (pipelines, UBOs, bind groups, the scene pass),
 ``frame`` (attachments, the post chain, a whole frame).
 
-Model files' own materials (an OBJ's MTL, a glTF material) are not used: the plan is derived
-from the scene file alone (``python -m wgpurender.core.plan`` never opens a model), and the renderer
-draws only what the plan lists, so a model without a scene material is drawn with the default
-material (white, lit). Name a model's textures in a scene material (docs/scenes.md).
+A model without a scene material draws with its file's own materials (a glTF's, an OBJ's MTL), read once
+when the scene loads (core/scene/file_materials.py); the plan reads them from the scene model and never opens a
+model file, and the renderer draws only what the plan lists (docs/scenes.md).
 """
 
 from wgpurender.wgpu_path.scene.frame import (
     SceneRenderer,
-    adapter_facts,
     load_renderer,
     render_frame,
     render_plan,
@@ -35,7 +33,6 @@ from wgpurender.wgpu_path.scene.shader_interface import shader_source
 
 __all__ = [
     "SceneRenderer",
-    "adapter_facts",
     "load_renderer",
     "render_frame",
     "render_plan",

@@ -10,7 +10,7 @@ The plan (wgpurender/core/plan/) decides everything; this module only builds wha
 - the post passes themselves from the plan (:class:`wgpurender.wgpu_path.post.PostRunner`), never from the scene.
 
 A plan built without an adapter (``--explain`` with no GPU, a test) is re-planned here for this
-device (:func:`adapter_facts`), so its "auto" knobs (post path, immediates) are decided, and the
+device (``ctx.adapter_facts()``), so its "auto" knobs (post path, immediates) are decided, and the
 renderer builds exactly what ``renderer.plan.explain()`` says. Why the post chain is passes, not
 subpasses, and what fusing them changes: wgpurender/wgpu_path/post/chain.py.
 """
@@ -23,7 +23,8 @@ from pathlib import Path
 import wgpu
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.plan import AdapterFacts, RenderPlan, gpu_memory, resolve_plan
+from wgpurender.core.plan import RenderPlan, gpu_memory, resolve_plan
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.scene import Scene, load_scene
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frame, run_frames
@@ -40,16 +41,11 @@ ATTACHMENT_USAGE = {
 }
 
 
-def adapter_facts(ctx: GPUContext) -> AdapterFacts:
-    """What the plan's "auto" knobs need to know about this context's adapter and device."""
-    return ctx.facts()
-
-
 def plan_for_device(ctx: GPUContext, plan: RenderPlan) -> RenderPlan:
     """The plan with its adapter known (unchanged when it already was, or when it was not built from a scene)."""
     if plan.knobs.adapter is not None or plan.scene is None:
         return plan
-    return plan.with_knobs(adapter=adapter_facts(ctx))
+    return plan.with_knobs(adapter=ctx.adapter_facts())
 
 
 class SceneRenderer:
@@ -142,16 +138,16 @@ class SceneRenderer:
 
 def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,
                   msaa: int | None = None, use_immediates: bool | None = None,
-                  knobs: dict | None = None, anisotropy: str = "scene") -> SceneRenderer:
+                  knobs: dict | None = None, anisotropy: str = DEFAULT_ANISOTROPY) -> SceneRenderer:
     """A renderer for a scene file, planned by :func:`wgpurender.core.plan.resolve_plan` for this context's
     adapter; ``size``, ``fmt`` and ``msaa`` override the scene's; ``knobs``: plan knobs (e.g.
-    ``{"post_fuse": False}``); ``anisotropy``: "scene" or "auto" (wgpurender/core/plan/anisotropy.py).
+    ``{"post_fuse": False}``); ``anisotropy``: the rule of wgpurender/core/plan/anisotropy.py.
     """
     knobs = dict(knobs or {})
     if use_immediates is not None:
         knobs["immediates"] = "on" if use_immediates else "off"
     scene = load_scene(path)
-    plan = resolve_plan(scene, adapter_facts(ctx), size=size, output_format=fmt, msaa=msaa, anisotropy=anisotropy,
+    plan = resolve_plan(scene, ctx.adapter_facts(), size=size, output_format=fmt, msaa=msaa, anisotropy=anisotropy,
                         **knobs)
     return SceneRenderer(ctx, scene, plan)
 
@@ -180,7 +176,7 @@ def render_plan(ctx: GPUContext, plan: RenderPlan, t: float = 0.0, *, frames: in
 def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,
                       msaa: int | None = None, t: float = 0.0, ctx: GPUContext | None = None, *,
                       frames: int = 3, use_immediates: bool | None = None, knobs: dict | None = None,
-                      anisotropy: str = "scene") -> RenderResult:
+                      anisotropy: str = DEFAULT_ANISOTROPY) -> RenderResult:
     """Render a scene file headless (:func:`render_plan` of its plan for this context's adapter)."""
     ctx = ctx or get_context()
     renderer = load_renderer(path, ctx, size=size, fmt=fmt, msaa=msaa, use_immediates=use_immediates, knobs=knobs,
@@ -188,10 +184,11 @@ def render_scene_file(path: str | Path, size: tuple[int, int] | None = None, fmt
     return render_plan(ctx, renderer.plan, t, frames=frames)
 
 
-def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None, anisotropy: str = "scene"):
+def scene_drawable_factory(path: str | Path, ctx: GPUContext, msaa: int | None = None,
+                           anisotropy: str = DEFAULT_ANISOTROPY):
     """``make(fmt) -> SceneRenderer`` for the window: the scene is loaded and checked now, planned per format."""
     scene = load_scene(path)
-    facts = adapter_facts(ctx)
+    facts = ctx.adapter_facts()
     resolve_plan(scene, facts, msaa=msaa, anisotropy=anisotropy)  # a bad option fails here, cheaply
 
     def make(fmt: str) -> SceneRenderer:

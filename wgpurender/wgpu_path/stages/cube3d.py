@@ -2,10 +2,9 @@
 
 The course's UBO chapter maps onto wgpu like this:
 
-- VkDescriptorSetLayout -> GPUBindGroupLayout, VkDescriptorSet -> GPUBindGroup,
-  vkCmdBindDescriptorSets -> ``set_bind_group``. Two layouts, two sets: group 0 is
-  the camera (written every frame, the course's updateUniformBuffer), group 1 the
-  object (world and normal matrix).
+- VkDescriptorSetLayout -> GPUBindGroupLayout, VkDescriptorSet -> GPUBindGroup, vkCmdBindDescriptorSets ->
+  ``set_bind_group``. Two layouts, two sets: group 0 is the camera (written when its values change, the course's
+  updateUniformBuffer), group 1 the object (world and normal matrix).
 - Several objects share ONE object buffer: each cube's data sits at a multiple of ``min-uniform-
   buffer-offset-alignment``, picked per draw by a dynamic offset (UNIFORM_BUFFER_DYNAMIC).
 - Per-draw data (a tint and the object index) are push constants: wgpu calls them
@@ -56,6 +55,8 @@ class Cube3D(Stage):
             raise UserError("stage 3d needs at least one cube")
         self.cubes, self.camera = tuple(cubes), camera or course.CameraSpec()
         self._depth_view: wgpu.GPUTextureView | None = None
+        self._camera_bytes: bytes | None = None  # the camera block last written (rewritten when its values change)
+        self._draws = [DRAW.pack(values) for values in course.draw_values(self.cubes)]  # tints, indices: fixed
         super().__init__(ctx, color_format, msaa)
 
     def setup(self) -> None:
@@ -117,9 +118,10 @@ class Cube3D(Stage):
         """The course's updateUniformBuffer: camera, every cube's matrices and (without immediates) draws."""
         queue = self.ctx.queue
         aspect = self.size[0] / self.size[1]
-        if getattr(self, "_camera_written", (None, None)) != (id(self.camera), aspect):  # written when either changes
-            queue.write_buffer(self.camera_buffer, 0, CAMERA.pack(course.camera_values(self.camera, aspect)))
-            self._camera_written, self._camera_kept = (id(self.camera), aspect), self.camera  # kept: id stays unique
+        camera = CAMERA.pack(course.camera_values(self.camera, aspect))
+        if camera != self._camera_bytes:  # by value: a new camera (the window's orbit) or a new aspect
+            queue.write_buffer(self.camera_buffer, 0, camera)
+            self._camera_bytes = camera
         queue.write_buffer(self.object_buffer, 0, OBJECT.pack_many(course.object_values(self.cubes, t),
                                                                    self.offset_alignment))
         if not self.uses_immediates:
@@ -138,8 +140,6 @@ class Cube3D(Stage):
         render_pass.set_vertex_buffer(0, self.vertex_buffer)
         render_pass.set_index_buffer(self.index_buffer, "uint16")
         render_pass.set_bind_group(0, self.camera_group)
-        if not hasattr(self, "_draws"):  # tints and indices never change: packed once
-            self._draws = [DRAW.pack(values) for values in course.draw_values(self.cubes)]
         for k, data in enumerate(self._draws):
             render_pass.set_bind_group(1, self.object_group, [k * self.object_stride])
             if self.uses_immediates:

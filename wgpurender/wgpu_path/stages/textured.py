@@ -98,6 +98,7 @@ class Textured(Stage):
     summary = "a generated sRGB texture with GPU mipmaps: one combined texture+sampler vs one texture, 4 samplers"
 
     def setup(self) -> None:
+        self._uniforms_written: tuple | None = None  # (size, uv offset) last written: the uniforms change with them
         pipes = self.pipes = textured_pipelines(self.device, self.format, self.msaa)
         self.texture = create_texture(self.ctx, course.pattern_pixels(), srgb=True, mips=True, label="textured-pattern")
         vertices = course.stage_vertices()  # 0..5: the whole plane (left); then 6 per lane (right)
@@ -114,7 +115,7 @@ class Textured(Stage):
 
     def update_uniforms(self, t: float) -> None:
         key = (self.size, tuple(course.uv_offset(t)))
-        if key == getattr(self, "_uniforms_written", None):  # written only when the size or the scroll changes
+        if key == self._uniforms_written:  # written only when the size or the scroll changes
             return
         self._uniforms_written = key
         height = self.size[1]

@@ -15,6 +15,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
+from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.view.orbit import Orbit, moved_camera
 from wgpurender.wgpu_path.device.context import GPUContext
 
@@ -22,7 +23,8 @@ from wgpurender.wgpu_path.device.context import GPUContext
 class DemoView:
     """``build(fmt)`` makes a fresh drawable from the files as they are now; ``watched`` lists those files."""
 
-    def __init__(self, ctx: GPUContext, target: str, msaa: int | None = None, anisotropy: str = "auto") -> None:
+    def __init__(self, ctx: GPUContext, target: str, msaa: int | None = None,
+                 anisotropy: str = DEFAULT_ANISOTROPY) -> None:
         self.ctx, self.target, self.msaa, self.anisotropy = ctx, target, msaa, anisotropy
         from wgpurender.core.course.formats import is_scene_file
 
@@ -95,13 +97,12 @@ class DemoView:
         from the file as it is now; a swapchain image is not a storage texture, so a compute post path writes
         it through a scratch copy (``output_storage=False``)."""
         from wgpurender.core.plan import resolve_plan
-        from wgpurender.wgpu_path.scene import adapter_facts
 
         if self.live is not None:  # the overlay's knobs, through the same resolution function
             from wgpurender.core.scene import load_scene
 
-            return self.live.resolve(load_scene(self.target), adapter_facts(self.ctx), fmt)
-        return resolve_plan(self.target, adapter_facts(self.ctx), output_format=fmt, msaa=self.msaa,
+            return self.live.resolve(load_scene(self.target), self.ctx.adapter_facts(), fmt)
+        return resolve_plan(self.target, self.ctx.adapter_facts(), output_format=fmt, msaa=self.msaa,
                             anisotropy=self.anisotropy, output_storage=False)
 
     def _make(self, fmt: str):
