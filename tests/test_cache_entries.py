@@ -57,6 +57,21 @@ def test_special_files_and_links_are_misses(tmp_path):
     assert cache_entry.read_entry(tmp_path / "absent", "k") is None
 
 
+def test_a_link_planted_at_the_temp_name_is_never_written_through(tmp_path):
+    """Whoever can write the cache folder can guess the temp name (``.NAME.PID.tmp``) and plant a link there to a
+    file of the user's: the write must not follow it (found by issue 28's independent fuzz: O_TRUNC without
+    O_EXCL truncated and overwrote the link's target)."""
+    users = tmp_path / "users-file.txt"
+    users.write_text("the user's own work\n")
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    entry = cache / "entry.spv"
+    (cache / f".{entry.name}.{os.getpid()}.tmp").symlink_to(users)
+    assert cache_entry.write_entry(entry, "k", b"payload")  # the planted link removed, not followed
+    assert users.read_text() == "the user's own work\n"
+    assert cache_entry.read_entry(entry, "k") == b"payload"
+
+
 @pytest.fixture
 def private_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))

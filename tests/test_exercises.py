@@ -263,3 +263,17 @@ def test_the_report_offers_each_step_with_an_exercise():
                                                                   for s in stage_steps()]
     assert exercise_command("final") == "wgpurender exercise 6"  # step 6 is the final scene
     assert exercise_command("unlit") is None and exercise_command("no-such-stage") is None
+
+
+@pytest.mark.parametrize("name", ["goal.png", "README.md", "step_2a.py"])
+def test_exercise_never_writes_through_a_dangling_link(name, tmp_path, capsys):
+    """A dangling symbolic link in the folder names a file elsewhere: its name is taken (refused, one line, nothing
+    written), and no file is created at its target (found by the independent fuzz of issue 28: goal.png was
+    copied through the link, and a link at README.md left the two files before it half-written)."""
+    folder, outside = tmp_path / "ex", tmp_path / "outside"
+    folder.mkdir()
+    outside.mkdir()
+    (folder / name).symlink_to(outside / "created")
+    code, _, err = _run_cli(capsys, "exercise", "2a", "-o", folder)
+    assert code == 2 and len(err.splitlines()) == 1 and name in err, err
+    assert sorted(p.name for p in folder.iterdir()) == [name] and not any(outside.iterdir())

@@ -6,7 +6,7 @@ never clobbered by a second run.
 
 from __future__ import annotations
 
-import shutil
+import os
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
@@ -45,7 +45,7 @@ def write_exercise(ex: Exercise, out: Path) -> list[Path]:
     from wgpurender.exercises.check import reference_file
 
     names = file_names(ex)
-    taken = [name for name in names.values() if (out / name).exists()]
+    taken = [name for name in names.values() if os.path.lexists(out / name)]  # a dangling link's name is taken
     if taken:
         raise UserError(f"{out / taken[0]} exists: choose another folder with -o (your work is never overwritten)")
     if out.exists() and not out.is_dir():
@@ -54,5 +54,5 @@ def write_exercise(ex: Exercise, out: Path) -> list[Path]:
     written = [atomic_write(out / names["stage"], starter_source(ex).encode()),
                atomic_write(out / names["test"], test_source(ex).encode()),
                atomic_write(out / names["readme"], readme(ex).encode())]
-    shutil.copyfile(reference_file(ex), out / names["goal"])
-    return [*written, out / names["goal"]]
+    written.append(atomic_write(out / names["goal"], reference_file(ex).read_bytes()))  # never through a link
+    return written

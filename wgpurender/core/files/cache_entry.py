@@ -62,12 +62,15 @@ def read_entry(path: Path, key: bytes | str) -> bytes | None:
 
 def write_entry(path: Path, key: bytes | str, payload: bytes) -> bool:
     """Store atomically (temp file + rename: a parallel run never reads half an entry); False when the folder
-    cannot be written (a read-only home): the cache is only a speed-up."""
+    cannot be written (a read-only home): the cache is only a speed-up. The temp name is guessable, so whatever
+    is there (a link planted to a user's file) is removed, never followed: the temp file is created new
+    (O_EXCL, which also refuses a link replanted meanwhile)."""
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+        tmp.unlink(missing_ok=True)
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600)
         with os.fdopen(fd, "wb") as f:
             f.write(seal(key, payload))
         os.replace(tmp, path)
