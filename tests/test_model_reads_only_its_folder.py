@@ -275,3 +275,26 @@ def test_a_scene_link_pointing_out_is_refused_and_the_bundled_assets_are_allowed
     code, _, err = run_cli("render", scene, "-o", tmp_path / "b.png", "--size", "32x24")
     assert code == 0, err
 
+
+
+def test_a_blender_layout_is_refused_saying_how_and_loads_once_its_folder_is_allowed(tmp_path, monkeypatch):
+    """models/x.obj + textures/y.png (the MTL names ../textures/y.png): the refusal says to move the texture or
+    allow its folder, and $WGPURENDER_ALLOW_PATHS (the scenes' allow-list) lets the model read it."""
+    from PIL import Image
+
+    monkeypatch.delenv(read_jail.ALLOW_ENV, raising=False)
+    (tmp_path / "models").mkdir()
+    (tmp_path / "textures").mkdir()
+    Image.new("RGBA", (2, 2), (0, 255, 0, 255)).save(tmp_path / "textures" / "y.png")
+    (tmp_path / "models" / "x.mtl").write_text("newmtl m\nKd 1 1 1\nmap_Kd ../textures/y.png\n")
+    (tmp_path / "models" / "x.obj").write_text(OBJ.format(lib="x.mtl"))
+    scene = tmp_path / "scene.toml"
+    scene.write_text(scene_text(None) + '\n[[models]]\npath = "models/x.obj"\n')
+    code, _, err = run_cli("render", scene, "-o", tmp_path / "a.png", "--size", "32x24")
+    textures = (tmp_path / "textures").resolve()
+    line = _one_line(code, err, "map_Kd", f"move the file under {(tmp_path / 'models').resolve()}")
+    assert line.endswith(f"allow its folder with ${read_jail.ALLOW_ENV}={textures}"), line  # the folder, not y.png
+    monkeypatch.setenv(read_jail.ALLOW_ENV, str(textures))
+    code, _, err = run_cli("render", scene, "-o", tmp_path / "b.png", "--size", "32x24")
+    assert code == 0, err
+    assert (tmp_path / "b.png").is_file()

@@ -84,3 +84,12 @@ def test_a_file_in_place_of_the_folder_is_one_line(tmp_path):
     with pytest.raises(UserError) as caught:
         OwnedFolder(tmp_path / "no" / "out", "test")
     assert "does not exist" in str(caught.value)
+
+
+@pytest.mark.skipif(not __import__("os").path.isdir("/proc/self"), reason="needs Linux's /proc (no file can be made)")
+def test_an_unwritable_parent_is_refused_naming_the_path_given():
+    given = "/proc/wgpurender-out"  # the newcomer's `report -o /proc/x` named /proc alone
+    with pytest.raises(UserError) as err:
+        OwnedFolder(given, "test", flag="cannot write the report to")
+    assert str(err.value).startswith(f"cannot write the report to {given}: ")
+    assert "/proc" in str(err.value).split(": ", 1)[1]  # and the folder it could not write in

@@ -277,14 +277,15 @@ def busy_flip(a, b):  # one long call into C that never checks for signals, like
     return 0.0, None
 
 compare.flip_mean = busy_flip
-sys.exit(main(["compare", sys.argv[1], sys.argv[1]]))
+sys.exit(main(["compare", sys.argv[1], sys.argv[2]]))  # two unequal images: equal ones skip FLIP
 """
 
 
 def test_sigterm_ends_long_native_work_at_once(tmp_path):
     """A Python signal handler runs only between bytecodes: the old handler let a compare run on for minutes."""
     Image.new("RGB", (8, 8)).save(tmp_path / "a.png")
-    proc = subprocess.Popen([sys.executable, "-c", LONG_NATIVE_WORK, str(tmp_path / "a.png")],
+    Image.new("RGB", (8, 8), (255, 255, 255)).save(tmp_path / "b.png")
+    proc = subprocess.Popen([sys.executable, "-c", LONG_NATIVE_WORK, str(tmp_path / "a.png"), str(tmp_path / "b.png")],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     try:
         assert proc.stdout.readline() == b"busy\n", proc.stderr.read().decode()

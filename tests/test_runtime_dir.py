@@ -62,3 +62,35 @@ def test_an_invalid_one_is_replaced_by_a_private_folder(monkeypatch, tmp_path, v
     assert os.environ["XDG_RUNTIME_DIR"] == made and os.path.isabs(made) and os.path.isdir(made)
     assert os.stat(made).st_mode & 0o777 == 0o700 and os.stat(made).st_uid == os.getuid()
     assert runtime_dir.ensure_runtime_dir() == made  # valid now: kept
+
+
+SUCCESSES = [  # (argv after "wgpurender"): each succeeds and must print nothing on stderr (the newcomer's list)
+    ["render", "3d", "-o", "{out}/d.png", "--size", "32x24"],
+    ["reference", "3d", "-o", "{out}/e.png", "--size", "32x24"],
+    ["compare", "{out}/grey.png", "{out}/grey.png"],
+    ["export", "triangle", "-o", "{out}/page", "--size", "32x24"],
+    ["exercise", "2a", "-o", "{out}/ex"],
+    ["check", "2a", "{out}/solution.py", "--out", "{out}/checked", "--timeout", "120"],
+    ["new", "{out}/proj"],
+]
+
+
+def _inputs(folder) -> None:
+    """What compare and check read, made here: a grey PNG, the step 2a solution."""
+    from PIL import Image
+
+    from wgpurender.exercises import source
+    from wgpurender.exercises.catalogue import exercise
+
+    Image.new("RGBA", (8, 6), (128, 128, 128, 255)).save(folder / "grey.png")
+    (folder / "solution.py").write_text(source.solution_source(exercise("2a", "wgpu")))
+
+
+@pytest.mark.parametrize("argv", SUCCESSES, ids=[a[0] + "-" + a[1].split("/")[-1] for a in SUCCESSES])
+def test_a_successful_command_prints_nothing_on_stderr_without_a_runtime_dir(tmp_path, argv):
+    _inputs(tmp_path)
+    argv = [a.format(out=tmp_path) for a in argv]
+    done = subprocess.run([sys.executable, "-m", "wgpurender", *argv], env=_env(tmp_path, None), cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == "", done.stderr

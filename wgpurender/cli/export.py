@@ -15,7 +15,8 @@ def register(subparsers) -> None:
     )
     p.add_argument("target", metavar="STAGE|SCENE", help="a stage name or a scene .toml file")
     p.add_argument("-o", "--output", required=True, metavar="DIR",
-                   help="folder for the page (made if missing; new, empty, or an earlier output: only the files "
+                   help="folder for the page (made if missing, but its parent folder must exist; new, empty, or an "
+                   "earlier output: only the files "
                    "wgpurender wrote there are replaced)")
     p.add_argument("--size", type=size_arg, default=(800, 600), metavar="WxH", help="canvas size (default 800x600)")
     p.add_argument("--force", action="store_true",

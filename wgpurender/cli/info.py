@@ -36,8 +36,20 @@ def run(args) -> int:
 
 def _course_data() -> None:
     """Where the bundled course is (the checkout's folders, or the wheel's copies)."""
-    from wgpurender.core.files.assets import assets_dir, bundled_scene_names, notebook_path
+    from wgpurender.core.files.assets import assets_dir, notebook_path
 
     print(f"course data: {assets_dir()}")
-    print(f"  bundled scenes (by name: wgpurender render final -o f.png): {', '.join(bundled_scene_names())}")
+    print(f"  bundled scenes (by name: wgpurender render final -o f.png): {', '.join(scene_labels())}")
     print(f"  notebook: {notebook_path()} (copy it anywhere and open it)")
+
+
+NEEDS_FILES = " (needs the tutorial's files: see README)"
+
+
+def scene_labels() -> list[str]:
+    """The bundled scenes by name; one whose model or texture is absent here (the tutorial scenes read
+    ../shared/anchors, never in a wheel) is marked, not listed as if it could render."""
+    from wgpurender.core.files.assets import absent_files, bundled_scene_names, scene_dir
+
+    return [name + (NEEDS_FILES if absent_files(scene_dir() / f"{name}.toml") else "")
+            for name in bundled_scene_names()]

@@ -48,7 +48,7 @@ class Export:
 
 
 def export(target: str, out: str | Path, size: tuple[int, int] = (800, 600), force: bool = False) -> Export:
-    """Write the page for a stage (by name) or a scene file into folder ``out`` (made if missing).
+    """Write the page for a stage (by name) or a scene file into ``out`` (made if missing; its parent must exist).
 
     ``out`` is checked before anything is recorded: new, empty, or holding an earlier wgpurender output (its
     manifest, core/files/owned_files.py); ``force`` writes beside other files. Each file is written atomically."""

@@ -54,6 +54,28 @@ def bundled_scene_names() -> list[str]:
     return sorted(p.stem for p in scene_dir().glob(f"*{SCENE_SUFFIX}"))
 
 
+def absent_files(scene: Path) -> list[str]:
+    """The files a scene names (``path``, ``*_map``) that are not there, as written: the tutorial scenes name the
+    tutorial's model and texture beside the repository (../shared/anchors), which a wheel never has."""
+    import tomllib
+
+    names: list[str] = []
+
+    def walk(node) -> None:
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if isinstance(value, str) and (key == "path" or key.endswith("_map")):
+                    names.append(value)
+                else:
+                    walk(value)
+        elif isinstance(node, list):
+            for item in node:
+                walk(item)
+
+    walk(tomllib.loads(scene.read_text(encoding="utf-8")))
+    return [name for name in names if not (scene.parent / name).is_file()]
+
+
 def bundled_scene(target: str | PurePath) -> Path | None:
     """The bundled scene ``target`` names: ``final``, ``final.toml`` or ``assets/scenes/final.toml``; else None."""
     text = str(target)

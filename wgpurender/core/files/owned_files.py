@@ -93,7 +93,7 @@ class OwnedFolder:
             self._check_existing()
         elif not self.folder.parent.is_dir():
             raise UserError(f"{flag} {self.folder}: folder {self.folder.parent} does not exist (create it first)")
-        probe_writable(self.folder if self.folder.is_dir() else self.folder.parent, flag)
+        probe_writable(self.folder if self.folder.is_dir() else self.folder.parent, flag, named=self.folder)
 
     def _check_existing(self) -> None:
         listed = read_manifest(self.folder)
@@ -183,15 +183,19 @@ def _remove_owned(folder: Path, rel: str) -> bool:
     return True
 
 
-def probe_writable(folder: Path, flag: str) -> None:
-    """Create and remove a file in ``folder``: a read-only mount refuses root too, where os.access says yes."""
+def probe_writable(folder: Path, flag: str, named: Path | None = None) -> None:
+    """Create and remove a file in ``folder``: a read-only mount refuses root too, where os.access says yes.
+    ``named``: the path the user gave when ``folder`` is its parent (the refusal names both)."""
     probe = folder / f".probe.wgpurender-{os.getpid()}.tmp"  # safe_write.sweep_stale's pattern
     try:
         fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         os.close(fd)
         os.unlink(probe)
     except OSError as err:
-        raise UserError(f"{flag} {folder}: cannot write there ({err.strerror or err})") from None
+        where = f"{folder}: cannot write there"
+        if named is not None and named != folder:
+            where = f"{named}: cannot write in {folder}"
+        raise UserError(f"{flag} {where} ({err.strerror or err})") from None
 
 
 _BUILD = re.compile(r"^\..+\.wgpurender-(\d+)\.build$")

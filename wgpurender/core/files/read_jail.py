@@ -4,6 +4,8 @@ A model file is untrusted input, as a web page is to a browser. It reads only wh
 
 - files under the model's own folder, after resolving symbolic links (``textures/a.png``, ``sub/../b.bin``); a
   model shipped in the bundled ``assets/`` may read all of ``assets/`` (the project's own files);
+- files under a folder the user allows with ``$WGPURENDER_ALLOW_PATHS`` (the one allow-list, the scenes' too):
+  a Blender export ``models/x.obj`` whose MTL names ``../textures/y.png`` loads once ``textures/`` is allowed;
 - ``data:`` URIs and the GLB binary chunk (the callers read those without a file).
 
 Refused, in one line naming the URI, before any byte of any file the model names is read: an absolute path, a
@@ -49,8 +51,10 @@ def model_file(model: Path, uri: str, where: str, *, base: Path | None = None, e
     if SCHEME.match(name) or name.startswith(("/", "\\")) or PureWindowsPath(name).is_absolute():
         _refuse(model, uri, where, folder, "is absolute or has a scheme (file://, http:, a drive)")
     target = resolved((base or model.parent) / name)
-    if not target.is_relative_to(folder):
-        _refuse(model, uri, where, folder, f"leads out of the model's folder (to {target})")
+    if not any(target.is_relative_to(f) for f in (folder, *allowed_by_user())):
+        raise UserError(f"model file {model}: {where} {uri!r} leads out of the model's folder {folder} (to "
+                        f"{target}); a model reads only files under its own folder: move the file under "
+                        f"{folder}, or allow its folder with ${ALLOW_ENV}={target.parent}")
     kind = special_kind(target)
     if kind is not None:
         _refuse(model, uri, where, folder, f"is {kind}, not a regular file")
@@ -88,8 +92,13 @@ def allowed_folders(scene: Path) -> list[Path]:
 
     own = resolved(scene.parent)
     project = own.parent if own.name == SCENES_FOLDER else own
-    extra = [resolved(p) for p in os.environ.get(ALLOW_ENV, "").split(os.pathsep) if p.strip()]
-    return [project, resolved(assets_dir()), *extra]
+    return [project, resolved(assets_dir()), *allowed_by_user()]
+
+
+def allowed_by_user() -> list[Path]:
+    """The folders of $WGPURENDER_ALLOW_PATHS (``os.pathsep``-separated), links resolved: a model's references
+    and a scene's paths may lead into them."""
+    return [resolved(p) for p in os.environ.get(ALLOW_ENV, "").split(os.pathsep) if p.strip()]
 
 
 def is_bundled_scene(scene: Path) -> bool:

@@ -69,7 +69,7 @@ class FrameWriter:
             from wgpurender.core.files.owned_files import probe_writable
 
             self.path = output_target(self.path)
-            probe_writable(self.path.parent, "cannot record to")
+            probe_writable(self.path.parent, "cannot record to", named=self.path)
         else:
             from wgpurender.core.files.owned_files import OwnedFolder
 
