@@ -47,7 +47,7 @@ report-screenshot: report
 
 test: setup
 	$(BIN)/ruff check .
-	$(BIN)/pytest -q
+	$(BIN)/pytest -q -n 2  # two workers (pytest-xdist): the suite is mostly processes waiting on lavapipe and subprocesses
 
 # The long fuzz run (>= 10,000 cases, counts by outcome printed and written to out/fuzz-report.json) and the long
 # soak. lavapipe limited to 1 thread, so a shared machine stays usable; it takes about an hour.
