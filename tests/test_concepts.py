@@ -128,3 +128,15 @@ def test_command_prints_text_and_markdown(capsys):
     assert main(["concepts", "--markdown"]) == 0
     assert capsys.readouterr().out == markdown()
     assert "  raw path:  (not in the raw path: no natural use" in plain_text()
+
+
+def test_a_vulkan_call_named_exactly_finds_its_row():
+    """`wgpurender concepts vkCmdDraw` (the README's tour): the row that lists vkCmdDraw itself, not every row whose
+    items merely contain the text (instanced draws lists "vkCmdDrawIndexed (instanceCount, firstInstance)")."""
+    from wgpurender.cli.concepts import find_concept
+    from wgpurender.core.errors import UserError
+
+    assert find_concept("vkCmdDraw").name == "draw calls"
+    assert find_concept("vkcmddrawindexed").name == "draw calls"
+    with pytest.raises(UserError, match="ambiguous"):
+        find_concept("vkCmdDrawInd")  # only contained, in two rows

@@ -39,6 +39,8 @@ def find_concept(query: str):
     if q in by_name:
         return by_name[q]
     matches = [row for row in CONCEPTS if q and q in row.name.lower()]
+    if not matches:  # a Vulkan/wgpu item named exactly ("vkCmdDraw") before items that merely contain it
+        matches = [row for row in CONCEPTS if any(q == item.lower() for item in (*row.vulkan, *row.wgpu))]
     if not matches:
         matches = [row for row in CONCEPTS if q and any(q in item.lower() for item in (*row.vulkan, *row.wgpu))]
     if len(matches) == 1:
