@@ -157,8 +157,12 @@ def test_triangles_beside_lines_still_draw(tmp_path):
 
 # --- 10: bounded before allocation --------------------------------------------------------------------------
 
+# The child reports its own peak: VmHWM of /proc/self/status is the high-water mark of the mm that exec gave it.
+# getrusage(RUSAGE_SELF).ru_maxrss is not: on Linux exec folds the replaced mm's peak into it, and that mm is
+# the forked (or vfork-shared) parent's, so under a grown pytest-xdist worker it read 447-453 MiB for a child
+# that peaked near 53.
 PROBE = textwrap.dedent("""
-    import resource, sys
+    import sys
     from wgpurender.core.errors import UserError
     from wgpurender.core.models.mesh import load_mesh
     from wgpurender.core.scene.gltf_materials import model_materials
@@ -168,7 +172,9 @@ PROBE = textwrap.dedent("""
         result = "loaded"
     except UserError as err:
         result = "error: " + str(err)
-    print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024)
+    with open("/proc/self/status") as status:
+        hwm_kb = next(int(line.split()[1]) for line in status if line.startswith("VmHWM:"))
+    print("PEAK_RSS_MIB", hwm_kb // 1024)
     print(result)
 """)
 
@@ -178,8 +184,9 @@ def _probe(path: Path) -> tuple[int, str]:
     generous bound is a hang (quadratic or unbounded work), not a slow machine."""
     run = subprocess.run([sys.executable, "-c", PROBE, str(path)], capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr[-2000:]
-    rss, result = run.stdout.strip().split("\n", 1)
-    return int(rss), result
+    head, _, result = run.stdout.rpartition("PEAK_RSS_MIB ")[2].partition("\n")
+    assert head.isdigit(), run.stdout[-2000:]
+    return int(head), result.strip()
 
 
 BASE_RSS_MB = 400  # a few hundred MB (issue 28); the loader refusing these peaked at 53 MiB here (2026-11-27)
