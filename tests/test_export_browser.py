@@ -143,3 +143,12 @@ def test_scrolling_up_on_the_page_moves_the_camera_closer(pages, browser):
     wheel(100)
     wheel(100)
     assert closer < start < distance()
+
+
+def test_the_matrix_renders_into_a_work_folder_it_makes(tmp_path):
+    """verify --implementations browser exports into out/work/pages/NAME: the pages folder is made, not refused as a
+    missing parent (every browser cell read 'skipped' once export refused missing parents)."""
+    from wgpurender.implementations import render_browser
+
+    images, skipped, _ = render_browser(["triangle"], (32, 24), tmp_path / "work" / "pages")
+    assert skipped == {} and images["triangle"].shape[:2] == (24, 32)

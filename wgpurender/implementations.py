@@ -90,6 +90,7 @@ def render_browser(names: list[str], size: tuple[int, int], work: Path) -> tuple
     from wgpurender.webpage.chromium import Chromium
 
     images, skipped, pages = {}, {}, {}
+    work.mkdir(parents=True, exist_ok=True)  # export makes the page's own folder, never a missing parent
     for name in names:
         try:
             pages[name] = export(target_path(name), work / name, size).page
