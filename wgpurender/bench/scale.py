@@ -28,6 +28,7 @@ import numpy as np
 
 from wgpurender.bench.frames import measure
 from wgpurender.bench.report import Result, size_text
+from wgpurender.core.files.assets import assets_dir
 from wgpurender.core.models import procedural
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.timing import Stats
@@ -37,7 +38,13 @@ QUICK_COUNTS = (50, 200)
 DISTINCT_LIMITS = {"CPU": 1_000, "GPU": 10_000}  # N mesh files loaded one by one: seconds per thousand
 PYGFX_LIMIT = 100_000  # pygfx gives every instance a pick id from a 2**20 pool (and sets them in a Python loop)
 SPACING = 1.5
-TEXTURE = Path(__file__).resolve().parents[2] / "assets" / "textures" / "brick_albedo.png"
+
+
+def brick_texture() -> Path:
+    """The bundled brick texture, wherever the bundled assets are (the checkout's ``assets/`` or the wheel's
+    ``wgpurender/_assets``: :func:`~wgpurender.core.files.assets.assets_dir`, the one definition). A path built
+    from this file's folder named the checkout's and was not found from the wheel."""
+    return assets_dir() / "textures" / "brick_albedo.png"
 
 
 def grid_side(n: int) -> tuple[int, int]:
@@ -58,8 +65,10 @@ def _head(n: int, size: tuple[int, int], texture: Path) -> str:
             f'[render]\nsize = [{size[0]}, {size[1]}]\nmsaa = 1\nhdr = false\n')
 
 
-def instanced_scene(folder: Path, n: int, size: tuple[int, int], texture: Path = TEXTURE) -> Path:
-    """N cubes as one model with a grid ``instances`` block (exactly N: the grid is cut to its first N)."""
+def instanced_scene(folder: Path, n: int, size: tuple[int, int], texture: Path | None = None) -> Path:
+    """N cubes as one model with a grid ``instances`` block (exactly N: the grid is cut to its first N); the
+    texture is :func:`brick_texture` unless given."""
+    texture = texture or brick_texture()
     cube = folder / "cube.obj"
     if not cube.exists():
         procedural.write_obj(cube, procedural.box(1.0))
@@ -71,8 +80,10 @@ def instanced_scene(folder: Path, n: int, size: tuple[int, int], texture: Path =
     return path
 
 
-def distinct_scene(folder: Path, n: int, size: tuple[int, int], texture: Path = TEXTURE) -> Path:
-    """N models, each its own mesh file (a cube moved to its grid place inside the file): nothing batches."""
+def distinct_scene(folder: Path, n: int, size: tuple[int, int], texture: Path | None = None) -> Path:
+    """N models, each its own mesh file (a cube moved to its grid place inside the file): nothing batches; the
+    texture is :func:`brick_texture` unless given."""
+    texture = texture or brick_texture()
     mesh = procedural.box(1.0)
     lines = []
     for k, offset in enumerate(grid_offsets(n)):

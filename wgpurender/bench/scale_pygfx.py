@@ -15,7 +15,7 @@ import numpy as np
 
 from wgpurender.bench.frames import frames_without_gc, settle_garbage, warm_up
 from wgpurender.bench.report import Result, size_text
-from wgpurender.bench.scale import TEXTURE, camera_distance, grid_offsets
+from wgpurender.bench.scale import brick_texture, camera_distance, grid_offsets
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.timing import Stats
 
@@ -42,7 +42,7 @@ def build(n: int, size: tuple[int, int]):
     canvas = RenderCanvas(size=size, pixel_ratio=1)
     renderer = gfx.WgpuRenderer(canvas, pixel_ratio=1, ppaa="none")
     scene = gfx.Scene()
-    texels = np.ascontiguousarray(load_png(TEXTURE)[..., :4])
+    texels = np.ascontiguousarray(load_png(brick_texture())[..., :4])
     material = gfx.MeshPhongMaterial(map=gfx.Texture(texels, dim=2, colorspace="srgb"))
     mesh = gfx.InstancedMesh(gfx.box_geometry(1, 1, 1), material, n)
     matrices = np.zeros((n, 4, 4), np.float32)
