@@ -260,7 +260,8 @@ def test_unknown_top_level_table(project):
     path = write(project, CAMERA + "\n[lighting]\nambient = 0.1\n")
     msg = error_of(path)
     assert msg.startswith(f"{path}:{line_of(path, '[lighting]')}: ")
-    assert "unknown key 'lighting' in the top level: valid keys are camera, description, environment, lights, materials, models, post, render" in msg
+    assert ("unknown key 'lighting' in the top level: valid keys are camera, description, environment, lights, "
+            "materials, models, post, render") in msg
 
 
 def test_unknown_effect_lists_valid_names(project):
