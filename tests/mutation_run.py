@@ -96,9 +96,9 @@ MUTATIONS = [
     # the report
     ("wgpurender/report/page.py", '"wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "wgpu")',
      '"wgpu (WGSL, wgpu-py)", step.wgpu_note, step, "raw")', [REPORT]),
-    ("wgpurender/report/page.py", "<tr><th>PSNR</th><td colspan=2>{psnr}</td></tr>",
-     "<tr><th>PSNR</th><td colspan=2>{c.flip_mean:.5f}</td></tr>", [REPORT]),
-    ("wgpurender/report/page.py", "{100 * c.over_1:.3f}%</td></tr>", "{100 * c.over_2:.3f}%</td></tr>", [REPORT]),
+    ("wgpurender/report/page.py", '_metric("psnr", "PSNR", psnr)',
+     '_metric("psnr", "PSNR", f"{c.flip_mean:.5f}")', [REPORT]),
+    ("wgpurender/report/page.py", '{100 * c.over_1:.3f}%")]', '{100 * c.over_2:.3f}%")]', [REPORT]),
     ("wgpurender/report/steps.py", "step.comparison = compare_images(step.raw, step.wgpu)",
      "step.comparison = compare_images(step.raw, step.raw)", [REPORT]),
     ("wgpurender/report/steps.py", "step.heat = heatmap(step.raw, step.wgpu, HEATMAP_GAIN)",
@@ -418,7 +418,7 @@ MUTATIONS = [
     ("wgpurender/report/teaching.py", "<td>{r.shimmer:.4f}</td><td>{r.still_error:.4f}</td>",
      "<td>{r.still_error:.4f}</td><td>{r.shimmer:.4f}</td>", [TEACHING]),
     # issue 28: a model reads only what it ships (read_jail.py and its callers)
-    ("wgpurender/core/files/read_jail.py", "    if not target.is_relative_to(folder):", "    if False:", [JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    if not any(target.is_relative_to(f) for f in (folder, *allowed_by_user())):", "    if False:", [JAIL]),  # noqa: E501
     ("wgpurender/core/files/read_jail.py", "    name = urllib.parse.unquote(uri) if encoded else uri", "    name = uri", [JAIL]),  # noqa: E501
     ("wgpurender/core/files/read_jail.py", "    if SCHEME.match(name) or name.startswith(", "    if name.startswith(", [JAIL]),  # noqa: E501
     ("wgpurender/core/files/read_jail.py", "    return file_kind(mode)", "    return None", [JAIL]),
@@ -465,7 +465,7 @@ MUTATIONS = [
     ("wgpurender/core/models/gltf_rules.py", "            placed[node[\"mesh\"]] = placed.get(node[\"mesh\"], 0) + 1",
      "            placed[node[\"mesh\"]] = 1", [UNTRUSTED + "|instancing and nodes"]),
     # issue 28: flat normals, nothing to draw
-    ("wgpurender/core/models/gltf_geometry.py", "    return flat_shaded(geometry) if geometry.normals is None else geometry",  # noqa: E501
+    ("wgpurender/core/models/gltf_geometry.py", "    return flat_shaded(geometry) if geometry.normals is None and geometry.topology == \"triangle-list\" else geometry",  # noqa: E501
      "    return geometry", [UNTRUSTED + "|normals"]),
     ("wgpurender/core/models/gltf_geometry.py", "    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])",
      "    normal = np.cross(tri[:, 2] - tri[:, 0], tri[:, 1] - tri[:, 0])", [UNTRUSTED + "|normals"]),
@@ -776,7 +776,7 @@ MUTATIONS = [
     ("wgpurender/core/verdict/tolerances.py", "    if cls is not None and impl and cls != measured_on:",
      "    if cls is not None and impl and cls == measured_on:", [LOUD]),
     # every figure from a run (item 4)
-    ("docs/backends.md", "agg=count -->10<!-- /figure -->", "agg=count -->12<!-- /figure -->", [DOCFIG]),
+    ("docs/backends.md", "agg=count -->11<!-- /figure -->", "agg=count -->12<!-- /figure -->", [DOCFIG]),
     ("docs/benchmarks.md", "per=1000 fmt=.0f -->1233<!-- /figure -->", "per=1000 fmt=.0f -->1234<!-- /figure -->",
      [DOCFIG]),
     # one materials reader, stages' state (item 2)
