@@ -48,3 +48,12 @@ def edge_distance(tri_px: np.ndarray, points: np.ndarray) -> np.ndarray:
 def triangle_area(tri_px: np.ndarray) -> float:
     a, b, c = tri_px
     return 0.5 * abs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+
+
+def one_line_refusal(code: int, err: str, *needles: str) -> str:
+    """The project's rule for bad input: exit 2 and exactly one line on stderr, no traceback; each needle in it."""
+    lines = err.splitlines()
+    assert code == 2 and len(lines) == 1 and "Traceback" not in err, f"exit {code}:\n{err}"
+    for needle in needles:
+        assert needle in lines[0], lines[0]
+    return lines[0]

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from gltf_gen import GltfWriter, quad, write_container
+from helpers import one_line_refusal
 from PIL import Image
 from reliab_gen import run_cli
 
@@ -25,13 +26,6 @@ SIZE = (64, 48)
 CUBE_CAMERA = "[camera]\neye = [1.5, 1.2, 2.0]\ntarget = [0, 0, 0]\nfov_y = 45\nnear = 0.1\nfar = 20\n"
 LIGHT = '[[lights]]\ntype = "directional"\ndirection = [-0.4, -1.0, -0.7]\ncolor = [1, 1, 1]\nintensity = 0.8\n'
 
-
-def _one_line(code: int, err: str, *needles: str) -> str:
-    lines = err.splitlines()
-    assert code == 2 and len(lines) == 1 and "Traceback" not in err, f"exit {code}:\n{err}"
-    for needle in needles:
-        assert needle in lines[0], lines[0]
-    return lines[0]
 
 
 GREY = "{ albedo_color = [0.5, 0.5, 0.5, 1], roughness = 0.9 }"
@@ -142,7 +136,7 @@ def test_a_file_with_nothing_to_draw_is_refused(tmp_path, kind, material):
     g.write(tmp_path / "model.gltf", roots=_nothing_file(g, kind))
     code, _, err = run_cli("render", _scene(tmp_path, "model.gltf", material), "-o", tmp_path / "out.png")
     why = "places no mesh" if kind.startswith("no-") else "only"
-    _one_line(code, err, "model.gltf", "nothing to draw", why)
+    one_line_refusal(code, err, "model.gltf", "nothing to draw", why)
     assert not (tmp_path / "out.png").exists()
 
 
@@ -383,5 +377,5 @@ def test_a_field_of_the_wrong_type_or_value_is_one_line_naming_its_json_path(tmp
     _set(doc, where, value)
     write_container(tmp_path / "bad.gltf", doc, bytes(g.data))
     code, _, err = run_cli("render", _scene(tmp_path, "bad.gltf", None), "-o", tmp_path / "out.png")
-    _one_line(code, err, "bad.gltf", needle)
+    one_line_refusal(code, err, "bad.gltf", needle)
     assert not (tmp_path / "out.png").exists()

@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from helpers import one_line_refusal
 from reliab_gen import run_cli, scene_text, triangle_gltf, write_gltf
 
 from wgpurender.core.errors import UserError
@@ -37,13 +38,6 @@ def _render_opening(scene: Path, out: Path) -> tuple[int, str, list[str]]:
     finally:
         OPENED = None
 
-
-def _one_line(code: int, err: str, *needles: str) -> str:
-    lines = err.splitlines()
-    assert code == 2 and len(lines) == 1 and "Traceback" not in err, f"exit {code}:\n{err}"
-    for needle in needles:
-        assert needle in lines[0], lines[0]
-    return lines[0]
 
 
 def _external_buffer_doc(uri: str) -> dict:
@@ -92,7 +86,7 @@ def test_a_buffer_uri_outside_the_models_folder_is_refused_before_reading(world,
     (world / "model" / "sub").symlink_to(world / "outside")
     write_gltf(world / "model" / "model.gltf", _external_buffer_doc(uri))
     code, err, opened = _render_opening(world / "model" / "scene.toml", world / "out.png")
-    _one_line(code, err, repr(uri), "$.buffers[0].uri", "its own folder")
+    one_line_refusal(code, err, repr(uri), "$.buffers[0].uri", "its own folder")
     assert not _outside_opened(opened, world), opened
     assert not (world / "out.png").exists()
 
@@ -108,7 +102,7 @@ def test_a_special_file_inside_the_folder_is_refused_without_opening_it(world, k
         special.mkdir()
     write_gltf(world / "model" / "model.gltf", _external_buffer_doc("special.bin"))
     code, err, opened = _render_opening(world / "model" / "scene.toml", world / "out.png")
-    _one_line(code, err, "'special.bin'")
+    one_line_refusal(code, err, "'special.bin'")
     assert str(special) not in opened and "/dev/zero" not in opened
 
 
@@ -123,7 +117,7 @@ def test_every_uri_is_checked_before_the_first_buffer_is_read(world, bad):
         doc["images"] = [{"uri": "../outside/secret.png"}]
     write_gltf(world / "model" / "model.gltf", doc)
     code, err, opened = _render_opening(world / "model" / "scene.toml", world / "out.png")
-    _one_line(code, err, bad)
+    one_line_refusal(code, err, bad)
     assert str(world / "model" / "good.bin") not in opened
 
 
@@ -142,7 +136,7 @@ def test_an_image_uri_outside_the_models_folder_is_refused(world, kind):
     write_gltf(world / "model" / "model.gltf", doc)
     (world / "model" / "scene.toml").write_text(scene_text(None) + '\n[[models]]\npath = "model.gltf"\n')
     code, err, opened = _render_opening(world / "model" / "scene.toml", world / "out.png")
-    _one_line(code, err, repr(uri), "$.images[0].uri")
+    one_line_refusal(code, err, repr(uri), "$.images[0].uri")
     assert not [p for p in opened if "secret.png" in p], opened
 
 
@@ -181,7 +175,7 @@ def test_an_obj_reads_neither_a_material_library_nor_a_texture_outside_its_folde
     (world / "model" / "model.obj").write_text(OBJ.format(lib=lib))
     (world / "model" / "scene.toml").write_text(scene_text(None) + '\n[[models]]\npath = "model.obj"\n')
     code, err, opened = _render_opening(world / "model" / "scene.toml", world / "out.png")
-    _one_line(code, err, "mtllib" if where == "mtllib" else "map_Kd", "its own folder")
+    one_line_refusal(code, err, "mtllib" if where == "mtllib" else "map_Kd", "its own folder")
     assert not [p for p in opened if "outside" in p], opened
 
 
@@ -240,7 +234,7 @@ def test_a_scene_reads_only_its_project_the_assets_and_allowed_folders(tmp_path,
     model = write_gltf(other / "model.gltf", triangle_gltf())
     scene = _scene_naming(tmp_path / "project" / "scene.toml", model)
     code, _, err = run_cli("render", scene, "-o", tmp_path / "a.png", "--size", "32x24")
-    _one_line(code, err, "scene.toml:", "models[0].path", read_jail.ALLOW_ENV)
+    one_line_refusal(code, err, "scene.toml:", "models[0].path", read_jail.ALLOW_ENV)
     monkeypatch.setenv(read_jail.ALLOW_ENV, f"/nonexistent{os.pathsep}{other}")
     code, _, err = run_cli("render", scene, "-o", tmp_path / "b.png", "--size", "32x24")
     assert code == 0, err
@@ -257,7 +251,7 @@ def test_a_scene_in_a_scenes_folder_reads_its_project(tmp_path, monkeypatch):
     assert code == 0, err
     _scene_naming(scene, Path("../../m.gltf"))
     code, _, err = run_cli("render", scene, "-o", tmp_path / "b.png", "--size", "32x24")
-    _one_line(code, err, "'../../m.gltf'", "outside the folders a scene may read")
+    one_line_refusal(code, err, "'../../m.gltf'", "outside the folders a scene may read")
 
 
 def test_a_scene_link_pointing_out_is_refused_and_the_bundled_assets_are_allowed(tmp_path, monkeypatch):
@@ -270,7 +264,7 @@ def test_a_scene_link_pointing_out_is_refused_and_the_bundled_assets_are_allowed
     (tmp_path / "s" / "m.gltf").symlink_to(tmp_path / "outside" / "m.gltf")
     scene = _scene_naming(tmp_path / "s" / "scene.toml", Path("m.gltf"))
     code, _, err = run_cli("render", scene, "-o", tmp_path / "a.png", "--size", "32x24")
-    _one_line(code, err, "outside the folders a scene may read")
+    one_line_refusal(code, err, "outside the folders a scene may read")
     _scene_naming(scene, assets_dir() / "models" / "brick_torus.glb")
     code, _, err = run_cli("render", scene, "-o", tmp_path / "b.png", "--size", "32x24")
     assert code == 0, err
@@ -292,7 +286,7 @@ def test_a_blender_layout_is_refused_saying_how_and_loads_once_its_folder_is_all
     scene.write_text(scene_text(None) + '\n[[models]]\npath = "models/x.obj"\n')
     code, _, err = run_cli("render", scene, "-o", tmp_path / "a.png", "--size", "32x24")
     textures = (tmp_path / "textures").resolve()
-    line = _one_line(code, err, "map_Kd", f"move the file under {(tmp_path / 'models').resolve()}")
+    line = one_line_refusal(code, err, "map_Kd", f"move the file under {(tmp_path / 'models').resolve()}")
     assert line.endswith(f"allow its folder with ${read_jail.ALLOW_ENV}={textures}"), line  # the folder, not y.png
     monkeypatch.setenv(read_jail.ALLOW_ENV, str(textures))
     code, _, err = run_cli("render", scene, "-o", tmp_path / "b.png", "--size", "32x24")

@@ -17,6 +17,7 @@ import zlib
 from pathlib import Path
 
 import pytest
+from helpers import one_line_refusal
 from PIL import Image
 from reliab_gen import run_cli, scene_text, triangle_gltf, write_gltf
 
@@ -24,13 +25,6 @@ from wgpurender.core.files import safe_write
 
 LONG = "n" * 300  # a path component over the 255 bytes any Linux file system allows
 
-
-def _one_line_error(code: int, err: str, *needles: str) -> str:
-    lines = err.splitlines()
-    assert code == 2 and len(lines) == 1 and "Traceback" not in err, f"exit {code}:\n{err}"
-    for needle in needles:
-        assert needle in lines[0], lines[0]
-    return lines[0]
 
 
 CUBE = Path(__file__).resolve().parents[1] / "assets" / "models" / "brick_cube.obj"  # has texture coordinates
@@ -59,7 +53,7 @@ def test_a_texture_that_is_a_symlink_loop_is_named_as_one(tmp_path):
     os.symlink("loop_b.png", tmp_path / "loop_a.png")
     os.symlink("loop_a.png", tmp_path / "loop_b.png")
     code, _, err = _render(tmp_path, _textured_scene(tmp_path, "loop_a.png"))
-    _one_line_error(code, err, "albedo_map", "symbolic link loop")
+    one_line_refusal(code, err, "albedo_map", "symbolic link loop")
     assert not (tmp_path / "out.png").exists()
 
 
@@ -79,7 +73,7 @@ def test_a_path_component_over_255_bytes_is_one_line(tmp_path, where):
         Image.new("RGB", (4, 4)).save(tmp_path / "a.png")
         code, _, err = run_cli("compare", tmp_path / "a.png", tmp_path / f"{LONG}.png")
         needle = "too long"
-    _one_line_error(code, err, needle)
+    one_line_refusal(code, err, needle)
 
 
 @pytest.mark.parametrize("length", [240, 250, 255])
@@ -106,7 +100,7 @@ def test_follow_symlinks_never_replaces_a_link_of_a_loop(tmp_path, monkeypatch):
     os.symlink("a.png", tmp_path / "b.png")
     Image.new("RGB", (4, 4)).save(tmp_path / "x.png")
     code, _, err = run_cli("compare", tmp_path / "x.png", tmp_path / "x.png", "--heatmap", tmp_path / "a.png")
-    _one_line_error(code, err, "symbolic link loop")
+    one_line_refusal(code, err, "symbolic link loop")
     assert os.readlink(tmp_path / "a.png") == "b.png" and os.readlink(tmp_path / "b.png") == "a.png"
 
 
@@ -139,14 +133,14 @@ def test_a_special_file_given_as_input_is_named_as_what_it_is(tmp_path, kind, as
     else:
         Image.new("RGB", (4, 4)).save(tmp_path / "a.png")
         code, _, err = run_cli("compare", tmp_path / "a.png", special)
-    line = _one_line_error(code, err, expected)
+    line = one_line_refusal(code, err, expected)
     assert "not found" not in line
 
 
 def test_a_scene_file_that_is_a_fifo_is_named_as_one(tmp_path):
     os.mkfifo(tmp_path / "scene.toml")
     code, _, err = _render(tmp_path, tmp_path / "scene.toml")  # must not open it: that would block
-    _one_line_error(code, err, "FIFO")
+    one_line_refusal(code, err, "FIFO")
 
 
 # --- resources -----------------------------------------------------------------------------------------------
@@ -178,7 +172,7 @@ def test_compare_of_pngs_declaring_12000x12000_is_one_line_in_bounded_memory(tmp
                                 stdout=subprocess.DEVNULL, stderr=err, preexec_fn=_limit_memory)
         _, status, usage = os.wait4(proc.pid, 0)  # this child's own peak RSS (KiB on Linux)
     proc.returncode = os.waitstatus_to_exitcode(status)
-    _one_line_error(proc.returncode, (tmp_path / "err.txt").read_text(), "declares 12000x12000",
+    one_line_refusal(proc.returncode, (tmp_path / "err.txt").read_text(), "declares 12000x12000",
                     "WGPURENDER_MAX_IMAGE_PIXELS")
     assert usage.ru_maxrss < 1 << 20, f"peak RSS {usage.ru_maxrss / 1024:.0f} MB"
 
@@ -186,7 +180,7 @@ def test_compare_of_pngs_declaring_12000x12000_is_one_line_in_bounded_memory(tmp
 def test_a_texture_declaring_too_many_pixels_is_refused_before_decoding(tmp_path):
     _png_declaring(tmp_path / "huge.png", 8192, 4096)
     code, _, err = _render(tmp_path, _textured_scene(tmp_path, "huge.png"))
-    _one_line_error(code, err, "declares 8192x4096")
+    one_line_refusal(code, err, "declares 8192x4096")
 
 
 def _png_rows(path: Path, width: int, height: int, rows: int) -> Path:
@@ -208,7 +202,7 @@ def test_a_png_whose_data_ends_early_is_refused_not_zero_filled(tmp_path, as_wha
         code, _, err = run_cli("compare", png, png)
     else:
         code, _, err = _render(tmp_path, _textured_scene(tmp_path, "short.png"))
-    _one_line_error(code, err, "short.png", "ends early", "12%")
+    one_line_refusal(code, err, "short.png", "ends early", "12%")
     full = _png_rows(tmp_path / "full.png", 64, 64, 64)
     assert run_cli("compare", full, full)[0] == 0
 
@@ -218,7 +212,7 @@ def test_deeply_nested_toml_is_one_line(tmp_path, depth):
     scene = tmp_path / "scene.toml"
     scene.write_text(scene_text() + "deep = " + "[" * depth + "]" * depth + "\n")
     code, _, err = _render(tmp_path, scene)
-    _one_line_error(code, err, "nested more than 32 deep")
+    one_line_refusal(code, err, "nested more than 32 deep")
 
 
 def test_a_model_file_over_the_size_bound_is_refused_before_parsing(tmp_path):
@@ -228,7 +222,7 @@ def test_a_model_file_over_the_size_bound_is_refused_before_parsing(tmp_path):
         f.truncate(600 * 2**20)
     (tmp_path / "scene.toml").write_text(scene_text(model="model.obj"))
     code, _, err = _render(tmp_path, tmp_path / "scene.toml")
-    _one_line_error(code, err, "600 MiB", "WGPURENDER_MAX_MODEL_BYTES")
+    one_line_refusal(code, err, "600 MiB", "WGPURENDER_MAX_MODEL_BYTES")
 
 
 def test_the_model_size_bound_is_an_environment_setting(tmp_path, monkeypatch):
@@ -236,7 +230,7 @@ def test_the_model_size_bound_is_an_environment_setting(tmp_path, monkeypatch):
     (tmp_path / "scene.toml").write_text(scene_text())
     monkeypatch.setenv("WGPURENDER_MAX_MODEL_BYTES", "100")
     code, _, err = _render(tmp_path, tmp_path / "scene.toml")
-    _one_line_error(code, err, "over the limit")
+    one_line_refusal(code, err, "over the limit")
 
 
 @pytest.mark.parametrize("command", ["render", "reference"])  # the wgpu path, the raw-Vulkan path
@@ -251,7 +245,7 @@ def test_a_size_the_adapter_cannot_hold_is_refused_before_allocation(tmp_path, m
         (tmp_path / "scene.toml").write_text(scene_text())
         target = tmp_path / "scene.toml"
     code, _, err = run_cli(command, target, "-o", tmp_path / "out.png", "--size", "16384x16384", "--msaa", "4")
-    _one_line_error(code, err, "16384x16384", "--size")
+    one_line_refusal(code, err, "16384x16384", "--size")
     assert not (tmp_path / "out.png").exists()
 
 
@@ -303,7 +297,7 @@ def _gltf_fails(tmp_path, doc: dict, *needles: str) -> None:
     write_gltf(tmp_path / "model.gltf", doc)
     (tmp_path / "scene.toml").write_text(scene_text())
     code, _, err = _render(tmp_path, tmp_path / "scene.toml")
-    _one_line_error(code, err, "malformed glTF file", *needles)
+    one_line_refusal(code, err, "malformed glTF file", *needles)
 
 
 def test_a_node_that_is_its_own_child_is_refused_up_front(tmp_path):
@@ -350,7 +344,7 @@ def test_attributes_of_unequal_counts_are_refused(tmp_path):
 
 def test_a_float32_format_is_refused_for_a_stage_with_msaa(tmp_path):
     code, _, err = run_cli("render", "msaa", "-o", tmp_path / "out.png", "--format", "rgba32float", "--msaa", "4")
-    _one_line_error(code, err, "rgba32float", "rgba16float")
+    one_line_refusal(code, err, "rgba32float", "rgba16float")
 
 
 @pytest.mark.parametrize("metric", ["psnr", "max_abs", "over_1", "over_2", "flip_mean"])
@@ -358,7 +352,7 @@ def test_a_nan_threshold_is_refused_not_switched_off(tmp_path, metric):
     Image.new("RGB", (8, 8), (0, 0, 0)).save(tmp_path / "black.png")
     Image.new("RGB", (8, 8), (255, 255, 255)).save(tmp_path / "white.png")
     code, _, err = run_cli("compare", tmp_path / "black.png", tmp_path / "white.png", "--threshold", f"{metric}=nan")
-    _one_line_error(code, err, metric, "finite")
+    one_line_refusal(code, err, metric, "finite")
 
 
 def test_black_against_white_fails_every_finite_threshold(tmp_path):
