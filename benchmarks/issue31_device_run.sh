@@ -2,14 +2,7 @@
 # Issue 31's run on the GPU machine (the device tool): run from the repository root with .gl/ and .whl/ carried
 # (docs/perf-h100/2026-11-27-issue31/README.md lists what each file is). Writes everything under $OUT/run.
 set -u
-for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
-export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json XDG_RUNTIME_DIR=/tmp PYTHONUNBUFFERED=1
-python3 -m pip install -q --no-index --no-deps --target /tmp/site .whl/*.whl && export PYTHONPATH=$PWD:/tmp/site
-D=$OUT/run; mkdir -p "$D"
-{ date -u; nvidia-smi -L; nvidia-smi --query-gpu=driver_version --format=csv,noheader; lscpu | grep "Model name";
-  nproc; python3 --version; } > "$D/machine.txt" 2>&1
-step() { name=$1; limit=$2; shift 2; echo "== $name: $*" >> "$D/commands.txt"; date -u +%H:%M:%S >> "$D/commands.txt"
-         timeout "$limit" "$@" > "$D/$name.log" 2>&1; echo "rc $?" >> "$D/commands.txt"; }
+. benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
 step tests 120 python3 -m pytest -q -p no:cacheprovider tests/test_instancing.py tests/test_culling.py \
   tests/test_binding.py tests/test_plan_is_what_is_built.py
 step perf 330 python3 -m wgpurender bench perf --out "$D/perf"
