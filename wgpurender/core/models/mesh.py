@@ -283,9 +283,11 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     elif file_type == "fbx":
         parts = _fbx_parts(path)
     else:
-        if file_type == "obj":
-            check_obj_records(path)
-        parts = _trimesh_parts(path, file_type)
+        parts = _simple_obj_parts(path) if file_type == "obj" else None
+        if parts is None:
+            if file_type == "obj":
+                check_obj_records(path)
+            parts = _trimesh_parts(path, file_type)
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
@@ -418,6 +420,20 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
             uv = None
         parts.append(_place(transform, geom.vertices, geom.faces, _file_normals(geom), uv, None, str(path), name))
     return parts
+
+
+def _simple_obj_parts(path: Path) -> list[_Part] | None:
+    """The one part of a simple OBJ file (core/models/obj_simple.py: the arrays trimesh's path gives, without its
+    scene machinery), or None when the file is not that simple."""
+    from wgpurender.core.models import obj_simple
+
+    read = obj_simple.read(path)
+    if read is None:
+        return None
+    positions, faces, normals, uvs = read
+    uvs = uvs.copy()
+    uvs[:, 1] = 1.0 - uvs[:, 1]  # OBJ: v = 0 at the bottom -> Mesh convention, v = 0 at the top
+    return [_Part(positions, faces, normals, uvs, None)]
 
 
 def _gltf_parts(path: Path) -> list[_Part]:
