@@ -129,9 +129,36 @@ def bench_case(ctx: GPUContext, scene: Path, case: str, size: tuple[int, int], f
     draws = len(runner.renderer.plan.scene_pass.draws)
     samples = measure(runner, frames, readback_frames=max(3, frames // 2))
     out = samples.results("scene-scale", case, "wgpu", size, note=f"{draws} draw(s)")
+    out.append(Result.of("scene-scale", case, "wgpu", s, "cpu_thread_ms", thread_cpu(runner, frames),
+                         "thread CPU time (time.thread_time) of record + submit: cpu_ms without the waits"))
     out.append(_one_off(case, "wgpu", s, "load_ms", load_ms, "scene file to the first frame read back"))
     out.append(_one_off(case, "wgpu", s, "memory_mb", memory, "resident memory the load added"))
     return out
+
+
+def thread_cpu(runner, frames: int) -> Stats:
+    """The CPU time this thread spends in record + submit per frame (``time.thread_time``), each frame waited for.
+
+    ``cpu_ms`` is wall time: it also counts the thread waiting or running slowly after it slept through the
+    previous frame's GPU wait, which grows with the GPU's frame time (benchmarks/cpu_growth_probe.py); this row
+    counts only the CPU time spent, to tell the two apart."""
+    import gc
+
+    ctx, record, target = runner.ctx, runner.renderer.record, runner.target
+    samples, was = [], gc.isenabled()
+    gc.disable()
+    try:
+        for _ in range(frames + 2):
+            start = time.thread_time()
+            encoder = ctx.device.create_command_encoder(label="bench-scale")
+            record(encoder, target, 0.0)
+            ctx.queue.submit([encoder.finish()])
+            samples.append((time.thread_time() - start) * 1e3)
+            ctx.wait_idle()
+    finally:
+        if was:
+            gc.enable()
+    return Stats.of(samples[2:])
 
 
 def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int, int],
