@@ -42,6 +42,9 @@ G_MAT = "wgpurender/core/scene/gltf_materials.py"
 G_FBX = "wgpurender/core/models/fbx.py"
 G_MESH = "wgpurender/core/models/mesh.py"
 JAIL = "tests/test_model_reads_only_its_folder.py"
+O_SIMPLE = "wgpurender/core/models/obj_simple.py"
+OBJ_SIMPLE = "tests/test_obj_simple.py"
+JAIL_ONCE = "tests/test_scene_jail_once.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
 PUBLISHED = "tests/test_export_carries_no_machine_path.py"
@@ -913,6 +916,33 @@ MUTATIONS = [
      "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
     ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
      "maps = make_arrays(environment, 16)", [IBL]),
+    # issue 31.3 (perf engineer): the simple-OBJ reader, the scene's read-jail folders asked once, thread CPU rows
+    (O_SIMPLE, '    if len(data) > MAX_BYTES or b"\\\\" in data:', "    if len(data) > MAX_BYTES:", [OBJ_SIMPLE]),
+    (O_SIMPLE, '        if not line or line.startswith(b"#"):', "        if not line:", [OBJ_SIMPLE]),
+    (O_SIMPLE, "        line = line.rstrip()", "        line = line.strip()", [OBJ_SIMPLE]),
+    (O_SIMPLE, 'REFUSED = (b"+e", b"-e", b"_")', 'REFUSED = (b"+e", b"-e")', [OBJ_SIMPLE]),
+    (O_SIMPLE, "set(map(len, split)) - {width}:", "set(map(len, split)) - {width, width + 1}:", [OBJ_SIMPLE]),
+    (O_SIMPLE, "    if not rows or set(map(len, split)) != {3}:", "    if not rows:", [OBJ_SIMPLE]),
+    (O_SIMPLE, 'or not b"".join(parts).isdigit():', ":", [OBJ_SIMPLE]),
+    (O_SIMPLE, "    if faces.min() < 0 or np.any(faces >= limits):", "    if np.any(faces >= limits):", [OBJ_SIMPLE]),
+    (O_SIMPLE, "np.any(faces >= limits):", "np.any(faces > limits):", [OBJ_SIMPLE]),
+    (O_SIMPLE, 'limits = np.array([counts[b"v"], counts[b"vt"], counts[b"vn"]] * 3)',
+     'limits = np.array([counts[b"v"], counts[b"vn"], counts[b"vt"]] * 3)', [OBJ_SIMPLE]),
+    (O_SIMPLE, "unmerge_faces(faces[:, 0::3], faces[:, 1::3], faces[:, 2::3],",
+     "unmerge_faces(faces[:, 0::3], faces[:, 2::3], faces[:, 1::3],", [OBJ_SIMPLE]),
+    (O_SIMPLE, "        if arrays[head] is None or len(arrays[head]) == 0:", "        if arrays[head] is None:",
+     [OBJ_SIMPLE]),
+    (G_MESH, "    uvs[:, 1] = 1.0 - uvs[:, 1]", "    uvs[:, 1] = uvs[:, 1]", [OBJ_SIMPLE]),
+    ("wgpurender/core/scene/checker.py", "                self._jail = read_jail.scene_folders(self.path)",
+     "                self._jail = None", [JAIL_ONCE, JAIL]),
+    ("wgpurender/core/files/read_jail.py", "    return None if is_bundled_scene(scene) else allowed_folders(scene)",
+     "    return allowed_folders(scene)", [JAIL_ONCE]),
+    ("wgpurender/core/scene/checker.py", '            if not hasattr(self, "_jail"):', "            if True:",
+     [JAIL_ONCE]),
+    ("wgpurender/bench/scale.py", "            samples.append((time.thread_time() - start) * 1e3)",
+     "            samples.append(time.thread_time() * 1e3)", ["tests/test_bench_scale_assets.py"]),
+    ("wgpurender/bench/scale.py", "    return Stats.of(samples[2:])", "    return Stats.of(samples)",
+     ["tests/test_bench_scale_assets.py"]),
 ]
 
 

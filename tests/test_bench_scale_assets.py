@@ -34,3 +34,15 @@ def test_scale_scenes_read_the_brick_texture_from_the_bundled_assets_wherever_th
     scene = load_scene(write(folder, 4, (32, 32)))  # UserError before: the checkout's texture, outside the jail
     assert scale.brick_texture() == elsewhere / "assets" / "textures" / "brick_albedo.png"
     assert scale.brick_texture().resolve() in {m.albedo_map for m in scene.materials.values()}
+
+
+def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
+    """bench_case adds a cpu_thread_ms row (record + submit in thread CPU time) with one sample per timed frame,
+    each a positive CPU time."""
+    size = (32, 24)
+    rows = scale.bench_case(ctx, scale.instanced_scene(tmp_path, 8, size), "instanced/8", size, frames=6)
+    by_metric = {r.metric: r for r in rows}
+    thread = by_metric["cpu_thread_ms"]
+    assert (thread.family, thread.case, thread.path, thread.size, thread.n) == ("scene-scale", "instanced/8", "wgpu",
+                                                                              "32x24", 6)
+    assert 0 < thread.p10 <= thread.median <= thread.p90

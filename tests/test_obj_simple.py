@@ -84,6 +84,8 @@ BOX = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
     BOX + "f 1/1/1 2/2/1 3/4/1\n",  # beyond the vt records
     BOX + "f 1/1/1 2/2/1 3/3/2\n",  # beyond the vn records
     BOX + "f 0/1/1 2/2/1 3/3/1\n",  # OBJ counts from 1
+    BOX + "f 0_1/1/1 2/2/1 3/3/1\n",  # Python's int() reads 0_1 as 1
+    BOX + "f 1/1/1 2/2/1 3/3/1 1/1/1\nf 2/2/1 3/3/1\n",  # a quad and a two-corner face: six corners in all
     BOX.replace("vt 0 1", "vt 0 1 0") + "f 1/1/1 2/2/1 3/3/1\n",  # a vt with w
     BOX.replace("v 1 0 0", "v 1 0 0 1 1 1") + "f 1/1/1 2/2/1 3/3/1\n",  # a vertex colour
     BOX.replace("v 1 0 0", "v 1 0") + "f 1/1/1 2/2/1 3/3/1\n",  # too few numbers

@@ -61,8 +61,9 @@ def read(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | 
 
 def _numbers(rows: list[bytes], width: int, dtype) -> np.ndarray | None:
     """(len(rows), width) numbers, or None unless every row holds exactly ``width`` of them."""
+    text = b" ".join(rows)
     split = [r.split() for r in rows]
-    if any(mark in r for r in rows for mark in REFUSED) or set(map(len, split)) - {width}:
+    if any(mark in text for mark in REFUSED) or set(map(len, split)) - {width}:
         return None
     try:
         values = np.array(list(map(float, itertools.chain.from_iterable(split))), dtype=dtype)
