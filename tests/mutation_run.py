@@ -930,8 +930,6 @@ MUTATIONS = [
      'limits = np.array([counts[b"v"], counts[b"vn"], counts[b"vt"]] * 3)', [OBJ_SIMPLE]),
     (O_SIMPLE, "unmerge_faces(faces[:, 0::3], faces[:, 1::3], faces[:, 2::3],",
      "unmerge_faces(faces[:, 0::3], faces[:, 2::3], faces[:, 1::3],", [OBJ_SIMPLE]),
-    (O_SIMPLE, "        if arrays[head] is None or len(arrays[head]) == 0:", "        if arrays[head] is None:",
-     [OBJ_SIMPLE]),
     (G_MESH, "    uvs[:, 1] = 1.0 - uvs[:, 1]", "    uvs[:, 1] = uvs[:, 1]", [OBJ_SIMPLE]),
     ("wgpurender/core/scene/checker.py", "                self._jail = read_jail.scene_folders(self.path)",
      "                self._jail = None", [JAIL_ONCE, JAIL]),

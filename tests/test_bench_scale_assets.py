@@ -10,6 +10,7 @@ to a temporary folder, as the wheel's are, and the generated scenes must load fr
 from __future__ import annotations
 
 import shutil
+import time
 
 import pytest
 
@@ -38,7 +39,7 @@ def test_scale_scenes_read_the_brick_texture_from_the_bundled_assets_wherever_th
 
 def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
     """bench_case adds a cpu_thread_ms row (record + submit in thread CPU time) with one sample per timed frame,
-    each a positive CPU time."""
+    each a positive part of the thread's CPU time."""
     size = (32, 24)
     rows = scale.bench_case(ctx, scale.instanced_scene(tmp_path, 8, size), "instanced/8", size, frames=6)
     by_metric = {r.metric: r for r in rows}
@@ -46,3 +47,4 @@ def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
     assert (thread.family, thread.case, thread.path, thread.size, thread.n) == ("scene-scale", "instanced/8", "wgpu",
                                                                               "32x24", 6)
     assert 0 < thread.p10 <= thread.median <= thread.p90
+    assert thread.n * thread.p10 <= time.thread_time() * 1e3  # per frame: no sample holds the thread's whole CPU time

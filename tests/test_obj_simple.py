@@ -74,6 +74,7 @@ BOX = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
 
 @pytest.mark.parametrize("text", [
     BOX + "f 1/1/1 2/2/1 3/3/1 \\\n",  # a line continuation
+    "# a comment that goes on \\\n" + BOX + "f 1/1/1 2/2/1 3/3/1\n",  # trimesh joins the next line to the comment
     BOX + "o thing\nf 1/1/1 2/2/1 3/3/1\n",  # another record
     BOX + "usemtl red\nf 1/1/1 2/2/1 3/3/1\n",
     BOX + "f 1/1/1 2/2/1 3/3/1 1/1/1\n",  # a quad

@@ -46,7 +46,7 @@ def read(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | 
     arrays = {}
     for head, width in RECORDS.items():
         arrays[head] = _numbers(records[head], width, np.float64)
-        if arrays[head] is None or len(arrays[head]) == 0:
+        if arrays[head] is None:
             return None
     faces = _faces(records[b"f"], {head: len(a) for head, a in arrays.items()})
     if faces is None:
