@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from wgpurender.bench.markdown_scale import TAIL_FAMILIES
 from wgpurender.bench.report import NOT_OFFERED, Result, command_line, not_offered, size_text  # noqa: F401 (command_line: the CLI's import)
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
@@ -41,6 +42,7 @@ TUTORIAL_SCENES = {"chapter 28": Path("assets/scenes/vulkan_tutorial_28.toml"),
                    "chapter 30": Path("assets/scenes/vulkan_tutorial_30.toml")}
 TUTORIAL_SIZE = (800, 600)  # the size of the C++ numbers
 STARTUP_STAGE = "3d"
+TAIL_FRAMES = 100  # a p99 over 100 samples lets one frame in a hundred stall, as a 99th percentile means
 
 
 
@@ -51,13 +53,19 @@ class PerfConfig:
     families: tuple[str, ...] = FAMILIES
     big: bool | None = None  # 3840x2160 too; None: when the adapter is not a CPU
     raw: bool = True  # also run the raw-Vulkan peer
-    frames: int | None = None  # timed frames per case (default 20, quick 4)
+    frames: int | None = None  # timed frames per case (default: timed_frames)
     scene_file: Path = SCENE_FILE
     command: str = ""
     anisotropy: str = DEFAULT_ANISOTROPY  # the scene families' rule (core/plan/anisotropy.py), as render's --anisotropy
 
-    def timed_frames(self) -> int:
-        return self.frames or (4 if self.quick else 20)
+    def timed_frames(self, ctx: GPUContext | None = None, family: str = "") -> int:
+        """--frames, else 4 (quick), else :data:`TAIL_FRAMES` in the families whose p99 is judged on a GPU adapter
+        (markdown_scale.TAIL_FAMILIES: the p99 of 20 samples is their largest, a single stall), else 20."""
+        if self.frames or self.quick:
+            return self.frames or 4
+        if family in TAIL_FAMILIES and ctx is not None and ctx.adapter.info["adapter_type"] != "CPU":
+            return TAIL_FRAMES
+        return 20
 
     def sizes(self, ctx: GPUContext) -> list[tuple[int, int]]:
         if self.quick:
@@ -107,6 +115,10 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
     for family in config.families:
         log(f"[{family}]")
         steps[family](ctx, config, run, log)
+    tails = [f for f in config.families if config.timed_frames(ctx, f) != config.timed_frames()]
+    if tails:
+        run.notes.append(f"{', '.join(tails)}: {TAIL_FRAMES} timed frames per case (their p99 is judged; the p99 of "
+                         f"{config.timed_frames()} samples would be their largest)")
     run.seconds = time.perf_counter() - start
     return run
 
@@ -130,7 +142,7 @@ class Progress:
 def _frames(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from wgpurender.bench.frames import bench_stage, common_stages
 
-    n = config.timed_frames()
+    n = config.timed_frames(ctx, "frames")
     cases = [(size, name) for size in config.sizes(ctx) for name in common_stages()]
     progress = Progress(len(cases), log)
     for size, name in cases:
@@ -158,7 +170,7 @@ def _wgpu_only_stages() -> list[str]:
 def _scene(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from wgpurender.bench.scene import bench_scene
 
-    n = config.timed_frames()
+    n = config.timed_frames(ctx, "scene")
     files = list(dict.fromkeys((config.scene_file, SUBPASS_SCENE_FILE)))
     progress = Progress(len(files) * len(config.sizes(ctx)), log)
     for scene_file in files:
@@ -233,7 +245,8 @@ def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None
 
     counts = QUICK_COUNTS if config.quick else COUNTS
     size = QUICK_SIZES[0] if config.quick else (800, 600)
-    results, notes = bench_scale(ctx, list(counts), config.timed_frames(), size, log, pygfx_peer())
+    results, notes = bench_scale(ctx, list(counts), config.timed_frames(ctx, "scene-scale"), size, log,
+                                 pygfx_peer())
     run.results += results + ratio_rows(results)
     run.notes += notes
 

@@ -45,7 +45,9 @@ def _register_perf(suites) -> None:
                      help="add 3840x2160 (default: when the adapter is not a CPU)")
     big.add_argument("--no-big", dest="big", action="store_false")
     p.add_argument("--no-raw", dest="raw", action="store_false", help="skip the raw-Vulkan peer")
-    p.add_argument("--frames", type=int, default=None, metavar="N", help="timed frames per case")
+    p.add_argument("--frames", type=int, default=None, metavar="N",
+                   help="timed frames per case (default 20; 100 in the frames, scene and scene-scale families on "
+                   "a GPU, whose p99 is judged; 4 with --quick)")
     p.add_argument("--docs-img", type=Path, default=None, metavar="DIR", help="also copy the plots here")
     add_anisotropy_arg(p)
     add_backend_arg(p)
