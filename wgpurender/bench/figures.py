@@ -53,6 +53,23 @@ def _dawn_table(native: list[Result], dawn: list[Result]) -> str:
         "(no Dawn rows in this run)")
 
 
+PROBE = "perf-h100/2026-11-27-perf/cpu_growth_probe.csv"  # benchmarks/cpu_growth_probe.py, on the device
+
+
+def probe_table(path: Path) -> str:
+    """benchmarks/cpu_growth_probe.py's rows: record + submit per frame by instance count and by the wait before
+    the frame (wall and thread CPU time), with the frame's native call count."""
+    import csv
+
+    with path.open(newline="") as f:
+        rows = list(csv.DictReader(f))
+    out = [(f"{int(r['instances']):,}", r["wait"], fmt_ms(float(r["record_submit_wall_ms"])),
+            fmt_ms(float(r["record_submit_thread_cpu_ms"])), fmt_ms(float(r["frame_ms"])), r["native_calls"])
+           for r in rows]
+    return markdown_table(("instances", "wait before the frame", "record + submit, wall ms", "thread CPU ms",
+                           "frame ms", "native calls"), out)
+
+
 def section() -> str:
     lines = [BEGIN, ""]
     for title, folder, csv, dawn in RUNS:
@@ -65,6 +82,10 @@ def section() -> str:
         if dawn and (base / dawn).is_file():
             lines += ["The Dawn binding (`WGPURENDER_BINDING=dawn`, wgpudawn 0.32) beside wgpu-native, same call:", "",
                       _dawn_table(rows, read_csv(base / dawn)), ""]
+    if (REPO / "docs" / PROBE).is_file():
+        lines += ["#### Why CPU per frame grew with the instance count (H100, same call as the third run)", "",
+                  f"From [`docs/{PROBE}`]({PROBE}) (`python benchmarks/cpu_growth_probe.py`; medians of 40 frames):",
+                  "", probe_table(REPO / "docs" / PROBE), ""]
     lines += figures_post.section(REPO, _judge, _dawn_table)
     return "\n".join(lines + [END])
 

@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -57,17 +58,18 @@ class ShaderVariant:
     counts: tuple[tuple[str, int], ...] = ()
     reasons: tuple[tuple[str, str], ...] = ()  # (feature, why), in a stable order
 
-    @property
+    # Cached (the variant is frozen): a scene of 10k draws asks each draw's key and attributes several times.
+    @functools.cached_property
     def features(self) -> frozenset[str]:
         """Flags plus ``name:N`` for each light count, e.g. {"lighting", "point_lights:2"}."""
         return self.flags | {f"{name}:{n}" for name, n in self.counts}
 
-    @property
+    @functools.cached_property
     def key(self) -> str:
         """Stable text key, e.g. ``albedo_map+lighting+normal_map+point_lights:2``; ``base`` when empty."""
         return "+".join(sorted(self.features)) or "base"
 
-    @property
+    @functools.cached_property
     def vertex_attributes(self) -> tuple[str, ...]:
         uses_uv = bool(self.flags & set(TEXTURE_FEATURES))
         have = self.flags | ({"uv"} if uses_uv else set())
@@ -92,7 +94,7 @@ class ScenePipeline:
     topology: str = "triangle-list"  # "line-list" / "point-list": glTF lines and points
     culled: bool = False  # instances culled on the GPU, drawn indirectly through a visible list (core/plan/culling)
 
-    @property
+    @functools.cached_property
     def key(self) -> str:
         depth = f"{self.depth_format} {self.depth_compare}" if self.depth_format else "no-depth"
         winding = " | front face cw (mirrored model)" if self.front_face == "cw" else ""

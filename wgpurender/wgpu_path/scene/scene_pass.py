@@ -120,11 +120,13 @@ class ScenePassRenderer:
     def _setup_draws(self) -> None:
         self.draw_state = []
         groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
+        packed: dict[tuple, bytes] = {}  # equal keys hold equal variants and factors: packed once (10k draws)
         for draw in self.draws:
             variant = self.plan.variant(draw.variant_key)
-            material = L.material_struct(variant)
-            data = material.pack(material_values(self.scene, draw, variant))
             key = draw.material_key()
+            if key not in packed:
+                packed[key] = L.material_struct(variant).pack(material_values(self.scene, draw, variant))
+            data = packed[key]
             if key not in groups:
                 slot = self.material_slots[key]
                 if self.material_buffer is not None:
