@@ -23,6 +23,8 @@ RUNS = (
      "perf/results.csv", None),
     ("lavapipe (this 2-core machine, shared by 8 engineers: noisy; LP_NUM_THREADS=1)",
      "perf-lavapipe/2026-11-27-issue31", "results.csv", None),
+    ("lavapipe, third run (perf engineer, 09:44 UTC: simple OBJ files without trimesh's scene, thread CPU rows; "
+     "the same 2-core machine, shared by six engineers)", "perf-lavapipe/2026-11-27-perf", "results.csv", None),
 )
 
 
