@@ -45,6 +45,7 @@ JAIL = "tests/test_model_reads_only_its_folder.py"
 O_SIMPLE = "wgpurender/core/models/obj_simple.py"
 OBJ_SIMPLE = "tests/test_obj_simple.py"
 JAIL_ONCE = "tests/test_scene_jail_once.py"
+SHARED_MESH = "tests/test_shared_mesh_buffers.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
 PUBLISHED = "tests/test_export_carries_no_machine_path.py"
@@ -941,6 +942,17 @@ MUTATIONS = [
      "            samples.append(time.thread_time() * 1e3)", ["tests/test_bench_scale_assets.py"]),
     ("wgpurender/bench/scale.py", "    return Stats.of(samples[2:])", "    return Stats.of(samples)",
      ["tests/test_bench_scale_assets.py"]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)",
+     "encoder.set_vertex_buffer(0, buffers.vertex)", [SHARED_MESH]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)",
+     "encoder.set_index_buffer(buffers.index, buffers.index_format)", [SHARED_MESH]),
+    ("wgpurender/wgpu_path/scene/resources.py", "places.append((key, len(vertex), len(index), mesh))",
+     "places.append((key, len(vertex), 0, mesh))", [SHARED_MESH]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "        self.resources.upload_meshes(self.draws)",
+     "        pass", [SHARED_MESH]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "                packed[key] = L.material_struct(variant).pack(",
+     "                packed[draw.label] = L.material_struct(variant).pack(", ["tests/test_instancing.py"]),
 ]
 
 

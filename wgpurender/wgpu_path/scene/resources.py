@@ -21,12 +21,15 @@ from wgpurender.wgpu_path.scene.shader_interface import interleave
 
 @dataclass(frozen=True)
 class MeshBuffers:
-    """A mesh on the GPU, interleaved for one attribute set."""
+    """A mesh on the GPU, interleaved for one attribute set: its bytes from ``vertex_offset`` and
+    ``index_offset`` of buffers it may share with the scene's other meshes (:meth:`SceneResources.upload_meshes`)."""
 
     vertex: wgpu.GPUBuffer
     index: wgpu.GPUBuffer
     index_format: str
     index_count: int
+    vertex_offset: int = 0
+    index_offset: int = 0
 
 
 class SceneResources:
@@ -41,21 +44,36 @@ class SceneResources:
         self._mipmaps = {(t.path, t.format): t.mipmaps for t in plan.textures}
 
     # -- meshes ----------------------------------------------------------------
+    def upload_meshes(self, draws) -> None:
+        """The meshes of ``draws`` not on the GPU yet, in ONE vertex and ONE index buffer at 4-byte aligned offsets
+        (set_vertex_buffer's and set_index_buffer's rule): a scene of 10k mesh files made 20k buffers before, each
+        several wgpu calls (issue 31.3). Draw order decides the layout; a draw whose mesh fails its variant's
+        check (mesh_for) raises here, as it did when its buffers were made one by one."""
+        pending: dict[tuple, tuple[bytes, bytes, object]] = {}
+        for draw in draws:
+            key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
+            if key not in self._buffers and key not in pending:
+                mesh = self.meshes.mesh_for(draw)
+                pending[key] = (interleave(mesh, key[1]).tobytes(), mesh.index_bytes(), mesh)
+        if not pending:
+            return
+        vertex, index, places = bytearray(), bytearray(), []
+        for key, (vertices, indices, mesh) in pending.items():
+            places.append((key, len(vertex), len(index), mesh))
+            vertex += vertices + b"\0" * (-len(vertices) % 4)
+            index += indices  # index_bytes is already a multiple of 4
+        dev, n = self.ctx.device, len(pending)
+        vbuf = dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX,
+                                           label=f"scene vertices ({n} meshes)")
+        ibuf = dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX,
+                                           label=f"scene indices ({n} meshes)")
+        for key, v_at, i_at, mesh in places:
+            self._buffers[key] = MeshBuffers(vbuf, ibuf, mesh.index_format, mesh.indices.size, v_at, i_at)
+
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
-        attributes = self.plan.variant(draw.variant_key).vertex_attributes
-        key = (draw.model_path, attributes)
-        if key not in self._buffers:
-            mesh = self.meshes.mesh_for(draw)
-            dev = self.ctx.device
-            self._buffers[key] = MeshBuffers(
-                vertex=dev.create_buffer_with_data(data=interleave(mesh, attributes), usage=wgpu.BufferUsage.VERTEX,
-                                                   label=f"{draw.label} vertices"),
-                index=dev.create_buffer_with_data(data=mesh.index_bytes(), usage=wgpu.BufferUsage.INDEX,
-                                                  label=f"{draw.label} indices"),
-                index_format=mesh.index_format,
-                index_count=mesh.indices.size,
-            )
-        return self._buffers[key]
+        """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
+        self.upload_meshes([draw])
+        return self._buffers[(draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)]
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""

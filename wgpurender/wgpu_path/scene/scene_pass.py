@@ -119,6 +119,7 @@ class ScenePassRenderer:
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
         self.draw_state = []
+        self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
         groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
         packed: dict[tuple, bytes] = {}  # equal keys hold equal variants and factors: packed once (10k draws)
         for draw in self.draws:
@@ -283,8 +284,8 @@ class ScenePassRenderer:
             if self.uses_immediates:
                 encoder.set_immediates(0, data, 0, len(data))
             if buffers is not last[3]:
-                encoder.set_vertex_buffer(0, buffers.vertex)
-                encoder.set_index_buffer(buffers.index, buffers.index_format)
+                encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)
+                encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)
             last = [pipeline, None, group, buffers]
             if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
                 encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
