@@ -1,11 +1,17 @@
 #!/bin/sh
-# Issue 31's third run on the GPU machine (perf engineer, 2026-11-27): why CPU per frame grows with the instance
-# count (benchmarks/cpu_growth_probe.py), the whole `bench perf` after the load and CPU changes, and Dawn's first
-# pixel (the startup family on WGPURENDER_BINDING=dawn; wgpu-native's is in the perf run of the same call).
-# Run from the repository root with .gl/ and .whl/ carried. Writes everything under $OUT/run.
+# Issue 31's third run on the GPU machine (perf engineer, 2026-11-27). Run from a copy of the branch in a folder
+# of main's checkout (the device tool carries main's tree; .gl/ and .whl/ beside): `cd .perf && sh THIS`.
+# - probe: why CPU per frame grows with the instance count (benchmarks/cpu_growth_probe.py);
+# - load_main, load_perf: the 10k-distinct-mesh load of main's tree (the folder above) and of this one, same call;
+# - dawn: Dawn's first pixel (the startup family on WGPURENDER_BINDING=dawn; wgpu-native's is in the perf step);
+# - perf: `bench perf` of the families the issue judges (frames, scene, scene-scale, startup).
+# Writes everything under $OUT/run.
 set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
+MAIN=$(cd .. && pwd)
 step probe 90 python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe.csv"
-step perf 300 python3 -m wgpurender bench perf --out "$D/perf"
-step dawn 120 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
+step load_main 70 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compare.py main 10000 "$D/load_compare.csv"
+step load_perf 40 python3 benchmarks/load_compare.py perf 10000 "$D/load_compare.csv"
+step dawn 90 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
+step perf 280 python3 -m wgpurender bench perf --only frames,scene,scene-scale,startup --out "$D/perf"
 tar czf "$OUT/run.tgz" -C "$OUT" run
