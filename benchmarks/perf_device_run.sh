@@ -1,6 +1,7 @@
 #!/bin/sh
 # Issue 31's third run on the GPU machine (perf engineer, 2026-11-27). Run from a copy of the branch in a folder
-# of main's checkout (the device tool carries main's tree; .gl/ and .whl/ beside): `cd .perf && sh THIS`.
+# of main's checkout (the device tool carries main's tree; .gl/ and .whl/ beside, linked into the copy):
+# `cd .perf && ln -s ../.gl .gl && ln -s ../.whl .whl && sh benchmarks/perf_device_run.sh`.
 # - probe: why CPU per frame grows with the instance count (benchmarks/cpu_growth_probe.py);
 # - load_main, load_perf: the 10k-distinct-mesh load of main's tree (the folder above) and of this one, same call;
 # - dawn: Dawn's first pixel (the startup family on WGPURENDER_BINDING=dawn; wgpu-native's is in the perf step);
@@ -14,4 +15,4 @@ step load_main 70 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compa
 step load_perf 40 python3 benchmarks/load_compare.py perf 10000 "$D/load_compare.csv"
 step dawn 90 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
 step perf 280 python3 -m wgpurender bench perf --only frames,scene,scene-scale,startup --out "$D/perf"
-tar czf "$OUT/run.tgz" -C "$OUT" run
+tar czf "$OUT/run.tgz" -C "$OUT" run && rm -rf "$OUT/run"  # the tool returns at most 8 files
