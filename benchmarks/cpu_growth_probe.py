@@ -8,7 +8,8 @@ under three waits for the GPU between frames:
 
 - `block`: `ctx.wait_idle()`, the frame loop's wait (wgpuDevicePoll(wait=True): the thread sleeps in the
   driver until the GPU is done);
-- `spin`: a busy loop for 90% of the `block` frame time, then the blocking wait: the thread stays awake
+- `spin`: a busy loop for 1.05x the `block` frame time after the submit, then the blocking wait (which then
+  returns at once): the thread stays awake
   (wgpuDevicePoll(wait=False) cannot be spun on: in wgpu-native 29 it returns "queue empty" while work is
   still pending, measured on lavapipe);
 - `block+sleep`: the blocking wait and then `time.sleep` for the largest count's frame time, so the thread
@@ -87,11 +88,11 @@ def main() -> int:
             wall, cpu, frame = timed(ctx, runner, frames, block)
             rows.append((n, "block", statistics.median(wall), statistics.median(cpu), statistics.median(frame),
                          sum(calls.values())))
-            busy = 0.9 * statistics.median(frame) / 1e3
+            busy = 1.05 * statistics.median(frame) / 1e3
             wall, cpu, frame = timed(ctx, runner, frames, spin_wait(busy))
             rows.append((n, "spin", statistics.median(wall), statistics.median(cpu), statistics.median(frame),
                          sum(calls.values())))
-            idle = busy / 0.9
+            idle = busy / 1.05
         n = min(counts)
         wall, cpu, frame = timed(ctx, runners[n], frames, block, idle)
         rows.append((n, f"block+sleep {idle * 1e3:.1f} ms", statistics.median(wall), statistics.median(cpu),
