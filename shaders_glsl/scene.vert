@@ -6,7 +6,7 @@
 // with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
 //   VERTEX_COLOR, ALPHA_MASK, OPAQUE_ALPHA, DOUBLE_SIDED, EMISSIVE, EMISSIVE_MAP, OCCLUSION_MAP (a model
-//   file's own materials),
+//   file's own materials), UV1 (the second texture coordinate slot) with <MAP>_UV1 per map that samples it,
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
 // The std140 offsets of the blocks are spelled out in wgpurender/raw_path/device/uniforms.py.
 
@@ -40,6 +40,9 @@ layout(location = 3) in vec4 a_tangent;
 #ifdef VERTEX_COLOR
 layout(location = 4) in vec4 a_color;
 #endif
+#ifdef UV1
+layout(location = 5) in vec2 a_uv1;
+#endif
 
 #ifdef LIGHTING
 layout(location = 0) out vec3 v_world_position;
@@ -53,6 +56,9 @@ layout(location = 3) out vec4 v_tangent;
 #endif
 #ifdef VERTEX_COLOR
 layout(location = 4) out vec4 v_color;
+#endif
+#ifdef UV1
+layout(location = 5) out vec2 v_uv1;
 #endif
 
 void main() {
@@ -77,5 +83,12 @@ void main() {
 #endif
 #ifdef VERTEX_COLOR
     v_color = a_color;
+#endif
+#ifdef UV1
+#ifdef FLIP_V
+    v_uv1 = vec2(a_uv1.x, 1.0 - a_uv1.y);
+#else
+    v_uv1 = a_uv1;
+#endif
 #endif
 }

@@ -38,6 +38,9 @@
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 // ibl (a pbr material in a scene with an [environment]): ibl_shading.wgsl's image-based lighting takes the ambient
 // term's place (times the occlusion factor with occlusion_map); the lights add to it as above.
+// uv1 (derived: any "<map>_uv1" flag): the mesh's second texture coordinate slot (a glTF material whose textures
+// sample two TEXCOORD sets or transforms, each applied at load: core/models/gltf_geometry.uv_slots); each map
+// samples in.{{<MAP>_UV}}, which shader_interface fills with "uv" or "uv1" from the variant's flags.
 
 {{STRUCTS}}
 
@@ -103,6 +106,9 @@ struct VertexIn {
 #if vertex_color
     @location(4) color: vec4f,
 #endif
+#if uv1
+    @location(5) uv1: vec2f,
+#endif
 };
 
 struct VertexOut {
@@ -119,6 +125,9 @@ struct VertexOut {
 #endif
 #if vertex_color
     @location(4) color: vec4f,
+#endif
+#if uv1
+    @location(5) uv1: vec2f,
 #endif
 };
 
@@ -150,6 +159,13 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
 #endif
 #if vertex_color
     out.color = in.color;
+#endif
+#if uv1
+#if flip_v
+    out.uv1 = vec2f(in.uv1.x, 1.0 - in.uv1.y);
+#else
+    out.uv1 = in.uv1;
+#endif
 #endif
     return out;
 }
@@ -273,14 +289,14 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #endif
     var base = material.base_color;
 #if albedo_map
-    base = base * textureSample(albedo_tex, albedo_sampler, in.uv);
+    base = base * textureSample(albedo_tex, albedo_sampler, in.{{ALBEDO_UV}});
 #endif
 #if vertex_color
     base = base * in.color;
 #endif
 #if emissive
 #if emissive_map
-    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.uv).rgb;
+    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.{{EMISSIVE_UV}}).rgb;
 #else
     let emitted = material.emissive.rgb;
 #endif
@@ -288,12 +304,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #if lighting
     // Textures are sampled here, in uniform control flow (implicit derivatives), and passed down.
 #if normal_map
-    let normal_texel = textureSample(normal_tex, normal_sampler, in.uv).xyz;
+    let normal_texel = textureSample(normal_tex, normal_sampler, in.{{NORMAL_UV}}).xyz;
 #else
     let normal_texel = vec3f(0.5, 0.5, 1.0);
 #endif
 #if roughness_map
-    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.uv);
+    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.{{ROUGHNESS_UV}});
     let roughness = material.roughness * roughness_texel.g;
 #if pbr
     pbr_metallic = material.metallic * roughness_texel.b;
@@ -305,7 +321,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #endif
 #endif
 #if occlusion_map
-    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.uv).r;
+    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.{{OCCLUSION_UV}}).r;
     ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
 #endif
     var color = shade(base.rgb, in, normal_texel, roughness);

@@ -33,8 +33,11 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
                     "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
-ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"))
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"),
+              ("uv1", "uv1"))
 TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
+# "<texture feature>_uv1": that texture samples the mesh's second coordinate slot (vertex attribute uv1)
+UV1_FLAGS = tuple(f"{feature}_uv1" for feature in TEXTURE_FEATURES)
 
 
 @dataclass(frozen=True)
@@ -70,7 +73,7 @@ class ShaderVariant:
     @property
     def vertex_attributes(self) -> tuple[str, ...]:
         uses_uv = bool(self.flags & set(TEXTURE_FEATURES))
-        have = self.flags | ({"uv"} if uses_uv else set())
+        have = self.flags | ({"uv"} if uses_uv else set()) | ({"uv1"} if self.flags & set(UV1_FLAGS) else set())
         return ("position",) + tuple(attr for feature, attr in ATTRIBUTES if feature in have)
 
     def count(self, name: str) -> int:

@@ -9,10 +9,12 @@ preprocessor: each flag becomes a definition (``-DALBEDO_MAP``), the light count
 from __future__ import annotations
 
 from wgpurender.core.plan import ShaderVariant
+from wgpurender.core.plan.model import UV1_FLAGS
 from wgpurender.raw_path.device.uniforms import MAX_LIGHTS
 
 FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output", "vertex_color",
-         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr", "ibl")
+         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr", "ibl",
+         *UV1_FLAGS)
 TEXTURE_FLAGS = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
 
 
@@ -28,6 +30,8 @@ def glsl_defines(variant: ShaderVariant) -> tuple[str, ...]:
     defines = [f.upper() for f in FLAGS if f in variant.flags]
     if variant.flags & set(TEXTURE_FLAGS):
         defines.append("UV")
+    if variant.flags & set(UV1_FLAGS):
+        defines.append("UV1")  # the second coordinate slot (vertex attribute uv1, location 5)
     defines += [f"DIRECTIONAL_LIGHTS={variant.count('directional_lights')}",
                 f"POINT_LIGHTS={variant.count('point_lights')}", f"MAX_LIGHTS={MAX_LIGHTS}"]
     return tuple(defines)

@@ -1,0 +1,165 @@
+"""One material, textures on different coordinate sets and transforms (glTF texCoord per texture,
+KHR_texture_transform per texture, as MultiUVTest and TextureTransformMultiTest use them), on both paths.
+
+Each quad is written here (tests/gltf_gen.py) with TEXCOORD_0 and a TEXCOORD_1 turned by 90 degrees; every
+expected colour is computed from the file's numbers: the spec's transform of each texture's own set, the texel
+it selects (nearest filtering, repeat wrap), and the scene's shading (no lights: ambient x base colour x
+occlusion + emissive; the ambient is the scene model's documented constant).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from gltf_gen import QUAD_INDICES, GltfWriter, quad
+from test_gltf_render import PATHS, assert_colour, render, srgb_decode, write_scene
+
+from wgpurender.core.course.shading import AMBIENT
+
+HALF = 1.6  # the quad spans -HALF..HALF in x and y
+UV0 = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], np.float32)  # u0 = (x + H) / 2H, v0 = (H - y) / 2H
+UV1 = np.array([[1, 1], [1, 0], [0, 0], [0, 1]], np.float32)  # u1 = (H - y) / 2H, v1 = (H - x) / 2H
+# 2x2 textures, channels kept apart so each term of the sum can be read alone: the base colour in R only, the
+# emissive in G and B only, the occlusion (linear, R read) a grey level per texel.
+BASE = np.array([[[255, 0, 0, 255], [0, 0, 0, 255]], [[0, 0, 0, 255], [255, 0, 0, 255]]], np.uint8)
+EMISSIVE = np.array([[[0, 255, 0, 255], [0, 0, 255, 255]], [[0, 0, 0, 255], [0, 255, 255, 255]]], np.uint8)
+OCCLUSION = np.array([[[255, 255, 255, 255], [64, 64, 64, 255]], [[160, 160, 160, 255], [0, 0, 0, 255]]], np.uint8)
+
+# case -> {texture role: (texCoord, KHR_texture_transform or None)}
+CASES = {
+    "base0_offset+emissive1_scale": {"base": (0, {"offset": [0.5, 0.0]}), "emissive": (1, {"scale": [2.0, 1.0]})},
+    "occlusion1_rotation+emissive0": {"occlusion": (1, {"rotation": 0.4, "offset": [0.1, 0.2]}),
+                                      "emissive": (0, None)},
+    "base0_two_transforms_one_set": {"base": (0, None), "emissive": (0, {"offset": [0.5, 0.5]})},
+}
+IMAGES = {"base": BASE, "emissive": EMISSIVE, "occlusion": OCCLUSION}
+
+
+def _info(index: int, texcoord: int, transform: dict | None) -> dict:
+    info = {"index": index, "texCoord": texcoord}
+    if transform is not None:
+        info["extensions"] = {"KHR_texture_transform": transform}
+    return info
+
+
+def write_case(tmp_path, case: str) -> str:
+    g = GltfWriter()
+    nearest = g.sampler(magFilter=9728, minFilter=9728, wrapS=10497, wrapT=10497)
+    infos = {role: _info(g.texture(IMAGES[role], nearest), *CASES[case][role]) for role in CASES[case]}
+    fields: dict = {"pbrMetallicRoughness": {"metallicFactor": 0.0}}
+    if "base" in infos:
+        fields["pbrMetallicRoughness"]["baseColorTexture"] = infos["base"]
+    if "emissive" in infos:
+        fields.update(emissiveTexture=infos["emissive"], emissiveFactor=[1.0, 1.0, 1.0])
+    if "occlusion" in infos:
+        fields["occlusionTexture"] = infos["occlusion"]
+    mat = g.material(**fields)
+    attributes = {"POSITION": g.positions(quad(-HALF, -HALF, HALF, HALF)), "TEXCOORD_0": g.accessor(UV0),
+                  "TEXCOORD_1": g.accessor(UV1)}
+    g.node(mesh=g.mesh([{"attributes": attributes, "indices": g.accessor(QUAD_INDICES), "material": mat}]))
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    g.write(tmp_path / f"{case}.glb")
+    return f"{case}.glb"
+
+
+def texel_at(x: float, y: float, texcoord: int, transform: dict | None) -> tuple[int, int] | None:
+    """(row, col) of the 2x2 texel a texture samples at quad point (x, y): its own set's (u, v) under the spec's
+    T(offset) R(rotation) S(scale), rotation matrix [[cos, sin], [-sin, cos]]; None within 0.06 of a texel edge."""
+    a, b = (x + HALF) / (2 * HALF), (HALF - y) / (2 * HALF)
+    u, v = (a, b) if texcoord == 0 else (b, 1.0 - a)
+    t = transform or {}
+    (ox, oy), (sx, sy), r = t.get("offset", (0, 0)), t.get("scale", (1, 1)), t.get("rotation", 0.0)
+    tu = ox + math.cos(r) * sx * u + math.sin(r) * sy * v
+    tv = oy - math.sin(r) * sx * u + math.cos(r) * sy * v
+    fu, fv = (tu % 1.0) * 2, (tv % 1.0) * 2
+    if min(abs(fu - round(fu)), abs(fv - round(fv))) < 0.12:
+        return None
+    return int(fv) % 2, int(fu) % 2
+
+
+def expected_colour(case: str, x: float, y: float) -> np.ndarray | None:
+    """Linear RGB: ambient x base x occlusion + emissive, each texture at its own texel (None: near an edge)."""
+    texels = {role: texel_at(x, y, *CASES[case][role]) for role in CASES[case]}
+    if any(t is None for t in texels.values()):
+        return None
+    base = srgb_decode(BASE[texels["base"]][:3]) if "base" in texels else np.ones(3)
+    occlusion = OCCLUSION[texels["occlusion"]][0] / 255 if "occlusion" in texels else 1.0
+    emissive = srgb_decode(EMISSIVE[texels["emissive"]][:3]) if "emissive" in texels else np.zeros(3)
+    return np.asarray(AMBIENT) * base * occlusion + emissive
+
+
+def checked_points(image, case: str, what: str) -> int:
+    checked = 0
+    for x in np.linspace(-1.4, 1.4, 9):
+        for y in np.linspace(-1.4, 1.4, 9):
+            want = expected_colour(case, x, y)
+            if want is not None:
+                assert_colour(image, x, y, want, f"{what} {case}", tol=4.0)
+                checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize("which", PATHS)
+def test_each_texture_samples_its_own_set_and_transform(ctx, tmp_path, which, case):
+    """Every point shows each texture's texel under its own texCoord and transform; drawing every texture with
+    the first texture's coordinates (what the loader did before) fails at most points."""
+    image = render(ctx, write_scene(tmp_path, write_case(tmp_path, case)), which)
+    assert checked_points(image, case, which) >= 12
+
+
+def test_the_expectation_tells_the_sets_apart():
+    """The cases can fail: drawn with one slot for every texture, most points would show another colour."""
+    for case, roles in CASES.items():
+        first = next(iter(roles.values()))
+        shared = {role: first for role in roles}
+        differ = sum(1 for x in np.linspace(-1.4, 1.4, 9) for y in np.linspace(-1.4, 1.4, 9)
+                     if _differs(case, shared, x, y))
+        assert differ >= 12, case
+
+
+def _differs(case: str, shared: dict, x: float, y: float) -> bool:
+    want = expected_colour(case, x, y)
+    saved = CASES[case]
+    CASES[case] = shared
+    try:
+        other = expected_colour(case, x, y)
+    finally:
+        CASES[case] = saved
+    return want is not None and other is not None and np.abs(want - other).max() > 0.02
+
+
+def test_wgpu_equals_raw_within_one_run(ctx, tmp_path):
+    """Both paths carry the second slot and pick the same set per texture: the same bytes on this machine."""
+    scene = write_scene(tmp_path, write_case(tmp_path, "occlusion1_rotation+emissive0"))
+    np.testing.assert_array_equal(render(ctx, scene, "wgpu"), render(ctx, scene, "raw"))
+
+
+def test_plan_keeps_the_second_slot_for_the_materials_that_need_it(tmp_path):
+    """Only a material whose textures sample two (set, transform) choices gets uv1 and a ``<map>_uv1`` flag; one
+    set and one transform for every texture costs nothing (no second attribute, no flag)."""
+    from wgpurender.core.plan.resolve import resolve_plan
+
+    two = resolve_plan(write_scene(tmp_path, write_case(tmp_path, "base0_offset+emissive1_scale")), None)
+    (variant,) = two.variants
+    assert "emissive_map_uv1" in variant.flags and "albedo_map_uv1" not in variant.flags
+    assert variant.vertex_attributes[-1] == "uv1"
+    CASES["same"] = {"base": (1, {"scale": [2.0, 1.0]}), "emissive": (1, {"scale": [2.0, 1.0]})}
+    try:
+        one = resolve_plan(write_scene(tmp_path, write_case(tmp_path, "same")), None)
+    finally:
+        del CASES["same"]
+    (variant,) = one.variants
+    assert "uv1" not in variant.vertex_attributes and not any(f.endswith("_uv1") for f in variant.flags)
+
+
+def test_explain_lists_the_second_slot_as_used(tmp_path, capsys):
+    from wgpurender.cli import main
+
+    assert main(["render", str(write_scene(tmp_path, write_case(tmp_path, "occlusion1_rotation+emissive0"))),
+                 "--explain"]) == 0
+    out = capsys.readouterr().out
+    assert "occlusion_map_uv1" in out and "occlusion_map" in out and "(second coordinate slot)" in out
+    assert "ignored, sampled with" not in out
