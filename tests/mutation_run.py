@@ -71,6 +71,8 @@ INST = "tests/test_instancing.py"
 NOBACK = "tests/test_no_back_doors.py"
 BANDWIDTH = "tests/test_bandwidth_record.py"
 LOUD = "tests/test_loud_checks.py"
+UVSETS = "tests/test_gltf_uv_sets.py"
+FBX_SAMPLES = "tests/test_fbx_assimp_samples.py"
 DOCFIG = "tests/test_doc_figures.py"
 USERNUM = "tests/test_user_numbers.py"
 STAGESTATE = "tests/test_stage_state.py"
@@ -913,6 +915,45 @@ MUTATIONS = [
      "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
     ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
      "maps = make_arrays(environment, 16)", [IBL]),
+    # issue 30: per-texture coordinate sets and transforms (uvsets), third-party FBX files
+    ("wgpurender/core/models/gltf_geometry.py", "return slots[:MAX_UV_SLOTS] or", "return slots[:1] or", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "if all((s, k) != (texcoord, key) for s, _, k in slots):",
+     "if all(s != texcoord for s, _, k in slots):", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "uvs = [_slot_uvs(arrays[name], transform) for",
+     "uvs = [_slot_uvs(arrays[name], None) for", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "uvs[1] if len(uvs) > 1 else None)", "None)", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py",
+     "used = {f\"TEXCOORD_{s}\" for s, _, _ in uv_slots(doc, prim.get(\"material\"))}",
+     "used = {\"TEXCOORD_0\"}", [GLTF_RENDER + "|explain_lists_what_was_taken"]),
+    ("wgpurender/core/models/mesh.py", "g.colors, g.material, g.topology, g.uvs1",
+     "g.colors, g.material, g.topology, g.uvs", [UVSETS]),
+    ("wgpurender/core/plan/model.py", "({\"uv1\"} if self.flags & set(UV1_FLAGS) else set())", "set()", [UVSETS]),
+    ("wgpurender/core/plan/file_materials.py",
+     "sampled = [feature for feature, _ in reasons if feature in material.uv1_maps]", "sampled = []", [UVSETS]),
+    ("wgpurender/core/plan/meshes.py", "if \"uv1\" in attributes and mesh.uvs1 is None:",
+     "if False:", [UVSETS]),
+    ("wgpurender/core/scene/gltf_materials.py", "f\"{name}: {keys[-1]}\", ignored) == 1:",
+     "f\"{name}: {keys[-1]}\", ignored) == 0:", [UVSETS]),
+    ("wgpurender/core/scene/gltf_materials.py", "    if slot is not None:\n        return slot\n",
+     "    if slot is not None or True:\n        return slot\n", [EXT + "|explain"]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py",
+     "\"uv1\" if f\"{feature}_uv1\" in variant.flags else \"uv\"", "\"uv\"", [UVSETS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "\"uv1\": mesh.uvs1}", "\"uv1\": mesh.uvs}", [UVSETS]),
+    ("wgpurender/raw_path/scene/resources.py", "\"uv1\": mesh.uvs1}", "\"uv1\": mesh.uvs}", [UVSETS]),
+    ("wgpurender/raw_path/scene/variants.py", "defines.append(\"UV1\")", "defines.append(\"UV\")", [UVSETS]),
+    ("shaders_wgsl/scene.wgsl", "    out.uv1 = in.uv1;", "    out.uv1 = in.uv;", [UVSETS]),
+    ("shaders_glsl/scene.vert", "    v_uv1 = a_uv1;", "    v_uv1 = a_uv;", [UVSETS]),
+    ("shaders_glsl/scene.frag", "#define EMISSIVE_UV v_uv1", "#define EMISSIVE_UV v_uv", [UVSETS]),
+    ("shaders_glsl/scene.frag", "#define OCCLUSION_UV v_uv1", "#define OCCLUSION_UV v_uv", [UVSETS]),
+    ("wgpurender/core/scene/fbx_materials.py", "    if written in embedded:", "    if False:", [FBX_SAMPLES]),
+    ("wgpurender/core/scene/fbx_materials.py", "beside = _inside(model, base) if base else None", "beside = None",
+     [FBX_SAMPLES]),
+    ("wgpurender/core/models/mesh.py", "        parts[-1].material = material\n", "\n", [FBX_SAMPLES]),
+    ("wgpurender/core/models/fbx.py", "ctypes.string_at(texture.pcData, texture.mWidth)",
+     "ctypes.string_at(texture.pcData, texture.mWidth // 2)", [FBX_SAMPLES]),
+    ("wgpurender/core/models/fbx.py", "for k in sorted({p[6] for p in placed})", "for k in [0]", [FBX_SAMPLES]),
+    ("wgpurender/core/scene/gltf_materials.py", "    if model.lower().endswith(\".fbx\"):", "    if False:",
+     [FBX_SAMPLES]),
 ]
 
 

@@ -163,3 +163,21 @@ def test_explain_lists_the_second_slot_as_used(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "occlusion_map_uv1" in out and "occlusion_map" in out and "(second coordinate slot)" in out
     assert "ignored, sampled with" not in out
+
+
+def test_a_texcoord_the_primitive_lacks_is_one_line(tmp_path):
+    """An emissive texture on texCoord 1 of a primitive without TEXCOORD_1 (the glTF validator's error): one line
+    naming what is missing, exit 2, not a silent image sampled at (0, 0)."""
+    from helpers import one_line_refusal
+    from reliab_gen import run_cli
+
+    g = GltfWriter()
+    tex = g.texture(EMISSIVE)
+    mat = g.material(pbrMetallicRoughness={"baseColorTexture": {"index": tex}},
+                     emissiveTexture={"index": tex, "texCoord": 1}, emissiveFactor=[1, 1, 1])
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-1, -1, 1, 1)), "TEXCOORD_0": g.accessor(UV0)},
+                         "indices": g.accessor(QUAD_INDICES), "material": mat}]))
+    g.write(tmp_path / "lacks.glb")
+    code, _, err = run_cli("render", write_scene(tmp_path, "lacks.glb"), "-o", tmp_path / "x.png")
+    one_line_refusal(code, err, "second set of texture coordinates", "TEXCOORD_n")
+    assert not (tmp_path / "x.png").exists()
