@@ -93,31 +93,31 @@ layout(location = 3) in vec4 v_tangent;
 layout(location = 4) in vec4 v_color;
 #endif
 #ifdef UV1
-layout(location = 5) in vec2 v_uv1;  // the second coordinate slot: maps with <MAP>_UV1 sample it
+layout(location = 5) in vec2 v_uv1;
 #endif
-#ifdef ALBEDO_MAP_UV1
-#define ALBEDO_UV v_uv1
-#else
+#ifdef UV2
+layout(location = 6) in vec2 v_uv2;
+#endif
+#ifdef UV3
+layout(location = 7) in vec2 v_uv3;
+#endif
+#ifdef UV4
+layout(location = 8) in vec2 v_uv4;
+#endif
+// Each map samples <MAP>_UV: v_uv, or v_uv<k> when glslc gets -D<MAP>_UV=v_uv<k> (a further coordinate slot)
+#ifndef ALBEDO_UV
 #define ALBEDO_UV v_uv
 #endif
-#ifdef NORMAL_MAP_UV1
-#define NORMAL_UV v_uv1
-#else
+#ifndef NORMAL_UV
 #define NORMAL_UV v_uv
 #endif
-#ifdef ROUGHNESS_MAP_UV1
-#define ROUGHNESS_UV v_uv1
-#else
+#ifndef ROUGHNESS_UV
 #define ROUGHNESS_UV v_uv
 #endif
-#ifdef EMISSIVE_MAP_UV1
-#define EMISSIVE_UV v_uv1
-#else
+#ifndef EMISSIVE_UV
 #define EMISSIVE_UV v_uv
 #endif
-#ifdef OCCLUSION_MAP_UV1
-#define OCCLUSION_UV v_uv1
-#else
+#ifndef OCCLUSION_UV
 #define OCCLUSION_UV v_uv
 #endif
 

@@ -38,9 +38,10 @@
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 // ibl (a pbr material in a scene with an [environment]): ibl_shading.wgsl's image-based lighting takes the ambient
 // term's place (times the occlusion factor with occlusion_map); the lights add to it as above.
-// uv1 (derived: any "<map>_uv1" flag): the mesh's second texture coordinate slot (a glTF material whose textures
-// sample two TEXCOORD sets or transforms, each applied at load: core/models/gltf_geometry.uv_slots); each map
-// samples in.{{<MAP>_UV}}, which shader_interface fills with "uv" or "uv1" from the variant's flags.
+// uv1 .. uv4 (derived from the "<map>_uv<k>" flags): the mesh's further texture coordinate slots (a glTF material
+// whose textures sample several TEXCOORD sets or transforms, each applied at load: core/models/gltf_geometry
+// .uv_slots); each map samples in.{{<MAP>_UV}}, which shader_interface fills with "uv" or "uv<k>". Only model
+// files' materials have them, and those never flip v (flip_v is a scene material's key).
 
 {{STRUCTS}}
 
@@ -109,6 +110,15 @@ struct VertexIn {
 #if uv1
     @location(5) uv1: vec2f,
 #endif
+#if uv2
+    @location(6) uv2: vec2f,
+#endif
+#if uv3
+    @location(7) uv3: vec2f,
+#endif
+#if uv4
+    @location(8) uv4: vec2f,
+#endif
 };
 
 struct VertexOut {
@@ -128,6 +138,15 @@ struct VertexOut {
 #endif
 #if uv1
     @location(5) uv1: vec2f,
+#endif
+#if uv2
+    @location(6) uv2: vec2f,
+#endif
+#if uv3
+    @location(7) uv3: vec2f,
+#endif
+#if uv4
+    @location(8) uv4: vec2f,
 #endif
 };
 
@@ -161,11 +180,16 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
     out.color = in.color;
 #endif
 #if uv1
-#if flip_v
-    out.uv1 = vec2f(in.uv1.x, 1.0 - in.uv1.y);
-#else
     out.uv1 = in.uv1;
 #endif
+#if uv2
+    out.uv2 = in.uv2;
+#endif
+#if uv3
+    out.uv3 = in.uv3;
+#endif
+#if uv4
+    out.uv4 = in.uv4;
 #endif
     return out;
 }

@@ -317,9 +317,9 @@ def test_missing_decoder_is_one_line_naming_the_extension_and_pip(tmp_path, monk
 
 
 def test_explain_lists_the_extensions_used(tmp_path, capsys):
-    """--explain names each applied extension as used, a material's third distinct (set, transform) as ignored by
-    name (the emissive texture's second one gets the mesh's second coordinate slot; the normal texture's, equal
-    to the base colour's, shares the first)."""
+    """--explain names each applied extension as used; each distinct (set, transform) of a material gets its own
+    coordinate slot (the emissive and occlusion textures' slots 1 and 2), the normal texture's, equal to the base
+    colour's, shares slot 0; nothing of the material is ignored."""
     from wgpurender.cli import main
 
     g = GltfWriter()
@@ -337,10 +337,10 @@ def test_explain_lists_the_extensions_used(tmp_path, capsys):
     out = capsys.readouterr().out
     for line in ("extensionsUsed KHR_texture_transform: used", "extensionsUsed KHR_mesh_quantization: used",
                  "extensionsUsed KHR_materials_sheen: ignored",
-                 "occlusionTexture texCoord 0 with its KHR_texture_transform: ignored, sampled with TEXCOORD_0 and "
-                 "its transform", "emissive_map_uv1"):
+                 "emissive_map_uv1", "occlusion_map_uv2", "TEXCOORD_0 with KHR_texture_transform {'offset': (0.5, 0)}"
+                 ": coordinate slot 2"):
         assert line in out, line
-    assert "normalTexture texCoord" not in out and "emissiveTexture texCoord" not in out  # each has its slot
+    assert "normal_map_uv" not in out and "albedo_map_uv" not in out and "Texture: ignored" not in out
 
 
 def test_a_gltf_scene_imports_neither_trimesh_nor_scipy(tmp_path):

@@ -366,7 +366,8 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
                     "TEXCOORD_2 ignored", "LINES primitive drawn unlit", "occlusion_map_uv1",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
-    assert "KHR_materials_unlit: ignored" not in out and "TEXCOORD_1" not in out  # texCoord 1: the second slot
+    assert "KHR_materials_unlit: ignored" not in out and "TEXCOORD_1 ignored" not in out
+    assert "occlusion_map" in out and "(TEXCOORD_1: coordinate slot 1)" in out  # texCoord 1: the second slot
     assert "metallicFactor 1" in out and "metalness" not in out  # metalness is taken: the metallic-roughness model
     assert "pbr: " in out and "glTF metallic-roughness material" in out
 

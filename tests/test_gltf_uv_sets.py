@@ -26,6 +26,7 @@ UV1 = np.array([[1, 1], [1, 0], [0, 0], [0, 1]], np.float32)  # u1 = (H - y) / 2
 BASE = np.array([[[255, 0, 0, 255], [0, 0, 0, 255]], [[0, 0, 0, 255], [255, 0, 0, 255]]], np.uint8)
 EMISSIVE = np.array([[[0, 255, 0, 255], [0, 0, 255, 255]], [[0, 0, 0, 255], [0, 255, 255, 255]]], np.uint8)
 OCCLUSION = np.array([[[255, 255, 255, 255], [64, 64, 64, 255]], [[160, 160, 160, 255], [0, 0, 0, 255]]], np.uint8)
+FLAT = np.full((2, 2, 4), (128, 128, 255, 255), np.uint8)  # a flat normal map: it only orders the slots here
 
 # case -> {texture role: (texCoord, KHR_texture_transform or None)}
 CASES = {
@@ -33,8 +34,11 @@ CASES = {
     "occlusion1_rotation+emissive0": {"occlusion": (1, {"rotation": 0.4, "offset": [0.1, 0.2]}),
                                       "emissive": (0, None)},
     "base0_two_transforms_one_set": {"base": (0, None), "emissive": (0, {"offset": [0.5, 0.5]})},
+    # four slots: the normal texture's choice is slot 0 (its tangents), so the base colour samples slot 1
+    "four_slots": {"normal": (0, None), "base": (1, None), "emissive": (0, {"offset": [0.5, 0.0]}),
+                   "occlusion": (1, {"rotation": 0.4, "offset": [0.1, 0.2]})},
 }
-IMAGES = {"base": BASE, "emissive": EMISSIVE, "occlusion": OCCLUSION}
+IMAGES = {"base": BASE, "emissive": EMISSIVE, "occlusion": OCCLUSION, "normal": FLAT}
 
 
 def _info(index: int, texcoord: int, transform: dict | None) -> dict:
@@ -55,6 +59,8 @@ def write_case(tmp_path, case: str) -> str:
         fields.update(emissiveTexture=infos["emissive"], emissiveFactor=[1.0, 1.0, 1.0])
     if "occlusion" in infos:
         fields["occlusionTexture"] = infos["occlusion"]
+    if "normal" in infos:
+        fields["normalTexture"] = infos["normal"]
     mat = g.material(**fields)
     attributes = {"POSITION": g.positions(quad(-HALF, -HALF, HALF, HALF)), "TEXCOORD_0": g.accessor(UV0),
                   "TEXCOORD_1": g.accessor(UV1)}
@@ -81,7 +87,7 @@ def texel_at(x: float, y: float, texcoord: int, transform: dict | None) -> tuple
 
 def expected_colour(case: str, x: float, y: float) -> np.ndarray | None:
     """Linear RGB: ambient x base x occlusion + emissive, each texture at its own texel (None: near an edge)."""
-    texels = {role: texel_at(x, y, *CASES[case][role]) for role in CASES[case]}
+    texels = {role: texel_at(x, y, *CASES[case][role]) for role in CASES[case] if role != "normal"}
     if any(t is None for t in texels.values()):
         return None
     base = srgb_decode(BASE[texels["base"]][:3]) if "base" in texels else np.ones(3)
@@ -155,14 +161,18 @@ def test_plan_keeps_the_second_slot_for_the_materials_that_need_it(tmp_path):
     assert "uv1" not in variant.vertex_attributes and not any(f.endswith("_uv1") for f in variant.flags)
 
 
-def test_explain_lists_the_second_slot_as_used(tmp_path, capsys):
+def test_explain_lists_each_slot_as_used(tmp_path, capsys):
+    """Each texture's slot, set and transform, by name: the base colour on TEXCOORD_1 (slot 1), the emissive's
+    offset (slot 2), the occlusion's rotation on TEXCOORD_1 (slot 3); the normal texture's choice is slot 0."""
     from wgpurender.cli import main
 
-    assert main(["render", str(write_scene(tmp_path, write_case(tmp_path, "occlusion1_rotation+emissive0"))),
-                 "--explain"]) == 0
+    assert main(["render", str(write_scene(tmp_path, write_case(tmp_path, "four_slots"))), "--explain"]) == 0
     out = capsys.readouterr().out
-    assert "occlusion_map_uv1" in out and "occlusion_map" in out and "(second coordinate slot)" in out
-    assert "ignored, sampled with" not in out
+    for flag in ("albedo_map_uv1", "emissive_map_uv2", "occlusion_map_uv3"):
+        assert flag in out, flag
+    assert "TEXCOORD_1: coordinate slot 1" in out and "{'offset': (0.5, 0.0)}: coordinate slot 2" in out
+    assert "vertex attributes: position, normal, uv, tangent, uv1, uv2, uv3" in out
+    assert "normal_map_uv" not in out and "ignored" not in out.split("KHR_texture_transform")[-1]
 
 
 def test_a_texcoord_the_primitive_lacks_is_one_line(tmp_path):
@@ -179,5 +189,5 @@ def test_a_texcoord_the_primitive_lacks_is_one_line(tmp_path):
                          "indices": g.accessor(QUAD_INDICES), "material": mat}]))
     g.write(tmp_path / "lacks.glb")
     code, _, err = run_cli("render", write_scene(tmp_path, "lacks.glb"), "-o", tmp_path / "x.png")
-    one_line_refusal(code, err, "second set of texture coordinates", "TEXCOORD_n")
+    one_line_refusal(code, err, "samples a set of texture coordinates", "TEXCOORD_n")
     assert not (tmp_path / "x.png").exists()

@@ -41,7 +41,7 @@ class PrimitiveGeometry:
     material: int | None
     where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
     topology: str = "triangle-list"  # faces (F, 3); "line-list": (F, 2) segments; "point-list": (F, 1)
-    uvs1: np.ndarray | None = None  # (N, 2): the material's second coordinate slot (uv_slots), when it has one
+    extra_uvs: tuple[np.ndarray | None, ...] = ()  # (N, 2) each: the material's coordinate slots 1.. (uv_slots)
 
 
 def node_matrix(node: dict) -> np.ndarray:
@@ -171,29 +171,26 @@ def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
     return [i for i in infos if isinstance(i, dict)]
 
 
-MAX_UV_SLOTS = 2  # texture coordinate sets a mesh carries per material (vertex attributes uv and uv1)
-
-
 def uv_slots(doc: GltfDocument, material: int | None) -> list[tuple[int, dict | None, tuple]]:
     """The texture coordinates a material's mesh carries, one slot per distinct (TEXCOORD set,
     KHR_texture_transform) its textures sample with, in :func:`texture_infos` order: (set, transform or None,
-    transform key). The transform is applied to the slot's coordinates at load (affine: interpolating
-    transformed coordinates equals transforming interpolated ones), so each texture samples its own set with
-    its own transform; a third distinct choice is sampled with slot 0 and listed as ignored (gltf_materials)."""
+    transform key); at most one per texture (5). The transform is applied to the slot's coordinates at load
+    (affine: interpolating transformed coordinates equals transforming interpolated ones), so each texture samples
+    its own set with its own transform, and the shader only picks a slot per texture (the plan's ``<map>_uv<k>``
+    variant flags): a material whose textures all sample alike carries one slot and costs nothing more."""
     slots: list[tuple[int, dict | None, tuple]] = []
     for info in texture_infos(doc, material):
         texcoord, key = gltf_extensions.texture_uv_choice(info)
         if all((s, k) != (texcoord, key) for s, _, k in slots):
             transform = info.get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
             slots.append((texcoord, transform if isinstance(transform, dict) else None, key))
-    return slots[:MAX_UV_SLOTS] or [(0, None, ())]
+    return slots or [(0, None, ())]
 
 
-def texture_slot(doc: GltfDocument, material: int | None, info: dict) -> int | None:
-    """The slot (0 or 1) of :func:`uv_slots` a textureInfo samples with; None: none is its own (a third choice)."""
+def texture_slot(doc: GltfDocument, material: int, info: dict) -> int:
+    """The slot of :func:`uv_slots` one of the material's textureInfos samples with."""
     choice = gltf_extensions.texture_uv_choice(info)
-    found = [i for i, (s, _, k) in enumerate(uv_slots(doc, material)) if (s, k) == choice]
-    return found[0] if found else None
+    return [(s, k) for s, _, k in uv_slots(doc, material)].index(choice)
 
 
 def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):
@@ -248,7 +245,7 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
     geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], uvs[0], arrays["TANGENT"], colors,
-                                 material, where, TOPOLOGIES[mode], uvs[1] if len(uvs) > 1 else None)
+                                 material, where, TOPOLOGIES[mode], tuple(uvs[1:]))
     return flat_shaded(geometry) if geometry.normals is None and geometry.topology == "triangle-list" else geometry
 
 
@@ -268,11 +265,11 @@ def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
     tri = g.positions[g.faces]
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])  # unnormalised: build_mesh normalises
     uvs = None if g.uvs is None else g.uvs[corners]
-    uvs1 = None if g.uvs1 is None else g.uvs1[corners]
+    extra_uvs = tuple(None if a is None else a[corners] for a in g.extra_uvs)
     colors = None if g.colors is None else g.colors[corners]
     faces = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
     return PrimitiveGeometry(g.positions[corners], faces, np.repeat(normal, 3, axis=0), uvs, None, colors,
-                             g.material, g.where, uvs1=uvs1)
+                             g.material, g.where, extra_uvs=extra_uvs)
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:

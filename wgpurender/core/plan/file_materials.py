@@ -54,13 +54,12 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
     return reasons
 
 
-def uv1_reasons(material: Material, label: str, reasons: list[tuple[str, str]]) -> list[tuple[str, str]]:
-    """``<feature>_uv1`` for each sampled texture of the material on the mesh's second coordinate slot (a glTF
-    texCoord or KHR_texture_transform of its own): only such variants read the second vertex attribute."""
-    sampled = [feature for feature, _ in reasons if feature in material.uv1_maps]
-    return [(f"{feature}_uv1", f"{label}: its {feature} samples its own texture coordinates (a glTF texCoord or "
-                               "KHR_texture_transform unlike the first slot's): the mesh's second coordinate slot, "
-                               "vertex attribute uv1") for feature in sampled]
+def uv_slot_reasons(material: Material, label: str, reasons: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """``<feature>_uv<k>`` for each sampled texture of the material on the mesh's coordinate slot k >= 1 (a glTF
+    texCoord or KHR_texture_transform of its own): only such variants read vertex attribute uv<k>."""
+    sampled = {feature for feature, _ in reasons}
+    return [(f"{feature}_uv{k}", f"{label}: its {feature} samples {how}: the mesh's coordinate slot {k} (vertex "
+                                 f"attribute uv{k})") for feature, k, how in material.uv_slots if feature in sampled]
 
 
 def _alpha_varies(material: Material) -> bool:

@@ -20,12 +20,11 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
   spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
   course's scene materials and primitives without a file material keep Blinn-Phong.
 - each texture's ``texCoord`` and ``KHR_texture_transform`` -> its coordinate slot (gltf_geometry.uv_slots: the
-  mesh carries up to two per material, each a TEXCOORD set with its transform applied at load); a texture on the
-  second slot is listed in ``Material.uv1_maps`` and the plan gives its sampling the variant flag
-  ``<feature>_uv1`` (only such materials read the second vertex attribute).
+  mesh carries one per distinct (set, transform) of the material, each a TEXCOORD set with its transform applied
+  at load); a texture on slot k >= 1 is listed in ``Material.uv_slots`` and the plan gives its sampling the variant
+  flag ``<feature>_uv<k>`` (only such materials read a second vertex attribute).
 
-Ignored, and listed by ``--explain``: a texture whose (set, transform) is a third distinct one in its material
-(sampled with the first slot's), and every other extension by name (the applied ones are listed as used).
+Ignored, and listed by ``--explain``: every other extension by name (the applied ones are listed as used).
 """
 
 from __future__ import annotations
@@ -120,7 +119,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     mat = doc.json["materials"][index]
     pbr = mat.get("pbrMetallicRoughness", {})
     name = f"{label} material {index}" + (f" '{mat['name']}'" if mat.get("name") else "")
-    maps, samplers, mipmaps, uv1 = {}, [], [], []
+    maps, samplers, mipmaps, slots = {}, [], [], []
     for feature, keys in ROLES.items():
         info = _info(mat, keys)
         if info is None:
@@ -133,8 +132,9 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
-        if _uv_slot(doc, index, info, f"{name}: {keys[-1]}", ignored) == 1:
-            uv1.append(feature)
+        slot, how = _uv_slot(doc, index, info)
+        if slot:
+            slots.append((feature, slot, how))
     _note_ignored(mat, name, ignored)
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -156,23 +156,15 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         emissive_map=maps.get("emissive_map") if not unlit else None,
         occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
         shading_model="blinn-phong" if unlit else "pbr", metallic=float(pbr.get("metallicFactor", 1.0)),
-        uv1_maps=tuple(uv1),
+        uv_slots=tuple(slots),
     )
 
 
-def _uv_slot(doc: gltf_io.GltfDocument, index: int, info: dict, where: str, ignored: list[str]) -> int:
-    """The coordinate slot a texture samples (gltf_geometry.uv_slots); a third distinct (set, transform) in one
-    material is drawn with slot 0's: said by name."""
-    slot = gltf_geometry.texture_slot(doc, index, info)
-    if slot is not None:
-        return slot
+def _uv_slot(doc: gltf_io.GltfDocument, index: int, info: dict) -> tuple[int, str]:
+    """(the coordinate slot a texture samples: gltf_geometry.uv_slots, what it samples in words)."""
     texcoord, key = gltf_extensions.texture_uv_choice(info)
-    first, transform, _ = gltf_geometry.uv_slots(doc, index)[0]
-    what = f"texCoord {texcoord}" + (" with its KHR_texture_transform" if key else "")
-    ignored.append(f"{where} {what}: ignored, sampled with TEXCOORD_{first}"
-                   + (" and its transform" if transform else "") + f" (a mesh carries {gltf_geometry.MAX_UV_SLOTS} "
-                   "texture coordinate slots per material; this is a third)")
-    return 0
+    how = f"TEXCOORD_{texcoord}" + (f" with KHR_texture_transform {dict(key)}" if key else "")
+    return gltf_geometry.texture_slot(doc, index, info), how
 
 
 def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
@@ -228,7 +220,7 @@ def _taken_text(m: Material) -> str:
         how = ""
         if spec is not None:
             how = f" ({spec.min_filter}/{spec.mag_filter}, wrap {spec.address_mode_u}/{spec.address_mode_v})"
-        slot = " (second coordinate slot)" if feature in m.uv1_maps else ""
+        slot = "".join(f" ({what}: coordinate slot {k})" for f, k, what in m.uv_slots if f == feature)
         items.append(f"{feature} {Path(path).name}{how}{slot}")
     if m.vertex_colors:
         items.append("COLOR_0 vertex colours")

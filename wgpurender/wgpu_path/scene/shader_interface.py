@@ -26,6 +26,7 @@ import numpy as np
 
 from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import ShaderVariant
+from wgpurender.core.plan.model import EXTRA_UV_SLOTS, UV_SLOT_FLAGS
 from wgpurender.core.scene import MAX_LIGHTS
 from wgpurender.core.shaders.shader_variants import specialise
 from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struct, wgsl_structs
@@ -69,7 +70,7 @@ assert OBJECT_UNLIT.size == OBJECT.size == 128
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
 ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4),
-                       "uv1": (5, 2)}
+                       **{f"uv{k}": (4 + k, 2) for k in range(1, EXTRA_UV_SLOTS + 1)}}  # coordinate slots 1..4
 TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
 SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6, "emissive_map": 8,
                     "occlusion_map": 10}  # each texture's own sampler
@@ -118,10 +119,7 @@ def vertex_layout(variant: ShaderVariant) -> dict:
 
 def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     """(N, floats) float32 vertex data with the given attributes, for :func:`vertex_layout`."""
-    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
-              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32),
-              "uv1": mesh.uvs1}
-    return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
+    return np.ascontiguousarray(np.concatenate([mesh.attribute(a) for a in attributes], axis=1), dtype=np.float32)
 
 
 def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
@@ -129,8 +127,7 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
     features = set(variant.flags) | ({"culled"} if culled else set())
     if samples_textures(variant):
         features.add("uv")
-    if "uv1" in variant.vertex_attributes:
-        features.add("uv1")
+    features.update(a for a in variant.vertex_attributes if a.startswith("uv") and a != "uv")  # slots uv1..
     for name, n in variant.counts:
         if n > 0:
             features.add(name)
@@ -140,9 +137,13 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
 
 
 def uv_slot_names(variant: ShaderVariant) -> dict[str, str]:
-    """{{ALBEDO_UV}} ... {{OCCLUSION_UV}}: the vertex output each map samples, "uv1" for a ``<map>_uv1`` flag."""
-    return {f"{feature.removesuffix('_map').upper()}_UV": "uv1" if f"{feature}_uv1" in variant.flags else "uv"
-            for feature in TEXTURE_BINDINGS}
+    """{{ALBEDO_UV}} ... {{OCCLUSION_UV}}: the vertex output each map samples, "uv<k>" for a ``<map>_uv<k>``
+    flag, else "uv"."""
+    names = {f"{feature.removesuffix('_map').upper()}_UV": "uv" for feature in TEXTURE_BINDINGS}
+    for flag in variant.flags & UV_SLOT_FLAGS.keys():
+        feature, k = UV_SLOT_FLAGS[flag]
+        names[f"{feature.removesuffix('_map').upper()}_UV"] = f"uv{k}"
+    return names
 
 
 def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
