@@ -363,7 +363,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
     assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
     for ignored in ("KHR_materials_clearcoat: ignored",
-                    "TEXCOORD_2 ignored", "LINES primitive drawn unlit", "occlusion_map_uv1",
+                    "attribute(s) TEXCOORD_2 ignored", "LINES primitive drawn unlit", "occlusion_map_uv1",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out and "TEXCOORD_1 ignored" not in out
