@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 from gltf_gen import QUAD_INDICES, GltfWriter, quad
-from test_gltf_render import PATHS, assert_colour, render, srgb_decode, write_scene
+from test_gltf_render import PATHS, SIZE, assert_colour, render, srgb_decode, srgb_encode, write_scene
 
 from wgpurender.core.course.shading import AMBIENT
 
@@ -191,3 +191,52 @@ def test_a_texcoord_the_primitive_lacks_is_one_line(tmp_path):
     code, _, err = run_cli("render", write_scene(tmp_path, "lacks.glb"), "-o", tmp_path / "x.png")
     one_line_refusal(code, err, "samples a set of texture coordinates", "TEXCOORD_n")
     assert not (tmp_path / "x.png").exists()
+
+
+# A lit case, against the float64 metallic-roughness BRDF (tests/pbr_reference.py): the base colour on TEXCOORD_0,
+# the metallic-roughness texture (G roughness, B metalness) on TEXCOORD_1 with a transform of its own.
+LIT_BASE = np.array([[[230, 120, 60, 255], [90, 200, 120, 255]], [[120, 140, 230, 255], [200, 200, 200, 255]]],
+                    np.uint8)
+LIT_MR = np.array([[[0, 110, 0, 255], [0, 200, 255, 255]], [[0, 150, 255, 255], [0, 90, 0, 255]]], np.uint8)
+LIT_MR_TRANSFORM = {"scale": [2.0, 1.0], "rotation": 0.3}
+TO_LIGHT = (0.3, 0.2, 1.0)
+LIT_INTENSITY = 0.6
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_metallic_roughness_texture_on_its_own_set_against_the_float64_brdf(ctx, tmp_path, which):
+    """Each pixel inside the quad and away from a texel edge of either texture: the BRDF with the base colour's
+    texel (its set 0) and the metallic-roughness texel its own set 1 and transform pick, within 3/255."""
+    import pbr_reference as ref
+
+    g = GltfWriter()
+    nearest = g.sampler(magFilter=9728, minFilter=9728, wrapS=10497, wrapT=10497)
+    mat = g.material(pbrMetallicRoughness={
+        "baseColorTexture": {"index": g.texture(LIT_BASE, nearest)},
+        "metallicRoughnessTexture": {"index": g.texture(LIT_MR, nearest), "texCoord": 1,
+                                     "extensions": {"KHR_texture_transform": LIT_MR_TRANSFORM}}})
+    attributes = {"POSITION": g.positions(quad(-HALF, -HALF, HALF, HALF)), "TEXCOORD_0": g.accessor(UV0),
+                  "TEXCOORD_1": g.accessor(UV1), "NORMAL": g.accessor(np.tile(np.float32([0, 0, 1]), (4, 1)))}
+    g.node(mesh=g.mesh([{"attributes": attributes, "indices": g.accessor(QUAD_INDICES), "material": mat}]))
+    g.write(tmp_path / "mr.glb")
+    light = (f'[[lights]]\ntype = "directional"\ndirection = {[-float(c) for c in ref.unit(TO_LIGHT)]}\n'
+             f"intensity = {LIT_INTENSITY}\n")
+    image = render(ctx, write_scene(tmp_path, "mr.glb", extra=light), which)[..., :3].astype(np.float64)
+    eye = np.array([0.0, 0.0, 2.0])
+    hits = ref.plane_hits(eye, ref.pixel_rays(SIZE, 90.0), np.array([0.0, 0.0, 1.0]))
+    checked = 0
+    for row, col in np.ndindex(*SIZE[::-1]):
+        x, y = hits[row, col, :2]
+        if max(abs(x), abs(y)) > HALF - 0.05:
+            continue
+        base_texel, mr_texel = texel_at(x, y, 0, None), texel_at(x, y, 1, LIT_MR_TRANSFORM)
+        if base_texel is None or mr_texel is None:
+            continue
+        base = srgb_decode(LIT_BASE[base_texel][:3])
+        metallic, roughness = LIT_MR[mr_texel][2] / 255, LIT_MR[mr_texel][1] / 255
+        v = ref.unit(eye - hits[row, col])
+        linear = ref.radiance([0, 0, 1], TO_LIGHT, v, base, metallic, roughness, LIT_INTENSITY)
+        want = srgb_encode(linear + np.asarray(AMBIENT) * base)
+        assert np.abs(image[row, col] - want).max() <= 3, (which, row, col, image[row, col], want.round(1))
+        checked += 1
+    assert checked > 2000
