@@ -2,7 +2,8 @@
 # Issue 31's third run on the GPU machine (perf engineer, 2026-11-27). Run from a copy of the branch in a folder
 # of main's checkout (the device tool carries main's tree; .gl/ and .whl/ beside, linked into the copy):
 # `cd .perf && ln -s ../.gl .gl && ln -s ../.whl .whl && sh benchmarks/perf_device_run.sh`.
-# - probe: why CPU per frame grows with the instance count (benchmarks/cpu_growth_probe.py);
+# - probe, probe_dawn: why CPU per frame grows with the instance count (benchmarks/cpu_growth_probe.py), on
+#   wgpu-native and on Dawn;
 # - load_main, load_perf: the 10k-distinct-mesh load of main's tree (the folder above) and of this one, same call;
 # - dawn: Dawn's first pixel (the startup family on WGPURENDER_BINDING=dawn; wgpu-native's is in the perf step);
 # - perf: `bench perf` of the families the issue judges (frames, scene, scene-scale, startup).
@@ -11,6 +12,7 @@ set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
 MAIN=$(cd .. && pwd)
 step probe 90 python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe.csv"
+step probe_dawn 60 env WGPURENDER_BINDING=dawn python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe_dawn.csv"
 step load_main 70 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compare.py main 10000 "$D/load_compare.csv"
 step load_perf 40 python3 benchmarks/load_compare.py perf 10000 "$D/load_compare.csv"
 step dawn 90 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
