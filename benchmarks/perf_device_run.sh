@@ -11,10 +11,10 @@
 set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
 MAIN=$(cd .. && pwd)
-step probe 90 python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe.csv"
-step probe_dawn 60 env WGPURENDER_BINDING=dawn python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe_dawn.csv"
-step load_main 70 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compare.py main 10000 "$D/load_compare.csv"
-step load_perf 40 python3 benchmarks/load_compare.py perf 10000 "$D/load_compare.csv"
-step dawn 90 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
+step probe 60 python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe.csv"
+step probe_dawn 45 env WGPURENDER_BINDING=dawn python3 benchmarks/cpu_growth_probe.py "$D/cpu_growth_probe_dawn.csv"
+step load_main 60 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compare.py main 10000 "$D/load_compare.csv"
+step load_perf 35 python3 benchmarks/load_compare.py perf 10000 "$D/load_compare.csv"
+step dawn 80 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
 step perf 280 python3 -m wgpurender bench perf --only frames,scene,scene-scale,startup --out "$D/perf"
 tar czf "$OUT/run.tgz" -C "$OUT" run && rm -rf "$OUT/run"  # the tool returns at most 8 files
