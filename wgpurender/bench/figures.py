@@ -55,7 +55,8 @@ def _dawn_table(native: list[Result], dawn: list[Result]) -> str:
         "(no Dawn rows in this run)")
 
 
-PROBE = "perf-h100/2026-11-27-perf/cpu_growth_probe.csv"  # benchmarks/cpu_growth_probe.py, on the device
+PROBES = (("wgpu-native", "perf-h100/2026-11-27-perf/cpu_growth_probe.csv"),  # benchmarks/cpu_growth_probe.py
+          ("Dawn", "perf-h100/2026-11-27-perf/cpu_growth_probe_dawn.csv"))
 
 
 def probe_table(path: Path) -> str:
@@ -84,10 +85,11 @@ def section() -> str:
         if dawn and (base / dawn).is_file():
             lines += ["The Dawn binding (`WGPURENDER_BINDING=dawn`, wgpudawn 0.32) beside wgpu-native, same call:", "",
                       _dawn_table(rows, read_csv(base / dawn)), ""]
-    if (REPO / "docs" / PROBE).is_file():
-        lines += ["#### Why CPU per frame grew with the instance count (H100, same call as the third run)", "",
-                  f"From [`docs/{PROBE}`]({PROBE}) (`python benchmarks/cpu_growth_probe.py`; medians of 40 frames):",
-                  "", probe_table(REPO / "docs" / PROBE), ""]
+    for binding, probe in PROBES:
+        if (REPO / "docs" / probe).is_file():
+            lines += [f"#### Why CPU per frame grew with the instance count ({binding}, H100, third run)", "",
+                      f"From [`docs/{probe}`]({probe}) (`python benchmarks/cpu_growth_probe.py`; medians of 40 "
+                      "frames at 800x600):", "", probe_table(REPO / "docs" / probe), ""]
     lines += figures_post.section(REPO, _judge, _dawn_table)
     return "\n".join(lines + [END])
 
