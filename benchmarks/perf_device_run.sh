@@ -17,4 +17,6 @@ step load_main 60 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compa
 step load_perf 35 python3 benchmarks/load_compare.py perf 10000 "$D/load_compare.csv"
 step dawn 80 env WGPURENDER_BINDING=dawn python3 -m wgpurender bench perf --only startup --no-raw --out "$D/dawn"
 step perf 280 python3 -m wgpurender bench perf --only frames,scene,scene-scale,startup --out "$D/perf"
+cat "$D/commands.txt" "$D/cpu_growth_probe.csv" "$D/cpu_growth_probe_dawn.csv" "$D/load_compare.csv" 2>/dev/null
+sed -n '/^## Targets/,/^## Tails/p' "$D/perf/report.md" 2>/dev/null  # the reply's tail: the run at a glance
 tar czf "$OUT/run.tgz" -C "$OUT" run && rm -rf "$OUT/run"  # the tool returns at most 8 files
