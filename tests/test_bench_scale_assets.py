@@ -10,7 +10,6 @@ to a temporary folder, as the wheel's are, and the generated scenes must load fr
 from __future__ import annotations
 
 import shutil
-import time
 
 import pytest
 
@@ -36,30 +35,3 @@ def test_scale_scenes_read_the_brick_texture_from_the_bundled_assets_wherever_th
     assert scale.brick_texture() == elsewhere / "assets" / "textures" / "brick_albedo.png"
     assert scale.brick_texture().resolve() in {m.albedo_map for m in scene.materials.values()}
 
-
-def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
-    """bench_case adds a cpu_thread_ms row (record + submit in thread CPU time) with one sample per timed frame,
-    each a positive part of the thread's CPU time."""
-    size = (32, 24)
-    rows = scale.bench_case(ctx, scale.instanced_scene(tmp_path, 8, size), "instanced/8", size, frames=6)
-    by_metric = {r.metric: r for r in rows}
-    thread = by_metric["cpu_thread_ms"]
-    assert (thread.family, thread.case, thread.path, thread.size, thread.n) == ("scene-scale", "instanced/8", "wgpu",
-                                                                              "32x24", 6)
-    assert 0 < thread.p10 <= thread.median <= thread.p90
-    assert thread.n * thread.p10 <= time.thread_time() * 1e3  # per frame: no sample holds the thread's whole CPU time
-
-
-@pytest.mark.parametrize(("kind", "family", "config", "want"), [
-    ("DiscreteGPU", "scene", {}, 100), ("DiscreteGPU", "frames", {}, 100), ("DiscreteGPU", "scene-scale", {}, 100),
-    ("DiscreteGPU", "objects", {}, 20), ("CPU", "scene", {}, 20), ("DiscreteGPU", "scene", {"frames": 7}, 7),
-    ("DiscreteGPU", "scene", {"quick": True}, 4)])
-def test_judged_tail_rows_get_enough_frames_for_a_p99_on_a_gpu(kind, family, config, want):
-    """The p99 of 20 samples is their largest: the families whose p99 is judged time 100 frames a case on a GPU
-    (--frames and --quick still decide when given)."""
-    from types import SimpleNamespace
-
-    from wgpurender.bench.perf import PerfConfig
-
-    ctx = SimpleNamespace(adapter=SimpleNamespace(info={"adapter_type": kind}))
-    assert PerfConfig(**config).timed_frames(ctx, family) == want
