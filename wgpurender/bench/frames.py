@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 from wgpurender.bench.encoder import gpu_total, timed_frame
 from wgpurender.bench.report import Result, size_text
+from wgpurender.core.view import garbage
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.timing import PassTimer, Stats
 
@@ -85,12 +86,10 @@ def settle_garbage() -> None:
     """Before timed frames: collect and freeze what set-up made (``gc.freeze``), so no collection ever scans
     the renderer's objects again; what an application should do after loading a scene (docs/benchmarks.md).
     $WGPURENDER_BENCH_GC=default leaves the collector as Python sets it (the 4-5 ms tails of issue 22)."""
-    import gc
     import os
 
     if os.environ.get(GC_ENV) != "default":
-        gc.collect()
-        gc.freeze()
+        garbage.settle()  # the windows' rule (core/view/garbage.py)
 
 
 class frames_without_gc:

@@ -47,6 +47,7 @@ from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.imageio import save_png
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.view import garbage
 from wgpurender.core.view.controls import Controls, PausableClock, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
 from wgpurender.core.view.orbit import Orbit, moved_camera
@@ -430,6 +431,7 @@ class RawDemoLoop:
     def run(self, frames, screenshot: bool, fixed_time, on_frame) -> RawWindowResult:
         raw, glfw = self.raw, self.glfw
         count, times, last_slot = 0, [], None
+        settle_at = FRAMES_IN_FLIGHT
         self.controls.clock = PausableClock()
         while not glfw.window_should_close(raw.window) and (frames is None or count < frames):
             if on_frame is not None:
@@ -445,6 +447,7 @@ class RawDemoLoop:
                 continue
             if raw.resized:
                 raw._recreate()
+                settle_at = count + FRAMES_IN_FLIGHT  # each slot re-makes its drawable in its first frame
             began = time.perf_counter()
             t = fixed_time if fixed_time is not None else self.controls.clock.time()  # P pauses it
             last_wanted = screenshot and (frames is None or count == frames - 1)
@@ -460,6 +463,8 @@ class RawDemoLoop:
                 self.video.write(raw.screenshot(slot))
             last_slot = slot if last_wanted else last_slot
             count += 1
+            if count == settle_at:  # every slot has drawn: the load's objects frozen (core/view/garbage.py)
+                garbage.settle()
             self._count(now)
             if self.recorder is not None and self.recorder.finished():
                 break

@@ -32,7 +32,7 @@ import numpy as np
 import wgpu
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.view import slow_frames
+from wgpurender.core.view import garbage, slow_frames
 from wgpurender.core.view.controls import Controls, PausableClock, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
 from wgpurender.wgpu_path.device.context import GPUContext
@@ -240,6 +240,7 @@ class DemoWindow:
                 continue
             self.first_frame_pending, self.previous, self.broken = False, None, False
             self.watcher = FileWatcher(self.view.watched | set(self.watcher.paths))
+            garbage.settle()  # the load's objects frozen: no collection during the frames walks them again
             return frame
 
     def _record_fn(self):
