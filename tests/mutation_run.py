@@ -46,6 +46,7 @@ O_SIMPLE = "wgpurender/core/models/obj_simple.py"
 OBJ_SIMPLE = "tests/test_obj_simple.py"
 JAIL_ONCE = "tests/test_scene_jail_once.py"
 SHARED_MESH = "tests/test_shared_mesh_buffers.py"
+WINDOW_GC = "tests/test_window_gc.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
 PUBLISHED = "tests/test_export_carries_no_machine_path.py"
@@ -1009,6 +1010,13 @@ MUTATIONS = [
      "        pass", [SHARED_MESH]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "                packed[key] = L.material_struct(variant).pack(",
      "                packed[draw.label] = L.material_struct(variant).pack(", ["tests/test_instancing.py"]),
+    ("wgpurender/core/view/garbage.py", "    gc.unfreeze()\n", "", [WINDOW_GC]),
+    ("wgpurender/core/view/garbage.py", "    gc.collect()\n", "", [WINDOW_GC]),
+    ("wgpurender/core/view/garbage.py", "    gc.freeze()\n", "", [WINDOW_GC]),
+    ("wgpurender/wgpu_path/window/__init__.py", "            garbage.settle()  # the load's objects frozen",
+     "            pass  # the load's objects frozen", [WINDOW_GC]),
+    ("wgpurender/raw_path/window/__init__.py", "            if count == settle_at:", "            if False:",
+     [WINDOW_GC]),
 ]
 
 

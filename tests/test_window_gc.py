@@ -50,3 +50,26 @@ def test_the_window_freezes_what_the_load_made(display, path):
     assert frames == 4
     assert frozen > 1000  # the modules and the renderer: thousands of objects, not a handful
     assert cycle == "False"  # the collection before the freeze freed it
+
+
+def test_a_second_settle_frees_what_the_first_froze_and_is_garbage_now():
+    """A live reload drops the old drawable: its objects were frozen by the first settle; the next one must give
+    them back to the collector (gc.unfreeze) before freezing, or a cycle among them would live for ever."""
+    import gc
+    import weakref
+
+    from wgpurender.core.view import garbage
+
+    class Drawable:
+        pass
+
+    old = Drawable()
+    old.me = old
+    probe = weakref.ref(old)
+    try:
+        assert garbage.settle() > 0 and probe() is not None  # alive and frozen
+        del old
+        garbage.settle()
+        assert probe() is None
+    finally:
+        gc.unfreeze()
