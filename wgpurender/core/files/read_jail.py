@@ -17,7 +17,7 @@ and the texture files its MTL names all go through :func:`model_file`.
 A scene file is the user's own, but may be shared as well: the files it names (models, textures) must lie, after
 resolving links, under the scene's project folder (its own folder, or the folder above it when that is named
 ``scenes``, as in the bundled layout), the bundled ``assets/`` folder, or a folder the user allows with
-``$WGPURENDER_ALLOW_PATHS`` (folders separated by ``os.pathsep``), see :func:`scene_file`. The scenes that ship
+``$WGPURENDER_ALLOW_PATHS`` (folders separated by ``os.pathsep``), see :func:`outside`. The scenes that ship
 with the package (``assets/scenes``) are the project's own and may read anything their authors wrote.
 """
 
@@ -108,16 +108,14 @@ def is_bundled_scene(scene: Path) -> bool:
 
 
 def scene_folders(scene: Path) -> list[Path] | None:
-    """The folders :func:`scene_file` allows for ``scene`` (None: a bundled scene, which may read anything). A
+    """The folders :func:`outside` allows for ``scene`` (None: a bundled scene, which may read anything). A
     scene with thousands of model files asks once (resolving them per file was ~0.3 ms of each file's load)."""
     return None if is_bundled_scene(scene) else allowed_folders(scene)
 
 
-def scene_file(scene: Path, path: Path, folders: list[Path] | None = ...) -> str | None:
-    """Why a scene file may not read ``path`` (already resolved), or None when it may (see the module docstring);
-    ``folders``: what :func:`scene_folders` returned for ``scene``, when the caller asked already."""
-    if folders is ...:
-        folders = scene_folders(scene)
+def outside(path: Path, folders: list[Path] | None) -> str | None:
+    """Why a scene may not read ``path`` (already resolved), or None when it may (see the module docstring);
+    ``folders``: what :func:`scene_folders` returned for the scene (None: a bundled scene)."""
     if folders is None:
         return None
     if any(resolved(path).is_relative_to(folder) for folder in folders):

@@ -104,7 +104,7 @@ class Checker:
         else:
             if not hasattr(self, "_jail"):
                 self._jail = read_jail.scene_folders(self.path)  # once per scene, not per file
-            refused = read_jail.scene_file(self.path, found, self._jail)
+            refused = read_jail.outside(found, self._jail)
             if refused is not None:
                 raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
             return found
