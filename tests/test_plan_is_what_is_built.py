@@ -334,8 +334,9 @@ def test_a_lit_material_without_lights_builds_the_unlit_variant(ctx, monkeypatch
 def test_no_post_scene_shares_its_mesh_and_splits_its_winding(ctx, monkeypatch, tmp_path):
     plan, recorder, encoder, _ = build_and_record(ctx, monkeypatch, write_scene(tmp_path, "no_post"), "compute")
     assert [t["label"] for t in recorder.of("texture")] == ["depth"]
-    meshes = [b["label"].rsplit(" ", 1)[-1] for b in recorder.of("buffer") if b["label"].startswith("models[")]
-    assert meshes == ["vertices", "indices"], "two models of one mesh and one variant share one buffer pair"
+    meshes = [b["label"] for b in recorder.of("buffer") if b["label"] in ("scene-vertices", "scene-indices")]
+    assert meshes == ["scene-vertices", "scene-indices"], "two models of one mesh and one variant: one buffer pair"
+    assert "1 mesh(es)" in dict(plan.buffers)["scene-vertices"], "the one mesh is uploaded once"
     windings = sorted(p["primitive"]["front_face"] for p in recorder.of("render_pipeline"))
     assert windings == ["ccw", "cw"]
     assert not recorder.of("compute_pipeline") and not encoder.compute_passes and len(encoder.render_passes) == 1

@@ -432,10 +432,13 @@ class RenderPlan:
                 materials = len({d.material_key() for d in draws})
                 out.append(("scene-materials", f"uniform: {materials} Material slice(s), one per distinct material "
                                                f"({when})"))
-        for model, attributes in dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes)
-                                               for d in draws):
-            out.append((f"{model.name} vertices", f"vertex attributes {', '.join(attributes)}, interleaved"))
-            out.append((f"{model.name} indices", "index buffer"))
+        meshes = dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes) for d in draws)
+        if meshes:  # every mesh in one pair, each at its own offset (wgpu_path/scene/resources.py upload_meshes)
+            layouts = "; ".join(dict.fromkeys(", ".join(attributes) for _, attributes in meshes))
+            names = ", ".join(dict.fromkeys(model.name for model, _ in meshes))
+            out.append(("scene-vertices", f"vertex: {len(meshes)} mesh(es) ({names}), each interleaved at its own "
+                                          f"offset (attributes {layouts})"))
+            out.append(("scene-indices", f"index: the same {len(meshes)} mesh(es), each at its own offset"))
         if self.uses_ibl:
             from wgpurender.core.course import ibl_maps
 

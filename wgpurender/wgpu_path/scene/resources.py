@@ -62,11 +62,10 @@ class SceneResources:
             places.append((key, len(vertex), len(index), mesh))
             vertex += vertices + b"\0" * (-len(vertices) % 4)
             index += indices  # index_bytes is already a multiple of 4
-        dev, n = self.ctx.device, len(pending)
-        vbuf = dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX,
-                                           label=f"scene vertices ({n} meshes)")
-        ibuf = dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX,
-                                           label=f"scene indices ({n} meshes)")
+        dev = self.ctx.device
+        # named as the plan lists them (RenderPlan.buffers)
+        vbuf = dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX, label="scene-vertices")
+        ibuf = dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX, label="scene-indices")
         for key, v_at, i_at, mesh in places:
             self._buffers[key] = MeshBuffers(vbuf, ibuf, mesh.index_format, mesh.indices.size, v_at, i_at)
 
