@@ -1,0 +1,107 @@
+"""Fixes found by the held-out Khronos run (docs/runs/2026-11-27-heldout-khronos): each case is built here at run
+time after the sample that showed it, with expectations from the numbers written into the file.
+
+- Avocado (glTF-Quantized) was refused as "singular": its node scale 3.839089e-6 (positions quantized to uint16)
+  gives det 5.7e-17, under the old absolute bound 1e-12. A transform is flat when its 3x3 maps the unit cube to a
+  sliver of the box its column lengths span (core/view/transforms.flat), whatever the model's units.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from gltf_gen import QUAD_INDICES, GltfWriter, pixel_of
+from test_gltf_render import PATHS, SIZE, UNLIT, assert_colour, render, write_scene
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.models.mesh import load_mesh
+from wgpurender.core.view import transforms
+
+AVOCADO_SCALE = 3.839089e-06  # the node scale of Khronos' Avocado/glTF-Quantized
+COLOUR = (0.8, 0.3, 0.1)
+X0, Y0, X1, Y1 = -1.2, -1.0, 1.4, 1.3  # the quad's world extent after both scales
+
+
+def _quantized_quad(tmp_path, node_scale: float, units: float, axes=(1.0, 1.0, 1.0)) -> str:
+    """An int16 quad whose integers times ``units`` are (X0..X1, Y0..Y1), placed by a node scale ``node_scale``;
+    the scene's model transform scales by ``units / node_scale`` so the world extent stays the same."""
+    g = GltfWriter()
+    ints = np.round(np.array([[X0, Y0, 0], [X1, Y0, 0], [X1, Y1, 0], [X0, Y1, 0]]) / units).astype(np.int16)
+    pos = g.accessor(ints)
+    g.doc["accessors"][pos].update(min=ints.min(0).tolist(), max=ints.max(0).tolist())
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [*COLOUR, 1]}, **UNLIT)
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": pos}, "indices": g.accessor(QUAD_INDICES), "material": mat}]),
+           scale=[node_scale * a for a in axes])
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_mesh_quantization", "KHR_materials_unlit"]
+    g.write(tmp_path / "q.glb")
+    return f"[models.transform]\nscale = {units / node_scale!r}\n"
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_a_micrometre_node_scale_is_drawn_not_refused(ctx, tmp_path, which):
+    """Avocado's case: the quad's edges land where integer x node scale x scene scale puts them, on both paths."""
+    extra = _quantized_quad(tmp_path, AVOCADO_SCALE, units=1e-4)
+    assert abs(np.linalg.det(np.eye(3) * AVOCADO_SCALE)) < 1e-12  # the old bound refused this
+    image = render(ctx, write_scene(tmp_path, "q.glb", extra=extra), which)
+    covered = image[..., :3].max(axis=2) > 20
+    for x, y, inside in ((X0 + 0.05, 0, True), (X0 - 0.08, 0, False), (X1 - 0.05, 0, True), (X1 + 0.08, 0, False),
+                         (0, Y1 - 0.05, True), (0, Y1 + 0.08, False), (0, Y0 + 0.05, True), (0, Y0 - 0.08, False)):
+        col, row = pixel_of(x, y, SIZE)
+        assert covered[int(row), int(col)] == inside, (which, x, y, inside)
+    assert_colour(image, 0.1, 0.1, COLOUR, f"{which} unlit colour")
+
+
+def test_a_node_that_flattens_an_axis_is_still_refused(tmp_path):
+    """Scale 0 on one axis: one line naming the node, whatever the other axes' size."""
+    _quantized_quad(tmp_path, AVOCADO_SCALE, units=1e-4, axes=(1.0, 1.0, 0.0))
+    path = tmp_path / "q.glb"
+    with pytest.raises(UserError, match="singular transform"):
+        load_mesh(path)
+
+
+def _rotation(degrees: float) -> np.ndarray:
+    a = math.radians(degrees)
+    return np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
+
+
+@pytest.mark.parametrize("matrix, flat", [
+    (np.eye(3) * AVOCADO_SCALE, False),                         # tiny uniform scale: a whole cube, small
+    (np.diag([1e-6, 1.0, 1e6]), False),                         # extreme non-uniform scale: still a box
+    (_rotation(30) @ np.diag([2.0, 0.5, 3.0]), False),          # rotation x scale
+    (np.diag([1.0, 1.0, -1.0]), False),                         # a mirror is not flat
+    (np.diag([1.0, 0.0, 1.0]), True),                           # scale 0 on one axis
+    (np.array([[1.0, 1.0, 0], [0, 0, 0], [0, 0, 1.0]]).T, True),  # a zero column (y to nothing)
+    (np.array([[1.0, 0, 0], [1.0, 1e-12, 0], [0, 0, 1.0]]).T, True),  # two columns parallel to 1e-12
+    (np.array([[1.0, 0, 0], [1.0, 1e-3, 0], [0, 0, 1.0]]).T, False),  # a strong shear, 1e-3 of a right angle
+])
+def test_flat_is_scale_free(matrix, flat):
+    """Expected from geometry: volume over the product of the edge lengths is |sin| of the angles between them."""
+    assert bool(transforms.flat(matrix)) is flat
+    for k in (1e-6, 1.0, 1e6):  # the same shape at any size
+        assert bool(transforms.flat(matrix * k)) is flat
+    padded = np.eye(4)
+    padded[:3, :3] = matrix
+    assert bool(transforms.flat(padded)) is flat  # a 4x4 is judged by its 3x3
+
+
+def test_flat_judges_each_of_a_stack():
+    stack = np.stack([np.eye(3), np.diag([1.0, 0.0, 1.0]), np.eye(3) * 1e-7])
+    assert transforms.flat(stack).tolist() == [False, True, False]
+
+
+def test_a_scene_matrix_of_tiny_scale_is_accepted(tmp_path):
+    """validate.py's [models.transform] matrix used the same absolute bound: a 1e-5 scale (det 1e-15) was
+    refused as singular; a matrix with a zero row still is."""
+    from wgpurender.core.scene import load_scene
+
+    g = GltfWriter()
+    big = np.array([[X0, Y0, 0], [X1, Y0, 0], [X1, Y1, 0], [X0, Y1, 0]], np.float32) * 1e5
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(big)}, "indices": g.accessor(QUAD_INDICES)}]))
+    g.write(tmp_path / "big.glb")
+    rows = "[[1e-5, 0, 0, 0], [0, 1e-5, 0, 0], [0, 0, 1e-5, 0], [0, 0, 0, 1]]"
+    load_scene(write_scene(tmp_path, "big.glb", extra=f"[models.transform]\nmatrix = {rows}\n"))
+    flat_rows = "[[1, 0, 0, 0], [0, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]"
+    with pytest.raises(UserError, match="singular"):
+        load_scene(write_scene(tmp_path, "big.glb", extra=f"[models.transform]\nmatrix = {flat_rows}\n"))
