@@ -105,3 +105,56 @@ def test_a_scene_matrix_of_tiny_scale_is_accepted(tmp_path):
     flat_rows = "[[1, 0, 0, 0], [0, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]"
     with pytest.raises(UserError, match="singular"):
         load_scene(write_scene(tmp_path, "big.glb", extra=f"[models.transform]\nmatrix = {flat_rows}\n"))
+
+
+# --- MorphPrimitivesTest/glTF-Draco: a Draco primitive's morph targets ----------------------------------------------
+
+MORPH_LIFT = 0.8  # the target moves the two top vertices up by this; weight 0.5 lifts them by half
+
+
+def _draco_morph_quad(tmp_path, target_count: int = 4) -> None:
+    """A Draco quad (order preserved, as the extension's generators write it) with one plain POSITION target
+    lifting its top edge, mesh weights [0.5]."""
+    DracoPy = pytest.importorskip("DracoPy")
+    positions = np.array([[X0, Y0, 0], [X1, Y0, 0], [X1, Y1, 0], [X0, Y1, 0]], np.float64)
+    faces = QUAD_INDICES.reshape(-1, 3).astype(np.uint32)
+    blob = DracoPy.encode(positions, faces, quantization_bits=14, preserve_order=True)
+    decoded = DracoPy.decode(blob)
+    order = [int(np.argmin(np.linalg.norm(positions - p, axis=1))) for p in np.asarray(decoded.points)]
+    delta = np.zeros((target_count, 3), np.float32)
+    lifted = [k for k in range(min(4, target_count)) if positions[order[k], 1] == Y1]
+    delta[lifted, 1] = MORPH_LIFT  # in the decoded order: the data the accessors describe
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [*COLOUR, 1]}, **UNLIT)
+    view = g.view(blob)
+    first = len(g.doc["accessors"])
+    g.doc["accessors"] += [{"componentType": 5126, "count": 4, "type": "VEC3", "min": [X0, Y0, 0],
+                            "max": [X1, Y1, 0]}, {"componentType": 5123, "count": 6, "type": "SCALAR"}]
+    target = g.positions(delta)
+    ext = {"bufferView": view, "attributes": {"POSITION": decoded.attributes[0]["unique_id"]}}
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": first}, "indices": first + 1, "material": mat,
+                         "targets": [{"POSITION": target}], "extensions": {"KHR_draco_mesh_compression": ext}}]))
+    g.doc["meshes"][0]["weights"] = [0.5]
+    g.doc["extensionsUsed"] = ["KHR_draco_mesh_compression", "KHR_materials_unlit"]
+    g.doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    g.write(tmp_path / "dm.glb")
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_draco_primitive_morph_targets_apply(ctx, tmp_path, which):
+    """The top edge moves from Y1 to Y1 + 0.5 x lift: covered just under the morphed edge, bare just above it
+    (MorphPrimitivesTest/glTF-Draco drew flat: its targets were ignored)."""
+    _draco_morph_quad(tmp_path)
+    image = render(ctx, write_scene(tmp_path, "dm.glb"), which, size=(128, 128))
+    covered = image[..., :3].max(axis=2) > 20
+    top = Y1 + 0.5 * MORPH_LIFT
+    for x, y, inside in ((0.1, top - 0.08, True), (0.1, top + 0.08, False), (0.1, Y0 + 0.05, True),
+                         (0.1, Y0 - 0.08, False)):
+        col, row = pixel_of(x, y, (128, 128))
+        assert covered[int(row), int(col)] == inside, (which, x, y, inside)
+
+
+def test_a_draco_morph_target_of_the_wrong_count_is_one_line(tmp_path):
+    _draco_morph_quad(tmp_path, target_count=3)
+    with pytest.raises(UserError, match=r"morph target 0 POSITION has 3 elements, the primitive 4 vertices"):
+        load_mesh(tmp_path / "dm.glb")
