@@ -158,3 +158,24 @@ def test_a_draco_morph_target_of_the_wrong_count_is_one_line(tmp_path):
     _draco_morph_quad(tmp_path, target_count=3)
     with pytest.raises(UserError, match=r"morph target 0 POSITION has 3 elements, the primitive 4 vertices"):
         load_mesh(tmp_path / "dm.glb")
+
+
+def test_instance_matrices_of_tiny_scale_are_accepted_and_one_flat_one_is_not(tmp_path):
+    """instances.py used the absolute bound too: a stack of 1e-5-scale matrices (det 1e-15) is a valid placement;
+    one flat matrix among good ones is still refused."""
+    from wgpurender.core.scene import parse_scene
+
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(np.float32([[0, 0, 0], [1, 0, 0], [0, 1, 0]]))},
+                         "indices": g.accessor(np.uint16([0, 1, 2]))}]))
+    g.write(tmp_path / "t.glb")
+    tiny = np.tile(np.diag([1e-5, 1e-5, 1e-5, 1.0]), (3, 1, 1))
+    np.save(tmp_path / "tiny.npy", tiny)
+    mixed = tiny.copy()
+    mixed[1, 1, 1] = 0.0
+    np.save(tmp_path / "mixed.npy", mixed)
+    head = "[camera]\neye = [0, 0, 2]\ntarget = [0, 0, 0]\n"
+    scene = parse_scene(f'{head}[[models]]\npath = "t.glb"\ninstances = {{ file = "tiny.npy" }}\n', tmp_path / "s.toml")
+    assert scene.models[0].placements.count == 3
+    with pytest.raises(UserError, match="singular"):
+        parse_scene(f'{head}[[models]]\npath = "t.glb"\ninstances = {{ file = "mixed.npy" }}\n', tmp_path / "s.toml")
