@@ -179,3 +179,17 @@ def test_instance_matrices_of_tiny_scale_are_accepted_and_one_flat_one_is_not(tm
     assert scene.models[0].placements.count == 3
     with pytest.raises(UserError, match="singular"):
         parse_scene(f'{head}[[models]]\npath = "t.glb"\ninstances = {{ file = "mixed.npy" }}\n', tmp_path / "s.toml")
+
+
+def test_a_plain_morph_target_of_the_wrong_count_is_one_line(tmp_path):
+    """The same check for an uncompressed primitive: 3 target elements for 4 vertices was a numpy broadcast
+    traceback before."""
+    from gltf_gen import quad
+
+    g = GltfWriter()
+    target = g.positions(np.zeros((3, 3), np.float32))
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-1, -1, 1, 1))},
+                         "indices": g.accessor(QUAD_INDICES), "targets": [{"POSITION": target}]}]))
+    g.doc["meshes"][0]["weights"] = [0.5]
+    with pytest.raises(UserError, match=r"morph target 0 POSITION has 3 elements, the primitive 4 vertices"):
+        load_mesh(g.write(tmp_path / "t.glb"))

@@ -96,3 +96,31 @@ def linear_interpolation(image, model, cam, size):
 
 
 PROBES["TextureLinearInterpolationTest"] = linear_interpolation
+
+
+def draco_morph(image, model, cam, size):
+    """MorphPrimitivesTest: weights [0.5] raise the middle of the flat board. Seen edge-on, each primitive's highest
+    morphed vertex (Draco-decoded base + 0.5 x its POSITION target, decoded here with DracoPy) is covered at 70% of
+    its height, where the unmorphed board (height 0) leaves the background."""
+    import DracoPy
+    from gltf_view import buffer_bytes, float_vec3
+
+    doc, glb_bin = load(model)
+    background = image[0, 0, :3].astype(int)
+    weight = doc["meshes"][0]["weights"][0]
+    found = []
+    for prim in doc["meshes"][0]["primitives"]:
+        ext = prim["extensions"]["KHR_draco_mesh_compression"]
+        view = doc["bufferViews"][ext["bufferView"]]
+        data = buffer_bytes(doc, view["buffer"], model.parent, glb_bin)
+        start = view.get("byteOffset", 0)
+        decoded = DracoPy.decode(data[start: start + view["byteLength"]])
+        morphed = np.asarray(decoded.points, np.float64) + weight * float_vec3(
+            doc, prim["targets"][0]["POSITION"], model.parent, glb_bin)
+        peak = morphed[int(np.argmax(morphed[:, 1]))] * np.array([1, 0.7, 1])
+        col, row = project(peak, cam, size)
+        found.append(int(np.abs(image[row, col, :3].astype(int) - background).max() > 12))
+    return all(found), f"{sum(found)} of {len(found)} raised peaks covered at 70% height"
+
+
+PROBES["MorphPrimitivesTest"] = draco_morph

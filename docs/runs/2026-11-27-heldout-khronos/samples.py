@@ -45,7 +45,7 @@ SAMPLES = (
            "played)", (0.6, 0.5, 1.0)),
     Sample("MorphPrimitivesTest", "glTF-Draco", "morph (weights 0.5) + Draco",
            "a red grid over 3 quadrants and a green quadrant, the centre raised by the morph targets at half "
-           "strength", (0.0, 0.8, 1.0)),
+           "strength", (1.0, 0.0, 0.35)),
     Sample("SimpleInstancing", "glTF-Binary", "EXT_mesh_gpu_instancing",
            "a 5x5x5 block of 125 cubes, each an instance of one mesh", (0.6, 0.5, 1.0)),
     Sample("Avocado", "glTF-Quantized", "KHR_mesh_quantization + textures",

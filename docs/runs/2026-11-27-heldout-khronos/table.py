@@ -62,8 +62,9 @@ def verdict(out: Path, samples: Path, key: str, res: dict, judged: dict, name: s
         line = (res[name]["error"].splitlines() or ["?"])[-1]
         return judged.get(name, f"refused: {line}"), line
     found = probe(out, samples, key, res, name)
-    if found is not None:
-        return found
+    if found is not None:  # a failed probe of a drop the renderer disclosed stays that drop
+        disclosed = judged.get(name) in ("drops-disclosed", "drops-silent")
+        return (judged[name] if found[0] == "wrong" and disclosed else found[0]), found[1]
     return judged.get(name, "unjudged"), ""
 
 
