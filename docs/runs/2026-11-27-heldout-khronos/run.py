@@ -65,7 +65,7 @@ def probes(image_path: Path, boxes: list[np.ndarray], cam: dict) -> dict:
 
 def shoot(sample, samples_dir: Path, out: Path) -> dict:
     model = samples_dir / sample.file
-    folder = out / "shots" / f"{sample.name}-{sample.variant}"
+    folder = out / "shots" / sample.key.replace("/", "-")
     folder.mkdir(parents=True, exist_ok=True)
     boxes = mesh_boxes(model)
     cam = frame(boxes, sample.view, zoom=sample.zoom)
@@ -94,7 +94,7 @@ def main(argv: list[str]) -> int:
     for sample in SAMPLES:
         if only and sample.name not in only:
             continue
-        key = f"{sample.name}/{sample.variant}"
+        key = sample.key
         print(key, flush=True)
         results[key] = shoot(sample, samples_dir, out)
         results_path.write_text(json.dumps(results, indent=1))

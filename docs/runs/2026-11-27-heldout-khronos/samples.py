@@ -18,6 +18,11 @@ class Sample:
     right: str
     view: tuple[float, float, float] = (0.0, 0.0, 1.0)
     zoom: float = 1.0  # > 1 moves the camera closer than the bounding sphere needs (wide, flat test boards)
+    tag: str = ""  # a second view of the same file: "+tag" after its key
+
+    @property
+    def key(self) -> str:
+        return f"{self.name}/{self.variant}" + (f"+{self.tag}" if self.tag else "")
 
     @property
     def file(self) -> str:
@@ -96,10 +101,16 @@ SAMPLES = (
     Sample("OrientationTest", "glTF-Binary", "node rotations",
            "each coloured arrow points at its target indicator of the same colour, opposite the point",
            (1.0, 0.8, 1.0)),
+    Sample("OrientationTest", "glTF-Binary", "node rotations, the far side",
+           "each coloured arrow points at its target indicator of the same colour, opposite the point",
+           (-1.0, -0.8, -1.0), tag="back"),
     Sample("NegativeScaleTest", "glTF-Binary", "negative scale",
            "mirrored objects lit and culled like their originals (winding flips with negative determinant)", zoom=1.2),
     Sample("TwoSidedPlane", "glTF", "doubleSided",
            "a textured plane visible from both sides", (0.0, 0.3, 1.0)),
+    Sample("TwoSidedPlane", "glTF", "doubleSided, the back",
+           "the same plane from behind: drawn (doubleSided), its back lit with the normal turned around",
+           (0.0, -0.3, -1.0), tag="back"),
     Sample("BoxTexturedNonPowerOfTwo", "glTF-Binary", "NPOT texture",
            "a cube with the CesiumLogo texture on each face", (0.6, 0.5, 1.0)),
     Sample("NormalTangentMirrorTest", "glTF-Binary", "normal map with tangents",

@@ -27,7 +27,7 @@ COLUMNS = ("file", "feature", "right render (README)", "wgpurender wgpu", "wgpur
 
 
 def sheet(out: Path, keys: list[str], results: dict, index: int) -> Path:
-    image = Image.new("RGB", (LABEL + 3 * THUMB, (len(keys) + 1) * THUMB // 4 + len(keys) * THUMB), "white")
+    image = Image.new("RGB", (LABEL + 3 * THUMB, THUMB // 4 + len(keys) * THUMB), "white")
     draw = ImageDraw.Draw(image)
     for c, name in enumerate(("wgpu", "raw", "pygfx")):
         draw.text((LABEL + c * THUMB + 4, 8), name, fill="black")
