@@ -997,6 +997,12 @@ MUTATIONS = [
      "            if delta is not None and len(delta) > len(positions):", [HELDOUT]),
     (G_GEOM, "            if delta is not None and len(delta) != len(positions):",
      "            if False:", [HELDOUT]),
+    (G_IO, "        fixes = \"; \".join(dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX)",
+     "        fixes = GENERIC_FIX or (dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX)", [HELDOUT]),
+    (G_IO, "dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX) for name in missing)",
+     "dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(missing[0], GENERIC_FIX) for name in missing)", [HELDOUT]),
+    (G_IO, "\"; \".join(dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX) for name in missing))",
+     "\"; \".join(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX) for name in missing)", [HELDOUT]),
 ]
 
 

@@ -193,3 +193,27 @@ def test_a_plain_morph_target_of_the_wrong_count_is_one_line(tmp_path):
     g.doc["meshes"][0]["weights"] = [0.5]
     with pytest.raises(UserError, match=r"morph target 0 POSITION has 3 elements, the primitive 4 vertices"):
         load_mesh(g.write(tmp_path / "t.glb"))
+
+
+@pytest.mark.parametrize("required, fix", [
+    (["KHR_materials_pbrSpecularGlossiness"], "gltf-transform metalrough in.glb out.glb"),
+    (["KHR_texture_basisu"], "re-export it with PNG or JPEG textures"),
+    (["EXT_made_up"], "re-export the model without them"),
+    (["KHR_texture_basisu", "EXT_made_up"], "PNG or JPEG textures; re-export the model without them"),
+    (["EXT_made_up", "EXT_also_made_up"], "re-export the model without them"),  # said once
+])
+def test_a_required_extension_is_refused_with_its_own_fix(tmp_path, capsys, required, fix):
+    """SpecGlossVsMetalRough requires KHR_materials_pbrSpecularGlossiness: the one line names it and the way to a
+    file wgpurender draws (the old line suggested dropping KHR_texture_basisu, whatever was missing)."""
+    from wgpurender.cli import main
+
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(np.float32([[0, 0, 0], [1, 0, 0], [0, 1, 0]]))},
+                         "indices": g.accessor(np.uint16([0, 1, 2]))}]))
+    g.doc["extensionsRequired"] = g.doc["extensionsUsed"] = required
+    g.write(tmp_path / "r.glb")
+    code = main(["render", str(write_scene(tmp_path, "r.glb")), "-o", str(tmp_path / "out.png")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert code == 2 and len(err) == 1, err
+    assert ", ".join(required) in err[0] and err[0].count(fix) == 1, err
+    assert not (tmp_path / "out.png").exists()
