@@ -74,7 +74,10 @@ def shoot(sample, samples_dir: Path, out: Path) -> dict:
     py = sys.executable
     wgpu = run([py, "-m", "wgpurender", "render", str(scene), "--explain", "-o", str(folder / "wgpu.png")])
     raw = run([py, "-m", "wgpurender", "reference", str(scene), "-o", str(folder / "raw.png")])
-    peer = run([py, str(HERE / "pygfx_shot.py"), str(model), str(folder / "pygfx.png"), json.dumps(cam), str(SIZE)])
+    shot = [py, str(HERE / "pygfx_shot.py"), str(model), str(folder / "pygfx.png"), json.dumps(cam), str(SIZE)]
+    peer = run(shot)
+    if peer["rc"] < 0:  # killed by a signal: pygfx on lavapipe crashed once in 80 shots (signal 11); one retry
+        peer = run(shot)
     ignored = [line.strip() for line in wgpu["stdout"].splitlines() if "ignored" in line]
     return {"file": sample.file, "feature": sample.feature, "right": sample.right, "camera": cam,
             "wgpu": {"rc": wgpu["rc"], "error": wgpu["stderr"] if wgpu["rc"] else "", "seconds": wgpu["seconds"],
