@@ -29,8 +29,9 @@ from samples import SAMPLES  # noqa: E402
 SIZE = 192
 
 
-def scene_toml(model: str, cam: dict) -> str:
-    return (f"[camera]\neye = {cam['eye']}\ntarget = {cam['target']}\nfov_y = {cam['fov_y']}\n"
+def scene_toml(model: str, cam: dict, sky: bool = False) -> str:
+    environment = '[environment]\nprocedural = "sky"\n\n' if sky else ""
+    return (f"{environment}[camera]\neye = {cam['eye']}\ntarget = {cam['target']}\nfov_y = {cam['fov_y']}\n"
             f"near = {cam['near']}\nfar = {cam['far']}\n\n"
             f"[render]\nsize = [{SIZE}, {SIZE}]\nmsaa = 4\nhdr = false\nclear_color = {list(BACKGROUND_LINEAR)}\n\n"
             f"{scene_lights()}\n[[models]]\npath = \"{model}\"\n")
@@ -70,7 +71,7 @@ def shoot(sample, samples_dir: Path, out: Path) -> dict:
     boxes = mesh_boxes(model)
     cam = frame(boxes, sample.view, zoom=sample.zoom)
     scene = model.parent / "heldout-scene.toml"
-    scene.write_text(scene_toml(model.name, cam))
+    scene.write_text(scene_toml(model.name, cam, sample.sky))
     py = sys.executable
     wgpu = run([py, "-m", "wgpurender", "render", str(scene), "--explain", "-o", str(folder / "wgpu.png")])
     raw = run([py, "-m", "wgpurender", "reference", str(scene), "-o", str(folder / "raw.png")])

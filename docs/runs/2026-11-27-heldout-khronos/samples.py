@@ -19,6 +19,7 @@ class Sample:
     view: tuple[float, float, float] = (0.0, 0.0, 1.0)
     zoom: float = 1.0  # > 1 moves the camera closer than the bounding sphere needs (wide, flat test boards)
     tag: str = ""  # a second view of the same file: "+tag" after its key
+    sky: bool = False  # wgpurender also lit by its procedural sky ([environment]); pygfx gets none
 
     @property
     def key(self) -> str:
@@ -115,6 +116,9 @@ SAMPLES = (
            "a cube with the CesiumLogo texture on each face", (0.6, 0.5, 1.0)),
     Sample("NormalTangentMirrorTest", "glTF-Binary", "normal map with tangents",
            "normal-mapped hemispheres lit like the geometry beside them, mirrored UVs included"),
+    Sample("NormalTangentMirrorTest", "glTF-Binary", "normal map with tangents, under a sky",
+           "every test block (real geometry and the normal-mapped quads beside it) shows similar reflections of "
+           "the environment's horizon, level", tag="sky", sky=True),
     Sample("SpecGlossVsMetalRough", "glTF", "KHR_materials_pbrSpecularGlossiness (required)",
            "expected to fail to load without the spec/gloss extension (it is required)"),
     Sample("MultipleScenes", "glTF-Embedded", "scene index",
