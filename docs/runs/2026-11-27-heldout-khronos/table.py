@@ -23,7 +23,8 @@ from samples import LICENCES, NO_SHEET  # noqa: E402
 
 THUMB, ROWS_PER_SHEET, LABEL = 128, 10, 240
 COLUMNS = ("file", "feature", "right render (README)", "wgpurender wgpu", "wgpurender raw", "pygfx",
-           "verdict by", "notes", "wgpu: disclosed as ignored", "licence")
+           "verdict by", "notes", "wgpu: disclosed as ignored", "licence", "pixels off wgpu vs pygfx",
+           "pixels off wgpu vs raw")
 
 
 def sheet(out: Path, keys: list[str], results: dict, index: int) -> Path:
@@ -43,6 +44,16 @@ def sheet(out: Path, keys: list[str], results: dict, index: int) -> Path:
     path = out / f"sheet-{index}.png"
     image.save(path, optimize=True)
     return path
+
+
+def off_share(out: Path, key: str, a: str, b: str) -> str:
+    """Share of pixels whose largest channel difference between two renderers' images passes 64/255: a pointer to
+    look at, not a verdict (the two renderers light and antialias differently)."""
+    folder = out / "shots" / key.replace("/", "-")
+    if not (folder / f"{a}.png").exists() or not (folder / f"{b}.png").exists():
+        return ""
+    one, two = (np.asarray(Image.open(folder / f"{n}.png").convert("RGB")).astype(int) for n in (a, b))
+    return f"{(np.abs(one - two).max(axis=-1) > 64).mean():.3f}"
 
 
 def probe(out: Path, samples: Path, key: str, res: dict, name: str) -> tuple[str, str] | None:
@@ -92,7 +103,8 @@ def main(out: Path, samples: Path, after: bool) -> int:
         rows.append([res["file"], res["feature"], res["right"], cells["wgpu"][0], cells["raw"][0], cells["pygfx"][0],
                      by, "; ".join(x for x in (v.get("notes", ""), measured) if x),
                      " | ".join(res["wgpu"]["ignored"]) or (res["wgpu"]["error"].splitlines() or [""])[-1],
-                     LICENCES[key.split("/")[0]]])
+                     LICENCES[key.split("/")[0]], off_share(out, key, "wgpu", "pygfx"),
+                     off_share(out, key, "wgpu", "raw")])
     with (out / "results.csv").open("w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(COLUMNS)
