@@ -11,7 +11,9 @@ the unlit shader contains no light struct, no normal matrix and no lighting code
 
 Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
-  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py)
+  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py); with the
+                     plan's instance_data "vertex" there is no group 1: the same blocks are a vertex buffer
+                     stepped per instance (instance_layout) and the material is group 1
   group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
                      4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples;
                      11: the image-based lighting maps (storage buffer, ibl variants)
@@ -122,9 +124,13 @@ def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
 
 
-def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
-    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled)."""
+def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False,
+                    instance_data: str = "storage") -> set[str]:
+    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled,
+    instance_attributes)."""
     features = set(variant.flags) | ({"culled"} if culled else set())
+    if instance_data == "vertex":
+        features.add("instance_attributes")
     if samples_textures(variant):
         features.add("uv")
     for name, n in variant.counts:
@@ -135,14 +141,37 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
     return features
 
 
-def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
+def material_group(instance_data: str) -> int:
+    """The material's bind group: 2 after the Object storage group, 1 when instances are vertex attributes."""
+    return 2 if instance_data == "storage" else 1
+
+
+# Per-instance attributes (instance_data "vertex"): (location, format, byte offset in the Object block), and the
+# variant flag that needs them (None: every variant). The offsets are OBJECT's: world, normal columns, mirror.
+_INSTANCE_ATTRIBUTES = tuple((5 + c, "float32x4", 16 * c, None) for c in range(4)) + tuple(
+    (9 + c, "float32x3", OBJECT.offsets["normal"] + 16 * c, "lighting") for c in range(3)) + (
+    (12, "float32", OBJECT.offsets["mirror"], "normal_map"),)
+
+
+def instance_layout(variant: ShaderVariant) -> dict:
+    """The vertex buffer of Object blocks, stepped once per instance: only the attributes the variant reads."""
+    attributes = [{"shader_location": loc, "format": fmt, "offset": offset}
+                  for loc, fmt, offset, flag in _INSTANCE_ATTRIBUTES if flag is None or flag in variant.flags]
+    return {"array_stride": OBJECT.size, "step_mode": "instance", "attributes": attributes}
+
+
+def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False,
+                  instance_data: str = "storage") -> str:
     """scene.wgsl specialised for one variant: only its attributes, bindings, structs and code."""
-    structs = [camera_struct(variant), object_struct(variant), material_struct(variant)]
+    objects = [object_struct(variant)] if instance_data == "storage" else []
+    structs = [camera_struct(variant), *objects, material_struct(variant)]
     values = {
         "STRUCTS": wgsl_structs(*structs),
+        "MATERIAL_GROUP": str(material_group(instance_data)),
         "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
         "IBL_FUNCTIONS": load_wgsl(IBL_FUNCTIONS) if "ibl" in variant.flags else "",
     }
-    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled), values, name=SHADER)
+    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled, instance_data), values,
+                      name=SHADER)
