@@ -9,7 +9,8 @@ counting them into the indirect draw's ``instance_count``; the vertex shader rea
 Small draws are not culled: the rasteriser already drops triangles outside the view, and below
 :data:`GPU_CULL_MIN` instances a compute dispatch, a buffer reset and an indirect draw cost more than the
 vertices they save (the CPU-side alternative, a test per instance per frame in Python, is the per-object cost
-instancing removed). The ``culling`` knob: "auto" (this rule), "gpu" (every instanced draw), "off".
+instancing removed). The ``culling`` knob: "auto" (this rule), "gpu" (every instanced draw), "cpu" (every
+instanced draw, on the CPU), "off".
 
 Without a GPU pass (per-instance vertex attributes, core/plan/instance_data.py, or no compute) the same test runs
 on the CPU in numpy (setting "cpu"). The GPU pass needs the device feature ``indirect-first-instance`` (each
@@ -24,7 +25,7 @@ import dataclasses
 from wgpurender.core.errors import UserError
 
 GPU_CULL_MIN = 16_384
-CULLING = ("auto", "gpu", "off")
+CULLING = ("auto", "gpu", "cpu", "off")
 FEATURE = "indirect-first-instance"
 
 
@@ -37,10 +38,10 @@ def decide(draws: list, pipelines: dict, knob: str, features: frozenset[str] | N
     instead (:func:`cpu_culled`), and the knob "gpu" is refused."""
     if knob == "off":
         return draws, "off", "knob culling = off: every instance is drawn"
-    least = 2 if knob == "gpu" else GPU_CULL_MIN
+    least = GPU_CULL_MIN if knob == "auto" else 2
     if not any(d.instance_count >= least for d in draws):
         return draws, "off", _rule(knob) + "; no draw qualifies"
-    if instance_data == "vertex" or not compute:
+    if knob == "cpu" or instance_data == "vertex" or not compute:
         return cpu_culled(draws, knob, least, instance_data)
     if features is not None and FEATURE not in features:
         return draws, "off", f"the device lacks '{FEATURE}' (a culled draw's visible list starts at its first instance)"
@@ -66,12 +67,13 @@ def cpu_culled(draws: list, knob: str, least: int, instance_data: str) -> tuple[
     why = ("instances reach the vertex shader as vertex attributes, so no shader reads a visible list"
            if instance_data == "vertex" else "the device runs no compute shaders")
     if knob == "gpu":
-        raise UserError(f"culling = gpu cannot apply here: {why}; use culling = auto (the CPU culls) or off")
+        raise UserError(f"culling = gpu cannot apply here: {why}; use culling = auto or cpu (the CPU culls) or off")
     out = [dataclasses.replace(d, cpu_culled=True) if d.instance_count >= least else d for d in draws]
     named = ", ".join(_named(d) for d in out if d.cpu_culled)
-    return out, "cpu", (f"auto: draws of at least {GPU_CULL_MIN} instances are culled on the CPU ({why}; the GPU pass "
-                        f"needs both a storage visible list and compute): {named} (the raw path draws every "
-                        "instance: the same pixels)")
+    rule = ("knob culling = cpu: every instanced draw is culled on the CPU" if knob == "cpu" else
+            f"auto: draws of at least {GPU_CULL_MIN} instances are culled on the CPU ({why}; the GPU pass needs "
+            "both a storage visible list and compute)")
+    return out, "cpu", f"{rule}: {named} (the raw path draws every instance: the same pixels)"
 
 
 def _named(d) -> str:

@@ -16,6 +16,7 @@ from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
 from wgpurender.core.plan.instance_data import INSTANCE_DATA
 from wgpurender.core.scene import Placements, Scene
@@ -321,14 +322,14 @@ class Knobs:
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
     anisotropy: str = DEFAULT_ANISOTROPY  # the anisotropy rule (wgpurender/core/plan/anisotropy.py), for ``adapter``
-    culling: str = "auto"  # "auto", "gpu" or "off": which instanced draws the GPU culls (core/plan/culling.py)
+    culling: str = "auto"  # "auto", "gpu", "cpu" or "off": which instanced draws are culled (core/plan/culling.py)
     instance_data: str = "auto"  # "auto", "storage" or "vertex": how instances reach the vertex shader
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (
             ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
-            ("culling", self.culling, ("auto", "gpu", "off")), ("instance_data", self.instance_data, INSTANCE_DATA),
+            ("culling", self.culling, CULLING), ("instance_data", self.instance_data, INSTANCE_DATA),
         ) if value not in allowed]
         for name, value, allowed in bad:
             raise UserError(f"plan knob {name} = {value!r}: choose one of "

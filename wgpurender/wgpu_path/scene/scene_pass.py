@@ -96,8 +96,8 @@ class ScenePassRenderer:
         # vertex buffer stepped per instance (the plan's instance_data); the CPU culler rewrites a culled draw's part.
         blocks = instance_blocks(self.draws)
         kind = wgpu.BufferUsage.STORAGE if self.instance_data == "storage" else wgpu.BufferUsage.VERTEX
-        self.object_buffer = dev.create_buffer_with_data(label="scene-objects", data=blocks,
-                                                         usage=kind | wgpu.BufferUsage.COPY_DST)
+        self.object_buffer = dev.create_buffer_with_data(label="scene-objects", data=blocks, usage=kind
+                                                         | wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.COPY_SRC)
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
         self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
         self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
