@@ -134,6 +134,11 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
                        targets.srgb_output, knobs, aniso_adapter, notes)
     features = knobs.adapter.features if knobs.adapter is not None else None
     compute = knobs.adapter is None or knobs.adapter.compute
+    ibl = any("ibl" in v.flags for v in drawn.variants.values())
+    if knobs.adapter is not None and not knobs.adapter.storage and ibl:
+        raise UserError(f"[environment] cannot be drawn on {knobs.adapter.name or knobs.adapter.backend}: its "
+                        "image-based lighting maps are a storage buffer the fragment shader reads, and this device "
+                        "offers none (a GL context below 4.0); render with --backend vulkan")
     drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
                                                  setting["instance_data"], compute)
     settings = (*settings, ("culling", cull, cull_why))

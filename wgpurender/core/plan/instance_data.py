@@ -19,6 +19,8 @@ fails every scene with naga's "The selected version doesn't support BUFFER_STORA
 
 from __future__ import annotations
 
+import re
+
 from wgpurender.core.errors import UserError
 
 INSTANCE_DATA = ("auto", "storage", "vertex")
@@ -29,19 +31,43 @@ HIDDEN_VERTEX_STORAGE = {
 }
 
 
+# naga's GLSL output needs these versions (naga/src/back/glsl/features.rs): storage buffers 4.00 (ES 3.10), compute
+# 4.30 (ES 3.10). wgpu-hal takes a GL 3.3 context with the ARB extensions as having both, and NVIDIA's EGL gives
+# exactly the 3.3 it asks for ("3.3.0 NVIDIA 580.159.04", measured on the H100, docs/perf-h100/2026-11-27-glinst).
+GLSL_NEEDS = {"storage": (400, 310), "compute": (430, 310)}
+
+
+def glsl_version(gl_version: str) -> tuple[bool, int] | None:
+    """(ES?, GLSL version as naga numbers it) from a GL adapter's version string, e.g. "3.3.0 NVIDIA 580" ->
+    (False, 330), "OpenGL ES 3.2 Mesa" -> (True, 320); None when it names no version."""
+    found = re.search(r"(OpenGL ES )?(\d+)\.(\d)", gl_version)
+    if found is None:
+        return None
+    return bool(found.group(1)), int(found.group(2)) * 100 + int(found.group(3)) * 10
+
+
+def glsl_allows(what: str, gl_version: str) -> bool:
+    """Whether naga can write ``what`` ("storage" or "compute") for a GL context of this version string."""
+    version = glsl_version(gl_version)
+    if version is None:
+        return True
+    es, number = version
+    return number >= GLSL_NEEDS[what][es]
+
+
 def resolve_instance_data(knob: str, adapter) -> tuple[str, str]:
     """(``storage`` or ``vertex``, why) for ``adapter`` (an AdapterFacts, or None when not known yet)."""
     if adapter is not None and knob == "storage" and not adapter.storage:
         raise UserError(f"instance_data = storage cannot run on {adapter.name or adapter.backend or 'this adapter'}: "
-                        "it offers no storage buffers (max-storage-buffers-per-shader-stage is 0); use "
-                        "instance_data = vertex or auto")
+                        "it offers no storage buffers (max-storage-buffers-per-shader-stage is 0, or a GL context "
+                        "below 4.0); use instance_data = vertex or auto")
     if knob != "auto":
         return knob, f"knob instance_data: {_WAYS[knob]}"
     if adapter is None:
         return "storage", f"adapter not known yet: {_WAYS['storage']} (the renderer re-plans for its adapter)"
     if not adapter.storage:
         return "vertex", (f"{_WAYS['vertex']}: the {adapter.backend or 'adapter'} device offers no storage buffers "
-                          "(max-storage-buffers-per-shader-stage is 0)")
+                          "(max-storage-buffers-per-shader-stage is 0, or a GL context below 4.0)")
     hidden = HIDDEN_VERTEX_STORAGE.get(adapter.backend)
     if hidden:
         return "vertex", f"{_WAYS['vertex']}: {hidden}"

@@ -18,7 +18,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
-from wgpurender.core.plan.instance_data import INSTANCE_DATA
+from wgpurender.core.plan.instance_data import INSTANCE_DATA, glsl_allows
 from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
@@ -288,15 +288,18 @@ class AdapterFacts:
 
     @classmethod
     def of(cls, adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "",
-           limits: dict | None = None) -> AdapterFacts:
+           limits: dict | None = None, gl_version: str = "") -> AdapterFacts:
         """The facts from what a device reports: its type as wgpu names it ("DiscreteGPU", "IntegratedGPU",
         "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
         path's facts of one device are equal), its name, the API under it ("Vulkan", "OpenGL", ...) and its
-        limits by WebGPU name (None: a core-Vulkan device, which has storage buffers and compute)."""
+        limits by WebGPU name (None: a core-Vulkan device, which has storage buffers and compute); ``gl_version``:
+        an OpenGL adapter's version string, whose GLSL version naga must support both (instance_data.glsl_allows)."""
         limits = limits or {}
         return cls(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend,
-                   storage=limits.get("max-storage-buffers-per-shader-stage", 1) > 0,
-                   compute=limits.get("max-compute-invocations-per-workgroup", 1) > 0)
+                   storage=limits.get("max-storage-buffers-per-shader-stage", 1) > 0
+                   and glsl_allows("storage", gl_version),
+                   compute=limits.get("max-compute-invocations-per-workgroup", 1) > 0
+                   and glsl_allows("compute", gl_version))
 
     def accuracy_size(self, preset: str) -> tuple[int, int]:
         """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""

@@ -81,7 +81,8 @@ class GPUContext:
 
         info = self.info
         return AdapterFacts.of(info.get("adapter_type", ""), self.features, info.get("device", ""),
-                               info.get("backend_type", ""), dict(self.adapter.limits))
+                               info.get("backend_type", ""), dict(self.adapter.limits),
+                               info.get("description", "") if info.get("backend_type") == "OpenGL" else "")
 
     def use_immediates(self, requested: bool | None = None) -> bool:
         """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
