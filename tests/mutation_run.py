@@ -77,6 +77,9 @@ STAGESTATE = "tests/test_stage_state.py"
 MATERIALS = INPUTS + "|material_library"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
+INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
+                 "or explain")
+INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -913,6 +916,34 @@ MUTATIONS = [
      "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
     ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
      "maps = make_arrays(environment, 16)", [IBL]),
+    # glinst: instance data without vertex-stage storage (issue 31's GL regression), CPU culling
+    ("wgpurender/core/plan/instance_data.py", "hidden = HIDDEN_VERTEX_STORAGE.get(adapter.backend)", "hidden = None",
+     [INSTANCE_RULE]),
+    ("wgpurender/core/plan/instance_data.py", "if adapter is not None and knob == \"storage\" and not adapter.storage:",
+     "if adapter is not None and knob == \"vertex\" and not adapter.storage:", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/instance_data.py", "return number >= GLSL_NEEDS[what][es]",
+     "return number > GLSL_NEEDS[what][es]", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/instance_data.py", "GLSL_NEEDS = {\"storage\": (400, 310),",
+     "GLSL_NEEDS = {\"storage\": (330, 310),", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/instance_data.py", "int(found.group(2)) * 100 + int(found.group(3)) * 10",
+     "int(found.group(2)) * 100 + int(found.group(3))", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/model.py", "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) > 0",
+     "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) >= 0", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/build.py", "if knobs.adapter is not None and not knobs.adapter.storage and ibl:",
+     "if knobs.adapter is not None and knobs.adapter.storage and ibl:", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/culling.py", "if knob == \"cpu\" or instance_data == \"vertex\" or not compute:",
+     "if knob == \"cpu\" or not compute:", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/culling.py", "cpu_culled=True) if d.instance_count >= least else d",
+     "cpu_culled=True) if d.instance_count > least else d", [INSTANCE_RULE]),
+    ("wgpurender/wgpu_path/scene/cpu_culling.py", "return np.all(distances >= -radii[:, None], axis=1)",
+     "return np.all(distances >= 0, axis=1)", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "OBJECT.offsets[\"normal\"] + 16 * c, \"lighting\")",
+     "OBJECT.offsets[\"normal\"] + 12 * c, \"lighting\")", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "return 2 if instance_data == \"storage\" else 1", "return 2",
+     [INSTANCE_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "let world = mat4x4f(inst.world0, inst.world1, inst.world2, inst.world3);",
+     "let world = mat4x4f(inst.world0, inst.world1, inst.world2, vec4f(0.0, 0.0, 0.0, 1.0));", [INSTANCE_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "let mirror = inst.mirror;", "let mirror = 1.0;", [INSTANCE_PIXELS]),
 ]
 
 
