@@ -275,3 +275,42 @@ def test_a_gl_context_without_vertex_storage_renders_the_same_pixels(ctx, tmp_pa
     np.testing.assert_array_equal(old, full)
     _, vulkan = _render(ctx, path, (96, 64))
     assert np.abs(old.astype(int) - vulkan.astype(int)).max() <= 2  # GL against Vulkan: llvmpipe vs lavapipe
+
+
+# NVIDIA's case exactly: GL 3.3 with the ARB storage and compute extensions, so wgpu's limits claim both.
+GL33_WITH_EXTENSIONS = {"MESA_GL_VERSION_OVERRIDE": "3.3", "MESA_GLSL_VERSION_OVERRIDE": "330",
+                        "WGPURENDER_VALIDATION": "0"}
+
+
+def test_a_gl_33_device_is_made_without_validation_flags(tmp_path, allow_assets):
+    """Without WGPURENDER_VALIDATION (a user's run) wgpu's default indirect-call validation built a compute pipeline
+    at device creation, which naga cannot write for GLSL 330: "indirect-validation error", the device lost, on
+    NVIDIA's EGL (docs/perf-h100/2026-11-27-glinst/probe-opengl.log) and here at GL 3.3. The tests' own validation
+    flags hid it."""
+    path = _mirrored_lit_scene(tmp_path)
+    lines = _gl_child(path, tmp_path / "gl33.npy", "auto", GL33_WITH_EXTENSIONS)
+    if not lines[0].startswith("3.3"):
+        pytest.skip(f"Mesa's version override did not apply (GL {lines[0]})")
+    image = np.load(tmp_path / "gl33.npy")
+    assert (image[..., :3].max(axis=2) > 20).mean() > 0.05  # the cubes are drawn
+    refused = _gl_child(path, tmp_path / "storage.npy", "storage", GL33_WITH_EXTENSIONS)
+    assert "a GL context below 4.0" in refused[1]  # the limits say 16 storage buffers; GLSL 330 has none
+
+
+def test_post_path_compute_is_refused_or_falls_back_without_compute(tmp_path):
+    import dataclasses
+
+    from wgpurender.core.plan.post import resolve_post_path
+
+    nvidia_gl = AdapterFacts.of("DiscreteGPU", (), "NVIDIA H100", "OpenGL",
+                                {"max-compute-invocations-per-workgroup": 1024}, "3.3.0 NVIDIA 580.159.04")
+    scene = parse_scene(write_scene(tmp_path).read_text(), tmp_path / "row.toml")
+    with pytest.raises(UserError) as err:
+        resolve_post_path(scene.render, Knobs(adapter=nvidia_gl, post_path="compute"))
+    assert "\n" not in str(err.value) and "post_path = fragment" in str(err.value)
+    for asked in ("compute", "auto"):  # the scene's own setting, or auto on a "discrete" GPU: fragment, said why
+        render = dataclasses.replace(scene.render, post_path=asked)
+        path, why = resolve_post_path(render, Knobs(adapter=nvidia_gl))
+        assert path == "fragment" and "no compute shaders" in why
+    assert resolve_post_path(scene.render, Knobs(adapter=VULKAN, post_path="compute"))[0] == "compute"
+
