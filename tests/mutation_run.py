@@ -78,8 +78,8 @@ MATERIALS = INPUTS + "|material_library"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
-                 "or explain")
-INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler"
+                 "or explain or without_compute")
+INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler or stretched"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -944,6 +944,19 @@ MUTATIONS = [
     ("shaders_wgsl/scene.wgsl", "let world = mat4x4f(inst.world0, inst.world1, inst.world2, inst.world3);",
      "let world = mat4x4f(inst.world0, inst.world1, inst.world2, vec4f(0.0, 0.0, 0.0, 1.0));", [INSTANCE_PIXELS]),
     ("shaders_wgsl/scene.wgsl", "let mirror = inst.mirror;", "let mirror = 1.0;", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/device/context.py", "return [\"Empty\"] if backend in (\"OpenGL\", AUTO) else [\"Default\"]",
+     "return [\"Default\"]", ["tests/test_instance_data.py|gl_33_device"]),
+    ("wgpurender/core/plan/post.py", "if asked != \"auto\" and not (asked == \"compute\" and adapter is not None "
+     "and not adapter.compute):", "if asked != \"auto\":", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/post.py", "if adapter is not None and adapter.adapter_type == \"DiscreteGPU\" and not "
+     "adapter.compute:", "if False:", [INSTANCE_RULE]),
+    ("wgpurender/wgpu_path/scene/cpu_culling.py", "scale = np.linalg.norm(worlds[:, :3, :3], axis=1).max(axis=1)",
+     "scale = np.linalg.norm(worlds[:, :3, :3], axis=1).min(axis=1)", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/cpu_culling.py", "write_buffer(self.buffer, first * own.strides[0],",
+     "write_buffer(self.buffer, 0,", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count",
+     "instances = draw.instance_count", [INSTANCE_PIXELS]),
 ]
 
 

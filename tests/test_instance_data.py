@@ -314,3 +314,47 @@ def test_post_path_compute_is_refused_or_falls_back_without_compute(tmp_path):
         assert path == "fragment" and "no compute shaders" in why
     assert resolve_post_path(scene.render, Knobs(adapter=VULKAN, post_path="compute"))[0] == "compute"
 
+
+
+def test_cpu_culling_of_a_later_stretched_draw(ctx, tmp_path):
+    """The culled draw starts at instance 1 (a red cube is drawn first) and its copies are stretched 3x along x, so
+    a copy whose centre lies outside the view still reaches into it: the sphere must grow with the largest axis
+    scale, and the visible blocks must go where this draw's instances start."""
+    from wgpurender.core.models import procedural
+
+    procedural.write_obj(tmp_path / "cube.obj", procedural.box(1.0))
+    procedural.write_obj(tmp_path / "other.obj", procedural.box(1.0))
+    text = """
+[camera]
+eye = [0, 0, 12]
+target = [0, 0, 0]
+fov_y = 40
+[[models]]
+path = "other.obj"
+material = { albedo_color = [1, 0, 0], unlit = true }
+transform = { translate = [0, 1.5, 0], scale = 0.5 }
+[[models]]
+path = "cube.obj"
+material = { albedo_color = [1, 1, 1], unlit = true }
+transform = { scale = [3, 1, 1] }
+instances = { grid = [15, 1, 1], spacing = [1.1, 1, 1] }
+[render]
+size = [96, 48]
+msaa = 1
+"""
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    culled, a = _render(ctx, path, instance_data="vertex", culling="cpu")
+    _, b = _render(ctx, path, instance_data="vertex", culling="off")
+    draw = culled.plan.cpu_culled_draws[0]
+    assert draw.first_instance == 1 and draw.instance_count == 15
+    scene = parse_scene(text, path)
+    worlds = scene.models[1].worlds()  # the scene's own copies: the plane test written out here
+    m = scene.camera.projection(96 / 48) @ scene.camera.view()
+    planes = np.array([m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]])
+    planes /= np.linalg.norm(planes[:, :3], axis=1, keepdims=True)
+    radii = np.sqrt(3) / 2 * 3.0  # the unit cube's sphere, times the stretch along x
+    keep = np.all(worlds[:, :3, 3] @ planes[:, :3].T + planes[:, 3] >= -radii, axis=1)
+    assert culled.scene_pass.cpu_culler.count(draw) == keep.sum() == 7
+    np.testing.assert_array_equal(a, b)
+    assert (a[..., 0] > 200).any() and ((a[..., 0] > 200) & (a[..., 1] < 50)).any()  # white copies and the red cube
