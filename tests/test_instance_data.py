@@ -357,4 +357,15 @@ msaa = 1
     keep = np.all(worlds[:, :3, 3] @ planes[:, :3].T + planes[:, 3] >= -radii, axis=1)
     assert culled.scene_pass.cpu_culler.count(draw) == keep.sum() == 7
     np.testing.assert_array_equal(a, b)
+
+    class Spy:  # what record_draws puts in the bundle: the draws' (instance count, first instance)
+        def __init__(self):
+            self.draws = []
+
+        def __getattr__(self, name):
+            return lambda *args: self.draws.append(args[1::3]) if name == "draw_indexed" else None
+
+    spy = Spy()
+    culled.scene_pass.record_draws(spy)
+    assert spy.draws == [(1, 0), (7, 1)]  # the red cube, then the 7 visible copies from instance 1 on
     assert (a[..., 0] > 200).any() and ((a[..., 0] > 200) & (a[..., 1] < 50)).any()  # white copies and the red cube
