@@ -10,11 +10,13 @@ Two ways, the same 128-byte Object block per instance (core/plan/batches.py pack
   storage buffer in the vertex stage, so it runs where wgpu lacks ``DownlevelFlags::VERTEX_STORAGE``.
 
 The "auto" rule: ``vertex`` on OpenGL and wherever the adapter offers no storage buffers at all
-(``max-storage-buffers-per-shader-stage`` 0: GLES 3.0, a GL context below 4.3), ``storage`` elsewhere. On GL the
-vertex stage's own storage-buffer count is hidden: wgpu-hal reports the fragment stage's limit when the vertex
-stage has none (gles/adapter.rs), wgpu-py 0.32 exposes no downlevel flags, and NVIDIA's EGL context (driver 580)
-fails every scene with naga's "The selected version doesn't support BUFFER_STORAGE" while llvmpipe's does not
-(docs/backends.md, "Instance data on OpenGL"). Both ways give the same pixels (tests/test_instance_data.py).
+(``max-storage-buffers-per-shader-stage`` 0, GLES 3.0, or a GL context whose GLSL naga cannot give storage:
+:func:`glsl_allows`), ``storage`` elsewhere. On GL the vertex stage's own storage-buffer count is hidden: wgpu-hal
+reports the fragment stage's limit when the vertex stage has none (gles/adapter.rs), wgpu-py 0.32 exposes no
+downlevel flags, and NVIDIA's EGL context (driver 580: exactly GL 3.3) failed every scene with naga's "The selected
+version doesn't support BUFFER_STORAGE" while llvmpipe's GL 4.5 did not (docs/backends.md, "Instance data on
+OpenGL"). Both ways give the same pixels (tests/test_instance_data.py); on the H100's Vulkan the vertex way took
+2.5-3x the GPU time (docs/perf-h100/2026-11-27-glinst), so it is used only where it must be.
 """
 
 from __future__ import annotations
@@ -27,7 +29,8 @@ INSTANCE_DATA = ("auto", "storage", "vertex")
 HIDDEN_VERTEX_STORAGE = {
     "OpenGL": "wgpu's GL backend hides whether the vertex stage has storage buffers (wgpu-hal reports the "
               "fragment stage's limit when the vertex stage has none, and wgpu-py 0.32 exposes no downlevel flags); "
-              "NVIDIA's EGL context has none (naga: \"The selected version doesn't support BUFFER_STORAGE\")",
+              "NVIDIA's EGL context (GL 3.3) failed every scene with naga's \"The selected version doesn't support "
+              "BUFFER_STORAGE\"",
 }
 
 
