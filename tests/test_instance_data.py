@@ -373,8 +373,9 @@ msaa = 1
 
 @pytest.mark.xfail(strict=True, reason="wgpu 29's GL backend on a GL 3.3 context that has GL_ARB_compute_shader draws "
                    "no geometry (NVIDIA's EGL on the H100: unlit 12.04% of pixels off, the 3d stage 14.91%, the same "
-                   "numbers as llvmpipe here): wgpu-hal trusts binding qualifiers GLSL 330 lacks (SHADER_BINDING_LAYOUT from "
-                   "compute support); strict: this notices the day it is fixed (docs/backends.md)")
+                   "numbers as llvmpipe here): wgpu-hal trusts binding qualifiers GLSL 330 lacks "
+                   "(SHADER_BINDING_LAYOUT from compute support); strict: notices the day it is fixed "
+                   "(docs/backends.md)")
 def test_gl_33_with_the_compute_extension_draws_like_vulkan(ctx, tmp_path):
     env = {k: v for k, v in GL33_WITH_EXTENSIONS.items() if k != "WGPURENDER_VALIDATION"}
     scene = REPO / "assets" / "scenes" / "unlit.toml"
