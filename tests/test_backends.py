@@ -55,8 +55,8 @@ def _child(implementation: str, tmp_path_factory) -> dict:
     try:
         return render_in_child(implementation, all_targets(), SIZE, tmp_path_factory.mktemp(implementation))
     except UserError as err:
-        if "no OpenGL adapter" in str(err):
-            pytest.skip(f"this machine has no OpenGL adapter: {err}")
+        if "no OpenGL adapter" in str(err) or "cannot draw correctly" in str(err):
+            pytest.skip(f"this machine has no OpenGL adapter wgpu draws right on: {err}")
         raise
 
 

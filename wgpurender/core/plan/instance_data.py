@@ -58,6 +58,20 @@ def glsl_allows(what: str, gl_version: str) -> bool:
     return number >= GLSL_NEEDS[what][es]
 
 
+def gl_binding_fault(gl_version: str, compute_invocations: int) -> str:
+    """Why wgpu 29 cannot bind resources on this GL context ("" when it can): it trusts the shaders' own
+    ``layout(binding = N)`` once compute is supported (wgpu-hal's SHADER_BINDING_LAYOUT), which a desktop context
+    below 4.2 supports only through GL_ARB_compute_shader, while naga writes no binding qualifiers below GLSL 420:
+    every uniform block and texture is then bound at 0, a wrong image with no error (NVIDIA's EGL, GL 3.3: docs/
+    backends.md, "Instance data on OpenGL")."""
+    version = glsl_version(gl_version)
+    if version is None or version[0] or version[1] >= 420 or compute_invocations <= 0:
+        return ""
+    return (f"a GL {version[1] // 100}.{version[1] // 10 % 10} context with compute shaders (GL_ARB_compute_shader): "
+            "wgpu-py 0.32's GL backend then binds every uniform block and texture at slot 0 (its shaders get no "
+            "binding qualifiers below GLSL 4.20), which draws wrong images")
+
+
 def resolve_instance_data(knob: str, adapter) -> tuple[str, str]:
     """(``storage`` or ``vertex``, why) for ``adapter`` (an AdapterFacts, or None when not known yet)."""
     if adapter is not None and knob == "storage" and not adapter.storage:
