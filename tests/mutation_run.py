@@ -944,8 +944,6 @@ MUTATIONS = [
     ("shaders_wgsl/scene.wgsl", "let world = mat4x4f(inst.world0, inst.world1, inst.world2, inst.world3);",
      "let world = mat4x4f(inst.world0, inst.world1, inst.world2, vec4f(0.0, 0.0, 0.0, 1.0));", [INSTANCE_PIXELS]),
     ("shaders_wgsl/scene.wgsl", "let mirror = inst.mirror;", "let mirror = 1.0;", [INSTANCE_PIXELS]),
-    ("wgpurender/wgpu_path/device/context.py", "return [\"Empty\"] if backend in (\"OpenGL\", AUTO) else [\"Default\"]",
-     "return [\"Default\"]", ["tests/test_instance_data.py|gl_33_device"]),
     ("wgpurender/core/plan/post.py", "if asked != \"auto\" and not (asked == \"compute\" and adapter is not None "
      "and not adapter.compute):", "if asked != \"auto\":", [INSTANCE_RULE]),
     ("wgpurender/core/plan/post.py", "if adapter is not None and adapter.adapter_type == \"DiscreteGPU\" and not "

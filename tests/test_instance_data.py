@@ -283,11 +283,9 @@ GL33_WITH_EXTENSIONS = {"MESA_GL_VERSION_OVERRIDE": "3.3", "MESA_GLSL_VERSION_OV
 GL42_WITH_EXTENSIONS = {**GL33_WITH_EXTENSIONS, "MESA_GL_VERSION_OVERRIDE": "4.2", "MESA_GLSL_VERSION_OVERRIDE": "420"}
 
 
-def test_a_gl_42_device_is_made_without_validation_flags(ctx, tmp_path, allow_assets):
-    """Without WGPURENDER_VALIDATION (a user's run) wgpu's default indirect-call validation built a compute pipeline
-    at device creation, which naga cannot write below GLSL 430: "indirect-validation error", the device lost (NVIDIA's
-    EGL: docs/perf-h100/2026-11-27-glinst/probe-opengl.log; here GL 4.2 with GL_ARB_compute_shader). The tests' own
-    validation flags hid it. At 4.2 wgpu binds resources right (GLSL 420 has binding qualifiers): the same image."""
+def test_a_gl_42_context_with_compute_draws_like_vulkan(ctx, tmp_path, allow_assets):
+    """The refusal's edge: at GL 4.2 with GL_ARB_compute_shader wgpu binds right (GLSL 420 has binding qualifiers),
+    so it is not refused, and it draws what Vulkan draws, also without the tests' validation flags."""
     path = _mirrored_lit_scene(tmp_path)
     lines = _gl_child(path, tmp_path / "gl42.npy", "auto", GL42_WITH_EXTENSIONS)
     if not lines[0].startswith("4.2"):

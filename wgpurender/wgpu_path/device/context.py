@@ -242,20 +242,8 @@ def _configure_instance_once(backend: str) -> None:
     install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
     flags = ["All"] if backend == AUTO else [BACKENDS[backend]]
-    set_instance_extras(backends=flags, flags=instance_flags(backend, validation))
+    set_instance_extras(backends=flags, flags=["Validation"] if validation else ["Default"])
     _instance_backend.append(backend)
-
-
-def instance_flags(backend: str, validation: bool) -> list[str]:
-    """wgpu-native's instance flags: "Validation" when asked for, else its defaults, except where OpenGL may be
-    picked ("OpenGL", "auto"): there no flag at all, since the defaults' indirect-call validation builds a compute
-    pipeline when the device is made, which naga cannot write for a GL context below 4.3, and the device is lost
-    ("indirect-validation error", NVIDIA's EGL context is GL 3.3: docs/perf-h100/2026-11-27-glinst). The renderer
-    draws indirectly only with the GPU culling pass, whose arguments its own compute shader writes, and never on a
-    GL context without compute (core/plan/culling.py)."""
-    if validation:
-        return ["Validation"]
-    return ["Empty"] if backend in ("OpenGL", AUTO) else ["Default"]
 
 
 @functools.cache
