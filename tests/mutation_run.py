@@ -78,7 +78,7 @@ MATERIALS = INPUTS + "|material_library"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
-                 "or explain or without_compute")
+                 "or explain or without_compute or binds_wrongly")
 INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler or stretched"
 MUTATIONS = [
     # comparison and heatmap
@@ -955,6 +955,14 @@ MUTATIONS = [
     ("wgpurender/wgpu_path/scene/scene_pass.py",
      "instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count",
      "instances = draw.instance_count", [INSTANCE_PIXELS]),
+    ("wgpurender/core/plan/instance_data.py", "if version is None or version[0] or version[1] >= 420 or "
+     "compute_invocations <= 0:", "if version is None or version[0] or version[1] >= 400 or compute_invocations <= 0:",
+     [INSTANCE_RULE]),
+    ("wgpurender/core/plan/instance_data.py", "if version is None or version[0] or version[1] >= 420 or "
+     "compute_invocations <= 0:", "if version is None or version[1] >= 420 or compute_invocations <= 0:",
+     [INSTANCE_RULE]),
+    ("wgpurender/wgpu_path/device/context.py", "    refuse_broken_gl(adapter)\n", "",
+     ["tests/test_instance_data.py|binds_wrongly_is_refused"]),
 ]
 
 
