@@ -921,11 +921,11 @@ MUTATIONS = [
      [INSTANCE_RULE]),
     ("wgpurender/core/plan/instance_data.py", "if adapter is not None and knob == \"storage\" and not adapter.storage:",
      "if adapter is not None and knob == \"vertex\" and not adapter.storage:", [INSTANCE_RULE]),
-    ("wgpurender/core/plan/instance_data.py", "return number >= GLSL_NEEDS[what][es]",
+    ("wgpurender/core/plan/gl_facts.py", "return number >= GLSL_NEEDS[what][es]",
      "return number > GLSL_NEEDS[what][es]", [INSTANCE_RULE]),
-    ("wgpurender/core/plan/instance_data.py", "GLSL_NEEDS = {\"storage\": (400, 310),",
+    ("wgpurender/core/plan/gl_facts.py", "GLSL_NEEDS = {\"storage\": (400, 310),",
      "GLSL_NEEDS = {\"storage\": (330, 310),", [INSTANCE_RULE]),
-    ("wgpurender/core/plan/instance_data.py", "int(found.group(2)) * 100 + int(found.group(3)) * 10",
+    ("wgpurender/core/plan/gl_facts.py", "int(found.group(2)) * 100 + int(found.group(3)) * 10",
      "int(found.group(2)) * 100 + int(found.group(3))", [INSTANCE_RULE]),
     ("wgpurender/core/plan/model.py", "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) > 0",
      "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) >= 0", [INSTANCE_RULE]),
@@ -955,10 +955,10 @@ MUTATIONS = [
     ("wgpurender/wgpu_path/scene/scene_pass.py",
      "instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count",
      "instances = draw.instance_count", [INSTANCE_PIXELS]),
-    ("wgpurender/core/plan/instance_data.py", "if version is None or version[0] or version[1] >= 420 or "
+    ("wgpurender/core/plan/gl_facts.py", "if version is None or version[0] or version[1] >= 420 or "
      "compute_invocations <= 0:", "if version is None or version[0] or version[1] >= 400 or compute_invocations <= 0:",
      [INSTANCE_RULE]),
-    ("wgpurender/core/plan/instance_data.py", "if version is None or version[0] or version[1] >= 420 or "
+    ("wgpurender/core/plan/gl_facts.py", "if version is None or version[0] or version[1] >= 420 or "
      "compute_invocations <= 0:", "if version is None or version[1] >= 420 or compute_invocations <= 0:",
      [INSTANCE_RULE]),
     ("wgpurender/wgpu_path/device/context.py", "    refuse_broken_gl(adapter)\n", "",

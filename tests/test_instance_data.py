@@ -312,7 +312,7 @@ def test_a_gl_context_wgpu_binds_wrongly_is_refused_in_one_line(tmp_path):
 
 
 def test_which_gl_contexts_wgpu_binds_wrongly():
-    from wgpurender.core.plan.instance_data import gl_binding_fault
+    from wgpurender.core.plan.gl_facts import gl_binding_fault
 
     assert "slot 0" in gl_binding_fault("3.3.0 NVIDIA 580.159.04", 1024)  # the H100's EGL context
     assert gl_binding_fault("3.3.0 NVIDIA 580.159.04", 0) == ""  # no compute: wgpu binds by name, right

@@ -11,17 +11,16 @@ Two ways, the same 128-byte Object block per instance (core/plan/batches.py pack
 
 The "auto" rule: ``vertex`` on OpenGL and wherever the adapter offers no storage buffers at all
 (``max-storage-buffers-per-shader-stage`` 0, GLES 3.0, or a GL context whose GLSL naga cannot give storage:
-:func:`glsl_allows`), ``storage`` elsewhere. On GL the vertex stage's own storage-buffer count is hidden: wgpu-hal
-reports the fragment stage's limit when the vertex stage has none (gles/adapter.rs), wgpu-py 0.32 exposes no
-downlevel flags, and NVIDIA's EGL context (driver 580: exactly GL 3.3) failed every scene with naga's "The selected
-version doesn't support BUFFER_STORAGE" while llvmpipe's GL 4.5 did not (docs/backends.md, "Instance data on
-OpenGL"). Both ways give the same pixels (tests/test_instance_data.py); on the H100's Vulkan the vertex way took
-2.5-3x the GPU time (docs/perf-h100/2026-11-27-glinst), so it is used only where it must be.
+:func:`wgpurender.core.plan.gl_facts.glsl_allows`), ``storage`` elsewhere. On GL the vertex stage's own
+storage-buffer count is hidden: wgpu-hal reports the fragment stage's limit when the vertex stage has none
+(gles/adapter.rs), wgpu-py 0.32 exposes no downlevel flags, and NVIDIA's EGL context (driver 580: exactly GL 3.3)
+failed every scene with naga's "The selected version doesn't support BUFFER_STORAGE" while llvmpipe's GL 4.5 did not
+(docs/backends.md, "Instance data on OpenGL"). Both ways give the same pixels (tests/test_instance_data.py); on the
+H100's Vulkan the vertex way took 2.5-3x the GPU time (docs/perf-h100/2026-11-27-glinst), so it is used only where it
+must be.
 """
 
 from __future__ import annotations
-
-import re
 
 from wgpurender.core.errors import UserError
 
@@ -32,44 +31,6 @@ HIDDEN_VERTEX_STORAGE = {
               "NVIDIA's EGL context (GL 3.3) failed every scene with naga's \"The selected version doesn't support "
               "BUFFER_STORAGE\"",
 }
-
-
-# naga's GLSL output needs these versions (naga/src/back/glsl/features.rs): storage buffers 4.00 (ES 3.10), compute
-# 4.30 (ES 3.10). wgpu-hal takes a GL 3.3 context with the ARB extensions as having both, and NVIDIA's EGL gives
-# exactly the 3.3 it asks for ("3.3.0 NVIDIA 580.159.04", measured on the H100, docs/perf-h100/2026-11-27-glinst).
-GLSL_NEEDS = {"storage": (400, 310), "compute": (430, 310)}
-
-
-def glsl_version(gl_version: str) -> tuple[bool, int] | None:
-    """(ES?, GLSL version as naga numbers it) from a GL adapter's version string, e.g. "3.3.0 NVIDIA 580" ->
-    (False, 330), "OpenGL ES 3.2 Mesa" -> (True, 320); None when it names no version."""
-    found = re.search(r"(OpenGL ES )?(\d+)\.(\d)", gl_version)
-    if found is None:
-        return None
-    return bool(found.group(1)), int(found.group(2)) * 100 + int(found.group(3)) * 10
-
-
-def glsl_allows(what: str, gl_version: str) -> bool:
-    """Whether naga can write ``what`` ("storage" or "compute") for a GL context of this version string."""
-    version = glsl_version(gl_version)
-    if version is None:
-        return True
-    es, number = version
-    return number >= GLSL_NEEDS[what][es]
-
-
-def gl_binding_fault(gl_version: str, compute_invocations: int) -> str:
-    """Why wgpu 29 cannot bind resources on this GL context ("" when it can): it trusts the shaders' own
-    ``layout(binding = N)`` once compute is supported (wgpu-hal's SHADER_BINDING_LAYOUT), which a desktop context
-    below 4.2 supports only through GL_ARB_compute_shader, while naga writes no binding qualifiers below GLSL 420:
-    every uniform block and texture is then bound at 0, a wrong image with no error (NVIDIA's EGL, GL 3.3: docs/
-    backends.md, "Instance data on OpenGL")."""
-    version = glsl_version(gl_version)
-    if version is None or version[0] or version[1] >= 420 or compute_invocations <= 0:
-        return ""
-    return (f"a GL {version[1] // 100}.{version[1] // 10 % 10} context with compute shaders (GL_ARB_compute_shader): "
-            "wgpu-py 0.32's GL backend then binds every uniform block and texture at slot 0 (its shaders get no "
-            "binding qualifiers below GLSL 4.20), which draws wrong images")
 
 
 def resolve_instance_data(knob: str, adapter) -> tuple[str, str]:

@@ -18,7 +18,8 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
-from wgpurender.core.plan.instance_data import INSTANCE_DATA, glsl_allows
+from wgpurender.core.plan.gl_facts import glsl_allows
+from wgpurender.core.plan.instance_data import INSTANCE_DATA
 from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
@@ -293,7 +294,7 @@ class AdapterFacts:
         "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
         path's facts of one device are equal), its name, the API under it ("Vulkan", "OpenGL", ...) and its
         limits by WebGPU name (None: a core-Vulkan device, which has storage buffers and compute); ``gl_version``:
-        an OpenGL adapter's version string, whose GLSL version naga must support both (instance_data.glsl_allows)."""
+        an OpenGL adapter's version string, whose GLSL version naga must support both (gl_facts.glsl_allows)."""
         limits = limits or {}
         return cls(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend,
                    storage=limits.get("max-storage-buffers-per-shader-stage", 1) > 0

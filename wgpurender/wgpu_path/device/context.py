@@ -300,9 +300,9 @@ def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
 
 
 def refuse_broken_gl(adapter: wgpu.GPUAdapter) -> None:
-    """A GL adapter whose bindings wgpu gets wrong is refused in one line (core/plan/instance_data.gl_binding_fault)
+    """A GL adapter whose bindings wgpu gets wrong is refused in one line (core/plan/gl_facts.gl_binding_fault)
     rather than drawing wrong images: NVIDIA's EGL context is one (GL 3.3 with the compute extension)."""
-    from wgpurender.core.plan.instance_data import gl_binding_fault
+    from wgpurender.core.plan.gl_facts import gl_binding_fault
 
     info = adapter.info
     if info["backend_type"] != "OpenGL":
