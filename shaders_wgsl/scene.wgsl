@@ -39,6 +39,10 @@
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 // ibl (a pbr material in a scene with an [environment]): ibl_shading.wgsl's image-based lighting takes the ambient
 // term's place (times the occlusion factor with occlusion_map); the lights add to it as above.
+// uv1 .. uv4 (derived from the "<map>_uv<k>" flags): the mesh's further texture coordinate slots (a glTF material
+// whose textures sample several TEXCOORD sets or transforms, each applied at load: core/models/gltf_geometry
+// .uv_slots); each map samples in.{{<MAP>_UV}}, which shader_interface fills with "uv" or "uv<k>". Only model
+// files' materials have them, and those never flip v (flip_v is a scene material's key).
 
 {{STRUCTS}}
 
@@ -50,17 +54,14 @@ const POINT_LIGHTS: u32 = {{POINT_LIGHTS}}u;
 // Every instance's Object block (core/plan/batches.py packs them) in a vertex buffer stepped once per instance,
 // from the draw's first_instance on: no storage buffer in the vertex stage (core/plan/instance_data.py).
 struct InstanceIn {
-    @location(5) world0: vec4f,
-    @location(6) world1: vec4f,
-    @location(7) world2: vec4f,
-    @location(8) world3: vec4f,
+    @location(9) world0: vec4f,
+    @location(10) world1: vec4f,
+    @location(11) world2: vec4f,
+    @location(12) world3: vec4f,
 #if lighting
-    @location(9) normal0: vec3f,
-    @location(10) normal1: vec3f,
-    @location(11) normal2: vec3f,
-#endif
-#if normal_map
-    @location(12) mirror: f32,
+    @location(13) normal0: vec3f,
+    @location(14) normal1: vec3f,
+    @location(15) normal2_mirror: vec4f,  // the third column, and the mirror sign in its padding (vertex_blocks)
 #endif
 };
 #else
@@ -123,6 +124,18 @@ struct VertexIn {
 #if vertex_color
     @location(4) color: vec4f,
 #endif
+#if uv1
+    @location(5) uv1: vec2f,
+#endif
+#if uv2
+    @location(6) uv2: vec2f,
+#endif
+#if uv3
+    @location(7) uv3: vec2f,
+#endif
+#if uv4
+    @location(8) uv4: vec2f,
+#endif
 };
 
 struct VertexOut {
@@ -140,6 +153,18 @@ struct VertexOut {
 #if vertex_color
     @location(4) color: vec4f,
 #endif
+#if uv1
+    @location(5) uv1: vec2f,
+#endif
+#if uv2
+    @location(6) uv2: vec2f,
+#endif
+#if uv3
+    @location(7) uv3: vec2f,
+#endif
+#if uv4
+    @location(8) uv4: vec2f,
+#endif
 };
 
 @vertex
@@ -147,10 +172,10 @@ struct VertexOut {
 fn vs_main(in: VertexIn, inst: InstanceIn) -> VertexOut {
     let world = mat4x4f(inst.world0, inst.world1, inst.world2, inst.world3);
 #if lighting
-    let normal_matrix = mat3x3f(inst.normal0, inst.normal1, inst.normal2);
+    let normal_matrix = mat3x3f(inst.normal0, inst.normal1, inst.normal2_mirror.xyz);
 #endif
 #if normal_map
-    let mirror = inst.mirror;
+    let mirror = inst.normal2_mirror.w;
 #endif
 #else
 fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
@@ -188,6 +213,18 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
 #endif
 #if vertex_color
     out.color = in.color;
+#endif
+#if uv1
+    out.uv1 = in.uv1;
+#endif
+#if uv2
+    out.uv2 = in.uv2;
+#endif
+#if uv3
+    out.uv3 = in.uv3;
+#endif
+#if uv4
+    out.uv4 = in.uv4;
 #endif
     return out;
 }
@@ -311,14 +348,14 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #endif
     var base = material.base_color;
 #if albedo_map
-    base = base * textureSample(albedo_tex, albedo_sampler, in.uv);
+    base = base * textureSample(albedo_tex, albedo_sampler, in.{{ALBEDO_UV}});
 #endif
 #if vertex_color
     base = base * in.color;
 #endif
 #if emissive
 #if emissive_map
-    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.uv).rgb;
+    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.{{EMISSIVE_UV}}).rgb;
 #else
     let emitted = material.emissive.rgb;
 #endif
@@ -326,12 +363,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #if lighting
     // Textures are sampled here, in uniform control flow (implicit derivatives), and passed down.
 #if normal_map
-    let normal_texel = textureSample(normal_tex, normal_sampler, in.uv).xyz;
+    let normal_texel = textureSample(normal_tex, normal_sampler, in.{{NORMAL_UV}}).xyz;
 #else
     let normal_texel = vec3f(0.5, 0.5, 1.0);
 #endif
 #if roughness_map
-    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.uv);
+    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.{{ROUGHNESS_UV}});
     let roughness = material.roughness * roughness_texel.g;
 #if pbr
     pbr_metallic = material.metallic * roughness_texel.b;
@@ -343,7 +380,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #endif
 #endif
 #if occlusion_map
-    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.uv).r;
+    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.{{OCCLUSION_UV}}).r;
     ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
 #endif
     var color = shade(base.rgb, in, normal_texel, roughness);

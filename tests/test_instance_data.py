@@ -225,6 +225,7 @@ def test_cpu_culler_moves_the_visible_blocks_to_the_front(ctx, tmp_path):
     xs = data[:n, 12]  # the world matrix's translation x (column 3, row 0)
     spacing = 3.0
     full = instance_blocks((draw,))
+    full[:, 27] = full[:, 28]  # the vertex way reads the mirror sign from the third normal column's padding
     kept = [k for k in range(COPIES) if full[k, 12] in set(xs.tolist())]
     assert len(kept) == n and list(np.diff(xs) > 0) == [True] * (n - 1)  # scene order: x grows
     assert kept == list(range(kept[0], kept[0] + n))  # one contiguous run of copies around the view's centre
@@ -415,3 +416,21 @@ def test_gl_33_with_the_compute_extension_draws_like_vulkan(ctx, tmp_path):
     _, vulkan = _render(ctx, scene, (96, 64))
     np.testing.assert_array_equal(np.load(tmp_path / "plain.npy"), vulkan)  # not the xfail: 3.3 alone is fine
     np.testing.assert_array_equal(np.load(tmp_path / "gl33.npy"), vulkan)
+
+
+def test_the_vertex_way_fits_beside_the_coordinate_slots(ctx, tmp_path):
+    """tests/test_gltf_uv_sets.py's four-slot material (a normal map; the base colour, emissive and occlusion maps on
+    slots 1-3) reads position, normal, uv, tangent and uv1..uv3 (locations 0-7); the 7 instance attributes take
+    locations 9-15, after the 9 a vertex may have, inside WebGPU's 16: it renders exactly as the storage way does."""
+    from test_gltf_uv_sets import write_case, write_scene
+
+    from wgpurender.wgpu_path.scene.shader_interface import ATTRIBUTE_LOCATIONS, instance_layout
+
+    scene = write_scene(tmp_path, write_case(tmp_path, "four_slots"))
+    _, a = _render(ctx, scene, instance_data="storage")
+    vertex, b = _render(ctx, scene, instance_data="vertex")
+    variant = vertex.plan.variant(vertex.plan.scene_pass.draws[0].variant_key)
+    assert variant.vertex_attributes == ("position", "normal", "uv", "tangent", "uv1", "uv2", "uv3")
+    locations = [x["shader_location"] for x in instance_layout(variant)["attributes"]]
+    assert locations == list(range(9, 16)) and max(loc for loc, _ in ATTRIBUTE_LOCATIONS.values()) == 8
+    np.testing.assert_array_equal(a, b)

@@ -95,6 +95,8 @@ class ScenePassRenderer:
         # Every instance's Object block, written once (static): one storage buffer read at instance_index, or a
         # vertex buffer stepped per instance (the plan's instance_data); the CPU culler rewrites a culled draw's part.
         blocks = instance_blocks(self.draws)
+        if self.instance_data == "vertex":
+            blocks = L.vertex_blocks(blocks)  # the mirror sign beside the third normal column (one attribute)
         kind = wgpu.BufferUsage.STORAGE if self.instance_data == "storage" else wgpu.BufferUsage.VERTEX
         self.object_buffer = dev.create_buffer_with_data(label="scene-objects", data=blocks, usage=kind
                                                          | wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.COPY_SRC)

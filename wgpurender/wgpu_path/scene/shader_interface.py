@@ -28,6 +28,7 @@ import numpy as np
 
 from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import ShaderVariant
+from wgpurender.core.plan.model import EXTRA_UV_SLOTS, UV_SLOT_FLAGS
 from wgpurender.core.scene import MAX_LIGHTS
 from wgpurender.core.shaders.shader_variants import specialise
 from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struct, wgsl_structs
@@ -70,7 +71,8 @@ for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_
 assert OBJECT_UNLIT.size == OBJECT.size == 128
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
-ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
+ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4),
+                       **{f"uv{k}": (4 + k, 2) for k in range(1, EXTRA_UV_SLOTS + 1)}}  # coordinate slots 1..4
 TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
 SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6, "emissive_map": 8,
                     "occlusion_map": 10}  # each texture's own sampler
@@ -119,9 +121,7 @@ def vertex_layout(variant: ShaderVariant) -> dict:
 
 def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     """(N, floats) float32 vertex data with the given attributes, for :func:`vertex_layout`."""
-    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
-              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32)}
-    return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
+    return np.ascontiguousarray(np.concatenate([mesh.attribute(a) for a in attributes], axis=1), dtype=np.float32)
 
 
 def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False,
@@ -133,6 +133,7 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
         features.add("instance_attributes")
     if samples_textures(variant):
         features.add("uv")
+    features.update(a for a in variant.vertex_attributes if a.startswith("uv") and a != "uv")  # slots uv1..
     for name, n in variant.counts:
         if n > 0:
             features.add(name)
@@ -141,16 +142,40 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
     return features
 
 
+def uv_slot_names(variant: ShaderVariant) -> dict[str, str]:
+    """{{ALBEDO_UV}} ... {{OCCLUSION_UV}}: the vertex output each map samples, "uv<k>" for a ``<map>_uv<k>``
+    flag, else "uv"."""
+    names = {f"{feature.removesuffix('_map').upper()}_UV": "uv" for feature in TEXTURE_BINDINGS}
+    for flag in variant.flags & UV_SLOT_FLAGS.keys():
+        feature, k = UV_SLOT_FLAGS[flag]
+        names[f"{feature.removesuffix('_map').upper()}_UV"] = f"uv{k}"
+    return names
+
+
 def material_group(instance_data: str) -> int:
     """The material's bind group: 2 after the Object storage group, 1 when instances are vertex attributes."""
     return 2 if instance_data == "storage" else 1
 
 
-# Per-instance attributes (instance_data "vertex"): (location, format, byte offset in the Object block), and the
-# variant flag that needs them (None: every variant). The offsets are OBJECT's: world, normal columns, mirror.
-_INSTANCE_ATTRIBUTES = tuple((5 + c, "float32x4", 16 * c, None) for c in range(4)) + tuple(
-    (9 + c, "float32x3", OBJECT.offsets["normal"] + 16 * c, "lighting") for c in range(3)) + (
-    (12, "float32", OBJECT.offsets["mirror"], "normal_map"),)
+# Per-instance attributes (instance_data "vertex"), after the vertex attributes' locations 0-8: (location, format,
+# byte offset in the Object block, the variant flag that needs it or None). The offsets are OBJECT's: the world
+# matrix's columns, then the normal matrix's; the third normal column is read as a vec4 whose w is the mirror sign,
+# copied into that column's padding (vertex_blocks): 7 attributes, so 9 + 7 fit WebGPU's 16.
+INSTANCE_LOCATION = 1 + max(location for location, _ in ATTRIBUTE_LOCATIONS.values())
+assert INSTANCE_LOCATION == 9, "shaders_wgsl/scene.wgsl's InstanceIn starts at @location(9)"
+_NORMAL = OBJECT.offsets["normal"]
+_INSTANCE_ATTRIBUTES = tuple((INSTANCE_LOCATION + c, "float32x4", 16 * c, None) for c in range(4)) + (
+    (INSTANCE_LOCATION + 4, "float32x3", _NORMAL, "lighting"),
+    (INSTANCE_LOCATION + 5, "float32x3", _NORMAL + 16, "lighting"),
+    (INSTANCE_LOCATION + 6, "float32x4", _NORMAL + 32, "lighting"))
+_MIRROR_PAD = (_NORMAL + 44) // 4  # the float after the third normal column
+
+
+def vertex_blocks(blocks: np.ndarray) -> np.ndarray:
+    """The Object blocks as the vertex way reads them: the mirror sign also in the third normal column's padding."""
+    out = np.array(blocks, dtype=np.float32, copy=True)
+    out[:, _MIRROR_PAD] = out[:, OBJECT.offsets["mirror"] // 4]
+    return out
 
 
 def instance_layout(variant: ShaderVariant) -> dict:
@@ -172,6 +197,7 @@ def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
         "IBL_FUNCTIONS": load_wgsl(IBL_FUNCTIONS) if "ibl" in variant.flags else "",
+        **uv_slot_names(variant),
     }
     return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled, instance_data), values,
                       name=SHADER)
