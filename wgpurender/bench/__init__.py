@@ -16,3 +16,5 @@ One module per measurement family, each returning :class:`~wgpurender.bench.repo
 Numbers from a shared machine are noisy: every family reports a median with the 10th and 90th
 percentiles, and comparisons are ratios taken within one run.
 """
+
+import wgpurender.wgpu_path  # noqa: E402, F401  $WGPURENDER_BINDING's wgpu installed before a bench module imports wgpu

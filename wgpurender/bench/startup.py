@@ -61,7 +61,7 @@ def _child(path: str, stage: str, size: tuple[int, int]) -> dict[str, float]:
             run_frame(ctx, st.record, target, 0.0)
             marks[name] = time.perf_counter()
     else:
-        from wgpurender.bench.frames import RawStageRunner
+        from wgpurender.bench.raw_frames import RawStageRunner  # no wgpu-py: the raw path's own imports only
         from wgpurender.raw_path.device.context import get_vulkan
 
         marks["import_ms"] = time.perf_counter()
