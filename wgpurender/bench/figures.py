@@ -25,6 +25,9 @@ RUNS = (
      "perf-lavapipe/2026-11-27-issue31", "results.csv", None),
     ("lavapipe, third run (perf engineer, 09:44 UTC: simple OBJ files without trimesh's scene, thread CPU rows; "
      "the same 2-core machine, shared by six engineers)", "perf-lavapipe/2026-11-27-perf", "results.csv", None),
+    ("NVIDIA H100, third run (perf engineer, 10:52 UTC; few graphics units: render passes are raster-bound; 100 "
+     "timed frames a case in the judged families)", "perf-h100/2026-11-27-perf", "perf/results.csv",
+     "dawn/results.csv"),
 )
 
 
@@ -55,6 +58,7 @@ def _dawn_table(native: list[Result], dawn: list[Result]) -> str:
         "(no Dawn rows in this run)")
 
 
+THIRD = "perf-h100/2026-11-27-perf/perf/results.csv"  # the third H100 run's bench perf
 PROBES = (("wgpu-native", "perf-h100/2026-11-27-perf/cpu_growth_probe.csv"),  # benchmarks/cpu_growth_probe.py
           ("Dawn", "perf-h100/2026-11-27-perf/cpu_growth_probe_dawn.csv"))
 
@@ -85,6 +89,10 @@ def section() -> str:
         if dawn and (base / dawn).is_file():
             lines += ["The Dawn binding (`WGPURENDER_BINDING=dawn`, wgpudawn 0.32) beside wgpu-native, same call:", "",
                       _dawn_table(rows, read_csv(base / dawn)), ""]
+    third = REPO / "docs" / THIRD
+    if third.is_file():
+        lines += ["#### The final scene's CPU per frame, third run (H100; record + submit without timestamps, as a "
+                  "window draws it; 100 frames)", "", figures_post.cpu_table(read_csv(third), _judge), ""]
     for binding, probe in PROBES:
         if (REPO / "docs" / probe).is_file():
             lines += [f"#### Why CPU per frame grew with the instance count ({binding}, H100, third run)", "",

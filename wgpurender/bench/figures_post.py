@@ -52,7 +52,7 @@ def _chain_table(base: Path, judge) -> str:
                           out)
 
 
-def _cpu_table(rows: list[Result], judge) -> str:
+def cpu_table(rows: list[Result], judge) -> str:
     out = [(r.size, fmt_ms(r.median), fmt_ms(r.p99), judge(r.median <= CPU_LIMIT_MS)) for r in rows
            if (r.family, r.case, r.path, r.metric) == ("scene", "final", "wgpu", "cpu_ms:untimed")]
     return markdown_table(("size", "CPU ms per frame (median)", "p99", f"<= {CPU_LIMIT_MS} ms"), out)
@@ -69,7 +69,7 @@ def section(repo: Path, judge, dawn_table) -> list[str]:
             "Fused compute post chain at 3840x2160 against a same-run copy of its bytes (GPU timestamps):", "",
             _chain_table(base, judge), "",
             "The final scene's CPU per frame (record + submit without timestamps, as a window draws it):", "",
-            _cpu_table(read_csv(base / "scene/results.csv"), judge), "",
+            cpu_table(read_csv(base / "scene/results.csv"), judge), "",
             "The Dawn binding beside wgpu-native, same call, same flags (`--only frames,scene --no-raw --no-big`); "
             f"not offered by Dawn (one CSV row each): {', '.join(not_offered) or 'none'}:", "",
             dawn_table(read_csv(base / "native/results.csv"), read_csv(base / "dawn/results.csv")), ""]
