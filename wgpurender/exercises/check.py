@@ -5,9 +5,10 @@ is compared with the committed reference (assets/reference/<stage>.png, made by 
 step's row of assets/reference/tolerances.toml for this driver class; at the other times of an animated step,
 with the solution rendered here on the same path, under the same row. Within every bound: a pass.
 
-Otherwise the diagnosis: every catalogued mistake of the step (catalogue.py) is rendered the same way and
-compared with the learner's image under the same bounds. The nearest one (least FLIP) that is within them names
-the mistake; when none is, "no known mistake matches" (with the nearest, for a hint).
+Otherwise the diagnosis: every catalogued mistake of the step (catalogue.py) is rendered the same way, on the
+same machine, and compared with the learner's image under the step's rounding bound (rounding_tolerance). The
+nearest one (least FLIP) that is within it names the mistake; when none is, "no known mistake matches" (with the
+nearest, for a hint).
 """
 
 from __future__ import annotations
@@ -98,7 +99,7 @@ def judge(images: list[np.ndarray], ex: Exercise, file: Path, out: Path | None =
         metrics.append((t, m, tol.exceeded(m)))
     verdict = Verdict(ex.step, ex.path, file, FAIL if any(e for _, _, e in metrics) else PASS, metrics)
     if verdict.status == FAIL:
-        verdict.diagnosis = diagnose(images, ex, tol)
+        verdict.diagnosis = diagnose(images, ex, rounding_tolerance(ex))
     if out is not None:
         verdict.images = write_images(out, file.stem, ex, images)
     return verdict
@@ -158,7 +159,20 @@ def _driver_class(path: str) -> str:
 
 
 def step_tolerance(ex: Exercise) -> Tolerance:
+    """The bounds against the committed reference: this driver class's row (two machines' spread)."""
     return tolerance(reference_name(ex), _driver_class(ex.path))
+
+
+ROUNDING_CLASS = "lavapipe"  # the class whose rows measure rounding alone (see rounding_tolerance)
+
+
+def rounding_tolerance(ex: Exercise) -> Tolerance:
+    """The bounds that tell catalogued mistakes apart, on any adapter: the step's lavapipe row, calibrated from the
+    same shaders compiled for two CPUs (rounding alone). The learner's image and every mistake are rendered on
+    the same machine in the same run, so only rounding may separate two renders of equivalent code; the driver
+    class's own row measures a GPU against the lavapipe-made reference (filtering hardware included: step 5's gpu
+    row allows FLIP 0.058, wider than 'mips not generated' against 'one sampler', FLIP 0.044 on an H100)."""
+    return tolerance(reference_name(ex), ROUNDING_CLASS)
 
 
 def expected_images(ex: Exercise) -> list[np.ndarray]:
