@@ -62,6 +62,34 @@ def test_roughness_zero_prefilter_is_the_mirror_lookup(gpu):
     assert np.allclose(maps.prefiltered[0], env, rtol=1e-5)
 
 
+def band_solid_angles(width: int, height: int) -> np.ndarray:
+    """(height,) solid angle of one texel of each row: (2 pi / width)(cos theta0 - cos theta1)."""
+    edges = np.arange(height + 1) / height * np.pi
+    return 2 * np.pi / width * (np.cos(edges[:-1]) - np.cos(edges[1:]))
+
+
+def test_the_mirror_level_of_a_half_size_map_is_the_mean_of_each_2x2_block(gpu):
+    """Level 0 at half the environment's size: each texel covers a 2x2 block exactly, so it is the block's
+    solid-angle-weighted mean (random texels: the four differ). Before, GGX samples at roughness 0 sat on the
+    block's corner and float rounding chose the blend (on an H100, 57% of the sky's texels near a neighbour)."""
+    from wgpurender.wgpu_path.scene.ibl import make_maps
+
+    env = np.random.default_rng(7).random((H, W, 3)).astype(np.float32)
+    maps = make_maps(gpu, env, samples=64, prefilter_size=(W // 2, H // 2))
+    omega = band_solid_angles(W, H)[:, None, None] * np.ones((1, W, 1))
+    blocks = (env * omega).reshape(H // 2, 2, W // 2, 2, 3).sum((1, 3))
+    want = blocks / omega.reshape(H // 2, 2, W // 2, 2, 1).sum((1, 3))
+    assert np.allclose(maps.prefiltered[0], want, rtol=1e-4)
+
+
+def test_the_mirror_level_of_a_map_larger_than_the_environment_is_the_texel_under_each_centre(gpu):
+    from wgpurender.wgpu_path.scene.ibl import make_maps
+
+    env = np.random.default_rng(8).random((2, 4, 3)).astype(np.float32)
+    maps = make_maps(gpu, env, samples=8, prefilter_size=(8, 4))
+    assert np.allclose(maps.prefiltered[0], env.repeat(2, 0).repeat(2, 1), rtol=1e-6)
+
+
 def split_sum_integrals(n_dot_v: float, roughness: float, steps: int = 600) -> tuple[float, float]:
     """A = integral of D V (1 - Fc) n.l, B = integral of D V Fc n.l over the hemisphere (Fc = (1 - v.h)^5), by the
     midpoint rule in (theta, phi): the split sum's f0 A + B = integral of f n.l for Schlick's F."""

@@ -112,9 +112,9 @@ def test_a_rough_dielectric_shows_the_float64_integral_over_the_sky(rendered):
 
 def test_gpu_compute_maps_match_the_float64_maps():
     """wgpu_path/scene/ibl.py's compute passes against core/course/ibl_maps.py on the same sky and samples:
-    float32 against float64 sums (relative 1e-4 for the irradiance and the table); the prefiltered levels above
-    the mirror within 1% mean (a sample on a texel edge may pick the neighbour); level 0's texel centres sit on
-    the 128x64 sky's texel edges, so each takes one of its two neighbours."""
+    float32 against float64 sums (relative 1e-4 for the irradiance, the table and the mirror level, whose band
+    weights are float32 cosines); the prefiltered levels above the mirror within 1% mean (a sample on a texel
+    edge may pick the neighbour: measured 0.08-0.30% on lavapipe, 0.13-0.49% on an H100, 2026-11-27)."""
     from wgpurender.core.course import ibl_maps
     from wgpurender.core.course.environment import sky
     from wgpurender.wgpu_path.device.context import get_context
@@ -125,15 +125,10 @@ def test_gpu_compute_maps_match_the_float64_maps():
     cpu = ibl_maps.make_arrays(env, 64)
     assert np.allclose(gpu.irradiance, cpu.irradiance, rtol=1e-4, atol=1e-6)
     assert np.allclose(gpu.lut, cpu.lut, rtol=1e-3, atol=1e-4)
+    assert np.allclose(gpu.prefiltered[0], cpu.prefiltered[0], rtol=1e-4, atol=1e-6)
     for k in range(1, ibl_maps.LEVELS):
         diff = np.abs(gpu.prefiltered[k] - cpu.prefiltered[k])
         assert diff.mean() < 0.01 * cpu.prefiltered[k].mean(), k
-    w = env.shape[1]
-    left = np.roll(env, 1, axis=1)[::2, ::2].astype(np.float64)
-    right = env[::2, ::2].astype(np.float64)
-    assert w == 2 * ibl_maps.PREFILTER_SIZE[0]
-    near = np.minimum(np.abs(gpu.prefiltered[0] - left), np.abs(gpu.prefiltered[0] - right)).max(-1)
-    assert np.mean(near < 1e-3 * np.maximum(right.max(-1), 1)) > 0.6
 
 
 def test_an_environment_without_pbr_materials_builds_no_ibl(tmp_path):

@@ -108,12 +108,32 @@ def irradiance(env: np.ndarray, size=IRRADIANCE_SIZE) -> np.ndarray:
     return (weight @ env.reshape(-1, 3) / np.pi).reshape(size[1], size[0], 3)
 
 
+def mirror_level(env: np.ndarray, size=PREFILTER_SIZE) -> np.ndarray:
+    """Level 0 (roughness 0, the mirror): each texel is the solid-angle-weighted mean of the environment texels
+    whose centres fall inside it; where none does (an environment narrower or shorter than the map), the
+    environment texel under its centre. Chosen by integer index arithmetic, which the GPU does exactly alike.
+
+    Why not the GGX samples of the other levels: at roughness 0 they lie within ~2e-3 rad of the texel's
+    centre, and a map half the environment's size has its centres on the environment's texel corners, so each
+    texel was a blend of four texels set by the rounding of atan2 and acos (an H100 and lavapipe differed)."""
+    h, w = env.shape[:2]
+    pw, ph = size
+    cols, rows = (2 * np.arange(w) + 1) * pw // (2 * w), (2 * np.arange(h) + 1) * ph // (2 * h)
+    _, omega = texel_directions(w, h)
+    index = (rows[:, None] * pw + cols[None, :]).reshape(-1)
+    weight = np.bincount(index, omega.reshape(-1), pw * ph)
+    total = np.stack([np.bincount(index, (env[..., c] * omega).reshape(-1), pw * ph) for c in range(3)], -1)
+    under = env[((2 * np.arange(ph) + 1) * h // (2 * ph))[:, None], ((2 * np.arange(pw) + 1) * w // (2 * pw))[None]]
+    mean = total / np.where(weight > 0, weight, 1.0)[:, None]
+    return np.where((weight > 0)[:, None], mean, under.reshape(-1, 3)).reshape(ph, pw, 3)
+
+
 def prefiltered(env: np.ndarray, samples: int, size=PREFILTER_SIZE, levels: int = LEVELS) -> np.ndarray:
     n, xi = _grid(size), hammersley(samples)
-    out = []
-    for k in range(levels):
+    out = [mirror_level(env, size)]
+    for k in range(1, levels):
         roughness = k / max(levels - 1, 1)
-        hv = ggx_half(xi, max(roughness * roughness, 1e-4), n)
+        hv = ggx_half(xi, roughness * roughness, n)
         n_dot_h = np.einsum("pc,psc->ps", n, hv)
         light = 2 * n_dot_h[..., None] * hv - n[:, None]
         n_dot_l = np.einsum("pc,psc->ps", n, light)
