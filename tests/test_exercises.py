@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import one_line_refusal
 
 from wgpurender.cli import main
 from wgpurender.concepts import CONCEPTS
@@ -316,3 +317,23 @@ def test_exercise_never_writes_through_a_dangling_link(name, tmp_path, capsys):
     code, _, err = _run_cli(capsys, "exercise", "2a", "-o", folder)
     assert code == 2 and len(err.splitlines()) == 1 and name in err, err
     assert sorted(p.name for p in folder.iterdir()) == [name] and not any(outside.iterdir())
+
+
+@pytest.mark.parametrize("target", ["folder", "dangling"])
+def test_exercise_refuses_a_symlinked_output_folder_like_every_writer(target, tmp_path, capsys, monkeypatch):
+    """-o naming a symbolic link (to a folder, or dangling) is refused in one line naming the link and the way out,
+    and nothing is written where it leads, as report, export and record refuse (core/files/owned_files.py);
+    with $WGPURENDER_FOLLOW_SYMLINKS=1 the starter goes to the folder it leads to."""
+    elsewhere = tmp_path / "elsewhere"
+    if target == "folder":
+        elsewhere.mkdir()
+    link = tmp_path / "ex"
+    link.symlink_to(elsewhere)
+    monkeypatch.delenv("WGPURENDER_FOLLOW_SYMLINKS", raising=False)
+    code, _, err = _run_cli(capsys, "exercise", "2a", "-o", link)
+    one_line_refusal(code, err, str(link), "symbolic link", "WGPURENDER_FOLLOW_SYMLINKS")
+    assert not elsewhere.exists() or not any(elsewhere.iterdir())
+    if target == "folder":
+        monkeypatch.setenv("WGPURENDER_FOLLOW_SYMLINKS", "1")
+        code, _, _ = _run_cli(capsys, "exercise", "2a", "-o", link)
+        assert code == 0 and (elsewhere / "step_2a.py").is_file() and link.is_symlink()
