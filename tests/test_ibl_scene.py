@@ -131,6 +131,50 @@ def test_gpu_compute_maps_match_the_float64_maps():
         assert diff.mean() < 0.01 * cpu.prefiltered[k].mean(), k
 
 
+def test_raw_compute_maps_match_the_float64_maps_and_the_wgpu_path():
+    """raw_path/scene/ibl.py (shaders_glsl/ibl.comp) against the float64 maps under the bounds above, and equal to
+    the wgpu path's maps (twins operation for operation: the scenes' images rest on it)."""
+    from wgpurender.core.course import ibl_maps
+    from wgpurender.core.course.environment import sky
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.raw_path.scene.ibl import make_maps as raw_maps
+    from wgpurender.wgpu_path.device.context import get_context
+    from wgpurender.wgpu_path.scene.ibl import make_maps as wgpu_maps
+
+    env = sky()
+    raw = raw_maps(get_vulkan(), env, 64)
+    cpu = ibl_maps.make_arrays(env, 64)
+    assert np.allclose(raw.irradiance, cpu.irradiance, rtol=1e-4, atol=1e-6)
+    assert np.allclose(raw.lut, cpu.lut, rtol=1e-3, atol=1e-4)
+    assert np.allclose(raw.prefiltered[0], cpu.prefiltered[0], rtol=1e-4, atol=1e-6)
+    for k in range(1, ibl_maps.LEVELS):
+        assert np.abs(raw.prefiltered[k] - cpu.prefiltered[k]).mean() < 0.01 * cpu.prefiltered[k].mean(), k
+    wgpu = wgpu_maps(get_context(), env, 64)
+    for name in ("irradiance", "prefiltered", "lut"):
+        assert np.array_equal(getattr(raw, name), getattr(wgpu, name)), name
+
+
+def test_a_scene_draws_the_gpu_maps_on_both_paths(monkeypatch):
+    """The buffer each path binds holds its own compute passes' maps, packed (not the float64 ones)."""
+    from wgpurender.core.course import ibl_maps
+    from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.raw_path.scene.ibl import make_maps as raw_maps
+
+    scene = load_scene(SCENE)
+    env = ibl_maps.scene_environment(scene.environment)
+    assert env.shape == (64, 128, 3) and env.dtype == np.float32
+    gpu = ibl_maps.pack(raw_maps(get_vulkan(), env, scene.environment.samples))
+    assert gpu.shape == (ibl_maps.packed_rows(), 4)
+    assert not np.array_equal(gpu, ibl_maps.scene_maps(scene.environment))  # float32 sums differ in the last bits
+    calls = []
+    monkeypatch.setattr(ibl_maps, "make_arrays", lambda *a, **k: calls.append(a))  # the float64 maps: unused
+    from wgpurender.raw_path.scene import render_scene_reference
+
+    render_scene_reference(SCENE, size=(32, 24))
+    assert calls == []
+
+
 def test_an_environment_without_pbr_materials_builds_no_ibl(tmp_path):
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene

@@ -2,10 +2,11 @@
 split-sum BRDF table, made the way shaders_wgsl/ibl.wgsl's compute passes make them (the same texel layout, the
 same Hammersley samples, the same tangent frame), so the GPU's maps can be checked against these.
 
-Scenes draw with these arrays on both paths (one upload of the same float32 numbers: wgpu == raw exactly); the
-wgpu path's compute version (wgpu_path/scene/ibl.py) is what ``bench accuracy`` times, checked against these
-within a tolerance (tests/test_ibl_scene.py). Why the CPU: one home for the maps' numbers keeps the two paths'
-images identical, without a GLSL twin of the compute passes on the raw path (not written yet).
+Scenes draw with maps made on the GPU, on both paths the same way: compute passes that are twins operation for
+operation (shaders_wgsl/ibl.wgsl on the wgpu path, wgpu_path/scene/ibl.py; shaders_glsl/ibl.comp on the raw
+path, raw_path/scene/ibl.py), from the environment scene_environment() gives them. The float64 arrays here are
+their check (tests/test_ibl_scene.py: relative 1e-4 where a sum is exact, 1% mean where a sample may land on a
+texel edge) and what ``bench accuracy`` compares.
 
 Layout of :func:`pack` (float32 vec4 rows, what the scene shaders index): the irradiance map (IRRADIANCE_SIZE, row
 major, row 0 the zenith), then LEVELS prefiltered maps of PREFILTER_SIZE (level k at roughness k / (LEVELS - 1)),
@@ -173,8 +174,9 @@ def make_arrays(environment: np.ndarray, samples: int = SAMPLES) -> IblArrays:
     return IblArrays(irradiance(env), prefiltered(env, samples), brdf_lut(samples))
 
 
-def pack(maps: IblArrays) -> np.ndarray:
-    """(packed_rows(), 4) float32: the module docstring's layout."""
+def pack(maps) -> np.ndarray:
+    """(packed_rows(), 4) float32: the module docstring's layout, of any maps with the three arrays (IblArrays,
+    or the wgpu path's IblMaps)."""
     rows = [maps.irradiance.reshape(-1, 3), maps.prefiltered.reshape(-1, 3)]
     rows = [np.concatenate([r, np.ones((len(r), 1))], -1) for r in rows]
     lut = maps.lut.reshape(-1, 2)
@@ -182,7 +184,12 @@ def pack(maps: IblArrays) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate(rows), np.float32)
 
 
+def scene_environment(environment) -> np.ndarray:
+    """The (h, w, 3) float32 radiance a scene's [environment] (core/scene/environment_block.Environment) hands
+    both paths' compute passes: averaged down to MAX_ENVIRONMENT first, as make_arrays does."""
+    return shrink(environment.radiance()).astype(np.float32)
+
+
 def scene_maps(environment) -> np.ndarray:
-    """The packed maps of a scene's [environment] (core/scene/environment_block.Environment), what both paths
-    upload."""
+    """The packed float64 maps of a scene's [environment]: what the GPU's packed maps are checked against."""
     return pack(make_arrays(environment.radiance(), environment.samples))

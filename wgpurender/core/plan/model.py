@@ -437,7 +437,7 @@ class RenderPlan:
             out.append(("scene-ibl", f"storage: image-based lighting maps{source} ({ibl_maps.packed_bytes()} bytes: "
                         f"irradiance {'x'.join(map(str, ibl_maps.IRRADIANCE_SIZE))}, {ibl_maps.LEVELS} prefiltered "
                         f"levels {'x'.join(map(str, ibl_maps.PREFILTER_SIZE))}, BRDF table {ibl_maps.LUT_SIZE}^2; "
-                        "made in float64 on the CPU, core/course/ibl_maps.py), for the ibl variant(s)"))
+                        "made on the GPU by compute passes, ibl.wgsl / ibl.comp), for the ibl variant(s)"))
         for p in self.post_passes:
             if any(s.spec.params for s in p.steps):
                 out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))

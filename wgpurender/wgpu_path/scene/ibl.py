@@ -2,8 +2,9 @@
 prefiltered specular levels by roughness and the split-sum BRDF lookup table, from an equirectangular
 environment (wgpurender/core/course/environment.py). Storage buffers in, storage buffers out, read back as float32.
 
-So far only ``bench accuracy --truth analytic`` uses them (their cost and their error against a float64
-integral); scenes do not yet draw with image-based lighting.
+Scenes with an [environment] draw with them (scene_pass.py); raw_path/scene/ibl.py makes the same maps with
+shaders_glsl/ibl.comp, the GLSL twin. ``bench accuracy --truth analytic`` times them and measures their error
+against a float64 integral.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
+from wgpurender.core.course.ibl_maps import IRRADIANCE_SIZE, LEVELS, LUT_SIZE, PREFILTER_SIZE
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.shaders import create_shader_module
 
@@ -57,8 +59,8 @@ def _pass(ctx: GPUContext, module, entry: str, params: bytes, env: wgpu.GPUBuffe
     return encoder.finish(), out
 
 
-def make_maps(ctx: GPUContext, environment: np.ndarray, samples: int, levels: int = 5,
-              irradiance_size=(32, 16), prefilter_size=(64, 32), lut_size: int = 32) -> IblMaps:
+def make_maps(ctx: GPUContext, environment: np.ndarray, samples: int, levels: int = LEVELS,
+              irradiance_size=IRRADIANCE_SIZE, prefilter_size=PREFILTER_SIZE, lut_size: int = LUT_SIZE) -> IblMaps:
     """The three maps of ``environment`` ((h, w, 3) linear float) with ``samples`` GGX samples per texel."""
     h, w = environment.shape[:2]
     rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)
