@@ -170,9 +170,12 @@ def test_a_scene_draws_the_gpu_maps_on_both_paths(monkeypatch):
     calls = []
     monkeypatch.setattr(ibl_maps, "make_arrays", lambda *a, **k: calls.append(a))  # the float64 maps: unused
     from wgpurender.raw_path.scene import render_scene_reference
+    from wgpurender.wgpu_path.device.context import get_context
+    from wgpurender.wgpu_path.scene import render_scene_file
 
-    render_scene_reference(SCENE, size=(32, 24))
-    assert calls == []
+    raw = render_scene_reference(SCENE, size=(32, 24))
+    wgpu = render_scene_file(SCENE, size=(32, 24), ctx=get_context(), frames=1, knobs={"post_path": "fragment"})
+    assert calls == [] and np.array_equal(raw, wgpu.pixels)
 
 
 def test_an_environment_without_pbr_materials_builds_no_ibl(tmp_path):
