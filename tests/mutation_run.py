@@ -75,6 +75,13 @@ DOCFIG = "tests/test_doc_figures.py"
 USERNUM = "tests/test_user_numbers.py"
 STAGESTATE = "tests/test_stage_state.py"
 MATERIALS = INPUTS + "|material_library"
+# gpufix's rows (2026-11-27): the mirror level, the GLSL compute twin, the scenes' GPU maps, the diagnosis bound
+MIRROR = "tests/test_ibl.py|mirror"
+GPU_MAPS = "tests/test_ibl_scene.py|compute_maps or gpu_maps"
+LUT_T = "tests/test_ibl.py|lut or uniform or bright_texel or roughness_zero"
+EX_BOUND = "tests/test_exercises.py|wide_reference"
+EX_LINK = "tests/test_exercises.py|symlinked"
+COMP = "shaders_glsl/ibl.comp"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 MUTATIONS = [
@@ -913,6 +920,72 @@ MUTATIONS = [
      "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
     ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
      "maps = make_arrays(environment, 16)", [IBL]),
+    # -- gpufix: the mirror level (core and both shaders), the GLSL twin, scenes on GPU maps, exercises ----------
+    ("wgpurender/core/course/ibl_maps.py", "cols, rows = (2 * np.arange(w) + 1) * pw // (2 * w), (2 * np.arange(h) + 1) * ph // (2 * h)",  # noqa: E501
+     "cols, rows = np.arange(w) * pw // w, (2 * np.arange(h) + 1) * ph // (2 * h)", [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "weight = np.bincount(index, omega.reshape(-1), pw * ph)",
+     "weight = np.bincount(index, np.ones(omega.size), pw * ph)", [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "return np.where((weight > 0)[:, None], mean, under.reshape(-1, 3))",
+     "return np.where((weight > 1)[:, None], mean, under.reshape(-1, 3))", [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "out = [mirror_level(env, size)]", "out = [mirror_level(env, size) * 0.99]",
+     [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "hv = ggx_half(xi, roughness * roughness, n)", "hv = ggx_half(xi, roughness, n)",  # noqa: E501
+     [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "return shrink(environment.radiance()).astype(np.float32)",
+     "return environment.radiance().astype(np.float32)[::2]", [GPU_MAPS]),
+    ("shaders_wgsl/ibl.wgsl", "return ((2u * k + 1u) * size) / (2u * count) == i;",
+     "return ((2u * k) * size) / (2u * count) == i;", [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "return ((2u * i + 1u) * count) / (2u * size);", "return ((2u * i) * count) / (2u * size);",  # noqa: E501
+     [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "for (var y = (texel.y * h) / size.y; y < min(((texel.y + 1u) * h) / size.y + 1u, h); y++) {",  # noqa: E501
+     "for (var y = (texel.y * h) / size.y; y < min(((texel.y + 1u) * h) / size.y, h); y++) {", [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "                sum += env[y * w + x].rgb * band;\n                weight += band;",
+     "                sum += env[y * w + x].rgb;\n                weight += 1.0;", [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "    if (id.z == 0u) {\n        result[index] = vec4f(mirror_texel(id.xy), 1.0);",
+     "    if (id.z == 9u) {\n        result[index] = vec4f(mirror_texel(id.xy), 1.0);", [MIRROR]),
+    (COMP, "return ((2u * k + 1u) * size) / (2u * count) == i;", "return ((2u * k) * size) / (2u * count) == i;",
+     [MIRROR]),
+    (COMP, "return ((2u * i + 1u) * count) / (2u * size);", "return ((2u * i) * count) / (2u * size);", [MIRROR]),
+    (COMP, "for (uint x = (texel.x * w) / size.x; x < min(((texel.x + 1u) * w) / size.x + 1u, w); x++) {",
+     "for (uint x = (texel.x * w) / size.x + 1u; x < min(((texel.x + 1u) * w) / size.x + 1u, w); x++) {", [MIRROR]),
+    (COMP, "    if (id.z == 0u) {\n        result[index] = vec4(mirror_texel(id.xy), 1.0);",
+     "    if (id.z == 9u) {\n        result[index] = vec4(mirror_texel(id.xy), 1.0);", [MIRROR]),
+    (COMP, "    return vec2((float(i) + 0.5) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10);",
+     "    return vec2((float(i) + 0.5) / float(n), float(i) / float(n));", [GPU_MAPS]),
+    (COMP, "    float cos_t = sqrt((1.0 - xi.y) / (1.0 + (a2 - 1.0) * xi.y));",
+     "    float cos_t = sqrt((1.0 - xi.y) / (1.0 + (alpha - 1.0) * xi.y));", [GPU_MAPS]),
+    (COMP, "    vec3 up = abs(n.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);",
+     "    vec3 up = abs(n.z) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);", [GPU_MAPS]),
+    (COMP, "    float u = atan(d.x, -d.z) / (2.0 * PI) + 0.5;", "    float u = atan(d.x, d.z) / (2.0 * PI) + 0.5;",
+     [GPU_MAPS]),
+    (COMP, "            sum += env[y * w + x].rgb * max(dot(n, l), 0.0) * band;",
+     "            sum += env[y * w + x].rgb * abs(dot(n, l)) * band;", [GPU_MAPS]),
+    (COMP, "    result[id.y * params.out_size.x + id.x] = vec4(sum / PI, 1.0);",
+     "    result[id.y * params.out_size.x + id.x] = vec4(sum, 1.0);", [GPU_MAPS]),
+    (COMP, "            sum += env_radiance(l) * n_dot_l;\n            weight += n_dot_l;",
+     "            sum += env_radiance(l);\n            weight += 1.0;", [GPU_MAPS]),
+    (COMP, "            float fc = pow(1.0 - v_dot_h, 5.0);", "            float fc = pow(1.0 - n_dot_v, 5.0);",
+     [GPU_MAPS]),
+    (COMP, "    return 0.5 / (n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) + n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2));",  # noqa: E501
+     "    return 0.5 / (n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) + n_dot_v * sqrt(n_dot_l * (1.0 - a2) + a2));",  # noqa: E501
+     [GPU_MAPS]),
+    (COMP, "    vec3 v = vec3(sqrt(1.0 - n_dot_v * n_dot_v), 0.0, n_dot_v);", "    vec3 v = vec3(0.0, 0.0, 1.0);",
+     [GPU_MAPS]),
+    ("wgpurender/raw_path/scene/ibl.py", "params = np.array([w, h, ow, oh, samples, depth, 0, 0], np.uint32).tobytes()",
+     "params = np.array([w, h, ow, oh, samples, 1, 0, 0], np.uint32).tobytes()", [GPU_MAPS]),
+    ("wgpurender/raw_path/scene/ibl.py", "vk.vkCmdDispatch(cmd, -(-ow // WORKGROUP), -(-oh // WORKGROUP), depth)",
+     "vk.vkCmdDispatch(cmd, ow // WORKGROUP, -(-oh // WORKGROUP), depth)", [MIRROR]),
+    ("wgpurender/raw_path/scene/ibl.py", "rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)",  # noqa: E501
+     "rgba = np.concatenate([environment[::-1], np.ones((h, w, 1))], axis=-1).astype(np.float32)", [GPU_MAPS]),
+    ("wgpurender/raw_path/scene/scene_subpass.py", "data = pack(make_maps(self.ctx, scene_environment(env), env.samples))",  # noqa: E501
+     "data = pack(make_maps(self.ctx, scene_environment(env), 16))", [GPU_MAPS]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "data = pack(make_maps(self.ctx, scene_environment(env), env.samples))",  # noqa: E501
+     "data = pack(make_maps(self.ctx, scene_environment(env), 16))", [GPU_MAPS]),
+    ("wgpurender/exercises/check.py", "verdict.diagnosis = diagnose(images, ex, rounding_tolerance(ex))",
+     "verdict.diagnosis = diagnose(images, ex, tol)", [EX_BOUND]),
+    ("wgpurender/exercises/check.py", "    return tolerance(reference_name(ex), ROUNDING_CLASS)",
+     "    return tolerance(reference_name(ex), _driver_class(ex.path))", [EX_BOUND]),
+    ("wgpurender/exercises/starter.py", '    out = resolve_folder(Path(out), "-o")', "    out = Path(out)", [EX_LINK]),
 ]
 
 
