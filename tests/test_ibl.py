@@ -101,6 +101,18 @@ def test_the_mirror_level_of_a_map_larger_than_the_environment_is_the_texel_unde
     assert np.allclose(maps.prefiltered[0], env.repeat(2, 0).repeat(2, 1), rtol=1e-6)
 
 
+@pytest.mark.parametrize("path", ["wgpu", "raw"])
+def test_the_mirror_level_at_sizes_that_do_not_divide_is_the_float64_one(path):
+    """A 10x5 environment on a 6x3 and a 13x7 map: blocks of one or two texels, uneven, and texels with none
+    (then the texel under the centre), against core/course/ibl_maps.mirror_level in float64."""
+    from wgpurender.core.course.ibl_maps import mirror_level
+
+    env = np.random.default_rng(9).random((5, 10, 3)).astype(np.float32)
+    for size in ((6, 3), (13, 7)):
+        maps = path_maps(path)(env, samples=8, prefilter_size=size)
+        assert np.allclose(maps.prefiltered[0], mirror_level(env.astype(np.float64), size), rtol=1e-5), size
+
+
 def split_sum_integrals(n_dot_v: float, roughness: float, steps: int = 600) -> tuple[float, float]:
     """A = integral of D V (1 - Fc) n.l, B = integral of D V Fc n.l over the hemisphere (Fc = (1 - v.h)^5), by the
     midpoint rule in (theta, phi): the split sum's f0 A + B = integral of f n.l for Schlick's F."""
