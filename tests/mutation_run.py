@@ -332,8 +332,8 @@ MUTATIONS = [
     ("wgpurender/exercises/check.py", "return 0 if self.status == PASS else 1",
      "return 0 if self.status != ERROR else 1", [EX + "|cli_exercise"]),
     ("wgpurender/exercises/check.py", '    if file.suffix != suffix:', "    if False:", [EX + "|bad_input"]),
-    ("wgpurender/exercises/check.py", "    later = _solution_images(ex)[1:]", "    later = _solution_images(ex)[:1]",
-     [EX + "|solution_passes and wgpu-5"]),
+    ("wgpurender/exercises/check.py", "    return [load_png(reference_file(ex)), *_solution_images(ex)[1:]]",
+     "    return [load_png(reference_file(ex)), *_solution_images(ex)[:1]]", [EX + "|solution_passes and wgpu-5"]),
     ("wgpurender/exercises/sandbox.py", "if str(Path(f.filename).resolve()) == target]",
      "if str(Path(f.filename).resolve()) != target]", [EX + "|broken_learner"]),
     ("wgpurender/exercises/sandbox.py", "if done.returncode == LEARNER_FAILED and", "if done.returncode == 0 and",
@@ -922,7 +922,7 @@ MUTATIONS = [
      "maps = make_arrays(environment, 16)", [IBL]),
     # -- gpufix: the mirror level (core and both shaders), the GLSL twin, scenes on GPU maps, exercises ----------
     ("wgpurender/core/course/ibl_maps.py", "cols, rows = (2 * np.arange(w) + 1) * pw // (2 * w), (2 * np.arange(h) + 1) * ph // (2 * h)",  # noqa: E501
-     "cols, rows = np.arange(w) * pw // w, (2 * np.arange(h) + 1) * ph // (2 * h)", [GPU_MAPS]),
+     "cols, rows = np.arange(w) * pw // w, (2 * np.arange(h) + 1) * ph // (2 * h)", [GPU_MAPS, MIRROR]),
     ("wgpurender/core/course/ibl_maps.py", "weight = np.bincount(index, omega.reshape(-1), pw * ph)",
      "weight = np.bincount(index, np.ones(omega.size), pw * ph)", [GPU_MAPS]),
     ("wgpurender/core/course/ibl_maps.py", "return np.where((weight > 0)[:, None], mean, under.reshape(-1, 3))",

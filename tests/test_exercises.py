@@ -123,9 +123,10 @@ def test_mistakes_are_told_apart_on_an_adapter_with_wide_reference_bounds(path, 
     """A GPU's row against the lavapipe-made reference is wide (step 5's gpu row: FLIP 0.058, 62% of pixels,
     255/255) because its filtering hardware differs; 'mips not generated' and 'one sampler' are nearer than that
     to each other (FLIP 0.044 on an H100, 0.026 here). With this process's driver class taken as 'gpu', each is
-    still diagnosed as itself, and an image 64/255 off one mistake in a corner is not named as it: the diagnosis
-    compares same-machine renders under the rounding bound, never the cross-machine one (on the H100, 'mips'
-    looked like 'one-sampler' before)."""
+    judged a failure and diagnosed as itself, and an image 64/255 off one mistake in a corner is not named as it:
+    the learner's image must also equal the solution rendered here, and the diagnosis compares same-machine
+    renders, both under the rounding bound (on the H100, 'one-sampler' passed against the reference under the gpu
+    row, and 'mips' looked like 'one-sampler')."""
     ex = exercise("5", path)
     monkeypatch.setattr(check, "_driver_class", lambda _path: "gpu")
     wide = check.step_tolerance(ex)
@@ -133,8 +134,8 @@ def test_mistakes_are_told_apart_on_an_adapter_with_wide_reference_bounds(path, 
     near = [measure(a, b) for a, b in zip(images["mips"], images["one-sampler"], strict=True)]
     assert not any(wide.exceeded(m) for m in near)  # the case: within the wide bounds of each other
     for mistake in ex.mistakes:
-        diagnosis = check.diagnose(images[mistake.key], ex, check.rounding_tolerance(ex))
-        assert diagnosis.mistake == mistake
+        verdict = check.judge(images[mistake.key], ex, Path("mine.py"))  # on the H100 'one-sampler' passed
+        assert verdict.status == check.FAIL and verdict.diagnosis.mistake == mistake, verdict.report()
     near = [image.copy() for image in images["srgb"]]
     for image in near:
         image[:16, :16, :3] ^= 0x40  # 64/255 off in a corner: inside the wide bounds of 'srgb', beyond rounding

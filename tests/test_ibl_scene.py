@@ -132,8 +132,11 @@ def test_gpu_compute_maps_match_the_float64_maps():
 
 
 def test_raw_compute_maps_match_the_float64_maps_and_the_wgpu_path():
-    """raw_path/scene/ibl.py (shaders_glsl/ibl.comp) against the float64 maps under the bounds above, and equal to
-    the wgpu path's maps (twins operation for operation: the scenes' images rest on it)."""
+    """raw_path/scene/ibl.py (shaders_glsl/ibl.comp) against the float64 maps under the bounds above, and the wgpu
+    path's maps (twins operation for operation: the scenes' images rest on it): the prefiltered levels and the table
+    equal; the irradiance sums (8192 terms each) within relative 1e-6, as a driver may contract a multiply-add
+    differently in the two compiled modules (measured 2026-11-27: equal on lavapipe, 1.8e-7 apart at most on an
+    H100, about one float32 ulp; the IBL scene's images stayed equal there)."""
     from wgpurender.core.course import ibl_maps
     from wgpurender.core.course.environment import sky
     from wgpurender.raw_path.device.context import get_vulkan
@@ -150,7 +153,8 @@ def test_raw_compute_maps_match_the_float64_maps_and_the_wgpu_path():
     for k in range(1, ibl_maps.LEVELS):
         assert np.abs(raw.prefiltered[k] - cpu.prefiltered[k]).mean() < 0.01 * cpu.prefiltered[k].mean(), k
     wgpu = wgpu_maps(get_context(), env, 64)
-    for name in ("irradiance", "prefiltered", "lut"):
+    assert np.allclose(raw.irradiance, wgpu.irradiance, rtol=1e-6, atol=0)
+    for name in ("prefiltered", "lut"):
         assert np.array_equal(getattr(raw, name), getattr(wgpu, name)), name
 
 
