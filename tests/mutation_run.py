@@ -986,6 +986,11 @@ MUTATIONS = [
     ("wgpurender/exercises/check.py", "    return tolerance(reference_name(ex), ROUNDING_CLASS)",
      "    return tolerance(reference_name(ex), _driver_class(ex.path))", [EX_BOUND]),
     ("wgpurender/exercises/starter.py", '    out = resolve_folder(Path(out), "-o")', "    out = Path(out)", [EX_LINK]),
+    ("wgpurender/exercises/check.py",
+     '        here = [f"against the solution rendered here: {e}" for e in rounding.exceeded(measure(solution, actual))]',  # noqa: E501
+     "        here = []", [EX_BOUND]),
+    ("wgpurender/exercises/check.py", "        metrics.append((t, m, (tol.exceeded(m) if k == 0 else []) + here))",
+     "        metrics.append((t, m, here))", [EX + "|still_judges_t0"]),
 ]
 
 

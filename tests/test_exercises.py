@@ -338,3 +338,16 @@ def test_exercise_refuses_a_symlinked_output_folder_like_every_writer(target, tm
         monkeypatch.setenv("WGPURENDER_FOLLOW_SYMLINKS", "1")
         code, _, _ = _run_cli(capsys, "exercise", "2a", "-o", link)
         assert code == 0 and (elsewhere / "step_2a.py").is_file() and link.is_symlink()
+
+
+def test_the_committed_reference_still_judges_t0_when_this_machines_stage_is_wrong(monkeypatch, tmp_path):
+    """The solution rendered here is no independent truth: were this machine's stage wrong (here: it draws the
+    'winding' mistake), a learner's image equal to it still fails at t = 0 against the committed reference."""
+    ex = exercise("4", "wgpu")
+    wrong = check.mistake_images(ex, "winding")
+    monkeypatch.setattr(check, "_solution_images", lambda _ex: wrong)
+    verdict = check.judge(wrong, ex, tmp_path / "x.py")
+    assert verdict.status == check.FAIL
+    t0 = verdict.metrics[0][2]
+    assert t0 and not any("solution rendered here" in line for line in t0)  # the reference's bound, not rounding
+    assert verdict.metrics[1][2] == []  # later times: equal to this machine's solution
