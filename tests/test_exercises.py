@@ -89,6 +89,7 @@ def test_solution_passes_starter_fails_and_each_mistake_is_diagnosed_as_itself(e
     solution = check.judge(check.render_variant(source.solution_source(ex), ex), ex, file)
     assert solution.status == check.PASS, solution.report()
     assert len(solution.metrics) == len(ex.times)
+    assert all(m.max_abs == 0 for _, m, _ in solution.metrics[1:])  # later times: shown against the same render
     starter = check.judge(check.render_variant(source.starter_source(ex), ex), ex, file)
     assert starter.status == check.FAIL, starter.report()
     images = {m.key: check.mistake_images(ex, m.key) for m in ex.mistakes}
