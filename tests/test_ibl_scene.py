@@ -110,49 +110,46 @@ def test_a_rough_dielectric_shows_the_float64_integral_over_the_sky(rendered):
     assert np.all(np.abs(got - truth) <= 0.08 * truth + 1 / 255), np.abs(got - truth).max()
 
 
-def test_gpu_compute_maps_match_the_float64_maps():
-    """wgpu_path/scene/ibl.py's compute passes against core/course/ibl_maps.py on the same sky and samples:
-    float32 against float64 sums (relative 1e-4 for the irradiance, the table and the mirror level, whose band
-    weights are float32 cosines); the prefiltered levels above the mirror within 1% mean (a sample on a texel
-    edge may pick the neighbour: measured 0.08-0.30% on lavapipe, 0.13-0.49% on an H100, 2026-11-27)."""
+def assert_near_the_float64_maps(gpu) -> None:
+    """A path's compute maps of sky() at 64 samples against core/course/ibl_maps.py's: float32 against float64
+    sums (relative 1e-4 for the irradiance, the table and the mirror level, whose band weights are float32
+    cosines); the prefiltered levels above the mirror within 1% mean (a sample on a texel edge may pick the
+    neighbour: measured 0.08-0.30% on lavapipe, 0.13-0.49% on an H100, 2026-11-27)."""
     from wgpurender.core.course import ibl_maps
     from wgpurender.core.course.environment import sky
-    from wgpurender.wgpu_path.device.context import get_context
-    from wgpurender.wgpu_path.scene.ibl import make_maps
 
-    env = sky()
-    gpu = make_maps(get_context(), env, 64)
-    cpu = ibl_maps.make_arrays(env, 64)
+    cpu = ibl_maps.make_arrays(sky(), 64)
     assert np.allclose(gpu.irradiance, cpu.irradiance, rtol=1e-4, atol=1e-6)
     assert np.allclose(gpu.lut, cpu.lut, rtol=1e-3, atol=1e-4)
     assert np.allclose(gpu.prefiltered[0], cpu.prefiltered[0], rtol=1e-4, atol=1e-6)
     for k in range(1, ibl_maps.LEVELS):
-        diff = np.abs(gpu.prefiltered[k] - cpu.prefiltered[k])
-        assert diff.mean() < 0.01 * cpu.prefiltered[k].mean(), k
+        assert np.abs(gpu.prefiltered[k] - cpu.prefiltered[k]).mean() < 0.01 * cpu.prefiltered[k].mean(), k
+
+
+def test_gpu_compute_maps_match_the_float64_maps():
+    """wgpu_path/scene/ibl.py's compute passes against the float64 maps on the same sky and samples."""
+    from wgpurender.core.course.environment import sky
+    from wgpurender.wgpu_path.device.context import get_context
+    from wgpurender.wgpu_path.scene.ibl import make_maps
+
+    assert_near_the_float64_maps(make_maps(get_context(), sky(), 64))
 
 
 def test_raw_compute_maps_match_the_float64_maps_and_the_wgpu_path():
-    """raw_path/scene/ibl.py (shaders_glsl/ibl.comp) against the float64 maps under the bounds above, and the wgpu
-    path's maps (twins operation for operation: the scenes' images rest on it): the prefiltered levels and the table
-    equal; the irradiance sums (8192 terms each) within relative 1e-6, as a driver may contract a multiply-add
-    differently in the two compiled modules (measured 2026-11-27: equal on lavapipe, 1.8e-7 apart at most on an
-    H100, about one float32 ulp; the IBL scene's images stayed equal there)."""
-    from wgpurender.core.course import ibl_maps
+    """raw_path/scene/ibl.py (shaders_glsl/ibl.comp) against the float64 maps, and the wgpu path's maps (twins
+    operation for operation: the scenes' images rest on it): the prefiltered levels and the table equal; the
+    irradiance sums (8192 terms each) within relative 1e-6, as a driver may contract a multiply-add differently in
+    the two compiled modules (measured 2026-11-27: equal on lavapipe, 1.8e-7 apart at most on an H100, about one
+    float32 ulp; the IBL scene's images stayed equal there)."""
     from wgpurender.core.course.environment import sky
     from wgpurender.raw_path.device.context import get_vulkan
     from wgpurender.raw_path.scene.ibl import make_maps as raw_maps
     from wgpurender.wgpu_path.device.context import get_context
     from wgpurender.wgpu_path.scene.ibl import make_maps as wgpu_maps
 
-    env = sky()
-    raw = raw_maps(get_vulkan(), env, 64)
-    cpu = ibl_maps.make_arrays(env, 64)
-    assert np.allclose(raw.irradiance, cpu.irradiance, rtol=1e-4, atol=1e-6)
-    assert np.allclose(raw.lut, cpu.lut, rtol=1e-3, atol=1e-4)
-    assert np.allclose(raw.prefiltered[0], cpu.prefiltered[0], rtol=1e-4, atol=1e-6)
-    for k in range(1, ibl_maps.LEVELS):
-        assert np.abs(raw.prefiltered[k] - cpu.prefiltered[k]).mean() < 0.01 * cpu.prefiltered[k].mean(), k
-    wgpu = wgpu_maps(get_context(), env, 64)
+    raw = raw_maps(get_vulkan(), sky(), 64)
+    assert_near_the_float64_maps(raw)
+    wgpu = wgpu_maps(get_context(), sky(), 64)
     assert np.allclose(raw.irradiance, wgpu.irradiance, rtol=1e-6, atol=0)
     for name in ("prefiltered", "lut"):
         assert np.array_equal(getattr(raw, name), getattr(wgpu, name)), name
