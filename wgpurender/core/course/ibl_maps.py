@@ -28,6 +28,14 @@ LUT_SIZE = 32
 SAMPLES = 256  # bench accuracy's best sample count on its Pareto front (docs/accuracy.md)
 MAX_ENVIRONMENT = (256, 128)  # a larger environment is averaged down to this first (solid-angle weighted)
 SAMPLE_CHOICES = (16, 64, 256, 1024)
+# The compute passes that make the maps, in pack()'s order (ibl.wgsl's entry points; ibl.comp's -D variants are
+# the names in capitals): each writes its region of the packed buffer.
+PASSES = ("irradiance", "prefilter", "brdf_lut")
+
+
+def pass_sizes() -> tuple[tuple[str, tuple[int, int], int], ...]:
+    """(pass, (width, height), depth) of each compute pass: depth is the prefilter's levels, else 1."""
+    return tuple(zip(PASSES, (IRRADIANCE_SIZE, PREFILTER_SIZE, (LUT_SIZE, LUT_SIZE)), (1, LEVELS, 1), strict=True))
 
 
 @dataclass(frozen=True)

@@ -119,16 +119,13 @@ class SceneSubpass:
 
     def ibl_buffer(self):
         """The scene's [environment] maps, made by compute passes (raw_path/scene/ibl.py, the twin of the wgpu
-        path's) and packed into one host-visible storage buffer."""
+        path's) straight into one storage buffer in the packed layout."""
         if getattr(self, "_ibl_buffer", None) is None:
-            from wgpurender.core.course.ibl_maps import pack, scene_environment
-            from wgpurender.raw_path.scene.ibl import make_maps
+            from wgpurender.core.course.ibl_maps import scene_environment
+            from wgpurender.raw_path.scene.ibl import scene_maps_buffer
 
             env = self.scene.environment
-            data = pack(make_maps(self.ctx, scene_environment(env), env.samples))
-            self._ibl_buffer = create_buffer(self.ctx, self.owned, data.nbytes, vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                             HOST_MEMORY)
-            write_host_buffer(self.ctx, self._ibl_buffer, data)
+            self._ibl_buffer = scene_maps_buffer(self.ctx, self.owned, scene_environment(env), env.samples)
         return self._ibl_buffer
 
     def _setup_sets(self) -> None:

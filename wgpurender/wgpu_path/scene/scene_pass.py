@@ -178,13 +178,11 @@ class ScenePassRenderer:
         """The image-based lighting maps of the scene's [environment], made once by compute passes (ibl.py) in
         core/course/ibl_maps.py's packed layout."""
         if getattr(self, "_ibl_buffer", None) is None:
-            from wgpurender.core.course.ibl_maps import pack, scene_environment
-            from wgpurender.wgpu_path.scene.ibl import make_maps
+            from wgpurender.core.course.ibl_maps import scene_environment
+            from wgpurender.wgpu_path.scene.ibl import scene_maps_buffer
 
             env = self.scene.environment
-            data = pack(make_maps(self.ctx, scene_environment(env), env.samples))
-            self._ibl_buffer = self.ctx.device.create_buffer_with_data(
-                data=data.tobytes(), usage=wgpu.BufferUsage.STORAGE, label="scene-ibl")
+            self._ibl_buffer = scene_maps_buffer(self.ctx, scene_environment(env), env.samples)
         return self._ibl_buffer
 
     def shader_module(self, variant: ShaderVariant, culled: bool = False) -> wgpu.GPUShaderModule:
