@@ -640,10 +640,10 @@ CONCEPTS: list[Concept] = [
     Concept(
         "compute pipelines",
         ("vkCreateComputePipelines", "VkComputePipelineCreateInfo", "vkCmdBindPipeline(COMPUTE)", "vkCmdDispatch"),
-        _raw("scene.ibl:_compute_pipeline", "scene.ibl:make_maps"),
+        _raw("scene.ibl:_compute_pipeline", "scene.ibl:_record"),
         ("device.create_compute_pipeline(layout=, compute={module, entry_point, constants})",
          "encoder.begin_compute_pass", "compute_pass.dispatch_workgroups"),
-        _wgpu("post.passes:ComputePass.__init__", "post.passes:ComputePass.dispatch", "scene.ibl:_pass"),
+        _wgpu("post.passes:ComputePass.__init__", "post.passes:ComputePass.dispatch", "scene.ibl:scene_maps_buffer"),
         "The same object: a pipeline with one shader stage, bound in a compute pass and dispatched in workgroups "
         "(8x8 here, one thread per texel or pixel). Both paths make the image-based lighting maps this way "
         "(ibl.wgsl; ibl.comp, its GLSL twin, one variant per pass where WGSL names three entry points); Vulkan "
