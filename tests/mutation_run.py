@@ -58,6 +58,11 @@ LIGHTS = "tests/test_gltf_lights.py"
 IBL = "tests/test_ibl.py"
 IBL_SCENE = "tests/test_ibl_scene.py"
 PLAN_BUILT = "tests/test_plan_is_what_is_built.py|ibl"
+SB = "tests/test_structure_bounds.py"
+LOUD = "tests/test_loud_checks.py"
+DROPPED = "tests/test_dropped_effects.py"
+STRUCT = "wgpurender/core/verdict/structure.py"
+TOLS = "wgpurender/core/verdict/tolerances.py"
 GLTF_RENDER = "tests/test_gltf_render.py"
 EX = "tests/test_exercises.py"
 EX_WHEEL = "tests/test_wheel.py|grading"
@@ -913,6 +918,41 @@ MUTATIONS = [
      "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
     ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
      "maps = make_arrays(environment, 16)", [IBL]),
+    # issue 32 item 6: size-free bounds that catch a dropped post effect, and size classes
+    (STRUCT, "return np.minimum((r * RINGS).astype(int), RINGS - 1)",
+     "return np.minimum((r * RINGS).astype(int), RINGS)", [SB]),
+    (STRUCT, "rings, lit = ring_index(h, w), a @ LUMA > LIT",
+     "rings, lit = ring_index(h, w), b @ LUMA > LIT", [SB]),
+    (STRUCT, "if np.count_nonzero(inside) >= MIN_RING * h * w:", "if np.count_nonzero(inside) > 0:", [SB]),
+    (STRUCT, "np.abs(np.median(b[inside] - a[inside], axis=0)).max()",
+     "np.abs(np.mean(b[inside] - a[inside], axis=0)).max()", [SB]),
+    (STRUCT, "np.abs(np.median(b[inside] - a[inside], axis=0)).max()",
+     "np.median(b[inside] - a[inside], axis=0).max()", [SB]),
+    (STRUCT, "LIT = 2.0", "LIT = -1.0", [SB]),
+    (STRUCT, "np.hypot(np.diff(y, axis=1)[:-1], np.diff(y, axis=0)[:, :-1])",
+     "np.hypot(np.diff(y, axis=0)[:, :-1], 0)", [SB]),
+    (STRUCT, "(mean_gradient(actual) + 1.0) / (mean_gradient(expected) + 1.0)",
+     "(mean_gradient(expected) + 1.0) / (mean_gradient(actual) + 1.0)", [SB]),
+    (TOLS, "            if width * height <= pixels:", "            if width * height < pixels:", [SB]),
+    (TOLS, "return dataclasses.replace(self, size=name, sizes=(), **fields)",
+     "return dataclasses.replace(self, size=name, sizes=())", [SB]),
+    (TOLS, "        if not self.size:\n            return self", "        if False:\n            return self", [SB]),
+    (TOLS, "measured.radial > self.radial", "measured.radial >= self.radial", [SB]),
+    (TOLS, "abs(measured.detail) > self.detail", "measured.detail > self.detail", [SB]),
+    (TOLS, '"radial": radial + 1,', '"radial": radial,', [SB]),
+    (TOLS, "max(0.02, _round_up(2 * detail))", "max(0.02, _round_up(detail))", [SB]),
+    (TOLS, "detail = max(abs(s.detail) for s in spread)", "detail = max(s.detail for s in spread)", [SB]),
+    (TOLS, "return math.ceil(round(value * scale, 9)) / scale", "return math.ceil(value * scale) / scale", [LOUD]),
+    ("wgpurender/implementations.py", "base, rows = sizes[0], {}", "base, rows = sizes[-1], {}", [LOUD]),
+    ("wgpurender/implementations.py", "for size in sizes[1:] if name in measured[size]",
+     "for size in sizes[2:] if name in measured[size]", [LOUD]),
+    ("wgpurender/verify.py", "False, radial=1.0, detail=0.02)", "False)", [SB]),
+    ("tests/dropped_effects.py", 'if lines[i].split("#")[0].strip() == "[[post]]"]',
+     'if lines[i].split("#")[0].strip() == "[[models]]"]', [SB]),
+    ("wgpurender/verify_matrix.py", "tol = None if tol is None else tol.at_size(ia.shape[1], ia.shape[0])",
+     "tol = tol", [DROPPED]),
+    ("wgpurender/verify_matrix.py", "tol.exceeded(measure(ia, ib)) + tol.structure_exceeded(structure(ia, ib))",
+     "tol.exceeded(measure(ia, ib))", [DROPPED]),
 ]
 
 

@@ -35,8 +35,8 @@ def test_a_darker_outer_ring_is_its_median_shift():
 def test_sign_balanced_differences_have_no_radial_shift():
     a = gray(100)
     b = a.copy()
-    b[::2, ::2, :3] += 9  # a quarter of the pixels up, a quarter down: median 0 in every ring
-    b[1::2, 1::2, :3] -= 9
+    b[::2, ::2, :3] += 9  # a quarter of the pixels up, a quarter down (less): median 0, mean 1.75
+    b[1::2, 1::2, :3] -= 2
     assert radial_shift(a, b) == 0.0
 
 
@@ -118,3 +118,12 @@ def test_a_cut_scene_loses_exactly_one_effect(tmp_path, name):
         cut = load_scene(without_post(path, k, tmp_path / f"{name}-{k}.toml"))
         assert [step.effect for step in cut.post] == effects[:k] + effects[k + 1:]
         assert len(cut.models) == len(load_scene(path).models)
+
+
+def test_the_raw_chain_bound_catches_a_ring_shift():
+    """raw vs wgpu-vulkan on a post chain measured radial 0/255 and |detail| <= 0.0003 at 160x120 to 640x480
+    (docs/runs/2026-11-27-size-free-bounds): within; a vignette's 3/255 or a lost sharpen is not."""
+    from wgpurender.verify import CHAIN_BOUND
+
+    assert CHAIN_BOUND.structure_exceeded(Structure(0.0, 0.0003)) == []
+    assert len(CHAIN_BOUND.structure_exceeded(Structure(3.0, -0.5))) == 2
