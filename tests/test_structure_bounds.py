@@ -59,14 +59,33 @@ def test_a_ring_with_too_few_lit_pixels_is_left_out():
     assert radial_shift(a, b) == 50.0
 
 
-def test_detail_is_the_log2_gradient_ratio():
-    """Columns alternating 0 and 100: every horizontal step is 100/255 (vertical 0), so the mean gradient is
-    100 against a flat image's 0: log2(101 / 1)."""
-    stripes = gray(0)
-    stripes[:, ::2, :3] = 100
-    assert detail_change(gray(50), stripes) == pytest.approx(math.log2(101))
-    assert detail_change(stripes, gray(50)) == pytest.approx(-math.log2(101))
-    assert structure(stripes, stripes) == Structure(0.0, 0.0)
+def stripes(low: int, high: int, h: int = 60, w: int = 80) -> np.ndarray:
+    image = gray(low, h, w)
+    image[:, ::2, :3] = high
+    return image
+
+
+def test_detail_is_the_log2_gradient_ratio_on_edges():
+    """Columns alternating 0 and 200 (each 3x3 spans 200 > EDGE: all edge pixels): every horizontal step is
+    200/255, vertical 0, so the mean gradient is 200; halving the contrast to 50..150 reads log2(101 / 201),
+    flattening log2(1 / 201)."""
+    assert detail_change(stripes(0, 200), stripes(50, 150)) == pytest.approx(math.log2(101 / 201))
+    assert detail_change(stripes(0, 200), gray(100)) == pytest.approx(-math.log2(201))
+    assert detail_change(stripes(0, 200), stripes(0, 255)) == pytest.approx(math.log2(256 / 201))  # sharpened
+    assert structure(stripes(0, 200), stripes(0, 200)) == Structure(0.0, 0.0)
+
+
+def test_detail_ignores_contrast_away_from_edges():
+    """Only the reference's edges count: texture-level contrast (a 3x3 span up to EDGE) may change freely, and
+    a reference without edges reads 0."""
+    assert detail_change(stripes(50, 150), gray(100)) == 0.0  # span 100: no edges
+    a = stripes(0, 200)
+    a[:, 40:, :3] = 100  # right half flat
+    b = a.copy()
+    b[:, 44::2, :3] = 140  # texture-level stripes, away from the left half's edges
+    assert detail_change(a, b) == 0.0
+    b[:, :40:2, :3] = 100  # the edges' contrast halved
+    assert detail_change(a, b) < -0.5
 
 
 TOL = Tolerance("final", "browser", 65, 0.85, 0.052, "m", "b", False, radial=1.0, detail=0.15, size="160x120",

@@ -190,7 +190,8 @@ def calibrate(spread: list[Metrics], cls: str) -> dict:
 def calibrate_structure(spread: list[Structure], sizes: list[str]) -> dict:
     """The size-free bounds (structure.py) from their spread over ``sizes``: radial = worst + 1/255 (a ring's
     median is 0 between implementations that differ sign-balanced); detail = 2 x the worst magnitude, at least
-    0.02 (the log2 gradient ratio; a dropped FXAA measured 0.17-0.37, a dropped sharpen -0.55 at 160-320 px)."""
+    0.02 (the log2 edge-gradient ratio: a dropped FXAA measured 0.29-0.45, a dropped sharpen -0.41 to -0.52, at
+    160x120 to 640x480 in docs/runs/2026-11-27-size-free-bounds)."""
     radial = max(s.radial for s in spread)
     detail = max(abs(s.detail) for s in spread)
     return {"radial": radial + 1, "detail": max(0.02, _round_up(2 * detail)),
