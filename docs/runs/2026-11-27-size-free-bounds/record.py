@@ -22,7 +22,7 @@ from wgpurender.wgpu_path.render import render_any
 out, size = Path(sys.argv[1]), tuple(int(v) for v in sys.argv[2].split("x"))
 root = out / sys.argv[2]
 post = [n for n, p in impls.scene_files().items() if load_scene(p).post]
-targets = post if "--post-only" in sys.argv else [t for t in impls.all_targets() if t != "clear"]
+targets = post if "--post-only" in sys.argv else impls.all_targets()
 t0 = time.time()
 wanted = ["raw", "wgpu-vulkan", "wgpu-gl", "browser"]
 images, skipped, who = render_all(wanted, targets, size, root / "work")
