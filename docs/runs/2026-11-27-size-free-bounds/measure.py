@@ -8,12 +8,14 @@ import csv
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from wgpurender.core.files.imageio import load_png
-from wgpurender.core.verdict.structure import structure
+from wgpurender.core.verdict.structure import gradient, luminance, structure
 from wgpurender.core.verdict.tolerances import measure
 
 FIELDS = ("size", "kind", "impl", "target", "effect", "max_abs", "changed_pixels", "pixels", "changed", "flip_mean",
-          "radial", "detail")
+          "radial", "detail", "detail_all")
 
 
 def row(size, kind, impl, target, effect, ref, img):
@@ -21,7 +23,12 @@ def row(size, kind, impl, target, effect, ref, img):
     return {"size": size, "kind": kind, "impl": impl, "target": target, "effect": effect, "max_abs": m.max_abs,
             "changed_pixels": m.changed_pixels, "pixels": m.pixels, "changed": f"{m.changed:.6f}",
             "flip_mean": f"{m.flip_mean:.6f}", "radial": f"{s.radial:g}",
-            "detail": f"{s.detail:.4f}"}
+            "detail": f"{s.detail:.4f}", "detail_all": f"{detail_all(ref, img):.4f}"}
+
+
+def detail_all(ref, img):
+    """detail over every pixel, not only the reference's edges: the first version, kept to show why it changed."""
+    return float(np.log2((gradient(luminance(img)).mean() + 1.0) / (gradient(luminance(ref)).mean() + 1.0)))
 
 
 rows = []
