@@ -92,6 +92,34 @@ layout(location = 3) in vec4 v_tangent;
 #ifdef VERTEX_COLOR
 layout(location = 4) in vec4 v_color;
 #endif
+#ifdef UV1
+layout(location = 5) in vec2 v_uv1;
+#endif
+#ifdef UV2
+layout(location = 6) in vec2 v_uv2;
+#endif
+#ifdef UV3
+layout(location = 7) in vec2 v_uv3;
+#endif
+#ifdef UV4
+layout(location = 8) in vec2 v_uv4;
+#endif
+// Each map samples <MAP>_UV: v_uv, or v_uv<k> when glslc gets -D<MAP>_UV=v_uv<k> (a further coordinate slot)
+#ifndef ALBEDO_UV
+#define ALBEDO_UV v_uv
+#endif
+#ifndef NORMAL_UV
+#define NORMAL_UV v_uv
+#endif
+#ifndef ROUGHNESS_UV
+#define ROUGHNESS_UV v_uv
+#endif
+#ifndef EMISSIVE_UV
+#define EMISSIVE_UV v_uv
+#endif
+#ifndef OCCLUSION_UV
+#define OCCLUSION_UV v_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -205,26 +233,26 @@ vec3 srgb_encode(vec3 c) {
 void main() {
     vec4 base = material.base_color;
 #ifdef ALBEDO_MAP
-    base = base * texture(albedo_tex, v_uv);
+    base = base * texture(albedo_tex, ALBEDO_UV);
 #endif
 #ifdef VERTEX_COLOR
     base = base * v_color;
 #endif
 #ifdef EMISSIVE
 #ifdef EMISSIVE_MAP
-    vec3 emitted = material.emissive.rgb * texture(emissive_tex, v_uv).rgb;
+    vec3 emitted = material.emissive.rgb * texture(emissive_tex, EMISSIVE_UV).rgb;
 #else
     vec3 emitted = material.emissive.rgb;
 #endif
 #endif
 #ifdef LIGHTING
 #ifdef NORMAL_MAP
-    vec3 normal_texel = texture(normal_tex, v_uv).xyz;
+    vec3 normal_texel = texture(normal_tex, NORMAL_UV).xyz;
 #else
     vec3 normal_texel = vec3(0.5, 0.5, 1.0);
 #endif
 #ifdef ROUGHNESS_MAP
-    vec4 roughness_texel = texture(roughness_tex, v_uv);
+    vec4 roughness_texel = texture(roughness_tex, ROUGHNESS_UV);
     float roughness = material.roughness * roughness_texel.g;
 #ifdef PBR
     pbr_metallic = material.metallic * roughness_texel.b;
@@ -236,7 +264,7 @@ void main() {
 #endif
 #endif
 #ifdef OCCLUSION_MAP
-    float occlusion_texel = texture(occlusion_tex, v_uv).r;
+    float occlusion_texel = texture(occlusion_tex, OCCLUSION_UV).r;
     ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
 #endif
     vec3 color = shade(base.rgb, normal_texel, roughness);

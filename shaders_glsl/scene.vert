@@ -6,7 +6,8 @@
 // with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
 //   VERTEX_COLOR, ALPHA_MASK, OPAQUE_ALPHA, DOUBLE_SIDED, EMISSIVE, EMISSIVE_MAP, OCCLUSION_MAP (a model
-//   file's own materials),
+//   file's own materials), UV1 .. UV4 (further texture coordinate slots, a model file's materials only; the
+//   fragment shader's <MAP>_UV=v_uv<k> says which map samples which),
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
 // The std140 offsets of the blocks are spelled out in wgpurender/raw_path/device/uniforms.py.
 
@@ -40,6 +41,18 @@ layout(location = 3) in vec4 a_tangent;
 #ifdef VERTEX_COLOR
 layout(location = 4) in vec4 a_color;
 #endif
+#ifdef UV1
+layout(location = 5) in vec2 a_uv1;
+#endif
+#ifdef UV2
+layout(location = 6) in vec2 a_uv2;
+#endif
+#ifdef UV3
+layout(location = 7) in vec2 a_uv3;
+#endif
+#ifdef UV4
+layout(location = 8) in vec2 a_uv4;
+#endif
 
 #ifdef LIGHTING
 layout(location = 0) out vec3 v_world_position;
@@ -53,6 +66,18 @@ layout(location = 3) out vec4 v_tangent;
 #endif
 #ifdef VERTEX_COLOR
 layout(location = 4) out vec4 v_color;
+#endif
+#ifdef UV1
+layout(location = 5) out vec2 v_uv1;
+#endif
+#ifdef UV2
+layout(location = 6) out vec2 v_uv2;
+#endif
+#ifdef UV3
+layout(location = 7) out vec2 v_uv3;
+#endif
+#ifdef UV4
+layout(location = 8) out vec2 v_uv4;
 #endif
 
 void main() {
@@ -77,5 +102,17 @@ void main() {
 #endif
 #ifdef VERTEX_COLOR
     v_color = a_color;
+#endif
+#ifdef UV1
+    v_uv1 = a_uv1;
+#endif
+#ifdef UV2
+    v_uv2 = a_uv2;
+#endif
+#ifdef UV3
+    v_uv3 = a_uv3;
+#endif
+#ifdef UV4
+    v_uv4 = a_uv4;
 #endif
 }

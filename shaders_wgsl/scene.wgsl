@@ -38,6 +38,10 @@
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 // ibl (a pbr material in a scene with an [environment]): ibl_shading.wgsl's image-based lighting takes the ambient
 // term's place (times the occlusion factor with occlusion_map); the lights add to it as above.
+// uv1 .. uv4 (derived from the "<map>_uv<k>" flags): the mesh's further texture coordinate slots (a glTF material
+// whose textures sample several TEXCOORD sets or transforms, each applied at load: core/models/gltf_geometry
+// .uv_slots); each map samples in.{{<MAP>_UV}}, which shader_interface fills with "uv" or "uv<k>". Only model
+// files' materials have them, and those never flip v (flip_v is a scene material's key).
 
 {{STRUCTS}}
 
@@ -103,6 +107,18 @@ struct VertexIn {
 #if vertex_color
     @location(4) color: vec4f,
 #endif
+#if uv1
+    @location(5) uv1: vec2f,
+#endif
+#if uv2
+    @location(6) uv2: vec2f,
+#endif
+#if uv3
+    @location(7) uv3: vec2f,
+#endif
+#if uv4
+    @location(8) uv4: vec2f,
+#endif
 };
 
 struct VertexOut {
@@ -119,6 +135,18 @@ struct VertexOut {
 #endif
 #if vertex_color
     @location(4) color: vec4f,
+#endif
+#if uv1
+    @location(5) uv1: vec2f,
+#endif
+#if uv2
+    @location(6) uv2: vec2f,
+#endif
+#if uv3
+    @location(7) uv3: vec2f,
+#endif
+#if uv4
+    @location(8) uv4: vec2f,
 #endif
 };
 
@@ -150,6 +178,18 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
 #endif
 #if vertex_color
     out.color = in.color;
+#endif
+#if uv1
+    out.uv1 = in.uv1;
+#endif
+#if uv2
+    out.uv2 = in.uv2;
+#endif
+#if uv3
+    out.uv3 = in.uv3;
+#endif
+#if uv4
+    out.uv4 = in.uv4;
 #endif
     return out;
 }
@@ -273,14 +313,14 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #endif
     var base = material.base_color;
 #if albedo_map
-    base = base * textureSample(albedo_tex, albedo_sampler, in.uv);
+    base = base * textureSample(albedo_tex, albedo_sampler, in.{{ALBEDO_UV}});
 #endif
 #if vertex_color
     base = base * in.color;
 #endif
 #if emissive
 #if emissive_map
-    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.uv).rgb;
+    let emitted = material.emissive.rgb * textureSample(emissive_tex, emissive_sampler, in.{{EMISSIVE_UV}}).rgb;
 #else
     let emitted = material.emissive.rgb;
 #endif
@@ -288,12 +328,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #if lighting
     // Textures are sampled here, in uniform control flow (implicit derivatives), and passed down.
 #if normal_map
-    let normal_texel = textureSample(normal_tex, normal_sampler, in.uv).xyz;
+    let normal_texel = textureSample(normal_tex, normal_sampler, in.{{NORMAL_UV}}).xyz;
 #else
     let normal_texel = vec3f(0.5, 0.5, 1.0);
 #endif
 #if roughness_map
-    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.uv);
+    let roughness_texel = textureSample(roughness_tex, roughness_sampler, in.{{ROUGHNESS_UV}});
     let roughness = material.roughness * roughness_texel.g;
 #if pbr
     pbr_metallic = material.metallic * roughness_texel.b;
@@ -305,7 +345,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 #endif
 #endif
 #if occlusion_map
-    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.uv).r;
+    let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.{{OCCLUSION_UV}}).r;
     ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
 #endif
     var color = shade(base.rgb, in, normal_texel, roughness);

@@ -59,7 +59,6 @@ IBL = "tests/test_ibl.py"
 IBL_SCENE = "tests/test_ibl_scene.py"
 PLAN_BUILT = "tests/test_plan_is_what_is_built.py|ibl"
 SB = "tests/test_structure_bounds.py"
-LOUD = "tests/test_loud_checks.py"
 DROPPED = "tests/test_dropped_effects.py"
 STRUCT = "wgpurender/core/verdict/structure.py"
 TOLS = "wgpurender/core/verdict/tolerances.py"
@@ -76,6 +75,8 @@ INST = "tests/test_instancing.py"
 NOBACK = "tests/test_no_back_doors.py"
 BANDWIDTH = "tests/test_bandwidth_record.py"
 LOUD = "tests/test_loud_checks.py"
+UVSETS = "tests/test_gltf_uv_sets.py"
+FBX_SAMPLES = "tests/test_fbx_assimp_samples.py"
 DOCFIG = "tests/test_doc_figures.py"
 USERNUM = "tests/test_user_numbers.py"
 STAGESTATE = "tests/test_stage_state.py"
@@ -918,6 +919,60 @@ MUTATIONS = [
      "var color = ibl_radiance(n, v, albedo, 0.0, roughness);", [IBL_SCENE]),
     ("wgpurender/bench/accuracy_ibl.py", "maps = make_arrays(environment, samples)",
      "maps = make_arrays(environment, 16)", [IBL]),
+    # issue 30: per-texture coordinate sets and transforms (uvsets), third-party FBX files
+    ("wgpurender/core/models/gltf_geometry.py", "return slots or [(0, None, ())]",
+     "return slots[:1] or [(0, None, ())]", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "if all((s, k) != (texcoord, key) for s, _, k in slots):",
+     "if all(s != texcoord for s, _, k in slots):", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "uvs = [_slot_uvs(arrays[name], transform) for",
+     "uvs = [_slot_uvs(arrays[name], None) for", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "TOPOLOGIES[mode], tuple(uvs[1:]))",
+     "TOPOLOGIES[mode], tuple(uvs[1:2]))", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py",
+     "used = {f\"TEXCOORD_{s}\" for s, _, _ in uv_slots(doc, prim.get(\"material\"))}",
+     "used = {\"TEXCOORD_0\"}", [GLTF_RENDER + "|explain_lists_what_was_taken"]),
+    ("wgpurender/core/models/gltf_geometry.py",
+     "    infos = [mat.get(\"normalTexture\"), mat.get(\"pbrMetallicRoughness\", {}).get(\"baseColorTexture\"),",
+     "    infos = [mat.get(\"pbrMetallicRoughness\", {}).get(\"baseColorTexture\"), mat.get(\"normalTexture\"),",
+     [UVSETS]),
+    ("wgpurender/core/models/mesh.py", "g.colors, g.material, g.topology, g.extra_uvs",
+     "g.colors, g.material, g.topology, g.extra_uvs[:1]", [UVSETS]),
+    ("wgpurender/core/models/mesh.py", "return self.extra_uvs[int(name[2:]) - 1]", "return self.uvs", [UVSETS]),
+    ("wgpurender/core/plan/model.py", "slots = {f\"uv{UV_SLOT_FLAGS[f][1]}\" for f in",
+     "slots = {\"uv1\" for f in", [UVSETS]),
+    ("wgpurender/core/plan/file_materials.py", "for feature, k, how in material.uv_slots if feature in sampled]",
+     "for feature, k, how in material.uv_slots if feature not in sampled]", [UVSETS]),
+    ("wgpurender/core/plan/meshes.py", "if len(mesh.extra_uvs) < k or mesh.extra_uvs[k - 1] is None:",
+     "if False:", [UVSETS]),
+    ("wgpurender/core/scene/gltf_materials.py", "        if slot:\n", "        if slot == 1:\n", [UVSETS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "_UV\"] = f\"uv{k}\"", "_UV\"] = \"uv\"", [UVSETS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "**{f\"uv{k}\": (4 + k, 2) for k",
+     "**{f\"uv{k}\": (5, 2) for k", [UVSETS]),
+    ("wgpurender/raw_path/scene/resources.py", "**{f\"uv{k}\": (4 + k, 2) for k", "**{f\"uv{k}\": (5, 2) for k",
+     [UVSETS]),
+    ("wgpurender/raw_path/scene/variants.py", "_UV=v_uv{k}\")", "_UV=v_uv\")", [UVSETS]),
+    ("shaders_wgsl/scene.wgsl", "    out.uv1 = in.uv1;", "    out.uv1 = in.uv;", [UVSETS]),
+    ("shaders_wgsl/scene.wgsl", "    out.uv3 = in.uv3;", "    out.uv3 = in.uv2;", [UVSETS]),
+    ("shaders_glsl/scene.vert", "    v_uv1 = a_uv1;", "    v_uv1 = a_uv;", [UVSETS]),
+    ("shaders_glsl/scene.vert", "    v_uv2 = a_uv2;", "    v_uv2 = a_uv1;", [UVSETS]),
+    ("shaders_glsl/scene.frag", "#define EMISSIVE_UV v_uv\n", "#define EMISSIVE_UV v_uv1\n", [UVSETS]),
+    ("shaders_glsl/scene.frag", "texture(roughness_tex, ROUGHNESS_UV)", "texture(roughness_tex, v_uv)", [UVSETS]),
+    ("shaders_glsl/scene.frag", "texture(albedo_tex, ALBEDO_UV)", "texture(albedo_tex, v_uv)", [UVSETS]),
+    ("shaders_wgsl/scene.wgsl", "textureSample(roughness_tex, roughness_sampler, in.{{ROUGHNESS_UV}})",
+     "textureSample(roughness_tex, roughness_sampler, in.uv)", [UVSETS]),
+    ("shaders_wgsl/scene.wgsl", "textureSample(albedo_tex, albedo_sampler, in.{{ALBEDO_UV}})",
+     "textureSample(albedo_tex, albedo_sampler, in.uv)", [UVSETS]),
+    ("shaders_wgsl/scene.wgsl", "textureSample(occlusion_tex, occlusion_sampler, in.{{OCCLUSION_UV}})",
+     "textureSample(occlusion_tex, occlusion_sampler, in.uv)", [UVSETS]),
+    ("wgpurender/core/scene/fbx_materials.py", "    if written in embedded:", "    if False:", [FBX_SAMPLES]),
+    ("wgpurender/core/scene/fbx_materials.py", "beside = _inside(model, base) if base else None", "beside = None",
+     [FBX_SAMPLES]),
+    ("wgpurender/core/models/mesh.py", "        parts[-1].material = material\n", "\n", [FBX_SAMPLES]),
+    ("wgpurender/core/models/fbx.py", "ctypes.string_at(texture.pcData, texture.mWidth)",
+     "ctypes.string_at(texture.pcData, texture.mWidth // 2)", [FBX_SAMPLES]),
+    ("wgpurender/core/models/fbx.py", "for k in sorted({p[6] for p in placed})", "for k in [0]", [FBX_SAMPLES]),
+    ("wgpurender/core/scene/gltf_materials.py", "    if model.lower().endswith(\".fbx\"):", "    if False:",
+     [FBX_SAMPLES]),
     # issue 32 item 6: size-free bounds that catch a dropped post effect, and size classes
     (STRUCT, "return (r * RINGS).astype(int)", "return (r * (RINGS - 1)).astype(int)", [SB]),
     (STRUCT, "rings, lit = ring_index(h, w), luminance(a) > LIT",

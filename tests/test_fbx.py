@@ -91,9 +91,11 @@ def test_fbx_in_metres_y_up_is_taken_as_is(tmp_path):
     settings = {**BLENDER_AXES, "UpAxis": 1, "FrontAxis": 2, "FrontAxisSign": 1, "UnitScaleFactor": 100}
     mesh = load_mesh(tmp_path / write_fbx(tmp_path, settings), generate_tangents=False)
     assert np.allclose(mesh.positions.min(0), [X0, 0, Z0]) and np.allclose(mesh.positions.max(0), [X1, 0, Z1])
-    from wgpurender.core.scene.file_materials import fbx_entry  # the material: the scene's reader
+    from wgpurender.core.scene.load import load_scene  # the material: the scene's reader
 
-    assert set(fbx_entry(tmp_path / write_fbx(tmp_path, settings)).textures) == {"base_color", "normal"}
+    write_fbx(tmp_path, settings)
+    (material,) = load_scene(scene(tmp_path, "q.fbx")).models[0].file_materials.materials
+    assert (material.albedo_map.name, material.normal_map.name) == ("tex.png", "nrm.png")
 
 
 def test_fbx_explain_takes_diffuse_and_normal_maps(tmp_path, capsys):

@@ -317,15 +317,17 @@ def test_missing_decoder_is_one_line_naming_the_extension_and_pip(tmp_path, monk
 
 
 def test_explain_lists_the_extensions_used(tmp_path, capsys):
-    """--explain names each applied extension as used, a material's second, different transform as ignored by
-    name (the normal texture's, equal to the base colour's, is not)."""
+    """--explain names each applied extension as used; each distinct (set, transform) of a material gets its own
+    coordinate slot (the emissive and occlusion textures' slots 1 and 2), the normal texture's, equal to the base
+    colour's, shares slot 0; nothing of the material is ignored."""
     from wgpurender.cli import main
 
     g = GltfWriter()
     tex = g.texture(TEXELS)
     mat = g.material(pbrMetallicRoughness={"baseColorTexture": {"index": tex, "extensions": {
         "KHR_texture_transform": {"scale": [2, 2]}}}}, emissiveTexture={"index": tex}, emissiveFactor=[1, 1, 1],
-        normalTexture={"index": tex, "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}})
+        normalTexture={"index": tex, "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}},
+        occlusionTexture={"index": tex, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}})
     g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-1, -1, 1, 1)),
                                         "TEXCOORD_0": g.accessor(QUAD_UV)}, "indices": g.accessor(QUAD_INDICES),
                          "material": mat}]))
@@ -335,9 +337,10 @@ def test_explain_lists_the_extensions_used(tmp_path, capsys):
     out = capsys.readouterr().out
     for line in ("extensionsUsed KHR_texture_transform: used", "extensionsUsed KHR_mesh_quantization: used",
                  "extensionsUsed KHR_materials_sheen: ignored",
-                 "emissiveTexture KHR_texture_transform: ignored, sampled with the base colour texture's transform"):
+                 "emissive_map_uv1", "occlusion_map_uv2", "TEXCOORD_0 with KHR_texture_transform {'offset': (0.5, 0)}"
+                 ": coordinate slot 2"):
         assert line in out, line
-    assert "normalTexture KHR_texture_transform" not in out  # the same transform as the base colour's: applied
+    assert "normal_map_uv" not in out and "albedo_map_uv" not in out and "Texture: ignored" not in out
 
 
 def test_a_gltf_scene_imports_neither_trimesh_nor_scipy(tmp_path):

@@ -340,9 +340,9 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
 # -- what --explain says -------------------------------------------------------------------------------------------
 
 def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
-    """A material with emissive, occlusion (kept lit without lights: it scales the ambient term), metalness and
-    KHR_materials_clearcoat; extensionsUsed lists clearcoat and KHR_materials_unlit (supported): --explain names
-    what was taken and every ignored feature."""
+    """A material with emissive, occlusion on texCoord 1 (kept lit without lights: it scales the ambient term; the
+    mesh's second coordinate slot), metalness and KHR_materials_clearcoat; extensionsUsed lists clearcoat and
+    KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
     from wgpurender.cli import main
 
     g = GltfWriter()
@@ -351,7 +351,7 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
                      pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "metallicFactor": 1.0},
                      extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1}})
     prim = quad_primitive(g, -1, -1, 1, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
-    prim["attributes"]["TEXCOORD_1"] = prim["attributes"]["TEXCOORD_0"]
+    prim["attributes"]["TEXCOORD_1"] = prim["attributes"]["TEXCOORD_2"] = prim["attributes"]["TEXCOORD_0"]
     g.node(mesh=g.mesh([prim, {"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1))}, "mode": 1}]))
     g.doc["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_unlit"]
     g.write(tmp_path / "coat.glb")
@@ -363,10 +363,11 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
     assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
     for ignored in ("KHR_materials_clearcoat: ignored",
-                    "TEXCOORD_1 ignored", "LINES primitive drawn unlit", "occlusionTexture texCoord 1: ignored",
+                    "attribute(s) TEXCOORD_2 ignored", "LINES primitive drawn unlit", "occlusion_map_uv1",
                     "extensionsUsed KHR_materials_clearcoat: ignored"):
         assert ignored in out, ignored
-    assert "KHR_materials_unlit: ignored" not in out
+    assert "KHR_materials_unlit: ignored" not in out and "TEXCOORD_1 ignored" not in out
+    assert "occlusion_map" in out and "(TEXCOORD_1: coordinate slot 1)" in out  # texCoord 1: the second slot
     assert "metallicFactor 1" in out and "metalness" not in out  # metalness is taken: the metallic-roughness model
     assert "pbr: " in out and "glTF metallic-roughness material" in out
 

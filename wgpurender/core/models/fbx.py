@@ -11,12 +11,14 @@ units, so both are applied here from the scene metadata FBX carries (GlobalSetti
 
 Taken: meshes (triangulated), node transforms (parent @ child), normals (the file's, else smooth), UVs (assimp's
 v = 0 at the bottom turned to the mesh convention, v = 0 at the top), tangents (generated, as for every format
-without them), the first material's diffuse and normal (or bump) texture files and diffuse colour.
+without them), and each mesh's own material (diffuse colour, diffuse and normal (or bump) textures: files, or
+images embedded in the FBX), one draw per material (core/scene/fbx_materials.py).
 """
 
 from __future__ import annotations
 
 import ctypes
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -82,10 +84,12 @@ def conversion_text(meta: dict[str, float]) -> str:
             f"(x{unit / 100:g})")
 
 
-def load_fbx(path: Path) -> tuple[list[tuple], dict | None]:
-    """([(world 4x4, positions, faces, normals, uvs or None, mesh name)], first material or None).
+def load_fbx(path: Path) -> tuple[list[tuple], dict[int, dict]]:
+    """([(world 4x4, positions, faces, normals, uvs or None, mesh name, material index)], materials).
 
-    The material: {"name", "color", "textures": {role: Path}} with texture paths beside the file."""
+    The materials: the placed meshes' ones by index, each {"name", "color", "textures": {role: name as written},
+    "embedded": {name as written: index in the file's embedded textures}, "notes"}. Texture names are resolved
+    by the scene's reader (core/scene/fbx_materials.py: the model's folder only)."""
     pyassimp, pp = _assimp()
     flags = pp.aiProcess_Triangulate | pp.aiProcess_JoinIdenticalVertices | pp.aiProcess_SortByPType
     try:
@@ -93,15 +97,44 @@ def load_fbx(path: Path) -> tuple[list[tuple], dict | None]:
             meta = _metadata(scene)
             root = axis_and_unit_matrix(meta)
             placed = list(_walk(scene.rootnode, root))
-            material = _material(path, scene, placed)
-            if material is not None:
+            embedded = {_texture_name(t): i for i, t in enumerate(scene.textures)}
+            materials = {k: _material(scene.materials[k].properties, embedded) for k in sorted({p[6] for p in placed})
+                         if 0 <= k < len(scene.materials)}
+            for material in materials.values():
                 material["notes"] = (conversion_text(meta),)
     except UserError:
         raise
     except (pyassimp.errors.AssimpError, Exception) as err:  # AssimpError is a BaseException, not an Exception
         raise UserError(f"cannot read {path} as FBX: {str(err).strip() or type(err).__name__}; re-export it "
                         "(e.g. from Blender as FBX 7.4 binary) or convert it to glTF") from None
-    return placed, material
+    return placed, materials
+
+
+def _texture_name(texture) -> str:
+    """The file name an embedded texture stands for (what a material's texture property names)."""
+    name = texture.contents.mFilename
+    return bytes(name.data[: name.length]).decode("utf-8", "replace")
+
+
+def embedded_texture_bytes(path: Path, index: int) -> bytes:
+    """The encoded image (PNG, TGA, JPEG ...) of embedded texture ``index`` of an FBX file. assimp keeps an FBX's
+    embedded ``Video`` content compressed (height 0, width = its byte count)."""
+    stat = path.stat()
+    return _embedded_cached(str(path), stat.st_mtime_ns, stat.st_size, index)
+
+
+@functools.lru_cache(maxsize=8)
+def _embedded_cached(path: str, mtime_ns: int, size: int, index: int) -> bytes:
+    """One read per image while the file is unchanged: the plan asks each image's size, the upload its pixels."""
+    pyassimp, _ = _assimp()
+    with pyassimp.load(path) as scene:
+        if not 0 <= index < len(scene.textures):
+            raise UserError(f"{path}: embedded texture {index} does not exist (the file has {len(scene.textures)})")
+        texture = scene.textures[index].contents
+        if texture.mHeight != 0:
+            raise UserError(f"{path}: embedded texture {index} is raw texels, not an encoded image; re-export the "
+                            "FBX with its textures as files")
+        return ctypes.string_at(texture.pcData, texture.mWidth)
 
 
 def _walk(node, parent: np.ndarray):
@@ -121,16 +154,13 @@ def _walk(node, parent: np.ndarray):
         yield from _walk(child, world)
 
 
-def _material(path: Path, scene, placed: list) -> dict | None:
-    if not placed or not scene.materials:
-        return None
-    props = scene.materials[placed[0][6]].properties
+def _material(props, embedded: dict[str, int]) -> dict:
     textures = {}
     for (key, semantic), value in dict.items(props):  # pyassimp's items() drops the texture type
         role = TEXTURE_TYPES.get(semantic)
         if key == "file" and role is not None and role not in textures:
-            name = str(value).replace("\\", "/")
-            textures[role] = (path.parent / name).resolve()
+            textures[role] = str(value)
     color = dict.get(props, ("diffuse", 0))
     return {"name": str(dict.get(props, ("name", 0), "")), "textures": textures,
+            "embedded": {n: i for n, i in embedded.items() if n in textures.values()},
             "color": tuple(float(c) for c in color[:3]) if color is not None else None}

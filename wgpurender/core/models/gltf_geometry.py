@@ -35,12 +35,13 @@ class PrimitiveGeometry:
     positions: np.ndarray  # (N, 3) float64
     faces: np.ndarray  # (F, 3) int64, counter-clockwise front faces
     normals: np.ndarray | None
-    uvs: np.ndarray | None  # (N, 2), glTF convention: v = 0 at the top
+    uvs: np.ndarray | None  # (N, 2), glTF convention: v = 0 at the top; the first slot of uv_slots
     tangents: np.ndarray | None  # (N, 4)
     colors: np.ndarray | None  # (N, 4) linear RGBA
     material: int | None
     where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
     topology: str = "triangle-list"  # faces (F, 3); "line-list": (F, 2) segments; "point-list": (F, 1)
+    extra_uvs: tuple[np.ndarray | None, ...] = ()  # (N, 2) each: the material's coordinate slots 1.. (uv_slots)
 
 
 def node_matrix(node: dict) -> np.ndarray:
@@ -158,31 +159,38 @@ def _points_and_lines(idx: np.ndarray, mode: int) -> np.ndarray:
 
 
 def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
-    """A material's textureInfo objects, base colour first (its choice of coordinates leads)."""
+    """A material's textureInfo objects: the normal texture first (generated tangents follow the mesh's first
+    coordinate slot, and a normal map needs tangents of its own coordinates), then base colour,
+    metallic-roughness, emissive, occlusion."""
     if material is None:
         return []
     mat = doc.json.get("materials", [])[material]
-    infos = [mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"), mat.get("normalTexture"),
+    infos = [mat.get("normalTexture"), mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
              mat.get("occlusionTexture")]
     return [i for i in infos if isinstance(i, dict)]
 
 
-def uv_choice(doc: GltfDocument, material: int | None) -> tuple[int, dict | None]:
-    """(TEXCOORD set, KHR_texture_transform or None) the mesh's one set of texture coordinates is made with:
-    the base colour texture's (else the first texture's); texCoord and the transform's texCoord override included.
-    A texture of the material that samples otherwise is listed as ignored (gltf_materials)."""
-    infos = texture_infos(doc, material)
-    if not infos:
-        return 0, None
-    texcoord, _ = gltf_extensions.texture_uv_choice(infos[0])
-    transform = infos[0].get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
-    return texcoord, transform if isinstance(transform, dict) else None
+def uv_slots(doc: GltfDocument, material: int | None) -> list[tuple[int, dict | None, tuple]]:
+    """The texture coordinates a material's mesh carries, one slot per distinct (TEXCOORD set,
+    KHR_texture_transform) its textures sample with, in :func:`texture_infos` order: (set, transform or None,
+    transform key); at most one per texture (5). The transform is applied to the slot's coordinates at load
+    (affine: interpolating transformed coordinates equals transforming interpolated ones), so each texture samples
+    its own set with its own transform, and the shader only picks a slot per texture (the plan's ``<map>_uv<k>``
+    variant flags): a material whose textures all sample alike carries one slot and costs nothing more."""
+    slots: list[tuple[int, dict | None, tuple]] = []
+    for info in texture_infos(doc, material):
+        texcoord, key = gltf_extensions.texture_uv_choice(info)
+        if all((s, k) != (texcoord, key) for s, _, k in slots):
+            transform = info.get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
+            slots.append((texcoord, transform if isinstance(transform, dict) else None, key))
+    return slots or [(0, None, ())]
 
 
-def texcoord_set(doc: GltfDocument, material: int | None) -> int:
-    """The TEXCOORD set the mesh carries for a material (see :func:`uv_choice`)."""
-    return uv_choice(doc, material)[0]
+def texture_slot(doc: GltfDocument, material: int, info: dict) -> int:
+    """The slot of :func:`uv_slots` one of the material's textureInfos samples with."""
+    choice = gltf_extensions.texture_uv_choice(info)
+    return [(s, k) for s, _, k in uv_slots(doc, material)].index(choice)
 
 
 def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):
@@ -209,9 +217,9 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     if mode not in TOPOLOGIES:
         raise UserError(f"malformed glTF file {doc.path}: {where} has mode {mode}; glTF 2.0 modes are 0..6")
     material = prim.get("material")
-    uv_set, uv_transform = uv_choice(doc, material)
-    uv_name = f"TEXCOORD_{uv_set}"
-    names = ("POSITION", "NORMAL", uv_name, "TANGENT", "COLOR_0")
+    slots = uv_slots(doc, material)
+    uv_names = [f"TEXCOORD_{s}" for s, _, _ in slots]
+    names = ("POSITION", "NORMAL", *dict.fromkeys(uv_names), "TANGENT", "COLOR_0")
     draco = gltf_compression.uses_draco(doc, prim)  # else its uncompressed fallback accessors
     if draco:
         decoded, draco_faces = gltf_compression.draco_attributes(doc, prim, where)
@@ -229,17 +237,24 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     if prim.get("targets") and not draco:
         positions, arrays["NORMAL"], arrays["TANGENT"] = _morph(doc, prim, weights, where, positions,
                                                                 arrays["NORMAL"], arrays["TANGENT"])
-    if arrays[uv_name] is not None and uv_transform is not None:
-        arrays[uv_name] = gltf_extensions.transform_uvs(arrays[uv_name], uv_transform)
+    uvs = [_slot_uvs(arrays[name], transform) for name, (_, transform, _) in zip(uv_names, slots, strict=True)]
     faces = draco_faces if draco else _faces(doc, prim, count)
     if len(faces) and (faces.min() < 0 or faces.max() >= count):
         raise UserError(f"malformed glTF file {doc.path}: {where} has indices outside 0..{count - 1}")
     colors = arrays["COLOR_0"]
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
-    geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], arrays[uv_name], arrays["TANGENT"], colors,
-                                 material, where, TOPOLOGIES[mode])
+    geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], uvs[0], arrays["TANGENT"], colors,
+                                 material, where, TOPOLOGIES[mode], tuple(uvs[1:]))
     return flat_shaded(geometry) if geometry.normals is None and geometry.topology == "triangle-list" else geometry
+
+
+def _slot_uvs(uvs: np.ndarray | None, transform: dict | None) -> np.ndarray | None:
+    """One slot's coordinates: the set's values under the slot's KHR_texture_transform (a copy: two slots may
+    read one set)."""
+    if uvs is None or transform is None:
+        return uvs
+    return gltf_extensions.transform_uvs(uvs, transform)
 
 
 def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
@@ -250,10 +265,11 @@ def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
     tri = g.positions[g.faces]
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])  # unnormalised: build_mesh normalises
     uvs = None if g.uvs is None else g.uvs[corners]
+    extra_uvs = tuple(None if a is None else a[corners] for a in g.extra_uvs)
     colors = None if g.colors is None else g.colors[corners]
     faces = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
     return PrimitiveGeometry(g.positions[corners], faces, np.repeat(normal, 3, axis=0), uvs, None, colors,
-                             g.material, g.where)
+                             g.material, g.where, extra_uvs=extra_uvs)
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
@@ -317,8 +333,8 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
             if prim.get("targets") and gltf_compression.DRACO in prim.get("extensions", {}):
                 notes.append(f"mesh {mi} primitive {pi}: morph targets of a Draco primitive ignored (drawn in the "
                              "base pose)")
-            used = f"TEXCOORD_{texcoord_set(doc, prim.get('material'))}"
-            extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a != used)
+            used = {f"TEXCOORD_{s}" for s, _, _ in uv_slots(doc, prim.get("material"))}
+            extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a not in used)
             extra += sorted(a for a in prim.get("attributes", {})
                             if a.startswith(("JOINTS_", "WEIGHTS_")) or (a.startswith("COLOR_") and a != "COLOR_0"))
             if extra:

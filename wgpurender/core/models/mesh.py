@@ -67,7 +67,9 @@ class Mesh:
     positions (N, 3) float32; normals (N, 3) float32 unit; uvs (N, 2) float32, v = 0 at the top of the image
     (zeros when the file has none: ``has_uvs`` False); tangents (N, 4) float32 or None; indices (F, 3) uint16 when
     the largest index is below 65535, else uint32 (``index_format`` names the wgpu format); colors (N, 4) float32
-    linear RGBA (glTF COLOR_0) or None; parts: the triangles of each file material, contiguous, in index order.
+    linear RGBA (glTF COLOR_0) or None; parts: the triangles of each file material, contiguous, in index order;
+    extra_uvs: coordinate slots 1.. ((N, 2) float32 each, or None where no part has that slot), same convention as
+    uvs: a glTF material whose textures sample several sets or transforms (gltf_geometry.uv_slots).
     """
 
     positions: np.ndarray
@@ -81,6 +83,7 @@ class Mesh:
     colors: np.ndarray | None = None
     parts: tuple[MeshPart, ...] = ()
     extra_indices: np.ndarray | None = None  # glTF points and line segments, flat, after the triangles' indices
+    extra_uvs: tuple[np.ndarray | None, ...] = ()  # coordinate slots 1.. (glTF materials sampling several)
 
     @property
     def vertex_count(self) -> int:
@@ -105,6 +108,16 @@ class Mesh:
         if self.extra_indices is None:
             return np.ascontiguousarray(self.indices).reshape(-1)
         return np.concatenate([self.indices.reshape(-1), self.extra_indices.astype(self.indices.dtype)])
+
+    def attribute(self, name: str) -> np.ndarray:
+        """A vertex attribute as the scene shaders read it: position, normal, uv, tangent, color (white without
+        COLOR_0) or uv<k> (coordinate slot k >= 1)."""
+        if name.startswith("uv") and name[2:].isdigit():
+            return self.extra_uvs[int(name[2:]) - 1]
+        if name == "color" and self.colors is None:
+            return np.ones((self.vertex_count, 4), np.float32)
+        return {"position": self.positions, "normal": self.normals, "uv": self.uvs, "tangent": self.tangents,
+                "color": self.colors}[name]
 
     def vertex_data(self) -> np.ndarray:
         """Interleaved (N, 12) float32: position xyz @0, normal xyz @12, uv @24, tangent xyzw @32; stride 48 bytes."""
@@ -142,6 +155,7 @@ def build_mesh(
     source: str | os.PathLike | None = None,
     colors: np.ndarray | None = None,
     parts: tuple[MeshPart, ...] = (),
+    extra_uvs: tuple[np.ndarray | None, ...] = (),
 ) -> Mesh:
     """Validate arrays and complete them into a :class:`Mesh` (the vectorised pipeline every loader ends in).
 
@@ -159,12 +173,16 @@ def build_mesh(
     if indices.min() < 0 or indices.max() >= len(positions):
         raise UserError(f"{what} has triangle indices outside 0..{len(positions) - 1}; the file is malformed")
     for label, array, width in (("normals", normals, 3), ("uvs", uvs, 2), ("tangents", tangents, 4),
-                                ("colors", colors, 4)):
+                                ("colors", colors, 4), *(("uvs", a, 2) for a in extra_uvs)):
         if array is not None and np.shape(array) != (len(positions), width):
             raise UserError(f"{what}: {label} have shape {np.shape(array)}, expected ({len(positions)}, {width})")
     has_uvs = uvs is not None
     uvs = np.zeros((len(positions), 2)) if uvs is None else np.asarray(uvs, np.float64).reshape(-1, 2)
     _check_gpu_range(what, "texture coordinate", uvs, FLOAT32_MAX)
+    extra_uvs = tuple(None if a is None else np.asarray(a, np.float64) for a in extra_uvs)
+    for array in extra_uvs:
+        if array is not None:
+            _check_gpu_range(what, "texture coordinate", array, FLOAT32_MAX)
     normals = _complete_normals(positions, indices, normals)
 
     tangents_source = None
@@ -178,6 +196,7 @@ def build_mesh(
         if len(src) != len(positions):
             positions, normals, uvs = positions[src], normals[src], uvs[src]
             colors = None if colors is None else np.asarray(colors)[src]
+            extra_uvs = tuple(None if a is None else a[src] for a in extra_uvs)
         tangents = vertex_tangents(positions, normals, uvs, indices)
         tangents_source = "generated"
 
@@ -192,6 +211,7 @@ def build_mesh(
         source=None if source is None else Path(source),
         colors=None if colors is None else _checked_colors(what, colors),
         parts=tuple(parts),
+        extra_uvs=tuple(None if a is None else a.astype(np.float32) for a in extra_uvs),
     )
 
 
@@ -258,6 +278,7 @@ class _Part:
     colors: np.ndarray | None = None
     material: int | None = None
     topology: str = "triangle-list"
+    extra_uvs: tuple[np.ndarray | None, ...] = ()  # a glTF material's coordinate slots 1.. (gltf_geometry.uv_slots)
 
 
 def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
@@ -294,9 +315,9 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     if not parts:
         raise UserError(f"mesh {path} has only points and lines, no triangles; wgpurender draws points and lines "
                         "beside a model's triangles: add a surface or export the triangles too")
-    positions, faces, normals, uvs, tangents, colors, mesh_parts = _concatenate(parts)
+    positions, faces, normals, uvs, tangents, colors, mesh_parts, extra_uvs = _concatenate(parts)
     mesh = build_mesh(positions, faces, normals, uvs, tangents, generate_tangents=generate_tangents,
-                      source=path, colors=colors, parts=mesh_parts)
+                      source=path, colors=colors, parts=mesh_parts, extra_uvs=extra_uvs)
     return _with_points_and_lines(mesh, others) if others else mesh
 
 
@@ -312,6 +333,7 @@ def _with_points_and_lines(mesh: Mesh, others: list[_Part]) -> Mesh:
         colors = np.ones((count, 4), np.float32)  # the triangles' white, beside the points' or lines' COLOR_0
     arrays = {"positions": [mesh.positions], "normals": [mesh.normals], "uvs": [mesh.uvs],
               "tangents": [mesh.tangents], "colors": [colors]}
+    arrays.update({f"uv{k}": [a] for k, a in enumerate(mesh.extra_uvs, start=1)})
     for p in others:
         n = len(p.positions)
         arrays["positions"].append(p.positions)
@@ -319,6 +341,8 @@ def _with_points_and_lines(mesh: Mesh, others: list[_Part]) -> Mesh:
         arrays["uvs"].append(p.uvs if p.uvs is not None else np.zeros((n, 2)))
         arrays["tangents"].append(np.tile([1.0, 0.0, 0.0, 1.0], (n, 1)))
         arrays["colors"].append(p.colors if p.colors is not None else np.ones((n, 4)))
+        for k in range(1, len(mesh.extra_uvs) + 1):
+            arrays[f"uv{k}"].append(np.zeros((n, 2)))  # drawn unlit and untextured beside the triangles' slots
         flat.append(np.asarray(p.faces, np.int64).reshape(-1) + count)
         size = int(flat[-1].size)
         last = parts[-1] if parts else None
@@ -334,7 +358,8 @@ def _with_points_and_lines(mesh: Mesh, others: list[_Part]) -> Mesh:
     joined = {k: np.concatenate(v).astype(np.float32) for k, v in arrays.items() if v[0] is not None}
     return Mesh(joined["positions"], joined["normals"], joined["uvs"], mesh.indices.astype(dtype),
                 joined.get("tangents"), mesh.has_uvs, mesh.tangents_source, mesh.source,
-                joined.get("colors"), tuple(parts), np.concatenate(flat).astype(dtype))
+                joined.get("colors"), tuple(parts), np.concatenate(flat).astype(dtype),
+                tuple(joined.get(f"uv{k}") for k in range(1, len(mesh.extra_uvs) + 1)))
 
 
 OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least numbers each record needs
@@ -427,19 +452,23 @@ def _gltf_parts(path: Path) -> list[_Part]:
     for world, node, geometry in gltf_geometry.mesh_primitives(doc):
         g = geometry
         part = _place(world, g.positions, g.faces, g.normals, g.uvs, g.tangents, str(path), node)
-        part.colors, part.material, part.topology = g.colors, g.material, g.topology
+        part.colors, part.material, part.topology, part.extra_uvs = g.colors, g.material, g.topology, g.extra_uvs
         parts.append(part)
     return parts
 
 
 def _fbx_parts(path: Path) -> list[_Part]:
-    """Every triangle mesh an FBX file's node tree places, in world space (core/models/fbx.py: assimp, axes, units);
-    its material is the scene's (core/scene/file_materials.py)."""
+    """Every triangle mesh an FBX file's node tree places, in world space (core/models/fbx.py: assimp, axes, units),
+    with its material index: the scene draws each of the file's materials over its own triangles
+    (core/scene/fbx_materials.py)."""
     from wgpurender.core.models import fbx
 
     placed, _ = fbx.load_fbx(path)
-    return [_place(world, positions, faces, normals, uvs, None, str(path), name)
-            for world, positions, faces, normals, uvs, name, _ in placed]
+    parts = []
+    for world, positions, faces, normals, uvs, name, material in placed:
+        parts.append(_place(world, positions, faces, normals, uvs, None, str(path), name))
+        parts[-1].material = material
+    return parts
 
 
 def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "model", node: str = "?") -> _Part:
@@ -483,6 +512,7 @@ def _concatenate(parts: list[_Part]):
     uvs = None
     if any(p.uvs is not None for p in parts):
         uvs = np.concatenate([p.uvs if p.uvs is not None else np.zeros((len(p.positions), 2)) for p in parts])
+    extra_uvs = tuple(_slot(parts, k) for k in range(max(len(p.extra_uvs) for p in parts)))
     colors = None
     if any(p.colors is not None for p in parts):
         colors = np.concatenate([p.colors if p.colors is not None else np.ones((len(p.positions), 4)) for p in parts])
@@ -496,4 +526,14 @@ def _concatenate(parts: list[_Part]):
         else:
             mesh_parts.append(MeshPart(p.material, first, count))
         first += count
-    return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts)
+    return positions, faces, normals, uvs, tangents, colors, tuple(mesh_parts), extra_uvs
+
+
+def _slot(parts: list[_Part], k: int) -> np.ndarray | None:
+    """Coordinate slot k + 1 of every part: zeros for the parts whose materials have fewer slots (they never read
+    it); None when no part has it."""
+    arrays = [p.extra_uvs[k] if k < len(p.extra_uvs) else None for p in parts]
+    if all(a is None for a in arrays):
+        return None
+    return np.concatenate([a if a is not None else np.zeros((len(p.positions), 2)) for a, p in zip(arrays, parts,
+                                                                                                     strict=True)])

@@ -73,6 +73,7 @@ def material_variant(material: Material, directional: list[int], point: list[int
         else:
             notes.append(f"{label}: uv_flip_v ignored because it samples no texture")
     reasons.extend(file_materials.extra_reasons(material, label, lit, samples, notes))
+    reasons.extend(file_materials.uv_slot_reasons(material, label, reasons))
     reasons.extend(shading_models.model_reasons(material, label, lit, "roughness_map" in maps, notes))
     reasons.extend(shading_models.ibl_reasons(material, label, lit, environment))
     if srgb_output:

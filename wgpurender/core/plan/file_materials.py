@@ -54,6 +54,14 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
     return reasons
 
 
+def uv_slot_reasons(material: Material, label: str, reasons: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """``<feature>_uv<k>`` for each sampled texture of the material on the mesh's coordinate slot k >= 1 (a glTF
+    texCoord or KHR_texture_transform of its own): only such variants read vertex attribute uv<k>."""
+    sampled = {feature for feature, _ in reasons}
+    return [(f"{feature}_uv{k}", f"{label}: its {feature} samples {how}: the mesh's coordinate slot {k} (vertex "
+                                 f"attribute uv{k})") for feature, k, how in material.uv_slots if feature in sampled]
+
+
 def _alpha_varies(material: Material) -> bool:
     """Whether a file material's base colour can carry an alpha below 1 (factor, texture or COLOR_0)."""
     return material.albedo_color[3] < 1.0 or material.albedo_map is not None or material.vertex_colors

@@ -38,6 +38,11 @@ class PlanMeshes:
         if "uv" in attributes and not mesh.has_uvs:
             raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
                             "texture coordinates: export it with UVs, or use a material without maps")
+        for k in (int(a[2:]) for a in attributes if a.startswith("uv") and a[2:].isdigit()):
+            if len(mesh.extra_uvs) < k or mesh.extra_uvs[k - 1] is None:
+                raise UserError(f"{draw.label}: its {draw.material_label} samples a set of texture coordinates "
+                                "that the model file does not have: give the primitive the TEXCOORD_n its texCoord "
+                                "names")
         if "tangent" in attributes and mesh.tangents is None:
             raise UserError(f"{draw.label}: no tangents could be made for its normal map")
         return mesh

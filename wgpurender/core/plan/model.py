@@ -33,8 +33,12 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
                     "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
-ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"))
 TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
+EXTRA_UV_SLOTS = len(TEXTURE_FEATURES) - 1  # coordinate slots beyond the first: one per texture at most
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"),
+              *((f"uv{k}", f"uv{k}") for k in range(1, EXTRA_UV_SLOTS + 1)))
+# "<texture feature>_uv<k>": that texture samples the mesh's coordinate slot k (vertex attribute uv<k>)
+UV_SLOT_FLAGS = {f"{feature}_uv{k}": (feature, k) for feature in TEXTURE_FEATURES for k in range(1, EXTRA_UV_SLOTS + 1)}
 
 
 @dataclass(frozen=True)
@@ -70,7 +74,8 @@ class ShaderVariant:
     @property
     def vertex_attributes(self) -> tuple[str, ...]:
         uses_uv = bool(self.flags & set(TEXTURE_FEATURES))
-        have = self.flags | ({"uv"} if uses_uv else set())
+        slots = {f"uv{UV_SLOT_FLAGS[f][1]}" for f in self.flags if f in UV_SLOT_FLAGS}
+        have = self.flags | ({"uv"} if uses_uv else set()) | slots
         return ("position",) + tuple(attr for feature, attr in ATTRIBUTES if feature in have)
 
     def count(self, name: str) -> int:

@@ -11,34 +11,22 @@ from __future__ import annotations
 import logging
 import os
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
+from wgpurender.core.scene.fbx_materials import fbx_materials
 from wgpurender.core.scene.gltf_materials import model_materials
-from wgpurender.core.scene.model import Material, Model, ModelMaterials
+from wgpurender.core.scene.model import Model, ModelMaterials
+from wgpurender.core.scene.mtl_entry import MtlEntry, entry_material
 
 GLTF_SUFFIXES = (".gltf", ".glb")
 MTL_ROLES = {"map_kd": "base_color", "map_bump": "normal", "bump": "normal", "norm": "normal",
              "map_pr": "roughness", "map_ao": "occlusion", "map_ke": "emissive"}  # MTL statement -> texture role
-MTL_FEATURES = {"base_color": "albedo_map", "normal": "normal_map", "roughness": "roughness_map"}  # drawn roles
 
 log = logging.getLogger(__name__)
-
-
-@dataclass
-class MtlEntry:
-    """What an MTL file says of one material: texture files by role, Kd, d (or 1 - Tr) and illum."""
-
-    name: str
-    textures: dict[str, Path] = field(default_factory=dict)
-    color: tuple[float, float, float] | None = None
-    opacity: float | None = None
-    illum: int | None = None
-    notes: tuple[str, ...] = ()  # what the loader converted (FBX axes and units), for --explain
 
 
 def read_file_materials(model: Model) -> ModelMaterials | None:
@@ -55,41 +43,18 @@ def read_file_materials(model: Model) -> ModelMaterials | None:
 def obj_materials(model: Model) -> ModelMaterials | None:
     """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
     normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
-    an MTL. An FBX's first material (diffuse colour, diffuse and normal maps: core/models/fbx.py) the same way."""
-    fbx = model.path.suffix.lower() == ".fbx"
-    found = fbx_entry(model.path) if fbx else obj_mtl_entry(model.path)
+    an MTL. An FBX's materials (one per material its meshes use): core/scene/fbx_materials.py, the same way."""
+    if model.path.suffix.lower() == ".fbx":
+        return fbx_materials(model)
+    found = obj_mtl_entry(model.path)
     if found is None:
         return None
-    maps = {MTL_FEATURES[role]: path for role, path in found.textures.items() if role in MTL_FEATURES}
-    kind = "FBX" if fbx else "MTL"
-    name = f"{model.label} {kind} material '{found.name}'"
-    opacity = 1.0 if found.opacity is None else found.opacity
-    material = Material(name, albedo_color=(*(found.color or (1.0, 1.0, 1.0)), opacity), origin=name,
-                        alpha_mode="blend" if opacity < 1.0 else "opaque", unlit=found.illum == 0,
-                        written=tuple((f, p.name) for f, p in maps.items()), **maps)
-    taken = [f"Kd {material.albedo_color[:3]}"] + [f"{f} {p.name}" for f, p in maps.items()]
-    if opacity < 1.0:
-        taken.append(f"d {opacity:g} (alpha blended, unsorted)")
-    if found.illum == 0:
-        taken.append("illum 0 (unlit)")
-    taken.extend(found.notes)
-    ignored = [f"{kind} '{found.name}': {role} map ignored" for role in found.textures if role not in MTL_FEATURES]
-    used = {} if fbx else dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(),
-                                                   re.M))
+    material, taken, ignored = entry_material(model, found, "MTL")
+    used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
     if len(used) > 1:
         ignored.append(f"usemtl {', '.join(repr(u.decode('utf-8', 'replace')) for u in list(used)[1:])}: ignored "
                        f"(an OBJ draws with its first material, '{found.name}')")
-    return ModelMaterials((material,), (f"{name}: " + ", ".join(taken),), tuple(ignored))
-
-
-def fbx_entry(path: Path) -> MtlEntry | None:
-    """An FBX file's first material as assimp reads it (core/models/fbx.py), or None."""
-    from wgpurender.core.models import fbx
-
-    _, found = fbx.load_fbx(path)
-    if found is None:
-        return None
-    return MtlEntry(found["name"], dict(found["textures"]), found["color"], notes=tuple(found.get("notes", ())))
+    return ModelMaterials((material,), (taken,), tuple(ignored))
 
 
 def obj_mtl_entry(path: Path) -> MtlEntry | None:

@@ -19,11 +19,12 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 - a lit material -> the glTF metallic-roughness model (``shading_model = "pbr"``, shaders_wgsl/pbr.wgsl: the
   spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
   course's scene materials and primitives without a file material keep Blinn-Phong.
-- the base colour texture's ``texCoord`` and ``KHR_texture_transform`` -> the mesh's texture coordinates
-  (gltf_geometry.uv_choice applies them at load).
+- each texture's ``texCoord`` and ``KHR_texture_transform`` -> its coordinate slot (gltf_geometry.uv_slots: the
+  mesh carries one per distinct (set, transform) of the material, each a TEXCOORD set with its transform applied
+  at load); a texture on slot k >= 1 is listed in ``Material.uv_slots`` and the plan gives its sampling the variant
+  flag ``<feature>_uv<k>`` (only such materials read a second vertex attribute).
 
-Ignored, and listed by ``--explain``: a texture that samples another coordinate set or transform than its
-material's base colour texture, and every other extension by name (the applied ones are listed as used).
+Ignored, and listed by ``--explain``: every other extension by name (the applied ones are listed as used).
 """
 
 from __future__ import annotations
@@ -74,6 +75,10 @@ def embedded_image_bytes(path: Path) -> bytes | None:
     model, _, index = text.rpartition(EMBEDDED_MARK)
     if not os.path.isfile(model):
         return None
+    if model.lower().endswith(".fbx"):  # an image embedded in an FBX (core/scene/fbx_materials.py)
+        from wgpurender.core.models import fbx
+
+        return fbx.embedded_texture_bytes(Path(model), int(index[:-1]))
     doc = document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io.image_source(doc, image)
@@ -114,7 +119,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     mat = doc.json["materials"][index]
     pbr = mat.get("pbrMetallicRoughness", {})
     name = f"{label} material {index}" + (f" '{mat['name']}'" if mat.get("name") else "")
-    maps, samplers, mipmaps = {}, [], []
+    maps, samplers, mipmaps, slots = {}, [], [], []
     for feature, keys in ROLES.items():
         info = _info(mat, keys)
         if info is None:
@@ -127,7 +132,9 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
-        _note_uv_choice(doc, index, info, f"{name}: {keys[-1]}", ignored)
+        slot, how = _uv_slot(doc, index, info)
+        if slot:
+            slots.append((feature, slot, how))
     _note_ignored(mat, name, ignored)
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -149,21 +156,15 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         emissive_map=maps.get("emissive_map") if not unlit else None,
         occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
         shading_model="blinn-phong" if unlit else "pbr", metallic=float(pbr.get("metallicFactor", 1.0)),
+        uv_slots=tuple(slots),
     )
 
 
-def _note_uv_choice(doc: gltf_io.GltfDocument, index: int, info: dict, where: str, ignored: list[str]) -> None:
-    """A texture that samples other coordinates than the material's chosen set and transform (the base colour
-    texture's; gltf_geometry.uv_choice) is drawn with those: said by name."""
-    infos = gltf_geometry.texture_infos(doc, index)
-    lead = gltf_extensions.texture_uv_choice(infos[0])
-    mine = gltf_extensions.texture_uv_choice(info)
-    if mine[0] != lead[0]:
-        ignored.append(f"{where} texCoord {mine[0]}: ignored, sampled with TEXCOORD_{lead[0]} (a mesh carries one "
-                       "set of texture coordinates per material)")
-    elif mine[1] != lead[1]:
-        ignored.append(f"{where} KHR_texture_transform: ignored, sampled with the base colour texture's transform "
-                       "(one transform per material)")
+def _uv_slot(doc: gltf_io.GltfDocument, index: int, info: dict) -> tuple[int, str]:
+    """(the coordinate slot a texture samples: gltf_geometry.uv_slots, what it samples in words)."""
+    texcoord, key = gltf_extensions.texture_uv_choice(info)
+    how = f"TEXCOORD_{texcoord}" + (f" with KHR_texture_transform {dict(key)}" if key else "")
+    return gltf_geometry.texture_slot(doc, index, info), how
 
 
 def _note_ignored(mat: dict, name: str, ignored: list[str]) -> None:
@@ -219,7 +220,8 @@ def _taken_text(m: Material) -> str:
         how = ""
         if spec is not None:
             how = f" ({spec.min_filter}/{spec.mag_filter}, wrap {spec.address_mode_u}/{spec.address_mode_v})"
-        items.append(f"{feature} {Path(path).name}{how}")
+        slot = "".join(f" ({what}: coordinate slot {k})" for f, k, what in m.uv_slots if f == feature)
+        items.append(f"{feature} {Path(path).name}{how}{slot}")
     if m.vertex_colors:
         items.append("COLOR_0 vertex colours")
     if m.double_sided:

@@ -128,6 +128,9 @@ class Material:
     # metallic-roughness, shaders_wgsl/pbr.wgsl), with the metallic factor (times the roughness map's B channel).
     shading_model: str = "blinn-phong"
     metallic: float = 0.0
+    # (feature, slot k >= 1, what it samples): the textures that sample the mesh's coordinate slot k (a glTF texCoord
+    # or KHR_texture_transform of their own: core/models/gltf_geometry.uv_slots); the others sample slot 0.
+    uv_slots: tuple[tuple[str, int, str], ...] = ()
 
     @property
     def textures(self) -> dict[str, Path]:

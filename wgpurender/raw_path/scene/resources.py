@@ -20,13 +20,15 @@ import vulkan as vk
 from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import Draw, RenderPlan
 from wgpurender.core.plan.meshes import PlanMeshes
+from wgpurender.core.plan.model import EXTRA_UV_SLOTS
 from wgpurender.core.scene.texture_pixels import load_image
 from wgpurender.raw_path.device.context import VulkanContext
 from wgpurender.raw_path.device.memory import Buffer, upload_buffer
 from wgpurender.raw_path.device.textures import TextureImage, create_sampler, upload_texture
 
 # attribute -> (shader location, float count): the locations of shaders_glsl/scene.vert
-ATTRIBUTES = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
+ATTRIBUTES = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4),
+              **{f"uv{k}": (4 + k, 2) for k in range(1, EXTRA_UV_SLOTS + 1)}}  # coordinate slots 1..4
 INDEX_TYPES = {np.dtype(np.uint16): vk.VK_INDEX_TYPE_UINT16, np.dtype(np.uint32): vk.VK_INDEX_TYPE_UINT32}
 
 
@@ -52,9 +54,7 @@ def vertex_input(attributes: tuple[str, ...]) -> tuple[list, list]:
 
 
 def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
-    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
-              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32)}
-    return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
+    return np.ascontiguousarray(np.concatenate([mesh.attribute(a) for a in attributes], axis=1), dtype=np.float32)
 
 
 class SceneResources:

@@ -9,10 +9,12 @@ preprocessor: each flag becomes a definition (``-DALBEDO_MAP``), the light count
 from __future__ import annotations
 
 from wgpurender.core.plan import ShaderVariant
+from wgpurender.core.plan.model import UV_SLOT_FLAGS
 from wgpurender.raw_path.device.uniforms import MAX_LIGHTS
 
 FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output", "vertex_color",
-         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr", "ibl")
+         "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr", "ibl",
+         *UV_SLOT_FLAGS)
 TEXTURE_FLAGS = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
 
 
@@ -25,9 +27,13 @@ def glsl_defines(variant: ShaderVariant) -> tuple[str, ...]:
     unknown = variant.flags - set(FLAGS)
     if unknown:
         raise ValueError(f"shader variant flags {sorted(unknown)} have no GLSL definition")  # a plan.py change
-    defines = [f.upper() for f in FLAGS if f in variant.flags]
+    defines = [f.upper() for f in FLAGS if f in variant.flags and f not in UV_SLOT_FLAGS]
     if variant.flags & set(TEXTURE_FLAGS):
         defines.append("UV")
+    for flag in sorted(variant.flags & UV_SLOT_FLAGS.keys()):  # a map on coordinate slot k: it samples v_uv<k>
+        feature, k = UV_SLOT_FLAGS[flag]
+        defines.append(f"{feature.removesuffix('_map').upper()}_UV=v_uv{k}")
+    defines += sorted({f"UV{UV_SLOT_FLAGS[f][1]}" for f in variant.flags & UV_SLOT_FLAGS.keys()})
     defines += [f"DIRECTIONAL_LIGHTS={variant.count('directional_lights')}",
                 f"POINT_LIGHTS={variant.count('point_lights')}", f"MAX_LIGHTS={MAX_LIGHTS}"]
     return tuple(defines)

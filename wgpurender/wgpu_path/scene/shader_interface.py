@@ -26,6 +26,7 @@ import numpy as np
 
 from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import ShaderVariant
+from wgpurender.core.plan.model import EXTRA_UV_SLOTS, UV_SLOT_FLAGS
 from wgpurender.core.scene import MAX_LIGHTS
 from wgpurender.core.shaders.shader_variants import specialise
 from wgpurender.core.shaders.uniforms import F32, MAT3, MAT4, VEC4F, VEC4U, Array, Struct, wgsl_structs
@@ -68,7 +69,8 @@ for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_
 assert OBJECT_UNLIT.size == OBJECT.size == 128
 
 # Vertex attributes: location and float count (position always; the plan decides the others).
-ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4)}
+ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4),
+                       **{f"uv{k}": (4 + k, 2) for k in range(1, EXTRA_UV_SLOTS + 1)}}  # coordinate slots 1..4
 TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
 SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6, "emissive_map": 8,
                     "occlusion_map": 10}  # each texture's own sampler
@@ -117,9 +119,7 @@ def vertex_layout(variant: ShaderVariant) -> dict:
 
 def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     """(N, floats) float32 vertex data with the given attributes, for :func:`vertex_layout`."""
-    arrays = {"position": mesh.positions, "normal": mesh.normals, "uv": mesh.uvs, "tangent": mesh.tangents,
-              "color": mesh.colors if mesh.colors is not None else np.ones((mesh.vertex_count, 4), np.float32)}
-    return np.ascontiguousarray(np.concatenate([arrays[a] for a in attributes], axis=1), dtype=np.float32)
+    return np.ascontiguousarray(np.concatenate([mesh.attribute(a) for a in attributes], axis=1), dtype=np.float32)
 
 
 def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
@@ -127,12 +127,23 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
     features = set(variant.flags) | ({"culled"} if culled else set())
     if samples_textures(variant):
         features.add("uv")
+    features.update(a for a in variant.vertex_attributes if a.startswith("uv") and a != "uv")  # slots uv1..
     for name, n in variant.counts:
         if n > 0:
             features.add(name)
     if immediates:
         features.add("immediates")
     return features
+
+
+def uv_slot_names(variant: ShaderVariant) -> dict[str, str]:
+    """{{ALBEDO_UV}} ... {{OCCLUSION_UV}}: the vertex output each map samples, "uv<k>" for a ``<map>_uv<k>``
+    flag, else "uv"."""
+    names = {f"{feature.removesuffix('_map').upper()}_UV": "uv" for feature in TEXTURE_BINDINGS}
+    for flag in variant.flags & UV_SLOT_FLAGS.keys():
+        feature, k = UV_SLOT_FLAGS[flag]
+        names[f"{feature.removesuffix('_map').upper()}_UV"] = f"uv{k}"
+    return names
 
 
 def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
@@ -144,5 +155,6 @@ def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
         "IBL_FUNCTIONS": load_wgsl(IBL_FUNCTIONS) if "ibl" in variant.flags else "",
+        **uv_slot_names(variant),
     }
     return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled), values, name=SHADER)
