@@ -3,9 +3,10 @@ and repository scene rendered on each implementation at one size, and every pair
 
 Metrics per pair: max (largest channel difference, 1/255), the share of pixels off by more than 1/255, PSNR and
 mean FLIP (core/verdict/compare.py). Bounds: each implementation against the reference one, ``wgpu-vulkan``, with the
-calibrated rows of assets/reference/implementations.toml (``raw`` against ``wgpu-vulkan``: exact on one device,
-except the post-chain bound that verify.py explains). Pairs of two non-reference implementations are reported
-without a bound (``info``): their distance is at most the sum of their two bounded distances.
+calibrated rows of assets/reference/implementations.toml at the image's size class, and the size-free radial and
+detail bounds that catch a dropped post effect (core/verdict/structure.py) (``raw`` against ``wgpu-vulkan``: exact
+on one device, except the post-chain bound that verify.py explains). Pairs of two non-reference implementations are
+reported without a bound (``info``): their distance is at most the sum of their two bounded distances.
 
 Writes ``implementations.md``, ``implementations.csv`` and ``heatmaps/impl-*.png``. ``calibrate=True`` rewrites
 the measured implementations' rows of implementations.toml from this run (bounds per the CPU-driver rule).
