@@ -205,6 +205,11 @@ def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normal
         return positions, normals, tangents
     deltas = {name: [_attribute(doc, {"attributes": t}, name, where) for t in targets]
               for name in ("POSITION", "NORMAL", "TANGENT")}
+    for name, arrays in deltas.items():
+        for k, delta in enumerate(arrays):
+            if delta is not None and len(delta) != len(positions):
+                raise UserError(f"malformed glTF file {doc.path}: {where} morph target {k} {name} has {len(delta)} "
+                                f"elements, the primitive {len(positions)} vertices; give every target one per vertex")
     return (gltf_extensions.morphed(positions, deltas["POSITION"], weights),
             gltf_extensions.morphed(normals, deltas["NORMAL"], weights),
             gltf_extensions.morphed(tangents, deltas["TANGENT"], weights))
@@ -234,7 +239,7 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
         if array is not None and len(array) != count:
             raise UserError(f"malformed glTF file {doc.path}: {where} {name} has {len(array)} elements, "
                             f"POSITION {count}")
-    if prim.get("targets") and not draco:
+    if prim.get("targets"):  # a Draco primitive's targets are plain accessors in its decoded vertex order
         positions, arrays["NORMAL"], arrays["TANGENT"] = _morph(doc, prim, weights, where, positions,
                                                                 arrays["NORMAL"], arrays["TANGENT"])
     uvs = [_slot_uvs(arrays[name], transform) for name, (_, transform, _) in zip(uv_names, slots, strict=True)]
@@ -330,9 +335,6 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
                 notes.append(f"mesh {mi} primitive {pi}: {SKIPPED_MODES[mode]} primitive drawn unlit as a "
                              f"{TOPOLOGIES[mode]} of 1-pixel {'points' if mode == 0 else 'lines'} (points and lines "
                              "have no surface to light)")
-            if prim.get("targets") and gltf_compression.DRACO in prim.get("extensions", {}):
-                notes.append(f"mesh {mi} primitive {pi}: morph targets of a Draco primitive ignored (drawn in the "
-                             "base pose)")
             used = {f"TEXCOORD_{s}" for s, _, _ in uv_slots(doc, prim.get("material"))}
             extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a not in used)
             extra += sorted(a for a in prim.get("attributes", {})

@@ -37,6 +37,7 @@ from wgpurender.core.models.tangents import (
     split_mirrored_vertices,
     vertex_tangents,
 )
+from wgpurender.core.view import transforms
 
 SUPPORTED = {".obj": "obj", ".gltf": "gltf", ".glb": "glb", ".ply": "ply", ".stl": "stl", ".fbx": "fbx"}
 CONVERT_HINT = (
@@ -483,7 +484,7 @@ def _place(transform, vertices, faces, normals, uvs, tangents, where: str = "mod
         if not np.all(np.isfinite(transform.astype(np.float32))) or not np.isfinite(det):
             raise UserError(f"{where}: the node placing mesh '{node}' has a transform beyond float32's range "
                             "(e.g. a 1e308 matrix); fix the node's matrix, translation, rotation or scale")
-        if abs(det) < 1e-12 * max(1.0, float(np.abs(m).max()) ** 3):
+        if transforms.flat(m):
             raise UserError(f"{where}: the node placing mesh '{node}' has a singular transform (determinant "
                             f"{det:.3g}: a scale of 0 on some axis, or a flat matrix), which flattens the mesh and "
                             "leaves its normals undefined; give every axis a non-zero scale")

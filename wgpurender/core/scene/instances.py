@@ -87,7 +87,7 @@ def _file(c: Checker, value: Any, key: KeyPath) -> Placements:
         raise c.error(key, f"{format_path(key)}: '{value}' contains NaN or infinite values")
     _bounded(c, len(a), key)
     matrices = _translations(a) if a.ndim == 2 else a
-    if (np.abs(transforms.determinants3(matrices)) < 1e-12).any():
+    if transforms.flat(matrices).any():
         raise c.error(key, f"{format_path(key)}: '{value}' has a singular matrix (3x3 determinant 0)")
     return Placements.of(matrices, f"{len(a)} {'offsets' if a.ndim == 2 else 'matrices'} from '{value}'")
 

@@ -153,7 +153,7 @@ def _transform(c: _Checker, data: Any, key: KeyPath) -> Transform:
         if not isinstance(rows, list) or len(rows) != 4:
             raise c.error(key + ("matrix",), f"{format_path(key)}.matrix must be 4 rows of 4 numbers")
         m = np.array([c.vector(r, key + ("matrix",), lengths=(4,)) for r in rows])
-        if abs(np.linalg.det(m[:3, :3])) < 1e-12:
+        if transforms.flat(m):
             raise c.error(key + ("matrix",), f"{format_path(key)}.matrix is singular (its 3x3 part has determinant 0)")
         return Transform(_rows(m), "matrix")
     parts, m = [], np.eye(4)

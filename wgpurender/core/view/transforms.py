@@ -108,6 +108,16 @@ def determinants3(matrices: np.ndarray) -> np.ndarray:
     return np.einsum("...i,...i->...", m[..., 0, :], np.cross(m[..., 1, :], m[..., 2, :]))
 
 
+def flat(matrices: np.ndarray, tolerance: float = 1e-9) -> np.ndarray:
+    """Whether each (..., 3+, 3+) matrix's upper 3x3 flattens space: |det| is at most ``tolerance`` times the
+    product of its column lengths (the volume of the unit cube's image against that of a box with the same edge
+    lengths: 1 for any rotation and scale, 0 for a zero scale or two parallel axes). Scale-free, so a model
+    authored in micrometres (a node scale of 4e-6, det 6e-17: Khronos' quantized Avocado) is not flat."""
+    m = np.asarray(matrices, dtype=np.float64)[..., :3, :3]
+    edges = np.prod(np.linalg.norm(m, axis=-2), axis=-1)
+    return np.abs(determinants3(m)) <= tolerance * edges
+
+
 def to_gpu(matrix: np.ndarray) -> np.ndarray:
     """float32, column-major: what a WGSL mat4x4f / mat3x3f (after padding) expects.
 
