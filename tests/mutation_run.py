@@ -840,8 +840,8 @@ MUTATIONS = [
      "len(load_scene(scene).post) > 2 else EXACT", [LOUD]),
     ("wgpurender/verify_matrix.py", 'driver_class(get_context("Vulkan").adapter.info["device"])',
      'driver_class(get_context("Vulkan").adapter.info["description"])', [LOUD]),
-    ("wgpurender/implementations.py", 'rows = {name: {**bounds([m], "lavapipe")', 'rows = {name: {**bounds([m], "gpu")',
-     [LOUD]),
+    ("wgpurender/implementations.py", 'row = {**tol.calibrate([metrics], "lavapipe")',
+     'row = {**tol.calibrate([metrics], "gpu")', [LOUD]),
     # issue 28's independent fuzz: the bugs it found (exercise through a dangling link, the cache's temp file)
     ("wgpurender/exercises/starter.py", "if os.path.lexists(out / name)]", "if (out / name).exists()]",
      [EX + "|dangling"]),
