@@ -1036,6 +1036,8 @@ MUTATIONS = [
     (TOLS, "detail = max(abs(s.detail) for s in spread)", "detail = max(s.detail for s in spread)", [SB]),
     (TOLS, "return math.ceil(round(value * scale, 9)) / scale", "return math.ceil(value * scale) / scale", [LOUD]),
     ("wgpurender/implementations.py", "base, rows = sizes[0], {}", "base, rows = sizes[-1], {}", [LOUD]),
+    ("wgpurender/implementations.py", 'larger = {size: {**tol.calibrate([measured[size][name][0]], "lavapipe"),',
+     'larger = {size: {**tol.calibrate([measured[size][name][0]], "gpu"),', [LOUD]),
     ("wgpurender/implementations.py", "for size in sizes[1:] if name in measured[size]",
      "for size in sizes[2:] if name in measured[size]", [LOUD]),
     ("wgpurender/verify.py", "False, radial=1.0, detail=0.02)", "False)", [SB]),
