@@ -84,6 +84,9 @@ STAGESTATE = "tests/test_stage_state.py"
 MATERIALS = INPUTS + "|material_library"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
+INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
+                 "or explain or without_compute or binds_wrongly")
+INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler or stretched"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -680,8 +683,8 @@ MUTATIONS = [
     ("wgpurender/core/plan/objects.py", "            materials = len({d.material_key() for d in users})",
      "            materials = len(users)", [INST]),
     ("wgpurender/wgpu_path/scene/scene_pass.py",
-     "encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)",
-     "encoder.draw_indexed(count, draw.instance_count, first, 0, 0)", [INST]),
+     "encoder.draw_indexed(count, instances, first, 0, draw.first_instance)",
+     "encoder.draw_indexed(count, instances, first, 0, 0)", [INST]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            if buffers is not last[3]:",
      "            if last[3] is None:", [INST]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            if group is not None and group is not last[2]:",
@@ -693,8 +696,8 @@ MUTATIONS = [
     ("shaders_glsl/scene.vert", "    Object object_data = objects[gl_InstanceIndex];",
      "    Object object_data = objects[gl_VertexIndex % 3];", [INST]),
     # GPU culling (issue 31.2)
-    ("wgpurender/core/plan/culling.py", "    least = 2 if knob == \"gpu\" else GPU_CULL_MIN",
-     "    least = 2 if knob == \"gpu\" else 2", ["tests/test_culling.py"]),
+    ("wgpurender/core/plan/culling.py", "    least = GPU_CULL_MIN if knob == \"auto\" else 2",
+     "    least = 2 if knob == \"auto\" else 2", ["tests/test_culling.py"]),
     ("wgpurender/core/plan/culling.py", "        del pipelines[key]", "        pass", ["tests/test_culling.py"]),
     ("wgpurender/wgpu_path/scene/culling.py", "planes = np.array([r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1],",  # noqa: E501
      "planes = np.array([r[3] + r[0], r[3] + r[0], r[3] + r[1], r[3] - r[1],", ["tests/test_culling.py"]),
@@ -1007,6 +1010,56 @@ MUTATIONS = [
      "dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(missing[0], GENERIC_FIX) for name in missing)", [HELDOUT]),
     (G_IO, "\"; \".join(dict.fromkeys(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX) for name in missing))",
      "\"; \".join(REQUIRED_EXTENSION_FIXES.get(name, GENERIC_FIX) for name in missing)", [HELDOUT]),
+    # glinst: instance data without vertex-stage storage (issue 31's GL regression), CPU culling
+    ("wgpurender/core/plan/instance_data.py", "hidden = HIDDEN_VERTEX_STORAGE.get(adapter.backend)", "hidden = None",
+     [INSTANCE_RULE]),
+    ("wgpurender/core/plan/instance_data.py", "if adapter is not None and knob == \"storage\" and not adapter.storage:",
+     "if adapter is not None and knob == \"vertex\" and not adapter.storage:", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/gl_facts.py", "return number >= GLSL_NEEDS[what][es]",
+     "return number > GLSL_NEEDS[what][es]", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/gl_facts.py", "GLSL_NEEDS = {\"storage\": (400, 310),",
+     "GLSL_NEEDS = {\"storage\": (330, 310),", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/gl_facts.py", "int(found.group(2)) * 100 + int(found.group(3)) * 10",
+     "int(found.group(2)) * 100 + int(found.group(3))", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/model.py", "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) > 0",
+     "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) >= 0", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/build.py", "if knobs.adapter is not None and not knobs.adapter.storage and ibl:",
+     "if knobs.adapter is not None and knobs.adapter.storage and ibl:", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/culling.py", "if knob == \"cpu\" or instance_data == \"vertex\" or not compute:",
+     "if knob == \"cpu\" or not compute:", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/culling.py", "cpu_culled=True) if d.instance_count >= least else d",
+     "cpu_culled=True) if d.instance_count > least else d", [INSTANCE_RULE]),
+    ("wgpurender/wgpu_path/scene/cpu_culling.py", "return np.all(distances >= -radii[:, None], axis=1)",
+     "return np.all(distances >= 0, axis=1)", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py",
+     "(INSTANCE_LOCATION + 5, \"float32x3\", _NORMAL + 16, \"lighting\"),",
+     "(INSTANCE_LOCATION + 5, \"float32x3\", _NORMAL + 12, \"lighting\"),", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "return 2 if instance_data == \"storage\" else 1", "return 2",
+     [INSTANCE_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "let world = mat4x4f(inst.world0, inst.world1, inst.world2, inst.world3);",
+     "let world = mat4x4f(inst.world0, inst.world1, inst.world2, vec4f(0.0, 0.0, 0.0, 1.0));", [INSTANCE_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "let mirror = inst.normal2_mirror.w;", "let mirror = 1.0;", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", "out[:, _MIRROR_PAD] = out[:, OBJECT.offsets[\"mirror\"] // 4]",
+     "out[:, _MIRROR_PAD] = 1.0", [INSTANCE_PIXELS]),
+    ("wgpurender/core/plan/post.py", "if asked != \"auto\" and not (asked == \"compute\" and adapter is not None "
+     "and not adapter.compute):", "if asked != \"auto\":", [INSTANCE_RULE]),
+    ("wgpurender/core/plan/post.py", "if adapter is not None and adapter.adapter_type == \"DiscreteGPU\" and not "
+     "adapter.compute:", "if False:", [INSTANCE_RULE]),
+    ("wgpurender/wgpu_path/scene/cpu_culling.py", "scale = np.linalg.norm(worlds[:, :3, :3], axis=1).max(axis=1)",
+     "scale = np.linalg.norm(worlds[:, :3, :3], axis=1).min(axis=1)", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/cpu_culling.py", "write_buffer(self.buffer, first * own.strides[0],",
+     "write_buffer(self.buffer, 0,", [INSTANCE_PIXELS]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count",
+     "instances = draw.instance_count", [INSTANCE_PIXELS]),
+    ("wgpurender/core/plan/gl_facts.py", "if version is None or version[0] or version[1] >= 420 or "
+     "compute_invocations <= 0:", "if version is None or version[0] or version[1] >= 400 or compute_invocations <= 0:",
+     [INSTANCE_RULE]),
+    ("wgpurender/core/plan/gl_facts.py", "if version is None or version[0] or version[1] >= 420 or "
+     "compute_invocations <= 0:", "if version is None or version[1] >= 420 or compute_invocations <= 0:",
+     [INSTANCE_RULE]),
+    ("wgpurender/wgpu_path/device/context.py", "    refuse_broken_gl(adapter)\n", "",
+     ["tests/test_instance_data.py|binds_wrongly_is_refused"]),
     # issue 32 item 6: size-free bounds that catch a dropped post effect, and size classes
     (STRUCT, "return (r * RINGS).astype(int)", "return (r * (RINGS - 1)).astype(int)", [SB]),
     (STRUCT, "rings, lit = ring_index(h, w), luminance(a) > LIT",

@@ -124,8 +124,8 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
             missing[name] = "chromium is not installed (apt-get install chromium)"
         elif name == "raw" and shutil.which("glslc") is None:
             missing[name] = "glslc is not on PATH (the raw path compiles its GLSL with it)"
-        elif name == "wgpu-gl" and not _has_gl():
-            missing[name] = "no OpenGL adapter (wgpurender info --backend opengl)"
+        elif name == "wgpu-gl" and (why := _gl_missing()):
+            missing[name] = why
         elif name == "wgpu-dawn":
             why = _dawn_missing()
             if why:
@@ -133,11 +133,16 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
     return [n for n in (wanted or IMPLEMENTATIONS) if n not in missing], missing
 
 
-def _has_gl() -> bool:
+def _gl_missing() -> str:
+    """Why wgpu-gl cannot render here ('' when it can): no OpenGL adapter, or its one-line refusal (a GL context
+    wgpu binds wrongly: wgpu_path/device/context.refuse_broken_gl)."""
     env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp"}
     probe = subprocess.run([sys.executable, "-m", "wgpurender", "info", "--backend", "opengl"], capture_output=True,
                            text=True, env=env, timeout=120)
-    return probe.returncode == 0
+    if probe.returncode == 0:
+        return ""
+    refusal = [line for line in probe.stderr.splitlines() if "cannot draw correctly" in line]
+    return refusal[-1].split("error: ", 1)[-1] if refusal else "no OpenGL adapter (wgpurender info --backend opengl)"
 
 
 def _dawn_missing() -> str:
