@@ -20,7 +20,7 @@ import pytest
 from dropped_effects import without_post
 
 from wgpurender.core.scene import load_scene
-from wgpurender.core.verdict.tolerances import driver_class, implementation_tolerance, measure
+from wgpurender.core.verdict.tolerances import Uncalibrated, driver_class, implementation_tolerance, measure
 from wgpurender.implementations import render_wgpu, scene_files
 from wgpurender.webpage import export
 from wgpurender.webpage.chromium import Chromium, find_chromium
@@ -36,7 +36,16 @@ pytestmark = pytest.mark.skipif(find_chromium() is None, reason="chromium is not
 
 
 @pytest.fixture(scope="module")
-def recordings(tmp_path_factory):
+def calibrated(ctx):
+    """The browser bounds apply on this driver class (lavapipe here; a GPU machine skips, as test_export_browser)."""
+    try:
+        implementation_tolerance("browser", "final", cls=driver_class(ctx.adapter.info["device"]))
+    except Uncalibrated as err:
+        pytest.skip(str(err))
+
+
+@pytest.fixture(scope="module")
+def recordings(tmp_path_factory, calibrated):
     """{(name, k or None, size): the page's capture}: each scene whole at both sizes, and with each effect cut
     out at the small size; one browser for all pages."""
     root = tmp_path_factory.mktemp("dropped")
