@@ -4,7 +4,8 @@
 // variant flags (albedo_map, lighting, normal_map, roughness_map, flip_v, srgb_output; from a model file's
 // own materials: vertex_color, alpha_mask, double_sided) and the derived
 // ones (uv: any texture; directional_lights / point_lights: that count > 0; immediates: push constants
-// available). The STRUCTS placeholder gets the declarations generated from the Python Struct
+// available; instance_attributes: the plan's instance_data is "vertex", so the Object blocks arrive as
+// per-instance vertex attributes and the material group is 1, not 2). The STRUCTS placeholder gets the declarations generated from the Python Struct
 // definitions; the light counts are compile-time constants, so each loop has a fixed trip count.
 // An unlit variant keeps none of the lighting code, no normal/tangent attribute and no light struct.
 //
@@ -49,6 +50,21 @@ const DIRECTIONAL_LIGHTS: u32 = {{DIRECTIONAL_LIGHTS}}u;
 const POINT_LIGHTS: u32 = {{POINT_LIGHTS}}u;
 
 @group(0) @binding(0) var<uniform> camera: Camera;
+#if instance_attributes
+// Every instance's Object block (core/plan/batches.py packs them) in a vertex buffer stepped once per instance,
+// from the draw's first_instance on: no storage buffer in the vertex stage (core/plan/instance_data.py).
+struct InstanceIn {
+    @location(9) world0: vec4f,
+    @location(10) world1: vec4f,
+    @location(11) world2: vec4f,
+    @location(12) world3: vec4f,
+#if lighting
+    @location(13) normal0: vec3f,
+    @location(14) normal1: vec3f,
+    @location(15) normal2_mirror: vec4f,  // the third column, and the mirror sign in its padding (vertex_blocks)
+#endif
+};
+#else
 // Every instance's Object (world, normal matrix, mirror) in one storage buffer: a draw's instances start at
 // its first_instance, which instance_index includes (core/plan/batches.py packs the array).
 @group(1) @binding(0) var<storage, read> objects: array<Object>;
@@ -56,30 +72,31 @@ const POINT_LIGHTS: u32 = {{POINT_LIGHTS}}u;
 // A GPU-culled draw (scene_cull.wgsl): its visible instances' indices, from its first_instance on.
 @group(1) @binding(1) var<storage, read> visible: array<u32>;
 #endif
+#endif
 #if immediates
 var<immediate> material: Material;
 #else
-@group(2) @binding(0) var<uniform> material: Material;
+@group({{MATERIAL_GROUP}}) @binding(0) var<uniform> material: Material;
 #endif
 #if albedo_map
-@group(2) @binding(1) var albedo_sampler: sampler;
-@group(2) @binding(2) var albedo_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(1) var albedo_sampler: sampler;
+@group({{MATERIAL_GROUP}}) @binding(2) var albedo_tex: texture_2d<f32>;
 #endif
 #if normal_map
-@group(2) @binding(3) var normal_tex: texture_2d<f32>;
-@group(2) @binding(5) var normal_sampler: sampler;
+@group({{MATERIAL_GROUP}}) @binding(3) var normal_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(5) var normal_sampler: sampler;
 #endif
 #if roughness_map
-@group(2) @binding(4) var roughness_tex: texture_2d<f32>;
-@group(2) @binding(6) var roughness_sampler: sampler;
+@group({{MATERIAL_GROUP}}) @binding(4) var roughness_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(6) var roughness_sampler: sampler;
 #endif
 #if emissive_map
-@group(2) @binding(7) var emissive_tex: texture_2d<f32>;
-@group(2) @binding(8) var emissive_sampler: sampler;
+@group({{MATERIAL_GROUP}}) @binding(7) var emissive_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(8) var emissive_sampler: sampler;
 #endif
 #if occlusion_map
-@group(2) @binding(9) var occlusion_tex: texture_2d<f32>;
-@group(2) @binding(10) var occlusion_sampler: sampler;
+@group({{MATERIAL_GROUP}}) @binding(9) var occlusion_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(10) var occlusion_sampler: sampler;
 // the ambient term's factor for this fragment (set by fs_main before shading)
 var<private> ambient_occlusion: f32 = 1.0;
 #endif
@@ -89,7 +106,7 @@ var<private> pbr_metallic: f32 = 0.0;
 {{PBR_FUNCTIONS}}
 #endif
 #if ibl
-@group(2) @binding(11) var<storage, read> ibl_maps: array<vec4f>;
+@group({{MATERIAL_GROUP}}) @binding(11) var<storage, read> ibl_maps: array<vec4f>;
 {{IBL_FUNCTIONS}}
 #endif
 
@@ -151,19 +168,37 @@ struct VertexOut {
 };
 
 @vertex
+#if instance_attributes
+fn vs_main(in: VertexIn, inst: InstanceIn) -> VertexOut {
+    let world = mat4x4f(inst.world0, inst.world1, inst.world2, inst.world3);
+#if lighting
+    let normal_matrix = mat3x3f(inst.normal0, inst.normal1, inst.normal2_mirror.xyz);
+#endif
+#if normal_map
+    let mirror = inst.normal2_mirror.w;
+#endif
+#else
 fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
 #if culled
     let object_data = objects[visible[instance]];
 #else
     let object_data = objects[instance];
 #endif
+    let world = object_data.world;
+#if lighting
+    let normal_matrix = object_data.normal;
+#endif
+#if normal_map
+    let mirror = object_data.mirror;
+#endif
+#endif
     var out: VertexOut;
     // Written as the tutorial's GLSL does (proj * view * model * p, evaluated left to right), so the
     // float32 arithmetic matches it operation for operation.
-    out.clip = camera.proj * camera.view * object_data.world * vec4f(in.position, 1.0);
+    out.clip = camera.proj * camera.view * world * vec4f(in.position, 1.0);
 #if lighting
-    out.world_position = (object_data.world * vec4f(in.position, 1.0)).xyz;
-    out.normal = object_data.normal * in.normal;  // cofactor matrix: right direction, any length
+    out.world_position = (world * vec4f(in.position, 1.0)).xyz;
+    out.normal = normal_matrix * in.normal;  // cofactor matrix: right direction, any length
 #endif
 #if uv
 #if flip_v
@@ -173,8 +208,8 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
 #endif
 #endif
 #if normal_map
-    let world3 = mat3x3f(object_data.world[0].xyz, object_data.world[1].xyz, object_data.world[2].xyz);
-    out.tangent = vec4f(world3 * in.tangent.xyz, in.tangent.w * object_data.mirror);
+    let world3 = mat3x3f(world[0].xyz, world[1].xyz, world[2].xyz);
+    out.tangent = vec4f(world3 * in.tangent.xyz, in.tangent.w * mirror);
 #endif
 #if vertex_color
     out.color = in.color;

@@ -119,7 +119,7 @@ def test_bad_culling_knob_is_refused(tmp_path):
 
     path = write_scene(tmp_path)
     with pytest.raises(UserError, match="culling"):
-        _resolved(parse_scene(path.read_text(), path), knobs=Knobs(culling="cpu"))
+        _resolved(parse_scene(path.read_text(), path), knobs=Knobs(culling="sometimes"))
 
 
 def test_bounding_sphere_holds_every_vertex():

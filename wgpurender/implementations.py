@@ -124,8 +124,8 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
             missing[name] = "chromium is not installed (apt-get install chromium)"
         elif name == "raw" and shutil.which("glslc") is None:
             missing[name] = "glslc is not on PATH (the raw path compiles its GLSL with it)"
-        elif name == "wgpu-gl" and not _has_gl():
-            missing[name] = "no OpenGL adapter (wgpurender info --backend opengl)"
+        elif name == "wgpu-gl" and (why := _gl_missing()):
+            missing[name] = why
         elif name == "wgpu-dawn":
             why = _dawn_missing()
             if why:
@@ -133,11 +133,16 @@ def available(wanted: list[str] | None = None) -> tuple[list[str], dict[str, str
     return [n for n in (wanted or IMPLEMENTATIONS) if n not in missing], missing
 
 
-def _has_gl() -> bool:
+def _gl_missing() -> str:
+    """Why wgpu-gl cannot render here ('' when it can): no OpenGL adapter, or its one-line refusal (a GL context
+    wgpu binds wrongly: wgpu_path/device/context.refuse_broken_gl)."""
     env = {**os.environ, "XDG_RUNTIME_DIR": os.environ.get("XDG_RUNTIME_DIR") or "/tmp"}
     probe = subprocess.run([sys.executable, "-m", "wgpurender", "info", "--backend", "opengl"], capture_output=True,
                            text=True, env=env, timeout=120)
-    return probe.returncode == 0
+    if probe.returncode == 0:
+        return ""
+    refusal = [line for line in probe.stderr.splitlines() if "cannot draw correctly" in line]
+    return refusal[-1].split("error: ", 1)[-1] if refusal else "no OpenGL adapter (wgpurender info --backend opengl)"
 
 
 def _dawn_missing() -> str:
@@ -178,21 +183,27 @@ def child_skipped(out: Path) -> dict[str, str]:
 
 
 def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
-    """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
-    (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
-    from wgpurender.core.verdict.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
-    from wgpurender.core.verdict.tolerances import calibrate as bounds
+    """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from one run (the other
+    implementations' rows are kept). ``measured``: {"WxH": {target: (Metrics, Structure)}} at one size or more.
 
-    table = {"implementations": {}}
-    if IMPLEMENTATIONS_PATH.is_file():
-        from wgpurender.core.verdict.tolerances import load_table
+    The smallest size gives the rows' max, changed and FLIP (the CPU-driver rule of tolerances.calibrate); each
+    larger size its own class of the three (``sizes``: max grows with the pixel count). The size-free bounds
+    come from the worst over every size (tolerances.calibrate_structure)."""
+    from wgpurender.core.verdict import tolerances as tol
 
-        table = load_table(IMPLEMENTATIONS_PATH)
-    rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
+    table = tol.load_table(tol.IMPLEMENTATIONS_PATH) if tol.IMPLEMENTATIONS_PATH.is_file() else {}
+    sizes = sorted(measured, key=tol.size_pixels)
+    base, rows = sizes[0], {}
+    for name, (metrics, _) in measured[base].items():
+        row = {**tol.calibrate([metrics], "lavapipe"), "measured": metrics.summary()}
+        larger = {size: {**tol.calibrate([measured[size][name][0]], "lavapipe"),
+                         "measured": measured[size][name][0].summary()} for size in sizes[1:] if name in measured[size]}
+        spread = [measured[size][name][1] for size in sizes if name in measured[size]]
+        rows[name] = {**row, **({"sizes": larger} if larger else {}), **tol.calibrate_structure(spread, sizes)}
     table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "driver_class": cls,
-                                                               "targets": rows}
-    IMPLEMENTATIONS_PATH.write_text(format_implementation_table(table))
-    return IMPLEMENTATIONS_PATH
+                                                               "size": base, "targets": rows}
+    tol.IMPLEMENTATIONS_PATH.write_text(tol.format_implementation_table(table))
+    return tol.IMPLEMENTATIONS_PATH
 
 
 def _main(argv: list[str] | None = None) -> int:

@@ -14,6 +14,7 @@ from wgpurender.core.course.effects import steps_for_target
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import culling
 from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
+from wgpurender.core.plan.instance_data import resolve_instance_data
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     DEPTH_FORMAT,
@@ -46,6 +47,7 @@ def knob_settings(scene: Scene, knobs: Knobs) -> tuple[tuple[str, str, str], ...
     fuse = r.post_fuse if knobs.post_fuse is None else knobs.post_fuse
     fuse_why = ("knob post_fuse" if knobs.post_fuse is not None else f"render.post_fuse = {str(r.post_fuse).lower()}")
     immediates, immediates_why = resolve_immediates(knobs)
+    instance_data, instance_why = resolve_instance_data(knobs.instance_data, knobs.adapter)
     return (
         ("depth_format", knobs.depth_format, "knob depth_format" if knobs.depth_format != DEPTH_FORMAT else
          "default: 32-bit float depth"),
@@ -56,6 +58,7 @@ def knob_settings(scene: Scene, knobs: Knobs) -> tuple[tuple[str, str, str], ...
             ": consecutive per-pixel effects share one pass" if fuse else ": one pass per effect (teaching)")),
         ("post_path", post_path, path_why),
         ("immediates", immediates, immediates_why),
+        ("instance_data", instance_data, instance_why),
         ("output_storage", "on" if knobs.output_storage else "off",
          "offscreen output: a compute pass may write it directly" if knobs.output_storage else
          "knob output_storage: the output is a swapchain image, not a storage texture"),
@@ -130,7 +133,14 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     drawn = plan_draws(scene, PipelineTarget(targets.format, msaa, knobs.depth_format, depth_compare),
                        targets.srgb_output, knobs, aniso_adapter, notes)
     features = knobs.adapter.features if knobs.adapter is not None else None
-    drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features)
+    compute = knobs.adapter is None or knobs.adapter.compute
+    ibl = any("ibl" in v.flags for v in drawn.variants.values())
+    if knobs.adapter is not None and not knobs.adapter.storage and ibl:
+        raise UserError(f"[environment] cannot be drawn on {knobs.adapter.name or knobs.adapter.backend}: its "
+                        "image-based lighting maps are a storage buffer the fragment shader reads, and this device "
+                        "offers none (a GL context below 4.0); render with --backend vulkan")
+    drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
+                                                 setting["instance_data"], compute)
     settings = (*settings, ("culling", cull, cull_why))
     scene_pass = ScenePass(targets.color, targets.target if msaa > 1 else None, targets.depth, r.clear_color,
                            tuple(drawn.draws), depth_clear=0.0 if knobs.reverse_z else 1.0)

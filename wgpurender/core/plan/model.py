@@ -16,7 +16,10 @@ from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
+from wgpurender.core.plan.gl_facts import glsl_allows
+from wgpurender.core.plan.instance_data import INSTANCE_DATA
 from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
@@ -151,6 +154,7 @@ class Draw:
     worlds: Placements | None = None  # every instance's world matrix when the draw is instanced (core/plan/batches)
     first_instance: int = 0  # where its instances start in the scene's one Object storage buffer
     batch: str = ""  # why these instances are one draw (explain)
+    cpu_culled: bool = False  # its instances are frustum-culled on the CPU (core/plan/culling.cpu_culled)
 
     @property
     def instance_count(self) -> int:
@@ -275,20 +279,33 @@ class AdapterFacts:
     ``adapter_type`` as wgpu reports it ("DiscreteGPU", "IntegratedGPU", "CPU", ...); ``features``: the
     device's enabled features (the plan reads "immediates"); ``backend``: the API under the adapter as wgpu
     reports it ("Vulkan", "OpenGL", ...; "WebGPU" for a browser), since some features are advertised where
-    they cannot be trusted (wgpurender/core/plan/post.py, ``UNTRUSTED_IMMEDIATES``).
+    they cannot be trusted (wgpurender/core/plan/post.py, ``UNTRUSTED_IMMEDIATES``). ``storage``: the device
+    offers storage buffers (``max-storage-buffers-per-shader-stage`` > 0; core/plan/instance_data.py);
+    ``compute``: it runs compute shaders (``max-compute-invocations-per-workgroup`` > 0; core/plan/culling.py).
+    Both are core Vulkan (and WebGPU); GLES 3.0 and a GL context below 4.3 have neither.
     """
 
     adapter_type: str
     features: frozenset[str] = frozenset()
     name: str = ""
     backend: str = ""
+    storage: bool = True
+    compute: bool = True
 
     @classmethod
-    def of(cls, adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "") -> AdapterFacts:
+    def of(cls, adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "",
+           limits: dict | None = None, gl_version: str = "") -> AdapterFacts:
         """The facts from what a device reports: its type as wgpu names it ("DiscreteGPU", "IntegratedGPU",
         "CPU", ...), the features a plan reads (:data:`PLAN_FEATURES`; others are dropped, so the wgpu and the raw
-        path's facts of one device are equal), its name and the API under it ("Vulkan", "OpenGL", ...)."""
-        return cls(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend)
+        path's facts of one device are equal), its name, the API under it ("Vulkan", "OpenGL", ...) and its
+        limits by WebGPU name (None: a core-Vulkan device, which has storage buffers and compute); ``gl_version``:
+        an OpenGL adapter's version string, whose GLSL version naga must support both (gl_facts.glsl_allows)."""
+        limits = limits or {}
+        return cls(adapter_type, frozenset(f for f in features if f in PLAN_FEATURES), name, backend,
+                   storage=limits.get("max-storage-buffers-per-shader-stage", 1) > 0
+                   and glsl_allows("storage", gl_version),
+                   compute=limits.get("max-compute-invocations-per-workgroup", 1) > 0
+                   and glsl_allows("compute", gl_version))
 
     def accuracy_size(self, preset: str) -> tuple[int, int]:
         """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""
@@ -314,13 +331,14 @@ class Knobs:
     adapter: AdapterFacts | None = None
     output_storage: bool = True  # the output texture may be a storage texture (offscreen: yes; a swapchain: no)
     anisotropy: str = DEFAULT_ANISOTROPY  # the anisotropy rule (wgpurender/core/plan/anisotropy.py), for ``adapter``
-    culling: str = "auto"  # "auto", "gpu" or "off": which instanced draws the GPU culls (core/plan/culling.py)
+    culling: str = "auto"  # "auto", "gpu", "cpu" or "off": which instanced draws are culled (core/plan/culling.py)
+    instance_data: str = "auto"  # "auto", "storage" or "vertex": how instances reach the vertex shader
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (
             ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
-            ("culling", self.culling, ("auto", "gpu", "off")),
+            ("culling", self.culling, CULLING), ("instance_data", self.instance_data, INSTANCE_DATA),
         ) if value not in allowed]
         for name, value, allowed in bad:
             raise UserError(f"plan knob {name} = {value!r}: choose one of "
@@ -415,8 +433,10 @@ class RenderPlan:
         if draws:
             out.append(("scene-camera", "uniform: Camera (view, projection, eye, lights), written when they change"))
             instances = sum(d.instance_count for d in draws)
-            out.append(("scene-objects", f"storage: {instances} Object block(s), one per instance, read at "
-                                         "instance_index (128 bytes each)"))
+            read = ("storage: {n} Object block(s), one per instance, read at instance_index (128 bytes each)"
+                    if self.instance_data == "storage" else "vertex (step mode instance): {n} Object block(s), one "
+                    "per instance, read as instance attributes (128-byte stride)")
+            out.append(("scene-objects", read.format(n=instances)))
             culled = self.culled_draws
             if culled:
                 n = sum(d.instance_count for d in culled)
@@ -467,6 +487,16 @@ class RenderPlan:
         """The draws whose instances the GPU culls each frame (core/plan/culling.py)."""
         culled = {p.key for p in self.pipelines if p.culled}
         return tuple(d for d in self.scene_pass.draws if d.pipeline_key in culled)
+
+    @property
+    def cpu_culled_draws(self) -> tuple[Draw, ...]:
+        """The draws whose instances the CPU culls when the camera moves (core/plan/culling.py)."""
+        return tuple(d for d in self.scene_pass.draws if d.cpu_culled)
+
+    @property
+    def instance_data(self) -> str:
+        """"storage" or "vertex": how instances reach the vertex shader (core/plan/instance_data.py)."""
+        return self.setting("instance_data")
 
     @property
     def post_steps(self) -> tuple[EffectStep, ...]:

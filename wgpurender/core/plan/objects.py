@@ -7,7 +7,9 @@ chain's passes, so the whole of what a renderer makes for a scene can be compare
 call without ``create_`` (``create_buffer_with_data`` counts as ``buffer``).
 
 How the wgpu path builds (wgpurender/wgpu_path/): the scene pass has a camera group (0) and an object
-group (1, one storage buffer of every instance's block) shared by every draw, a material group (2) per
+group (1, one storage buffer of every instance's block; none when the plan's instance_data is "vertex": the
+blocks are then a vertex buffer stepped per instance and the material group is 1) shared by every draw, a
+material group (2) per
 distinct material (Draw.material_key) whose variant samples textures or reads its factors from a buffer
 (no immediates), a shader module per
 variant and a pipeline layout per pipeline; a mip chain is one render pass per level, each reading
@@ -60,13 +62,18 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         return []
     immediates = plan.immediates
     out = [GpuObject("buffer", name, 1, what) for name, what in plan.buffers if not name.startswith("post-")]
-    out += [
-        GpuObject("bind_group_layout", "Camera-layout", 1, "group 0: the camera, shared by every scene pipeline"),
-        GpuObject("bind_group_layout", "Object-layout", 1, "group 1: world matrices, one read-only storage buffer"),
-        GpuObject("bind_group", "camera", 1, "group 0, bound once per pipeline, written when the camera changes"),
-        GpuObject("bind_group", "objects", 1, f"group 1, one for all {len(draws)} draw(s) "
-                  f"({sum(d.instance_count for d in draws)} instances, read at instance_index)"),
-    ]
+    storage = plan.instance_data == "storage"
+    out.append(GpuObject("bind_group_layout", "Camera-layout", 1, "group 0: the camera, shared by every scene "
+                         "pipeline"))
+    if storage:
+        out.append(GpuObject("bind_group_layout", "Object-layout", 1, "group 1: world matrices, one read-only "
+                             "storage buffer"))
+    out.append(GpuObject("bind_group", "camera", 1, "group 0, bound once per pipeline, written when the camera "
+                         "changes"))
+    if storage:
+        out.append(GpuObject("bind_group", "objects", 1, f"group 1, one for all {len(draws)} draw(s) "
+                             f"({sum(d.instance_count for d in draws)} instances, read at instance_index)"))
+    material_group = 2 if storage else 1  # per-instance vertex attributes need no object group
     when = " (if the device lacks immediates)" if immediates is None else ""
     pushed = {True: " + immediates", None: " (+ immediates if the device has them)", False: ""}[immediates]
     for v in plan.variants:
@@ -75,7 +82,8 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
             what = [feature for feature, _ in users[0].textures]
             parts = ([f"Material buffer slice{when}"] if immediates is not True else []) + (
                 ["sampler", *what] if what else []) + (["the image-based lighting maps"] if "ibl" in v.flags else [])
-            out.append(GpuObject("bind_group_layout", f"material {v.key}", 1, "group 2: " + ", ".join(parts)))
+            out.append(GpuObject("bind_group_layout", f"material {v.key}", 1, f"group {material_group}: "
+                                 + ", ".join(parts)))
             materials = len({d.material_key() for d in users})
             out.append(GpuObject("bind_group", f"material {v.key}", materials,
                                  "one per distinct material (equal materials share it): "
@@ -89,7 +97,8 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         out.append(GpuObject("shader_module", f"scene {key} culled", 1, "the variant reading its instances through "
                              "the visible list (GPU culling)"))
     for p in plan.pipelines:
-        out.append(GpuObject("pipeline_layout", f"scene {p.key}", 1, f"groups 0-2{pushed} of its variant"))
+        out.append(GpuObject("pipeline_layout", f"scene {p.key}", 1, f"groups 0-{material_group}{pushed} of its "
+                             "variant"))
         out.append(GpuObject("render_pipeline", f"scene {p.key}", 1, "a scene pipeline of the plan"))
     for s in plan.samplers:
         out.append(GpuObject("sampler", f"sampler anisotropy {s.spec.max_anisotropy}", 1, "; ".join(s.used_by)))

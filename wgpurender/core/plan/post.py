@@ -12,6 +12,7 @@ once), what ``--explain`` and ``bench post-roofline`` report.
 from __future__ import annotations
 
 from wgpurender.core.course.effects import EffectStep, group_passes, step_notes
+from wgpurender.core.errors import UserError
 from wgpurender.core.plan.model import (
     BYTES_PER_PIXEL,
     HDR_FORMAT,
@@ -31,9 +32,16 @@ def resolve_post_path(r, knobs: Knobs) -> tuple[str, str]:
     integrated or mobile GPU's raster path is its fast path); fragment when the adapter is not known."""
     asked = knobs.post_path or r.post_path
     origin = "knob post_path" if knobs.post_path else f"render.post_path = {r.post_path}"
-    if asked != "auto":
-        return asked, origin
     adapter = knobs.adapter
+    if asked != "auto" and not (asked == "compute" and adapter is not None and not adapter.compute):
+        return asked, origin
+    if asked == "compute":  # this device runs no compute shaders (a GL context below 4.3: core/plan/instance_data)
+        if knobs.post_path:
+            raise UserError(f"post_path = compute cannot run on {adapter.name or adapter.backend}: it runs no compute "
+                            "shaders (a GL context below 4.3); use post_path = fragment or auto")
+        return "fragment", f"{origin}, but {adapter.name or adapter.backend} runs no compute shaders: fragment"
+    if adapter is not None and adapter.adapter_type == "DiscreteGPU" and not adapter.compute:
+        return "fragment", f"{origin}: fragment on {adapter.name or adapter.backend}, which runs no compute shaders"
     if adapter is None:
         return "fragment", f"{origin}, adapter not known yet: fragment (the renderer re-plans for its adapter)"
     if adapter.adapter_type == "DiscreteGPU":

@@ -81,7 +81,8 @@ class GPUContext:
 
         info = self.info
         return AdapterFacts.of(info.get("adapter_type", ""), self.features, info.get("device", ""),
-                             info.get("backend_type", ""))
+                               info.get("backend_type", ""), dict(self.adapter.limits),
+                               info.get("description", "") if info.get("backend_type") == "OpenGL" else "")
 
     def use_immediates(self, requested: bool | None = None) -> bool:
         """Whether to push per-draw data as immediates: ``None`` follows the plan's rule (offered, and trusted on
@@ -298,6 +299,20 @@ def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
     return min(found, key=lambda a: (order.get(a.info["adapter_type"], 4), rank.get(a.info["backend_type"], 9)))
 
 
+def refuse_broken_gl(adapter: wgpu.GPUAdapter) -> None:
+    """A GL adapter whose bindings wgpu gets wrong is refused in one line (core/plan/gl_facts.gl_binding_fault)
+    rather than drawing wrong images: NVIDIA's EGL context is one (GL 3.3 with the compute extension)."""
+    from wgpurender.core.plan.gl_facts import gl_binding_fault
+
+    info = adapter.info
+    if info["backend_type"] != "OpenGL":
+        return
+    why = gl_binding_fault(info["description"], adapter.limits["max-compute-invocations-per-workgroup"])
+    if why:
+        raise UserError(f"the OpenGL adapter {info['device']} ({info['description']}) cannot draw correctly: {why}; "
+                        "use --backend vulkan")
+
+
 def get_context(backend: str | None = None) -> GPUContext:
     """The process-wide context for a backend, created on first use ("auto" and None resolve first)."""
     return _context(requested_backend(backend))
@@ -311,6 +326,7 @@ def _context(backend: str) -> GPUContext:
 
         print(note, file=sys.stderr, flush=True)
     adapter = select_adapter(backend)
+    refuse_broken_gl(adapter)
     features = frozenset(f for f in OPTIONAL_FEATURES if f in adapter.features)
     limits = {}
     if "immediates" in features:

@@ -27,6 +27,7 @@ from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache
 from wgpurender.wgpu_path.device.shaders import create_shader_module
 from wgpurender.wgpu_path.scene import shader_interface as L
+from wgpurender.wgpu_path.scene.cpu_culling import CpuCuller
 from wgpurender.wgpu_path.scene.culling import GpuCuller
 from wgpurender.wgpu_path.scene.resources import SceneResources
 
@@ -74,7 +75,8 @@ class ScenePassRenderer:
         self.uses_immediates = ctx.use_immediates(use_immediates)
         self.draws = plan.scene_pass.draws
         self.depth_clear = plan.scene_pass.depth_clear
-        self.culler = None
+        self.culler = self.cpu_culler = None
+        self.instance_data = plan.instance_data  # "storage" or "vertex" (core/plan/instance_data.py)
         # Made once per renderer (their layouts are this renderer's): named, counted caches (gpu_cache.py).
         self.pipelines: GpuCache[wgpu.GPURenderPipeline] = GpuCache("scene-pipelines")
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
@@ -90,24 +92,24 @@ class ScenePassRenderer:
         usage = wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST
         self.alignment = self.ctx.limit("min-uniform-buffer-offset-alignment")
         self.camera_buffer = dev.create_buffer(label="scene-camera", size=L.CAMERA.size, usage=usage)
-        # Every instance's Object block, written once (static): one storage buffer read at instance_index.
+        # Every instance's Object block, written once (static): one storage buffer read at instance_index, or a
+        # vertex buffer stepped per instance (the plan's instance_data); the CPU culler rewrites a culled draw's part.
         blocks = instance_blocks(self.draws)
-        self.object_buffer = dev.create_buffer_with_data(
-            label="scene-objects", data=blocks, usage=wgpu.BufferUsage.STORAGE | wgpu.BufferUsage.COPY_DST)
+        if self.instance_data == "vertex":
+            blocks = L.vertex_blocks(blocks)  # the mirror sign beside the third normal column (one attribute)
+        kind = wgpu.BufferUsage.STORAGE if self.instance_data == "storage" else wgpu.BufferUsage.VERTEX
+        self.object_buffer = dev.create_buffer_with_data(label="scene-objects", data=blocks, usage=kind
+                                                         | wgpu.BufferUsage.COPY_DST | wgpu.BufferUsage.COPY_SRC)
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
         self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
+        self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
         self.culler = (GpuCuller(self.ctx, self.plan, self.resources.meshes, self.object_buffer, len(blocks))
                        if self.plan.culled_draws else None)
-        read = {"type": "read-only-storage"}
-        vertex = wgpu.ShaderStage.VERTEX
-        entries = [{"binding": 0, "visibility": vertex, "buffer": {**read, "min_binding_size": L.OBJECT.size}}]
-        resources = [{"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": blocks.nbytes}}]
-        if self.culler is not None:  # binding 1: the culled draws' visible lists (unread by the other pipelines)
-            entries.append({"binding": 1, "visibility": vertex, "buffer": read})
-            resources.append({"binding": 1, "resource": {"buffer": self.culler.visible}})
-        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=entries)
-        self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
-        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=resources)
+        self.cpu_culler = (CpuCuller(self.ctx, self.plan.cpu_culled_draws, self.resources.meshes, blocks,
+                                     self.object_buffer) if self.plan.cpu_culled_draws else None)
+        self.object_layout = self.object_group = None
+        if self.instance_data == "storage":
+            self._setup_object_group(blocks.nbytes)
         # Equal materials share one slice and one group (Draw.material_key): first-use order.
         self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
         self.material_stride = L.MATERIAL.stride(self.alignment)
@@ -115,6 +117,19 @@ class ScenePassRenderer:
         if not self.uses_immediates:
             self.material_buffer = dev.create_buffer(label="scene-materials", usage=usage,
                                                      size=self.material_stride * len(self.material_slots))
+
+    def _setup_object_group(self, nbytes: int) -> None:
+        """Group 1 of the storage way: the Object blocks (and the GPU-culled draws' visible lists)."""
+        dev = self.ctx.device
+        read = {"type": "read-only-storage"}
+        vertex = wgpu.ShaderStage.VERTEX
+        entries = [{"binding": 0, "visibility": vertex, "buffer": {**read, "min_binding_size": L.OBJECT.size}}]
+        resources = [{"binding": 0, "resource": {"buffer": self.object_buffer, "offset": 0, "size": nbytes}}]
+        if self.culler is not None:  # binding 1: the culled draws' visible lists (unread by the other pipelines)
+            entries.append({"binding": 1, "visibility": vertex, "buffer": read})
+            resources.append({"binding": 1, "resource": {"buffer": self.culler.visible}})
+        self.object_layout = dev.create_bind_group_layout(label="Object-layout", entries=entries)
+        self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=resources)
 
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
@@ -187,7 +202,7 @@ class ScenePassRenderer:
 
     def shader_module(self, variant: ShaderVariant, culled: bool = False) -> wgpu.GPUShaderModule:
         return self._modules.get(variant.key + (" culled" if culled else ""), lambda: create_shader_module(
-            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates, culled)))
+            self.ctx.device, L.SHADER, L.shader_source(variant, self.uses_immediates, culled, self.instance_data)))
 
     def pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
         """A pipeline the plan lists (a variant, formats, winding, depth test), made once."""
@@ -195,7 +210,7 @@ class ScenePassRenderer:
 
     def _make_pipeline(self, planned: ScenePipeline) -> wgpu.GPURenderPipeline:
         variant = planned.variant
-        layouts = [self.camera_layout, self.object_layout]
+        layouts = [self.camera_layout] + ([self.object_layout] if self.object_layout is not None else [])
         material_bgl = self.material_layout(variant)
         if material_bgl is not None:
             layouts.append(material_bgl)
@@ -206,7 +221,8 @@ class ScenePassRenderer:
         return dev.create_render_pipeline(
             label=f"scene {variant.key}",
             layout=pipeline_layout,
-            vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)]},
+            vertex={"module": module, "entry_point": "vs_main", "buffers": [L.vertex_layout(variant)] + (
+                [L.instance_layout(variant)] if self.instance_data == "vertex" else [])},
             primitive={"topology": planned.topology, "front_face": planned.front_face, "cull_mode": planned.cull_mode},
             depth_stencil={"format": planned.depth_format, "depth_write_enabled": not planned.blend,
                            "depth_compare": planned.depth_compare},
@@ -230,6 +246,8 @@ class ScenePassRenderer:
         self.ctx.queue.write_buffer(self.camera_buffer, 0, L.CAMERA.pack(camera))
         if self.culler is not None:
             self.culler.write_planes(camera["proj"] @ camera["view"])
+        if self.cpu_culler is not None and self.cpu_culler.update(camera["proj"] @ camera["view"]):
+            self.bundle = self._make_bundle()  # a CPU-culled draw's instance count changed
         self._camera_key = key
         return True
 
@@ -272,14 +290,18 @@ class ScenePassRenderer:
         """Record every draw into a render pass or render bundle encoder (the bundle is made with this): state
         that does not change from the previous draw is not set again; each draw is one instanced draw_indexed."""
         last: list = [None] * 4
+        material_group = L.material_group(self.instance_data)
+        if self.instance_data == "vertex" and self.draws:  # slot 1: the Object blocks, stepped per instance
+            encoder.set_vertex_buffer(1, self.object_buffer)
         for draw, pipeline, group, data, buffers, (first, count) in getattr(self, "draw_state", []):
             if pipeline is not last[0]:
                 encoder.set_pipeline(pipeline)
                 encoder.set_bind_group(0, self.camera_group)
-                encoder.set_bind_group(1, self.object_group)
-                last[2] = None  # a new layout: group 2 is set again
+                if self.object_group is not None:
+                    encoder.set_bind_group(1, self.object_group)
+                last[2] = None  # a new layout: the material group is set again
             if group is not None and group is not last[2]:
-                encoder.set_bind_group(2, group)
+                encoder.set_bind_group(material_group, group)
             if self.uses_immediates:
                 encoder.set_immediates(0, data, 0, len(data))
             if buffers is not last[3]:
@@ -290,7 +312,8 @@ class ScenePassRenderer:
                 encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
                 continue
             # the draw's part of the mesh (a file material's triangles), once per instance
-            encoder.draw_indexed(count, draw.instance_count, first, 0, draw.first_instance)
+            instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count
+            encoder.draw_indexed(count, instances, first, 0, draw.first_instance)
 
 
 def _color_target(planned: ScenePipeline) -> dict:

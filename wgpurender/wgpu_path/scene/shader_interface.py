@@ -11,7 +11,9 @@ the unlit shader contains no light struct, no normal matrix and no lighting code
 
 Bindings (the course's descriptor sets):
   group 0 Camera   - written once per frame (non-dynamic)
-  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py)
+  group 1 Object   - every instance's data in ONE storage buffer, read at instance_index (batches.py); with the
+                     plan's instance_data "vertex" there is no group 1: the same blocks are a vertex buffer
+                     stepped per instance (instance_layout) and the material is group 1
   group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
                      4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples;
                      11: the image-based lighting maps (storage buffer, ibl variants)
@@ -122,9 +124,13 @@ def interleave(mesh: Mesh, attributes: tuple[str, ...]) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate([mesh.attribute(a) for a in attributes], axis=1), dtype=np.float32)
 
 
-def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False) -> set[str]:
-    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled)."""
+def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = False,
+                    instance_data: str = "storage") -> set[str]:
+    """The variant's flags plus the derived ones the template tests (uv, light kinds, immediates, culled,
+    instance_attributes)."""
     features = set(variant.flags) | ({"culled"} if culled else set())
+    if instance_data == "vertex":
+        features.add("instance_attributes")
     if samples_textures(variant):
         features.add("uv")
     features.update(a for a in variant.vertex_attributes if a.startswith("uv") and a != "uv")  # slots uv1..
@@ -146,15 +152,52 @@ def uv_slot_names(variant: ShaderVariant) -> dict[str, str]:
     return names
 
 
-def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False) -> str:
+def material_group(instance_data: str) -> int:
+    """The material's bind group: 2 after the Object storage group, 1 when instances are vertex attributes."""
+    return 2 if instance_data == "storage" else 1
+
+
+# Per-instance attributes (instance_data "vertex"), after the vertex attributes' locations 0-8: (location, format,
+# byte offset in the Object block, the variant flag that needs it or None). The offsets are OBJECT's: the world
+# matrix's columns, then the normal matrix's; the third normal column is read as a vec4 whose w is the mirror sign,
+# copied into that column's padding (vertex_blocks): 7 attributes, so 9 + 7 fit WebGPU's 16.
+INSTANCE_LOCATION = 1 + max(location for location, _ in ATTRIBUTE_LOCATIONS.values())
+assert INSTANCE_LOCATION == 9, "shaders_wgsl/scene.wgsl's InstanceIn starts at @location(9)"
+_NORMAL = OBJECT.offsets["normal"]
+_INSTANCE_ATTRIBUTES = tuple((INSTANCE_LOCATION + c, "float32x4", 16 * c, None) for c in range(4)) + (
+    (INSTANCE_LOCATION + 4, "float32x3", _NORMAL, "lighting"),
+    (INSTANCE_LOCATION + 5, "float32x3", _NORMAL + 16, "lighting"),
+    (INSTANCE_LOCATION + 6, "float32x4", _NORMAL + 32, "lighting"))
+_MIRROR_PAD = (_NORMAL + 44) // 4  # the float after the third normal column
+
+
+def vertex_blocks(blocks: np.ndarray) -> np.ndarray:
+    """The Object blocks as the vertex way reads them: the mirror sign also in the third normal column's padding."""
+    out = np.array(blocks, dtype=np.float32, copy=True)
+    out[:, _MIRROR_PAD] = out[:, OBJECT.offsets["mirror"] // 4]
+    return out
+
+
+def instance_layout(variant: ShaderVariant) -> dict:
+    """The vertex buffer of Object blocks, stepped once per instance: only the attributes the variant reads."""
+    attributes = [{"shader_location": loc, "format": fmt, "offset": offset}
+                  for loc, fmt, offset, flag in _INSTANCE_ATTRIBUTES if flag is None or flag in variant.flags]
+    return {"array_stride": OBJECT.size, "step_mode": "instance", "attributes": attributes}
+
+
+def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False,
+                  instance_data: str = "storage") -> str:
     """scene.wgsl specialised for one variant: only its attributes, bindings, structs and code."""
-    structs = [camera_struct(variant), object_struct(variant), material_struct(variant)]
+    objects = [object_struct(variant)] if instance_data == "storage" else []
+    structs = [camera_struct(variant), *objects, material_struct(variant)]
     values = {
         "STRUCTS": wgsl_structs(*structs),
+        "MATERIAL_GROUP": str(material_group(instance_data)),
         "DIRECTIONAL_LIGHTS": str(variant.count("directional_lights")),
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
         "IBL_FUNCTIONS": load_wgsl(IBL_FUNCTIONS) if "ibl" in variant.flags else "",
         **uv_slot_names(variant),
     }
-    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled), values, name=SHADER)
+    return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled, instance_data), values,
+                      name=SHADER)
