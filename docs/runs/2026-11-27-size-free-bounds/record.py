@@ -1,7 +1,9 @@
 """Render every target on each implementation, and each post scene with each effect dropped (native and browser),
 at one size; save the PNGs under OUT/WxH/ (the measures are computed from them by measure.py).
 
-    PYTHONPATH=.:tests python docs/runs/2026-11-27-size-free-bounds/record.py OUT WxH [--post-only]
+    PYTHONPATH=.:tests python docs/runs/2026-11-27-size-free-bounds/record.py OUT WxH [--post-only | --targets A,B]
+
+--targets draws only those targets and no dropped effects (the tutorial scenes, which need ../shared/anchors).
 """
 
 import sys
@@ -23,6 +25,8 @@ out, size = Path(sys.argv[1]), tuple(int(v) for v in sys.argv[2].split("x"))
 root = out / sys.argv[2]
 post = [n for n, p in impls.scene_files().items() if load_scene(p).post]
 targets = post if "--post-only" in sys.argv else impls.all_targets()
+if "--targets" in sys.argv:
+    targets, post = sys.argv[sys.argv.index("--targets") + 1].split(","), []
 t0 = time.time()
 wanted = ["raw", "wgpu-vulkan", "wgpu-gl", "browser"]
 images, skipped, who = render_all(wanted, targets, size, root / "work")
