@@ -4,8 +4,11 @@
 //
 // irradiance:  E(n) / pi = sum over environment texels of L * max(n.l, 0) * solid angle / pi (every texel: exact
 //              for the piecewise-constant environment up to each texel's cosine taken at its centre)
-// prefilter:   level k (roughness k / (levels - 1)): the GGX-importance-sampled mean of L(l) weighted by n.l with
-//              n = v = r (the split sum's assumption), `samples` Hammersley samples
+// prefilter:   level k >= 1 (roughness k / (levels - 1)): the GGX-importance-sampled mean of L(l) weighted by n.l
+//              with n = v = r (the split sum's assumption), `samples` Hammersley samples; level 0 (the mirror):
+//              the solid-angle-weighted mean of the environment texels whose centres fall inside the texel, else
+//              the texel under its centre, chosen by integer arithmetic (core/course/ibl_maps.py: mirror_level
+//              says why: samples at roughness 0 land on texel corners, where float rounding picks the texel)
 // brdf_lut:    (n.v, roughness) -> (A, B) with the height-correlated Smith V of pbr.wgsl: integral of f nl / F is
 //              f0 A + B (Schlick F = f0 + (1 - f0)(1 - v.h)^5), importance sampled the same way
 
@@ -78,14 +81,53 @@ fn irradiance(@builtin(global_invocation_id) id: vec3u) {
     result[id.y * params.out_size.x + id.x] = vec4f(sum / PI, 1.0);
 }
 
+// The environment index (along one axis of `count` texels) whose centre falls in texel `i` of `size`: the floor of
+// (i + 0.5) count / size, and the first and one past the last index whose centre (k + 0.5) / count falls inside.
+fn texel_under(i: u32, size: u32, count: u32) -> u32 {
+    return ((2u * i + 1u) * count) / (2u * size);
+}
+
+fn inside(k: u32, i: u32, size: u32, count: u32) -> bool {
+    return ((2u * k + 1u) * size) / (2u * count) == i;
+}
+
+fn mirror_texel(texel: vec2u) -> vec3f {
+    let w = params.env_size.x;
+    let h = params.env_size.y;
+    let size = params.out_size;
+    var sum = vec3f(0.0);
+    var weight = 0.0;
+    for (var y = (texel.y * h) / size.y; y < min(((texel.y + 1u) * h) / size.y + 1u, h); y++) {
+        if (!inside(y, texel.y, size.y, h)) {
+            continue;
+        }
+        let band = 2.0 * PI / f32(w) * (cos(f32(y) / f32(h) * PI) - cos(f32(y + 1u) / f32(h) * PI));
+        for (var x = (texel.x * w) / size.x; x < min(((texel.x + 1u) * w) / size.x + 1u, w); x++) {
+            if (inside(x, texel.x, size.x, w)) {
+                sum += env[y * w + x].rgb * band;
+                weight += band;
+            }
+        }
+    }
+    if (weight > 0.0) {
+        return sum / weight;
+    }
+    return env[texel_under(texel.y, size.y, h) * w + texel_under(texel.x, size.x, w)].rgb;
+}
+
 @compute @workgroup_size(8, 8)
 fn prefilter(@builtin(global_invocation_id) id: vec3u) {
     if (id.x >= params.out_size.x || id.y >= params.out_size.y || id.z >= params.levels) {
         return;
     }
+    let index = (id.z * params.out_size.y + id.y) * params.out_size.x + id.x;
+    if (id.z == 0u) {
+        result[index] = vec4f(mirror_texel(id.xy), 1.0);
+        return;
+    }
     let n = direction((vec2f(id.xy) + 0.5) / vec2f(params.out_size));
     let roughness = f32(id.z) / f32(max(params.levels - 1u, 1u));
-    let alpha = max(roughness * roughness, 1e-4);
+    let alpha = roughness * roughness;
     var sum = vec3f(0.0);
     var weight = 0.0;
     for (var i = 0u; i < params.samples; i++) {
@@ -97,7 +139,6 @@ fn prefilter(@builtin(global_invocation_id) id: vec3u) {
             weight += n_dot_l;
         }
     }
-    let index = (id.z * params.out_size.y + id.y) * params.out_size.x + id.x;
     result[index] = vec4f(sum / max(weight, 1e-6), 1.0);
 }
 

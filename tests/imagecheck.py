@@ -24,6 +24,7 @@ import pytest
 
 from wgpurender.core.files.imageio import save_png, to_uint8
 from wgpurender.core.verdict.compare import heatmap
+from wgpurender.core.verdict.structure import structure
 from wgpurender.core.verdict.tolerances import Metrics, Tolerance, measure, tolerance
 
 REPO = Path(__file__).resolve().parent.parent
@@ -100,6 +101,8 @@ def assert_close(request, expected: np.ndarray, actual: np.ndarray, *, max_abs: 
 def _assert_within(request, expected: np.ndarray, actual: np.ndarray, tol: Tolerance) -> Metrics:
     metrics = measure(_rgba8(expected), _rgba8(actual))
     exceeded = tol.exceeded(metrics)
+    if tol.radial is not None or tol.detail is not None:  # the implementation rows' size-free bounds
+        exceeded += tol.structure_exceeded(structure(_rgba8(expected), _rgba8(actual)))
     if exceeded:
         data = {"check": "tolerance", "reference": tol.name, "driver_class": tol.driver_class, **metrics.as_dict(),
                 "tolerance": {"max_abs": tol.max_abs, "changed": tol.changed, "flip_mean": tol.flip_mean,

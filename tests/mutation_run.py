@@ -64,6 +64,10 @@ LIGHTS = "tests/test_gltf_lights.py"
 IBL = "tests/test_ibl.py"
 IBL_SCENE = "tests/test_ibl_scene.py"
 PLAN_BUILT = "tests/test_plan_is_what_is_built.py|ibl"
+SB = "tests/test_structure_bounds.py"
+DROPPED = "tests/test_dropped_effects.py"
+STRUCT = "wgpurender/core/verdict/structure.py"
+TOLS = "wgpurender/core/verdict/tolerances.py"
 GLTF_RENDER = "tests/test_gltf_render.py"
 EX = "tests/test_exercises.py"
 EX_WHEEL = "tests/test_wheel.py|grading"
@@ -83,6 +87,13 @@ DOCFIG = "tests/test_doc_figures.py"
 USERNUM = "tests/test_user_numbers.py"
 STAGESTATE = "tests/test_stage_state.py"
 MATERIALS = INPUTS + "|material_library"
+# gpufix's rows (2026-11-27): the mirror level, the GLSL compute twin, the scenes' GPU maps, the diagnosis bound
+MIRROR = "tests/test_ibl.py|mirror"
+GPU_MAPS = "tests/test_ibl_scene.py|compute_maps or gpu_maps"
+LUT_T = "tests/test_ibl.py|lut or uniform or bright_texel or roughness_zero"
+EX_BOUND = "tests/test_exercises.py|wide_reference"
+EX_LINK = "tests/test_exercises.py|symlinked"
+COMP = "shaders_glsl/ibl.comp"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
@@ -327,7 +338,8 @@ MUTATIONS = [
      "        within = True", [EX + "|no_mistake"]),
     ("wgpurender/exercises/check.py", "(within, -flip) > (best[1], -best[0])", "(within, flip) > (best[1], best[0])",
      [EX + "|nearest or (solution_passes and wgpu-4)"]),
-    ("wgpurender/exercises/check.py", "metrics.append((t, m, tol.exceeded(m)))", "metrics.append((t, m, []))",
+    ("wgpurender/exercises/check.py", "metrics.append((t, m, (tol.exceeded(m) if k == 0 else []) + here))",
+     "metrics.append((t, m, []))",
      [EX + "|solution_passes and wgpu-2a"]),
     ("wgpurender/exercises/check.py", 'return reference_dir() / f"{reference_name(ex)}.png"',
      'return reference_dir() / "triangle.png"', [EX + "|solution_passes and wgpu-3c"]),
@@ -336,8 +348,8 @@ MUTATIONS = [
     ("wgpurender/exercises/check.py", "return 0 if self.status == PASS else 1",
      "return 0 if self.status != ERROR else 1", [EX + "|cli_exercise"]),
     ("wgpurender/exercises/check.py", '    if file.suffix != suffix:', "    if False:", [EX + "|bad_input"]),
-    ("wgpurender/exercises/check.py", "    later = _solution_images(ex)[1:]", "    later = _solution_images(ex)[:1]",
-     [EX + "|solution_passes and wgpu-5"]),
+    ("wgpurender/exercises/check.py", "    return [load_png(reference_file(ex)), *_solution_images(ex)[1:]]",
+     "    return [load_png(reference_file(ex)), *_solution_images(ex)[:1]]", [EX + "|solution_passes and wgpu-5"]),
     ("wgpurender/exercises/sandbox.py", "if str(Path(f.filename).resolve()) == target]",
      "if str(Path(f.filename).resolve()) != target]", [EX + "|broken_learner"]),
     ("wgpurender/exercises/sandbox.py", "if done.returncode == LEARNER_FAILED and", "if done.returncode == 0 and",
@@ -844,8 +856,8 @@ MUTATIONS = [
      "len(load_scene(scene).post) > 2 else EXACT", [LOUD]),
     ("wgpurender/verify_matrix.py", 'driver_class(get_context("Vulkan").adapter.info["device"])',
      'driver_class(get_context("Vulkan").adapter.info["description"])', [LOUD]),
-    ("wgpurender/implementations.py", 'rows = {name: {**bounds([m], "lavapipe")', 'rows = {name: {**bounds([m], "gpu")',
-     [LOUD]),
+    ("wgpurender/implementations.py", 'row = {**tol.calibrate([metrics], "lavapipe")',
+     'row = {**tol.calibrate([metrics], "gpu")', [LOUD]),
     # issue 28's independent fuzz: the bugs it found (exercise through a dangling link, the cache's temp file)
     ("wgpurender/exercises/starter.py", "if os.path.lexists(out / name)]", "if (out / name).exists()]",
      [EX + "|dangling"]),
@@ -1061,6 +1073,128 @@ MUTATIONS = [
      [INSTANCE_RULE]),
     ("wgpurender/wgpu_path/device/context.py", "    refuse_broken_gl(adapter)\n", "",
      ["tests/test_instance_data.py|binds_wrongly_is_refused"]),
+    # issue 32 item 6: size-free bounds that catch a dropped post effect, and size classes
+    (STRUCT, "return (r * RINGS).astype(int)", "return (r * (RINGS - 1)).astype(int)", [SB]),
+    (STRUCT, "rings, lit = ring_index(h, w), luminance(a) > LIT",
+     "rings, lit = ring_index(h, w), luminance(b) > LIT", [SB]),
+    (STRUCT, "if np.count_nonzero(inside) >= MIN_RING * h * w:", "if np.count_nonzero(inside) > 0:", [SB]),
+    (STRUCT, "np.abs(np.median(b[inside] - a[inside], axis=0)).max()",
+     "np.abs(np.mean(b[inside] - a[inside], axis=0)).max()", [SB]),
+    (STRUCT, "np.abs(np.median(b[inside] - a[inside], axis=0)).max()",
+     "np.median(b[inside] - a[inside], axis=0).max()", [SB]),
+    (STRUCT, "LIT = 2.0", "LIT = -1.0", [SB]),
+    (STRUCT, "np.hypot(np.diff(y, axis=1)[:-1], np.diff(y, axis=0)[:, :-1])",
+     "np.hypot(np.diff(y, axis=0)[:, :-1], 0)", [SB]),
+    (STRUCT, "(gradient(yb)[edges].mean() + 1.0) / (gradient(ya)[edges].mean() + 1.0)",
+     "(gradient(yb)[edges].mean() + 1.0) / (gradient(yb)[edges].mean() + 1.0)", [SB]),
+    (STRUCT, "edges = edge_pixels(ya)", "edges = edge_pixels(yb)", [SB]),
+    (STRUCT, "EDGE = 128.0", "EDGE = 8.0", [SB]),
+    (STRUCT, "return (around.max(axis=0) - around.min(axis=0) > EDGE)[:-1, :-1]",
+     "return (around.max(axis=0) > EDGE)[:-1, :-1]", [SB]),
+    (TOLS, "            if width * height <= pixels:", "            if width * height < pixels:", [SB]),
+    (TOLS, "return dataclasses.replace(self, size=name, sizes=(), **fields)",
+     "return dataclasses.replace(self, size=name, sizes=())", [SB]),
+    (TOLS, "        if not self.size:\n            return self", "        if False:\n            return self", [SB]),
+    (TOLS, "measured.radial > self.radial", "measured.radial >= self.radial", [SB]),
+    (TOLS, "abs(measured.detail) > self.detail", "measured.detail > self.detail", [SB]),
+    (TOLS, '"radial": radial + 1,', '"radial": radial,', [SB]),
+    (TOLS, "max(0.02, _round_up(2 * detail))", "max(0.02, _round_up(detail))", [SB]),
+    (TOLS, "detail = max(abs(s.detail) for s in spread)", "detail = max(s.detail for s in spread)", [SB]),
+    (TOLS, "return math.ceil(round(value * scale, 9)) / scale", "return math.ceil(value * scale) / scale", [LOUD]),
+    ("wgpurender/implementations.py", "base, rows = sizes[0], {}", "base, rows = sizes[-1], {}", [LOUD]),
+    ("wgpurender/implementations.py", 'larger = {size: {**tol.calibrate([measured[size][name][0]], "lavapipe"),',
+     'larger = {size: {**tol.calibrate([measured[size][name][0]], "gpu"),', [LOUD]),
+    ("wgpurender/implementations.py", "for size in sizes[1:] if name in measured[size]",
+     "for size in sizes[2:] if name in measured[size]", [LOUD]),
+    ("wgpurender/verify.py", "False, radial=1.0, detail=0.02)", "False)", [SB]),
+    ("tests/dropped_effects.py", 'if lines[i].split("#")[0].strip() == "[[post]]"]',
+     'if lines[i].split("#")[0].strip() == "[[models]]"]', [SB]),
+    ("wgpurender/verify_matrix.py", "tol = None if tol is None else tol.at_size(ia.shape[1], ia.shape[0])",
+     "tol = tol", [DROPPED]),
+    ("wgpurender/verify_matrix.py", "tol.exceeded(measure(ia, ib)) + tol.structure_exceeded(structure(ia, ib))",
+     "tol.exceeded(measure(ia, ib))", [DROPPED]),
+    # -- gpufix: the mirror level (core and both shaders), the GLSL twin, scenes on GPU maps, exercises ----------
+    ("wgpurender/core/course/ibl_maps.py", "cols, rows = (2 * np.arange(w) + 1) * pw // (2 * w), (2 * np.arange(h) + 1) * ph // (2 * h)",  # noqa: E501
+     "cols, rows = np.arange(w) * pw // w, (2 * np.arange(h) + 1) * ph // (2 * h)", [GPU_MAPS, MIRROR]),
+    ("wgpurender/core/course/ibl_maps.py", "weight = np.bincount(index, omega.reshape(-1), pw * ph)",
+     "weight = np.bincount(index, np.ones(omega.size), pw * ph)", [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "return np.where((weight > 0)[:, None], mean, under.reshape(-1, 3))",
+     "return np.where((weight > 1)[:, None], mean, under.reshape(-1, 3))", [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "out = [mirror_level(env, size)]", "out = [mirror_level(env, size) * 0.99]",
+     [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "hv = ggx_half(xi, roughness * roughness, n)", "hv = ggx_half(xi, roughness, n)",  # noqa: E501
+     [GPU_MAPS]),
+    ("wgpurender/core/course/ibl_maps.py", "return shrink(environment.radiance()).astype(np.float32)",
+     "return environment.radiance().astype(np.float32)[::2]", [GPU_MAPS]),
+    ("shaders_wgsl/ibl.wgsl", "return ((2u * k + 1u) * size) / (2u * count) == i;",
+     "return ((2u * k) * size) / (2u * count) == i;", [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "return ((2u * i + 1u) * count) / (2u * size);", "return ((2u * i) * count) / (2u * size);",  # noqa: E501
+     [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "for (var y = (texel.y * h) / size.y; y < min(((texel.y + 1u) * h) / size.y + 1u, h); y++) {",  # noqa: E501
+     "for (var y = (texel.y * h) / size.y; y < min(((texel.y + 1u) * h) / size.y, h); y++) {", [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "                sum += env[y * w + x].rgb * band;\n                weight += band;",
+     "                sum += env[y * w + x].rgb;\n                weight += 1.0;", [MIRROR]),
+    ("shaders_wgsl/ibl.wgsl", "    if (id.z == 0u) {\n        result[index] = vec4f(mirror_texel(id.xy), 1.0);",
+     "    if (id.z == 9u) {\n        result[index] = vec4f(mirror_texel(id.xy), 1.0);", [MIRROR]),
+    (COMP, "return ((2u * k + 1u) * size) / (2u * count) == i;", "return ((2u * k) * size) / (2u * count) == i;",
+     [MIRROR]),
+    (COMP, "return ((2u * i + 1u) * count) / (2u * size);", "return ((2u * i) * count) / (2u * size);", [MIRROR]),
+    (COMP, "for (uint x = (texel.x * w) / size.x; x < min(((texel.x + 1u) * w) / size.x + 1u, w); x++) {",
+     "for (uint x = (texel.x * w) / size.x + 1u; x < min(((texel.x + 1u) * w) / size.x + 1u, w); x++) {", [MIRROR]),
+    (COMP, "    if (id.z == 0u) {\n        result[index] = vec4(mirror_texel(id.xy), 1.0);",
+     "    if (id.z == 9u) {\n        result[index] = vec4(mirror_texel(id.xy), 1.0);", [MIRROR]),
+    (COMP, "    return vec2((float(i) + 0.5) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10);",
+     "    return vec2((float(i) + 0.5) / float(n), float(i) / float(n));", [GPU_MAPS]),
+    (COMP, "    float cos_t = sqrt((1.0 - xi.y) / (1.0 + (a2 - 1.0) * xi.y));",
+     "    float cos_t = sqrt((1.0 - xi.y) / (1.0 + (alpha - 1.0) * xi.y));", [GPU_MAPS]),
+    (COMP, "    vec3 up = abs(n.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);",
+     "    vec3 up = abs(n.z) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);", [GPU_MAPS]),
+    (COMP, "    float u = atan(d.x, -d.z) / (2.0 * PI) + 0.5;", "    float u = atan(d.x, d.z) / (2.0 * PI) + 0.5;",
+     [GPU_MAPS]),
+    (COMP, "            sum += env[y * w + x].rgb * max(dot(n, l), 0.0) * band;",
+     "            sum += env[y * w + x].rgb * abs(dot(n, l)) * band;", [GPU_MAPS]),
+    (COMP, "    result[id.y * params.out_size.x + id.x] = vec4(sum / PI, 1.0);",
+     "    result[id.y * params.out_size.x + id.x] = vec4(sum, 1.0);", [GPU_MAPS]),
+    (COMP, "            sum += env_radiance(l) * n_dot_l;\n            weight += n_dot_l;",
+     "            sum += env_radiance(l);\n            weight += 1.0;", [GPU_MAPS]),
+    (COMP, "            float fc = pow(1.0 - v_dot_h, 5.0);", "            float fc = pow(1.0 - n_dot_v, 5.0);",
+     [GPU_MAPS]),
+    (COMP, "    return 0.5 / (n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) + n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2));",  # noqa: E501
+     "    return 0.5 / (n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) + n_dot_v * sqrt(n_dot_l * (1.0 - a2) + a2));",  # noqa: E501
+     [GPU_MAPS]),
+    (COMP, "    vec3 v = vec3(sqrt(1.0 - n_dot_v * n_dot_v), 0.0, n_dot_v);", "    vec3 v = vec3(0.0, 0.0, 1.0);",
+     [GPU_MAPS]),
+    ("wgpurender/raw_path/scene/ibl.py", "params = np.array([w, h, ow, oh, samples, depth, 0, 0], np.uint32).tobytes()",
+     "params = np.array([w, h, ow, oh, samples, 1, 0, 0], np.uint32).tobytes()", [GPU_MAPS]),
+    ("wgpurender/raw_path/scene/ibl.py", "vk.vkCmdDispatch(cmd, -(-ow // WORKGROUP), -(-oh // WORKGROUP), depth)",
+     "vk.vkCmdDispatch(cmd, ow // WORKGROUP, -(-oh // WORKGROUP), depth)", [MIRROR]),
+    ("wgpurender/raw_path/scene/ibl.py", "rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)",  # noqa: E501
+     "rgba = np.concatenate([environment[::-1], np.ones((h, w, 1))], axis=-1).astype(np.float32)", [GPU_MAPS]),
+    ("wgpurender/raw_path/scene/scene_subpass.py",
+     "self._ibl_buffer = scene_maps_buffer(self.ctx, self.owned, scene_environment(env), env.samples)",
+     "self._ibl_buffer = scene_maps_buffer(self.ctx, self.owned, scene_environment(env), 16)", [GPU_MAPS]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "self._ibl_buffer = scene_maps_buffer(self.ctx, scene_environment(env), env.samples)",
+     "self._ibl_buffer = scene_maps_buffer(self.ctx, scene_environment(env), 16)", [GPU_MAPS]),
+    ("wgpurender/wgpu_path/scene/ibl.py", "params[k, :8] = [w, h, ow, oh, samples, depth, 0, 0]",
+     "params[k, :8] = [w, h, ow, oh, samples, 1, 0, 0]", [GPU_MAPS]),
+    ("wgpurender/wgpu_path/scene/ibl.py", '"offset": k * PARAMS_STRIDE, "size": 32}}', '"offset": 0, "size": 32}}',
+     [GPU_MAPS]),
+    ("wgpurender/wgpu_path/scene/ibl.py", "        offset += size\n", "        offset += 0\n", [GPU_MAPS]),
+    ("wgpurender/core/plan/objects.py", '        out += [GpuObject(kind, "ibl", len(passes), f"one per compute pass',
+     '        out += [GpuObject(kind, "ibl", 1, f"one per compute pass', [PLAN_BUILT]),
+    ("wgpurender/raw_path/scene/ibl.py", "descriptors.write_buffer(dst_set, 2, out.handle, offset, 16 * ow * oh * depth, STORAGE)]",  # noqa: E501
+     "descriptors.write_buffer(dst_set, 2, out.handle, 0, 16 * ow * oh * depth, STORAGE)]", [GPU_MAPS]),
+    ("wgpurender/exercises/check.py", "verdict.diagnosis = diagnose(images, ex, rounding_tolerance(ex))",
+     "verdict.diagnosis = diagnose(images, ex, tol)", [EX_BOUND]),
+    ("wgpurender/exercises/check.py", "    return tolerance(reference_name(ex), ROUNDING_CLASS)",
+     "    return tolerance(reference_name(ex), _driver_class(ex.path))", [EX_BOUND]),
+    ("wgpurender/exercises/starter.py", '    out = resolve_folder(Path(out), "-o")', "    out = Path(out)", [EX_LINK]),
+    ("wgpurender/exercises/check.py",
+     '        here = [f"against the solution rendered here: {e}" for e in rounding.exceeded(measure(solution, actual))]',  # noqa: E501
+     "        here = []", [EX_BOUND]),
+    ("wgpurender/exercises/check.py", "        metrics.append((t, m, (tol.exceeded(m) if k == 0 else []) + here))",
+     "        metrics.append((t, m, here))", [EX + "|still_judges_t0"]),
     # issue 31.3 (perf engineer): the simple-OBJ reader, the scene's read-jail folders asked once, thread CPU rows
     (O_SIMPLE, '    if len(data) > MAX_BYTES or b"\\\\" in data:', "    if len(data) > MAX_BYTES:", [OBJ_SIMPLE]),
     (O_SIMPLE, '        if not line or line.startswith(b"#"):', "        if not line:", [OBJ_SIMPLE]),

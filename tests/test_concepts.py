@@ -38,7 +38,7 @@ REQUIRED_CALLS = ("vkCmdClearColorImage", "vkCreateBuffer", "vkCmdDraw", "vkCmdD
                   "vkGetBufferMemoryRequirements", "vkDeviceWaitIdle", "vkCreateComputePipelines", "vkCmdDispatch")
 # Concepts the raw path has no code for: their rows must say so (events: no natural use; the raw window,
 # wgpurender/raw_path/window/__init__.py, has the surface, swapchain, semaphores and frames in flight).
-NOT_IN_RAW_PATH = {"events", "compute pipelines", "storage images"}
+NOT_IN_RAW_PATH = {"events", "storage images"}  # compute pipelines: raw_path/scene/ibl.py since 2026-11-27
 # Concepts no path has code for: shown as "not demonstrated".
 NOT_DEMONSTRATED = {"events"}
 ALL_LOCATIONS = sorted({(row.name, loc) for row in CONCEPTS for loc in (*row.raw, *row.wgpu_where)})

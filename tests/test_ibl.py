@@ -23,6 +23,19 @@ def gpu():
     return get_context()
 
 
+def path_maps(path: str):
+    """make_maps(environment, samples, ...) of one path's compute passes (wgpu: ibl.wgsl, raw: ibl.comp)."""
+    if path == "wgpu":
+        from wgpurender.wgpu_path.device.context import get_context
+        from wgpurender.wgpu_path.scene.ibl import make_maps
+
+        return lambda *args, **kw: make_maps(get_context(), *args, **kw)
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.raw_path.scene.ibl import make_maps
+
+    return lambda *args, **kw: make_maps(get_vulkan(), *args, **kw)
+
+
 def test_a_uniform_environment_gives_its_radiance_everywhere(gpu):
     """Radiance c from every direction: E / pi = c for every normal, and every prefiltered level is c."""
     from wgpurender.wgpu_path.scene.ibl import make_maps
@@ -60,6 +73,44 @@ def test_roughness_zero_prefilter_is_the_mirror_lookup(gpu):
     env = np.random.default_rng(30).random((H, W, 3)).astype(np.float32)
     maps = make_maps(gpu, env, samples=8, prefilter_size=(W, H))
     assert np.allclose(maps.prefiltered[0], env, rtol=1e-5)
+
+
+def band_solid_angles(width: int, height: int) -> np.ndarray:
+    """(height,) solid angle of one texel of each row: (2 pi / width)(cos theta0 - cos theta1)."""
+    edges = np.arange(height + 1) / height * np.pi
+    return 2 * np.pi / width * (np.cos(edges[:-1]) - np.cos(edges[1:]))
+
+
+@pytest.mark.parametrize("path", ["wgpu", "raw"])
+def test_the_mirror_level_of_a_half_size_map_is_the_mean_of_each_2x2_block(path):
+    """Level 0 at half the environment's size: each texel covers a 2x2 block exactly, so it is the block's
+    solid-angle-weighted mean (random texels: the four differ). Before, GGX samples at roughness 0 sat on the
+    block's corner and float rounding chose the blend (on an H100, 57% of the sky's texels near a neighbour)."""
+    env = np.random.default_rng(7).random((H, W, 3)).astype(np.float32)
+    maps = path_maps(path)(env, samples=64, prefilter_size=(W // 2, H // 2))
+    omega = band_solid_angles(W, H)[:, None, None] * np.ones((1, W, 1))
+    blocks = (env * omega).reshape(H // 2, 2, W // 2, 2, 3).sum((1, 3))
+    want = blocks / omega.reshape(H // 2, 2, W // 2, 2, 1).sum((1, 3))
+    assert np.allclose(maps.prefiltered[0], want, rtol=1e-4)
+
+
+@pytest.mark.parametrize("path", ["wgpu", "raw"])
+def test_the_mirror_level_of_a_map_larger_than_the_environment_is_the_texel_under_each_centre(path):
+    env = np.random.default_rng(8).random((2, 4, 3)).astype(np.float32)
+    maps = path_maps(path)(env, samples=8, prefilter_size=(8, 4))
+    assert np.allclose(maps.prefiltered[0], env.repeat(2, 0).repeat(2, 1), rtol=1e-6)
+
+
+@pytest.mark.parametrize("path", ["wgpu", "raw"])
+def test_the_mirror_level_at_sizes_that_do_not_divide_is_the_float64_one(path):
+    """A 10x5 environment on a 6x3 and a 13x7 map: blocks of one or two texels, uneven, and texels with none
+    (then the texel under the centre), against core/course/ibl_maps.mirror_level in float64."""
+    from wgpurender.core.course.ibl_maps import mirror_level
+
+    env = np.random.default_rng(9).random((5, 10, 3)).astype(np.float32)
+    for size in ((6, 3), (13, 7)):
+        maps = path_maps(path)(env, samples=8, prefilter_size=size)
+        assert np.allclose(maps.prefiltered[0], mirror_level(env.astype(np.float64), size), rtol=1e-5), size
 
 
 def split_sum_integrals(n_dot_v: float, roughness: float, steps: int = 600) -> tuple[float, float]:
@@ -103,7 +154,7 @@ def test_bench_section_error_falls_with_the_sample_count(gpu):
 
     both = run_ibl(gpu, 1, TruthRow, environment=sky(W, H))
     assert [r.setting for r in both] == [s for n in SAMPLE_COUNTS
-                                         for s in (f"{n} samples", f"{n} samples, float64 CPU (scenes)")]
+                                         for s in (f"{n} samples", f"{n} samples, float64 CPU (the check)")]
     for rows in (both[0::2], both[1::2]):  # the GPU's compute maps, then the float64 maps scenes draw
         assert rows[-1].linear_mae < rows[0].linear_mae
         relative = float(rows[-1].note.split()[2].rstrip("%;")) / 100

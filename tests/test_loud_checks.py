@@ -119,17 +119,25 @@ def test_the_matrix_picks_its_bound_by_the_rules(monkeypatch):
 
 def test_implementation_calibration_keeps_its_margin(tmp_path, monkeypatch):
     """verify --calibrate's rows follow the header's rule (CPU drivers): a measured spread of max 5/255, 3% of
-    pixels, FLIP 0.004 becomes max 6, changed 6%, FLIP 0.008, with the spread and the driver class written."""
+    pixels, FLIP 0.004 becomes max 6, changed 6%, FLIP 0.008, with the spread and the driver class written; a
+    larger size measured in the same run becomes its own class (max 9 -> 10); the size-free bounds come from the
+    worst over both sizes (radial 0 -> 1/255, detail 2 x 0.07 = 0.14)."""
     import tomllib
 
     from wgpurender import implementations
     from wgpurender.core.verdict import tolerances
+    from wgpurender.core.verdict.structure import Structure
     from wgpurender.core.verdict.tolerances import Metrics
 
     path = tmp_path / "implementations.toml"
     monkeypatch.setattr(tolerances, "IMPLEMENTATIONS_PATH", path)
-    implementations.calibrate("browser", {"final": Metrics(5, 0.03, 576, 0.004, 19200)}, "here, today", "lavapipe")
+    implementations.calibrate("browser", {
+        "320x240": {"final": (Metrics(9, 0.02, 1536, 0.003, 76800), Structure(0.0, -0.07))},
+        "160x120": {"final": (Metrics(5, 0.03, 576, 0.004, 19200), Structure(0.0, 0.05))}}, "here, today", "lavapipe")
     table = tomllib.loads(path.read_text())["implementations"]["browser"]
     row = table["targets"]["final"]
     assert (row["max_abs"], row["changed"], row["flip_mean"]) == (6, 0.06, 0.008)
-    assert table["driver_class"] == "lavapipe" and "576 of 19200" in row["measured"]
+    assert table["driver_class"] == "lavapipe" and "576 of 19200" in row["measured"] and table["size"] == "160x120"
+    big = row["sizes"]["320x240"]
+    assert (big["max_abs"], big["changed"], big["flip_mean"]) == (10, 0.04, 0.006)
+    assert (row["radial"], row["detail"]) == (1.0, 0.14) and "160x120, 320x240" in row["structure_measured"]

@@ -230,7 +230,8 @@ def listed(plan) -> Counter:
     want["texture"] = sum(a.role != "output" for a in plan.attachments) + len(plan.textures)
     want["render_pipeline"] = (len(plan.pipelines) + len(plan.mipmap_formats)
                                + sum(p.stage == "fragment" for p in plan.post_pipelines))
-    want["compute_pipeline"] = sum(p.stage == "compute" for p in plan.post_pipelines) + bool(plan.culled_draws)
+    want["compute_pipeline"] = (sum(p.stage == "compute" for p in plan.post_pipelines) + bool(plan.culled_draws)
+                                + len(plan.ibl_passes))
     want["buffer"] = len(plan.buffers)
     return +want
 

@@ -640,15 +640,16 @@ CONCEPTS: list[Concept] = [
     Concept(
         "compute pipelines",
         ("vkCreateComputePipelines", "VkComputePipelineCreateInfo", "vkCmdBindPipeline(COMPUTE)", "vkCmdDispatch"),
-        (),
+        _raw("scene.ibl:_compute_pipeline", "scene.ibl:_record"),
         ("device.create_compute_pipeline(layout=, compute={module, entry_point, constants})",
          "encoder.begin_compute_pass", "compute_pass.dispatch_workgroups"),
-        _wgpu("post.passes:ComputePass.__init__", "post.passes:ComputePass.dispatch"),
+        _wgpu("post.passes:ComputePass.__init__", "post.passes:ComputePass.dispatch", "scene.ibl:scene_maps_buffer"),
         "The same object: a pipeline with one shader stage, bound in a compute pass and dispatched in workgroups "
-        "(8x8 here, one thread per pixel). The wgpu path's post chain can run as compute (the plan's post_path "
-        "knob: docs/benchmarks.md measures both).",
-        raw_note="not in the raw path: its post chain runs in fragment subpasses, whose input attachments are what "
-        "it shows (a compute pass cannot read a subpass input); the compute path is a wgpu-path alternative",
+        "(8x8 here, one thread per texel or pixel). Both paths make the image-based lighting maps this way "
+        "(ibl.wgsl; ibl.comp, its GLSL twin, one variant per pass where WGSL names three entry points); Vulkan "
+        "records the dispatch in any command buffer outside a render pass, wgpu in a compute pass. Only the wgpu "
+        "path's post chain can run as compute (the plan's post_path knob: docs/benchmarks.md measures both): the "
+        "raw one runs in fragment subpasses, whose input attachments a compute pass cannot read.",
     ),
     Concept(
         "storage images",
@@ -659,8 +660,8 @@ CONCEPTS: list[Concept] = [
         _wgpu("post.passes:ComputePass._entries", "post.passes:ComputePass.dispatch", "post.chain:attachment_usage"),
         "An sRGB format cannot be a storage texture (rgba8unorm-srgb is not storable): the compute pass writes "
         "rgba8unorm or a float format and copies into an sRGB output, or encodes sRGB in the shader.",
-        raw_note="not in the raw path: it has no compute pass (see compute pipelines); its images are colour, "
-        "depth and input attachments and sampled images",
+        raw_note="not in the raw path: its one compute pass (the IBL maps) writes storage buffers; its images are "
+        "colour, depth and input attachments and sampled images",
     ),
 ]
 

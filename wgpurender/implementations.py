@@ -183,21 +183,27 @@ def child_skipped(out: Path) -> dict[str, str]:
 
 
 def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "lavapipe") -> Path:
-    """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from measured Metrics by target
-    (the other implementations' rows are kept). Bounds follow the CPU-driver rule of tolerances.calibrate."""
-    from wgpurender.core.verdict.tolerances import IMPLEMENTATIONS_PATH, format_implementation_table
-    from wgpurender.core.verdict.tolerances import calibrate as bounds
+    """Rewrite ``implementation``'s rows of assets/reference/implementations.toml from one run (the other
+    implementations' rows are kept). ``measured``: {"WxH": {target: (Metrics, Structure)}} at one size or more.
 
-    table = {"implementations": {}}
-    if IMPLEMENTATIONS_PATH.is_file():
-        from wgpurender.core.verdict.tolerances import load_table
+    The smallest size gives the rows' max, changed and FLIP (the CPU-driver rule of tolerances.calibrate); each
+    larger size its own class of the three (``sizes``: max grows with the pixel count). The size-free bounds
+    come from the worst over every size (tolerances.calibrate_structure)."""
+    from wgpurender.core.verdict import tolerances as tol
 
-        table = load_table(IMPLEMENTATIONS_PATH)
-    rows = {name: {**bounds([m], "lavapipe"), "measured": m.summary()} for name, m in measured.items()}
+    table = tol.load_table(tol.IMPLEMENTATIONS_PATH) if tol.IMPLEMENTATIONS_PATH.is_file() else {}
+    sizes = sorted(measured, key=tol.size_pixels)
+    base, rows = sizes[0], {}
+    for name, (metrics, _) in measured[base].items():
+        row = {**tol.calibrate([metrics], "lavapipe"), "measured": metrics.summary()}
+        larger = {size: {**tol.calibrate([measured[size][name][0]], "lavapipe"),
+                         "measured": measured[size][name][0].summary()} for size in sizes[1:] if name in measured[size]}
+        spread = [measured[size][name][1] for size in sizes if name in measured[size]]
+        rows[name] = {**row, **({"sizes": larger} if larger else {}), **tol.calibrate_structure(spread, sizes)}
     table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "driver_class": cls,
-                                                               "targets": rows}
-    IMPLEMENTATIONS_PATH.write_text(format_implementation_table(table))
-    return IMPLEMENTATIONS_PATH
+                                                               "size": base, "targets": rows}
+    tol.IMPLEMENTATIONS_PATH.write_text(tol.format_implementation_table(table))
+    return tol.IMPLEMENTATIONS_PATH
 
 
 def _main(argv: list[str] | None = None) -> int:

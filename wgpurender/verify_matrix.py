@@ -3,9 +3,10 @@ and repository scene rendered on each implementation at one size, and every pair
 
 Metrics per pair: max (largest channel difference, 1/255), the share of pixels off by more than 1/255, PSNR and
 mean FLIP (core/verdict/compare.py). Bounds: each implementation against the reference one, ``wgpu-vulkan``, with the
-calibrated rows of assets/reference/implementations.toml (``raw`` against ``wgpu-vulkan``: exact on one device,
-except the post-chain bound that verify.py explains). Pairs of two non-reference implementations are reported
-without a bound (``info``): their distance is at most the sum of their two bounded distances.
+calibrated rows of assets/reference/implementations.toml at the image's size class, and the size-free radial and
+detail bounds that catch a dropped post effect (core/verdict/structure.py) (``raw`` against ``wgpu-vulkan``: exact
+on one device, except the post-chain bound that verify.py explains). Pairs of two non-reference implementations are
+reported without a bound (``info``): their distance is at most the sum of their two bounded distances.
 
 Writes ``implementations.md``, ``implementations.csv`` and ``heatmaps/impl-*.png``. ``calibrate=True`` rewrites
 the measured implementations' rows of implementations.toml from this run (bounds per the CPU-driver rule).
@@ -25,6 +26,7 @@ import numpy as np
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.imageio import save_png
 from wgpurender.core.verdict.compare import Comparison, compare_images, heatmap
+from wgpurender.core.verdict.structure import structure
 from wgpurender.core.verdict.tolerances import Tolerance, Uncalibrated, driver_class, implementation_tolerance, measure
 
 REFERENCE = "wgpu-vulkan"
@@ -85,6 +87,7 @@ def _compare(out: Path, target: str, a: str, b: str, ia: np.ndarray, ib: np.ndar
     comparison = compare_images(ia, ib)
     try:
         tol = _bound(a, b, target)
+        tol = None if tol is None else tol.at_size(ia.shape[1], ia.shape[0])
     except (Uncalibrated, UserError) as err:  # a bound that does not apply here fails loudly, never "info"
         return Cell(target, a, b, "FAIL", comparison, "uncalibrated", f"uncalibrated: {err}")
     note = ""
@@ -92,7 +95,8 @@ def _compare(out: Path, target: str, a: str, b: str, ia: np.ndarray, ib: np.ndar
         return Cell(target, a, b, "identical", comparison, _text(tol), note)
     cell = Cell(target, a, b, "info" if tol is None else "pass", comparison, _text(tol), note)
     if tol is not None:
-        exceeded = tol.exceeded(measure(ia, ib)) if tol.name != "exact" else ["not identical"]
+        exceeded = (tol.exceeded(measure(ia, ib)) + tol.structure_exceeded(structure(ia, ib))
+                    if tol.name != "exact" else ["not identical"])
         if exceeded:
             cell.status, cell.note = "FAIL", "; ".join(exceeded)
     path = out / "heatmaps" / f"impl-{target}-{a}-{b}.png"
@@ -107,7 +111,9 @@ def _text(tol: Tolerance | None) -> str:
         return "none (info)"
     if tol.name == "exact":
         return "exact"
-    return f"max {tol.max_abs}/255, changed {100 * tol.changed:.1f}%, FLIP {tol.flip_mean:.4f}"
+    size_free = "" if tol.radial is None else f", radial {tol.radial:g}/255, detail {tol.detail:g}"
+    at = f" ({tol.size} class)" if tol.size else ""
+    return f"max {tol.max_abs}/255{at}, changed {100 * tol.changed:.1f}%, FLIP {tol.flip_mean:.4f}{size_free}"
 
 
 def render_all(implementations: list[str], targets: list[str], size: tuple[int, int], work: Path):
@@ -180,11 +186,11 @@ def _calibrate(images: dict, implementations: list[str], who: dict, size: tuple[
     for impl in implementations:
         if impl in (REFERENCE, "raw"):
             continue
-        measured = {t: measure(images[REFERENCE][t], img) for t, img in images[impl].items()
-                    if t in images[REFERENCE]}
+        measured = {t: (measure(images[REFERENCE][t], img), structure(images[REFERENCE][t], img))
+                    for t, img in images[impl].items() if t in images[REFERENCE]}
         bounded_by = (f"{who[impl]} vs {who[REFERENCE]}, CPU {cpu_name()}, {size[0]}x{size[1]}, "
                       f"{datetime.date.today()} (wgpurender verify --calibrate)")
-        calibrate(impl, measured, bounded_by, driver_class(who[REFERENCE]))
+        calibrate(impl, {f"{size[0]}x{size[1]}": measured}, bounded_by, driver_class(who[REFERENCE]))
 
 
 def markdown(report: MatrixReport) -> str:

@@ -16,7 +16,8 @@ Oracles, each independent of the code under test:
   image of the unmutated file rendered in the same process (``wrong`` otherwise; ``refused`` when it is refused);
 - user files: every file under the output folder and ``outside`` is hashed before and after (``clobbered``);
 - tracebacks, hangs, stray lines and partial files: harness.run_case's classification; peak memory over 2 GB:
-  ``memory`` (RUSAGE_SELF in-process, RUSAGE_CHILDREN for the killed subprocesses).
+  ``memory`` (each process's own peak, tests/peak_memory.py: this worker's VmHWM in-process, and what each CLI
+  subprocess reports at its exit; a subprocess killed by a signal reports none).
 """
 
 from __future__ import annotations
@@ -25,7 +26,6 @@ import base64
 import hashlib
 import json
 import os
-import resource
 import signal
 import struct
 import subprocess
@@ -39,6 +39,7 @@ import pytest
 from harness import _count, check, render_argv, reset_folder, run_case
 from hypothesis import given
 from hypothesis import strategies as st
+from peak_memory import measured_argv, peak_mib, reported_peak_mib
 from PIL import Image
 from reliab_gen import SCENE_CAMERA, triangle_gltf
 from strategies import ASSETS, REPO, fuzz_settings
@@ -88,9 +89,10 @@ def recount(old: str, new: str, label: str, detail: str) -> str:
     return _count(new, label, detail)
 
 
-def memory_checked(outcome: str, label: str) -> str:
-    rss = max(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, resource.getrusage(
-        resource.RUSAGE_CHILDREN).ru_maxrss) // 1024
+def memory_checked(outcome: str, label: str, reports: tuple[Path, ...] = ()) -> str:
+    """The outcome, or ``memory`` when this worker's own peak or a subprocess's reported one passed MAX_RSS_MB
+    (getrusage's ru_maxrss would add the parent's peak: tests/peak_memory.py)."""
+    rss = max([peak_mib(), *(p for p in map(reported_peak_mib, reports) if p is not None)])
     return recount(outcome, "memory", label, f"peak RSS {rss} MiB") if rss > MAX_RSS_MB else outcome
 
 
@@ -694,16 +696,20 @@ def test_killed_export(base, files, sig, delay, earlier):
     (base / "model").mkdir()
     (base / "model" / "m.gltf").write_text(json.dumps(triangle_gltf()))
     scene = scene_for(base / "model", "m.gltf")
-    argv = [sys.executable, "-m", "wgpurender", "export", str(scene), "-o", str(out), "--size", "40x30", "--force"]
+    args = ["export", scene, "-o", out, "--size", "40x30", "--force"]
+    reports = (base / "peak-earlier.txt", base / "peak-again.txt")  # the killed run reports none
     if earlier:
-        subprocess.run(argv, env=cli_env(base), capture_output=True, timeout=120)
+        subprocess.run(measured_argv("wgpurender", args, reports[0]), env=cli_env(base), capture_output=True,
+                       timeout=120)
     before = snapshot(out)
-    proc = subprocess.Popen(argv, env=cli_env(base), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen([sys.executable, "-m", "wgpurender", *map(str, args)], env=cli_env(base),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     time.sleep(delay)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
     label = f"killed export sig={sig.name} delay={delay:.2f} files={files} earlier={earlier}"
-    again = subprocess.run(argv, env=cli_env(base), capture_output=True, text=True, timeout=120)
+    again = subprocess.run(measured_argv("wgpurender", args, reports[1]), env=cli_env(base), capture_output=True,
+                           text=True, timeout=120)
     ours = {"index.html", "data.js", "player.js", ".wgpurender-manifest.json"}
     lost = lost_files(before, snapshot(out), ours)
     if b"Traceback" in err or "Traceback" in again.stderr:
@@ -716,7 +722,7 @@ def test_killed_export(base, files, sig, delay, earlier):
         outcome = _count("partial", label, f"left {leftovers(out)}")
     else:
         outcome = _count("render", label, "")
-    check(memory_checked(outcome, label), label)
+    check(memory_checked(outcome, label, reports), label)
 
 
 # --- damaged cache entries ----------------------------------------------------------------------------------------
@@ -734,8 +740,9 @@ def test_damaged_cffi_cache(base, damage, r):
     (base / "m" / "m.gltf").write_text(json.dumps(triangle_gltf()))
     scene = scene_for(base / "m", "m.gltf")
     env = cli_env(base)
-    argv = [sys.executable, "-m", "wgpurender", "render", str(scene), "-o", str(base / "a.png"), "--size", "40x30"]
-    first = subprocess.run(argv, env=env, capture_output=True, timeout=120)
+    reports = (base / "peak-first.txt", base / "peak-second.txt")
+    args = ["render", scene, "-o", base / "a.png", "--size", "40x30"]
+    first = subprocess.run(measured_argv("wgpurender", args, reports[0]), env=env, capture_output=True, timeout=120)
     entries = sorted((base / "cache" / "wgpurender").glob("cffi-wgpu-h-*.json"))
     label = f"cache {damage} r={r}"
     if first.returncode != 0 or not entries:
@@ -766,8 +773,8 @@ def test_damaged_cffi_cache(base, damage, r):
     else:
         entry.write_bytes(blob[:57 + 32] + (2 ** 62).to_bytes(8, "little") + blob[57 + 40:])
     try:
-        second = subprocess.run([*argv[:-3], str(base / "b.png"), "--size", "40x30"], env=env, capture_output=True,
-                                timeout=120)
+        second = subprocess.run(measured_argv("wgpurender", [*args[:-3], base / "b.png", "--size", "40x30"],
+                                              reports[1]), env=env, capture_output=True, timeout=120)
     except subprocess.TimeoutExpired:
         check(_count("hang", label, "timeout"), label)
         return
@@ -781,7 +788,7 @@ def test_damaged_cffi_cache(base, damage, r):
         outcome = _count("multiline", label, second.stderr[-300:].decode(errors="replace"))
     else:
         outcome = _count("render", label, "")
-    check(memory_checked(outcome, label), label)
+    check(memory_checked(outcome, label, reports), label)
 
 
 # --- record into folders holding an earlier recording and the user's files ------------------------------------------

@@ -133,8 +133,8 @@ def run_ibl(ctx, frames: int, row, environment: np.ndarray | None = None) -> lis
 
 
 def _cpu_row(environment, normals, cases, exact, samples: int, frames: int, row):
-    """The same maps made in float64 numpy (core/course/ibl_maps.py: what scenes draw, on both paths); time: the
-    CPU wall time of making them (reported in the wall column, no GPU time)."""
+    """The same maps made in float64 numpy (core/course/ibl_maps.py: the check of the GPU maps scenes draw);
+    time: the CPU wall time of making them (reported in the wall column, no GPU time)."""
     import time
 
     from wgpurender.core.course.ibl_maps import make_arrays
@@ -149,5 +149,5 @@ def _cpu_row(environment, normals, cases, exact, samples: int, frames: int, row)
     c = compare_images(srgb8_from_linear(np.clip(exact, 0, 1)), srgb8_from_linear(np.clip(got, 0, 1)))
     pixels = srgb8_from_linear(np.clip(got, 0, 1))
     m = Measurement(pixels, pixels.shape[1::-1], Stats.of(times), None)
-    return row("image-based lighting", f"{samples} samples, float64 CPU (scenes)", m, c.flip_mean, c.psnr, mae,
+    return row("image-based lighting", f"{samples} samples, float64 CPU (the check)", m, c.flip_mean, c.psnr, mae,
                note=f"relative error {mae / float(np.mean(exact)):.2%}; time: CPU wall ms")

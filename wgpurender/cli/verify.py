@@ -6,7 +6,7 @@ from pathlib import Path
 
 from wgpurender.cli._args import size_arg
 
-IMPLEMENTATIONS_SIZE = (160, 120)  # --implementations' default: the size its bounds were calibrated at
+IMPLEMENTATIONS_SIZE = (160, 120)  # --implementations' default: the smallest size class of its bounds
 
 
 def register(subparsers) -> None:
@@ -28,10 +28,12 @@ def register(subparsers) -> None:
                    "every pair is compared (max, share over 1/255, PSNR, FLIP) and each against wgpu-vulkan is bounded "
                    "by assets/reference/implementations.toml. Writes implementations.md/.csv and heatmaps/impl-*.png")
     p.add_argument("--size", type=size_arg, default=None, metavar="WxH",
-                   help="size for --implementations (default 160x120, the size the bounds were calibrated at)")
+                   help="size for --implementations (default 160x120); the bounds hold up to the largest size class "
+                   "calibrated in assets/reference/implementations.toml (640x480), a larger size fails as uncalibrated")
     p.add_argument("--calibrate", action="store_true",
                    help="with --implementations: rewrite the measured implementations' rows of "
-                   "assets/reference/implementations.toml from this run")
+                   "assets/reference/implementations.toml from this run (at --size only: calibrate several size "
+                   "classes in one run with docs/runs/2026-11-27-size-free-bounds/calibrate.py)")
     p.set_defaults(func=run)
 
 

@@ -1,7 +1,8 @@
 """``wgpurender exercise``: a starter folder for one course step (the learner's file, its test, a README, the goal).
 
 Nothing already there is overwritten: a folder that holds any of the files is refused, so a learner's work is
-never clobbered by a second run.
+never clobbered by a second run. A symbolic link as the folder is refused as every writer refuses it
+(core/files/owned_files.resolve_folder: followed only with $WGPURENDER_FOLLOW_SYMLINKS=1).
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ import os
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.owned_files import resolve_folder
 from wgpurender.core.files.safe_write import atomic_write
 from wgpurender.exercises.catalogue import Exercise
 from wgpurender.exercises.source import course_step, starter_source
@@ -45,6 +47,7 @@ def write_exercise(ex: Exercise, out: Path) -> list[Path]:
     from wgpurender.exercises.check import reference_file
 
     names = file_names(ex)
+    out = resolve_folder(Path(out), "-o")
     taken = [name for name in names.values() if os.path.lexists(out / name)]  # a dangling link's name is taken
     if taken:
         raise UserError(f"{out / taken[0]} exists: choose another folder with -o (your work is never overwritten)")

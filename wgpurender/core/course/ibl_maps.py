@@ -2,10 +2,11 @@
 split-sum BRDF table, made the way shaders_wgsl/ibl.wgsl's compute passes make them (the same texel layout, the
 same Hammersley samples, the same tangent frame), so the GPU's maps can be checked against these.
 
-Scenes draw with these arrays on both paths (one upload of the same float32 numbers: wgpu == raw exactly); the
-wgpu path's compute version (wgpu_path/scene/ibl.py) is what ``bench accuracy`` times, checked against these
-within a tolerance (tests/test_ibl_scene.py). Why the CPU: one home for the maps' numbers keeps the two paths'
-images identical, without a GLSL twin of the compute passes on the raw path (not written yet).
+Scenes draw with maps made on the GPU, on both paths the same way: compute passes that are twins operation for
+operation (shaders_wgsl/ibl.wgsl on the wgpu path, wgpu_path/scene/ibl.py; shaders_glsl/ibl.comp on the raw
+path, raw_path/scene/ibl.py), from the environment scene_environment() gives them. The float64 arrays here are
+their check (tests/test_ibl_scene.py: relative 1e-4 where a sum is exact, 1% mean where a sample may land on a
+texel edge) and what ``bench accuracy`` compares.
 
 Layout of :func:`pack` (float32 vec4 rows, what the scene shaders index): the irradiance map (IRRADIANCE_SIZE, row
 major, row 0 the zenith), then LEVELS prefiltered maps of PREFILTER_SIZE (level k at roughness k / (LEVELS - 1)),
@@ -27,6 +28,14 @@ LUT_SIZE = 32
 SAMPLES = 256  # bench accuracy's best sample count on its Pareto front (docs/accuracy.md)
 MAX_ENVIRONMENT = (256, 128)  # a larger environment is averaged down to this first (solid-angle weighted)
 SAMPLE_CHOICES = (16, 64, 256, 1024)
+# The compute passes that make the maps, in pack()'s order (ibl.wgsl's entry points; ibl.comp's -D variants are
+# the names in capitals): each writes its region of the packed buffer.
+PASSES = ("irradiance", "prefilter", "brdf_lut")
+
+
+def pass_sizes() -> tuple[tuple[str, tuple[int, int], int], ...]:
+    """(pass, (width, height), depth) of each compute pass: depth is the prefilter's levels, else 1."""
+    return tuple(zip(PASSES, (IRRADIANCE_SIZE, PREFILTER_SIZE, (LUT_SIZE, LUT_SIZE)), (1, LEVELS, 1), strict=True))
 
 
 @dataclass(frozen=True)
@@ -108,12 +117,32 @@ def irradiance(env: np.ndarray, size=IRRADIANCE_SIZE) -> np.ndarray:
     return (weight @ env.reshape(-1, 3) / np.pi).reshape(size[1], size[0], 3)
 
 
+def mirror_level(env: np.ndarray, size=PREFILTER_SIZE) -> np.ndarray:
+    """Level 0 (roughness 0, the mirror): each texel is the solid-angle-weighted mean of the environment texels
+    whose centres fall inside it; where none does (an environment narrower or shorter than the map), the
+    environment texel under its centre. Chosen by integer index arithmetic, which the GPU does exactly alike.
+
+    Why not the GGX samples of the other levels: at roughness 0 they lie within ~2e-3 rad of the texel's
+    centre, and a map half the environment's size has its centres on the environment's texel corners, so each
+    texel was a blend of four texels set by the rounding of atan2 and acos (an H100 and lavapipe differed)."""
+    h, w = env.shape[:2]
+    pw, ph = size
+    cols, rows = (2 * np.arange(w) + 1) * pw // (2 * w), (2 * np.arange(h) + 1) * ph // (2 * h)
+    _, omega = texel_directions(w, h)
+    index = (rows[:, None] * pw + cols[None, :]).reshape(-1)
+    weight = np.bincount(index, omega.reshape(-1), pw * ph)
+    total = np.stack([np.bincount(index, (env[..., c] * omega).reshape(-1), pw * ph) for c in range(3)], -1)
+    under = env[((2 * np.arange(ph) + 1) * h // (2 * ph))[:, None], ((2 * np.arange(pw) + 1) * w // (2 * pw))[None]]
+    mean = total / np.where(weight > 0, weight, 1.0)[:, None]
+    return np.where((weight > 0)[:, None], mean, under.reshape(-1, 3)).reshape(ph, pw, 3)
+
+
 def prefiltered(env: np.ndarray, samples: int, size=PREFILTER_SIZE, levels: int = LEVELS) -> np.ndarray:
     n, xi = _grid(size), hammersley(samples)
-    out = []
-    for k in range(levels):
+    out = [mirror_level(env, size)]
+    for k in range(1, levels):
         roughness = k / max(levels - 1, 1)
-        hv = ggx_half(xi, max(roughness * roughness, 1e-4), n)
+        hv = ggx_half(xi, roughness * roughness, n)
         n_dot_h = np.einsum("pc,psc->ps", n, hv)
         light = 2 * n_dot_h[..., None] * hv - n[:, None]
         n_dot_l = np.einsum("pc,psc->ps", n, light)
@@ -153,8 +182,9 @@ def make_arrays(environment: np.ndarray, samples: int = SAMPLES) -> IblArrays:
     return IblArrays(irradiance(env), prefiltered(env, samples), brdf_lut(samples))
 
 
-def pack(maps: IblArrays) -> np.ndarray:
-    """(packed_rows(), 4) float32: the module docstring's layout."""
+def pack(maps) -> np.ndarray:
+    """(packed_rows(), 4) float32: the module docstring's layout, of any maps with the three arrays (IblArrays,
+    or the wgpu path's IblMaps)."""
     rows = [maps.irradiance.reshape(-1, 3), maps.prefiltered.reshape(-1, 3)]
     rows = [np.concatenate([r, np.ones((len(r), 1))], -1) for r in rows]
     lut = maps.lut.reshape(-1, 2)
@@ -162,7 +192,12 @@ def pack(maps: IblArrays) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate(rows), np.float32)
 
 
+def scene_environment(environment) -> np.ndarray:
+    """The (h, w, 3) float32 radiance a scene's [environment] (core/scene/environment_block.Environment) hands
+    both paths' compute passes: averaged down to MAX_ENVIRONMENT first, as make_arrays does."""
+    return shrink(environment.radiance()).astype(np.float32)
+
+
 def scene_maps(environment) -> np.ndarray:
-    """The packed maps of a scene's [environment] (core/scene/environment_block.Environment), what both paths
-    upload."""
+    """The packed float64 maps of a scene's [environment]: what the GPU's packed maps are checked against."""
     return pack(make_arrays(environment.radiance(), environment.samples))

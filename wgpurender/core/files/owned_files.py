@@ -59,8 +59,9 @@ def read_manifest(folder: Path) -> set[str] | None:
     return {clean for clean in map(_clean_entry, files) if clean is not None}
 
 
-def _resolve_folder(folder: Path, flag: str) -> Path:
-    """The folder to write: a symlink only when asked (and never a dangling one), never a file."""
+def resolve_folder(folder: Path, flag: str) -> Path:
+    """The folder to write: a symlink only when asked (and never a dangling one), never a file. Every writer's
+    rule for its output folder (OwnedFolder's, and ``wgpurender exercise``'s)."""
     try:
         mode = os.lstat(folder).st_mode
     except FileNotFoundError:
@@ -85,7 +86,7 @@ class OwnedFolder:
 
     def __init__(self, folder: str | os.PathLike, writer: str, force: bool = False, flag: str = "-o") -> None:
         self.flag, self.writer, self.force = flag, writer, bool(force)
-        self.folder = _resolve_folder(Path(folder), flag)
+        self.folder = resolve_folder(Path(folder), flag)
         self.owned: set[str] = set()  # listed by the earlier run
         self.written: list[str] = []  # by this run, in order
         self._listed: set[str] = set()  # what the manifest on disk lists now

@@ -467,11 +467,25 @@ class RenderPlan:
             out.append(("scene-ibl", f"storage: image-based lighting maps{source} ({ibl_maps.packed_bytes()} bytes: "
                         f"irradiance {'x'.join(map(str, ibl_maps.IRRADIANCE_SIZE))}, {ibl_maps.LEVELS} prefiltered "
                         f"levels {'x'.join(map(str, ibl_maps.PREFILTER_SIZE))}, BRDF table {ibl_maps.LUT_SIZE}^2; "
-                        "made in float64 on the CPU, core/course/ibl_maps.py), for the ibl variant(s)"))
+                        "made on the GPU by compute passes, ibl.wgsl / ibl.comp), for the ibl variant(s)"))
+            out.append(("scene-ibl-environment", "storage: the environment's radiance the compute passes read "
+                                                 "(averaged down to at most "
+                                                 f"{'x'.join(map(str, ibl_maps.MAX_ENVIRONMENT))})"))
+            out.append(("scene-ibl-params", f"uniform: {len(ibl_maps.PASSES)} Params blocks (sizes, samples), one "
+                                            "per compute pass, 256 bytes apart"))
         for p in self.post_passes:
             if any(s.spec.params for s in p.steps):
                 out.append((f"post-{p.effect}-params", "uniform: PassParams (generated from the effect specs)"))
         return tuple(out)
+
+    @property
+    def ibl_passes(self) -> tuple[str, ...]:
+        """The compute passes that make the image-based lighting maps (core/course/ibl_maps.PASSES), if used."""
+        if not self.uses_ibl:
+            return ()
+        from wgpurender.core.course import ibl_maps
+
+        return ibl_maps.PASSES
 
     @property
     def culled_draws(self) -> tuple[Draw, ...]:

@@ -104,6 +104,13 @@ def _scene_pass(plan: Any) -> list[GpuObject]:
         out.append(GpuObject("sampler", f"sampler anisotropy {s.spec.max_anisotropy}", 1, "; ".join(s.used_by)))
     out.append(GpuObject("render_bundle_encoder", "scene-draws", 1, f"the {len(draws)} draw(s) recorded once "
                          "(pipeline, bind groups, buffers, draw); each frame replays them with one call"))
+    passes = plan.ibl_passes
+    if passes:
+        why = "the image-based lighting maps, made once into scene-ibl (ibl.wgsl)"
+        out += [GpuObject(kind, "ibl", 1, why) for kind in ("shader_module", "bind_group_layout", "pipeline_layout",
+                                                             "command_encoder")]
+        out += [GpuObject(kind, "ibl", len(passes), f"one per compute pass: {', '.join(passes)}")
+                for kind in ("compute_pipeline", "bind_group")]
     if culled:
         why = "GPU frustum culling (scene_cull.wgsl): one invocation per instance of a culled draw"
         out += [GpuObject(kind, "scene-cull", 1, why) for kind in ("bind_group_layout", "pipeline_layout",

@@ -16,6 +16,7 @@ API-free: imports no GPU API and neither render path.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import tomllib
 from dataclasses import asdict, dataclass
@@ -25,6 +26,7 @@ import numpy as np
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import reference_dir
+from wgpurender.core.verdict.structure import Structure
 
 TABLE_PATH = reference_dir() / "tolerances.toml"
 DRIVER_CLASSES = ("lavapipe", "gpu")
@@ -60,6 +62,36 @@ class Tolerance:
     measured: str  # the spread the bounds were calibrated from
     bounded_by: str  # the drivers/CPUs/GPUs that measured it
     provisional: bool
+    radial: float | None = None  # size-free bounds of structure.py (None: not bounded)
+    detail: float | None = None
+    size: str = ""  # "WxH" the three metrics were calibrated at ("": any size)
+    sizes: tuple = ()  # (("WxH", {bound: value}), ...): the metrics' size classes above ``size``
+
+    def at_size(self, width: int, height: int) -> Tolerance:
+        """These bounds for an image of ``width`` x ``height``: the smallest calibrated size class with at least
+        as many pixels (max grows with the pixel count; the changed share and FLIP are means, kept unless the
+        class measured its own). Above the largest class, :class:`Uncalibrated`."""
+        if not self.size:
+            return self
+        classes = sorted(((size_pixels(self.size), self.size, {}), *((size_pixels(k), k, v) for k, v in self.sizes)))
+        for pixels, name, bounds in classes:
+            if width * height <= pixels:
+                fields = {k: bounds[k] for k in ("max_abs", "changed", "flip_mean") if k in bounds}
+                return dataclasses.replace(self, size=name, sizes=(), **fields)
+        raise Uncalibrated(f"the {self.driver_class} bounds for {self.name} were calibrated up to {classes[-1][1]}, "
+                           f"not {width}x{height}: run `wgpurender verify --implementations ... --calibrate --size "
+                           f"{width}x{height}` on this machine")
+
+    def structure_exceeded(self, measured: Structure) -> list[str]:
+        """One line per size-free bound (structure.py) that ``measured`` exceeds, naming what it catches."""
+        out = []
+        if self.radial is not None and measured.radial > self.radial:
+            out.append(f"radial shift {measured.radial:g}/255 > {self.radial:g}/255 (a ring moved one way: "
+                       "tone, colour or vignette)")
+        if self.detail is not None and abs(measured.detail) > self.detail:
+            out.append(f"detail change {measured.detail:+.3f} beyond +-{self.detail:g} (log2 gradient: sharpen or "
+                       "anti-aliasing)")
+        return out
 
     def exceeded(self, metrics: Metrics) -> list[str]:
         """One line per bound that ``metrics`` exceeds (empty: within tolerance)."""
@@ -77,6 +109,12 @@ class Tolerance:
         return (f"{state}{self.driver_class} tolerance for {self.name}: max diff {self.max_abs}/255, changed "
                 f"{100 * self.changed:.3f}%, FLIP {self.flip_mean:.5f} (bounded by {self.bounded_by}; "
                 f"measured {self.measured})")
+
+
+def size_pixels(size: str) -> int:
+    """The pixel count of a "WxH" size."""
+    width, height = (int(v) for v in size.split("x"))
+    return width * height
 
 
 def driver_class(device_name: str) -> str:
@@ -131,7 +169,7 @@ def _round_up(value: float, digits: int = 2) -> float:
     if value <= 0:
         return 0.0
     scale = 10 ** (digits - 1 - math.floor(math.log10(value)))
-    return math.ceil(value * scale) / scale
+    return math.ceil(round(value * scale, 9)) / scale  # 2 x 0.07 is 0.14000000000000001: not 0.15
 
 
 def calibrate(spread: list[Metrics], cls: str) -> dict:
@@ -147,6 +185,17 @@ def calibrate(spread: list[Metrics], cls: str) -> dict:
     changed = max(0.01, _round_up(2 * max(m.changed for m in spread)))
     flip = max(0.002, _round_up(2 * max(m.flip_mean for m in spread)))
     return {"max_abs": max_abs, "changed": min(1.0, changed), "flip_mean": flip}
+
+
+def calibrate_structure(spread: list[Structure], sizes: list[str]) -> dict:
+    """The size-free bounds (structure.py) from their spread over ``sizes``: radial = worst + 1/255 (a ring's
+    median is 0 between implementations that differ sign-balanced); detail = 2 x the worst magnitude, at least
+    0.02 (the log2 edge-gradient ratio: a dropped FXAA measured 0.29-0.45, a dropped sharpen -0.41 to -0.52, at
+    160x120 to 640x480 in docs/runs/2026-11-27-size-free-bounds)."""
+    radial = max(s.radial for s in spread)
+    detail = max(abs(s.detail) for s in spread)
+    return {"radial": radial + 1, "detail": max(0.02, _round_up(2 * detail)),
+            "structure_measured": f"radial {radial:g}/255, detail {detail:.4f} (worst of {', '.join(sizes)})"}
 
 
 HEADER = """\
@@ -172,7 +221,13 @@ def _value(value) -> str:
         return "true" if value else "false"
     if isinstance(value, str):
         return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{_key(k)} = {_value(v)}" for k, v in value.items()) + " }"
     return repr(value)
+
+
+def _key(key: str) -> str:
+    return key if key.replace("_", "").replace("-", "").isalnum() and key.isascii() else _value(key)
 
 
 def format_table(table: dict) -> str:
@@ -202,6 +257,11 @@ IMPLEMENTATIONS_HEADER = """\
 # [implementations.IMPL.targets.NAME]: max_abs (1/255), changed (share of pixels), flip_mean, measured (the
 # spread). Rule (wgpurender/core/verdict/tolerances.calibrate, CPU drivers): max_abs = worst + 1, at least 2;
 # changed, flip_mean = 2 x worst, at least 1% and 0.002. Written by wgpurender.implementations.calibrate.
+# size = the image size the rows' three bounds hold for; a row's sizes = {"WxH" = {...}}: the same three for a
+# larger size class (an image uses the smallest class with at least its pixel count; larger: uncalibrated).
+# radial (1/255), detail (log2): the size-free bounds of core/verdict/structure.py, which catch a dropped post
+# effect; rule (tolerances.calibrate_structure): radial = worst + 1, detail = 2 x worst, at least 0.02, with the
+# spread over every size measured in structure_measured.
 """
 
 
@@ -225,7 +285,13 @@ def implementation_tolerance(implementation: str, name: str, table: dict | None 
         raise UserError(f"no {implementation} tolerance for '{name}' in {IMPLEMENTATIONS_PATH.name}: measure it "
                         "with `wgpurender verify --calibrate` and add the row")
     return Tolerance(name, implementation, int(row["max_abs"]), float(row["changed"]), float(row["flip_mean"]),
-                     str(row.get("measured", "")), str(impl.get("bounded_by", "")), False)
+                     str(row.get("measured", "")), str(impl.get("bounded_by", "")), False,
+                     _optional(row, "radial"), _optional(row, "detail"), str(impl.get("size", "")),
+                     tuple(sorted(row.get("sizes", {}).items())))
+
+
+def _optional(row: dict, key: str) -> float | None:
+    return float(row[key]) if key in row else None
 
 
 def format_implementation_table(table: dict) -> str:

@@ -118,14 +118,14 @@ class SceneSubpass:
         return out
 
     def ibl_buffer(self):
-        """The scene's [environment] maps in one host-visible storage buffer (the same floats the wgpu path gets)."""
+        """The scene's [environment] maps, made by compute passes (raw_path/scene/ibl.py, the twin of the wgpu
+        path's) straight into one storage buffer in the packed layout."""
         if getattr(self, "_ibl_buffer", None) is None:
-            from wgpurender.core.course.ibl_maps import scene_maps
+            from wgpurender.core.course.ibl_maps import scene_environment
+            from wgpurender.raw_path.scene.ibl import scene_maps_buffer
 
-            data = scene_maps(self.scene.environment)
-            self._ibl_buffer = create_buffer(self.ctx, self.owned, data.nbytes, vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                             HOST_MEMORY)
-            write_host_buffer(self.ctx, self._ibl_buffer, data)
+            env = self.scene.environment
+            self._ibl_buffer = scene_maps_buffer(self.ctx, self.owned, scene_environment(env), env.samples)
         return self._ibl_buffer
 
     def _setup_sets(self) -> None:

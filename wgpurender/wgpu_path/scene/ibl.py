@@ -2,8 +2,11 @@
 prefiltered specular levels by roughness and the split-sum BRDF lookup table, from an equirectangular
 environment (wgpurender/core/course/environment.py). Storage buffers in, storage buffers out, read back as float32.
 
-So far only ``bench accuracy --truth analytic`` uses them (their cost and their error against a float64
-integral); scenes do not yet draw with image-based lighting.
+Scenes with an [environment] draw with them: scene_maps_buffer() makes them straight into the scene's storage
+buffer in core/course/ibl_maps.py's packed layout, each pass writing its region (no readback; what it creates is
+what the plan lists, core/plan/objects.py). raw_path/scene/ibl.py makes the same maps with shaders_glsl/ibl.comp,
+the GLSL twin. ``bench accuracy --truth analytic`` times make_maps() and measures its error against a float64
+integral.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
+from wgpurender.core.course.ibl_maps import IRRADIANCE_SIZE, LEVELS, LUT_SIZE, PREFILTER_SIZE, packed_bytes, pass_sizes
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.shaders import create_shader_module
 
@@ -57,8 +61,8 @@ def _pass(ctx: GPUContext, module, entry: str, params: bytes, env: wgpu.GPUBuffe
     return encoder.finish(), out
 
 
-def make_maps(ctx: GPUContext, environment: np.ndarray, samples: int, levels: int = 5,
-              irradiance_size=(32, 16), prefilter_size=(64, 32), lut_size: int = 32) -> IblMaps:
+def make_maps(ctx: GPUContext, environment: np.ndarray, samples: int, levels: int = LEVELS,
+              irradiance_size=IRRADIANCE_SIZE, prefilter_size=PREFILTER_SIZE, lut_size: int = LUT_SIZE) -> IblMaps:
     """The three maps of ``environment`` ((h, w, 3) linear float) with ``samples`` GGX samples per texel."""
     h, w = environment.shape[:2]
     rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)
@@ -80,3 +84,47 @@ def make_maps(ctx: GPUContext, environment: np.ndarray, samples: int, levels: in
     return IblMaps(irr.reshape(ih, iw, 4)[..., :3], pre.reshape(levels, ph, pw, 4)[..., :3],
                    lut.reshape(lut_size, lut_size, 4)[..., :2], wall)
 
+
+
+PARAMS_STRIDE = 256  # one Params block per pass, at WebGPU's guaranteed minUniformBufferOffsetAlignment
+STAGE = wgpu.ShaderStage.COMPUTE
+
+
+def scene_maps_buffer(ctx: GPUContext, environment: np.ndarray, samples: int) -> wgpu.GPUBuffer:
+    """The "scene-ibl" storage buffer: the three passes write their regions of it (the packed layout's offsets
+    are multiples of 256 bytes, as storage bindings need), in one command encoder, submitted once."""
+    device = ctx.device
+    h, w = environment.shape[:2]
+    rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)
+    env = device.create_buffer_with_data(data=rgba.tobytes(), usage=wgpu.BufferUsage.STORAGE,
+                                         label="scene-ibl-environment")
+    params = np.zeros((len(pass_sizes()), PARAMS_STRIDE // 4), np.uint32)
+    for k, (_, (ow, oh), depth) in enumerate(pass_sizes()):
+        params[k, :8] = [w, h, ow, oh, samples, depth, 0, 0]
+    uniform = device.create_buffer_with_data(data=params.tobytes(), usage=wgpu.BufferUsage.UNIFORM,
+                                             label="scene-ibl-params")
+    maps = device.create_buffer(size=packed_bytes(), usage=wgpu.BufferUsage.STORAGE, label="scene-ibl")
+    module = create_shader_module(device, SHADER)
+    layout = device.create_bind_group_layout(entries=[
+        {"binding": 0, "visibility": STAGE, "buffer": {"type": "uniform"}},
+        {"binding": 1, "visibility": STAGE, "buffer": {"type": "read-only-storage"}},
+        {"binding": 2, "visibility": STAGE, "buffer": {"type": "storage"}}], label="scene-ibl")
+    pipeline_layout = device.create_pipeline_layout(bind_group_layouts=[layout], label="scene-ibl")
+    encoder = device.create_command_encoder(label="scene-ibl")
+    offset = 0
+    for k, (entry, (ow, oh), depth) in enumerate(pass_sizes()):
+        size = 16 * ow * oh * depth
+        pipeline = device.create_compute_pipeline(label=f"scene-ibl-{entry}", layout=pipeline_layout,
+                                                  compute={"module": module, "entry_point": entry})
+        group = device.create_bind_group(layout=layout, label=f"scene-ibl-{entry}", entries=[
+            {"binding": 0, "resource": {"buffer": uniform, "offset": k * PARAMS_STRIDE, "size": 32}},
+            {"binding": 1, "resource": {"buffer": env}},
+            {"binding": 2, "resource": {"buffer": maps, "offset": offset, "size": size}}])
+        compute = encoder.begin_compute_pass()
+        compute.set_pipeline(pipeline)
+        compute.set_bind_group(0, group)
+        compute.dispatch_workgroups(-(-ow // WORKGROUP), -(-oh // WORKGROUP), depth)
+        compute.end()
+        offset += size
+    device.queue.submit([encoder.finish()])
+    return maps

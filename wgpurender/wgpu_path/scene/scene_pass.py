@@ -193,12 +193,14 @@ class ScenePassRenderer:
         return self.ctx.device.create_bind_group(layout=bgl, entries=entries, label=f"{draw.label} material")
 
     def ibl_buffer(self) -> wgpu.GPUBuffer:
-        """The image-based lighting maps of the scene's [environment] (core/course/ibl_maps.py), made once."""
+        """The image-based lighting maps of the scene's [environment], made once by compute passes (ibl.py) in
+        core/course/ibl_maps.py's packed layout."""
         if getattr(self, "_ibl_buffer", None) is None:
-            from wgpurender.core.course.ibl_maps import scene_maps
+            from wgpurender.core.course.ibl_maps import scene_environment
+            from wgpurender.wgpu_path.scene.ibl import scene_maps_buffer
 
-            self._ibl_buffer = self.ctx.device.create_buffer_with_data(
-                data=scene_maps(self.scene.environment).tobytes(), usage=wgpu.BufferUsage.STORAGE, label="scene-ibl")
+            env = self.scene.environment
+            self._ibl_buffer = scene_maps_buffer(self.ctx, scene_environment(env), env.samples)
         return self._ibl_buffer
 
     def shader_module(self, variant: ShaderVariant, culled: bool = False) -> wgpu.GPUShaderModule:
