@@ -48,6 +48,7 @@ OBJ_SIMPLE = "tests/test_obj_simple.py"
 JAIL_ONCE = "tests/test_scene_jail_once.py"
 SHARED_MESH = "tests/test_shared_mesh_buffers.py"
 WINDOW_GC = "tests/test_window_gc.py"
+BENCH_IMPORTS = "tests/test_bench_imports.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
 PUBLISHED = "tests/test_export_carries_no_machine_path.py"
@@ -1238,6 +1239,10 @@ MUTATIONS = [
      "            pass  # the load's objects frozen", [WINDOW_GC]),
     ("wgpurender/raw_path/window/__init__.py", "            if count == settle_at:", "            if False:",
      [WINDOW_GC]),
+    ("wgpurender/bench/__init__.py", "import wgpurender.wgpu_path  # noqa", "# import wgpurender.wgpu_path  # noqa",
+     [BENCH_IMPORTS]),
+    ("wgpurender/bench/startup.py", "        from wgpurender.bench.raw_frames import RawStageRunner",
+     "        from wgpurender.bench.frames import RawStageRunner", [BENCH_IMPORTS]),
 ]
 
 

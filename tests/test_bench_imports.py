@@ -27,9 +27,10 @@ def _python(code: str, **env) -> str:
 
 
 def test_the_raw_startup_child_imports_no_wgpu():
-    code = ("import sys\nfrom wgpurender.bench.raw_frames import RawStageRunner\n"
-            "import wgpurender.bench.startup\nprint('wgpu' in sys.modules)")
-    assert _python(code) == "False"
+    """The raw child's whole run (imports, context, a stage's first two frames), then: was wgpu-py loaded?"""
+    code = ("import sys\nimport wgpurender.bench.startup as s\nout = s._child('raw', 'triangle', (32, 24))\n"
+            "print(out['total_ms'] > 0, 'wgpu' in sys.modules)")
+    assert _python(code, XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", "/tmp")) == "True False"
 
 
 def test_a_bench_module_gets_dawns_wgpu_when_dawn_is_asked_for(tmp_path):
