@@ -34,4 +34,3 @@ def test_scale_scenes_read_the_brick_texture_from_the_bundled_assets_wherever_th
     scene = load_scene(write(folder, 4, (32, 32)))  # UserError before: the checkout's texture, outside the jail
     assert scale.brick_texture() == elsewhere / "assets" / "textures" / "brick_albedo.png"
     assert scale.brick_texture().resolve() in {m.albedo_map for m in scene.materials.values()}
-
