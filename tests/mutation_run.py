@@ -1243,6 +1243,9 @@ MUTATIONS = [
      [BENCH_IMPORTS]),
     ("wgpurender/bench/startup.py", "        from wgpurender.bench.raw_frames import RawStageRunner",
      "        from wgpurender.bench.frames import RawStageRunner", [BENCH_IMPORTS]),
+    ("wgpurender/raw_path/render.py", "        zero(ctx, target)\n", "", ["tests/test_raw_target_zeroed.py"]),
+    ("wgpurender/raw_path/render.py", "zeros = vk.VkClearColorValue(float32=[0.0, 0.0, 0.0, 0.0])",
+     "zeros = vk.VkClearColorValue(float32=[0.0, 0.0, 0.0, 1.0])", ["tests/test_raw_target_zeroed.py"]),
 ]
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from contextlib import ExitStack
 
 import numpy as np
+import vulkan as vk
 
 from wgpurender.core.course.formats import is_scene_file
 from wgpurender.core.errors import UserError
@@ -13,7 +14,7 @@ from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.raw_path.device.checks import check_msaa, check_size
 from wgpurender.raw_path.device.command_buffers import one_shot
 from wgpurender.raw_path.device.context import get_vulkan
-from wgpurender.raw_path.device.images import FORMATS, create_image
+from wgpurender.raw_path.device.images import FORMATS, Image, create_image, subresource_range, transition
 from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to_buffer
 from wgpurender.raw_path.stages import get_ref_stage
 from wgpurender.raw_path.stages.base import TARGET_USAGE
@@ -58,9 +59,25 @@ def render_stage_class(cls: type, size: tuple[int, int], fmt: str | None = None,
     with ExitStack() as owned:
         ref_stage = cls(ctx, owned, fmt, msaa, size)
         target = create_image(ctx, owned, size, fmt, TARGET_USAGE)
+        zero(ctx, target)
         with one_shot(ctx) as cmd:
             ref_stage.record(cmd, target, t)
             buffer = record_copy_to_buffer(ctx, owned, cmd, target)
         pixels = buffer_to_pixels(ctx, buffer, target)
     ctx.check_validation(f"the raw-Vulkan render of {stage!r}")
     return pixels
+
+
+def zero(ctx, target: Image) -> None:
+    """Clear the fresh target to zeros in a submission of its own, before the stage records.
+
+    Vulkan leaves new image memory undefined; lavapipe hands back freed memory, which may still hold the previous
+    render. A stage that writes only part of its target (a learner's 1x1 copy, wgpurender/exercises/) would then
+    show the previous image where it wrote nothing, and pass. wgpu zero-initialises textures: this gives the raw
+    path the same start, so unwritten pixels read (0, 0, 0, 0) on both paths.
+    """
+    with one_shot(ctx) as cmd:
+        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)
+        zeros = vk.VkClearColorValue(float32=[0.0, 0.0, 0.0, 0.0])
+        vk.vkCmdClearColorImage(cmd, target.handle, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, zeros, 1,
+                                [subresource_range()])
