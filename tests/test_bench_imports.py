@@ -20,8 +20,11 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def _python(code: str, **env) -> str:
+    """Run ``code`` in a fresh interpreter with ``path`` first on PYTHONPATH, the caller's entries kept after it
+    (a machine whose packages live on PYTHONPATH, as the GPU machine's, must still find wgpu and vulkan)."""
+    path = [*env.pop("path", [str(REPO)]), *filter(None, os.environ.get("PYTHONPATH", "").split(os.pathsep))]
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
-                         env=dict(os.environ, PYTHONPATH=os.pathsep.join(env.pop("path", [str(REPO)])), **env))
+                         env=dict(os.environ, PYTHONPATH=os.pathsep.join(path), **env))
     assert out.returncode == 0, out.stderr[-2000:]
     return out.stdout.strip()
 
