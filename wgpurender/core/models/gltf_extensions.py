@@ -25,6 +25,7 @@ MESHOPT = "EXT_meshopt_compression"
 
 # extensionsRequired a file may list: each is implemented (Draco and meshopt need their decoder package)
 SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", "KHR_materials_emissive_strength", TEXTURE_TRANSFORM,
+                                "KHR_materials_pbrSpecularGlossiness",  # converted: core/scene/gltf_specgloss.py
                                 QUANTIZATION, INSTANCING, DRACO, MESHOPT})
 
 BYTE, UBYTE, SHORT, USHORT, FLOAT = 5120, 5121, 5122, 5123, 5126

@@ -168,6 +168,9 @@ def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
     infos = [mat.get("normalTexture"), mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
              mat.get("occlusionTexture")]
+    spec_gloss = mat.get("extensions", {}).get("KHR_materials_pbrSpecularGlossiness")  # converted at load
+    if isinstance(spec_gloss, dict):  # (core/scene/gltf_specgloss.py): sampled on diffuse's coordinates, else its own
+        infos += [spec_gloss.get("diffuseTexture"), spec_gloss.get("specularGlossinessTexture")]
     return [i for i in infos if isinstance(i, dict)]
 
 

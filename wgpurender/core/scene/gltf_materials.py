@@ -15,6 +15,9 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
   colour;
 - ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
 - ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
+- ``KHR_materials_pbrSpecularGlossiness`` -> converted to metallic-roughness at load (gltf_specgloss.py: factors
+  as factors, textures per texel into ``model.glb#specgloss[k].base`` / ``.metalrough`` images); the material's
+  origin says so, and whether the conversion is exact or an approximation.
 
 - a lit material -> the glTF metallic-roughness model (``shading_model = "pbr"``, shaders_wgsl/pbr.wgsl: the
   spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
@@ -37,6 +40,7 @@ from pathlib import Path
 from wgpurender.core.course.samplers import SamplerSpec
 from wgpurender.core.files.input_files import input_file
 from wgpurender.core.models import gltf_extensions, gltf_geometry, gltf_io
+from wgpurender.core.scene import gltf_specgloss
 from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material, ModelMaterials
 
 EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
@@ -46,7 +50,7 @@ MIN_FILTERS = {9728: ("nearest", None), 9729: ("linear", None), 9984: ("nearest"
 ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map": ("normalTexture",),
          "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
          "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
-SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength")
+SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength", gltf_specgloss.EXTENSION)
 # extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
 USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
 
@@ -67,9 +71,17 @@ def _read_cached(path: str, mtime_ns: int, size: int) -> gltf_io.GltfDocument:
     return gltf_io.read_document(path)
 
 
-def embedded_image_bytes(path: Path) -> bytes | None:
-    """The encoded bytes of an image a ``model.glb#images[k]`` path names, or None for an ordinary path."""
+def embedded_image_bytes(path: Path, decode=None) -> bytes | None:
+    """The encoded bytes of an image a ``model.glb#images[k]`` path names, or None for an ordinary path; with
+    ``decode`` (an image path -> (H, W, 4) uint8, texture_pixels.load_image) also a spec-gloss material's
+    converted texture (``model.glb#specgloss[k].base``, gltf_specgloss.py)."""
     text = str(path)
+    if gltf_specgloss.MARK in text:
+        parsed = gltf_specgloss.parse_path(path)
+        if parsed is None or decode is None:
+            return None
+        stat = os.stat(parsed[0])
+        return _converted(parsed[0], stat.st_mtime_ns, stat.st_size, parsed[1], decode)[parsed[2]]
     if EMBEDDED_MARK not in text or not text.endswith("]"):
         return None
     model, _, index = text.rpartition(EMBEDDED_MARK)
@@ -85,6 +97,16 @@ def embedded_image_bytes(path: Path) -> bytes | None:
     return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
 
 
+@functools.lru_cache(maxsize=2)
+def _converted(model: str, mtime_ns: int, size: int, index: int, decode) -> tuple[bytes, bytes]:
+    """Both converted images of spec-gloss material ``index`` (asked twice: the plan's size, then the upload)."""
+    doc = document(model)
+    ext = doc.json["materials"][index]["extensions"][gltf_specgloss.EXTENSION]
+    texels = {key: decode(texture_file(doc, doc.json["textures"][ext[key]["index"]]))
+              for key in ("diffuseTexture", "specularGlossinessTexture") if isinstance(ext.get(key), dict)}
+    return gltf_specgloss.converted_pngs(ext, texels, f"{model} material {index}")
+
+
 def sampler_spec(doc: gltf_io.GltfDocument, texture: dict) -> tuple[SamplerSpec, bool]:
     """A glTF texture's sampler as a SamplerSpec, and whether it samples a mip chain (a *_MIPMAP_* minFilter, or
     none given: glTF leaves it to the renderer, we build mips)."""
@@ -98,7 +120,7 @@ def sampler_spec(doc: gltf_io.GltfDocument, texture: dict) -> tuple[SamplerSpec,
     return spec, mip is not None
 
 
-def _texture_path(doc: gltf_io.GltfDocument, texture: dict) -> Path:
+def texture_file(doc: gltf_io.GltfDocument, texture: dict) -> Path:
     index = texture["source"]
     uri = doc.json["images"][index].get("uri")
     if uri is not None and not uri.startswith("data:"):
@@ -117,8 +139,9 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
                   ignored: list[str]) -> Material:
     """File material ``index`` as a scene Material (see the module docstring for the mapping)."""
     mat = doc.json["materials"][index]
-    pbr = mat.get("pbrMetallicRoughness", {})
     name = f"{label} material {index}" + (f" '{mat['name']}'" if mat.get("name") else "")
+    mat, converted, note = _spec_gloss(mat, name)
+    pbr = mat.get("pbrMetallicRoughness", {})
     maps, samplers, mipmaps, slots = {}, [], [], []
     for feature, keys in ROLES.items():
         info = _info(mat, keys)
@@ -128,13 +151,16 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         if "source" not in texture:
             ignored.append(f"{name}: {keys[-1]} has no image source (ignored)")
             continue
-        maps[feature] = _texture_path(doc, texture)
+        maps[feature] = texture_file(doc, texture)
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
         slot, how = _uv_slot(doc, index, info)
         if slot:
             slots.append((feature, slot, how))
+    for feature, kind in converted:
+        if feature in maps:
+            maps[feature] = gltf_specgloss.texture_path(doc.path.resolve(), index, kind)
     _note_ignored(mat, name, ignored)
     unlit = "KHR_materials_unlit" in mat.get("extensions", {})
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -148,7 +174,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     return Material(
         name=name, albedo_color=tuple(float(v) for v in pbr.get("baseColorFactor", (1.0, 1.0, 1.0, 1.0))),
         albedo_map=maps.get("albedo_map"), normal_map=maps.get("normal_map"), roughness_map=maps.get("roughness_map"),
-        roughness=roughness, unlit=unlit, origin=name, vertex_colors=vertex_colors,
+        roughness=roughness, unlit=unlit, origin=name + note, vertex_colors=vertex_colors,
         double_sided=bool(mat.get("doubleSided", False)), alpha_mode=str(mat.get("alphaMode", "OPAQUE")).lower(),
         alpha_cutoff=float(mat.get("alphaCutoff", 0.5)), normal_strength=float(normal.get("scale", 1.0)),
         roughness_map_scale=roughness, texture_samplers=tuple(samplers), texture_mipmaps=tuple(mipmaps),
@@ -158,6 +184,27 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         shading_model="blinn-phong" if unlit else "pbr", metallic=float(pbr.get("metallicFactor", 1.0)),
         uv_slots=tuple(slots),
     )
+
+
+def _spec_gloss(mat: dict, name: str) -> tuple[dict, tuple[tuple[str, str], ...], str]:
+    """A KHR_materials_pbrSpecularGlossiness material as its metallic-roughness equivalent (gltf_specgloss.py):
+    its factors converted; its textures, if any, replaced by the converted base-colour and metallic-roughness
+    images (the features whose paths become converted ones are returned), and what --explain says of it."""
+    ext = mat.get("extensions", {}).get(gltf_specgloss.EXTENSION)
+    if not isinstance(ext, dict):
+        return mat, (), ""
+    said = f" (converted from {gltf_specgloss.EXTENSION} to metallic-roughness"
+    info = gltf_specgloss.source_info(ext, name)
+    if info is not None:
+        pbr = {"baseColorTexture": info, "metallicRoughnessTexture": info}
+        return ({**mat, "pbrMetallicRoughness": pbr}, (("albedo_map", "base"), ("roughness_map", "metalrough")),
+                said + " per texel: an approximation, exact only for dielectric (specular 0.04) or metal (black "
+                "diffuse) texels)")
+    diffuse, specular, gloss = gltf_specgloss.factors(ext)
+    base, metallic, roughness = gltf_specgloss.convert(diffuse, specular, gloss)
+    pbr = {"baseColorFactor": base.tolist(), "metallicFactor": float(metallic), "roughnessFactor": float(roughness)}
+    how = ": exact)" if gltf_specgloss.exact(diffuse, specular, base, float(metallic)) else ": an approximation)"
+    return {**mat, "pbrMetallicRoughness": pbr}, (), said + how
 
 
 def _uv_slot(doc: gltf_io.GltfDocument, index: int, info: dict) -> tuple[int, str]:

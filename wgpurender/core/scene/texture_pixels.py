@@ -120,7 +120,7 @@ def _embedded_or_file(path: Path):
     if not os.path.lexists(path):
         from wgpurender.core.scene.gltf_materials import embedded_image_bytes
 
-        data = embedded_image_bytes(path)
+        data = embedded_image_bytes(path, decode=load_image)
         if data is not None:
             import io
 
