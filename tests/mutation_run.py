@@ -58,6 +58,8 @@ RECORD_OWN = "tests/test_record_outputs.py"
 REPORT_OWN = "tests/test_report_outputs.py"
 CACHES = "tests/test_cache_entries.py"
 CDEF = "tests/test_cdef_cache.py"
+SG = "wgpurender/core/scene/gltf_specgloss.py"
+SPECGLOSS = "tests/test_gltf_specgloss.py"
 RUNTIME = "tests/test_runtime_dir.py|invalid or valid"
 THREADS = "tests/test_api_threads.py"
 PBR = "tests/test_pbr.py"
@@ -1246,6 +1248,49 @@ MUTATIONS = [
     ("wgpurender/raw_path/render.py", "        zero(ctx, target)\n", "", ["tests/test_raw_target_zeroed.py"]),
     ("wgpurender/raw_path/render.py", "zeros = vk.VkClearColorValue(float32=[0.0, 0.0, 0.0, 0.0])",
      "zeros = vk.VkClearColorValue(float32=[0.0, 0.0, 0.0, 1.0])", ["tests/test_raw_target_zeroed.py"]),
+    # issue 30: KHR_materials_pbrSpecularGlossiness converted to metallic-roughness (core/scene/gltf_specgloss.py)
+    (SG, "0.299 * rgb[..., 0] ** 2", "0.299 * rgb[..., 0]", [SPECGLOSS]),
+    (SG, "one_minus = 1.0 - specular.max(axis=-1)", "one_minus = 1.0 - specular.min(axis=-1)", [SPECGLOSS]),
+    (SG, "+ p - 2.0 * DIELECTRIC", "+ p - DIELECTRIC", [SPECGLOSS]),
+    (SG, "c = DIELECTRIC - p", "c = p - DIELECTRIC", [SPECGLOSS]),
+    (SG, "np.where(p < DIELECTRIC, 0.0,", "np.where(p > DIELECTRIC, 0.0,", [SPECGLOSS]),
+    (SG, "(-b + root) / (2.0 * DIELECTRIC)", "(-b - root) / (2.0 * DIELECTRIC)", [SPECGLOSS]),
+    (SG, "* m * m, 0.0, 1.0)", "* m, 0.0, 1.0)", [SPECGLOSS]),
+    (SG, "from_specular = (specular - DIELECTRIC * (1.0 - m))", "from_specular = (specular - DIELECTRIC * m)",
+     [SPECGLOSS]),
+    (SG, "return rgba, metallic, 1.0 - np.asarray(glossiness, np.float64)",
+     "return rgba, metallic, np.asarray(glossiness, np.float64)", [SPECGLOSS]),
+    (SG, "rgba = np.concatenate([base, diffuse[..., 3:4]], axis=-1)",
+     "rgba = np.concatenate([base, np.ones_like(diffuse[..., 3:4])], axis=-1)", [SPECGLOSS]),
+    (SG, 'ext.get("specularFactor", (1.0, 1.0, 1.0))', 'ext.get("specularFactor", (0.04, 0.04, 0.04))', [SPECGLOSS]),
+    (SG, 'float(ext.get("glossinessFactor", 1.0))', 'float(ext.get("glossinessFactor", 0.0))', [SPECGLOSS]),
+    (SG, "    return bool(np.allclose(f0, specular", "    return not bool(np.allclose(f0, specular", [SPECGLOSS]),
+    (SG, "texture_uv_choice(infos[0]) != texture_uv_choice(infos[1])",
+     "texture_uv_choice(infos[0]) == texture_uv_choice(infos[1])", [SPECGLOSS]),
+    (SG, "return infos[0] if infos else None", "return None", [SPECGLOSS]),
+    (SG, "if len(shapes) != 1:", "if len(shapes) > 2:", [SPECGLOSS]),
+    (SG, "diffuse = diffuse * np.concatenate([srgb_decode(t[..., :3])",
+     "diffuse = diffuse * np.concatenate([t[..., :3]", [SPECGLOSS]),
+    (SG, "specular * srgb_decode(t[..., :3])", "specular * t[..., :3]", [SPECGLOSS]),
+    (SG, "gloss * t[..., 3]", "gloss * t[..., 0]", [SPECGLOSS]),
+    (SG, "base_rgba = np.concatenate([srgb_encode(base[..., :3])", "base_rgba = np.concatenate([base[..., :3]",
+     [SPECGLOSS]),
+    (SG, "mr = np.stack([np.zeros(shape), roughness, metallic,", "mr = np.stack([np.zeros(shape), metallic, roughness,",
+     [SPECGLOSS]),
+    (G_MAT, '(("albedo_map", "base"), ("roughness_map", "metalrough"))',
+     '(("albedo_map", "metalrough"), ("roughness_map", "base"))', [SPECGLOSS]),
+    (G_MAT, '"metallicFactor": float(metallic), "roughnessFactor": float(roughness)}',
+     '"metallicFactor": float(roughness), "roughnessFactor": float(metallic)}', [SPECGLOSS]),
+    (G_MAT, 'how = ": exact)" if gltf_specgloss.exact(', 'how = ": exact)" if not gltf_specgloss.exact(', [SPECGLOSS]),
+    (G_MAT, "decode)[parsed[2]]", "decode)[0]", [SPECGLOSS]),
+    (G_MAT, '"KHR_materials_emissive_strength", gltf_specgloss.EXTENSION)', '"KHR_materials_emissive_strength")',
+     [SPECGLOSS]),
+    (G_EXT, '"KHR_materials_pbrSpecularGlossiness",  # converted', '"KHR_materials_pbrSpecular",  # converted',
+     [SPECGLOSS]),
+    (G_GEOM, 'infos += [spec_gloss.get("diffuseTexture"), spec_gloss.get("specularGlossinessTexture")]',
+     'infos += [spec_gloss.get("specularGlossinessTexture")]', [SPECGLOSS]),
+    ("wgpurender/core/scene/texture_pixels.py", "embedded_image_bytes(path, decode=load_image)",
+     "embedded_image_bytes(path)", [SPECGLOSS]),
 ]
 
 

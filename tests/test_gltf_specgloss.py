@@ -138,7 +138,7 @@ def _textured_specgloss(tmp_path, factors):
     return _one_quad(g, g.material(extensions={EXT: ext}), tmp_path / "sgtex.glb")
 
 
-FACTORS = {"diffuseFactor": [0.9, 1.0, 0.8, 1.0], "specularFactor": [1.0, 0.9, 1.0], "glossinessFactor": 0.9}
+FACTORS = {"diffuseFactor": [0.9, 1.0, 0.8, 0.9], "specularFactor": [1.0, 0.9, 1.0], "glossinessFactor": 0.9}
 
 
 def test_textures_are_converted_per_texel(tmp_path):
@@ -213,4 +213,21 @@ def test_textures_sampling_differently_are_refused_in_one_line(tmp_path, capsys)
     code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert code == 2 and len(err) == 1 and EXT in err[0] and "different coordinates" in err[0], err
+    assert not (tmp_path / "out.png").exists()
+
+
+def test_textures_of_different_sizes_are_refused_in_one_line(tmp_path, capsys):
+    """A 2x1 diffuseTexture and a 1x1 specularGlossinessTexture: no texel-to-texel conversion, so one line naming
+    the extension and the fix, exit 2."""
+    from wgpurender.cli import main
+
+    g = GltfWriter()
+    ext = {"diffuseTexture": {"index": g.texture(DIFFUSE_TEXELS)},
+           "specularGlossinessTexture": {"index": g.texture(SPECGLOSS_TEXELS[:, :1])}}
+    _one_quad(g, g.material(extensions={EXT: ext}), tmp_path / "sizes.glb")
+    scene = tmp_path / "sizes.toml"
+    scene.write_text(scene_text("sizes.glb", SIZE))
+    code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert code == 2 and len(err) == 1 and EXT in err[0] and "differ in size" in err[0], err
     assert not (tmp_path / "out.png").exists()
