@@ -231,3 +231,37 @@ def test_textures_of_different_sizes_are_refused_in_one_line(tmp_path, capsys):
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert code == 2 and len(err) == 1 and EXT in err[0] and "differ in size" in err[0], err
     assert not (tmp_path / "out.png").exists()
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_a_diffuse_texture_on_texcoord_1_keeps_its_coordinates(ctx, tmp_path, which):
+    """diffuseTexture alone, texCoord 1 (TEXCOORD_0 all zeros: sampling it would show texel 0 everywhere): both
+    converted images sample TEXCOORD_1, so the quad renders as the metallic-roughness file whose textures (the
+    test's formula, specular 0.04 grey and glossiness 0.5 as factors) sample TEXCOORD_1 too, within 2/255."""
+    factors = {"specularFactor": [0.04] * 3, "glossinessFactor": 0.5}
+    base_want, mr_want = np.zeros((1, 2, 4)), np.zeros((1, 2, 4))
+    for col in range(2):
+        d = DIFFUSE_TEXELS[0, col]
+        base, metallic, roughness = expected((*srgb_decode(d[:3]), d[3] / 255), (0.04,) * 3, 0.5)
+        base_want[0, col] = (*srgb_encode(base[:3]), base[3] * 255)
+        mr_want[0, col] = (0, roughness * 255, metallic * 255, 255)
+    scenes = []
+    for name, textures in (("sg1.glb", None), ("mr1.glb", (base_want, mr_want))):
+        g = GltfWriter()
+        sampler = g.sampler(**NEAREST)
+        if textures is None:
+            ext = {"diffuseTexture": {"index": g.texture(DIFFUSE_TEXELS, sampler), "texCoord": 1}, **factors}
+            mat = g.material(extensions={EXT: ext})
+        else:
+            infos = [{"index": g.texture(np.round(t).astype(np.uint8), sampler), "texCoord": 1} for t in textures]
+            mat = g.material(pbrMetallicRoughness={"baseColorTexture": infos[0], "metallicRoughnessTexture": infos[1]})
+        prim = quad_primitive(g, -1.6, -1.6, 1.6, 1.6, mat, uvs=UVS)
+        prim["attributes"]["TEXCOORD_1"] = prim["attributes"]["TEXCOORD_0"]
+        prim["attributes"]["TEXCOORD_0"] = g.accessor(np.zeros((4, 2), np.float32))
+        g.node(mesh=g.mesh([prim]))
+        g.write(tmp_path / name)
+        scenes.append(tmp_path / f"{name}.toml")
+        scenes[-1].write_text(scene_text(name, SIZE, None, LIGHT))
+    sg, mr = render(ctx, scenes[0], which), render(ctx, scenes[1], which)
+    assert np.abs(at(mr, -0.8, 0) - at(mr, 0.8, 0)).max() > 20  # the two texels differ on screen
+    assert np.abs(sg.astype(int) - mr.astype(int)).max() <= 2, which
