@@ -1291,6 +1291,8 @@ MUTATIONS = [
      'infos += [spec_gloss.get("specularGlossinessTexture")]', [SPECGLOSS]),
     ("wgpurender/core/scene/texture_pixels.py", "embedded_image_bytes(path, decode=load_image)",
      "embedded_image_bytes(path)", [SPECGLOSS]),
+    (SG, "for top in range(0, height, BAND_ROWS):", "for top in range(0, height - 1, BAND_ROWS):", [SPECGLOSS]),
+    (SG, "band = {k: t[top:top + BAND_ROWS] for", "band = {k: t[top:top + 1] for", [SPECGLOSS]),
 ]
 
 

@@ -265,3 +265,26 @@ def test_a_diffuse_texture_on_texcoord_1_keeps_its_coordinates(ctx, tmp_path, wh
     sg, mr = render(ctx, scenes[0], which), render(ctx, scenes[1], which)
     assert np.abs(at(mr, -0.8, 0) - at(mr, 0.8, 0)).max() > 20  # the two texels differ on screen
     assert np.abs(sg.astype(int) - mr.astype(int)).max() <= 2, which
+
+
+def test_bands_cover_every_row(tmp_path, monkeypatch):
+    """Random 5x3 textures converted in bands of 2 rows (the last band short): every texel is the formula's
+    (within 1/255), so no band is skipped, shifted or cut."""
+    from wgpurender.core.scene import gltf_specgloss
+    from wgpurender.core.scene.texture_pixels import load_image
+
+    monkeypatch.setattr(gltf_specgloss, "BAND_ROWS", 2)
+    rng = np.random.default_rng(30)
+    diffuse_texels, sg_texels = (rng.integers(0, 256, (5, 3, 4), dtype=np.uint8) for _ in range(2))
+    g = GltfWriter()
+    ext = {"diffuseTexture": {"index": g.texture(diffuse_texels)},
+           "specularGlossinessTexture": {"index": g.texture(sg_texels)}}
+    m = _materials(_one_quad(g, g.material(extensions={EXT: ext}), tmp_path / "bands.glb")).materials[0]
+    base, mr = load_image(m.albedo_map).astype(float), load_image(m.roughness_map).astype(float)
+    for row in range(5):
+        for col in range(3):
+            d, s = diffuse_texels[row, col], sg_texels[row, col]
+            want, metallic, roughness = expected((*srgb_decode(d[:3]), d[3] / 255), tuple(srgb_decode(s[:3])),
+                                                 s[3] / 255)
+            assert np.abs(base[row, col] - (*srgb_encode(want[:3]), want[3] * 255)).max() <= 1.0, (row, col)
+            assert np.abs(mr[row, col, 1:3] - (roughness * 255, metallic * 255)).max() <= 1.0, (row, col)

@@ -33,6 +33,7 @@ DIELECTRIC = 0.04
 EPSILON = 1e-6
 MARK = "#specgloss["  # a converted texture's "path": model.glb#specgloss[material].base / .metalrough
 KINDS = ("base", "metalrough")
+BAND_ROWS = 64  # rows converted at once (float64 work arrays of 64 x width texels)
 
 
 def brightness(rgb: np.ndarray) -> np.ndarray:
@@ -102,24 +103,36 @@ def parse_path(path: Path) -> tuple[str, int, int] | None:
 
 def converted_pngs(ext: dict, texels: dict[str, np.ndarray], name: str) -> tuple[bytes, bytes]:
     """PNG bytes of the base-colour (sRGB) and metallic-roughness (linear: G roughness, B metallic) images of a
-    spec-gloss material ``ext`` whose textures decoded to ``texels`` (key -> (H, W, 4) uint8), factors folded in."""
+    spec-gloss material ``ext`` whose textures decoded to ``texels`` (key -> (H, W, 4) uint8), factors folded in.
+    Converted in bands of :data:`BAND_ROWS` rows: float64 work memory stays a few band-sized arrays, whatever
+    the image size (the inputs are bounded by the image pixel limit, the outputs are uint8 like them)."""
     from wgpurender.core.files.imageio import encode_png
 
-    diffuse, specular, gloss = factors(ext)
-    texels = {k: np.asarray(t, np.float64) / 255.0 for k, t in texels.items()}
     shapes = {t.shape for t in texels.values()}
     if len(shapes) != 1:
         raise UserError(f"{name}: {EXTENSION} diffuseTexture and specularGlossinessTexture differ in size: not "
                         "supported; resize one to the other's size")
+    height, width = shapes.pop()[:2]
+    base, mr = np.empty((height, width, 4), np.uint8), np.empty((height, width, 4), np.uint8)
+    for top in range(0, height, BAND_ROWS):
+        band = {k: t[top:top + BAND_ROWS] for k, t in texels.items()}
+        base[top:top + BAND_ROWS], mr[top:top + BAND_ROWS] = _convert_band(ext, band)
+    return encode_png(base), encode_png(mr)
+
+
+def _convert_band(ext: dict, texels: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Base colour and metallic-roughness RGBA8 of rows of the source texels (see :func:`converted_pngs`)."""
+    diffuse, specular, gloss = factors(ext)
+    texels = {k: np.asarray(t, np.float64) / 255.0 for k, t in texels.items()}
     if "diffuseTexture" in texels:
         t = texels["diffuseTexture"]
         diffuse = diffuse * np.concatenate([srgb_decode(t[..., :3]), t[..., 3:4]], axis=-1)
     if "specularGlossinessTexture" in texels:
         t = texels["specularGlossinessTexture"]
         specular, gloss = specular * srgb_decode(t[..., :3]), gloss * t[..., 3]
-    shape = shapes.pop()[:2]
+    shape = next(iter(texels.values())).shape[:2]
     base, metallic, roughness = convert(np.broadcast_to(diffuse, (*shape, 4)), np.broadcast_to(specular, (*shape, 3)),
                                         np.broadcast_to(gloss, shape))
     base_rgba = np.concatenate([srgb_encode(base[..., :3]), base[..., 3:4]], axis=-1)
     mr = np.stack([np.zeros(shape), roughness, metallic, np.ones(shape)], axis=-1)
-    return tuple(encode_png(np.round(np.clip(a, 0.0, 1.0) * 255.0).astype(np.uint8)) for a in (base_rgba, mr))
+    return tuple(np.round(np.clip(a, 0.0, 1.0) * 255.0).astype(np.uint8) for a in (base_rgba, mr))
