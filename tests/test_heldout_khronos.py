@@ -196,15 +196,15 @@ def test_a_plain_morph_target_of_the_wrong_count_is_one_line(tmp_path):
 
 
 @pytest.mark.parametrize("required, fix", [
-    (["KHR_materials_pbrSpecularGlossiness"], "gltf-transform metalrough in.glb out.glb"),
     (["KHR_texture_basisu"], "re-export it with PNG or JPEG textures"),
     (["EXT_made_up"], "re-export the model without them"),
     (["KHR_texture_basisu", "EXT_made_up"], "PNG or JPEG textures; re-export the model without them"),
     (["EXT_made_up", "EXT_also_made_up"], "re-export the model without them"),  # said once
 ])
 def test_a_required_extension_is_refused_with_its_own_fix(tmp_path, capsys, required, fix):
-    """SpecGlossVsMetalRough requires KHR_materials_pbrSpecularGlossiness: the one line names it and the way to a
-    file wgpurender draws (the old line suggested dropping KHR_texture_basisu, whatever was missing)."""
+    """A required extension wgpurender lacks: the one line names it and the way to a file wgpurender draws (the
+    old line suggested dropping KHR_texture_basisu, whatever was missing). SpecGlossVsMetalRough's
+    KHR_materials_pbrSpecularGlossiness, refused here before, is now converted (test_gltf_specgloss.py)."""
     from wgpurender.cli import main
 
     g = GltfWriter()
