@@ -193,6 +193,26 @@ def test_a_texcoord_the_primitive_lacks_is_one_line(tmp_path):
     assert not (tmp_path / "x.png").exists()
 
 
+@pytest.mark.parametrize("transform, field", [({"texCoord": "b"}, "texCoord"), ({"texCoord": -1}, "texCoord"),
+                                              ({"offset": ["x", 0]}, "offset"), ({"scale": [1.0]}, "scale"),
+                                              ({"rotation": "quarter"}, "rotation")])
+def test_a_malformed_texture_transform_is_one_line(tmp_path, transform, field):
+    """KHR_texture_transform's schema: texCoord a non-negative integer, offset and scale two numbers, rotation a
+    number. Each broken field is named in one line, exit 2 (a ValueError traceback before; found by review)."""
+    from helpers import one_line_refusal
+    from reliab_gen import run_cli
+
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorTexture": _info(g.texture(BASE), 0, transform)})
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-1, -1, 1, 1)), "TEXCOORD_0": g.accessor(UV0)},
+                         "indices": g.accessor(QUAD_INDICES), "material": mat}]))
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    g.write(tmp_path / "bad.glb")
+    code, _, err = run_cli("render", write_scene(tmp_path, "bad.glb"), "-o", tmp_path / "x.png")
+    one_line_refusal(code, err, f"KHR_texture_transform.{field}")
+    assert not (tmp_path / "x.png").exists()
+
+
 # A lit case, against the float64 metallic-roughness BRDF (tests/pbr_reference.py): the base colour on TEXCOORD_0,
 # the metallic-roughness texture (G roughness, B metalness) on TEXCOORD_1 with a transform of its own.
 LIT_BASE = np.array([[[230, 120, 60, 255], [90, 200, 120, 255]], [[120, 140, 230, 255], [200, 200, 200, 255]]],

@@ -60,6 +60,20 @@ def test_an_environment_is_refused_in_one_line_without_storage(allow_assets):
     assert resolve_plan(scene, GL).uses_ibl
 
 
+def test_an_environment_is_refused_in_one_line_without_compute(allow_assets):
+    """Storage but no compute (a GL 4.2 context): the maps are made by compute passes, so the plan refuses it rather
+    than letting the device fail on 'Downlevel flags COMPUTE_SHADERS are required' (found by review)."""
+    scene = REPO / "assets" / "scenes" / "metal_rough_spheres_ibl.toml"
+    from wgpurender.core.plan import resolve_plan
+
+    limits = {"max-storage-buffers-per-shader-stage": 16, "max-compute-invocations-per-workgroup": 1024}
+    gl42 = AdapterFacts.of("CPU", (), "llvmpipe", "OpenGL", limits, "4.2 (Core Profile) Mesa 22.3.6")
+    with pytest.raises(UserError) as err:
+        resolve_plan(scene, gl42)
+    assert "\n" not in str(err.value) and "compute shaders" in str(err.value)
+    assert "--backend vulkan" in str(err.value)
+
+
 def test_limits_become_the_storage_and_compute_facts():
     assert (GL.storage, GL.compute) == (True, True)
     assert (GLES30.storage, GLES30.compute) == (False, False)

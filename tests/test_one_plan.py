@@ -130,5 +130,7 @@ def test_the_api_passes_plan_knobs_to_the_one_function(ctx):
     # the raw path draws a knob only at its default: asking it for another is an error, not a different image
     with pytest.raises(w.UserError, match="plan knob reverse_z = True"):
         w.reference(final, size=(64, 48), reverse_z=True)
+    with pytest.raises(w.UserError, match="instance_data = 'vertex': the raw path reads instances from a storage"):
+        w.reference(final, size=(64, 48), instance_data="vertex")  # the plan would list a vertex buffer not drawn
     assert w.reference(final, size=(64, 48), scene_format="rgba16float").plan.attachment("scene_color").format == \
         "rgba16float"

@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from wgpurender.core.errors import UserError
+
 TEXTURE_TRANSFORM = "KHR_texture_transform"
 INSTANCING = "EXT_mesh_gpu_instancing"
 QUANTIZATION = "KHR_mesh_quantization"
@@ -71,9 +73,31 @@ def texture_uv_choice(info: dict) -> tuple[int, tuple]:
     texcoord = int(info.get("texCoord", 0))
     if not isinstance(ext, dict):
         return texcoord, ()
+    check_texture_transform(ext)
     texcoord = int(ext.get("texCoord", texcoord))
     key = tuple(sorted((k, tuple(v) if isinstance(v, list) else v) for k, v in ext.items() if k != "texCoord"))
     return texcoord, key
+
+
+def _finite(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def check_texture_transform(ext: dict) -> None:
+    """UserError in one line for a KHR_texture_transform object its schema does not allow (a traceback before)."""
+    def bad(field: str, want: str) -> UserError:
+        return UserError(f"{TEXTURE_TRANSFORM}.{field} is {ext[field]!r}: it must be {want} (fix the file's "
+                         "material, or re-export it)")
+
+    if "texCoord" in ext and not (isinstance(ext["texCoord"], int) and not isinstance(ext["texCoord"], bool)
+                                  and ext["texCoord"] >= 0):
+        raise bad("texCoord", "a non-negative integer")
+    for field in ("offset", "scale"):
+        value = ext.get(field, (0.0, 0.0))
+        if not (isinstance(value, (list, tuple)) and len(value) == 2 and all(_finite(v) for v in value)):
+            raise bad(field, "two finite numbers")
+    if "rotation" in ext and not _finite(ext["rotation"]):
+        raise bad("rotation", "a finite number (radians)")
 
 
 def instance_matrices(translation: np.ndarray | None, rotation: np.ndarray | None,

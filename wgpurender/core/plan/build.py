@@ -135,10 +135,12 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     features = knobs.adapter.features if knobs.adapter is not None else None
     compute = knobs.adapter is None or knobs.adapter.compute
     ibl = any("ibl" in v.flags for v in drawn.variants.values())
-    if knobs.adapter is not None and not knobs.adapter.storage and ibl:
+    if knobs.adapter is not None and not (knobs.adapter.storage and knobs.adapter.compute) and ibl:
+        lacks = ("storage buffers (a GL context below 4.0)" if not knobs.adapter.storage
+                 else "compute shaders (a GL context below 4.3)")
         raise UserError(f"[environment] cannot be drawn on {knobs.adapter.name or knobs.adapter.backend}: its "
-                        "image-based lighting maps are a storage buffer the fragment shader reads, and this device "
-                        "offers none (a GL context below 4.0); render with --backend vulkan")
+                        "image-based lighting maps are made by compute passes into a storage buffer the fragment "
+                        f"shader reads, and this device offers no {lacks}; render with --backend vulkan")
     drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
                                                  setting["instance_data"], compute)
     settings = (*settings, ("culling", cull, cull_why))

@@ -53,6 +53,9 @@ def unsupported(plan: RenderPlan) -> list[str]:
         problems.append(f"{len(steps)} post effects: the raw path's chain holds at most {MAX_POST_STEPS}")
     if plan.output_format not in FORMATS:
         problems.append(f"output format {plan.output_format}: the raw path renders only {', '.join(FORMATS)}")
+    if plan.knobs.instance_data == "vertex":  # "storage" and "auto" are what the raw path does
+        problems.append("plan knob instance_data = 'vertex': the raw path reads instances from a storage buffer "
+                        "(leave the knob out, or say 'storage')")
     for knob, (default, instead) in WGPU_ONLY_KNOBS.items():
         if getattr(plan.knobs, knob) != default:
             problems.append(f"plan knob {knob} = {getattr(plan.knobs, knob)!r}: {instead} (leave the knob out)")
