@@ -1290,7 +1290,7 @@ MUTATIONS = [
      '(("albedo_map", "metalrough"), ("roughness_map", "base"))', [SPECGLOSS]),
     (G_MAT, '"metallicFactor": float(metallic), "roughnessFactor": float(roughness)}',
      '"metallicFactor": float(roughness), "roughnessFactor": float(metallic)}', [SPECGLOSS]),
-    (G_MAT, 'how = ": exact)" if gltf_specgloss.exact(', 'how = ": exact)" if not gltf_specgloss.exact(', [SPECGLOSS]),
+    (G_MAT, 'how = " (exact)" if gltf_specgloss.exact(', 'how = " (exact)" if not gltf_specgloss.exact(', [SPECGLOSS]),
     (G_MAT, "decode)[parsed[2]]", "decode)[0]", [SPECGLOSS]),
     (G_MAT, '"KHR_materials_emissive_strength", gltf_specgloss.EXTENSION)', '"KHR_materials_emissive_strength")',
      [SPECGLOSS]),

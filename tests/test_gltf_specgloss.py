@@ -56,18 +56,20 @@ def _one_quad(g: GltfWriter, material: int, path):
 
 def test_factors_follow_the_formula(tmp_path):
     """A coloured spec-gloss material (no exact metal-rough equivalent): base colour, metallic and roughness are
-    the float64 formula's; --explain's text calls it an approximation."""
+    the float64 formula's; --explain's line for it says converted, an approximation."""
     diffuse, specular, gloss = (0.5, 0.4, 0.3, 0.8), (0.3, 0.25, 0.2), 0.6
     g = GltfWriter()
     mat = g.material(extensions={EXT: {"diffuseFactor": list(diffuse), "specularFactor": list(specular),
                                        "glossinessFactor": gloss}})
-    m = _materials(_one_quad(g, mat, tmp_path / "sg.glb")).materials[0]
+    found = _materials(_one_quad(g, mat, tmp_path / "sg.glb"))
+    m = found.materials[0]
     base, metallic, roughness = expected(diffuse, specular, gloss)
     assert 0.05 < metallic < 0.95  # a real mix: every term of the formula counts
     assert np.allclose(m.albedo_color, base, atol=1e-9), (m.albedo_color, base)
     assert m.metallic == pytest.approx(metallic, abs=1e-9) and m.roughness == pytest.approx(roughness, abs=1e-9)
     assert m.roughness_map_scale == pytest.approx(roughness, abs=1e-9) and m.shading_model == "pbr"
-    assert f"converted from {EXT} to metallic-roughness: an approximation" in m.origin
+    assert found.taken[0].startswith(m.origin + ": ")
+    assert found.taken[0].endswith(f", converted from {EXT} to metallic-roughness (an approximation)"), found.taken
 
 
 def test_defaults_are_the_extensions(tmp_path):
@@ -146,7 +148,8 @@ def test_textures_are_converted_per_texel(tmp_path):
     metallic-roughness images is the formula's (within 1/255: 8-bit rounding), and the factors are folded in."""
     from wgpurender.core.scene.texture_pixels import load_image
 
-    m = _materials(_textured_specgloss(tmp_path, FACTORS)).materials[0]
+    found = _materials(_textured_specgloss(tmp_path, FACTORS))
+    m = found.materials[0]
     base_want, mr_want = _expected_texels(FACTORS["diffuseFactor"], FACTORS["specularFactor"],
                                           FACTORS["glossinessFactor"])
     base, mr = load_image(m.albedo_map).astype(float), load_image(m.roughness_map).astype(float)
@@ -154,7 +157,7 @@ def test_textures_are_converted_per_texel(tmp_path):
     assert np.abs(mr[..., 1:3] - mr_want[..., 1:3]).max() <= 1.0, (mr.tolist(), mr_want.round(1).tolist())
     assert mr[0, 0, 2] < 2 and mr[0, 1, 2] > 200  # texel 0 a dielectric, texel 1 a metal
     assert m.albedo_color == (1.0, 1.0, 1.0, 1.0) and m.metallic == 1.0 and m.roughness_map_scale == 1.0
-    assert "per texel: an approximation" in m.origin
+    assert f"converted from {EXT} to metallic-roughness per texel (an approximation" in found.taken[0]
 
 
 @pytest.mark.parametrize("which", PATHS)
@@ -192,7 +195,8 @@ def test_required_spec_gloss_is_rendered_and_explained(tmp_path, capsys):
     code = main(["render", str(scene), "-o", str(tmp_path / "out.png"), "--explain"])
     captured = capsys.readouterr()
     assert code == 0 and (tmp_path / "out.png").exists(), captured.err
-    assert f"'bottle' (converted from {EXT} to metallic-roughness: exact)" in captured.out
+    line = next(t for t in captured.out.splitlines() if "'bottle':" in t)
+    assert line.endswith(f", converted from {EXT} to metallic-roughness (exact)"), line
     assert f"extensionsUsed {EXT}: used" in captured.out and f"{EXT}: ignored" not in captured.out
 
 

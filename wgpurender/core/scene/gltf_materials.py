@@ -17,7 +17,7 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
 - ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
 - ``KHR_materials_pbrSpecularGlossiness`` -> converted to metallic-roughness at load (gltf_specgloss.py: factors
   as factors, textures per texel into ``model.glb#specgloss[k].base`` / ``.metalrough`` images); the material's
-  origin says so, and whether the conversion is exact or an approximation.
+  --explain line says so, and whether the conversion is exact or an approximation.
 
 - a lit material -> the glTF metallic-roughness model (``shading_model = "pbr"``, shaders_wgsl/pbr.wgsl: the
   spec's Appendix B BRDF) with ``metallicFactor`` (default 1) x the metallic-roughness texture's B channel; the
@@ -140,7 +140,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     """File material ``index`` as a scene Material (see the module docstring for the mapping)."""
     mat = doc.json["materials"][index]
     name = f"{label} material {index}" + (f" '{mat['name']}'" if mat.get("name") else "")
-    mat, converted, note = _spec_gloss(mat, name)
+    mat, converted, _ = _spec_gloss(mat, name)
     pbr = mat.get("pbrMetallicRoughness", {})
     maps, samplers, mipmaps, slots = {}, [], [], []
     for feature, keys in ROLES.items():
@@ -174,7 +174,7 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
     return Material(
         name=name, albedo_color=tuple(float(v) for v in pbr.get("baseColorFactor", (1.0, 1.0, 1.0, 1.0))),
         albedo_map=maps.get("albedo_map"), normal_map=maps.get("normal_map"), roughness_map=maps.get("roughness_map"),
-        roughness=roughness, unlit=unlit, origin=name + note, vertex_colors=vertex_colors,
+        roughness=roughness, unlit=unlit, origin=name, vertex_colors=vertex_colors,
         double_sided=bool(mat.get("doubleSided", False)), alpha_mode=str(mat.get("alphaMode", "OPAQUE")).lower(),
         alpha_cutoff=float(mat.get("alphaCutoff", 0.5)), normal_strength=float(normal.get("scale", 1.0)),
         roughness_map_scale=roughness, texture_samplers=tuple(samplers), texture_mipmaps=tuple(mipmaps),
@@ -189,21 +189,22 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
 def _spec_gloss(mat: dict, name: str) -> tuple[dict, tuple[tuple[str, str], ...], str]:
     """A KHR_materials_pbrSpecularGlossiness material as its metallic-roughness equivalent (gltf_specgloss.py):
     its factors converted; its textures, if any, replaced by the converted base-colour and metallic-roughness
-    images (the features whose paths become converted ones are returned), and what --explain says of it."""
+    images (the features whose paths become converted ones are returned), and what --explain adds to the
+    material's line."""
     ext = mat.get("extensions", {}).get(gltf_specgloss.EXTENSION)
     if not isinstance(ext, dict):
         return mat, (), ""
-    said = f" (converted from {gltf_specgloss.EXTENSION} to metallic-roughness"
+    said = f", converted from {gltf_specgloss.EXTENSION} to metallic-roughness"
     info = gltf_specgloss.source_info(ext, name)
     if info is not None:
         pbr = {"baseColorTexture": info, "metallicRoughnessTexture": info}
         return ({**mat, "pbrMetallicRoughness": pbr}, (("albedo_map", "base"), ("roughness_map", "metalrough")),
-                said + " per texel: an approximation, exact only for dielectric (specular 0.04) or metal (black "
+                said + " per texel (an approximation, exact only for dielectric (specular 0.04) or metal (black "
                 "diffuse) texels)")
     diffuse, specular, gloss = gltf_specgloss.factors(ext)
     base, metallic, roughness = gltf_specgloss.convert(diffuse, specular, gloss)
     pbr = {"baseColorFactor": base.tolist(), "metallicFactor": float(metallic), "roughnessFactor": float(roughness)}
-    how = ": exact)" if gltf_specgloss.exact(diffuse, specular, base, float(metallic)) else ": an approximation)"
+    how = " (exact)" if gltf_specgloss.exact(diffuse, specular, base, float(metallic)) else " (an approximation)"
     return {**mat, "pbrMetallicRoughness": pbr}, (), said + how
 
 
@@ -243,7 +244,8 @@ def model_materials(path: Path, label: str) -> ModelMaterials:
             material = file_material(doc, k, label, colours, ignored)
         materials.append(material if topology == "triangle-list" else _points_or_lines(material, topology))
     for m in materials:
-        taken.append(_taken_text(m))
+        converted = _spec_gloss(doc.json["materials"][m.part], m.name)[2] if m.part is not None and m.part >= 0 else ""
+        taken.append(_taken_text(m) + converted)
     for ext in doc.json.get("extensionsUsed", []):
         if ext in USED_EXTENSIONS:
             taken.append(f"extensionsUsed {ext}: used")
