@@ -1041,7 +1041,7 @@ MUTATIONS = [
      "storage=limits.get(\"max-storage-buffers-per-shader-stage\", 1) >= 0", [INSTANCE_RULE]),
     ("wgpurender/core/plan/build.py",
      "if knobs.adapter is not None and not (knobs.adapter.storage and knobs.adapter.compute) and ibl:",
-     "if knobs.adapter is not None and not knobs.adapter.storage and ibl:", [INSTANCE_RULE]),
+     "if knobs.adapter is not None and (knobs.adapter.storage and knobs.adapter.compute) and ibl:", [INSTANCE_RULE]),
     ("wgpurender/core/plan/culling.py", "if knob == \"cpu\" or instance_data == \"vertex\" or not compute:",
      "if knob == \"cpu\" or not compute:", [INSTANCE_RULE]),
     ("wgpurender/core/plan/culling.py", "cpu_culled=True) if d.instance_count >= least else d",
