@@ -114,3 +114,21 @@ def test_bad_records_are_still_reported(tmp_path) -> None:
     path.write_text(BOX.replace("vt 0 1", "vt 0.5") + "f 1/1/1 2/2/1 3/3/1\n")
     with pytest.raises(UserError, match=r"bad\.obj:6: OBJ record"):
         mesh_module.load_mesh(path)
+
+
+def test_a_non_ascii_file_gets_trimeshs_verdict(tmp_path, monkeypatch) -> None:
+    """A Latin-1 byte in a comment: the fast reader steps aside, so the file loads (or is refused) exactly as
+    trimesh's reader alone decides (found by review: the fast reader accepted what trimesh refuses)."""
+    path = tmp_path / "latin1.obj"
+    path.write_bytes(b"# caf\xe9\n" + (BOX + "f 1/1/1 2/2/1 3/3/1\n").encode())
+    assert obj_simple.read(path) is None
+
+    def outcome():
+        try:
+            return mesh_module.load_mesh(path).positions.shape
+        except UserError as err:
+            return str(err)
+
+    fast = outcome()
+    monkeypatch.setattr(obj_simple, "read", lambda p: None)
+    assert fast == outcome()

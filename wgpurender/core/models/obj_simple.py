@@ -33,6 +33,8 @@ def read(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | 
     data = path.read_bytes()
     if len(data) > MAX_BYTES or b"\\" in data:  # a line continuation (trimesh joins the lines, comments too)
         return None
+    if not data.isascii():  # trimesh decodes the whole file (a Latin-1 comment is refused there): its verdict rules
+        return None
     records: dict[bytes, list[bytes]] = {b"v": [], b"vt": [], b"vn": [], b"f": []}
     for line in data.split(b"\n"):
         line = line.rstrip()  # a trailing \r; leading blanks hide a record from trimesh: refused below
