@@ -18,6 +18,7 @@ from xvfb import xvfb_display  # noqa: F401  (the fixture "display": a private X
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import AdapterFacts, Knobs
+from wgpurender.core.plan.gl_facts import CANNOT_DRAW
 from wgpurender.core.plan.post import resolve_immediates
 from wgpurender.core.verdict.tolerances import Uncalibrated, driver_class, implementation_tolerance
 from wgpurender.implementations import REPO, all_targets, render_in_child
@@ -53,7 +54,7 @@ def test_the_plan_decides_immediates_per_adapter(backend, features, expected):
 
 def _no_gl(text: str) -> bool:
     """No OpenGL adapter, or one the renderer refuses (wgpu binds it wrongly: context.refuse_broken_gl)."""
-    return "no OpenGL adapter" in text or "cannot draw correctly" in text
+    return "no OpenGL adapter" in text or CANNOT_DRAW in text
 
 
 def _child(implementation: str, tmp_path_factory) -> dict:

@@ -27,6 +27,7 @@ import numpy as np
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import scene_dir
+from wgpurender.core.plan.gl_facts import CANNOT_DRAW
 
 REPO = Path(__file__).resolve().parent.parent
 SCENE_DIR = scene_dir()  # the checkout's assets/scenes, or the wheel's copy
@@ -141,7 +142,7 @@ def _gl_missing() -> str:
                            text=True, env=env, timeout=120)
     if probe.returncode == 0:
         return ""
-    refusal = [line for line in probe.stderr.splitlines() if "cannot draw correctly" in line]
+    refusal = [line for line in probe.stderr.splitlines() if CANNOT_DRAW in line]
     return refusal[-1].split("error: ", 1)[-1] if refusal else "no OpenGL adapter (wgpurender info --backend opengl)"
 
 

@@ -36,6 +36,9 @@ def glsl_allows(what: str, gl_version: str) -> bool:
     return number >= GLSL_NEEDS[what][es]
 
 
+CANNOT_DRAW = "cannot draw correctly"  # the refusal's words: written by the device layer, matched by verify's probe
+
+
 def gl_binding_fault(gl_version: str, compute_invocations: int) -> str:
     """Why wgpu 29 cannot bind resources on this GL context ("" when it can): it trusts the shaders' own
     ``layout(binding = N)`` once compute is supported (wgpu-hal's SHADER_BINDING_LAYOUT), which a desktop context

@@ -302,14 +302,14 @@ def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
 def refuse_broken_gl(adapter: wgpu.GPUAdapter) -> None:
     """A GL adapter whose bindings wgpu gets wrong is refused in one line (core/plan/gl_facts.gl_binding_fault)
     rather than drawing wrong images: NVIDIA's EGL context is one (GL 3.3 with the compute extension)."""
-    from wgpurender.core.plan.gl_facts import gl_binding_fault
+    from wgpurender.core.plan.gl_facts import CANNOT_DRAW, gl_binding_fault
 
     info = adapter.info
     if info["backend_type"] != "OpenGL":
         return
     why = gl_binding_fault(info["description"], adapter.limits["max-compute-invocations-per-workgroup"])
     if why:
-        raise UserError(f"the OpenGL adapter {info['device']} ({info['description']}) cannot draw correctly: {why}; "
+        raise UserError(f"the OpenGL adapter {info['device']} ({info['description']}) {CANNOT_DRAW}: {why}; "
                         "use --backend vulkan")
 
 
