@@ -200,10 +200,23 @@ def test_required_spec_gloss_is_rendered_and_explained(tmp_path, capsys):
     assert f"extensionsUsed {EXT}: used" in captured.out and f"{EXT}: ignored" not in captured.out
 
 
+def _refused(tmp_path, capsys, model: str, needle: str) -> None:
+    """Rendering ``model`` is the one-line refusal (exit 2) naming the extension and ``needle``; no image."""
+    from helpers import one_line_refusal
+
+    from wgpurender.cli import main
+
+    scene = tmp_path / "refused.toml"
+    scene.write_text(scene_text(model, SIZE))
+    code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
+    err = "\n".join(line for line in capsys.readouterr().err.splitlines() if line.strip())
+    one_line_refusal(code, err, EXT, needle)
+    assert not (tmp_path / "out.png").exists()
+
+
 def test_textures_sampling_differently_are_refused_in_one_line(tmp_path, capsys):
     """diffuseTexture on TEXCOORD_0, specularGlossinessTexture on TEXCOORD_1: not convertible per texel, so one
     line naming the extension, exit 2."""
-    from wgpurender.cli import main
 
     g = GltfWriter()
     tex = g.texture(DIFFUSE_TEXELS)
@@ -212,29 +225,18 @@ def test_textures_sampling_differently_are_refused_in_one_line(tmp_path, capsys)
     prim["attributes"]["TEXCOORD_1"] = prim["attributes"]["TEXCOORD_0"]
     g.node(mesh=g.mesh([prim]))
     g.write(tmp_path / "two.glb")
-    scene = tmp_path / "two.toml"
-    scene.write_text(scene_text("two.glb", SIZE))
-    code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
-    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
-    assert code == 2 and len(err) == 1 and EXT in err[0] and "different coordinates" in err[0], err
-    assert not (tmp_path / "out.png").exists()
+    _refused(tmp_path, capsys, "two.glb", "different coordinates")
 
 
 def test_textures_of_different_sizes_are_refused_in_one_line(tmp_path, capsys):
     """A 2x1 diffuseTexture and a 1x1 specularGlossinessTexture: no texel-to-texel conversion, so one line naming
     the extension and the fix, exit 2."""
-    from wgpurender.cli import main
 
     g = GltfWriter()
     ext = {"diffuseTexture": {"index": g.texture(DIFFUSE_TEXELS)},
            "specularGlossinessTexture": {"index": g.texture(SPECGLOSS_TEXELS[:, :1])}}
     _one_quad(g, g.material(extensions={EXT: ext}), tmp_path / "sizes.glb")
-    scene = tmp_path / "sizes.toml"
-    scene.write_text(scene_text("sizes.glb", SIZE))
-    code = main(["render", str(scene), "-o", str(tmp_path / "out.png")])
-    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
-    assert code == 2 and len(err) == 1 and EXT in err[0] and "differ in size" in err[0], err
-    assert not (tmp_path / "out.png").exists()
+    _refused(tmp_path, capsys, "sizes.glb", "differ in size")
 
 
 @pytest.mark.parametrize("which", PATHS)

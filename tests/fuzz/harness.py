@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import contextlib
 import faulthandler
+import hashlib
 import io
 import os
 import signal
@@ -178,3 +179,15 @@ def reset_folder(folder: Path) -> None:
 
 def stderr_sink() -> None:  # pragma: no cover - debugging aid
     print(summary(), file=sys.stderr)
+
+
+def tree_snapshot(root: Path) -> dict[str, str]:
+    """Every file and link under ``root`` (not following links): path -> content hash or link target. What the
+    output-safety fuzzers compare before and after a run, so that a user's file lost or changed is named."""
+    out = {}
+    for here, dirs, files in os.walk(root):
+        for name in files + [d for d in dirs if os.path.islink(os.path.join(here, d))]:
+            path = Path(here) / name
+            rel = str(path.relative_to(root))
+            out[rel] = "-> " + os.readlink(path) if path.is_symlink() else hashlib.sha256(path.read_bytes()).hexdigest()
+    return out

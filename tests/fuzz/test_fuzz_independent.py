@@ -23,7 +23,6 @@ Oracles, each independent of the code under test:
 from __future__ import annotations
 
 import base64
-import hashlib
 import json
 import os
 import signal
@@ -36,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from harness import _count, check, render_argv, reset_folder, run_case
+from harness import _count, check, render_argv, reset_folder, run_case, tree_snapshot
 from hypothesis import given
 from hypothesis import strategies as st
 from peak_memory import measured_argv, peak_mib, reported_peak_mib
@@ -602,16 +601,6 @@ USER_FILES = ("notes.txt", "index.html", "data.js", "player.js", "step_1a.py", "
               "sub/keep.bin", ".wgpurender-manifest.json", "frame_00000.png")
 
 
-def snapshot(root: Path) -> dict[str, str]:
-    out = {}
-    for here, dirs, files in os.walk(root):
-        for name in files + [d for d in dirs if os.path.islink(os.path.join(here, d))]:
-            p = Path(here) / name
-            rel = str(p.relative_to(root))
-            out[rel] = "-> " + os.readlink(p) if p.is_symlink() else hashlib.sha256(p.read_bytes()).hexdigest()
-    return out
-
-
 LINKED = ("index.html", "data.js", "step_1a.py", "README.md", "goal.png", "player.js")
 
 
@@ -654,7 +643,7 @@ def test_output_folders(base, command, files, link, force, twice, which):
     (base / "model").mkdir()
     (base / "model" / "m.gltf").write_text(json.dumps(triangle_gltf()))
     scene = scene_for(base / "model", "m.gltf")
-    before = snapshot(base)
+    before = tree_snapshot(base)
     argv = ["export", scene, "-o", out, "--size", "40x30"] if command == "export" else ["exercise", "1a", "-o", out]
     argv += ["--force"] if force and command == "export" else []
     label = f"{command} files={files} link={link}:{LINKED[which]} force={force} twice={twice}"
@@ -663,7 +652,7 @@ def test_output_folders(base, command, files, link, force, twice, which):
         outcome, _ = audited(argv, None, label + " (again)")
     # --force means "these names may be replaced" (core/files/owned_files.py, docs/security.md): export's names then
     ours = {f"out/{n}" for n in ("index.html", "data.js", "player.js", ".wgpurender-manifest.json")} if force else set()
-    lost = lost_files(before, snapshot(base), ours if command == "export" else set())
+    lost = lost_files(before, tree_snapshot(base), ours if command == "export" else set())
     if lost:
         outcome = recount(outcome, "clobbered", label, f"changed or deleted {lost}")
     elif leftovers(base):
@@ -701,7 +690,7 @@ def test_killed_export(base, files, sig, delay, earlier):
     if earlier:
         subprocess.run(measured_argv("wgpurender", args, reports[0]), env=cli_env(base), capture_output=True,
                        timeout=120)
-    before = snapshot(out)
+    before = tree_snapshot(out)
     proc = subprocess.Popen([sys.executable, "-m", "wgpurender", *map(str, args)], env=cli_env(base),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     time.sleep(delay)
@@ -711,7 +700,7 @@ def test_killed_export(base, files, sig, delay, earlier):
     again = subprocess.run(measured_argv("wgpurender", args, reports[1]), env=cli_env(base), capture_output=True,
                            text=True, timeout=120)
     ours = {"index.html", "data.js", "player.js", ".wgpurender-manifest.json"}
-    lost = lost_files(before, snapshot(out), ours)
+    lost = lost_files(before, tree_snapshot(out), ours)
     if b"Traceback" in err or "Traceback" in again.stderr:
         outcome = _count("traceback", label, (err.decode() + again.stderr)[-800:])
     elif lost:
@@ -812,7 +801,7 @@ def test_record_folders(base, first, second, files, force):
     try:
         if first:
             w.record(scene, out, seconds=first, fps=1, size=(16, 12), turn=0, force=True)
-        before = snapshot(base)
+        before = tree_snapshot(base)
         w.record(scene, out, seconds=second, fps=1, size=(16, 12), turn=0, force=force)
     except UserError as err:
         outcome = _count("error", label, "") if len(str(err).splitlines()) == 1 else _count("multiline", label,
@@ -824,7 +813,7 @@ def test_record_folders(base, first, second, files, force):
         return
     frames = sorted(p.name for p in out.glob("frame_*.png"))
     ours = {f"out/frame_{k:05d}.png" for k in range(max(first, second))} | {"out/.wgpurender-manifest.json"}
-    lost = lost_files(before, snapshot(base), ours)
+    lost = lost_files(before, tree_snapshot(base), ours)
     # the user's frame files kept: those the first recording (force=True) did not replace as its own names
     users = {Path(f).name for f in files if f.startswith("frame_")} - {f"frame_{k:05d}.png" for k in range(first)}
     expect = sorted({f"frame_{k:05d}.png" for k in range(second)} | users)

@@ -6,7 +6,6 @@ file or staging folder left, more or less than one error line, a damaged cache e
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import io
 import json
 import os
@@ -14,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from harness import _count, check, reset_folder
+from harness import _count, check, reset_folder, tree_snapshot
 from hypothesis import given
 from hypothesis import strategies as st
 from strategies import fuzz_settings
@@ -40,17 +39,6 @@ def folder_state(draw):
         "force": draw(st.booleans()),
         "follow": draw(st.booleans()),
     }
-
-
-def _snapshot(root: Path) -> dict[str, str]:
-    """Every file and link under ``root`` (not following links): path -> content hash or link target."""
-    out = {}
-    for here, dirs, files in os.walk(root):
-        for name in files + [d for d in dirs if os.path.islink(os.path.join(here, d))]:
-            path = Path(here) / name
-            rel = str(path.relative_to(root))
-            out[rel] = "-> " + os.readlink(path) if path.is_symlink() else hashlib.sha256(path.read_bytes()).hexdigest()
-    return out
 
 
 def _build(base: Path, state: dict) -> Path:
@@ -101,7 +89,7 @@ def _judge(base: Path, out: Path, before: dict, code: int, err: str, state: dict
     label = json.dumps(state)
     if code not in (0, 2) or (code == 2 and len(err.strip().splitlines()) != 1) or "Traceback" in err:
         return _count("multiline", label, err[-400:])
-    after = _snapshot(base)
+    after = tree_snapshot(base)
     outside = {k: v for k, v in before.items() if k.startswith("outside/")}
     if any(after.get(k) != v for k, v in outside.items()):
         return _count("clobbered", label, "a file outside the output folder changed")
@@ -145,7 +133,7 @@ def test_output_folders_keep_the_users_files(tmp_path_factory, writer, state):
     base = tmp_path_factory.mktemp("outputs")
     try:
         out = _build(base, state)
-        before = _snapshot(base)
+        before = tree_snapshot(base)
         with pytest.MonkeyPatch.context() as patch:
             patch.setenv("WGPURENDER_FOLLOW_SYMLINKS", "1" if state["follow"] else "0")
             code, err = (_run_export if writer == "export" else _run_record)(out, state)
