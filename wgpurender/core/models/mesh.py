@@ -305,11 +305,17 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     elif file_type == "fbx":
         parts = _fbx_parts(path)
     else:
-        parts = _simple_obj_parts(path) if file_type == "obj" else None
-        if parts is None:
-            if file_type == "obj":
-                check_obj_records(path)
-            parts = _trimesh_parts(path, file_type)
+        if file_type == "obj":
+            mesh = _simple_obj_mesh(path, generate_tangents)
+            if mesh is not None:
+                return mesh
+            check_obj_records(path)
+        parts = _trimesh_parts(path, file_type)
+    return mesh_of_parts(path, parts, generate_tangents)
+
+
+def mesh_of_parts(path: Path, parts: list[_Part], generate_tangents: bool) -> Mesh:
+    """The one :class:`Mesh` of a file's placed parts (the end of every loader: checked, completed, tangents)."""
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
@@ -448,12 +454,20 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
     return parts
 
 
-def _simple_obj_parts(path: Path) -> list[_Part] | None:
-    """The one part of a simple OBJ file (core/models/obj_simple.py: the arrays trimesh's path gives, without its
-    scene machinery), or None when the file is not that simple."""
+def _simple_obj_mesh(path: Path, generate_tangents: bool) -> Mesh | None:
+    """The mesh of a simple OBJ file, from the parse cache when it holds it (core/models/obj_cached.py), or None
+    when the file is not that simple."""
+    from wgpurender.core.models import obj_cached
+
+    return obj_cached.load(path, generate_tangents, obj_cached.folder())
+
+
+def simple_obj_parts(path: Path, data: bytes) -> list[_Part] | None:
+    """The one part of a simple OBJ file's bytes (core/models/obj_simple.py: the arrays trimesh's path gives,
+    without its scene machinery), or None when the file is not that simple."""
     from wgpurender.core.models import obj_simple
 
-    read = obj_simple.read(path)
+    read = obj_simple.parse(data)
     if read is None:
         return None
     positions, faces, normals, uvs = read

@@ -15,6 +15,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan import culling
 from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
 from wgpurender.core.plan.instance_data import resolve_instance_data
+from wgpurender.core.plan.mesh_loading import resolve_mesh_workers
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     DEPTH_FORMAT,
@@ -63,6 +64,13 @@ def knob_settings(scene: Scene, knobs: Knobs) -> tuple[tuple[str, str, str], ...
          "offscreen output: a compute pass may write it directly" if knobs.output_storage else
          "knob output_storage: the output is a swapchain image, not a storage texture"),
     )
+
+
+def _mesh_workers(draws, knob: str) -> tuple[str, str, str]:
+    """The mesh_workers setting: how many worker processes read the draws' distinct OBJ files, and why."""
+    files = {d.model_path for d in draws if d.model_path.suffix.lower() == ".obj"}
+    workers, why = resolve_mesh_workers(knob, len(files))
+    return "mesh_workers", str(workers), why
 
 
 def _camera_note(scene: Scene) -> str:
@@ -143,7 +151,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
                         f"shader reads, and this device offers no {lacks}; render with --backend vulkan")
     drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
                                                  setting["instance_data"], compute)
-    settings = (*settings, ("culling", cull, cull_why))
+    settings = (*settings, ("culling", cull, cull_why), _mesh_workers(drawn.draws, knobs.mesh_workers))
     scene_pass = ScenePass(targets.color, targets.target if msaa > 1 else None, targets.depth, r.clear_color,
                            tuple(drawn.draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
     post_passes, post_attachments = plan_post_passes(steps, setting["post_fuse"] == "on", setting["post_path"],

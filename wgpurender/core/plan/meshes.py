@@ -25,10 +25,25 @@ class PlanMeshes:
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
 
     def mesh(self, path: Path) -> Mesh:
-        """The loaded mesh; tangents only when a variant drawing it has a normal map."""
+        """The loaded mesh; tangents only when a variant drawing it has a normal map. With worker processes in
+        the plan (``mesh_workers``), the first call reads every OBJ file of the plan through them."""
         if path not in self._meshes:
-            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
+            if self.plan.mesh_workers and not self._meshes:
+                self._read_in_workers()
+            if path not in self._meshes:
+                self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
         return self._meshes[path]
+
+    def _read_in_workers(self) -> None:
+        """The plan's OBJ files, in draw order, read by core/models/mesh_workers.py; a file that is not a simple
+        OBJ is left to :func:`load_mesh` (the general loader)."""
+        from wgpurender.core.models import mesh_workers, obj_cached
+
+        paths = dict.fromkeys(d.model_path for d in self.plan.scene_pass.draws if d.model_path.suffix.lower() == ".obj")
+        jobs = [(p, p in self._needs_tangents) for p in paths]
+        for (path, _), mesh in mesh_workers.load_all(jobs, self.plan.mesh_workers, obj_cached.folder()).items():
+            if mesh is not None:
+                self._meshes[path] = mesh
 
     def mesh_for(self, draw: Draw) -> Mesh:
         """The draw's mesh, checked against the vertex attributes its variant reads (UserError names what is

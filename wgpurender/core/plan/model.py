@@ -21,6 +21,7 @@ from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
 from wgpurender.core.plan.gl_facts import glsl_allows
 from wgpurender.core.plan.instance_data import INSTANCE_DATA
+from wgpurender.core.plan.mesh_loading import MESH_WORKERS
 from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
@@ -335,12 +336,14 @@ class Knobs:
     anisotropy: str = DEFAULT_ANISOTROPY  # the anisotropy rule (wgpurender/core/plan/anisotropy.py), for ``adapter``
     culling: str = "auto"  # "auto", "gpu", "cpu" or "off": which instanced draws are culled (core/plan/culling.py)
     instance_data: str = "auto"  # "auto", "storage" or "vertex": how instances reach the vertex shader
+    mesh_workers: str = "auto"  # "auto", "off" or "on": model files read by worker processes (plan/mesh_loading.py)
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (
             ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
             ("culling", self.culling, CULLING), ("instance_data", self.instance_data, INSTANCE_DATA),
+            ("mesh_workers", self.mesh_workers, MESH_WORKERS),
         ) if value not in allowed]
         for name, value, allowed in bad:
             raise UserError(f"plan knob {name} = {value!r}: choose one of "
@@ -502,6 +505,11 @@ class RenderPlan:
     def instance_data(self) -> str:
         """"storage" or "vertex": how instances reach the vertex shader (core/plan/instance_data.py)."""
         return self.setting("instance_data")
+
+    @property
+    def mesh_workers(self) -> int:
+        """Worker processes that read the model files (0: this process reads them; core/plan/mesh_loading.py)."""
+        return int(self.setting("mesh_workers"))
 
     @property
     def post_steps(self) -> tuple[EffectStep, ...]:

@@ -1,0 +1,87 @@
+"""Simple OBJ files through a verified parse cache: a warm load of a scene of thousands of mesh files reads each
+file's mesh back instead of parsing it again (issue 31: the Python parse was most of a distinct file's load).
+
+Content-addressed: the key is the SHA-256 of the file's bytes, whether tangents were made, and the parser's
+version, which is a hash of the source of every module the result depends on (this one, obj_simple, mesh,
+tangents, mesh_pack) and of the numpy and trimesh versions (trimesh's ``unmerge_faces`` orders the vertices).
+So an edited file, an edited parser or another library version is a miss, never a stale mesh. An entry is a
+sealed cache entry (core/files/cache_entry.py: verified before use, written atomically) holding a packed mesh
+(core/models/mesh_pack.py: arrays, no pickle), in ``$XDG_CACHE_HOME/wgpurender/meshes``, never in the user's
+folder. Only files the simple reader takes are cached: their bytes are all they depend on (no MTL, no texture);
+anything else goes through the general loader every time. A cache that cannot be written is only slower.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+
+from wgpurender.core.files.cache_entry import cache_folder, read_entry, write_entry
+from wgpurender.core.models import mesh_pack
+from wgpurender.core.models.mesh import Mesh, mesh_of_parts, simple_obj_parts
+
+CODE = ("obj_cached.py", "obj_simple.py", "mesh.py", "tangents.py", "mesh_pack.py")
+LIBRARIES = ("numpy", "trimesh")
+
+
+@functools.cache
+def parser_version() -> str:
+    """A hash of the parser's own source and library versions: any change makes every old entry a miss."""
+    digest = hashlib.sha256()
+    for name in CODE:
+        digest.update((Path(__file__).parent / name).read_bytes())
+    for name in LIBRARIES:
+        try:
+            digest.update(f"{name} {version(name)}".encode())
+        except PackageNotFoundError:
+            digest.update(f"{name} absent".encode())
+    return digest.hexdigest()
+
+
+def folder() -> Path:
+    return cache_folder("meshes")
+
+
+def entry_key(data: bytes, generate_tangents: bool) -> str:
+    return (f"simple OBJ mesh; parser {parser_version()}; tangents {int(generate_tangents)}; "
+            f"file sha256 {hashlib.sha256(data).hexdigest()}")
+
+
+def entry_path(where: Path, key: str) -> Path:
+    return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.mesh"
+
+
+def load(path: Path, generate_tangents: bool, where: Path | None) -> Mesh | None:
+    """The mesh of the simple OBJ file ``path``: the cache's (in folder ``where``; None: no cache) when it holds
+    a whole entry for these bytes, else parsed and stored; None when the file is not simple (the caller loads
+    it the general way)."""
+    mesh, _ = _load(path, generate_tangents, where)
+    return mesh
+
+
+def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> bytes | None:
+    """:func:`load`'s mesh packed (mesh_pack): what a worker process sends its parent."""
+    mesh, packed = _load(path, generate_tangents, where)
+    return None if mesh is None else packed or mesh_pack.pack(mesh)
+
+
+def _load(path: Path, generate_tangents: bool, where: Path | None) -> tuple[Mesh | None, bytes | None]:
+    data = path.read_bytes()
+    entry = key = None
+    if where is not None:
+        key = entry_key(data, generate_tangents)
+        entry = entry_path(where, key)
+        payload = read_entry(entry, key)
+        mesh = None if payload is None else mesh_pack.unpack(payload, path)
+        if mesh is not None:
+            return mesh, payload
+    parts = simple_obj_parts(path, data)
+    if parts is None:
+        return None, None
+    mesh = mesh_of_parts(path, parts, generate_tangents)
+    packed = mesh_pack.pack(mesh)
+    if entry is not None and packed is not None:
+        write_entry(entry, key, packed)
+    return mesh, packed
