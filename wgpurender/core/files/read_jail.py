@@ -26,6 +26,7 @@ from __future__ import annotations
 import os
 import re
 import urllib.parse
+from collections.abc import Callable
 from pathlib import Path, PureWindowsPath
 
 from wgpurender.core.errors import UserError
@@ -113,12 +114,14 @@ def scene_folders(scene: Path) -> list[Path] | None:
     return None if is_bundled_scene(scene) else allowed_folders(scene)
 
 
-def outside(path: Path, folders: list[Path] | None) -> str | None:
+def outside(path: Path, folders: list[Path] | None, resolve: Callable[[Path], Path] = resolved) -> str | None:
     """Why a scene may not read ``path`` (already resolved), or None when it may (see the module docstring);
-    ``folders``: what :func:`scene_folders` returned for the scene (None: a bundled scene)."""
+    ``folders``: what :func:`scene_folders` returned for the scene (None: a bundled scene); ``resolve``: how
+    ``path`` is resolved once more (a scene's :class:`~.input_files.FolderResolver` resolves each folder once)."""
     if folders is None:
         return None
-    if any(resolved(path).is_relative_to(folder) for folder in folders):
+    real = resolve(path)
+    if any(real.is_relative_to(folder) for folder in folders):
         return None
     return (f"{path} is outside the folders a scene may read ({', '.join(map(str, folders))}); move the file "
             f"under the scene's folder, or allow its folder with ${ALLOW_ENV}=FOLDER")
