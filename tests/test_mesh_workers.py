@@ -1,0 +1,151 @@
+"""A scene's OBJ files read by worker processes (core/models/mesh_workers.py) when the plan says so
+(core/plan/mesh_loading.py, knob mesh_workers): the same meshes as this process reads, the same one-line
+refusal (the first refused file in draw order), the read rule still applied by the parent, a dead worker
+answered by a serial read, and the decision shown by --explain."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import fields
+
+import numpy as np
+import pytest
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.models import obj_cached, procedural
+from wgpurender.core.models.mesh import load_mesh
+from wgpurender.core.plan import mesh_loading, resolve_plan
+from wgpurender.core.plan.meshes import PlanMeshes
+
+pytestmark = pytest.mark.skipif(not mesh_loading.can_fork(), reason="worker processes need fork (Linux)")
+
+CAMERA = "[camera]\neye = [0.0, 0.0, 30.0]\ntarget = [0.0, 0.0, 0.0]\n\n"
+NAN_CUBE = "v nan 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n"
+
+
+@pytest.fixture(autouse=True)
+def own_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+
+
+def _scene(folder, names, extra: str = ""):
+    text = CAMERA + "".join(f'[[models]]\npath = "{n}"\ntransform = {{ translate = [{k % 7}, {k // 7}, 0] }}\n\n'
+                            for k, n in enumerate(names)) + extra
+    path = folder / "s.toml"
+    path.write_text(text)
+    return path
+
+
+def _cubes(folder, n):
+    names = []
+    for k in range(n):
+        mesh = procedural.box(0.5 + 0.01 * k)  # distinct files
+        procedural.write_obj(folder / f"c{k}.obj", mesh)
+        names.append(f"c{k}.obj")
+    return names
+
+
+def _meshes(plan):
+    meshes = PlanMeshes(plan)
+    return [meshes.mesh(d.model_path) for d in plan.scene_pass.draws]
+
+
+def _same(a, b) -> None:
+    for f in fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
+        else:
+            assert x == y, f.name
+
+
+def test_workers_read_the_meshes_this_process_reads(tmp_path):
+    names = _cubes(tmp_path, 12)
+    (tmp_path / "bare.obj").write_text(  # not simple (a group record): the parent's general loader reads it
+        "o thing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    scene = _scene(tmp_path, [*names, "bare.obj"])
+    on = resolve_plan(scene, None, mesh_workers="on")
+    off = resolve_plan(scene, None, mesh_workers="off")
+    assert on.mesh_workers == 1 and off.mesh_workers == 0  # 13 files: one worker per 64
+    served = _meshes(on)
+    assert len(served) == 13
+    for got, want, draw in zip(served, _meshes(off), on.scene_pass.draws, strict=True):
+        _same(got, want)
+        _same(got, load_mesh(draw.model_path, generate_tangents=False))
+    for k, got in enumerate(served[:12]):  # each cube is the size its file says
+        assert np.allclose(np.ptp(got.positions, axis=0), 0.5 + 0.01 * k, atol=1e-6)
+
+
+def test_a_refusal_in_a_worker_is_the_same_one_line_for_the_first_bad_file(tmp_path):
+    names = _cubes(tmp_path, 5)
+    (tmp_path / "bad1.obj").write_text(NAN_CUBE)
+    (tmp_path / "bad2.obj").write_text(NAN_CUBE)
+    scene = _scene(tmp_path, [*names[:2], "bad1.obj", names[2], "bad2.obj"])
+    messages = []
+    for knob in ("on", "off"):
+        with pytest.raises(UserError) as err:
+            _meshes(resolve_plan(scene, None, mesh_workers=knob))
+        messages.append(str(err.value))
+    assert messages[0] == messages[1]
+    assert "bad1.obj" in messages[0] and "NaN" in messages[0] and "\n" not in messages[0]
+
+
+def test_the_read_rule_is_the_parents_before_any_worker(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    procedural.write_obj(outside / "m.obj", procedural.box(1.0))
+    mine = tmp_path / "project" / "deep"
+    mine.mkdir(parents=True)
+    (mine / "link.obj").symlink_to(outside / "m.obj")  # a link in the scene's folder to a file outside it
+    for name in ("../../outside/m.obj", "link.obj"):
+        with pytest.raises(UserError, match="outside the folders a scene may read"):
+            resolve_plan(_scene(mine, [name]), None, mesh_workers="on")
+
+
+def test_a_dead_worker_leaves_the_rest_to_this_process(tmp_path, monkeypatch):
+    names = _cubes(tmp_path, 3)
+    scene = _scene(tmp_path, names)
+    parent = os.getpid()
+    real = obj_cached.load_packed
+
+    def dies_in_a_worker(*args):
+        if os.getpid() != parent:  # the forked worker has this module as patched here
+            os._exit(3)
+        return real(*args)
+
+    monkeypatch.setattr(obj_cached, "load_packed", dies_in_a_worker)
+    served = _meshes(resolve_plan(scene, None, mesh_workers="on"))
+    for got, name in zip(served, names, strict=True):
+        _same(got, load_mesh(tmp_path / name, generate_tangents=False))
+
+
+@pytest.mark.parametrize("knob, files, cores, fork, workers", [
+    ("auto", mesh_loading.MIN_FILES - 1, 16, True, 0),  # too few files to pay for a pool
+    ("auto", mesh_loading.MIN_FILES, 16, True, 4),  # one worker per 64 files
+    ("auto", 10_000, 16, True, 16),  # one per core
+    ("auto", 10_000, 64, True, mesh_loading.MAX_WORKERS),
+    ("auto", 10_000, 1, True, 0),
+    ("auto", 10_000, 16, False, 0),  # no fork: no pool
+    ("off", 10_000, 16, True, 0),
+    ("on", 3, 16, True, 1),
+    ("on", 3, 16, False, 0),
+    ("on", 0, 16, True, 0),
+])
+def test_the_rule(knob, files, cores, fork, workers):
+    got, why = mesh_loading.resolve_mesh_workers(knob, files, cores=cores, fork=fork)
+    assert got == workers and why and "\n" not in why
+    if workers:
+        assert str(workers) in why
+
+
+def test_an_unknown_knob_is_one_line():
+    with pytest.raises(UserError, match=r"mesh_workers = 'many': choose one of auto, off, on"):
+        mesh_loading.resolve_mesh_workers("many", 10)
+
+
+def test_explain_says_how_the_files_are_read(tmp_path):
+    scene = _scene(tmp_path, _cubes(tmp_path, 3))
+    text = resolve_plan(scene, None).explain()
+    assert f"mesh_workers: 0 <- 3 OBJ file(s), fewer than {mesh_loading.MIN_FILES}" in text
+    text = resolve_plan(scene, None, mesh_workers="on").explain()
+    assert "mesh_workers: 1 <- knob mesh_workers = on: 1 worker process(es) read the 3 OBJ file(s)" in text

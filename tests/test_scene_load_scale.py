@@ -1,0 +1,86 @@
+"""What made a scene of 10k distinct mesh files load faster, checked against what it replaced (issue 31.3):
+
+- a scene's model paths resolved folder by folder (input_files.FolderResolver) equal ``Path.resolve`` for plain
+  files, links to files, linked folders, ``..``, missing files and link loops;
+- a material's shading planned once per (material, winding) still gives each model the winding its own
+  transform asks for;
+- the pixels are the same whether worker processes read the files or this process does.
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+
+from wgpurender.core.files.input_files import FolderResolver
+from wgpurender.core.models import procedural
+from wgpurender.core.plan import mesh_loading, resolve_plan
+
+
+def test_folder_by_folder_resolution_is_path_resolve(tmp_path):
+    real = tmp_path / "real"
+    (real / "sub").mkdir(parents=True)
+    (real / "a.obj").write_text("")
+    (real / "sub" / "b.obj").write_text("")
+    (tmp_path / "linked").symlink_to(real)  # a linked folder
+    (real / "to_b.obj").symlink_to(real / "sub" / "b.obj")  # a linked file
+    (real / "loop.obj").symlink_to(real / "loop.obj")  # a loop
+    (real / "dangling.obj").symlink_to(real / "gone.obj")
+    cases = [real / "a.obj", tmp_path / "linked" / "a.obj", tmp_path / "linked" / "sub" / ".." / "a.obj",
+             real / "to_b.obj", tmp_path / "linked" / "to_b.obj", real / "missing.obj", real / "dangling.obj",
+             real / "sub" / "..", real / ".", tmp_path / "linked" / "sub" / "b.obj"]
+    resolve = FolderResolver()
+    for _ in range(2):  # the second round from the resolved folders
+        for path in cases:
+            assert resolve(path) == path.resolve(), path
+    with pytest.raises((RuntimeError, OSError)):
+        (real / "loop.obj").resolve()
+    assert resolve(real / "loop.obj") == real / "loop.obj"  # left unresolved, as input_files.resolved leaves it
+
+
+def test_one_shading_per_material_keeps_each_models_winding(tmp_path):
+    scales = [(1, 1, 1), (-1, 1, 1), (1, 1, 1), (1, -1, -1), (-1, -1, -1), (2, 2, 2)]
+    for k in range(len(scales)):  # a file each: draws of one mesh would be batched into one instanced draw
+        procedural.write_obj(tmp_path / f"c{k}.obj", procedural.box(1.0))
+    body = "".join(f'[[models]]\npath = "c{k}.obj"\nmaterial = "{"ab"[k % 2]}"\n'
+                   f"transform = {{ scale = [{x}, {y}, {z}] }}\n\n" for k, (x, y, z) in enumerate(scales))
+    scene = tmp_path / "s.toml"
+    scene.write_text("[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\n\n[materials.a]\nalbedo_color = [1, 0, 0, 1]\n"
+                     "[materials.b]\nalbedo_color = [0, 1, 0, 1]\n\n[[lights]]\ntype = \"directional\"\n"
+                     "direction = [0, 0, -1]\n\n" + body)
+    plan = resolve_plan(scene, None)
+    draws = sorted(plan.scene_pass.draws, key=lambda d: d.model_index)
+    assert len(draws) == len(scales)
+    for draw, scale in zip(draws, scales, strict=True):
+        mirrored = np.linalg.det(np.diag(scale)) < 0
+        assert plan.pipeline(draw.pipeline_key).front_face == ("cw" if mirrored else "ccw"), scale
+        assert draw.material == "ab"[draw.model_index % 2]
+        assert dict(draw.factors)["base_color"][:3] == ((1.0, 0.0, 0.0) if draw.material == "a" else (0.0, 1.0, 0.0))
+
+
+@pytest.mark.skipif(not mesh_loading.can_fork(), reason="worker processes need fork (Linux)")
+def test_workers_or_not_the_pixels_are_the_same(ctx, tmp_path, monkeypatch):
+    from wgpurender.wgpu_path.scene import load_renderer
+    from wgpurender.wgpu_path.scene.frame import render_frame
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    body = []
+    for k in range(9):
+        procedural.write_obj(tmp_path / f"m{k}.obj", procedural.torus(0.5 + 0.05 * k, 0.2, segments=12, rings=6))
+        body.append(f'[[models]]\npath = "m{k}.obj"\ntransform = {{ translate = [{k % 3 * 2 - 2}, {k // 3 * 2 - 2}, '
+                    f'0], rotate = {{ axis = [1, 0, 0], degrees = {20 * k} }} }}\n')
+    scene = tmp_path / "s.toml"
+    scene.write_text("[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\n\n[[lights]]\ntype = \"directional\"\n"
+                     "direction = [-0.3, -0.5, -1]\n\n" + "\n".join(body) + "\n[render]\nsize = [96, 72]\nmsaa = 1\n")
+    images = {}
+    for knob in ("off", "on", "on"):  # the second "on" is served by the parse cache
+        renderer = load_renderer(scene, ctx, knobs={"mesh_workers": knob})
+        assert renderer.plan.mesh_workers == (0 if knob == "off" else 1)
+        images.setdefault(knob, []).append(render_frame(ctx, renderer, renderer.create_output())[0])
+    assert len(list((tmp_path / "xdg").rglob("*.mesh"))) == 9
+    assert np.count_nonzero(images["off"][0][..., :3].max(axis=2)) > 500  # the tori are drawn
+    for image in images["on"]:
+        assert np.array_equal(image, images["off"][0])
+    assert os.environ["XDG_CACHE_HOME"] == str(tmp_path / "xdg")
