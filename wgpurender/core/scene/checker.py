@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 from typing import Any
@@ -27,7 +28,12 @@ class Checker:
     def __init__(self, path: Path, text: str) -> None:
         self.path = path
         self.folder = path.parent
-        self.keys = KeyLines(text)
+        self.text = text
+
+    @functools.cached_property
+    def keys(self) -> KeyLines:
+        """Each key's line, indexed only when a message needs one (a scene of 10k models is checked without)."""
+        return KeyLines(self.text)
 
     def error(self, key: KeyPath, message: str) -> UserError:
         line = self.keys.line_of(key)
