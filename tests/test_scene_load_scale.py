@@ -84,3 +84,36 @@ def test_workers_or_not_the_pixels_are_the_same(ctx, tmp_path, monkeypatch):
     for image in images["on"]:
         assert np.array_equal(image, images["off"][0])
     assert os.environ["XDG_CACHE_HOME"] == str(tmp_path / "xdg")
+
+
+def test_meshes_of_two_strides_draw_by_base_vertex_from_one_buffer(ctx, tmp_path):
+    """An unlit triangle (position only: 3 x 12 = 36 bytes) then a lit one (position + normal, 24-byte stride):
+    36 is no whole number of 24-byte vertices, so the second mesh must start on padding, or its base vertex names
+    the wrong vertices. Each colour must be where the camera projects its model (the scene's own numbers)."""
+    from wgpurender.core.scene import parse_scene
+    from wgpurender.wgpu_path.scene import load_renderer
+    from wgpurender.wgpu_path.scene.frame import render_frame
+
+    tri = "v -0.8 -0.8 0\nv 0.8 -0.8 0\nv 0 0.8 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n"
+    (tmp_path / "a.obj").write_text(tri)
+    (tmp_path / "b.obj").write_text(tri)
+    path = tmp_path / "s.toml"
+    path.write_text('[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\nfov_y = 40\n\n[[lights]]\ntype = "directional"\n'
+                    'direction = [0, 0, -1]\n\n[[models]]\npath = "a.obj"\nmaterial = { albedo_color = [1, 0, 0], '
+                    'unlit = true }\ntransform = { translate = [-2, 0, 0] }\n\n[[models]]\npath = "b.obj"\n'
+                    'material = { albedo_color = [0, 1, 0] }\ntransform = { translate = [2, 0, 0] }\n\n'
+                    '[render]\nsize = [96, 48]\nmsaa = 1\nhdr = false\n')
+    renderer = load_renderer(path, ctx)
+    strides = [4 * sum({"position": 3, "normal": 3}[a] for a in renderer.plan.variant(d.variant_key).vertex_attributes)
+               for d in renderer.plan.scene_pass.draws]
+    assert sorted(strides) == [12, 24]
+    img, _ = render_frame(ctx, renderer, renderer.create_output())
+    scene = parse_scene(path.read_text(), path)
+    clip_from_world = scene.camera.projection(96 / 48) @ scene.camera.view()
+    for x, want in ((-2.0, "red"), (2.0, "green")):
+        c = clip_from_world @ np.array([x, -0.25, 0.0, 1.0])  # inside the triangle, below its centroid
+        r, g, b = img[int((1 - c[1] / c[3]) / 2 * 48), int((c[0] / c[3] + 1) / 2 * 96), :3].tolist()
+        if want == "red":
+            assert (r, g, b) == (255, 0, 0)
+        else:  # lit green (a white highlight on top: r == b)
+            assert g > max(r, b) + 100 and r == b, (r, g, b)

@@ -39,8 +39,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     scene = Scene(
         path=path,
         camera=_camera(c, data["camera"]),
-        models=tuple(dataclasses.replace(m, file_materials=read_file_materials(m))
-                     for m in _models(c, data.get("models", []), materials)),
+        models=tuple(_with_file_materials(m) for m in _models(c, data.get("models", []), materials)),
         materials=materials,
         lights=_lights(c, data.get("lights", [])),
         render=_render(c, data.get("render", {})),
@@ -53,6 +52,12 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     from wgpurender.core.scene.gltf_lights import scene_lights  # imported only for glTF models
 
     return dataclasses.replace(scene, lights=scene_lights(scene.lights, scene.models, path))  # + KHR lights
+
+
+def _with_file_materials(model):
+    """The model with the materials its file gives (read once, here), or itself when it draws the scene's."""
+    found = read_file_materials(model)
+    return model if found is None else dataclasses.replace(model, file_materials=found)
 
 
 def load_scene(path: str | Path) -> Scene:

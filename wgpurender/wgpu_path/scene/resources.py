@@ -30,6 +30,8 @@ class MeshBuffers:
     index_count: int
     vertex_offset: int = 0
     index_offset: int = 0
+    base_vertex: int = 0  # vertex_offset in vertices of this mesh's stride (a draw from the buffers bound at 0)
+    first_index: int = 0  # index_offset in indices of index_format
 
 
 class SceneResources:
@@ -45,10 +47,12 @@ class SceneResources:
 
     # -- meshes ----------------------------------------------------------------
     def upload_meshes(self, draws) -> None:
-        """The meshes of ``draws`` not on the GPU yet, in ONE vertex and ONE index buffer at 4-byte aligned offsets
-        (set_vertex_buffer's and set_index_buffer's rule): a scene of 10k mesh files made 20k buffers before, each
-        several wgpu calls (issue 31.3). Draw order decides the layout; a draw whose mesh fails its variant's
-        check (mesh_for) raises here, as it did when its buffers were made one by one."""
+        """The meshes of ``draws`` not on the GPU yet, in ONE vertex and ONE index buffer, each mesh's vertices
+        starting on a whole vertex of its stride (so a draw names it by ``base_vertex`` with the buffer bound at 0)
+        and at 4-byte aligned offsets (set_vertex_buffer's and set_index_buffer's rule): a scene of 10k mesh files
+        made 20k buffers before, each several wgpu calls (issue 31.3). Draw order decides the layout; a draw
+        whose mesh fails its variant's check (mesh_for) raises here, as it did when its buffers were made one by
+        one."""
         pending: dict[tuple, tuple[bytes, bytes, object]] = {}
         for draw in draws:
             key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
@@ -59,15 +63,19 @@ class SceneResources:
             return
         vertex, index, places = bytearray(), bytearray(), []
         for key, (vertices, indices, mesh) in pending.items():
-            places.append((key, len(vertex), len(index), mesh))
-            vertex += vertices + b"\0" * (-len(vertices) % 4)
+            stride = len(vertices) // mesh.vertex_count
+            vertex += b"\0" * (-len(vertex) % stride)  # each mesh starts on a whole vertex of its own stride
+            places.append((key, len(vertex), len(index), mesh, stride))
+            vertex += vertices
             index += indices  # index_bytes is already a multiple of 4
+        vertex += b"\0" * (-len(vertex) % 4)  # float32 strides keep it whole; the buffer's size rule, stated
         dev = self.ctx.device
         # named as the plan lists them (RenderPlan.buffers)
         vbuf = dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX, label="scene-vertices")
         ibuf = dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX, label="scene-indices")
-        for key, v_at, i_at, mesh in places:
-            self._buffers[key] = MeshBuffers(vbuf, ibuf, mesh.index_format, mesh.indices.size, v_at, i_at)
+        for key, v_at, i_at, mesh, stride in places:
+            self._buffers[key] = MeshBuffers(vbuf, ibuf, mesh.index_format, mesh.indices.size, v_at, i_at,
+                                             v_at // stride, i_at // mesh.indices.itemsize)
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""

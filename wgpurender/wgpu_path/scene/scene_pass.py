@@ -307,16 +307,22 @@ class ScenePassRenderer:
                 encoder.set_bind_group(material_group, group)
             if self.uses_immediates:
                 encoder.set_immediates(0, data, 0, len(data))
-            if buffers is not last[3]:
-                encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)
-                encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)
-            last = [pipeline, None, group, buffers]
-            if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
+            culled = self.plan.pipeline(draw.pipeline_key).culled
+            # the GPU-culled draw's indirect block counts from its mesh's offsets: bound there; every other draw
+            # names its mesh by first index and base vertex in the shared buffers bound once at 0 (one call a draw)
+            bound = buffers if culled else (buffers.vertex, buffers.index, buffers.index_format)
+            if bound != last[3]:
+                at = (buffers.vertex_offset, buffers.index_offset) if culled else (0, 0)
+                encoder.set_vertex_buffer(0, buffers.vertex, at[0])
+                encoder.set_index_buffer(buffers.index, buffers.index_format, at[1])
+            last = [pipeline, None, group, bound]
+            if culled:  # its visible instances, as the GPU counted them
                 encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
                 continue
             # the draw's part of the mesh (a file material's triangles), once per instance
             instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count
-            encoder.draw_indexed(count, instances, first, 0, draw.first_instance)
+            encoder.draw_indexed(count, instances, buffers.first_index + first, buffers.base_vertex,
+                                 draw.first_instance)
 
 
 def _color_target(planned: ScenePipeline) -> dict:
