@@ -79,8 +79,10 @@ class SceneResources:
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
-        self.upload_meshes([draw])
-        return self._buffers[(draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)]
+        key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
+        if key not in self._buffers:
+            self.upload_meshes([draw])
+        return self._buffers[key]
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""

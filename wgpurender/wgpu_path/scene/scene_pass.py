@@ -137,6 +137,7 @@ class ScenePassRenderer:
         self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
         groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
         packed: dict[tuple, bytes] = {}  # equal keys hold equal variants and factors: packed once (10k draws)
+        pipelines: dict[str, wgpu.GPURenderPipeline] = {}  # by the plan's key: looked up once, not once a draw
         for draw in self.draws:
             variant = self.plan.variant(draw.variant_key)
             key = draw.material_key()
@@ -148,7 +149,9 @@ class ScenePassRenderer:
                 if self.material_buffer is not None:
                     self.ctx.queue.write_buffer(self.material_buffer, slot * self.material_stride, data)
                 groups[key] = self._material_group(variant, draw, slot)
-            pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
+            pipeline = pipelines.get(draw.pipeline_key)
+            if pipeline is None:
+                pipeline = pipelines[draw.pipeline_key] = self.pipeline(self.plan.pipeline(draw.pipeline_key))
             buffers = self.resources.mesh_buffers(draw)
             self.draw_state.append((draw, pipeline, groups[key], data, buffers, self.resources.index_range(draw)))
 
