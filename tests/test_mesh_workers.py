@@ -15,6 +15,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.models import obj_cached, procedural
 from wgpurender.core.models.mesh import load_mesh
 from wgpurender.core.plan import mesh_loading, resolve_plan
+from wgpurender.core.plan import meshes as plan_meshes
 from wgpurender.core.plan.meshes import PlanMeshes
 
 pytestmark = pytest.mark.skipif(not mesh_loading.can_fork(), reason="worker processes need fork (Linux)")
@@ -67,7 +68,12 @@ def test_workers_read_the_meshes_this_process_reads(tmp_path):
     on = resolve_plan(scene, None, mesh_workers="on")
     off = resolve_plan(scene, None, mesh_workers="off")
     assert on.mesh_workers == 1 and off.mesh_workers == 0  # 13 files: one worker per 64
-    served = _meshes(on)
+    here = []  # what this process loads itself: only the file that is not a simple OBJ
+    real = plan_meshes.load_mesh
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(plan_meshes, "load_mesh", lambda path, **kw: here.append(path.name) or real(path, **kw))
+        served = _meshes(on)
+    assert here == ["bare.obj"]
     assert len(served) == 13
     for got, want, draw in zip(served, _meshes(off), on.scene_pass.draws, strict=True):
         _same(got, want)
@@ -88,6 +94,32 @@ def test_a_refusal_in_a_worker_is_the_same_one_line_for_the_first_bad_file(tmp_p
         messages.append(str(err.value))
     assert messages[0] == messages[1]
     assert "bad1.obj" in messages[0] and "NaN" in messages[0] and "\n" not in messages[0]
+
+
+def test_the_size_limit_holds_in_a_worker(tmp_path, monkeypatch):
+    names = _cubes(tmp_path, 3)
+    scene = _scene(tmp_path, names)
+    limit = min((tmp_path / n).stat().st_size for n in names) - 1
+    monkeypatch.setenv("WGPURENDER_MAX_MODEL_BYTES", str(limit))
+    messages = []
+    for knob in ("on", "off"):
+        with pytest.raises(UserError) as err:
+            _meshes(resolve_plan(scene, None, mesh_workers=knob))
+        messages.append(str(err.value))
+    assert messages[0] == messages[1] and "c0.obj" in messages[0] and "over the limit" in messages[0]
+
+
+def test_a_normal_mapped_model_gets_its_tangents_from_a_worker(tmp_path):
+    from wgpurender.core.files.imageio import save_png
+
+    save_png(tmp_path / "n.png", np.full((4, 4, 4), (128, 128, 255, 255), np.uint8))
+    names = _cubes(tmp_path, 2)
+    scene = _scene(tmp_path, names, '[[lights]]\ntype = "directional"\ndirection = [0, 0, -1]\n')
+    text = scene.read_text().replace('path = "c1.obj"\n', 'path = "c1.obj"\nmaterial = { normal_map = "n.png" }\n')
+    scene.write_text(text)
+    served = _meshes(resolve_plan(scene, None, mesh_workers="on"))
+    assert served[0].tangents is None and served[1].tangents is not None
+    _same(served[1], load_mesh(tmp_path / "c1.obj", generate_tangents=True))
 
 
 def test_the_read_rule_is_the_parents_before_any_worker(tmp_path):
@@ -128,6 +160,7 @@ def test_a_dead_worker_leaves_the_rest_to_this_process(tmp_path, monkeypatch):
     ("auto", 10_000, 16, False, 0),  # no fork: no pool
     ("off", 10_000, 16, True, 0),
     ("on", 3, 16, True, 1),
+    ("on", 65, 16, True, 2),  # 65 files: two workers (one per 64, rounded up)
     ("on", 3, 16, False, 0),
     ("on", 0, 16, True, 0),
 ])
