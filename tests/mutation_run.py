@@ -102,6 +102,14 @@ COMP = "shaders_glsl/ibl.comp"
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
                  "or explain or without_compute or binds_wrongly")
 INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler or stretched"
+M_PACK = "wgpurender/core/models/mesh_pack.py"
+O_CACHED = "wgpurender/core/models/obj_cached.py"
+M_WORK = "wgpurender/core/models/mesh_workers.py"
+M_LOAD = "wgpurender/core/plan/mesh_loading.py"
+PARSE_CACHE = "tests/test_mesh_parse_cache.py"
+WORKERS = "tests/test_mesh_workers.py"
+LOAD_SCALE = "tests/test_scene_load_scale.py"
+
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -1304,6 +1312,64 @@ MUTATIONS = [
      "embedded_image_bytes(path)", [SPECGLOSS]),
     (SG, "for top in range(0, height, BAND_ROWS):", "for top in range(0, height - 1, BAND_ROWS):", [SPECGLOSS]),
     (SG, "band = {k: t[top:top + BAND_ROWS] for", "band = {k: t[top:top + 1] for", [SPECGLOSS]),
+    # issue 31.3, the load engineer: parse cache, packed meshes, worker processes, the plan's rule, faster scene parse
+    (M_PACK, 'or len(blob) != at + 4 * n * sum(widths) + 3 * f * index_size',
+     'or len(blob) < at + 4 * n * sum(widths) + 3 * f * index_size', [PARSE_CACHE]),
+    (M_PACK, "if int(indices.max()) >= n:", "if int(indices.max()) > n:", [PARSE_CACHE]),
+    (M_PACK, "blob = bytearray(blob)  # writable", "blob = bytes(blob)  # writable", [PARSE_CACHE]),
+    (M_PACK, "MeshPart(None if m < 0 else m, first, count)", "MeshPart(m, first, count)", [PARSE_CACHE]),
+    (M_PACK, 'if (mesh.colors is not None or mesh.extra_uvs',
+     'if (mesh.colors is not None and mesh.extra_uvs', [PARSE_CACHE]),
+    (M_PACK, "tangents=arrays[3] if tangents else None", "tangents=None", [PARSE_CACHE]),
+    (O_CACHED, '"obj_simple.py", "mesh.py"', '"mesh.py"', [PARSE_CACHE]),
+    (O_CACHED, "tangents {int(generate_tangents)}; ", "tangents {0}; ", [PARSE_CACHE]),
+    (O_CACHED, "mesh = None if payload is None else mesh_pack.unpack(payload, path)", "mesh = None", [PARSE_CACHE]),
+    (O_CACHED, "        write_entry(entry, key, packed)", "        packed = packed", [PARSE_CACHE]),
+    (O_CACHED, 'return cache_folder("meshes")', 'return cache_folder("")', [PARSE_CACHE]),
+    ("wgpurender/core/files/cache_entry.py", '/ ".cache") / "wgpurender" / name', '/ ".cache") / name', [PARSE_CACHE]),
+    (M_WORK, '            if kind == "refused":', '            if kind == "refused!":', [WORKERS]),
+    (M_WORK, "results += [read_chunk(chunk, where) for chunk in chunks[len(results):]]", "results += []", [WORKERS]),
+    (M_WORK, "except BrokenProcessPool:", "except ValueError:", [WORKERS]),
+    (M_WORK, 'check_file_size(input_file(path, "model file"), "model file")',
+     'input_file(path, "model file")', [WORKERS]),
+    (M_WORK, 'meshes[job] = None if value is None else mesh_pack.unpack(value, job[0])',
+     'meshes[job] = None', [WORKERS]),
+    ("wgpurender/core/plan/meshes.py", "if self.plan.mesh_workers and not self._meshes:", "if False:", [WORKERS]),
+    ('wgpurender/core/plan/meshes.py', 'if d.model_path.suffix.lower() == ".obj")',
+     'if d.model_path.suffix.lower() == ".glb")', [WORKERS]),
+    ('wgpurender/core/plan/meshes.py', 'jobs = [(p, p in self._needs_tangents) for p in paths]',
+     'jobs = [(p, False) for p in paths]', [WORKERS]),
+    (M_LOAD, "if obj_files < MIN_FILES:", "if obj_files <= MIN_FILES:", [WORKERS]),
+    (M_LOAD, "-(-obj_files // PER_WORKER)", "(obj_files // PER_WORKER)", [WORKERS]),
+    (M_LOAD, "if cores < 2:", "if cores < 1:", [WORKERS]),
+    (M_LOAD, "if not fork:", "if fork is None:", [WORKERS]),
+    (M_LOAD, 'if knob == "off":', 'if knob == "of":', [WORKERS]),
+    ("wgpurender/core/plan/model.py", 'return int(self.setting("mesh_workers"))', "return 0", [WORKERS]),
+    ('wgpurender/core/files/input_files.py',
+     'result = resolved(candidate) if os.path.islink(candidate) else Path(candidate)',
+     'result = Path(candidate)', [LOAD_SCALE]),
+    ('wgpurender/core/files/input_files.py', 'if name in ("", ".", "..") or not folder:',
+     'if name in ("", ".") or not folder:', [LOAD_SCALE]),
+    ('wgpurender/core/files/input_files.py', 'real = self._folders[folder] = os.fspath(resolved(folder))',
+     'real = self._folders[folder] = folder', [LOAD_SCALE]),
+    ("wgpurender/core/scene/checker.py", "return KeyLines(self.text)", 'return KeyLines("")', ["tests/test_scene.py"]),
+    ('wgpurender/core/scene/load.py',
+     'return model if found is None else dataclasses.replace(model, file_materials=found)',
+     'return model', [LOAD_SCALE]),
+    ("wgpurender/core/plan/draws.py", "key = (id(mat), mirror)", "key = id(mat)", [LOAD_SCALE]),
+    ('wgpurender/core/plan/draws.py',
+     'mirror = _determinant3(model.transform.matrix) < 0 if mirror is None else mirror',
+     'mirror = False if mirror is None else mirror', [LOAD_SCALE]),
+    ('wgpurender/wgpu_path/scene/resources.py', 'vertex += b"\\0" * (-len(vertex) % stride)',
+     'vertex += b""', [LOAD_SCALE]),
+    ('wgpurender/wgpu_path/scene/resources.py', 'v_at // stride, i_at // mesh.indices.itemsize)',
+     'v_at // stride, i_at // 4)', [SHARED_MESH]),
+    ('wgpurender/wgpu_path/scene/scene_pass.py',
+     'encoder.draw_indexed(count, instances, buffers.first_index + first, buffers.base_vertex,',
+     'encoder.draw_indexed(count, instances, first, buffers.base_vertex,', [SHARED_MESH]),
+    ('wgpurender/wgpu_path/scene/scene_pass.py',
+     'at = (buffers.vertex_offset, buffers.index_offset) if culled else (0, 0)',
+     'at = (0, 0)', ['tests/test_instancing.py']),
 ]
 
 

@@ -117,3 +117,22 @@ def test_meshes_of_two_strides_draw_by_base_vertex_from_one_buffer(ctx, tmp_path
             assert (r, g, b) == (255, 0, 0)
         else:  # lit green (a white highlight on top: r == b)
             assert g > max(r, b) + 100 and r == b, (r, g, b)
+
+
+def test_a_model_without_a_scene_material_keeps_its_files(tmp_path):
+    """Only models that draw the scene's material skip the file-material read (and are not copied)."""
+    from wgpurender.core.scene import load_scene
+
+    (tmp_path / "m.mtl").write_text("newmtl red\nKd 1 0 0\n")
+    procedural.write_obj(tmp_path / "m.obj", procedural.box(1.0), mtl_name="m.mtl", material="red")
+    procedural.write_obj(tmp_path / "p.obj", procedural.box(1.0))
+    scene = tmp_path / "s.toml"
+    scene.write_text('[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "m.obj"\n\n'
+                     '[[models]]\npath = "p.obj"\nmaterial = { albedo_color = [0, 0, 1] }\n\n'
+                     '[[models]]\npath = "m.obj"\nmaterial = { albedo_color = [0, 1, 0] }\n')
+    models = load_scene(scene).models
+    assert models[0].file_materials is not None
+    assert tuple(models[0].file_materials.materials[0].albedo_color[:3]) == (1.0, 0.0, 0.0)
+    assert models[1].file_materials is None and models[2].file_materials is None
+    assert all(m.transform.description == "identity" and np.array_equal(m.transform.array(), np.eye(4))
+               for m in models)
