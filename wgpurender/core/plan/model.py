@@ -544,10 +544,21 @@ class RenderPlan:
         return frozenset(a for v in self.variants for a in v.vertex_attributes)
 
     def pipeline(self, key: str) -> ScenePipeline:
-        return next(p for p in self.pipelines if p.key == key)
+        return self._by_key[1][key]
 
     def variant(self, key: str) -> ShaderVariant:
-        return next(v for v in self.variants if v.key == key)
+        return self._by_key[0][key]
+
+    @functools.cached_property
+    def _by_key(self) -> tuple[dict[str, ShaderVariant], dict[str, ScenePipeline]]:
+        """Variants and pipelines by key, first of each key (a renderer asks for them per draw: 10k draws)."""
+        variants: dict[str, ShaderVariant] = {}
+        pipelines: dict[str, ScenePipeline] = {}
+        for v in self.variants:
+            variants.setdefault(v.key, v)
+        for p in self.pipelines:
+            pipelines.setdefault(p.key, p)
+        return variants, pipelines
 
     # -- text ----------------------------------------------------------------
     def explain(self) -> str:

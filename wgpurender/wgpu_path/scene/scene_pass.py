@@ -305,10 +305,10 @@ class ScenePassRenderer:
                 encoder.set_bind_group(0, self.camera_group)
                 if self.object_group is not None:
                     encoder.set_bind_group(1, self.object_group)
-                last[2] = None  # a new layout: the material group is set again
+                last[1] = last[2] = None  # a new layout: the material group and immediates are set again
             if group is not None and group is not last[2]:
                 encoder.set_bind_group(material_group, group)
-            if self.uses_immediates:
+            if self.uses_immediates and data is not last[1]:  # equal material keys share one bytes object
                 encoder.set_immediates(0, data, 0, len(data))
             culled = self.plan.pipeline(draw.pipeline_key).culled
             # the GPU-culled draw's indirect block counts from its mesh's offsets: bound there; every other draw
@@ -318,7 +318,7 @@ class ScenePassRenderer:
                 at = (buffers.vertex_offset, buffers.index_offset) if culled else (0, 0)
                 encoder.set_vertex_buffer(0, buffers.vertex, at[0])
                 encoder.set_index_buffer(buffers.index, buffers.index_format, at[1])
-            last = [pipeline, None, group, bound]
+            last = [pipeline, data, group, bound]
             if culled:  # its visible instances, as the GPU counted them
                 encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
                 continue
