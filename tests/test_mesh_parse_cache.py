@@ -28,8 +28,9 @@ def _same(a, b) -> None:
 
 
 def _trimesh(monkeypatch, path, **kwargs):
+    """trimesh's mesh of the file: the uncached loader with the simple reader off (tests/test_obj_simple.py)."""
     with monkeypatch.context() as m:
-        m.setattr(mesh_module, "_simple_obj_mesh", lambda *a: None)
+        m.setattr(obj_simple, "read", lambda p: None)
         return mesh_module.load_mesh(path, **kwargs)
 
 
@@ -54,7 +55,7 @@ def cache(tmp_path, monkeypatch):
 def test_the_cache_lives_under_xdg_cache_home_never_beside_the_model(tmp_path, cache):
     (tmp_path / "models").mkdir()
     model = procedural.write_obj(tmp_path / "models" / "m.obj", procedural.box(1.0))
-    mesh_module.load_mesh(model)
+    obj_cached.load_mesh(model)
     assert obj_cached.folder() == cache and len(_entries()) == 1
     assert sorted(p.name for p in model.parent.iterdir()) == ["m.obj"]
     home = Path.home() / ".cache" / "wgpurender" / "meshes"
@@ -64,10 +65,10 @@ def test_the_cache_lives_under_xdg_cache_home_never_beside_the_model(tmp_path, c
 @pytest.mark.parametrize("tangents", [True, False])
 def test_a_warm_load_is_trimeshs_mesh_and_does_not_parse(tmp_path, monkeypatch, cache, tangents):
     path = procedural.write_obj(tmp_path / "t.obj", procedural.torus(segments=10, rings=5))
-    cold = mesh_module.load_mesh(path, generate_tangents=tangents)
+    cold = obj_cached.load_mesh(path, generate_tangents=tangents)
     assert len(_entries()) == 1
     _no_parse(monkeypatch)
-    warm = mesh_module.load_mesh(path, generate_tangents=tangents)
+    warm = obj_cached.load_mesh(path, generate_tangents=tangents)
     _same(warm, cold)
     _same(warm, _trimesh(monkeypatch, path, generate_tangents=tangents))
     assert (warm.tangents is not None) == tangents
@@ -75,18 +76,18 @@ def test_a_warm_load_is_trimeshs_mesh_and_does_not_parse(tmp_path, monkeypatch, 
 
 def test_with_and_without_tangents_are_two_entries(tmp_path, cache):
     path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
-    assert mesh_module.load_mesh(path, generate_tangents=False).tangents is None
-    assert mesh_module.load_mesh(path, generate_tangents=True).tangents is not None
+    assert obj_cached.load_mesh(path, generate_tangents=False).tangents is None
+    assert obj_cached.load_mesh(path, generate_tangents=True).tangents is not None
     assert len(_entries()) == 2
 
 
 def test_an_edited_file_is_a_miss(tmp_path, cache):
     path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
-    mesh_module.load_mesh(path)
+    obj_cached.load_mesh(path)
     moved = procedural.box(1.0)
     moved = replace(moved, positions=moved.positions + np.array([5.0, 0.0, 0.0]))
     procedural.write_obj(path, moved)
-    again = mesh_module.load_mesh(path)
+    again = obj_cached.load_mesh(path)
     numbers = [[float(t) for t in line.split()[1:]] for line in path.read_text().splitlines()
                if line.startswith("v ")]
     assert np.allclose(again.positions.min(axis=0), np.min(numbers, axis=0))
@@ -95,12 +96,12 @@ def test_an_edited_file_is_a_miss(tmp_path, cache):
 
 def test_another_parser_version_is_a_miss(tmp_path, monkeypatch, cache):
     path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
-    mesh_module.load_mesh(path)
+    obj_cached.load_mesh(path)
     monkeypatch.setattr(obj_cached, "parser_version", lambda: "another parser")
     parsed = []
     real = obj_simple.parse
     monkeypatch.setattr(obj_simple, "parse", lambda data: parsed.append(1) or real(data))
-    mesh_module.load_mesh(path)
+    obj_cached.load_mesh(path)
     assert parsed == [1] and len(_entries()) == 2
 
 
@@ -113,7 +114,7 @@ def test_the_parser_version_covers_the_parsers_source():
 @pytest.mark.parametrize("damage", ["truncate", "flip", "empty", "foreign"])
 def test_a_damaged_entry_is_parsed_again_and_rewritten(tmp_path, monkeypatch, cache, damage):
     path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
-    first = mesh_module.load_mesh(path)
+    first = obj_cached.load_mesh(path)
     (entry,) = _entries()
     blob = entry.read_bytes()
     entry.write_bytes({"truncate": blob[:-7], "flip": blob[:-3] + bytes([blob[-3] ^ 0x40]) + blob[-2:],
@@ -121,13 +122,13 @@ def test_a_damaged_entry_is_parsed_again_and_rewritten(tmp_path, monkeypatch, ca
     parsed = []
     real = obj_simple.parse
     monkeypatch.setattr(obj_simple, "parse", lambda data: parsed.append(1) or real(data))
-    _same(mesh_module.load_mesh(path), first)
+    _same(obj_cached.load_mesh(path), first)
     assert parsed == [1] and entry.read_bytes() == blob
 
 
 def test_a_file_the_simple_reader_refuses_is_not_cached(tmp_path, cache):
     path = procedural.write_obj(tmp_path / "m.obj", procedural.box(1.0), mtl_name="m.mtl")
-    mesh_module.load_mesh(path)
+    obj_cached.load_mesh(path)
     assert _entries() == []
 
 
@@ -136,11 +137,11 @@ def test_an_unwritable_cache_only_costs_time(tmp_path, monkeypatch):
     blocker.write_text("a file where the cache folder would be")
     monkeypatch.setenv("XDG_CACHE_HOME", str(blocker))
     path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
-    _same(mesh_module.load_mesh(path), _trimesh(monkeypatch, path))
+    _same(obj_cached.load_mesh(path), _trimesh(monkeypatch, path))
 
 
 def test_packing_round_trips_and_refuses_what_is_not_whole(tmp_path, cache):
-    mesh = mesh_module.load_mesh(procedural.write_obj(tmp_path / "t.obj", procedural.torus(segments=8, rings=4)))
+    mesh = obj_cached.load_mesh(procedural.write_obj(tmp_path / "t.obj", procedural.torus(segments=8, rings=4)))
     blob = mesh_pack.pack(mesh)
     _same(mesh_pack.unpack(blob, mesh.source), mesh)
     back = mesh_pack.unpack(blob, mesh.source)
@@ -153,7 +154,7 @@ def test_packing_round_trips_and_refuses_what_is_not_whole(tmp_path, cache):
 
 
 def test_only_simple_meshes_are_packed(tmp_path, cache):
-    mesh = mesh_module.load_mesh(procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0)))
+    mesh = obj_cached.load_mesh(procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0)))
     n = len(mesh.positions)
     assert mesh_pack.pack(replace(mesh, colors=np.ones((n, 4), np.float32))) is None
     assert mesh_pack.pack(replace(mesh, extra_uvs=(mesh.uvs,))) is None
@@ -169,3 +170,25 @@ def test_the_cache_folder_follows_xdg_cache_home(monkeypatch, tmp_path):
     assert cache_entry.cache_folder("meshes") == tmp_path / "wgpurender" / "meshes"
     monkeypatch.delenv("XDG_CACHE_HOME")
     assert cache_entry.cache_folder("x") == Path(os.path.expanduser("~")) / ".cache" / "wgpurender" / "x"
+
+
+def test_the_cached_loader_refuses_as_load_mesh_does(tmp_path, monkeypatch, cache):
+    from wgpurender.core.errors import UserError
+
+    path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
+    (tmp_path / "folder.obj").mkdir()
+    monkeypatch.setenv("WGPURENDER_MAX_MODEL_BYTES", str(path.stat().st_size - 1))
+    cases = {"missing": tmp_path / "gone.obj", "a folder": tmp_path / "folder.obj", "too large": path}
+    for what, target in cases.items():
+        messages = []
+        for load in (obj_cached.load_mesh, mesh_module.load_mesh):
+            with pytest.raises(UserError) as err:
+                load(target)
+            messages.append(str(err.value))
+        assert messages[0] == messages[1] and "\n" not in messages[0], what
+    assert _entries() == []
+
+
+def test_the_general_loader_writes_no_entry(tmp_path, cache):
+    mesh_module.load_mesh(procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0)))
+    assert _entries() == []

@@ -18,7 +18,7 @@ from wgpurender.core.models import obj_simple, procedural
 
 def _through_trimesh(monkeypatch, path, **kwargs):
     with monkeypatch.context() as m:
-        m.setattr(mesh_module, "_simple_obj_mesh", lambda *a: None)  # the simple reader and its cache both off
+        m.setattr(obj_simple, "read", lambda p: None)
         return mesh_module.load_mesh(path, **kwargs)
 
 
@@ -130,5 +130,5 @@ def test_a_non_ascii_file_gets_trimeshs_verdict(tmp_path, monkeypatch) -> None:
             return str(err)
 
     fast = outcome()
-    monkeypatch.setattr(mesh_module, "_simple_obj_mesh", lambda *a: None)
+    monkeypatch.setattr(obj_simple, "read", lambda p: None)
     assert fast == outcome()

@@ -305,12 +305,11 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
     elif file_type == "fbx":
         parts = _fbx_parts(path)
     else:
-        if file_type == "obj":
-            mesh = _simple_obj_mesh(path, generate_tangents)
-            if mesh is not None:
-                return mesh
-            check_obj_records(path)
-        parts = _trimesh_parts(path, file_type)
+        parts = _simple_obj_parts(path) if file_type == "obj" else None
+        if parts is None:
+            if file_type == "obj":
+                check_obj_records(path)
+            parts = _trimesh_parts(path, file_type)
     return mesh_of_parts(path, parts, generate_tangents)
 
 
@@ -454,20 +453,22 @@ def _trimesh_parts(path: Path, file_type: str) -> list[_Part]:
     return parts
 
 
-def _simple_obj_mesh(path: Path, generate_tangents: bool) -> Mesh | None:
-    """The mesh of a simple OBJ file, from the parse cache when it holds it (core/models/obj_cached.py), or None
-    when the file is not that simple."""
-    from wgpurender.core.models import obj_cached
-
-    return obj_cached.load(path, generate_tangents, obj_cached.folder())
-
-
-def simple_obj_parts(path: Path, data: bytes) -> list[_Part] | None:
-    """The one part of a simple OBJ file's bytes (core/models/obj_simple.py: the arrays trimesh's path gives,
-    without its scene machinery), or None when the file is not that simple."""
+def _simple_obj_parts(path: Path) -> list[_Part] | None:
+    """The one part of a simple OBJ file (core/models/obj_simple.py: the arrays trimesh's path gives, without its
+    scene machinery), or None when the file is not that simple."""
     from wgpurender.core.models import obj_simple
 
-    read = obj_simple.parse(data)
+    return _simple_part(obj_simple.read(path))
+
+
+def simple_obj_parts(data: bytes) -> list[_Part] | None:
+    """:func:`_simple_obj_parts` of a file's bytes (the parse cache, core/models/obj_cached.py, read them)."""
+    from wgpurender.core.models import obj_simple
+
+    return _simple_part(obj_simple.parse(data))
+
+
+def _simple_part(read) -> list[_Part] | None:
     if read is None:
         return None
     positions, faces, normals, uvs = read

@@ -15,11 +15,13 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import os
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 from wgpurender.core.files.cache_entry import cache_folder, read_entry, write_entry
-from wgpurender.core.models import mesh_pack
+from wgpurender.core.files.input_files import check_file_size, input_file
+from wgpurender.core.models import mesh, mesh_pack
 from wgpurender.core.models.mesh import Mesh, mesh_of_parts, simple_obj_parts
 
 CODE = ("obj_cached.py", "obj_simple.py", "mesh.py", "tangents.py", "mesh_pack.py")
@@ -53,6 +55,19 @@ def entry_path(where: Path, key: str) -> Path:
     return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.mesh"
 
 
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
+    """:func:`wgpurender.core.models.mesh.load_mesh` through the parse cache: what a scene's models load with
+    (core/plan/meshes.py). An OBJ file gets load_mesh's checks (a readable regular file within the size limit),
+    then its mesh from :func:`load`; any other file, or an OBJ the simple reader does not take, load_mesh's."""
+    path = Path(path)
+    if path.suffix.lower() == ".obj":
+        check_file_size(input_file(path, "model file"), "model file")
+        found = load(path, generate_tangents, folder())
+        if found is not None:
+            return found
+    return mesh.load_mesh(path, generate_tangents=generate_tangents)
+
+
 def load(path: Path, generate_tangents: bool, where: Path | None) -> Mesh | None:
     """The mesh of the simple OBJ file ``path``: the cache's (in folder ``where``; None: no cache) when it holds
     a whole entry for these bytes, else parsed and stored; None when the file is not simple (the caller loads
@@ -77,7 +92,7 @@ def _load(path: Path, generate_tangents: bool, where: Path | None) -> tuple[Mesh
         mesh = None if payload is None else mesh_pack.unpack(payload, path)
         if mesh is not None:
             return mesh, payload
-    parts = simple_obj_parts(path, data)
+    parts = simple_obj_parts(data)
     if parts is None:
         return None, None
     mesh = mesh_of_parts(path, parts, generate_tangents)

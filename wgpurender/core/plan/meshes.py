@@ -11,7 +11,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models.mesh import Mesh, index_range, load_mesh
+from wgpurender.core.models.mesh import Mesh, index_range
+from wgpurender.core.models.obj_cached import load_mesh
 from wgpurender.core.plan.model import Draw, RenderPlan
 
 
@@ -30,7 +31,7 @@ class PlanMeshes:
         if path not in self._meshes:
             if self.plan.mesh_workers and not self._meshes:
                 self._read_in_workers()
-            if path not in self._meshes:
+            if path not in self._meshes:  # through the parse cache (core/models/obj_cached.py)
                 self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
         return self._meshes[path]
 

@@ -324,8 +324,8 @@ class ScenePassRenderer:
                 continue
             # the draw's part of the mesh (a file material's triangles), once per instance
             instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count
-            encoder.draw_indexed(count, instances, buffers.first_index + first, buffers.base_vertex,
-                                 draw.first_instance)
+            first += buffers.first_index  # where the mesh's indices start in the shared buffer
+            encoder.draw_indexed(count, instances, first, buffers.base_vertex, draw.first_instance)
 
 
 def _color_target(planned: ScenePipeline) -> dict:
