@@ -5,7 +5,8 @@
 # - load_main: main's tree (the folder above), 10,000 distinct mesh files, through this branch's script;
 # - load_cold, load_warm: this branch, parse cache empty / filled, the plan's worker processes (auto);
 # - load_cold_off, load_warm_off: the same with mesh_workers=off (this process parses or reads every file);
-# - tests: the load tests and the shared-buffer / instancing tests on the GPU (base vertex as NVIDIA takes it).
+# - tests: the load tests and the shared-buffer / instancing tests on the GPU (base vertex as NVIDIA takes it);
+# - cull_probe: a GPU-culled draw after another draw (benchmarks/cull_order_probe.py: copies lost on lavapipe).
 # Writes everything under $OUT/run.
 set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
@@ -18,4 +19,5 @@ step load_cold_off 30 python3 benchmarks/load_compare.py load 10000 "$CSV" cold 
 step load_warm_off 35 python3 benchmarks/load_compare.py load 10000 "$CSV" warm mesh_workers=off
 step tests 60 python3 -m pytest -q -x -p no:cacheprovider tests/test_mesh_workers.py tests/test_mesh_parse_cache.py \
   tests/test_scene_load_scale.py tests/test_shared_mesh_buffers.py tests/test_instancing.py
-cat "$D/commands.txt" "$CSV" 2>/dev/null; tail -3 "$D/tests.log"
+step cull_probe 30 python3 benchmarks/cull_order_probe.py
+cat "$D/commands.txt" "$CSV" "$D/cull_probe.log" 2>/dev/null; tail -3 "$D/tests.log"
