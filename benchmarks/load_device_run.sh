@@ -12,12 +12,12 @@ set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
 MAIN=$(cd .. && pwd)
 CSV="$D/load_compare.csv"
-step load_main 40 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compare.py main 10000 "$CSV" cold
-step load_cold 30 python3 benchmarks/load_compare.py load 10000 "$CSV" cold
-step load_warm 35 python3 benchmarks/load_compare.py load 10000 "$CSV" warm
-step load_cold_off 30 python3 benchmarks/load_compare.py load 10000 "$CSV" cold mesh_workers=off
-step load_warm_off 35 python3 benchmarks/load_compare.py load 10000 "$CSV" warm mesh_workers=off
-step tests 60 python3 -m pytest -q -x -p no:cacheprovider tests/test_mesh_workers.py tests/test_mesh_parse_cache.py \
+step load_main 30 env PYTHONPATH="$MAIN:/tmp/site" python3 benchmarks/load_compare.py main 10000 "$CSV" cold
+step load_cold 25 python3 benchmarks/load_compare.py load 10000 "$CSV" cold
+step load_warm 30 python3 benchmarks/load_compare.py load 10000 "$CSV" warm
+step load_cold_off 25 python3 benchmarks/load_compare.py load 10000 "$CSV" cold mesh_workers=off
+step load_warm_off 30 python3 benchmarks/load_compare.py load 10000 "$CSV" warm mesh_workers=off
+step tests 50 python3 -m pytest -q -x -p no:cacheprovider tests/test_mesh_workers.py tests/test_mesh_parse_cache.py \
   tests/test_scene_load_scale.py tests/test_shared_mesh_buffers.py tests/test_instancing.py
-step cull_probe 30 python3 benchmarks/cull_order_probe.py
+step cull_probe 20 python3 benchmarks/cull_order_probe.py
 cat "$D/commands.txt" "$CSV" "$D/cull_probe.log" 2>/dev/null; tail -3 "$D/tests.log"
