@@ -146,7 +146,11 @@ def test_a_dead_worker_leaves_the_rest_to_this_process(tmp_path, monkeypatch):
         return real(*args)
 
     monkeypatch.setattr(obj_cached, "load_packed", dies_in_a_worker)
+    general = []  # the chunks a dead worker left are read here the same way, not by the general loader
+    real_general = plan_meshes.load_mesh
+    monkeypatch.setattr(plan_meshes, "load_mesh", lambda path, **kw: general.append(path) or real_general(path, **kw))
     served = _meshes(resolve_plan(scene, None, mesh_workers="on"))
+    assert general == []
     for got, name in zip(served, names, strict=True):
         _same(got, load_mesh(tmp_path / name, generate_tangents=False))
 

@@ -32,21 +32,27 @@ def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mes
     """Every job's mesh (None: not a simple OBJ file), read by ``workers`` forked processes; raises the
     UserError of the first refused file in ``jobs`` order."""
     chunks = [jobs[i:i + CHUNK] for i in range(0, len(jobs), CHUNK)]
-    results: list[list] = []
+    meshes: dict[Job, Mesh | None] = {}
+    done = 0
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
     try:
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
-            for result in pool.map(read_chunk, chunks, repeat(where)):
-                results.append(result)
+        for result in pool.map(read_chunk, chunks, repeat(where)):  # in order, each as soon as it is read
+            _take(chunks[done], result, meshes)  # unpacked here while the workers read the next chunks
+            done += 1
     except BrokenProcessPool:  # a worker died (killed, out of memory): the rest in this process
         pass
-    results += [read_chunk(chunk, where) for chunk in chunks[len(results):]]
-    meshes: dict[Job, Mesh | None] = {}
-    for chunk, result in zip(chunks, results, strict=True):
-        for job, (kind, value) in zip(chunk, result, strict=True):
-            if kind == "refused":
-                raise UserError(value)
-            meshes[job] = None if value is None else mesh_pack.unpack(value, job[0])
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)  # a refusal stops the chunks not started yet
+    for chunk in chunks[done:]:
+        _take(chunk, read_chunk(chunk, where), meshes)
     return meshes
+
+
+def _take(chunk: list[Job], result: list[tuple[str, object]], meshes: dict[Job, Mesh | None]) -> None:
+    for job, (kind, value) in zip(chunk, result, strict=True):
+        if kind == "refused":
+            raise UserError(value)
+        meshes[job] = None if value is None else mesh_pack.unpack(value, job[0])
 
 
 def read_chunk(chunk: list[Job], where: Path | None) -> list[tuple[str, object]]:
