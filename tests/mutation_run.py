@@ -710,7 +710,7 @@ MUTATIONS = [
      "encoder.draw_indexed(count, instances, first, buffers.base_vertex, draw.first_instance)",
      "encoder.draw_indexed(count, instances, first, buffers.base_vertex, 0)", [INST]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            if bound != last[3]:",
-     "            if last[3] is None:", [INST]),
+     "            if last[3] is None:", [SHARED_MESH]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            if group is not None and group is not last[2]:",
      "            if group is not None and last[2] is None:", [INST]),
     ("wgpurender/raw_path/scene/scene_subpass.py",
@@ -814,8 +814,7 @@ MUTATIONS = [
     ("docs/benchmarks.md", "per=1000 fmt=.0f -->1233<!-- /figure -->", "per=1000 fmt=.0f -->1234<!-- /figure -->",
      [DOCFIG]),
     # one materials reader, stages' state (item 2)
-    ("wgpurender/core/scene/load.py", "dataclasses.replace(model, file_materials=found)",
-     "dataclasses.replace(model, file_materials=None)", [MATERIALS]),
+    ("wgpurender/core/scene/load.py", "found = read_file_materials(model)", "found = None", [MATERIALS]),
     ("wgpurender/core/scene/file_materials.py", "    if not model.material_from_file:",
      "    if model.material_from_file:", [MATERIALS]),
     ("wgpurender/wgpu_path/stages/cube3d.py", "        if camera != self._camera_bytes:",
