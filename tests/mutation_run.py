@@ -710,7 +710,7 @@ MUTATIONS = [
      "encoder.draw_indexed(count, instances, first, buffers.base_vertex, draw.first_instance)",
      "encoder.draw_indexed(count, instances, first, buffers.base_vertex, 0)", [INST]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            if bound != last[3]:",
-     "            if last[3] is None:", [SHARED_MESH]),
+     "            if last[3] is None:", [LOAD_SCALE]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            if group is not None and group is not last[2]:",
      "            if group is not None and last[2] is None:", [INST]),
     ("wgpurender/raw_path/scene/scene_subpass.py",

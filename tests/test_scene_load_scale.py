@@ -170,3 +170,41 @@ def test_a_gpu_culled_draw_then_a_plain_one_each_bind_their_own(ctx, tmp_path):
     for j in range(2):
         for i in range(3):  # the grid's copies, centred on the model's origin
             assert pixel((i - 1) * 1.5, (j - 0.5) * 1.5) == [0, 0, 255], (i, j)
+
+
+def test_a_draw_of_another_index_format_binds_its_own(ctx, tmp_path):
+    """A plane of 66,049 vertices (32-bit indices), then two 16-bit triangles, one pipeline: the triangles' draws
+    must rebind the shared index buffer as uint16 (read as uint32, their indices point past the vertices). The
+    plane must cover every pixel inside its projected square (the scene's own numbers), each triangle its
+    centroid."""
+    from wgpurender.core.scene import parse_scene
+    from wgpurender.wgpu_path.scene import load_renderer
+    from wgpurender.wgpu_path.scene.frame import render_frame
+
+    tri = "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0 0.5 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n"
+    (tmp_path / "a.obj").write_text(tri)
+    (tmp_path / "c.obj").write_text(tri)
+    procedural.write_obj(tmp_path / "plane.obj", procedural.plane(2.0, 2.0, cols=256, rows=256))
+    body = "".join(f'[[models]]\npath = "{name}"\nmaterial = {{ albedo_color = {rgb}, unlit = true }}\n'
+                   f'transform = {{ translate = [{x}, 0, 0] }}\n\n'
+                   for name, rgb, x in (("plane.obj", "[0, 0, 1]", 0), ("a.obj", "[1, 0, 0]", -3),
+                                        ("c.obj", "[0, 1, 0]", 3)))
+    path = tmp_path / "s.toml"
+    path.write_text("[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\nfov_y = 40\n\n" + body
+                    + "[render]\nsize = [160, 64]\nmsaa = 1\nhdr = false\n")
+    renderer = load_renderer(path, ctx)
+    assert sorted(b.index_format for b in renderer.resources._buffers.values()) == ["uint16", "uint16", "uint32"]
+    img, _ = render_frame(ctx, renderer, renderer.create_output())
+    scene = parse_scene(path.read_text(), path)
+    clip_from_world = scene.camera.projection(160 / 64) @ scene.camera.view()
+
+    def px(x, y):
+        c = clip_from_world @ np.array([x, y, 0.0, 1.0])
+        return (c[0] / c[3] + 1) / 2 * 160, (1 - c[1] / c[3]) / 2 * 64
+
+    (x0, y0), (x1, y1) = px(-1, 1), px(1, -1)
+    inside = img[int(np.ceil(y0)) + 1:int(y1) - 1, int(np.ceil(x0)) + 1:int(x1) - 1, :3]
+    assert inside.size and (inside == [0, 0, 255]).all()
+    for x, rgb in ((-3, [255, 0, 0]), (3, [0, 255, 0])):
+        cx, cy = px(x, -0.5 / 3)
+        assert img[int(cy), int(cx), :3].tolist() == rgb
