@@ -41,6 +41,7 @@ def _no_parse(monkeypatch):
 
 
 def _entries() -> list[Path]:
+    obj_cached.flush()  # entries are written by a background thread
     where = obj_cached.folder()
     return sorted(where.glob("*.mesh")) if where.is_dir() else []
 
@@ -49,7 +50,8 @@ def _entries() -> list[Path]:
 def cache(tmp_path, monkeypatch):
     """An empty cache of this test's own: $XDG_CACHE_HOME under tmp_path."""
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    return tmp_path / "xdg" / "wgpurender" / "meshes"
+    yield tmp_path / "xdg" / "wgpurender" / "meshes"
+    obj_cached.flush()  # nothing left to write into this test's folder after it
 
 
 def test_the_cache_lives_under_xdg_cache_home_never_beside_the_model(tmp_path, cache):
@@ -123,6 +125,7 @@ def test_a_damaged_entry_is_parsed_again_and_rewritten(tmp_path, monkeypatch, ca
     real = obj_simple.parse
     monkeypatch.setattr(obj_simple, "parse", lambda data: parsed.append(1) or real(data))
     _same(obj_cached.load_mesh(path), first)
+    obj_cached.flush()
     assert parsed == [1] and entry.read_bytes() == blob
 
 
@@ -192,3 +195,20 @@ def test_the_cached_loader_refuses_as_load_mesh_does(tmp_path, monkeypatch, cach
 def test_the_general_loader_writes_no_entry(tmp_path, cache):
     mesh_module.load_mesh(procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0)))
     assert _entries() == []
+
+
+def test_a_queued_entry_is_served_before_it_is_written(tmp_path, monkeypatch, cache):
+    """Entries are written by a background thread: a load meanwhile takes the queued one (no second parse), and
+    flush() returns once it is on disk."""
+    import threading
+
+    gate = threading.Event()
+    real = obj_cached.write_entry
+    monkeypatch.setattr(obj_cached, "write_entry", lambda *a: gate.wait(30) and real(*a))
+    path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
+    first = obj_cached.load_mesh(path)
+    assert not cache.exists() or not list(cache.glob("*.mesh"))  # still queued
+    _no_parse(monkeypatch)
+    _same(obj_cached.load_mesh(path), first)
+    gate.set()
+    assert len(_entries()) == 1

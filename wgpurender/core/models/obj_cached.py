@@ -16,6 +16,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import os
+from concurrent.futures import ThreadPoolExecutor
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -72,31 +73,68 @@ def load(path: Path, generate_tangents: bool, where: Path | None) -> Mesh | None
     """The mesh of the simple OBJ file ``path``: the cache's (in folder ``where``; None: no cache) when it holds
     a whole entry for these bytes, else parsed and stored; None when the file is not simple (the caller loads
     it the general way)."""
-    mesh, _ = _load(path, generate_tangents, where)
+    mesh, _, _ = _load(path, generate_tangents, where)
     return mesh
 
 
-def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> bytes | None:
-    """:func:`load`'s mesh packed (mesh_pack): what a worker process sends its parent."""
-    mesh, packed = _load(path, generate_tangents, where)
-    return None if mesh is None else packed or mesh_pack.pack(mesh)
+def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> tuple[bytes | None, str | None]:
+    """:func:`load`'s mesh packed (mesh_pack), and its entry's key when it was parsed (not found in the cache):
+    what a worker process sends its parent, which stores the entry (:func:`store_later`)."""
+    mesh, packed, key = _load(path, generate_tangents, where, store=False)
+    return (None, None) if mesh is None else (packed or mesh_pack.pack(mesh), key)
 
 
-def _load(path: Path, generate_tangents: bool, where: Path | None) -> tuple[Mesh | None, bytes | None]:
+def _load(path: Path, generate_tangents: bool, where: Path | None,
+          store: bool = True) -> tuple[Mesh | None, bytes | None, str | None]:
+    """(mesh, packed, the key of an entry still to be stored, unless ``store``: queued here)."""
     data = path.read_bytes()
     entry = key = None
     if where is not None:
         key = entry_key(data, generate_tangents)
         entry = entry_path(where, key)
-        payload = read_entry(entry, key)
+        queued = _queued.get(entry)
+        payload = queued[1] if queued is not None and queued[0] == key else read_entry(entry, key)
         mesh = None if payload is None else mesh_pack.unpack(payload, path)
         if mesh is not None:
-            return mesh, payload
+            return mesh, payload, None
     parts = simple_obj_parts(data)
     if parts is None:
-        return None, None
+        return None, None, None
     mesh = mesh_of_parts(path, parts, generate_tangents)
     packed = mesh_pack.pack(mesh)
-    if entry is not None and packed is not None:
+    if entry is None or packed is None:
+        return mesh, packed, None
+    if store:
+        store_later(entry, key, packed)
+    return mesh, packed, key
+
+
+# Entries are written by one background thread: creating a file is ~0.2-0.6 ms of system time on a busy disk (the
+# lavapipe host, 2026-11-27), more than the parse it saves, so a first load does not wait for its own cache.
+# A queued entry is served from memory until it is on disk; the thread finishes its queue when the process exits
+# (concurrent.futures joins it), and :func:`flush` waits for it.
+_queued: dict[Path, tuple[str, bytes]] = {}
+_writer: tuple[int, ThreadPoolExecutor] | None = None  # (the process it belongs to: a forked child makes its own)
+
+
+def store_later(entry: Path, key: str, packed: bytes) -> None:
+    """Queue a sealed entry for writing (core/files/cache_entry.py: atomic, a failed write only costs time)."""
+    global _writer
+    if _writer is None or _writer[0] != os.getpid():
+        _writer = (os.getpid(), ThreadPoolExecutor(1, thread_name_prefix="mesh-cache-writer"))
+    _queued[entry] = (key, packed)
+    _writer[1].submit(_write, entry, key, packed)
+
+
+def _write(entry: Path, key: str, packed: bytes) -> None:
+    try:
         write_entry(entry, key, packed)
-    return mesh, packed
+    finally:
+        if _queued.get(entry, ("",))[0] == key:
+            _queued.pop(entry, None)
+
+
+def flush() -> None:
+    """Wait until every queued entry of this process is written (the writer runs its queue in order)."""
+    if _writer is not None and _writer[0] == os.getpid():
+        _writer[1].submit(lambda: None).result()
