@@ -1332,7 +1332,7 @@ MUTATIONS = [
      'input_file(path, "model file")', [WORKERS]),
     (M_WORK, 'meshes[job] = None if packed is None else mesh_pack.unpack(packed, job[0])',
      'meshes[job] = None', [WORKERS]),
-    (M_WORK, 'if key is not None and where is not None:', 'if key is not None and where is None:', [LOAD_SCALE]),
+    (M_WORK, 'if key is not None and where is not None:', 'if key is not None and where is None:', [WORKERS]),
     (O_CACHED, 'payload = queued[1] if queued is not None and queued[0] == key else read_entry(entry, key)',
      'payload = read_entry(entry, key)', [PARSE_CACHE]),
     (O_CACHED, '            _queued.pop(entry, None)', '            pass', [PARSE_CACHE]),

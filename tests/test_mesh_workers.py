@@ -76,6 +76,8 @@ def test_workers_read_the_meshes_this_process_reads(tmp_path):
         m.setattr(plan_meshes, "load_mesh", lambda path, **kw: here.append(path.name) or real(path, **kw))
         served = _meshes(on)
     assert here == ["bare.obj"]
+    obj_cached.flush()  # what the workers parsed, the parent stored: one entry per simple file
+    assert len(list(obj_cached.folder().glob("*.mesh"))) == 12
     assert len(served) == 13
     for got, want, draw in zip(served, _meshes(off), on.scene_pass.draws, strict=True):
         _same(got, want)
