@@ -348,6 +348,4 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
         notes.append(f"{len(gltf['skins'])} skin(s) ignored (drawn in the bind pose, no skinning)")
     if gltf.get("animations"):
         notes.append(f"{len(gltf['animations'])} animation(s) ignored (drawn at rest)")
-    if gltf.get("cameras"):
-        notes.append(f"{len(gltf['cameras'])} camera(s) ignored (the scene file's [camera] is used)")
     return notes
