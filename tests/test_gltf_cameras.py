@@ -227,8 +227,8 @@ def test_explain_names_the_view_and_lists_the_other_cameras(tmp_path, capsys):
     assert main(["render", str(tmp_path / "scene.toml"), "--explain"]) == 0
     out = capsys.readouterr().out
     assert "camera: the view is models[0] 'quad.gltf' camera 1 at node 3 (orthographic, xmag 1.1, ymag 0.9" in out
-    assert "models[0] 'quad.gltf' camera 0: perspective 'wide' (yfov 0.9, znear 0.05) (not the view: [camera] " \
-           "from_model = 0, file_camera = 0 views through it)" in out
+    assert "models[0] 'quad.gltf' camera 0: perspective 'wide' (yfov 0.9, znear 0.05) (not the view: --camera 0, " \
+           "or [camera] from_model = 0, file_camera = 0, views through it)" in out
     assert "models[0] 'quad.gltf' camera 1: orthographic" in out and "<- the view" in out
     assert "ignored" not in out.split("knobs:")[0]
 
@@ -243,7 +243,7 @@ def test_explain_lists_the_files_cameras_under_the_scenes_own(tmp_path, capsys):
     assert main(["render", str(tmp_path / "scene.toml"), "--explain"]) == 0
     out = capsys.readouterr().out
     assert "camera: the view is the scene's [camera] (eye, target)" in out
-    assert "camera 0: perspective (yfov 0.9, znear 0.05) (not the view: [camera] from_model = 0" in out
+    assert "camera 0: perspective (yfov 0.9, znear 0.05) (not the view: --camera 0, or [camera] from_model = 0" in out
 
 
 BAD = [
@@ -340,3 +340,48 @@ def test_culling_planes_of_an_infinite_projection(reverse):
     assert np.isfinite(planes).all()
     centres = np.array([[0.0, 0.0, -1e6], [0.0, 0.0, 5.0], [1e3, 0.0, -1.0], [0.0, 0.0, -2.0]])
     assert visible_mask(planes, centres, np.full(4, 0.5)).tolist() == [True, False, False, True]
+
+
+def own_camera_scene(folder, cameras: list[dict]) -> None:
+    """The file with ``cameras``, and a scene with its own [camera] (eye on +z, looking at the origin)."""
+    write_file(folder, cameras)
+    text = (folder / "scene.toml").read_text().replace("from_model = 0\nfile_camera = 0\n",
+                                                        "eye = [0, 0, 3]\ntarget = [0, 0, 0]\n")
+    (folder / "scene.toml").write_text(text)
+
+
+@pytest.mark.parametrize("command", ["render", "reference"])
+def test_cli_camera_flag_views_through_the_files_camera(tmp_path, capsys, command):
+    """``--camera 1`` replaces the scene's own [camera] with the file's camera 1, on both paths' commands."""
+    from wgpurender.cli import main
+    from wgpurender.core.files.imageio import load_png
+
+    ortho = {"type": "orthographic", "orthographic": dict(ORTHOGRAPHIC)}
+    own_camera_scene(tmp_path, [{"type": "perspective", "perspective": dict(PERSPECTIVE)}, ortho])
+    out = tmp_path / "out.png"
+    assert main([command, str(tmp_path / "scene.toml"), "--camera", "1", "-o", str(out)]) == 0
+    check_coverage(load_png(out)[..., :3].astype(np.float64), ortho)
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--camera", "2"], "--camera 2: models[0] 'quad.gltf' has 2 camera(s), numbered 0..1"),
+    (["--camera", "-1"], "--camera must be 0..2147483647, got -1"),
+])
+def test_cli_camera_flag_mistakes_are_one_line(tmp_path, capsys, args, needle):
+    from wgpurender.cli import main
+
+    own_camera_scene(tmp_path, [{"type": "perspective", "perspective": dict(PERSPECTIVE)}] * 2)
+    assert main(["render", str(tmp_path / "scene.toml"), "--explain", *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert needle in err and len(err.splitlines()) == 1, err
+
+
+def test_cli_camera_flag_needs_a_gltf_with_cameras_and_a_scene(tmp_path, capsys):
+    from wgpurender.cli import main
+
+    own_camera_scene(tmp_path, [])
+    assert main(["render", str(tmp_path / "scene.toml"), "--explain", "--camera", "0"]) == 2
+    assert "--camera 0: no model of scene.toml is a glTF file with cameras" in capsys.readouterr().err
+    assert main(["render", "triangle", "-o", str(tmp_path / "t.png"), "--camera", "0"]) == 2
+    assert "plan knob 'camera' applies to scene files: stage 'triangle' has no plan" in capsys.readouterr().err
+    assert not (tmp_path / "t.png").exists()

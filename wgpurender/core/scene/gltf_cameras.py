@@ -78,11 +78,13 @@ def _projection(camera: dict, where: str) -> dict:
     return {"projection_type": kind, **fields}
 
 
-def file_camera(model: Model, index: int) -> Camera:
-    """The scene camera of camera ``index`` of ``model``'s glTF file, at its first node in the drawn scene."""
+def file_camera(model: Model, index: int, asked: str = "") -> Camera:
+    """The scene camera of camera ``index`` of ``model``'s glTF file, at its first node in the drawn scene
+    (``asked``: how the index was given, for the refusals; default the scene's ``[camera] file_camera``)."""
     from wgpurender.core.scene.gltf_materials import document
 
     label = model.label
+    asked = asked or f"[camera] file_camera = {index}"
     if model.path.suffix.lower() not in GLTF_SUFFIXES:
         raise UserError(f"[camera] from_model = {model.index}: {label} is not a glTF file, and only glTF files "
                         "carry cameras; set eye and target instead")
@@ -94,11 +96,11 @@ def file_camera(model: Model, index: int) -> Camera:
     if not cameras:
         raise UserError(f"[camera] from_model = {model.index}: {label} has no cameras; set eye and target instead")
     if not 0 <= index < len(cameras):
-        raise UserError(f"[camera] file_camera = {index}: {label} has {len(cameras)} camera(s), numbered 0.."
+        raise UserError(f"{asked}: {label} has {len(cameras)} camera(s), numbered 0.."
                         f"{len(cameras) - 1}")
     placed = [(world, node) for world, k, node in placed_cameras(doc) if k == index]
     if not placed:
-        raise UserError(f"[camera] file_camera = {index}: no node of {label}'s scene places camera {index}, so it "
+        raise UserError(f"{asked}: no node of {label}'s scene places camera {index}, so it "
                         "has no position; choose another or place it in the file")
     world, node = placed[0]
     where = f"{label} camera {index}" + (f" '{cameras[index]['name']}'" if cameras[index].get("name") else "")
@@ -113,6 +115,23 @@ def file_camera(model: Model, index: int) -> Camera:
     more = f", the first of {len(placed)} nodes placing it" if len(placed) > 1 else ""
     return Camera(eye=_vec(eye), target=_vec(target), up=_vec(up / np.linalg.norm(up)),
                   origin=f"{where} at node {node}{more}", **projection)
+
+
+def with_file_camera(scene, index: int):
+    """``scene`` viewed through camera ``index`` of its glTF model (``--camera K``): the model its ``[camera]``
+    already takes a camera from, else the first glTF model that has cameras."""
+    import dataclasses
+
+    from wgpurender.core.scene.gltf_materials import document
+
+    chosen = [m for m in scene.models if scene.camera.origin.startswith(f"{m.label} camera ")]
+    if not chosen:
+        chosen = [m for m in scene.models if m.path.suffix.lower() in GLTF_SUFFIXES
+                  and document(str(m.path)).json.get("cameras")]
+    if not chosen:
+        raise UserError(f"--camera {index}: no model of {scene.path.name} is a glTF file with cameras; leave "
+                        "--camera out (the scene's [camera] is the view)")
+    return dataclasses.replace(scene, camera=file_camera(chosen[0], index, f"--camera {index}"))
 
 
 def _vec(v) -> tuple[float, float, float]:
@@ -148,8 +167,8 @@ def camera_note(camera: Camera, models: tuple[Model, ...]) -> list[str]:
         for k, cam in enumerate(cameras):
             used = camera.origin.startswith(f"{model.label} camera {k} ")
             out.append(f"{model.label} camera {k}: {describe(cam)}"
-                       + (" <- the view" if used else f" (not the view: [camera] from_model = {model.index}, "
-                          f"file_camera = {k} views through it)"))
+                       + (" <- the view" if used else f" (not the view: --camera {k}, or [camera] from_model = "
+                          f"{model.index}, file_camera = {k}, views through it)"))
     return out
 
 
