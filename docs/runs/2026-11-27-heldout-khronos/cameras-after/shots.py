@@ -23,7 +23,7 @@ from PIL import Image
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-from lighting import BACKGROUND_LINEAR, BACKGROUND_SRGB, LIGHT_DIRECTION, pygfx_lights, scene_lights  # noqa: E402
+from lighting import BACKGROUND_LINEAR, BACKGROUND_SRGB, LIGHT_DIRECTION, scene_lights  # noqa: E402
 
 SIZE = 192
 
