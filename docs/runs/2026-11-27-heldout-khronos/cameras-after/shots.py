@@ -2,11 +2,12 @@
 
 Usage (repository root): python docs/runs/2026-11-27-heldout-khronos/cameras-after/shots.py CAMERAS.gltf OUT
 
-Writes OUT/scene-K.toml, OUT/{wgpu,raw,pygfx}-K.png, OUT/measured.csv and OUT/sheet.png. The probe is this
-script's own float64 ray cast, from the file's numbers only (the square's POSITION min/max, node 0's rotation, the
-camera nodes' translations, the cameras' projections): each pixel centre covered or not by the square, compared
-where the pixel's four inner points (+-0.45 px) agree, the pixel counted as drawn where it differs from the grey
-background by more than 32/255 in some channel.
+Writes OUT/scene-K.toml, OUT/explain-K.txt, OUT/{wgpu,raw,pygfx,pygfx-units}-K.png, OUT/measured.csv and
+OUT/sheet.png (rows: camera 0, camera 1; columns: wgpu, raw, pygfx, pygfx-units), beside a copy of the model.
+The probe is this script's own float64 ray cast, from the file's numbers only (the square's POSITION min/max,
+node 0's rotation, the camera nodes' translations, the cameras' projections): each pixel centre covered or not
+by the square, compared where the pixel's four inner points (+-0.45 px) agree, the pixel counted as drawn where
+it differs from the grey background by more than 32/255 in some channel.
 """
 
 from __future__ import annotations
@@ -139,8 +140,9 @@ def main(source: str, out: str) -> int:
     for k in range(len(doc["cameras"])):
         scene = out / f"scene-{k}.toml"
         scene.write_text(scene_toml(model, k))
-        subprocess.run([py, "-m", "wgpurender", "render", str(scene), "--explain", "-o", str(out / f"wgpu-{k}.png")],
-                       check=True, stdout=open(out / f"explain-{k}.txt", "w"))
+        done = subprocess.run([py, "-m", "wgpurender", "render", str(scene), "--explain", "-o",
+                               str(out / f"wgpu-{k}.png")], check=True, capture_output=True, text=True)
+        (out / f"explain-{k}.txt").write_text(done.stdout.replace(str(out), "OUT"))  # no machine path
         subprocess.run([py, "-m", "wgpurender", "reference", str(scene), "-o", str(out / f"raw-{k}.png")], check=True,
                        stdout=subprocess.DEVNULL)
     pygfx_shots(model, out)
