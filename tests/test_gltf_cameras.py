@@ -146,6 +146,21 @@ def test_perspective_camera_of_the_file(ctx, tmp_path, aspect):
     check_coverage(render_both(ctx, tmp_path), camera)
 
 
+@pytest.mark.parametrize("kind", ["perspective", "orthographic"])
+def test_reverse_z_with_a_file_camera(ctx, tmp_path, kind):
+    """The wgpu path's reverse_z knob (depth 1 at near; the raw path refuses it) with an infinite perspective and
+    with an orthographic camera: the same coverage."""
+    from wgpurender.wgpu_path.scene import render_scene_file
+
+    numbers = PERSPECTIVE if kind == "perspective" else ORTHOGRAPHIC
+    camera = {"type": kind, kind: dict(numbers)}
+    write_file(tmp_path, [camera])
+    got = render_scene_file(tmp_path / "scene.toml", size=SIZE, ctx=ctx, frames=1,
+                            knobs={"post_path": "fragment", "reverse_z": True})
+    assert got.plan.reverse_z
+    check_coverage(got.pixels[..., :3].astype(np.float64), camera)
+
+
 def test_orthographic_camera_of_the_file(ctx, tmp_path):
     """Orthographic: xmag and ymag are the half-extents whatever the target's aspect; znear 0 is allowed."""
     camera = {"type": "orthographic", "orthographic": dict(ORTHOGRAPHIC)}
