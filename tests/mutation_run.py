@@ -1369,6 +1369,10 @@ MUTATIONS = [
      "    return knobs", [CAMS]),
     ("wgpurender/core/plan/resolve.py", "    if camera is not None:\n        from", "    if camera:\n        from",
      [CAMS]),
+    ("wgpurender/webpage/player.js", "meta.orbit.orthographic ? [...unit(sub(eye, orbit.target)), 0] : [...eye, 1]",
+     "[...eye, 1]", [CAMS + "|browser"]),
+    ("wgpurender/webpage/record.py", '"orthographic": cam.projection_type == "orthographic"}', '"orthographic": False}',
+     [CAMS + "|browser"]),
 ]
 
 

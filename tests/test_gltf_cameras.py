@@ -400,3 +400,36 @@ def test_cli_camera_flag_needs_a_gltf_with_cameras_and_a_scene(tmp_path, capsys)
     assert main(["render", "triangle", "-o", str(tmp_path / "t.png"), "--camera", "0"]) == 2
     assert "plan knob 'camera' applies to scene files: stage 'triangle' has no plan" in capsys.readouterr().err
     assert not (tmp_path / "t.png").exists()
+
+
+def test_browser_page_keeps_the_orthographic_view_vector(tmp_path):
+    """The exported page's orbit (player.js) rewrites the camera's view and eye when the wheel zooms: an
+    orthographic camera's eye stays its direction with w = 0, so zooming (the eye moves along its direction,
+    the projection does not change) leaves the lit, glossy frame as it was; eye - position would move the
+    highlights (the lit test above: more than 8/255)."""
+    from wgpurender.webpage import export
+    from wgpurender.webpage.chromium import Chromium, find_chromium
+
+    if find_chromium() is None:
+        pytest.skip("chromium is not installed (apt-get install chromium)")
+    camera = {"type": "orthographic", "orthographic": {"xmag": 0.45, "ymag": 0.4, "znear": 0.1, "zfar": 10.0}}
+    write_file(tmp_path, [camera], unlit=False, rough=0.35, quad_corners=(-4, -4, 4, 4), own=(0.0, 0.0, 0.0),
+               turn={"axis": (1.0, 0.4, 0.0), "angle": math.radians(25.0)},
+               parent=tuple(rotation_matrix((1.0, 0.4, 0.0), math.radians(25.0)) @ (0.0, 0.0, 1.5)),
+               extra_scene='[[lights]]\ntype = "point"\nposition = [0.2, 0.1, 0.6]\nintensity = 0.3\n\n')
+    page = export(str(tmp_path / "scene.toml"), tmp_path / "page", SIZE).page
+    with Chromium(webgpu=True) as browser:
+        tab = browser.open(page)
+        tab.evaluate("window.wgpurender.ready")
+        default = tab.capture()
+        box = tab.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
+                           "return [r.left + r.width / 2, r.top + r.height / 2]; })()")
+        tab.pipe.send("Input.dispatchMouseEvent", {"type": "mouseWheel", "x": box[0], "y": box[1], "deltaX": 0,
+                                                   "deltaY": -100}, session=tab.session)
+        tab.evaluate("new Promise((done) => requestAnimationFrame(() => done(true)))")
+        view = np.array(tab.evaluate("window.wgpurender.orbitView()"), np.float64).reshape(4, 4).T
+        zoomed = tab.capture("{current: true}")
+        assert not tab.errors()
+    distance = float(np.linalg.norm(view[:3, 3]))
+    assert distance < 1.5 * 0.95  # the wheel moved the eye closer
+    assert np.abs(zoomed.astype(int) - default.astype(int)).max() <= 1
