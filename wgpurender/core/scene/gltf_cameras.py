@@ -25,17 +25,8 @@ GLTF_SUFFIXES = (".gltf", ".glb")
 
 def placed_cameras(doc) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, camera index, node index) for each node of the drawn scene that places a camera."""
-    nodes = doc.json.get("nodes", [])
-    out = []
-    stack = [(index, np.eye(4)) for index in reversed(gltf_geometry.root_nodes(doc))] if nodes else []
-    while stack:  # a forest: gltf_rules refused loops and second parents when the document was read
-        index, parent = stack.pop()
-        node = nodes[index]
-        world = parent @ gltf_geometry.node_matrix(node)
-        if "camera" in node:
-            out.append((world, node["camera"], index))
-        stack.extend((child, world) for child in reversed(node.get("children", [])))
-    return out
+    return [(world, node["camera"], index) for world, index, node in gltf_geometry.node_worlds(doc)
+            if "camera" in node]
 
 
 def _number(block: dict, name: str, where: str, lo: float, *, lo_open: bool, required: bool = True,
