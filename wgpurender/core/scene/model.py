@@ -15,7 +15,6 @@ from wgpurender.core.view import transforms
 
 MAX_LIGHTS = 8
 CONVENTIONS = ("wgpu", "glm-vulkan")
-PROJECTION_TYPES = ("perspective", "orthographic")
 LIGHT_TYPES = ("directional", "point")
 
 Vec3 = tuple[float, float, float]
