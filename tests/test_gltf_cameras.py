@@ -18,6 +18,7 @@ import pbr_reference as ref
 import pytest
 from gltf_gen import QUAD_INDICES, GltfWriter, quad
 from shading_model import course_constant, srgb_encode
+from xvfb import xvfb_display  # noqa: F401 - the shared Xvfb fixture "display"
 
 SIZE = (64, 48)
 COLOR = (1.0, 0.5, 0.25)
@@ -433,3 +434,22 @@ def test_browser_page_keeps_the_orthographic_view_vector(tmp_path):
     distance = float(np.linalg.norm(view[:3, 3]))
     assert distance < 1.5 * 0.95  # the wheel moved the eye closer
     assert np.abs(zoomed.astype(int) - default.astype(int)).max() <= 1
+
+
+@pytest.mark.parametrize("raw", [False, True], ids=["wgpu-window", "raw-window"])
+def test_the_windows_view_through_the_files_camera(display, tmp_path, raw):
+    """``demo`` (both windows) draws the scene's file camera: the screenshot's coverage is the file's numbers'."""
+    import os
+    import subprocess
+    import sys
+
+    from wgpurender.core.files.imageio import load_png
+
+    camera = {"type": "orthographic", "orthographic": dict(ORTHOGRAPHIC)}
+    write_file(tmp_path, [camera])
+    shot = tmp_path / "shot.png"
+    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]),
+            str(tmp_path / "scene.toml"), "--size", f"{SIZE[0]}x{SIZE[1]}", "--frames", "2", "--screenshot", str(shot)]
+    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    check_coverage(load_png(shot)[..., :3].astype(np.float64), camera)
