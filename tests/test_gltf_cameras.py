@@ -453,3 +453,15 @@ def test_the_windows_view_through_the_files_camera(display, tmp_path, raw):
     result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
     check_coverage(load_png(shot)[..., :3].astype(np.float64), camera)
+
+
+def test_a_file_camera_too_far_for_its_znear_names_the_file_camera(tmp_path, capsys):
+    """The depth check of a scene's camera (near >= distance x 2^-20) applies to a file camera too, at the model's
+    origin, naming the file's camera and znear."""
+    from wgpurender.cli import main
+
+    write_file(tmp_path, [{"type": "perspective", "perspective": dict(PERSPECTIVE)}], parent=(0.0, 0.0, 1e6))
+    assert main(["render", str(tmp_path / "scene.toml"), "--explain"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "models[0] 'quad.gltf' camera 0 at node 1: znear = 0.05 is too small for the depth buffer: at the " \
+           "model's origin's distance" in err and len(err.splitlines()) == 1, err

@@ -135,8 +135,9 @@ def _check_view(c: _Checker, cam: Camera) -> None:
     distance = float(np.linalg.norm((target - eye) / 2.0**64)) * 2.0**64
     least = distance * 2.0**-DEPTH_STEPS_EXPONENT
     if cam.near < least and cam.projection_type == "perspective":  # orthographic depth is linear: near 0 is fine
-        raise c.error(key + ("near",), f"camera.near = {cam.near:g} is too small for the depth buffer: at the "
-                                       f"target's distance ({distance:.6g}) the depth rounds to 1.0 in float32, "
+        name, where = ("camera.near", "target") if not cam.origin else (f"{cam.origin}: znear", "model's origin")
+        raise c.error(key + ("near",), f"{name} = {cam.near:g} is too small for the depth buffer: at the "
+                                       f"{where}'s distance ({distance:.6g}) the depth rounds to 1.0 in float32, "
                                        f"so nothing would be drawn; use near >= {least:.3g}")
 
 
