@@ -37,32 +37,28 @@ def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mes
     pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
     try:
         for result in pool.map(read_chunk, chunks, repeat(where)):  # in order, each as soon as it is read
-            _take(chunks[done], result, meshes, where)  # unpacked here while the workers read the next chunks
+            _take(chunks[done], result, meshes)  # unpacked here while the workers read the next chunks
             done += 1
     except BrokenProcessPool:  # a worker died (killed, out of memory): the rest in this process
         pass
     finally:
         pool.shutdown(wait=True, cancel_futures=True)  # a refusal stops the chunks not started yet
     for chunk in chunks[done:]:
-        _take(chunk, read_chunk(chunk, where), meshes, where)
+        _take(chunk, read_chunk(chunk, where), meshes)
     return meshes
 
 
-def _take(chunk: list[Job], result: list[tuple[str, object]], meshes: dict[Job, Mesh | None],
-          where: Path | None) -> None:
-    """Unpack a chunk's meshes (raise the first refusal) and queue the entries the worker parsed for writing."""
+def _take(chunk: list[Job], result: list[tuple[str, object]], meshes: dict[Job, Mesh | None]) -> None:
+    """Unpack a chunk's meshes; raise the first refusal."""
     for job, (kind, value) in zip(chunk, result, strict=True):
         if kind == "refused":
             raise UserError(value)
-        packed, key = value
-        meshes[job] = None if packed is None else mesh_pack.unpack(packed, job[0])
-        if key is not None and where is not None:
-            obj_cached.store_later(obj_cached.entry_path(where, key), key, packed)
+        meshes[job] = None if value is None else mesh_pack.unpack(value, job[0])
 
 
 def read_chunk(chunk: list[Job], where: Path | None) -> list[tuple[str, object]]:
-    """("mesh", (packed bytes or None, the key of an entry to store or None)) or ("refused", the one-line
-    message) per job: what runs in a worker (which writes no cache entry: its parent does, in the background)."""
+    """("mesh", packed bytes or None) or ("refused", the one-line message) per job: what runs in a worker (which
+    writes the cache entries of what it parsed)."""
     out: list[tuple[str, object]] = []
     for path, tangents in chunk:
         try:
@@ -71,5 +67,5 @@ def read_chunk(chunk: list[Job], where: Path | None) -> list[tuple[str, object]]
         except UserError as err:
             out.append(("refused", str(err)))
         except OSError:  # vanished or unreadable since the check: the parent's general load says what it is
-            out.append(("mesh", (None, None)))
+            out.append(("mesh", None))
     return out

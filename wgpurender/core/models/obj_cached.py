@@ -73,20 +73,21 @@ def load(path: Path, generate_tangents: bool, where: Path | None) -> Mesh | None
     """The mesh of the simple OBJ file ``path``: the cache's (in folder ``where``; None: no cache) when it holds
     a whole entry for these bytes, else parsed and stored; None when the file is not simple (the caller loads
     it the general way)."""
-    mesh, _, _ = _load(path, generate_tangents, where)
+    mesh, _ = _load(path, generate_tangents, where)
     return mesh
 
 
-def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> tuple[bytes | None, str | None]:
-    """:func:`load`'s mesh packed (mesh_pack), and its entry's key when it was parsed (not found in the cache):
-    what a worker process sends its parent, which stores the entry (:func:`store_later`)."""
-    mesh, packed, key = _load(path, generate_tangents, where, store=False)
-    return (None, None) if mesh is None else (packed or mesh_pack.pack(mesh), key)
+def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> bytes | None:
+    """:func:`load`'s mesh packed (mesh_pack): what a worker process sends its parent. A worker writes the entry
+    of what it parsed itself, before it returns (in parallel with the other workers, and without taking the
+    parent's interpreter lock, which a writer thread there would)."""
+    mesh, packed = _load(path, generate_tangents, where, now=True)
+    return None if mesh is None else packed or mesh_pack.pack(mesh)
 
 
 def _load(path: Path, generate_tangents: bool, where: Path | None,
-          store: bool = True) -> tuple[Mesh | None, bytes | None, str | None]:
-    """(mesh, packed, the key of an entry still to be stored, unless ``store``: queued here)."""
+          now: bool = False) -> tuple[Mesh | None, bytes | None]:
+    """(mesh, packed); what was parsed is stored ``now``, or queued for the background writer."""
     data = path.read_bytes()
     entry = key = None
     if where is not None:
@@ -96,23 +97,21 @@ def _load(path: Path, generate_tangents: bool, where: Path | None,
         payload = queued[1] if queued is not None and queued[0] == key else read_entry(entry, key)
         mesh = None if payload is None else mesh_pack.unpack(payload, path)
         if mesh is not None:
-            return mesh, payload, None
+            return mesh, payload
     parts = simple_obj_parts(data)
     if parts is None:
-        return None, None, None
+        return None, None
     mesh = mesh_of_parts(path, parts, generate_tangents)
     packed = mesh_pack.pack(mesh)
-    if entry is None or packed is None:
-        return mesh, packed, None
-    if store:
-        store_later(entry, key, packed)
-    return mesh, packed, key
+    if entry is not None and packed is not None:
+        (write_entry if now else store_later)(entry, key, packed)
+    return mesh, packed
 
 
-# Entries are written by one background thread: creating a file is ~0.2-0.6 ms of system time on a busy disk (the
-# lavapipe host, 2026-11-27), more than the parse it saves, so a first load does not wait for its own cache.
-# A queued entry is served from memory until it is on disk; the thread finishes its queue when the process exits
-# (concurrent.futures joins it), and :func:`flush` waits for it.
+# In this process, entries are written by one background thread: creating a file took ~0.2-0.6 ms of system time
+# on the busy lavapipe host (2026-11-27), more than the parse it saves, so a first load does not wait for its own
+# cache. A queued entry is served from memory until it is on disk; the thread finishes its queue when the process
+# exits (concurrent.futures joins it), and :func:`flush` waits for it.
 _queued: dict[Path, tuple[str, bytes]] = {}
 _writer: tuple[int, ThreadPoolExecutor] | None = None  # (the process it belongs to: a forked child makes its own)
 
