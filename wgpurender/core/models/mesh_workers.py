@@ -32,6 +32,7 @@ def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mes
     """Every job's mesh (None: not a simple OBJ file), read by ``workers`` forked processes; raises the
     UserError of the first refused file in ``jobs`` order."""
     chunks = [jobs[i:i + CHUNK] for i in range(0, len(jobs), CHUNK)]
+    _before_fork()
     meshes: dict[Job, Mesh | None] = {}
     done = 0
     pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
@@ -46,6 +47,14 @@ def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mes
     for chunk in chunks[done:]:
         _take(chunk, read_chunk(chunk, where), meshes)
     return meshes
+
+
+def _before_fork() -> None:
+    """What every worker would otherwise do first, each on its own: import trimesh's ``unmerge_faces`` (the
+    simple reader's, ~0.1 s) and hash the parser's source for the cache key (obj_cached.parser_version)."""
+    from trimesh.visual.texture import unmerge_faces  # noqa: F401
+
+    obj_cached.parser_version()
 
 
 def _take(chunk: list[Job], result: list[tuple[str, object]], meshes: dict[Job, Mesh | None]) -> None:
