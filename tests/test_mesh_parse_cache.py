@@ -110,7 +110,7 @@ def test_another_parser_version_is_a_miss(tmp_path, monkeypatch, cache):
 def test_the_parser_version_covers_the_parsers_source():
     for name in ("obj_simple.py", "mesh.py", "tangents.py", "mesh_pack.py", "obj_cached.py"):
         assert name in obj_cached.CODE
-    assert set(obj_cached.LIBRARIES) == {"numpy", "trimesh"}
+    assert {"numpy", "trimesh"} <= set(obj_cached.LIBRARIES)
 
 
 @pytest.mark.parametrize("damage", ["truncate", "flip", "empty", "foreign"])

@@ -1,14 +1,15 @@
-"""Simple OBJ files through a verified parse cache: a warm load of a scene of thousands of mesh files reads each
-file's mesh back instead of parsing it again (issue 31: the Python parse was most of a distinct file's load).
+"""Simple OBJ files through a verified parse cache: a warm load of a scene of thousands of mesh files reads each file's
+mesh back instead of parsing it again (issue 31: the Python parse was most of a distinct file's load).
 
-Content-addressed: the key is the SHA-256 of the file's bytes, whether tangents were made, and the parser's
-version, which is a hash of the source of every module the result depends on (this one, obj_simple, mesh,
-tangents, mesh_pack) and of the numpy and trimesh versions (trimesh's ``unmerge_faces`` orders the vertices).
-So an edited file, an edited parser or another library version is a miss, never a stale mesh. An entry is a
-sealed cache entry (core/files/cache_entry.py: verified before use, written atomically) holding a packed mesh
-(core/models/mesh_pack.py: arrays, no pickle), in ``$XDG_CACHE_HOME/wgpurender/meshes``, never in the user's
-folder. Only files the simple reader takes are cached: their bytes are all they depend on (no MTL, no texture);
-anything else goes through the general loader every time. A cache that cannot be written is only slower.
+Content-addressed: the key is the SHA-256 of the file's bytes, whether tangents were made, and the parser's version,
+which is a hash of the source of every module the result depends on (this one, obj_simple, mesh, tangents,
+mesh_pack) and of the numpy, trimesh and wgpurender versions (trimesh's ``unmerge_faces`` orders the vertices). So
+an edited file, an edited parser or another library version is a miss, never a stale mesh. An entry is a sealed
+cache entry (core/files/cache_entry.py: verified before use, written atomically, in the background or by the worker
+that parsed the file) holding a packed mesh (core/models/mesh_pack.py: arrays, no pickle), in
+``$XDG_CACHE_HOME/wgpurender/meshes``, never in the user's folder. Only files the simple reader takes are cached:
+their bytes are all they depend on (no MTL, no texture); anything else goes through the general loader every time. A
+cache that cannot be written is only slower.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from wgpurender.core.models import mesh, mesh_pack
 from wgpurender.core.models.mesh import Mesh, mesh_of_parts, simple_obj_parts
 
 CODE = ("obj_cached.py", "obj_simple.py", "mesh.py", "tangents.py", "mesh_pack.py")
-LIBRARIES = ("numpy", "trimesh")
+LIBRARIES = ("numpy", "trimesh", "wgpurender")
 
 
 @functools.cache
@@ -34,7 +35,10 @@ def parser_version() -> str:
     """A hash of the parser's own source and library versions: any change makes every old entry a miss."""
     digest = hashlib.sha256()
     for name in CODE:
-        digest.update((Path(__file__).parent / name).read_bytes())
+        try:
+            digest.update((Path(__file__).parent / name).read_bytes())
+        except OSError:  # an install without sources: its package version below stands for them
+            digest.update(f"{name} unreadable".encode())
     for name in LIBRARIES:
         try:
             digest.update(f"{name} {version(name)}".encode())
