@@ -11,6 +11,7 @@ import numpy as np
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.models.gltf_animation import Pose
 from wgpurender.core.view import transforms
 
 MAX_LIGHTS = 8
@@ -212,6 +213,8 @@ class Model:
     # those materials, read once when the scene loads (core/scene/file_materials.py); None: the scene's material
     file_materials: ModelMaterials | None = None
     placements: Placements | None = None  # None: one copy, at ``transform``
+    pose: Pose | None = None  # a glTF file's animation at a time (core/models/gltf_animation.py); None: at rest
+    motion: tuple[str, ...] = ()  # --explain lines: the animation sampled and the skins posed (core/scene/model_motion)
 
     @property
     def label(self) -> str:
