@@ -60,6 +60,9 @@ CACHES = "tests/test_cache_entries.py"
 CDEF = "tests/test_cdef_cache.py"
 SG = "wgpurender/core/scene/gltf_specgloss.py"
 SPECGLOSS = "tests/test_gltf_specgloss.py"
+ANIM = "wgpurender/core/models/gltf_animation.py"
+SKIN = "wgpurender/core/models/gltf_skin.py"
+ANIM_T = "tests/test_gltf_animation.py"
 RUNTIME = "tests/test_runtime_dir.py|invalid or valid"
 THREADS = "tests/test_api_threads.py"
 PBR = "tests/test_pbr.py"
@@ -1304,6 +1307,61 @@ MUTATIONS = [
      "embedded_image_bytes(path)", [SPECGLOSS]),
     (SG, "for top in range(0, height, BAND_ROWS):", "for top in range(0, height - 1, BAND_ROWS):", [SPECGLOSS]),
     (SG, "band = {k: t[top:top + BAND_ROWS] for", "band = {k: t[top:top + 1] for", [SPECGLOSS]),
+    # anim (issue 30: glTF animations sampled at a time, skins posed on the CPU)
+    (ANIM, "t = min(max(t, times[0]), times[-1])", "t = min(t, times[-1])", [ANIM_T]),
+    (ANIM, "return values[k + 1] if s >= 1.0 else values[k]", "return values[k + 1] if s >= 0.5 else values[k]",
+     [ANIM_T]),
+    (ANIM, "+ 1) * values[k, 1] + d * (s3", "+ 1) * values[k, 0] + d * (s3", [ANIM_T]),
+    (ANIM, "d * (s3 - 2 * s2 + s) * values[k, 2]", "(s3 - 2 * s2 + s) * values[k, 2]", [ANIM_T]),
+    (ANIM, "d * (s3 - s2) * values[k + 1, 0]", "d * (s3 - s2) * values[k + 1, 2]", [ANIM_T]),
+    (ANIM, "        return _unit(p, rotation)", "        return p", [ANIM_T]),
+    (ANIM, "    if dot < 0.0:", "    if dot < -2.0:", [ANIM_T]),
+    (ANIM, "if dot > 0.9995:", "if dot > -1.0:", [ANIM_T]),
+    (ANIM, "return slerp(values[k], values[k + 1], s)", "return slerp(values[k], values[k + 1], s * s)", [ANIM_T]),
+    (ANIM, "return (1 - s) * values[k] + s * values[k + 1]", "return (1 - s) * values[k] + s * values[k]", [ANIM_T]),
+    (ANIM, "return names.index(animation)", "return 0", [ANIM_T]),
+    (ANIM, "0 <= animation < len(found)", "0 <= animation <= len(found)", [ANIM_T]),
+    (ANIM, "np.any(np.diff(times) <= 0)", "np.any(np.diff(times) < -10)", [ANIM_T]),
+    (ANIM, 'per_key = 3 if mode == "CUBICSPLINE" else 1', "per_key = 1", [ANIM_T]),
+    (ANIM, '"rotation": 4, "scale": 3', '"rotation": 3, "scale": 3', [ANIM_T]),
+    (ANIM, 'mode, rotation=path == "rotation")', "mode, rotation=False)", [ANIM_T]),
+    (ANIM, '        if "matrix" in nodes[node]:', "        if False:", [ANIM_T]),
+    (ANIM, "if not start <= pose.time <= end:", "if not start <= pose.time:", [ANIM_T]),
+    (ANIM, 'side = "first" if pose.time < start else "last"', 'side = "last" if pose.time < start else "first"',
+     [ANIM_T]),
+    (ANIM, 'when = f"at t = {pose.time:g} s" if pose is not None', 'when = "at t" if pose is not None', [ANIM_T]),
+    (SKIN, "above = out[i] = above @ local[i]", "above = out[i] = local[i] @ above", [ANIM_T]),
+    (SKIN, "return np.linalg.inv(globals_[mesh_node]) @ globals_[joints] @ inverse_bind",
+     "return globals_[joints] @ inverse_bind", [ANIM_T]),
+    (SKIN, ".reshape(-1, 4, 4).transpose(0, 2, 1)", ".reshape(-1, 4, 4)", [ANIM_T]),
+    (SKIN, "len(raw) < len(joints)", "len(raw) < 1", [ANIM_T]),
+    (SKIN, "transforms.flat(inverse_bind) | ~np", "~np", [ANIM_T]),
+    (SKIN, "weight / total, matrices[index])", "weight, matrices[index])", [ANIM_T]),
+    (SKIN, "index.max() >= len(matrices)", "index.max() > len(matrices)", [ANIM_T]),
+    (SKIN, "np.any(total <= 0)", "np.any(total < 0)", [ANIM_T]),
+    (SKIN, "np.cross(a, b)], axis=2)", "np.cross(a, b)], axis=1)", [ANIM_T]),
+    (SKIN, 'xyz = np.einsum("vij,vj->vi", rot, tangents[:, :3])', "xyz = tangents[:, :3]", [ANIM_T]),
+    (G_GEOM, "for k in range(len(attributes)):", "for k in range(1):", [ANIM_T]),
+    (G_GEOM, 'if geometry is not None and node_index >= 0 and "skin" in nodes[node_index]:',
+     'if geometry is not None and node_index >= 0 and "skin" in nodes[node_index] and False:', [ANIM_T]),
+    (G_GEOM, "joints=tuple(a[corners] for a in g.joints)", "joints=g.joints", [ANIM_T]),
+    (G_GEOM, "and mi not in skinned)", ")", [ANIM_T]),
+    ("wgpurender/core/scene/validate.py", 'if "time" not in t and "animation" not in t:', 'if "time" not in t:',
+     [ANIM_T]),
+    ("wgpurender/core/scene/validate.py", "return Pose(animation, c.number(", "return Pose(None, c.number(",
+     [ANIM_T]),
+    ("wgpurender/core/scene/model_motion.py", "return tuple(gltf_animation.pose_notes(", "return () or tuple((",
+     [ANIM_T]),
+    ("wgpurender/core/plan/draws.py", "topology=mat.topology, pose=model.pose)", "topology=mat.topology, pose=None)",
+     [ANIM_T]),
+    ("wgpurender/core/plan/meshes.py", "key in self._needs_tangents, pose=pose)", "key in self._needs_tangents)",
+     [ANIM_T]),
+    ("wgpurender/wgpu_path/scene/resources.py", "            key = (draw.mesh_key, self.plan",
+     "            key = ((draw.model_path, None), self.plan", [ANIM_T]),
+    ("wgpurender/raw_path/scene/resources.py", "key = (draw.mesh_key, attributes)",
+     "key = (draw.model_path, attributes)", [ANIM_T]),
+    ("wgpurender/core/models/mesh.py", "doc = gltf_animation.posed(gltf_io.read_document(path), pose)",
+     "doc = gltf_io.read_document(path)", [ANIM_T]),
 ]
 
 

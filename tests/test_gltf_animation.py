@@ -9,6 +9,7 @@ gltf_gen.CAMERA, never read back through the loader under test.
 
 from __future__ import annotations
 
+import json
 import math
 import re
 
@@ -51,7 +52,7 @@ def _animated_file(tmp_path, path: str, times, values, interpolation="LINEAR", n
     sampler = {"input": g.accessor(np.asarray(times, np.float32)), "output": g.accessor(values),
                "interpolation": interpolation}
     g.doc["animations"] = [{"name": name, "channels": [{"sampler": 0, "target": {"node": 0, "path": path}}],
-                            "samplers": [sampler]}] + (extra or [])
+                            "samplers": [sampler]}] + (extra(g) if extra else [])
     return g.write(tmp_path / f"anim{suffix}")
 
 
@@ -116,11 +117,15 @@ def test_cubicspline_rotation_is_normalized(tmp_path):
 
 
 def test_animation_chosen_by_name_and_index(tmp_path):
-    g_extra = [{"name": "lift", "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
-                "samplers": [{"input": 1, "output": 2}]}]  # reuses the first's keys: the same motion, renamed
-    path = _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [4, 0, 0]], extra=g_extra)
-    for choice in ("lift", 1, None, 0):
-        np.testing.assert_allclose(_positions_at(path, 0.5, choice), TRIANGLE + [2, 0, 0], atol=1e-5)
+    def lift(g: GltfWriter) -> list[dict]:  # a second animation: up by 4 over the first's key times
+        output = g.accessor(np.float32([[0, 0, 0], [0, 4, 0]]))
+        return [{"name": "lift", "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                 "samplers": [{"input": 1, "output": output}]}]
+
+    path = _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [4, 0, 0]], extra=lift)
+    for choice, shift in (("lift", [0, 2, 0]), (1, [0, 2, 0]), (None, [2, 0, 0]), (0, [2, 0, 0]),
+                          ("move", [2, 0, 0])):
+        np.testing.assert_allclose(_positions_at(path, 0.5, choice), TRIANGLE + shift, atol=1e-5)
     with pytest.raises(UserError, match=r"no animation 'walk' \(its animations: 0 'move', 1 'lift'\)"):
         _positions_at(path, 0.5, "walk")
     with pytest.raises(UserError, match="no animation 2"):
@@ -158,24 +163,32 @@ def _strip():
 
 
 def _skinned_file(tmp_path, *, joints=None, inverse_bind=None, weights=None, mesh_node_translation=(5.0, 0, 0),
-                  with_weights=True):
+                  with_weights=True, normal=(0.0, 0.0, 1.0), tangent=None, split_sets=False):
     """The strip bound to joints 1 (armature child, at its origin) and 2 (child of 1, at y = 1); joint 2's
     rotation animated from 0 to BEND degrees about z over one second. The mesh node's own translation must be
     ignored (glTF: a skinned mesh is placed by its joints)."""
     positions, faces, w = _strip()
     g = GltfWriter()
     mat = g.material(pbrMetallicRoughness={"baseColorFactor": COLOUR}, doubleSided=True, **UNLIT)
-    attrs = {"POSITION": g.positions(positions), "NORMAL": g.accessor(np.tile(np.float32([0, 0, 1]), (10, 1)))}
+    attrs = {"POSITION": g.positions(positions)}
+    if normal is not None:
+        attrs["NORMAL"] = g.accessor(np.tile(np.float32(normal), (10, 1)))
+    if tangent is not None:
+        attrs["TANGENT"] = g.accessor(np.tile(np.float32(tangent), (10, 1)))
     if joints is None:
         joint_index = np.zeros((10, 4), np.uint8)
         joint_index[:, 1] = 1
     else:
         joint_index = np.asarray(joints, np.uint8)
+    w4 = np.zeros((10, 4), np.float32)
+    w4[:, :2] = w if weights is None else weights
+    if split_sets:  # joint 0 in set 0, joint 1 in set 1 (JOINTS_1 / WEIGHTS_1), as real files with 8 influences
+        attrs["JOINTS_1"] = g.accessor(np.tile(np.uint8([1, 0, 0, 0]), (10, 1)))
+        attrs["WEIGHTS_1"] = g.accessor(np.ascontiguousarray(np.pad(w4[:, 1:2], ((0, 0), (0, 3)))))
+        joint_index, w4 = np.zeros((10, 4), np.uint8), np.pad(w4[:, :1], ((0, 0), (0, 3)))
     attrs["JOINTS_0"] = g.accessor(joint_index)
     if with_weights:
-        w4 = np.zeros((10, 4), np.float32)
-        w4[:, :2] = w if weights is None else weights
-        attrs["WEIGHTS_0"] = g.accessor(w4)
+        attrs["WEIGHTS_0"] = g.accessor(np.ascontiguousarray(w4, np.float32))
     prim = {"attributes": attrs, "indices": g.accessor(faces.astype(np.uint16).ravel()), "material": mat}
     g.node(mesh=g.mesh([prim]), skin=0, translation=list(mesh_node_translation))  # node 0
     g.node(children=[2], translation=[0.0, -1.0, 0.0])  # node 1: armature
@@ -211,11 +224,46 @@ def test_skin_poses_vertices_by_joint_matrices(tmp_path):
     np.testing.assert_allclose(at_rest.positions, _posed_strip(0.0), atol=1e-5)
 
 
-def test_skin_turns_normals_with_the_joints(tmp_path):
-    """+z normals stay +z under a rotation about z (any blend of such rotations keeps them)."""
-    path = _skinned_file(tmp_path)
-    normals = load_mesh(path, generate_tangents=False, pose=Pose(None, 0.7)).normals
-    np.testing.assert_allclose(normals, np.tile([0, 0, 1.0], (10, 1)), atol=1e-5)
+def _blend3(t: float) -> np.ndarray:
+    """(10, 3, 3): each strip vertex's blended joint matrix (upper 3x3), from this test's own globals."""
+    _, _, w = _strip()
+    bent = _rot_z(BEND * min(max(t, 0.0), 1.0))[:3, :3]
+    return w[:, 0, None, None] * np.eye(3) + w[:, 1, None, None] * bent
+
+
+@pytest.mark.parametrize("t", [0.4, 1.0])
+def test_skin_turns_normals_by_the_inverse_transpose_and_tangents_by_the_matrix(tmp_path, t):
+    """An in-plane normal (1, 0, 0) and tangent (0, 1, 0): on the half-and-half row the blend 0.5 (I + R) is not a
+    rotation, so the normal (inverse transpose) and the tangent (the matrix) turn differently."""
+    path = _skinned_file(tmp_path, normal=(1.0, 0.0, 0.0), tangent=(0.0, 1.0, 0.0, 1.0))
+    mesh = load_mesh(path, generate_tangents=False, pose=Pose(None, t))
+    m = _blend3(t)
+    normals = np.einsum("vij,j->vi", np.linalg.inv(m).transpose(0, 2, 1), [1.0, 0, 0])
+    tangents = np.einsum("vij,j->vi", m, [0, 1.0, 0])
+    unit = lambda v: v / np.linalg.norm(v, axis=1, keepdims=True)  # noqa: E731
+    np.testing.assert_allclose(mesh.normals, unit(normals), atol=1e-5)
+    np.testing.assert_allclose(mesh.tangents[:, :3], unit(tangents), atol=1e-5)
+    np.testing.assert_allclose(mesh.tangents[:, 3], 1.0)
+
+
+def test_weights_are_normalized_and_second_sets_count(tmp_path):
+    """Weights summing to 2 pose as their halves; joints split over JOINTS_0/JOINTS_1 pose as one set."""
+    _, _, w = _strip()
+    doubled = _skinned_file(tmp_path, weights=2 * w)
+    np.testing.assert_allclose(load_mesh(doubled, generate_tangents=False, pose=Pose(None, 0.6)).positions,
+                               _posed_strip(0.6), atol=1e-5)
+    split = _skinned_file(tmp_path, split_sets=True)
+    np.testing.assert_allclose(load_mesh(split, generate_tangents=False, pose=Pose(None, 0.6)).positions,
+                               _posed_strip(0.6), atol=1e-5)
+
+
+def test_a_skinned_mesh_without_normals_is_flat_shaded_then_posed(tmp_path):
+    """No NORMAL: glTF asks for flat normals, so every triangle gets its own corners; each corner keeps its
+    vertex's joints and weights."""
+    path = _skinned_file(tmp_path, normal=None)
+    _, faces, _ = _strip()
+    mesh = load_mesh(path, generate_tangents=False, pose=Pose(None, 0.8))
+    np.testing.assert_allclose(mesh.positions, _posed_strip(0.8)[faces].reshape(-1, 3), atol=1e-5)
 
 
 def _coverage(triangles: np.ndarray, size) -> tuple[np.ndarray, np.ndarray]:
@@ -272,13 +320,14 @@ def test_rotated_triangle_lands_at_the_analytic_place(ctx, tmp_path, which):
     assert np.any(rest & ~inside & sure) and not np.any(covered & rest & ~inside & sure)
 
 
-def test_two_models_of_one_file_at_two_times(ctx, tmp_path):
+@pytest.mark.parametrize("which", PATHS)
+def test_two_models_of_one_file_at_two_times(ctx, tmp_path, which):
     """The plan keys meshes by file and pose: one file posed at t = 0 and t = 1 draws twice, not once."""
     _animated_file(tmp_path, "translation", [0.0, 1.0], [[-1.6, -1.0, 0], [0.2, -1.0, 0]], suffix=".glb")
     scene = tmp_path / "two.toml"
     scene.write_text(scene_text("anim.glb", SIZE, extra="time = 0.0\n")
                      + '\n[[models]]\npath = "anim.glb"\ntime = 1.0\n')
-    covered = render(ctx, scene, "wgpu")[..., :3].max(axis=2) > 20
+    covered = render(ctx, scene, which)[..., :3].max(axis=2) > 20
     want = np.zeros_like(covered)
     sure = np.ones_like(covered)
     for dx in (-1.6, 0.2):
@@ -305,6 +354,7 @@ def test_explain_names_the_animation_time_and_skin(tmp_path, capsys):
     assert "animation 0 sampled at t = 0.5 s (keys 0..1 s, 1 channel(s))" in out
     assert "skin 0 (2 joints): posed on the CPU at t = 0.5 s" in out
     assert "ignored" not in "".join(line for line in out.splitlines() if "skin" in line or "animation" in line)
+    assert "JOINTS_0, WEIGHTS_0 ignored" not in out  # used by the skin, not ignored
     out = _explain(tmp_path, capsys, "skin.glb", "time = 3\n")
     assert "t is outside the keys, so each channel is clamped to its last key" in out
     out = _explain(tmp_path, capsys, "skin.glb", "")
@@ -341,10 +391,11 @@ def test_time_for_a_file_without_animations_or_not_gltf_is_one_line(tmp_path, ca
 
 
 @pytest.mark.parametrize(("kwargs", "needle"), [
-    ({"joints": np.tile([0, 5, 0, 0], (10, 1))}, "names joint 5, but its skin has 2 joints"),
+    ({"joints": np.tile([0, 2, 0, 0], (10, 1))}, "names joint 2, but its skin has 2 joints"),
     ({"with_weights": False}, "1 JOINTS_n and 0 WEIGHTS_n"),
     ({"weights": np.zeros((10, 2))}, "negative, not finite or all 0"),
     ({"inverse_bind": np.array([np.eye(4), np.diag([1.0, 0.0, 1.0, 1.0])])}, "inverse bind matrix of joint 1"),
+    ({"inverse_bind": np.array([np.eye(4)])}, "needs one MAT4 per joint (2), got 1"),
 ])
 def test_malformed_skins_are_one_line(tmp_path, kwargs, needle):
     path = _skinned_file(tmp_path, **kwargs)
@@ -364,5 +415,15 @@ def test_malformed_samplers_are_one_line(tmp_path):
         _positions_at(path, 0.5)
     path = _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0]] * 2, "SMOOTH")
     with pytest.raises(UserError, match="got SMOOTH"):
+        _positions_at(path, 0.5)
+
+
+def test_an_animated_node_with_a_matrix_is_one_line(tmp_path):
+    """glTF animates translation/rotation/scale nodes only; a matrix node as a channel's target is malformed."""
+    path = _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [1, 0, 0]])
+    doc = json.loads(path.read_text())
+    doc["nodes"][0]["matrix"] = np.eye(4).ravel().tolist()
+    path.write_text(json.dumps(doc))
+    with pytest.raises(UserError, match="targets node 0, which has a matrix"):
         _positions_at(path, 0.5)
 
