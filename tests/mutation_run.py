@@ -680,8 +680,8 @@ MUTATIONS = [
     ("wgpurender/core/scene/instances.py", "    m[:, :3, 3] = offsets", "    m[:, 3, :3] = offsets", [INST]),
     ("wgpurender/core/scene/model.py", "        return parent @ self.placements.array().astype(np.float64)",
      "        return self.placements.array().astype(np.float64) @ parent", [INST]),
-    ("wgpurender/core/plan/batches.py", "    return (draw.model_path, draw.part, draw.pipeline_key, draw.material_key())",  # noqa: E501
-     "    return (draw.model_path, draw.part, draw.pipeline_key)", [INST]),
+    ("wgpurender/core/plan/batches.py", "    return (draw.mesh_key, draw.part, draw.pipeline_key, draw.material_key())",  # noqa: E501
+     "    return (draw.mesh_key, draw.part, draw.pipeline_key)", [INST]),
     ("wgpurender/core/plan/batches.py", "        first += merged.instance_count", "        first += 1", [INST]),
     ("wgpurender/core/plan/batches.py", "out[:, :16] = worlds.transpose(0, 2, 1).reshape(-1, 16)",
      "out[:, :16] = worlds.reshape(-1, 16)", [INST]),
@@ -809,8 +809,8 @@ MUTATIONS = [
     ("docs/benchmarks.md", "per=1000 fmt=.0f -->1233<!-- /figure -->", "per=1000 fmt=.0f -->1234<!-- /figure -->",
      [DOCFIG]),
     # one materials reader, stages' state (item 2)
-    ("wgpurender/core/scene/load.py", "dataclasses.replace(m, file_materials=read_file_materials(m))",
-     "dataclasses.replace(m, file_materials=None)", [MATERIALS]),
+    ("wgpurender/core/scene/load.py", "dataclasses.replace(m, file_materials=read_file_materials(m), motion",
+     "dataclasses.replace(m, file_materials=None, motion", [MATERIALS]),
     ("wgpurender/core/scene/file_materials.py", "    if not model.material_from_file:",
      "    if model.material_from_file:", [MATERIALS]),
     ("wgpurender/wgpu_path/stages/cube3d.py", "        if camera != self._camera_bytes:",
@@ -949,8 +949,8 @@ MUTATIONS = [
      "if all(s != texcoord for s, _, k in slots):", [UVSETS]),
     ("wgpurender/core/models/gltf_geometry.py", "uvs = [_slot_uvs(arrays[name], transform) for",
      "uvs = [_slot_uvs(arrays[name], None) for", [UVSETS]),
-    ("wgpurender/core/models/gltf_geometry.py", "TOPOLOGIES[mode], tuple(uvs[1:]))",
-     "TOPOLOGIES[mode], tuple(uvs[1:2]))", [UVSETS]),
+    ("wgpurender/core/models/gltf_geometry.py", "TOPOLOGIES[mode], tuple(uvs[1:]), joints",
+     "TOPOLOGIES[mode], tuple(uvs[1:2]), joints", [UVSETS]),
     ("wgpurender/core/models/gltf_geometry.py",
      "used = {f\"TEXCOORD_{s}\" for s, _, _ in uv_slots(doc, prim.get(\"material\"))}",
      "used = {\"TEXCOORD_0\"}", [GLTF_RENDER + "|explain_lists_what_was_taken"]),

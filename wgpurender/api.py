@@ -224,7 +224,8 @@ def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
 def check_static(target: str, t: float | None) -> None:
     """Scenes are static: a time other than 0 (or None: animated) would not change the image, so it is refused."""
     if t:
-        raise UserError(f"scene {str(target)!r} is static: a time ({t:g} s) animates stages only (leave --time out)")
+        raise UserError(f"scene {str(target)!r} is static: a time ({t:g} s) animates stages only (leave --time out; "
+                        "a scene poses a glTF model's animation with time = T in its [[models]] block)")
 
 
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
