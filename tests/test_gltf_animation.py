@@ -105,6 +105,15 @@ def test_cubicspline_uses_tangents_scaled_by_the_key_interval(tmp_path):
     np.testing.assert_allclose(_positions_at(path, 0.0), TRIANGLE, atol=1e-5)  # clamped: v0
 
 
+@pytest.mark.parametrize(("mode", "values"), [("LINEAR", [[1, 0, 0]]), ("STEP", [[1, 0, 0]]),
+                                               ("CUBICSPLINE", [[9, 0, 0], [1, 0, 0], [7, 0, 0]])])
+def test_a_single_key_holds_at_every_time(tmp_path, mode, values):
+    """One key: its value at any time (a CUBICSPLINE key's value is the middle of in-tangent, value, out-tangent)."""
+    path = _animated_file(tmp_path, "translation", [0.5], values, mode)
+    for t in (0.0, 0.5, 3.0):
+        np.testing.assert_allclose(_positions_at(path, t), TRIANGLE + [1, 0, 0], atol=1e-5)
+
+
 def test_cubicspline_rotation_is_normalized(tmp_path):
     """Zero tangents between 0 and 90 degrees about z: at s = 0.5 the Hermite blend is the mean of the two
     quaternions (0, 0, 0.3827, 0.9619), normalized: a rotation by 2 atan2(0.3827, 0.9619) = 43.4 degrees."""
