@@ -1337,7 +1337,7 @@ MUTATIONS = [
     (SKIN, ".reshape(-1, 4, 4).transpose(0, 2, 1)", ".reshape(-1, 4, 4)", [ANIM_T]),
     (SKIN, "len(raw) < len(joints)", "len(raw) < 1", [ANIM_T]),
     (SKIN, "transforms.flat(inverse_bind) | ~np", "~np", [ANIM_T]),
-    (SKIN, "weight / total, matrices[index])", "weight, matrices[index])", [ANIM_T]),
+    (SKIN, "weight = weight / total", "weight = weight / 1", [ANIM_T]),
     (SKIN, "index.max() >= len(matrices)", "index.max() > len(matrices)", [ANIM_T]),
     (SKIN, "np.any(total <= 0)", "np.any(total < 0)", [ANIM_T]),
     (SKIN, "np.cross(a, b)], axis=2)", "np.cross(a, b)], axis=1)", [ANIM_T]),

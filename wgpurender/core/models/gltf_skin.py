@@ -69,7 +69,11 @@ def blend(joints: list[np.ndarray], weights: list[np.ndarray], matrices: np.ndar
     if not np.all(np.isfinite(weight)) or np.any(weight < 0) or np.any(total <= 0):
         raise UserError(f"{where} has a vertex whose WEIGHTS_n are negative, not finite or all 0 (glTF needs "
                         "weights >= 0 summing to 1); fix or re-export the file")
-    return np.einsum("vk,vkij->vij", weight / total, matrices[index])
+    weight = weight / total
+    blended = np.zeros((len(index), 4, 4))
+    for k in range(index.shape[1]):  # one influence slot at a time: (V, 4, 4) at most, not (V, slots, 4, 4)
+        blended += weight[:, k, None, None] * matrices[index[:, k]]
+    return blended
 
 
 def skinned(positions: np.ndarray, normals: np.ndarray | None, tangents: np.ndarray | None, m: np.ndarray):
