@@ -1323,6 +1323,7 @@ MUTATIONS = [
     (ANIM, "return names.index(animation)", "return 0", [ANIM_T]),
     (ANIM, "0 <= animation < len(found)", "0 <= animation <= len(found)", [ANIM_T]),
     (ANIM, "np.any(np.diff(times) <= 0)", "np.any(np.diff(times) < -10)", [ANIM_T]),
+    (ANIM, '!= ("SCALAR", FLOAT):', '!= ("SCALAR", FLOAT) and False:', [ANIM_T]),
     (ANIM, 'per_key = 3 if mode == "CUBICSPLINE" else 1', "per_key = 1", [ANIM_T]),
     (ANIM, '"rotation": 4, "scale": 3', '"rotation": 3, "scale": 3', [ANIM_T]),
     (ANIM, 'mode, rotation=path == "rotation")', "mode, rotation=False)", [ANIM_T]),

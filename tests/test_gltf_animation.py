@@ -427,6 +427,12 @@ def test_malformed_samplers_are_one_line(tmp_path):
         _positions_at(path, 0.5)
 
 
+def test_key_times_must_be_scalar_floats(tmp_path):
+    path = _animated_file(tmp_path, "translation", [[0.0, 0.0], [1.0, 1.0]], [[0, 0, 0]] * 4)
+    with pytest.raises(UserError, match="input \\(key times\\) must be a SCALAR FLOAT accessor, got VEC2"):
+        _positions_at(path, 0.5)
+
+
 def test_an_animated_node_with_a_matrix_is_one_line(tmp_path):
     """glTF animates translation/rotation/scale nodes only; a matrix node as a channel's target is malformed."""
     path = _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [1, 0, 0]])

@@ -26,6 +26,7 @@ from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
 
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
 PATH_WIDTHS = {"translation": 3, "rotation": 4, "scale": 3, "weights": 1}
+FLOAT = 5126
 
 
 @dataclass(frozen=True)
@@ -110,6 +111,11 @@ def channels(doc: GltfDocument, index: int):
                             f"{', '.join(PATH_WIDTHS)} / 0..{len(anim['samplers']) - 1}; fix or re-export the file")
         sampler = anim["samplers"][sampler_index]
         mode = sampler.get("interpolation", "LINEAR")
+        keys = doc.json["accessors"][sampler["input"]]
+        if (keys.get("type"), keys.get("componentType")) != ("SCALAR", FLOAT):
+            raise UserError(f"{where} sampler {sampler_index}: its input (key times) must be a SCALAR FLOAT accessor, "
+                            f"got {keys.get('type')} of component type {keys.get('componentType')}; fix or re-export "
+                            "the file")
         times = read_accessor(doc, sampler["input"]).reshape(-1).astype(np.float64)
         values = read_accessor(doc, sampler["output"]).astype(np.float64)
         per_key = 3 if mode == "CUBICSPLINE" else 1
