@@ -346,14 +346,47 @@ def test_two_models_of_one_file_at_two_times(ctx, tmp_path, which):
     assert np.array_equal(covered[sure], want[sure])
 
 
+@pytest.mark.parametrize("which", PATHS)
+def test_time_flag_poses_like_the_model_block_and_overrides_it(tmp_path, which):
+    """``--time T`` (the API's ``t``) is resolved into the one plan: the same image as ``time = T`` in the model
+    block, on both paths, and it overrides a block's own time."""
+    from wgpurender import api
+
+    draw = api.render if which == "wgpu" else api.reference
+    _skinned_file(tmp_path)
+    for name, extra in (("block", "time = 0.7\n"), ("plain", ""), ("other", "time = 0.2\n")):
+        (tmp_path / f"{name}.toml").write_text(scene_text("skin.glb", SIZE, extra=extra))
+    block = draw(str(tmp_path / "block.toml")).pixels
+    assert np.array_equal(draw(str(tmp_path / "plain.toml"), t=0.7).pixels, block)
+    assert np.array_equal(draw(str(tmp_path / "other.toml"), t=0.7).pixels, block)
+    assert not np.array_equal(draw(str(tmp_path / "other.toml")).pixels, block)  # the block's 0.2 differs
+    plan = draw(str(tmp_path / "plain.toml"), t=0.7).plan
+    assert "sampled at t = 0.7 s" in plan.explain()
+
+
+def test_time_flag_on_a_static_scene_is_one_line(tmp_path, capsys):
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
+    g.write(tmp_path / "still.glb")
+    from helpers import one_line_refusal
+
+    from wgpurender.cli import main
+
+    scene = tmp_path / "still.toml"
+    scene.write_text(scene_text("still.glb", SIZE))
+    code = main(["render", str(scene), "-o", str(tmp_path / "out.png"), "--time", "2"])
+    one_line_refusal(code, capsys.readouterr().err.strip(), "is static", "--time", "glTF file with an animation")
+    assert not (tmp_path / "out.png").exists()
+
+
 # -- --explain and refusals ---------------------------------------------------------------------------------------
 
-def _explain(tmp_path, capsys, model: str, extra: str) -> str:
+def _explain(tmp_path, capsys, model: str, extra: str, *flags: str) -> str:
     from wgpurender.cli import main
 
     scene = tmp_path / "explain.toml"
     scene.write_text(scene_text(model, SIZE, extra=extra))
-    assert main(["render", str(scene), "-o", str(tmp_path / "e.png"), "--explain"]) == 0
+    assert main(["render", str(scene), "-o", str(tmp_path / "e.png"), "--explain", *flags]) == 0
     return capsys.readouterr().out
 
 
@@ -368,6 +401,8 @@ def test_explain_names_the_animation_time_and_skin(tmp_path, capsys):
     assert "t is outside the keys, so each channel is clamped to its last key" in out
     out = _explain(tmp_path, capsys, "skin.glb", "")
     assert "1 animation(s) not applied: drawn at rest" in out and "posed on the CPU at rest" in out
+    out = _explain(tmp_path, capsys, "skin.glb", "time = 0.2\n", "--time", "0.9")  # the flag wins
+    assert "sampled at t = 0.9 s" in out and "t = 0.2" not in out
 
 
 def _refused(tmp_path, capsys, model: str, extra: str, *needles: str) -> None:

@@ -41,7 +41,7 @@ def run(args) -> int:
     flags = {"size": args.size, "msaa": args.msaa, "format": args.format, "backend": args.backend,
              "anisotropy": args.anisotropy}  # the API refuses a rule other than the default for a stage
     if args.explain:
-        print(api.explain(args.target, **flags), end="")
+        print(api.explain(args.target, t=args.time, **flags), end="")
         if not args.output:
             return 0
     image = api.render(args.target, t=args.time, **flags)

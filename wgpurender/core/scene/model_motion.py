@@ -8,8 +8,11 @@ The posed vertices themselves are made when the mesh loads (core/models/mesh.loa
 
 from __future__ import annotations
 
+import dataclasses
+
+from wgpurender.core.errors import UserError
 from wgpurender.core.models import gltf_animation
-from wgpurender.core.scene.model import Model
+from wgpurender.core.scene.model import Model, Scene
 
 GLTF_SUFFIXES = (".gltf", ".glb")
 
@@ -21,3 +24,24 @@ def read_motion(model: Model) -> tuple[str, ...]:
     from wgpurender.core.scene.gltf_materials import document  # the parsed file, shared with its materials
 
     return tuple(gltf_animation.pose_notes(document(str(model.path)), model.pose))
+
+
+def at_time(scene: Scene, t: float) -> Scene:
+    """The scene with every glTF model that has animations posed at ``t`` seconds (``--time``: it overrides a
+    model block's ``time``, keeping its ``animation``); one line when no model has an animation (the flag would
+    change nothing)."""
+    from wgpurender.core.scene.gltf_materials import document
+
+    models, posed = [], 0
+    for model in scene.models:
+        if model.path.suffix.lower() in GLTF_SUFFIXES and document(str(model.path)).json.get("animations"):
+            model = dataclasses.replace(model, pose=gltf_animation.Pose(model.pose.animation if model.pose else None,
+                                                                       t))
+            model = dataclasses.replace(model, motion=read_motion(model))
+            posed += 1
+        models.append(model)
+    if not posed:
+        raise UserError(f"scene {str(scene.path)!r} is static: none of its models is a glTF file with an animation, so "
+                        f"a time ({t:g} s) would change nothing (leave --time out; it animates stages and glTF "
+                        "animations)")
+    return dataclasses.replace(scene, models=tuple(models))
