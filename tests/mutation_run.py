@@ -1364,6 +1364,14 @@ MUTATIONS = [
      "key = (draw.model_path, attributes)", [ANIM_T]),
     ("wgpurender/core/models/mesh.py", "doc = gltf_animation.posed(gltf_io.read_document(path), pose)",
      "doc = gltf_io.read_document(path)", [ANIM_T]),
+    ("wgpurender/core/plan/resolve.py", "        scene = at_time(scene, time)", "        pass", [ANIM_T]),
+    ("wgpurender/core/scene/model_motion.py", "    if not posed:", "    if False:", [ANIM_T]),
+    ("wgpurender/core/scene/model_motion.py", "model = dataclasses.replace(model, motion=read_motion(model))",
+     "model = dataclasses.replace(model)", [ANIM_T]),
+    ("wgpurender/api.py", '{**knobs, "time": t}), t)', "knobs), t)", [ANIM_T]),
+    ("wgpurender/api.py", "anisotropy=anisotropy, time=t, **knobs)", "anisotropy=anisotropy, **knobs)", [ANIM_T]),
+    ("wgpurender/cli/render.py", "api.explain(args.target, t=args.time, **flags)", "api.explain(args.target, **flags)",
+     [ANIM_T]),
 ]
 
 
