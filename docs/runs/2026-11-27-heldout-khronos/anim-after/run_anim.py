@@ -2,7 +2,7 @@
 
 The run of ../run.py (same framing from the file's own numbers, same lights, 192 px, msaa 4), with the model block
 ``time = T`` (core/models/gltf_animation.py: the file's first animation sampled at T, skins posed on the CPU) and
-pygfx posed at the same T by its AnimationMixer (pygfx_pose.py).
+pygfx posed at the same T by its AnimationMixer (../pygfx_shot.py with T).
 
 Usage (repository root, the venv's python, PYTHONPATH=.):
     python docs/runs/2026-11-27-heldout-khronos/anim-after/run_anim.py SAMPLES_DIR OUT_DIR
@@ -45,8 +45,8 @@ def shoot(sample, t: float, samples_dir: Path, out: Path) -> dict:
     py = sys.executable
     wgpu = run([py, "-m", "wgpurender", "render", str(scene), "--explain", "-o", str(folder / "wgpu.png")])
     raw = run([py, "-m", "wgpurender", "reference", str(scene), "-o", str(folder / "raw.png")])
-    peer = run([py, str(HERE / "pygfx_pose.py"), str(model), str(folder / "pygfx.png"), json.dumps(cam), str(SIZE),
-                str(t)])
+    peer = run([py, str(HERE.parent / "pygfx_shot.py"), str(model), str(folder / "pygfx.png"), json.dumps(cam),
+                str(SIZE), str(t)])
     said = [line.strip() for line in wgpu["stdout"].splitlines()
             if "ignored" in line or "animation" in line or "skin" in line]
     images = {k: np.asarray(Image.open(folder / f"{k}.png").convert("RGB")).astype(int)
