@@ -1347,6 +1347,7 @@ MUTATIONS = [
     (G_GEOM, 'if geometry is not None and node_index >= 0 and "skin" in nodes[node_index]:',
      'if geometry is not None and node_index >= 0 and "skin" in nodes[node_index] and False:', [ANIM_T]),
     (G_GEOM, "joints=tuple(a[corners] for a in g.joints)", "joints=g.joints", [ANIM_T]),
+    (G_GEOM, "    if not g.joints:\n        raise", "    if False:\n        raise", [ANIM_T]),
     (G_GEOM, "and mi not in skinned)", ")", [ANIM_T]),
     ("wgpurender/core/scene/validate.py", 'if "time" not in t and "animation" not in t:', 'if "time" not in t:',
      [ANIM_T]),

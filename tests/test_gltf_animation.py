@@ -172,7 +172,7 @@ def _strip():
 
 
 def _skinned_file(tmp_path, *, joints=None, inverse_bind=None, weights=None, mesh_node_translation=(5.0, 0, 0),
-                  with_weights=True, normal=(0.0, 0.0, 1.0), tangent=None, split_sets=False):
+                  with_weights=True, normal=(0.0, 0.0, 1.0), tangent=None, split_sets=False, with_joints=True):
     """The strip bound to joints 1 (armature child, at its origin) and 2 (child of 1, at y = 1); joint 2's
     rotation animated from 0 to BEND degrees about z over one second. The mesh node's own translation must be
     ignored (glTF: a skinned mesh is placed by its joints)."""
@@ -195,8 +195,9 @@ def _skinned_file(tmp_path, *, joints=None, inverse_bind=None, weights=None, mes
         attrs["JOINTS_1"] = g.accessor(np.tile(np.uint8([1, 0, 0, 0]), (10, 1)))
         attrs["WEIGHTS_1"] = g.accessor(np.ascontiguousarray(np.pad(w4[:, 1:2], ((0, 0), (0, 3)))))
         joint_index, w4 = np.zeros((10, 4), np.uint8), np.pad(w4[:, :1], ((0, 0), (0, 3)))
-    attrs["JOINTS_0"] = g.accessor(joint_index)
-    if with_weights:
+    if with_joints:
+        attrs["JOINTS_0"] = g.accessor(joint_index)
+    if with_weights and with_joints:
         attrs["WEIGHTS_0"] = g.accessor(np.ascontiguousarray(w4, np.float32))
     prim = {"attributes": attrs, "indices": g.accessor(faces.astype(np.uint16).ravel()), "material": mat}
     g.node(mesh=g.mesh([prim]), skin=0, translation=list(mesh_node_translation))  # node 0
@@ -440,6 +441,7 @@ def test_time_for_a_file_without_animations_or_not_gltf_is_one_line(tmp_path, ca
     ({"weights": np.zeros((10, 2))}, "negative, not finite or all 0"),
     ({"inverse_bind": np.array([np.eye(4), np.diag([1.0, 0.0, 1.0, 1.0])])}, "inverse bind matrix of joint 1"),
     ({"inverse_bind": np.array([np.eye(4)])}, "needs one MAT4 per joint (2), got 1"),
+    ({"with_joints": False}, "is skinned (its node has a skin) but has no JOINTS_0/WEIGHTS_0"),
 ])
 def test_malformed_skins_are_one_line(tmp_path, kwargs, needle):
     path = _skinned_file(tmp_path, **kwargs)
