@@ -1,4 +1,5 @@
-"""The five held-out skin and animation samples again, each posed at a chosen time on both paths and by pygfx.
+"""The five held-out skin and animation samples again (and AnimatedMorphCube's weights channel), each posed at a
+chosen time on both paths and by pygfx.
 
 The run of ../run.py (same framing from the file's own numbers, same lights, 192 px, msaa 4), with the model block
 ``time = T`` (core/models/gltf_animation.py: the file's first animation sampled at T, skins posed on the CPU) and
@@ -27,7 +28,8 @@ from run import SIZE, probes, run, scene_toml  # noqa: E402
 from samples import NO_SHEET, SAMPLES  # noqa: E402
 
 # the time each sample is posed at: inside its keys, where its README's motion is well under way
-TIMES = {"SimpleSkin": 2.0, "RiggedSimple": 1.0, "CesiumMan": 1.0, "BoxAnimated": 1.9, "AnimatedTriangle": 0.25}
+TIMES = {"SimpleSkin": 2.0, "RiggedSimple": 1.0, "CesiumMan": 1.0, "BoxAnimated": 1.9, "AnimatedTriangle": 0.25,
+         "AnimatedMorphCube": 2.5}  # the last: a weights channel (both morph targets part-way, 0.44 and 0.56)
 # the framing also covers the rest boxes moved by this much: BoxAnimated's inner box rises by its translation
 # channel's largest key (0, 2.52, 0) (keys 1.25-2.5 s; the rotation channel turns it 180 degrees about x then)
 REACH = {"BoxAnimated": (0.0, 2.52, 0.0)}
