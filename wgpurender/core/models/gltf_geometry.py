@@ -70,6 +70,20 @@ def root_nodes(doc: GltfDocument) -> list[int]:
     return gltf_rules.root_nodes(doc.json)
 
 
+def node_worlds(doc: GltfDocument) -> list[tuple[np.ndarray, int, dict]]:
+    """(world matrix, node index, node) for every node of the drawn scene, depth first in file order (a forest:
+    gltf_rules refused loops and second parents when the document was read). Lights and cameras are placed so."""
+    nodes = doc.json.get("nodes", [])
+    out = []
+    stack = [(index, np.eye(4)) for index in reversed(root_nodes(doc))] if nodes else []
+    while stack:
+        index, parent = stack.pop()
+        world = parent @ node_matrix(nodes[index])
+        out.append((world, index, nodes[index]))
+        stack.extend((child, world) for child in reversed(nodes[index].get("children", [])))
+    return out
+
+
 def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
     The graph is a forest with unique roots (gltf_rules refuses loops, second parents and repeated roots before
@@ -385,6 +399,4 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
                             or (a.startswith("COLOR_") and a != "COLOR_0"))
             if extra:
                 notes.append(f"mesh {mi} primitive {pi}: attribute(s) {', '.join(extra)} ignored")
-    if gltf.get("cameras"):
-        notes.append(f"{len(gltf['cameras'])} camera(s) ignored (the scene file's [camera] is used)")
     return notes
