@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import struct
 
 import numpy as np
 import pytest
@@ -446,6 +447,21 @@ def test_time_for_a_file_without_animations_or_not_gltf_is_one_line(tmp_path, ca
 def test_malformed_skins_are_one_line(tmp_path, kwargs, needle):
     path = _skinned_file(tmp_path, **kwargs)
     with pytest.raises(UserError, match=re.escape(needle)):
+        load_mesh(path, generate_tangents=False, pose=Pose(None, 0.5))
+
+
+def test_a_weights_count_unlike_the_vertex_count_is_one_line(tmp_path):
+    """WEIGHTS_0 with 9 elements for 10 vertices (the GLB's JSON chunk edited here): refused when the file is read."""
+    path = _skinned_file(tmp_path)
+    raw = path.read_bytes()
+    length = struct.unpack_from("<I", raw, 12)[0]
+    doc = json.loads(raw[20:20 + length])
+    doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"]]["count"] = 9
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text + raw[20 + length:]
+    path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+    with pytest.raises(UserError, match="WEIGHTS_0 has 9 elements, POSITION 10"):
         load_mesh(path, generate_tangents=False, pose=Pose(None, 0.5))
 
 
