@@ -1397,6 +1397,7 @@ MUTATIONS = [
     (ANIM, 'mode, rotation=path == "rotation")', "mode, rotation=False)", [ANIM_T]),
     (ANIM, '        if "matrix" in nodes[node]:', "        if False:", [ANIM_T]),
     (ANIM, "if not start <= pose.time <= end:", "if not start <= pose.time:", [ANIM_T]),
+    (ANIM, "    if not keys:\n", "    if False:\n", [ANIM_T]),
     (ANIM, 'side = "first" if pose.time < start else "last"', 'side = "last" if pose.time < start else "first"',
      [ANIM_T]),
     (ANIM, 'when = f"at t = {pose.time:g} s" if pose is not None', 'when = "at t" if pose is not None', [ANIM_T]),

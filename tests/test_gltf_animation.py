@@ -407,6 +407,17 @@ def test_explain_names_the_animation_time_and_skin(tmp_path, capsys):
     assert "sampled at t = 0.9 s" in out and "t = 0.2" not in out
 
 
+def test_an_animation_without_node_targets_is_listed_as_ignored(tmp_path, capsys):
+    """A channel without target.node (an extension's target, e.g. KHR_animation_pointer) poses nothing: said."""
+    path = _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [1, 0, 0]])
+    doc = json.loads(path.read_text())
+    del doc["animations"][0]["channels"][0]["target"]["node"]
+    path.write_text(json.dumps(doc))
+    np.testing.assert_allclose(_positions_at(path, 0.5), TRIANGLE, atol=1e-6)
+    out = _explain(tmp_path, capsys, "anim.gltf", "time = 0.5\n")
+    assert "animation 0 'move': no channel targets a node" in out and "ignored, drawn at rest" in out
+
+
 def _refused(tmp_path, capsys, model: str, extra: str, *needles: str) -> None:
     from helpers import one_line_refusal
 

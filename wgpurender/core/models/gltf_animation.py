@@ -155,9 +155,11 @@ def describe(doc: GltfDocument, pose: Pose | None) -> str | None:
                 "time = T (and animation = NAME or INDEX) in the model's [[models]] block") if found else None
     index = choose(doc, pose.animation)
     keys = [times for _, _, times, _, _ in channels(doc, index)]
-    start = min((k[0] for k in keys), default=0.0)
-    end = max((k[-1] for k in keys), default=0.0)
     name = found[index].get("name", "")
+    if not keys:
+        return (f"animation {index}" + (f" '{name}'" if name else "") + ": no channel targets a node (its targets "
+                "are an extension's, e.g. KHR_animation_pointer): ignored, drawn at rest")
+    start, end = min(k[0] for k in keys), max(k[-1] for k in keys)
     line = f"animation {index}" + (f" '{name}'" if name else "") + f" sampled at t = {pose.time:g} s (keys " \
         f"{start:g}..{end:g} s, {len(keys)} channel(s))"
     if not start <= pose.time <= end:
