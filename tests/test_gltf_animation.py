@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from gltf_gen import GltfWriter, scene_text
 from test_gltf_render import PATHS, SIZE, UNLIT, render, write_scene
+from xvfb import xvfb_display  # noqa: F401 - the shared Xvfb fixture "display"
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.models.gltf_animation import Pose
@@ -315,6 +316,29 @@ def test_bent_strip_covers_the_posed_place_not_the_rest_one(ctx, tmp_path, which
     rest_top, _ = _coverage(_strip()[0][:, :2][faces[4:]], SIZE)  # rows 2-4 where the rest pose has them
     assert not np.any(covered & rest_top & ~inside & sure)
     assert np.any(rest_top & ~inside & sure)  # the probe is not empty: the bend moved something
+
+
+@pytest.mark.parametrize("raw", [False, True], ids=["wgpu-window", "raw-window"])
+def test_the_windows_draw_the_posed_strip(display, tmp_path, raw):
+    """``demo`` (both windows) draws the model block's pose: the screenshot covers the bent strip's float64
+    triangles, as the headless image does."""
+    import os
+    import subprocess
+    import sys
+
+    from wgpurender.core.files.imageio import load_png
+
+    _skinned_file(tmp_path)
+    scene = write_scene(tmp_path, "skin.glb", extra="time = 1.0\n")
+    shot = tmp_path / "shot.png"
+    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]), str(scene),
+            "--size", f"{SIZE[0]}x{SIZE[1]}", "--frames", "2", "--screenshot", str(shot)]
+    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    covered = load_png(shot)[..., :3].max(axis=2) > 20
+    _, faces, _ = _strip()
+    inside, sure = _coverage(_posed_strip(1.0)[:, :2][faces], SIZE)
+    assert np.array_equal(covered[sure], inside[sure])
 
 
 @pytest.mark.parametrize("which", PATHS)
