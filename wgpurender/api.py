@@ -236,8 +236,8 @@ def check_static(target: str, t: float | None) -> None:
     """The window draws a scene as its plan poses it (its models' ``time``): a time other than 0 (or None:
     animated) would not change the image, so it is refused."""
     if t:
-        raise UserError(f"scene {str(target)!r} is static: a time ({t:g} s) animates stages only (leave --time out; "
-                        "a scene poses a glTF model's animation with time = T in its [[models]] block)")
+        raise UserError(f"scene {str(target)!r}: the window draws a scene at its models' own time = T ([[models]] "
+                        f"block), so --time {t:g} would change nothing (it freezes a stage's animation; leave it out)")
 
 
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
