@@ -70,8 +70,8 @@ vec3 ibl_radiance(vec3 n, vec3 v, vec3 base, float metallic, float roughness) {
 // A Fresnel-free GGX layer's reflection of the environment (ibl_shading.wgsl's ibl_layer).
 vec3 ibl_layer(vec3 n, vec3 v, float roughness) {
     float n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
-    vec3 r = 2.0 * n_dot_v * n - v;
+    vec3 mirror = 2.0 * n_dot_v * n - v;
     float rough = clamp(roughness, 0.0, 1.0);
     vec2 ab = ibl_table(n_dot_v, rough);
-    return ibl_prefiltered(r, rough) * (ab.x + ab.y);
+    return ibl_prefiltered(mirror, rough) * (ab.x + ab.y);
 }

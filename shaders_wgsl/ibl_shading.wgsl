@@ -76,8 +76,8 @@ fn ibl_radiance(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32) 
 // the split sum with F = 1, prefiltered x (A + B), at the layer's normal and roughness.
 fn ibl_layer(n: vec3f, v: vec3f, roughness: f32) -> vec3f {
     let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
-    let r = 2.0 * n_dot_v * n - v;
+    let mirror = 2.0 * n_dot_v * n - v;
     let rough = clamp(roughness, 0.0, 1.0);
     let ab = ibl_table(n_dot_v, rough);
-    return ibl_prefiltered(r, rough) * (ab.x + ab.y);
+    return ibl_prefiltered(mirror, rough) * (ab.x + ab.y);
 }

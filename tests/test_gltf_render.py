@@ -341,7 +341,7 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
 
 def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     """A material with emissive, occlusion on texCoord 1 (kept lit without lights: it scales the ambient term; the
-    mesh's second coordinate slot), metalness and KHR_materials_sheen; extensionsUsed lists clearcoat and
+    mesh's second coordinate slot), metalness and KHR_materials_sheen; extensionsUsed lists sheen and
     KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
     from wgpurender.cli import main
 

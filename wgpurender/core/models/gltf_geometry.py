@@ -171,10 +171,11 @@ def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
     mat = doc.json.get("materials", [])[material]
     coat = mat.get("extensions", {}).get(gltf_extensions.CLEARCOAT)
     coat = coat if isinstance(coat, dict) else {}
-    infos = [mat.get("normalTexture"), coat.get("clearcoatNormalTexture"),
-             mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"),
+    infos = [mat.get("normalTexture"), mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
-             mat.get("occlusionTexture"), coat.get("clearcoatTexture"), coat.get("clearcoatRoughnessTexture")]
+             mat.get("occlusionTexture")]
+    infos[1:1] = [coat.get("clearcoatNormalTexture")]  # the other normal map: right after the base's
+    infos += [coat.get("clearcoatTexture"), coat.get("clearcoatRoughnessTexture")]
     spec_gloss = mat.get("extensions", {}).get("KHR_materials_pbrSpecularGlossiness")  # converted at load
     if isinstance(spec_gloss, dict):  # (core/scene/gltf_specgloss.py): sampled on diffuse's coordinates, else its own
         infos += [spec_gloss.get("diffuseTexture"), spec_gloss.get("specularGlossinessTexture")]

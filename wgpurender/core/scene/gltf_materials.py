@@ -58,8 +58,8 @@ ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map
          "clearcoat_map": ("extensions", CLEARCOAT, "clearcoatTexture"),
          "clearcoat_roughness_map": ("extensions", CLEARCOAT, "clearcoatRoughnessTexture"),
          "clearcoat_normal_map": ("extensions", CLEARCOAT, "clearcoatNormalTexture")}
-SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength", gltf_specgloss.EXTENSION,
-                                 CLEARCOAT)
+SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength", gltf_specgloss.EXTENSION)
+SUPPORTED_MATERIAL_EXTENSIONS += (CLEARCOAT,)
 # extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
 USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
 
