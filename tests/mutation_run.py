@@ -33,6 +33,10 @@ EXT = "tests/test_gltf_extensions.py"
 FBX = "tests/test_fbx.py"
 KHRONOS = "tests/test_khronos_samples.py"
 HELDOUT = "tests/test_heldout_khronos.py"
+CC = "tests/test_clearcoat.py"
+CC_PIXELS, CC_TEXTURES, CC_IBL = CC + "|pixels_match", CC + "|textures", CC + "|environment"
+CC_PLAN = CC + "|pays or required or sixth"
+CC_WGSL, CC_GLSL = "shaders_wgsl/clearcoat.wgsl", "shaders_glsl/clearcoat.glsl"
 # the files issue 30's rows mutate
 G_EXT = "wgpurender/core/models/gltf_extensions.py"
 G_PACK = "wgpurender/core/models/gltf_compression.py"
@@ -1304,6 +1308,67 @@ MUTATIONS = [
      "embedded_image_bytes(path)", [SPECGLOSS]),
     (SG, "for top in range(0, height, BAND_ROWS):", "for top in range(0, height - 1, BAND_ROWS):", [SPECGLOSS]),
     (SG, "band = {k: t[top:top + BAND_ROWS] for", "band = {k: t[top:top + 1] for", [SPECGLOSS]),
+    # clearcoat (KHR_materials_clearcoat): the shaders on both paths, the plan, the loader
+    (CC_WGSL, "let x = 1.0 - clamp(abs(dot(nc, v)), 0.0, 1.0);", "let x = clamp(abs(dot(nc, v)), 0.0, 1.0);",
+     [CC_PIXELS]),
+    (CC_WGSL, "    return PBR_PI * specular * irradiance * n_dot_l;", "    return PBR_PI * specular * irradiance;",
+     [CC_PIXELS]),
+    (CC_WGSL, "    let alpha = r * r;", "    let alpha = r;", [CC_PIXELS]),
+    (CC_WGSL, "let h = select(nc, sum * inverseSqrt(len2), len2 > 1e-20);", "let h = nc;", [CC_PIXELS]),
+    (CC_GLSL, "float x = 1.0 - clamp(abs(dot(nc, v)), 0.0, 1.0);", "float x = 1.0 - clamp(dot(nc, v), 0.5, 1.0);",
+     [CC_PIXELS]),
+    (CC_GLSL, "    return PBR_PI * specular * irradiance * n_dot_l;", "    return specular * irradiance * n_dot_l;",
+     [CC_PIXELS]),
+    (CC_GLSL, "    float alpha = r * r;", "    float alpha = r * r * r;", [CC_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "    color = color * clearcoat_base_weight + coat * coat_weight;",
+     "    color = color + coat * coat_weight;", [CC_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "    var coat = camera.ambient.rgb;", "    var coat = vec3f(0.0);", [CC_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, light.radiance.rgb);",
+     "coat += clearcoat_radiance(nc, l, v, roughness, light.radiance.rgb);", [CC_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "let coat_weight = clamp(clearcoat_weight, 0.0, 1.0) * clearcoat_fresnel(nc, v);",
+     "let coat_weight = clamp(clearcoat_weight, 0.0, 1.0);", [CC_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "    color = color + emitted * clearcoat_base_weight;  // the coat",
+     "    color = color + emitted;  // the coat", [CC_PIXELS]),
+    ("shaders_wgsl/scene.wgsl", "clearcoat_sampler, in.{{CLEARCOAT_UV}}).r;",
+     "clearcoat_sampler, in.{{CLEARCOAT_UV}}).g;", [CC_TEXTURES]),
+    ("shaders_wgsl/scene.wgsl", "in.{{CLEARCOAT_ROUGHNESS_UV}}).g;", "in.uv).g;", [CC_TEXTURES]),
+    ("shaders_wgsl/scene.wgsl", "clearcoat_normal_texel, material.clearcoat_normal_scale);",
+     "clearcoat_normal_texel, material.normal_strength);", [CC_TEXTURES]),
+    ("shaders_wgsl/scene.wgsl", "    var coat = ibl_layer(nc, v, clearcoat_rough);",
+     "    var coat = ibl_layer(nc, v, 0.0);", [CC_IBL]),
+    ("shaders_wgsl/ibl_shading.wgsl", "return ibl_prefiltered(mirror, rough) * (ab.x + ab.y);",
+     "return ibl_prefiltered(mirror, rough) * ab.x;", [CC_IBL]),
+    ("shaders_glsl/ibl_shading.glsl", "return ibl_prefiltered(mirror, rough) * (ab.x + ab.y);",
+     "return ibl_prefiltered(mirror, rough) * (ab.x + ab.x);", [CC_IBL]),
+    ("shaders_glsl/scene.frag", "    color = color * clearcoat_base_weight + coat * coat_weight;",
+     "    color = color * (1.0 - clearcoat_weight) + coat * coat_weight;", [CC_PIXELS]),
+    ("shaders_glsl/scene.frag", "clearcoat_weight * texture(clearcoat_tex, CLEARCOAT_UV).r;",
+     "clearcoat_weight * texture(clearcoat_tex, v_uv).a;", [CC_TEXTURES]),
+    ("shaders_glsl/scene.frag", "mapped_normal(n, clearcoat_normal_texel, material.clearcoat_normal_scale);",
+     "mapped_normal(n, clearcoat_normal_texel, 1.0);", [CC_TEXTURES]),
+    ("wgpurender/core/plan/clearcoat.py", "    if material.clearcoat <= 0:", "    if material.clearcoat < 0:",
+     [CC_PLAN]),
+    ("wgpurender/core/plan/clearcoat.py", "(material.clearcoat, material.clearcoat_roughness, material.",
+     "(material.clearcoat_roughness, material.clearcoat, material.", [CC_PIXELS]),
+    ("wgpurender/core/plan/model.py", 'TANGENT_FEATURES = frozenset({"normal_map", "clearcoat_normal_map"})',
+     'TANGENT_FEATURES = frozenset({"normal_map"})', [CC_TEXTURES]),
+    ("wgpurender/raw_path/scene/variants.py", 'if "tangent" in variant.vertex_attributes:  # a normal map',
+     'if "normal_map" in variant.flags:  # a normal map', [CC_TEXTURES]),
+    ("wgpurender/wgpu_path/scene/shader_interface.py", '("clearcoat", "clearcoat_roughness", F32),\n',
+     '("clearcoat", "clearcoat_normal_scale", F32),\n', [CC_PIXELS]),
+    ("wgpurender/raw_path/device/uniforms.py", "values += list(clearcoat) if clearcoat is not None else []",
+     "values += list(clearcoat)[::-1] if clearcoat is not None else []", [CC_PIXELS]),
+    ("wgpurender/core/course/shading.py", '("clearcoat", "clearcoat_roughness", "clearcoat_normal_scale"), clearcoat',
+     '("clearcoat_roughness", "clearcoat", "clearcoat_normal_scale"), clearcoat', [CC_PIXELS]),
+    (G_MAT, '"clearcoat_roughness": float(ext.get("clearcoatRoughnessFactor", 0.0)),',
+     '"clearcoat_roughness": float(ext.get("clearcoatRoughnessFactor", 1.0)),', [CC_PLAN]),
+    (G_MAT, '"clearcoat_normal_scale": float(normal.get("scale", 1.0))}',
+     '"clearcoat_normal_scale": float(normal.get("scale", 0.5))}', [CC_PLAN]),
+    (G_MAT, "    if unlit:  # the extension's exclusions", "    if False:  # the extension's exclusions", [CC_PLAN]),
+    (G_MAT, "SUPPORTED_MATERIAL_EXTENSIONS += (CLEARCOAT,)", "SUPPORTED_MATERIAL_EXTENSIONS += ()", [CC_PLAN]),
+    (G_GEOM, "        if len(slots) == MAX_UV_SLOTS:", "        if len(slots) == MAX_UV_SLOTS + 1:", [CC_PLAN]),
+    (G_EXT, "                                CLEARCOAT,  # shaders_wgsl/clearcoat.wgsl",
+     "                                # shaders_wgsl/clearcoat.wgsl", [CC_PLAN]),
 ]
 
 

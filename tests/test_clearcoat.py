@@ -248,7 +248,7 @@ def test_only_the_coated_material_pays_and_explain_says_so(tmp_path, capsys):
     (tmp_path / "scene.toml").write_text(SCENE + LIGHT.format(direction=[0, 0, -1], intensity=1.0))
     assert main(["render", str(tmp_path / "scene.toml"), "--explain", "-o", str(tmp_path / "out.png")]) == 0
     out = capsys.readouterr().out
-    assert "'m0': KHR_materials_clearcoat, clearcoatFactor 0.7" in out
+    assert "'m0': KHR_materials_clearcoat, clearcoatFactor 0.7, clearcoatRoughnessFactor 0:" in out  # its default
     assert "clearcoatTexture (R channel x clearcoatFactor)" in out
     assert "'m1': KHR_materials_clearcoat with clearcoatFactor 0: no coat" in out
     pipelines = [line for line in out.splitlines() if "| rgba8unorm-srgb x1 |" in line and "<-" not in line]
@@ -310,3 +310,4 @@ def test_a_sixth_coordinate_choice_is_ignored_by_name(tmp_path):
     assert any("clearcoatTexture ignored: it samples a sixth distinct texture coordinate choice" in line
                for line in ignored), ignored
     assert max(k for _, k, _ in material.uv_slots) == 4
+    assert material.clearcoat_normal_scale == 1.0  # normalTextureInfo's default scale
