@@ -311,3 +311,60 @@ def test_a_sixth_coordinate_choice_is_ignored_by_name(tmp_path):
                for line in ignored), ignored
     assert max(k for _, k, _ in material.uv_slots) == 4
     assert material.clearcoat_normal_scale == 1.0  # normalTextureInfo's default scale
+
+
+# -- the most a material can bind --------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("instance_data", ["storage", "vertex"])
+def test_every_map_at_once_fits_both_paths_limits(ctx, tmp_path, instance_data):
+    """The largest material group: all eight textures with their eight samplers (WebGPU's default limits are 16 of
+    each a stage) and the environment's storage buffer, on five coordinate slots (uv, uv1-uv4: with the seven
+    per-instance attributes of instance_data "vertex" that is all 16 vertex attributes); the coat's factors in the
+    push constants (lavapipe: 128 bytes). Both paths draw it without a validation error (tests/conftest.py) and
+    alike, and the plan counts the bindings."""
+    from wgpurender.core.files.hdr_io import encode_hdr
+    from wgpurender.core.plan.model import TEXTURE_FEATURES
+    from wgpurender.raw_path.scene.scene_subpass import material_block_size
+
+    (tmp_path / "sky.hdr").write_bytes(encode_hdr(np.full((8, 16, 3), SKY)))
+    g = GltfWriter()
+    tex = g.texture(np.array([[[200, 120, 220, 255], [90, 200, 128, 255]]], np.uint8))
+
+    def info(k: int, texcoord: int = 0) -> dict:
+        return {"index": tex, "texCoord": texcoord,
+                "extensions": {"KHR_texture_transform": {"offset": [0.25 * k, 0.0]}}}
+
+    coat = {"clearcoatFactor": 0.8, "clearcoatRoughnessFactor": 0.4, "clearcoatTexture": info(3),
+            "clearcoatRoughnessTexture": info(4, 1), "clearcoatNormalTexture": info(0)}
+    mat = g.material(normalTexture=info(0), occlusionTexture=info(1), emissiveTexture=info(2),
+                     emissiveFactor=[0.1, 0.1, 0.0], alphaMode="MASK", doubleSided=True,
+                     pbrMetallicRoughness={"baseColorTexture": info(1), "metallicRoughnessTexture": info(2)},
+                     extensions={COAT: coat})
+    uvs = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], np.float32)
+    normals = np.tile(np.float32([0, 0, 1]), (4, 1))
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-HALF, -HALF, HALF, HALF)),
+                                        "NORMAL": g.accessor(normals), "TEXCOORD_0": g.accessor(uvs),
+                                        "TEXCOORD_1": g.accessor(uvs[::-1].copy()), "COLOR_0": g.accessor(
+                                            np.tile(np.float32([1, 0.9, 0.8, 1]), (4, 1)))},
+                         "indices": g.accessor(QUAD_INDICES), "material": mat}]))
+    g.doc["extensionsUsed"] = [COAT, "KHR_texture_transform"]
+    g.write(tmp_path / "plane.glb")
+    direction = [-float(c) for c in ref.unit(TOWARDS_VIEW)]
+    (tmp_path / "scene.toml").write_text(SCENE + '\n[environment]\nhdr = "sky.hdr"\n'
+                                         + LIGHT.format(direction=direction, intensity=INTENSITY))
+    from wgpurender.core.plan import Knobs
+    from wgpurender.core.plan.build import build_plan
+    from wgpurender.core.scene import load_scene
+    from wgpurender.raw_path.scene import render_scene_reference
+    from wgpurender.wgpu_path.scene import render_scene_file
+
+    knobs = {"post_path": "fragment", "instance_data": instance_data}
+    plan = build_plan(load_scene(tmp_path / "scene.toml"), size=SIZE, knobs=Knobs(**knobs))
+    (variant,) = plan.variants
+    assert set(TEXTURE_FEATURES) <= variant.flags and {"ibl", "clearcoat", "vertex_color"} <= variant.flags
+    assert len(variant.vertex_attributes) == 9  # position, normal, uv, tangent, color, uv1-uv4
+    assert material_block_size(variant) <= 128
+    wgpu = render_scene_file(tmp_path / "scene.toml", size=SIZE, ctx=ctx, frames=1, knobs=knobs).pixels
+    raw = render_scene_reference(tmp_path / "scene.toml", size=SIZE)
+    assert np.array_equal(wgpu, raw)
+    assert wgpu[..., :3].std() > 5  # the textures show

@@ -1,7 +1,9 @@
 """Per-tile contrast of the three clearcoat rows of TextureTransformMultiTest (192 px frame)."""
 import sys
+
 import numpy as np
 from PIL import Image
+
 COLS = {"UV 0": 96, "UV 1": 110, "Sample": 124}  # left edge, 12 px wide
 ROWS = {"Clearcoat": 121, "Clearcoat Rough": 135, "Clearcoat Normal": 149}
 for path in sys.argv[1:]:
