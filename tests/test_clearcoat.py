@@ -381,7 +381,7 @@ def test_the_browser_draws_the_coat_as_wgpu_native_does(ctx, tmp_path):
     immediates there: the material in a uniform buffer), drawn by headless Chromium on SwiftShader, compile without
     an error. A plain coat (the coat1_rough1 case) draws within 2/255 of wgpu-native (measured 1/255 here); the
     every-map material differs by more than 2/255 on at most 2% of its pixels (measured 0.95%, up to 9/255, all in
-    the bottom six rows: SwiftShader's filtering of the 2-texel textures, not the coat)."""
+    the bottom six rows; why there was not investigated)."""
     from wgpurender.webpage import export
     from wgpurender.webpage.chromium import Chromium, find_chromium
     from wgpurender.wgpu_path.scene import render_scene_file
