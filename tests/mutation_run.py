@@ -1369,6 +1369,8 @@ MUTATIONS = [
     (G_GEOM, "        if len(slots) == MAX_UV_SLOTS:", "        if len(slots) == MAX_UV_SLOTS + 1:", [CC_PLAN]),
     (G_EXT, "                                CLEARCOAT,  # shaders_wgsl/clearcoat.wgsl",
      "                                # shaders_wgsl/clearcoat.wgsl", [CC_PLAN]),
+    ("shaders_wgsl/scene.wgsl", "    coat = coat * ambient_occlusion;", "    coat = coat * 1.0;", [CC_IBL]),
+    ("shaders_glsl/scene.frag", "    coat = coat * ambient_occlusion;", "    coat = coat * 1.0;", [CC_IBL]),
 ]
 
 

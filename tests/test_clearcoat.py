@@ -193,23 +193,26 @@ def test_textures_weight_roughness_and_normal_from_the_file(ctx, tmp_path):
 SKY = 0.6  # a uniform environment: every prefiltered texel is SKY, so the split sums alone shape the image
 
 
-@pytest.mark.parametrize("coat_roughness", [0.0, 0.5, 1.0])
-def test_environment_lights_the_coat_with_its_split_sum(ctx, tmp_path, coat_roughness):
+@pytest.mark.parametrize(("coat_roughness", "occlusion"), [(0.0, None), (0.5, None), (1.0, None), (0.5, 128)])
+def test_environment_lights_the_coat_with_its_split_sum(ctx, tmp_path, coat_roughness, occlusion):
     """No lights, a uniform sky of radiance SKY: a black dielectric reflects SKY x S(0.04) of its roughness, the coat
     SKY x S(1) of its own (S: tests/pbr_reference.split_sum, the hemisphere integral of F D V n.l, by its own
-    quadrature), mixed by clearcoat x Fc. Tolerance: the renderer's 32x32 table of 256 Hammersley samples against
-    the integral, 2% of the coat's term, plus 2/255."""
+    quadrature), mixed by clearcoat x Fc; an occlusion texel R (strength 1) scales both by R / 255. Tolerance: the
+    renderer's 32x32 table of 256 Hammersley samples against the integral, 2% of the coat's term, plus 2/255."""
     from wgpurender.core.files.hdr_io import encode_hdr
 
     (tmp_path / "sky.hdr").write_bytes(encode_hdr(np.full((8, 16, 3), SKY)))
     g = GltfWriter()
+    occluded = {} if occlusion is None else {
+        "occlusionTexture": {"index": g.texture(np.array([[[occlusion, 0, 0, 255]]], np.uint8))}}
     mat = g.material(pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1.0], "metallicFactor": 0.0,
-                                           "roughnessFactor": 1.0},
+                                           "roughnessFactor": 1.0}, **occluded,
                      extensions={COAT: {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": coat_roughness}})
     normals = np.tile(np.float32([0, 0, 1]), (4, 1))
+    uvs = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], np.float32)
     g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(quad(-HALF, -HALF, HALF, HALF)),
-                                        "NORMAL": g.accessor(normals)}, "indices": g.accessor(QUAD_INDICES),
-                         "material": mat}]))
+                                        "NORMAL": g.accessor(normals), "TEXCOORD_0": g.accessor(uvs)},
+                         "indices": g.accessor(QUAD_INDICES), "material": mat}]))
     g.write(tmp_path / "plane.glb")
     (tmp_path / "scene.toml").write_text(SCENE + '\n[environment]\nhdr = "sky.hdr"\n')
     image = render_both(ctx, tmp_path)
@@ -219,7 +222,7 @@ def test_environment_lights_the_coat_with_its_split_sum(ctx, tmp_path, coat_roug
     base = np.array([SKY * ref.split_sum(c, 1.0, 0.04) for c in n_dot_v])
     coat = np.array([SKY * ref.split_sum(c, coat_roughness, 1.0) for c in n_dot_v])
     w = ref.clearcoat_fresnel(n, v.reshape(-1, 3)[pick])
-    want = base * (1 - w) + coat * w
+    want = (base * (1 - w) + coat * w) * (1.0 if occlusion is None else occlusion / 255)
     got = image.reshape(-1, 3)[pick]
     low, high = (np.round(srgb_encode(want * k) * 255) for k in (0.98, 1.02))
     assert np.all((got >= low[:, None] - 2) & (got <= high[:, None] + 2)), (got[:, 0], low, high)
