@@ -1371,6 +1371,10 @@ MUTATIONS = [
      "                                # shaders_wgsl/clearcoat.wgsl", [CC_PLAN]),
     ("shaders_wgsl/scene.wgsl", "    coat = coat * ambient_occlusion;", "    coat = coat * 1.0;", [CC_IBL]),
     ("shaders_glsl/scene.frag", "    coat = coat * ambient_occlusion;", "    coat = coat * 1.0;", [CC_IBL]),
+    ("shaders_wgsl/scene.wgsl", "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, irradiance);",
+     "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, light.radiance.rgb);", [CC + "|point"]),
+    ("shaders_glsl/scene.frag", "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, irradiance);",
+     "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, camera.point[i].radiance.rgb);", [CC + "|point"]),
 ]
 
 

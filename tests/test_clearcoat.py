@@ -134,6 +134,26 @@ def test_pixels_match_the_float64_layering_on_both_paths(ctx, tmp_path, case):
     assert_matches(image, *layered(*CASES[case]), what=case)
 
 
+POINT = (0.4, 0.3, 0.8)  # a point light close above the plane: l and the irradiance change across the image
+
+
+def test_a_point_light_lights_the_coat(ctx, tmp_path):
+    """A point light of intensity 0.5 at POINT (irradiance 0.5 / d^2, scene.wgsl's header) over a coat of roughness
+    0.15 on a rough metal: each pixel's l and E from its own hit point, against the float64 layering."""
+    write_plane(tmp_path, {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.15}, 1.0, 0.8)
+    (tmp_path / "scene.toml").write_text(SCENE + f'\n[[lights]]\ntype = "point"\nposition = {list(POINT)}\n'
+                                         'intensity = 0.5\n')
+    image = render_both(ctx, tmp_path)
+    n, v, inner = plane_view()
+    hits = ref.plane_hits(EYE, ref.pixel_rays(SIZE, 90.0), n)
+    to_light = np.asarray(POINT) - hits
+    irradiance = (0.5 / np.sum(to_light * to_light, -1))[..., None]
+    ambient = np.asarray(course_constant("AMBIENT"))
+    base = ref.radiance(n, to_light, v, BASE, 1.0, 0.8, irradiance) + ambient * np.asarray(BASE)
+    coat = ref.coat_radiance(n, to_light, v, 0.15, irradiance) + ambient
+    assert_matches(image, ref.coated(base, coat, n, v, 1.0), inner, what="point light")
+
+
 # grazing_light is there for the numbers (n.l = 0.02 on both layers: nothing may blow up), too faint to tell a coat
 @pytest.mark.parametrize("case", [c for c in CASES if CASES[c][0] > 0 and c != "grazing_light"])
 def test_each_coated_case_differs_from_the_bare_material(case):
