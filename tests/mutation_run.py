@@ -1375,6 +1375,10 @@ MUTATIONS = [
      "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, light.radiance.rgb);", [CC + "|point"]),
     ("shaders_glsl/scene.frag", "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, irradiance);",
      "coat += clearcoat_radiance(nc, l, v, clearcoat_rough, camera.point[i].radiance.rgb);", [CC + "|point"]),
+    ("wgpurender/core/models/gltf_schema.py", '"clearcoatFactor": NONNEG, "clearcoatTexture": TEXTURE_INFO,',
+     '"clearcoatFactor": NUM, "clearcoatTexture": TEXTURE_INFO,', [CC + "|malformed"]),
+    ("wgpurender/core/models/gltf_schema.py", '"clearcoatRoughnessFactor": NONNEG, "clearcoatRoughnessTexture": TE',
+     '"clearcoatRoughnessFactor": NONNEG, "clearcoatRoughnessTexture": Obj({}), "unused": TE', [CC + "|malformed"]),
 ]
 
 

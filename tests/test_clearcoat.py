@@ -304,6 +304,29 @@ def test_a_file_that_requires_clearcoat_is_accepted_and_unlit_ignores_it(tmp_pat
     assert "KHR_materials_clearcoat: ignored (KHR_materials_unlit draws the base colour only)" in out
 
 
+@pytest.mark.parametrize(("coat", "says"), [
+    ({"clearcoatFactor": "1"}, "clearcoatFactor"),
+    ({"clearcoatFactor": -0.5}, "clearcoatFactor"),
+    ({"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": [0.1]}, "clearcoatRoughnessFactor"),
+    ({"clearcoatFactor": 1.0, "clearcoatTexture": {"index": 7}}, "clearcoatTexture"),
+    ({"clearcoatFactor": 1.0, "clearcoatNormalTexture": {"index": 0, "scale": "x"}}, "scale"),
+    ({"clearcoatFactor": 1.0, "clearcoatRoughnessTexture": {"texCoord": 0}}, "clearcoatRoughnessTexture"),
+])
+def test_a_malformed_coat_is_one_line_and_exit_2(tmp_path, capsys, coat, says):
+    """Wrong types, a negative factor, a texture that does not exist, a textureInfo without its index: one line
+    naming the member, exit 2, no traceback."""
+    from wgpurender.cli import main
+
+    g = GltfWriter()
+    g.texture(WEIGHT_TEXELS)  # texture 0 exists
+    write_plane(tmp_path, coat, 0.0, 0.5, g=g)
+    (tmp_path / "scene.toml").write_text(SCENE + LIGHT.format(direction=[0, 0, -1], intensity=1.0))
+    assert main(["render", str(tmp_path / "scene.toml"), "-o", str(tmp_path / "out.png")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "Traceback" not in err and says in err, err
+    assert not (tmp_path / "out.png").exists()
+
+
 def test_a_sixth_coordinate_choice_is_ignored_by_name(tmp_path):
     """Eight textures on six distinct (set, transform) choices: the mesh carries five slots (the vertex stage's 16
     attributes), the last texture is listed as ignored and not sampled."""
