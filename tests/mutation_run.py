@@ -1447,6 +1447,9 @@ MUTATIONS = [
      '"clearcoatFactor": NUM, "clearcoatTexture": TEXTURE_INFO,', [CC + "|malformed"]),
     ("wgpurender/core/models/gltf_schema.py", '"clearcoatRoughnessFactor": NONNEG, "clearcoatRoughnessTexture": TE',
      '"clearcoatRoughnessFactor": NONNEG, "clearcoatRoughnessTexture": Obj({}), "unused": TE', [CC + "|malformed"]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "self.material_stride = max(s.stride(self.alignment) for s in structs)",
+     "self.material_stride = L.MATERIAL.stride(self.alignment)", [CC + "|gl_backend"]),
 ]
 
 
