@@ -1520,6 +1520,19 @@ MUTATIONS = [
     ("wgpurender/api.py", "anisotropy=anisotropy, time=t, **knobs)", "anisotropy=anisotropy, **knobs)", [ANIM_T]),
     ("wgpurender/cli/render.py", "api.explain(args.target, t=args.time, **flags)", "api.explain(args.target, **flags)",
      [ANIM_T]),
+    # a file camera and a file's lights on animated nodes follow the time (integrator)
+    ("wgpurender/core/scene/gltf_cameras.py", "doc = gltf_animation.posed(document(str(model.path)), model.pose)",
+     "doc = document(str(model.path))", [ANIM_T]),
+    ("wgpurender/core/scene/gltf_lights.py", "doc = gltf_animation.posed(document(str(model.path)), model.pose)",
+     "doc = document(str(model.path))", [ANIM_T]),
+    ("wgpurender/core/scene/model_motion.py", "        camera = file_camera(models[model], index)",
+     "        pass", [ANIM_T]),
+    ("wgpurender/core/scene/model_motion.py", "    own = tuple(light for light in scene.lights if not light.origin)",
+     "    own = tuple(scene.lights)", [ANIM_T]),
+    ("wgpurender/core/scene/model_motion.py", "lights=scene_lights(own, models, scene.path))",
+     "lights=scene.lights)", [ANIM_T]),
+    ("wgpurender/core/scene/gltf_cameras.py", "file_camera=(model.index, index), **projection)",
+     "**projection)", [ANIM_T]),
 ]
 
 

@@ -530,3 +530,60 @@ def test_an_animated_node_with_a_matrix_is_one_line(tmp_path):
     with pytest.raises(UserError, match="targets node 0, which has a matrix"):
         _positions_at(path, 0.5)
 
+
+
+# -- what the file's animated nodes place: its camera and its lights follow the time ------------------------------
+
+CAMERA_KEYS = ([0.0, 1.0], [[0.0, 0.0, 2.0], [0.0, 0.0, 6.0]])  # the camera node slides back along +z
+LIGHT_KEYS = ([0.0, 1.0], [[1.0, 0.0, 1.0], [3.0, 0.0, 1.0]])  # the lamp slides along +x
+
+
+def _camera_and_lamp_file(tmp_path):
+    """A triangle, a perspective camera and a KHR point light, the camera's and the lamp's nodes animated by one
+    animation (LINEAR translation channels with CAMERA_KEYS and LIGHT_KEYS)."""
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
+    g.node(camera=0, translation=CAMERA_KEYS[1][0])
+    g.node(extensions={"KHR_lights_punctual": {"light": 0}}, translation=LIGHT_KEYS[1][0])
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 50.0}}]
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 3.0}]}}
+    samplers = [{"input": g.accessor(np.asarray(times, np.float32)), "output": g.accessor(np.asarray(v, np.float32))}
+                for times, v in (CAMERA_KEYS, LIGHT_KEYS)]
+    g.doc["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}},
+                                         {"sampler": 1, "target": {"node": 2, "path": "translation"}}],
+                            "samplers": samplers}]
+    g.write(tmp_path / "rig.gltf")
+    scene = tmp_path / "rig.toml"
+    scene.write_text("[camera]\nfrom_model = 0\n\n[render]\nsize = [32, 32]\n\n"
+                     '[[lights]]\ntype = "point"\nposition = [0, 5, 0]\n\n[[models]]\npath = "rig.gltf"\ntime = 0.5\n')
+    return scene
+
+
+def _lerp(keys, t: float) -> np.ndarray:
+    (t0, t1), (a, b) = keys
+    s = min(max((t - t0) / (t1 - t0), 0.0), 1.0)
+    return (1 - s) * np.asarray(a) + s * np.asarray(b)
+
+
+@pytest.mark.parametrize("t", [None, 0.25, 2.0])
+def test_a_file_camera_and_lights_on_animated_nodes_are_placed_at_the_time(tmp_path, t):
+    """The block's time (0.5), and --time overriding it (0.25; 2.0 clamps to the last key): the view's eye and the
+    file lamp's position are the nodes' translations at that time; the scene's own light stays where it is."""
+    from wgpurender.core.plan.resolve import resolve_plan
+
+    plan = resolve_plan(_camera_and_lamp_file(tmp_path), None, time=t)
+    at = 0.5 if t is None else t
+    np.testing.assert_allclose(plan.scene.camera.eye, _lerp(CAMERA_KEYS, at), atol=1e-6)
+    own, lamp = plan.scene.lights
+    np.testing.assert_allclose(own.position, (0.0, 5.0, 0.0))
+    np.testing.assert_allclose(lamp.position, _lerp(LIGHT_KEYS, at), atol=1e-6)
+
+
+def test_camera_flag_views_from_the_animated_node_at_the_time(tmp_path):
+    from wgpurender.core.plan.resolve import resolve_plan
+
+    scene = _camera_and_lamp_file(tmp_path)
+    scene.write_text(scene.read_text().replace("from_model = 0\n", "eye = [0, 0, 9]\ntarget = [0, 0, 0]\n"))
+    plan = resolve_plan(scene, None, time=0.75, camera=0)
+    np.testing.assert_allclose(plan.scene.camera.eye, _lerp(CAMERA_KEYS, 0.75), atol=1e-6)

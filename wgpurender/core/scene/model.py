@@ -40,7 +40,8 @@ class Camera:
     A model file's camera (``[camera] from_model``, core/scene/gltf_cameras.py) fills the same fields from its node
     and numbers, and may add what a scene's own camera never has: ``far = inf`` (a perspective camera without
     zfar), the file's ``aspect_ratio`` (None: the target's), an ``orthographic`` projection of half-extents
-    ``xmag`` and ``ymag``, and ``origin`` (which file camera it is, for ``--explain``).
+    ``xmag`` and ``ymag``, ``origin`` (which file camera it is, for ``--explain``) and ``file_camera`` ((model
+    index, camera index): placed again when ``--time`` poses the model).
     """
 
     eye: Vec3
@@ -55,6 +56,7 @@ class Camera:
     ymag: float = 1.0
     aspect_ratio: float | None = None
     origin: str = ""
+    file_camera: tuple[int, int] | None = None
 
     def view(self) -> np.ndarray:
         return transforms.look_at(self.eye, self.target, self.up)

@@ -44,4 +44,18 @@ def at_time(scene: Scene, t: float) -> Scene:
         raise UserError(f"scene {str(scene.path)!r} is static: none of its models is a glTF file with an animation, so "
                         f"a time ({t:g} s) would change nothing (leave --time out; it animates stages and glTF "
                         "animations)")
-    return dataclasses.replace(scene, models=tuple(models))
+    return placed_again(scene, tuple(models))
+
+
+def placed_again(scene: Scene, models: tuple[Model, ...]) -> Scene:
+    """``scene`` with ``models`` (newly posed) and what their nodes place placed again at the new pose: the view
+    when it is a file camera, and the models' KHR_lights_punctual lights (the scene's own lights stay)."""
+    from wgpurender.core.scene.gltf_cameras import file_camera
+    from wgpurender.core.scene.gltf_lights import scene_lights
+
+    camera = scene.camera
+    if camera.file_camera is not None:
+        model, index = camera.file_camera
+        camera = file_camera(models[model], index)
+    own = tuple(light for light in scene.lights if not light.origin)  # a model's lights carry their origin
+    return dataclasses.replace(scene, models=models, camera=camera, lights=scene_lights(own, models, scene.path))
