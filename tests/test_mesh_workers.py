@@ -50,7 +50,7 @@ def _cubes(folder, n):
 
 def _meshes(plan):
     meshes = PlanMeshes(plan)
-    return [meshes.mesh(d.model_path) for d in plan.scene_pass.draws]
+    return [meshes.mesh(d.mesh_key) for d in plan.scene_pass.draws]
 
 
 def _same(a, b) -> None:

@@ -60,17 +60,18 @@ def entry_path(where: Path, key: str) -> Path:
     return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.mesh"
 
 
-def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, pose=None) -> Mesh:
     """:func:`wgpurender.core.models.mesh.load_mesh` through the parse cache: what a scene's models load with
     (core/plan/meshes.py). An OBJ file gets load_mesh's checks (a readable regular file within the size limit),
-    then its mesh from :func:`load`; any other file, or an OBJ the simple reader does not take, load_mesh's."""
+    then its mesh from :func:`load`; any other file (or pose: glTF animation), or an OBJ the simple reader does
+    not take, load_mesh's."""
     path = Path(path)
-    if path.suffix.lower() == ".obj":
+    if path.suffix.lower() == ".obj" and pose is None:  # a pose is a glTF animation's: never an OBJ's
         check_file_size(input_file(path, "model file"), "model file")
         found = load(path, generate_tangents, folder())
         if found is not None:
             return found
-    return mesh.load_mesh(path, generate_tangents=generate_tangents)
+    return mesh.load_mesh(path, generate_tangents=generate_tangents, pose=pose)
 
 
 def load(path: Path, generate_tangents: bool, where: Path | None) -> Mesh | None:

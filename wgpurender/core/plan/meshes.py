@@ -8,8 +8,6 @@ buffers (wgpu_path/scene/resources.py, raw_path/scene/resources.py).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from wgpurender.core.errors import UserError
 from wgpurender.core.models.mesh import Mesh, index_range
 from wgpurender.core.models.obj_cached import load_mesh
@@ -21,36 +19,39 @@ class PlanMeshes:
 
     def __init__(self, plan: RenderPlan) -> None:
         self.plan = plan
-        self._meshes: dict[Path, Mesh] = {}
-        self._needs_tangents = {d.model_path for d in plan.scene_pass.draws
+        self._meshes: dict[tuple, Mesh] = {}
+        self._needs_tangents = {d.mesh_key for d in plan.scene_pass.draws
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
 
-    def mesh(self, path: Path) -> Mesh:
-        """The loaded mesh; tangents only when a variant drawing it has a normal map. With worker processes in
-        the plan (``mesh_workers``), the first call reads every OBJ file of the plan through them."""
-        if path not in self._meshes:
+    def mesh(self, key: tuple) -> Mesh:
+        """The loaded mesh of a draw's ``mesh_key`` (its file and pose); tangents only when a variant drawing it
+        has a normal map. With worker processes in the plan (``mesh_workers``), the first call reads every OBJ
+        file of the plan through them."""
+        if key not in self._meshes:
             if self.plan.mesh_workers and not self._meshes:
                 self._read_in_workers()
-            if path not in self._meshes:  # through the parse cache (core/models/obj_cached.py)
-                self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
-        return self._meshes[path]
+            if key not in self._meshes:  # through the parse cache (core/models/obj_cached.py)
+                path, pose = key
+                self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose)
+        return self._meshes[key]
 
     def _read_in_workers(self) -> None:
         """The plan's OBJ files, in draw order, read by core/models/mesh_workers.py; a file that is not a simple
         OBJ is left to :func:`load_mesh` (the general loader)."""
         from wgpurender.core.models import mesh_workers, obj_cached
 
-        paths = dict.fromkeys(d.model_path for d in self.plan.scene_pass.draws if d.model_path.suffix.lower() == ".obj")
-        jobs = [(p, p in self._needs_tangents) for p in paths]
+        keys = dict.fromkeys(d.mesh_key for d in self.plan.scene_pass.draws
+                             if d.model_path.suffix.lower() == ".obj" and d.pose is None)
+        jobs = [(key[0], key in self._needs_tangents) for key in keys]
         for (path, _), mesh in mesh_workers.load_all(jobs, self.plan.mesh_workers, obj_cached.folder()).items():
             if mesh is not None:
-                self._meshes[path] = mesh
+                self._meshes[(path, None)] = mesh
 
     def mesh_for(self, draw: Draw) -> Mesh:
         """The draw's mesh, checked against the vertex attributes its variant reads (UserError names what is
         missing)."""
         attributes = self.plan.variant(draw.variant_key).vertex_attributes
-        mesh = self.mesh(draw.model_path)
+        mesh = self.mesh(draw.mesh_key)
         if "uv" in attributes and not mesh.has_uvs:
             raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
                             "texture coordinates: export it with UVs, or use a material without maps")
@@ -65,4 +66,4 @@ class PlanMeshes:
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
-        return index_range(self.mesh(draw.model_path), draw)
+        return index_range(self.mesh(draw.mesh_key), draw)

@@ -13,6 +13,7 @@ from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.environment_block import parse_environment
 from wgpurender.core.scene.file_materials import read_file_materials
 from wgpurender.core.scene.model import Scene
+from wgpurender.core.scene.model_motion import read_motion
 from wgpurender.core.scene.validate import (
     TOP_KEYS,
     _camera,
@@ -48,7 +49,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     description = data.get("description", "")
     choice = file_camera_choice(c, data["camera"])
     camera = _camera(c, data["camera"]) if choice is None else None
-    models = tuple(_with_file_materials(m) for m in _models(c, data.get("models", []), materials))
+    models = tuple(_with_file_data(m) for m in _models(c, data.get("models", []), materials))
     scene = Scene(
         path=path,
         camera=camera if choice is None else resolve_file_camera(c, choice, models),
@@ -67,10 +68,13 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     return dataclasses.replace(scene, lights=scene_lights(scene.lights, scene.models, path))  # + KHR lights
 
 
-def _with_file_materials(model):
-    """The model with the materials its file gives (read once, here), or itself when it draws the scene's."""
-    found = read_file_materials(model)
-    return model if found is None else dataclasses.replace(model, file_materials=found)
+def _with_file_data(model):
+    """The model with the materials and motion its file gives (read once, here), or itself when its file gives
+    neither (most models of a large scene: not copied)."""
+    found, motion = read_file_materials(model), read_motion(model)
+    if found is None and not motion:
+        return model
+    return dataclasses.replace(model, file_materials=found, motion=motion)
 
 
 def load_scene(path: str | Path) -> Scene:

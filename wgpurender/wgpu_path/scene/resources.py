@@ -55,7 +55,7 @@ class SceneResources:
         one."""
         pending: dict[tuple, tuple[bytes, bytes, object]] = {}
         for draw in draws:
-            key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
+            key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
             if key not in self._buffers and key not in pending:
                 mesh = self.meshes.mesh_for(draw)
                 pending[key] = (interleave(mesh, key[1]).tobytes(), mesh.index_bytes(), mesh)
@@ -79,7 +79,7 @@ class SceneResources:
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
-        key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
+        key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
         if key not in self._buffers:
             self.upload_meshes([draw])
         return self._buffers[key]
