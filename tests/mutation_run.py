@@ -1184,7 +1184,8 @@ MUTATIONS = [
      "params[k, :8] = [w, h, ow, oh, samples, 1, 0, 0]", [GPU_MAPS]),
     ("wgpurender/wgpu_path/scene/ibl.py", '"offset": k * PARAMS_STRIDE, "size": 32}}', '"offset": 0, "size": 32}}',
      [GPU_MAPS]),
-    ("wgpurender/wgpu_path/scene/ibl.py", "        offset += size\n", "        offset += 0\n", [GPU_MAPS]),
+    ("wgpurender/wgpu_path/scene/ibl.py", '"offset": offsets[k], "size": size', '"offset": offsets[0], "size": size',
+     [GPU_MAPS]),
     ("wgpurender/core/plan/objects.py", '        out += [GpuObject(kind, "ibl", len(passes), f"one per compute pass',
      '        out += [GpuObject(kind, "ibl", 1, f"one per compute pass', [PLAN_BUILT]),
     ("wgpurender/raw_path/scene/ibl.py", "descriptors.write_buffer(dst_set, 2, out.handle, offset, 16 * ow * oh * depth, STORAGE)]",  # noqa: E501
@@ -1314,6 +1315,19 @@ MUTATIONS = [
     ("wgpurender/core/view/garbage.py", "    _canary = _Canary()", "    _canary = None", [WINDOW_GC]),
     ("wgpurender/core/view/garbage.py", "    if only_ours_frozen():\n        gc.unfreeze()",
      "    if True:\n        gc.unfreeze()", [WINDOW_GC]),
+    # review findings (fixes): the IBL regions' 256-byte alignment, one rule in the core (core/course/ibl_maps.py)
+    ("wgpurender/core/course/ibl_maps.py", "REGION_ALIGN = 256", "REGION_ALIGN = 16", ["tests/test_ibl_regions.py"]),
+    ("wgpurender/core/course/ibl_maps.py", "end += -(-16 * width * height * depth // REGION_ALIGN) * REGION_ALIGN",
+     "end += 16 * width * height * depth", ["tests/test_ibl_regions.py"]),
+    ("wgpurender/core/course/ibl_maps.py", "        offsets.append(end)\n", "", ["tests/test_ibl_regions.py"]),
+    ("wgpurender/core/course/ibl_maps.py", "    if size != packed_bytes():", "    if False:",
+     ["tests/test_ibl_regions.py"]),
+    ("wgpurender/wgpu_path/scene/ibl.py", "    offsets = packed_regions()\n", "    offsets = [0, 0, 0]\n",
+     ["tests/test_ibl_regions.py", "tests/test_ibl_scene.py"]),
+    ("wgpurender/raw_path/scene/ibl.py", "    packed_regions()  # the packed", "    pass  # the packed",
+     ["tests/test_ibl_regions.py"]),
+    ("wgpurender/raw_path/scene/ibl.py", "    offsets, size = regions(passes)  # padded",
+     "    offsets, size = regions(passes[:1] * 3)  # padded", ["tests/test_ibl_regions.py"]),
 ]
 
 
