@@ -1328,6 +1328,20 @@ MUTATIONS = [
      ["tests/test_ibl_regions.py"]),
     ("wgpurender/raw_path/scene/ibl.py", "    offsets, size = regions(passes)  # padded",
      "    offsets, size = regions(passes[:1] * 3)  # padded", ["tests/test_ibl_regions.py"]),
+    # review findings (fixes): the raw target's zeros kept by the spec (no barrier from UNDEFINED after the clear)
+    ("wgpurender/raw_path/stages/clear.py", "transition(cmd, target, TARGET_LAYOUT, vk.VK_IMAGE_LAYOUT_TRANSFER_DST",
+     "transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST",
+     ["tests/test_raw_target_zeroed.py"]),
+    ("wgpurender/raw_path/stages/offscreen.py",
+     "transition(cmd, target, TARGET_LAYOUT, vk.VK_IMAGE_LAYOUT_TRANSFER_DST",
+     "transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST",
+     ["tests/test_raw_target_zeroed.py"]),
+    ("wgpurender/raw_path/render.py", "        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, TARGET_LAYOUT)",
+     "        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_GENERAL)",
+     ["tests/test_raw_target_zeroed.py"]),
+    ("wgpurender/raw_path/window/__init__.py",
+     "        image_barrier(cmd, slot.target.handle, vk.VK_IMAGE_LAYOUT_UNDEFINED,",
+     "        (lambda *a: None)(cmd, slot.target.handle, vk.VK_IMAGE_LAYOUT_UNDEFINED,", ["tests/test_raw_window.py"]),
 ]
 
 
