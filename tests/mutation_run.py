@@ -48,6 +48,8 @@ OBJ_SIMPLE = "tests/test_obj_simple.py"
 JAIL_ONCE = "tests/test_scene_jail_once.py"
 SHARED_MESH = "tests/test_shared_mesh_buffers.py"
 WINDOW_GC = "tests/test_window_gc.py"
+IMPLS = "wgpurender/implementations.py"
+KEEPS = ["tests/test_calibrate_keeps_sizes.py"]
 BENCH_IMPORTS = "tests/test_bench_imports.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
@@ -859,8 +861,8 @@ MUTATIONS = [
      "len(load_scene(scene).post) > 2 else EXACT", [LOUD]),
     ("wgpurender/verify_matrix.py", 'driver_class(get_context("Vulkan").adapter.info["device"])',
      'driver_class(get_context("Vulkan").adapter.info["description"])', [LOUD]),
-    ("wgpurender/implementations.py", 'row = {**tol.calibrate([metrics], "lavapipe")',
-     'row = {**tol.calibrate([metrics], "gpu")', [LOUD]),
+    (IMPLS, '= {**tol.calibrate([metrics], "lavapipe"), "measured"',
+     '= {**tol.calibrate([metrics], "gpu"), "measured"', ["tests/test_loud_checks.py"]),
     # issue 28's independent fuzz: the bugs it found (exercise through a dangling link, the cache's temp file)
     ("wgpurender/exercises/starter.py", "if os.path.lexists(out / name)]", "if (out / name).exists()]",
      [EX + "|dangling"]),
@@ -1105,11 +1107,12 @@ MUTATIONS = [
     (TOLS, "max(0.02, _round_up(2 * detail))", "max(0.02, _round_up(detail))", [SB]),
     (TOLS, "detail = max(abs(s.detail) for s in spread)", "detail = max(s.detail for s in spread)", [SB]),
     (TOLS, "return math.ceil(round(value * scale, 9)) / scale", "return math.ceil(value * scale) / scale", [LOUD]),
-    ("wgpurender/implementations.py", "base, rows = sizes[0], {}", "base, rows = sizes[-1], {}", [LOUD]),
-    ("wgpurender/implementations.py", 'larger = {size: {**tol.calibrate([measured[size][name][0]], "lavapipe"),',
-     'larger = {size: {**tol.calibrate([measured[size][name][0]], "gpu"),', [LOUD]),
-    ("wgpurender/implementations.py", "for size in sizes[1:] if name in measured[size]",
-     "for size in sizes[2:] if name in measured[size]", [LOUD]),
+    (IMPLS, "ran = [size for size in sizes if name in measured[size]]",
+     "ran = [size for size in sizes[:1] if name in measured[size]]", ["tests/test_loud_checks.py"]),
+    (IMPLS, "[measured[size][name][1] for size in ran], ran)",
+     "[measured[size][name][1] for size in ran[:1]], ran)", ["tests/test_loud_checks.py"]),
+    (IMPLS, "    sizes = sorted(measured, key=tol.size_pixels)\n",
+     "    sizes = list(measured)\n", ["tests/test_loud_checks.py"]),
     ("wgpurender/verify.py", "False, radial=1.0, detail=0.02)", "False)", [SB]),
     ("tests/dropped_effects.py", 'if lines[i].split("#")[0].strip() == "[[post]]"]',
      'if lines[i].split("#")[0].strip() == "[[models]]"]', [SB]),
@@ -1342,6 +1345,19 @@ MUTATIONS = [
     ("wgpurender/raw_path/window/__init__.py",
      "        image_barrier(cmd, slot.target.handle, vk.VK_IMAGE_LAYOUT_UNDEFINED,",
      "        (lambda *a: None)(cmd, slot.target.handle, vk.VK_IMAGE_LAYOUT_UNDEFINED,", ["tests/test_raw_window.py"]),
+    # review findings (fixes): verify --calibrate --size S keeps the other size classes' rows (implementations.py)
+    (IMPLS, 'old = old if old.get("driver_class", "lavapipe") == cls else {}', "old = old", KEEPS),
+    (IMPLS, "rows, structure = _size_rows(old), {n:", "rows, structure = {}, {n:", KEEPS),
+    (IMPLS, "structure[name] = _widened(fresh, structure.get(name, {}), sorted(set(rows[name]) - set(ran)))",
+     "structure[name] = fresh", KEEPS),
+    (IMPLS, 'max(fresh["detail"], old["detail"])', 'fresh["detail"]', KEEPS),
+    (IMPLS, 'if not kept or not {"radial", "detail"} <= old.keys():', "if True:", KEEPS),
+    (IMPLS, "    base = min((size for by_size", "    base = max((size for by_size", KEEPS),
+    (IMPLS, "    if lacking:", "    if False:", KEEPS),
+    (IMPLS, "for size in sorted(by_size, key=tol.size_pixels) if size != base}",
+     "for size in sorted(by_size, key=tol.size_pixels)}", KEEPS),
+    (IMPLS, "    if kept:\n", "    if False:\n", KEEPS),
+    (IMPLS, ', **row.get("sizes", {})}', "}", KEEPS),
 ]
 
 
