@@ -50,6 +50,8 @@ SHARED_MESH = "tests/test_shared_mesh_buffers.py"
 WINDOW_GC = "tests/test_window_gc.py"
 IMPLS = "wgpurender/implementations.py"
 KEEPS = ["tests/test_calibrate_keeps_sizes.py"]
+JAILR = "wgpurender/core/files/read_jail.py"
+RACE = ["tests/test_read_jail_race.py"]
 BENCH_IMPORTS = "tests/test_bench_imports.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
@@ -461,8 +463,9 @@ MUTATIONS = [
      "encoded=False)", "        mtl = path.parent / lib.decode(\"utf-8\", \"replace\")", [JAIL]),
     ("wgpurender/core/scene/file_materials.py", "            texture = read_jail.model_file(model or path, name, where, "  # noqa: E501
      "base=path.parent, encoded=False)", "            texture = path.parent / name", [JAIL]),
-    ("wgpurender/core/models/mesh.py", "            return read_jail.model_file(path, name, \"a file trimesh asked for\", "  # noqa: E501
-     "encoded=False).read_bytes()", "            return (path.parent / name).read_bytes()", [JAIL]),
+    ("wgpurender/core/models/mesh.py",
+     'return read_jail.read_checked(read_jail.model_file(path, name, "a file trimesh asked for", encoded=False))',
+     "return (path.parent / name).read_bytes()", [JAIL]),
     ("wgpurender/core/scene/checker.py", "            if refused is not None:", "            if refused is None:",
      [JAIL]),
     # issue 28: the document's shape, rules and budget
@@ -1361,6 +1364,25 @@ MUTATIONS = [
     ("wgpurender/bench/raw_frames.py",
      "        self.into_target_layout(cmd, self.target, vk.VK_IMAGE_LAYOUT_UNDEFINED, self.target_layout)\n",
      "", ["tests/test_timer_units.py"]),
+    # review findings (fixes): the read jail checks the file actually read (read_jail.open_checked)
+    (JAILR, "    return _vouched(target)\n", "    return target\n", RACE),
+    (JAILR, "        if real == Path(path):", "        if False:", RACE),
+    (JAILR, "    if name not in _CHECKED:", "    if True:", RACE),
+    (JAILR, "os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK", "os.O_RDONLY | os.O_NONBLOCK", RACE),
+    (JAILR, "os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK", "os.O_RDONLY | os.O_NOFOLLOW", RACE),
+    (JAILR, "file_kind(info.st_mode) if not stat.S_ISREG(info.st_mode) else None", "None", RACE),
+    (JAILR, "        if real != name:", "        if False:", RACE),
+    (JAILR, '        if err.errno != errno.ELOOP:\n            raise', '        if True:\n            raise', RACE),
+    ("wgpurender/core/models/gltf_io.py", "    raw = read_jail.read_checked(path)", "    raw = path.read_bytes()",
+     RACE),
+    ("wgpurender/core/models/gltf_io.py", "    return read_jail.read_checked(file)", "    return file.read_bytes()",
+     RACE),
+    ("wgpurender/core/models/obj_simple.py", "    data = read_jail.read_checked(path)", "    data = path.read_bytes()",
+     RACE),
+    ("wgpurender/core/models/mesh.py", "        with read_jail.open_checked(path) as f:  # the file the",
+     "        with open(path, 'rb') as f:  # the file the", RACE),
+    ("wgpurender/core/scene/texture_pixels.py", "    return read_jail.open_checked(found)",
+     "    return open(found, 'rb')", RACE),
 ]
 
 

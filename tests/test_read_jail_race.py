@@ -1,0 +1,153 @@
+"""The read jail checks the file actually read (core/files/read_jail.open_checked), not only the path it checked:
+a review finding was the check-then-open race, where a file or folder the check let through is swapped for a link
+out of the model's folder (or a FIFO) before the reader opens it. Each case here makes the swap at run time,
+between the check and the read, and the read must be refused in one line that names what the path became; no
+byte of the file outside may come back (before the fix, the readers followed the link and returned it)."""
+
+from __future__ import annotations
+
+import base64
+import json
+import os
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+from reliab_gen import triangle_gltf, write_gltf
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
+
+SECRET = b"the secret outside the model's folder"
+
+
+@pytest.fixture
+def world(tmp_path):
+    """tmp/model/ (the model's folder: sub/data.bin inside it) and tmp/outside/ (sub/data.bin, the secret)."""
+    for top, data in (("model", b"the model's own bytes"), ("outside", SECRET)):
+        (tmp_path / top / "sub").mkdir(parents=True)
+        (tmp_path / top / "sub" / "data.bin").write_bytes(data)
+    return tmp_path
+
+
+def _refused(call, *needles: str) -> str:
+    with pytest.raises(UserError) as err:
+        call()
+    message = str(err.value)
+    assert "\n" not in message and "changed between its check and its read" in message, message
+    assert all(n in message for n in needles), message
+    return message
+
+
+def _checked(world: Path) -> Path:
+    return read_jail.model_file(world / "model" / "m.gltf", "sub/data.bin", "$.buffers[0].uri")
+
+
+def test_an_unchanged_file_reads_as_checked(world):
+    assert read_jail.read_checked(_checked(world)) == b"the model's own bytes"
+
+
+def test_the_file_swapped_for_a_link_out_is_refused(world):
+    target = _checked(world)
+    target.unlink()
+    target.symlink_to(world / "outside" / "sub" / "data.bin")
+    _refused(lambda: read_jail.read_checked(target), "is now a symbolic link")
+
+
+def test_a_folder_swapped_for_a_link_out_is_refused(world):
+    """The final name is a regular file, so O_NOFOLLOW alone would not see it: the opened descriptor's real path
+    does."""
+    target = _checked(world)
+    (world / "model" / "sub").rename(world / "model" / "was-sub")
+    (world / "model" / "sub").symlink_to(world / "outside" / "sub")
+    _refused(lambda: read_jail.read_checked(target), "now leads to", str(world / "outside" / "sub" / "data.bin"))
+
+
+def test_a_fifo_swapped_in_is_refused_without_waiting_for_a_writer(world):
+    target = _checked(world)
+    target.unlink()
+    os.mkfifo(target)
+    outcome: list = []
+    reader = threading.Thread(target=lambda: outcome.append(_refused(lambda: read_jail.read_checked(target),
+                                                                      "is now a FIFO")), daemon=True)
+    reader.start()
+    reader.join(10)
+    if reader.is_alive():  # blocked in open(): release it, then fail
+        with open(target, "wb"):
+            pass
+        pytest.fail("the reader waited on the FIFO for a writer")
+    assert outcome, "the FIFO was not refused"
+
+
+def test_a_path_the_jail_never_checked_opens_as_usual_links_and_all(world):
+    """A user's own file (not a model's reference) may lie behind links: only checked paths are held to them."""
+    link = world / "mine.bin"
+    link.symlink_to(world / "outside" / "sub" / "data.bin")
+    assert read_jail.read_checked(link) == SECRET
+
+
+def test_a_gltf_whose_buffer_is_swapped_after_the_check_is_refused(world, monkeypatch):
+    """End to end through the glTF reader: every URI is checked first, then read; the swap happens in between."""
+    from wgpurender.core.models import gltf_io
+
+    doc = triangle_gltf()
+    data = base64.b64decode(doc["buffers"][0]["uri"].split(",", 1)[1])
+    doc["buffers"][0]["uri"] = "sub/data.bin"
+    (world / "model" / "sub" / "data.bin").write_bytes(data)
+    (world / "outside" / "sub" / "data.bin").write_bytes(data)  # a valid buffer: read silently before the fix
+    model = write_gltf(world / "model" / "m.gltf", doc)
+    check = read_jail.model_file
+
+    def check_then_swap(*args, **kwargs):
+        target = check(*args, **kwargs)
+        (world / "model" / "sub").rename(world / "model" / "was-sub")
+        (world / "model" / "sub").symlink_to(world / "outside" / "sub")
+        return target
+
+    monkeypatch.setattr(read_jail, "model_file", check_then_swap)
+    _refused(lambda: gltf_io.read_document(model), "now leads to")
+
+
+def test_a_texture_swapped_after_the_check_is_refused(world):
+    from PIL import Image
+
+    from wgpurender.core.scene.texture_pixels import load_image
+
+    for top in ("model", "outside"):
+        Image.fromarray(np.full((2, 2, 3), 200, np.uint8)).save(world / top / "sub" / "tex.png")
+    texture = read_jail.model_file(world / "model" / "m.obj", "sub/tex.png", "m.mtl:3 map_Kd", encoded=False)
+    assert load_image(texture)[0, 0, 0] == 200  # as checked: read
+    texture.unlink()
+    texture.symlink_to(world / "outside" / "sub" / "tex.png")
+    _refused(lambda: load_image(texture), "is now a symbolic link")
+
+
+MODELS = {
+    "m.gltf": None,  # written from triangle_gltf below: gltf_io.read_document
+    "m.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",  # the simple OBJ reader (obj_simple)
+    "m.ply": (b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+              b"element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_a_scene_model_swapped_after_the_scene_loaded_is_refused(tmp_path, name):
+    """The scene's check lets the model through (read_jail.outside); the model is swapped for a link to a copy
+    outside the scene's folders before the mesh is read (load_mesh, as a render does after load_scene)."""
+    from reliab_gen import scene_text
+
+    from wgpurender.core.models.mesh import load_mesh
+    from wgpurender.core.scene import load_scene
+
+    data = MODELS[name] or json.dumps(triangle_gltf()).encode()
+    for top in ("project", "outside"):
+        (tmp_path / top).mkdir()
+        (tmp_path / top / name).write_bytes(data)
+    (tmp_path / "project" / "scene.toml").write_text(scene_text(name))
+    scene = load_scene(tmp_path / "project" / "scene.toml")
+    path = scene.models[0].path
+    assert load_mesh(path).indices.size == 3  # as checked: read
+    path.unlink()
+    path.symlink_to(tmp_path / "outside" / name)
+    _refused(lambda: load_mesh(path), "is now a symbolic link")
