@@ -52,6 +52,8 @@ IMPLS = "wgpurender/implementations.py"
 KEEPS = ["tests/test_calibrate_keeps_sizes.py"]
 JAILR = "wgpurender/core/files/read_jail.py"
 RACE = ["tests/test_read_jail_race.py"]
+MESHES_PY = "wgpurender/core/plan/meshes.py"
+RES_PY = "wgpurender/wgpu_path/scene/resources.py"
 BENCH_IMPORTS = "tests/test_bench_imports.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
@@ -967,7 +969,7 @@ MUTATIONS = [
      "slots = {\"uv1\" for f in", [UVSETS]),
     ("wgpurender/core/plan/file_materials.py", "for feature, k, how in material.uv_slots if feature in sampled]",
      "for feature, k, how in material.uv_slots if feature not in sampled]", [UVSETS]),
-    ("wgpurender/core/plan/meshes.py", "if len(mesh.extra_uvs) < k or mesh.extra_uvs[k - 1] is None:",
+    (MESHES_PY, "if len(mesh.extra_uvs) < k or mesh.extra_uvs[k - 1] is None:",
      "if False:", [UVSETS]),
     ("wgpurender/core/scene/gltf_materials.py", "        if slot:\n", "        if slot == 1:\n", [UVSETS]),
     ("wgpurender/wgpu_path/scene/shader_interface.py", "_UV\"] = f\"uv{k}\"", "_UV\"] = \"uv\"", [UVSETS]),
@@ -1236,8 +1238,8 @@ MUTATIONS = [
     ("wgpurender/wgpu_path/scene/scene_pass.py",
      "encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)",
      "encoder.set_index_buffer(buffers.index, buffers.index_format)", [SHARED_MESH]),
-    ("wgpurender/wgpu_path/scene/resources.py", "places.append((key, len(vertex), len(index), mesh))",
-     "places.append((key, len(vertex), 0, mesh))", [SHARED_MESH]),
+    (RES_PY, "vertex, index = pairs.setdefault(pair, (bytearray(), bytearray()))",
+     "vertex, index = pairs.setdefault(0, (bytearray(), bytearray()))", [SHARED_MESH]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "        self.resources.upload_meshes(self.draws)",
      "        pass", [SHARED_MESH]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "                packed[key] = L.material_struct(variant).pack(",
@@ -1383,6 +1385,18 @@ MUTATIONS = [
      "        with open(path, 'rb') as f:  # the file the", RACE),
     ("wgpurender/core/scene/texture_pixels.py", "    return read_jail.open_checked(found)",
      "    return open(found, 'rb')", RACE),
+    # review findings (fixes): shared mesh buffers split at the device's max-buffer-size (core/plan/meshes.py)
+    (MESHES_PY, "(-(-n // BUFFER_ALIGN) * BUFFER_ALIGN for n in (vertex, index))", "(n for n in (vertex, index))",
+     [SHARED_MESH]),
+    (MESHES_PY, "        if max(vertex, index) > limit:", "        if False:", [SHARED_MESH]),
+    (MESHES_PY, "if vertex_end + vertex > limit or index_end + index > limit:", "if vertex_end + vertex > limit:",
+     [SHARED_MESH]),
+    (MESHES_PY, "pair, vertex_end, index_end = pair + 1, 0, 0", "pair, vertex_end, index_end = pair + 1, vertex_end, 0",
+     [SHARED_MESH]),
+    (MESHES_PY, "vertex_end, index_end = vertex_end + vertex, index_end + index",
+     "vertex_end, index_end = vertex_end + vertex, index_end", [SHARED_MESH]),
+    (RES_PY, 'self.ctx.limit("max-buffer-size")', "2**31 - 1", [SHARED_MESH]),
+    (RES_PY, "MeshBuffers(*made[pair], mesh.index_format", "MeshBuffers(*made[0], mesh.index_format", [SHARED_MESH]),
 ]
 
 

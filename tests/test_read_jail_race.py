@@ -125,7 +125,8 @@ def test_a_texture_swapped_after_the_check_is_refused(world):
 
 MODELS = {
     "m.gltf": None,  # written from triangle_gltf below: gltf_io.read_document
-    "m.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",  # the simple OBJ reader (obj_simple)
+    "m.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n",  # obj_simple
+    "n.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",  # not the simple reader's: the records check, then trimesh
     "m.ply": (b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
               b"element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
 }

@@ -457,7 +457,8 @@ class RenderPlan:
             layouts = "; ".join(dict.fromkeys(", ".join(attributes) for _, attributes in meshes))
             names = ", ".join(dict.fromkeys(model.name for model, _ in meshes))
             out.append(("scene-vertices", f"vertex: {len(meshes)} mesh(es) ({names}), each interleaved at its own "
-                                          f"offset (attributes {layouts})"))
+                                          f"offset (attributes {layouts}); more such buffers where one would pass the "
+                                          "device's max-buffer-size"))
             out.append(("scene-indices", f"index: the same {len(meshes)} mesh(es), each at its own offset"))
         if self.uses_ibl:
             from wgpurender.core.course import ibl_maps
