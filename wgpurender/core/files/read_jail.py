@@ -137,6 +137,9 @@ def outside(path: Path, folders: list[Path] | None) -> str | None:
 
 
 _CHECKED: set[str] = set()  # canonical paths the rule let through: open_checked verifies the file it opens is one
+# no final link followed, no FIFO waited on (each 0 where the platform lacks it)
+_OPEN_FLAGS = (os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+               | getattr(os, "O_BINARY", 0))
 
 
 def _vouched(path: Path) -> Path:
@@ -152,7 +155,7 @@ def open_checked(path: str | os.PathLike) -> BinaryIO:
     if name not in _CHECKED:
         return open(name, "rb")
     try:
-        fd = os.open(name, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
+        fd = os.open(name, _OPEN_FLAGS)
     except OSError as err:
         if err.errno != errno.ELOOP:
             raise
@@ -165,7 +168,8 @@ def open_checked(path: str | os.PathLike) -> BinaryIO:
         real = _real_path(fd, info, name)
         if real != name:
             _changed(name, f"now leads to {real}")
-        os.set_blocking(fd, True)
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
         return os.fdopen(fd, "rb")
     except BaseException:
         os.close(fd)
