@@ -54,6 +54,8 @@ JAILR = "wgpurender/core/files/read_jail.py"
 RACE = ["tests/test_read_jail_race.py"]
 MESHES_PY = "wgpurender/core/plan/meshes.py"
 RES_PY = "wgpurender/wgpu_path/scene/resources.py"
+I_DATA = "wgpurender/core/plan/instance_data.py"
+I_TEST = ["tests/test_instance_data.py"]
 BENCH_IMPORTS = "tests/test_bench_imports.py"
 UNTRUSTED = "tests/test_gltf_untrusted.py"
 SHAPES = UNTRUSTED + "|json_path"
@@ -1397,6 +1399,24 @@ MUTATIONS = [
      "vertex_end, index_end = vertex_end + vertex, index_end", [SHARED_MESH]),
     (RES_PY, 'self.ctx.limit("max-buffer-size")', "2**31 - 1", [SHARED_MESH]),
     (RES_PY, "MeshBuffers(*made[pair], mesh.index_format", "MeshBuffers(*made[0], mesh.index_format", [SHARED_MESH]),
+    # review findings (fixes): instance data past the device's one storage binding (core/plan/instance_data.py)
+    (I_DATA, "    if way != \"storage\" or limit is None or need <= limit:",
+     "    if way != \"storage\" or limit is None or need < limit:", I_TEST),
+    (I_DATA, "    if way != \"storage\" or limit is None or need <= limit:",
+     "    if way != \"storage\" or limit is None:", I_TEST),
+    (I_DATA, "    if knob == \"storage\":\n        raise UserError(f\"instance_data = storage: {over}",
+     "    if False:\n        raise UserError(f\"instance_data = storage: {over}", I_TEST),
+    (I_DATA, "    return \"vertex\", f\"{_WAYS['vertex']}: {over}\"", "    return way, why", I_TEST),
+    ("wgpurender/core/plan/model.py", 'max_storage_binding=limits.get("max-storage-buffer-binding-size"))',
+     "max_storage_binding=None)", I_TEST),
+    ("wgpurender/core/plan/build.py", '    setting["instance_data"] = way[0]\n', "", I_TEST),
+    ("wgpurender/core/plan/build.py", '    settings = tuple((k, *way) if k == "instance_data" else (k, v, w)',
+     '    settings = tuple((k, v, w)', I_TEST),
+    ("wgpurender/raw_path/device/context.py",
+     '{"max-storage-buffer-binding-size": self.limits.max_storage_buffer_range})', "{})", I_TEST),
+    ("wgpurender/raw_path/scene/support.py", '    elif plan.instance_data == "vertex":', "    elif False:", I_TEST),
+    ("wgpurender/raw_path/scene/support.py", "max_storage_binding // OBJECT_BYTES", "max_storage_binding // 64",
+     I_TEST),
 ]
 
 
