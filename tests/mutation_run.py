@@ -1485,6 +1485,11 @@ MUTATIONS = [
     ("wgpurender/raw_path/scene/support.py", '    elif plan.instance_data == "vertex":', "    elif False:", I_TEST),
     ("wgpurender/raw_path/scene/support.py", "max_storage_binding // OBJECT_BYTES", "max_storage_binding // 64",
      I_TEST),
+    ("wgpurender/core/files/hdr_io.py", "    data = read_checked(path)", "    data = open(path, 'rb').read()", RACE),
+    ("wgpurender/core/scene/file_materials.py", 'read_jail.read_checked(path).decode("utf-8", "replace").splitlines()',
+     'open(path, encoding="utf-8", errors="replace").read().splitlines()', RACE),
+    ("wgpurender/core/scene/instances.py", "        with read_jail.open_checked(path) as f:",
+     "        with open(path, 'rb') as f:", RACE),
 ]
 
 

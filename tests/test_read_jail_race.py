@@ -152,3 +152,70 @@ def test_a_scene_model_swapped_after_the_scene_loaded_is_refused(tmp_path, name)
     path.unlink()
     path.symlink_to(tmp_path / "outside" / name)
     _refused(lambda: load_mesh(path), "is now a symbolic link")
+
+
+def _swap_for_link(path: Path, to: Path) -> None:
+    path.unlink()
+    path.symlink_to(to)
+
+
+def test_an_environment_image_swapped_after_the_scene_loaded_is_refused(tmp_path):
+    """A scene's [environment] .hdr is read when the maps are made, after the scene's check (load_scene)."""
+    from reliab_gen import scene_text
+
+    from wgpurender.core.files.hdr_io import encode_hdr
+    from wgpurender.core.scene import load_scene
+
+    for top in ("project", "outside"):
+        (tmp_path / top).mkdir()
+        (tmp_path / top / "sky.hdr").write_bytes(encode_hdr(np.full((4, 8, 3), 0.5)))
+    (tmp_path / "project" / "scene.toml").write_text(scene_text(None, extra='[environment]\nhdr = "sky.hdr"\n'))
+    environment = load_scene(tmp_path / "project" / "scene.toml").environment
+    _swap_for_link(environment.hdr, tmp_path / "outside" / "sky.hdr")
+    _refused(environment.radiance, "is now a symbolic link")
+
+
+def test_a_material_library_swapped_after_its_check_is_refused(world, monkeypatch):
+    """An OBJ's mtllib is checked (model_file), then read (parse_mtl): the swap happens in between."""
+    from wgpurender.core.scene.file_materials import obj_mtl_entry
+
+    obj = world / "model" / "m.obj"
+    obj.write_text("mtllib m.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    for top in ("model", "outside"):
+        (world / top / "m.mtl").write_text("newmtl red\nKd 1 0 0\n")
+    check = read_jail.model_file
+
+    def check_then_swap(model, uri, where, **kwargs):
+        target = check(model, uri, where, **kwargs)
+        if uri == "m.mtl":
+            _swap_for_link(target, world / "outside" / "m.mtl")
+        return target
+
+    assert obj_mtl_entry(obj).name == "red"  # as checked: read
+    monkeypatch.setattr(read_jail, "model_file", check_then_swap)
+    _refused(lambda: obj_mtl_entry(obj), "is now a symbolic link")
+
+
+def test_an_instances_file_swapped_after_its_check_is_refused(tmp_path, monkeypatch):
+    """A scene's instances .npy is checked (read_jail.outside) and read in the same load: swapped in between."""
+    from reliab_gen import scene_text
+
+    from wgpurender.core.scene import load_scene
+
+    for top in ("project", "outside"):
+        (tmp_path / top).mkdir()
+        np.save(tmp_path / top / "at.npy", np.zeros((2, 3)))
+    (tmp_path / "project" / "tri.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    scene = tmp_path / "project" / "scene.toml"
+    scene.write_text(scene_text("tri.obj").replace("unlit = true }", 'unlit = true }\ninstances = { file = "at.npy" }'))
+    assert load_scene(scene).models[0].placements.count == 2  # as checked: read
+    outside = read_jail.outside
+
+    def check_then_swap(path, folders):
+        verdict = outside(path, folders)
+        if Path(path).name == "at.npy":
+            _swap_for_link(Path(path), tmp_path / "outside" / "at.npy")
+        return verdict
+
+    monkeypatch.setattr(read_jail, "outside", check_then_swap)
+    _refused(lambda: load_scene(scene), "is now a symbolic link")
