@@ -53,14 +53,15 @@ class SceneResources:
         did when its buffers were made one by one."""
         pending: dict[tuple, tuple[bytes, bytes, object]] = {}
         for draw in draws:
-            key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
+            key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
             if key not in self._buffers and key not in pending:
                 mesh = self.meshes.mesh_for(draw)
                 pending[key] = (interleave(mesh, key[1]).tobytes(), mesh.index_bytes(), mesh)
         if not pending:
             return
+        names = [key[0][0].name for key in pending]  # key[0]: the draw's mesh_key, (file, pose)
         places = buffer_places([(len(v), len(i)) for v, i, _ in pending.values()],
-                               self.ctx.limit("max-buffer-size"), [str(key[0].name) for key in pending])
+                               self.ctx.limit("max-buffer-size"), names)
         pairs: dict[int, tuple[bytearray, bytearray]] = {}
         for (vertices, indices, _), (pair, _, _) in zip(pending.values(), places, strict=True):
             vertex, index = pairs.setdefault(pair, (bytearray(), bytearray()))
@@ -77,7 +78,7 @@ class SceneResources:
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
         self.upload_meshes([draw])
-        return self._buffers[(draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)]
+        return self._buffers[(draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)]
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
