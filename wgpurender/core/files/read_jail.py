@@ -35,7 +35,7 @@ import re
 import stat
 import urllib.parse
 from pathlib import Path, PureWindowsPath
-from typing import BinaryIO
+from typing import BinaryIO, NoReturn
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.input_files import file_kind, resolved
@@ -192,7 +192,7 @@ def _real_path(fd: int, info: os.stat_result, name: str) -> str:
         return name if (now.st_dev, now.st_ino) == (info.st_dev, info.st_ino) else "another file"
 
 
-def _changed(name: str, now: str) -> None:
+def _changed(name: str, now: str) -> NoReturn:
     raise UserError(f"{name} changed between its check and its read: it {now}; a model or scene reads only "
                     "the files checked (no links swapped in while it loads): load it again from a folder nobody "
                     "else writes to")
