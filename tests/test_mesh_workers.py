@@ -190,3 +190,19 @@ def test_explain_says_how_the_files_are_read(tmp_path):
     assert f"mesh_workers: 0 <- 3 OBJ file(s), fewer than {mesh_loading.MIN_FILES}" in text
     text = resolve_plan(scene, None, mesh_workers="on").explain()
     assert "mesh_workers: 1 <- knob mesh_workers = on: 1 worker process(es) read the 3 OBJ file(s)" in text
+
+
+@pytest.mark.parametrize("knob", ["on", "off"])
+def test_a_model_swapped_after_the_scene_loaded_is_refused_by_either_reader(tmp_path, knob):
+    """The scene's check lets the files through (read_jail.outside remembers them); one is then swapped for a link
+    to a copy outside the scene's folders. The cached reader and a worker read through read_jail.read_checked,
+    so the swap is refused in one line, cache or not (a worker inherits the checked paths with the fork)."""
+    (tmp_path / "outside").mkdir()
+    names = _cubes(tmp_path, 3)
+    procedural.write_obj(tmp_path / "outside" / "c1.obj", procedural.box(0.51))
+    plan = resolve_plan(_scene(tmp_path, names), None, mesh_workers=knob)
+    (tmp_path / "c1.obj").unlink()
+    (tmp_path / "c1.obj").symlink_to(tmp_path / "outside" / "c1.obj")
+    with pytest.raises(UserError) as err:
+        _meshes(plan)
+    assert "c1.obj" in str(err.value) and "is now a symbolic link" in str(err.value) and "\n" not in str(err.value)

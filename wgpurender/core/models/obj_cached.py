@@ -21,6 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
+from wgpurender.core.files import read_jail
 from wgpurender.core.files.cache_entry import cache_folder, read_entry, write_entry
 from wgpurender.core.files.input_files import check_file_size, input_file
 from wgpurender.core.models import mesh, mesh_pack
@@ -93,7 +94,7 @@ def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> byte
 def _load(path: Path, generate_tangents: bool, where: Path | None,
           now: bool = False) -> tuple[Mesh | None, bytes | None]:
     """(mesh, packed); what was parsed is stored ``now``, or queued for the background writer."""
-    data = path.read_bytes()
+    data = read_jail.read_checked(path)  # the file the scene's read rule checked, still that file
     entry = key = None
     if where is not None:
         key = entry_key(data, generate_tangents)
