@@ -6,8 +6,7 @@ this branch's).
     python benchmarks/load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...]
         appends: label, n, parse cache, knobs, wall ms, process CPU ms, worker processes, and the wall ms of
         the phases: scene file (load_scene), plan (resolve_plan), renderer (meshes, buffers, pipelines, the
-        bundle), first frame (record, submit, read back); then how long the parse cache's background writer
-        still wrote after the first frame (not part of the load)
+        bundle), first frame (record, submit, read back)
 
 ``cold``: the parse cache (core/models/obj_cached.py) starts empty ($XDG_CACHE_HOME is pointed at a new
 temporary folder: the machine's own cache is never read or written); ``warm``: the same folder after one
@@ -51,15 +50,6 @@ def timed_load(ctx, scene: Path, knobs: dict) -> tuple[list[float], int]:
     return [(b - a) * 1e3 for a, b in itertools.pairwise(marks)], getattr(renderer.plan, "mesh_workers", 0)
 
 
-def flush() -> None:
-    """Wait for the parse cache's background writes (a tree without the cache has none)."""
-    try:
-        from wgpurender.core.models.obj_cached import flush as flush_entries
-    except ImportError:
-        return
-    flush_entries()
-
-
 def main() -> int:
     label, n, out = sys.argv[1], int(sys.argv[2]), Path(sys.argv[3])
     mode = sys.argv[4] if len(sys.argv) > 4 else "cold"
@@ -74,21 +64,17 @@ def main() -> int:
         scene = scale.distinct_scene(Path(tmp), n, SIZE)
         if mode == "warm":
             timed_load(ctx, scene, knobs)  # fills the parse cache
-            flush()  # every entry on disk: the timed load reads them there
         wall, cpu = time.perf_counter(), time.process_time()
         phases, workers = timed_load(ctx, scene, knobs)
         wall, cpu = (time.perf_counter() - wall) * 1e3, (time.process_time() - cpu) * 1e3
-        flush_ms = time.perf_counter()
-        flush()  # what the background writer still had to write after the first frame (not in the load)
-        flush_ms = (time.perf_counter() - flush_ms) * 1e3
     new = not out.exists()
     shown = " ".join(f"{k}={v}" for k, v in knobs.items()) or "-"
     with out.open("a") as f:
         if new:
             f.write("tree,distinct_meshes,parse_cache,knobs,load_wall_ms,load_process_cpu_ms,mesh_workers,"
-                    + ",".join(PHASES) + ",cache_writes_after_ms\n")
+                    + ",".join(PHASES) + "\n")
         f.write(f"{label},{n},{mode},{shown},{wall:.1f},{cpu:.1f},{workers},"
-                + ",".join(f"{p:.1f}" for p in phases) + f",{flush_ms:.1f}\n")
+                + ",".join(f"{p:.1f}" for p in phases) + "\n")
     split = ", ".join(f"{k} {p:.0f}" for k, p in zip(PHASES, phases, strict=True))
     print(f"{label}: {n} distinct meshes load in {wall:.0f} ms ({cpu:.0f} ms process CPU; parse cache {mode}, "
           f"knobs {shown}, {workers} worker processes; {split})")

@@ -41,7 +41,6 @@ def _no_parse(monkeypatch):
 
 
 def _entries() -> list[Path]:
-    obj_cached.flush()  # entries are written by a background thread
     where = obj_cached.folder()
     return sorted(where.glob("*.mesh")) if where.is_dir() else []
 
@@ -50,8 +49,7 @@ def _entries() -> list[Path]:
 def cache(tmp_path, monkeypatch):
     """An empty cache of this test's own: $XDG_CACHE_HOME under tmp_path."""
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    yield tmp_path / "xdg" / "wgpurender" / "meshes"
-    obj_cached.flush()  # nothing left to write into this test's folder after it
+    return tmp_path / "xdg" / "wgpurender" / "meshes"
 
 
 def test_the_cache_lives_under_xdg_cache_home_never_beside_the_model(tmp_path, cache):
@@ -125,7 +123,6 @@ def test_a_damaged_entry_is_parsed_again_and_rewritten(tmp_path, monkeypatch, ca
     real = obj_simple.parse
     monkeypatch.setattr(obj_simple, "parse", lambda data: parsed.append(1) or real(data))
     _same(obj_cached.load_mesh(path), first)
-    obj_cached.flush()
     assert parsed == [1] and entry.read_bytes() == blob
 
 
@@ -197,18 +194,12 @@ def test_the_general_loader_writes_no_entry(tmp_path, cache):
     assert _entries() == []
 
 
-def test_a_queued_entry_is_served_before_it_is_written(tmp_path, monkeypatch, cache):
-    """Entries are written by a background thread: a load meanwhile takes the queued one (no second parse), and
-    flush() returns once it is on disk."""
-    import threading
-
-    gate = threading.Event()
-    real = obj_cached.write_entry
-    monkeypatch.setattr(obj_cached, "write_entry", lambda *a: gate.wait(30) and real(*a))
+def test_store_false_reads_the_cache_but_writes_nothing(tmp_path, monkeypatch, cache):
+    """What a process reading thousands of files itself asks (core/plan/meshes.py): a hit is still served."""
     path = procedural.write_obj(tmp_path / "b.obj", procedural.box(1.0))
-    first = obj_cached.load_mesh(path)
-    assert not cache.exists() or not list(cache.glob("*.mesh"))  # still queued
-    _no_parse(monkeypatch)
-    _same(obj_cached.load_mesh(path), first)
-    gate.set()
+    first = obj_cached.load_mesh(path, store=False)
+    assert _entries() == []
+    obj_cached.load_mesh(path)
     assert len(_entries()) == 1
+    _no_parse(monkeypatch)
+    _same(obj_cached.load_mesh(path, store=False), first)

@@ -27,8 +27,6 @@ NAN_CUBE = "v nan 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1
 @pytest.fixture(autouse=True)
 def own_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    yield
-    obj_cached.flush()
 
 
 def _scene(folder, names, extra: str = ""):
@@ -76,7 +74,7 @@ def test_workers_read_the_meshes_this_process_reads(tmp_path):
         m.setattr(plan_meshes, "load_mesh", lambda path, **kw: here.append(path.name) or real(path, **kw))
         served = _meshes(on)
     assert here == ["bare.obj"]
-    obj_cached.flush()  # what the workers parsed, the parent stored: one entry per simple file
+    # what the workers parsed, they stored: one entry per simple file
     assert len(list(obj_cached.folder().glob("*.mesh"))) == 12
     assert len(served) == 13
     for got, want, draw in zip(served, _meshes(off), on.scene_pass.draws, strict=True):
@@ -206,3 +204,14 @@ def test_a_model_swapped_after_the_scene_loaded_is_refused_by_either_reader(tmp_
     with pytest.raises(UserError) as err:
         _meshes(plan)
     assert "c1.obj" in str(err.value) and "is now a symbolic link" in str(err.value) and "\n" not in str(err.value)
+
+
+def test_a_large_scene_read_here_writes_no_entries_a_small_one_does(tmp_path, monkeypatch):
+    """Read in this process (mesh_workers off), a scene of MIN_FILES OBJ files or more reads the cache but writes
+    nothing (10,000 entries from one process cost more than the parses on the H100 host); a smaller one writes."""
+    monkeypatch.setattr(plan_meshes, "MIN_FILES", 4)
+    names = _cubes(tmp_path, 4)
+    _meshes(resolve_plan(_scene(tmp_path, names), None, mesh_workers="off"))
+    assert list(obj_cached.folder().glob("*.mesh")) == []
+    _meshes(resolve_plan(_scene(tmp_path, names[:3]), None, mesh_workers="off"))
+    assert len(list(obj_cached.folder().glob("*.mesh"))) == 3

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from wgpurender.core.files.input_files import FolderResolver
-from wgpurender.core.models import obj_cached, procedural
+from wgpurender.core.models import procedural
 from wgpurender.core.plan import mesh_loading, resolve_plan
 
 
@@ -79,7 +79,6 @@ def test_workers_or_not_the_pixels_are_the_same(ctx, tmp_path, monkeypatch):
         renderer = load_renderer(scene, ctx, knobs={"mesh_workers": knob})
         assert renderer.plan.mesh_workers == (0 if knob == "off" else 1)
         images.setdefault(knob, []).append(render_frame(ctx, renderer, renderer.create_output())[0])
-    obj_cached.flush()  # the parent writes the entries in the background
     assert len(list((tmp_path / "xdg").rglob("*.mesh"))) == 9
     assert np.count_nonzero(images["off"][0][..., :3].max(axis=2)) > 500  # the tori are drawn
     for image in images["on"]:

@@ -5,8 +5,8 @@ Content-addressed: the key is the SHA-256 of the file's bytes, whether tangents 
 which is a hash of the source of every module the result depends on (this one, obj_simple, mesh, tangents,
 mesh_pack) and of the numpy, trimesh and wgpurender versions (trimesh's ``unmerge_faces`` orders the vertices). So
 an edited file, an edited parser or another library version is a miss, never a stale mesh. An entry is a sealed
-cache entry (core/files/cache_entry.py: verified before use, written atomically, in the background or by the worker
-that parsed the file) holding a packed mesh (core/models/mesh_pack.py: arrays, no pickle), in
+cache entry (core/files/cache_entry.py: verified before use, written atomically, by the worker that parsed the file,
+or by a process that reads a small scene itself) holding a packed mesh (core/models/mesh_pack.py: arrays, no pickle), in
 ``$XDG_CACHE_HOME/wgpurender/meshes``, never in the user's folder. Only files the simple reader takes are cached:
 their bytes are all they depend on (no MTL, no texture); anything else goes through the general loader every time. A
 cache that cannot be written is only slower.
@@ -17,7 +17,6 @@ from __future__ import annotations
 import functools
 import hashlib
 import os
-from concurrent.futures import ThreadPoolExecutor
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -61,46 +60,47 @@ def entry_path(where: Path, key: str) -> Path:
     return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.mesh"
 
 
-def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, pose=None) -> Mesh:
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, pose=None, store: bool = True) -> Mesh:
     """:func:`wgpurender.core.models.mesh.load_mesh` through the parse cache: what a scene's models load with
     (core/plan/meshes.py). An OBJ file gets load_mesh's checks (a readable regular file within the size limit),
-    then its mesh from :func:`load`; any other file (or pose: glTF animation), or an OBJ the simple reader does
-    not take, load_mesh's."""
+    then its mesh from :func:`load` (``store``: an entry is written for what is parsed); any other file (or pose:
+    glTF animation), or an OBJ the simple reader does not take, load_mesh's."""
     path = Path(path)
     if path.suffix.lower() == ".obj" and pose is None:  # a pose is a glTF animation's: never an OBJ's
         check_file_size(input_file(path, "model file"), "model file")
-        found = load(path, generate_tangents, folder())
+        found = load(path, generate_tangents, folder(), store)
         if found is not None:
             return found
     return mesh.load_mesh(path, generate_tangents=generate_tangents, pose=pose)
 
 
-def load(path: Path, generate_tangents: bool, where: Path | None) -> Mesh | None:
+def load(path: Path, generate_tangents: bool, where: Path | None, store: bool = True) -> Mesh | None:
     """The mesh of the simple OBJ file ``path``: the cache's (in folder ``where``; None: no cache) when it holds
-    a whole entry for these bytes, else parsed and stored; None when the file is not simple (the caller loads
-    it the general way)."""
-    mesh, _ = _load(path, generate_tangents, where)
+    a whole entry for these bytes, else parsed (and stored when ``store``); None when the file is not simple (the
+    caller loads it the general way)."""
+    mesh, _ = _load(path, generate_tangents, where, store)
     return mesh
 
 
 def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> bytes | None:
     """:func:`load`'s mesh packed (mesh_pack): what a worker process sends its parent. A worker writes the entry
-    of what it parsed itself, before it returns (in parallel with the other workers, and without taking the
-    parent's interpreter lock, which a writer thread there would)."""
-    mesh, packed = _load(path, generate_tangents, where, now=True)
+    of what it parsed, before it returns: in parallel with the other workers, off the parent's path."""
+    mesh, packed = _load(path, generate_tangents, where, store=True)
     return None if mesh is None else packed or mesh_pack.pack(mesh)
 
 
 def _load(path: Path, generate_tangents: bool, where: Path | None,
-          now: bool = False) -> tuple[Mesh | None, bytes | None]:
-    """(mesh, packed); what was parsed is stored ``now``, or queued for the background writer."""
+          store: bool) -> tuple[Mesh | None, bytes | None]:
+    """(mesh, packed). Creating an entry's file costs ~0.5 ms of system time on the H100 host and on the lavapipe
+    host (2026-11-27, docs/perf-h100/2026-11-27-load: 10,000 entries from one process made a cold load 1.65x
+    slower than no cache), more than a small file's parse, so a caller reading many files in one process passes
+    ``store=False`` (core/plan/meshes.py)."""
     data = read_jail.read_checked(path)  # the file the scene's read rule checked, still that file
     entry = key = None
     if where is not None:
         key = entry_key(data, generate_tangents)
         entry = entry_path(where, key)
-        queued = _queued.get(entry)
-        payload = queued[1] if queued is not None and queued[0] == key else read_entry(entry, key)
+        payload = read_entry(entry, key)
         mesh = None if payload is None else mesh_pack.unpack(payload, path)
         if mesh is not None:
             return mesh, payload
@@ -109,37 +109,6 @@ def _load(path: Path, generate_tangents: bool, where: Path | None,
         return None, None
     mesh = mesh_of_parts(path, parts, generate_tangents)
     packed = mesh_pack.pack(mesh)
-    if entry is not None and packed is not None:
-        (write_entry if now else store_later)(entry, key, packed)
-    return mesh, packed
-
-
-# In this process, entries are written by one background thread: creating a file took ~0.2-0.6 ms of system time
-# on the busy lavapipe host (2026-11-27), more than the parse it saves, so a first load does not wait for its own
-# cache. A queued entry is served from memory until it is on disk; the thread finishes its queue when the process
-# exits (concurrent.futures joins it), and :func:`flush` waits for it.
-_queued: dict[Path, tuple[str, bytes]] = {}
-_writer: tuple[int, ThreadPoolExecutor] | None = None  # (the process it belongs to: a forked child makes its own)
-
-
-def store_later(entry: Path, key: str, packed: bytes) -> None:
-    """Queue a sealed entry for writing (core/files/cache_entry.py: atomic, a failed write only costs time)."""
-    global _writer
-    if _writer is None or _writer[0] != os.getpid():
-        _writer = (os.getpid(), ThreadPoolExecutor(1, thread_name_prefix="mesh-cache-writer"))
-    _queued[entry] = (key, packed)
-    _writer[1].submit(_write, entry, key, packed)
-
-
-def _write(entry: Path, key: str, packed: bytes) -> None:
-    try:
+    if store and entry is not None and packed is not None:
         write_entry(entry, key, packed)
-    finally:
-        if _queued.get(entry, ("",))[0] == key:
-            _queued.pop(entry, None)
-
-
-def flush() -> None:
-    """Wait until every queued entry of this process is written (the writer runs its queue in order)."""
-    if _writer is not None and _writer[0] == os.getpid():
-        _writer[1].submit(lambda: None).result()
+    return mesh, packed

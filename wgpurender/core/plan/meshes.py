@@ -11,6 +11,7 @@ from __future__ import annotations
 from wgpurender.core.errors import UserError
 from wgpurender.core.models.mesh import Mesh, index_range
 from wgpurender.core.models.obj_cached import load_mesh
+from wgpurender.core.plan.mesh_loading import MIN_FILES
 from wgpurender.core.plan.model import Draw, RenderPlan
 
 
@@ -22,6 +23,10 @@ class PlanMeshes:
         self._meshes: dict[tuple, Mesh] = {}
         self._needs_tangents = {d.mesh_key for d in plan.scene_pass.draws
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
+        # cache entries are written by workers, or here for a small scene: writing thousands from this process
+        # cost more than the parses they save (core/models/obj_cached._load)
+        obj_files = {d.model_path for d in plan.scene_pass.draws if d.model_path.suffix.lower() == ".obj"}
+        self._store = len(obj_files) < MIN_FILES
 
     def mesh(self, key: tuple) -> Mesh:
         """The loaded mesh of a draw's ``mesh_key`` (its file and pose); tangents only when a variant drawing it
@@ -32,7 +37,8 @@ class PlanMeshes:
                 self._read_in_workers()
             if key not in self._meshes:  # through the parse cache (core/models/obj_cached.py)
                 path, pose = key
-                self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose)
+                self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose,
+                                              store=self._store)
         return self._meshes[key]
 
     def _read_in_workers(self) -> None:
