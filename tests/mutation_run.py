@@ -1522,7 +1522,7 @@ MUTATIONS = [
      [ANIM_T]),
     ("wgpurender/core/plan/draws.py", "topology=mat.topology, pose=model.pose)", "topology=mat.topology, pose=None)",
      [ANIM_T]),
-    ("wgpurender/core/plan/meshes.py", "key in self._needs_tangents, pose=pose)", "key in self._needs_tangents)",
+    ("wgpurender/core/plan/meshes.py", "key in self._needs_tangents, pose=pose,", "key in self._needs_tangents,",
      [ANIM_T]),
     ("wgpurender/wgpu_path/scene/resources.py", "            key = (draw.mesh_key, self.plan",
      "            key = ((draw.model_path, None), self.plan", [ANIM_T]),
