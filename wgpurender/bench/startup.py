@@ -4,6 +4,12 @@ Phases measured inside the child: imports, context (instance, adapter, device),
 set-up (shader modules and pipelines: where compilation happens), the first frame
 (encode, submit, wait, readback) and a second frame for comparison.
 
+The wgpu child does what ``wgpurender render`` does (the API's ``render``): it starts making the device on a
+thread (``context.start_context``) before importing the renderer and the stages, so its ``import_ms`` runs
+beside the driver's work and its ``context_ms`` is what is left of making the device after the imports (issue
+31.5; benchmarks/startup_split.py times the same steps with the device made in order). The raw child makes its
+device after its imports, as the raw path does.
+
 Caches compared ("no caches" clears exactly what :data:`NO_CACHES` says):
 
 - raw path: its VkPipelineCache file (saved at exit, loaded at start) absent vs present;
