@@ -97,6 +97,9 @@ LUT_T = "tests/test_ibl.py|lut or uniform or bright_texel or roughness_zero"
 EX_BOUND = "tests/test_exercises.py|wide_reference"
 EX_LINK = "tests/test_exercises.py|symlinked"
 COMP = "shaders_glsl/ibl.comp"
+CTX = "wgpurender/wgpu_path/device/context.py"
+EARLY = "tests/test_early_context.py"
+WARM_ORDER = "tests/test_bench_warm_order.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
@@ -1304,6 +1307,31 @@ MUTATIONS = [
      "embedded_image_bytes(path)", [SPECGLOSS]),
     (SG, "for top in range(0, height, BAND_ROWS):", "for top in range(0, height - 1, BAND_ROWS):", [SPECGLOSS]),
     (SG, "band = {k: t[top:top + BAND_ROWS] for", "band = {k: t[top:top + 1] for", [SPECGLOSS]),
+    # startup engineer (issue 31.5: the device made on a thread; 31.4: the first timed frame follows warm frames)
+    (CTX, "        early = _early.pop(want, None) if ctx is None else None",
+     "        early = None", [EARLY]),
+    (CTX, "    ctx = early.result()  # outside the lock", "    ctx = _make_context(want)  # outside the lock",
+     [EARLY]),
+    (CTX, "            raise self.error\n", "            pass\n", [EARLY]),
+    (CTX, "        sys.setswitchinterval(min(previous, EARLY_SWITCH_S))", "        pass", [EARLY]),
+    (CTX, "            sys.setswitchinterval(previous)", "            pass", [EARLY]),
+    (CTX, "            atexit.register(_join_early)", "            pass", [EARLY]),
+    (CTX, "        early.thread.join()", "        pass", [EARLY]),
+    (CTX, "        if want in _made or want in _early:", "        if want in _made:", [EARLY]),
+    (CTX, "            self.error = exc", "            raise", [EARLY]),
+    ("wgpurender/api.py", "    start_context(backend)  # the device", "    pass  # the device", [EARLY]),
+    ("wgpurender/bench/startup.py", "        start_context()  # as `wgpurender render` does",
+     "        pass  # as `wgpurender render` does", [EARLY]),
+    ("wgpurender/wgpu_path/device/wgpu_private.py", "        return loaded\n", "        return '0.31.9'\n",
+     ["tests/test_wgpu_private.py"]),
+    ("wgpurender/bench/frames.py", "    warmed = warm_up(runner, warmup)", "    warmed = warm_up(runner, warmup) * 0",
+     [WARM_ORDER]),
+    ("wgpurender/bench/frames.py", "    samples, kinds = Samples(), [False] * untimed",
+     "    samples, kinds = Samples(), []", [WARM_ORDER]),
+    ("wgpurender/bench/frames.py", "        collect()  # drop earlier frames' timestamps", "        pass",
+     [WARM_ORDER]),
+    ("wgpurender/bench/frames.py", "    settle_garbage()\n    collect = getattr", "    collect = getattr",
+     [WARM_ORDER]),
 ]
 
 

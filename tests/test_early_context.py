@@ -31,19 +31,23 @@ def test_the_context_made_on_the_thread_is_the_one_get_context_returns_and_draws
         "import sys, threading\n"
         "import numpy as np\n"
         "from wgpurender.wgpu_path.device import context as c\n"
+        "real, seen = c._make_context, []\n"
+        "def spy(backend):\n"
+        "    seen.append((threading.current_thread().name, sys.getswitchinterval()))\n"
+        "    return real(backend)\n"
+        "c._make_context = spy\n"
         "c.start_context()\n"
-        "names = [t.name for t in threading.enumerate()]\n"
+        "early = c._early['Vulkan']\n"
         "from wgpurender.wgpu_path.render import render_stage\n"
         "ctx = c.get_context()\n"
-        "assert c.get_context() is ctx and c.get_context('vulkan') is ctx\n"
-        "print('wgpurender-context' in names, sys.getswitchinterval())\n"
+        "assert ctx is early.ctx and c.get_context() is ctx and c.get_context('vulkan') is ctx\n"
+        "print(seen, sys.getswitchinterval())\n"
         "np.save(sys.argv[1], render_stage('3d', (64, 48), ctx=ctx).pixels)\n"
     )
     out = _python(code, str(tmp_path / "early.npy"))
     assert out.returncode == 0, out.stderr[-2000:]
-    started, interval = out.stdout.split()
-    assert started == "True"
-    assert float(interval) == 0.005  # Python's default, restored once the thread finished
+    # made once, on the thread, with the short switch interval; Python's default back once it finished
+    assert out.stdout.strip() == "[('wgpurender-context', 0.0005)] 0.005"
     from wgpurender.wgpu_path.render import render_stage
 
     here = render_stage("3d", (64, 48)).pixels
@@ -95,14 +99,49 @@ def test_the_cli_refuses_a_missing_backend_in_one_line_with_the_device_started_e
     assert not target.exists()
 
 
-def test_a_process_that_stops_while_the_device_is_being_made_exits_with_its_own_code():
-    """Bad input found after the start: the process waits for the thread (atexit), then exits 2, no crash."""
+def test_a_process_that_stops_while_the_device_is_being_made_waits_for_it_then_exits_with_its_own_code():
+    """Bad input found after the start: the process waits for the thread at exit (not killed in the driver's
+    code), then exits 2. The thread here takes 0.5 s more and says when it is done."""
     code = (
-        "import sys\n"
+        "import sys, time\n"
         "from wgpurender.wgpu_path.device import context as c\n"
+        "real = c._make_context\n"
+        "def slow(backend):\n"
+        "    ctx = real(backend)\n"
+        "    time.sleep(0.5)\n"
+        "    print('made', flush=True)\n"
+        "    return ctx\n"
+        "c._make_context = slow\n"
         "c.start_context()\n"
         "sys.exit(2)\n"
     )
     out = _python(code)
     assert out.returncode == 2, (out.returncode, out.stderr[-2000:])
-    assert out.stderr == ""
+    assert out.stdout == "made\n" and out.stderr == ""
+
+
+def _spied(call: str) -> str:
+    """Run ``call`` in a fresh process; print how many contexts were started early and how many made in all."""
+    return (
+        "from wgpurender.wgpu_path.device import context as c\n"
+        "starts, makes = [], []\n"
+        "real_start, real_make = c._EarlyContext.__init__, c._make_context\n"
+        "def start(self, backend):\n"
+        "    starts.append(backend)\n"
+        "    real_start(self, backend)\n"
+        "def make(backend):\n"
+        "    makes.append(backend)\n"
+        "    return real_make(backend)\n"
+        "c._EarlyContext.__init__, c._make_context = start, make\n"
+        f"{call}\n"
+        "print(starts, makes)\n"
+    )
+
+
+def test_the_apis_render_and_the_startup_child_make_the_device_early():
+    """What ``wgpurender render`` calls, and what bench perf's startup family times, start it on the thread."""
+    for call in ("import wgpurender as w; w.render('3d', size=(32, 24))",
+                 "from wgpurender.bench.startup import _child; _child('wgpu', 'triangle', (32, 24))"):
+        out = _python(_spied(call))
+        assert out.returncode == 0, out.stderr[-2000:]
+        assert out.stdout.strip() == "['Vulkan'] ['Vulkan']", (call, out.stdout)
