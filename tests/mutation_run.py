@@ -1319,6 +1319,7 @@ MUTATIONS = [
     (CTX, "        early.thread.join()", "        pass", [EARLY]),
     (CTX, "        if want in _made or want in _early:", "        if want in _made:", [EARLY]),
     (CTX, "            self.error = exc", "            raise", [EARLY]),
+    (CTX, "            _import_backend()  # share the GIL", "            pass  # share the GIL", [EARLY]),
     ("wgpurender/api.py", "    start_context(backend)  # the device", "    pass  # the device", [EARLY]),
     ("wgpurender/bench/startup.py", "        start_context()  # as `wgpurender render` does",
      "        pass  # as `wgpurender render` does", [EARLY]),

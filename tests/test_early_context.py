@@ -36,6 +36,11 @@ def test_the_context_made_on_the_thread_is_the_one_get_context_returns_and_draws
         "    seen.append((threading.current_thread().name, sys.getswitchinterval()))\n"
         "    return real(backend)\n"
         "c._make_context = spy\n"
+        "real_import = c._import_backend\n"
+        "def import_spy():\n"
+        "    seen.append(('backend imported on', threading.current_thread().name))\n"
+        "    real_import()\n"
+        "c._import_backend = import_spy\n"
         "c.start_context()\n"
         "early = c._early['Vulkan']\n"
         "from wgpurender.wgpu_path.render import render_stage\n"
@@ -46,8 +51,11 @@ def test_the_context_made_on_the_thread_is_the_one_get_context_returns_and_draws
     )
     out = _python(code, str(tmp_path / "early.npy"))
     assert out.returncode == 0, out.stderr[-2000:]
-    # made once, on the thread, with the short switch interval; Python's default back once it finished
-    assert out.stdout.strip() == "[('wgpurender-context', 0.0005)] 0.005"
+    # wgpu-py's backend imported first in the caller's thread (Python work: the thread begins with the driver);
+    # the context made once, on the thread, with the short switch interval; Python's default back once it finished
+    first = "('backend imported on', 'MainThread')"
+    assert out.stdout.strip().startswith(f"[{first}, ('wgpurender-context', 0.0005)")
+    assert out.stdout.strip().endswith("] 0.005") and out.stdout.count("('wgpurender-context', 0.0005)") == 1
     from wgpurender.wgpu_path.render import render_stage
 
     here = render_stage("3d", (64, 48)).pixels

@@ -234,18 +234,27 @@ def _configure_instance_once(backend: str) -> None:
     if binding.requested() == "dawn":  # Dawn has no wgpu-native instance extras: it picks its own backends
         _instance_backend.append(backend)
         return
-    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
+    _import_backend()
+    from wgpu.backends.wgpu_native.extras import set_instance_extras
 
-    with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
-        from wgpu.backends.wgpu_native.extras import set_instance_extras
-
-    from wgpurender.wgpu_path.device.cffi_types import install_for_wgpu
-
-    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
     flags = ["All"] if backend == AUTO else [BACKENDS[backend]]
     set_instance_extras(backends=flags, flags=["Validation"] if validation else ["Default"])
     _instance_backend.append(backend)
+
+
+def _import_backend() -> None:
+    """Import wgpu-py's wgpu-native backend with wgpu.h's cached parse: Python work only (~40 ms), no driver call.
+
+    :func:`start_context` does this in the caller's thread, so the thread it starts begins with the driver."""
+    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
+
+    with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
+        import wgpu.backends.wgpu_native.extras  # noqa: F401
+
+    from wgpurender.wgpu_path.device.cffi_types import install_for_wgpu
+
+    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
 
 
 @functools.cache
@@ -350,6 +359,8 @@ def start_context(backend: str | None = None) -> None:
     with _made_lock:
         if want in _made or want in _early:
             return
+        if binding.requested() != "dawn":  # the Python part first, in this thread: on the new thread it would
+            _import_backend()  # share the GIL with the caller's imports while the driver's work waited for it
         if not _early_joined:  # a process that stops early (bad input) waits for the driver, not exits mid-call
             atexit.register(_join_early)
             _early_joined.append(True)
