@@ -16,9 +16,9 @@ set -u
 MAIN=$(cd .. && pwd)
 step perf 100 python3 -m wgpurender bench perf --only startup,frames,scene --out "$D/perf"
 step split 40 python3 benchmarks/startup_split.py 9 "$D/startup_split.csv"
-step tails 25 python3 benchmarks/tail_probe.py "$D/tail_probe.csv" 100
+step tails 35 python3 benchmarks/tail_probe.py "$D/tail_probe.csv" 100
 step profile 20 python3 benchmarks/first_pixel_profile.py "$D/profile"
-step perf_main 90 env PYTHONPATH="$MAIN:/tmp/site" python3 -m wgpurender bench perf --only startup,frames,scene \
+step perf_main 80 env PYTHONPATH="$MAIN:/tmp/site" python3 -m wgpurender bench perf --only startup,frames,scene \
   --out "$D/perf_main"
 cat "$D/commands.txt"
 grep -E "startup: (wgpu|raw) no caches(, no bytecode)?:" "$D/perf.log" "$D/perf_main.log"

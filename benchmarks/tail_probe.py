@@ -1,13 +1,14 @@
 """What the slow frames of bench perf's frame rows are (issue 31.4: p99 <= 2x the median): each timed frame of a
-few cases, with where it sits, as ``bench perf``'s frames family times them (bench/frames.py: 4 alternating rounds,
-the first half of each round's frames followed by a frame with readback, which is not a sample).
+few cases, with where it sits, timed the way ``bench perf``'s frames family times them now (bench/frames.py's
+``measure_interleaved``) and the way it did before issue 31.4's change ("old": the garbage collected and the
+timestamps read between the warm-up and the first sample; a readback frame after each of the first half of the
+samples), same process, same runners.
 
     python benchmarks/tail_probe.py [OUT.csv] [FRAMES]
 
-Writes one row per timed frame (case, path, round, position in the round, whether the frame before it read the
-image back, cpu_ms, frame_ms) and prints, per case and path: the median and p99 of cpu_ms and frame_ms, and the
-median cpu_ms of the frames that follow a readback frame, of those that do not, and of each round's first frame,
-and where the frames over 2x the median cpu_ms sit.
+Writes one row per timed frame (case, path, method, round, position in the round, whether the frame before it read
+the image back, cpu_ms, frame_ms) and prints, per case, path and method: the median and p99/median of cpu_ms and
+frame_ms, and where the frames over 2x the median cpu_ms sit (right after a readback frame, first in a round, other).
 """
 
 from __future__ import annotations
@@ -28,6 +29,37 @@ def p99(values: list[float]) -> float:
     return Stats.of(values).p99
 
 
+def old_measure(runner, frames: int, warmup: int, readback_frames: int):
+    """bench/frames.py's measure before issue 31.4's change (GPU times left out)."""
+    from wgpurender.bench import frames as bf
+
+    bf.warm_up(runner, warmup)
+    bf.settle_garbage()
+    collect = getattr(runner, "collect_gpu", None)
+    if collect is not None:
+        collect()
+    samples = bf.Samples()
+    with bf.frames_without_gc():
+        for i in range(frames):
+            frame_ms, cpu_ms, _ = bf._timed(runner)
+            samples.frame.append(frame_ms)
+            samples.cpu.append(cpu_ms)
+            if i < readback_frames:
+                bf._timed(runner, readback=True)
+    return samples
+
+
+def old_interleaved(runners: dict, frames: int, readback_frames: int) -> dict:
+    from wgpurender.bench.frames import Samples
+
+    out = {name: Samples() for name in runners}
+    per, rb = max(1, frames // ROUNDS), max(0, -(-readback_frames // ROUNDS))
+    for k in range(ROUNDS):
+        for name in (list(runners) if k % 2 == 0 else list(runners)[::-1]):
+            out[name].extend(old_measure(runners[name], per, 2 if k == 0 else 1, rb))
+    return out
+
+
 def main(out: Path | None, frames: int) -> None:
     from wgpurender.bench.frames import RawStageRunner, WgpuStageRunner, measure_interleaved
     from wgpurender.wgpu_path.device.context import get_context
@@ -38,29 +70,26 @@ def main(out: Path | None, frames: int) -> None:
     per, rb_per = max(1, frames // ROUNDS), -(-rb // ROUNDS)
     for name, size in CASES:
         with RawStageRunner(name, size) as raw:
-            samples = measure_interleaved({"wgpu": WgpuStageRunner(ctx, name, size), "raw": raw}, frames, rb)
-        for path, s in samples.items():
-            for i, (cpu, frame) in enumerate(zip(s.cpu, s.frame, strict=True)):
-                k, j = divmod(i, per)
-                rows.append({"case": f"{name} {size[0]}x{size[1]}", "path": path, "round": k, "position": j,
-                             "after_readback": int(0 < j <= rb_per), "cpu_ms": round(cpu, 4),
-                             "frame_ms": round(frame, 4)})
-    for key in dict.fromkeys((r["case"], r["path"]) for r in rows):
-        mine = [r for r in rows if (r["case"], r["path"]) == key]
-        cpu = [r["cpu_ms"] for r in mine]
-        frame = [r["frame_ms"] for r in mine]
-        after = [r["cpu_ms"] for r in mine if r["after_readback"]]
-        plain = [r["cpu_ms"] for r in mine if not r["after_readback"] and r["position"]]
-        first = [r["cpu_ms"] for r in mine if r["position"] == 0]
+            runners = {"wgpu": WgpuStageRunner(ctx, name, size), "raw": raw}
+            for method, samples in (("now", measure_interleaved(runners, frames, rb)),
+                                    ("old", old_interleaved(runners, frames, rb))):
+                for path, s in samples.items():
+                    for i, (cpu, frame) in enumerate(zip(s.cpu, s.frame, strict=True)):
+                        k, j = divmod(i, per)
+                        rows.append({"case": f"{name} {size[0]}x{size[1]}", "path": path, "method": method,
+                                     "round": k, "position": j,
+                                     "after_readback": int(method == "old" and 0 < j <= rb_per),
+                                     "cpu_ms": round(cpu, 4), "frame_ms": round(frame, 4)})
+    for key in dict.fromkeys((r["case"], r["path"], r["method"]) for r in rows):
+        mine = [r for r in rows if (r["case"], r["path"], r["method"]) == key]
+        cpu, frame = [r["cpu_ms"] for r in mine], [r["frame_ms"] for r in mine]
         slow = [r for r in mine if r["cpu_ms"] > 2 * statistics.median(cpu)]
         where = {"after readback": sum(r["after_readback"] for r in slow),
                  "round's first": sum(r["position"] == 0 for r in slow)}
         where["other"] = len(slow) - sum(where.values())
-        print(f"{key[0]:22s} {key[1]:4s} cpu med {statistics.median(cpu):.3f} p99 {p99(cpu):.3f} "
-              f"({p99(cpu) / statistics.median(cpu):.1f}x) | frame med {statistics.median(frame):.3f} "
-              f"p99 {p99(frame):.3f} ({p99(frame) / statistics.median(frame):.1f}x) | cpu after readback "
-              f"{statistics.median(after):.3f}, not {statistics.median(plain):.3f}, round's first "
-              f"{statistics.median(first):.3f} | cpu > 2x median: {len(slow)} of {len(cpu)} ({where})")
+        print(f"{key[0]:20s} {key[1]:4s} {key[2]:3s} cpu med {statistics.median(cpu):.3f} p99 "
+              f"{p99(cpu) / statistics.median(cpu):.1f}x | frame med {statistics.median(frame):.3f} p99 "
+              f"{p99(frame) / statistics.median(frame):.1f}x | cpu > 2x median: {len(slow)} ({where})")
     if out:
         with out.open("w", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=list(rows[0]))

@@ -1333,6 +1333,10 @@ MUTATIONS = [
      [WARM_ORDER]),
     ("wgpurender/bench/frames.py", "    settle_garbage()\n    collect = getattr", "    collect = getattr",
      [WARM_ORDER]),
+    ("wgpurender/bench/frames.py", "        plain_ms, _, _ = _timed(runner)", "        plain_ms = 0.0", [WARM_ORDER]),
+    ("wgpurender/bench/frames.py", "        kinds += [False, False]", "        kinds += [True, False]", [WARM_ORDER]),
+    ("wgpurender/bench/frames.py", "    for _ in range(readback_frames):\n        plain_ms",
+     "    for _ in range(readback_frames - 1):\n        plain_ms", [WARM_ORDER]),
 ]
 
 
