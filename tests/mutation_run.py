@@ -257,8 +257,8 @@ MUTATIONS = [
     ("wgpurender/api.py", "        with _GPU:\n", "        if True:\n", [THREADS]),
     ("wgpurender/core/checks.py", "    if not isinstance(value, str) or not value:\n        raise UserError(f\"{name} must be a folder",  # noqa: E501
      "    if not isinstance(value, str):\n        raise UserError(f\"{name} must be a folder", [API]),
-    ("wgpurender/core/checks.py", "    if not isinstance(value, (bool, np.bool_)):\n        raise UserError(f\"{name} must be True",  # noqa: E501
-     "    if not isinstance(value, (bool, np.bool_, int)):\n        raise UserError(f\"{name} must be True", [API]),
+    ("wgpurender/core/checks.py", "    if not _is_bool(value):\n        raise UserError(f\"{name} must be True",
+     "    if not (_is_bool(value) or isinstance(value, int)):\n        raise UserError(f\"{name} must be True", [API]),
     ("wgpurender/core/files/runtime_dir.py", "bool(value) and os.path.isabs(value) and", "bool(value) and", [RUNTIME]),
     ("wgpurender/core/files/runtime_dir.py", "    os.environ[RUNTIME_ENV] = private", "    pass", [RUNTIME]),
     # glTF metallic-roughness (issue 30): the BRDF on both paths, the material mapping, KHR_lights_punctual
@@ -1405,6 +1405,12 @@ MUTATIONS = [
     ("wgpurender/bench/frames.py", "        kinds += [False, False]", "        kinds += [True, False]", [WARM_ORDER]),
     ("wgpurender/bench/frames.py", "    for _ in range(readback_frames):\n        plain_ms",
      "    for _ in range(readback_frames - 1):\n        plain_ms", [WARM_ORDER]),
+    ("wgpurender/core/checks.py", "    return numpy is not None and isinstance(value, numpy.ndarray)",
+     "    return False", ["tests/test_checks_numpy.py"]),
+    ("wgpurender/core/checks.py", "isinstance(value, bool) or (numpy is not None and isinstance(value, numpy.bool_))",
+     "isinstance(value, bool)", ["tests/test_checks_numpy.py"]),
+    ("wgpurender/core/checks.py", "    from wgpurender.core.verdict.compare import METRICS\n\n    if name",
+     "    METRICS = ()\n\n    if name", [API]),
 ]
 
 
