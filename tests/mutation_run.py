@@ -106,6 +106,8 @@ VAL = "wgpurender/core/scene/validate.py"
 CTX = "wgpurender/wgpu_path/device/context.py"
 EARLY = "tests/test_early_context.py"
 WARM_ORDER = "tests/test_bench_warm_order.py"
+POD = "wgpurender/wgpu_path/device/parser_on_demand.py"
+POD_T = "tests/test_parser_on_demand.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
@@ -1405,6 +1407,11 @@ MUTATIONS = [
     ("wgpurender/bench/frames.py", "        kinds += [False, False]", "        kinds += [True, False]", [WARM_ORDER]),
     ("wgpurender/bench/frames.py", "    for _ in range(readback_frames):\n        plain_ms",
      "    for _ in range(readback_frames - 1):\n        plain_ms", [WARM_ORDER]),
+    (POD, "    sys.modules[NAME] = stand_in\n", "    pass\n", [POD_T]),
+    (POD, "        return getattr(real, attr)", "        return None", [POD_T]),
+    (POD, "            return found.group(1)", "            return found.group(0)", [POD_T]),
+    (POD, "    spec = PathFinder.find_spec(NAME)", "    spec = None", [POD_T]),
+    (POD, "            del sys.modules[NAME]", "            pass", [POD_T]),
     ("wgpurender/core/checks.py", "    return numpy is not None and isinstance(value, numpy.ndarray)",
      "    return False", ["tests/test_checks_numpy.py"]),
     ("wgpurender/core/checks.py", "isinstance(value, bool) or (numpy is not None and isinstance(value, numpy.bool_))",
