@@ -26,6 +26,10 @@ SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}  # dr
 TOPOLOGIES = {0: "point-list", 1: "line-list", 2: "line-list", 3: "line-list", 4: "triangle-list",
               5: "triangle-list", 6: "triangle-list"}
 FLOAT = 5126
+# Texture coordinate slots a mesh carries at most: vertex attributes uv, uv1..uv4 (locations 2, 5-8 of scene.wgsl;
+# with the 7 per-instance attributes at 9-15 they fill WebGPU's 16); core/plan/model.EXTRA_UV_SLOTS is the 4 beyond
+# the first. A material's 8 textures could ask for more; one past the last is ignored by name.
+MAX_UV_SLOTS = 5
 
 
 @dataclass
@@ -173,15 +177,19 @@ def _points_and_lines(idx: np.ndarray, mode: int) -> np.ndarray:
 
 
 def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
-    """A material's textureInfo objects: the normal texture first (generated tangents follow the mesh's first
+    """A material's textureInfo objects: the normal textures first (generated tangents follow the mesh's first
     coordinate slot, and a normal map needs tangents of its own coordinates), then base colour,
-    metallic-roughness, emissive, occlusion."""
+    metallic-roughness, emissive, occlusion, then KHR_materials_clearcoat's two others."""
     if material is None:
         return []
     mat = doc.json.get("materials", [])[material]
+    coat = mat.get("extensions", {}).get(gltf_extensions.CLEARCOAT)
+    coat = coat if isinstance(coat, dict) else {}
     infos = [mat.get("normalTexture"), mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
              mat.get("occlusionTexture")]
+    infos[1:1] = [coat.get("clearcoatNormalTexture")]  # the other normal map: right after the base's
+    infos += [coat.get("clearcoatTexture"), coat.get("clearcoatRoughnessTexture")]
     spec_gloss = mat.get("extensions", {}).get("KHR_materials_pbrSpecularGlossiness")  # converted at load
     if isinstance(spec_gloss, dict):  # (core/scene/gltf_specgloss.py): sampled on diffuse's coordinates, else its own
         infos += [spec_gloss.get("diffuseTexture"), spec_gloss.get("specularGlossinessTexture")]
@@ -191,12 +199,15 @@ def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
 def uv_slots(doc: GltfDocument, material: int | None) -> list[tuple[int, dict | None, tuple]]:
     """The texture coordinates a material's mesh carries, one slot per distinct (TEXCOORD set,
     KHR_texture_transform) its textures sample with, in :func:`texture_infos` order: (set, transform or None,
-    transform key); at most one per texture (5). The transform is applied to the slot's coordinates at load
+    transform key); at most :data:`MAX_UV_SLOTS` (a texture past them samples nothing: gltf_materials ignores it
+    by name). The transform is applied to the slot's coordinates at load
     (affine: interpolating transformed coordinates equals transforming interpolated ones), so each texture samples
     its own set with its own transform, and the shader only picks a slot per texture (the plan's ``<map>_uv<k>``
     variant flags): a material whose textures all sample alike carries one slot and costs nothing more."""
     slots: list[tuple[int, dict | None, tuple]] = []
     for info in texture_infos(doc, material):
+        if len(slots) == MAX_UV_SLOTS:
+            break
         texcoord, key = gltf_extensions.texture_uv_choice(info)
         if all((s, k) != (texcoord, key) for s, _, k in slots):
             transform = info.get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
@@ -204,10 +215,11 @@ def uv_slots(doc: GltfDocument, material: int | None) -> list[tuple[int, dict | 
     return slots or [(0, None, ())]
 
 
-def texture_slot(doc: GltfDocument, material: int, info: dict) -> int:
-    """The slot of :func:`uv_slots` one of the material's textureInfos samples with."""
+def texture_slot(doc: GltfDocument, material: int, info: dict) -> int | None:
+    """The slot of :func:`uv_slots` one of the material's textureInfos samples with (None: past the last)."""
     choice = gltf_extensions.texture_uv_choice(info)
-    return [(s, k) for s, _, k in uv_slots(doc, material)].index(choice)
+    choices = [(s, k) for s, _, k in uv_slots(doc, material)]
+    return choices.index(choice) if choice in choices else None
 
 
 def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):

@@ -54,7 +54,12 @@ SPARSE = Obj({"count": INT, "indices": Obj({"bufferView": Ref("bufferViews"), "b
               "values": Obj({"bufferView": Ref("bufferViews"), "byteOffset": INT}, ("bufferView",))},
              ("count", "indices", "values"))
 MATERIAL_EXTENSIONS = Obj({"KHR_materials_emissive_strength": Obj({"emissiveStrength": NONNEG}),
-                           "KHR_materials_unlit": Obj({})})
+                           "KHR_materials_unlit": Obj({}),
+                           "KHR_materials_clearcoat": Obj({
+                               "clearcoatFactor": NONNEG, "clearcoatTexture": TEXTURE_INFO,
+                               "clearcoatRoughnessFactor": NONNEG, "clearcoatRoughnessTexture": TEXTURE_INFO,
+                               "clearcoatNormalTexture": Obj({"index": Ref("textures"), "texCoord": INT, "scale": NUM},
+                                                             ("index",))})})
 PRIMITIVE = Obj({"attributes": Map(Ref("accessors")), "indices": Ref("accessors"), "material": Ref("materials"),
                  "mode": INT, "targets": Arr(Map(Ref("accessors")))}, ("attributes",))
 DOCUMENT = Obj({

@@ -16,6 +16,7 @@ import numpy as np
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
+from wgpurender.core.models.gltf_geometry import MAX_UV_SLOTS
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
@@ -37,9 +38,11 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
                     "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
-TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
-EXTRA_UV_SLOTS = len(TEXTURE_FEATURES) - 1  # coordinate slots beyond the first: one per texture at most
-ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"),
+TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map", "clearcoat_map",
+                    "clearcoat_roughness_map", "clearcoat_normal_map")
+EXTRA_UV_SLOTS = MAX_UV_SLOTS - 1  # coordinate slots beyond the first (vertex attributes uv1..uv4)
+TANGENT_FEATURES = frozenset({"normal_map", "clearcoat_normal_map"})  # the maps that need the tangent frame
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("tangent", "tangent"), ("vertex_color", "color"),
               *((f"uv{k}", f"uv{k}") for k in range(1, EXTRA_UV_SLOTS + 1)))
 # "<texture feature>_uv<k>": that texture samples the mesh's coordinate slot k (vertex attribute uv<k>)
 UV_SLOT_FLAGS = {f"{feature}_uv{k}": (feature, k) for feature in TEXTURE_FEATURES for k in range(1, EXTRA_UV_SLOTS + 1)}
@@ -80,7 +83,8 @@ class ShaderVariant:
     def vertex_attributes(self) -> tuple[str, ...]:
         uses_uv = bool(self.flags & set(TEXTURE_FEATURES))
         slots = {f"uv{UV_SLOT_FLAGS[f][1]}" for f in self.flags if f in UV_SLOT_FLAGS}
-        have = self.flags | ({"uv"} if uses_uv else set()) | slots
+        tangent = {"tangent"} if self.flags & TANGENT_FEATURES else set()
+        have = self.flags | ({"uv"} if uses_uv else set()) | slots | tangent
         return ("position",) + tuple(attr for feature, attr in ATTRIBUTES if feature in have)
 
     def count(self, name: str) -> int:

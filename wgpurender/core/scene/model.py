@@ -152,11 +152,22 @@ class Material:
     # (feature, slot k >= 1, what it samples): the textures that sample the mesh's coordinate slot k (a glTF texCoord
     # or KHR_texture_transform of their own: core/models/gltf_geometry.uv_slots); the others sample slot 0.
     uv_slots: tuple[tuple[str, int, str], ...] = ()
+    # KHR_materials_clearcoat (a glTF metallic-roughness material only; shaders_wgsl/clearcoat.wgsl): a GGX layer of
+    # ior 1.5 over the material, weight clearcoat (x the clearcoat map's R), roughness clearcoat_roughness (x the
+    # clearcoat roughness map's G), its own normal (the geometric one, or the clearcoat normal map's with its scale)
+    clearcoat: float = 0.0
+    clearcoat_roughness: float = 0.0
+    clearcoat_map: Path | None = None
+    clearcoat_roughness_map: Path | None = None
+    clearcoat_normal_map: Path | None = None
+    clearcoat_normal_scale: float = 1.0
 
     @property
     def textures(self) -> dict[str, Path]:
         maps = {"albedo_map": self.albedo_map, "normal_map": self.normal_map, "roughness_map": self.roughness_map,
-                "emissive_map": self.emissive_map, "occlusion_map": self.occlusion_map}
+                "emissive_map": self.emissive_map, "occlusion_map": self.occlusion_map,
+                "clearcoat_map": self.clearcoat_map, "clearcoat_roughness_map": self.clearcoat_roughness_map,
+                "clearcoat_normal_map": self.clearcoat_normal_map}
         return {k: v for k, v in maps.items() if v is not None}
 
     def as_written(self, key: str) -> str:
