@@ -161,6 +161,12 @@ class Draw:
     first_instance: int = 0  # where its instances start in the scene's one Object storage buffer
     batch: str = ""  # why these instances are one draw (explain)
     cpu_culled: bool = False  # its instances are frustum-culled on the CPU (core/plan/culling.cpu_culled)
+    pose: object | None = None  # the model's glTF animation pose (core/models/gltf_animation.Pose), None: at rest
+
+    @property
+    def mesh_key(self) -> tuple:
+        """What names the vertices a draw reads: its model file, and the pose it is drawn in."""
+        return (self.model_path, self.pose)
 
     @property
     def instance_count(self) -> int:
@@ -456,10 +462,10 @@ class RenderPlan:
                 materials = len({d.material_key() for d in draws})
                 out.append(("scene-materials", f"uniform: {materials} Material slice(s), one per distinct material "
                                                f"({when})"))
-        meshes = dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes) for d in draws)
+        meshes = dict.fromkeys((d.mesh_key, self.variant(d.variant_key).vertex_attributes) for d in draws)
         if meshes:  # every mesh in one pair, each at its own offset (wgpu_path/scene/resources.py upload_meshes)
             layouts = "; ".join(dict.fromkeys(", ".join(attributes) for _, attributes in meshes))
-            names = ", ".join(dict.fromkeys(model.name for model, _ in meshes))
+            names = ", ".join(dict.fromkeys(key[0].name for key, _ in meshes))
             out.append(("scene-vertices", f"vertex: {len(meshes)} mesh(es) ({names}), each interleaved at its own "
                                           f"offset (attributes {layouts})"))
             out.append(("scene-indices", f"index: the same {len(meshes)} mesh(es), each at its own offset"))
