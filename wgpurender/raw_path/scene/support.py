@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import DEPTH_FORMAT, RenderPlan
+from wgpurender.core.plan.batches import OBJECT_BYTES
 from wgpurender.raw_path.device.images import FORMATS
 from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
 from wgpurender.raw_path.post.neighbourhood import NEIGHBOUR_SHADERS
@@ -56,6 +57,11 @@ def unsupported(plan: RenderPlan) -> list[str]:
     if plan.knobs.instance_data == "vertex":  # "storage" and "auto" are what the raw path does
         problems.append("plan knob instance_data = 'vertex': the raw path reads instances from a storage buffer "
                         "(leave the knob out, or say 'storage')")
+    elif plan.instance_data == "vertex":  # "auto" past the one storage binding's limit (instance_data.fit_binding)
+        room = plan.knobs.adapter.max_storage_binding // OBJECT_BYTES
+        problems.append(f"{sum(d.instance_count for d in plan.scene_pass.draws)} instances: the raw path reads "
+                        f"every instance from one storage buffer, and this device's maxStorageBufferRange holds "
+                        f"{room} (draw at most {room} copies, or render on the wgpu path)")
     for knob, (default, instead) in WGPU_ONLY_KNOBS.items():
         if getattr(plan.knobs, knob) != default:
             problems.append(f"plan knob {knob} = {getattr(plan.knobs, knob)!r}: {instead} (leave the knob out)")
