@@ -155,3 +155,19 @@ def test_the_apis_render_and_the_startup_child_make_the_device_early_and_only_on
         out = _python(_spied(call))
         assert out.returncode == 0, out.stderr[-2000:]
         assert out.stdout.strip() == "['Vulkan'] ['Vulkan']", (call, out.stdout)
+
+
+def test_two_contexts_made_early_at_once_leave_pythons_switch_interval_as_it_was():
+    """'auto' and 'vulkan' started together (one instance serves both): two threads, each with the short
+    interval while it works; once both are done the interval is Python's default again, whichever ends last."""
+    code = (
+        "import sys\n"
+        "from wgpurender.wgpu_path.device import context as c\n"
+        "c.start_context('auto')\n"
+        "c.start_context('vulkan')\n"
+        "a, v = c.get_context('auto'), c.get_context('vulkan')\n"
+        "print(a is not v, sys.getswitchinterval())\n"
+    )
+    out = _python(code)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["True", "0.005"]

@@ -12,6 +12,8 @@ import atexit
 import functools
 import os
 import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -383,6 +385,29 @@ def _join_early() -> None:
 EARLY_SWITCH_S = 0.0005
 
 
+_switch = {"threads": 0, "before": 0.0}  # threads making a context early; the interval before the first of them
+_switch_lock = threading.Lock()
+
+
+@contextmanager
+def _short_switch_interval() -> Iterator[None]:
+    """:data:`EARLY_SWITCH_S` while any context is made on a thread; the interval from before, after the last."""
+    import sys
+
+    with _switch_lock:
+        if _switch["threads"] == 0:
+            _switch["before"] = sys.getswitchinterval()
+            sys.setswitchinterval(min(_switch["before"], EARLY_SWITCH_S))
+        _switch["threads"] += 1
+    try:
+        yield
+    finally:
+        with _switch_lock:
+            _switch["threads"] -= 1
+            if _switch["threads"] == 0:
+                sys.setswitchinterval(_switch["before"])
+
+
 class _EarlyContext:
     """A context being made on a daemon thread: its result, or the exception that stopped it."""
 
@@ -393,16 +418,11 @@ class _EarlyContext:
         self.thread.start()
 
     def _make(self, backend: str) -> None:
-        import sys
-
-        previous = sys.getswitchinterval()
-        sys.setswitchinterval(min(previous, EARLY_SWITCH_S))
         try:
-            self.ctx = _make_context(backend)
+            with _short_switch_interval():
+                self.ctx = _make_context(backend)
         except BaseException as exc:  # handed to the caller of get_context, which raises it there
             self.error = exc
-        finally:
-            sys.setswitchinterval(previous)
 
     def result(self) -> GPUContext:
         self.thread.join()
