@@ -1,6 +1,8 @@
 """A GPU-culled instanced draw after another draw: are all its copies drawn? (Found by the load engineer on
 lavapipe, 2026-11-27, on main too: a 3x2 grid of cubes after a triangle draws 48 of its 72 pixels culled, 72
-unculled; the grid first draws all 72 either way.) Prints the grid's pixel count per order and culling knob.
+unculled; the grid first draws all 72 either way. The cause, fixed by cullfix the same day: the culled draw bound
+its indices at their offset in the shared buffer, which lavapipe's indirect draws ignore,
+benchmarks/indirect_index_offset_probe.py.) Prints the grid's pixel count per order and culling knob.
 
     python benchmarks/cull_order_probe.py
 """

@@ -1,10 +1,12 @@
 """GPU frustum culling of the plan's culled draws (core/plan/culling.py decides which; shaders_wgsl/scene_cull.wgsl).
 
 When the camera changes (scene_pass.py; the objects are static), before the scene pass: the indirect argument
-blocks are reset (``queue.write_buffer``: index count,
-instance_count 0, first index, base vertex, first instance), one compute pass dispatches one invocation per
-instance of each culled draw, and the scene pass draws each with ``draw_indexed_indirect`` (recorded once in the
-bundle: only the buffer's contents change). The frustum planes are written when the camera changes.
+blocks are reset (``queue.write_buffer``: index count, instance_count 0, first index and base vertex of the draw's
+mesh in the shared buffers, first instance), one compute pass dispatches one invocation per instance of each
+culled draw, and the scene pass draws each with ``draw_indexed_indirect`` (recorded once in the bundle: only the
+buffer's contents change). The frustum planes are written when the camera changes. The buffers are bound at
+offset 0, as for every draw: lavapipe's indirect draws ignore an index buffer's bind offset
+(benchmarks/indirect_index_offset_probe.py).
 """
 
 from __future__ import annotations
@@ -44,7 +46,7 @@ def bounding_sphere(positions: np.ndarray) -> tuple[np.ndarray, float]:
 class GpuCuller:
     """Buffers, pipeline and bind groups of the culling pass; ``visible`` and ``indirect`` are read by the draws."""
 
-    def __init__(self, ctx: GPUContext, plan: RenderPlan, meshes, object_buffer: wgpu.GPUBuffer, total: int) -> None:
+    def __init__(self, ctx: GPUContext, plan: RenderPlan, resources, object_buffer: wgpu.GPUBuffer, total: int) -> None:
         self.ctx, self.draws = ctx, plan.culled_draws
         dev = ctx.device
         storage = wgpu.BufferUsage.STORAGE
@@ -58,10 +60,11 @@ class GpuCuller:
                                       usage=wgpu.BufferUsage.UNIFORM | wgpu.BufferUsage.COPY_DST)
         self.args = np.zeros((len(self.draws), 5), np.uint32)
         self.spheres = []
-        for k, d in enumerate(self.draws):
-            first_index, count = meshes.index_range(d)
-            self.args[k] = (count, 0, first_index, 0, d.first_instance)
-            self.spheres.append(bounding_sphere(meshes.mesh(d.mesh_key).positions))
+        for k, d in enumerate(self.draws):  # the meshes are uploaded: the draw's place in the shared buffers
+            first_index, count = resources.index_range(d)
+            buffers = resources.mesh_buffers(d)
+            self.args[k] = (count, 0, buffers.first_index + first_index, buffers.base_vertex, d.first_instance)
+            self.spheres.append(bounding_sphere(resources.meshes.mesh(d.mesh_key).positions))
         self._make_pipeline(object_buffer)
 
     def _make_pipeline(self, object_buffer: wgpu.GPUBuffer) -> None:

@@ -82,6 +82,7 @@ class ScenePassRenderer:
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
         self._material_layouts: GpuCache[tuple] = GpuCache("scene-material-layouts")
         if self.draws:
+            self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
             self._setup_uniforms()
             self._setup_draws()
         self.bundle = self._make_bundle()
@@ -103,7 +104,7 @@ class ScenePassRenderer:
         stages = wgpu.ShaderStage.VERTEX | wgpu.ShaderStage.FRAGMENT
         self.camera_layout = uniform_layout(dev, L.CAMERA, stages, dynamic=False)
         self.camera_group = uniform_group(dev, self.camera_layout, self.camera_buffer, L.CAMERA)
-        self.culler = (GpuCuller(self.ctx, self.plan, self.resources.meshes, self.object_buffer, len(blocks))
+        self.culler = (GpuCuller(self.ctx, self.plan, self.resources, self.object_buffer, len(blocks))
                        if self.plan.culled_draws else None)
         self.cpu_culler = (CpuCuller(self.ctx, self.plan.cpu_culled_draws, self.resources.meshes, blocks,
                                      self.object_buffer) if self.plan.cpu_culled_draws else None)
@@ -137,7 +138,6 @@ class ScenePassRenderer:
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
         self.draw_state = []
-        self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
         groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
         packed: dict[tuple, bytes] = {}  # equal keys hold equal variants and factors: packed once (10k draws)
         pipelines: dict[str, wgpu.GPURenderPipeline] = {}  # by the plan's key: looked up once, not once a draw
@@ -313,16 +313,15 @@ class ScenePassRenderer:
                 encoder.set_bind_group(material_group, group)
             if self.uses_immediates and data is not last[1]:  # equal material keys share one bytes object
                 encoder.set_immediates(0, data, 0, len(data))
-            culled = self.plan.pipeline(draw.pipeline_key).culled
-            # the GPU-culled draw's indirect block counts from its mesh's offsets: bound there; every other draw
-            # names its mesh by first index and base vertex in the shared buffers bound once at 0 (one call a draw)
-            bound = buffers if culled else (buffers.vertex, buffers.index, buffers.index_format)
+            # every draw names its mesh by first index and base vertex in the shared buffers bound at 0, the
+            # GPU-culled one through its indirect block (GpuCuller): lavapipe's indirect draws ignore an index
+            # buffer's bind offset (benchmarks/indirect_index_offset_probe.py), so none is ever bound at one
+            bound = (buffers.vertex, buffers.index, buffers.index_format)
             if bound != last[3]:
-                at = (buffers.vertex_offset, buffers.index_offset) if culled else (0, 0)
-                encoder.set_vertex_buffer(0, buffers.vertex, at[0])
-                encoder.set_index_buffer(buffers.index, buffers.index_format, at[1])
+                encoder.set_vertex_buffer(0, buffers.vertex)
+                encoder.set_index_buffer(buffers.index, buffers.index_format)
             last = [pipeline, data, group, bound]
-            if culled:  # its visible instances, as the GPU counted them
+            if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
                 encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
                 continue
             # the draw's part of the mesh (a file material's triangles), once per instance
