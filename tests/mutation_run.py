@@ -58,6 +58,9 @@ JAILR = "wgpurender/core/files/read_jail.py"
 RACE = ["tests/test_read_jail_race.py"]
 MESHES_PY = "wgpurender/core/plan/meshes.py"
 RES_PY = "wgpurender/wgpu_path/scene/resources.py"
+CULLER = "wgpurender/wgpu_path/scene/culling.py"
+SCENE_PASS = "wgpurender/wgpu_path/scene/scene_pass.py"
+CULL_GRID = "tests/test_culling.py|both_paths"
 I_DATA = "wgpurender/core/plan/instance_data.py"
 I_TEST = ["tests/test_instance_data.py"]
 BENCH_IMPORTS = "tests/test_bench_imports.py"
@@ -1766,6 +1769,17 @@ MUTATIONS = [
     ('wgpurender/wgpu_path/scene/resources.py', 'v_at // stride, i_at // mesh.indices.itemsize)',
      'v_at // stride, i_at // 4)', [SHARED_MESH]),
     ('wgpurender/wgpu_path/scene/resources.py', 'v_at // stride, i_at', 'v_at // 4, i_at', [SHARED_MESH]),
+    # cullfix: the GPU-culled draw names its mesh in the shared buffers through its indirect block (bound at 0)
+    (CULLER, "buffers.first_index + first_index, buffers.base_vertex", "first_index, buffers.base_vertex",
+     [CULL_GRID]),
+    (CULLER, "buffers.first_index + first_index, buffers.base_vertex", "buffers.first_index + first_index, 0",
+     [CULL_GRID]),
+    (SCENE_PASS, "encoder.set_index_buffer(buffers.index, buffers.index_format)",
+     "encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)", [CULL_GRID]),
+    (SCENE_PASS, "encoder.set_vertex_buffer(0, buffers.vertex)",
+     "encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)", [CULL_GRID]),
+    (SCENE_PASS, "            self.resources.upload_meshes(self.draws)  # every mesh", "            pass  # every mesh",
+     [SHARED_MESH, CULL_GRID]),
 ]
 
 
