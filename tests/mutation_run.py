@@ -1775,9 +1775,9 @@ MUTATIONS = [
     (CULLER, "buffers.first_index + first_index, buffers.base_vertex", "buffers.first_index + first_index, 0",
      [CULL_GRID]),
     (SCENE_PASS, "encoder.set_index_buffer(buffers.index, buffers.index_format)",
-     "encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)", [CULL_GRID]),
+     "encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)", [CULL_GRID, SHARED_MESH]),
     (SCENE_PASS, "encoder.set_vertex_buffer(0, buffers.vertex)",
-     "encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)", [CULL_GRID]),
+     "encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)", [CULL_GRID, SHARED_MESH]),
     (SCENE_PASS, "            self.resources.upload_meshes(self.draws)  # every mesh", "            pass  # every mesh",
      [SHARED_MESH, CULL_GRID]),
 ]
