@@ -19,8 +19,9 @@ read once and written once. The entry points around ``pass_color``:
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
 - compute: ``cs_main`` over workgroups of :data:`SHAPE`, ``textureStore`` into ``dst`` (binding 3), a storage
   texture.
-  A pass whose output is an ``-srgb`` format writes an ``rgba8unorm`` scratch instead (``-srgb`` cannot
-  be a storage texture) with the sRGB curve applied here, then the runner copies it (same bytes).
+  A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
+  texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
+  (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
 """
 
 from __future__ import annotations
@@ -79,8 +80,9 @@ def _tail(p: PostPass, first: int) -> str:
     for i in range(first, len(p.steps)):
         name = p.steps[i].effect
         lines.append(f"    c = {name}_pixel(c, pos, size{_arg(p, i)});")
-    if encoding_of(p.copy_format or "") == "hardware" and p.steps[-1].effect != "srgb":
-        # compute into an rgba8unorm scratch of an -srgb output: the hardware would have encoded, so the shader does
+    if encoding_of(p.encodes_for or "") == "hardware" and p.steps[-1].effect != "srgb":
+        # compute into an rgba8unorm scratch or twin of an -srgb output: the hardware would have encoded, so the
+        # shader does
         lines.append("    c = vec4f(srgb_encode(c.rgb), c.a);")
     lines += ["    return c;", "}"]
     return "\n".join(lines)
@@ -143,7 +145,7 @@ def pass_source(p: PostPass, shape: tuple[int, int, int] | None = None) -> str:
         parts.append(wgsl_structs(struct))
         parts.append("@group(0) @binding(2) var<uniform> params: PassParams;")
     files = dict.fromkeys(f"post_{s.effect}.wgsl" for s in p.steps)
-    if p.copy_to:  # srgb_encode, for a scratch of an -srgb output
+    if p.encodes_for:  # srgb_encode, for a scratch or the twin of an -srgb output
         files.setdefault(SRGB_WGSL)
     parts.extend(load_wgsl(f) for f in files)
     parts.append(_color(p))

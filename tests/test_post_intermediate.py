@@ -1,0 +1,168 @@
+"""The knob post_intermediate: what an 8-bit image between post passes costs in accuracy, against float64.
+
+The chain is final.toml's (tonemap, FXAA, vignette) over the coloured test image of tests/test_fxaa_reference.py
+(drawn 1:1, unlit, nearest, into the rgba16float scene image, so the test knows the scene image exactly). The
+truth is float64 throughout, written in the tests (test_post.ref_aces, fxaa_reference.fxaa, test_post.ref_vignette),
+nothing imported from the renderer: no rounding between the effects, the sRGB curve at the end. Each setting is
+drawn on the wgpu path (fragment and compute) and on the raw path, and judged in 8-bit sRGB steps against the
+truth's round(255 * encoded).
+
+What "auto" (rgba16float between the passes, today's image) costs is the calibration; rgba8unorm stores the
+tone-mapped values linear in 8 bits, whose steps are coarse in the darks, so its error is larger there;
+rgba8unorm-srgb stores them sRGB-encoded (steps even to the eye) and the sampler decodes before it filters.
+
+Measured on lavapipe (Mesa 22.3.6, AMD EPYC), 2026-11-27, 96x72 pixels, error in 8-bit steps against the truth
+(max, mean, share of pixels off by more than 1), the same on the three ways to 0.03 in the mean:
+
+| setting | max | mean | share > 1 |
+|---|---|---|---|
+| auto (rgba16float) | 10 | 0.13-0.16 | 0.043% (3 pixels: FXAA's edge test flips on a threshold) |
+| rgba8unorm | 7 | 0.74-0.76 | 27.2-27.6% |
+| rgba8unorm-srgb | 1 | 0.20-0.24 | 0 |
+
+So the calibrated tolerance (auto's, with margin: AUTO_MAX, AUTO_OVER1) holds rgba8unorm-srgb and not rgba8unorm.
+The default stays "auto": rgba8unorm-srgb changes today's image (within the tolerance) and on the compute path
+it costs a scratch copy (an -srgb texture is not a storage texture), where the GPU runs the chain.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from fxaa_reference import fxaa
+from shading_model import camera_toml, srgb_decode, srgb_encode, view_distance
+from test_fxaa_reference import H, W, coloured_image
+from test_post import ref_aces, ref_vignette
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files.imageio import save_png
+from wgpurender.core.models import procedural
+from wgpurender.core.plan import resolve_plan
+from wgpurender.core.scene import load_scene
+
+EXPOSURE, STRENGTH, RADIUS, SOFTNESS = 1.6, 0.45, 0.55, 0.5
+KNOBS = ("auto", "rgba8unorm", "rgba8unorm-srgb")
+AUTO_MAX, AUTO_OVER1 = 16, 0.002  # measured 10 and 0.043% (3 of 6912 pixels); ~14 pixels allowed
+EIGHT_MAX, EIGHT_OVER1 = 10, 0.35  # rgba8unorm: measured 7 and 27.6%
+
+
+def write_scene(folder) -> object:
+    save_png(folder / "coloured.png", coloured_image())
+    quad = procedural.write_obj(folder / "quad.obj", procedural.plane(width=2.0 * W / H, height=2.0))
+    path = folder / "scene.toml"
+    path.write_text(camera_toml(view_distance()) + f"""
+[[models]]
+path = "{quad}"
+material = {{ albedo_map = "coloured.png", unlit = true, sampler = {{ filter = "nearest", mipmaps = false }} }}
+
+[render]
+size = [{W}, {H}]
+msaa = 1
+hdr = true
+output_format = "rgba8unorm-srgb"
+
+[[post]]
+effect = "tonemap"
+exposure = {EXPOSURE}
+
+[[post]]
+effect = "fxaa"
+
+[[post]]
+effect = "vignette"
+strength = {STRENGTH}
+radius = {RADIUS}
+softness = {SOFTNESS}
+""", encoding="utf-8")
+    return path
+
+
+def truth() -> np.ndarray:
+    """The chain in float64 on the exact scene image, as 8-bit sRGB values (float, unrounded)."""
+    scene_image = np.ones((H, W, 4))
+    scene_image[..., :3] = srgb_decode(coloured_image()[..., :3] / 255.0).astype(np.float16)
+    out = ref_vignette(fxaa(ref_aces(scene_image, EXPOSURE)), STRENGTH, RADIUS, SOFTNESS)
+    return srgb_encode(out[..., :3]) * 255.0
+
+
+def render(ctx, path, way: str, intermediate: str) -> np.ndarray:
+    if way == "raw":
+        from wgpurender.raw_path.device.context import get_vulkan
+        from wgpurender.raw_path.scene.frame import render_scene_plan
+
+        return render_scene_plan(resolve_plan(path, get_vulkan().adapter_facts(),
+                                              post_intermediate=intermediate)).astype(np.float64)
+    from wgpurender.wgpu_path.scene import render_plan
+
+    plan = resolve_plan(path, ctx.adapter_facts(), post_path=way, post_intermediate=intermediate)
+    return render_plan(ctx, plan, frames=1).pixels.astype(np.float64)
+
+
+def errors(got: np.ndarray, want: np.ndarray) -> dict[str, float]:
+    err = np.abs(got[..., :3] - np.round(want))
+    return {"max": float(err.max()), "mean": float(err.mean()), "over1": float((err.max(-1) > 1).mean())}
+
+
+@pytest.fixture(scope="module")
+def measured(ctx, tmp_path_factory):
+    path = write_scene(tmp_path_factory.mktemp("post-intermediate"))
+    want = truth()
+    return {(way, knob): render(ctx, path, way, knob) for way in ("fragment", "compute", "raw")
+            for knob in KNOBS}, want, path
+
+
+def test_the_knob_stores_the_intermediate_it_names(measured):
+    _, _, path = measured
+    scene = load_scene(path)
+    for way in ("fragment", "compute"):
+        auto = resolve_plan(scene, None, post_path=way)
+        eight = resolve_plan(scene, None, post_path=way, post_intermediate="rgba8unorm")
+        assert auto.attachment("post_a").format == "rgba16float" and eight.attachment("post_a").format == "rgba8unorm"
+        assert eight.setting("post_intermediate") == "rgba8unorm" and "8 bits" in eight.explain()
+        # half the bytes between the passes: tonemap writes 4 bytes a pixel instead of 8, FXAA reads 4
+        assert auto.post_passes[0].bytes_written - eight.post_passes[0].bytes_written == W * H * 4
+        assert auto.post_passes[1].bytes_read - eight.post_passes[1].bytes_read == W * H * 4
+        encoded = resolve_plan(scene, None, post_path=way, post_intermediate="rgba8unorm-srgb")
+        assert encoded.attachment("post_a").format == "rgba8unorm-srgb"
+    # an -srgb intermediate is no storage texture: on the compute path tonemap writes an rgba8unorm scratch
+    # (sRGB-encoded in the shader) copied into post_a, which FXAA samples (decoded before filtering)
+    first = resolve_plan(scene, None, post_path="compute", post_intermediate="rgba8unorm-srgb").post_passes[0]
+    assert (first.output, first.output_format, first.copy_to, first.copy_format) == (
+        "post_scratch", "rgba8unorm", "post_a", "rgba8unorm-srgb")
+
+
+@pytest.mark.parametrize("way", ["fragment", "compute", "raw"])
+def test_each_setting_against_the_float64_chain(measured, way):
+    images, want, _ = measured
+    auto, eight = errors(images[(way, "auto")], want), errors(images[(way, "rgba8unorm")], want)
+    encoded = errors(images[(way, "rgba8unorm-srgb")], want)
+    assert auto["max"] <= AUTO_MAX and auto["over1"] <= AUTO_OVER1, f"{way} auto: {auto}"
+    assert eight["max"] <= EIGHT_MAX and eight["over1"] <= EIGHT_OVER1, f"{way} rgba8unorm: {eight}"
+    # linear 8 bits is a real cost, outside the tolerance; sRGB-encoded 8 bits stays inside it
+    assert eight["over1"] > AUTO_OVER1 and eight["mean"] > 3 * auto["mean"], f"{way}: {eight} vs {auto}"
+    assert encoded["max"] <= AUTO_MAX and encoded["over1"] <= AUTO_OVER1, f"{way} rgba8unorm-srgb: {encoded}"
+    for knob in KNOBS[1:]:
+        assert not np.array_equal(images[(way, "auto")], images[(way, knob)]), f"{way} {knob} changed nothing"
+
+
+def test_raw_and_wgpu_store_the_same_intermediate(measured):
+    """The raw path's handoff image takes the knob's format too: per setting, raw equals wgpu's fragment path
+    within 1/255 (the float32 between fused effects on one side, lavapipe's sRGB encoder on the other). The
+    compute path encodes an -srgb intermediate in its shader, the fragment path in lavapipe's (approximate)
+    encoder: one step apart there, two after the output's own encoding (measured: 10 of 6912 pixels)."""
+    images, _, _ = measured
+    for knob in KNOBS:
+        assert np.abs(images[("raw", knob)] - images[("fragment", knob)]).max() <= 1, knob
+        diff = np.abs(images[("compute", knob)] - images[("fragment", knob)]).max(-1)
+        bound = 2 if knob.endswith("srgb") else 1
+        assert diff.max() <= bound and (diff > 1).mean() <= 0.005, (knob, diff.max(), (diff > 1).sum())
+
+
+def test_a_chain_with_nothing_between_passes_refuses_the_knob(measured):
+    _, _, path = measured
+    scene = load_scene(path)
+    with pytest.raises(UserError, match="stores no image between passes"):
+        resolve_plan(scene.__class__(**{**scene.__dict__, "post": scene.post[:1]}), None,
+                     post_intermediate="rgba8unorm")
+    with pytest.raises(UserError, match="post_intermediate = 'rgba32float': choose one of auto, rgba16float, rgba8"):
+        resolve_plan(scene, None, post_intermediate="rgba32float")
