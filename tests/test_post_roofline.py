@@ -41,3 +41,22 @@ def test_roofline_rows_cover_every_variant_with_the_planned_bytes(ctx):
     text = markdown(rows, ctx, FINAL, (W, H), 1, "test")
     assert "| fragment, fused | fxaa+vignette |" in text and "% of copy" in text
     assert "x a copy of the same bytes" in text and "the copy of the auto chain's bytes" in text
+
+
+def test_chain_ratio_is_the_chains_time_over_the_copy_of_its_bytes():
+    """Issue 31.6's figure from the second H100 run's rows: tonemap 0.089 ms (copy 0.049), fxaa+vignette 0.076 ms
+    (copy 0.039): 0.165 / 0.088 = 1.875x. An 8-bit variant is also set against the auto chain's copy."""
+    from wgpurender.bench.post_roofline import PassTime, chain_ratio
+
+    auto = [PassTime("compute, fused", "tonemap", "compute", 1, 0.089, 0.049),
+            PassTime("compute, fused", "fxaa+vignette", "compute", 1, 0.076, 0.039)]
+    assert chain_ratio(auto) == pytest.approx(0.165 / 0.088)
+    eight = [PassTime("compute, fused, rgba8unorm", "tonemap", "compute", 1, 0.05, 0.03, intermediate="rgba8unorm"),
+             PassTime("compute, fused, rgba8unorm", "fxaa+vignette", "compute", 1, 0.06, 0.02,
+                      intermediate="rgba8unorm")]
+    assert chain_ratio(eight) == pytest.approx(0.11 / 0.05)
+    from wgpurender.bench.post_roofline import _against_auto
+
+    assert _against_auto(auto + eight, "compute, fused, rgba8unorm", eight) == (
+        " (1.25x the copy of the auto chain's bytes)")
+    assert _against_auto(auto + eight, "compute, fused", auto) == ""
