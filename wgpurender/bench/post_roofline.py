@@ -240,6 +240,10 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
                      f"timestamps ({total_bytes / (total_ms * 1e6) if total_ms else float('nan'):.1f} GB/s); "
                      f"whole chain by wall clock (submit + wait) {mine[0].chain_wall_ms:.3f} ms; "
                      f"{chain_ratio(mine):.2f}x a copy of the same bytes" + _against_auto(rows, variant, mine))
+    timed = {r.variant for r in rows}
+    names = [f"{p}, {'fused' if f else 'unfused'}" for p, f in VARIANTS]
+    lines += [f"- {v}, {k}: left out (this chain stores no image between passes)"
+              for k in INTERMEDIATES[1:] for v in names if v in timed and f"{v}, {k}" not in timed]
     lines += ["", "Timestamps of compute passes on lavapipe do not bracket the dispatch's work (they read far "
               "below what a CPU can move): there, compare the wall-clock chain times. On a hardware GPU both agree."]
     return "\n".join(lines) + "\n"
