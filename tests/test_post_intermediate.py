@@ -9,7 +9,8 @@ truth's round(255 * encoded).
 
 What "auto" (rgba16float between the passes, today's image) costs is the calibration; rgba8unorm stores the
 tone-mapped values linear in 8 bits, whose steps are coarse in the darks, so its error is larger there;
-rgba8unorm-srgb stores them sRGB-encoded (steps even to the eye) and the sampler decodes before it filters.
+rgba8unorm-srgb stores them sRGB-encoded (steps even to the eye) and the sampler decodes before it filters; none
+stores nothing: one pass recomputes tonemap for every texel FXAA reads, its bilinear taps computed in the shader.
 
 Measured on lavapipe (Mesa 22.3.6, AMD EPYC), 2026-11-27, 96x72 pixels, error in 8-bit steps against the truth
 (max, mean, share of pixels off by more than 1), the same on the three ways to 0.03 in the mean:
@@ -19,10 +20,12 @@ Measured on lavapipe (Mesa 22.3.6, AMD EPYC), 2026-11-27, 96x72 pixels, error in
 | auto (rgba16float) | 10 | 0.13-0.16 | 0.043% (3 pixels: FXAA's edge test flips on a threshold) |
 | rgba8unorm | 7 | 0.74-0.76 | 27.2-27.6% |
 | rgba8unorm-srgb | 1 | 0.20-0.24 | 0 |
+| none (wgpu only) | 1 | 0.13-0.16 | 0 |
 
-So the calibrated tolerance (auto's, with margin: AUTO_MAX, AUTO_OVER1) holds rgba8unorm-srgb and not rgba8unorm.
-The default stays "auto": rgba8unorm-srgb changes today's image (within the tolerance) and on the compute path
-it costs a scratch copy (an -srgb texture is not a storage texture), where the GPU runs the chain.
+So the calibrated tolerance (auto's, with margin: AUTO_MAX, AUTO_OVER1) holds rgba8unorm-srgb and none, not
+rgba8unorm. The default stays "auto" (today's image): rgba8unorm-srgb costs a scratch copy on the compute path (an
+-srgb texture is not a storage texture); none drops the fragment path's FXAA mask (lavapipe's early exit) and the
+raw path cannot draw it. The run: docs/perf-lavapipe/2026-11-27-post/ (benchmarks/post_intermediate_error.py).
 """
 
 from __future__ import annotations
@@ -41,7 +44,9 @@ from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import load_scene
 
 EXPOSURE, STRENGTH, RADIUS, SOFTNESS = 1.6, 0.45, 0.55, 0.5
-KNOBS = ("auto", "rgba8unorm", "rgba8unorm-srgb")
+KNOBS = ("auto", "rgba8unorm", "rgba8unorm-srgb", "none")
+WAYS = {"auto": ("fragment", "compute", "raw"), "rgba8unorm": ("fragment", "compute", "raw"),
+        "rgba8unorm-srgb": ("fragment", "compute", "raw"), "none": ("fragment", "compute")}  # raw refuses none
 AUTO_MAX, AUTO_OVER1 = 16, 0.002  # measured 10 and 0.043% (3 of 6912 pixels); ~14 pixels allowed
 EIGHT_MAX, EIGHT_OVER1 = 10, 0.35  # rgba8unorm: measured 7 and 27.6%
 
@@ -107,8 +112,7 @@ def errors(got: np.ndarray, want: np.ndarray) -> dict[str, float]:
 def measured(ctx, tmp_path_factory):
     path = write_scene(tmp_path_factory.mktemp("post-intermediate"))
     want = truth()
-    return {(way, knob): render(ctx, path, way, knob) for way in ("fragment", "compute", "raw")
-            for knob in KNOBS}, want, path
+    return {(way, knob): render(ctx, path, way, knob) for knob in KNOBS for way in WAYS[knob]}, want, path
 
 
 def test_the_knob_stores_the_intermediate_it_names(measured):
@@ -142,7 +146,38 @@ def test_each_setting_against_the_float64_chain(measured, way):
     assert eight["over1"] > AUTO_OVER1 and eight["mean"] > 3 * auto["mean"], f"{way}: {eight} vs {auto}"
     assert encoded["max"] <= AUTO_MAX and encoded["over1"] <= AUTO_OVER1, f"{way} rgba8unorm-srgb: {encoded}"
     for knob in KNOBS[1:]:
-        assert not np.array_equal(images[(way, "auto")], images[(way, knob)]), f"{way} {knob} changed nothing"
+        if way in WAYS[knob]:
+            assert not np.array_equal(images[(way, "auto")], images[(way, knob)]), f"{way} {knob} changed nothing"
+
+
+@pytest.mark.parametrize("way", ["fragment", "compute"])
+def test_recomputing_instead_of_storing_is_within_the_tolerance(measured, way):
+    """post_intermediate = none: one pass, tonemap applied to every texel FXAA reads and its bilinear taps
+    computed in the shader. Nothing is rounded between the effects, so the error is at most auto's (measured:
+    max 1 step, none over 1, mean 0.13-0.16 like auto's)."""
+    images, want, _ = measured
+    auto, none = errors(images[(way, "auto")], want), errors(images[(way, "none")], want)
+    assert none["max"] <= AUTO_MAX and none["over1"] <= AUTO_OVER1, f"{way} none: {none}"
+    assert none["mean"] <= auto["mean"] * 1.1, f"{way}: none {none} vs auto {auto}"
+
+
+def test_recomputing_plans_one_pass_and_the_raw_path_refuses_it(measured):
+    _, _, path = measured
+    scene = load_scene(path)
+    for way in ("fragment", "compute"):
+        plan = resolve_plan(scene, None, post_path=way, post_intermediate="none")
+        (p,) = plan.post_passes
+        assert (p.effect, p.prelude, p.input, p.output) == ("tonemap+fxaa+vignette", 1, "scene_color", "output")
+        assert not plan.has_attachment("post_a") and not plan.has_attachment("fxaa_mask")
+        assert (p.bytes_read, p.bytes_written) == (W * H * 8, W * H * 4)  # the HDR scene image in, 8-bit sRGB out
+        assert "tonemap recomputed for every texel fxaa reads" in plan.explain()
+    from wgpurender.raw_path.scene.support import unsupported
+
+    assert any("post_intermediate = 'none'" in u for u in unsupported(resolve_plan(scene, None,
+                                                                                  post_intermediate="none")))
+    no_fxaa = scene.__class__(**{**scene.__dict__, "post": (scene.post[0], scene.post[2])})
+    with pytest.raises(UserError, match="no per-pixel effect comes before an FXAA pass"):
+        resolve_plan(no_fxaa, None, post_intermediate="none", post_fuse=False)
 
 
 def test_raw_and_wgpu_store_the_same_intermediate(measured):
@@ -151,7 +186,7 @@ def test_raw_and_wgpu_store_the_same_intermediate(measured):
     compute path encodes an -srgb intermediate in its shader, the fragment path in lavapipe's (approximate)
     encoder: one step apart there, two after the output's own encoding (measured: 10 of 6912 pixels)."""
     images, _, _ = measured
-    for knob in KNOBS:
+    for knob in KNOBS[:3]:
         assert np.abs(images[("raw", knob)] - images[("fragment", knob)]).max() <= 1, knob
         diff = np.abs(images[("compute", knob)] - images[("fragment", knob)]).max(-1)
         bound = 2 if knob.endswith("srgb") else 1

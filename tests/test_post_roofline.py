@@ -24,7 +24,7 @@ def test_roofline_rows_cover_every_variant_with_the_planned_bytes(ctx):
     rows = run_roofline(ctx, FINAL, (W, H), frames=1)
     by = {(r.variant, r.effects): r for r in rows}
     variants = {"fragment, unfused", "fragment, fused", "compute, unfused", "compute, fused"}
-    knobs = ("rgba8unorm", "rgba8unorm-srgb")
+    knobs = ("rgba8unorm", "rgba8unorm-srgb", "none")
     assert set(v for v, _ in by) == variants | {f"{v}, {k}" for v in variants for k in knobs}
     assert by[("fragment, unfused", "tonemap")].bytes_moved == W * H * (8 + 8)
     assert by[("fragment, fused", "fxaa+vignette")].bytes_moved == W * H * (8 + 2 + 4 + 2)
@@ -37,6 +37,8 @@ def test_roofline_rows_cover_every_variant_with_the_planned_bytes(ctx):
     # rgba8unorm-srgb on the compute path: tonemap's rgba8unorm scratch is copied into it (4 + 4 bytes, untimed)
     encoded = by[("compute, fused, rgba8unorm-srgb", "tonemap")]
     assert (encoded.bytes_moved, encoded.copy_bytes) == (W * H * (8 + 4), W * H * (4 + 4))
+    # none: one pass, the HDR scene image read, the output written (tonemap recomputed for FXAA's reads)
+    assert by[("compute, fused, none", "tonemap+fxaa+vignette")].bytes_moved == W * H * (8 + 4)
     assert all(r.ms > 0 and r.copy_ms > 0 and r.chain_wall_ms > 0 for r in rows)
     text = markdown(rows, ctx, FINAL, (W, H), 1, "test")
     assert "| fragment, fused | fxaa+vignette |" in text and "% of copy" in text

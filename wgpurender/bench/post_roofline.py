@@ -38,7 +38,7 @@ from wgpurender.wgpu_path.device.timing import PassTimer, wall_time
 VARIANTS = (("fragment", False), ("fragment", True), ("compute", False), ("compute", True))
 # the knob post_intermediate's settings timed for each variant ("auto": the scene image's format, today's image);
 # a chain that stores nothing between passes refuses a set knob, and that variant is left out (one line in the .md)
-INTERMEDIATES = ("auto", "rgba8unorm", "rgba8unorm-srgb")
+INTERMEDIATES = ("auto", "rgba8unorm", "rgba8unorm-srgb", "none")
 COPY_WGSL = """
 @group(0) @binding(0) var<storage, read> src: array<vec4<u32>>;
 @group(0) @binding(1) var<storage, read_write> dst: array<vec4<u32>>;
@@ -242,7 +242,7 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
                      f"{chain_ratio(mine):.2f}x a copy of the same bytes" + _against_auto(rows, variant, mine))
     timed = {r.variant for r in rows}
     names = [f"{p}, {'fused' if f else 'unfused'}" for p, f in VARIANTS]
-    lines += [f"- {v}, {k}: left out (this chain stores no image between passes)"
+    lines += [f"- {v}, {k}: left out (this chain stores no image between passes, or none it could recompute)"
               for k in INTERMEDIATES[1:] for v in names if v in timed and f"{v}, {k}" not in timed]
     lines += ["", "Timestamps of compute passes on lavapipe do not bracket the dispatch's work (they read far "
               "below what a CPU can move): there, compare the wall-clock chain times. On a hardware GPU both agree."]

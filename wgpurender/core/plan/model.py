@@ -32,7 +32,8 @@ IMMEDIATES = ("auto", "on", "off")
 # The post chain's intermediate images (knob post_intermediate): "auto" keeps the scene image's format (today's
 # image); rgba8unorm stores the tone-mapped values in 8 bits, linear (half the bytes of rgba16float), and
 # rgba8unorm-srgb sRGB-encoded (on the compute path through a scratch copy: it is not a storage format).
-POST_INTERMEDIATES = ("auto", "rgba16float", "rgba8unorm", "rgba8unorm-srgb")
+# "none" stores nothing before FXAA: the per-pixel effects before it are recomputed for every texel it reads.
+POST_INTERMEDIATES = ("auto", "rgba16float", "rgba8unorm", "rgba8unorm-srgb", "none")
 PLAN_FEATURES = ("immediates", "indirect-first-instance")  # the adapter features a plan reads (the rest: none)
 # Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
 # the "bgra8unorm-storage" feature, which the renderer does not ask for.
@@ -238,6 +239,7 @@ class PostPass:
     kind: str = "post"
     copy_format: str | None = None  # the format of ``copy_to`` (the scratch is written in ``output_format``)
     twin_of: str | None = None  # the format whose bytes ``output_format`` holds (an -srgb output written directly)
+    prelude: int = 0  # the first steps, applied to every texel the neighbourhood step reads (post_intermediate none)
 
     @property
     def encodes_for(self) -> str | None:

@@ -107,10 +107,13 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
     texture the caller made already has its format: it is written through a scratch and a copy).
     ``intermediate``: the knob post_intermediate (:func:`intermediate_note`)."""
     groups = group_passes(steps, fuse)
+    preludes = [0] * len(groups)
+    if intermediate == "none":
+        groups, preludes = recomputed_groups(groups)
     n = len(groups)
     temp_fmt = scene_fmt
     notes_all: list[str] = []
-    if intermediate != "auto":
+    if intermediate not in ("auto", "none"):
         if n < 2:
             raise UserError(f"post_intermediate = {intermediate}: this post chain runs as {n} pass and stores no "
                             "image between passes; drop the knob (or post_fuse = off to split the chain)")
@@ -170,9 +173,44 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
         if copy_to:
             read += pixels * BYTES_PER_PIXEL[dst_fmt]
             written += pixels * BYTES_PER_PIXEL[copy_format]
-        passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, _fusion_text(group),
-                               tuple(notes), mask, copy_to, read, written, copy_format=copy_format, twin_of=twin_of))
+        fusion = _recompute_text(group, preludes[i]) if preludes[i] else _fusion_text(group)
+        passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, fusion,
+                               tuple(notes), mask, copy_to, read, written, copy_format=copy_format, twin_of=twin_of,
+                               prelude=preludes[i]))
     return passes, attachments
+
+
+# Neighbourhood effects whose shader reads its input only through fxaa_texel / fxaa_sample
+# (shaders_wgsl/post_fxaa.wgsl), so the per-pixel effects before it can be recomputed for every texel it reads
+# (knob post_intermediate = none).
+RECOMPUTING_READERS = ("fxaa",)
+
+
+def recomputed_groups(groups: list[tuple[EffectStep, ...]]) -> tuple[list[tuple[EffectStep, ...]], list[int]]:
+    """Knob post_intermediate = none: a pass of per-pixel effects followed by an FXAA pass become one pass, whose
+    first ``prelude`` steps are applied to every texel FXAA reads (its bilinear taps computed in the shader from
+    four such texels) instead of being stored in an image between the passes."""
+    out: list[tuple[EffectStep, ...]] = []
+    preludes: list[int] = []
+    for group in groups:
+        if (out and group[0].effect in RECOMPUTING_READERS and not preludes[-1]
+                and all(s.spec.fusable for s in out[-1])):
+            preludes[-1] = len(out[-1])
+            out[-1] = out[-1] + group
+        else:
+            out.append(group)
+            preludes.append(0)
+    if not any(preludes):
+        raise UserError("post_intermediate = none: no per-pixel effect comes before an FXAA pass, so no image "
+                        "between passes can be recomputed instead of stored; drop the knob")
+    return out, preludes
+
+
+def _recompute_text(group: tuple[EffectStep, ...], prelude: int) -> str:
+    head = group[prelude].effect
+    before = ", ".join(s.effect for s in group[:prelude])
+    return (f"knob post_intermediate = none: {before} recomputed for every texel {head} reads (its bilinear taps "
+            f"computed in the shader), instead of stored in an image between two passes")
 
 
 def intermediate_note(fmt: str) -> str:

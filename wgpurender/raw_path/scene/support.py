@@ -56,6 +56,9 @@ def unsupported(plan: RenderPlan) -> list[str]:
     if plan.knobs.instance_data == "vertex":  # "storage" and "auto" are what the raw path does
         problems.append("plan knob instance_data = 'vertex': the raw path reads instances from a storage buffer "
                         "(leave the knob out, or say 'storage')")
+    if plan.knobs.post_intermediate == "none":
+        problems.append("plan knob post_intermediate = 'none': the raw path's FXAA samples a stored handoff image "
+                        "(choose auto, rgba16float, rgba8unorm or rgba8unorm-srgb)")
     for knob, (default, instead) in WGPU_ONLY_KNOBS.items():
         if getattr(plan.knobs, knob) != default:
             problems.append(f"plan knob {knob} = {getattr(plan.knobs, knob)!r}: {instead} (leave the knob out)")

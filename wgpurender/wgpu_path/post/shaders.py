@@ -89,12 +89,52 @@ def _tail(p: PostPass, first: int) -> str:
 
 
 def _color(p: PostPass) -> str:
-    head = p.steps[0]
-    first = 1 if not head.spec.fusable else 0
-    start = f"{head.effect}_at(p, pos{_arg(p, 0)})" if first else "textureLoad(src, p, 0)"
+    h = p.prelude
+    head = p.steps[h]
+    first = h + 1 if not head.spec.fusable else h
+    start = f"{head.effect}_at(p, pos{_arg(p, h)})" if first > h else "textureLoad(src, p, 0)"
     return (f"{_tail(p, first)}\n\n"
             f"fn pass_color(p: vec2i, pos: vec2f, size: vec2f) -> vec4f {{\n"
             f"    return pass_tail({start}, pos, size);\n}}")
+
+
+FXAA_READS = """
+fn fxaa_texel(p: vec2i) -> vec4f {
+    return src_clamped(p);
+}
+
+fn fxaa_sample(uv: vec2f) -> vec4f {
+    return textureSampleLevel(src, src_sampler, uv, 0.0);
+}
+"""
+
+# post_intermediate = none: the steps before FXAA applied to each texel it reads; a bilinear tap is the mix of four
+# such texels (clamp to edge, texel centres at i + 0.5), as the sampler would filter the stored image.
+FXAA_RECOMPUTED_READS = """
+fn fxaa_texel(p: vec2i) -> vec4f {
+    let size = vec2i(textureDimensions(src));
+    let q = clamp(p, vec2i(0, 0), size - vec2i(1, 1));
+    return pass_prelude(textureLoad(src, q, 0), vec2f(q) + vec2f(0.5), vec2f(size));
+}
+
+fn fxaa_sample(uv: vec2f) -> vec4f {
+    let x = uv * vec2f(textureDimensions(src)) - vec2f(0.5);
+    let i = vec2i(floor(x));
+    let f = x - floor(x);
+    let top = mix(fxaa_texel(i), fxaa_texel(i + vec2i(1, 0)), f.x);
+    let bottom = mix(fxaa_texel(i + vec2i(0, 1)), fxaa_texel(i + vec2i(1, 1)), f.x);
+    return mix(top, bottom, f.y);
+}
+"""
+
+
+def _reads(p: PostPass) -> str:
+    """fxaa_texel / fxaa_sample for a pass with FXAA: the stored image, or the prelude recomputed per texel."""
+    if p.prelude == 0:
+        return FXAA_READS
+    lines = ["fn pass_prelude(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
+    lines += [f"    c = {p.steps[i].effect}_pixel(c, pos, size{_arg(p, i)});" for i in range(p.prelude)]
+    return "\n".join([*lines, "    return c;", "}"]) + "\n" + FXAA_RECOMPUTED_READS
 
 
 FRAGMENT_MAIN = """
@@ -148,6 +188,8 @@ def pass_source(p: PostPass, shape: tuple[int, int, int] | None = None) -> str:
     if p.encodes_for:  # srgb_encode, for a scratch or the twin of an -srgb output
         files.setdefault(SRGB_WGSL)
     parts.extend(load_wgsl(f) for f in files)
+    if "post_fxaa.wgsl" in files:
+        parts.append(_reads(p))
     parts.append(_color(p))
     if p.path == "compute":
         parts.append(COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(wx))
