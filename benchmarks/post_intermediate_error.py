@@ -2,9 +2,10 @@
 
 The scene, the float64 truth and the error measure are tests/test_post_intermediate.py's (the truth is written in
 the tests: test_post.ref_aces, fxaa_reference.fxaa, test_post.ref_vignette; nothing from the renderer). Each setting
-is drawn on the wgpu path (fragment and compute) and the raw path (which refuses "none"); the error is in 8-bit sRGB steps against the
-truth's round(255 * encoded): the largest, the mean, and the share of pixels off by more than one step. The ways'
-differences from one another are listed too. The time each setting takes is `bench post-roofline`'s.
+is drawn on the wgpu path (fragment and compute) and the raw path (which refuses "none"); the error is in 8-bit
+sRGB steps against the truth's round(255 * encoded): the largest, the mean, and the share of pixels off by more
+than one step. The ways' differences from one another are listed too. The time each setting takes is
+`bench post-roofline`'s.
 
     python benchmarks/post_intermediate_error.py OUT.md
 """
