@@ -1346,6 +1346,19 @@ MUTATIONS = [
     (ROOF, "        rows += time_variant(ctx, scene, size, path, fuse, frames, copy, intermediate)",
      "        rows += time_variant(ctx, scene, size, path, fuse, frames, copy)", [ROOF_T]),
 
+    # post_intermediate = none: the steps before FXAA recomputed for every texel it reads
+    (PP, "        if (out and group[0].effect in RECOMPUTING_READERS and not preludes[-1]",
+     "        if (out and not preludes[-1]", [INTERMEDIATE]),
+    (PP, "    if not any(preludes):\n", "    if False:\n", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    h = p.prelude\n", "    h = 0\n", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    if p.prelude == 0:\n        return FXAA_READS",
+     "    if True:\n        return FXAA_READS", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "for i in range(p.prelude)]", "for i in range(0)]", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    return mix(top, bottom, f.y);", "    return mix(top, bottom, f.x);",
+     [INTERMEDIATE]),
+    ("wgpurender/raw_path/scene/support.py", "    if plan.knobs.post_intermediate == \"none\":",
+     "    if False:", [INTERMEDIATE]),
+
 ]
 
 
