@@ -1342,7 +1342,8 @@ MUTATIONS = [
      "            (\"post_intermediate\", self.post_intermediate, POST_INTERMEDIATES),\n", "", [INTERMEDIATE]),
     (ROOF, "    return sum(r.ms for r in rows) / copy_ms if copy_ms > 0",
      "    return sum(r.ms for r in rows) / copy_ms / 2 if copy_ms > 0", [ROOF_T]),
-    (ROOF, "base = [r for r in rows if r.intermediate == \"auto\" and", "base = [r for r in rows if", [ROOF_T]),
+    (ROOF, "    if mine[0].intermediate == \"auto\":\n        return \"\"", "    if False:\n        return \"\"",
+     [ROOF_T]),
     (ROOF, "        rows += time_variant(ctx, scene, size, path, fuse, frames, copy, intermediate)",
      "        rows += time_variant(ctx, scene, size, path, fuse, frames, copy)", [ROOF_T]),
 
