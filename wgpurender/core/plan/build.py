@@ -59,13 +59,20 @@ def knob_settings(scene: Scene, knobs: Knobs) -> tuple[tuple[str, str, str], ...
         ("post_path", post_path, path_why),
         ("immediates", immediates, immediates_why),
         ("instance_data", instance_data, instance_why),
-        ("post_intermediate", knobs.post_intermediate, "knob post_intermediate: the format stored between post "
-         "passes" if knobs.post_intermediate != "auto" else "the scene image's format between post passes "
-         "(rgba16float on the compute path when that is 8-bit sRGB): today's image"),
+        ("post_intermediate", knobs.post_intermediate, _intermediate_why(knobs.post_intermediate)),
         ("output_storage", "on" if knobs.output_storage else "off",
          "offscreen output: a compute pass may write it directly" if knobs.output_storage else
          "knob output_storage: the output is a swapchain image, not a storage texture"),
     )
+
+
+def _intermediate_why(knob: str) -> str:
+    if knob == "auto":
+        return ("the scene image's format between post passes (rgba16float on the compute path when that is 8-bit "
+                "sRGB): today's image")
+    if knob == "none":
+        return "knob post_intermediate: nothing stored before FXAA, the effects before it recomputed for each read"
+    return "knob post_intermediate: the format stored between post passes"
 
 
 def _camera_note(scene: Scene) -> str:
