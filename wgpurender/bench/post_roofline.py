@@ -260,7 +260,8 @@ def _against_auto(rows: list[PassTime], variant: str, mine: list[PassTime]) -> s
     image's copy at today's format), so a variant that moves fewer bytes is also judged by time saved."""
     if mine[0].intermediate == "auto":
         return ""
-    base = [r for r in rows if r.variant == variant.rsplit(", ", 1)[0]]  # the auto rows' variant has no suffix
+    base_name = variant.removesuffix(f", {mine[0].intermediate}")  # the auto rows' variant: no knob suffix
+    base = [r for r in rows if r.variant == base_name]
     copy_ms = sum(r.copy_ms for r in base)
     return f" ({sum(r.ms for r in mine) / copy_ms:.2f}x the copy of the auto chain's bytes)" if copy_ms > 0 else ""
 
