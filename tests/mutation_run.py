@@ -1360,6 +1360,9 @@ MUTATIONS = [
     ("wgpurender/raw_path/scene/support.py", "    if plan.knobs.post_intermediate == \"none\":",
      "    if False:", [INTERMEDIATE]),
 
+    ("wgpurender/bench/figures_post.py", "intermediate = row.pop(len(row) - knob) if knob else \"auto\"",
+     "intermediate = \"auto\"", ["tests/test_benchmark_figures.py|perf2_roofline_rows"]),
+
 ]
 
 
