@@ -33,13 +33,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from fxaa_reference import fxaa
-from shading_model import camera_toml, srgb_decode, srgb_encode, view_distance
-from test_fxaa_reference import H, W, coloured_image
+from shading_model import srgb_decode, srgb_encode
+from test_fxaa_reference import H, W, coloured_image, quad_scene
 from test_post import ref_aces, ref_vignette
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.imageio import save_png
-from wgpurender.core.models import procedural
 from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import load_scene
 
@@ -51,22 +49,9 @@ AUTO_MAX, AUTO_OVER1 = 16, 0.002  # measured 10 and 0.043% (3 of 6912 pixels); ~
 EIGHT_MAX, EIGHT_OVER1 = 10, 0.35  # rgba8unorm: measured 7 and 27.6%
 
 
-def write_scene(folder) -> object:
-    save_png(folder / "coloured.png", coloured_image())
-    quad = procedural.write_obj(folder / "quad.obj", procedural.plane(width=2.0 * W / H, height=2.0))
+def write_scene(folder):
     path = folder / "scene.toml"
-    path.write_text(camera_toml(view_distance()) + f"""
-[[models]]
-path = "{quad}"
-material = {{ albedo_map = "coloured.png", unlit = true, sampler = {{ filter = "nearest", mipmaps = false }} }}
-
-[render]
-size = [{W}, {H}]
-msaa = 1
-hdr = true
-output_format = "rgba8unorm-srgb"
-
-[[post]]
+    path.write_text(quad_scene(folder, coloured_image(), "rgba8unorm-srgb", f"""[[post]]
 effect = "tonemap"
 exposure = {EXPOSURE}
 
@@ -78,7 +63,7 @@ effect = "vignette"
 strength = {STRENGTH}
 radius = {RADIUS}
 softness = {SOFTNESS}
-""", encoding="utf-8")
+"""), encoding="utf-8")
     return path
 
 
