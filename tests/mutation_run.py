@@ -1363,6 +1363,9 @@ MUTATIONS = [
     ("wgpurender/bench/figures_post.py", "intermediate = row.pop(len(row) - knob) if knob else \"auto\"",
      "intermediate = \"auto\"", ["tests/test_benchmark_figures.py|perf2_roofline_rows"]),
 
+    (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"none\")",
+     "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"auto\")", [ROOF_T]),
+
 ]
 
 

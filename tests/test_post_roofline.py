@@ -62,3 +62,17 @@ def test_chain_ratio_is_the_chains_time_over_the_copy_of_its_bytes():
     assert _against_auto(auto + eight, "compute, fused, rgba8unorm", eight) == (
         " (1.25x the copy of the auto chain's bytes)")
     assert _against_auto(auto + eight, "compute, fused", auto) == ""
+
+
+def test_the_shape_sweep_covers_the_auto_and_the_one_pass_chain(ctx):
+    """--shapes dispatches the fused compute passes with each shape, for the auto chain and post_intermediate none."""
+    if not ctx.has("timestamp-query"):
+        pytest.skip("no timestamp queries on this adapter")
+    from wgpurender.bench.post_roofline import SHAPES
+
+    rows = [r for r in run_roofline(ctx, FINAL, (16, 12), frames=1, shapes=True) if "shape" in r.variant]
+    auto = [r for r in rows if r.intermediate == "auto"]
+    none = [r for r in rows if r.intermediate == "none"]
+    assert len(auto) == 2 * len(SHAPES) and {r.effects for r in auto} == {"tonemap", "fxaa+vignette"}
+    assert len(none) == len(SHAPES) and {r.effects for r in none} == {"tonemap+fxaa+vignette"}
+    assert all(r.variant.startswith("compute, fused, none, shape ") for r in none)

@@ -171,12 +171,15 @@ SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2)
 
 
 def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy: CopyKernel,
-                shapes=SHAPES) -> list[PassTime]:
-    """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run."""
+                shapes=SHAPES, intermediate: str = "auto") -> list[PassTime]:
+    """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run;
+    ``intermediate``: the knob post_intermediate of the chain swept."""
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
-    plan = resolve_plan(scene, ctx.adapter_facts(), size=size, post_path="compute", post_fuse=True)
+    plan = resolve_plan(scene, ctx.adapter_facts(), size=size, post_path="compute", post_fuse=True,
+                        post_intermediate=intermediate)
+    knob = "" if intermediate == "auto" else f", {intermediate}"
     renderer = SceneRenderer(ctx, scene, plan)
     target = renderer.create_output()  # the plan's output texture (a compute path's -srgb twin included)
     render_frame(ctx, renderer, target)
@@ -196,8 +199,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
                 ctx.queue.submit([encoder.finish()])
                 samples.append(timer.read().get("pass", float("nan")))
             ms = statistics.median(samples[2:])
-            rows.append(PassTime(f"compute, fused, shape {shape[0]}x{shape[1]} x{shape[2]} rows", p.effect, "compute",
-                                 moved, ms, copy.ms(moved, frames), copied))
+            rows.append(PassTime(f"compute, fused{knob}, shape {shape[0]}x{shape[1]} x{shape[2]} rows", p.effect,
+                                 "compute", moved, ms, copy.ms(moved, frames), copied, intermediate=intermediate))
     return rows
 
 
@@ -216,6 +219,10 @@ def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frame
                 # the chain runs as one pass on this variant: nothing stored between passes, nothing to time
     if shapes:
         rows += shape_sweep(ctx, scene, size, frames, copy)
+        try:  # the one-pass chain (tonemap recomputed in FXAA) is the most ALU-bound: its shape may matter most
+            rows += shape_sweep(ctx, scene, size, frames, copy, intermediate="none")
+        except UserError:
+            pass  # no FXAA pass to recompute into: the auto sweep is the whole story
     return rows
 
 
