@@ -47,10 +47,35 @@ def main(out: Path) -> int:
                 continue
             d = np.abs(images[(a, knob)] - images[(b, knob)]).max(-1)
             lines.append(f"| {knob} | {a} - {b} | {d.max():.0f} | {int((d > 1).sum())} |")
+    lines += ["", *final_scene_lines(ctx)]
     text = "\n".join(lines) + "\n"
     out.write_text(text, encoding="utf-8")
     print(text, end="")
     return 0
+
+
+def final_scene_lines(ctx, size: tuple[int, int] = (640, 480)) -> list[str]:
+    """final.toml itself (no truth here): each setting's image against the raw path's auto image and against the
+    wgpu path's auto image, both on this adapter's post path: what a change of the default would change."""
+    from wgpurender.core.plan import resolve_plan
+    from wgpurender.raw_path.scene import render_scene_reference
+    from wgpurender.wgpu_path.scene import render_plan
+
+    scene = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "final.toml"
+    raw = render_scene_reference(scene, size=size).astype(np.int32)
+    images = {k: render_plan(ctx, resolve_plan(scene, ctx.adapter_facts(), size=size, post_intermediate=k),
+                             frames=1) for k in case.KNOBS}
+    path = images["auto"].plan.post_path
+    lines = [f"final.toml at {size[0]}x{size[1]}, wgpu {path} path, each setting against the raw path and against "
+             "the wgpu path's auto image (8-bit steps):", "",
+             "| setting | vs raw: max | vs raw: pixels > 1 | vs auto: max | vs auto: pixels > 1 |",
+             "|---|---:|---:|---:|---:|"]
+    auto = images["auto"].pixels.astype(np.int32)
+    for k, result in images.items():
+        img = result.pixels.astype(np.int32)
+        d_raw, d_auto = np.abs(img - raw).max(-1), np.abs(img - auto).max(-1)
+        lines.append(f"| {k} | {d_raw.max()} | {int((d_raw > 1).sum())} | {d_auto.max()} | {int((d_auto > 1).sum())} |")
+    return lines
 
 
 if __name__ == "__main__":
