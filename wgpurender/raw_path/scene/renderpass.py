@@ -84,9 +84,10 @@ def scene_format(plan: RenderPlan) -> str:
 
 def handoff_format(plan: RenderPlan) -> str:
     """The format of the images a neighbourhood pass samples after per-pixel effects (the wgpu path's post
-    intermediates): the knob post_intermediate, or the scene image's format ("auto": today's image)."""
+    intermediates): the knob post_intermediate, or the scene image's format ("auto": today's image; "none" is
+    refused by support.py before a frame is built)."""
     knob = plan.knobs.post_intermediate
-    return scene_format(plan) if knob == "auto" else knob
+    return scene_format(plan) if knob in ("auto", "none") else knob
 
 
 def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderPlan,
