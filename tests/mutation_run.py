@@ -1330,7 +1330,7 @@ MUTATIONS = [
     (PP, "        temp_fmt = intermediate\n", "        temp_fmt = scene_fmt\n", [INTERMEDIATE]),
     (PP, "        if n < 2:\n            raise UserError(f\"post_intermediate", "        if n < 1:\n            raise "
      "UserError(f\"post_intermediate", [INTERMEDIATE]),
-    ("wgpurender/raw_path/scene/renderpass.py", "return scene_format(plan) if knob == \"auto\" else knob",
+    ("wgpurender/raw_path/scene/renderpass.py", "return scene_format(plan) if knob in (\"auto\", \"none\") else knob",
      "return scene_format(plan)", [INTERMEDIATE]),
     ("wgpurender/raw_path/post/neighbourhood.py", "mid_format = scene_image_format(plan)", "mid_format = source.format",
      [INTERMEDIATE]),
