@@ -183,7 +183,8 @@ float light_window(PointLight light, float d2, vec3 l) {
 
 vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
     vec3 n = surface_normal(normal_texel);
-    vec3 v = safe_normalize(camera.eye.xyz - v_world_position, n);
+    // eye.w = 0 for an orthographic camera (eye.xyz the direction towards it): every view vector is parallel
+    vec3 v = safe_normalize(camera.eye.xyz - v_world_position * camera.eye.w, n);
 #ifndef PBR
     float s = shininess(roughness);
 #endif

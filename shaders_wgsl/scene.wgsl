@@ -287,7 +287,8 @@ fn light_window(light: PointLight, d2: f32, l: vec3f) -> f32 {
 
 fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> vec3f {
     let n = surface_normal(in, normal_texel);
-    let v = safe_normalize(camera.eye.xyz - in.world_position, n);
+    // eye.w = 0 for an orthographic camera (eye.xyz the direction towards it): every view vector is parallel
+    let v = safe_normalize(camera.eye.xyz - in.world_position * camera.eye.w, n);
 #if !pbr
     let s = shininess(roughness);
 #endif

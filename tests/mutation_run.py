@@ -97,6 +97,12 @@ LUT_T = "tests/test_ibl.py|lut or uniform or bright_texel or roughness_zero"
 EX_BOUND = "tests/test_exercises.py|wide_reference"
 EX_LINK = "tests/test_exercises.py|symlinked"
 COMP = "shaders_glsl/ibl.comp"
+# cameras' rows
+CAMS = "tests/test_gltf_cameras.py"
+CAM = "wgpurender/core/scene/gltf_cameras.py"
+TF = "wgpurender/core/view/transforms.py"
+SM = "wgpurender/core/scene/model.py"
+VAL = "wgpurender/core/scene/validate.py"
 
 # (file, text as committed, the tired developer's text, tests that should notice)
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
@@ -1366,6 +1372,68 @@ MUTATIONS = [
     (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"none\")",
      "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"auto\")", [ROOF_T]),
 
+    # cameras' rows (2026-11-27): a glTF file's camera as the view (core/scene/gltf_cameras.py), its projections,
+    # the orthographic view vector (eye.w) on both paths, the infinite far plane's culling, --camera
+    (TF, "m[2, 2], m[2, 3] = (0.0, near) if reverse_z else (-1.0, -near)",
+     "m[2, 2], m[2, 3] = (0.0, near) if reverse_z else (-1.0, 0.0)", [CAMS]),
+    (TF, "m[0, 0], m[1, 1] = 1.0 / xmag, 1.0 / ymag", "m[0, 0], m[1, 1] = 1.0 / ymag, 1.0 / xmag", [CAMS]),
+    (TF, "m[2, 2], m[2, 3] = 1.0 / (near - far), near / (near - far)",
+     "m[2, 2], m[2, 3] = 1.0 / (far - near), near / (near - far)", [CAMS]),
+    (TF, "not (0 <= near < far < np.inf)", "not (0 < near < far < np.inf)", [CAMS]),
+    (SM, "return (*(float(v) for v in back / np.linalg.norm(back)), 0.0)",
+     "return (*(float(v) for v in back / np.linalg.norm(back)), 1.0)", [CAMS]),
+    (SM, "back = np.asarray(self.eye, np.float64) - np.asarray(self.target, np.float64)",
+     "back = np.asarray(self.target, np.float64) - np.asarray(self.eye, np.float64)", [CAMS]),
+    (SM, "return (*(float(v) for v in self.eye), 1.0)", "return (*(float(v) for v in self.eye), 0.0)", [LIGHTS]),
+    (SM, "            return transforms.orthographic(self.xmag, self.ymag, self.near, self.far)\n",
+     "            pass\n", [CAMS]),
+    (SM, "aspect = self.aspect_ratio if self.aspect_ratio is not None else aspect", "aspect = aspect", [CAMS]),
+    (G_GEOM, "world = parent @ node_matrix(nodes[index])", "world = node_matrix(nodes[index])", [CAMS, LIGHTS]),
+    (CAM, "world[:3, :3] @ (0.0, 0.0, -1.0), world[:3, :3] @ (0.0, 1.0, 0.0)",
+     "world[:3, :3] @ (0.0, 0.0, 1.0), world[:3, :3] @ (0.0, 1.0, 0.0)", [CAMS]),
+    (CAM, "world[:3, :3] @ (0.0, 0.0, -1.0), world[:3, :3] @ (0.0, 1.0, 0.0)",
+     "world[:3, :3] @ (0.0, 0.0, -1.0), world[:3, :3] @ (1.0, 0.0, 0.0)", [CAMS]),
+    (CAM, "    world = np.asarray(model.transform.matrix, np.float64) @ world\n", "", [CAMS]),
+    (CAM, '"fov_y": math.degrees(_number(', '"fov_y": 2 * math.degrees(_number(', [CAMS]),
+    (CAM, 'required=False) or math.inf', 'required=False) or 2.0', [CAMS]),
+    (CAM, 'if fields["far"] <= fields["near"]:', 'if fields["far"] < fields["near"]:', [CAMS]),
+    (CAM, '"xmag", where, 0.0, lo_open=False, nonzero=True)', '"xmag", where, 0.0, lo_open=False, nonzero=False)',
+     [CAMS]),
+    (CAM, "if value < lo or (lo_open and value == lo) or", "if value < lo or", [CAMS]),
+    (CAM, 'if fields["fov_y"] >= 180.0:', 'if fields["fov_y"] >= 360.0:', [CAMS]),
+    (CAM, "if not 0 <= index < len(cameras):", "if not 0 <= index <= len(cameras):", [CAMS]),
+    (CAM, "placed_cameras(doc) if k == index]", "placed_cameras(doc) if k == 0]", [CAMS]),
+    (CAM, "if model.placements is not None:", "if model.placements is None:", [CAMS]),
+    (CAM, "target = eye + forward / np.linalg.norm(forward) * distance",
+     "target = eye - forward / np.linalg.norm(forward) * distance", [CAMS]),
+    (CAM, 'used = camera.origin.startswith(f"{model.label} camera {k} ")',
+     'used = not camera.origin.startswith(f"{model.label} camera {k} ")', [CAMS]),
+    (CAM, "if not chosen:\n        chosen = [m for m in scene.models",
+     "if chosen:\n        chosen = [m for m in scene.models", [CAMS]),
+    ("wgpurender/core/plan/build.py", "if listed and not scene.camera.origin:", "if listed:", [CAMS]),
+    ("wgpurender/wgpu_path/scene/culling.py", "planes / np.where(lengths > 0, lengths, 1.0)", "planes / lengths",
+     [CAMS]),
+    (VAL, 'and cam.projection_type == "perspective":  # orthographic', ':  # orthographic', [CAMS]),
+    (VAL, "clash = sorted(set(t) - set(FILE_CAMERA_KEYS))", "clash = sorted(set(t) - set(CAMERA_KEYS))", [CAMS]),
+    (VAL, "    if model >= len(models):", "    if model > len(models):", [CAMS]),
+    (VAL, '        if "file_camera" in t:\n', '        if False:\n', [CAMS]),
+    ("shaders_wgsl/scene.wgsl", "camera.eye.xyz - in.world_position * camera.eye.w",
+     "camera.eye.xyz - in.world_position", [CAMS]),
+    ("shaders_glsl/scene.frag", "camera.eye.xyz - v_world_position * camera.eye.w", "camera.eye.xyz - v_world_position",
+     [CAMS]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", '"eye": cam.eye_vector(),', '"eye": (*cam.eye, 1.0),', [CAMS]),
+    ("wgpurender/raw_path/scene/scene_subpass.py", "cam.view(), cam.eye_vector(), AMBIENT",
+     "cam.view(), (*cam.eye, 1.0), AMBIENT", [CAMS]),
+    ("wgpurender/raw_path/device/uniforms.py", "_put(buf, 128, list(eye))", "_put(buf, 128, [*list(eye)[:3], 1.0])",
+     [CAMS]),
+    ("wgpurender/api.py", '    return {**knobs, "camera": checks.integer(camera, "camera", 0, 2**31 - 1)}',
+     "    return knobs", [CAMS]),
+    ("wgpurender/core/plan/resolve.py", "    if camera is not None:\n        from", "    if camera:\n        from",
+     [CAMS]),
+    ("wgpurender/webpage/player.js", "meta.orbit.orthographic ? [...unit(sub(eye, orbit.target)), 0] : [...eye, 1]",
+     "[...eye, 1]", [CAMS + "|browser"]),
+    ("wgpurender/webpage/record.py", '"orthographic": cam.projection_type == "orthographic"}', '"orthographic": False}',
+     [CAMS + "|browser"]),
 ]
 
 

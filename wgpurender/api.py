@@ -129,7 +129,8 @@ def _target(target: Target) -> str:
 
 @_one_at_a_time
 def render(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-           backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
+           backend: str | None = None, t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY,
+           camera: int | None = None, **knobs) -> Image:
     """Render a stage or a scene file on the wgpu path, headless.
 
     ``size``: ``(width, height)`` or ``"WxH"`` (default 800x600 for a stage, the scene's
@@ -139,7 +140,8 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     (stages: a scene is static, another time than 0 is refused);
     ``anisotropy`` (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``; ``knobs``
     (scenes): the plan's other knobs, e.g. ``post_path="compute"``, ``post_fuse=False``, ``immediates="off"``,
-    ``reverse_z=True`` (:data:`wgpurender.core.plan.KNOB_FLAGS`). A scene is drawn from
+    ``reverse_z=True`` (:data:`wgpurender.core.plan.KNOB_FLAGS`); ``camera`` (scenes): view through camera K of
+    the scene's glTF model instead of its ``[camera]`` (``--camera K``). A scene is drawn from
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
@@ -149,6 +151,7 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
+    knobs = _with_camera(knobs, camera)
     ctx = get_context(checks.backend(backend))
     if _is_scene(target, anisotropy, knobs, t):
         from wgpurender.wgpu_path.scene import render_plan
@@ -176,7 +179,7 @@ def export(target: Target, out: str | os.PathLike, size: Size = "800x600", force
 
 @_one_at_a_time
 def reference(target: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-              t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> Image:
+              t: float = 0.0, anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None, **knobs) -> Image:
     """Render a stage or a scene file on the raw-Vulkan reference path (the ``vulkan`` binding and GLSL).
 
     Same arguments as :func:`render` (no ``backend``: this path is Vulkan). A scene's plan is resolved by the
@@ -189,6 +192,7 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
+    knobs = _with_camera(knobs, camera)
     plan = None
     if _is_scene(target, anisotropy, knobs, t):
         from wgpurender.core.plan import resolve_plan
@@ -203,6 +207,14 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
         pixels = render_reference(target, size=wh, fmt=format, msaa=msaa, t=t)
     timings = {"call_ms": (time.perf_counter() - start) * 1e3}
     return Image(pixels, str(target), "raw", timings, get_vulkan().describe(), plan)
+
+
+def _with_camera(knobs: dict, camera: int | None) -> dict:
+    """The plan's flags with ``camera`` (a file camera's index) among them when it is given: resolve_plan takes
+    it, and a stage, which has no plan, refuses it with the knobs."""
+    if camera is None:
+        return knobs
+    return {**knobs, "camera": checks.integer(camera, "camera", 0, 2**31 - 1)}
 
 
 def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
@@ -292,7 +304,8 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
 
 @_one_at_a_time
 def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-         backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
+         backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None,
+         **knobs) -> RenderPlan:
     """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
     decided for it by :func:`wgpurender.core.plan.resolve_plan`); with no usable adapter, the plan with those
     knobs left open (it says so)."""
@@ -302,13 +315,15 @@ def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str 
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     if not is_scene_file(scene):
         raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
+    knobs = _with_camera(knobs, camera)
     return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy, knobs)
 
 
 def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
-            backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> str:
+            backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None,
+            **knobs) -> str:
     """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints): :func:`plan`'s."""
-    return plan(scene, size, msaa, format, backend, anisotropy, **knobs).explain()
+    return plan(scene, size, msaa, format, backend, anisotropy, camera, **knobs).explain()
 
 
 def _context_or_none(backend: str | None):

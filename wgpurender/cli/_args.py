@@ -55,6 +55,16 @@ def add_anisotropy_arg(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--anisotropy", choices=ANISOTROPY_RULES, default=DEFAULT_ANISOTROPY, help=ANISOTROPY_HELP)
 
 
+camera_arg = checked(lambda text: checks.integer(text, "--camera", 0, 2**31 - 1))
+
+
+def add_camera_arg(parser: argparse.ArgumentParser) -> None:
+    """--camera K: a scene viewed through camera K of its glTF model (core/scene/gltf_cameras.py)."""
+    parser.add_argument("--camera", type=camera_arg, default=None, metavar="K",
+                        help="a scene: view through camera K of its glTF model's cameras (--explain lists them) "
+                        "instead of its [camera]")
+
+
 def add_render_args(parser: argparse.ArgumentParser) -> None:
     """--size, --msaa, --format, --time: how a stage or scene is rendered."""
     parser.add_argument("--size", type=size_arg, default=None, metavar="WxH",

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from wgpurender.cli._args import add_anisotropy_arg, format_arg, msaa_arg, size_arg, time_arg
+from wgpurender.cli._args import add_anisotropy_arg, add_camera_arg, format_arg, msaa_arg, size_arg, time_arg
 
 
 def register(subparsers) -> None:
@@ -27,6 +27,7 @@ def register(subparsers) -> None:
     p.add_argument("--time", type=time_arg, default=0.0, metavar="T",
                    help="a stage's animation time in seconds (default 0; a scene is static: only 0)")
     add_anisotropy_arg(p)
+    add_camera_arg(p)
     p.set_defaults(func=run)
 
 
@@ -38,7 +39,7 @@ def run(args) -> int:
     image_format(args.output)  # refuse an unknown suffix before rendering
     check_writable(args.output)
     image = api.reference(args.stage, size=args.size, msaa=args.msaa, format=args.format, t=args.time,
-                          anisotropy=args.anisotropy)
+                          anisotropy=args.anisotropy, camera=args.camera)
     path = image.save(args.output)
     print(f"wrote {path} ({image.size[0]}x{image.size[1]})")
     print(f"device: {image.adapter}")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from wgpurender.cli._args import add_anisotropy_arg, add_render_args
+from wgpurender.cli._args import add_anisotropy_arg, add_camera_arg, add_render_args
 
 
 def register(subparsers) -> None:
@@ -19,6 +19,7 @@ def register(subparsers) -> None:
     p.add_argument("--explain", action="store_true",
                    help="print the scene's render plan (passes, attachments, pipelines and why); with -o also render")
     add_anisotropy_arg(p)
+    add_camera_arg(p)
     add_render_args(p)
     p.set_defaults(func=run)
 
@@ -39,7 +40,7 @@ def run(args) -> int:
         image_format(args.output)  # refuse an unknown suffix before rendering
         check_writable(args.output)
     flags = {"size": args.size, "msaa": args.msaa, "format": args.format, "backend": args.backend,
-             "anisotropy": args.anisotropy}  # the API refuses a rule other than the default for a stage
+             "anisotropy": args.anisotropy, "camera": args.camera}  # the API refuses either beside a stage
     if args.explain:
         print(api.explain(args.target, **flags), end="")
         if not args.output:

@@ -160,7 +160,9 @@
     }
     const eye = orbit.eye();
     device.queue.writeBuffer(objects[cam.buffer], cam.fields.view, lookAt(eye, orbit.target, orbit.up));
-    device.queue.writeBuffer(objects[cam.buffer], cam.fields.eye, new Float32Array([...eye, 1]));
+    // an orthographic camera's eye is the direction towards it with w = 0 (Camera.eye_vector)
+    const eyeVector = meta.orbit.orthographic ? [...unit(sub(eye, orbit.target)), 0] : [...eye, 1];
+    device.queue.writeBuffer(objects[cam.buffer], cam.fields.eye, new Float32Array(eyeVector));
   }
 
   function drawFrame(sample, useDefaultCamera) {

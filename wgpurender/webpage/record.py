@@ -153,7 +153,8 @@ def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, s
     camera = {"buffer": renderer.scene_pass.camera_buffer._id,
               "fields": {f: CAMERA.offsets[f] for f in ("view", "eye")}} if renderer.scene_pass.draws else None
     meta = {"name": Path(path).stem, "kind": "scene", "size": list(size),
-            "orbit": {"eye": list(cam.eye), "target": list(cam.target), "up": list(cam.up), "camera": camera},
+            "orbit": {"eye": list(cam.eye), "target": list(cam.target), "up": list(cam.up), "camera": camera,
+                      "orthographic": cam.projection_type == "orthographic"},
             "summary": _published(scene.description or f"scene {Path(path).name}", scene, plan),
             "plan": _published(renderer.plan.explain(), scene, plan),
             "controls": "Drag to orbit the camera, scroll to zoom, double-click to reset.",

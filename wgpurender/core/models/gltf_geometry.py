@@ -66,6 +66,20 @@ def root_nodes(doc: GltfDocument) -> list[int]:
     return gltf_rules.root_nodes(doc.json)
 
 
+def node_worlds(doc: GltfDocument) -> list[tuple[np.ndarray, int, dict]]:
+    """(world matrix, node index, node) for every node of the drawn scene, depth first in file order (a forest:
+    gltf_rules refused loops and second parents when the document was read). Lights and cameras are placed so."""
+    nodes = doc.json.get("nodes", [])
+    out = []
+    stack = [(index, np.eye(4)) for index in reversed(root_nodes(doc))] if nodes else []
+    while stack:
+        index, parent = stack.pop()
+        world = parent @ node_matrix(nodes[index])
+        out.append((world, index, nodes[index]))
+        stack.extend((child, world) for child in reversed(nodes[index].get("children", [])))
+    return out
+
+
 def placed_meshes(doc: GltfDocument) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, mesh index, node index) for every node that places a mesh, depth first in file order.
     The graph is a forest with unique roots (gltf_rules refuses loops, second parents and repeated roots before
@@ -348,6 +362,4 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
         notes.append(f"{len(gltf['skins'])} skin(s) ignored (drawn in the bind pose, no skinning)")
     if gltf.get("animations"):
         notes.append(f"{len(gltf['animations'])} animation(s) ignored (drawn at rest)")
-    if gltf.get("cameras"):
-        notes.append(f"{len(gltf['cameras'])} camera(s) ignored (the scene file's [camera] is used)")
     return notes

@@ -76,11 +76,21 @@ def _intermediate_why(knob: str) -> str:
 
 
 def _camera_note(scene: Scene) -> str:
-    if scene.camera.convention != "glm-vulkan":
-        return ""
-    return ("convention glm-vulkan: the projection has proj[1][1] *= -1 for Vulkan's y-down NDC; "
-            "wgpu's NDC is y-up, so it is multiplied by diag(1, -1, 1, 1) to undo the flip "
-            "(front faces stay counter-clockwise)")
+    """The camera line(s) of ``--explain``: a convention's flip, and which camera is the view when a model file
+    has cameras (each of the files' cameras listed, core/scene/gltf_cameras.py)."""
+    lines = []
+    if scene.camera.convention == "glm-vulkan":
+        lines.append("convention glm-vulkan: the projection has proj[1][1] *= -1 for Vulkan's y-down NDC; "
+                     "wgpu's NDC is y-up, so it is multiplied by diag(1, -1, 1, 1) to undo the flip "
+                     "(front faces stay counter-clockwise)")
+    if scene.camera.origin or any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
+        from wgpurender.core.scene.gltf_cameras import camera_note
+
+        listed = camera_note(scene.camera, scene.models)
+        if listed and not scene.camera.origin:
+            lines.append("the view is the scene's [camera] (eye, target)")
+        lines += listed
+    return "\n  ".join(lines)
 
 
 def left_out(scene: Scene, msaa_text: str, asked_msaa: int, targets: SceneTargets, drawn: SceneDraws,

@@ -33,11 +33,12 @@ KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
 
 def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None, *,
                  size: tuple[int, int] | None = None, output_format: str | None = None, msaa: int | None = None,
-                 anisotropy: str = DEFAULT_ANISOTROPY, **knobs) -> RenderPlan:
+                 anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None, **knobs) -> RenderPlan:
     """The plan of a scene (or scene file) for ``adapter``, every "auto" knob decided for it.
 
     ``adapter`` None: not known (no GPU, or a plan printed before one is chosen); the "auto" knobs then
-    keep the scene's values and say so. Unknown knob names raise UserError.
+    keep the scene's values and say so. Unknown knob names raise UserError. ``camera`` (``--camera K``): the
+    view is camera K of the scene's glTF model instead of its ``[camera]`` (core/scene/gltf_cameras.py).
     """
     unknown = sorted(set(knobs) - set(KNOB_FLAGS))
     if unknown:
@@ -45,6 +46,10 @@ def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None
     if anisotropy not in ANISOTROPY_RULES:
         raise UserError(f"anisotropy {anisotropy!r}: choose one of {', '.join(ANISOTROPY_RULES)}")
     scene = target if isinstance(target, Scene) else load_scene(target)
+    if camera is not None:
+        from wgpurender.core.scene.gltf_cameras import with_file_camera
+
+        scene = with_file_camera(scene, camera)
     plan = build_plan(scene, size=size, output_format=output_format, msaa=msaa,
                       knobs=Knobs(adapter=adapter, anisotropy=anisotropy, **knobs))
     return dataclasses.replace(plan, rebuild=resolve_knobs)

@@ -29,13 +29,8 @@ KHR_TYPES = ("directional", "point", "spot")
 
 def placed_lights(doc: gltf_io.GltfDocument) -> list[tuple[np.ndarray, int, int]]:
     """(world matrix, light index, node index) for each node that places a KHR_lights_punctual light."""
-    nodes = doc.json.get("nodes", [])
     out = []
-    stack = [(index, np.eye(4)) for index in reversed(gltf_geometry.root_nodes(doc))] if nodes else []
-    while stack:  # a forest: gltf_rules refused loops and second parents when the document was read
-        index, parent = stack.pop()
-        node = nodes[index]
-        world = parent @ gltf_geometry.node_matrix(node)
+    for world, index, node in gltf_geometry.node_worlds(doc):
         ext = node.get("extensions", {}).get(EXTENSION) if isinstance(node.get("extensions"), dict) else None
         light = ext.get("light") if isinstance(ext, dict) else None
         if light is not None:
@@ -43,7 +38,6 @@ def placed_lights(doc: gltf_io.GltfDocument) -> list[tuple[np.ndarray, int, int]
                 raise UserError(f"malformed glTF file {doc.path}: node {index}'s {EXTENSION} light is {light!r}, "
                                 "not an index; fix the file")
             out.append((world, light, index))
-        stack.extend((child, world) for child in reversed(node.get("children", [])))
     return out
 
 

@@ -13,7 +13,17 @@ from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.environment_block import parse_environment
 from wgpurender.core.scene.file_materials import read_file_materials
 from wgpurender.core.scene.model import Scene
-from wgpurender.core.scene.validate import TOP_KEYS, _camera, _lights, _material, _models, _post, _render
+from wgpurender.core.scene.validate import (
+    TOP_KEYS,
+    _camera,
+    _lights,
+    _material,
+    _models,
+    _post,
+    _render,
+    file_camera_choice,
+    resolve_file_camera,
+)
 
 
 def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
@@ -36,11 +46,14 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     for name, body in mats.items():
         materials[name] = _material(c, body, ("materials", name), name, f"[materials.{name}]")
     description = data.get("description", "")
+    choice = file_camera_choice(c, data["camera"])
+    camera = _camera(c, data["camera"]) if choice is None else None
+    models = tuple(dataclasses.replace(m, file_materials=read_file_materials(m))
+                   for m in _models(c, data.get("models", []), materials))
     scene = Scene(
         path=path,
-        camera=_camera(c, data["camera"]),
-        models=tuple(dataclasses.replace(m, file_materials=read_file_materials(m))
-                     for m in _models(c, data.get("models", []), materials)),
+        camera=camera if choice is None else resolve_file_camera(c, choice, models),
+        models=models,
         materials=materials,
         lights=_lights(c, data.get("lights", [])),
         render=_render(c, data.get("render", {})),

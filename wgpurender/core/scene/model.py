@@ -35,6 +35,11 @@ class Camera:
     uploads); :meth:`projection` is what wgpu must use: ``clip_correction @
     source_projection``, which undoes the flip, so winding and orientation are the
     mesh's own again (counter-clockwise front faces).
+
+    A model file's camera (``[camera] from_model``, core/scene/gltf_cameras.py) fills the same fields from its node
+    and numbers, and may add what a scene's own camera never has: ``far = inf`` (a perspective camera without
+    zfar), the file's ``aspect_ratio`` (None: the target's), an ``orthographic`` projection of half-extents
+    ``xmag`` and ``ymag``, and ``origin`` (which file camera it is, for ``--explain``).
     """
 
     eye: Vec3
@@ -44,11 +49,27 @@ class Camera:
     near: float = 0.1
     far: float = 100.0
     convention: str = "wgpu"
+    projection_type: str = "perspective"  # or "orthographic" (a model file's camera only)
+    xmag: float = 1.0
+    ymag: float = 1.0
+    aspect_ratio: float | None = None
+    origin: str = ""
 
     def view(self) -> np.ndarray:
         return transforms.look_at(self.eye, self.target, self.up)
 
+    def eye_vector(self) -> tuple[float, float, float, float]:
+        """The Camera uniform's ``eye``: the position with w = 1, or for an orthographic camera the direction
+        towards it with w = 0, so the shaders' view vector ``eye.xyz - position * eye.w`` is parallel there."""
+        if self.projection_type == "orthographic":
+            back = np.asarray(self.eye, np.float64) - np.asarray(self.target, np.float64)
+            return (*(float(v) for v in back / np.linalg.norm(back)), 0.0)
+        return (*(float(v) for v in self.eye), 1.0)
+
     def source_projection(self, aspect: float) -> np.ndarray:
+        if self.projection_type == "orthographic":
+            return transforms.orthographic(self.xmag, self.ymag, self.near, self.far)
+        aspect = self.aspect_ratio if self.aspect_ratio is not None else aspect
         proj = transforms.perspective(self.fov_y, aspect, self.near, self.far)
         if self.convention == "glm-vulkan":
             proj[1, 1] *= -1.0

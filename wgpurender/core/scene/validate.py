@@ -38,7 +38,8 @@ from wgpurender.core.scene.toml_locator import KeyPath, format_path
 from wgpurender.core.view import transforms
 
 TOP_KEYS = ("camera", "description", "environment", "lights", "materials", "models", "post", "render")
-CAMERA_KEYS = ("convention", "eye", "far", "fov_y", "near", "target", "up")
+CAMERA_KEYS = ("convention", "eye", "far", "file_camera", "fov_y", "from_model", "near", "target", "up")
+FILE_CAMERA_KEYS = ("file_camera", "from_model")  # a model file's camera (core/scene/gltf_cameras.py)
 MATERIAL_KEYS = (
     "albedo_color", "albedo_map", "normal_map", "roughness", "roughness_map", "sampler", "unlit", "uv_flip_v"
 )
@@ -47,6 +48,43 @@ MODEL_KEYS = ("instances", "material", "path", "transform")
 TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
 LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
 RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
+
+
+def file_camera_choice(c: _Checker, data: Any) -> tuple[int, int] | None:
+    """``[camera] from_model = M`` (and ``file_camera = K``, default 0): view through camera K of model M's file,
+    whose node gives eye, direction and up and whose numbers give the projection, so the scene's own camera keys
+    are refused beside it. None: the scene's own camera (eye, target, ...)."""
+    key = ("camera",)
+    t = c.table(data, key, CAMERA_KEYS)
+    if "from_model" not in t:
+        if "file_camera" in t:
+            raise c.error(key + ("file_camera",), "camera.file_camera needs camera.from_model: the index of the "
+                                                  "[[models]] entry whose glTF file holds the camera")
+        return None
+    clash = sorted(set(t) - set(FILE_CAMERA_KEYS))
+    if clash:
+        raise c.error(key + (clash[0],), f"camera.{clash[0]} cannot be set beside camera.from_model: the file's "
+                                         "camera gives the view and the projection; remove one or the other")
+    return (c.integer(t["from_model"], key + ("from_model",), lo=0),
+            c.integer(t.get("file_camera", 0), key + ("file_camera",), lo=0))
+
+
+def resolve_file_camera(c: _Checker, choice: tuple[int, int], models: tuple[Model, ...]) -> Camera:
+    """The scene camera of ``choice`` (file_camera_choice), checked like a scene's own camera."""
+    from wgpurender.core.scene.gltf_cameras import file_camera
+
+    model, index = choice
+    key = ("camera", "from_model")
+    if model >= len(models):
+        raise c.error(key, f"camera.from_model = {model}, but the scene has {len(models)} [[models]] entr"
+                           f"{'y' if len(models) == 1 else 'ies'}" + (f", numbered 0..{len(models) - 1}"
+                                                                       if models else ""))
+    try:
+        cam = file_camera(models[model], index)
+    except UserError as err:
+        raise c.error(key, str(err)) from None
+    _check_view(c, cam)
+    return cam
 
 
 def _camera(c: _Checker, data: Any) -> Camera:
@@ -96,9 +134,10 @@ def _check_view(c: _Checker, cam: Camera) -> None:
                                       "matrix beyond float32's range; bring them closer to the origin")
     distance = float(np.linalg.norm((target - eye) / 2.0**64)) * 2.0**64
     least = distance * 2.0**-DEPTH_STEPS_EXPONENT
-    if cam.near < least:
-        raise c.error(key + ("near",), f"camera.near = {cam.near:g} is too small for the depth buffer: at the "
-                                       f"target's distance ({distance:.6g}) the depth rounds to 1.0 in float32, "
+    if cam.near < least and cam.projection_type == "perspective":  # orthographic depth is linear: near 0 is fine
+        name, where = ("camera.near", "target") if not cam.origin else (f"{cam.origin}: znear", "model's origin")
+        raise c.error(key + ("near",), f"{name} = {cam.near:g} is too small for the depth buffer: at the "
+                                       f"{where}'s distance ({distance:.6g}) the depth rounds to 1.0 in float32, "
                                        f"so nothing would be drawn; use near >= {least:.3g}")
 
 

@@ -26,6 +26,7 @@ def perspective(fov_y_deg: float, aspect: float, near: float, far: float, *, rev
 
     Reverse-Z puts depth 1 at the near plane and 0 at the far plane, which spreads
     float32 depth precision evenly in log space (use with depth_compare "greater").
+    ``far = inf`` is the limit far -> infinity (a glTF camera without zfar): depth 1 - near / distance.
     """
     if not (0 < near < far) or aspect <= 0 or not (0 < fov_y_deg < 180):
         raise ValueError(f"bad perspective: fov {fov_y_deg}, aspect {aspect}, near {near}, far {far}")
@@ -34,12 +35,25 @@ def perspective(fov_y_deg: float, aspect: float, near: float, far: float, *, rev
     m[0, 0] = f / aspect
     m[1, 1] = f
     m[3, 2] = -1.0
-    if reverse_z:
+    if np.isinf(far):  # far / (near - far) -> -1 and far near / (near - far) -> -near (reversed: 0 and near)
+        m[2, 2], m[2, 3] = (0.0, near) if reverse_z else (-1.0, -near)
+    elif reverse_z:
         m[2, 2] = near / (far - near)
         m[2, 3] = far * near / (far - near)
     else:
         m[2, 2] = far / (near - far)
         m[2, 3] = far * near / (near - far)
+    return m
+
+
+def orthographic(xmag: float, ymag: float, near: float, far: float) -> np.ndarray:
+    """Right-handed orthographic projection with depth 0..1: view-space x in [-xmag, xmag] and y in [-ymag, ymag]
+    fill the target whatever its aspect (glTF's orthographic camera), -z in [near, far] becomes depth 0..1."""
+    if xmag <= 0 or ymag <= 0 or not (0 <= near < far < np.inf):
+        raise ValueError(f"bad orthographic projection: xmag {xmag}, ymag {ymag}, near {near}, far {far}")
+    m = np.eye(4)
+    m[0, 0], m[1, 1] = 1.0 / xmag, 1.0 / ymag
+    m[2, 2], m[2, 3] = 1.0 / (near - far), near / (near - far)
     return m
 
 

@@ -48,7 +48,7 @@ def pack_camera(proj: np.ndarray, view: np.ndarray, eye, ambient, directional: l
     buf = bytearray(CAMERA_SIZE)
     _put(buf, 0, to_gpu(proj).reshape(-1))
     _put(buf, 64, to_gpu(view).reshape(-1))
-    _put(buf, 128, [*eye, 1.0])
+    _put(buf, 128, list(eye))  # (x, y, z, 1), or an orthographic camera's direction with w = 0
     _put(buf, 144, [*ambient, 0.0])
     _put(buf, 160, [len(directional), len(point), 0, 0], np.uint32)
     for k, (direction, radiance) in enumerate(directional):

@@ -58,7 +58,7 @@ def camera_block(scene: Scene, aspect: float) -> bytes:
                    for lt in scene.lights if lt.type == "directional"]
     point = [(lt.position, np.asarray(lt.color) * lt.intensity, lt.shape()) for lt in scene.lights
              if lt.type == "point"]
-    return U.pack_camera(cam.source_projection(aspect), cam.view(), cam.eye, AMBIENT, directional, point)
+    return U.pack_camera(cam.source_projection(aspect), cam.view(), cam.eye_vector(), AMBIENT, directional, point)
 
 
 def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:

@@ -25,10 +25,13 @@ WORKGROUP = 64
 def frustum_planes(clip_from_world: np.ndarray) -> np.ndarray:
     """(6, 4) planes (n, d), n pointing inwards and unit length: n.p + d >= 0 inside. Rows of the clip matrix
     (Gribb and Hartmann): x and y within +-w, and 0 <= z <= w (WebGPU's depth range; reversed depth gives the
-    same two planes the other way round)."""
+    same two planes the other way round). An infinite projection's far plane comes out as (0, 0, 0, near):
+    no normal, every point inside; it is kept as it is (dividing by its zero length would make it NaN, and a
+    NaN plane culls everything)."""
     r = np.asarray(clip_from_world, dtype=np.float64)
     planes = np.array([r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1], r[2], r[3] - r[2]])
-    return planes / np.linalg.norm(planes[:, :3], axis=1, keepdims=True)
+    lengths = np.linalg.norm(planes[:, :3], axis=1, keepdims=True)
+    return planes / np.where(lengths > 0, lengths, 1.0)
 
 
 def bounding_sphere(positions: np.ndarray) -> tuple[np.ndarray, float]:

@@ -44,7 +44,7 @@ def camera_values(scene: Scene, aspect: float) -> dict:
     return {
         "proj": cam.projection(aspect),
         "view": cam.view(),
-        "eye": (*cam.eye, 1.0),
+        "eye": cam.eye_vector(),
         "ambient": (*AMBIENT, 0.0),
         "light_counts": (len(directional), len(point), 0, 0),
         "directional": dir_items + [empty] * (L.MAX_LIGHTS - len(dir_items)),
