@@ -42,16 +42,21 @@ vec2 ibl_table(float n_dot_v, float roughness) {
     return mix(row0, row1, ty);
 }
 
-vec3 ibl_radiance(vec3 n, vec3 v, vec3 base, float metallic, float roughness) {
-    float n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
-    vec3 r = 2.0 * n_dot_v * n - v;
-    float rough = clamp(roughness, 0.0, 1.0);
+// The prefiltered radiance along r at roughness `rough` (in [0, 1]): levels k0 and k0 + 1 mixed.
+vec3 ibl_prefiltered(vec3 r, float rough) {
     float k = rough * float(IBL_LEVELS - 1u);
     uint k0 = min(uint(k), IBL_LEVELS - 2u);
     float t = k - float(k0);
     uint level = IBL_PREFILTER_W * IBL_PREFILTER_H;
     uint at = IBL_PREFILTER_AT + k0 * level + ibl_texel(r, IBL_PREFILTER_W, IBL_PREFILTER_H);
-    vec3 prefiltered = mix(ibl_maps[at].rgb, ibl_maps[at + level].rgb, t);
+    return mix(ibl_maps[at].rgb, ibl_maps[at + level].rgb, t);
+}
+
+vec3 ibl_radiance(vec3 n, vec3 v, vec3 base, float metallic, float roughness) {
+    float n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
+    vec3 r = 2.0 * n_dot_v * n - v;
+    float rough = clamp(roughness, 0.0, 1.0);
+    vec3 prefiltered = ibl_prefiltered(r, rough);
     vec2 ab = ibl_table(n_dot_v, rough);
     float m = clamp(metallic, 0.0, 1.0);
     vec3 f0 = mix(vec3(PBR_DIELECTRIC_F0), base, m);
@@ -60,4 +65,13 @@ vec3 ibl_radiance(vec3 n, vec3 v, vec3 base, float metallic, float roughness) {
     vec3 irradiance = ibl_maps[ibl_texel(n, IBL_IRRADIANCE_W, IBL_IRRADIANCE_H)].rgb;
     vec3 diffuse = (1.0 - m) * base * irradiance * (1.0 - fresnel);
     return diffuse + prefiltered * (f0 * ab.x + ab.y);
+}
+
+// A Fresnel-free GGX layer's reflection of the environment (ibl_shading.wgsl's ibl_layer).
+vec3 ibl_layer(vec3 n, vec3 v, float roughness) {
+    float n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
+    vec3 mirror = 2.0 * n_dot_v * n - v;
+    float rough = clamp(roughness, 0.0, 1.0);
+    vec2 ab = ibl_table(n_dot_v, rough);
+    return ibl_prefiltered(mirror, rough) * (ab.x + ab.y);
 }

@@ -50,6 +50,11 @@ layout(push_constant) uniform Material {
 #ifdef OCCLUSION_MAP
     float occlusion_strength;  // next float
 #endif
+#ifdef CLEARCOAT
+    float clearcoat;               // next float: KHR_materials_clearcoat's factor,
+    float clearcoat_roughness;     // its roughness factor
+    float clearcoat_normal_scale;  // and its normal texture's scale
+#endif
 #ifdef EMISSIVE
     vec4 emissive;          // rgb; on the next multiple of 16 bytes (std430)
 #endif
@@ -78,6 +83,18 @@ float pbr_metallic = 0.0;  // the metallic factor of this fragment (set by main 
 #ifdef IBL
 #include "ibl_shading.glsl"
 #endif
+#ifdef CLEARCOAT_MAP
+layout(set = 2, binding = 12) uniform sampler2D clearcoat_tex;
+#endif
+#ifdef CLEARCOAT_ROUGHNESS_MAP
+layout(set = 2, binding = 14) uniform sampler2D clearcoat_roughness_tex;
+#endif
+#ifdef CLEARCOAT_NORMAL_MAP
+layout(set = 2, binding = 16) uniform sampler2D clearcoat_normal_tex;
+#endif
+#ifdef CLEARCOAT
+#include "clearcoat.glsl"
+#endif
 
 #ifdef LIGHTING
 layout(location = 0) in vec3 v_world_position;
@@ -86,7 +103,7 @@ layout(location = 1) in vec3 v_normal;
 #ifdef UV
 layout(location = 2) in vec2 v_uv;
 #endif
-#ifdef NORMAL_MAP
+#ifdef TANGENT
 layout(location = 3) in vec4 v_tangent;
 #endif
 #ifdef VERTEX_COLOR
@@ -120,6 +137,15 @@ layout(location = 8) in vec2 v_uv4;
 #ifndef OCCLUSION_UV
 #define OCCLUSION_UV v_uv
 #endif
+#ifndef CLEARCOAT_UV
+#define CLEARCOAT_UV v_uv
+#endif
+#ifndef CLEARCOAT_ROUGHNESS_UV
+#define CLEARCOAT_ROUGHNESS_UV v_uv
+#endif
+#ifndef CLEARCOAT_NORMAL_UV
+#define CLEARCOAT_NORMAL_UV v_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -133,27 +159,50 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
     return fallback;
 }
 
-vec3 surface_normal(vec3 normal_texel) {
+vec3 geometric_normal() {
 #ifdef DOUBLE_SIDED
     // a back face is lit as the surface's other side (glTF doubleSided)
-    vec3 n = safe_normalize(gl_FrontFacing ? v_normal : -v_normal, vec3(0.0, 0.0, 1.0));
+    return safe_normalize(gl_FrontFacing ? v_normal : -v_normal, vec3(0.0, 0.0, 1.0));
 #else
-    vec3 n = safe_normalize(v_normal, vec3(0.0, 0.0, 1.0));
+    return safe_normalize(v_normal, vec3(0.0, 0.0, 1.0));
 #endif
-#ifdef NORMAL_MAP
+}
+
+#ifdef TANGENT
+// n perturbed by a tangent-space normal map's texel, its xy scaled by `strength`.
+vec3 mapped_normal(vec3 n, vec3 texel, float strength) {
     vec3 t_raw = v_tangent.xyz - n * dot(n, v_tangent.xyz);
     if (dot(t_raw, t_raw) <= 1e-20) {
         return n;
     }
     vec3 t = normalize(t_raw);
     vec3 b = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
-    vec3 m = normal_texel * 2.0 - 1.0;
-    m = vec3(m.xy * material.normal_strength, m.z);
+    vec3 m = texel * 2.0 - 1.0;
+    m = vec3(m.xy * strength, m.z);
     return safe_normalize(t * m.x + b * m.y + n * m.z, n);
+}
+#endif
+
+vec3 surface_normal(vec3 normal_texel) {
+    vec3 n = geometric_normal();
+#ifdef NORMAL_MAP
+    return mapped_normal(n, normal_texel, material.normal_strength);
 #else
     return n;
 #endif
 }
+
+#ifdef CLEARCOAT
+// The coat's own normal: the geometric one, perturbed only by the clearcoat normal map (not the base's).
+vec3 clearcoat_normal() {
+    vec3 n = geometric_normal();
+#ifdef CLEARCOAT_NORMAL_MAP
+    return mapped_normal(n, clearcoat_normal_texel, material.clearcoat_normal_scale);
+#else
+    return n;
+#endif
+}
+#endif
 
 #ifndef PBR
 float shininess(float roughness) {
@@ -196,11 +245,26 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
 #ifdef OCCLUSION_MAP
     color = color * ambient_occlusion;
 #endif
+#ifdef CLEARCOAT
+    vec3 nc = clearcoat_normal();
+    float coat_weight = clamp(clearcoat_weight, 0.0, 1.0) * clearcoat_fresnel(nc, v);
+#ifdef IBL
+    vec3 coat = ibl_layer(nc, v, clearcoat_rough);
+#else
+    vec3 coat = camera.ambient.rgb;
+#endif
+#ifdef OCCLUSION_MAP
+    coat = coat * ambient_occlusion;
+#endif
+#endif
 #if DIRECTIONAL_LIGHTS > 0
     for (uint i = 0u; i < uint(DIRECTIONAL_LIGHTS); i++) {
         vec3 l = safe_normalize(-camera.directional[i].direction.xyz, n);
 #ifdef PBR
         color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, camera.directional[i].radiance.rgb);
+#ifdef CLEARCOAT
+        coat += clearcoat_radiance(nc, l, v, clearcoat_rough, camera.directional[i].radiance.rgb);
+#endif
 #else
         color += blinn_phong(n, l, v, albedo, s, camera.directional[i].radiance.rgb);
 #endif
@@ -214,10 +278,17 @@ vec3 shade(vec3 albedo, vec3 normal_texel, float roughness) {
         vec3 irradiance = camera.point[i].radiance.rgb / d2 * light_window(camera.point[i], d2, l);
 #ifdef PBR
         color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, irradiance);
+#ifdef CLEARCOAT
+        coat += clearcoat_radiance(nc, l, v, clearcoat_rough, irradiance);
+#endif
 #else
         color += blinn_phong(n, l, v, albedo, s, irradiance);
 #endif
     }
+#endif
+#ifdef CLEARCOAT
+    clearcoat_base_weight = 1.0 - coat_weight;
+    color = color * clearcoat_base_weight + coat * coat_weight;
 #endif
     return color;
 }
@@ -268,12 +339,29 @@ void main() {
     float occlusion_texel = texture(occlusion_tex, OCCLUSION_UV).r;
     ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
 #endif
+#ifdef CLEARCOAT
+    clearcoat_weight = material.clearcoat;
+    clearcoat_rough = material.clearcoat_roughness;
+#ifdef CLEARCOAT_MAP
+    clearcoat_weight = clearcoat_weight * texture(clearcoat_tex, CLEARCOAT_UV).r;
+#endif
+#ifdef CLEARCOAT_ROUGHNESS_MAP
+    clearcoat_rough = clearcoat_rough * texture(clearcoat_roughness_tex, CLEARCOAT_ROUGHNESS_UV).g;
+#endif
+#ifdef CLEARCOAT_NORMAL_MAP
+    clearcoat_normal_texel = texture(clearcoat_normal_tex, CLEARCOAT_NORMAL_UV).xyz;
+#endif
+#endif
     vec3 color = shade(base.rgb, normal_texel, roughness);
 #else
     vec3 color = base.rgb;
 #endif
 #ifdef EMISSIVE
+#ifdef CLEARCOAT
+    color = color + emitted * clearcoat_base_weight;  // the coat lies over the emission too
+#else
     color = color + emitted;
+#endif
 #endif
 #ifdef ALPHA_MASK
     if (base.a < material.alpha_cutoff) {

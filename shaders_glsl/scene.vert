@@ -6,7 +6,7 @@
 // with -D flags made from the plan's variant (wgpurender/raw_path/scene/variants.py):
 //   LIGHTING, ALBEDO_MAP, NORMAL_MAP, ROUGHNESS_MAP, FLIP_V, SRGB_OUTPUT, UV (any texture),
 //   VERTEX_COLOR, ALPHA_MASK, OPAQUE_ALPHA, DOUBLE_SIDED, EMISSIVE, EMISSIVE_MAP, OCCLUSION_MAP (a model
-//   file's own materials), UV1 .. UV4 (further texture coordinate slots, a model file's materials only; the
+//   file's own materials), TANGENT (a normal map or a clearcoat normal map), UV1 .. UV4 (further texture coordinate slots, a model file's materials only; the
 //   fragment shader's <MAP>_UV=v_uv<k> says which map samples which),
 //   DIRECTIONAL_LIGHTS=n, POINT_LIGHTS=n, MAX_LIGHTS=n (array sizes of the camera block).
 // The std140 offsets of the blocks are spelled out in wgpurender/raw_path/device/uniforms.py.
@@ -35,7 +35,7 @@ layout(location = 1) in vec3 a_normal;
 #ifdef UV
 layout(location = 2) in vec2 a_uv;
 #endif
-#ifdef NORMAL_MAP
+#ifdef TANGENT
 layout(location = 3) in vec4 a_tangent;
 #endif
 #ifdef VERTEX_COLOR
@@ -61,7 +61,7 @@ layout(location = 1) out vec3 v_normal;
 #ifdef UV
 layout(location = 2) out vec2 v_uv;
 #endif
-#ifdef NORMAL_MAP
+#ifdef TANGENT
 layout(location = 3) out vec4 v_tangent;
 #endif
 #ifdef VERTEX_COLOR
@@ -96,7 +96,7 @@ void main() {
     v_uv = a_uv;
 #endif
 #endif
-#ifdef NORMAL_MAP
+#ifdef TANGENT
     mat3 world3 = mat3(object_data.world[0].xyz, object_data.world[1].xyz, object_data.world[2].xyz);
     v_tangent = vec4(world3 * a_tangent.xyz, a_tangent.w * object_data.mirror);
 #endif

@@ -8,6 +8,7 @@
 //   (A, B) = the table bilinearly at (n.v, roughness), cells at their centres, clamped at the edges
 //   F0 = mix(0.04, base, metallic); Fd = 0.04 + 0.96 (1 - n.v)^5
 //   radiance = (1 - metallic) base irradiance(n) (1 - Fd) + prefiltered (F0 A + B)
+//   a clear coat's layer (ibl_layer): prefiltered (A + B) at the coat's normal and roughness
 // Every lookup takes the nearest texel of an equirectangular map (core/course/environment.py's layout).
 
 const IBL_IRRADIANCE_W: u32 = 32u;
@@ -46,16 +47,21 @@ fn ibl_table(n_dot_v: f32, roughness: f32) -> vec2f {
     return mix(row0, row1, ty);
 }
 
-fn ibl_radiance(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32) -> vec3f {
-    let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
-    let r = 2.0 * n_dot_v * n - v;
-    let rough = clamp(roughness, 0.0, 1.0);
+// The prefiltered radiance along r at roughness `rough` (in [0, 1]): levels k0 and k0 + 1 mixed.
+fn ibl_prefiltered(r: vec3f, rough: f32) -> vec3f {
     let k = rough * f32(IBL_LEVELS - 1u);
     let k0 = min(u32(k), IBL_LEVELS - 2u);
     let t = k - f32(k0);
     let level = IBL_PREFILTER_W * IBL_PREFILTER_H;
     let at = IBL_PREFILTER_AT + k0 * level + ibl_texel(r, IBL_PREFILTER_W, IBL_PREFILTER_H);
-    let prefiltered = mix(ibl_maps[at].rgb, ibl_maps[at + level].rgb, t);
+    return mix(ibl_maps[at].rgb, ibl_maps[at + level].rgb, t);
+}
+
+fn ibl_radiance(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32) -> vec3f {
+    let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
+    let r = 2.0 * n_dot_v * n - v;
+    let rough = clamp(roughness, 0.0, 1.0);
+    let prefiltered = ibl_prefiltered(r, rough);
     let ab = ibl_table(n_dot_v, rough);
     let m = clamp(metallic, 0.0, 1.0);
     let f0 = mix(vec3f(PBR_DIELECTRIC_F0), base, m);
@@ -64,4 +70,14 @@ fn ibl_radiance(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32) 
     let irradiance = ibl_maps[ibl_texel(n, IBL_IRRADIANCE_W, IBL_IRRADIANCE_H)].rgb;
     let diffuse = (1.0 - m) * base * irradiance * (1.0 - fresnel);
     return diffuse + prefiltered * (f0 * ab.x + ab.y);
+}
+
+// A Fresnel-free GGX layer's reflection of the environment (KHR_materials_clearcoat's coat, clearcoat.wgsl):
+// the split sum with F = 1, prefiltered x (A + B), at the layer's normal and roughness.
+fn ibl_layer(n: vec3f, v: vec3f, roughness: f32) -> vec3f {
+    let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
+    let mirror = 2.0 * n_dot_v * n - v;
+    let rough = clamp(roughness, 0.0, 1.0);
+    let ab = ibl_table(n_dot_v, rough);
+    return ibl_prefiltered(mirror, rough) * (ab.x + ab.y);
 }

@@ -39,6 +39,9 @@
 // roughness_map, whose G channel is the roughness as above); the ambient term stays ambient * base colour.
 // ibl (a pbr material in a scene with an [environment]): ibl_shading.wgsl's image-based lighting takes the ambient
 // term's place (times the occlusion factor with occlusion_map); the lights add to it as above.
+// clearcoat (a pbr material with KHR_materials_clearcoat; clearcoat_map, clearcoat_roughness_map and
+// clearcoat_normal_map its textures): clearcoat.wgsl's coat layered over everything the base shades, emission too.
+// tangent (derived: normal_map or clearcoat_normal_map) carries the tangent attribute.
 // uv1 .. uv4 (derived from the "<map>_uv<k>" flags): the mesh's further texture coordinate slots (a glTF material
 // whose textures sample several TEXCOORD sets or transforms, each applied at load: core/models/gltf_geometry
 // .uv_slots); each map samples in.{{<MAP>_UV}}, which shader_interface fills with "uv" or "uv<k>". Only model
@@ -109,6 +112,21 @@ var<private> pbr_metallic: f32 = 0.0;
 @group({{MATERIAL_GROUP}}) @binding(11) var<storage, read> ibl_maps: array<vec4f>;
 {{IBL_FUNCTIONS}}
 #endif
+#if clearcoat_map
+@group({{MATERIAL_GROUP}}) @binding(12) var clearcoat_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(13) var clearcoat_sampler: sampler;
+#endif
+#if clearcoat_roughness_map
+@group({{MATERIAL_GROUP}}) @binding(14) var clearcoat_roughness_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(15) var clearcoat_roughness_sampler: sampler;
+#endif
+#if clearcoat_normal_map
+@group({{MATERIAL_GROUP}}) @binding(16) var clearcoat_normal_tex: texture_2d<f32>;
+@group({{MATERIAL_GROUP}}) @binding(17) var clearcoat_normal_sampler: sampler;
+#endif
+#if clearcoat
+{{CLEARCOAT_FUNCTIONS}}
+#endif
 
 struct VertexIn {
     @location(0) position: vec3f,
@@ -118,7 +136,7 @@ struct VertexIn {
 #if uv
     @location(2) uv: vec2f,
 #endif
-#if normal_map
+#if tangent
     @location(3) tangent: vec4f,
 #endif
 #if vertex_color
@@ -147,7 +165,7 @@ struct VertexOut {
 #if uv
     @location(2) uv: vec2f,
 #endif
-#if normal_map
+#if tangent
     @location(3) tangent: vec4f,
 #endif
 #if vertex_color
@@ -174,7 +192,7 @@ fn vs_main(in: VertexIn, inst: InstanceIn) -> VertexOut {
 #if lighting
     let normal_matrix = mat3x3f(inst.normal0, inst.normal1, inst.normal2_mirror.xyz);
 #endif
-#if normal_map
+#if tangent
     let mirror = inst.normal2_mirror.w;
 #endif
 #else
@@ -188,7 +206,7 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
 #if lighting
     let normal_matrix = object_data.normal;
 #endif
-#if normal_map
+#if tangent
     let mirror = object_data.mirror;
 #endif
 #endif
@@ -207,7 +225,7 @@ fn vs_main(in: VertexIn, @builtin(instance_index) instance: u32) -> VertexOut {
     out.uv = in.uv;
 #endif
 #endif
-#if normal_map
+#if tangent
     let world3 = mat3x3f(world[0].xyz, world[1].xyz, world[2].xyz);
     out.tangent = vec4f(world3 * in.tangent.xyz, in.tangent.w * mirror);
 #endif
@@ -239,23 +257,42 @@ fn safe_normalize(v: vec3f, fallback: vec3f) -> vec3f {
     return fallback;
 }
 
-fn surface_normal(in: VertexOut, normal_texel: vec3f) -> vec3f {
-    let n = safe_normalize(in.normal, vec3f(0.0, 0.0, 1.0));
-#if normal_map
+#if tangent
+// n perturbed by a tangent-space normal map's texel, its xy scaled by `strength`.
+fn mapped_normal(n: vec3f, tangent: vec4f, texel: vec3f, strength: f32) -> vec3f {
     // Tangent orthogonalised against n; a degenerate tangent falls back to the unperturbed normal.
-    let t_raw = in.tangent.xyz - n * dot(n, in.tangent.xyz);
+    let t_raw = tangent.xyz - n * dot(n, tangent.xyz);
     if (dot(t_raw, t_raw) <= 1e-20) {
         return n;
     }
     let t = normalize(t_raw);
-    let b = select(1.0, -1.0, in.tangent.w < 0.0) * cross(n, t);
-    var m = normal_texel * 2.0 - 1.0;
-    m = vec3f(m.xy * material.normal_strength, m.z);
+    let b = select(1.0, -1.0, tangent.w < 0.0) * cross(n, t);
+    var m = texel * 2.0 - 1.0;
+    m = vec3f(m.xy * strength, m.z);
     return safe_normalize(t * m.x + b * m.y + n * m.z, n);
+}
+#endif
+
+fn surface_normal(in: VertexOut, normal_texel: vec3f) -> vec3f {
+    let n = safe_normalize(in.normal, vec3f(0.0, 0.0, 1.0));
+#if normal_map
+    return mapped_normal(n, in.tangent, normal_texel, material.normal_strength);
 #else
     return n;
 #endif
 }
+
+#if clearcoat
+// The coat's own normal: the geometric one, perturbed only by the clearcoat normal map (not the base's).
+fn clearcoat_normal(in: VertexOut) -> vec3f {
+    let n = safe_normalize(in.normal, vec3f(0.0, 0.0, 1.0));
+#if clearcoat_normal_map
+    return mapped_normal(n, in.tangent, clearcoat_normal_texel, material.clearcoat_normal_scale);
+#else
+    return n;
+#endif
+}
+#endif
 
 #if !pbr
 fn shininess(roughness: f32) -> f32 {
@@ -300,12 +337,27 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
 #if occlusion_map
     color = color * ambient_occlusion;
 #endif
+#if clearcoat
+    let nc = clearcoat_normal(in);
+    let coat_weight = clamp(clearcoat_weight, 0.0, 1.0) * clearcoat_fresnel(nc, v);
+#if ibl
+    var coat = ibl_layer(nc, v, clearcoat_rough);
+#else
+    var coat = camera.ambient.rgb;
+#endif
+#if occlusion_map
+    coat = coat * ambient_occlusion;
+#endif
+#endif
 #if directional_lights
     for (var i = 0u; i < DIRECTIONAL_LIGHTS; i++) {
         let light = camera.directional[i];
         let l = safe_normalize(-light.direction.xyz, n);
 #if pbr
         color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, light.radiance.rgb);
+#if clearcoat
+        coat += clearcoat_radiance(nc, l, v, clearcoat_rough, light.radiance.rgb);
+#endif
 #else
         color += blinn_phong(n, l, v, albedo, s, light.radiance.rgb);
 #endif
@@ -320,10 +372,17 @@ fn shade(albedo: vec3f, in: VertexOut, normal_texel: vec3f, roughness: f32) -> v
         let irradiance = light.radiance.rgb / d2 * light_window(light, d2, l);
 #if pbr
         color += pbr_radiance(n, l, v, albedo, pbr_metallic, roughness, irradiance);
+#if clearcoat
+        coat += clearcoat_radiance(nc, l, v, clearcoat_rough, irradiance);
+#endif
 #else
         color += blinn_phong(n, l, v, albedo, s, irradiance);
 #endif
     }
+#endif
+#if clearcoat
+    clearcoat_base_weight = 1.0 - coat_weight;
+    color = color * clearcoat_base_weight + coat * coat_weight;
 #endif
     return color;
 }
@@ -384,12 +443,31 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let occlusion_texel = textureSample(occlusion_tex, occlusion_sampler, in.{{OCCLUSION_UV}}).r;
     ambient_occlusion = 1.0 + material.occlusion_strength * (occlusion_texel - 1.0);
 #endif
+#if clearcoat
+    clearcoat_weight = material.clearcoat;
+    clearcoat_rough = material.clearcoat_roughness;
+#if clearcoat_map
+    clearcoat_weight = clearcoat_weight * textureSample(clearcoat_tex, clearcoat_sampler, in.{{CLEARCOAT_UV}}).r;
+#endif
+#if clearcoat_roughness_map
+    clearcoat_rough = clearcoat_rough * textureSample(clearcoat_roughness_tex, clearcoat_roughness_sampler,
+                                                      in.{{CLEARCOAT_ROUGHNESS_UV}}).g;
+#endif
+#if clearcoat_normal_map
+    clearcoat_normal_texel = textureSample(clearcoat_normal_tex, clearcoat_normal_sampler,
+                                           in.{{CLEARCOAT_NORMAL_UV}}).xyz;
+#endif
+#endif
     var color = shade(base.rgb, in, normal_texel, roughness);
 #else
     var color = base.rgb;
 #endif
 #if emissive
+#if clearcoat
+    color = color + emitted * clearcoat_base_weight;  // the coat lies over the emission too
+#else
     color = color + emitted;
+#endif
 #endif
 #if alpha_mask
     if (base.a < material.alpha_cutoff) {

@@ -57,3 +57,16 @@ def one_line_refusal(code: int, err: str, *needles: str) -> str:
     for needle in needles:
         assert needle in lines[0], lines[0]
     return lines[0]
+
+
+def render_both_paths(ctx, folder, size: tuple[int, int]) -> np.ndarray:
+    """``folder``/scene.toml drawn by both paths at ``size`` (the fragment post path): asserts they agree exactly
+    (one run, one machine) and gives the RGB as float64."""
+    from wgpurender.raw_path.scene import render_scene_reference
+    from wgpurender.wgpu_path.scene import render_scene_file
+
+    path = folder / "scene.toml"
+    wgpu = render_scene_file(path, size=size, ctx=ctx, frames=1, knobs={"post_path": "fragment"}).pixels
+    raw = render_scene_reference(path, size=size)
+    assert np.array_equal(wgpu, raw), "wgpu and raw differ"
+    return wgpu[..., :3].astype(np.float64)

@@ -14,6 +14,7 @@ import numpy as np
 import pbr_reference as ref
 import pytest
 from gltf_gen import QUAD_INDICES, GltfWriter, quad, scene_text
+from helpers import render_both_paths
 from shading_model import course_constant, srgb_encode
 
 SIZE = (64, 64)
@@ -57,14 +58,7 @@ def expected_bytes(light_radiance) -> np.ndarray:
 
 
 def render_both(ctx, folder):
-    from wgpurender.raw_path.scene import render_scene_reference
-    from wgpurender.wgpu_path.scene import render_scene_file
-
-    path = folder / "scene.toml"
-    wgpu = render_scene_file(path, size=SIZE, ctx=ctx, frames=1, knobs={"post_path": "fragment"}).pixels
-    raw = render_scene_reference(path, size=SIZE)
-    assert np.array_equal(wgpu, raw), "wgpu and raw differ"
-    return wgpu[..., :3].astype(np.float64)
+    return render_both_paths(ctx, folder, SIZE)
 
 
 def test_spot_light_with_cone_and_range(ctx, tmp_path):

@@ -341,7 +341,7 @@ def test_double_sided_back_face_is_lit_with_its_normal_turned(ctx, tmp_path, whi
 
 def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     """A material with emissive, occlusion on texCoord 1 (kept lit without lights: it scales the ambient term; the
-    mesh's second coordinate slot), metalness and KHR_materials_clearcoat; extensionsUsed lists clearcoat and
+    mesh's second coordinate slot), metalness and KHR_materials_sheen; extensionsUsed lists sheen and
     KHR_materials_unlit (supported): --explain names what was taken and every ignored feature."""
     from wgpurender.cli import main
 
@@ -349,11 +349,11 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     tex = g.texture(TEXELS, g.sampler(magFilter=9728, minFilter=9728, wrapS=33071, wrapT=33648))
     mat = g.material(name="coat", emissiveFactor=[1, 0, 0], occlusionTexture={"index": tex, "texCoord": 1},
                      pbrMetallicRoughness={"baseColorTexture": {"index": tex}, "metallicFactor": 1.0},
-                     extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1}})
+                     extensions={"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1]}})
     prim = quad_primitive(g, -1, -1, 1, 1, mat, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
     prim["attributes"]["TEXCOORD_1"] = prim["attributes"]["TEXCOORD_2"] = prim["attributes"]["TEXCOORD_0"]
     g.node(mesh=g.mesh([prim, {"attributes": {"POSITION": g.positions(quad(0, 0, 1, 1))}, "mode": 1}]))
-    g.doc["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_unlit"]
+    g.doc["extensionsUsed"] = ["KHR_materials_sheen", "KHR_materials_unlit"]
     g.write(tmp_path / "coat.glb")
     code = main(["render", str(write_scene(tmp_path, "coat.glb")), "--explain"])
     out = capsys.readouterr().out
@@ -362,9 +362,9 @@ def test_explain_lists_what_was_taken_and_what_was_ignored(tmp_path, capsys):
     assert "albedo_map" in out and "wrap clamp-to-edge/mirror-repeat" in out and "nearest/nearest" in out
     assert "emissiveFactor (1.0, 0.0, 0.0)" in out  # taken; without lights occlusion still scales the ambient term:
     assert "occlusion map scales the ambient term: it keeps the lit variant" in out and "occlusion_map" in out
-    for ignored in ("KHR_materials_clearcoat: ignored",
+    for ignored in ("KHR_materials_sheen: ignored",
                     "attribute(s) TEXCOORD_2 ignored", "LINES primitive drawn unlit", "occlusion_map_uv1",
-                    "extensionsUsed KHR_materials_clearcoat: ignored"):
+                    "extensionsUsed KHR_materials_sheen: ignored"):
         assert ignored in out, ignored
     assert "KHR_materials_unlit: ignored" not in out and "TEXCOORD_1 ignored" not in out
     assert "occlusion_map" in out and "(TEXCOORD_1: coordinate slot 1)" in out  # texCoord 1: the second slot

@@ -137,7 +137,8 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     ``[render] size`` for a scene); ``msaa``: 1 or 4 (default: the stage's or the scene's);
     ``format``: ``rgba8unorm-srgb``, ``rgba8unorm`` or ``rgba16float``; ``backend``: ``vulkan``
     (default), ``opengl``, ``metal``, ``d3d12`` or ``auto`` (docs/backends.md); ``t``: animation time in seconds
-    (stages: a scene is static, another time than 0 is refused);
+    (a stage's; a scene's glTF models with animations are posed at it, overriding their model blocks' ``time``,
+    and a scene without one refuses a time other than 0);
     ``anisotropy`` (scenes): ``"auto"`` (the scene's on a GPU, 1 on a CPU adapter) or ``"scene"``; ``knobs``
     (scenes): the plan's other knobs, e.g. ``post_path="compute"``, ``post_fuse=False``, ``immediates="off"``,
     ``reverse_z=True`` (:data:`wgpurender.core.plan.KNOB_FLAGS`); ``camera`` (scenes): view through camera K of
@@ -153,10 +154,10 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     knobs = _with_camera(knobs, camera)
     ctx = get_context(checks.backend(backend))
-    if _is_scene(target, anisotropy, knobs, t):
+    if _is_scene(target, anisotropy, knobs):
         from wgpurender.wgpu_path.scene import render_plan
 
-        result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, knobs), t)
+        result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, {**knobs, "time": t}), t)
     else:
         from wgpurender.wgpu_path.render import render_stage
 
@@ -194,12 +195,12 @@ def reference(target: Target, size: Size = None, msaa: int | None = None, format
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     knobs = _with_camera(knobs, camera)
     plan = None
-    if _is_scene(target, anisotropy, knobs, t):
+    if _is_scene(target, anisotropy, knobs):
         from wgpurender.core.plan import resolve_plan
         from wgpurender.raw_path.scene import render_scene_plan
 
         plan = resolve_plan(target, get_vulkan().adapter_facts(), size=wh, output_format=format, msaa=msaa,
-                            anisotropy=anisotropy, **knobs)
+                            anisotropy=anisotropy, time=t, **knobs)
         pixels = render_scene_plan(plan, t)
     else:
         from wgpurender.raw_path import render_reference
@@ -217,16 +218,14 @@ def _with_camera(knobs: dict, camera: int | None) -> dict:
     return {**knobs, "camera": checks.integer(camera, "camera", 0, 2**31 - 1)}
 
 
-def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
+def _is_scene(target: str, anisotropy: str, knobs: dict) -> bool:
     """Whether ``target`` is a scene file; a stage with plan knobs, or an anisotropy rule other than the default,
-    is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored; so is a
-    scene at a time other than 0 (scenes are static: the time animates stages)."""
+    is refused (a stage has no plan and its samplers are its own: they apply to scenes), not ignored."""
     from wgpurender.core.course.formats import is_scene_file
     from wgpurender.core.plan.anisotropy import check_applies
 
     if is_scene_file(target):
-        check_static(target, t)
-        return True
+        return True  # a time poses the scene's animated glTF models (resolve_plan), or is refused there
     check_applies(target, False, anisotropy)
     if knobs:
         raise UserError(f"plan knob {sorted(knobs)[0]!r} applies to scene files: stage {target!r} has no plan")
@@ -234,9 +233,11 @@ def _is_scene(target: str, anisotropy: str, knobs: dict, t: float) -> bool:
 
 
 def check_static(target: str, t: float | None) -> None:
-    """Scenes are static: a time other than 0 (or None: animated) would not change the image, so it is refused."""
+    """The window draws a scene as its plan poses it (its models' ``time``): a time other than 0 (or None:
+    animated) would not change the image, so it is refused."""
     if t:
-        raise UserError(f"scene {str(target)!r} is static: a time ({t:g} s) animates stages only (leave --time out)")
+        raise UserError(f"scene {str(target)!r}: the window draws a scene at its models' own time = T ([[models]] "
+                        f"block), so --time {t:g} would change nothing (it freezes a stage's animation; leave it out)")
 
 
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:
@@ -305,7 +306,7 @@ def side_by_side(*images: Image | np.ndarray, gap: int = 4) -> Image:
 @_one_at_a_time
 def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
          backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None,
-         **knobs) -> RenderPlan:
+         t: float = 0.0, **knobs) -> RenderPlan:
     """The render plan :func:`render` draws for a scene file on this machine's adapter (its "auto" knobs
     decided for it by :func:`wgpurender.core.plan.resolve_plan`); with no usable adapter, the plan with those
     knobs left open (it says so)."""
@@ -315,15 +316,15 @@ def plan(scene: Target, size: Size = None, msaa: int | None = None, format: str 
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     if not is_scene_file(scene):
         raise UserError(f"a plan needs a scene file (.toml), got stage {str(scene)!r}")
-    knobs = _with_camera(knobs, camera)
+    knobs = {**_with_camera(knobs, camera), "time": checks.time(t)}
     return _wgpu_plan(_context_or_none(checks.backend(backend)), scene, size, msaa, format, anisotropy, knobs)
 
 
 def explain(scene: Target, size: Size = None, msaa: int | None = None, format: str | None = None,
             backend: str | None = None, anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None,
-            **knobs) -> str:
+            t: float = 0.0, **knobs) -> str:
     """The render plan of a scene file as text (what ``wgpurender render SCENE --explain`` prints): :func:`plan`'s."""
-    return plan(scene, size, msaa, format, backend, anisotropy, camera, **knobs).explain()
+    return plan(scene, size, msaa, format, backend, anisotropy, camera, t, **knobs).explain()
 
 
 def _context_or_none(backend: str | None):

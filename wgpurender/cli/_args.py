@@ -84,7 +84,7 @@ def add_render_args(parser: argparse.ArgumentParser) -> None:
         type=time_arg,
         default=0.0,
         metavar="T",
-        help="a stage's animation time in seconds, fixed so output is deterministic (default 0; a scene is "
-        "static: only 0)",
+        help="a stage's animation time in seconds, fixed so output is deterministic (default 0); for a scene, the "
+        "time its glTF models' animations are posed at (a static scene: only 0)",
     )
     add_backend_arg(parser)

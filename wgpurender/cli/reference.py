@@ -25,7 +25,8 @@ def register(subparsers) -> None:
                    help="colour format: rgba8unorm, rgba8unorm-srgb (default) or rgba16float (default for a scene: its "
                    "output_format)")
     p.add_argument("--time", type=time_arg, default=0.0, metavar="T",
-                   help="a stage's animation time in seconds (default 0; a scene is static: only 0)")
+                   help="a stage's animation time in seconds (default 0); for a scene, the time its glTF models' "
+                   "animations are posed at (a static scene: only 0)")
     add_anisotropy_arg(p)
     add_camera_arg(p)
     p.set_defaults(func=run)

@@ -42,7 +42,7 @@ def run(args) -> int:
     flags = {"size": args.size, "msaa": args.msaa, "format": args.format, "backend": args.backend,
              "anisotropy": args.anisotropy, "camera": args.camera}  # the API refuses either beside a stage
     if args.explain:
-        print(api.explain(args.target, **flags), end="")
+        print(api.explain(args.target, t=args.time, **flags), end="")
         if not args.output:
             return 0
     image = api.render(args.target, t=args.time, **flags)

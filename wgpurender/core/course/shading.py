@@ -26,12 +26,13 @@ REVERSE_Z = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.
 def material_factors(albedo_color, roughness: float, lit: bool, has_roughness_map: bool, *,
                      map_scale: float = 1.0, normal_strength: float | None = None,
                      alpha_cutoff: float | None = None, occlusion_strength: float | None = None,
-                     metallic: float | None = None, emissive=None) -> dict:
+                     metallic: float | None = None, clearcoat=None, emissive=None) -> dict:
     """The per-draw material factors both paths push: with a roughness map, its G channel times ``map_scale`` is
     the roughness (1 for scene materials, glTF's roughnessFactor); unlit materials carry only the base colour.
     A glTF metallic-roughness material's ``metallic`` takes the place of ``specular`` (Blinn-Phong's reflectance).
     Model-file materials append, in this order and only when their variant has the feature: ``alpha_cutoff``,
-    ``occlusion_strength``, ``emissive`` (rgb, 0)."""
+    ``occlusion_strength``, ``clearcoat`` (factor, roughness, normal scale: KHR_materials_clearcoat), ``emissive``
+    (rgb, 0)."""
     values = {"base_color": albedo_color}
     if lit:
         values.update(roughness=map_scale if has_roughness_map else roughness,
@@ -44,6 +45,8 @@ def material_factors(albedo_color, roughness: float, lit: bool, has_roughness_ma
         values["alpha_cutoff"] = alpha_cutoff
     if occlusion_strength is not None:
         values["occlusion_strength"] = occlusion_strength
+    if clearcoat is not None:
+        values.update(zip(("clearcoat", "clearcoat_roughness", "clearcoat_normal_scale"), clearcoat, strict=True))
     if emissive is not None:
         values["emissive"] = (*emissive, 0.0)
     return values

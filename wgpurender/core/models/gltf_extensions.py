@@ -24,10 +24,12 @@ INSTANCING = "EXT_mesh_gpu_instancing"
 QUANTIZATION = "KHR_mesh_quantization"
 DRACO = "KHR_draco_mesh_compression"
 MESHOPT = "EXT_meshopt_compression"
+CLEARCOAT = "KHR_materials_clearcoat"
 
 # extensionsRequired a file may list: each is implemented (Draco and meshopt need their decoder package)
 SUPPORTED_REQUIRED = frozenset({"KHR_materials_unlit", "KHR_materials_emissive_strength", TEXTURE_TRANSFORM,
                                 "KHR_materials_pbrSpecularGlossiness",  # converted: core/scene/gltf_specgloss.py
+                                CLEARCOAT,  # shaders_wgsl/clearcoat.wgsl
                                 QUANTIZATION, INSTANCING, DRACO, MESHOPT})
 
 BYTE, UBYTE, SHORT, USHORT, FLOAT = 5120, 5121, 5122, 5123, 5126

@@ -5,11 +5,13 @@ Nothing here goes through trimesh: positions, normals, TEXCOORD_n, TANGENT, COLO
 supported), node transforms from the file's ``matrix`` or ``translation``/``rotation``/``scale``.
 
 What is not drawn is said, never dropped silently: :func:`geometry_notes` lists it for ``--explain``
-(points and lines primitives, morph targets, skins, unused texture coordinate sets).
+(points and lines primitives, unused texture coordinate sets); skins are posed (gltf_skin.py), animations sampled
+at the scene's time (gltf_animation.py).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass
 
@@ -17,7 +19,7 @@ import numpy as np
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.input_files import MAX_MODEL_VERTICES, MAX_MODEL_VERTICES_ENV, env_limit
-from wgpurender.core.models import gltf_compression, gltf_extensions, gltf_rules
+from wgpurender.core.models import gltf_compression, gltf_extensions, gltf_rules, gltf_skin
 from wgpurender.core.models.gltf_io import GltfDocument, read_accessor
 
 TRIANGLE_MODES = {4: "TRIANGLES", 5: "TRIANGLE_STRIP", 6: "TRIANGLE_FAN"}
@@ -26,6 +28,10 @@ SKIPPED_MODES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP"}  # dr
 TOPOLOGIES = {0: "point-list", 1: "line-list", 2: "line-list", 3: "line-list", 4: "triangle-list",
               5: "triangle-list", 6: "triangle-list"}
 FLOAT = 5126
+# Texture coordinate slots a mesh carries at most: vertex attributes uv, uv1..uv4 (locations 2, 5-8 of scene.wgsl;
+# with the 7 per-instance attributes at 9-15 they fill WebGPU's 16); core/plan/model.EXTRA_UV_SLOTS is the 4 beyond
+# the first. A material's 8 textures could ask for more; one past the last is ignored by name.
+MAX_UV_SLOTS = 5
 
 
 @dataclass
@@ -42,6 +48,8 @@ class PrimitiveGeometry:
     where: str  # e.g. "mesh 0 'box' primitive 1 (node 3)"
     topology: str = "triangle-list"  # faces (F, 3); "line-list": (F, 2) segments; "point-list": (F, 1)
     extra_uvs: tuple[np.ndarray | None, ...] = ()  # (N, 2) each: the material's coordinate slots 1.. (uv_slots)
+    joints: tuple[np.ndarray, ...] = ()  # JOINTS_0, JOINTS_1, ...: (N, 4) each, for a skin (gltf_skin.py)
+    weights: tuple[np.ndarray, ...] = ()  # WEIGHTS_0, ...: (N, 4) each
 
 
 def node_matrix(node: dict) -> np.ndarray:
@@ -173,15 +181,19 @@ def _points_and_lines(idx: np.ndarray, mode: int) -> np.ndarray:
 
 
 def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
-    """A material's textureInfo objects: the normal texture first (generated tangents follow the mesh's first
+    """A material's textureInfo objects: the normal textures first (generated tangents follow the mesh's first
     coordinate slot, and a normal map needs tangents of its own coordinates), then base colour,
-    metallic-roughness, emissive, occlusion."""
+    metallic-roughness, emissive, occlusion, then KHR_materials_clearcoat's two others."""
     if material is None:
         return []
     mat = doc.json.get("materials", [])[material]
+    coat = mat.get("extensions", {}).get(gltf_extensions.CLEARCOAT)
+    coat = coat if isinstance(coat, dict) else {}
     infos = [mat.get("normalTexture"), mat.get("pbrMetallicRoughness", {}).get("baseColorTexture"),
              mat.get("pbrMetallicRoughness", {}).get("metallicRoughnessTexture"), mat.get("emissiveTexture"),
              mat.get("occlusionTexture")]
+    infos[1:1] = [coat.get("clearcoatNormalTexture")]  # the other normal map: right after the base's
+    infos += [coat.get("clearcoatTexture"), coat.get("clearcoatRoughnessTexture")]
     spec_gloss = mat.get("extensions", {}).get("KHR_materials_pbrSpecularGlossiness")  # converted at load
     if isinstance(spec_gloss, dict):  # (core/scene/gltf_specgloss.py): sampled on diffuse's coordinates, else its own
         infos += [spec_gloss.get("diffuseTexture"), spec_gloss.get("specularGlossinessTexture")]
@@ -191,12 +203,15 @@ def texture_infos(doc: GltfDocument, material: int | None) -> list[dict]:
 def uv_slots(doc: GltfDocument, material: int | None) -> list[tuple[int, dict | None, tuple]]:
     """The texture coordinates a material's mesh carries, one slot per distinct (TEXCOORD set,
     KHR_texture_transform) its textures sample with, in :func:`texture_infos` order: (set, transform or None,
-    transform key); at most one per texture (5). The transform is applied to the slot's coordinates at load
+    transform key); at most :data:`MAX_UV_SLOTS` (a texture past them samples nothing: gltf_materials ignores it
+    by name). The transform is applied to the slot's coordinates at load
     (affine: interpolating transformed coordinates equals transforming interpolated ones), so each texture samples
     its own set with its own transform, and the shader only picks a slot per texture (the plan's ``<map>_uv<k>``
     variant flags): a material whose textures all sample alike carries one slot and costs nothing more."""
     slots: list[tuple[int, dict | None, tuple]] = []
     for info in texture_infos(doc, material):
+        if len(slots) == MAX_UV_SLOTS:
+            break
         texcoord, key = gltf_extensions.texture_uv_choice(info)
         if all((s, k) != (texcoord, key) for s, _, k in slots):
             transform = info.get("extensions", {}).get(gltf_extensions.TEXTURE_TRANSFORM)
@@ -204,10 +219,11 @@ def uv_slots(doc: GltfDocument, material: int | None) -> list[tuple[int, dict | 
     return slots or [(0, None, ())]
 
 
-def texture_slot(doc: GltfDocument, material: int, info: dict) -> int:
-    """The slot of :func:`uv_slots` one of the material's textureInfos samples with."""
+def texture_slot(doc: GltfDocument, material: int, info: dict) -> int | None:
+    """The slot of :func:`uv_slots` one of the material's textureInfos samples with (None: past the last)."""
     choice = gltf_extensions.texture_uv_choice(info)
-    return [(s, k) for s, _, k in uv_slots(doc, material)].index(choice)
+    choices = [(s, k) for s, _, k in uv_slots(doc, material)]
+    return choices.index(choice) if choice in choices else None
 
 
 def _morph(doc: GltfDocument, prim: dict, weights, where: str, positions, normals, tangents):
@@ -266,9 +282,24 @@ def primitive_geometry(doc: GltfDocument, prim: dict, where: str, weights=None) 
     colors = arrays["COLOR_0"]
     if colors is not None and colors.shape[1] == 3:
         colors = np.concatenate([colors, np.ones((count, 1))], axis=1)
+    joints, weights = _skin_sets(doc, prim, decoded if draco else None)
     geometry = PrimitiveGeometry(positions, faces, arrays["NORMAL"], uvs[0], arrays["TANGENT"], colors,
-                                 material, where, TOPOLOGIES[mode], tuple(uvs[1:]))
+                                 material, where, TOPOLOGIES[mode], tuple(uvs[1:]), joints, weights)
     return flat_shaded(geometry) if geometry.normals is None and geometry.topology == "triangle-list" else geometry
+
+
+def _skin_sets(doc: GltfDocument, prim: dict, decoded: dict | None) -> tuple[tuple, tuple]:
+    """(JOINTS_0.., WEIGHTS_0..) of a primitive, every set it has (a Draco primitive's decoded ones)."""
+    attributes, joints, weights = prim.get("attributes", {}), [], []
+    for k in range(len(attributes)):
+        names = f"JOINTS_{k}", f"WEIGHTS_{k}"
+        if not any(n in attributes for n in names):
+            break
+        for name, out in zip(names, (joints, weights), strict=True):
+            if name in attributes:
+                array = decoded[name] if decoded and name in decoded else read_accessor(doc, attributes[name])
+                out.append(np.asarray(array, np.float64))
+    return tuple(joints), tuple(weights)  # one element per vertex each: gltf_rules checked the counts
 
 
 def _slot_uvs(uvs: np.ndarray | None, transform: dict | None) -> np.ndarray | None:
@@ -291,7 +322,8 @@ def flat_shaded(g: PrimitiveGeometry) -> PrimitiveGeometry:
     colors = None if g.colors is None else g.colors[corners]
     faces = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
     return PrimitiveGeometry(g.positions[corners], faces, np.repeat(normal, 3, axis=0), uvs, None, colors,
-                             g.material, g.where, extra_uvs=extra_uvs)
+                             g.material, g.where, extra_uvs=extra_uvs, joints=tuple(a[corners] for a in g.joints),
+                             weights=tuple(a[corners] for a in g.weights))
 
 
 def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveGeometry]]:
@@ -300,7 +332,7 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
     once per set of morph weights; the placed vertices (instances multiply them) are bounded like the file's own."""
     check_something_to_draw(doc)
     meshes = doc.json.get("meshes", [])
-    out, read, placed = [], {}, 0
+    out, read, placed, skins = [], {}, 0, {}
     limit = env_limit(MAX_MODEL_VERTICES_ENV, MAX_MODEL_VERTICES)
     nodes = doc.json.get("nodes", [])
     for world, mesh_index, node_index in placed_meshes(doc):
@@ -313,6 +345,8 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
             if key not in read:
                 read[key] = primitive_geometry(doc, prim, where, weights)
             geometry = read[key]
+            if geometry is not None and node_index >= 0 and "skin" in nodes[node_index]:
+                geometry = posed_skin(doc, node_index, geometry, skins)
             if geometry is not None and len(geometry.faces):
                 placed += len(geometry.positions)
                 if placed > limit:
@@ -320,6 +354,23 @@ def mesh_primitives(doc: GltfDocument) -> list[tuple[np.ndarray, str, PrimitiveG
                                     f"the model limit allows; raise ${MAX_MODEL_VERTICES_ENV} if the model is real")
                 out.append((world, f"node {node_index} mesh {mesh_index}{name}", geometry))
     return out
+
+
+def posed_skin(doc: GltfDocument, node: int, g: PrimitiveGeometry, cache: dict) -> PrimitiveGeometry:
+    """A skinned node's primitive with its vertices posed by the skin's joints (gltf_skin.py), in the node's own
+    space like any primitive; ``cache`` keeps the node globals and each node's joint matrices."""
+    if "globals" not in cache:
+        nodes = doc.json["nodes"]
+        cache["globals"] = gltf_skin.global_matrices(nodes, [node_matrix(n) for n in nodes])
+    if node not in cache:
+        cache[node] = gltf_skin.joint_matrices(doc, doc.json["nodes"][node]["skin"], node, cache["globals"])
+    if not g.joints:
+        raise UserError(f"malformed glTF file {doc.path}: {g.where} is skinned (its node has a skin) but has no "
+                        "JOINTS_0/WEIGHTS_0; fix or re-export the file")
+    where = f"malformed glTF file {doc.path}: {g.where}"
+    m = gltf_skin.blend(list(g.joints), list(g.weights), cache[node], where)
+    positions, normals, tangents = gltf_skin.skinned(g.positions, g.normals, g.tangents, m)
+    return dataclasses.replace(g, positions=positions, normals=normals, tangents=tangents)
 
 
 DRAWN_MODES = TRIANGLE_MODES  # the modes a file needs one of: points and lines are drawn only beside triangles
@@ -345,6 +396,7 @@ def check_something_to_draw(doc: GltfDocument) -> None:
 def geometry_notes(doc: GltfDocument) -> list[str]:
     """What the file has that is not drawn, one line each (for ``--explain``)."""
     notes, gltf = [], doc.json
+    skinned = {node["mesh"] for node in gltf.get("nodes", []) if "skin" in node and "mesh" in node}
     for mi, mesh in enumerate(gltf.get("meshes", [])):
         for pi, prim in enumerate(mesh.get("primitives", [])):
             mode = prim.get("mode", 4)
@@ -355,11 +407,8 @@ def geometry_notes(doc: GltfDocument) -> list[str]:
             used = {f"TEXCOORD_{s}" for s, _, _ in uv_slots(doc, prim.get("material"))}
             extra = sorted(a for a in prim.get("attributes", {}) if a.startswith("TEXCOORD_") and a not in used)
             extra += sorted(a for a in prim.get("attributes", {})
-                            if a.startswith(("JOINTS_", "WEIGHTS_")) or (a.startswith("COLOR_") and a != "COLOR_0"))
+                            if (a.startswith(("JOINTS_", "WEIGHTS_")) and mi not in skinned)
+                            or (a.startswith("COLOR_") and a != "COLOR_0"))
             if extra:
                 notes.append(f"mesh {mi} primitive {pi}: attribute(s) {', '.join(extra)} ignored")
-    if gltf.get("skins"):
-        notes.append(f"{len(gltf['skins'])} skin(s) ignored (drawn in the bind pose, no skinning)")
-    if gltf.get("animations"):
-        notes.append(f"{len(gltf['animations'])} animation(s) ignored (drawn at rest)")
     return notes

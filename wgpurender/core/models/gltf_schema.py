@@ -54,9 +54,19 @@ SPARSE = Obj({"count": INT, "indices": Obj({"bufferView": Ref("bufferViews"), "b
               "values": Obj({"bufferView": Ref("bufferViews"), "byteOffset": INT}, ("bufferView",))},
              ("count", "indices", "values"))
 MATERIAL_EXTENSIONS = Obj({"KHR_materials_emissive_strength": Obj({"emissiveStrength": NONNEG}),
-                           "KHR_materials_unlit": Obj({})})
+                           "KHR_materials_unlit": Obj({}),
+                           "KHR_materials_clearcoat": Obj({
+                               "clearcoatFactor": NONNEG, "clearcoatTexture": TEXTURE_INFO,
+                               "clearcoatRoughnessFactor": NONNEG, "clearcoatRoughnessTexture": TEXTURE_INFO,
+                               "clearcoatNormalTexture": Obj({"index": Ref("textures"), "texCoord": INT, "scale": NUM},
+                                                             ("index",))})})
 PRIMITIVE = Obj({"attributes": Map(Ref("accessors")), "indices": Ref("accessors"), "material": Ref("materials"),
                  "mode": INT, "targets": Arr(Map(Ref("accessors")))}, ("attributes",))
+# a channel's sampler indexes its own animation's samplers: checked where it is read (gltf_animation.channels)
+ANIMATION_CHANNEL = Obj({"sampler": INT, "target": Obj({"node": Ref("nodes"), "path": str}, ("path",))},
+                        ("sampler", "target"))
+ANIMATION_SAMPLER = Obj({"input": Ref("accessors"), "output": Ref("accessors"), "interpolation": str},
+                        ("input", "output"))
 DOCUMENT = Obj({
     "asset": Obj({"version": str, "generator": str}),
     "extensionsUsed": Arr(str), "extensionsRequired": Arr(str),
@@ -64,7 +74,7 @@ DOCUMENT = Obj({
     "scenes": Arr(Obj({"nodes": Arr(Ref("nodes")), "name": str})),
     "nodes": Arr(Obj({"mesh": Ref("meshes"), "children": Arr(Ref("nodes")), "matrix": Arr(NUM, 16),
                       "translation": Arr(NUM, 3), "rotation": Arr(NUM, 4), "scale": Arr(NUM, 3), "name": str,
-                      "camera": Ref("cameras"), "skin": Ref("skins")})),
+                      "camera": Ref("cameras"), "skin": Ref("skins"), "weights": Arr(NUM)})),
     "meshes": Arr(Obj({"primitives": Arr(PRIMITIVE, nonempty=True), "name": str}, ("primitives",))),
     "accessors": Arr(Obj({"bufferView": Ref("bufferViews"), "byteOffset": INT, "componentType": INT,
                           "normalized": bool, "count": INT, "type": str, "min": Arr(NUM), "max": Arr(NUM),
@@ -84,7 +94,10 @@ DOCUMENT = Obj({
     "images": Arr(Obj({"uri": str, "bufferView": Ref("bufferViews"), "mimeType": str, "name": str})),
     "samplers": Arr(Obj({"magFilter": INT, "minFilter": INT, "wrapS": INT, "wrapT": INT, "name": str})),
     "cameras": Arr(Obj({"type": str})),
-    "skins": Arr(Obj({"joints": Arr(Ref("nodes"))})),
+    "skins": Arr(Obj({"joints": Arr(Ref("nodes"), nonempty=True), "inverseBindMatrices": Ref("accessors"),
+                      "skeleton": Ref("nodes"), "name": str}, ("joints",))),
+    "animations": Arr(Obj({"name": str, "channels": Arr(ANIMATION_CHANNEL, nonempty=True),
+                           "samplers": Arr(ANIMATION_SAMPLER, nonempty=True)}, ("channels", "samplers"))),
 })
 
 EXTENSIONS = Map(Obj({}))

@@ -30,7 +30,8 @@ import numpy as np
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import check_file_size, input_file
-from wgpurender.core.models import gltf_geometry, gltf_io
+from wgpurender.core.models import gltf_animation, gltf_geometry, gltf_io
+from wgpurender.core.models.gltf_animation import Pose
 from wgpurender.core.models.tangents import (
     area_weighted_normals,
     face_uv_frames,
@@ -282,11 +283,13 @@ class _Part:
     extra_uvs: tuple[np.ndarray | None, ...] = ()  # a glTF material's coordinate slots 1.. (gltf_geometry.uv_slots)
 
 
-def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mesh:
+def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, pose: Pose | None = None) -> Mesh:
     """Load a model file into one :class:`Mesh` (all its meshes and nodes merged, node transforms applied).
 
     The geometry only: a model file's materials are the scene's (core/scene/file_materials.py reads them once,
     when the scene loads); ``Mesh.parts`` says which triangles each file material covers.
+    ``pose``: a glTF file's animation sampled at a time (core/models/gltf_animation.py); None: its nodes as
+    written. Skins are posed either way (core/models/gltf_skin.py).
     Raises UserError for missing, unsupported, malformed or empty files and for non-finite positions.
     """
     path = Path(path)
@@ -300,8 +303,10 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True) -> Mes
                         f"(supported: {', '.join(SUPPORTED)})")
     check_file_size(input_file(path, "model file"), "model file")
     file_type = SUPPORTED[suffix]
+    if pose is not None and file_type not in ("gltf", "glb"):
+        raise UserError(f"cannot pose {path}: only glTF files have animations (remove 'time' and 'animation')")
     if file_type in ("gltf", "glb"):
-        parts = _gltf_parts(path)
+        parts = _gltf_parts(path, pose)
     elif file_type == "fbx":
         parts = _fbx_parts(path)
     else:
@@ -462,9 +467,10 @@ def _simple_obj_parts(path: Path) -> list[_Part] | None:
     return [_Part(positions, faces, normals, uvs, None)]
 
 
-def _gltf_parts(path: Path) -> list[_Part]:
-    """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space."""
-    doc = gltf_io.read_document(path)
+def _gltf_parts(path: Path, pose: Pose | None = None) -> list[_Part]:
+    """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space, the
+    nodes posed at ``pose`` (gltf_animation.posed) and skins applied."""
+    doc = gltf_animation.posed(gltf_io.read_document(path), pose)
     parts = []
     for world, node, geometry in gltf_geometry.mesh_primitives(doc):
         g = geometry

@@ -32,7 +32,7 @@ def batch_key(draw: Draw, blend: bool) -> tuple:
     """What must be equal for two draws to be one instanced draw; a blended draw's key is unique to it."""
     if blend:
         return ("blend", id(draw))
-    return (draw.model_path, draw.part, draw.pipeline_key, draw.material_key())
+    return (draw.mesh_key, draw.part, draw.pipeline_key, draw.material_key())
 
 
 def batch_draws(draws: list[Draw], blend_of: dict[str, bool]) -> list[Draw]:

@@ -160,6 +160,7 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
         materials, found = file_materials.draw_materials(model)
         if found is not None:
             notes.extend(file_materials.model_notes(model, found))
+        notes.extend(f"{model.label}: {line}" for line in model.motion)
         for mat in materials:
             first_time = id(mat) not in seen_materials
             seen_materials.add(id(mat))
@@ -210,4 +211,4 @@ def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output:
     draw_label = model.label if mat.part is None else f"{model.label} {mat.name.removeprefix(model.label).strip()}"
     return Draw(model.index, model.path, draw_label, mat.name, variant.key, pipeline.key, sampled,
                 own[0][1] if own else None, model.transform.matrix, label, tuple(factors.items()), part=mat.part,
-                samplers=tuple(own), topology=mat.topology)
+                samplers=tuple(own), topology=mat.topology, pose=model.pose)

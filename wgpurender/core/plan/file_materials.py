@@ -8,6 +8,7 @@ triangles use (``Draw.part``); every other model draws once with its scene mater
 
 from __future__ import annotations
 
+from wgpurender.core.plan import clearcoat
 from wgpurender.core.plan.shading_models import metallic_factor
 from wgpurender.core.scene import Material, Model
 from wgpurender.core.scene.model import ModelMaterials
@@ -51,7 +52,7 @@ def extra_reasons(material: Material, label: str, lit: bool, samples: bool, note
                                              "ambient term)"))
         else:
             notes.append(f"{label}: occlusionTexture unused: it scales the ambient term of lit shading only")
-    return reasons
+    return reasons + clearcoat.reasons(material, label, lit, notes)
 
 
 def uv_slot_reasons(material: Material, label: str, reasons: list[tuple[str, str]]) -> list[tuple[str, str]]:
@@ -83,7 +84,7 @@ def factor_options(material: Material, variant_flags: frozenset[str]) -> dict:
         options["occlusion_strength"] = material.occlusion_strength
     if "emissive" in variant_flags:
         options["emissive"] = tuple(material.emissive_color)
-    return options | metallic_factor(material, variant_flags)
+    return options | metallic_factor(material, variant_flags) | clearcoat.factors(material, variant_flags)
 
 
 def texture_samplers(material: Material, sampled: tuple[tuple[str, object], ...], spec) -> tuple:

@@ -8,8 +8,6 @@ buffers (wgpu_path/scene/resources.py, raw_path/scene/resources.py).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from wgpurender.core.errors import UserError
 from wgpurender.core.models.mesh import Mesh, index_range, load_mesh
 from wgpurender.core.plan.model import Draw, RenderPlan
@@ -20,21 +18,23 @@ class PlanMeshes:
 
     def __init__(self, plan: RenderPlan) -> None:
         self.plan = plan
-        self._meshes: dict[Path, Mesh] = {}
-        self._needs_tangents = {d.model_path for d in plan.scene_pass.draws
+        self._meshes: dict[tuple, Mesh] = {}
+        self._needs_tangents = {d.mesh_key for d in plan.scene_pass.draws
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
 
-    def mesh(self, path: Path) -> Mesh:
-        """The loaded mesh; tangents only when a variant drawing it has a normal map."""
-        if path not in self._meshes:
-            self._meshes[path] = load_mesh(path, generate_tangents=path in self._needs_tangents)
-        return self._meshes[path]
+    def mesh(self, key: tuple) -> Mesh:
+        """The loaded mesh of a draw's ``mesh_key`` (its file and pose); tangents only when a variant drawing it
+        has a normal map."""
+        if key not in self._meshes:
+            path, pose = key
+            self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose)
+        return self._meshes[key]
 
     def mesh_for(self, draw: Draw) -> Mesh:
         """The draw's mesh, checked against the vertex attributes its variant reads (UserError names what is
         missing)."""
         attributes = self.plan.variant(draw.variant_key).vertex_attributes
-        mesh = self.mesh(draw.model_path)
+        mesh = self.mesh(draw.mesh_key)
         if "uv" in attributes and not mesh.has_uvs:
             raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
                             "texture coordinates: export it with UVs, or use a material without maps")
@@ -49,4 +49,4 @@ class PlanMeshes:
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
-        return index_range(self.mesh(draw.model_path), draw)
+        return index_range(self.mesh(draw.mesh_key), draw)

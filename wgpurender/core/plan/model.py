@@ -16,6 +16,7 @@ import numpy as np
 from wgpurender.core.course.effects import EffectStep
 from wgpurender.core.course.formats import BYTES_PER_PIXEL, HDR_FORMAT, POST_PATHS, SAMPLE_COUNTS  # re-exported
 from wgpurender.core.errors import UserError
+from wgpurender.core.models.gltf_geometry import MAX_UV_SLOTS
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
@@ -46,9 +47,11 @@ ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "
                     "output")  # the order passes use them
 
 # Feature -> vertex attribute it needs (position is always there).
-TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
-EXTRA_UV_SLOTS = len(TEXTURE_FEATURES) - 1  # coordinate slots beyond the first: one per texture at most
-ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("normal_map", "tangent"), ("vertex_color", "color"),
+TEXTURE_FEATURES = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map", "clearcoat_map",
+                    "clearcoat_roughness_map", "clearcoat_normal_map")
+EXTRA_UV_SLOTS = MAX_UV_SLOTS - 1  # coordinate slots beyond the first (vertex attributes uv1..uv4)
+TANGENT_FEATURES = frozenset({"normal_map", "clearcoat_normal_map"})  # the maps that need the tangent frame
+ATTRIBUTES = (("lighting", "normal"), ("uv", "uv"), ("tangent", "tangent"), ("vertex_color", "color"),
               *((f"uv{k}", f"uv{k}") for k in range(1, EXTRA_UV_SLOTS + 1)))
 # "<texture feature>_uv<k>": that texture samples the mesh's coordinate slot k (vertex attribute uv<k>)
 UV_SLOT_FLAGS = {f"{feature}_uv{k}": (feature, k) for feature in TEXTURE_FEATURES for k in range(1, EXTRA_UV_SLOTS + 1)}
@@ -89,7 +92,8 @@ class ShaderVariant:
     def vertex_attributes(self) -> tuple[str, ...]:
         uses_uv = bool(self.flags & set(TEXTURE_FEATURES))
         slots = {f"uv{UV_SLOT_FLAGS[f][1]}" for f in self.flags if f in UV_SLOT_FLAGS}
-        have = self.flags | ({"uv"} if uses_uv else set()) | slots
+        tangent = {"tangent"} if self.flags & TANGENT_FEATURES else set()
+        have = self.flags | ({"uv"} if uses_uv else set()) | slots | tangent
         return ("position",) + tuple(attr for feature, attr in ATTRIBUTES if feature in have)
 
     def count(self, name: str) -> int:
@@ -166,6 +170,12 @@ class Draw:
     first_instance: int = 0  # where its instances start in the scene's one Object storage buffer
     batch: str = ""  # why these instances are one draw (explain)
     cpu_culled: bool = False  # its instances are frustum-culled on the CPU (core/plan/culling.cpu_culled)
+    pose: object | None = None  # the model's glTF animation pose (core/models/gltf_animation.Pose), None: at rest
+
+    @property
+    def mesh_key(self) -> tuple:
+        """What names the vertices a draw reads: its model file, and the pose it is drawn in."""
+        return (self.model_path, self.pose)
 
     @property
     def instance_count(self) -> int:
@@ -472,10 +482,10 @@ class RenderPlan:
                 materials = len({d.material_key() for d in draws})
                 out.append(("scene-materials", f"uniform: {materials} Material slice(s), one per distinct material "
                                                f"({when})"))
-        meshes = dict.fromkeys((d.model_path, self.variant(d.variant_key).vertex_attributes) for d in draws)
+        meshes = dict.fromkeys((d.mesh_key, self.variant(d.variant_key).vertex_attributes) for d in draws)
         if meshes:  # every mesh in one pair, each at its own offset (wgpu_path/scene/resources.py upload_meshes)
             layouts = "; ".join(dict.fromkeys(", ".join(attributes) for _, attributes in meshes))
-            names = ", ".join(dict.fromkeys(model.name for model, _ in meshes))
+            names = ", ".join(dict.fromkeys(key[0].name for key, _ in meshes))
             out.append(("scene-vertices", f"vertex: {len(meshes)} mesh(es) ({names}), each interleaved at its own "
                                           f"offset (attributes {layouts})"))
             out.append(("scene-indices", f"index: the same {len(meshes)} mesh(es), each at its own offset"))

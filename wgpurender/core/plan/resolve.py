@@ -26,6 +26,7 @@ from wgpurender.core.plan.anisotropy import ANISOTROPY_RULES, DEFAULT_ANISOTROPY
 from wgpurender.core.plan.build import build_plan
 from wgpurender.core.plan.model import AdapterFacts, Knobs, RenderPlan
 from wgpurender.core.scene import Scene, load_scene
+from wgpurender.core.scene.model_motion import at_time
 
 _NOT_FLAGS = ("adapter", "anisotropy")  # set from the arguments, never passed as a knob
 KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
@@ -33,12 +34,15 @@ KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
 
 def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None, *,
                  size: tuple[int, int] | None = None, output_format: str | None = None, msaa: int | None = None,
-                 anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None, **knobs) -> RenderPlan:
+                 anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None, time: float | None = None,
+                 **knobs) -> RenderPlan:
     """The plan of a scene (or scene file) for ``adapter``, every "auto" knob decided for it.
 
     ``adapter`` None: not known (no GPU, or a plan printed before one is chosen); the "auto" knobs then
     keep the scene's values and say so. Unknown knob names raise UserError. ``camera`` (``--camera K``): the
     view is camera K of the scene's glTF model instead of its ``[camera]`` (core/scene/gltf_cameras.py).
+    ``time`` (``--time``; None or 0: the scene's own): every glTF model with an animation posed at that time
+    (core/scene/model_motion.at_time), once, here; a scene without one refuses it.
     """
     unknown = sorted(set(knobs) - set(KNOB_FLAGS))
     if unknown:
@@ -46,6 +50,8 @@ def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None
     if anisotropy not in ANISOTROPY_RULES:
         raise UserError(f"anisotropy {anisotropy!r}: choose one of {', '.join(ANISOTROPY_RULES)}")
     scene = target if isinstance(target, Scene) else load_scene(target)
+    if time:
+        scene = at_time(scene, time)
     if camera is not None:
         from wgpurender.core.scene.gltf_cameras import with_file_camera
 

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models import gltf_geometry
+from wgpurender.core.models import gltf_animation, gltf_geometry
 from wgpurender.core.scene.model import Camera, Model
 
 GLTF_SUFFIXES = (".gltf", ".glb")
@@ -82,7 +82,7 @@ def file_camera(model: Model, index: int, asked: str = "") -> Camera:
     if model.placements is not None:
         raise UserError(f"[camera] from_model = {model.index}: {label} has instances, so its camera would be in "
                         "each copy; view through a model without instances")
-    doc = document(str(model.path))
+    doc = gltf_animation.posed(document(str(model.path)), model.pose)  # an animated camera node: at the time
     cameras = doc.json.get("cameras", [])
     if not cameras:
         raise UserError(f"[camera] from_model = {model.index}: {label} has no cameras; set eye and target instead")
@@ -105,7 +105,7 @@ def file_camera(model: Model, index: int, asked: str = "") -> Camera:
     target = eye + forward / np.linalg.norm(forward) * distance
     more = f", the first of {len(placed)} nodes placing it" if len(placed) > 1 else ""
     return Camera(eye=_vec(eye), target=_vec(target), up=_vec(up / np.linalg.norm(up)),
-                  origin=f"{where} at node {node}{more}", **projection)
+                  origin=f"{where} at node {node}{more}", file_camera=(model.index, index), **projection)
 
 
 def with_file_camera(scene, index: int):

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models import gltf_geometry, gltf_io
+from wgpurender.core.models import gltf_animation, gltf_geometry, gltf_io
 from wgpurender.core.scene.model import MAX_LIGHTS, Light, Model
 
 EXTENSION = "KHR_lights_punctual"
@@ -47,7 +47,7 @@ def model_lights(model: Model, first_index: int) -> list[Light]:
         return []
     from wgpurender.core.scene.gltf_materials import document
 
-    doc = document(str(model.path))
+    doc = gltf_animation.posed(document(str(model.path)), model.pose)  # a light on an animated node: at the time
     defined = doc.json.get("extensions", {}).get(EXTENSION, {})
     defined = defined.get("lights", []) if isinstance(defined, dict) else None
     if not isinstance(defined, list):

@@ -15,6 +15,10 @@ and one draw. What is taken, and how it maps onto the course's normalized Blinn-
   colour;
 - ``occlusionTexture`` (R channel) with its ``strength`` -> scales the ambient term (lit materials);
 - ``KHR_materials_unlit`` -> an unlit material (base colour only: emissive and occlusion unused).
+- ``KHR_materials_clearcoat`` -> a clear coat over a lit metallic-roughness material: ``clearcoatFactor`` x
+  ``clearcoatTexture``'s R, ``clearcoatRoughnessFactor`` x ``clearcoatRoughnessTexture``'s G, ``clearcoatNormalTexture``
+  with its ``scale`` (shaders_wgsl/clearcoat.wgsl has the layering); each texture samples its own coordinate slot as
+  the others do.
 - ``KHR_materials_pbrSpecularGlossiness`` -> converted to metallic-roughness at load (gltf_specgloss.py: factors
   as factors, textures per texel into ``model.glb#specgloss[k].base`` / ``.metalrough`` images); the material's
   --explain line says so, and whether the conversion is exact or an approximation.
@@ -43,14 +47,19 @@ from wgpurender.core.models import gltf_extensions, gltf_geometry, gltf_io
 from wgpurender.core.scene import gltf_specgloss
 from wgpurender.core.scene.model import DEFAULT_MATERIAL, Material, ModelMaterials
 
+CLEARCOAT = gltf_extensions.CLEARCOAT
 EMBEDDED_MARK = "#images["  # a texture "path" naming an image embedded in a model file: model.glb#images[3]
 WRAP = {10497: "repeat", 33071: "clamp-to-edge", 33648: "mirror-repeat"}
 MIN_FILTERS = {9728: ("nearest", None), 9729: ("linear", None), 9984: ("nearest", "nearest"),
                9985: ("linear", "nearest"), 9986: ("nearest", "linear"), 9987: ("linear", "linear")}
 ROLES = {"albedo_map": ("pbrMetallicRoughness", "baseColorTexture"), "normal_map": ("normalTexture",),
          "roughness_map": ("pbrMetallicRoughness", "metallicRoughnessTexture"),
-         "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",)}
+         "emissive_map": ("emissiveTexture",), "occlusion_map": ("occlusionTexture",),
+         "clearcoat_map": ("extensions", CLEARCOAT, "clearcoatTexture"),
+         "clearcoat_roughness_map": ("extensions", CLEARCOAT, "clearcoatRoughnessTexture"),
+         "clearcoat_normal_map": ("extensions", CLEARCOAT, "clearcoatNormalTexture")}
 SUPPORTED_MATERIAL_EXTENSIONS = ("KHR_materials_unlit", "KHR_materials_emissive_strength", gltf_specgloss.EXTENSION)
+SUPPORTED_MATERIAL_EXTENSIONS += (CLEARCOAT,)
 # extensionsUsed entries that are applied (gltf_extensions, gltf_compression): --explain lists them as used
 USED_EXTENSIONS = frozenset(SUPPORTED_MATERIAL_EXTENSIONS) | gltf_extensions.SUPPORTED_REQUIRED
 
@@ -151,11 +160,15 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         if "source" not in texture:
             ignored.append(f"{name}: {keys[-1]} has no image source (ignored)")
             continue
+        slot, how = _uv_slot(doc, index, info)
+        if slot is None:
+            ignored.append(f"{name}: {keys[-1]} ignored: it samples a sixth distinct texture coordinate choice "
+                           f"({how}); a mesh carries at most {gltf_geometry.MAX_UV_SLOTS} (vertex attributes)")
+            continue
         maps[feature] = texture_file(doc, texture)
         spec, mips = sampler_spec(doc, texture)
         samplers.append((feature, spec))
         mipmaps.append((feature, mips))
-        slot, how = _uv_slot(doc, index, info)
         if slot:
             slots.append((feature, slot, how))
     for feature, kind in converted:
@@ -182,8 +195,24 @@ def file_material(doc: gltf_io.GltfDocument, index: int, label: str, vertex_colo
         emissive_map=maps.get("emissive_map") if not unlit else None,
         occlusion_map=maps.get("occlusion_map"), occlusion_strength=float(occlusion.get("strength", 1.0)),
         shading_model="blinn-phong" if unlit else "pbr", metallic=float(pbr.get("metallicFactor", 1.0)),
-        uv_slots=tuple(slots),
+        uv_slots=tuple(slots), **_clearcoat(mat, maps, name, unlit, ignored),
     )
+
+
+def _clearcoat(mat: dict, maps: dict, name: str, unlit: bool, ignored: list[str]) -> dict:
+    """The Material fields of KHR_materials_clearcoat (its defaults: factor 0, roughness 0, normal scale 1)."""
+    ext = mat.get("extensions", {}).get(CLEARCOAT)
+    if not isinstance(ext, dict):
+        return {}
+    if unlit:  # the extension's exclusions: never with KHR_materials_unlit
+        ignored.append(f"{name}: {CLEARCOAT}: ignored (KHR_materials_unlit draws the base colour only)")
+        return {}
+    normal = ext.get("clearcoatNormalTexture") if isinstance(ext.get("clearcoatNormalTexture"), dict) else {}
+    return {"clearcoat": float(ext.get("clearcoatFactor", 0.0)),
+            "clearcoat_roughness": float(ext.get("clearcoatRoughnessFactor", 0.0)),
+            "clearcoat_map": maps.get("clearcoat_map"), "clearcoat_roughness_map": maps.get("clearcoat_roughness_map"),
+            "clearcoat_normal_map": maps.get("clearcoat_normal_map"),
+            "clearcoat_normal_scale": float(normal.get("scale", 1.0))}
 
 
 def _spec_gloss(mat: dict, name: str) -> tuple[dict, tuple[tuple[str, str], ...], str]:
@@ -208,8 +237,9 @@ def _spec_gloss(mat: dict, name: str) -> tuple[dict, tuple[tuple[str, str], ...]
     return {**mat, "pbrMetallicRoughness": pbr}, (), said + how
 
 
-def _uv_slot(doc: gltf_io.GltfDocument, index: int, info: dict) -> tuple[int, str]:
-    """(the coordinate slot a texture samples: gltf_geometry.uv_slots, what it samples in words)."""
+def _uv_slot(doc: gltf_io.GltfDocument, index: int, info: dict) -> tuple[int | None, str]:
+    """(the coordinate slot a texture samples: gltf_geometry.uv_slots, None past the last; what it samples in
+    words)."""
     texcoord, key = gltf_extensions.texture_uv_choice(info)
     how = f"TEXCOORD_{texcoord}" + (f" with KHR_texture_transform {dict(key)}" if key else "")
     return gltf_geometry.texture_slot(doc, index, info), how
@@ -259,7 +289,9 @@ def _points_or_lines(material: Material, topology: str) -> Material:
     kind = "points" if topology == "point-list" else "lines"
     return dataclasses.replace(material, name=f"{material.name} ({kind})", origin=f"{material.origin} ({kind}, "
                                "unlit)", unlit=True, topology=topology, normal_map=None, roughness_map=None,
-                               occlusion_map=None, emissive_map=None, emissive_color=(0.0, 0.0, 0.0))
+                               occlusion_map=None, emissive_map=None, emissive_color=(0.0, 0.0, 0.0),
+                               clearcoat=0.0, clearcoat_map=None, clearcoat_roughness_map=None,
+                               clearcoat_normal_map=None)
 
 
 def _taken_text(m: Material) -> str:
@@ -282,6 +314,10 @@ def _taken_text(m: Material) -> str:
         items.append(f"emissiveFactor {tuple(round(c, 4) for c in m.emissive_color)}")
     if m.occlusion_map:
         items.append(f"occlusion strength {m.occlusion_strength:g}")
+    if m.clearcoat > 0 or m.clearcoat_map:
+        items.append(f"{CLEARCOAT} clearcoatFactor {m.clearcoat:g}, clearcoatRoughnessFactor "
+                     f"{m.clearcoat_roughness:g}" + (f", clearcoatNormalTexture scale {m.clearcoat_normal_scale:g}"
+                                                     if m.clearcoat_normal_map else ""))
     if m.unlit:
         items.append("KHR_materials_unlit")
     elif m.part is not None and m.part >= 0:

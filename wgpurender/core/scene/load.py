@@ -13,6 +13,7 @@ from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.environment_block import parse_environment
 from wgpurender.core.scene.file_materials import read_file_materials
 from wgpurender.core.scene.model import Scene
+from wgpurender.core.scene.model_motion import read_motion
 from wgpurender.core.scene.validate import (
     TOP_KEYS,
     _camera,
@@ -48,7 +49,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     description = data.get("description", "")
     choice = file_camera_choice(c, data["camera"])
     camera = _camera(c, data["camera"]) if choice is None else None
-    models = tuple(dataclasses.replace(m, file_materials=read_file_materials(m))
+    models = tuple(dataclasses.replace(m, file_materials=read_file_materials(m), motion=read_motion(m))
                    for m in _models(c, data.get("models", []), materials))
     scene = Scene(
         path=path,

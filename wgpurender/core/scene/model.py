@@ -11,6 +11,7 @@ import numpy as np
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.models.gltf_animation import Pose
 from wgpurender.core.view import transforms
 
 MAX_LIGHTS = 8
@@ -39,7 +40,8 @@ class Camera:
     A model file's camera (``[camera] from_model``, core/scene/gltf_cameras.py) fills the same fields from its node
     and numbers, and may add what a scene's own camera never has: ``far = inf`` (a perspective camera without
     zfar), the file's ``aspect_ratio`` (None: the target's), an ``orthographic`` projection of half-extents
-    ``xmag`` and ``ymag``, and ``origin`` (which file camera it is, for ``--explain``).
+    ``xmag`` and ``ymag``, ``origin`` (which file camera it is, for ``--explain``) and ``file_camera`` ((model
+    index, camera index): placed again when ``--time`` poses the model).
     """
 
     eye: Vec3
@@ -54,6 +56,7 @@ class Camera:
     ymag: float = 1.0
     aspect_ratio: float | None = None
     origin: str = ""
+    file_camera: tuple[int, int] | None = None
 
     def view(self) -> np.ndarray:
         return transforms.look_at(self.eye, self.target, self.up)
@@ -152,11 +155,22 @@ class Material:
     # (feature, slot k >= 1, what it samples): the textures that sample the mesh's coordinate slot k (a glTF texCoord
     # or KHR_texture_transform of their own: core/models/gltf_geometry.uv_slots); the others sample slot 0.
     uv_slots: tuple[tuple[str, int, str], ...] = ()
+    # KHR_materials_clearcoat (a glTF metallic-roughness material only; shaders_wgsl/clearcoat.wgsl): a GGX layer of
+    # ior 1.5 over the material, weight clearcoat (x the clearcoat map's R), roughness clearcoat_roughness (x the
+    # clearcoat roughness map's G), its own normal (the geometric one, or the clearcoat normal map's with its scale)
+    clearcoat: float = 0.0
+    clearcoat_roughness: float = 0.0
+    clearcoat_map: Path | None = None
+    clearcoat_roughness_map: Path | None = None
+    clearcoat_normal_map: Path | None = None
+    clearcoat_normal_scale: float = 1.0
 
     @property
     def textures(self) -> dict[str, Path]:
         maps = {"albedo_map": self.albedo_map, "normal_map": self.normal_map, "roughness_map": self.roughness_map,
-                "emissive_map": self.emissive_map, "occlusion_map": self.occlusion_map}
+                "emissive_map": self.emissive_map, "occlusion_map": self.occlusion_map,
+                "clearcoat_map": self.clearcoat_map, "clearcoat_roughness_map": self.clearcoat_roughness_map,
+                "clearcoat_normal_map": self.clearcoat_normal_map}
         return {k: v for k, v in maps.items() if v is not None}
 
     def as_written(self, key: str) -> str:
@@ -233,6 +247,8 @@ class Model:
     # those materials, read once when the scene loads (core/scene/file_materials.py); None: the scene's material
     file_materials: ModelMaterials | None = None
     placements: Placements | None = None  # None: one copy, at ``transform``
+    pose: Pose | None = None  # a glTF file's animation at a time (core/models/gltf_animation.py); None: at rest
+    motion: tuple[str, ...] = ()  # --explain lines: the animation sampled and the skins posed (core/scene/model_motion)
 
     @property
     def label(self) -> str:

@@ -11,6 +11,7 @@ import numpy as np
 from wgpurender.core.course.formats import POST_PATHS, SAMPLE_COUNTS
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 from wgpurender.core.errors import UserError
+from wgpurender.core.models.gltf_animation import Pose
 from wgpurender.core.scene.checker import Checker as _Checker
 from wgpurender.core.scene.checker import _type_name
 from wgpurender.core.scene.instances import instances
@@ -44,7 +45,7 @@ MATERIAL_KEYS = (
     "albedo_color", "albedo_map", "normal_map", "roughness", "roughness_map", "sampler", "unlit", "uv_flip_v"
 )
 SAMPLER_KEYS = ("address_mode", "anisotropy", "filter", "mipmaps")
-MODEL_KEYS = ("instances", "material", "path", "transform")
+MODEL_KEYS = ("animation", "instances", "material", "path", "time", "transform")
 TRANSFORM_KEYS = ("matrix", "rotate", "scale", "translate")
 LIGHT_KEYS = ("color", "direction", "intensity", "position", "type")
 RENDER_KEYS = ("clear_color", "hdr", "msaa", "output_format", "post_fuse", "post_path", "size")
@@ -272,9 +273,26 @@ def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Mod
                 transform=_transform(c, t.get("transform", {}), key + ("transform",)),
                 material_from_file="material" not in t,
                 placements=instances(c, t["instances"], key + ("instances",)) if "instances" in t else None,
+                pose=_pose(c, t, key),
             )
         )
     return tuple(out)
+
+
+def _pose(c: _Checker, t: dict, key: KeyPath) -> Pose | None:
+    """A glTF model's animation pose: ``time`` (seconds, default 0) of ``animation`` (a name or an index, default
+    the first); None when neither is given (the nodes as written). Whether the file has that animation is checked
+    when it is read (core/models/gltf_animation.choose)."""
+    if "time" not in t and "animation" not in t:
+        return None
+    if not str(t.get("path", "")).lower().endswith((".gltf", ".glb")):
+        given = "time" if "time" in t else "animation"
+        raise c.error(key + (given,), f"{format_path(key + (given,))}: only a glTF model (.gltf, .glb) has "
+                                      "animations to pose; remove it")
+    animation = t.get("animation")
+    if animation is not None and not isinstance(animation, str):
+        animation = c.integer(animation, key + ("animation",), lo=0)
+    return Pose(animation, c.number(t.get("time", 0.0), key + ("time",)))
 
 
 def _lights(c: _Checker, data: Any) -> tuple[Light, ...]:

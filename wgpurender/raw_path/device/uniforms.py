@@ -72,12 +72,14 @@ def pack_object(world: np.ndarray) -> bytes:
 
 def pack_material(base_color, lit: bool, roughness: float = 0.0, normal_strength: float = 0.0,
                   specular: float = 0.0, alpha_cutoff: float | None = None, occlusion_strength: float | None = None,
-                  emissive=None) -> bytes:
+                  clearcoat=None, emissive=None) -> bytes:
     """The push constant block (std430); a PBR variant's metallic factor goes where ``specular`` is. Model-file
     variants append, in scene.frag's order: alpha_cutoff and occlusion_strength (floats, each right after the
-    last), emissive (a vec4 on the next 16-byte boundary)."""
+    last), clearcoat (three floats: factor, roughness, normal scale), emissive (a vec4 on the next 16-byte
+    boundary)."""
     values = [*base_color, roughness, normal_strength, specular] if lit else list(base_color)
     values += [v for v in (alpha_cutoff, occlusion_strength) if v is not None]
+    values += list(clearcoat) if clearcoat is not None else []
     if emissive is not None:
         values += [0.0] * (-len(values) % 4) + [*emissive[:3], 0.0]
     return np.asarray(values, dtype=np.float32).tobytes()

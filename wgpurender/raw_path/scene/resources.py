@@ -70,7 +70,7 @@ class SceneResources:
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         attributes = self.plan.variant(draw.variant_key).vertex_attributes
-        key = (draw.model_path, attributes)
+        key = (draw.mesh_key, attributes)
         if key not in self._buffers:
             mesh = self.meshes.mesh_for(draw)
             vertex_stage = vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT

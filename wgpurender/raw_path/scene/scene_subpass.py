@@ -44,7 +44,8 @@ READ_ONLY = vk.VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
 IBL_BINDING = 11  # set 2: the image-based lighting maps (scene.wgsl's group 2 binding 11)
 TOPOLOGIES = {"triangle-list": vk.VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, "line-list": vk.VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
               "point-list": vk.VK_PRIMITIVE_TOPOLOGY_POINT_LIST}  # the plan's (WebGPU's) names
-TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
+TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9,
+                    "clearcoat_map": 12, "clearcoat_roughness_map": 14, "clearcoat_normal_map": 16}
 
 
 def camera_block(scene: Scene, aspect: float) -> bytes:
@@ -67,8 +68,10 @@ def material_block(scene: Scene, draw: Draw, variant: ShaderVariant) -> bytes:
     unlit with its base colour times the ambient), the same values the wgpu path pushes; alpha-masked variants
     append the cutoff."""
     f = dict(draw.factors)
+    coat = tuple(f[k] for k in ("clearcoat", "clearcoat_roughness", "clearcoat_normal_scale")) if "clearcoat" in f \
+        else None
     extras = {"alpha_cutoff": f.get("alpha_cutoff"), "occlusion_strength": f.get("occlusion_strength"),
-              "emissive": f.get("emissive")}
+              "clearcoat": coat, "emissive": f.get("emissive")}
     if not is_lit(variant):
         return U.pack_material(f["base_color"], lit=False, **extras)
     reflectance = f["metallic"] if "metallic" in f else f["specular"]  # PBR: metallic in specular's place
@@ -80,6 +83,7 @@ def material_block_size(variant: ShaderVariant) -> int:
     flags = variant.flags
     return len(U.pack_material((0.0,) * 4, is_lit(variant), alpha_cutoff=0.0 if "alpha_mask" in flags else None,
                                occlusion_strength=0.0 if "occlusion_map" in flags else None,
+                               clearcoat=(0.0,) * 3 if "clearcoat" in flags else None,
                                emissive=(0.0,) * 3 if "emissive" in flags else None))
 
 

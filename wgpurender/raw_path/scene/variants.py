@@ -9,13 +9,13 @@ preprocessor: each flag becomes a definition (``-DALBEDO_MAP``), the light count
 from __future__ import annotations
 
 from wgpurender.core.plan import ShaderVariant
-from wgpurender.core.plan.model import UV_SLOT_FLAGS
+from wgpurender.core.plan.model import TEXTURE_FEATURES, UV_SLOT_FLAGS
 from wgpurender.raw_path.device.uniforms import MAX_LIGHTS
 
 FLAGS = ("albedo_map", "normal_map", "roughness_map", "lighting", "flip_v", "srgb_output", "vertex_color",
          "alpha_mask", "double_sided", "emissive", "emissive_map", "occlusion_map", "opaque_alpha", "pbr", "ibl",
-         *UV_SLOT_FLAGS)
-TEXTURE_FLAGS = ("albedo_map", "normal_map", "roughness_map", "emissive_map", "occlusion_map")
+         "clearcoat", "clearcoat_map", "clearcoat_roughness_map", "clearcoat_normal_map", *UV_SLOT_FLAGS)
+TEXTURE_FLAGS = TEXTURE_FEATURES
 
 
 def is_lit(variant: ShaderVariant) -> bool:
@@ -30,6 +30,8 @@ def glsl_defines(variant: ShaderVariant) -> tuple[str, ...]:
     defines = [f.upper() for f in FLAGS if f in variant.flags and f not in UV_SLOT_FLAGS]
     if variant.flags & set(TEXTURE_FLAGS):
         defines.append("UV")
+    if "tangent" in variant.vertex_attributes:  # a normal map or a clearcoat normal map: the tangent frame
+        defines.append("TANGENT")
     for flag in sorted(variant.flags & UV_SLOT_FLAGS.keys()):  # a map on coordinate slot k: it samples v_uv<k>
         feature, k = UV_SLOT_FLAGS[flag]
         defines.append(f"{feature.removesuffix('_map').upper()}_UV=v_uv{k}")

@@ -41,7 +41,7 @@ class CpuCuller:
         self.ctx, self.buffer = ctx, object_buffer
         self.parts = []
         for d in draws:
-            centre, radius = bounding_sphere(meshes.mesh(d.model_path).positions)
+            centre, radius = bounding_sphere(meshes.mesh(d.mesh_key).positions)
             centres, radii = instance_spheres(d.world_matrices(), centre, radius)
             own = blocks[d.first_instance: d.first_instance + d.instance_count]
             self.parts.append((d.first_instance, own, centres, radii))

@@ -61,7 +61,7 @@ class GpuCuller:
         for k, d in enumerate(self.draws):
             first_index, count = meshes.index_range(d)
             self.args[k] = (count, 0, first_index, 0, d.first_instance)
-            self.spheres.append(bounding_sphere(meshes.mesh(d.model_path).positions))
+            self.spheres.append(bounding_sphere(meshes.mesh(d.mesh_key).positions))
         self._make_pipeline(object_buffer)
 
     def _make_pipeline(self, object_buffer: wgpu.GPUBuffer) -> None:

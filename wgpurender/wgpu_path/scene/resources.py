@@ -51,7 +51,7 @@ class SceneResources:
         check (mesh_for) raises here, as it did when its buffers were made one by one."""
         pending: dict[tuple, tuple[bytes, bytes, object]] = {}
         for draw in draws:
-            key = (draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)
+            key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
             if key not in self._buffers and key not in pending:
                 mesh = self.meshes.mesh_for(draw)
                 pending[key] = (interleave(mesh, key[1]).tobytes(), mesh.index_bytes(), mesh)
@@ -72,7 +72,7 @@ class SceneResources:
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
         self.upload_meshes([draw])
-        return self._buffers[(draw.model_path, self.plan.variant(draw.variant_key).vertex_attributes)]
+        return self._buffers[(draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)]
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""

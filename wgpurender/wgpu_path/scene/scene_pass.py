@@ -112,7 +112,10 @@ class ScenePassRenderer:
             self._setup_object_group(blocks.nbytes)
         # Equal materials share one slice and one group (Draw.material_key): first-use order.
         self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
-        self.material_stride = L.MATERIAL.stride(self.alignment)
+        # One slice per material, as wide as the largest Material block of the plan's variants (a model file's
+        # material appends factors: 48 bytes with a clear coat, 64 with emission) at the adapter's offset alignment
+        structs = {L.material_struct(self.plan.variant(d.variant_key)) for d in self.draws} or {L.MATERIAL}
+        self.material_stride = max(s.stride(self.alignment) for s in structs)
         self.material_buffer = None
         if not self.uses_immediates:
             self.material_buffer = dev.create_buffer(label="scene-materials", usage=usage,

@@ -16,6 +16,7 @@ Bindings (the course's descriptor sets):
                      stepped per instance (instance_layout) and the material is group 1
   group 2 material - binding 0: Material (only without immediates), 2: albedo, 3: normal map,
                      4: roughness map, each with its own sampler (1, 5, 6), only those the variant samples;
+                     7/8 emissive, 9/10 occlusion, 12/13, 14/15, 16/17 the clearcoat maps (texture/sampler);
                      11: the image-based lighting maps (storage buffer, ibl variants)
   immediates       - Material (per-draw factors) when the adapter has "immediates"
 """
@@ -37,6 +38,7 @@ from wgpurender.wgpu_path.device.shaders import load_wgsl
 SHADER = "scene.wgsl"
 PBR_FUNCTIONS = "pbr.wgsl"  # the glTF metallic-roughness BRDF, inserted for variants with the "pbr" flag
 IBL_FUNCTIONS = "ibl_shading.wgsl"  # image-based lighting, inserted for variants with the "ibl" flag
+CLEARCOAT_FUNCTIONS = "clearcoat.wgsl"  # KHR_materials_clearcoat's layer, for variants with the "clearcoat" flag
 IBL_BINDING = 11  # group 2: the image-based lighting maps (a read-only storage buffer)
 
 _CAMERA_VIEW = [("proj", MAT4), ("view", MAT4), ("eye", VEC4F)]
@@ -64,7 +66,8 @@ MATERIAL_PBR = Struct("Material", _MATERIAL_PBR_FIELDS)
 
 # Model-file materials append, when their variant has the feature, in core/course/shading.material_factors' order:
 _MATERIAL_EXTRAS = (("alpha_mask", "alpha_cutoff", F32), ("occlusion_map", "occlusion_strength", F32),
-                    ("emissive", "emissive", VEC4F))
+                    ("clearcoat", "clearcoat", F32), ("clearcoat", "clearcoat_roughness", F32),
+                    ("clearcoat", "clearcoat_normal_scale", F32), ("emissive", "emissive", VEC4F))
 
 for _small, _full in ((CAMERA_UNLIT, CAMERA), (OBJECT_UNLIT, OBJECT), (MATERIAL_UNLIT, MATERIAL)):
     assert all(_full.offsets[name] == offset for name, offset in _small.offsets.items() if name != "unused"), _small
@@ -73,9 +76,12 @@ assert OBJECT_UNLIT.size == OBJECT.size == 128
 # Vertex attributes: location and float count (position always; the plan decides the others).
 ATTRIBUTE_LOCATIONS = {"position": (0, 3), "normal": (1, 3), "uv": (2, 2), "tangent": (3, 4), "color": (4, 4),
                        **{f"uv{k}": (4 + k, 2) for k in range(1, EXTRA_UV_SLOTS + 1)}}  # coordinate slots 1..4
-TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9}
+TEXTURE_BINDINGS = {"albedo_map": 2, "normal_map": 3, "roughness_map": 4, "emissive_map": 7, "occlusion_map": 9,
+                    "clearcoat_map": 12, "clearcoat_roughness_map": 14, "clearcoat_normal_map": 16}
 SAMPLER_BINDINGS = {"albedo_map": 1, "normal_map": 5, "roughness_map": 6, "emissive_map": 8,
-                    "occlusion_map": 10}  # each texture's own sampler
+                    "occlusion_map": 10, "clearcoat_map": 13, "clearcoat_roughness_map": 15,
+                    "clearcoat_normal_map": 17}  # each texture's own sampler
+# At most 8 textures and 8 samplers in the fragment stage: half of WebGPU's default limits (16 each)
 MATERIAL_BINDING = 0
 
 
@@ -133,6 +139,8 @@ def shader_features(variant: ShaderVariant, immediates: bool, culled: bool = Fal
         features.add("instance_attributes")
     if samples_textures(variant):
         features.add("uv")
+    if "tangent" in variant.vertex_attributes:
+        features.add("tangent")
     features.update(a for a in variant.vertex_attributes if a.startswith("uv") and a != "uv")  # slots uv1..
     for name, n in variant.counts:
         if n > 0:
@@ -197,6 +205,7 @@ def shader_source(variant: ShaderVariant, immediates: bool, culled: bool = False
         "POINT_LIGHTS": str(variant.count("point_lights")),
         "PBR_FUNCTIONS": load_wgsl(PBR_FUNCTIONS) if "pbr" in variant.flags else "",
         "IBL_FUNCTIONS": load_wgsl(IBL_FUNCTIONS) if "ibl" in variant.flags else "",
+        "CLEARCOAT_FUNCTIONS": load_wgsl(CLEARCOAT_FUNCTIONS) if "clearcoat" in variant.flags else "",
         **uv_slot_names(variant),
     }
     return specialise(load_wgsl(SHADER), shader_features(variant, immediates, culled, instance_data), values,
