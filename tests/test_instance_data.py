@@ -448,3 +448,57 @@ def test_the_vertex_way_fits_beside_the_coordinate_slots(ctx, tmp_path):
     locations = [x["shader_location"] for x in instance_layout(variant)["attributes"]]
     assert locations == list(range(9, 16)) and max(loc for loc, _ in ATTRIBUTE_LOCATIONS.values()) == 8
     np.testing.assert_array_equal(a, b)
+
+
+# -- the one storage binding's limit (review finding: a validation error past max-storage-buffer-binding-size) ----
+def _bound(blocks: int) -> AdapterFacts:
+    """lavapipe's facts with room for exactly ``blocks`` 128-byte Object blocks in one storage binding."""
+    return AdapterFacts.of("CPU", ("immediates", "indirect-first-instance"), "lavapipe", "Vulkan",
+                           {"max-storage-buffer-binding-size": 128 * blocks})
+
+
+def test_auto_takes_the_vertex_way_past_the_storage_binding_limit(tmp_path):
+    path = write_scene(tmp_path, copies=12)
+    scene = parse_scene(path.read_text(), path)
+    assert resolve_knobs(scene, Knobs(adapter=_bound(12))).instance_data == "storage"  # 12 x 128 bytes: fits
+    over = resolve_knobs(scene, Knobs(adapter=_bound(11)))
+    assert over.instance_data == "vertex"
+    assert "12 instances' Object blocks (1536 bytes) pass the device's max-storage-buffer-binding-size (1408 bytes)" \
+        in over.explain()
+    with pytest.raises(UserError) as err:
+        resolve_knobs(scene, Knobs(adapter=_bound(11), instance_data="storage"))
+    assert "\n" not in str(err.value) and "1536 bytes" in str(err.value) and "instance_data = vertex" in str(err.value)
+    assert _bound(11) == VULKAN  # the limit is no fact the raw path's plan compares
+
+
+def _coincident(folder: Path, copies: int) -> Path:
+    """``copies`` copies of one white triangle, all at the origin (spacing 0 in x): the image of any number of
+    them is the image of one."""
+    (folder / "tri.obj").write_text("v -0.8 -0.8 0\nv 0.8 -0.8 0\nv 0 0.8 0\nf 1 2 3\n")
+    path = folder / f"copies{copies}.toml"
+    path.write_text(f"""[camera]\neye = [0, 0, 4]\ntarget = [0, 0, 0]\nfov_y = 40
+[[models]]\npath = "tri.obj"\nmaterial = {{ albedo_color = [1, 1, 1], unlit = true }}
+instances = {{ grid = [{copies}, 1, 1], spacing = [0, 1, 1] }}
+[render]\nsize = [16, 12]\nmsaa = 1\nhdr = false\n""")
+    return path
+
+
+def test_more_instances_than_one_storage_binding_holds_render_or_are_refused_in_one_line(ctx, tmp_path):
+    """One copy past the device's storage binding (lavapipe: 128 MiB, 1,048,576 Object blocks; a validation error
+    on both paths before). The wgpu path's plan takes the vertex way and draws what one copy draws (on the raw
+    path: an independent image); the raw path, which has only the storage way, refuses in one line."""
+    from wgpurender.raw_path import render_reference
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.wgpu_path.scene import render_scene_file
+
+    copies = ctx.device.limits["max-storage-buffer-binding-size"] // 128 + 1
+    assert copies == get_vulkan().limits.max_storage_buffer_range // 128 + 1  # the same limit on lavapipe
+    one = render_reference(str(_coincident(tmp_path, 1)), (16, 12))
+    assert one[..., 0].any()
+    result = render_scene_file(str(_coincident(tmp_path, copies)), size=(16, 12), ctx=ctx, frames=1)
+    assert result.plan.instance_data == "vertex"
+    assert np.array_equal(result.pixels, one)
+    with pytest.raises(UserError) as err:
+        render_reference(str(_coincident(tmp_path, copies)), (16, 12))
+    assert "\n" not in str(err.value) and f"{copies} instances" in str(err.value)
+    assert f"holds {copies - 1}" in str(err.value)

@@ -35,7 +35,7 @@ def raw_demo(display, *args, timeout=180):
                           capture_output=True, text=True, timeout=timeout)
 
 
-@pytest.mark.parametrize("target", ["triangle", "msaa-post", "3d", "assets/scenes/final.toml",
+@pytest.mark.parametrize("target", ["triangle", "offscreen", "clear", "msaa-post", "3d", "assets/scenes/final.toml",
                                     "assets/scenes/retro.toml"])
 def test_raw_window_screenshot_equals_offscreen(display, tmp_path, target):
     """3 frames presented through the swapchain, 0 validation messages, screenshot == offscreen raw render."""

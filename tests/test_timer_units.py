@@ -62,3 +62,12 @@ def test_wgpu_pass_timestamps_are_milliseconds(ctx):
 def test_raw_vulkan_timestamps_are_milliseconds(ctx):
     with RawStageRunner("msaa", SIZE) as runner:
         _check_gpu_ms(ctx, "raw vkCmdWriteTimestamp", runner.frame)
+
+
+def test_the_raw_runner_reuses_its_target_for_a_transfer_stage_without_validation_errors():
+    """The offscreen stage's first barrier starts from TARGET_LAYOUT (raw_path/stages/base.py); the runner's target
+    is reused frame after frame (left in TRANSFER_SRC), so the runner moves it there before each frame."""
+    with RawStageRunner("offscreen", SIZE) as runner:
+        for _ in range(3):
+            runner.frame()
+        runner.ctx.check_validation("three frames of the raw runner's offscreen stage")

@@ -73,3 +73,46 @@ def test_a_second_settle_frees_what_the_first_froze_and_is_garbage_now():
         assert probe() is None
     finally:
         gc.unfreeze()
+
+
+FOREIGN = """
+import gc, weakref
+from wgpurender.core.view import garbage
+
+class Cycle:
+    pass
+
+def cycle():
+    c = Cycle(); c.me = c; probe = weakref.ref(c)
+    return probe
+
+theirs = cycle()  # garbage the embedding application froze on purpose (its own choice: it must stay)
+gc.freeze()
+frozen = gc.get_freeze_count()
+ours = cycle()  # garbage made after their freeze: ours to collect
+print("settled", garbage.settle(), "theirs", theirs() is not None, "ours", ours() is not None,
+      "kept", gc.get_freeze_count() >= frozen)
+garbage.thaw()
+print("thawed", gc.get_freeze_count() >= frozen, theirs() is not None)
+gc.unfreeze()  # their own unfreeze: now nothing is frozen, and the next settle is ours again
+gc.collect()
+mine = cycle()
+print("alone", garbage.settle() > 0, theirs() is None, mine() is None)
+later = cycle()  # they freeze again after our freeze: from then on the permanent generation is not only ours
+gc.freeze()
+print("later", garbage.settle(), later() is not None)
+"""
+
+
+def test_settle_never_unfreezes_what_someone_else_froze():
+    """An application that embeds the renderer froze its own objects (a reference cycle here, so that a collection
+    would free it): settle() must leave them frozen, still collect our garbage, and thaw() must not undo their
+    freeze either. Once they unfreeze, settle() freezes again; after they freeze once more, it stops.
+    A child process: the freeze is process-wide."""
+    out = subprocess.run([sys.executable, "-c", FOREIGN], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr[-2000:]
+    settled, thawed, alone, later = out.stdout.splitlines()
+    assert settled == "settled 0 theirs True ours False kept True"
+    assert thawed == "thawed True True"
+    assert alone == "alone True True True"
+    assert later == "later 0 True"

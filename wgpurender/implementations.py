@@ -189,22 +189,68 @@ def calibrate(implementation: str, measured: dict, bounded_by: str, cls: str = "
 
     The smallest size gives the rows' max, changed and FLIP (the CPU-driver rule of tolerances.calibrate); each
     larger size its own class of the three (``sizes``: max grows with the pixel count). The size-free bounds
-    come from the worst over every size (tolerances.calibrate_structure)."""
+    come from the worst over every size (tolerances.calibrate_structure). What the run did not measure is kept
+    (``verify --calibrate --size S`` measures one size class): the other size classes' rows and targets, with
+    size-free bounds no lower than before where a kept class shared them, and ``kept`` saying where they came from;
+    rows of another driver class bound nothing on this one and are replaced."""
     from wgpurender.core.verdict import tolerances as tol
 
     table = tol.load_table(tol.IMPLEMENTATIONS_PATH) if tol.IMPLEMENTATIONS_PATH.is_file() else {}
+    old = table.get("implementations", {}).get(implementation, {})
+    old = old if old.get("driver_class", "lavapipe") == cls else {}
+    rows, structure = _size_rows(old), {n: {k: r[k] for k in STRUCTURE if k in r} for n, r in _targets(old)}
     sizes = sorted(measured, key=tol.size_pixels)
-    base, rows = sizes[0], {}
-    for name, (metrics, _) in measured[base].items():
-        row = {**tol.calibrate([metrics], "lavapipe"), "measured": metrics.summary()}
-        larger = {size: {**tol.calibrate([measured[size][name][0]], "lavapipe"),
-                         "measured": measured[size][name][0].summary()} for size in sizes[1:] if name in measured[size]}
-        spread = [measured[size][name][1] for size in sizes if name in measured[size]]
-        rows[name] = {**row, **({"sizes": larger} if larger else {}), **tol.calibrate_structure(spread, sizes)}
-    table.setdefault("implementations", {})[implementation] = {"bounded_by": bounded_by, "driver_class": cls,
-                                                               "size": base, "targets": rows}
+    for name in {n for size in sizes for n in measured[size]}:
+        ran = [size for size in sizes if name in measured[size]]
+        for size in ran:
+            metrics = measured[size][name][0]
+            rows.setdefault(name, {})[size] = {**tol.calibrate([metrics], "lavapipe"), "measured": metrics.summary()}
+        fresh = tol.calibrate_structure([measured[size][name][1] for size in ran], ran)
+        structure[name] = _widened(fresh, structure.get(name, {}), sorted(set(rows[name]) - set(ran)))
+    base = min((size for by_size in rows.values() for size in by_size), key=tol.size_pixels)
+    lacking = sorted(name for name, by_size in rows.items() if base not in by_size)
+    if lacking:
+        raise UserError(f"--calibrate at {base} makes it the smallest size class, but {len(lacking)} kept "
+                        f"{implementation} target(s) ({', '.join(lacking)}) have no row there: calibrate every "
+                        "target at once, or each size class with docs/runs/2026-11-27-size-free-bounds/calibrate.py")
+    targets = {}
+    for name, by_size in rows.items():
+        larger = {size: by_size[size] for size in sorted(by_size, key=tol.size_pixels) if size != base}
+        targets[name] = {**by_size[base], **({"sizes": larger} if larger else {}), **structure.get(name, {})}
+    entry = {"bounded_by": bounded_by, "driver_class": cls, "size": base}
+    kept = sorted({size for by_size in _size_rows(old).values() for size in by_size} - set(sizes),
+                  key=tol.size_pixels)
+    if kept:
+        entry["kept"] = (f"{', '.join(kept)} and unmeasured targets kept from an earlier run: {old['bounded_by']}"
+                         + (f"; {old['kept']}" if "kept" in old else ""))
+    table.setdefault("implementations", {})[implementation] = {**entry, "targets": targets}
     tol.IMPLEMENTATIONS_PATH.write_text(tol.format_implementation_table(table))
     return tol.IMPLEMENTATIONS_PATH
+
+
+THREE = ("max_abs", "changed", "flip_mean", "measured")  # a size class's row
+STRUCTURE = ("radial", "detail", "structure_measured")  # the size-free bounds, one per target
+
+
+def _targets(entry: dict):
+    return entry.get("targets", {}).items()
+
+
+def _size_rows(entry: dict) -> dict[str, dict[str, dict]]:
+    """{target: {"WxH": its three bounds and measured}} of an implementation's table entry, every size class."""
+    return {name: {entry["size"]: {k: row[k] for k in THREE if k in row}, **row.get("sizes", {})}
+            for name, row in _targets(entry)}
+
+
+def _widened(fresh: dict, old: dict, kept: list[str]) -> dict:
+    """This run's size-free bounds, no lower than the earlier ones when those also covered ``kept`` sizes (which
+    this run did not measure: their worst may be in the earlier bounds)."""
+    if not kept or not {"radial", "detail"} <= old.keys():
+        return fresh
+    radial, detail = max(fresh["radial"], old["radial"]), max(fresh["detail"], old["detail"])
+    note = (f"; no lower than the earlier radial {old['radial']:g}, detail {old['detail']:g}, which covered "
+            f"{', '.join(kept)}")
+    return {"radial": radial, "detail": detail, "structure_measured": fresh["structure_measured"] + note}
 
 
 def _main(argv: list[str] | None = None) -> int:

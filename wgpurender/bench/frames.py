@@ -109,7 +109,7 @@ class frames_without_gc:
 
         if self.was:
             gc.enable()
-        gc.unfreeze()  # the next case's settle_garbage collects what this one left, then freezes again
+        garbage.thaw()  # the next case's settle_garbage collects what this one left, then freezes again
 
 
 WARM_WINDOW, WARM_SPREAD, WARM_MAX_FRAMES, WARM_BUDGET_S = 4, 1.25, 60, 3.0

@@ -32,10 +32,11 @@ class RawStageRunner:
         import vulkan as vk
 
         from wgpurender.raw_path.device.command_buffers import create_command_pool
-        from wgpurender.raw_path.device.images import create_image
-        from wgpurender.raw_path.stages.base import TARGET_USAGE
+        from wgpurender.raw_path.device.images import create_image, transition
+        from wgpurender.raw_path.stages.base import TARGET_LAYOUT, TARGET_USAGE
 
         self.vk, self.ctx, self.format = vk, ctx, fmt
+        self.into_target_layout, self.target_layout = transition, TARGET_LAYOUT  # where a stage's barriers start
         owned = self.owned
         self.target = create_image(ctx, owned, self.size, fmt, TARGET_USAGE)
         self.pool = create_command_pool(ctx)
@@ -101,6 +102,7 @@ class RawStageRunner:
         vk.vkBeginCommandBuffer(cmd, vk.VkCommandBufferBeginInfo(flags=vk.VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT))
         vk.vkCmdResetQueryPool(cmd, self.queries, 0, 2)
         vk.vkCmdWriteTimestamp(cmd, vk.VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, self.queries, 0)
+        self.into_target_layout(cmd, self.target, vk.VK_IMAGE_LAYOUT_UNDEFINED, self.target_layout)
         self.stage.record(cmd, self.target, self.t)
         vk.vkCmdWriteTimestamp(cmd, vk.VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, self.queries, 1)
         if readback:

@@ -32,7 +32,8 @@ def register(subparsers) -> None:
                    "calibrated in assets/reference/implementations.toml (640x480), a larger size fails as uncalibrated")
     p.add_argument("--calibrate", action="store_true",
                    help="with --implementations: rewrite the measured implementations' rows of "
-                   "assets/reference/implementations.toml from this run (at --size only: calibrate several size "
+                   "assets/reference/implementations.toml from this run (at --size only; the other size classes' "
+                   "rows are kept, and the size-free bounds stay no lower than theirs: calibrate several size "
                    "classes in one run with docs/runs/2026-11-27-size-free-bounds/calibrate.py)")
     p.set_defaults(func=run)
 

@@ -278,33 +278,33 @@ EXERCISES: tuple[Exercise, ...] = (
     # -- step 6, the final model: the learner writes the normal mapping of the scene shader ----------------------
     Exercise("6", _W, (
         Part("samplers", "perturb n by the normal map: the unit tangent from t_raw, the bitangent from the "
-             "tangent's w, the texel remapped to -1..1 with its xy scaled by the material's strength",
+             "tangent's w, the texel remapped to -1..1 with its xy scaled by `strength` (the material's)",
              "    let t = normalize(t_raw);\n"
-             "    let b = select(1.0, -1.0, in.tangent.w < 0.0) * cross(n, t);\n"
-             "    var m = normal_texel * 2.0 - 1.0;\n"
-             "    m = vec3f(m.xy * material.normal_strength, m.z);\n"
+             "    let b = select(1.0, -1.0, tangent.w < 0.0) * cross(n, t);\n"
+             "    var m = texel * 2.0 - 1.0;\n"
+             "    m = vec3f(m.xy * strength, m.z);\n"
              "    return safe_normalize(t * m.x + b * m.y + n * m.z, n);\n",
              "    return n;\n"),
     ), (
         Mistake("no-normal-map", "the normal map ignored (the vertex normal kept)", "samplers",
                 "    return safe_normalize(t * m.x + b * m.y + n * m.z, n);\n", "    return n;\n"),
         Mistake("no-remap", "the normal texel not remapped from 0..1 to -1..1", "samplers",
-                "var m = normal_texel * 2.0 - 1.0;", "var m = normal_texel;"),
+                "var m = texel * 2.0 - 1.0;", "var m = texel;"),
         Mistake("bitangent", "the bitangent's sign flipped (the tangent's w ignored or inverted)", "samplers",
-                "select(1.0, -1.0, in.tangent.w < 0.0)", "select(-1.0, 1.0, in.tangent.w < 0.0)"),
+                "select(1.0, -1.0, tangent.w < 0.0)", "select(-1.0, 1.0, tangent.w < 0.0)"),
     ), shader="scene.wgsl", scene="final_subpass"),
     Exercise("6", _R, (
         Part("samplers", "perturb n by the normal map: the bitangent from the tangent's w, the texel remapped to "
-             "-1..1 with its xy scaled by the material's strength",
+             "-1..1 with its xy scaled by `strength` (the material's)",
              "    vec3 b = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);\n"
-             "    vec3 m = normal_texel * 2.0 - 1.0;\n"
-             "    m = vec3(m.xy * material.normal_strength, m.z);\n",
+             "    vec3 m = texel * 2.0 - 1.0;\n"
+             "    m = vec3(m.xy * strength, m.z);\n",
              "    vec3 b = vec3(0.0);\n    vec3 m = vec3(0.0, 0.0, 1.0);\n"),
     ), (
         Mistake("no-normal-map", "the normal map ignored (the vertex normal kept)", "samplers",
-                "    vec3 m = normal_texel * 2.0 - 1.0;\n", "    vec3 m = vec3(0.0, 0.0, 1.0);\n"),
+                "    vec3 m = texel * 2.0 - 1.0;\n", "    vec3 m = vec3(0.0, 0.0, 1.0);\n"),
         Mistake("no-remap", "the normal texel not remapped from 0..1 to -1..1", "samplers",
-                "vec3 m = normal_texel * 2.0 - 1.0;", "vec3 m = normal_texel;"),
+                "vec3 m = texel * 2.0 - 1.0;", "vec3 m = texel;"),
         Mistake("bitangent", "the bitangent's sign flipped (the tangent's w ignored or inverted)", "samplers",
                 "(v_tangent.w < 0.0 ? -1.0 : 1.0)", "(v_tangent.w < 0.0 ? 1.0 : -1.0)"),
     ), shader="scene.frag", scene="final_subpass"),

@@ -17,7 +17,7 @@ from wgpurender.raw_path.device.context import get_vulkan
 from wgpurender.raw_path.device.images import FORMATS, Image, create_image, subresource_range, transition
 from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to_buffer
 from wgpurender.raw_path.stages import get_ref_stage
-from wgpurender.raw_path.stages.base import TARGET_USAGE
+from wgpurender.raw_path.stages.base import TARGET_LAYOUT, TARGET_USAGE
 
 __all__ = ["check_msaa", "check_size", "render_reference"]
 
@@ -69,15 +69,16 @@ def render_stage_class(cls: type, size: tuple[int, int], fmt: str | None = None,
 
 
 def zero(ctx, target: Image) -> None:
-    """Clear the fresh target to zeros in a submission of its own, before the stage records.
+    """Clear the fresh target to zeros in a submission of its own, before the stage records; it is left in
+    TARGET_LAYOUT, the layout a stage's first barrier names as the old one (stages/base.py).
 
     Vulkan leaves new image memory undefined; lavapipe hands back freed memory, which may still hold the previous
     render. A stage that writes only part of its target (a learner's 1x1 copy, wgpurender/exercises/) would then
     show the previous image where it wrote nothing, and pass. wgpu zero-initialises textures: this gives the raw
-    path the same start, so unwritten pixels read (0, 0, 0, 0) on both paths.
+    path the same start, so unwritten pixels read (0, 0, 0, 0) on both paths. By the spec, not by the driver's
+    habit: the stage's barriers start from this layout, never from UNDEFINED (which may discard the contents).
     """
     with one_shot(ctx) as cmd:
-        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)
+        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, TARGET_LAYOUT)
         zeros = vk.VkClearColorValue(float32=[0.0, 0.0, 0.0, 0.0])
-        vk.vkCmdClearColorImage(cmd, target.handle, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, zeros, 1,
-                                [subresource_range()])
+        vk.vkCmdClearColorImage(cmd, target.handle, TARGET_LAYOUT, zeros, 1, [subresource_range()])

@@ -36,7 +36,8 @@ WEBGPU_DEFAULT_LIMITS = {
     "max-immediate-size": 0,
 }
 ALIGNMENT_LIMITS = ("min-uniform-buffer-offset-alignment", "min-storage-buffer-offset-alignment")
-BROWSER = AdapterFacts("", frozenset(), "the browser's WebGPU", "WebGPU")
+BROWSER = AdapterFacts("", frozenset(), "the browser's WebGPU", "WebGPU",
+                       max_storage_binding=WEBGPU_DEFAULT_LIMITS["max-storage-buffer-binding-size"])
 
 
 class RecordingError(RuntimeError):

@@ -54,6 +54,34 @@ def packed_bytes() -> int:
     return 16 * packed_rows()
 
 
+# A storage binding's offset must be a multiple of the device's minStorageBufferOffsetAlignment: WebGPU's default
+# limit is 256, and Vulkan allows no larger value, so a region starting at a multiple of 256 binds on any device.
+REGION_ALIGN = 256
+
+
+def regions(passes) -> tuple[list[int], int]:
+    """Each pass's byte offset in one buffer of float32 vec4 texels, each at a multiple of :data:`REGION_ALIGN`,
+    and the buffer's size; ``passes``: (pass, (width, height), depth) as :func:`pass_sizes` gives them."""
+    offsets, end = [], 0
+    for _, (width, height), depth in passes:
+        offsets.append(end)
+        end += -(-16 * width * height * depth // REGION_ALIGN) * REGION_ALIGN
+    return offsets, end
+
+
+def packed_regions() -> list[int]:
+    """The byte offsets at which the compute passes write :func:`pack`'s layout (what the scene shaders index:
+    the regions back to back): each must be a region start :func:`regions` allows, or a pass could not bind its
+    region. ValueError when the sizes break that rule (each region a multiple of 16 texels)."""
+    offsets, size = regions(pass_sizes())
+    if size != packed_bytes():
+        texels = ", ".join(f"{name} {w}x{h}x{depth}" for name, (w, h), depth in pass_sizes())
+        raise ValueError(f"the image-based lighting maps ({texels} texels of 16 bytes) do not pack into regions "
+                         f"starting at multiples of {REGION_ALIGN} bytes: make each map's texel count a multiple "
+                         f"of {REGION_ALIGN // 16}")
+    return offsets
+
+
 def shrink(environment: np.ndarray, limit: tuple[int, int] = MAX_ENVIRONMENT) -> np.ndarray:
     """The environment at most ``limit`` (w, h): each target texel the solid-angle-weighted mean of the source
     texels whose centres fall inside it (equirectangular, so it keeps the mapping)."""

@@ -14,12 +14,12 @@ Bounded like every image input: the file's bytes and the declared pixel count ar
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
 import numpy as np
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.input_files import check_file_size, check_image_pixels, input_file
+from wgpurender.core.files.read_jail import read_checked
 
 MAX_HEADER_LINES = 64
 
@@ -28,7 +28,7 @@ def load_hdr(path: str | os.PathLike) -> np.ndarray:
     """(height, width, 3) float32 linear radiance of a Radiance .hdr file."""
     path = input_file(path, "environment image")
     check_file_size(path, "environment image")
-    data = Path(path).read_bytes()
+    data = read_checked(path)  # the file the scene's check let through, not one swapped in since
     try:
         return decode_hdr(data, path.name)
     except (IndexError, ValueError):

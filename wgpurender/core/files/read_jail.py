@@ -19,14 +19,23 @@ resolving links, under the scene's project folder (its own folder, or the folder
 ``scenes``, as in the bundled layout), the bundled ``assets/`` folder, or a folder the user allows with
 ``$WGPURENDER_ALLOW_PATHS`` (folders separated by ``os.pathsep``), see :func:`outside`. The scenes that ship
 with the package (``assets/scenes``) are the project's own and may read anything their authors wrote.
+
+The check is of the file actually read: a path is checked (links resolved) before it is opened, so a folder or
+file swapped for a link in between would be read unchecked. Every path the rule lets through is canonical (links
+resolved) and remembered; :func:`open_checked` opens such a path without following a final link and without
+blocking, and refuses the file unless the descriptor it opened is a regular file whose real path
+(``/proc/self/fd``) is still the checked path. Readers of model and scene files open through it.
 """
 
 from __future__ import annotations
 
+import errno
 import os
 import re
+import stat
 import urllib.parse
 from pathlib import Path, PureWindowsPath
+from typing import BinaryIO, NoReturn
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.input_files import file_kind, resolved
@@ -58,7 +67,7 @@ def model_file(model: Path, uri: str, where: str, *, base: Path | None = None, e
     kind = special_kind(target)
     if kind is not None:
         _refuse(model, uri, where, folder, f"is {kind}, not a regular file")
-    return target
+    return _vouched(target)
 
 
 def model_folder(model: Path) -> Path:
@@ -118,7 +127,72 @@ def outside(path: Path, folders: list[Path] | None) -> str | None:
     ``folders``: what :func:`scene_folders` returned for the scene (None: a bundled scene)."""
     if folders is None:
         return None
-    if any(resolved(path).is_relative_to(folder) for folder in folders):
+    real = resolved(path)
+    if any(real.is_relative_to(folder) for folder in folders):
+        if real == Path(path):  # the scene reads the canonical path: its reader can check it is still this file
+            _vouched(real)
         return None
     return (f"{path} is outside the folders a scene may read ({', '.join(map(str, folders))}); move the file "
             f"under the scene's folder, or allow its folder with ${ALLOW_ENV}=FOLDER")
+
+
+_CHECKED: set[str] = set()  # canonical paths the rule let through: open_checked verifies the file it opens is one
+# no final link followed, no FIFO waited on (each 0 where the platform lacks it)
+_OPEN_FLAGS = (os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+               | getattr(os, "O_BINARY", 0))
+
+
+def _vouched(path: Path) -> Path:
+    _CHECKED.add(os.fspath(path))
+    return path
+
+
+def open_checked(path: str | os.PathLike) -> BinaryIO:
+    """``path`` opened for reading (binary). When the rule let it through (:func:`model_file`, :func:`outside`),
+    the file opened is the file checked: no final link followed (O_NOFOLLOW), no FIFO waited on (O_NONBLOCK), a
+    regular file, whose real path is the checked one; else UserError naming both. Other paths open as usual."""
+    name = os.fspath(path)
+    if name not in _CHECKED:
+        return open(name, "rb")
+    try:
+        fd = os.open(name, _OPEN_FLAGS)
+    except OSError as err:
+        if err.errno != errno.ELOOP:
+            raise
+        _changed(name, "is now a symbolic link")
+    try:
+        info = os.fstat(fd)
+        kind = file_kind(info.st_mode) if not stat.S_ISREG(info.st_mode) else None
+        if kind is not None:
+            _changed(name, f"is now {kind}")
+        real = _real_path(fd, info, name)
+        if real != name:
+            _changed(name, f"now leads to {real}")
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def read_checked(path: str | os.PathLike) -> bytes:
+    """All of ``path``'s bytes, through :func:`open_checked`."""
+    with open_checked(path) as f:
+        return f.read()
+
+
+def _real_path(fd: int, info: os.stat_result, name: str) -> str:
+    """Where the open descriptor leads: its /proc/self/fd link; without /proc, ``name`` if it is still the same
+    file (device and inode) as the one opened."""
+    try:
+        return os.readlink(f"/proc/self/fd/{fd}")
+    except OSError:
+        now = os.stat(name)
+        return name if (now.st_dev, now.st_ino) == (info.st_dev, info.st_ino) else "another file"
+
+
+def _changed(name: str, now: str) -> NoReturn:
+    raise UserError(f"{name} changed between its check and its read: it {now}; a model or scene reads only "
+                    "the files checked (no links swapped in while it loads): load it again from a folder nobody "
+                    "else writes to")

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
 
 INSTALL = "`apt-get install libassimp5` and `pip install pyassimp` (make demo installs both)"
 TEXTURE_TYPES = {1: "base_color", 6: "normal", 5: "normal"}  # aiTextureType DIFFUSE, NORMALS, HEIGHT (bump)
@@ -93,7 +94,7 @@ def load_fbx(path: Path) -> tuple[list[tuple], dict[int, dict]]:
     pyassimp, pp = _assimp()
     flags = pp.aiProcess_Triangulate | pp.aiProcess_JoinIdenticalVertices | pp.aiProcess_SortByPType
     try:
-        with pyassimp.load(str(path), processing=flags) as scene:
+        with read_jail.open_checked(path) as f, pyassimp.load(f, "fbx", processing=flags) as scene:
             meta = _metadata(scene)
             root = axis_and_unit_matrix(meta)
             placed = list(_walk(scene.rootnode, root))
@@ -127,7 +128,7 @@ def embedded_texture_bytes(path: Path, index: int) -> bytes:
 def _embedded_cached(path: str, mtime_ns: int, size: int, index: int) -> bytes:
     """One read per image while the file is unchanged: the plan asks each image's size, the upload its pixels."""
     pyassimp, _ = _assimp()
-    with pyassimp.load(path) as scene:
+    with read_jail.open_checked(path) as f, pyassimp.load(f, "fbx") as scene:
         if not 0 <= index < len(scene.textures):
             raise UserError(f"{path}: embedded texture {index} does not exist (the file has {len(scene.textures)})")
         texture = scene.textures[index].contents

@@ -66,7 +66,7 @@ class GltfDocument:
 def read_document(path: str | os.PathLike) -> GltfDocument:
     """Parse a .gltf (JSON, buffers as data URIs or files) or .glb (binary container)."""
     path = Path(path)
-    raw = path.read_bytes()
+    raw = read_jail.read_checked(path)  # the file checked, not one swapped in since
     glb_bin = None
     try:
         if raw[:4] == b"glTF":
@@ -171,7 +171,7 @@ def _load_buffer(path: Path, index: int, buffer: dict, glb_bin: bytes | None, fi
     file = files[f"$.buffers[{index}].uri"]
     missing = f"glTF file {path}: buffer file {file} not found (keep .bin files next to the .gltf)"
     check_file_size(input_file(file, "glTF buffer file", missing), "glTF buffer file")
-    return file.read_bytes()
+    return read_jail.read_checked(file)
 
 
 def read_accessor(doc: GltfDocument, index: int) -> np.ndarray:

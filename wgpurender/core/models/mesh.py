@@ -376,7 +376,7 @@ OBJ_RECORDS = {"v": (3, "x y z"), "vt": (2, "u v"), "vn": (3, "x y z")}  # least
 def check_obj_records(path: Path) -> None:
     """Vertex records of an OBJ file carry enough numbers: trimesh fails with an IndexError (or reads a wrong
     array) on ``vt 0.5``. Raises ``FILE:LINE: ...`` for the first bad record."""
-    with open(path, "rb") as f:
+    with read_jail.open_checked(path) as f:
         for number, raw in enumerate(f, start=1):
             tokens = raw.split(b"#", 1)[0].split()
             if not tokens or tokens[0] not in (b"v", b"vt", b"vn"):
@@ -399,8 +399,9 @@ def _load_scene(path: Path, file_type: str, **kwargs):
     try:
         # process=False: no vertex merging, so per-corner UVs and normals survive; maintain_order must stay False
         # for OBJ (trimesh 5.2 then keys vertices by position index only and loses per-corner UVs).
-        return trimesh.load_scene(str(path), file_type=file_type, process=False, resolver=_jailed_resolver(path),
-                                  **kwargs)
+        with read_jail.open_checked(path) as f:  # the file the scene's check let through, not one swapped in
+            return trimesh.load_scene(file_obj=f, file_type=file_type, process=False,
+                                      resolver=_jailed_resolver(path), **kwargs)
     except UserError:
         raise
     except Exception as err:  # trimesh raises many types for bad files; the user needs only the file and reason
@@ -416,7 +417,7 @@ def _jailed_resolver(path: Path):
 
     class JailedResolver(FilePathResolver):
         def get(self, name: str) -> bytes:
-            return read_jail.model_file(path, name, "a file trimesh asked for", encoded=False).read_bytes()
+            return read_jail.read_checked(read_jail.model_file(path, name, "a file trimesh asked for", encoded=False))
 
     return JailedResolver(str(path))
 

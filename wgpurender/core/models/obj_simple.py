@@ -21,6 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
+from wgpurender.core.files import read_jail
+
 RECORDS = {b"v": 3, b"vt": 2, b"vn": 3}  # numbers per record, exactly
 # in a number: trimesh rewrites "+e" and "-e", and Python's float() reads "1_0" where numpy does not
 REFUSED = (b"+e", b"-e", b"_")
@@ -30,7 +32,7 @@ MAX_BYTES = 1 << 20  # the win is the per-file overhead; a large file goes throu
 def read(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """(positions, faces, normals, uvs as the file writes them: v = 0 at the bottom) of a simple OBJ file, in
     float64 / int64, or None when the file is not one (see the module docstring)."""
-    data = path.read_bytes()
+    data = read_jail.read_checked(path)
     if len(data) > MAX_BYTES or b"\\" in data:  # a line continuation (trimesh joins the lines, comments too)
         return None
     if not data.isascii():  # trimesh decodes the whole file (a Latin-1 comment is refused there): its verdict rules

@@ -13,8 +13,9 @@ from __future__ import annotations
 from wgpurender.core.course.effects import steps_for_target
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import culling
+from wgpurender.core.plan.batches import OBJECT_BYTES
 from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
-from wgpurender.core.plan.instance_data import resolve_instance_data
+from wgpurender.core.plan.instance_data import fit_binding, resolve_instance_data
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     DEPTH_FORMAT,
@@ -161,6 +162,10 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         raise UserError(f"[environment] cannot be drawn on {knobs.adapter.name or knobs.adapter.backend}: its "
                         "image-based lighting maps are made by compute passes into a storage buffer the fragment "
                         f"shader reads, and this device offers no {lacks}; render with --backend vulkan")
+    way = fit_binding(setting["instance_data"], dict((k, w) for k, _, w in settings)["instance_data"],
+                      knobs.instance_data, sum(d.instance_count for d in drawn.draws), OBJECT_BYTES, knobs.adapter)
+    settings = tuple((k, *way) if k == "instance_data" else (k, v, w) for k, v, w in settings)
+    setting["instance_data"] = way[0]
     drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
                                                  setting["instance_data"], compute)
     settings = (*settings, ("culling", cull, cull_why))

@@ -53,6 +53,24 @@ def resolve_instance_data(knob: str, adapter) -> tuple[str, str]:
                       "every stage"
 
 
+def fit_binding(way: str, why: str, knob: str, instances: int, block_bytes: int, adapter) -> tuple[str, str]:
+    """The way again once the draws are known: ``storage`` binds every instance's Object block in one storage
+    binding (the vertex stage's, and the GPU culling pass's), which may not pass the device's
+    max-storage-buffer-binding-size (128 MiB on lavapipe: 1,048,576 blocks). Past it, "auto" takes ``vertex`` (a
+    vertex buffer has only max-buffer-size, and the culling is then the CPU's) and ``storage`` asked for is refused
+    in one line. ``block_bytes``: one Object block's (core/plan/batches.py); ``adapter``: AdapterFacts, whose limit
+    None (not known) leaves the way as it was."""
+    limit = getattr(adapter, "max_storage_binding", None)
+    need = instances * block_bytes
+    if way != "storage" or limit is None or need <= limit:
+        return way, why
+    over = (f"{instances} instances' Object blocks ({need} bytes) pass the device's max-storage-buffer-binding-size "
+            f"({limit} bytes)")
+    if knob == "storage":
+        raise UserError(f"instance_data = storage: {over}; use instance_data = vertex or auto, or fewer copies")
+    return "vertex", f"{_WAYS['vertex']}: {over}"
+
+
 _WAYS = {
     "storage": "every instance's Object block in one storage buffer, read at instance_index",
     "vertex": "every instance's Object block in a vertex buffer stepped per instance (world, normal matrix and "

@@ -50,3 +50,25 @@ class PlanMeshes:
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
         return index_range(self.mesh(draw.mesh_key), draw)
+
+
+BUFFER_ALIGN = 4  # set_vertex_buffer's and set_index_buffer's offsets, and a buffer's size, are multiples of 4
+
+
+def buffer_places(sizes: list[tuple[int, int]], limit: int, names: list[str]) -> list[tuple[int, int, int]]:
+    """Where each mesh goes when a scene's meshes share vertex and index buffers: (buffer pair, vertex offset,
+    index offset) per mesh of ``sizes`` ((vertex bytes, index bytes), in draw order), each at a 4-byte aligned
+    offset. A new pair starts when the mesh would take the vertex or the index buffer past ``limit`` bytes (the
+    device's max-buffer-size; these buffers are never bound as storage, so no binding limit applies). One mesh
+    larger than the limit cannot be drawn from one buffer: UserError naming it (``names``, beside ``sizes``)."""
+    places, pair, vertex_end, index_end = [], 0, 0, 0
+    for (vertex, index), name in zip(sizes, names, strict=True):
+        vertex, index = (-(-n // BUFFER_ALIGN) * BUFFER_ALIGN for n in (vertex, index))
+        if max(vertex, index) > limit:
+            raise UserError(f"mesh {name} needs a {max(vertex, index)}-byte vertex or index buffer, more than this "
+                            f"device's max-buffer-size ({limit} bytes): split the model into smaller meshes")
+        if vertex_end + vertex > limit or index_end + index > limit:
+            pair, vertex_end, index_end = pair + 1, 0, 0
+        places.append((pair, vertex_end, index_end))
+        vertex_end, index_end = vertex_end + vertex, index_end + index
+    return places

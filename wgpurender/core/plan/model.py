@@ -321,6 +321,9 @@ class AdapterFacts:
     backend: str = ""
     storage: bool = True
     compute: bool = True
+    # the device's max-storage-buffer-binding-size (Vulkan: maxStorageBufferRange; core/plan/instance_data.fit_binding),
+    # None where not known; not compared: wgpu may bind less than Vulkan's range, and one device's facts are equal
+    max_storage_binding: int | None = field(default=None, compare=False)
 
     @classmethod
     def of(cls, adapter_type: str, features: Iterable[str] = (), name: str = "", backend: str = "",
@@ -335,7 +338,8 @@ class AdapterFacts:
                    storage=limits.get("max-storage-buffers-per-shader-stage", 1) > 0
                    and glsl_allows("storage", gl_version),
                    compute=limits.get("max-compute-invocations-per-workgroup", 1) > 0
-                   and glsl_allows("compute", gl_version))
+                   and glsl_allows("compute", gl_version),
+                   max_storage_binding=limits.get("max-storage-buffer-binding-size"))
 
     def accuracy_size(self, preset: str) -> tuple[int, int]:
         """The base size ``bench accuracy`` times at on this adapter (core/plan/bench_size.py says why)."""
@@ -487,7 +491,8 @@ class RenderPlan:
             layouts = "; ".join(dict.fromkeys(", ".join(attributes) for _, attributes in meshes))
             names = ", ".join(dict.fromkeys(key[0].name for key, _ in meshes))
             out.append(("scene-vertices", f"vertex: {len(meshes)} mesh(es) ({names}), each interleaved at its own "
-                                          f"offset (attributes {layouts})"))
+                                          f"offset (attributes {layouts}); more such buffers where one would pass the "
+                                          "device's max-buffer-size"))
             out.append(("scene-indices", f"index: the same {len(meshes)} mesh(es), each at its own offset"))
         if self.uses_ibl:
             from wgpurender.core.course import ibl_maps

@@ -50,7 +50,7 @@ def obj_materials(model: Model) -> ModelMaterials | None:
     if found is None:
         return None
     material, taken, ignored = entry_material(model, found, "MTL")
-    used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", model.path.read_bytes(), re.M))
+    used = dict.fromkeys(re.findall(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", read_jail.read_checked(model.path), re.M))
     if len(used) > 1:
         ignored.append(f"usemtl {', '.join(repr(u.decode('utf-8', 'replace')) for u in list(used)[1:])}: ignored "
                        f"(an OBJ draws with its first material, '{found.name}')")
@@ -59,7 +59,7 @@ def obj_materials(model: Model) -> ModelMaterials | None:
 
 def obj_mtl_entry(path: Path) -> MtlEntry | None:
     """The material of the first ``usemtl`` in an OBJ, with the texture files its MTL names (paths resolved)."""
-    text = path.read_bytes()
+    text = read_jail.read_checked(path)
     libraries = re.findall(rb"^[ \t]*mtllib[ \t]+(.+?)[ \t]*$", text, re.M)
     used = re.search(rb"^[ \t]*usemtl[ \t]+(.+?)[ \t]*$", text, re.M)
     wanted = used.group(1).decode("utf-8", "replace") if used else None
@@ -83,7 +83,7 @@ def parse_mtl(path: Path, model: Path | None = None) -> dict[str, MtlEntry]:
     the MTL file and must stay in the model's folder (core/files/read_jail.py)."""
     materials: dict[str, MtlEntry] = {}
     current = None
-    for number, raw in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), start=1):
+    for number, raw in enumerate(read_jail.read_checked(path).decode("utf-8", "replace").splitlines(), start=1):
         tokens = raw.strip().split()
         if not tokens or tokens[0].startswith("#"):
             continue

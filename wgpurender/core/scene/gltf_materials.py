@@ -42,6 +42,7 @@ import os
 from pathlib import Path
 
 from wgpurender.core.course.samplers import SamplerSpec
+from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import input_file
 from wgpurender.core.models import gltf_extensions, gltf_geometry, gltf_io
 from wgpurender.core.scene import gltf_specgloss
@@ -103,7 +104,9 @@ def embedded_image_bytes(path: Path, decode=None) -> bytes | None:
     doc = document(model)
     image = doc.json["images"][int(index[:-1])]
     source = gltf_io.image_source(doc, image)
-    return source["data"] if source["data"] is not None else input_file(source["uri"], "glTF image").read_bytes()
+    if source["data"] is not None:
+        return source["data"]
+    return read_jail.read_checked(input_file(source["uri"], "glTF image"))
 
 
 @functools.lru_cache(maxsize=2)

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from wgpurender.core.files import read_jail
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.model import MAX_INSTANCES, Placements
 from wgpurender.core.scene.toml_locator import KeyPath, format_path
@@ -77,7 +78,8 @@ def _file(c: Checker, value: Any, key: KeyPath) -> Placements:
     if path.stat().st_size > MAX_INSTANCES * 16 * 8 + 4096:
         raise c.error(key, f"{format_path(key)}: '{value}' is larger than {MAX_INSTANCES} float64 matrices")
     try:
-        a = np.load(path, allow_pickle=False)
+        with read_jail.open_checked(path) as f:  # the file the scene's check let through
+            a = np.load(f, allow_pickle=False)
     except (ValueError, OSError, EOFError) as e:
         raise c.error(key, f"{format_path(key)}: '{value}' is not a readable .npy array ({e})") from None
     if a.dtype.kind not in "fiu" or a.ndim not in (2, 3) or a.shape[1:] not in ((3,), (4, 4)) or not len(a):

@@ -24,6 +24,7 @@ import numpy as np
 from PIL import Image
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
 from wgpurender.core.files.imageio import check_png_complete
 from wgpurender.core.files.input_files import check_image_pixels, input_file
 
@@ -99,9 +100,8 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
     too large for the GPU fails fast and without allocating it.
     """
     path = Path(path)
-    source = _embedded_or_file(path)
     try:
-        with Image.open(source) as im:
+        with _embedded_or_file(path) as source, Image.open(source) as im:
             _check_dims(f"image {path}", im.width, im.height, max_dim)
             check_image_pixels(im.width, im.height, str(path))
             check_png_complete(source, str(path))
@@ -115,8 +115,8 @@ def load_image(path: str | os.PathLike, *, max_dim: int | None = None) -> np.nda
 
 
 def _embedded_or_file(path: Path):
-    """What Pillow opens: the file, or the bytes of an image embedded in a glTF model (``model.glb#images[k]``,
-    see gltf_materials.embedded_image_path)."""
+    """What Pillow opens: the file (opened through the read jail: the file checked when the scene loaded), or the
+    bytes of an image embedded in a glTF model (``model.glb#images[k]``, see gltf_materials.embedded_image_path)."""
     if not os.path.lexists(path):
         from wgpurender.core.scene.gltf_materials import embedded_image_bytes
 
@@ -125,7 +125,8 @@ def _embedded_or_file(path: Path):
             import io
 
             return io.BytesIO(data)
-    return input_file(path, "texture image", f"texture image not found: {path} (check the path)")
+    found = input_file(path, "texture image", f"texture image not found: {path} (check the path)")
+    return read_jail.open_checked(found)
 
 
 def _image_to_rgba8(im: Image.Image, path: Path) -> np.ndarray:
@@ -156,7 +157,7 @@ def image_size(path: str | os.PathLike) -> tuple[int, int] | None:
     """(width, height) from an image file's header (no pixel decoded); None when it cannot be read
     (the upload then says why, with :func:`load_image`'s message)."""
     try:
-        with Image.open(_embedded_or_file(Path(path))) as im:
+        with _embedded_or_file(Path(path)) as source, Image.open(source) as im:
             return im.width, im.height
     except (OSError, ValueError, SyntaxError, Image.DecompressionBombError, UserError):
         return None

@@ -7,6 +7,16 @@ an earlier load go back under the collector (the drawable they belonged to may b
 knob turned, a resize), one collection frees what is garbage, and ``gc.freeze()`` moves the survivors to the
 permanent generation, which later collections skip. The collector stays on for what the frames themselves make.
 Both windows call it; the benchmark's frames do the same (wgpurender/bench/frames.py, ``settle_garbage``).
+
+Only our own freeze is ever undone. CPython has ONE permanent generation and ``gc.unfreeze()`` empties all of it,
+so it cannot give back our objects alone: an application embedding the renderer may have frozen its own (before
+forking workers, say), and unfreezing them would let a collection free or touch what it froze. So we unfreeze only
+while nobody else has frozen anything: nothing was frozen before our first freeze, and a canary made right after
+our last freeze is still outside the permanent generation (any later ``gc.freeze()`` moves it in; the frozen
+count cannot tell, since frozen objects that die by reference count leave the generation). Otherwise
+:func:`settle` only collects: nothing is unfrozen and nothing more is frozen (freezing then would mix our drawable
+with theirs for good, and a reload would never free the old one); the frames then pay the collector's walks, as
+without this module.
 """
 
 from __future__ import annotations
@@ -14,9 +24,37 @@ from __future__ import annotations
 import gc
 
 
+class _Canary:
+    """Made in the youngest generation right after our freeze: frozen only by someone else's gc.freeze()."""
+
+
+_canary: _Canary | None = None  # None: we hold no freeze
+
+
+def only_ours_frozen() -> bool:
+    """Whether the permanent generation holds nothing but what our last freeze put there (or nothing at all)."""
+    if _canary is None:
+        return gc.get_freeze_count() == 0
+    return any(o is _canary for o in gc.get_objects())  # ~1 ms once a load is frozen; settle collects anyway
+
+
 def settle() -> int:
-    """Unfreeze, collect, freeze; the number of objects frozen."""
+    """Unfreeze what we froze, collect, freeze; the number of objects frozen (0 when someone else's frozen objects
+    are there: then only a collection)."""
+    global _canary
+    if not only_ours_frozen():
+        gc.collect()
+        return 0
     gc.unfreeze()
     gc.collect()
     gc.freeze()
+    _canary = _Canary()
     return gc.get_freeze_count()
+
+
+def thaw() -> None:
+    """Give what :func:`settle` froze back to the collector; someone else's frozen objects stay frozen."""
+    global _canary
+    if only_ours_frozen():
+        gc.unfreeze()
+        _canary = None

@@ -43,6 +43,7 @@ class Limits:
     framebuffer_color_sample_counts: int
     min_uniform_buffer_offset_alignment: int
     max_push_constants_size: int
+    max_storage_buffer_range: int = 1 << 27  # the spec's least maximum (128 MiB)
 
 
 @dataclass
@@ -76,7 +77,8 @@ class VulkanContext:
         """What the plan's "auto" knobs need to know about this device (:func:`wgpurender.core.plan.resolve_plan`):
         the same facts the wgpu path reports for the same device. Push constants (immediates) are core Vulkan, and
         so is drawIndirectFirstInstance (the culling plan's feature; lavapipe and NVIDIA have it)."""
-        return AdapterFacts.of(self.device_type, ("immediates", "indirect-first-instance"), self.device_name, "Vulkan")
+        return AdapterFacts.of(self.device_type, ("immediates", "indirect-first-instance"), self.device_name, "Vulkan",
+                               {"max-storage-buffer-binding-size": self.limits.max_storage_buffer_range})
 
     def close(self) -> None:
         if self._closed:
@@ -176,6 +178,7 @@ def copy_limits(limits) -> Limits:
         framebuffer_color_sample_counts=limits.framebufferColorSampleCounts,
         min_uniform_buffer_offset_alignment=limits.minUniformBufferOffsetAlignment,
         max_push_constants_size=limits.maxPushConstantsSize,
+        max_storage_buffer_range=limits.maxStorageBufferRange,
     )
 
 

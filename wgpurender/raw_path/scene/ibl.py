@@ -21,7 +21,9 @@ from wgpurender.core.course.ibl_maps import (
     PREFILTER_SIZE,
     IblArrays,
     packed_bytes,
+    packed_regions,
     pass_sizes,
+    regions,
 )
 from wgpurender.raw_path.device import descriptors
 from wgpurender.raw_path.device.command_buffers import one_shot
@@ -56,19 +58,6 @@ def _compute_pipeline(ctx: VulkanContext, owned: ExitStack, layout, define: str)
     return pipeline
 
 
-ALIGN = 256  # each pass's region starts at a multiple of any device's minStorageBufferOffsetAlignment
-
-
-def _regions(passes) -> tuple[list[int], int]:
-    """Each pass's byte offset in one output buffer, and the buffer's size (the packed layout's when its sizes
-    are the scenes', whose regions are multiples of 256 bytes already)."""
-    offsets, end = [], 0
-    for _, (ow, oh), depth in passes:
-        offsets.append(end)
-        end += -(-16 * ow * oh * depth // ALIGN) * ALIGN
-    return offsets, end
-
-
 def _record(ctx: VulkanContext, owned: ExitStack, environment: np.ndarray, samples: int, passes, out) -> None:
     """Dispatch the passes into their regions of ``out`` (a host-visible storage buffer) and wait; the barrier
     makes the shader's writes visible to the host, whether it maps them or the scene's draws read them."""
@@ -79,7 +68,7 @@ def _record(ctx: VulkanContext, owned: ExitStack, environment: np.ndarray, sampl
     layout = create_pipeline_layout(ctx, owned, [set_layout])
     pool = descriptors.create_pool(ctx, owned, [BINDINGS] * len(passes))
     sets = descriptors.allocate_sets(ctx, pool, [set_layout] * len(passes))
-    offsets, _ = _regions(passes)
+    offsets, _ = regions(passes)
     with one_shot(ctx) as cmd:
         for (define, (ow, oh), depth), dst_set, offset in zip(passes, sets, offsets, strict=True):
             params = np.array([w, h, ow, oh, samples, depth, 0, 0], np.uint32).tobytes()
@@ -103,12 +92,10 @@ def _record(ctx: VulkanContext, owned: ExitStack, environment: np.ndarray, sampl
 def scene_maps_buffer(ctx: VulkanContext, owned: ExitStack, environment: np.ndarray, samples: int):
     """The scene's maps made straight into one host-visible storage buffer in core/course/ibl_maps.py's packed
     layout (each pass its region, as the wgpu path's scene_maps_buffer does); it lives as long as ``owned``."""
-    passes = pass_sizes()
-    _, size = _regions(passes)
-    assert size == packed_bytes(), "the packed layout's regions are multiples of 256 bytes"
-    out = _host_buffer(ctx, owned, size, vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)
+    packed_regions()  # the packed layout's regions start where a storage binding may (the core's rule)
+    out = _host_buffer(ctx, owned, packed_bytes(), vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)
     with ExitStack() as transient:  # the pipelines, sets and inputs: gone once the maps are made
-        _record(ctx, transient, environment, samples, passes, out)
+        _record(ctx, transient, environment, samples, pass_sizes(), out)
     return out
 
 
@@ -117,7 +104,7 @@ def make_maps(ctx: VulkanContext, environment: np.ndarray, samples: int, levels:
     """The three maps of ``environment`` ((h, w, 3) linear float), read back (as wgpu_path/scene/ibl.make_maps)."""
     passes = [("irradiance", irradiance_size, 1), ("prefilter", prefilter_size, levels),
               ("brdf_lut", (lut_size, lut_size), 1)]
-    offsets, size = _regions(passes)
+    offsets, size = regions(passes)  # padded to the core's alignment where these sizes need it
     with ExitStack() as owned:
         out = _host_buffer(ctx, owned, size, vk.VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)
         _record(ctx, owned, environment, samples, passes, out)

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import DEPTH_FORMAT, RenderPlan
+from wgpurender.core.plan.batches import OBJECT_BYTES
 from wgpurender.raw_path.device.images import FORMATS
 from wgpurender.raw_path.device.uniforms import MAX_POST_STEPS
 from wgpurender.raw_path.post.neighbourhood import NEIGHBOUR_SHADERS
@@ -56,6 +57,11 @@ def unsupported(plan: RenderPlan) -> list[str]:
     if plan.knobs.instance_data == "vertex":  # "storage" and "auto" are what the raw path does
         problems.append("plan knob instance_data = 'vertex': the raw path reads instances from a storage buffer "
                         "(leave the knob out, or say 'storage')")
+    elif plan.instance_data == "vertex":  # "auto" past the one storage binding's limit (instance_data.fit_binding)
+        room = plan.knobs.adapter.max_storage_binding // OBJECT_BYTES
+        problems.append(f"{sum(d.instance_count for d in plan.scene_pass.draws)} instances: the raw path reads "
+                        f"every instance from one storage buffer, and this device's maxStorageBufferRange holds "
+                        f"{room} (draw at most {room} copies, or render on the wgpu path)")
     if plan.knobs.post_intermediate == "none":
         problems.append("plan knob post_intermediate = 'none': the raw path's FXAA samples a stored handoff image "
                         "(choose auto, rgba16float, rgba8unorm or rgba8unorm-srgb)")

@@ -24,6 +24,10 @@ from wgpurender.raw_path.device.renderpass import begin, create_framebuffer, sin
 TARGET_USAGE = (
     vk.VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | vk.VK_IMAGE_USAGE_TRANSFER_SRC_BIT | vk.VK_IMAGE_USAGE_TRANSFER_DST_BIT
 )
+# The layout a stage's target arrives in, cleared to zeros (raw_path/render.zero), as wgpu's textures start. A
+# stage that writes it with transfer commands names this as its first barrier's old layout: a barrier from
+# UNDEFINED lets the driver discard the contents (the Vulkan spec), so the zeros would hold only by luck.
+TARGET_LAYOUT = vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL
 
 
 class RefStage:

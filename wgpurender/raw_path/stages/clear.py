@@ -17,7 +17,7 @@ import vulkan as vk
 
 from wgpurender.core.course.triangle import TRANSFER_CLEAR_COLOR
 from wgpurender.raw_path.device.images import Image, subresource_range, transition
-from wgpurender.raw_path.stages.base import RefStage
+from wgpurender.raw_path.stages.base import TARGET_LAYOUT, RefStage
 
 
 class ClearTransfer(RefStage):
@@ -26,7 +26,7 @@ class ClearTransfer(RefStage):
     color = TRANSFER_CLEAR_COLOR
 
     def record(self, cmd, target: Image, t: float = 0.0) -> None:
-        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)
+        transition(cmd, target, TARGET_LAYOUT, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)  # it arrives cleared
         color = vk.VkClearColorValue(float32=list(self.color))
         ranges = [subresource_range()]
         vk.vkCmdClearColorImage(cmd, target.handle, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, color, 1, ranges)

@@ -13,7 +13,7 @@ import vulkan as vk
 from wgpurender.core.course.triangle import BACKGROUND
 from wgpurender.raw_path.device.images import Image, create_image, subresource_layers, transition
 from wgpurender.raw_path.device.pipeline import set_viewport_and_scissor
-from wgpurender.raw_path.stages.base import RefStage
+from wgpurender.raw_path.stages.base import TARGET_LAYOUT, RefStage
 
 
 class Offscreen(RefStage):
@@ -32,7 +32,7 @@ class Offscreen(RefStage):
         set_viewport_and_scissor(cmd, self.size)
         vk.vkCmdDraw(cmd, 3, 1, 0, 0)
         vk.vkCmdEndRenderPass(cmd)
-        transition(cmd, target, vk.VK_IMAGE_LAYOUT_UNDEFINED, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)
+        transition(cmd, target, TARGET_LAYOUT, vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)  # it arrives cleared
         origin = vk.VkOffset3D(x=0, y=0, z=0)
         region = vk.VkImageCopy(
             srcSubresource=subresource_layers(), srcOffset=origin,

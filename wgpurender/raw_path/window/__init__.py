@@ -55,7 +55,7 @@ from wgpurender.raw_path.device.checks import check_msaa, check_size
 from wgpurender.raw_path.device.context import VulkanContext, create_context
 from wgpurender.raw_path.device.images import Image, create_image, subresource_layers, subresource_range
 from wgpurender.raw_path.device.memory import HOST_MEMORY, create_buffer, read_host_buffer
-from wgpurender.raw_path.stages.base import TARGET_USAGE
+from wgpurender.raw_path.stages.base import TARGET_LAYOUT, TARGET_USAGE
 from wgpurender.raw_path.window.swapchain import (
     FORMAT_NAMES,
     acquire_next_image,
@@ -274,6 +274,9 @@ class RawWindow:
         vk.vkResetCommandBuffer(cmd, 0)
         vk.vkBeginCommandBuffer(cmd, vk.VkCommandBufferBeginInfo(flags=vk.VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT))
         slot.drawable.owned = slot.per_frame  # this frame's framebuffers are freed after its fence
+        # a stage's first barrier starts from TARGET_LAYOUT (stages/base.py); a window frame's target is not zeroed
+        image_barrier(cmd, slot.target.handle, vk.VK_IMAGE_LAYOUT_UNDEFINED, TARGET_LAYOUT, (TRANSFER, 0),
+                      (TRANSFER, vk.VK_ACCESS_TRANSFER_WRITE_BIT))
         slot.record(cmd, slot.target, t)  # the stage leaves its image in TRANSFER_SRC_OPTIMAL
         layout = vk.VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL
         image_barrier(cmd, image, vk.VK_IMAGE_LAYOUT_UNDEFINED, layout, (TRANSFER, 0),

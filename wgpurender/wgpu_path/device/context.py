@@ -80,8 +80,10 @@ class GPUContext:
         from wgpurender.core.plan.model import AdapterFacts  # lazily: the plan package costs ~0.3 s to import
 
         info = self.info
+        limits = {**self.adapter.limits, "max-storage-buffer-binding-size":  # the device's, which binds
+                  self.device.limits["max-storage-buffer-binding-size"]}
         return AdapterFacts.of(info.get("adapter_type", ""), self.features, info.get("device", ""),
-                               info.get("backend_type", ""), dict(self.adapter.limits),
+                               info.get("backend_type", ""), limits,
                                info.get("description", "") if info.get("backend_type") == "OpenGL" else "")
 
     def use_immediates(self, requested: bool | None = None) -> bool:

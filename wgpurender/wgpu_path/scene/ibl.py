@@ -17,7 +17,15 @@ from dataclasses import dataclass
 import numpy as np
 import wgpu
 
-from wgpurender.core.course.ibl_maps import IRRADIANCE_SIZE, LEVELS, LUT_SIZE, PREFILTER_SIZE, packed_bytes, pass_sizes
+from wgpurender.core.course.ibl_maps import (
+    IRRADIANCE_SIZE,
+    LEVELS,
+    LUT_SIZE,
+    PREFILTER_SIZE,
+    packed_bytes,
+    packed_regions,
+    pass_sizes,
+)
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.shaders import create_shader_module
 
@@ -91,8 +99,10 @@ STAGE = wgpu.ShaderStage.COMPUTE
 
 
 def scene_maps_buffer(ctx: GPUContext, environment: np.ndarray, samples: int) -> wgpu.GPUBuffer:
-    """The "scene-ibl" storage buffer: the three passes write their regions of it (the packed layout's offsets
-    are multiples of 256 bytes, as storage bindings need), in one command encoder, submitted once."""
+    """The "scene-ibl" storage buffer: the three passes write their regions of it (at the packed layout's offsets,
+    which the core checks start where a storage binding may: ibl_maps.packed_regions), in one command encoder,
+    submitted once."""
+    offsets = packed_regions()
     device = ctx.device
     h, w = environment.shape[:2]
     rgba = np.concatenate([environment, np.ones((h, w, 1))], axis=-1).astype(np.float32)
@@ -111,7 +121,6 @@ def scene_maps_buffer(ctx: GPUContext, environment: np.ndarray, samples: int) ->
         {"binding": 2, "visibility": STAGE, "buffer": {"type": "storage"}}], label="scene-ibl")
     pipeline_layout = device.create_pipeline_layout(bind_group_layouts=[layout], label="scene-ibl")
     encoder = device.create_command_encoder(label="scene-ibl")
-    offset = 0
     for k, (entry, (ow, oh), depth) in enumerate(pass_sizes()):
         size = 16 * ow * oh * depth
         pipeline = device.create_compute_pipeline(label=f"scene-ibl-{entry}", layout=pipeline_layout,
@@ -119,12 +128,11 @@ def scene_maps_buffer(ctx: GPUContext, environment: np.ndarray, samples: int) ->
         group = device.create_bind_group(layout=layout, label=f"scene-ibl-{entry}", entries=[
             {"binding": 0, "resource": {"buffer": uniform, "offset": k * PARAMS_STRIDE, "size": 32}},
             {"binding": 1, "resource": {"buffer": env}},
-            {"binding": 2, "resource": {"buffer": maps, "offset": offset, "size": size}}])
+            {"binding": 2, "resource": {"buffer": maps, "offset": offsets[k], "size": size}}])
         compute = encoder.begin_compute_pass()
         compute.set_pipeline(pipeline)
         compute.set_bind_group(0, group)
         compute.dispatch_workgroups(-(-ow // WORKGROUP), -(-oh // WORKGROUP), depth)
         compute.end()
-        offset += size
     device.queue.submit([encoder.finish()])
     return maps

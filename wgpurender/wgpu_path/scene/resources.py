@@ -13,7 +13,7 @@ from pathlib import Path
 import wgpu
 
 from wgpurender.core.plan import Draw, RenderPlan
-from wgpurender.core.plan.meshes import PlanMeshes
+from wgpurender.core.plan.meshes import PlanMeshes, buffer_places
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.textures import Texture, create_sampler, create_texture
 from wgpurender.wgpu_path.scene.shader_interface import interleave
@@ -47,8 +47,10 @@ class SceneResources:
     def upload_meshes(self, draws) -> None:
         """The meshes of ``draws`` not on the GPU yet, in ONE vertex and ONE index buffer at 4-byte aligned offsets
         (set_vertex_buffer's and set_index_buffer's rule): a scene of 10k mesh files made 20k buffers before, each
-        several wgpu calls (issue 31.3). Draw order decides the layout; a draw whose mesh fails its variant's
-        check (mesh_for) raises here, as it did when its buffers were made one by one."""
+        several wgpu calls (issue 31.3). Where the device's max-buffer-size would be passed, the next meshes go
+        into another pair (core/plan/meshes.buffer_places; one mesh too large for it is refused in one line).
+        Draw order decides the layout; a draw whose mesh fails its variant's check (mesh_for) raises here, as it
+        did when its buffers were made one by one."""
         pending: dict[tuple, tuple[bytes, bytes, object]] = {}
         for draw in draws:
             key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
@@ -57,17 +59,21 @@ class SceneResources:
                 pending[key] = (interleave(mesh, key[1]).tobytes(), mesh.index_bytes(), mesh)
         if not pending:
             return
-        vertex, index, places = bytearray(), bytearray(), []
-        for key, (vertices, indices, mesh) in pending.items():
-            places.append((key, len(vertex), len(index), mesh))
+        names = [key[0][0].name for key in pending]  # key[0]: the draw's mesh_key, (file, pose)
+        places = buffer_places([(len(v), len(i)) for v, i, _ in pending.values()],
+                               self.ctx.limit("max-buffer-size"), names)
+        pairs: dict[int, tuple[bytearray, bytearray]] = {}
+        for (vertices, indices, _), (pair, _, _) in zip(pending.values(), places, strict=True):
+            vertex, index = pairs.setdefault(pair, (bytearray(), bytearray()))
             vertex += vertices + b"\0" * (-len(vertices) % 4)
             index += indices  # index_bytes is already a multiple of 4
         dev = self.ctx.device
         # named as the plan lists them (RenderPlan.buffers)
-        vbuf = dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX, label="scene-vertices")
-        ibuf = dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX, label="scene-indices")
-        for key, v_at, i_at, mesh in places:
-            self._buffers[key] = MeshBuffers(vbuf, ibuf, mesh.index_format, mesh.indices.size, v_at, i_at)
+        made = {pair: (dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX, label="scene-vertices"),
+                       dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX, label="scene-indices"))
+                for pair, (vertex, index) in pairs.items()}
+        for (key, (_, _, mesh)), (pair, v_at, i_at) in zip(pending.items(), places, strict=True):
+            self._buffers[key] = MeshBuffers(*made[pair], mesh.index_format, mesh.indices.size, v_at, i_at)
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
