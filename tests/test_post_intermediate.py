@@ -12,20 +12,20 @@ tone-mapped values linear in 8 bits, whose steps are coarse in the darks, so its
 rgba8unorm-srgb stores them sRGB-encoded (steps even to the eye) and the sampler decodes before it filters; none
 stores nothing: one pass recomputes tonemap for every texel FXAA reads, its bilinear taps computed in the shader.
 
-Measured on lavapipe (Mesa 22.3.6, AMD EPYC), 2026-11-27, 96x72 pixels, error in 8-bit steps against the truth
-(max, mean, share of pixels off by more than 1), the same on the three ways to 0.03 in the mean:
+Measured 2026-11-27 at 96x72 pixels, error in 8-bit steps against the truth (max, mean, share of pixels off by
+more than 1) over the three ways (benchmarks/post_intermediate_error.py; docs/perf-lavapipe/2026-11-27-post/ and
+docs/perf-h100/2026-11-27-post/):
 
-| setting | max | mean | share > 1 |
-|---|---|---|---|
-| auto (rgba16float) | 10 | 0.13-0.16 | 0.043% (3 pixels: FXAA's edge test flips on a threshold) |
-| rgba8unorm | 7 | 0.74-0.76 | 27.2-27.6% |
-| rgba8unorm-srgb | 1 | 0.20-0.24 | 0 |
-| none (wgpu only) | 1 | 0.13-0.16 | 0 |
+| setting | lavapipe max / mean / share > 1 | H100 max / mean / share > 1 |
+|---|---|---|
+| auto (rgba16float) | 10 / 0.13-0.16 / 0.043% (FXAA's edge test flips) | 2 / 0.08-0.14 / 0.029% |
+| rgba8unorm | 7 / 0.74-0.76 / 27.2-27.6% | 10 / 0.71-0.72 / 22.1-22.4% |
+| rgba8unorm-srgb | 1 / 0.20-0.24 / 0 | 7 / 0.20-0.29 / 2.1-2.2% |
+| none (wgpu only) | 1 / 0.13-0.16 / 0 | 1 / 0.08-0.13 / 0 |
 
-So the calibrated tolerance (auto's, with margin: AUTO_MAX, AUTO_OVER1) holds rgba8unorm-srgb and none, not
-rgba8unorm. The default stays "auto" (today's image): rgba8unorm-srgb costs a scratch copy on the compute path (an
--srgb texture is not a storage texture); none drops the fragment path's FXAA mask (lavapipe's early exit) and the
-raw path cannot draw it. The run: docs/perf-lavapipe/2026-11-27-post/ (benchmarks/post_intermediate_error.py).
+So the calibrated tolerance (auto's, with margin: AUTO_MAX, AUTO_OVER1) holds none on both machines,
+rgba8unorm-srgb only on lavapipe, rgba8unorm nowhere. The default stays "auto" (today's image): none is slower
+on both machines (bench post-roofline) and the raw path cannot draw it.
 """
 
 from __future__ import annotations
@@ -46,7 +46,8 @@ KNOBS = ("auto", "rgba8unorm", "rgba8unorm-srgb", "none")
 WAYS = {"auto": ("fragment", "compute", "raw"), "rgba8unorm": ("fragment", "compute", "raw"),
         "rgba8unorm-srgb": ("fragment", "compute", "raw"), "none": ("fragment", "compute")}  # raw refuses none
 AUTO_MAX, AUTO_OVER1 = 16, 0.002  # measured 10 and 0.043% (3 of 6912 pixels); ~14 pixels allowed
-EIGHT_MAX, EIGHT_OVER1 = 10, 0.35  # rgba8unorm: measured 7 and 27.6%
+EIGHT_MAX, EIGHT_OVER1 = 14, 0.35  # rgba8unorm: measured 7 and 27.6% (lavapipe), 10 and 22.4% (H100)
+ENC_MAX, ENC_OVER1 = 10, 0.03  # rgba8unorm-srgb: measured 1 and 0% (lavapipe), 7 and 2.2% (H100)
 
 
 def write_scene(folder):
@@ -127,9 +128,11 @@ def test_each_setting_against_the_float64_chain(measured, way):
     encoded = errors(images[(way, "rgba8unorm-srgb")], want)
     assert auto["max"] <= AUTO_MAX and auto["over1"] <= AUTO_OVER1, f"{way} auto: {auto}"
     assert eight["max"] <= EIGHT_MAX and eight["over1"] <= EIGHT_OVER1, f"{way} rgba8unorm: {eight}"
-    # linear 8 bits is a real cost, outside the tolerance; sRGB-encoded 8 bits stays inside it
+    # linear 8 bits is a real cost, far outside the tolerance; sRGB-encoded 8 bits is inside it on lavapipe but
+    # not on the H100 (2.2% of pixels over one step there), so it is held to its own measured bound
     assert eight["over1"] > AUTO_OVER1 and eight["mean"] > 3 * auto["mean"], f"{way}: {eight} vs {auto}"
-    assert encoded["max"] <= AUTO_MAX and encoded["over1"] <= AUTO_OVER1, f"{way} rgba8unorm-srgb: {encoded}"
+    assert encoded["max"] <= ENC_MAX and encoded["over1"] <= ENC_OVER1, f"{way} rgba8unorm-srgb: {encoded}"
+    assert encoded["mean"] < eight["mean"] / 2, f"{way}: sRGB-encoded {encoded} vs linear {eight}"
     for knob in KNOBS[1:]:
         if way in WAYS[knob]:
             assert not np.array_equal(images[(way, "auto")], images[(way, knob)]), f"{way} {knob} changed nothing"
