@@ -395,17 +395,15 @@ def test_every_map_at_once_fits_both_paths_limits(ctx, tmp_path, instance_data):
     per-instance attributes of instance_data "vertex" that is all 16 vertex attributes); the coat's factors in the
     push constants (lavapipe: 128 bytes). Both paths draw it without a validation error (tests/conftest.py) and
     alike, and the plan counts the bindings."""
-    from wgpurender.core.plan import Knobs
-    from wgpurender.core.plan.build import build_plan
     from wgpurender.core.plan.model import TEXTURE_FEATURES
-    from wgpurender.core.scene import load_scene
+    from wgpurender.core.plan.resolve import resolve_plan
     from wgpurender.raw_path.scene import render_scene_reference
     from wgpurender.raw_path.scene.scene_subpass import material_block_size
     from wgpurender.wgpu_path.scene import render_scene_file
 
     write_every_map(tmp_path)
     knobs = {"post_path": "fragment", "instance_data": instance_data}
-    plan = build_plan(load_scene(tmp_path / "scene.toml"), size=SIZE, knobs=Knobs(**knobs))
+    plan = resolve_plan(tmp_path / "scene.toml", None, size=SIZE, **knobs)
     (variant,) = plan.variants
     assert set(TEXTURE_FEATURES) <= variant.flags and {"ibl", "clearcoat", "vertex_color"} <= variant.flags
     assert len(variant.vertex_attributes) == 9  # position, normal, uv, tangent, color, uv1-uv4

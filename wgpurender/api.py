@@ -146,21 +146,25 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
-    from wgpurender.wgpu_path.device.context import get_context
+    from wgpurender.wgpu_path.device.context import get_context, start_context
 
     start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     knobs = _with_camera(knobs, camera)
-    ctx = get_context(checks.backend(backend))
-    if _is_scene(target, anisotropy, knobs):
+    backend = checks.backend(backend)
+    scene = _is_scene(target, anisotropy, knobs)
+    start_context(backend)  # the device is made on a thread while the renderer is imported (issue 31.5)
+    if scene:
         from wgpurender.wgpu_path.scene import render_plan
 
+        ctx = get_context(backend)
         result = render_plan(ctx, _wgpu_plan(ctx, target, wh, msaa, format, anisotropy, {**knobs, "time": t}), t)
     else:
         from wgpurender.wgpu_path.render import render_stage
 
+        ctx = get_context(backend)
         result = render_stage(str(target), wh or (800, 600), format, msaa, t, ctx)
     timings = {"frame_ms": result.frame_ms, "call_ms": (time.perf_counter() - start) * 1e3}
     return Image(result.pixels, str(target), "wgpu", timings, result.adapter, result.plan)

@@ -134,33 +134,44 @@ def warm_up(runner, min_frames: int = 2) -> int:
 
 
 def measure(runner, frames: int, warmup: int = 2, readback_frames: int = 0) -> Samples:
-    """Warm-up frames until stable (:func:`warm_up`, at least ``warmup``), then ``frames`` timed ones; the first
-    ``readback_frames`` of them each followed by a frame with readback (paired). A runner with ``collect_gpu()``
-    reports GPU times at the end. The collector is frozen before and paused during the timed frames
-    (:func:`settle_garbage`, :func:`frames_without_gc`)."""
-    warm_up(runner, warmup)
+    """Warm-up frames until stable (:func:`warm_up`, at least ``warmup``), then ``frames`` timed ones, then
+    ``readback_frames`` pairs: a frame without readback right before one with (the readback cost is their
+    difference). A runner with ``collect_gpu()`` reports GPU times at the end. The collector is frozen before and
+    paused during the timed frames (:func:`settle_garbage`, :func:`frames_without_gc`).
+
+    Nothing the bench does itself comes between two samples (issue 31.4, p99 <= 2x the median;
+    benchmarks/tail_probe.py shows both on lavapipe and the H100):
+
+    - the collection and the timestamp read come before the warm-up, so the first timed frame follows warm frames
+      as every other does (after them it was each round's slowest: on lavapipe 6-17 ms against medians of 0.2-0.4
+      ms, 4 of 100 samples, so the p99); the warm-up frames' timestamps are dropped when the samples' are read;
+    - the readback pairs come after the samples: a frame right after a readback frame (a large copy through the
+      host's caches) is not a sample of a frame without readback."""
     settle_garbage()
     collect = getattr(runner, "collect_gpu", None)
     if collect is not None:
-        collect()  # drop the warm-up frames' timestamps
+        collect()  # drop earlier frames' timestamps
+    warmed = warm_up(runner, warmup)
     with frames_without_gc():
-        return _timed_frames(runner, frames, readback_frames, collect)
+        return _timed_frames(runner, frames, readback_frames, collect, warmed)
 
 
-def _timed_frames(runner, frames: int, readback_frames: int, collect) -> Samples:
-    samples, kinds = Samples(), []
-    for i in range(frames):
+def _timed_frames(runner, frames: int, readback_frames: int, collect, untimed: int = 0) -> Samples:
+    """``untimed``: frames drawn since the last ``collect()`` that are not samples (their timestamps are dropped)."""
+    samples, kinds = Samples(), [False] * untimed
+    for _ in range(frames):
         frame_ms, cpu_ms, gpu_ms = _timed(runner)
         samples.frame.append(frame_ms)
         samples.cpu.append(cpu_ms)
         kinds.append(True)
         if gpu_ms is not None:
             samples.gpu.append(gpu_ms)
-        if i < readback_frames:
-            with_rb, _, _ = _timed(runner, readback=True)
-            samples.readback_frame.append(with_rb)
-            samples.readback_pair.append(with_rb - frame_ms)
-            kinds.append(False)
+    for _ in range(readback_frames):
+        plain_ms, _, _ = _timed(runner)
+        with_rb, _, _ = _timed(runner, readback=True)
+        samples.readback_frame.append(with_rb)
+        samples.readback_pair.append(with_rb - plain_ms)
+        kinds += [False, False]
     if collect is not None:
         samples.gpu = [g for g, plain in zip(collect(), kinds, strict=False) if plain and g is not None]
     return samples

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from wgpurender.core.course.formats import OUTPUT_FORMATS, SAMPLE_COUNTS
 from wgpurender.core.errors import UserError
-from wgpurender.core.verdict.compare import METRICS
+
+if TYPE_CHECKING:  # numpy is imported where a check needs it: the backend check runs before the device is
+    import numpy as np  # started on a thread (wgpu_path/device/context.start_context), numpy while it is made
 
 MAX_SIZE = 16384  # per side: the largest 2D texture any adapter we support offers
 MAX_GAP = 4096
@@ -37,12 +37,28 @@ def _shown(value: Any) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
+def _is_bool(value: Any) -> bool:
+    """Python's or numpy's bool (without importing numpy, as :func:`_is_array`)."""
+    import sys
+
+    numpy = sys.modules.get("numpy")
+    return isinstance(value, bool) or (numpy is not None and isinstance(value, numpy.bool_))
+
+
+def _is_array(value: Any) -> bool:
+    """A numpy array (without importing numpy: no array exists until something did)."""
+    import sys
+
+    numpy = sys.modules.get("numpy")
+    return numpy is not None and isinstance(value, numpy.ndarray)
+
+
 def _is_number(value: Any) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+    return isinstance(value, numbers.Real) and not _is_bool(value)
 
 
 def _is_integer(value: Any) -> bool:
-    return isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_))
+    return isinstance(value, numbers.Integral) and not _is_bool(value)
 
 
 def number(value: Any, name: str) -> float:
@@ -93,7 +109,7 @@ def size(value: Any, name: str = "size") -> tuple[int, int] | None:
         if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
             raise UserError(f"malformed {name} {value!r}: expected WIDTHxHEIGHT, e.g. 800x600")
         value = (int(parts[0]), int(parts[1]))
-    if isinstance(value, np.ndarray):
+    if _is_array(value):
         value = value.tolist()
     if not isinstance(value, (tuple, list)) or len(value) != 2 or not all(_is_integer(v) for v in value):
         raise UserError(f"malformed {name} {_shown(value)}: expected (width, height) as two whole numbers "
@@ -159,6 +175,8 @@ def gap(value: Any) -> int:
 def threshold(name: Any, value: Any) -> tuple[str, float]:
     """A compare threshold: a known metric and a finite value (a NaN threshold never fails: black vs white
     passed). Shares and differences are >= 0; a share may be given as a percentage string ('0.5%')."""
+    from wgpurender.core.verdict.compare import METRICS
+
     if name not in METRICS:
         raise UserError(f"unknown metric {_shown(name)}: choose from {', '.join(METRICS)}")
     scale = 1.0
@@ -194,6 +212,8 @@ def image_array(array: Any, name: str) -> np.ndarray:
     linear light, sRGB-encoded (NaN refused: an all-NaN image compared 'identical' to zeros). Other dtypes,
     other shapes and empty images are refused.
     """
+    import numpy as np
+
     from wgpurender.core.files.imageio import to_uint8
 
     if not isinstance(array, np.ndarray):
@@ -230,6 +250,6 @@ def output_path(value: Any, name: str) -> str:
 
 def flag(value: Any, name: str) -> bool:
     """True or False (numpy's bool too); anything else, 1 and "yes" among them, is refused."""
-    if not isinstance(value, (bool, np.bool_)):
+    if not _is_bool(value):
         raise UserError(f"{name} must be True or False, got {type(value).__name__} {_shown(value)}")
     return bool(value)

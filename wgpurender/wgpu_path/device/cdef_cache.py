@@ -41,9 +41,10 @@ def cache_dir() -> Path:
 
 def cache_file(csource: str) -> Path:
     import cffi
-    import pycparser
 
-    versions = f"cffi {cffi.__version__} pycparser {pycparser.__version__} python {sys.version_info[:3]}"
+    from wgpurender.wgpu_path.device.parser_on_demand import version
+
+    versions = f"cffi {cffi.__version__} pycparser {version()} python {sys.version_info[:3]}"
     digest = hashlib.sha256((versions + "\n" + csource).encode()).hexdigest()[:24]
     return cache_dir() / f"cffi-wgpu-h-{digest}.json"
 
@@ -51,19 +52,31 @@ def cache_file(csource: str) -> Path:
 def cache_key(csource: str) -> str:
     """What the parse depends on: the header's text and the versions of cffi, pycparser and Python."""
     import cffi
-    import pycparser
 
-    return f"wgpu.h parse\0cffi {cffi.__version__}\0pycparser {pycparser.__version__}\0{sys.version}\0{csource}"
+    from wgpurender.wgpu_path.device.parser_on_demand import version
+
+    return f"wgpu.h parse\0cffi {cffi.__version__}\0pycparser {version()}\0{sys.version}\0{csource}"
 
 
 @contextmanager
 def cached_wgpu_header() -> Iterator[None]:
-    """Within the block, a ``cdef`` of wgpu.h restores a cached parse (or parses and saves one)."""
+    """Within the block, a ``cdef`` of wgpu.h restores a cached parse (or parses and saves one); pycparser is
+    imported only if something parses C text (parser_on_demand.py)."""
     import cffi
 
-    if BACKEND_FFI in sys.modules or not _has_internals(cffi.FFI()):
+    from wgpurender.wgpu_path.device.parser_on_demand import on_demand
+
+    if BACKEND_FFI in sys.modules:
         yield
         return
+    with on_demand():
+        if not _has_internals(cffi.FFI()):
+            yield
+            return
+        yield from _cdef_replaced(cffi)
+
+
+def _cdef_replaced(cffi) -> Iterator[None]:
     real = cffi.FFI.cdef
 
     def cdef(self, csource, override=False, packed=False, pack=None):

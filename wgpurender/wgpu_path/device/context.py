@@ -8,8 +8,12 @@ per process and backend.
 
 from __future__ import annotations
 
+import atexit
 import functools
 import os
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -234,18 +238,27 @@ def _configure_instance_once(backend: str) -> None:
     if binding.requested() == "dawn":  # Dawn has no wgpu-native instance extras: it picks its own backends
         _instance_backend.append(backend)
         return
-    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
+    _import_backend()
+    from wgpu.backends.wgpu_native.extras import set_instance_extras
 
-    with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
-        from wgpu.backends.wgpu_native.extras import set_instance_extras
-
-    from wgpurender.wgpu_path.device.cffi_types import install_for_wgpu
-
-    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
     validation = os.environ.get(VALIDATION_ENV, "") not in ("", "0")
     flags = ["All"] if backend == AUTO else [BACKENDS[backend]]
     set_instance_extras(backends=flags, flags=["Validation"] if validation else ["Default"])
     _instance_backend.append(backend)
+
+
+def _import_backend() -> None:
+    """Import wgpu-py's wgpu-native backend with wgpu.h's cached parse: Python work only (~40 ms), no driver call.
+
+    :func:`start_context` does this in the caller's thread, so the thread it starts begins with the driver."""
+    from wgpurender.wgpu_path.device.cdef_cache import cached_wgpu_header
+
+    with cached_wgpu_header():  # wgpu.h's parse loaded from the cache of an earlier process (cdef_cache.py)
+        import wgpu.backends.wgpu_native.extras  # noqa: F401
+
+    from wgpurender.wgpu_path.device.cffi_types import install_for_wgpu
+
+    install_for_wgpu()  # C type names parsed in microseconds, not ~0.1 s each (cffi_types.py)
 
 
 @functools.cache
@@ -304,24 +317,129 @@ def select_adapter(backend: str | None = None) -> wgpu.GPUAdapter:
 def refuse_broken_gl(adapter: wgpu.GPUAdapter) -> None:
     """A GL adapter whose bindings wgpu gets wrong is refused in one line (core/plan/gl_facts.gl_binding_fault)
     rather than drawing wrong images: NVIDIA's EGL context is one (GL 3.3 with the compute extension)."""
-    from wgpurender.core.plan.gl_facts import CANNOT_DRAW, gl_binding_fault
-
     info = adapter.info
     if info["backend_type"] != "OpenGL":
         return
+    from wgpurender.core.plan.gl_facts import CANNOT_DRAW, gl_binding_fault  # lazily: ~40 ms the rest don't need
+
     why = gl_binding_fault(info["description"], adapter.limits["max-compute-invocations-per-workgroup"])
     if why:
         raise UserError(f"the OpenGL adapter {info['device']} ({info['description']}) {CANNOT_DRAW}: {why}; "
                         "use --backend vulkan")
 
 
+_made: dict[str, GPUContext] = {}  # the process's contexts by backend
+_early: dict[str, _EarlyContext] = {}  # contexts being made on a thread (start_context), not yet taken
+_made_lock = threading.Lock()
+
+
 def get_context(backend: str | None = None) -> GPUContext:
-    """The process-wide context for a backend, created on first use ("auto" and None resolve first)."""
-    return _context(requested_backend(backend))
+    """The process-wide context for a backend, created on first use ("auto" and None resolve first).
+
+    If :func:`start_context` began making it, this waits for that thread and returns (or raises) its result."""
+    want = requested_backend(backend)
+    with _made_lock:
+        ctx = _made.get(want)
+        early = _early.pop(want, None) if ctx is None else None
+        if ctx is not None:
+            return ctx
+        if early is None:
+            ctx = _made[want] = _make_context(want)
+            return ctx
+    ctx = early.result()  # outside the lock: the thread may take it (a nested get_context)
+    with _made_lock:
+        return _made.setdefault(want, ctx)
 
 
-@functools.cache
-def _context(backend: str) -> GPUContext:
+def start_context(backend: str | None = None) -> None:
+    """Begin making the process's context for ``backend`` on a thread; :func:`get_context` takes the result.
+
+    Making a context is mostly native work (the driver's instance and device: ~0.2 s on an NVIDIA H100) that
+    holds no Python lock, so a program that starts it before importing the rest of what it draws with overlaps
+    the two (issue 31.5, the first pixel). A bad backend name is refused here, in the caller's thread; an error
+    while making the context is raised by the :func:`get_context` that takes it. Nothing happens if the context
+    exists or is already being made."""
+    want = requested_backend(backend)
+    with _made_lock:
+        if want in _made or want in _early:
+            return
+        if binding.requested() != "dawn":  # the Python part first, in this thread: on the new thread it would
+            _import_backend()  # share the GIL with the caller's imports while the driver's work waited for it
+        if not _early_joined:  # a process that stops early (bad input) waits for the driver, not exits mid-call
+            atexit.register(_join_early)
+            _early_joined.append(True)
+        _early[want] = _EarlyContext(want)
+
+
+_early_joined: list[bool] = []
+
+
+def _join_early() -> None:
+    for early in list(_early.values()):
+        early.thread.join()
+
+
+# Python's thread switch interval while a context is made on a thread. Making one calls wgpu-native ~140 times
+# (wgpu-py asks the adapter and the device for each feature); after each call the thread waits for the GIL, up to
+# the interval (5 ms by default) while the main thread imports. 0.5 ms lets it through (benchmarks/startup_split.py).
+EARLY_SWITCH_S = 0.0005
+
+
+_switch = {"threads": 0, "before": 0.0}  # threads making a context early; the interval before the first of them
+_switch_lock = threading.Lock()
+
+
+@contextmanager
+def _short_switch_interval() -> Iterator[None]:
+    """:data:`EARLY_SWITCH_S` while any context is made on a thread; the interval from before, after the last."""
+    import sys
+
+    with _switch_lock:
+        if _switch["threads"] == 0:
+            _switch["before"] = sys.getswitchinterval()
+            sys.setswitchinterval(min(_switch["before"], EARLY_SWITCH_S))
+        _switch["threads"] += 1
+    try:
+        yield
+    finally:
+        with _switch_lock:
+            _switch["threads"] -= 1
+            if _switch["threads"] == 0:
+                sys.setswitchinterval(_switch["before"])
+
+
+class _EarlyContext:
+    """A context being made on a daemon thread: its result, or the exception that stopped it."""
+
+    def __init__(self, backend: str) -> None:
+        self.ctx: GPUContext | None = None
+        self.error: BaseException | None = None
+        self.thread = threading.Thread(target=self._make, args=(backend,), name="wgpurender-context", daemon=True)
+        self.thread.start()
+
+    def _make(self, backend: str) -> None:
+        try:
+            with _short_switch_interval():
+                self.ctx = _make_context(backend)
+        except BaseException as exc:  # handed to the caller of get_context, which raises it there
+            self.error = exc
+
+    def result(self) -> GPUContext:
+        self.thread.join()
+        if self.error is not None:
+            raise self.error
+        return self.ctx
+
+
+_making = threading.Lock()  # one context made at a time: the instance set-up and adapter list are per process
+
+
+def _make_context(backend: str) -> GPUContext:
+    with _making:
+        return _build_context(backend)
+
+
+def _build_context(backend: str) -> GPUContext:
     note = wgpu_private.version_note()
     if note:  # once per process: the private reaches may not hold on this wgpu-py
         import sys

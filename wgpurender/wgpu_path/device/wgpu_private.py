@@ -17,8 +17,8 @@ tests/test_wgpu_private.py checks each reach on the installed wgpu-py.
 
 from __future__ import annotations
 
+import sys
 from contextlib import contextmanager
-from importlib import metadata
 
 WRITTEN_FOR = "0.32."
 BACKEND_FFI = "wgpu.backends.wgpu_native._ffi"
@@ -26,12 +26,23 @@ BACKEND_FFI = "wgpu.backends.wgpu_native._ffi"
 
 def version_note(version: str | None = None) -> str:
     """"" for the wgpu-py these reaches were written for, else the one line that says what to do."""
-    version = version or metadata.version("wgpu")  # not `import wgpu`: cdef_cache.py must come before its backend
+    version = version or _installed_version()
     if version.startswith(WRITTEN_FOR):
         return ""
     return (f"wgpurender reaches into wgpu-py {WRITTEN_FOR}x's private parts and wgpu-py {version} is installed: "
             f"pip install 'wgpu=={WRITTEN_FOR}*', or update wgpurender/wgpu_path/device/wgpu_private.py until "
             "tests/test_wgpu_private.py passes")
+
+
+def _installed_version() -> str:
+    """wgpu-py's version: the loaded module's (importing wgpu loads no backend: cdef_cache.py still comes first),
+    else the package metadata's (importing importlib.metadata and reading it cost ~15 ms of the first pixel)."""
+    loaded = getattr(sys.modules.get("wgpu"), "__version__", None)
+    if isinstance(loaded, str):
+        return loaded
+    from importlib import metadata
+
+    return metadata.version("wgpu")
 
 
 def native():

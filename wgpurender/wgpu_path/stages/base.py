@@ -16,6 +16,10 @@ import wgpu
 from wgpurender.core.course.formats import DEFAULT_FORMAT, SAMPLE_COUNTS
 from wgpurender.core.course.steps import course_step, msaa_steps, step_msaa
 from wgpurender.core.errors import UserError
+
+# ctx.use_immediates' rule, imported with the stages: while a device started early (context.start_context) is
+# still being made, not after it (issue 31.5)
+from wgpurender.core.plan import post as _rules  # noqa: F401, I001
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.shaders import create_shader_module
 
