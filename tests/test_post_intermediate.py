@@ -189,3 +189,29 @@ def test_a_chain_with_nothing_between_passes_refuses_the_knob(measured):
                      post_intermediate="rgba8unorm")
     with pytest.raises(UserError, match="post_intermediate = 'rgba32float': choose one of auto, rgba16float, rgba8"):
         resolve_plan(scene, None, post_intermediate="rgba32float")
+
+
+def test_the_raw_path_stores_the_knob_at_the_handoff_and_the_scene_format_inside_fxaa(measured, monkeypatch):
+    """The raw images made for the chain (tonemap | FXAA + vignette): the handoff FXAA samples takes the knob's
+    format, like the wgpu path's intermediate; the tail's input attachment (FXAA's result, read by vignette in
+    the same render pass) keeps the scene image's format, as the wgpu path's fused pass keeps float32 there."""
+    from wgpurender.raw_path.post import neighbourhood
+    from wgpurender.raw_path.scene import frame
+
+    _, _, path = measured
+    made = []
+
+    def spy(module):
+        real = module.create_image
+
+        def create_image(ctx, owned, size, fmt, usage, *args, **kwargs):
+            made.append((module.__name__.rsplit(".", 1)[-1], fmt, usage))
+            return real(ctx, owned, size, fmt, usage, *args, **kwargs)
+        monkeypatch.setattr(module, "create_image", create_image)
+
+    spy(neighbourhood)
+    spy(frame)
+    render(None, path, "raw", "rgba8unorm")
+    assert ("frame", "rgba8unorm", frame.USAGES["handoff"]) in made
+    assert [m for m in made if m[0] == "neighbourhood"] == [
+        ("neighbourhood", "rgba16float", neighbourhood.TAIL_INPUT_USAGE)]
