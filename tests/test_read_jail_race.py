@@ -211,8 +211,8 @@ def test_an_instances_file_swapped_after_its_check_is_refused(tmp_path, monkeypa
     assert load_scene(scene).models[0].placements.count == 2  # as checked: read
     outside = read_jail.outside
 
-    def check_then_swap(path, folders):
-        verdict = outside(path, folders)
+    def check_then_swap(path, folders, *resolve):  # the scene's folder resolver, when the checker passes it
+        verdict = outside(path, folders, *resolve)
         if Path(path).name == "at.npy":
             _swap_for_link(Path(path), tmp_path / "outside" / "at.npy")
         return verdict

@@ -81,3 +81,9 @@ def write_entry(path: Path, key: bytes | str, payload: bytes) -> bool:
         except OSError:
             pass
         return False
+
+
+def cache_folder(name: str) -> Path:
+    """``$XDG_CACHE_HOME/wgpurender/NAME`` (``~/.cache`` when unset): where a cache of ours keeps its entries,
+    never beside the user's files. Tests point $XDG_CACHE_HOME at a folder of their own (tests/conftest.py)."""
+    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "wgpurender" / name

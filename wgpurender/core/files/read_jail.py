@@ -34,6 +34,7 @@ import os
 import re
 import stat
 import urllib.parse
+from collections.abc import Callable
 from pathlib import Path, PureWindowsPath
 from typing import BinaryIO, NoReturn
 
@@ -122,12 +123,13 @@ def scene_folders(scene: Path) -> list[Path] | None:
     return None if is_bundled_scene(scene) else allowed_folders(scene)
 
 
-def outside(path: Path, folders: list[Path] | None) -> str | None:
+def outside(path: Path, folders: list[Path] | None, resolve: Callable[[Path], Path] = resolved) -> str | None:
     """Why a scene may not read ``path`` (already resolved), or None when it may (see the module docstring);
-    ``folders``: what :func:`scene_folders` returned for the scene (None: a bundled scene)."""
+    ``folders``: what :func:`scene_folders` returned for the scene (None: a bundled scene); ``resolve``: how
+    ``path`` is resolved once more (a scene's :class:`~.input_files.FolderResolver` resolves each folder once)."""
     if folders is None:
         return None
-    real = resolved(path)
+    real = resolve(path)
     if any(real.is_relative_to(folder) for folder in folders):
         if real == Path(path):  # the scene reads the canonical path: its reader can check it is still this file
             _vouched(real)

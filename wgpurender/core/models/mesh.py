@@ -315,6 +315,11 @@ def load_mesh(path: str | os.PathLike, *, generate_tangents: bool = True, pose: 
             if file_type == "obj":
                 check_obj_records(path)
             parts = _trimesh_parts(path, file_type)
+    return mesh_of_parts(path, parts, generate_tangents)
+
+
+def mesh_of_parts(path: Path, parts: list[_Part], generate_tangents: bool) -> Mesh:
+    """The one :class:`Mesh` of a file's placed parts (the end of every loader: checked, completed, tangents)."""
     if not parts:
         raise UserError(f"mesh {path} is empty: no triangles found (faces with fewer than 3 vertices, lines and "
                         "points are not triangles)")
@@ -459,7 +464,17 @@ def _simple_obj_parts(path: Path) -> list[_Part] | None:
     scene machinery), or None when the file is not that simple."""
     from wgpurender.core.models import obj_simple
 
-    read = obj_simple.read(path)
+    return _simple_part(obj_simple.read(path))
+
+
+def simple_obj_parts(data: bytes) -> list[_Part] | None:
+    """:func:`_simple_obj_parts` of a file's bytes (the parse cache, core/models/obj_cached.py, read them)."""
+    from wgpurender.core.models import obj_simple
+
+    return _simple_part(obj_simple.parse(data))
+
+
+def _simple_part(read) -> list[_Part] | None:
     if read is None:
         return None
     positions, faces, normals, uvs = read

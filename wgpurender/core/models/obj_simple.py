@@ -32,7 +32,11 @@ MAX_BYTES = 1 << 20  # the win is the per-file overhead; a large file goes throu
 def read(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """(positions, faces, normals, uvs as the file writes them: v = 0 at the bottom) of a simple OBJ file, in
     float64 / int64, or None when the file is not one (see the module docstring)."""
-    data = read_jail.read_checked(path)
+    return parse(read_jail.read_checked(path))
+
+
+def parse(data: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+    """:func:`read` of a file's bytes (the parse cache, core/models/obj_cached.py, has read them to hash them)."""
     if len(data) > MAX_BYTES or b"\\" in data:  # a line continuation (trimesh joins the lines, comments too)
         return None
     if not data.isascii():  # trimesh decodes the whole file (a Latin-1 comment is refused there): its verdict rules

@@ -16,6 +16,7 @@ from wgpurender.core.plan import culling
 from wgpurender.core.plan.batches import OBJECT_BYTES
 from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
 from wgpurender.core.plan.instance_data import fit_binding, resolve_instance_data
+from wgpurender.core.plan.mesh_loading import resolve_mesh_workers
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     DEPTH_FORMAT,
@@ -74,6 +75,13 @@ def _intermediate_why(knob: str) -> str:
     if knob == "none":
         return "knob post_intermediate: nothing stored before FXAA, the effects before it recomputed for each read"
     return "knob post_intermediate: the format stored between post passes"
+
+
+def _mesh_workers(draws, knob: str) -> tuple[str, str, str]:
+    """The mesh_workers setting: how many worker processes read the draws' distinct OBJ files, and why."""
+    files = {d.model_path for d in draws if d.model_path.suffix.lower() == ".obj"}
+    workers, why = resolve_mesh_workers(knob, len(files))
+    return "mesh_workers", str(workers), why
 
 
 def _camera_note(scene: Scene) -> str:
@@ -168,7 +176,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     setting["instance_data"] = way[0]
     drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
                                                  setting["instance_data"], compute)
-    settings = (*settings, ("culling", cull, cull_why))
+    settings = (*settings, ("culling", cull, cull_why), _mesh_workers(drawn.draws, knobs.mesh_workers))
     scene_pass = ScenePass(targets.color, targets.target if msaa > 1 else None, targets.depth, r.clear_color,
                            tuple(drawn.draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
     post_passes, post_attachments = plan_post_passes(steps, setting["post_fuse"] == "on", setting["post_path"],

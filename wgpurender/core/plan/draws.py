@@ -116,11 +116,8 @@ class PipelineTarget:
     depth_format: str
     depth_compare: str
 
-    def pipeline(self, variant: ShaderVariant, model: Model, material: Material,
-                 mirror: bool | None = None) -> ScenePipeline:
+    def pipeline(self, variant: ShaderVariant, material: Material, mirror: bool) -> ScenePipeline:
         # A mirroring world matrix (negative determinant) turns the winding around: its own pipeline.
-        if mirror is None:
-            mirror = _determinant3(model.transform.matrix) < 0
         front_face = "cw" if mirror else "ccw"
         return ScenePipeline(variant, self.color_format, self.sample_count, self.depth_format,
                              front_face=front_face, depth_compare=self.depth_compare,
@@ -156,6 +153,7 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
     notes.extend(light_note(light) for light in scene.lights if light.origin)
     out = SceneDraws()
     seen_materials: set[int] = set()
+    shaded: dict[tuple[int, bool], _Shading] = {}  # one material's part of every draw, made once (10k models)
     for model in scene.models:
         materials, found = file_materials.draw_materials(model)
         if found is not None:
@@ -165,9 +163,13 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
             first_time = id(mat) not in seen_materials
             seen_materials.add(id(mat))
             for mirror, worlds in _copies(model):
-                draw = _plan_draw(model, mat, target, srgb_output, knobs, anisotropy_adapter,
-                                  notes if first_time else None, directional, point, out, mirror,
-                                  scene.environment)
+                mirror = _determinant3(model.transform.matrix) < 0 if mirror is None else mirror
+                key = (id(mat), mirror)
+                if key not in shaded:
+                    shaded[key] = _shading(mat, target, srgb_output, knobs, anisotropy_adapter,
+                                           notes if first_time else None, directional, point, out, mirror,
+                                           scene.environment)
+                draw = _plan_draw(model, shaded[key])
                 out.draws.append(draw if worlds is None else batches.instanced(
                     draw, worlds, model.placements.description))
                 first_time = False
@@ -186,15 +188,28 @@ def _copies(model: Model) -> list[tuple[bool | None, object]]:
     return [(m, worlds[mirrored == m]) for m in dict.fromkeys(mirrored.tolist())]
 
 
-def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
-               anisotropy_adapter: str | None, notes: list[str] | None, directional: list[int], point: list[int],
-               out: SceneDraws, mirror: bool | None = None, environment=None) -> Draw:
-    """The draw of one model with one material (its variant, pipeline, textures and samplers registered in
-    ``out``): a scene material samples every texture with its one sampler, a file material each with its own."""
+@dataclass(frozen=True)
+class _Shading:
+    """What a draw takes from its material and winding alone: equal for every model drawn with them."""
+
+    material: Material
+    variant: ShaderVariant
+    pipeline: ScenePipeline
+    sampled: tuple
+    samplers: tuple
+    factors: tuple
+    label: str
+
+
+def _shading(mat: Material, target: PipelineTarget, srgb_output: str | None, knobs: Knobs,
+             anisotropy_adapter: str | None, notes: list[str] | None, directional: list[int], point: list[int],
+             out: SceneDraws, mirror: bool, environment=None) -> _Shading:
+    """A material's variant, pipeline, textures and samplers (registered in ``out``): a scene material samples
+    every texture with its one sampler, a file material each with its own."""
     label = material_label(mat)
     variant = material_variant(mat, directional, point, srgb_output, notes if notes is not None else [], environment)
     out.variants.setdefault(variant.key, variant)
-    pipeline = target.pipeline(variant, model, mat, mirror)
+    pipeline = target.pipeline(variant, mat, mirror)
     out.pipelines.setdefault(pipeline.key, pipeline)
     sampled = tuple((f, getattr(mat, f)) for f in TEXTURE_FEATURES if f in variant.flags)
     spec = material_sampler(mat, label, knobs, anisotropy_adapter, notes) if sampled else None
@@ -207,8 +222,13 @@ def _plan_draw(model: Model, mat: Material, target: PipelineTarget, srgb_output:
         out.table.add_textures(label, ((feature, path),), file_materials.texture_mipmaps(mat, feature))
     for feature, feature_spec in own:
         out.table.add_sampler(feature_spec, label if not mat.texture_samplers else f"{label} {feature}")
-    factors = draw_factors(mat, variant)
+    return _Shading(mat, variant, pipeline, sampled, tuple(own), tuple(draw_factors(mat, variant).items()), label)
+
+
+def _plan_draw(model: Model, shading: _Shading) -> Draw:
+    """The draw of one model with one material's shading."""
+    mat, own = shading.material, shading.samplers
     draw_label = model.label if mat.part is None else f"{model.label} {mat.name.removeprefix(model.label).strip()}"
-    return Draw(model.index, model.path, draw_label, mat.name, variant.key, pipeline.key, sampled,
-                own[0][1] if own else None, model.transform.matrix, label, tuple(factors.items()), part=mat.part,
-                samplers=tuple(own), topology=mat.topology, pose=model.pose)
+    return Draw(model.index, model.path, draw_label, mat.name, shading.variant.key, shading.pipeline.key,
+                shading.sampled, own[0][1] if own else None, model.transform.matrix, shading.label, shading.factors,
+                part=mat.part, samplers=own, topology=mat.topology, pose=model.pose)

@@ -9,7 +9,9 @@ buffers (wgpu_path/scene/resources.py, raw_path/scene/resources.py).
 from __future__ import annotations
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models.mesh import Mesh, index_range, load_mesh
+from wgpurender.core.models.mesh import Mesh, index_range
+from wgpurender.core.models.obj_cached import load_mesh
+from wgpurender.core.plan.mesh_loading import MIN_FILES
 from wgpurender.core.plan.model import Draw, RenderPlan
 
 
@@ -21,14 +23,35 @@ class PlanMeshes:
         self._meshes: dict[tuple, Mesh] = {}
         self._needs_tangents = {d.mesh_key for d in plan.scene_pass.draws
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
+        # cache entries are written by workers, or here for a small scene: writing thousands from this process
+        # cost more than the parses they save (core/models/obj_cached._load)
+        obj_files = {d.model_path for d in plan.scene_pass.draws if d.model_path.suffix.lower() == ".obj"}
+        self._store = len(obj_files) < MIN_FILES
 
     def mesh(self, key: tuple) -> Mesh:
         """The loaded mesh of a draw's ``mesh_key`` (its file and pose); tangents only when a variant drawing it
-        has a normal map."""
+        has a normal map. With worker processes in the plan (``mesh_workers``), the first call reads every OBJ
+        file of the plan through them."""
         if key not in self._meshes:
-            path, pose = key
-            self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose)
+            if self.plan.mesh_workers and not self._meshes:
+                self._read_in_workers()
+            if key not in self._meshes:  # through the parse cache (core/models/obj_cached.py)
+                path, pose = key
+                self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose,
+                                              store=self._store)
         return self._meshes[key]
+
+    def _read_in_workers(self) -> None:
+        """The plan's OBJ files, in draw order, read by core/models/mesh_workers.py; a file that is not a simple
+        OBJ is left to :func:`load_mesh` (the general loader)."""
+        from wgpurender.core.models import mesh_workers, obj_cached
+
+        keys = dict.fromkeys(d.mesh_key for d in self.plan.scene_pass.draws
+                             if d.model_path.suffix.lower() == ".obj" and d.pose is None)
+        jobs = [(key[0], key in self._needs_tangents) for key in keys]
+        for (path, _), mesh in mesh_workers.load_all(jobs, self.plan.mesh_workers, obj_cached.folder()).items():
+            if mesh is not None:
+                self._meshes[(path, None)] = mesh
 
     def mesh_for(self, draw: Draw) -> Mesh:
         """The draw's mesh, checked against the vertex attributes its variant reads (UserError names what is
@@ -55,20 +78,25 @@ class PlanMeshes:
 BUFFER_ALIGN = 4  # set_vertex_buffer's and set_index_buffer's offsets, and a buffer's size, are multiples of 4
 
 
-def buffer_places(sizes: list[tuple[int, int]], limit: int, names: list[str]) -> list[tuple[int, int, int]]:
+def buffer_places(sizes: list[tuple[int, int]], limit: int, names: list[str],
+                  strides: list[int] | None = None) -> list[tuple[int, int, int]]:
     """Where each mesh goes when a scene's meshes share vertex and index buffers: (buffer pair, vertex offset,
     index offset) per mesh of ``sizes`` ((vertex bytes, index bytes), in draw order), each at a 4-byte aligned
     offset. A new pair starts when the mesh would take the vertex or the index buffer past ``limit`` bytes (the
     device's max-buffer-size; these buffers are never bound as storage, so no binding limit applies). One mesh
-    larger than the limit cannot be drawn from one buffer: UserError naming it (``names``, beside ``sizes``)."""
+    larger than the limit cannot be drawn from one buffer: UserError naming it (``names``, beside ``sizes``).
+    ``strides``: each mesh's vertex stride (bytes, a multiple of 4): its vertices then start on a whole vertex of
+    it, so a draw can name them by base vertex from the buffer bound at 0."""
     places, pair, vertex_end, index_end = [], 0, 0, 0
-    for (vertex, index), name in zip(sizes, names, strict=True):
+    for k, ((vertex, index), name) in enumerate(zip(sizes, names, strict=True)):
         vertex, index = (-(-n // BUFFER_ALIGN) * BUFFER_ALIGN for n in (vertex, index))
         if max(vertex, index) > limit:
             raise UserError(f"mesh {name} needs a {max(vertex, index)}-byte vertex or index buffer, more than this "
                             f"device's max-buffer-size ({limit} bytes): split the model into smaller meshes")
-        if vertex_end + vertex > limit or index_end + index > limit:
-            pair, vertex_end, index_end = pair + 1, 0, 0
-        places.append((pair, vertex_end, index_end))
-        vertex_end, index_end = vertex_end + vertex, index_end + index
+        step = strides[k] if strides else BUFFER_ALIGN
+        start = -(-vertex_end // step) * step
+        if start + vertex > limit or index_end + index > limit:
+            pair, start, index_end = pair + 1, 0, 0
+        places.append((pair, start, index_end))
+        vertex_end, index_end = start + vertex, index_end + index
     return places

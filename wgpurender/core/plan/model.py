@@ -22,6 +22,7 @@ from wgpurender.core.plan.culling import CULLING
 from wgpurender.core.plan.explain import explain
 from wgpurender.core.plan.gl_facts import glsl_allows
 from wgpurender.core.plan.instance_data import INSTANCE_DATA
+from wgpurender.core.plan.mesh_loading import MESH_WORKERS
 from wgpurender.core.scene import Placements, Scene
 
 DEPTH_FORMAT = "depth32float"
@@ -368,6 +369,7 @@ class Knobs:
     culling: str = "auto"  # "auto", "gpu", "cpu" or "off": which instanced draws are culled (core/plan/culling.py)
     instance_data: str = "auto"  # "auto", "storage" or "vertex": how instances reach the vertex shader
     post_intermediate: str = "auto"  # POST_INTERMEDIATES: the format between post passes (a quality knob)
+    mesh_workers: str = "auto"  # "auto", "off" or "on": model files read by worker processes (plan/mesh_loading.py)
 
     def check(self) -> None:
         bad = [(name, value, allowed) for name, value, allowed in (
@@ -375,6 +377,7 @@ class Knobs:
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
             ("culling", self.culling, CULLING), ("instance_data", self.instance_data, INSTANCE_DATA),
             ("post_intermediate", self.post_intermediate, POST_INTERMEDIATES),
+            ("mesh_workers", self.mesh_workers, MESH_WORKERS),
         ) if value not in allowed]
         for name, value, allowed in bad:
             raise UserError(f"plan knob {name} = {value!r}: choose one of "
@@ -539,6 +542,11 @@ class RenderPlan:
         return self.setting("instance_data")
 
     @property
+    def mesh_workers(self) -> int:
+        """Worker processes that read the model files (0: this process reads them; core/plan/mesh_loading.py)."""
+        return int(self.setting("mesh_workers"))
+
+    @property
     def post_steps(self) -> tuple[EffectStep, ...]:
         """Every effect step of the chain in order, whatever the passes (what the raw path's subpass composes)."""
         return tuple(s for p in self.post_passes for s in p.steps)
@@ -577,10 +585,21 @@ class RenderPlan:
         return frozenset(a for v in self.variants for a in v.vertex_attributes)
 
     def pipeline(self, key: str) -> ScenePipeline:
-        return next(p for p in self.pipelines if p.key == key)
+        return self._by_key[1][key]
 
     def variant(self, key: str) -> ShaderVariant:
-        return next(v for v in self.variants if v.key == key)
+        return self._by_key[0][key]
+
+    @functools.cached_property
+    def _by_key(self) -> tuple[dict[str, ShaderVariant], dict[str, ScenePipeline]]:
+        """Variants and pipelines by key, first of each key (a renderer asks for them per draw: 10k draws)."""
+        variants: dict[str, ShaderVariant] = {}
+        pipelines: dict[str, ScenePipeline] = {}
+        for v in self.variants:
+            variants.setdefault(v.key, v)
+        for p in self.pipelines:
+            pipelines.setdefault(p.key, p)
+        return variants, pipelines
 
     # -- text ----------------------------------------------------------------
     def explain(self) -> str:

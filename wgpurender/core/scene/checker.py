@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 from typing import Any
@@ -10,7 +11,7 @@ import numpy as np
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
-from wgpurender.core.files.input_files import InputFileError, input_file, resolved
+from wgpurender.core.files.input_files import FolderResolver, InputFileError, input_file
 from wgpurender.core.scene.toml_locator import KeyLines, KeyPath, format_path
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)
@@ -27,7 +28,12 @@ class Checker:
     def __init__(self, path: Path, text: str) -> None:
         self.path = path
         self.folder = path.parent
-        self.keys = KeyLines(text)
+        self.text = text
+
+    @functools.cached_property
+    def keys(self) -> KeyLines:
+        """Each key's line, indexed only when a message needs one (a scene of 10k models is checked without)."""
+        return KeyLines(self.text)
 
     def error(self, key: KeyPath, message: str) -> UserError:
         line = self.keys.line_of(key)
@@ -95,7 +101,9 @@ class Checker:
         if any(not ch.isprintable() for ch in written):
             raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
                                   "(NUL, newline, ...): give a plain file path")
-        path = resolved(self.folder / written)
+        if not hasattr(self, "_resolve"):
+            self._resolve = FolderResolver()  # each folder resolved once per scene, not once per file
+        path = self._resolve(self.folder / written)
         try:
             found = input_file(path, what)  # a stat only: what is missing or special is named as such
         except InputFileError as err:
@@ -104,7 +112,7 @@ class Checker:
         else:
             if not hasattr(self, "_jail"):
                 self._jail = read_jail.scene_folders(self.path)  # once per scene, not per file
-            refused = read_jail.outside(found, self._jail)
+            refused = read_jail.outside(found, self._jail, self._resolve)
             if refused is not None:
                 raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
             return found

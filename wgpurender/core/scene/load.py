@@ -49,8 +49,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     description = data.get("description", "")
     choice = file_camera_choice(c, data["camera"])
     camera = _camera(c, data["camera"]) if choice is None else None
-    models = tuple(dataclasses.replace(m, file_materials=read_file_materials(m), motion=read_motion(m))
-                   for m in _models(c, data.get("models", []), materials))
+    models = tuple(_with_file_data(m) for m in _models(c, data.get("models", []), materials))
     scene = Scene(
         path=path,
         camera=camera if choice is None else resolve_file_camera(c, choice, models),
@@ -67,6 +66,15 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     from wgpurender.core.scene.gltf_lights import scene_lights  # imported only for glTF models
 
     return dataclasses.replace(scene, lights=scene_lights(scene.lights, scene.models, path))  # + KHR lights
+
+
+def _with_file_data(model):
+    """The model with the materials and motion its file gives (read once, here), or itself when its file gives
+    neither (most models of a large scene: not copied)."""
+    found, motion = read_file_materials(model), read_motion(model)
+    if found is None and not motion:
+        return model
+    return dataclasses.replace(model, file_materials=found, motion=motion)
 
 
 def load_scene(path: str | Path) -> Scene:

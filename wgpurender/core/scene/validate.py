@@ -20,6 +20,7 @@ from wgpurender.core.scene.model import (
     CONVENTIONS,
     DEFAULT_MATERIAL,
     FILTERS,
+    IDENTITY,
     LIGHT_TYPES,
     MAX_ANISOTROPY,
     MAX_LIGHTS,
@@ -196,6 +197,8 @@ def _transform(c: _Checker, data: Any, key: KeyPath) -> Transform:
         if transforms.flat(m):
             raise c.error(key + ("matrix",), f"{format_path(key)}.matrix is singular (its 3x3 part has determinant 0)")
         return Transform(_rows(m), "matrix")
+    if not t:
+        return IDENTITY  # most models of a large scene: no matrix to build
     parts, m = [], np.eye(4)
     if "translate" in t:
         offset = c.vector(t["translate"], key + ("translate",))

@@ -140,6 +140,7 @@ class ScenePassRenderer:
         self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
         groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
         packed: dict[tuple, bytes] = {}  # equal keys hold equal variants and factors: packed once (10k draws)
+        pipelines: dict[str, wgpu.GPURenderPipeline] = {}  # by the plan's key: looked up once, not once a draw
         for draw in self.draws:
             variant = self.plan.variant(draw.variant_key)
             key = draw.material_key()
@@ -151,7 +152,9 @@ class ScenePassRenderer:
                 if self.material_buffer is not None:
                     self.ctx.queue.write_buffer(self.material_buffer, slot * self.material_stride, data)
                 groups[key] = self._material_group(variant, draw, slot)
-            pipeline = self.pipeline(self.plan.pipeline(draw.pipeline_key))
+            pipeline = pipelines.get(draw.pipeline_key)
+            if pipeline is None:
+                pipeline = pipelines[draw.pipeline_key] = self.pipeline(self.plan.pipeline(draw.pipeline_key))
             buffers = self.resources.mesh_buffers(draw)
             self.draw_state.append((draw, pipeline, groups[key], data, buffers, self.resources.index_range(draw)))
 
@@ -305,21 +308,27 @@ class ScenePassRenderer:
                 encoder.set_bind_group(0, self.camera_group)
                 if self.object_group is not None:
                     encoder.set_bind_group(1, self.object_group)
-                last[2] = None  # a new layout: the material group is set again
+                last[1] = last[2] = None  # a new layout: the material group and immediates are set again
             if group is not None and group is not last[2]:
                 encoder.set_bind_group(material_group, group)
-            if self.uses_immediates:
+            if self.uses_immediates and data is not last[1]:  # equal material keys share one bytes object
                 encoder.set_immediates(0, data, 0, len(data))
-            if buffers is not last[3]:
-                encoder.set_vertex_buffer(0, buffers.vertex, buffers.vertex_offset)
-                encoder.set_index_buffer(buffers.index, buffers.index_format, buffers.index_offset)
-            last = [pipeline, None, group, buffers]
-            if self.plan.pipeline(draw.pipeline_key).culled:  # its visible instances, as the GPU counted them
+            culled = self.plan.pipeline(draw.pipeline_key).culled
+            # the GPU-culled draw's indirect block counts from its mesh's offsets: bound there; every other draw
+            # names its mesh by first index and base vertex in the shared buffers bound once at 0 (one call a draw)
+            bound = buffers if culled else (buffers.vertex, buffers.index, buffers.index_format)
+            if bound != last[3]:
+                at = (buffers.vertex_offset, buffers.index_offset) if culled else (0, 0)
+                encoder.set_vertex_buffer(0, buffers.vertex, at[0])
+                encoder.set_index_buffer(buffers.index, buffers.index_format, at[1])
+            last = [pipeline, data, group, bound]
+            if culled:  # its visible instances, as the GPU counted them
                 encoder.draw_indexed_indirect(self.culler.indirect, self.culler.offset(draw))
                 continue
             # the draw's part of the mesh (a file material's triangles), once per instance
             instances = self.cpu_culler.count(draw) if draw.cpu_culled else draw.instance_count
-            encoder.draw_indexed(count, instances, first, 0, draw.first_instance)
+            first += buffers.first_index  # where the mesh's indices start in the shared buffer
+            encoder.draw_indexed(count, instances, first, buffers.base_vertex, draw.first_instance)
 
 
 def _color_target(planned: ScenePipeline) -> dict:

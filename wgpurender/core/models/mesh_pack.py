@@ -1,0 +1,64 @@
+"""A loaded :class:`~wgpurender.core.models.mesh.Mesh` as bytes and back: what the parse cache stores
+(core/models/obj_cached.py) and what a worker process hands its parent (core/models/mesh_workers.py).
+
+Plain arrays behind a fixed header, never pickle: a cache entry is data that cannot run code when it is read
+(core/files/cache_entry.py, docs/security.md). Only the meshes a simple OBJ file gives are packed (positions,
+normals, uvs, triangle indices, tangents or none, triangle parts); anything else (vertex colours, extra
+coordinate slots, points and lines) is not, and :func:`pack` returns None for it. :func:`unpack` checks that the
+header's counts match the bytes, so a short or padded blob is refused (None), never read past its end.
+"""
+
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+import numpy as np
+
+from wgpurender.core.models.mesh import Mesh, MeshPart
+
+# magic, vertices, triangles, index bytes (2 or 4), has_uvs, tangents (0 none, 1 file, 2 generated), parts
+HEADER = struct.Struct("<8sQQBBBQ")
+MAGIC = b"wrmesh1\n"
+PART = struct.Struct("<qQQ")  # material (-1: none), first index, index count
+TANGENTS = {None: 0, "file": 1, "generated": 2}
+SOURCES = {code: name for name, code in TANGENTS.items()}
+
+
+def pack(mesh: Mesh) -> bytes | None:
+    """The mesh as bytes, or None when it holds what a simple OBJ file cannot (see the module docstring)."""
+    if (mesh.colors is not None or mesh.extra_uvs or mesh.extra_indices is not None
+            or any(p.topology != "triangle-list" for p in mesh.parts)):
+        return None
+    has_tangents = mesh.tangents is not None
+    head = HEADER.pack(MAGIC, len(mesh.positions), len(mesh.indices), mesh.indices.dtype.itemsize, mesh.has_uvs,
+                       TANGENTS[mesh.tangents_source] if has_tangents else 0, len(mesh.parts))
+    parts = b"".join(PART.pack(-1 if p.material is None else p.material, p.first_index, p.index_count)
+                     for p in mesh.parts)
+    arrays = [mesh.positions, mesh.normals, mesh.uvs, *([mesh.tangents] if has_tangents else []), mesh.indices]
+    return head + parts + b"".join(np.ascontiguousarray(a).tobytes() for a in arrays)
+
+
+def unpack(blob: bytes, source: Path | None) -> Mesh | None:
+    """The mesh :func:`pack` wrote (its ``source`` set to ``source``), or None when ``blob`` is not one whole."""
+    if len(blob) < HEADER.size:
+        return None
+    magic, n, f, index_size, has_uvs, tangents, n_parts = HEADER.unpack_from(blob)
+    widths = (3, 3, 2, 4) if tangents else (3, 3, 2)
+    at = HEADER.size + n_parts * PART.size
+    if magic != MAGIC or index_size not in (2, 4) or tangents not in SOURCES or n == 0 or f == 0 \
+            or len(blob) != at + 4 * n * sum(widths) + 3 * f * index_size:
+        return None
+    parts = tuple(MeshPart(None if m < 0 else m, first, count)
+                  for m, first, count in PART.iter_unpack(blob[HEADER.size:at]))
+    blob = bytearray(blob)  # writable arrays, as a fresh load gives
+    arrays = []
+    for width in widths:
+        arrays.append(np.frombuffer(blob, np.float32, n * width, at).reshape(n, width))
+        at += 4 * n * width
+    indices = np.frombuffer(blob, np.uint16 if index_size == 2 else np.uint32, 3 * f, at).reshape(f, 3)
+    if int(indices.max()) >= n:  # every index within the vertices, as build_mesh checked when it was packed
+        return None
+    return Mesh(positions=arrays[0], normals=arrays[1], uvs=arrays[2], indices=indices,
+                tangents=arrays[3] if tangents else None, has_uvs=bool(has_uvs), tangents_source=SOURCES[tangents],
+                source=source, parts=parts)

@@ -1,0 +1,80 @@
+"""A scene's simple OBJ files read in worker processes (issue 31: 10k distinct mesh files, each ~0.3 ms of
+Python parsing on one core); the plan decides whether and how many (core/plan/mesh_loading.py).
+
+The parent has already checked every path against the read rule (the scene's folders: core/scene/checker.py);
+each worker applies the same per-file checks as :func:`~wgpurender.core.models.mesh.load_mesh` (a readable
+regular file, within the size limit) and reads the file through the same cache-aware reader
+(core/models/obj_cached.py), so its mesh is the serial load's. A worker sends back packed meshes
+(core/models/mesh_pack.py) in chunks; a refused file comes back as its one-line message, which the parent raises
+as the same :class:`UserError`, for the first such file in draw order. A file that is not a simple OBJ comes back
+as None and is loaded by the parent the general way. Workers are forked (POSIX ``fork``: no re-import of the
+caller's main module, no start-up beyond the fork); if one dies, the chunks not read yet are loaded serially.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from itertools import repeat
+from pathlib import Path
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files.input_files import check_file_size, input_file
+from wgpurender.core.models import mesh_pack, obj_cached
+from wgpurender.core.models.mesh import Mesh
+
+CHUNK = 64  # files per task: one round trip carries ~64 packed cubes (~200 KB)
+Job = tuple[Path, bool]  # (model file, make tangents)
+
+
+def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mesh | None]:
+    """Every job's mesh (None: not a simple OBJ file), read by ``workers`` forked processes; raises the
+    UserError of the first refused file in ``jobs`` order."""
+    chunks = [jobs[i:i + CHUNK] for i in range(0, len(jobs), CHUNK)]
+    _before_fork()
+    meshes: dict[Job, Mesh | None] = {}
+    done = 0
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+    try:
+        for result in pool.map(read_chunk, chunks, repeat(where)):  # in order, each as soon as it is read
+            _take(chunks[done], result, meshes)  # unpacked here while the workers read the next chunks
+            done += 1
+    except BrokenProcessPool:  # a worker died (killed, out of memory): the rest in this process
+        pass
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)  # a refusal stops the chunks not started yet
+    for chunk in chunks[done:]:
+        _take(chunk, read_chunk(chunk, where), meshes)
+    return meshes
+
+
+def _before_fork() -> None:
+    """What every worker would otherwise do first, each on its own: import trimesh's ``unmerge_faces`` (the
+    simple reader's, ~0.1 s) and hash the parser's source for the cache key (obj_cached.parser_version)."""
+    from trimesh.visual.texture import unmerge_faces  # noqa: F401
+
+    obj_cached.parser_version()
+
+
+def _take(chunk: list[Job], result: list[tuple[str, object]], meshes: dict[Job, Mesh | None]) -> None:
+    """Unpack a chunk's meshes; raise the first refusal."""
+    for job, (kind, value) in zip(chunk, result, strict=True):
+        if kind == "refused":
+            raise UserError(value)
+        meshes[job] = None if value is None else mesh_pack.unpack(value, job[0])
+
+
+def read_chunk(chunk: list[Job], where: Path | None) -> list[tuple[str, object]]:
+    """("mesh", packed bytes or None) or ("refused", the one-line message) per job: what runs in a worker (which
+    writes the cache entries of what it parsed)."""
+    out: list[tuple[str, object]] = []
+    for path, tangents in chunk:
+        try:
+            check_file_size(input_file(path, "model file"), "model file")
+            out.append(("mesh", obj_cached.load_packed(path, tangents, where)))
+        except UserError as err:
+            out.append(("refused", str(err)))
+        except OSError:  # vanished or unreadable since the check: the parent's general load says what it is
+            out.append(("mesh", None))
+    return out
