@@ -33,7 +33,6 @@ from wgpurender.core.plan import resolve_plan  # noqa: E402
 from wgpurender.core.scene import Scene, load_scene  # noqa: E402
 from wgpurender.wgpu_path.device.context import get_context  # noqa: E402
 from wgpurender.wgpu_path.device.frame_loop import run_frame  # noqa: E402
-from wgpurender.wgpu_path.device.targets import create_target  # noqa: E402
 from wgpurender.wgpu_path.device.timing import PassTimer, Stats  # noqa: E402
 from wgpurender.wgpu_path.scene import SceneRenderer  # noqa: E402
 
@@ -42,7 +41,7 @@ def time_scene(ctx, scene: Scene, size, frames: int, warmup: int) -> tuple[Stats
     """Wall-time stats of whole frames and GPU-time stats of each pass."""
     plan = resolve_plan(scene, None, size=size)
     renderer = SceneRenderer(ctx, scene, plan)
-    target = create_target(ctx, plan.size, plan.output_format)
+    target = renderer.create_output()
     timer = PassTimer(ctx)
     wall, gpu = [], {}
     record = functools.partial(renderer.record, timer=timer)

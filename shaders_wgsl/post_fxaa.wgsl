@@ -23,6 +23,11 @@
 
 @group(0) @binding(1) var src_sampler: sampler;
 
+// Every read of the input goes through fxaa_texel(p) (a texel, clamped to the edge) and fxaa_sample(uv) (a
+// bilinear sample), which wgpurender/wgpu_path/post/shaders.py generates: src_clamped and the sampler, or, with
+// the knob post_intermediate = none, the effects before FXAA applied to each texel read and the bilinear taps
+// computed here from four such texels (nothing stored between the passes).
+
 // FxaaParams (subpix: 0 = no sub-pixel blending .. 1 = full; edge_threshold: minimum contrast relative to the
 // local max luma; edge_threshold_min: absolute minimum contrast, skips dark noise) is generated from the
 // effect's spec (wgpurender/core/course/effects.py) by wgpurender/wgpu_path/post/shaders.py.
@@ -34,11 +39,11 @@ fn luma_of(c: vec3f) -> f32 {
 }
 
 fn luma_at(p: vec2i) -> f32 {
-    return luma_of(src_clamped(p).rgb);
+    return luma_of(fxaa_texel(p).rgb);
 }
 
 fn luma_uv(uv: vec2f) -> f32 {
-    return luma_of(textureSampleLevel(src, src_sampler, uv, 0.0).rgb);
+    return luma_of(fxaa_sample(uv).rgb);
 }
 
 // Step 1: true where FXAA works on the pixel (its local contrast is high enough). Written as
@@ -57,7 +62,7 @@ fn search_step(i: u32) -> f32 {
 
 // The FXAA'd colour of pixel p (pos: its centre in pixels).
 fn fxaa_at(p: vec2i, pos: vec2f, params: FxaaParams) -> vec4f {
-    let centre = src_clamped(p);
+    let centre = fxaa_texel(p);
     let inv = 1.0 / vec2f(textureDimensions(src));
     let uv = pos * inv;
 
@@ -154,7 +159,7 @@ fn fxaa_at(p: vec2i, pos: vec2f, params: FxaaParams) -> vec4f {
     } else {
         final_uv.x += offset * across;
     }
-    let color = textureSampleLevel(src, src_sampler, final_uv, 0.0);
+    let color = fxaa_sample(final_uv);
     return vec4f(color.rgb, centre.a);
 }
 
@@ -162,7 +167,7 @@ fn fxaa_at(p: vec2i, pos: vec2f, params: FxaaParams) -> vec4f {
 // as fxaa_at returns it off edges, and depth 1 where this is true (fxaa_at has work to do), 0 elsewhere.
 // Draw 2 (the generated fs_main, the triangle at depth 0, compare "less") then runs only on edge pixels.
 fn fxaa_marks(p: vec2i, params: FxaaParams) -> bool {
-    let centre = src_clamped(p);
+    let centre = fxaa_texel(p);
     return is_edge(luma_of(centre.rgb), luma_at(p + vec2i(0, -1)), luma_at(p + vec2i(0, 1)),
                    luma_at(p + vec2i(-1, 0)), luma_at(p + vec2i(1, 0)), params);
 }

@@ -131,6 +131,13 @@ POD_T = "tests/test_parser_on_demand.py"
 INSTANCE_RULE = ("tests/test_instance_data.py|rule or below_4 or limits or environment or refused or culling_without "
                  "or explain or without_compute or binds_wrongly")
 INSTANCE_PIXELS = "tests/test_instance_data.py|storage_pixels or cpu_culling or cpu_culler or stretched"
+PP = "wgpurender/core/plan/post.py"
+ROOF = "wgpurender/bench/post_roofline.py"
+TWIN_PLAN = "tests/test_plan.py|twin"
+TWIN_PATHS = "tests/test_post_paths.py|twin or hand_made"
+POST_SRGB = "tests/test_post.py|encodes_exactly_once"
+INTERMEDIATE = "tests/test_post_intermediate.py"
+ROOF_T = "tests/test_post_roofline.py"
 M_PACK = "wgpurender/core/models/mesh_pack.py"
 O_CACHED = "wgpurender/core/models/obj_cached.py"
 M_WORK = "wgpurender/core/models/mesh_workers.py"
@@ -1343,6 +1350,61 @@ MUTATIONS = [
      "embedded_image_bytes(path)", [SPECGLOSS]),
     (SG, "for top in range(0, height, BAND_ROWS):", "for top in range(0, height - 1, BAND_ROWS):", [SPECGLOSS]),
     (SG, "band = {k: t[top:top + BAND_ROWS] for", "band = {k: t[top:top + 1] for", [SPECGLOSS]),
+    # post (issue 31.4 / 31.6): the -srgb output's storage twin, and the knob post_intermediate
+    (PP, "writes_output and output_storage and output_twin and dst_fmt", "writes_output and output_twin and dst_fmt",
+     [TWIN_PLAN]),
+    (PP, "and output_storage and output_twin and dst_fmt in", "and output_storage and dst_fmt in", [POST_SRGB]),
+    (PP, "twin_of, dst_fmt = dst_fmt, STORAGE_TWINS[dst_fmt]", "twin_of = dst_fmt", [TWIN_PLAN]),
+    ("wgpurender/core/plan/build.py", "output_attachment(twin.output_format if twin else out_fmt,",
+     "output_attachment(out_fmt,", [TWIN_PLAN]),
+    ("wgpurender/core/plan/model.py", "return self.copy_format or self.twin_of", "return self.copy_format",
+     [TWIN_PATHS]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    if p.encodes_for:  # srgb_encode", "    if p.copy_to:  # srgb_encode",
+     [TWIN_PATHS]),
+    ("wgpurender/wgpu_path/scene/frame.py", "self.plan.size, self.plan.target_format, usage",
+     "self.plan.size, self.plan.output_format, usage", [TWIN_PATHS]),
+    ("wgpurender/wgpu_path/scene/frame.py", "if target.format != self.plan.target_format:",
+     "if target.format != self.plan.output_format:", [TWIN_PATHS]),
+    ("wgpurender/wgpu_path/post/chain.py", "size, output_twin=False)", "size)", [POST_SRGB]),
+    (PP, "        temp_fmt = intermediate\n", "        temp_fmt = scene_fmt\n", [INTERMEDIATE]),
+    (PP, "        if n < 2:\n            raise UserError(f\"post_intermediate", "        if n < 1:\n            raise "
+     "UserError(f\"post_intermediate", [INTERMEDIATE]),
+    ("wgpurender/raw_path/scene/renderpass.py", "return scene_format(plan) if knob in (\"auto\", \"none\") else knob",
+     "return scene_format(plan)", [INTERMEDIATE]),
+    ("wgpurender/raw_path/post/neighbourhood.py", "mid_format = scene_image_format(plan)", "mid_format = source.format",
+     [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/chain.py", "        usage |= wgpu.TextureUsage.COPY_DST\n", "        usage |= 0\n",
+     [INTERMEDIATE]),
+    ("wgpurender/core/plan/build.py", "(\"post_intermediate\", knobs.post_intermediate, ",
+     "(\"post_intermediate\", \"auto\", ", [INTERMEDIATE]),
+    ("wgpurender/core/plan/model.py",
+     "            (\"post_intermediate\", self.post_intermediate, POST_INTERMEDIATES),\n", "", [INTERMEDIATE]),
+    (ROOF, "    return sum(r.ms for r in rows) / copy_ms if copy_ms > 0",
+     "    return sum(r.ms for r in rows) / copy_ms / 2 if copy_ms > 0", [ROOF_T]),
+    (ROOF, "    if mine[0].intermediate == \"auto\":\n        return \"\"", "    if False:\n        return \"\"",
+     [ROOF_T]),
+    (ROOF, "        rows += time_variant(ctx, scene, size, path, fuse, frames, copy, intermediate)",
+     "        rows += time_variant(ctx, scene, size, path, fuse, frames, copy)", [ROOF_T]),
+
+    # post_intermediate = none: the steps before FXAA recomputed for every texel it reads
+    (PP, "        if (out and group[0].effect in RECOMPUTING_READERS and not preludes[-1]",
+     "        if (out and not preludes[-1]", [INTERMEDIATE]),
+    (PP, "    if not any(preludes):\n", "    if False:\n", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    h = p.prelude\n", "    h = 0\n", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    if p.prelude == 0:\n        return FXAA_READS",
+     "    if True:\n        return FXAA_READS", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "for i in range(p.prelude)]", "for i in range(0)]", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    return mix(top, bottom, f.y);", "    return mix(top, bottom, f.x);",
+     [INTERMEDIATE]),
+    ("wgpurender/raw_path/scene/support.py", "    if plan.knobs.post_intermediate == \"none\":",
+     "    if False:", [INTERMEDIATE]),
+
+    ("wgpurender/bench/figures_post.py", "intermediate = row.pop(len(row) - knob) if knob else \"auto\"",
+     "intermediate = \"auto\"", ["tests/test_benchmark_figures.py|perf2_roofline_rows"]),
+
+    (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"none\")",
+     "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"auto\")", [ROOF_T]),
+
     # cameras' rows (2026-11-27): a glTF file's camera as the view (core/scene/gltf_cameras.py), its projections,
     # the orthographic view vector (eye.w) on both paths, the infinite far plane's culling, --camera
     (TF, "m[2, 2], m[2, 3] = (0.0, near) if reverse_z else (-1.0, -near)",

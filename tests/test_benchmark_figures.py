@@ -34,6 +34,14 @@ def test_perf2_roofline_rows_read_back_what_post_roofline_wrote(tmp_path):
         ("compute, fused", "tonemap", "compute", 8e6, 0), ("compute, fused", "fxaa+vignette", "compute", 4e6, 2e6),
         ("compute, unfused", "tonemap", "compute", 8e6, 0)]
     assert figures_post.chain_ratio(read) == (0.75, 0.375, 2)
+    # a run with the knob post_intermediate: its column is read apart, and only auto rows make the fused chain
+    rows.append(PassTime("compute, fused, rgba8unorm", "tonemap", "compute", 6_000_000, 0.4, 0.2,
+                         intermediate="rgba8unorm"))
+    path.write_text(csv_text(rows))
+    read = figures_post.roofline_rows(path)
+    assert [(r["variant"], r["intermediate"], r["bytes_moved"]) for r in read][2:] == [
+        ("compute, unfused", "auto", 8e6), ("compute, fused, rgba8unorm", "rgba8unorm", 6e6)]
+    assert figures_post.chain_ratio(read) == (0.75, 0.375, 2)
 
 
 def test_perf2_run_has_its_files_and_consistent_roofline_columns():

@@ -150,9 +150,9 @@ def test_scene_renderer_resized_equals_a_fresh_renderer(ctx, tmp_path, sizes):
     reused = SceneRenderer(ctx, scene, resolve_plan(scene, None))
     first, second = sizes
     for size in (first, second):
-        target = create_target(ctx, size, reused.plan.output_format, usage=TARGET_USAGE | reused.target_usage)
+        target = create_target(ctx, size, reused.plan.target_format, usage=TARGET_USAGE | reused.target_usage)
         got = render_frame(ctx, reused, target)[0]
-        fresh_target = create_target(ctx, size, reused.plan.output_format, usage=TARGET_USAGE | reused.target_usage)
+        fresh_target = create_target(ctx, size, reused.plan.target_format, usage=TARGET_USAGE | reused.target_usage)
         want = render_frame(ctx, SceneRenderer(ctx, scene, resolve_plan(scene, None)), fresh_target)[0]
         np.testing.assert_array_equal(got, want)
         assert got[..., :3].max() > 0, "something was drawn"

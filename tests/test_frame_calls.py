@@ -51,4 +51,4 @@ def test_bundles_are_recorded_once_and_survive_a_resize(ctx, monkeypatch):
 def _output(ctx, renderer, size):
     from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
 
-    return create_target(ctx, size, renderer.plan.output_format, usage=TARGET_USAGE | renderer.target_usage)
+    return create_target(ctx, size, renderer.plan.target_format, usage=TARGET_USAGE | renderer.target_usage)

@@ -49,10 +49,11 @@ def coloured_image() -> np.ndarray:
     return np.round(rgba * 255).astype(np.uint8)
 
 
-def _render_fxaa(ctx, folder, texels: np.ndarray) -> np.ndarray:
+def quad_scene(folder, texels: np.ndarray, output_format: str, post: str) -> str:
+    """A scene drawing ``texels`` 1:1 (unlit, nearest) into the rgba16float scene image, then the ``post`` tables."""
     save_png(folder / "coloured.png", texels)
     quad = procedural.write_obj(folder / "quad.obj", procedural.plane(width=2.0 * W / H, height=2.0))
-    text = camera_toml(view_distance()) + f"""
+    return camera_toml(view_distance()) + f"""
 [[models]]
 path = "{quad}"
 material = {{ albedo_map = "coloured.png", unlit = true, sampler = {{ filter = "nearest", mipmaps = false }} }}
@@ -61,11 +62,13 @@ material = {{ albedo_map = "coloured.png", unlit = true, sampler = {{ filter = "
 size = [{W}, {H}]
 msaa = 1
 hdr = true
-output_format = "rgba16float"
+output_format = "{output_format}"
 
-[[post]]
-effect = "fxaa"
-"""
+""" + post
+
+
+def _render_fxaa(ctx, folder, texels: np.ndarray) -> np.ndarray:
+    text = quad_scene(folder, texels, "rgba16float", '[[post]]\neffect = "fxaa"\n')
     return render_wgpu(ctx, text, folder).astype(np.float64)
 
 

@@ -244,16 +244,30 @@ def test_bytes_per_pass_are_the_compulsory_traffic(make):
     assert f"bytes: {64 * 48 * 16 / 1e6:.1f} MB read" in plan.explain()
 
 
-def test_compute_path_writes_storage_formats_and_copies_into_srgb(make):
-    """rgba8unorm-srgb cannot be a storage texture: the last compute pass writes an rgba8unorm scratch
-    (sRGB-encoded in the shader) that is copied into the output; an 8-bit sRGB scene image's
-    intermediates become rgba16float; no FXAA mask on the compute path."""
-    plan = make(model("plain") + render(msaa=1, hdr=False) + post("fxaa", "sharpen"),
-                knobs=Knobs(post_path="compute"))
-    assert [(p.path, p.output, p.output_format, p.copy_to) for p in plan.post_passes] == [
-        ("compute", "post_a", "rgba16float", None), ("compute", "post_scratch", "rgba8unorm", "output")]
-    assert plan.attachment("post_scratch").format == "rgba8unorm" and not plan.has_attachment("fxaa_mask")
+def test_compute_path_writes_storage_formats_and_an_srgb_output_as_its_twin(make):
+    """rgba8unorm-srgb cannot be a storage texture: offscreen, the output is made as its rgba8unorm twin,
+    which the last compute pass writes directly (sRGB-encoded in the shader): no scratch, no copy; a
+    swapchain image (output_storage off) is written through an rgba8unorm scratch copied into it. An 8-bit
+    sRGB scene image's intermediates become rgba16float; no FXAA mask on the compute path."""
+    scene = model("plain") + render(msaa=1, hdr=False) + post("fxaa", "sharpen")
+    plan = make(scene, knobs=Knobs(post_path="compute"))
+    assert [(p.path, p.output, p.output_format, p.copy_to, p.twin_of) for p in plan.post_passes] == [
+        ("compute", "post_a", "rgba16float", None, None), ("compute", "output", "rgba8unorm", None, "rgba8unorm-srgb")]
+    assert (plan.output_format, plan.target_format) == ("rgba8unorm-srgb", "rgba8unorm")
+    assert not plan.has_attachment("post_scratch") and not plan.has_attachment("fxaa_mask")
+    # the twin's bytes: 64x48 rgba16float read, 4 bytes a pixel written, nothing copied
+    assert (plan.post_passes[-1].bytes_read, plan.post_passes[-1].bytes_written) == (64 * 48 * 8, 64 * 48 * 4)
     assert [(pl.stage, pl.entry_point) for pl in plan.post_pipelines] == [("compute", "cs_main")] * 2
+    assert "rgba8unorm twin" in plan.explain() and "output: 64x48 rgba8unorm-srgb" in plan.explain()
+    window = make(scene, knobs=Knobs(post_path="compute", output_storage=False))
+    assert [(p.output, p.output_format, p.copy_to, p.twin_of) for p in window.post_passes][-1] == (
+        "post_scratch", "rgba8unorm", "output", None)
+    assert window.attachment("post_scratch").format == "rgba8unorm" and window.target_format == "rgba8unorm-srgb"
+    # a plain rgba8unorm output is a storage format already: written directly, no twin
+    plain = make(scene, output_format="rgba8unorm", knobs=Knobs(post_path="compute")).post_passes[-1]
+    assert (plain.output, plain.twin_of, plain.copy_to) == ("output", None, None)
+    # fragment path: the hardware encodes into the -srgb output itself
+    assert make(scene, knobs=Knobs(post_path="fragment")).target_format == "rgba8unorm-srgb"
     # a bgra swapchain output cannot be written by a compute pass: the last pass stays a fragment pass
     plan = make(model("plain") + render(msaa=1) + post("tonemap"), output_format="bgra8unorm-srgb",
                 knobs=Knobs(post_path="compute"))

@@ -208,7 +208,7 @@ def build_and_record(ctx, monkeypatch, scene_path: Path, post_path: str, size=SI
     knobs = {"post_path": "compute", "output_storage": False} if post_path == "compute-swapchain" else {
         "post_path": post_path}
     plan = resolve_plan(scene, None, size=size).with_knobs(**knobs, adapter=ctx.adapter_facts())
-    target = create_target(ctx, plan.size, plan.output_format, usage=TARGET_USAGE | output_usage(plan.post_passes))
+    target = create_target(ctx, plan.size, plan.target_format, usage=TARGET_USAGE | output_usage(plan.post_passes))
     encoder = Encoder(ctx.device.create_command_encoder())
     monkeypatch.delattr(ctx.device, "_wgpurender_caches", raising=False)  # a fresh device, as far as caches go
     recorder = Recorder(ctx.device, monkeypatch)

@@ -63,3 +63,45 @@ def test_compute_output_through_a_scratch_copy_is_the_same_image(ctx):
                                knobs={"post_path": "compute", "output_storage": False}).pixels
     np.testing.assert_array_equal(copied, direct)
     assert np.isfinite(direct).all() and direct[..., :3].max() > 0.1
+
+
+@pytest.mark.parametrize("name", ["final", "final_subpass"])
+def test_srgb_output_written_as_its_twin_has_the_copy_paths_bytes(ctx, name):
+    """Offscreen, an rgba8unorm-srgb output on the compute path is made as its rgba8unorm twin, which the last
+    pass writes directly with the sRGB curve applied: no scratch, no copy (issue 31.4). Its readback must be
+    byte for byte the image the scratch-and-copy path (what a swapchain still needs) puts into a real -srgb
+    texture, and the fragment path's image within 1/255 (the hardware encoder there)."""
+    from wgpurender.wgpu_path.scene import load_renderer
+
+    twin = load_renderer(SCENES / f"{name}.toml", ctx, size=SIZE, knobs={"post_path": "compute"})
+    last = twin.plan.post_passes[-1]
+    assert (twin.plan.output_format, twin.plan.target_format) == ("rgba8unorm-srgb", "rgba8unorm")
+    assert (last.output, last.output_format, last.twin_of, last.copy_to) == ("output", "rgba8unorm",
+                                                                            "rgba8unorm-srgb", None)
+    assert not twin.plan.has_attachment("post_scratch")
+    assert twin.create_output().format == "rgba8unorm"
+    direct = render(ctx, name, post_path="compute")
+    copied_renderer = load_renderer(SCENES / f"{name}.toml", ctx, size=SIZE,
+                                    knobs={"post_path": "compute", "output_storage": False})
+    assert copied_renderer.plan.post_passes[-1].copy_to == "output"
+    assert copied_renderer.create_output().format == "rgba8unorm-srgb"
+    copied = render(ctx, name, post_path="compute", output_storage=False)
+    np.testing.assert_array_equal(direct, copied)
+    fragment = render(ctx, name, post_path="fragment")
+    assert np.abs(direct - fragment).max() <= 1 and (direct[..., :3].sum(-1) > 30).mean() > 0.2
+
+
+def test_a_hand_made_srgb_target_for_a_twin_plan_is_refused_in_one_line(ctx):
+    """A plan whose output is the storage twin refuses a caller's -srgb texture by name (never a validation
+    error or a silent copy), saying how to get the right one."""
+    from wgpurender.core.errors import UserError
+    from wgpurender.wgpu_path.device.targets import create_target
+    from wgpurender.wgpu_path.scene import load_renderer
+
+    renderer = load_renderer(SCENES / "final_subpass.toml", ctx, size=(32, 24), knobs={"post_path": "compute"})
+    target = create_target(ctx, (32, 24), "rgba8unorm-srgb")
+    encoder = ctx.device.create_command_encoder()
+    with pytest.raises(UserError) as err:
+        renderer.record(encoder, target)
+    assert "storage twin rgba8unorm" in str(err.value) and "create_output()" in str(err.value)
+    assert "\n" not in str(err.value)

@@ -297,7 +297,8 @@ def test_explain_prints_the_plan_without_rendering(capsys, tmp_path):
     out = capsys.readouterr().out
     assert code == 0
     assert "output: 64x48 rgba8unorm-srgb, msaa 4" in out and "+ vignette(strength=0.45" in out
-    if "post_path: compute" in out:  # the auto rule on a discrete GPU: one dispatch, no FXAA mask, a scratch copy
-        assert "fxaa+vignette compute cs_main" in out and "fxaa_mask" not in out and "post_scratch" in out
+    if "post_path: compute" in out:  # the auto rule on a discrete GPU: one dispatch, no FXAA mask, no copy
+        assert "fxaa+vignette compute cs_main" in out and "fxaa_mask" not in out and "post_scratch" not in out
+        assert "output: rgba8unorm, 64x48" in out and "its storage twin rgba8unorm" in out
     else:
         assert "fxaa_mask: depth16unorm" in out and "fxaa+vignette fragment fs_mark" in out

@@ -25,12 +25,15 @@ def roofline_rows(path: Path) -> list[dict]:
     before csv_text quoted it (the committed runs): the numeric fields are taken from the right, the text ones
     from the left, which reads both."""
     with path.open(newline="") as f:
-        rows = list(csv.reader(f))[1:]
+        header, *rows = list(csv.reader(f))
+    # the knob post_intermediate's column (runs from 2026-11-27's post branch on), counted from the right
+    knob = len(header) - header.index("intermediate") if "intermediate" in header else None
     out = []
     for row in rows:
+        intermediate = row.pop(len(row) - knob) if knob else "auto"
         numbers, text = row[-len(NUMBERS):], row[:-len(NUMBERS)]
         out.append({"variant": ",".join(text[:-2]), "effects": text[-2], "path": text[-1],
-                    **{k: float(v) for k, v in zip(NUMBERS, numbers, strict=True)}})
+                    "intermediate": intermediate, **{k: float(v) for k, v in zip(NUMBERS, numbers, strict=True)}})
     return out
 
 

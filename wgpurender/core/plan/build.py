@@ -61,10 +61,20 @@ def knob_settings(scene: Scene, knobs: Knobs) -> tuple[tuple[str, str, str], ...
         ("post_path", post_path, path_why),
         ("immediates", immediates, immediates_why),
         ("instance_data", instance_data, instance_why),
+        ("post_intermediate", knobs.post_intermediate, _intermediate_why(knobs.post_intermediate)),
         ("output_storage", "on" if knobs.output_storage else "off",
          "offscreen output: a compute pass may write it directly" if knobs.output_storage else
          "knob output_storage: the output is a swapchain image, not a storage texture"),
     )
+
+
+def _intermediate_why(knob: str) -> str:
+    if knob == "auto":
+        return ("the scene image's format between post passes (rgba16float on the compute path when that is 8-bit "
+                "sRGB): today's image")
+    if knob == "none":
+        return "knob post_intermediate: nothing stored before FXAA, the effects before it recomputed for each read"
+    return "knob post_intermediate: the format stored between post passes"
 
 
 def _mesh_workers(draws, knob: str) -> tuple[str, str, str]:
@@ -171,9 +181,11 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
                            tuple(drawn.draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
     post_passes, post_attachments = plan_post_passes(steps, setting["post_fuse"] == "on", setting["post_path"],
                                                      targets.target, targets.format, out_fmt, size,
-                                                     knobs.output_storage)
+                                                     knobs.output_storage, intermediate=knobs.post_intermediate)
     last_post = f"written by post pass {len(post_passes)} ({post_passes[-1].effect})" if post_passes else None
-    output = output_attachment(out_fmt, size, src("output_format", out_fmt), last_post, msaa > 1)
+    twin = post_passes[-1] if post_passes and post_passes[-1].twin_of else None
+    output = output_attachment(twin.output_format if twin else out_fmt, size, src("output_format", out_fmt),
+                               last_post, msaa > 1, twin.twin_of if twin else None)
     attachments = (*targets.attachments, *post_attachments, output)
     absent = left_out(scene, src("msaa", asked_msaa), asked_msaa, targets, drawn, post_passes, setting["immediates"])
     return RenderPlan(

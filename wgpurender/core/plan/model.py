@@ -31,10 +31,19 @@ PLAN_OUTPUT_FORMATS = ("rgba8unorm-srgb", "rgba8unorm", "rgba16float", "bgra8uno
 DEPTH_FORMATS = ("depth32float", "depth24plus")
 SCENE_FORMATS = ("rgba8unorm-srgb", "rgba16float", "rgba32float")
 IMMEDIATES = ("auto", "on", "off")
+# The post chain's intermediate images (knob post_intermediate): "auto" keeps the scene image's format (today's
+# image); rgba8unorm stores the tone-mapped values in 8 bits, linear (half the bytes of rgba16float), and
+# rgba8unorm-srgb sRGB-encoded (on the compute path through a scratch copy: it is not a storage format).
+# "none" stores nothing before FXAA: the per-pixel effects before it are recomputed for every texel it reads.
+POST_INTERMEDIATES = ("auto", "rgba16float", "rgba8unorm", "rgba8unorm-srgb", "none")
 PLAN_FEATURES = ("immediates", "indirect-first-instance")  # the adapter features a plan reads (the rest: none)
 # Formats a compute pass can write (storage textures); the -srgb ones cannot be (facts.md), bgra8unorm only with
 # the "bgra8unorm-storage" feature, which the renderer does not ask for.
 STORAGE_FORMATS = ("rgba8unorm", "rgba16float", "rgba32float")
+# An output format that cannot be a storage texture -> the storage format holding the same bytes once the shader
+# applies the sRGB curve. A compute pass writes such an offscreen output as its twin (no copy); wgpu-py 0.32 has no
+# texture ``view_formats`` (create_texture raises NotImplementedError), so an -srgb view of one texture is not offered.
+STORAGE_TWINS = {"rgba8unorm-srgb": "rgba8unorm"}
 ATTACHMENT_ORDER = ("msaa-color", "depth", "scene-color", "post-intermediate", "post-mask", "post-scratch",
                     "output")  # the order passes use them
 
@@ -220,6 +229,8 @@ class PostPass:
     "compute" (a dispatch writing a storage texture). ``mask``: FXAA's depth mask on the fragment path.
     ``copy_to``: a compute pass whose output format cannot be a storage texture writes ``output`` (a
     scratch rgba8unorm, sRGB-encoded in the shader) and is then copied into ``copy_to``.
+    ``twin_of``: the pass writes the offscreen output itself in ``output_format`` (:data:`STORAGE_TWINS`),
+    sRGB-encoded in the shader, so it holds the bytes a ``twin_of`` texture would: no scratch, no copy.
     ``bytes_read`` / ``bytes_written``: the compulsory memory traffic, each texel read once and written once.
     """
 
@@ -238,6 +249,13 @@ class PostPass:
     bytes_written: int = 0
     kind: str = "post"
     copy_format: str | None = None  # the format of ``copy_to`` (the scratch is written in ``output_format``)
+    twin_of: str | None = None  # the format whose bytes ``output_format`` holds (an -srgb output written directly)
+    prelude: int = 0  # the first steps, applied to every texel the neighbourhood step reads (post_intermediate none)
+
+    @property
+    def encodes_for(self) -> str | None:
+        """The format whose encoding the written bytes must have, when it is not ``output_format``."""
+        return self.copy_format or self.twin_of
 
     @property
     def effect(self) -> str:
@@ -350,6 +368,7 @@ class Knobs:
     anisotropy: str = DEFAULT_ANISOTROPY  # the anisotropy rule (wgpurender/core/plan/anisotropy.py), for ``adapter``
     culling: str = "auto"  # "auto", "gpu", "cpu" or "off": which instanced draws are culled (core/plan/culling.py)
     instance_data: str = "auto"  # "auto", "storage" or "vertex": how instances reach the vertex shader
+    post_intermediate: str = "auto"  # POST_INTERMEDIATES: the format between post passes (a quality knob)
     mesh_workers: str = "auto"  # "auto", "off" or "on": model files read by worker processes (plan/mesh_loading.py)
 
     def check(self) -> None:
@@ -357,6 +376,7 @@ class Knobs:
             ("depth_format", self.depth_format, DEPTH_FORMATS), ("post_path", self.post_path, (None, *POST_PATHS)),
             ("immediates", self.immediates, IMMEDIATES), ("scene_format", self.scene_format, (None, *SCENE_FORMATS)),
             ("culling", self.culling, CULLING), ("instance_data", self.instance_data, INSTANCE_DATA),
+            ("post_intermediate", self.post_intermediate, POST_INTERMEDIATES),
             ("mesh_workers", self.mesh_workers, MESH_WORKERS),
         ) if value not in allowed]
         for name, value, allowed in bad:
@@ -542,6 +562,12 @@ class RenderPlan:
         return any(a.name == name for a in self.attachments)
 
     @property
+    def target_format(self) -> str:
+        """The format of the output texture the renderer writes and reads back: ``output_format``, or the
+        storage twin a compute post pass writes directly (the same bytes: :data:`STORAGE_TWINS`)."""
+        return self.attachment("output").format
+
+    @property
     def scene_pass(self) -> ScenePass:
         return next(p for p in self.passes if isinstance(p, ScenePass))
 
@@ -595,6 +621,7 @@ __all__ = [
     "Knobs",
     "LDR_SCENE_FORMAT",
     "PLAN_OUTPUT_FORMATS",
+    "POST_INTERMEDIATES",
     "POST_PATHS",
     "PostPass",
     "PostPipeline",
@@ -602,6 +629,7 @@ __all__ = [
     "SAMPLE_COUNTS",
     "SCENE_FORMATS",
     "STORAGE_FORMATS",
+    "STORAGE_TWINS",
     "SamplerUse",
     "ScenePass",
     "ScenePipeline",

@@ -3,8 +3,9 @@
 Fusion: an effect that reads only the pixel it writes (``reach = "pixel"`` in wgpurender/core/course/effects.py)
 runs as a function in the pass before it; a neighbourhood effect (FXAA, sharpen) starts a new pass, since it
 must read a finished image. Path: "fragment" (a full-screen triangle) or "compute" (a dispatch writing a
-storage texture; the ``-srgb`` formats cannot be one, so such an output is written through an rgba8unorm
-scratch and a copy, and an 8-bit sRGB scene image's intermediates become rgba16float). The "auto" rule and
+storage texture; the ``-srgb`` formats cannot be one, so an offscreen rgba8unorm-srgb output is made as its
+rgba8unorm twin holding the same bytes (:data:`~.model.STORAGE_TWINS`), a swapchain image is written through
+a scratch and a copy, and an 8-bit sRGB scene image's intermediates become rgba16float). The "auto" rule and
 the other knobs are resolved here too. Bytes per pass: the compulsory traffic (each texel read and written
 once), what ``--explain`` and ``bench post-roofline`` report.
 """
@@ -17,6 +18,7 @@ from wgpurender.core.plan.model import (
     BYTES_PER_PIXEL,
     HDR_FORMAT,
     STORAGE_FORMATS,
+    STORAGE_TWINS,
     AdapterFacts,
     Attachment,
     Knobs,
@@ -95,16 +97,29 @@ def _fusion_text(group: tuple[EffectStep, ...]) -> str:
 
 
 def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_target: str, scene_fmt: str, out_fmt: str,
-                     size: tuple[int, int], output_storage: bool = True) -> tuple[list[PostPass], list[Attachment]]:
+                     size: tuple[int, int], output_storage: bool = True, output_twin: bool = True,
+                     intermediate: str = "auto") -> tuple[list[PostPass], list[Attachment]]:
     """The chain's passes and the attachments only they use (ping-pong intermediates, FXAA mask, scratch).
 
     ``output_storage``: whether the output texture can be bound as a storage texture (an offscreen target
-    can; a swapchain image cannot), which decides how a compute pass writes it."""
+    can; a swapchain image cannot), which decides how a compute pass writes it. ``output_twin``: whether the
+    renderer makes the output texture from the plan, so it may be the storage twin of an -srgb format (a
+    texture the caller made already has its format: it is written through a scratch and a copy).
+    ``intermediate``: the knob post_intermediate (:func:`intermediate_note`)."""
     groups = group_passes(steps, fuse)
+    preludes = [0] * len(groups)
+    if intermediate == "none":
+        groups, preludes = recomputed_groups(groups)
     n = len(groups)
     temp_fmt = scene_fmt
     notes_all: list[str] = []
-    if path == "compute" and scene_fmt not in STORAGE_FORMATS and n > 1:
+    if intermediate not in ("auto", "none"):
+        if n < 2:
+            raise UserError(f"post_intermediate = {intermediate}: this post chain runs as {n} pass and stores no "
+                            "image between passes; drop the knob (or post_fuse = off to split the chain)")
+        temp_fmt = intermediate
+        notes_all.append(intermediate_note(intermediate))
+    elif path == "compute" and scene_fmt not in STORAGE_FORMATS and n > 1:
         temp_fmt = HDR_FORMAT
         notes_all.append(f"{scene_fmt} cannot be a storage texture: the compute path's intermediates are {HDR_FORMAT}")
     temps = ["post_a", "post_b"][:min(max(n - 1, 0), 2)]
@@ -123,8 +138,13 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
         dst_name, dst_fmt = ("output", out_fmt) if last else (temps[i % 2], temp_fmt)
         notes = [n for s in group for n in step_notes(s, src_fmt, dst_fmt)]
         pass_path, copy_to, mask = path, None, None
-        copy_format = None
+        copy_format = twin_of = None
         writes_output = dst_name == "output"
+        if path == "compute" and writes_output and output_storage and output_twin and dst_fmt in STORAGE_TWINS:
+            twin_of, dst_fmt = dst_fmt, STORAGE_TWINS[dst_fmt]
+            notes.append(f"{twin_of} cannot be a storage texture: the output texture is its {dst_fmt} twin, which "
+                         f"the shader writes with the sRGB curve applied (the bytes of {twin_of}), read back as it "
+                         "is: no scratch, no copy")
         if path == "compute" and (dst_fmt not in STORAGE_FORMATS or (writes_output and not output_storage)):
             scratch = dst_fmt if dst_fmt in STORAGE_FORMATS else ("rgba8unorm" if dst_fmt.startswith("rgba8") else None)
             why = (f"{dst_fmt} cannot be a storage texture" if dst_fmt not in STORAGE_FORMATS else
@@ -153,9 +173,57 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
         if copy_to:
             read += pixels * BYTES_PER_PIXEL[dst_fmt]
             written += pixels * BYTES_PER_PIXEL[copy_format]
-        passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, _fusion_text(group),
-                               tuple(notes), mask, copy_to, read, written, copy_format=copy_format))
+        fusion = _recompute_text(group, preludes[i]) if preludes[i] else _fusion_text(group)
+        passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, fusion,
+                               tuple(notes), mask, copy_to, read, written, copy_format=copy_format, twin_of=twin_of,
+                               prelude=preludes[i]))
     return passes, attachments
+
+
+# Neighbourhood effects whose shader reads its input only through fxaa_texel / fxaa_sample
+# (shaders_wgsl/post_fxaa.wgsl), so the per-pixel effects before it can be recomputed for every texel it reads
+# (knob post_intermediate = none).
+RECOMPUTING_READERS = ("fxaa",)
+
+
+def recomputed_groups(groups: list[tuple[EffectStep, ...]]) -> tuple[list[tuple[EffectStep, ...]], list[int]]:
+    """Knob post_intermediate = none: a pass of per-pixel effects followed by an FXAA pass become one pass, whose
+    first ``prelude`` steps are applied to every texel FXAA reads (its bilinear taps computed in the shader from
+    four such texels) instead of being stored in an image between the passes."""
+    out: list[tuple[EffectStep, ...]] = []
+    preludes: list[int] = []
+    for group in groups:
+        if (out and group[0].effect in RECOMPUTING_READERS and not preludes[-1]
+                and all(s.spec.fusable for s in out[-1])):
+            preludes[-1] = len(out[-1])
+            out[-1] = out[-1] + group
+        else:
+            out.append(group)
+            preludes.append(0)
+    if not any(preludes):
+        raise UserError("post_intermediate = none: no per-pixel effect comes before an FXAA pass, so no image "
+                        "between passes can be recomputed instead of stored; drop the knob")
+    return out, preludes
+
+
+def _recompute_text(group: tuple[EffectStep, ...], prelude: int) -> str:
+    head = group[prelude].effect
+    before = ", ".join(s.effect for s in group[:prelude])
+    return (f"knob post_intermediate = none: {before} recomputed for every texel {head} reads (its bilinear taps "
+            f"computed in the shader), instead of stored in an image between two passes")
+
+
+def intermediate_note(fmt: str) -> str:
+    """Why the knob post_intermediate's format stores the chain between passes, and what it costs."""
+    measured = "; its error against float64 is measured in tests/test_post_intermediate.py"
+    if fmt == "rgba8unorm":
+        return ("knob post_intermediate = rgba8unorm: the values between passes are stored in 8 bits, linear (steps "
+                "of 1/255, coarse in the darks; values above 1 clip): half the bytes of rgba16float" + measured)
+    if fmt == "rgba8unorm-srgb":
+        return ("knob post_intermediate = rgba8unorm-srgb: the values between passes are stored in 8 bits, "
+                "sRGB-encoded (decoded before filtering; values above 1 clip): half the bytes of rgba16float"
+                + measured)
+    return f"knob post_intermediate = {fmt}: the values between passes are stored as {fmt}"
 
 
 def post_pipelines_of(passes: list[PostPass]) -> tuple[PostPipeline, ...]:

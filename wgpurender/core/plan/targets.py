@@ -80,8 +80,12 @@ def plan_scene_targets(scene: Scene, steps: list[EffectStep], out_fmt: str, size
 
 
 def output_attachment(out_fmt: str, size: tuple[int, int], format_why: str, last_post: str | None,
-                      resolved: bool) -> Attachment:
-    """The caller's output texture: who writes it (the last post pass, or the scene pass)."""
+                      resolved: bool, twin_of: str | None = None) -> Attachment:
+    """The caller's output texture: who writes it (the last post pass, or the scene pass); ``twin_of``: the
+    format whose bytes it holds when a compute pass writes it as its storage twin (``out_fmt``)."""
     writer = (last_post if last_post is not None else
               "resolve target of the scene pass" if resolved else "the scene pass draws into it directly")
-    return Attachment("output", "output", out_fmt, size, 1, (format_why, writer))
+    why = (format_why,) if twin_of is None else (
+        f"{format_why}: made as its storage twin {out_fmt}, holding the same bytes (the sRGB curve applied in the "
+        "shader); read back directly",)
+    return Attachment("output", "output", out_fmt, size, 1, (*why, writer))

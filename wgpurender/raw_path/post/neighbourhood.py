@@ -81,6 +81,10 @@ class Segment:
     tail: tuple[EffectStep, ...]
 
 
+def scene_image_format(plan: RenderPlan) -> str:
+    return plan.attachment("scene_color").format
+
+
 def is_neighbourhood(p: EffectStep) -> bool:
     return p.effect in NEIGHBOUR_SHADERS
 
@@ -117,7 +121,9 @@ class NeighbourhoodPass:
                  out_format: str, final: bool, wgpu_intermediates: bool = False) -> None:
         self.ctx, self.owned, self.segment, self.source, self.final = ctx, owned, segment, source, final
         self.size = plan.size
-        mid_format = source.format  # the wgpu path's intermediate format (the scene image's)
+        # subpass 0's result, read by the tail: the scene image's format (the wgpu path's fused pass keeps float32
+        # there; an 8-bit knob post_intermediate would add a rounding the wgpu path does not have)
+        mid_format = scene_image_format(plan)
         effect_format = mid_format if segment.tail else out_format
         self.render_pass = self._create_render_pass(vk_format(effect_format), vk_format(out_format))
         self.mid = None

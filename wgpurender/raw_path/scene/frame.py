@@ -26,7 +26,7 @@ from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to
 from wgpurender.raw_path.device.renderpass import begin, create_framebuffer
 from wgpurender.raw_path.post.chain import PostSubpass
 from wgpurender.raw_path.post.neighbourhood import HANDOFF_USAGE, NeighbourhoodPass, split_chain
-from wgpurender.raw_path.scene.renderpass import create_scene_render_pass
+from wgpurender.raw_path.scene.renderpass import create_scene_render_pass, handoff_format
 from wgpurender.raw_path.scene.resources import SceneResources
 from wgpurender.raw_path.scene.scene_subpass import SceneSubpass
 from wgpurender.raw_path.scene.support import check_supported
@@ -85,7 +85,8 @@ class SceneFrame:
             final = i == len(segments) - 1
             nb = NeighbourhoodPass(self.ctx, self.owned, self.plan, segment, source, self.plan.output_format, final,
                                    wgpu_intermediates)
-            written = None if final else create_image(self.ctx, self.owned, self.size, source.format, HANDOFF_USAGE)
+            written = None if final else create_image(self.ctx, self.owned, self.size, handoff_format(self.plan),
+                                                      HANDOFF_USAGE)
             passes.append((nb, written))
             source = written
         return passes

@@ -82,6 +82,14 @@ def scene_format(plan: RenderPlan) -> str:
     return plan.attachment("scene_color").format if plan.has_attachment("scene_color") else plan.output_format
 
 
+def handoff_format(plan: RenderPlan) -> str:
+    """The format of the images a neighbourhood pass samples after per-pixel effects (the wgpu path's post
+    intermediates): the knob post_intermediate, or the scene image's format ("auto": today's image; "none" is
+    refused by support.py before a frame is built)."""
+    knob = plan.knobs.post_intermediate
+    return scene_format(plan) if knob in ("auto", "none") else knob
+
+
 def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderPlan,
                              head: Sequence[EffectStep] | None = None, handoff: bool = False) -> SceneRenderPass:
     """The scene's pass. ``head``: the per-pixel effects of subpass 1 (default: the whole chain; empty: no
@@ -123,7 +131,7 @@ def create_scene_render_pass(ctx: VulkanContext, owned: ExitStack, plan: RenderP
     output = None
     if has_post:
         # fully overwritten by the post chain's full-screen triangle: nothing to load or clear
-        out_fmt = drawn_fmt if handoff else plan.output_format
+        out_fmt = handoff_format(plan) if handoff else plan.output_format
         output = add(AttachmentSpec(last_name, out_fmt, 1),
                      attachment(vk_format(out_fmt), 1, LOAD_DONT_CARE, STORE, last_layout), clear)
 

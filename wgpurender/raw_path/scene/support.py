@@ -62,6 +62,9 @@ def unsupported(plan: RenderPlan) -> list[str]:
         problems.append(f"{sum(d.instance_count for d in plan.scene_pass.draws)} instances: the raw path reads "
                         f"every instance from one storage buffer, and this device's maxStorageBufferRange holds "
                         f"{room} (draw at most {room} copies, or render on the wgpu path)")
+    if plan.knobs.post_intermediate == "none":
+        problems.append("plan knob post_intermediate = 'none': the raw path's FXAA samples a stored handoff image "
+                        "(choose auto, rgba16float, rgba8unorm or rgba8unorm-srgb)")
     for knob, (default, instead) in WGPU_ONLY_KNOBS.items():
         if getattr(plan.knobs, knob) != default:
             problems.append(f"plan knob {knob} = {getattr(plan.knobs, knob)!r}: {instead} (leave the knob out)")

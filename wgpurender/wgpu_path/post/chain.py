@@ -33,10 +33,13 @@ POST_USAGE = {
 
 
 def attachment_usage(a: Attachment, passes: Sequence[PostPass]) -> int:
-    """The usage a post attachment needs: storage where a compute pass writes it."""
+    """The usage a post attachment needs: storage where a compute pass writes it, a copy's destination where a
+    compute pass's scratch is copied into it (an -srgb intermediate)."""
     usage = POST_USAGE.get(a.role, 0)
     if any(p.path == "compute" and p.output == a.name for p in passes):
         usage |= wgpu.TextureUsage.STORAGE_BINDING
+    if any(p.copy_to == a.name for p in passes):
+        usage |= wgpu.TextureUsage.COPY_DST
     return usage
 
 
@@ -128,7 +131,7 @@ class PostChain:
         """(passes, attachments) as the plan would list them for this chain."""
         steps = steps_for_target(self.steps, output_format)
         return plan_post_passes(steps, self.fuse, self.path, "input", self.intermediate_format, output_format,
-                                size)
+                                size, output_twin=False)  # the caller's target exists: never its twin
 
     def _build(self, ctx: GPUContext, source: wgpu.GPUTexture, target: wgpu.GPUTexture):
         size = (source.size[0], source.size[1])

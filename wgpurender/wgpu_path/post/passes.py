@@ -39,7 +39,8 @@ class PlannedPass:
         self.device, self.p, self.shape = device, p, shape
         self.source = pass_source(p, shape)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
-        self.filtering = p.steps[0].spec.filtering
+        # a recomputing pass (post_intermediate = none) filters in its shader: no sampler
+        self.filtering = p.steps[0].spec.filtering and not p.prelude
         self.buffer = None
         data = pack_pass(p)
         if data:

@@ -19,8 +19,9 @@ read once and written once. The entry points around ``pass_color``:
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
 - compute: ``cs_main`` over workgroups of :data:`SHAPE`, ``textureStore`` into ``dst`` (binding 3), a storage
   texture.
-  A pass whose output is an ``-srgb`` format writes an ``rgba8unorm`` scratch instead (``-srgb`` cannot
-  be a storage texture) with the sRGB curve applied here, then the runner copies it (same bytes).
+  A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
+  texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
+  (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
 """
 
 from __future__ import annotations
@@ -79,20 +80,61 @@ def _tail(p: PostPass, first: int) -> str:
     for i in range(first, len(p.steps)):
         name = p.steps[i].effect
         lines.append(f"    c = {name}_pixel(c, pos, size{_arg(p, i)});")
-    if encoding_of(p.copy_format or "") == "hardware" and p.steps[-1].effect != "srgb":
-        # compute into an rgba8unorm scratch of an -srgb output: the hardware would have encoded, so the shader does
+    if encoding_of(p.encodes_for or "") == "hardware" and p.steps[-1].effect != "srgb":
+        # compute into an rgba8unorm scratch or twin of an -srgb output: the hardware would have encoded, so the
+        # shader does
         lines.append("    c = vec4f(srgb_encode(c.rgb), c.a);")
     lines += ["    return c;", "}"]
     return "\n".join(lines)
 
 
 def _color(p: PostPass) -> str:
-    head = p.steps[0]
-    first = 1 if not head.spec.fusable else 0
-    start = f"{head.effect}_at(p, pos{_arg(p, 0)})" if first else "textureLoad(src, p, 0)"
+    h = p.prelude
+    head = p.steps[h]
+    first = h + 1 if not head.spec.fusable else h
+    start = f"{head.effect}_at(p, pos{_arg(p, h)})" if first > h else "textureLoad(src, p, 0)"
     return (f"{_tail(p, first)}\n\n"
             f"fn pass_color(p: vec2i, pos: vec2f, size: vec2f) -> vec4f {{\n"
             f"    return pass_tail({start}, pos, size);\n}}")
+
+
+FXAA_READS = """
+fn fxaa_texel(p: vec2i) -> vec4f {
+    return src_clamped(p);
+}
+
+fn fxaa_sample(uv: vec2f) -> vec4f {
+    return textureSampleLevel(src, src_sampler, uv, 0.0);
+}
+"""
+
+# post_intermediate = none: the steps before FXAA applied to each texel it reads; a bilinear tap is the mix of four
+# such texels (clamp to edge, texel centres at i + 0.5), as the sampler would filter the stored image.
+FXAA_RECOMPUTED_READS = """
+fn fxaa_texel(p: vec2i) -> vec4f {
+    let size = vec2i(textureDimensions(src));
+    let q = clamp(p, vec2i(0, 0), size - vec2i(1, 1));
+    return pass_prelude(textureLoad(src, q, 0), vec2f(q) + vec2f(0.5), vec2f(size));
+}
+
+fn fxaa_sample(uv: vec2f) -> vec4f {
+    let x = uv * vec2f(textureDimensions(src)) - vec2f(0.5);
+    let i = vec2i(floor(x));
+    let f = x - floor(x);
+    let top = mix(fxaa_texel(i), fxaa_texel(i + vec2i(1, 0)), f.x);
+    let bottom = mix(fxaa_texel(i + vec2i(0, 1)), fxaa_texel(i + vec2i(1, 1)), f.x);
+    return mix(top, bottom, f.y);
+}
+"""
+
+
+def _reads(p: PostPass) -> str:
+    """fxaa_texel / fxaa_sample for a pass with FXAA: the stored image, or the prelude recomputed per texel."""
+    if p.prelude == 0:
+        return FXAA_READS
+    lines = ["fn pass_prelude(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
+    lines += [f"    c = {p.steps[i].effect}_pixel(c, pos, size{_arg(p, i)});" for i in range(p.prelude)]
+    return "\n".join([*lines, "    return c;", "}"]) + "\n" + FXAA_RECOMPUTED_READS
 
 
 FRAGMENT_MAIN = """
@@ -143,9 +185,11 @@ def pass_source(p: PostPass, shape: tuple[int, int, int] | None = None) -> str:
         parts.append(wgsl_structs(struct))
         parts.append("@group(0) @binding(2) var<uniform> params: PassParams;")
     files = dict.fromkeys(f"post_{s.effect}.wgsl" for s in p.steps)
-    if p.copy_to:  # srgb_encode, for a scratch of an -srgb output
+    if p.encodes_for:  # srgb_encode, for a scratch or the twin of an -srgb output
         files.setdefault(SRGB_WGSL)
     parts.extend(load_wgsl(f) for f in files)
+    if "post_fxaa.wgsl" in files:
+        parts.append(_reads(p))
     parts.append(_color(p))
     if p.path == "compute":
         parts.append(COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(wx))

@@ -79,8 +79,17 @@ class SceneRenderer:
         On the compute post path a pass may write the output directly (STORAGE_BINDING), so a texture made
         by hand with the plain target usage fails there; headless callers take their target from here.
         """
-        return create_target(self.ctx, self.plan.size, self.plan.output_format, usage=TARGET_USAGE | self.target_usage,
+        return create_target(self.ctx, self.plan.size, self.plan.target_format, usage=TARGET_USAGE | self.target_usage,
                              label=label)
+
+    def _format_mismatch(self, got: str) -> str:
+        plan = self.plan
+        if plan.target_format != plan.output_format:
+            return (f"the scene was planned for {plan.output_format} output, written by a compute pass into its "
+                    f"storage twin {plan.target_format}, but the target is {got}: make the target with "
+                    "renderer.create_output(), or plan with output_storage=False to write an existing texture")
+        return (f"the scene was planned for {plan.output_format} output, but the target is {got}: build the plan "
+                f"with output_format={got!r}")
 
     def _check_limits(self) -> None:
         max_dim = self.ctx.limit("max-texture-dimension-2d")
@@ -118,9 +127,8 @@ class SceneRenderer:
 
     def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
         """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass)."""
-        if target.format != self.plan.output_format:
-            raise UserError(f"the scene was planned for {self.plan.output_format} output, but the target is "
-                            f"{target.format}: build the plan with output_format={target.format!r}")
+        if target.format != self.plan.target_format:
+            raise UserError(self._format_mismatch(target.format))
         size = (target.size[0], target.size[1])
         self.resize(size)
         sp = self._scene_pass  # the plan's property scans its passes: looked up once (issue 22, CPU per frame)
