@@ -87,7 +87,7 @@ CONCEPTS: list[Concept] = [
         ("vkCreateDevice", "VkDeviceQueueCreateInfo", "VkPhysicalDeviceFeatures (pEnabledFeatures)"),
         _raw("device.context:create_device", "device.context:get_vulkan"),
         ("GPUAdapter.request_device_sync(required_features=, required_limits=)",),
-        _wgpu("device.context:_context", "device.context:OPTIONAL_FEATURES"),
+        _wgpu("device.context:_build_context", "device.context:OPTIONAL_FEATURES"),
         "Features are requested by WebGPU name ('timestamp-query', 'immediates'), limits by name; there are no "
         "device extensions to list. Core capabilities such as sampler anisotropy need no request: wgpu turns on "
         "the Vulkan feature itself when the adapter has it.",
@@ -395,7 +395,7 @@ CONCEPTS: list[Concept] = [
         _raw("device.pipeline_cache:create_pipeline_cache", "device.pipeline_cache:save_pipeline_cache",
              "device.pipeline_cache:pipeline_cache_path"),
         ("native feature 'pipeline-cache' (requested when offered)",),
-        _wgpu("device.context:_context", "device.context:OPTIONAL_FEATURES"),
+        _wgpu("device.context:OPTIONAL_FEATURES"),
         "wgpu-native has the feature but wgpu-py 0.32 has no call to create a cache, so the wgpu path only "
         "requests it; naga's compiled modules are not kept across runs.",
     ),
@@ -514,7 +514,7 @@ CONCEPTS: list[Concept] = [
              "scene.scene_subpass:SceneSubpass.record", "device.uniforms:pack_material"),
         ("native feature 'immediates'", "create_pipeline_layout(immediate_size=)",
          "GPURenderPassEncoder.set_immediates(offset, data, data_offset, size)", "WGSL var<immediate>"),
-        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "device.context:_context"),
+        _wgpu("stages.cube3d:Cube3D.setup", "stages.cube3d:Cube3D.record", "device.context:_build_context"),
         "Not in WebGPU proper: a wgpu-native feature ('immediates', up to max-immediate-size bytes), one range "
         "for all stages. Without it the 3d stage reads the same struct from a dynamic-offset uniform buffer.",
     ),
