@@ -491,14 +491,19 @@ def test_more_instances_than_one_storage_binding_holds_render_or_are_refused_in_
     from wgpurender.raw_path.device.context import get_vulkan
     from wgpurender.wgpu_path.scene import render_scene_file
 
+    from wgpurender.core.scene.model import MAX_INSTANCES
+
     copies = ctx.device.limits["max-storage-buffer-binding-size"] // 128 + 1
-    assert copies == get_vulkan().limits.max_storage_buffer_range // 128 + 1  # the same limit on lavapipe
+    raw_copies = get_vulkan().limits.max_storage_buffer_range // 128 + 1  # the same as wgpu's on lavapipe
+    if max(copies, raw_copies) > MAX_INSTANCES:  # NVIDIA: 2 GiB (wgpu) and 4 GiB (Vulkan) bindings
+        pytest.skip(f"the adapter's storage binding holds {max(copies, raw_copies) - 1} copies, more than a model "
+                    f"may have ({MAX_INSTANCES}): drawn where the binding is small (lavapipe: 1,048,576 copies)")
     one = render_reference(str(_coincident(tmp_path, 1)), (16, 12))
     assert one[..., 0].any()
     result = render_scene_file(str(_coincident(tmp_path, copies)), size=(16, 12), ctx=ctx, frames=1)
     assert result.plan.instance_data == "vertex"
     assert np.array_equal(result.pixels, one)
     with pytest.raises(UserError) as err:
-        render_reference(str(_coincident(tmp_path, copies)), (16, 12))
-    assert "\n" not in str(err.value) and f"{copies} instances" in str(err.value)
-    assert f"holds {copies - 1}" in str(err.value)
+        render_reference(str(_coincident(tmp_path, raw_copies)), (16, 12))
+    assert "\n" not in str(err.value) and f"{raw_copies} instances" in str(err.value)
+    assert f"holds {raw_copies - 1}" in str(err.value)
