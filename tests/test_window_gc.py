@@ -116,3 +116,15 @@ def test_settle_never_unfreezes_what_someone_else_froze():
     assert thawed == "thawed True True"
     assert alone == "alone True True True"
     assert later == "later 0 True"
+
+
+def test_settle_after_thaw_and_a_collection_freezes_again():
+    """The bench thaws between cases and collects; the next settle must freeze again. A child process: the freeze
+    is process-wide. (On Python 3.12, whose interpreter keeps objects of its own in the permanent generation, the
+    first settle froze nothing before core/view/garbage.py counted them; run by the GPU machine's 3.12.)"""
+    code = ("import gc\nfrom wgpurender.core.view import garbage\n"
+            "first = garbage.settle()\ngarbage.thaw()\ngc.collect()\nprint(first > 0, garbage.settle() > 0)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["True", "True"]
+
