@@ -19,10 +19,12 @@ from tests.helpers import one_line_refusal
 REPO = Path(__file__).resolve().parent.parent
 
 
-def _python(code: str, *args: str) -> subprocess.CompletedProcess:
+def _python(code: str, *args: str, validation: bool = True) -> subprocess.CompletedProcess:
     path = [str(REPO), *filter(None, os.environ.get("PYTHONPATH", "").split(os.pathsep))]
-    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=240,
-                          env=dict(os.environ, PYTHONPATH=os.pathsep.join(path)))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(path))
+    if not validation:
+        env.pop("WGPURENDER_VALIDATION", None)
+    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=240, env=env)
 
 
 def test_the_context_made_on_the_thread_is_the_one_get_context_returns_and_draws_the_same_pixels(tmp_path):
@@ -168,6 +170,8 @@ def test_two_contexts_made_early_at_once_leave_pythons_switch_interval_as_it_was
         "a, v = c.get_context('auto'), c.get_context('vulkan')\n"
         "print(a is not v, sys.getswitchinterval())\n"
     )
-    out = _python(code)
+    # without the validation layer: with it, two Vulkan instances in one process end in SIGSEGV at exit on
+    # NVIDIA's driver, made early or not (docs/backends.md); the switch interval is what this test is about
+    out = _python(code, validation=False)
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.split() == ["True", "0.005"]
