@@ -1622,13 +1622,14 @@ MUTATIONS = [
     ("wgpurender/core/scene/gltf_cameras.py", "file_camera=(model.index, index), **projection)",
      "**projection)", [ANIM_T]),
     # review findings (fixes): garbage.settle undoes only our own freeze (core/view/garbage.py)
-    ("wgpurender/core/view/garbage.py", "        return gc.get_freeze_count() == 0", "        return True",
+    ("wgpurender/core/view/garbage.py", "        return gc.get_freeze_count() <= _INTERPRETER", "        return True",
      [WINDOW_GC]),
     ("wgpurender/core/view/garbage.py", "    return any(o is _canary for o in gc.get_objects())", "    return True",
      [WINDOW_GC]),
     ("wgpurender/core/view/garbage.py", "    if not only_ours_frozen():", "    if False:", [WINDOW_GC]),
     ("wgpurender/core/view/garbage.py", "        gc.collect()\n        return 0", "        return 0", [WINDOW_GC]),
-    ("wgpurender/core/view/garbage.py", "    _canary = _Canary()", "    _canary = None", [WINDOW_GC]),
+    ("wgpurender/core/view/garbage.py", "    _canary = _Canary()\n    return gc.get_freeze_count()",
+     "    _canary = None\n    return gc.get_freeze_count()", [WINDOW_GC]),
     ("wgpurender/core/view/garbage.py", "    if only_ours_frozen():\n        gc.unfreeze()",
      "    if True:\n        gc.unfreeze()", [WINDOW_GC]),
     # review findings (fixes): the IBL regions' 256-byte alignment, one rule in the core (core/course/ibl_maps.py)
