@@ -487,11 +487,10 @@ def test_more_instances_than_one_storage_binding_holds_render_or_are_refused_in_
     """One copy past the device's storage binding (lavapipe: 128 MiB, 1,048,576 Object blocks; a validation error
     on both paths before). The wgpu path's plan takes the vertex way and draws what one copy draws (on the raw
     path: an independent image); the raw path, which has only the storage way, refuses in one line."""
+    from wgpurender.core.scene.model import MAX_INSTANCES
     from wgpurender.raw_path import render_reference
     from wgpurender.raw_path.device.context import get_vulkan
     from wgpurender.wgpu_path.scene import render_scene_file
-
-    from wgpurender.core.scene.model import MAX_INSTANCES
 
     copies = ctx.device.limits["max-storage-buffer-binding-size"] // 128 + 1
     raw_copies = get_vulkan().limits.max_storage_buffer_range // 128 + 1  # the same as wgpu's on lavapipe
