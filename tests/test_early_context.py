@@ -13,8 +13,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
-
-from tests.helpers import one_line_refusal
+from helpers import one_line_refusal
 
 REPO = Path(__file__).resolve().parent.parent
 
