@@ -21,12 +21,9 @@ vec3 clearcoat_radiance(vec3 nc, vec3 l, vec3 v, float roughness, vec3 irradianc
         return vec3(0.0);
     }
     float n_dot_v = clamp(dot(nc, v), 0.0, 1.0);
-    vec3 sum = l + v;
-    float len2 = dot(sum, sum);
-    vec3 h = len2 > 1e-20 ? sum * inversesqrt(len2) : nc;
+    vec3 h = pbr_half(nc, l, v);
     float n_dot_h = clamp(dot(nc, h), 0.0, 1.0);
-    float r = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
-    float alpha = r * r;
+    float alpha = pbr_alpha(roughness);
     float specular = pbr_distribution(n_dot_h, alpha) * pbr_visibility(n_dot_l, n_dot_v, alpha);
     return PBR_PI * specular * irradiance * n_dot_l;
 }

@@ -35,12 +35,9 @@ fn clearcoat_radiance(nc: vec3f, l: vec3f, v: vec3f, roughness: f32, irradiance:
         return vec3f(0.0);
     }
     let n_dot_v = clamp(dot(nc, v), 0.0, 1.0);
-    let sum = l + v;
-    let len2 = dot(sum, sum);
-    let h = select(nc, sum * inverseSqrt(len2), len2 > 1e-20);
+    let h = pbr_half(nc, l, v);
     let n_dot_h = clamp(dot(nc, h), 0.0, 1.0);
-    let r = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
-    let alpha = r * r;
+    let alpha = pbr_alpha(roughness);
     let specular = pbr_distribution(n_dot_h, alpha) * pbr_visibility(n_dot_l, n_dot_v, alpha);
     return PBR_PI * specular * irradiance * n_dot_l;
 }

@@ -38,6 +38,19 @@ fn pbr_schlick(f0: vec3f, v_dot_h: f32) -> vec3f {
     return f0 + (vec3f(1.0) - f0) * (x2 * x2 * x);
 }
 
+// The half vector of the unit vectors l and v; n when l = -v (their sum is zero).
+fn pbr_half(n: vec3f, l: vec3f, v: vec3f) -> vec3f {
+    let sum = l + v;
+    let len2 = dot(sum, sum);
+    return select(n, sum * inverseSqrt(len2), len2 > 1e-20);
+}
+
+// GGX's alpha of a perceptual roughness, kept off 0 (PBR_MIN_ROUGHNESS: a mirror's D would be a spike).
+fn pbr_alpha(roughness: f32) -> f32 {
+    let r = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
+    return r * r;
+}
+
 // Radiance reflected towards v from irradiance E arriving along l (unit vectors; h falls back to n when l = -v).
 fn pbr_radiance(n: vec3f, l: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32,
                 irradiance: vec3f) -> vec3f {
@@ -46,13 +59,10 @@ fn pbr_radiance(n: vec3f, l: vec3f, v: vec3f, base: vec3f, metallic: f32, roughn
         return vec3f(0.0);
     }
     let n_dot_v = clamp(dot(n, v), 0.0, 1.0);
-    let sum = l + v;
-    let len2 = dot(sum, sum);
-    let h = select(n, sum * inverseSqrt(len2), len2 > 1e-20);
+    let h = pbr_half(n, l, v);
     let n_dot_h = clamp(dot(n, h), 0.0, 1.0);
     let v_dot_h = clamp(dot(v, h), 0.0, 1.0);
-    let r = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
-    let alpha = r * r;
+    let alpha = pbr_alpha(roughness);
     let specular = pbr_distribution(n_dot_h, alpha) * pbr_visibility(n_dot_l, n_dot_v, alpha);
     let dielectric = mix(base / PBR_PI, vec3f(specular), pbr_schlick(vec3f(PBR_DIELECTRIC_F0), v_dot_h));
     let metal = specular * pbr_schlick(base, v_dot_h);
