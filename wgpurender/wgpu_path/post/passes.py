@@ -12,6 +12,7 @@ pass's draws are a render bundle recorded once per source texture: a frame repla
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Callable
 
 import wgpu
 
@@ -135,6 +136,27 @@ class FragmentPass(PlannedPass):
         render_pass.execute_bundles([self.bundles.get((source,), lambda: self._bundle(source))])
         render_pass.end()
 
+    def bound(self, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
+              mask: wgpu.GPUTexture | None = None) -> Callable[[wgpu.GPUCommandEncoder], None]:
+        """:meth:`encode` between these textures with its checks, views, dicts and bundle made now, not per frame:
+        the frame calls the result with its encoder (issue 31.4: the same calls, less Python per frame)."""
+        self.check(source, target)
+        label = f"post-{self.p.effect}"
+        colors = [{"view": self.views.get(target, target.create_view), "load_op": "load", "store_op": "store"}]
+        depth = None
+        if mask is not None:
+            depth = {"view": self.views.get(mask, mask.create_view), "depth_clear_value": 1.0,
+                     "depth_load_op": "clear", "depth_store_op": "discard"}
+        bundles = [self.bundles.get((source,), lambda: self._bundle(source))]
+
+        def encode(encoder: wgpu.GPUCommandEncoder) -> None:
+            render_pass = encoder.begin_render_pass(label=label, color_attachments=colors,
+                                                    depth_stencil_attachment=depth)
+            render_pass.execute_bundles(bundles)
+            render_pass.end()
+
+        return encode
+
     def _bundle(self, source: wgpu.GPUTexture) -> wgpu.GPURenderBundle:
         """The pass's draws (bind group, pipeline(s), full-screen triangle), recorded once per source texture.
 
@@ -183,12 +205,31 @@ class ComputePass(PlannedPass):
                  target: wgpu.GPUTexture) -> None:
         """The pass's dispatch into an open compute pass (several planned passes may share one: PostRunner)."""
         self.check(source, target)
-        group = self.groups.get((source, target), lambda: self.device.create_bind_group(
-            label=f"post-{self.p.effect}", layout=self.pipeline.get_bind_group_layout(0),
-            entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
+        group = self._group(source, target)
         compute_pass.set_pipeline(self.pipeline)
         compute_pass.set_bind_group(0, group)
         compute_pass.dispatch_workgroups(*dispatch_groups((target.size[0], target.size[1]), self.shape), 1)
+
+    def bound(self, source: wgpu.GPUTexture,
+              target: wgpu.GPUTexture) -> Callable[[wgpu.GPUComputePassEncoder], None]:
+        """:meth:`dispatch` between these textures with its check, bind group and workgroup count made now: the
+        frame calls the result with its open compute pass (issue 31.4)."""
+        self.check(source, target)
+        group = self._group(source, target)
+        pipeline = self.pipeline
+        x, y = dispatch_groups((target.size[0], target.size[1]), self.shape)
+
+        def dispatch(compute_pass: wgpu.GPUComputePassEncoder) -> None:
+            compute_pass.set_pipeline(pipeline)
+            compute_pass.set_bind_group(0, group)
+            compute_pass.dispatch_workgroups(x, y, 1)
+
+        return dispatch
+
+    def _group(self, source: wgpu.GPUTexture, target: wgpu.GPUTexture) -> wgpu.GPUBindGroup:
+        return self.groups.get((source, target), lambda: self.device.create_bind_group(
+            label=f"post-{self.p.effect}", layout=self.pipeline.get_bind_group_layout(0),
+            entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
 
     @staticmethod
     def copy(encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, copy_to: wgpu.GPUTexture) -> None:
