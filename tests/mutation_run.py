@@ -1849,6 +1849,17 @@ MUTATIONS = [
      "return select(n, sum, len2 > 1e-20);", [PBR]),
     ("shaders_glsl/pbr.glsl", "return len2 > 1e-20 ? sum * inversesqrt(len2) : n;",
      "return len2 > 1e-20 ? sum : n;", [PBR]),
+    # frametime (issue 31.4): the untimed frame bound once per target, its post steps bound once
+    ("wgpurender/wgpu_path/scene/frame.py", "self._frames.get(target, lambda: self._bind(target))(encoder)",
+     "self._frames.get(0, lambda: self._bind(target))(encoder)", ["tests/test_frame_caches.py"]),
+    ("wgpurender/wgpu_path/scene/frame.py", "    if chain is not None:\n        chain(encoder)",
+     "    if chain is None:\n        chain(encoder)", ["tests/test_frame_caches.py"]),
+    ("wgpurender/wgpu_path/scene/frame.py", 'scene_pass(encoder, timer.writes("scene"))', "scene_pass(encoder)",
+     ["tests/test_plan_is_what_is_built.py"]),
+    ("wgpurender/wgpu_path/post/passes.py", "compute_pass.dispatch_workgroups(x, y, 1)",
+     "compute_pass.dispatch_workgroups(y, y, 1)", ["tests/test_frame_caches.py"]),
+    ("wgpurender/wgpu_path/post/chain.py", "steps.append((\"dispatch\", runner.bound(source, target)))",
+     "steps.append((\"dispatch\", runner.bound(target, target)))", ["tests/test_frame_caches.py"]),
 ]
 
 

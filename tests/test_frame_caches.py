@@ -156,3 +156,25 @@ def test_scene_renderer_resized_equals_a_fresh_renderer(ctx, tmp_path, sizes):
         want = render_frame(ctx, SceneRenderer(ctx, scene, resolve_plan(scene, None)), fresh_target)[0]
         np.testing.assert_array_equal(got, want)
         assert got[..., :3].max() > 0, "something was drawn"
+
+
+@pytest.mark.parametrize("post_path", ["fragment", "compute"])
+def test_bound_frames_draw_into_the_target_they_are_given(ctx, tmp_path, post_path):
+    """The untimed frame is bound once per target (SceneRenderer._bind, issue 31.4). Two targets of one size drawn
+    in turn, then a target of another size, then the first again: each read-back equals what a fresh renderer
+    draws into a fresh target of that size. A frame bound to one target and replayed into another would leave
+    the second one empty (or the other size's image); a stale attachment or post step would differ in bytes."""
+    scene = parse_scene(SCENE, tmp_path / "scene.toml")
+    plan = resolve_plan(scene, ctx.adapter_facts(), post_path=post_path)
+    reused = SceneRenderer(ctx, scene, plan)
+
+    def target(size):
+        return create_target(ctx, size, plan.target_format, usage=TARGET_USAGE | reused.target_usage)
+
+    want = {}
+    for size in ((64, 48), (40, 40)):
+        want[size] = render_frame(ctx, SceneRenderer(ctx, scene, plan), target(size))[0]
+        assert want[size][..., :3].max() > 0, "something was drawn"
+    a, b, c = target((64, 48)), target((64, 48)), target((40, 40))
+    for tex, size in ((a, (64, 48)), (b, (64, 48)), (a, (64, 48)), (c, (40, 40)), (a, (64, 48))):
+        np.testing.assert_array_equal(render_frame(ctx, reused, tex)[0], want[size])
