@@ -161,20 +161,25 @@ def test_scene_renderer_resized_equals_a_fresh_renderer(ctx, tmp_path, sizes):
 @pytest.mark.parametrize("post_path", ["fragment", "compute"])
 def test_bound_frames_draw_into_the_target_they_are_given(ctx, tmp_path, post_path):
     """The untimed frame is bound once per target (SceneRenderer._bind, issue 31.4). Two targets of one size drawn
-    in turn, then a target of another size, then the first again: each read-back equals what a fresh renderer
-    draws into a fresh target of that size. A frame bound to one target and replayed into another would leave
-    the second one empty (or the other size's image); a stale attachment or post step would differ in bytes."""
+    in turn, then a target of another size, then the first again: each read-back equals what a fresh renderer on
+    the fragment post path draws into a fresh target of that size (exactly on that path; within 1/255 on the
+    compute path, an independent implementation of the same chain: tests/test_post_paths.py). A frame bound to
+    one target and replayed into another would leave the second one empty (or the other size's image); a stale
+    attachment, view, bind group or workgroup count would differ in bytes."""
     scene = parse_scene(SCENE, tmp_path / "scene.toml")
     plan = resolve_plan(scene, ctx.adapter_facts(), post_path=post_path)
     reused = SceneRenderer(ctx, scene, plan)
 
-    def target(size):
-        return create_target(ctx, size, plan.target_format, usage=TARGET_USAGE | reused.target_usage)
+    def target(size, renderer=reused):
+        return create_target(ctx, size, renderer.plan.target_format, usage=TARGET_USAGE | renderer.target_usage)
 
     want = {}
     for size in ((64, 48), (40, 40)):
-        want[size] = render_frame(ctx, SceneRenderer(ctx, scene, plan), target(size))[0]
-        assert want[size][..., :3].max() > 0, "something was drawn"
+        fresh = SceneRenderer(ctx, scene, resolve_plan(scene, ctx.adapter_facts(), post_path="fragment"))
+        want[size] = render_frame(ctx, fresh, target(size, fresh))[0].astype(int)
+        assert (want[size][..., :3].sum(-1) > 30).mean() > 0.1, "the scene is drawn"
+    tolerance = 0 if post_path == "fragment" else 1
     a, b, c = target((64, 48)), target((64, 48)), target((40, 40))
     for tex, size in ((a, (64, 48)), (b, (64, 48)), (a, (64, 48)), (c, (40, 40)), (a, (64, 48))):
-        np.testing.assert_array_equal(render_frame(ctx, reused, tex)[0], want[size])
+        got = render_frame(ctx, reused, tex)[0].astype(int)
+        assert got.shape == want[size].shape and np.abs(got - want[size]).max() <= tolerance, (tex.size, size)
