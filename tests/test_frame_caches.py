@@ -174,12 +174,13 @@ def test_bound_frames_draw_into_the_target_they_are_given(ctx, tmp_path, post_pa
         return create_target(ctx, size, renderer.plan.target_format, usage=TARGET_USAGE | renderer.target_usage)
 
     want = {}
-    for size in ((64, 48), (40, 40)):
+    for size in ((96, 40), (48, 64)):
         fresh = SceneRenderer(ctx, scene, resolve_plan(scene, ctx.adapter_facts(), post_path="fragment"))
         want[size] = render_frame(ctx, fresh, target(size, fresh))[0].astype(int)
-        assert (want[size][..., :3].sum(-1) > 30).mean() > 0.1, "the scene is drawn"
+        assert (want[size][..., :3].sum(-1) > 30).mean() > 0.05, "the scene is drawn"
+    # sizes whose workgroup grids (post/shaders.py SHAPE 32x8, 4 rows) are not square: a swapped count shows
     tolerance = 0 if post_path == "fragment" else 1
-    a, b, c = target((64, 48)), target((64, 48)), target((40, 40))
-    for tex, size in ((a, (64, 48)), (b, (64, 48)), (a, (64, 48)), (c, (40, 40)), (a, (64, 48))):
+    a, b, c = target((96, 40)), target((96, 40)), target((48, 64))
+    for tex, size in ((a, (96, 40)), (b, (96, 40)), (a, (96, 40)), (c, (48, 64)), (a, (96, 40))):
         got = render_frame(ctx, reused, tex)[0].astype(int)
         assert got.shape == want[size].shape and np.abs(got - want[size]).max() <= tolerance, (tex.size, size)
