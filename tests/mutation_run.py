@@ -1849,6 +1849,9 @@ MUTATIONS = [
      "return select(n, sum, len2 > 1e-20);", [PBR]),
     ("shaders_glsl/pbr.glsl", "return len2 > 1e-20 ? sum * inversesqrt(len2) : n;",
      "return len2 > 1e-20 ? sum : n;", [PBR]),
+    # a scene's credits, a scene-level module since credits.py no longer reaches up into scene/ (integrator)
+    ("wgpurender/core/scene/credits.py", "return file_credits(written for _, written in file_references(table))",
+     "return file_credits(kind for kind, _ in file_references(table))", ["tests/test_credits.py"]),
     # frametime (issue 31.4): the untimed frame bound once per target, its post steps bound once
     ("wgpurender/wgpu_path/scene/frame.py", "self._frames.get(target, lambda: self._bind(target))(encoder)",
      "self._frames.get(0, lambda: self._bind(target))(encoder)", ["tests/test_frame_caches.py"]),
