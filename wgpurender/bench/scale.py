@@ -22,6 +22,7 @@ import math
 import tempfile
 import time
 from collections.abc import Callable
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -148,22 +149,11 @@ def thread_cpu(runner, frames: int) -> Stats:
     ``cpu_ms`` is wall time: it also counts the thread waiting or running slowly after it slept through the
     previous frame's GPU wait, which grows with the GPU's frame time (benchmarks/cpu_growth_probe.py); this row
     counts only the CPU time spent, to tell the two apart."""
-    import gc
-
-    ctx, record, target = runner.ctx, runner.renderer.record, runner.target
-    samples, was = [], gc.isenabled()
-    gc.disable()
-    try:
+    samples = []
+    with _gc_paused():
         for _ in range(frames + 2):
-            start = time.thread_time()
-            encoder = ctx.device.create_command_encoder(label="bench-scale")
-            record(encoder, target, 0.0)
-            ctx.queue.submit([encoder.finish()])
-            samples.append((time.thread_time() - start) * 1e3)
-            ctx.wait_idle()
-    finally:
-        if was:
-            gc.enable()
+            samples.append(_record_submit(runner, time.thread_time))
+            runner.ctx.wait_idle()
     return Stats.of(samples[2:])
 
 
@@ -178,31 +168,45 @@ def same_wait_cpu(runner, frames: int, period_ms: float = SAME_WAIT_MS) -> Stats
     ``cpu_ms`` waits only for its own GPU frame, which grows with the count, and the thread records more slowly
     after a longer sleep (benchmarks/cpu_growth_probe.py): that row is the frame as a window without vsync draws it,
     this one is the controlled comparison. None when a frame takes longer than the period (no same wait exists)."""
-    import gc
-
-    ctx, record, target = runner.ctx, runner.renderer.record, runner.target
-    period = period_ms / 1e3
-    samples, was = [], gc.isenabled()
-    gc.disable()
-    try:
+    period, samples = period_ms / 1e3, []
+    with _gc_paused():
         begin = time.perf_counter()
-        for _ in range(frames + 2):
+        for k in range(-2, frames):  # two frames to fall into step, then the samples
             rest = begin - time.perf_counter()
             if rest > 0:
                 time.sleep(rest)
-            start = time.perf_counter()
-            encoder = ctx.device.create_command_encoder(label="bench-scale")
-            record(encoder, target, 0.0)
-            ctx.queue.submit([encoder.finish()])
-            samples.append((time.perf_counter() - start) * 1e3)
-            ctx.wait_idle()
-            if time.perf_counter() - start > period:
+            begin = time.perf_counter()
+            ms = _record_submit(runner, time.perf_counter)
+            runner.ctx.wait_idle()
+            if time.perf_counter() - begin > period:
                 return None
-            begin = start + period
+            if k >= 0:
+                samples.append(ms)
+            begin += period
+    return Stats.of(samples)
+
+
+def _record_submit(runner, clock: Callable[[], float]) -> float:
+    """Record and submit one frame of a scene runner: the milliseconds it took on ``clock``."""
+    start = clock()
+    encoder = runner.ctx.device.create_command_encoder(label="bench-scale")
+    runner.renderer.record(encoder, runner.target, 0.0)
+    runner.ctx.queue.submit([encoder.finish()])
+    return (clock() - start) * 1e3
+
+
+@contextmanager
+def _gc_paused():
+    """The collector paused for a row's frames (as bench/frames.py's samples), restored after."""
+    import gc
+
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
     finally:
         if was:
             gc.enable()
-    return Stats.of(samples[2:])
 
 
 def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int, int],
