@@ -1863,6 +1863,18 @@ MUTATIONS = [
      "compute_pass.dispatch_workgroups(y, y, 1)", ["tests/test_frame_caches.py"]),
     ("wgpurender/wgpu_path/post/chain.py", "steps.append((\"dispatch\", runner.bound(source, target)))",
      "steps.append((\"dispatch\", runner.bound(target, target)))", ["tests/test_frame_caches.py"]),
+    # frametime (issue 31.3): the same-wait row and which growth row is judged
+    ("wgpurender/bench/scale.py", "            if time.perf_counter() - begin > period:",
+     "            if False:", ["tests/test_bench_perf_rows.py"]),
+    ("wgpurender/bench/scale.py", "            begin += period", "            begin += 0.0",
+     ["tests/test_bench_perf_rows.py"]),
+    ("wgpurender/bench/scale.py", "            if k >= 0:", "            if True:", ["tests/test_bench_perf_rows.py"]),
+    ("wgpurender/bench/scale.py", "    if same is not None:", "    if same is None:",
+     ["tests/test_bench_perf_rows.py"]),
+    ("wgpurender/bench/markdown_scale.py", 'judged = SAME_WAIT if len(rows[SAME_WAIT]) >= 2 else "cpu_ms"',
+     'judged = "cpu_ms"', ["tests/test_bench_perf_rows.py"]),
+    ("wgpurender/bench/markdown_scale.py", 'verdict(growth <= CPU_GROWTH) if metric == judged else "reported"',
+     'verdict(growth <= CPU_GROWTH) if metric != judged else "reported"', ["tests/test_bench_perf_rows.py"]),
 ]
 
 

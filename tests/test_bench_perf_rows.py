@@ -10,10 +10,11 @@ import pytest
 from wgpurender.bench import scale
 
 
-def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
+def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path, monkeypatch):
     """bench_case adds a cpu_thread_ms row (record + submit in thread CPU time) with one sample per timed frame,
     each a positive part of the thread's CPU time."""
     size = (32, 24)
+    monkeypatch.setattr(scale, "SAME_WAIT_MS", 150.0)  # a loaded machine's 32x24 frame fits, whatever the load
     rows = scale.bench_case(ctx, scale.instanced_scene(tmp_path, 8, size), "instanced/8", size, frames=6)
     by_metric = {r.metric: r for r in rows}
     thread = by_metric["cpu_thread_ms"]
@@ -21,6 +22,8 @@ def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
                                                                               "32x24", 6)
     assert 0 < thread.p10 <= thread.median <= thread.p90
     assert thread.n * thread.p10 <= time.thread_time() * 1e3  # per frame: no sample holds the thread's whole CPU time
+    same = by_metric[scale.SAME_WAIT]
+    assert (same.case, same.n) == ("instanced/8", 6) and 0 < same.p10 <= same.median <= same.p90
 
 
 @pytest.mark.parametrize(("kind", "family", "config", "want"), [
@@ -55,7 +58,7 @@ def test_same_wait_rows_begin_every_frame_one_period_after_the_last(ctx, tmp_pat
         return record(*args, **kwargs)
 
     monkeypatch.setattr(runner.renderer, "record", stamped)
-    period_ms = 40.0
+    period_ms = 150.0  # longer than any 32x24 frame here, however loaded the machine
     stats = scale.same_wait_cpu(runner, 5, period_ms)
     assert stats.n == 5 and 0 < stats.p10 <= stats.median <= stats.p90 < period_ms
     gaps = [(b - a) * 1e3 for a, b in zip(starts, starts[1:], strict=False)]

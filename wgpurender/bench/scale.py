@@ -133,7 +133,7 @@ def bench_case(ctx: GPUContext, scene: Path, case: str, size: tuple[int, int], f
     out = samples.results("scene-scale", case, "wgpu", size, note=f"{draws} draw(s)")
     out.append(Result.of("scene-scale", case, "wgpu", s, "cpu_thread_ms", thread_cpu(runner, frames),
                          "thread CPU time (time.thread_time) of record + submit: cpu_ms without the waits"))
-    same = same_wait_cpu(runner, frames)
+    same = same_wait_cpu(runner, frames, SAME_WAIT_MS)
     if same is not None:
         out.append(Result.of("scene-scale", case, "wgpu", s, SAME_WAIT, same,
                              f"record + submit, every frame begun {SAME_WAIT_MS:.1f} ms after the one before (the "
