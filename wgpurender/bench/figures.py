@@ -28,6 +28,9 @@ RUNS = (
     ("NVIDIA H100, third run (perf engineer, 10:52 UTC; few graphics units: render passes are raster-bound; 100 "
      "timed frames a case in the judged families)", "perf-h100/2026-11-27-perf", "perf/results.csv",
      "dawn/results.csv"),
+    ("NVIDIA H100, frametime pass (15:06 UTC; frames and scene-scale only, with the same-wait row the growth target "
+     "is judged on; few graphics units: render passes are raster-bound)", "perf-h100/2026-11-27-frametime",
+     "perf/results.csv", None),
 )
 
 
