@@ -381,7 +381,8 @@ def _join_early() -> None:
 
 # Python's thread switch interval while a context is made on a thread. Making one calls wgpu-native ~140 times
 # (wgpu-py asks the adapter and the device for each feature); after each call the thread waits for the GIL, up to
-# the interval (5 ms by default) while the main thread imports. 0.5 ms lets it through (benchmarks/startup_split.py).
+# the interval (5 ms by default) while the main thread imports. 0.5 ms lets it through (measured 2026-11-27:
+# docs/perf-h100/2026-11-27-startup/).
 EARLY_SWITCH_S = 0.0005
 
 
