@@ -6,7 +6,8 @@ import, shared or not, is inside ``total_ms``. The child prints one JSON line: i
 clock at the first pixels (``time.perf_counter`` is the system-wide monotonic clock, so the parent subtracts its
 own reading from before the spawn: ``spawn_ms``, interpreter start-up included).
 
-The wgpu child does what ``wgpurender render`` does (the API's ``render``): it starts making the device on a
+The wgpu child does what ``wgpurender render`` does (the API's ``render``): it loads the Vulkan drivers'
+libraries on a thread (``driver_preload.start``) before importing wgpu-py, and starts making the device on a
 thread (``context.start_context``) before importing the renderer and the stages, so its ``import_ms`` runs beside
 the driver's work and its ``context_ms`` is what is left of making the device after the imports; ``make_ms`` is
 how long making it took on that thread. The raw child makes its device after its imports, as the raw path does.
@@ -38,6 +39,9 @@ def child(path: str, stage: str, size: tuple[int, int], t0: float) -> dict[str, 
 
 
 def _wgpu(stage: str, size: tuple[int, int]) -> dict[str, float]:
+    from wgpurender.wgpu_path.device import driver_preload
+
+    driver_preload.start()  # as `wgpurender render` does: the drivers load on a thread while wgpu-py is imported
     from wgpurender.wgpu_path.device import context
 
     made = _time_make(context)

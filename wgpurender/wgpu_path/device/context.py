@@ -22,11 +22,11 @@ import wgpu
 from wgpurender.core.errors import UserError
 from wgpurender.wgpu_path import binding
 from wgpurender.wgpu_path.device import wgpu_private
+from wgpurender.wgpu_path.device.driver_preload import BACKEND_ENV
 
 if TYPE_CHECKING:
     from wgpurender.core.plan.model import AdapterFacts
 
-BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
 DEFAULT_BACKEND = "Vulkan"
 AUTO = "auto"
