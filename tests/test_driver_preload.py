@@ -111,3 +111,17 @@ def test_start_loads_the_drivers_before_wgpu_is_imported_and_the_image_is_the_sa
     pre, plain = np.load(tmp_path / "pre.npy"), np.load(tmp_path / "none.npy")
     assert pre.shape == (48, 64, 4) and np.array_equal(pre, plain)
     assert len(np.unique(pre.reshape(-1, 4), axis=0)) > 2  # cubes drawn, not one colour
+
+
+def test_a_backend_already_spelled_as_the_adapter_spells_it_needs_no_checks_module_before_the_thread():
+    """requested_backend's fast path: the default (and any canonical name) is taken as is, so core.checks is not
+    imported before the device thread starts; another spelling still goes through checks.backend."""
+    code = ("import sys\n"
+            "from wgpurender.wgpu_path.device import context as c\n"
+            "print(c.requested_backend(), c.requested_backend('auto'), 'wgpurender.core.checks' in sys.modules, "
+            "c.requested_backend('vulkan'), 'wgpurender.core.checks' in sys.modules)\n")
+    env_free = {k: v for k, v in os.environ.items() if k != dp.BACKEND_ENV}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                         env={**env_free, "PYTHONPATH": os.pathsep.join([str(REPO), env_free.get("PYTHONPATH", "")])})
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["Vulkan", "auto", "False", "Vulkan", "True"]

@@ -207,10 +207,15 @@ class _QuietToken:
 def requested_backend(backend: str | None = None) -> str:
     """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
 
-    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py)."""
-    from wgpurender.core import checks  # lazily: it imports numpy, which a context does not need
+    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py). A name
+    already spelled as the adapter spells it (the default's, or one checks.backend returned) is taken as it is:
+    the checks module is then not imported before the device thread starts (issue 31.5)."""
+    name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
+    if name in BACKENDS or name == AUTO:
+        return name
+    from wgpurender.core import checks  # lazily: ~5 ms before the device thread could start
 
-    return checks.backend(backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND)
+    return checks.backend(name)
 
 
 _instance_backend: list[str] = []  # the backend the process's one wgpu instance was created for
