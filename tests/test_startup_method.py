@@ -23,10 +23,11 @@ def _fake(totals: dict[str, list[float]], calls: list[str]):
     """A run_child that logs (path) and returns the next made-up total of its path."""
     seen: dict[str, int] = {}
 
-    def run(path, stage, size, env):
-        calls.append(path)
-        k = seen[path] = seen.get(path, -1) + 1
-        total = totals[path][k]
+    def run(path, stage, size, env, preload=True):
+        name = path if preload else f"{path} no-preload"
+        calls.append(name)
+        k = seen[name] = seen.get(name, -1) + 1
+        total = totals[name][k]
         return {**{p: total / 4 for p in PHASES}, "total_ms": total, "spawn_ms": total + 20.0}
 
     return run
@@ -92,3 +93,17 @@ def test_without_bytecode_the_ratio_is_reported_not_judged_and_without_a_pair_th
     row = first_pixel_ratio(_rows(label, 1.5, 1.0, 1.0), label, _verdict, judged=False)
     assert row[0] == "first pixel vs raw (no bytecode (every module compiled))" and row[2] == "reported"
     assert first_pixel_ratio(_rows(label, 1.5, 1.0, 1.0)[1:], label, _verdict, judged=False) is None
+
+
+def test_only_the_comparison_row_leaves_the_drivers_to_the_loader(monkeypatch):
+    calls: list[str] = []
+    n = len(startup.configurations(startup.Path("w")))
+    monkeypatch.setattr(startup, "run_child", _fake({"wgpu": [1.0] * 3 * n, "wgpu no-preload": [1.0] * 3,
+                                                      "raw": [1.0] * 3 * n}, calls))
+    rows = startup.bench_startup("triangle", (8, 8), rounds=2, log=lambda _: None)
+    assert calls.count("wgpu no-preload") == 3  # warming and 2 rounds
+    assert len(calls) == 3 * n
+    labels = {r.case for r in rows if r.path == "wgpu" and r.metric == "total_ms"}
+    assert f"triangle: {startup.NO_PRELOAD}" in labels and len(labels) == 5
+    paired = {r.case for r in rows if r.metric == startup.RATIO}  # the labels both paths ran
+    assert paired == {"triangle: no caches", "triangle: no caches, no bytecode", "triangle: Mesa shader cache warm"}

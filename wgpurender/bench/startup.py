@@ -46,16 +46,18 @@ import tempfile
 import time
 from pathlib import Path
 
-from wgpurender.bench.startup_child import LAUNCH, PHASES
+from wgpurender.bench.startup_child import LAUNCH, NO_PRELOAD_ARG, PHASES
 
 METRICS = (*PHASES, "spawn_ms")
 RATIO = "ratio_total"  # the paired ratios' metric (path "wgpu/raw")
 ROUNDS = 11  # full runs; quick runs 2
 
 
-def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str]) -> dict[str, float]:
-    """One fresh process's phases (startup_child.py), plus ``spawn_ms``: from just before the spawn."""
-    cmd = [sys.executable, "-c", LAUNCH, path, stage, f"{size[0]}x{size[1]}"]
+def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str],
+              preload: bool = True) -> dict[str, float]:
+    """One fresh process's phases (startup_child.py), plus ``spawn_ms``: from just before the spawn.
+    ``preload=False``: the wgpu child leaves loading the drivers to the Vulkan loader (the comparison row)."""
+    cmd = [sys.executable, "-c", LAUNCH, path, stage, f"{size[0]}x{size[1]}", *([] if preload else [NO_PRELOAD_ARG])]
     spawned = time.perf_counter()
     proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
     if proc.returncode != 0:
@@ -69,6 +71,8 @@ def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str])
 # (wgpu_path/device/cdef_cache.py); this row removes that file first: a first run on the machine.
 PARSED = "no caches, wgpu.h parsed (first run)"
 NO_BYTECODE = "no caches, no bytecode"
+# wgpu only: what the drivers' preload (wgpu_path/device/driver_preload.py) buys, in the same rounds
+NO_PRELOAD = "no caches, drivers loaded by the Vulkan loader"
 # Exactly what "no caches" clears (issue 31.7), every run: the drivers' shader caches (Mesa's on-disk cache, and
 # NVIDIA's, which serves Vulkan too), the raw path's VkPipelineCache file. Kept: Python's bytecode (a fresh
 # prefix, compiled by the warming run: an installed package has its .pyc) and glslc's SPIR-V; NO_BYTECODE also
@@ -86,6 +90,7 @@ def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
         ("wgpu", "no caches", off, True),
         ("wgpu", NO_BYTECODE, source, True),
         ("wgpu", PARSED, off, True),
+        ("wgpu", NO_PRELOAD, off, True),
         ("wgpu", "Mesa shader cache warm", warm, True),
         ("raw", "no caches", off, True),
         ("raw", NO_BYTECODE, source, True),
@@ -98,7 +103,7 @@ def _note(label: str) -> str:
     if label == NO_BYTECODE:
         return "fresh process each; cleared: " + NO_CACHES.replace("Python bytecode and SPIR-V cached",
                                                                    "every Python module compiled from source")
-    return "fresh process each" + ("; cleared: " + NO_CACHES if label in ("no caches", PARSED) else "")
+    return "fresh process each" + ("; cleared: " + NO_CACHES if label in ("no caches", PARSED, NO_PRELOAD) else "")
 
 
 def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick: bool = False, raw: bool = True,
@@ -115,13 +120,13 @@ def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick
         base.pop("PYTHONDONTWRITEBYTECODE", None)  # cached bytecode unless a row says otherwise
         base.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
         configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")]
-        for path, _, extra, _ in configs:  # warm every cache once: bytecode, SPIR-V, VkPipelineCache, Mesa's
-            run_child(path, stage, size, {**base, **extra})
+        for path, label, extra, _ in configs:  # warm every cache once: bytecode, SPIR-V, VkPipelineCache, Mesa's
+            run_child(path, stage, size, {**base, **extra}, label != NO_PRELOAD)
         samples = {(c[0], c[1]): [] for c in configs}  # one child's phases per round
         for r in range(rounds):
             for path, label, extra, cold_vk in configs if r % 2 == 0 else configs[::-1]:
                 _clear(work, label, cold_vk)
-                samples[path, label].append(run_child(path, stage, size, {**base, **extra}))
+                samples[path, label].append(run_child(path, stage, size, {**base, **extra}, label != NO_PRELOAD))
     out, case = [], lambda label: f"{stage}: {label}"
     for (path, label), runs in samples.items():
         for name in METRICS:

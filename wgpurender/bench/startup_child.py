@@ -19,14 +19,15 @@ from __future__ import annotations
 import time
 
 PHASES = ("import_ms", "context_ms", "setup_ms", "first_frame_ms", "second_frame_ms", "total_ms")
-# The command line's code: the clock first, then the child. ``sys.argv[1:]`` = path, stage, WxH.
+NO_PRELOAD_ARG = "no-preload"  # a 4th argument: the wgpu child leaves the drivers to the Vulkan loader
+# The command line's code: the clock first, then the child. ``sys.argv[1:]`` = path, stage, WxH[, no-preload].
 LAUNCH = ("import time; t0 = time.perf_counter(); import sys; from wgpurender.bench.startup_child import main; "
           "main(t0, sys.argv[1:])")
 
 
-def child(path: str, stage: str, size: tuple[int, int], t0: float) -> dict[str, float]:
+def child(path: str, stage: str, size: tuple[int, int], t0: float, preload: bool = True) -> dict[str, float]:
     """Draw ``stage`` twice on ``path``; the phases in ms since ``t0`` (each phase from the mark before it)."""
-    marks = _wgpu(stage, size) if path == "wgpu" else _raw(stage, size)
+    marks = _wgpu(stage, size, preload) if path == "wgpu" else _raw(stage, size)
     out, last = {}, t0
     for name in PHASES[:-1]:
         out[name] = (marks[name] - last) * 1e3
@@ -38,10 +39,11 @@ def child(path: str, stage: str, size: tuple[int, int], t0: float) -> dict[str, 
     return out
 
 
-def _wgpu(stage: str, size: tuple[int, int]) -> dict[str, float]:
-    from wgpurender.wgpu_path.device import driver_preload
+def _wgpu(stage: str, size: tuple[int, int], preload: bool) -> dict[str, float]:
+    if preload:
+        from wgpurender.wgpu_path.device import driver_preload
 
-    driver_preload.start()  # as `wgpurender render` does: the drivers load on a thread while wgpu-py is imported
+        driver_preload.start()  # as `wgpurender render` does: the drivers load on a thread while wgpu-py is imported
     from wgpurender.wgpu_path.device import context
 
     made = _time_make(context)
@@ -102,6 +104,6 @@ def _raw(stage: str, size: tuple[int, int]) -> dict[str, float]:
 def main(t0: float, argv: list[str]) -> None:
     import json
 
-    path, stage, size = argv
+    path, stage, size, *variant = argv
     w, h = (int(v) for v in size.split("x"))
-    print(json.dumps(child(path, stage, (w, h), t0)))
+    print(json.dumps(child(path, stage, (w, h), t0, preload=NO_PRELOAD_ARG not in variant)))
