@@ -107,3 +107,13 @@ def test_only_the_comparison_row_leaves_the_drivers_to_the_loader(monkeypatch):
     assert f"triangle: {startup.NO_PRELOAD}" in labels and len(labels) == 5
     paired = {r.case for r in rows if r.metric == startup.RATIO}  # the labels both paths ran
     assert paired == {"triangle: no caches", "triangle: no caches, no bytecode", "triangle: Mesa shader cache warm"}
+
+
+def test_the_mesa_cache_rows_run_only_on_a_mesa_driver(monkeypatch):
+    calls: list[str] = []
+    n = len(startup.configurations(startup.Path("w"))) - 2  # without the two Mesa rows
+    monkeypatch.setattr(startup, "run_child", _fake({"wgpu": [1.0] * 2 * n, "wgpu no-preload": [1.0] * 2,
+                                                      "raw": [1.0] * 2 * n}, calls))
+    rows = startup.bench_startup("triangle", (8, 8), rounds=1, log=lambda _: None, mesa=False)
+    assert len(calls) == 2 * n
+    assert not [r for r in rows if startup.MESA_WARM in r.case]

@@ -71,6 +71,7 @@ def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str],
 # (wgpu_path/device/cdef_cache.py); this row removes that file first: a first run on the machine.
 PARSED = "no caches, wgpu.h parsed (first run)"
 NO_BYTECODE = "no caches, no bytecode"
+MESA_WARM = "Mesa shader cache warm"
 # wgpu only: what the drivers' preload (wgpu_path/device/driver_preload.py) buys, in the same rounds
 NO_PRELOAD = "no caches, drivers loaded by the Vulkan loader"
 # Exactly what "no caches" clears (issue 31.7), every run: the drivers' shader caches (Mesa's on-disk cache, and
@@ -91,11 +92,11 @@ def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
         ("wgpu", NO_BYTECODE, source, True),
         ("wgpu", PARSED, off, True),
         ("wgpu", NO_PRELOAD, off, True),
-        ("wgpu", "Mesa shader cache warm", warm, True),
+        ("wgpu", MESA_WARM, warm, True),
         ("raw", "no caches", off, True),
         ("raw", NO_BYTECODE, source, True),
         ("raw", "VkPipelineCache warm", off, False),
-        ("raw", "Mesa shader cache warm", warm, True),
+        ("raw", MESA_WARM, warm, True),
     ]
 
 
@@ -107,9 +108,11 @@ def _note(label: str) -> str:
 
 
 def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick: bool = False, raw: bool = True,
-                  log=print) -> list:
+                  log=print, mesa: bool = True) -> list:
     """``rounds`` interleaved rounds of every configuration after one warming run of each (the module docstring);
-    the phases' rows per configuration and the paired wgpu/raw ratio rows. ``quick``: the no-cache rows only."""
+    the phases' rows per configuration and the paired wgpu/raw ratio rows. ``quick``: the no-cache rows only;
+    ``mesa=False`` (another driver, e.g. NVIDIA's): no "Mesa shader cache warm" rows, which would time the same
+    thing as "no caches" there."""
     from wgpurender.bench.report import Result, size_text
     from wgpurender.wgpu_path.device.timing import Stats
 
@@ -119,7 +122,8 @@ def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick
                     PYTHONPYCACHEPREFIX=str(work / "pyc"))
         base.pop("PYTHONDONTWRITEBYTECODE", None)  # cached bytecode unless a row says otherwise
         base.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
-        configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")]
+        configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")
+                   and (mesa or c[1] != MESA_WARM)]
         for path, label, extra, _ in configs:  # warm every cache once: bytecode, SPIR-V, VkPipelineCache, Mesa's
             run_child(path, stage, size, {**base, **extra}, label != NO_PRELOAD)
         samples = {(c[0], c[1]): [] for c in configs}  # one child's phases per round
