@@ -28,7 +28,8 @@ def _fake(totals: dict[str, list[float]], calls: list[str]):
         calls.append(name)
         k = seen[name] = seen.get(name, -1) + 1
         total = totals[name][k]
-        return {**{p: total / 4 for p in PHASES}, "total_ms": total, "spawn_ms": total + 20.0}
+        out = {**{p: total / 4 for p in PHASES}, "total_ms": total, "spawn_ms": total + 20.0}
+        return {**out, "make_ms": total / 2} if path == "wgpu" else out
 
     return run
 
@@ -59,6 +60,9 @@ def test_the_ratio_rows_pair_each_round_and_their_median_is_not_the_ratio_of_med
     assert totals == {"wgpu": statistics.median(wgpu[1:]), "raw": statistics.median(raw[1:])}
     spawn = next(r for r in rows if r.metric == "spawn_ms" and r.path == "raw")
     assert spawn.median == pytest.approx(statistics.median(raw[1:]) + 20.0)
+    assert {r.path for r in rows if r.metric == "make_ms"} == {"wgpu"}  # the device thread's time: wgpu only
+    make = next(r for r in rows if r.metric == "make_ms")
+    assert make.median == pytest.approx(statistics.median(wgpu[1:]) / 2)
 
 
 def test_a_label_only_one_path_ran_gets_no_ratio():

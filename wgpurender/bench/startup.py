@@ -133,7 +133,7 @@ def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick
                 samples[path, label].append(run_child(path, stage, size, {**base, **extra}, label != NO_PRELOAD))
     out, case = [], lambda label: f"{stage}: {label}"
     for (path, label), runs in samples.items():
-        for name in METRICS:
+        for name in [*METRICS, *(["make_ms"] if all("make_ms" in run for run in runs) else [])]:
             out.append(Result.of("startup", case(label), path, size_text(size), name,
                                  Stats.of([run[name] for run in runs]), note=_note(label)))
         log(f"  startup: {path} {label}: total {Stats.of([run['total_ms'] for run in runs])}")
