@@ -110,14 +110,14 @@ def test_only_the_comparison_row_leaves_the_drivers_to_the_loader(monkeypatch):
     labels = {r.case for r in rows if r.path == "wgpu" and r.metric == "total_ms"}
     assert f"triangle: {startup.NO_PRELOAD}" in labels and len(labels) == 5
     paired = {r.case for r in rows if r.metric == startup.RATIO}  # the labels both paths ran
-    assert paired == {"triangle: no caches", "triangle: no caches, no bytecode", "triangle: Mesa shader cache warm"}
+    assert paired == {"triangle: no caches", "triangle: no caches, no bytecode", f"triangle: {startup.DRIVER_WARM}"}
 
 
-def test_the_mesa_cache_rows_run_only_on_a_mesa_driver(monkeypatch):
-    calls: list[str] = []
-    n = len(startup.configurations(startup.Path("w"))) - 2  # without the two Mesa rows
-    monkeypatch.setattr(startup, "run_child", _fake({"wgpu": [1.0] * 2 * n, "wgpu no-preload": [1.0] * 2,
-                                                      "raw": [1.0] * 2 * n}, calls))
-    rows = startup.bench_startup("triangle", (8, 8), rounds=1, log=lambda _: None, mesa=False)
-    assert len(calls) == 2 * n
-    assert not [r for r in rows if startup.MESA_WARM in r.case]
+def test_the_warm_driver_cache_rows_warm_mesas_and_nvidias_caches_and_no_caches_turns_both_off():
+    configs = {(path, label): env for path, label, env, _ in startup.configurations(startup.Path("w"))}
+    warm = configs["wgpu", startup.DRIVER_WARM]
+    assert warm["MESA_SHADER_CACHE_DISABLE"] == "false" and warm["__GL_SHADER_DISK_CACHE"] == "1"
+    assert warm["MESA_SHADER_CACHE_DIR"].startswith("w") and warm["__GL_SHADER_DISK_CACHE_PATH"].startswith("w")
+    for (path, label), env in configs.items():
+        if label != startup.DRIVER_WARM:
+            assert env["MESA_SHADER_CACHE_DISABLE"] == "true" and env["__GL_SHADER_DISK_CACHE"] == "0", (path, label)

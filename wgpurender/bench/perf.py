@@ -255,9 +255,8 @@ def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     from wgpurender.bench.startup import ROUNDS, bench_startup
 
     size = QUICK_SIZES[0] if config.quick else (800, 600)
-    mesa = "Mesa" in ctx.info.get("description", "")  # Mesa's shader cache rows only where Mesa is the driver
     run.results += bench_startup(STARTUP_STAGE, size, 2 if config.quick else ROUNDS, quick=config.quick,
-                                 raw=config.raw, log=log, mesa=mesa)
+                                 raw=config.raw, log=log)
     run.notes.append("startup: wgpu-py 0.32 cannot create a pipeline cache (the device feature 'pipeline-cache' "
                      "is offered, but neither wgpu-native's C header nor wgpu-py has a function to make one); the "
                      "wgpu rows are without one. The raw path's VkPipelineCache is compared absent vs present.")

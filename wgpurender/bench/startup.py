@@ -20,9 +20,10 @@ two hosts, a spread the three back-to-back samples could not show (docs/benchmar
 Caches compared ("no caches" clears exactly what :data:`NO_CACHES` says):
 
 - raw path: its VkPipelineCache file (saved at exit, loaded at start) absent vs present;
-- both paths: Mesa's on-disk shader cache (the driver's own, below any API) disabled
-  ($MESA_SHADER_CACHE_DISABLE) vs warm (a private $MESA_SHADER_CACHE_DIR filled by a
-  first run);
+- both paths: the driver's on-disk shader cache (below any API) disabled (Mesa: $MESA_SHADER_CACHE_DISABLE;
+  NVIDIA: $__GL_SHADER_DISK_CACHE=0) vs warm (a private $MESA_SHADER_CACHE_DIR or $__GL_SHADER_DISK_CACHE_PATH
+  filled by the warming run). Before 2026-11-27 evening the warm rows said "Mesa" and set only Mesa's variables:
+  on NVIDIA they ran with NVIDIA's own cache on (its default), which is what they measured there;
 - wgpu: wgpu.h's cffi parse, cached by the first run (wgpu_path/device/cdef_cache.py), present (as in every
   second run) vs removed (a first run on the machine);
 - wgpu: wgpu-native 0.32 offers the "pipeline-cache" device feature, but neither its C
@@ -71,7 +72,7 @@ def run_child(path: str, stage: str, size: tuple[int, int], env: dict[str, str],
 # (wgpu_path/device/cdef_cache.py); this row removes that file first: a first run on the machine.
 PARSED = "no caches, wgpu.h parsed (first run)"
 NO_BYTECODE = "no caches, no bytecode"
-MESA_WARM = "Mesa shader cache warm"
+DRIVER_WARM = "driver shader cache warm"
 # wgpu only: what the drivers' preload (wgpu_path/device/driver_preload.py) buys, in the same rounds
 NO_PRELOAD = "no caches, drivers loaded by the Vulkan loader"
 # Exactly what "no caches" clears (issue 31.7), every run: the drivers' shader caches (Mesa's on-disk cache, and
@@ -85,18 +86,19 @@ NO_CACHES = ("the drivers' shader caches (Mesa: MESA_SHADER_CACHE_DISABLE; NVIDI
 def configurations(work: Path) -> list[tuple[str, str, dict[str, str], bool]]:
     """(path, label, extra env, remove the VkPipelineCache file first)."""
     off = {"MESA_SHADER_CACHE_DISABLE": "true", "__GL_SHADER_DISK_CACHE": "0"}
-    warm = {"MESA_SHADER_CACHE_DISABLE": "false", "MESA_SHADER_CACHE_DIR": str(work / "mesa")}
+    warm = {"MESA_SHADER_CACHE_DISABLE": "false", "MESA_SHADER_CACHE_DIR": str(work / "mesa"),
+            "__GL_SHADER_DISK_CACHE": "1", "__GL_SHADER_DISK_CACHE_PATH": str(work / "nvidia")}
     source = {**off, "PYTHONDONTWRITEBYTECODE": "1", "PYTHONPYCACHEPREFIX": str(work / "no-pyc")}
     return [
         ("wgpu", "no caches", off, True),
         ("wgpu", NO_BYTECODE, source, True),
         ("wgpu", PARSED, off, True),
         ("wgpu", NO_PRELOAD, off, True),
-        ("wgpu", MESA_WARM, warm, True),
+        ("wgpu", DRIVER_WARM, warm, True),
         ("raw", "no caches", off, True),
         ("raw", NO_BYTECODE, source, True),
         ("raw", "VkPipelineCache warm", off, False),
-        ("raw", MESA_WARM, warm, True),
+        ("raw", DRIVER_WARM, warm, True),
     ]
 
 
@@ -108,11 +110,9 @@ def _note(label: str) -> str:
 
 
 def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick: bool = False, raw: bool = True,
-                  log=print, mesa: bool = True) -> list:
+                  log=print) -> list:
     """``rounds`` interleaved rounds of every configuration after one warming run of each (the module docstring);
-    the phases' rows per configuration and the paired wgpu/raw ratio rows. ``quick``: the no-cache rows only;
-    ``mesa=False`` (another driver, e.g. NVIDIA's): no "Mesa shader cache warm" rows, which would time the same
-    thing as "no caches" there."""
+    the phases' rows per configuration and the paired wgpu/raw ratio rows. ``quick``: the no-cache rows only."""
     from wgpurender.bench.report import Result, size_text
     from wgpurender.wgpu_path.device.timing import Stats
 
@@ -122,9 +122,8 @@ def bench_startup(stage: str, size: tuple[int, int], rounds: int = ROUNDS, quick
                     PYTHONPYCACHEPREFIX=str(work / "pyc"))
         base.pop("PYTHONDONTWRITEBYTECODE", None)  # cached bytecode unless a row says otherwise
         base.setdefault("XDG_RUNTIME_DIR", tempfile.gettempdir())
-        configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")
-                   and (mesa or c[1] != MESA_WARM)]
-        for path, label, extra, _ in configs:  # warm every cache once: bytecode, SPIR-V, VkPipelineCache, Mesa's
+        configs = [c for c in configurations(work) if (raw or c[0] == "wgpu") and (not quick or c[1] == "no caches")]
+        for path, label, extra, _ in configs:  # warm every cache once: bytecode, SPIR-V, VkPipelineCache, the driver's
             run_child(path, stage, size, {**base, **extra}, label != NO_PRELOAD)
         samples = {(c[0], c[1]): [] for c in configs}  # one child's phases per round
         for r in range(rounds):
