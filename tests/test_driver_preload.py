@@ -125,3 +125,29 @@ def test_a_backend_already_spelled_as_the_adapter_spells_it_needs_no_checks_modu
                          env={**env_free, "PYTHONPATH": os.pathsep.join([str(REPO), env_free.get("PYTHONPATH", "")])})
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.split() == ["Vulkan", "auto", "False", "Vulkan", "True"]
+
+
+def test_start_runs_once_and_not_for_another_backend(monkeypatch):
+    monkeypatch.setattr(dp, "_started", [])
+    monkeypatch.setattr(dp, "_load", lambda: None)  # the thread without the loading
+    monkeypatch.delenv(dp.BACKEND_ENV, raising=False)
+    dp.start("OpenGL")
+    assert dp._started == []
+    dp.start()
+    dp.start("Vulkan")
+    dp.join()
+    assert len(dp._started) == 1
+
+
+def test_the_apis_render_and_the_startup_childs_wgpu_run_preload_and_the_comparison_row_does_not():
+    code = ("import sys\n"
+            "from wgpurender.wgpu_path.device import driver_preload as dp\n"
+            "{call}\n"
+            "print(len(dp._started))\n")
+    calls = {"import wgpurender as w; w.render('triangle', size=(32, 24))": "1",
+             "from wgpurender.bench.startup_child import child; child('wgpu', 'triangle', (32, 24), 0.0)": "1",
+             "from wgpurender.bench.startup_child import main; main(0.0, ['wgpu', 'triangle', '32x24'])": "1",
+             "from wgpurender.bench.startup_child import main; main(0.0, ['wgpu', 'triangle', '32x24', 'no-preload'])":
+                 "0"}
+    for call, started in calls.items():
+        assert _python(code.format(call=call)).splitlines()[-1] == started, call
