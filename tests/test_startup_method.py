@@ -96,7 +96,16 @@ def test_without_bytecode_the_ratio_is_reported_not_judged_and_without_a_pair_th
     label = "no caches, no bytecode"
     row = first_pixel_ratio(_rows(label, 1.5, 1.0, 1.0), label, _verdict, judged=False)
     assert row[0] == "first pixel vs raw (no bytecode (every module compiled))" and row[2] == "reported"
-    assert first_pixel_ratio(_rows(label, 1.5, 1.0, 1.0)[1:], label, _verdict, judged=False) is None
+    assert first_pixel_ratio(_rows(label, 1.5, 1.0, 1.0)[2:], label, _verdict, judged=False) is None  # no wgpu
+
+
+def test_a_run_from_before_the_paired_rounds_shows_its_medians_and_is_not_judged():
+    def verdict(met, applies=""):
+        return f"not judged ({applies})" if applies else ("met" if met else "not met")
+
+    row = first_pixel_ratio(_rows(QUICK_LABEL, 1.0, 473.5, 381.1)[1:], QUICK_LABEL, verdict, judged=True)
+    assert row[1] == "473.5 / 381.1 ms = 1.24x (medians of back-to-back runs)"
+    assert row[2] == "not judged (no paired rounds in this run)"
 
 
 def test_only_the_comparison_row_leaves_the_drivers_to_the_loader(monkeypatch):
