@@ -1854,6 +1854,9 @@ MUTATIONS = [
      "return select(n, sum, len2 > 1e-20);", [PBR]),
     ("shaders_glsl/pbr.glsl", "return len2 > 1e-20 ? sum * inversesqrt(len2) : n;",
      "return len2 > 1e-20 ? sum : n;", [PBR]),
+    # a scene's credits, a scene-level module since credits.py no longer reaches up into scene/ (integrator)
+    ("wgpurender/core/scene/credits.py", "return file_credits(written for _, written in file_references(table))",
+     "return file_credits(kind for kind, _ in file_references(table))", ["tests/test_credits.py"]),
     # startup engineer, evening (issue 31.5: one judged method for the first pixel; the drivers preloaded)
     (STARTUP, "            for path, label, extra, cold_vk in configs if r % 2 == 0 else configs[::-1]:",
      "            for path, label, extra, cold_vk in configs:", [STARTUP_METHOD]),
