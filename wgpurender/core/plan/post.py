@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from wgpurender.core.course.effects import EffectStep, group_passes, step_notes
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.dispatch import dispatch_shape
 from wgpurender.core.plan.model import (
     BYTES_PER_PIXEL,
     HDR_FORMAT,
@@ -174,9 +175,11 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
             read += pixels * BYTES_PER_PIXEL[dst_fmt]
             written += pixels * BYTES_PER_PIXEL[copy_format]
         fusion = _recompute_text(group, preludes[i]) if preludes[i] else _fusion_text(group)
+        shape, shape_why = (dispatch_shape(dst_fmt, not head.fusable, preludes[i] > 0) if pass_path == "compute"
+                            else (None, ""))
         passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, fusion,
                                tuple(notes), mask, copy_to, read, written, copy_format=copy_format, twin_of=twin_of,
-                               prelude=preludes[i]))
+                               prelude=preludes[i], shape=shape, shape_why=shape_why))
     return passes, attachments
 
 
