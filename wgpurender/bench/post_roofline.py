@@ -31,6 +31,7 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, resolve_plan
+from wgpurender.core.plan.dispatch import shape_text
 from wgpurender.core.scene import load_scene
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.timing import PassTimer, wall_time
@@ -166,13 +167,22 @@ def _chain_once(ctx: GPUContext, renderer, target) -> None:
 
 
 # (workgroup x, workgroup y, rows per invocation) tried by --shapes on the fused compute passes
-SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2), (16, 16, 2), (32, 8, 4),
-          (64, 1, 4), (128, 1, 2))
+SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2), (16, 8, 2), (16, 16, 2),
+          (32, 8, 2), (8, 8, 4), (32, 8, 4), (64, 1, 4), (128, 1, 2))
+
+
+def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], bool]]:
+    """(shape, tiled) dispatched by the sweep for pass ``p``: every shape; a tiled pass (the plan's ``tile``) both
+    through its workgroup tile (where the tile fits in workgroup memory) and untiled, the same image."""
+    from wgpurender.core.plan.dispatch import tile_fits
+
+    cases = [(shape, True) for shape in shapes if tile_fits(shape)] if p.tile else []
+    return cases + [(shape, False) for shape in shapes]
 
 
 def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy: CopyKernel,
                 shapes=SHAPES, intermediate: str = "auto") -> list[PassTime]:
-    """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run;
+    """The fused compute chain's passes, each dispatched with every shape (:func:`sweep_cases`), same run;
     ``intermediate``: the knob post_intermediate of the chain swept."""
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
@@ -187,8 +197,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     rows = []
     for p in plan.post_passes:
         moved, copied = dispatch_bytes(p, size)
-        for shape in shapes:
-            runner = ComputePass(ctx.device, p, shape)
+        for shape, tiled in sweep_cases(p, shapes):
+            runner = ComputePass(ctx.device, p, shape, tiled)
             timer = PassTimer(ctx, max_passes=1)
             samples = []
             for _ in range(frames + 2):
@@ -199,7 +209,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
                 ctx.queue.submit([encoder.finish()])
                 samples.append(timer.read().get("pass", float("nan")))
             ms = statistics.median(samples[2:])
-            rows.append(PassTime(f"compute, fused{knob}, shape {shape[0]}x{shape[1]} x{shape[2]} rows", p.effect,
+            how = ", tiled" if tiled else ", untiled" if p.tile else ""
+            rows.append(PassTime(f"compute, fused{knob}, shape {shape_text(shape)}{how}", p.effect,
                                  "compute", moved, ms, copy.ms(moved, frames), copied, intermediate=intermediate))
     return rows
 
@@ -247,6 +258,7 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
                      f"timestamps ({total_bytes / (total_ms * 1e6) if total_ms else float('nan'):.1f} GB/s); "
                      f"whole chain by wall clock (submit + wait) {mine[0].chain_wall_ms:.3f} ms; "
                      f"{chain_ratio(mine):.2f}x a copy of the same bytes" + _against_auto(rows, variant, mine))
+    lines += best_shapes(rows)
     timed = {r.variant for r in rows}
     names = [f"{p}, {'fused' if f else 'unfused'}" for p, f in VARIANTS]
     lines += [f"- {v}, {k}: left out (this chain stores no image between passes, or none it could recompute)"
@@ -254,6 +266,21 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
     lines += ["", "Timestamps of compute passes on lavapipe do not bracket the dispatch's work (they read far "
               "below what a CPU can move): there, compare the wall-clock chain times. On a hardware GPU both agree."]
     return "\n".join(lines) + "\n"
+
+
+def best_shapes(rows: list[PassTime]) -> list[str]:
+    """For each knob's sweep: the fastest swept dispatch of each pass, and the chain made of those (the shape per
+    pass the plan could choose: core/plan/dispatch.py)."""
+    out = []
+    for knob in dict.fromkeys(r.intermediate for r in rows if "shape" in r.variant):
+        swept = [r for r in rows if "shape" in r.variant and r.intermediate == knob]
+        best = [min((r for r in swept if r.effects == e), key=lambda r: r.ms)
+                for e in dict.fromkeys(r.effects for r in swept)]
+        picks = "; ".join(f"{r.effects} {r.variant.split('shape ')[1]} {r.ms:.3f} ms" for r in best)
+        out.append(f"- fastest shape per pass ({knob}): {picks}; that chain {sum(r.ms for r in best):.3f} ms, "
+                   f"{chain_ratio(best):.2f}x a copy of the same bytes"
+                   + _against_auto(rows, f"compute, fused, {knob}", best))
+    return out
 
 
 def chain_ratio(rows: list[PassTime]) -> float:

@@ -11,8 +11,10 @@ the H100 at 3840x2160 (docs/perf-h100/2026-11-27-post/roofline and docs/perf-h10
 - a per-pixel pass writing 4 bytes a texel (final_subpass's fused tonemap+vignette): 32x8 x4 0.047 ms, 1.23x the
   copy (8x8 x2 reads 0.048 ms);
 - a neighbourhood pass (FXAA, then vignette): 8x8 x2 0.073 ms, 32x8 x4 0.075 ms, 8x8 x1 0.125 ms;
-- a pass that recomputes the effects before FXAA for every texel it reads (post_intermediate = none) does it
-  through a workgroup tile (:data:`TILED`): the shape is the tile.
+- FXAA on the compute path reads its 3x3 neighbourhood through a workgroup tile (:data:`TILED`: each texel
+  loaded once per workgroup into workgroup memory, not five times per pixel from the texture), and a pass that
+  recomputes the effects before FXAA for every texel it reads (post_intermediate = none) recomputes each texel
+  of the tile once: the shape is the tile's.
 """
 
 from __future__ import annotations
@@ -29,13 +31,16 @@ TILED: Shape = (16, 16, 2)
 TILE_APRON = 1
 
 
-def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) -> tuple[Shape, str]:
+def dispatch_shape(output_format: str, neighbourhood: bool, tiled: bool, recomputes: bool) -> tuple[Shape, str]:
     """(shape, why) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect reads
-    neighbours (FXAA); ``recomputes``: it recomputes the steps before that effect per texel (a prelude)."""
-    if recomputes:
+    neighbours; ``tiled``: it reads them through a workgroup tile (FXAA); ``recomputes``: it recomputes the steps
+    before that effect per texel (a prelude)."""
+    if tiled:
         w, h = TILED[0], TILED[1] * TILED[2]
-        return TILED, (f"each workgroup recomputes a {w}x{h} tile and a {TILE_APRON}-texel apron once into "
-                       "workgroup memory; taps outside it are recomputed from the input")
+        how = "recomputes" if recomputes else "loads"
+        rest = "recomputed from the input" if recomputes else "read from the texture"
+        return TILED, (f"each workgroup {how} its {w}x{h} tile and a {TILE_APRON}-texel apron once into workgroup "
+                       f"memory, which the 3x3 neighbourhood reads; taps outside it are {rest}")
     if neighbourhood:
         return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache"
     if BYTES_PER_PIXEL.get(output_format, 4) >= 8:
@@ -45,6 +50,16 @@ def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) ->
 
 def shape_text(shape: Shape) -> str:
     return f"{shape[0]}x{shape[1]} x{shape[2]} rows"
+
+
+TILE_BYTES_LIMIT = 16384  # WebGPU's default maxComputeWorkgroupStorageSize, what the device is made with
+TEXEL_BYTES = 16  # a vec4f per tile texel
+
+
+def tile_fits(shape: Shape) -> bool:
+    """Whether a tiled pass's workgroup memory with ``shape`` stays within WebGPU's default limit."""
+    w, h = tile_texels(shape)
+    return w * h * TEXEL_BYTES <= TILE_BYTES_LIMIT
 
 
 def tile_texels(shape: Shape) -> tuple[int, int]:

@@ -36,7 +36,7 @@ class PlannedPass:
     stage = FRAGMENT
 
     def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
-                 tiled: bool = True) -> None:
+                 tiled: bool | None = None) -> None:
         self.device, self.p, self.shape = device, p, shape
         self.source = pass_source(p, shape, tiled)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
@@ -166,7 +166,7 @@ class ComputePass(PlannedPass):
             "access": "write-only", "format": self.p.output_format, "view_dimension": "2d"}}]
 
     def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
-                 tiled: bool = True) -> None:
+                 tiled: bool | None = None) -> None:
         super().__init__(device, p, shape, tiled)
         constants = {"SRGB_ENCODE": srgb_constant(p)} if any(s.effect == "srgb" for s in p.steps) else {}
         self.pipeline = device_cache(device, "post-pipelines").get(
@@ -191,8 +191,8 @@ class ComputePass(PlannedPass):
             entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
         compute_pass.set_pipeline(self.pipeline)
         compute_pass.set_bind_group(0, group)
-        compute_pass.dispatch_workgroups(*dispatch_groups((target.size[0], target.size[1]), shape_of(self.p, self.shape)),
-                                        1)
+        groups = dispatch_groups((target.size[0], target.size[1]), shape_of(self.p, self.shape))
+        compute_pass.dispatch_workgroups(*groups, 1)
 
     @staticmethod
     def copy(encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, copy_to: wgpu.GPUTexture) -> None:

@@ -18,10 +18,12 @@ read once and written once. The entry points around ``pass_color``:
   depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
 - compute: ``cs_main`` over workgroups of the pass's shape (the plan's, core/plan/dispatch.py), ``textureStore``
-  into ``dst`` (binding 3), a storage texture. A pass that recomputes the effects before FXAA (a prelude, knob
-  post_intermediate = none) first recomputes its workgroup's tile and a one-texel apron into workgroup memory,
-  once per texel: FXAA's 3x3 neighbourhood and the taps of its edge search that fall in the tile read it, the
-  rest recompute from the input. The same function makes both, so the image is the untiled one's.
+  into ``dst`` (binding 3), a storage texture. An FXAA pass (the plan's ``tile``) first fills a workgroup tile
+  and a one-texel apron in workgroup memory with ``tile_source``: each texel read once per workgroup instead of
+  at each of the up to nine reads of FXAA's neighbourhood, or, with a prelude (knob post_intermediate = none),
+  the effects before FXAA recomputed once per texel instead of at each read. Reads that fall in the tile take
+  it, the rest call ``tile_source`` itself: the same function on the same texel, so the image is the untiled
+  one's.
   A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
   texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
   (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
@@ -107,11 +109,13 @@ def _color(p: PostPass) -> str:
             f"    return pass_tail({start}, pos, size);\n}}")
 
 
-FXAA_READS = """
-fn fxaa_texel(p: vec2i) -> vec4f {
+STORED_TEXEL = """
+fn tile_source(p: vec2i) -> vec4f {
     return src_clamped(p);
 }
+"""
 
+FXAA_READS = """
 fn fxaa_sample(uv: vec2f) -> vec4f {
     return textureSampleLevel(src, src_sampler, uv, 0.0);
 }
@@ -120,7 +124,7 @@ fn fxaa_sample(uv: vec2f) -> vec4f {
 # post_intermediate = none: the steps before FXAA applied to each texel it reads; a bilinear tap is the mix of four
 # such texels (clamp to edge, texel centres at i + 0.5), as the sampler would filter the stored image.
 RECOMPUTED_TEXEL = """
-fn recomputed_texel(p: vec2i) -> vec4f {
+fn tile_source(p: vec2i) -> vec4f {
     let size = vec2i(textureDimensions(src));
     let q = clamp(p, vec2i(0, 0), size - vec2i(1, 1));
     return pass_prelude(textureLoad(src, q, 0), vec2f(q) + vec2f(0.5), vec2f(size));
@@ -129,11 +133,11 @@ fn recomputed_texel(p: vec2i) -> vec4f {
 
 UNTILED_TEXEL = """
 fn fxaa_texel(p: vec2i) -> vec4f {
-    return recomputed_texel(p);
+    return tile_source(p);
 }
 """
 
-# the compute path: the workgroup's tile (cs_main fills it with recomputed_texel), else recompute
+# the compute path: the workgroup's tile (cs_main fills it with tile_source), else tile_source itself
 TILED_TEXEL = """
 var<workgroup> tile: array<vec4f, TILE_N>;
 var<private> tile_origin: vec2i;  // the texel at tile[0]: the workgroup's first pixel minus the apron
@@ -143,7 +147,7 @@ fn fxaa_texel(p: vec2i) -> vec4f {
     if t.x >= 0 && t.y >= 0 && t.x < TILE_Wi && t.y < TILE_Hi {
         return tile[t.y * TILE_Wi + t.x];
     }
-    return recomputed_texel(p);
+    return tile_source(p);
 }
 """
 
@@ -161,17 +165,18 @@ fn fxaa_sample(uv: vec2f) -> vec4f {
 
 
 def _reads(p: PostPass, shape: Shape | None, tiled: bool) -> str:
-    """fxaa_texel / fxaa_sample for a pass with FXAA: the stored image, or the prelude recomputed per texel (from
-    the workgroup's tile on the compute path)."""
-    if p.prelude == 0:
-        return FXAA_READS
-    lines = ["fn pass_prelude(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
-    lines += [f"    c = {p.steps[i].effect}_pixel(c, pos, size{_arg(p, i)});" for i in range(p.prelude)]
+    """fxaa_texel / fxaa_sample for a pass with FXAA: ``tile_source`` (the stored image, or the prelude recomputed
+    per texel), through the workgroup's tile when ``tiled``; bilinear taps by the sampler, or computed from
+    four recomputed texels."""
     texel = UNTILED_TEXEL
     if tiled:
         w, h = tile_texels(shape_of(p, shape))
         texel = (TILED_TEXEL.replace("TILE_N", str(w * h)).replace("TILE_Wi", f"{w}i")
                  .replace("TILE_Hi", f"{h}i"))
+    if p.prelude == 0:
+        return STORED_TEXEL + texel + FXAA_READS
+    lines = ["fn pass_prelude(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
+    lines += [f"    c = {p.steps[i].effect}_pixel(c, pos, size{_arg(p, i)});" for i in range(p.prelude)]
     return "\n".join([*lines, "    return c;", "}"]) + "\n" + RECOMPUTED_TEXEL + texel + FXAA_RECOMPUTED_READS
 
 
@@ -219,11 +224,11 @@ def _compute_main(p: PostPass, shape: Shape, tiled: bool) -> str:
     if tiled:
         w, h = tile_texels(shape)
         text = TILED_MAIN.replace("TILE_N", str(w * h)).replace("TILE_W", str(w)).replace("TILE_H", str(wy * rows))
-    return (text.replace("APRON", str(TILE_APRON)).replace("FORMAT", p.output_format).replace("WX", str(wx)).replace("WY", str(wy))
-            .replace("ROWS", str(rows)))
+    return (text.replace("APRON", str(TILE_APRON)).replace("FORMAT", p.output_format).replace("WX", str(wx))
+            .replace("WY", str(wy)).replace("ROWS", str(rows)))
 
-# a recomputing pass (prelude) on the compute path: the tile first (every invocation fills its share, then all
-# wait), then ROWS rows per invocation as in COMPUTE_MAIN; the tile is TILE_W texels wide, its pixels TILE_H rows
+# a tiled pass (FXAA) on the compute path: the tile first (every invocation fills its share, then all wait), then
+# ROWS rows per invocation as in COMPUTE_MAIN; the tile is TILE_W texels wide, its pixels TILE_H rows
 TILED_MAIN = """
 @group(0) @binding(3) var dst: texture_storage_2d<FORMAT, write>;
 
@@ -234,7 +239,7 @@ fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) lo
     let corner = group.xy * vec2u(WXu, TILE_Hu);
     tile_origin = vec2i(corner) - vec2i(APRON, APRON);
     for (var i = index; i < TILE_Nu; i += WXu * WYu) {
-        tile[i] = recomputed_texel(tile_origin + vec2i(i32(i % TILE_Wu), i32(i / TILE_Wu)));
+        tile[i] = tile_source(tile_origin + vec2i(i32(i % TILE_Wu), i32(i / TILE_Wu)));
     }
     workgroupBarrier();
     for (var k = 0u; k < ROWSu; k++) {
@@ -248,12 +253,12 @@ fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) lo
 """
 
 
-def pass_source(p: PostPass, shape: Shape | None = None, tiled: bool = True) -> str:
+def pass_source(p: PostPass, shape: Shape | None = None, tiled: bool | None = None) -> str:
     """The whole WGSL module of a post pass on its path (fragment or compute); ``shape``: the compute path's
-    (workgroup x, workgroup y, rows per invocation), the plan's unless a benchmark sweeps it. ``tiled``: a
-    recomputing compute pass reads through its workgroup tile (False: every texel recomputed where it is read,
-    the same image; the benchmark's and the tests' reference)."""
-    tiled = tiled and p.path == "compute" and p.prelude > 0
+    (workgroup x, workgroup y, rows per invocation), the plan's unless a benchmark sweeps it. ``tiled``: the
+    plan's ``tile`` (FXAA on the compute path reads through a workgroup tile) unless False: every texel read from
+    the texture or recomputed where it is read, the same image (the benchmark's and the tests' reference)."""
+    tiled = p.tile if tiled is None else tiled and p.tile
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:

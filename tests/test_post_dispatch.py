@@ -1,0 +1,94 @@
+"""The dispatch shape of each compute post pass (core/plan/dispatch.py) and FXAA's workgroup tile.
+
+The plan gives every compute pass its own shape; FXAA's pass on the compute path reads its neighbourhood through a
+tile of the input in workgroup memory (with post_intermediate = none, the tone-mapped texels recomputed once per
+tile texel). Neither may change a pixel: the tiled image must equal, byte for byte, the same pass with every
+texel read (or recomputed) where it is used, at sizes where tiles are cut by the image's edges, and at a size
+smaller than one tile. How far the tiled image is from the truth is tests/test_post_intermediate.py's (float64)
+and tests/test_post_paths.py's (the unfused fragment chain).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wgpurender.core.plan import resolve_plan
+
+SCENES = Path(__file__).resolve().parent.parent / "assets" / "scenes"
+FINAL, SUBPASS = SCENES / "final.toml", SCENES / "final_subpass.toml"
+
+
+def test_each_compute_pass_gets_the_shape_of_what_it_does():
+    final = resolve_plan(FINAL, None, size=(640, 480), post_path="compute")
+    tonemap, fxaa = final.post_passes
+    # tonemap writes rgba16float (8 bytes a texel): square 8x8 groups, 2 rows each; FXAA reads through a tile
+    assert (tonemap.effect, tonemap.output_format, tonemap.shape, tonemap.tile) == (
+        "tonemap", "rgba16float", (8, 8, 2), False)
+    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (16, 16, 2), True)
+    (fused,) = resolve_plan(SUBPASS, None, size=(640, 480), post_path="compute").post_passes
+    assert (fused.effect, fused.output_format, fused.shape, fused.tile) == (
+        "tonemap+vignette", "rgba8unorm", (32, 8, 4), False)
+    (one,) = resolve_plan(FINAL, None, size=(640, 480), post_path="compute", post_intermediate="none").post_passes
+    assert (one.effect, one.prelude, one.shape, one.tile) == ("tonemap+fxaa+vignette", 1, (16, 16, 2), True)
+    assert "recomputes its 16x32 tile" in one.shape_why
+    fragment = resolve_plan(FINAL, None, size=(640, 480), post_path="fragment")
+    assert all(p.shape is None and not p.tile for p in fragment.post_passes)
+
+
+def test_explain_shows_each_dispatch():
+    text = resolve_plan(FINAL, None, size=(640, 480), post_path="compute").explain()
+    assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a per-pixel pass writing rgba16float" in text
+    assert "dispatch: workgroups of 16x16, 2 row(s) per invocation (each workgroup loads its 16x32 tile" in text
+    assert "dispatch:" not in resolve_plan(FINAL, None, size=(640, 480), post_path="fragment").explain()
+
+
+def test_the_tile_fits_webgpus_workgroup_memory():
+    from wgpurender.bench.post_roofline import SHAPES, sweep_cases
+    from wgpurender.core.plan.dispatch import TILED, tile_fits, tile_texels
+
+    assert tile_texels((16, 16, 2)) == (18, 34) and tile_texels((8, 8, 1)) == (10, 10)
+    assert tile_fits(TILED) and 18 * 34 * 16 <= 16384
+    assert not tile_fits((32, 8, 4))  # 34 x 34 texels of 16 bytes = 18,496 > 16,384
+    fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes[1]
+    cases = sweep_cases(fxaa, SHAPES)
+    assert ((32, 8, 4), True) not in cases and ((32, 8, 4), False) in cases and ((16, 16, 2), True) in cases
+    tonemap = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes[0]
+    assert sweep_cases(tonemap, SHAPES) == [(s, False) for s in SHAPES]
+
+
+def test_the_shader_declares_the_tile_only_where_the_plan_says():
+    from wgpurender.wgpu_path.post.shaders import pass_source
+
+    tonemap, fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes
+    assert "var<workgroup> tile: array<vec4f, 612>" in pass_source(fxaa)  # 18 x 34 texels
+    assert "@workgroup_size(16, 16)" in pass_source(fxaa) and "k < 2u" in pass_source(fxaa)
+    assert "var<workgroup>" not in pass_source(fxaa, tiled=False) and "var<workgroup>" not in pass_source(tonemap)
+    assert "@workgroup_size(8, 8)" in pass_source(tonemap)
+    assert "var<workgroup> tile: array<vec4f, 180>" in pass_source(fxaa, (8, 8, 2))  # 10 x 18
+
+
+def _render(ctx, size, knob, monkeypatch, tiled):
+    import wgpurender.wgpu_path.post.passes as passes
+    from wgpurender.wgpu_path.scene import render_plan
+
+    original = passes.pass_source
+    if not tiled:
+        monkeypatch.setattr(passes, "pass_source", lambda p, shape=None, tiled=None: original(p, shape, False))
+    plan = resolve_plan(FINAL, ctx.adapter_facts(), size=size, post_path="compute", post_intermediate=knob)
+    assert plan.post_passes[-1].tile
+    image = render_plan(ctx, plan, frames=1).pixels
+    monkeypatch.setattr(passes, "pass_source", original)
+    return image
+
+
+@pytest.mark.parametrize("knob", ["auto", "none"])
+@pytest.mark.parametrize("size", [(203, 117), (13, 7)])
+def test_the_tiled_pass_draws_the_untiled_image(ctx, monkeypatch, knob, size):
+    """(203, 117): tiles of 16x32 cut on the right and bottom; (13, 7): the image smaller than one tile."""
+    tiled = _render(ctx, size, knob, monkeypatch, True)
+    untiled = _render(ctx, size, knob, monkeypatch, False)
+    assert tiled.shape == (size[1], size[0], 4) and (tiled[..., :3].astype(int).sum(-1) > 30).any(), "drawn"
+    assert np.array_equal(tiled, untiled), f"{int((tiled != untiled).any(-1).sum())} pixels differ"
