@@ -8,7 +8,8 @@
 # - error: benchmarks/post_intermediate_error.py (each post_intermediate setting against float64, on the GPU);
 # - probe: `bench post-roofline --shapes` at 3840x2160 (final.toml and final_subpass.toml): every variant, then
 #   each fused compute pass with every dispatch shape, FXAA's pass tiled and untiled;
-# - final: the same without the sweep: the chain as the plan dispatches it.
+# - final: every variant (the chain as the plan dispatches it) and a sweep of the plan's shapes and main's
+#   (32x8 x4 untiled for every pass: the baseline, same run).
 # Writes everything under $OUT/run, packed into $OUT/run.tgz.
 set -u
 MODE=${1:-probe}
@@ -16,7 +17,8 @@ MODE=${1:-probe}
 step tests 60 python3 -m pytest -q -p no:cacheprovider tests/test_post_dispatch.py tests/test_post_paths.py \
   tests/test_post_intermediate.py tests/test_post_roofline.py
 step error 25 python3 benchmarks/post_intermediate_error.py "$D/post_intermediate_error.md"
-if [ "$MODE" = probe ]; then SWEEP=--shapes; else SWEEP=; fi
+nvidia-smi --query-gpu=clocks.sm,clocks.max.sm,clocks.mem,power.draw,power.limit --format=csv >> "$D/machine.txt" 2>&1
+if [ "$MODE" = probe ]; then SWEEP=--shapes; else SWEEP=--shapes=8x8x2,16x8x2,8x8x1,32x8x4; fi
 step roofline 120 python3 -m wgpurender bench post-roofline --size 3840x2160 --frames 50 $SWEEP --out "$D/roofline"
 cat "$D/commands.txt"; tail -3 "$D/tests.log"; grep "^| " "$D/post_intermediate_error.md" | head -13
 grep -h "^- " "$D/roofline/post-roofline-final.md" "$D/roofline/post-roofline-final_subpass.md" 2>/dev/null \

@@ -27,13 +27,13 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
     # tonemap writes rgba16float (8 bytes a texel): square 8x8 groups, 2 rows each; FXAA reads through a tile
     assert (tonemap.effect, tonemap.output_format, tonemap.shape, tonemap.tile) == (
         "tonemap", "rgba16float", (8, 8, 2), False)
-    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (16, 16, 2), True)
+    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (16, 8, 2), True)
     (fused,) = resolve_plan(SUBPASS, None, size=(640, 480), post_path="compute").post_passes
     assert (fused.effect, fused.output_format, fused.shape, fused.tile) == (
         "tonemap+vignette", "rgba8unorm", (32, 8, 4), False)
     (one,) = resolve_plan(FINAL, None, size=(640, 480), post_path="compute", post_intermediate="none").post_passes
-    assert (one.effect, one.prelude, one.shape, one.tile) == ("tonemap+fxaa+vignette", 1, (16, 16, 2), True)
-    assert "recomputes its 16x32 tile" in one.shape_why
+    assert (one.effect, one.prelude, one.shape, one.tile) == ("tonemap+fxaa+vignette", 1, (8, 8, 1), True)
+    assert "recomputes its 8x8 tile" in one.shape_why
     fragment = resolve_plan(FINAL, None, size=(640, 480), post_path="fragment")
     assert all(p.shape is None and not p.tile for p in fragment.post_passes)
 
@@ -41,7 +41,7 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
 def test_explain_shows_each_dispatch():
     text = resolve_plan(FINAL, None, size=(640, 480), post_path="compute").explain()
     assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a per-pixel pass writing rgba16float" in text
-    assert "dispatch: workgroups of 16x16, 2 row(s) per invocation (each workgroup loads its 16x32 tile" in text
+    assert "dispatch: workgroups of 16x8, 2 row(s) per invocation (each workgroup loads its 16x16 tile" in text
     assert "dispatch:" not in resolve_plan(FINAL, None, size=(640, 480), post_path="fragment").explain()
 
 
@@ -50,7 +50,7 @@ def test_the_tile_fits_webgpus_workgroup_memory():
     from wgpurender.core.plan.dispatch import TILED, tile_fits, tile_texels
 
     assert tile_texels((16, 16, 2)) == (18, 34) and tile_texels((8, 8, 1)) == (10, 10)
-    assert tile_fits(TILED) and 18 * 34 * 16 <= 16384
+    assert tile_fits(TILED) and tile_fits((16, 16, 2)) and 18 * 34 * 16 <= 16384
     assert not tile_fits((32, 8, 4))  # 34 x 34 texels of 16 bytes = 18,496 > 16,384
     fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes[1]
     cases = sweep_cases(fxaa, SHAPES)
@@ -63,8 +63,9 @@ def test_the_shader_declares_the_tile_only_where_the_plan_says():
     from wgpurender.wgpu_path.post.shaders import pass_source
 
     tonemap, fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes
-    assert "var<workgroup> tile: array<vec4f, 612>" in pass_source(fxaa)  # 18 x 34 texels
-    assert "@workgroup_size(16, 16)" in pass_source(fxaa) and "k < 2u" in pass_source(fxaa)
+    assert "var<workgroup> tile: array<vec4f, 324>" in pass_source(fxaa)  # 18 x 18 texels
+    assert "@workgroup_size(16, 8)" in pass_source(fxaa) and "k < 2u" in pass_source(fxaa)
+    assert "vec2u(16u, 16u)" in pass_source(fxaa)  # a workgroup's pixels: 16 wide, 8 x 2 rows high
     assert "var<workgroup>" not in pass_source(fxaa, tiled=False) and "var<workgroup>" not in pass_source(tonemap)
     assert "@workgroup_size(8, 8)" in pass_source(tonemap)
     assert "var<workgroup> tile: array<vec4f, 180>" in pass_source(fxaa, (8, 8, 2))  # 10 x 18
@@ -87,8 +88,28 @@ def _render(ctx, size, knob, monkeypatch, tiled):
 @pytest.mark.parametrize("knob", ["auto", "none"])
 @pytest.mark.parametrize("size", [(203, 117), (13, 7)])
 def test_the_tiled_pass_draws_the_untiled_image(ctx, monkeypatch, knob, size):
-    """(203, 117): tiles of 16x32 cut on the right and bottom; (13, 7): the image smaller than one tile."""
+    """(203, 117): tiles (16x16, 8x8 for none) cut on the right and bottom; (13, 7): smaller than a 16x16 tile."""
     tiled = _render(ctx, size, knob, monkeypatch, True)
     untiled = _render(ctx, size, knob, monkeypatch, False)
     assert tiled.shape == (size[1], size[0], 4) and (tiled[..., :3].astype(int).sum(-1) > 30).any(), "drawn"
     assert np.array_equal(tiled, untiled), f"{int((tiled != untiled).any(-1).sum())} pixels differ"
+
+
+def test_bench_shapes_are_parsed_or_refused_in_one_line():
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.plan.dispatch import parse_shapes
+
+    assert parse_shapes("16x8x2, 32X8X4,16x8x2") == ((16, 8, 2), (32, 8, 4))
+    for bad, why in (("16x8", "is not WxHxR"), ("16x8x2,a", "'a' is not WxHxR"), ("32x16x1", "W*H between 1 and 256"),
+                     ("0x8x1", "W*H between"), ("8x8x0", "1 to 16 rows"), ("8x8x17", "1 to 16 rows")):
+        with pytest.raises(UserError, match=why):
+            parse_shapes(bad)
+
+
+def test_a_bad_bench_shape_is_one_line_and_exit_2(capsys, tmp_path):
+    from wgpurender.cli import main
+
+    code = main(["bench", "post-roofline", "--size", "32x24", "--shapes", "16x8", "--out", str(tmp_path / "out")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert code == 2 and len(err) == 1 and "'16x8' is not WxHxR" in err[0], err
+    assert not (tmp_path / "out").exists()

@@ -63,7 +63,7 @@ class PassTime:
     ms: float
     copy_ms: float
     copy_bytes: int = 0  # a compute pass's scratch -> output copy (not timed)
-    chain_wall_ms: float = float("nan")  # the whole chain, submit + wait, wall clock (same on every row of a variant)
+    chain_wall_ms: float = float("nan")  # the whole chain (a swept pass: that pass), submit + wait, by wall clock
     intermediate: str = "auto"  # the knob post_intermediate of this row's plan
 
     @property
@@ -159,6 +159,13 @@ def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse:
     return out
 
 
+def _pass_once(ctx: GPUContext, runner, source, target) -> None:
+    encoder = ctx.device.create_command_encoder()
+    runner.encode(encoder, source, target)
+    ctx.queue.submit([encoder.finish()])
+    ctx.wait_idle()
+
+
 def _chain_once(ctx: GPUContext, renderer, target) -> None:
     encoder = ctx.device.create_command_encoder()
     renderer.chain.run(encoder, {**renderer.attachments, "output": target})
@@ -209,14 +216,18 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
                 ctx.queue.submit([encoder.finish()])
                 samples.append(timer.read().get("pass", float("nan")))
             ms = statistics.median(samples[2:])
+            wall = wall_time(lambda r=runner, p=p: _pass_once(ctx, r, textures[p.input], textures[p.output]),
+                             warmup=1, repeats=frames).median  # lavapipe's timestamps do not bracket a dispatch
             how = ", tiled" if tiled else ", untiled" if p.tile else ""
             rows.append(PassTime(f"compute, fused{knob}, shape {shape_text(shape)}{how}", p.effect,
-                                 "compute", moved, ms, copy.ms(moved, frames), copied, intermediate=intermediate))
+                                 "compute", moved, ms, copy.ms(moved, frames), copied, wall, intermediate))
     return rows
 
 
 def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frames: int,
-                 shapes: bool = False) -> list[PassTime]:
+                 shapes: bool = False, sweep=None) -> list[PassTime]:
+    """Every variant's rows; with ``shapes``, the fused compute passes dispatched with each shape of ``sweep``
+    (default :data:`SHAPES`)."""
     scene = load_scene(scene_path)
     copy = CopyKernel(ctx)
     rows: list[PassTime] = []
@@ -229,9 +240,9 @@ def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frame
                     raise
                 # the chain runs as one pass on this variant: nothing stored between passes, nothing to time
     if shapes:
-        rows += shape_sweep(ctx, scene, size, frames, copy)
+        rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES)
         try:  # the one-pass chain (tonemap recomputed in FXAA) is the most ALU-bound: its shape may matter most
-            rows += shape_sweep(ctx, scene, size, frames, copy, intermediate="none")
+            rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES, intermediate="none")
         except UserError:
             pass  # no FXAA pass to recompute into: the auto sweep is the whole story
     return rows
@@ -256,7 +267,8 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
         total_bytes = sum(r.bytes_moved for r in mine)
         lines.append(f"- {variant}: {len(mine)} pass(es), {total_bytes / 1e6:.1f} MB, {total_ms:.3f} ms by "
                      f"timestamps ({total_bytes / (total_ms * 1e6) if total_ms else float('nan'):.1f} GB/s); "
-                     f"whole chain by wall clock (submit + wait) {mine[0].chain_wall_ms:.3f} ms; "
+                     f"{'the pass' if 'shape' in variant else 'whole chain'} by wall clock (submit + wait) "
+                     f"{mine[0].chain_wall_ms:.3f} ms; "
                      f"{chain_ratio(mine):.2f}x a copy of the same bytes" + _against_auto(rows, variant, mine))
     lines += best_shapes(rows)
     timed = {r.variant for r in rows}
