@@ -1391,8 +1391,8 @@ MUTATIONS = [
      "        if (out and not preludes[-1]", [INTERMEDIATE]),
     (PP, "    if not any(preludes):\n", "    if False:\n", [INTERMEDIATE]),
     ("wgpurender/wgpu_path/post/shaders.py", "    h = p.prelude\n", "    h = 0\n", [INTERMEDIATE]),
-    ("wgpurender/wgpu_path/post/shaders.py", "    if p.prelude == 0:\n        return FXAA_READS",
-     "    if True:\n        return FXAA_READS", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    if p.prelude == 0:\n        return STORED_TEXEL + texel + FXAA_READS",
+     "    if True:\n        return STORED_TEXEL + texel + FXAA_READS", [INTERMEDIATE]),
     ("wgpurender/wgpu_path/post/shaders.py", "for i in range(p.prelude)]", "for i in range(0)]", [INTERMEDIATE]),
     ("wgpurender/wgpu_path/post/shaders.py", "    return mix(top, bottom, f.y);", "    return mix(top, bottom, f.x);",
      [INTERMEDIATE]),
@@ -1402,8 +1402,8 @@ MUTATIONS = [
     ("wgpurender/bench/figures_post.py", "intermediate = row.pop(len(row) - knob) if knob else \"auto\"",
      "intermediate = \"auto\"", ["tests/test_benchmark_figures.py|perf2_roofline_rows"]),
 
-    (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"none\")",
-     "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"auto\")", [ROOF_T]),
+    (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES, intermediate=\"none\")",
+     "rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES, intermediate=\"auto\")", [ROOF_T]),
 
     # cameras' rows (2026-11-27): a glTF file's camera as the view (core/scene/gltf_cameras.py), its projections,
     # the orthographic view vector (eye.w) on both paths, the infinite far plane's culling, --camera

@@ -1,8 +1,8 @@
 """The dispatch shape of each compute post pass (core/plan/dispatch.py) and FXAA's workgroup tile.
 
-The plan gives every compute pass its own shape; FXAA's pass on the compute path reads its neighbourhood through a
-tile of the input in workgroup memory (with post_intermediate = none, the tone-mapped texels recomputed once per
-tile texel). Neither may change a pixel: the tiled image must equal, byte for byte, the same pass with every
+The plan gives every compute pass its own shape; with post_intermediate = none, FXAA's pass recomputes the
+tone-mapped texels once per texel of a workgroup tile (``PostPass.tile``), and a benchmark may tile the plain FXAA
+pass too. Neither may change a pixel: the tiled image must equal, byte for byte, the same pass with every
 texel read (or recomputed) where it is used, at sizes where tiles are cut by the image's edges, and at a size
 smaller than one tile. How far the tiled image is from the truth is tests/test_post_intermediate.py's (float64)
 and tests/test_post_paths.py's (the unfused fragment chain).
@@ -24,10 +24,10 @@ FINAL, SUBPASS = SCENES / "final.toml", SCENES / "final_subpass.toml"
 def test_each_compute_pass_gets_the_shape_of_what_it_does():
     final = resolve_plan(FINAL, None, size=(640, 480), post_path="compute")
     tonemap, fxaa = final.post_passes
-    # tonemap writes rgba16float (8 bytes a texel): square 8x8 groups, 2 rows each; FXAA reads through a tile
+    # tonemap writes rgba16float (8 bytes a texel): square 8x8 groups, 2 rows each; FXAA too (it reads neighbours)
     assert (tonemap.effect, tonemap.output_format, tonemap.shape, tonemap.tile) == (
         "tonemap", "rgba16float", (8, 8, 2), False)
-    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (16, 8, 2), True)
+    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (8, 8, 2), False)
     (fused,) = resolve_plan(SUBPASS, None, size=(640, 480), post_path="compute").post_passes
     assert (fused.effect, fused.output_format, fused.shape, fused.tile) == (
         "tonemap+vignette", "rgba8unorm", (32, 8, 4), False)
@@ -41,16 +41,18 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
 def test_explain_shows_each_dispatch():
     text = resolve_plan(FINAL, None, size=(640, 480), post_path="compute").explain()
     assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a per-pixel pass writing rgba16float" in text
-    assert "dispatch: workgroups of 16x8, 2 row(s) per invocation (each workgroup loads its 16x16 tile" in text
+    assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a neighbourhood pass" in text
+    none = resolve_plan(FINAL, None, size=(640, 480), post_path="compute", post_intermediate="none").explain()
+    assert "dispatch: workgroups of 8x8, 1 row(s) per invocation (each workgroup recomputes its 8x8 tile" in none
     assert "dispatch:" not in resolve_plan(FINAL, None, size=(640, 480), post_path="fragment").explain()
 
 
 def test_the_tile_fits_webgpus_workgroup_memory():
     from wgpurender.bench.post_roofline import SHAPES, sweep_cases
-    from wgpurender.core.plan.dispatch import TILED, tile_fits, tile_texels
+    from wgpurender.core.plan.dispatch import RECOMPUTED, tile_fits, tile_texels
 
-    assert tile_texels((16, 16, 2)) == (18, 34) and tile_texels((8, 8, 1)) == (10, 10)
-    assert tile_fits(TILED) and tile_fits((16, 16, 2)) and 18 * 34 * 16 <= 16384
+    assert tile_texels((16, 16, 2)) == (18, 34) and tile_texels(RECOMPUTED) == (10, 10)
+    assert tile_fits(RECOMPUTED) and tile_fits((16, 16, 2)) and 18 * 34 * 16 <= 16384
     assert not tile_fits((32, 8, 4))  # 34 x 34 texels of 16 bytes = 18,496 > 16,384
     fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes[1]
     cases = sweep_cases(fxaa, SHAPES)
@@ -63,23 +65,27 @@ def test_the_shader_declares_the_tile_only_where_the_plan_says():
     from wgpurender.wgpu_path.post.shaders import pass_source
 
     tonemap, fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes
-    assert "var<workgroup> tile: array<vec4f, 324>" in pass_source(fxaa)  # 18 x 18 texels
-    assert "@workgroup_size(16, 8)" in pass_source(fxaa) and "k < 2u" in pass_source(fxaa)
-    assert "vec2u(16u, 16u)" in pass_source(fxaa)  # a workgroup's pixels: 16 wide, 8 x 2 rows high
-    assert "var<workgroup>" not in pass_source(fxaa, tiled=False) and "var<workgroup>" not in pass_source(tonemap)
-    assert "@workgroup_size(8, 8)" in pass_source(tonemap)
-    assert "var<workgroup> tile: array<vec4f, 180>" in pass_source(fxaa, (8, 8, 2))  # 10 x 18
+    (one,) = resolve_plan(FINAL, None, size=(64, 48), post_path="compute", post_intermediate="none").post_passes
+    assert "var<workgroup> tile: array<vec4f, 100>" in pass_source(one)  # 10 x 10 texels
+    assert "@workgroup_size(8, 8)" in pass_source(one) and "k < 1u" in pass_source(one)
+    assert "var<workgroup>" not in pass_source(one, tiled=False)
+    assert "var<workgroup>" not in pass_source(fxaa) and "var<workgroup>" not in pass_source(tonemap)
+    assert "@workgroup_size(8, 8)" in pass_source(fxaa) and "k < 2u" in pass_source(fxaa)
+    tiled = pass_source(fxaa, (16, 8, 2), tiled=True)  # a benchmark's tile: 18 x 18 texels, 16 x 16 pixels
+    assert "var<workgroup> tile: array<vec4f, 324>" in tiled and "vec2u(16u, 16u)" in tiled
+    with pytest.raises(ValueError, match="no FXAA reads to tile"):
+        pass_source(tonemap, tiled=True)
 
 
 def _render(ctx, size, knob, monkeypatch, tiled):
     import wgpurender.wgpu_path.post.passes as passes
+    from wgpurender.wgpu_path.post.shaders import tileable
     from wgpurender.wgpu_path.scene import render_plan
 
     original = passes.pass_source
-    if not tiled:
-        monkeypatch.setattr(passes, "pass_source", lambda p, shape=None, tiled=None: original(p, shape, False))
+    monkeypatch.setattr(passes, "pass_source", lambda p, shape=None, t=None: original(p, shape, tiled and tileable(p)))
     plan = resolve_plan(FINAL, ctx.adapter_facts(), size=size, post_path="compute", post_intermediate=knob)
-    assert plan.post_passes[-1].tile
+    assert plan.post_passes[-1].steps[plan.post_passes[-1].prelude].effect == "fxaa"
     image = render_plan(ctx, plan, frames=1).pixels
     monkeypatch.setattr(passes, "pass_source", original)
     return image
@@ -88,7 +94,8 @@ def _render(ctx, size, knob, monkeypatch, tiled):
 @pytest.mark.parametrize("knob", ["auto", "none"])
 @pytest.mark.parametrize("size", [(203, 117), (13, 7)])
 def test_the_tiled_pass_draws_the_untiled_image(ctx, monkeypatch, knob, size):
-    """(203, 117): tiles (16x16, 8x8 for none) cut on the right and bottom; (13, 7): smaller than a 16x16 tile."""
+    """(203, 117): tiles (8x16 pixels for auto, 8x8 for none) cut on the right and bottom; (13, 7): a partial tile.
+    auto's pass is tiled as the benchmark tiles it (the plan does not), none's as the plan does."""
     tiled = _render(ctx, size, knob, monkeypatch, True)
     untiled = _render(ctx, size, knob, monkeypatch, False)
     assert tiled.shape == (size[1], size[0], 4) and (tiled[..., :3].astype(int).sum(-1) > 30).any(), "drawn"

@@ -179,11 +179,12 @@ SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2)
 
 
 def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], bool]]:
-    """(shape, tiled) dispatched by the sweep for pass ``p``: every shape; a tiled pass (the plan's ``tile``) both
-    through its workgroup tile (where the tile fits in workgroup memory) and untiled, the same image."""
+    """(shape, tiled) dispatched by the sweep for pass ``p``: every shape; an FXAA pass (tiled by the plan or not)
+    both through a workgroup tile (where the tile fits in workgroup memory) and untiled, the same image."""
     from wgpurender.core.plan.dispatch import tile_fits
+    from wgpurender.wgpu_path.post.shaders import tileable
 
-    cases = [(shape, True) for shape in shapes if tile_fits(shape)] if p.tile else []
+    cases = [(shape, True) for shape in shapes if tile_fits(shape)] if tileable(p) else []
     return cases + [(shape, False) for shape in shapes]
 
 
@@ -192,6 +193,7 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     """The fused compute chain's passes, each dispatched with every shape (:func:`sweep_cases`), same run;
     ``intermediate``: the knob post_intermediate of the chain swept."""
     from wgpurender.wgpu_path.post.passes import ComputePass
+    from wgpurender.wgpu_path.post.shaders import tileable
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
     plan = resolve_plan(scene, ctx.adapter_facts(), size=size, post_path="compute", post_fuse=True,
@@ -218,7 +220,7 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
             ms = statistics.median(samples[2:])
             wall = wall_time(lambda r=runner, p=p: _pass_once(ctx, r, textures[p.input], textures[p.output]),
                              warmup=1, repeats=frames).median  # lavapipe's timestamps do not bracket a dispatch
-            how = ", tiled" if tiled else ", untiled" if p.tile else ""
+            how = ", tiled" if tiled else ", untiled" if tileable(p) else ""
             rows.append(PassTime(f"compute, fused{knob}, shape {shape_text(shape)}{how}", p.effect,
                                  "compute", moved, ms, copy.ms(moved, frames), copied, wall, intermediate))
     return rows

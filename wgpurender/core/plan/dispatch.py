@@ -3,23 +3,23 @@
 One shape does not suit every pass (issue 31.6): what a pass reads and writes decides which shape keeps the most
 loads in flight. The plan resolves a shape per pass once (``PostPass.shape``, shown by ``--explain``); the shape
 changes no pixel, only how the image is split into invocations, so both paths keep identical images (the raw
-path's post runs as subpasses and has no dispatch). FXAA on the compute path also reads its 3x3 neighbourhood
-through a workgroup tile (``PostPass.tile``): each texel of the tile and a one-texel apron loaded once per
-workgroup into workgroup memory, not up to nine times per pixel from the texture; with post_intermediate = none
-the tone-mapped texels are recomputed once per tile texel instead of at each read.
+path's post runs as subpasses and has no dispatch). A pass that recomputes the effects before FXAA for every
+texel it reads (post_intermediate = none) does it through a workgroup tile (``PostPass.tile``): each texel of
+the tile and a one-texel apron recomputed once into workgroup memory, not at each of FXAA's reads.
 
-Measured by ``wgpurender bench post-roofline --shapes`` on the H100 at 3840x2160, median of 50 frames, GPU
-timestamps (docs/perf-h100/2026-11-27-post2/probe/; the earlier sweep in docs/perf-h100/2026-11-27-post/ agrees
-on the per-pixel passes):
+Measured by ``wgpurender bench post-roofline --shapes`` on two H100 hosts at 3840x2160, median of 50 frames, GPU
+timestamps, each a sweep in one run (docs/perf-h100/2026-11-27-post2/: ``probe/`` on one host, ``final/`` on
+another):
 
-- a per-pixel pass writing 8 bytes a texel (rgba16float, the tonemap before FXAA): 8x8 x2 rows 0.060 ms (82% of a
-  copy of its bytes), 32x8 x4 0.088 ms;
+- a per-pixel pass writing 8 bytes a texel (rgba16float, the tonemap before FXAA): 8x8 x2 rows 0.060 ms on
+  both (81-82% of a copy of its bytes), 32x8 x4 0.088 ms;
 - a per-pixel pass writing 4 bytes a texel (final_subpass's tonemap+vignette): 0.046-0.049 ms for every shape of
-  2 or 4 rows (32x8 x4 0.048 ms, 80%), 0.085 ms for 8x8 x1;
-- FXAA (then vignette) through its tile: 16x8 x2 0.104 ms, 8x8 x2 0.106, 16x16 x2 0.121; untiled, the best
-  shape reads 0.132 ms (8x8 x2) and 32x8 x4 0.147 ms;
-- FXAA recomputing tonemap (post_intermediate = none) through its tile: 8x8 x1 0.403 ms, 16x16 x1 0.405, 8x8 x2
-  0.715; untiled 0.952 ms at best.
+  2 or 4 rows (32x8 x4 0.047-0.048 ms, 80-81%), 0.085 ms for 8x8 x1;
+- FXAA (then vignette) reading the stored image: 8x8 x2 0.073 ms (final) / 0.132 (probe), 32x8 x4 0.075 /
+  0.147. Through a workgroup tile it reads 0.103-0.106 ms on both hosts: slower where the texture reads are
+  fast, so FXAA reads the texture (the tile stays a ``--shapes`` variant);
+- FXAA recomputing tonemap (post_intermediate = none) through its tile: 8x8 x1 0.318 / 0.403 ms, 8x8 x2
+  0.210 / 0.715; untiled 0.395-0.618 / 0.952-1.342: the tile wins on both hosts, the shape's ranking differs.
 """
 
 from __future__ import annotations
@@ -31,26 +31,22 @@ Shape = tuple[int, int, int]
 
 WIDE: Shape = (32, 8, 4)
 SQUARE: Shape = (8, 8, 2)
-# FXAA's tile: 16 x 16 pixels and a one-texel apron, 18 x 18 texels of vec4f = 5.2 KB of workgroup memory (WebGPU's
-# default limit is 16 KB)
-TILED: Shape = (16, 8, 2)
-# the tile of a pass that recomputes the effects before FXAA: 8 x 8 pixels, one row each (every invocation's
-# recomputing is ALU work: the more invocations, the better)
+# the tile of a pass that recomputes the effects before FXAA: 8 x 8 pixels and a one-texel apron, 10 x 10 texels
+# of vec4f = 1.6 KB of workgroup memory (WebGPU's default limit is 16 KB); one row each: the recomputing is ALU
+# work, and the more invocations share it the better
 RECOMPUTED: Shape = (8, 8, 1)
 TILE_APRON = 1
 
 
-def dispatch_shape(output_format: str, neighbourhood: bool, tiled: bool, recomputes: bool) -> tuple[Shape, str]:
+def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) -> tuple[Shape, str]:
     """(shape, why) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect reads
-    neighbours; ``tiled``: it reads them through a workgroup tile (FXAA); ``recomputes``: it recomputes the steps
-    before that effect per texel (a prelude)."""
-    if tiled:
-        shape = RECOMPUTED if recomputes else TILED
-        w, h = shape[0], shape[1] * shape[2]
-        how = "recomputes" if recomputes else "loads"
-        rest = "recomputed from the input" if recomputes else "read from the texture"
-        return shape, (f"each workgroup {how} its {w}x{h} tile and a {TILE_APRON}-texel apron once into workgroup "
-                       f"memory, which the 3x3 neighbourhood reads; taps outside it are {rest}")
+    neighbours; ``recomputes``: it recomputes the steps before that effect per texel (a prelude), through a
+    workgroup tile."""
+    if recomputes:
+        w, h = RECOMPUTED[0], RECOMPUTED[1] * RECOMPUTED[2]
+        return RECOMPUTED, (f"each workgroup recomputes its {w}x{h} tile and a {TILE_APRON}-texel apron once into "
+                            "workgroup memory, which FXAA's reads take where they fall in it; the others recompute "
+                            "from the input")
     if neighbourhood:
         return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache"
     if BYTES_PER_PIXEL.get(output_format, 4) >= 8:

@@ -18,12 +18,12 @@ read once and written once. The entry points around ``pass_color``:
   depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
 - compute: ``cs_main`` over workgroups of the pass's shape (the plan's, core/plan/dispatch.py), ``textureStore``
-  into ``dst`` (binding 3), a storage texture. An FXAA pass (the plan's ``tile``) first fills a workgroup tile
-  and a one-texel apron in workgroup memory with ``tile_source``: each texel read once per workgroup instead of
-  at each of the up to nine reads of FXAA's neighbourhood, or, with a prelude (knob post_intermediate = none),
-  the effects before FXAA recomputed once per texel instead of at each read. Reads that fall in the tile take
-  it, the rest call ``tile_source`` itself: the same function on the same texel, so the image is the untiled
-  one's.
+  into ``dst`` (binding 3), a storage texture. A tiled FXAA pass (the plan's ``tile``: with a prelude, knob
+  post_intermediate = none) first fills a workgroup tile and a one-texel apron in workgroup memory with
+  ``tile_source``: the effects before FXAA recomputed once per texel instead of at each read (a benchmark may
+  also tile the plain FXAA pass: each texel loaded once per workgroup instead of at each of up to nine reads).
+  Reads that fall in the tile take it, the rest call ``tile_source`` itself: the same function on the same
+  texel, so the image is the untiled one's.
   A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
   texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
   (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
@@ -34,6 +34,7 @@ from __future__ import annotations
 from wgpurender.core.course.effects import EffectSpec, encoding_of, needs_shader_encoding
 from wgpurender.core.plan import PostPass
 from wgpurender.core.plan.dispatch import TILE_APRON, tile_texels
+from wgpurender.core.plan.post import RECOMPUTING_READERS
 from wgpurender.core.shaders.uniforms import F32, Struct, wgsl_structs
 from wgpurender.wgpu_path.device.shaders import load_wgsl
 
@@ -253,12 +254,20 @@ fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) lo
 """
 
 
+def tileable(p: PostPass) -> bool:
+    """Whether the pass's reads can come through a workgroup tile: FXAA starts it (after its prelude), compute."""
+    return p.path == "compute" and p.steps[p.prelude].effect in RECOMPUTING_READERS
+
+
 def pass_source(p: PostPass, shape: Shape | None = None, tiled: bool | None = None) -> str:
     """The whole WGSL module of a post pass on its path (fragment or compute); ``shape``: the compute path's
     (workgroup x, workgroup y, rows per invocation), the plan's unless a benchmark sweeps it. ``tiled``: the
-    plan's ``tile`` (FXAA on the compute path reads through a workgroup tile) unless False: every texel read from
-    the texture or recomputed where it is read, the same image (the benchmark's and the tests' reference)."""
-    tiled = p.tile if tiled is None else tiled and p.tile
+    plan's ``tile`` unless given: whether FXAA on the compute path reads through a workgroup tile (True; a
+    benchmark may tile a pass the plan does not) or every texel from the texture or recomputed where it is read
+    (False). Both draw the same image."""
+    tiled = p.tile if tiled is None else tiled
+    if tiled and not tileable(p):
+        raise ValueError(f"post pass {p.effect!r} on the {p.path} path has no FXAA reads to tile")
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:
