@@ -36,6 +36,9 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
     assert "recomputes its 8x8 tile" in one.shape_why
     fragment = resolve_plan(FINAL, None, size=(640, 480), post_path="fragment")
     assert all(p.shape is None and not p.tile for p in fragment.post_passes)
+    none_fragment = resolve_plan(FINAL, None, size=(640, 480), post_path="fragment", post_intermediate="none")
+    (recomputed,) = none_fragment.post_passes
+    assert (recomputed.prelude, recomputed.shape, recomputed.tile) == (1, None, False)  # a fragment pass: no tile
 
 
 def test_explain_shows_each_dispatch():
@@ -120,3 +123,18 @@ def test_a_bad_bench_shape_is_one_line_and_exit_2(capsys, tmp_path):
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert code == 2 and len(err) == 1 and "'16x8' is not WxHxR" in err[0], err
     assert not (tmp_path / "out").exists()
+
+
+def test_the_fastest_shape_per_pass_is_the_minimum_of_each_pass():
+    from wgpurender.bench.post_roofline import PassTime, best_shapes
+
+    rows = [PassTime("compute, fused", "tonemap", "compute", 1, 0.06, 0.05),
+            PassTime("compute, fused", "fxaa+vignette", "compute", 1, 0.07, 0.04),
+            PassTime("compute, fused, shape 8x8 x2 rows", "tonemap", "compute", 1, 0.060, 0.05),
+            PassTime("compute, fused, shape 32x8 x4 rows", "tonemap", "compute", 1, 0.088, 0.05),
+            PassTime("compute, fused, shape 8x8 x2 rows, untiled", "fxaa+vignette", "compute", 1, 0.073, 0.04),
+            PassTime("compute, fused, shape 8x8 x2 rows, tiled", "fxaa+vignette", "compute", 1, 0.106, 0.04)]
+    (line,) = best_shapes(rows)
+    assert line.startswith("- fastest shape per pass (auto): tonemap 8x8 x2 rows 0.060 ms; fxaa+vignette 8x8 x2 "
+                           "rows, untiled 0.073 ms; that chain 0.133 ms, ")
+    assert f"{0.133 / 0.09:.2f}x a copy of the same bytes" in line
