@@ -70,6 +70,9 @@ def test_the_shader_declares_the_tile_only_where_the_plan_says():
     tonemap, fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes
     (one,) = resolve_plan(FINAL, None, size=(64, 48), post_path="compute", post_intermediate="none").post_passes
     assert "var<workgroup> tile: array<vec4f, 100>" in pass_source(one)  # 10 x 10 texels
+    # the tile starts one texel (the apron) above and left of the workgroup's first pixel; reads outside the tile
+    # recompute, so a tile without its apron draws the same image, only slower: checked in the text
+    assert "tile_origin = vec2i(corner) - vec2i(1, 1);" in pass_source(one)
     assert "@workgroup_size(8, 8)" in pass_source(one) and "k < 1u" in pass_source(one)
     assert "var<workgroup>" not in pass_source(one, tiled=False)
     assert "var<workgroup>" not in pass_source(fxaa) and "var<workgroup>" not in pass_source(tonemap)
@@ -102,6 +105,9 @@ def test_the_tiled_pass_draws_the_untiled_image(ctx, monkeypatch, knob, size):
     tiled = _render(ctx, size, knob, monkeypatch, True)
     untiled = _render(ctx, size, knob, monkeypatch, False)
     assert tiled.shape == (size[1], size[0], 4) and (tiled[..., :3].astype(int).sum(-1) > 30).any(), "drawn"
+    # every pixel written, the last partial workgroups' too (the clear colour's alpha is 1; a texel no
+    # dispatch reached keeps the output's initial zeros)
+    assert (tiled[..., 3] == 255).all() and (untiled[..., 3] == 255).all()
     assert np.array_equal(tiled, untiled), f"{int((tiled != untiled).any(-1).sum())} pixels differ"
 
 
