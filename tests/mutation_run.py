@@ -1850,6 +1850,9 @@ MUTATIONS = [
      "return select(n, sum, len2 > 1e-20);", [PBR]),
     ("shaders_glsl/pbr.glsl", "return len2 > 1e-20 ? sum * inversesqrt(len2) : n;",
      "return len2 > 1e-20 ? sum : n;", [PBR]),
+    # a scene's credits, a scene-level module since credits.py no longer reaches up into scene/ (integrator)
+    ("wgpurender/core/scene/credits.py", "return file_credits(written for _, written in file_references(table))",
+     "return file_credits(kind for kind, _ in file_references(table))", ["tests/test_credits.py"]),
     # issue 31.6, second pass (post engineer): a dispatch shape per compute pass, the recomputing pass's workgroup tile
     ("wgpurender/core/plan/dispatch.py", "    if recomputes:\n", "    if False:\n", [DISPATCH]),
     ("wgpurender/core/plan/dispatch.py", "    if neighbourhood:\n", "    if False:\n", [DISPATCH]),
