@@ -143,6 +143,7 @@ TWIN_PATHS = "tests/test_post_paths.py|twin or hand_made"
 POST_SRGB = "tests/test_post.py|encodes_exactly_once"
 INTERMEDIATE = "tests/test_post_intermediate.py"
 ROOF_T = "tests/test_post_roofline.py"
+DISPATCH = "tests/test_post_dispatch.py"
 M_PACK = "wgpurender/core/models/mesh_pack.py"
 O_CACHED = "wgpurender/core/models/obj_cached.py"
 M_WORK = "wgpurender/core/models/mesh_workers.py"
@@ -1396,8 +1397,8 @@ MUTATIONS = [
      "        if (out and not preludes[-1]", [INTERMEDIATE]),
     (PP, "    if not any(preludes):\n", "    if False:\n", [INTERMEDIATE]),
     ("wgpurender/wgpu_path/post/shaders.py", "    h = p.prelude\n", "    h = 0\n", [INTERMEDIATE]),
-    ("wgpurender/wgpu_path/post/shaders.py", "    if p.prelude == 0:\n        return FXAA_READS",
-     "    if True:\n        return FXAA_READS", [INTERMEDIATE]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    if p.prelude == 0:\n        return STORED_TEXEL + texel + FXAA_READS",
+     "    if True:\n        return STORED_TEXEL + texel + FXAA_READS", [INTERMEDIATE]),
     ("wgpurender/wgpu_path/post/shaders.py", "for i in range(p.prelude)]", "for i in range(0)]", [INTERMEDIATE]),
     ("wgpurender/wgpu_path/post/shaders.py", "    return mix(top, bottom, f.y);", "    return mix(top, bottom, f.x);",
      [INTERMEDIATE]),
@@ -1407,8 +1408,8 @@ MUTATIONS = [
     ("wgpurender/bench/figures_post.py", "intermediate = row.pop(len(row) - knob) if knob else \"auto\"",
      "intermediate = \"auto\"", ["tests/test_benchmark_figures.py|perf2_roofline_rows"]),
 
-    (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"none\")",
-     "rows += shape_sweep(ctx, scene, size, frames, copy, intermediate=\"auto\")", [ROOF_T]),
+    (ROOF, "rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES, intermediate=\"none\")",
+     "rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES, intermediate=\"auto\")", [ROOF_T]),
 
     # cameras' rows (2026-11-27): a glTF file's camera as the view (core/scene/gltf_cameras.py), its projections,
     # the orthographic view vector (eye.w) on both paths, the infinite far plane's culling, --camera
@@ -1897,6 +1898,42 @@ MUTATIONS = [
     (DRIVERS, "*(env.get(\"XDG_DATA_DIRS\") or \"/usr/local/share:/usr/share\").split(\":\")",
      "\"/usr/share\"", [PRELOAD]),
     (DRIVERS, "*(env.get(\"XDG_CONFIG_DIRS\") or \"/etc/xdg\").split(\":\")", "\"/etc/xdg\"", [PRELOAD]),
+    # issue 31.6, second pass (post engineer): a dispatch shape per compute pass, the recomputing pass's workgroup tile
+    ("wgpurender/core/plan/dispatch.py", "    if recomputes:\n", "    if False:\n", [DISPATCH]),
+    ("wgpurender/core/plan/dispatch.py", "    if neighbourhood:\n", "    if False:\n", [DISPATCH]),
+    ("wgpurender/core/plan/dispatch.py", "    if BYTES_PER_PIXEL.get(output_format, 4) >= 8:",
+     "    if BYTES_PER_PIXEL.get(output_format, 4) > 8:", [DISPATCH]),
+    ("wgpurender/core/plan/dispatch.py", "    return shape[0] + 2 * TILE_APRON,", "    return shape[0] + TILE_APRON,",
+     [DISPATCH]),
+    ("wgpurender/core/plan/dispatch.py", "    return w * h * TEXEL_BYTES <= TILE_BYTES_LIMIT", "    return True",
+     [DISPATCH]),
+    ("wgpurender/core/plan/dispatch.py", "w * h <= MAX_INVOCATIONS and", "w * h <= 2 * MAX_INVOCATIONS and",
+     [DISPATCH]),
+    ("wgpurender/core/plan/dispatch.py", "        if len(parts) != 3 or not", "        if not", [DISPATCH]),
+    (PP, "        tile = pass_path == \"compute\" and preludes[i] > 0", "        tile = preludes[i] > 0", [DISPATCH]),
+    (PP, "dispatch_shape(dst_fmt, not head.fusable, tile) if pass_path == \"compute\"",
+     "dispatch_shape(dst_fmt, not head.fusable, tile) if True", [DISPATCH]),
+    ("wgpurender/core/plan/explain.py", "    if p.shape:\n", "    if False:\n", [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "if t.x >= 0 && t.y >= 0 && t.x < TILE_Wi && t.y < TILE_Hi {",
+     "if t.x >= 0 && t.y >= 0 && t.x <= TILE_Wi && t.y < TILE_Hi {", [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    tile_origin = vec2i(corner) - vec2i(APRON, APRON);",
+     "    tile_origin = vec2i(corner);", [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    workgroupBarrier();\n", "", [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "for (var i = index; i < TILE_Nu; i += WXu * WYu)",
+     "for (var i = index; i < TILE_Nu / 2u; i += WXu * WYu)", [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    tiled = p.tile if tiled is None else tiled\n",
+     "    tiled = False if tiled is None else tiled\n", [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    chosen = shape or p.shape\n", "    chosen = p.shape or shape\n",
+     [DISPATCH]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    return -(-size[0] // wx), -(-size[1] // (wy * rows))",
+     "    return size[0] // wx, -(-size[1] // (wy * rows))", [DISPATCH, "tests/test_post_paths.py"]),
+    ("wgpurender/wgpu_path/post/shaders.py", "    if tiled and not tileable(p):\n", "    if False:\n", [DISPATCH]),
+    (ROOF, "    cases = [(shape, True) for shape in shapes if tile_fits(shape)] if tileable(p) else []",
+     "    cases = [(shape, True) for shape in shapes] if tileable(p) else []", [DISPATCH]),
+    (ROOF, "        best = [min((r for r in swept if r.effects == e), key=lambda r: r.ms)",
+     "        best = [max((r for r in swept if r.effects == e), key=lambda r: r.ms)", [DISPATCH]),
+    ("wgpurender/cli/bench.py", "    shapes = None if args.shapes in (None, \"all\") else parse_shapes(args.shapes)",
+     "    shapes = None", [DISPATCH]),
     # frametime (issue 31.4): the untimed frame bound once per target, its post steps bound once
     ("wgpurender/wgpu_path/scene/frame.py", "self._frames.get(target, lambda: self._bind(target))(encoder)",
      "self._frames.get(0, lambda: self._bind(target))(encoder)", ["tests/test_frame_caches.py"]),

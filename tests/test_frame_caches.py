@@ -178,7 +178,8 @@ def test_bound_frames_draw_into_the_target_they_are_given(ctx, tmp_path, post_pa
         fresh = SceneRenderer(ctx, scene, resolve_plan(scene, ctx.adapter_facts(), post_path="fragment"))
         want[size] = render_frame(ctx, fresh, target(size, fresh))[0].astype(int)
         assert (want[size][..., :3].sum(-1) > 30).mean() > 0.05, "the scene is drawn"
-    # sizes whose workgroup grids (post/shaders.py SHAPE 32x8, 4 rows) are not square: a swapped count shows
+    # sizes whose workgroup grids (the plan's dispatch shape, core/plan/dispatch.py) are not square: a swapped
+    # count shows
     tolerance = 0 if post_path == "fragment" else 1
     a, b, c = target((96, 40)), target((96, 40)), target((48, 64))
     for tex, size in ((a, (96, 40)), (b, (96, 40)), (a, (96, 40)), (c, (48, 64)), (a, (96, 40))):

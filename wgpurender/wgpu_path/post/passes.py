@@ -20,7 +20,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan import PostPass
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache, device_cache
 from wgpurender.wgpu_path.device.shaders import create_shader_module
-from wgpurender.wgpu_path.post.shaders import dispatch_groups, pack_pass, pass_source, srgb_constant
+from wgpurender.wgpu_path.post.shaders import dispatch_groups, pack_pass, pass_source, shape_of, srgb_constant
 
 FRAGMENT, COMPUTE = wgpu.ShaderStage.FRAGMENT, wgpu.ShaderStage.COMPUTE
 
@@ -36,9 +36,10 @@ class PlannedPass:
 
     stage = FRAGMENT
 
-    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None) -> None:
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
+                 tiled: bool | None = None) -> None:
         self.device, self.p, self.shape = device, p, shape
-        self.source = pass_source(p, shape)
+        self.source = pass_source(p, shape, tiled)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
         # a recomputing pass (post_intermediate = none) filters in its shader: no sampler
         self.filtering = p.steps[0].spec.filtering and not p.prelude
@@ -177,7 +178,8 @@ class FragmentPass(PlannedPass):
 
 
 class ComputePass(PlannedPass):
-    """A dispatch writing a storage texture (then a copy, for an -srgb output); ``shape``: post/shaders.py SHAPE."""
+    """A dispatch writing a storage texture (then a copy, for an -srgb output); ``shape``: the plan's dispatch shape
+    (``PostPass.shape``) unless a benchmark sweeps it."""
 
     stage = COMPUTE
 
@@ -185,8 +187,9 @@ class ComputePass(PlannedPass):
         return super()._entries() + [{"binding": 3, "visibility": COMPUTE, "storage_texture": {
             "access": "write-only", "format": self.p.output_format, "view_dimension": "2d"}}]
 
-    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None) -> None:
-        super().__init__(device, p, shape)
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
+                 tiled: bool | None = None) -> None:
+        super().__init__(device, p, shape, tiled)
         constants = {"SRGB_ENCODE": srgb_constant(p)} if any(s.effect == "srgb" for s in p.steps) else {}
         self.pipeline = device_cache(device, "post-pipelines").get(
             (self.key, "compute", "cs_main", p.output_format), lambda: device.create_compute_pipeline(
@@ -208,7 +211,8 @@ class ComputePass(PlannedPass):
         group = self._group(source, target)
         compute_pass.set_pipeline(self.pipeline)
         compute_pass.set_bind_group(0, group)
-        compute_pass.dispatch_workgroups(*dispatch_groups((target.size[0], target.size[1]), self.shape), 1)
+        groups = dispatch_groups((target.size[0], target.size[1]), shape_of(self.p, self.shape))
+        compute_pass.dispatch_workgroups(*groups, 1)
 
     def bound(self, source: wgpu.GPUTexture,
               target: wgpu.GPUTexture) -> Callable[[wgpu.GPUComputePassEncoder], None]:
@@ -217,7 +221,7 @@ class ComputePass(PlannedPass):
         self.check(source, target)
         group = self._group(source, target)
         pipeline = self.pipeline
-        x, y = dispatch_groups((target.size[0], target.size[1]), self.shape)
+        x, y = dispatch_groups((target.size[0], target.size[1]), shape_of(self.p, self.shape))
 
         def dispatch(compute_pass: wgpu.GPUComputePassEncoder) -> None:
             compute_pass.set_pipeline(pipeline)
