@@ -21,7 +21,7 @@ GREY = np.full((4, 4, 4), 128, np.uint8)
 ARGUMENTS = {  # argument -> [(bad value, words the message must contain)]
     "size": [("64by48", "malformed size"), ((0, 10), "out of range"), ((10.5, 10), "malformed size"),
              ((True, 10), "malformed size"), ((10,), "malformed size"), (5, "malformed size"),
-             ((16385, 10), "out of range")],
+             ((16385, 10), "out of range"), ("6\u00b2x48", "malformed size")],  # '²' isdigit, int() refuses it
     "msaa": [(4.0, "whole number"), (True, "whole number"), (3, "sample count"), (0, "msaa must be"),
              ("4", "whole number"), (NAN, "whole number")],
     "format": [("rgba32float", "unsupported colour format"), (5, "unsupported colour format"),

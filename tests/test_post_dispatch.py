@@ -117,7 +117,8 @@ def test_bench_shapes_are_parsed_or_refused_in_one_line():
 
     assert parse_shapes("16x8x2, 32X8X4,16x8x2") == ((16, 8, 2), (32, 8, 4))
     for bad, why in (("16x8", "is not WxHxR"), ("16x8x2,a", "'a' is not WxHxR"), ("32x16x1", "W*H between 1 and 256"),
-                     ("0x8x1", "W*H between"), ("8x8x0", "1 to 16 rows"), ("8x8x17", "1 to 16 rows")):
+                     ("0x8x1", "W*H between"), ("8x8x0", "1 to 16 rows"), ("8x8x17", "1 to 16 rows"),
+                     ("8x8x\u00b2", "is not WxHxR")):  # '²' is a digit to str.isdigit, not to int()
         with pytest.raises(UserError, match=why):
             parse_shapes(bad)
 

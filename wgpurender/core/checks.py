@@ -106,7 +106,7 @@ def size(value: Any, name: str = "size") -> tuple[int, int] | None:
         return None
     if isinstance(value, str):
         parts = value.lower().split("x")
-        if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
+        if len(parts) != 2 or not all(p.strip().isdecimal() for p in parts):  # what int() takes ('²' isdigit)
             raise UserError(f"malformed {name} {value!r}: expected WIDTHxHEIGHT, e.g. 800x600")
         value = (int(parts[0]), int(parts[1]))
     if _is_array(value):

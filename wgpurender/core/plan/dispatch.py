@@ -82,7 +82,7 @@ def parse_shapes(text: str) -> tuple[Shape, ...]:
     shapes = []
     for item in text.split(","):
         parts = item.strip().lower().split("x")
-        if len(parts) != 3 or not all(p.isdigit() for p in parts):
+        if len(parts) != 3 or not all(p.isdecimal() for p in parts):  # int()'s digits: '²' isdigit, not decimal
             raise UserError(f"--shapes {text!r}: {item.strip()!r} is not WxHxR (workgroup width, height, rows per "
                             "invocation), e.g. 16x8x2; separate shapes with commas")
         w, h, r = (int(p) for p in parts)
