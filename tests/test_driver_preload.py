@@ -151,3 +151,12 @@ def test_the_apis_render_and_the_startup_childs_wgpu_run_preload_and_the_compari
                  "0"}
     for call, started in calls.items():
         assert _python(code.format(call=call)).splitlines()[-1] == started, call
+
+
+def test_a_named_place_that_cannot_be_examined_is_skipped_not_a_traceback_on_the_thread(tmp_path):
+    """A name longer than the system takes (ENAMETOOLONG, which pathlib's is_dir does not swallow) raised on the
+    preload thread, which printed a traceback into the output of `wgpurender render`."""
+    good = _manifest(tmp_path, "good.json", "/l/good.so")
+    too_long = tmp_path / ("a" * (os.pathconf(str(tmp_path), "PC_NAME_MAX") + 1))
+    env = {"VK_DRIVER_FILES": os.pathsep.join([str(too_long), str(good)])}
+    assert dp.libraries(env) == [dp.LOADER, "/l/good.so"]

@@ -42,7 +42,10 @@ def manifests(env: dict[str, str] | None = None) -> list[Path]:
         *_split(env.get("VK_ADD_DRIVER_FILES")), *_search_folders(env)]
     out: list[Path] = []
     for place in places:
-        found = sorted(place.glob("*.json")) if place.is_dir() else [place] if place.is_file() else []
+        try:
+            found = sorted(place.glob("*.json")) if place.is_dir() else [place] if place.is_file() else []
+        except OSError:  # a name too long, a folder unreadable: the loader's to report (this thread would print
+            continue     # a traceback into the user's output)
         out += [p for p in found if p not in out]
     return out
 
