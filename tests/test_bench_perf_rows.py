@@ -88,3 +88,24 @@ def test_growth_is_judged_on_the_same_wait_row_where_the_run_has_it():
     assert new[1] == ("CPU per frame vs the instance count, each frame after its own GPU wait", "reported")
     grown = [row(1000, markdown_scale.SAME_WAIT, 0.1), row(1000000, markdown_scale.SAME_WAIT, 0.2)]
     assert markdown_scale.targets(window + grown, judge)[0][2] == "not met"
+
+
+def test_a_same_wait_row_missing_the_largest_count_is_not_the_judged_one():
+    """A count whose frame is longer than the period has no same-wait row (scale.same_wait_cpu gives None): judging
+    the counts left (1k to 100k) would call a 1M target met that was never measured under the same wait."""
+    from wgpurender.bench import markdown_scale
+    from wgpurender.bench.report import Result
+
+    def row(n, metric, median):
+        return Result("scene-scale", f"instanced/{n}", "wgpu", "800x600", metric, median, median, median, 10, "")
+
+    counts = (1000, 10000, 100000, 1000000)
+    window = [row(n, "cpu_ms", 0.1 * (k + 1)) for k, n in enumerate(counts)]  # 4x from the smallest to the largest
+    flat = [row(n, markdown_scale.SAME_WAIT, 0.3) for n in counts[:-1]]  # none at the largest
+    got = {label: (measured, status) for label, measured, status in markdown_scale.targets(window + flat, lambda m,
+                                                                                           applies="": str(m))}
+    judged = [(label, m) for label, (m, status) in got.items() if status != "reported"]
+    assert judged == [("CPU per frame does not grow with the instance count",
+                       f"0.100 ms at 1000, 0.400 ms at {counts[-1]} (4.00x)")], got
+    same = [label for label in got if "same wait" in label]
+    assert len(same) == 1 and got[same[0]][1] == "reported" and f"at {counts[-2]}" in got[same[0]][0]

@@ -66,10 +66,12 @@ def _growth(res: list[Result], verdict) -> list[tuple[str, str, str]]:
     that row (before issue 31's frametime pass) judges ``cpu_ms``, as it did."""
     rows = {m: {_count(c): r for c, r in _rows(res, m).items() if c.startswith("instanced/")}
             for m in (SAME_WAIT, "cpu_ms", "cpu_thread_ms")}
-    judged = SAME_WAIT if len(rows[SAME_WAIT]) >= 2 else "cpu_ms"
+    judged = SAME_WAIT if _spans(rows[SAME_WAIT], rows["cpu_ms"]) else "cpu_ms"
     out = []
     for metric, label in ((SAME_WAIT, "CPU per frame does not grow with the instance count (same wait before "
-                                      "every frame: the count is the only variable)"),
+                                      "every frame: the count is the only variable)" if judged == SAME_WAIT
+                           else "CPU per frame vs the instance count, same wait before every frame (not at every "
+                           "count: a frame longer than the period has none)"),
                           ("cpu_ms", "CPU per frame does not grow with the instance count" if judged == "cpu_ms"
                            else "CPU per frame vs the instance count, each frame after its own GPU wait"),
                           ("cpu_thread_ms", "CPU per frame, thread CPU time (no waits), vs the instance count")):
@@ -80,6 +82,13 @@ def _growth(res: list[Result], verdict) -> list[tuple[str, str, str]]:
             out.append((label, f"{fmt_ms(lo.median)} ms at {min(cpu)}, {fmt_ms(hi.median)} ms at {max(cpu)} "
                         f"({growth:.2f}x)", verdict(growth <= CPU_GROWTH) if metric == judged else "reported"))
     return out
+
+
+def _spans(same: dict[int, Result], cpu: dict[int, Result]) -> bool:
+    """Whether the same-wait row covers the counts ``cpu_ms`` does, the smallest and the largest: a count whose
+    frame is longer than the period has no same-wait row, and a verdict over the counts left would judge a
+    narrower range than the target names."""
+    return len(same) >= 2 and (not cpu or (min(same), max(same)) == (min(cpu), max(cpu)))
 
 
 def first_pixel_ratio(res: list[Result], label: str, verdict, judged: bool) -> tuple[str, str, str] | None:
