@@ -109,3 +109,4 @@ def test_a_same_wait_row_missing_the_largest_count_is_not_the_judged_one():
                        f"0.100 ms at 1000, 0.400 ms at {counts[-1]} (4.00x)")], got
     same = [label for label in got if "same wait" in label]
     assert len(same) == 1 and got[same[0]][1] == "reported" and f"at {counts[-2]}" in got[same[0]][0]
+    assert "does not grow" not in same[0], same  # a partial row does not claim the target's words
