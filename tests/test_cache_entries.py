@@ -153,3 +153,30 @@ def test_the_explain_text_says_not_measured_for_a_bad_record(tmp_path):
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
     assert "bandwidth: not measured" in done.stdout
+
+
+def test_a_relative_cache_home_is_ignored_and_no_cache_lands_in_the_working_folder(tmp_path):
+    """The XDG spec: a relative $XDG_CACHE_HOME is invalid and ignored. Taken as it was, `wgpurender render` run in
+    a user's folder wrote wgpurender/cffi-wgpu-h-*.json under ./REL there (and each cache module had its own copy
+    of the rule: wgpu.h's parse, SPIR-V, the bandwidth record, the meshes)."""
+    work, home = tmp_path / "work", tmp_path / "home"
+    work.mkdir()
+    relative = "rel-cache"
+    code = ("from wgpurender.core.files import bandwidth, cache_entry\n"
+            "from wgpurender.raw_path.device import shaders\n"
+            "from wgpurender.wgpu_path.device import cdef_cache\n"
+            "import wgpurender as w\n"
+            "w.render('triangle', size=(16, 12))\n"
+            "print(cache_entry.cache_folder('meshes'), shaders.cache_dir(), cdef_cache.cache_dir(), "
+            "bandwidth.record_path())\n")
+    env = {k: v for k, v in os.environ.items() if k != bandwidth.RECORD_ENV}
+    env.update(XDG_CACHE_HOME=relative, HOME=str(home), WGPURENDER_VALIDATION="0",
+               PYTHONPATH=os.pathsep.join([str(Path(__file__).resolve().parent.parent),
+                                           *filter(None, [os.environ.get("PYTHONPATH")])]))
+    out = subprocess.run([sys.executable, "-c", code], cwd=work, env=env, capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 0, out.stderr[-2000:]
+    ours = home / ".cache" / "wgpurender"
+    assert out.stdout.split() == [str(ours / "meshes"), str(ours / "spirv"), str(ours), str(ours / "bandwidth.json")]
+    assert not (work / relative / "wgpurender").exists(), sorted(p.name for p in (work / relative).rglob("*"))
+    assert any(ours.glob("cffi-wgpu-h-*.json")), "the parse was cached where the spec says"

@@ -16,6 +16,8 @@ import os
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from wgpurender.core.files.cache_entry import cache_root
+
 RECORD_ENV = "WGPURENDER_PERF_RECORD"
 
 
@@ -51,8 +53,7 @@ FIELDS = {"ms": (int, float), "mb": (int, float), "copy_ms": (int, float), "size
 def record_path() -> Path:
     if os.environ.get(RECORD_ENV):
         return Path(os.environ[RECORD_ENV])
-    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    return cache / "wgpurender" / "bandwidth.json"
+    return cache_root() / "bandwidth.json"
 
 
 def pass_key(scene: str, effects: str, path: str) -> str:

@@ -83,7 +83,16 @@ def write_entry(path: Path, key: bytes | str, payload: bytes) -> bool:
         return False
 
 
+def cache_root() -> Path:
+    """``$XDG_CACHE_HOME/wgpurender``, ``~/.cache/wgpurender`` when it is unset or relative: the one rule of where
+    our caches live (SPIR-V, wgpu.h's parse, the pipeline cache, the meshes, the bandwidth record). A relative
+    $XDG_CACHE_HOME is invalid by the XDG base directory spec ("should consider the path invalid and ignore it"):
+    taken as it is, it put our cache files in whatever folder the command ran in, among the user's files."""
+    base = os.environ.get("XDG_CACHE_HOME") or ""
+    return (Path(base) if os.path.isabs(base) else Path.home() / ".cache") / "wgpurender"
+
+
 def cache_folder(name: str) -> Path:
-    """``$XDG_CACHE_HOME/wgpurender/NAME`` (``~/.cache`` when unset): where a cache of ours keeps its entries,
-    never beside the user's files. Tests point $XDG_CACHE_HOME at a folder of their own (tests/conftest.py)."""
-    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "wgpurender" / name
+    """``cache_root() / NAME``: where a cache of ours keeps its entries, never beside the user's files. Tests point
+    $XDG_CACHE_HOME at a folder of their own (tests/conftest.py)."""
+    return cache_root() / name

@@ -23,7 +23,7 @@ from pathlib import Path
 import vulkan as vk
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.cache_entry import read_entry, write_entry
+from wgpurender.core.files.cache_entry import cache_folder, read_entry, write_entry
 from wgpurender.core.shaders.shader_files import packaged_folder, shader_folder
 from wgpurender.core.shaders.spirv_names import GLSLC_ARGS, glslc_args, spirv_key, spirv_name
 from wgpurender.core.shaders.spirv_names import included as _included
@@ -40,8 +40,7 @@ def glsl_dir() -> Path:
 
 def cache_dir() -> Path:
     """SPIR-V cache in the user's cache folder (never the install folder, which may be read-only)."""
-    base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
-    return Path(base) / "wgpurender" / "spirv"
+    return cache_folder("spirv")
 
 
 def glsl_path(name: str) -> Path:

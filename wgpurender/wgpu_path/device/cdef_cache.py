@@ -21,12 +21,12 @@ with a real parse, type by type, in fresh processes. This uses cffi internals, a
 from __future__ import annotations
 
 import hashlib
-import os
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from wgpurender.core.files.cache_entry import cache_root
 from wgpurender.wgpu_path.device.wgpu_private import BACKEND_FFI  # the module whose import parses wgpu.h
 
 # The parser attributes a parse fills (cffi.cparser.Parser.__init__); _structnode2type only serves the parse.
@@ -36,7 +36,7 @@ status = "not used"  # "restored", "parsed and saved", "parsed" (could not save)
 
 
 def cache_dir() -> Path:
-    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "wgpurender"
+    return cache_root()
 
 
 def cache_file(csource: str) -> Path:
