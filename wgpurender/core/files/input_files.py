@@ -113,6 +113,12 @@ class FolderResolver:
     def __init__(self) -> None:
         self._folders: dict[str, str] = {}
         self._done: dict[str, Path] = {}
+        self._regular: set[str] = set()  # results whose one lstat found a regular file (so no link either)
+
+    def regular(self, path: Path) -> bool:
+        """Whether ``path`` (a result of this resolver) was a regular file, not a link, when it was resolved:
+        then :func:`input_file` would pass it as it is, and the caller may skip that second stat."""
+        return os.fspath(path) in self._regular
 
     def __call__(self, path: str | os.PathLike) -> Path:
         text = os.fspath(path)
@@ -127,7 +133,13 @@ class FolderResolver:
             if real is None:
                 real = self._folders[folder] = os.fspath(resolved(folder))
             candidate = os.path.join(real, name)
-            result = resolved(candidate) if os.path.islink(candidate) else Path(candidate)
+            try:
+                mode = os.lstat(candidate).st_mode  # one call: is it a link, and is it a regular file
+            except (OSError, ValueError):
+                mode = 0  # missing or unreadable: input_file says what it is
+            result = resolved(candidate) if stat.S_ISLNK(mode) else Path(candidate)
+            if stat.S_ISREG(mode):
+                self._regular.add(os.fspath(result))
         self._done[text] = self._done[os.fspath(result)] = result
         return result
 

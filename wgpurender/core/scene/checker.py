@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -103,9 +104,9 @@ class Checker:
                                   "(NUL, newline, ...): give a plain file path")
         if not hasattr(self, "_resolve"):
             self._resolve = FolderResolver()  # each folder resolved once per scene, not once per file
-        path = self._resolve(self.folder / written)
-        try:
-            found = input_file(path, what)  # a stat only: what is missing or special is named as such
+        path = self._resolve(os.path.join(self.folder, written))  # the resolver normalises (Path.resolve)
+        try:  # a stat only (none when the resolver's lstat found a regular file): what is missing or special is named
+            found = path if self._resolve.regular(path) else input_file(path, what)
         except InputFileError as err:
             if not err.missing:
                 raise self.error(key, f"{format_path(key)}: {err}") from None

@@ -25,6 +25,7 @@ from wgpurender.core.scene.validate import (
     file_camera_choice,
     resolve_file_camera,
 )
+from wgpurender.core.view import garbage
 
 
 def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
@@ -77,6 +78,7 @@ def _with_file_data(model):
     return dataclasses.replace(model, file_materials=found, motion=motion)
 
 
+@garbage.paused()  # ~10^5 long-lived objects for 10k models: no collection walks them on the way
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.files.assets`)."""
     path = input_file(resolve_scene(path), "scene file")
