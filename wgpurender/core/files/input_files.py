@@ -160,8 +160,12 @@ def env_limit(name: str, default: int) -> int:
 
 def check_file_size(path: Path, what: str) -> None:
     """Refuse a model file larger than :data:`MAX_MODEL_BYTES` before anything reads it."""
+    check_size(path, os.stat(path).st_size, what)
+
+
+def check_size(path: Path, size: int, what: str) -> None:
+    """:func:`check_file_size` for a size already known (the open file's fstat: read_jail.read_checked)."""
     limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES)
-    size = os.stat(path).st_size
     if size > limit:
         raise UserError(f"{what} {path} is {size / 2**20:.0f} MiB, over the limit of {limit / 2**20:.0f} MiB; "
                         f"simplify the model, or raise the limit with ${MAX_MODEL_BYTES_ENV}=BYTES")

@@ -188,10 +188,19 @@ def open_checked(path: str | os.PathLike) -> BinaryIO:
         raise
 
 
-def read_checked(path: str | os.PathLike) -> bytes:
-    """All of ``path``'s bytes, through :func:`open_checked`."""
+def read_checked(path: str | os.PathLike, size_check: Callable[[int], None] | None = None) -> bytes:
+    """All of ``path``'s bytes, through :func:`open_checked`; ``size_check(size)`` first, on the open file's size
+    (a model's limit without a stat of its own: input_files.check_size)."""
     with open_checked(path) as f:
+        if size_check is not None:
+            size_check(os.fstat(f.fileno()).st_size)
         return f.read()
+
+
+def is_checked(path: str | os.PathLike) -> bool:
+    """Whether the rule let ``path`` through, so :func:`open_checked` verifies the file it opens (a regular file,
+    no link, the checked path): a worker reading it needs no stat of its own first."""
+    return os.fspath(path) in _CHECKED
 
 
 def _real_path(fd: int, info: os.stat_result, name: str) -> str:
