@@ -9,6 +9,7 @@ from pathlib import Path
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import resolve_scene
 from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
+from wgpurender.core.scene import toml_cache
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.environment_block import parse_environment
 from wgpurender.core.scene.file_materials import read_file_materials
@@ -32,7 +33,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     """Validate TOML text as a scene whose file is ``path`` (relative paths resolve from its folder)."""
     path = Path(path).absolute()
     try:
-        data = tomllib.loads(text)
+        data = toml_cache.loads(text)  # a large scene's values parsed once (a verified cache)
     except tomllib.TOMLDecodeError as err:
         raise UserError(f"{path}: invalid TOML: {err}") from None
     except RecursionError:  # tomllib recurses once per nested array or inline table
