@@ -4,11 +4,14 @@ is first on PYTHONPATH is timed, so one call on one machine can time two trees (
 this branch's).
 
     python benchmarks/load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...] [--split=SPLIT.csv]
+        [--max-workers=M]
         appends: label, n, parse cache, knobs, wall ms, process CPU ms, worker processes, and the wall ms of
         the phases: scene file (load_scene), plan (resolve_plan), renderer (meshes, buffers, pipelines, the
         bundle), first frame (record, submit, read back)
         --split: also the inclusive wall ms (and calls) of the functions in SPLIT below during the timed load,
         appended to SPLIT.csv (they nest: each row includes the rows it calls; a tree without one skips it)
+        --max-workers: the worker rule's cap (core/plan/mesh_loading.MAX_WORKERS, 16) set to M in this process
+        only, to measure what fewer forks of a large process save against less parallel reading
 
 ``cold``: the parse cache (core/models/obj_cached.py) starts empty ($XDG_CACHE_HOME is pointed at a new
 temporary folder: the machine's own cache is never read or written); ``warm``: the same folder after one
@@ -63,7 +66,10 @@ def timers(split: tuple) -> dict[str, list[float]]:
 
     spent: dict[str, list[float]] = {}
     for phase, module, name in split:
-        owner = importlib.import_module(module)
+        try:
+            owner = importlib.import_module(module)
+        except ImportError:  # a tree without this module (main before it was added)
+            continue
         *outer, attr = name.split(".")
         for part in outer:
             owner = getattr(owner, part, None)
@@ -102,7 +108,12 @@ def main() -> int:
     label, n, out = sys.argv[1], int(sys.argv[2]), Path(sys.argv[3])
     mode = sys.argv[4] if len(sys.argv) > 4 else "cold"
     split_to = next((Path(a.split("=", 1)[1]) for a in sys.argv[5:] if a.startswith("--split=")), None)
-    knobs = dict(arg.split("=", 1) for arg in sys.argv[5:] if not arg.startswith("--split="))
+    most = next((int(a.split("=", 1)[1]) for a in sys.argv[5:] if a.startswith("--max-workers=")), None)
+    knobs = dict(arg.split("=", 1) for arg in sys.argv[5:] if not arg.startswith("--"))
+    if most is not None:  # a measurement of the rule's cap, not a knob: the plan's own rule with another bound
+        from wgpurender.core.plan import mesh_loading
+
+        mesh_loading.MAX_WORKERS = most
     if mode not in ("cold", "warm"):
         print(f"cache mode {mode!r}: give cold or warm", file=sys.stderr)
         return 2
@@ -118,7 +129,7 @@ def main() -> int:
         phases, workers = timed_load(ctx, scene, knobs)
         wall, cpu = (time.perf_counter() - wall) * 1e3, (time.process_time() - cpu) * 1e3
     new = not out.exists()
-    shown = " ".join(f"{k}={v}" for k, v in knobs.items()) or "-"
+    shown = " ".join([f"{k}={v}" for k, v in knobs.items()] + ([f"max_workers={most}"] if most else [])) or "-"
     with out.open("a") as f:
         if new:
             f.write("tree,distinct_meshes,parse_cache,knobs,load_wall_ms,load_process_cpu_ms,mesh_workers,"
