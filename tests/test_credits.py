@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from wgpurender.core.files.assets import scene_dir
-from wgpurender.core.files.credits import all_credits, scene_credits
+from wgpurender.core.files.credits import all_credits
+from wgpurender.core.scene.credits import scene_credits
 
 REPO = Path(__file__).resolve().parent.parent
 LICENCE = "CC BY 4.0"  # the licence of the Vulkan tutorial's viking room (en/08_Loading_models.md)

@@ -132,7 +132,7 @@ def test_the_wheel_carries_the_attribution_of_the_tutorial_files(installed):
     from wgpurender.core.files.credits import all_credits
 
     assert "wgpurender/_assets/credits.toml" in zipfile.ZipFile(installed["wheel"]).namelist()
-    code = ("from wgpurender.core.files.credits import scene_credits; "
+    code = ("from wgpurender.core.scene.credits import scene_credits; "
             "from wgpurender.core.files.assets import bundled_scene; "
             "print(scene_credits(bundled_scene('vulkan_tutorial_28'))[0].line())")
     assert _run(installed, installed["python"], "-c", code).stdout.strip() == all_credits()[0].line()

@@ -17,8 +17,8 @@ import numpy as np
 
 from wgpurender.concepts import Concept
 from wgpurender.core.errors import UserError
-from wgpurender.core.files.credits import scene_credits
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
+from wgpurender.core.scene.credits import scene_credits
 from wgpurender.core.verdict.compare import Comparison, compare_images, heatmap
 from wgpurender.report import code, timings
 from wgpurender.report.concept_rows import REPO_ROOT, rows_for

@@ -133,10 +133,10 @@ def _published(text: str, scene, plan) -> str:
 
 def record_scene(real: GPUContext, path: str, size: tuple[int, int], fps: int, seconds: float) -> dict:
     from wgpurender.core.files.assets import resolve_scene
-    from wgpurender.core.files.credits import scene_credits
     from wgpurender.core.files.published_text import labels_without_machine_paths
     from wgpurender.core.plan import resolve_plan
     from wgpurender.core.scene import load_scene
+    from wgpurender.core.scene.credits import scene_credits
     from wgpurender.wgpu_path.scene.frame import SceneRenderer
     from wgpurender.wgpu_path.scene.shader_interface import CAMERA
 

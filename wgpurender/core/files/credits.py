@@ -2,7 +2,7 @@
 
 The Vulkan tutorial's viking room (model and texture) is CC BY 4.0: wherever it is published (the report's
 section of a tutorial scene, an exported page of it, the wheel, README) its title, author, source, licence and
-changes go with it. :func:`scene_credits` finds the credits a scene file needs from the file names it reads.
+changes go with it. :func:`file_credits` finds the credits of given file names (a scene's: core/scene/credits.py).
 API-free.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import tomllib
 from dataclasses import dataclass
-from pathlib import Path, PurePath
+from pathlib import PurePath
 
 from wgpurender.core.files.assets import assets_dir
 
@@ -43,11 +43,3 @@ def file_credits(paths) -> list[Credit]:
     """The credits of the files among ``paths`` (matched by file name), each once, in the table's order."""
     names = {PurePath(str(p)).name for p in paths}
     return [c for c in all_credits() if names & set(c.files)]
-
-
-def scene_credits(scene_file: str | Path) -> list[Credit]:
-    """The credits a scene file needs: those of every file it names (models' paths and materials' maps)."""
-    from wgpurender.core.scene.copy import file_references
-
-    table = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))
-    return file_credits(written for _, written in file_references(table))
