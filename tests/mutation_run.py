@@ -1852,7 +1852,7 @@ MUTATIONS = [
     # issue 31.3, second pass (load engineer, evening): batched buffer bytes, chunk views, fewer stats, TOML cache,
     # the collector paused during a load
     (RES_PY, "keys[run][1] == keys[k][1]", "True", [LOAD_SCALE]),
-    (RES_PY, "while (run < len(meshes) and places[run][0] == pair and", "while (run < len(meshes) and",
+    (RES_PY, "while run < len(meshes) and places[run][0] == pair and", "while run < len(meshes) and",
      [LOAD_SCALE]),
     (RES_PY, "ends[pair] = start + len(data)", "ends[pair] = len(data)", [LOAD_SCALE]),
     (RES_PY, "index.setdefault(pair, []).extend(indices[k:run])",

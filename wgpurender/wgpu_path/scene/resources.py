@@ -103,7 +103,8 @@ class SceneResources:
 def _pair_bytes(keys: list[tuple], meshes: list[Mesh], places: list[tuple[int, int, int]],
                 indices: list[bytes]) -> dict[int, tuple[bytes, bytes]]:
     """Each buffer pair's (vertex bytes, index bytes): each mesh at its place (zeros up to it). Consecutive
-    meshes of one attribute set that lie end to end are interleaved together (one run; 10k cube files are one)."""
+    meshes of one pair and one attribute set lie end to end (buffer_places starts a mesh on a whole vertex of its
+    stride, where the one before ends) and are interleaved together (one run; 10k cube files are one)."""
     vertex: dict[int, list[bytes]] = {}
     index: dict[int, list[bytes]] = {}
     ends: dict[int, int] = {}
@@ -111,8 +112,8 @@ def _pair_bytes(keys: list[tuple], meshes: list[Mesh], places: list[tuple[int, i
     while k < len(meshes):
         pair, start, _ = places[k]
         run = k + 1
-        while (run < len(meshes) and places[run][0] == pair and keys[run][1] == keys[k][1]
-               and places[run][1] == places[run - 1][1] + meshes[run - 1].vertex_count * vertex_stride(keys[k][1])):
+        # one pair and one attribute set (so one stride): buffer_places put them end to end
+        while run < len(meshes) and places[run][0] == pair and keys[run][1] == keys[k][1]:
             run += 1
         data = interleave(meshes[k:run], keys[k][1]).tobytes()
         pieces = vertex.setdefault(pair, [])
