@@ -1279,7 +1279,7 @@ MUTATIONS = [
     (RES_PY, "pieces = vertex.setdefault(pair, [])", "pieces = vertex.setdefault(0, [])", [SHARED_MESH]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "        self.resources.upload_meshes(self.draws)",
      "        pass", [SHARED_MESH]),
-    ("wgpurender/wgpu_path/scene/scene_pass.py", "                packed[key] = L.material_struct(variant).pack(",
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "                packed[slot] = L.material_struct(variant).pack(",
      "                packed[draw.label] = L.material_struct(variant).pack(", ["tests/test_instancing.py"]),
     ("wgpurender/core/view/garbage.py", "    gc.unfreeze()\n    gc.collect()\n", "    gc.collect()\n", [WINDOW_GC]),
     ("wgpurender/core/view/garbage.py", "    gc.collect()\n    gc.freeze()\n", "    gc.freeze()\n", [WINDOW_GC]),

@@ -368,3 +368,23 @@ def test_batched_draws_start_where_the_instances_before_them_end(tmp_path):
     draws = resolve_plan(scene, None).scene_pass.draws
     assert [d.instance_count for d in draws] == counts
     assert [d.first_instance for d in draws] == [sum(counts[:k]) for k in range(len(counts))]
+
+
+def test_material_numbers_are_equal_exactly_where_material_keys_are(tmp_path):
+    """Two scene materials with the same values are one material (the key, not the name, decides), whether their
+    draws share objects or not; numbers count distinct keys in first-use order."""
+    from wgpurender.core.plan.model import material_numbers
+
+    names = ["a", "b", "c", "a", "b", "d"]
+    for k in range(len(names)):
+        procedural.write_obj(tmp_path / f"m{k}.obj", procedural.box(1.0))
+    body = "".join(f'[[models]]\npath = "m{k}.obj"\nmaterial = "{m}"\n\n' for k, m in enumerate(names))
+    scene = tmp_path / "s.toml"
+    scene.write_text("[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\n\n[materials.a]\nalbedo_color = [1, 0, 0, 1]\n"
+                     "[materials.b]\nalbedo_color = [1, 0, 0, 1]\n[materials.c]\nalbedo_color = [0, 1, 0, 1]\n"
+                     "[materials.d]\nalbedo_color = [0, 0, 1, 1]\n\n" + body)
+    draws = sorted(resolve_plan(scene, None).scene_pass.draws, key=lambda d: d.model_index)
+    numbers, keys = material_numbers(draws)
+    firsts = list(dict.fromkeys(d.material_key() for d in draws))  # the definition: equal keys, first-use order
+    assert numbers == [firsts.index(d.material_key()) for d in draws] == [0, 0, 1, 0, 0, 2]
+    assert keys == {k: i for i, k in enumerate(firsts)}

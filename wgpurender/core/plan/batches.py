@@ -22,7 +22,7 @@ import dataclasses
 
 import numpy as np
 
-from wgpurender.core.plan.model import Draw
+from wgpurender.core.plan.model import Draw, material_numbers
 from wgpurender.core.scene import Placements
 from wgpurender.core.view.transforms import determinants3
 
@@ -39,8 +39,10 @@ def batch_key(draw: Draw, blend: bool) -> tuple:
 def batch_draws(draws: list[Draw], blend_of: dict[str, bool]) -> list[Draw]:
     """Merge draws with equal :func:`batch_key` (first appearance decides the order) and number their instances."""
     groups: dict[tuple, list[Draw]] = {}
-    for d in draws:
-        groups.setdefault(batch_key(d, blend_of[d.pipeline_key]), []).append(d)
+    materials, _ = material_numbers(draws)  # batch_key's material_key, hashed once per material (10k draws)
+    for d, material in zip(draws, materials, strict=True):
+        key = ("blend", id(d)) if blend_of[d.pipeline_key] else (d.mesh_key, d.part, d.pipeline_key, material)
+        groups.setdefault(key, []).append(d)  # batch_key's grouping
     out, first = [], 0
     for members in groups.values():
         merged = _merge(members)
