@@ -142,7 +142,7 @@ def main() -> int:
             if new_split:
                 f.write("tree,distinct_meshes,parse_cache,knobs,phase,wall_ms,calls\n")
             for phase, (seconds, calls) in spent.items():
-                f.write(f"{label},{n},{mode},{shown},{phase},{seconds * 1e3:.1f},{calls}\n")
+                f.write(f'{label},{n},{mode},{shown},"{phase}",{seconds * 1e3:.1f},{calls}\n')  # names hold commas
                 print(f"  {phase}: {seconds * 1e3:.1f} ms ({calls} calls)")
     split = ", ".join(f"{k} {p:.0f}" for k, p in zip(PHASES, phases, strict=True))
     print(f"{label}: {n} distinct meshes load in {wall:.0f} ms ({cpu:.0f} ms process CPU; parse cache {mode}, "

@@ -134,6 +134,7 @@ def interleave(meshes: Mesh | list[Mesh], attributes: tuple[str, ...]) -> np.nda
     return np.ascontiguousarray(np.concatenate(columns, axis=1), dtype=np.float32)
 
 
+@functools.cache  # asked once per mesh of a scene: 10k times for a handful of attribute sets
 def vertex_stride(attributes: tuple[str, ...]) -> int:
     """Bytes per vertex of :func:`interleave`'s data (float32 attributes)."""
     return sum(4 * ATTRIBUTE_LOCATIONS[name][1] for name in attributes)
