@@ -19,8 +19,8 @@ import cProfile, io, pstats, sys, time
 t0 = time.perf_counter()
 pr = cProfile.Profile()
 pr.enable()
-from wgpurender.bench.startup import _child
-marks = _child(sys.argv[1], "3d", (800, 600))
+from wgpurender.bench.startup_child import child
+marks = child(sys.argv[1], "3d", (800, 600), t0)
 pr.disable()
 s = io.StringIO()
 st = pstats.Stats(pr, stream=s)
@@ -35,10 +35,12 @@ def main(out: Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, WGPURENDER_VALIDATION="0")
     env.setdefault("XDG_RUNTIME_DIR", "/tmp")
+    from wgpurender.bench.startup_child import LAUNCH
+
     for path in ("wgpu", "raw"):
         for _ in range(2):  # warm what a second run has
-            subprocess.run([sys.executable, "-m", "wgpurender.bench.startup", path, "3d", "800x600"], env=env,
-                           capture_output=True, timeout=300)
+            subprocess.run([sys.executable, "-c", LAUNCH, path, "3d", "800x600"], env=env, capture_output=True,
+                           timeout=300)
         proc = subprocess.run([sys.executable, "-c", CHILD, path], env=env, capture_output=True, text=True,
                               timeout=300)
         (out / f"first-pixel-profile-{path}.txt").write_text(proc.stdout + proc.stderr[-3000:])

@@ -31,7 +31,8 @@ def _python(code: str, **env) -> str:
 
 def test_the_raw_startup_child_imports_no_wgpu():
     """The raw child's whole run (imports, context, a stage's first two frames), then: was wgpu-py loaded?"""
-    code = ("import sys\nimport wgpurender.bench.startup as s\nout = s._child('raw', 'triangle', (32, 24))\n"
+    code = ("import sys, time\nimport wgpurender.bench.startup_child as s\n"
+            "out = s.child('raw', 'triangle', (32, 24), time.perf_counter())\n"
             "print(out['total_ms'] > 0, 'wgpu' in sys.modules)")
     assert _python(code, XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", "/tmp")) == "True False"
 

@@ -10,10 +10,11 @@ import pytest
 from wgpurender.bench import scale
 
 
-def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
+def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path, monkeypatch):
     """bench_case adds a cpu_thread_ms row (record + submit in thread CPU time) with one sample per timed frame,
     each a positive part of the thread's CPU time."""
     size = (32, 24)
+    monkeypatch.setattr(scale, "SAME_WAIT_MS", 150.0)  # a loaded machine's 32x24 frame fits, whatever the load
     rows = scale.bench_case(ctx, scale.instanced_scene(tmp_path, 8, size), "instanced/8", size, frames=6)
     by_metric = {r.metric: r for r in rows}
     thread = by_metric["cpu_thread_ms"]
@@ -21,6 +22,8 @@ def test_scale_case_reports_thread_cpu_beside_wall_cpu(ctx, tmp_path):
                                                                               "32x24", 6)
     assert 0 < thread.p10 <= thread.median <= thread.p90
     assert thread.n * thread.p10 <= time.thread_time() * 1e3  # per frame: no sample holds the thread's whole CPU time
+    same = by_metric[scale.SAME_WAIT]
+    assert (same.case, same.n) == ("instanced/8", 6) and 0 < same.p10 <= same.median <= same.p90
 
 
 @pytest.mark.parametrize(("kind", "family", "config", "want"), [
@@ -36,3 +39,52 @@ def test_judged_tail_rows_get_enough_frames_for_a_p99_on_a_gpu(kind, family, con
 
     ctx = SimpleNamespace(adapter=SimpleNamespace(info={"adapter_type": kind}))
     assert PerfConfig(**config).timed_frames(ctx, family) == want
+
+
+def test_same_wait_rows_begin_every_frame_one_period_after_the_last(ctx, tmp_path, monkeypatch):
+    """The same-wait row (issue 31.3's controlled comparison): every record begins one period after the one before,
+    however short the frame, so the wait before it is the same at every count; one sample per timed frame; a frame
+    longer than the period gives no row rather than a row with another wait."""
+    size = (32, 24)
+    from wgpurender.bench.scene import SceneRunner
+
+    runner = SceneRunner(ctx, scale.instanced_scene(tmp_path, 8, size), size)
+    runner.frame(readback=True)
+    starts = []
+    record = runner.renderer.record
+
+    def stamped(*args, **kwargs):
+        starts.append(time.perf_counter())
+        return record(*args, **kwargs)
+
+    monkeypatch.setattr(runner.renderer, "record", stamped)
+    period_ms = 150.0  # longer than any 32x24 frame here, however loaded the machine
+    stats = scale.same_wait_cpu(runner, 5, period_ms)
+    assert stats.n == 5 and 0 < stats.p10 <= stats.median <= stats.p90 < period_ms
+    gaps = [(b - a) * 1e3 for a, b in zip(starts, starts[1:], strict=False)]
+    assert len(gaps) == 6 and all(g >= period_ms for g in gaps), gaps  # never sooner (later: the machine's sleep)
+    assert scale.same_wait_cpu(runner, 5, 1e-3) is None  # no frame fits in a microsecond
+
+
+def test_growth_is_judged_on_the_same_wait_row_where_the_run_has_it():
+    """markdown_scale judges "does not grow" on the same-wait row when a run has it at two counts (the as-a-window
+    row reported beside it), and on cpu_ms in older runs that lack it."""
+    from wgpurender.bench import markdown_scale
+    from wgpurender.bench.report import Result
+
+    def row(n, metric, median):
+        return Result("scene-scale", f"instanced/{n}", "wgpu", "800x600", metric, median, median, median, 10, "")
+
+    def judge(met, applies=""):
+        return "met" if met else "not met"
+
+    window = [row(1000, "cpu_ms", 0.1), row(1000000, "cpu_ms", 0.4)]
+    same = [row(1000, markdown_scale.SAME_WAIT, 0.3), row(1000000, markdown_scale.SAME_WAIT, 0.33)]
+    old = {label: status for label, _, status in markdown_scale.targets(window, judge)}
+    assert old == {"CPU per frame does not grow with the instance count": "not met"}
+    new = [(label, status) for label, _, status in markdown_scale.targets(window + same, judge)]
+    assert new[0] == ("CPU per frame does not grow with the instance count (same wait before every frame: the count "
+                      "is the only variable)", "met")
+    assert new[1] == ("CPU per frame vs the instance count, each frame after its own GPU wait", "reported")
+    grown = [row(1000, markdown_scale.SAME_WAIT, 0.1), row(1000000, markdown_scale.SAME_WAIT, 0.2)]
+    assert markdown_scale.targets(window + grown, judge)[0][2] == "not met"

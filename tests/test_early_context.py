@@ -151,7 +151,7 @@ def test_the_apis_render_and_the_startup_child_make_the_device_early_and_only_on
     """What ``wgpurender render`` calls, and what bench perf's startup family times, start it on the thread; a
     second start while it is being made, or once it is made, starts nothing."""
     for call in ("import wgpurender as w; w.render('3d', size=(32, 24))",
-                 "from wgpurender.bench.startup import _child; _child('wgpu', 'triangle', (32, 24))",
+                 "from wgpurender.bench.startup_child import child; child('wgpu', 'triangle', (32, 24), 0.0)",
                  "c.start_context(); c.start_context('vulkan'); c.get_context(); c.start_context()"):
         out = _python(_spied(call))
         assert out.returncode == 0, out.stderr[-2000:]

@@ -65,7 +65,9 @@ def test_chain_ratio_is_the_chains_time_over_the_copy_of_its_bytes():
 
 
 def test_the_shape_sweep_covers_the_auto_and_the_one_pass_chain(ctx):
-    """--shapes dispatches the fused compute passes with each shape, for the auto chain and post_intermediate none."""
+    """--shapes dispatches the fused compute passes with each shape, for the auto chain and post_intermediate none;
+    FXAA's tiled pass both tiled (each shape whose tile fits 16 KB of workgroup memory: all but 32x8 x4) and
+    untiled."""
     if not ctx.has("timestamp-query"):
         pytest.skip("no timestamp queries on this adapter")
     from wgpurender.bench.post_roofline import SHAPES
@@ -73,6 +75,11 @@ def test_the_shape_sweep_covers_the_auto_and_the_one_pass_chain(ctx):
     rows = [r for r in run_roofline(ctx, FINAL, (16, 12), frames=1, shapes=True) if "shape" in r.variant]
     auto = [r for r in rows if r.intermediate == "auto"]
     none = [r for r in rows if r.intermediate == "none"]
-    assert len(auto) == 2 * len(SHAPES) and {r.effects for r in auto} == {"tonemap", "fxaa+vignette"}
-    assert len(none) == len(SHAPES) and {r.effects for r in none} == {"tonemap+fxaa+vignette"}
+    n = len(SHAPES)
+    assert len(auto) == n + 2 * n - 1 and {r.effects for r in auto} == {"tonemap", "fxaa+vignette"}
+    assert sum(r.variant.endswith(", tiled") for r in auto) == n - 1
+    assert not any(r.variant.endswith("tiled") for r in auto if r.effects == "tonemap")
+    assert len(none) == 2 * n - 1 and {r.effects for r in none} == {"tonemap+fxaa+vignette"}
     assert all(r.variant.startswith("compute, fused, none, shape ") for r in none)
+    text = markdown(rows, ctx, FINAL, (16, 12), 1, "test")
+    assert "- fastest shape per pass (auto): tonemap " in text and "- fastest shape per pass (none): " in text

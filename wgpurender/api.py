@@ -146,14 +146,17 @@ def render(target: Target, size: Size = None, msaa: int | None = None, format: s
     :func:`plan`'s plan for the adapter used, and ``Image.plan`` is that plan (what :func:`explain` prints).
     ``wgpurender render`` calls this function, so the CLI's image is this image.
     """
+    start = time.perf_counter()
+    backend = checks.backend(backend)
+    from wgpurender.wgpu_path.device import driver_preload
+
+    driver_preload.start(backend)  # the drivers' libraries load while wgpu-py is imported (issue 31.5)
     from wgpurender.wgpu_path.device.context import get_context, start_context
 
-    start = time.perf_counter()
     target, wh, msaa, format, t = _target(target), _size(size), checks.msaa(msaa), checks.output_format(format), \
         checks.time(t)
     anisotropy = checks.choice(anisotropy, "anisotropy", ANISOTROPY_RULES)
     knobs = _with_camera(knobs, camera)
-    backend = checks.backend(backend)
     scene = _is_scene(target, anisotropy, knobs)
     start_context(backend)  # the device is made on a thread while the renderer is imported (issue 31.5)
     if scene:

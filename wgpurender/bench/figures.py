@@ -28,6 +28,13 @@ RUNS = (
     ("NVIDIA H100, third run (perf engineer, 10:52 UTC; few graphics units: render passes are raster-bound; 100 "
      "timed frames a case in the judged families)", "perf-h100/2026-11-27-perf", "perf/results.csv",
      "dawn/results.csv"),
+    ("NVIDIA H100, first pixel (startup engineer, 15:02 UTC: `bench perf --only startup`, 11 interleaved rounds, "
+     "paired ratios)", "perf-h100/2026-11-27-startup2", "perf/results.csv", None),
+    ("lavapipe, first pixel (startup engineer, 15:04 UTC: the same command; the 2-core machine, shared by four "
+     "engineers)", "perf-lavapipe/2026-11-27-startup2", "run2/results.csv", None),
+    ("NVIDIA H100, frametime pass (15:06 UTC; frames and scene-scale only, with the same-wait row the growth target "
+     "is judged on; few graphics units: render passes are raster-bound)", "perf-h100/2026-11-27-frametime",
+     "perf/results.csv", None),
 )
 
 
@@ -85,7 +92,8 @@ def section() -> str:
         lines += [f"#### {title}", "", f"From [`docs/{folder}/{csv}`]({folder.split('/', 1)[0]}/"
                   f"{folder.split('/', 1)[1]}/{csv}) (machine, date and command: its `report.md`).", ""]
         lines += [markdown_table(("target", "measured", "status"), markdown_scale.targets(rows, _judge)), ""]
-        lines += [markdown_scale.table(rows), ""]
+        if any(r.family == "scene-scale" for r in rows):  # a startup-only run has none
+            lines += [markdown_scale.table(rows), ""]
         if dawn and (base / dawn).is_file():
             lines += ["The Dawn binding (`WGPURENDER_BINDING=dawn`, wgpudawn 0.32) beside wgpu-native, same call:", "",
                       _dawn_table(rows, read_csv(base / dawn)), ""]

@@ -141,14 +141,20 @@ def _objects_table(res: list[Result]) -> str:
 
 
 def _startup_table(res: list[Result]) -> str:
-    from wgpurender.bench.startup import PHASES
+    """Each configuration's phase medians; its paired wgpu/raw ratio (bench/startup.py) in the last column."""
+    from wgpurender.bench.startup import METRICS, RATIO
 
+    columns = (*METRICS, "make_ms")
     cases: dict[tuple[str, str], dict[str, Result]] = {}
     for r in _pick(res, "startup"):
         cases.setdefault((r.case, r.path), {})[r.metric] = r
-    rows = [(case, path, *(fmt_ms(m[p].median) if p in m else "-" for p in PHASES))
-            for (case, path), m in cases.items()]
-    return markdown_table(("case", "path", *(p.removesuffix("_ms") + " ms" for p in PHASES)), rows)
+    paired = {case: m[RATIO] for (case, path), m in cases.items() if RATIO in m}
+    rows = [(case, path, *(fmt_ms(m[p].median) if p in m else "-" for p in columns),
+             f"{paired[case].median:.2f}x [{paired[case].p10:.2f}..{paired[case].p90:.2f}]"
+             if path == "wgpu" and case in paired else "-")
+            for (case, path), m in cases.items() if RATIO not in m]
+    return markdown_table(("case", "path", *(p.removesuffix("_ms") + " ms" for p in columns),
+                           "x raw, paired [p10..p90]"), rows)
 
 
 def _tails(res: list[Result]) -> str:

@@ -252,10 +252,10 @@ def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None
 
 
 def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
-    from wgpurender.bench.startup import bench_startup
+    from wgpurender.bench.startup import ROUNDS, bench_startup
 
     size = QUICK_SIZES[0] if config.quick else (800, 600)
-    run.results += bench_startup(STARTUP_STAGE, size, 1 if config.quick else 3, quick=config.quick,
+    run.results += bench_startup(STARTUP_STAGE, size, 2 if config.quick else ROUNDS, quick=config.quick,
                                  raw=config.raw, log=log)
     run.notes.append("startup: wgpu-py 0.32 cannot create a pipeline cache (the device feature 'pipeline-cache' "
                      "is offered, but neither wgpu-native's C header nor wgpu-py has a function to make one); the "

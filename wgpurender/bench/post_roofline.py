@@ -31,6 +31,7 @@ import wgpu
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import BYTES_PER_PIXEL, PostPass, resolve_plan
+from wgpurender.core.plan.dispatch import shape_text
 from wgpurender.core.scene import load_scene
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.timing import PassTimer, wall_time
@@ -62,7 +63,7 @@ class PassTime:
     ms: float
     copy_ms: float
     copy_bytes: int = 0  # a compute pass's scratch -> output copy (not timed)
-    chain_wall_ms: float = float("nan")  # the whole chain, submit + wait, wall clock (same on every row of a variant)
+    chain_wall_ms: float = float("nan")  # the whole chain (a swept pass: that pass), submit + wait, by wall clock
     intermediate: str = "auto"  # the knob post_intermediate of this row's plan
 
     @property
@@ -158,6 +159,13 @@ def time_variant(ctx: GPUContext, scene, size: tuple[int, int], path: str, fuse:
     return out
 
 
+def _pass_once(ctx: GPUContext, runner, source, target) -> None:
+    encoder = ctx.device.create_command_encoder()
+    runner.encode(encoder, source, target)
+    ctx.queue.submit([encoder.finish()])
+    ctx.wait_idle()
+
+
 def _chain_once(ctx: GPUContext, renderer, target) -> None:
     encoder = ctx.device.create_command_encoder()
     renderer.chain.run(encoder, {**renderer.attachments, "output": target})
@@ -166,15 +174,26 @@ def _chain_once(ctx: GPUContext, renderer, target) -> None:
 
 
 # (workgroup x, workgroup y, rows per invocation) tried by --shapes on the fused compute passes
-SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2), (16, 16, 2), (32, 8, 4),
-          (64, 1, 4), (128, 1, 2))
+SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2), (16, 8, 2), (16, 16, 2),
+          (32, 8, 2), (8, 8, 4), (32, 8, 4), (64, 1, 4), (128, 1, 2))
+
+
+def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], bool]]:
+    """(shape, tiled) dispatched by the sweep for pass ``p``: every shape; an FXAA pass (tiled by the plan or not)
+    both through a workgroup tile (where the tile fits in workgroup memory) and untiled, the same image."""
+    from wgpurender.core.plan.dispatch import tile_fits
+    from wgpurender.wgpu_path.post.shaders import tileable
+
+    cases = [(shape, True) for shape in shapes if tile_fits(shape)] if tileable(p) else []
+    return cases + [(shape, False) for shape in shapes]
 
 
 def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy: CopyKernel,
                 shapes=SHAPES, intermediate: str = "auto") -> list[PassTime]:
-    """The fused compute chain's passes, each dispatched with every shape (post/shaders.py SHAPE), same run;
+    """The fused compute chain's passes, each dispatched with every shape (:func:`sweep_cases`), same run;
     ``intermediate``: the knob post_intermediate of the chain swept."""
     from wgpurender.wgpu_path.post.passes import ComputePass
+    from wgpurender.wgpu_path.post.shaders import tileable
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
     plan = resolve_plan(scene, ctx.adapter_facts(), size=size, post_path="compute", post_fuse=True,
@@ -187,8 +206,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     rows = []
     for p in plan.post_passes:
         moved, copied = dispatch_bytes(p, size)
-        for shape in shapes:
-            runner = ComputePass(ctx.device, p, shape)
+        for shape, tiled in sweep_cases(p, shapes):
+            runner = ComputePass(ctx.device, p, shape, tiled)
             timer = PassTimer(ctx, max_passes=1)
             samples = []
             for _ in range(frames + 2):
@@ -199,13 +218,18 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
                 ctx.queue.submit([encoder.finish()])
                 samples.append(timer.read().get("pass", float("nan")))
             ms = statistics.median(samples[2:])
-            rows.append(PassTime(f"compute, fused{knob}, shape {shape[0]}x{shape[1]} x{shape[2]} rows", p.effect,
-                                 "compute", moved, ms, copy.ms(moved, frames), copied, intermediate=intermediate))
+            wall = wall_time(lambda r=runner, p=p: _pass_once(ctx, r, textures[p.input], textures[p.output]),
+                             warmup=1, repeats=frames).median  # lavapipe's timestamps do not bracket a dispatch
+            how = ", tiled" if tiled else ", untiled" if tileable(p) else ""
+            rows.append(PassTime(f"compute, fused{knob}, shape {shape_text(shape)}{how}", p.effect,
+                                 "compute", moved, ms, copy.ms(moved, frames), copied, wall, intermediate))
     return rows
 
 
 def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frames: int,
-                 shapes: bool = False) -> list[PassTime]:
+                 shapes: bool = False, sweep=None) -> list[PassTime]:
+    """Every variant's rows; with ``shapes``, the fused compute passes dispatched with each shape of ``sweep``
+    (default :data:`SHAPES`)."""
     scene = load_scene(scene_path)
     copy = CopyKernel(ctx)
     rows: list[PassTime] = []
@@ -218,9 +242,9 @@ def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frame
                     raise
                 # the chain runs as one pass on this variant: nothing stored between passes, nothing to time
     if shapes:
-        rows += shape_sweep(ctx, scene, size, frames, copy)
+        rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES)
         try:  # the one-pass chain (tonemap recomputed in FXAA) is the most ALU-bound: its shape may matter most
-            rows += shape_sweep(ctx, scene, size, frames, copy, intermediate="none")
+            rows += shape_sweep(ctx, scene, size, frames, copy, sweep or SHAPES, intermediate="none")
         except UserError:
             pass  # no FXAA pass to recompute into: the auto sweep is the whole story
     return rows
@@ -245,8 +269,10 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
         total_bytes = sum(r.bytes_moved for r in mine)
         lines.append(f"- {variant}: {len(mine)} pass(es), {total_bytes / 1e6:.1f} MB, {total_ms:.3f} ms by "
                      f"timestamps ({total_bytes / (total_ms * 1e6) if total_ms else float('nan'):.1f} GB/s); "
-                     f"whole chain by wall clock (submit + wait) {mine[0].chain_wall_ms:.3f} ms; "
+                     f"{'the pass' if 'shape' in variant else 'whole chain'} by wall clock (submit + wait) "
+                     f"{mine[0].chain_wall_ms:.3f} ms; "
                      f"{chain_ratio(mine):.2f}x a copy of the same bytes" + _against_auto(rows, variant, mine))
+    lines += best_shapes(rows)
     timed = {r.variant for r in rows}
     names = [f"{p}, {'fused' if f else 'unfused'}" for p, f in VARIANTS]
     lines += [f"- {v}, {k}: left out (this chain stores no image between passes, or none it could recompute)"
@@ -254,6 +280,21 @@ def markdown(rows: list[PassTime], ctx: GPUContext, scene_path: Path, size: tupl
     lines += ["", "Timestamps of compute passes on lavapipe do not bracket the dispatch's work (they read far "
               "below what a CPU can move): there, compare the wall-clock chain times. On a hardware GPU both agree."]
     return "\n".join(lines) + "\n"
+
+
+def best_shapes(rows: list[PassTime]) -> list[str]:
+    """For each knob's sweep: the fastest swept dispatch of each pass, and the chain made of those (the shape per
+    pass the plan could choose: core/plan/dispatch.py)."""
+    out = []
+    for knob in dict.fromkeys(r.intermediate for r in rows if "shape" in r.variant):
+        swept = [r for r in rows if "shape" in r.variant and r.intermediate == knob]
+        best = [min((r for r in swept if r.effects == e), key=lambda r: r.ms)
+                for e in dict.fromkeys(r.effects for r in swept)]
+        picks = "; ".join(f"{r.effects} {r.variant.split('shape ')[1]} {r.ms:.3f} ms" for r in best)
+        out.append(f"- fastest shape per pass ({knob}): {picks}; that chain {sum(r.ms for r in best):.3f} ms, "
+                   f"{chain_ratio(best):.2f}x a copy of the same bytes"
+                   + _against_auto(rows, f"compute, fused, {knob}", best))
+    return out
 
 
 def chain_ratio(rows: list[PassTime]) -> float:

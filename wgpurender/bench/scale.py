@@ -22,11 +22,13 @@ import math
 import tempfile
 import time
 from collections.abc import Callable
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
 from wgpurender.bench.frames import measure
+from wgpurender.bench.markdown_scale import SAME_WAIT
 from wgpurender.bench.report import Result, size_text
 from wgpurender.core.files.assets import assets_dir
 from wgpurender.core.models import procedural
@@ -131,6 +133,11 @@ def bench_case(ctx: GPUContext, scene: Path, case: str, size: tuple[int, int], f
     out = samples.results("scene-scale", case, "wgpu", size, note=f"{draws} draw(s)")
     out.append(Result.of("scene-scale", case, "wgpu", s, "cpu_thread_ms", thread_cpu(runner, frames),
                          "thread CPU time (time.thread_time) of record + submit: cpu_ms without the waits"))
+    same = same_wait_cpu(runner, frames, SAME_WAIT_MS)
+    if same is not None:
+        out.append(Result.of("scene-scale", case, "wgpu", s, SAME_WAIT, same,
+                             f"record + submit, every frame begun {SAME_WAIT_MS:.1f} ms after the one before (the "
+                             "GPU waited for, then a sleep): the same wait at every count"))
     out.append(_one_off(case, "wgpu", s, "load_ms", load_ms, "scene file to the first frame read back"))
     out.append(_one_off(case, "wgpu", s, "memory_mb", memory, "resident memory the load added"))
     return out
@@ -142,23 +149,64 @@ def thread_cpu(runner, frames: int) -> Stats:
     ``cpu_ms`` is wall time: it also counts the thread waiting or running slowly after it slept through the
     previous frame's GPU wait, which grows with the GPU's frame time (benchmarks/cpu_growth_probe.py); this row
     counts only the CPU time spent, to tell the two apart."""
+    samples = []
+    with _gc_paused():
+        for _ in range(frames + 2):
+            samples.append(_record_submit(runner, time.thread_time))
+            runner.ctx.wait_idle()
+    return Stats.of(samples[2:])
+
+
+SAME_WAIT_MS = 1000 / 30  # a 30 Hz window's frame period: longer than any count's GPU frame on the H100 (1M: ~21 ms)
+
+
+def same_wait_cpu(runner, frames: int, period_ms: float = SAME_WAIT_MS) -> Stats | None:
+    """Record + submit (wall ms, as ``cpu_ms``), each frame begun ``period_ms`` after the one before: the GPU is
+    waited for (``ctx.wait_idle``, as ``cpu_ms``'s frames) and the rest of the period slept, so every count's
+    record comes after the same time off the CPU and the count is the only variable (issue 31.3's growth question).
+
+    ``cpu_ms`` waits only for its own GPU frame, which grows with the count, and the thread records more slowly
+    after a longer sleep (benchmarks/cpu_growth_probe.py): that row is the frame as a window without vsync draws it,
+    this one is the controlled comparison. None when a frame takes longer than the period (no same wait exists)."""
+    period, samples = period_ms / 1e3, []
+    with _gc_paused():
+        begin = time.perf_counter()
+        for k in range(-2, frames):  # two frames to fall into step, then the samples
+            rest = begin - time.perf_counter()
+            if rest > 0:
+                time.sleep(rest)
+            begin = time.perf_counter()
+            ms = _record_submit(runner, time.perf_counter)
+            runner.ctx.wait_idle()
+            if time.perf_counter() - begin > period:
+                return None
+            if k >= 0:
+                samples.append(ms)
+            begin += period
+    return Stats.of(samples)
+
+
+def _record_submit(runner, clock: Callable[[], float]) -> float:
+    """Record and submit one frame of a scene runner: the milliseconds it took on ``clock``."""
+    start = clock()
+    encoder = runner.ctx.device.create_command_encoder(label="bench-scale")
+    runner.renderer.record(encoder, runner.target, 0.0)
+    runner.ctx.queue.submit([encoder.finish()])
+    return (clock() - start) * 1e3
+
+
+@contextmanager
+def _gc_paused():
+    """The collector paused for a row's frames (as bench/frames.py's samples), restored after."""
     import gc
 
-    ctx, record, target = runner.ctx, runner.renderer.record, runner.target
-    samples, was = [], gc.isenabled()
+    was = gc.isenabled()
     gc.disable()
     try:
-        for _ in range(frames + 2):
-            start = time.thread_time()
-            encoder = ctx.device.create_command_encoder(label="bench-scale")
-            record(encoder, target, 0.0)
-            ctx.queue.submit([encoder.finish()])
-            samples.append((time.thread_time() - start) * 1e3)
-            ctx.wait_idle()
+        yield
     finally:
         if was:
             gc.enable()
-    return Stats.of(samples[2:])
 
 
 def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int, int],

@@ -137,8 +137,9 @@ def _register_roofline(suites) -> None:
                    "and final_subpass.toml, whose whole chain is one per-pixel pass)")
     p.add_argument("--size", type=size_arg, default=(3840, 2160), metavar="WxH", help="default 3840x2160")
     p.add_argument("--frames", type=int, default=20, metavar="N", help="timed frames per variant (default 20)")
-    p.add_argument("--shapes", action="store_true",
-                   help="also time the fused compute passes with each dispatch shape (workgroup, rows per invocation)")
+    p.add_argument("--shapes", nargs="?", const="all", default=None, metavar="WxHxR,...",
+                   help="also time the fused compute passes with each dispatch shape (workgroup width x height x "
+                   "rows per invocation): the built-in list, or the shapes given, e.g. 16x8x2,32x8x4")
     p.add_argument("--out", type=Path, default=Path("bench-results"), metavar="DIR",
                    help="where results go (default ./bench-results)")
     add_backend_arg(p)
@@ -150,16 +151,18 @@ def _run_roofline(args) -> int:
     from wgpurender.bench.post_roofline import csv_text, markdown, record_bandwidth, run_roofline
     from wgpurender.core.errors import UserError
     from wgpurender.core.files.safe_write import atomic_write, output_folder
+    from wgpurender.core.plan.dispatch import parse_shapes
     from wgpurender.wgpu_path.device.context import get_context
 
     if args.frames < 1:
         raise UserError("--frames must be at least 1")
+    shapes = None if args.shapes in (None, "all") else parse_shapes(args.shapes)
     ctx = get_context(args.backend)
     if not ctx.has("timestamp-query"):
         raise UserError(f"{ctx.describe()} has no timestamp queries: post-roofline times passes with them")
     output_folder(args.out, "--out")  # before any timing
     for scene in args.scenes:
-        rows = run_roofline(ctx, scene, args.size, args.frames, shapes=args.shapes)
+        rows = run_roofline(ctx, scene, args.size, args.frames, shapes=args.shapes is not None, sweep=shapes)
         record_bandwidth(ctx, scene, args.size, rows, command_line())
         text = markdown(rows, ctx, scene, args.size, args.frames, command_line())
         md, csv = args.out / f"post-roofline-{scene.stem}.md", args.out / f"post-roofline-{scene.stem}.csv"

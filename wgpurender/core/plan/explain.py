@@ -129,6 +129,9 @@ def _explain_pass(number: int, p: Any, size: tuple[int, int]) -> list[str]:
         lines.append(f"       fused: {p.fusion}")
     if p.mask:
         lines.append(f"       mask: {p.mask} (depth test skips blocks without an edge pixel)")
+    if p.shape:
+        lines.append(f"       dispatch: workgroups of {p.shape[0]}x{p.shape[1]}, {p.shape[2]} row(s) per invocation "
+                     f"({p.shape_why})")
     lines.append(f"       bytes: {_megabytes(p.bytes_read)} read + {_megabytes(p.bytes_written)} written = "
                  f"{_megabytes(p.bytes_moved)} at {size[0]}x{size[1]} (each texel once)")
     lines.extend(f"       note: {n}" for n in p.notes)

@@ -254,6 +254,7 @@ class PostPass:
     ``twin_of``: the pass writes the offscreen output itself in ``output_format`` (:data:`STORAGE_TWINS`),
     sRGB-encoded in the shader, so it holds the bytes a ``twin_of`` texture would: no scratch, no copy.
     ``bytes_read`` / ``bytes_written``: the compulsory memory traffic, each texel read once and written once.
+    ``shape``: a compute pass's dispatch shape and ``shape_why`` the rule that chose it (core/plan/dispatch.py).
     """
 
     index: int
@@ -273,6 +274,9 @@ class PostPass:
     copy_format: str | None = None  # the format of ``copy_to`` (the scratch is written in ``output_format``)
     twin_of: str | None = None  # the format whose bytes ``output_format`` holds (an -srgb output written directly)
     prelude: int = 0  # the first steps, applied to every texel the neighbourhood step reads (post_intermediate none)
+    shape: tuple[int, int, int] | None = None  # compute: workgroup (x, y), rows per invocation (core/plan/dispatch.py)
+    shape_why: str = ""
+    tile: bool = False  # compute, a prelude: FXAA's texels are recomputed into a workgroup tile (core/plan/dispatch.py)
 
     @property
     def encodes_for(self) -> str | None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from wgpurender.core.course.effects import EffectStep, group_passes, step_notes
 from wgpurender.core.errors import UserError
+from wgpurender.core.plan.dispatch import dispatch_shape
 from wgpurender.core.plan.model import (
     BYTES_PER_PIXEL,
     HDR_FORMAT,
@@ -174,15 +175,19 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
             read += pixels * BYTES_PER_PIXEL[dst_fmt]
             written += pixels * BYTES_PER_PIXEL[copy_format]
         fusion = _recompute_text(group, preludes[i]) if preludes[i] else _fusion_text(group)
+        tile = pass_path == "compute" and preludes[i] > 0
+        shape, shape_why = (dispatch_shape(dst_fmt, not head.fusable, tile) if pass_path == "compute"
+                            else (None, ""))
         passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, fusion,
                                tuple(notes), mask, copy_to, read, written, copy_format=copy_format, twin_of=twin_of,
-                               prelude=preludes[i]))
+                               prelude=preludes[i], shape=shape, shape_why=shape_why, tile=tile))
     return passes, attachments
 
 
 # Neighbourhood effects whose shader reads its input only through fxaa_texel / fxaa_sample
 # (shaders_wgsl/post_fxaa.wgsl), so the per-pixel effects before it can be recomputed for every texel it reads
-# (knob post_intermediate = none).
+# (knob post_intermediate = none), and its texels can come from a workgroup tile on the compute path
+# (core/plan/dispatch.py).
 RECOMPUTING_READERS = ("fxaa",)
 
 

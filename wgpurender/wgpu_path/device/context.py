@@ -22,11 +22,11 @@ import wgpu
 from wgpurender.core.errors import UserError
 from wgpurender.wgpu_path import binding
 from wgpurender.wgpu_path.device import wgpu_private
+from wgpurender.wgpu_path.device.driver_preload import BACKEND_ENV
 
 if TYPE_CHECKING:
     from wgpurender.core.plan.model import AdapterFacts
 
-BACKEND_ENV = "WGPURENDER_BACKEND"
 VALIDATION_ENV = "WGPURENDER_VALIDATION"
 DEFAULT_BACKEND = "Vulkan"
 AUTO = "auto"
@@ -207,10 +207,15 @@ class _QuietToken:
 def requested_backend(backend: str | None = None) -> str:
     """The backend to use: the argument, else $WGPURENDER_BACKEND, else Vulkan; "auto" lets the machine choose.
 
-    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py)."""
-    from wgpurender.core import checks  # lazily: it imports numpy, which a context does not need
+    Names are case-insensitive: vulkan, opengl (or gl), metal, d3d12 (or dx12), auto (core/checks.py). A name
+    already spelled as the adapter spells it (the default's, or one checks.backend returned) is taken as it is:
+    the checks module is then not imported before the device thread starts (issue 31.5)."""
+    name = backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND
+    if name in BACKENDS or name == AUTO:
+        return name
+    from wgpurender.core import checks  # lazily: ~5 ms before the device thread could start
 
-    return checks.backend(backend or os.environ.get(BACKEND_ENV) or DEFAULT_BACKEND)
+    return checks.backend(name)
 
 
 _instance_backend: list[str] = []  # the backend the process's one wgpu instance was created for
@@ -381,7 +386,8 @@ def _join_early() -> None:
 
 # Python's thread switch interval while a context is made on a thread. Making one calls wgpu-native ~140 times
 # (wgpu-py asks the adapter and the device for each feature); after each call the thread waits for the GIL, up to
-# the interval (5 ms by default) while the main thread imports. 0.5 ms lets it through (benchmarks/startup_split.py).
+# the interval (5 ms by default) while the main thread imports. 0.5 ms lets it through (measured 2026-11-27:
+# docs/perf-h100/2026-11-27-startup/).
 EARLY_SWITCH_S = 0.0005
 
 

@@ -16,7 +16,8 @@ pixels (FXAA, sharpen), which an input attachment forbids.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import functools
+from collections.abc import Callable, Mapping, Sequence
 
 import wgpu
 
@@ -85,26 +86,44 @@ class PostRunner:
                               timestamp_writes=writes)
 
     def _run_untimed(self, encoder: wgpu.GPUCommandEncoder, textures: Mapping[str, wgpu.GPUTexture]) -> None:
-        """Consecutive compute passes share one compute pass (each dispatch is its own usage scope in WebGPU,
-        so a dispatch reading what the one before it wrote is ordered by wgpu): two calls fewer per pass."""
-        open_pass = None
+        self.bind(textures)(encoder)
+
+    def bind(self, textures: Mapping[str, wgpu.GPUTexture]) -> Callable[[wgpu.GPUCommandEncoder], None]:
+        """The untimed chain between these textures, made once: ``bind(textures)(encoder)`` records every pass.
+
+        Each pass is checked and its views, bind group and workgroup count are looked up here, so a frame pays
+        only for the wgpu calls (issue 31.4; a caller that keeps the textures keeps the result). Consecutive
+        compute passes share one compute pass (each dispatch is its own usage scope in WebGPU, so a dispatch
+        reading what the one before it wrote is ordered by wgpu): two calls fewer per pass.
+        """
+        steps: list[tuple[str, Callable]] = []  # ("render", encode) | ("dispatch", dispatch) | ("copy", copy)
         for p, runner in zip(self.passes, self.runners, strict=True):
             source, target = textures[p.input], textures[p.output]
             if not isinstance(runner, ComputePass):
-                if open_pass is not None:
-                    open_pass.end()
-                    open_pass = None
-                runner.encode(encoder, source, target, textures[p.mask] if p.mask else None)
+                steps.append(("render", runner.bound(source, target, textures[p.mask] if p.mask else None)))
                 continue
+            steps.append(("dispatch", runner.bound(source, target)))
+            if p.copy_to:
+                copy_to = textures[p.copy_to]
+                steps.append(("copy", functools.partial(runner.copy, target=target, copy_to=copy_to)))
+        return functools.partial(_record_steps, tuple(steps))
+
+
+def _record_steps(steps: tuple[tuple[str, Callable], ...], encoder: wgpu.GPUCommandEncoder) -> None:
+    """Record bound post steps: dispatches in one open compute pass until a render pass or a copy comes."""
+    open_pass = None
+    for kind, step in steps:
+        if kind == "dispatch":
             if open_pass is None:
                 open_pass = encoder.begin_compute_pass(label="post-compute")
-            runner.dispatch(open_pass, source, target)
-            if p.copy_to:
-                open_pass.end()
-                open_pass = None
-                runner.copy(encoder, target, textures[p.copy_to])
+            step(open_pass)
+            continue
         if open_pass is not None:
             open_pass.end()
+            open_pass = None
+        step(encoder)
+    if open_pass is not None:
+        open_pass.end()
 
 
 class PostChain:

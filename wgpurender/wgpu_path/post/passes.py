@@ -12,6 +12,7 @@ pass's draws are a render bundle recorded once per source texture: a frame repla
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Callable
 
 import wgpu
 
@@ -19,7 +20,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan import PostPass
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache, device_cache
 from wgpurender.wgpu_path.device.shaders import create_shader_module
-from wgpurender.wgpu_path.post.shaders import dispatch_groups, pack_pass, pass_source, srgb_constant
+from wgpurender.wgpu_path.post.shaders import dispatch_groups, pack_pass, pass_source, shape_of, srgb_constant
 
 FRAGMENT, COMPUTE = wgpu.ShaderStage.FRAGMENT, wgpu.ShaderStage.COMPUTE
 
@@ -35,9 +36,10 @@ class PlannedPass:
 
     stage = FRAGMENT
 
-    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None) -> None:
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
+                 tiled: bool | None = None) -> None:
         self.device, self.p, self.shape = device, p, shape
-        self.source = pass_source(p, shape)
+        self.source = pass_source(p, shape, tiled)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
         # a recomputing pass (post_intermediate = none) filters in its shader: no sampler
         self.filtering = p.steps[0].spec.filtering and not p.prelude
@@ -135,6 +137,27 @@ class FragmentPass(PlannedPass):
         render_pass.execute_bundles([self.bundles.get((source,), lambda: self._bundle(source))])
         render_pass.end()
 
+    def bound(self, source: wgpu.GPUTexture, target: wgpu.GPUTexture,
+              mask: wgpu.GPUTexture | None = None) -> Callable[[wgpu.GPUCommandEncoder], None]:
+        """:meth:`encode` between these textures with its checks, views, dicts and bundle made now, not per frame:
+        the frame calls the result with its encoder (issue 31.4: the same calls, less Python per frame)."""
+        self.check(source, target)
+        label = f"post-{self.p.effect}"
+        colors = [{"view": self.views.get(target, target.create_view), "load_op": "load", "store_op": "store"}]
+        depth = None
+        if mask is not None:
+            depth = {"view": self.views.get(mask, mask.create_view), "depth_clear_value": 1.0,
+                     "depth_load_op": "clear", "depth_store_op": "discard"}
+        bundles = [self.bundles.get((source,), lambda: self._bundle(source))]
+
+        def encode(encoder: wgpu.GPUCommandEncoder) -> None:
+            render_pass = encoder.begin_render_pass(label=label, color_attachments=colors,
+                                                    depth_stencil_attachment=depth)
+            render_pass.execute_bundles(bundles)
+            render_pass.end()
+
+        return encode
+
     def _bundle(self, source: wgpu.GPUTexture) -> wgpu.GPURenderBundle:
         """The pass's draws (bind group, pipeline(s), full-screen triangle), recorded once per source texture.
 
@@ -155,7 +178,8 @@ class FragmentPass(PlannedPass):
 
 
 class ComputePass(PlannedPass):
-    """A dispatch writing a storage texture (then a copy, for an -srgb output); ``shape``: post/shaders.py SHAPE."""
+    """A dispatch writing a storage texture (then a copy, for an -srgb output); ``shape``: the plan's dispatch shape
+    (``PostPass.shape``) unless a benchmark sweeps it."""
 
     stage = COMPUTE
 
@@ -163,8 +187,9 @@ class ComputePass(PlannedPass):
         return super()._entries() + [{"binding": 3, "visibility": COMPUTE, "storage_texture": {
             "access": "write-only", "format": self.p.output_format, "view_dimension": "2d"}}]
 
-    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None) -> None:
-        super().__init__(device, p, shape)
+    def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
+                 tiled: bool | None = None) -> None:
+        super().__init__(device, p, shape, tiled)
         constants = {"SRGB_ENCODE": srgb_constant(p)} if any(s.effect == "srgb" for s in p.steps) else {}
         self.pipeline = device_cache(device, "post-pipelines").get(
             (self.key, "compute", "cs_main", p.output_format), lambda: device.create_compute_pipeline(
@@ -183,12 +208,32 @@ class ComputePass(PlannedPass):
                  target: wgpu.GPUTexture) -> None:
         """The pass's dispatch into an open compute pass (several planned passes may share one: PostRunner)."""
         self.check(source, target)
-        group = self.groups.get((source, target), lambda: self.device.create_bind_group(
-            label=f"post-{self.p.effect}", layout=self.pipeline.get_bind_group_layout(0),
-            entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
+        group = self._group(source, target)
         compute_pass.set_pipeline(self.pipeline)
         compute_pass.set_bind_group(0, group)
-        compute_pass.dispatch_workgroups(*dispatch_groups((target.size[0], target.size[1]), self.shape), 1)
+        groups = dispatch_groups((target.size[0], target.size[1]), shape_of(self.p, self.shape))
+        compute_pass.dispatch_workgroups(*groups, 1)
+
+    def bound(self, source: wgpu.GPUTexture,
+              target: wgpu.GPUTexture) -> Callable[[wgpu.GPUComputePassEncoder], None]:
+        """:meth:`dispatch` between these textures with its check, bind group and workgroup count made now: the
+        frame calls the result with its open compute pass (issue 31.4)."""
+        self.check(source, target)
+        group = self._group(source, target)
+        pipeline = self.pipeline
+        x, y = dispatch_groups((target.size[0], target.size[1]), shape_of(self.p, self.shape))
+
+        def dispatch(compute_pass: wgpu.GPUComputePassEncoder) -> None:
+            compute_pass.set_pipeline(pipeline)
+            compute_pass.set_bind_group(0, group)
+            compute_pass.dispatch_workgroups(x, y, 1)
+
+        return dispatch
+
+    def _group(self, source: wgpu.GPUTexture, target: wgpu.GPUTexture) -> wgpu.GPUBindGroup:
+        return self.groups.get((source, target), lambda: self.device.create_bind_group(
+            label=f"post-{self.p.effect}", layout=self.pipeline.get_bind_group_layout(0),
+            entries=self._group_entries(source) + [{"binding": 3, "resource": target.create_view()}]))
 
     @staticmethod
     def copy(encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, copy_to: wgpu.GPUTexture) -> None:

@@ -17,8 +17,13 @@ read once and written once. The entry points around ``pass_color``:
   (a flat image cost as much as the scene); what it does skip is a block of pixels failing an early
   depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
-- compute: ``cs_main`` over workgroups of :data:`SHAPE`, ``textureStore`` into ``dst`` (binding 3), a storage
-  texture.
+- compute: ``cs_main`` over workgroups of the pass's shape (the plan's, core/plan/dispatch.py), ``textureStore``
+  into ``dst`` (binding 3), a storage texture. A tiled FXAA pass (the plan's ``tile``: with a prelude, knob
+  post_intermediate = none) first fills a workgroup tile and a one-texel apron in workgroup memory with
+  ``tile_source``: the effects before FXAA recomputed once per texel instead of at each read (a benchmark may
+  also tile the plain FXAA pass: each texel loaded once per workgroup instead of at each of up to nine reads).
+  Reads that fall in the tile take it, the rest call ``tile_source`` itself: the same function on the same
+  texel, so the image is the untiled one's.
   A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
   texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
   (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
@@ -28,22 +33,29 @@ from __future__ import annotations
 
 from wgpurender.core.course.effects import EffectSpec, encoding_of, needs_shader_encoding
 from wgpurender.core.plan import PostPass
+from wgpurender.core.plan.dispatch import TILE_APRON, tile_texels
+from wgpurender.core.plan.post import RECOMPUTING_READERS
 from wgpurender.core.shaders.uniforms import F32, Struct, wgsl_structs
 from wgpurender.wgpu_path.device.shaders import load_wgsl
 
 COMMON_WGSL = "post_common.wgsl"
 SRGB_WGSL = "post_srgb.wgsl"
-# The compute path's dispatch shape: workgroup (x, y) and rows of pixels per invocation. `wgpurender bench
-# post-roofline --shapes` sweeps it on the fused per-pixel pass (docs/benchmarks.md, issue 22.4).
-# H100, 3840x2160, final_subpass's fused tonemap+vignette: 8x8 x1 0.086 ms (45% of a copy of its bytes), 16x16 x1
-# 68%, 8x8 x2 80%, 32x8 x4 83% (0.046 ms, 1.21x the copy): more pixels per invocation, more loads in flight.
-SHAPE = (32, 8, 4)
-WORKGROUP = SHAPE[:2]
+# The compute path's dispatch shape is the plan's, per pass (PostPass.shape, wgpurender/core/plan/dispatch.py, where
+# the H100's measurements are); ``shape`` arguments below override it (`wgpurender bench post-roofline --shapes`).
+Shape = tuple[int, int, int]
 
 
-def dispatch_groups(size: tuple[int, int], shape: tuple[int, int, int] | None = None) -> tuple[int, int]:
+def shape_of(p: PostPass, shape: Shape | None = None) -> Shape:
+    """The pass's dispatch shape: ``shape`` when a benchmark sweeps it, else the plan's."""
+    chosen = shape or p.shape
+    if chosen is None:
+        raise ValueError(f"post pass {p.effect!r} on the {p.path} path has no dispatch shape in its plan")
+    return chosen
+
+
+def dispatch_groups(size: tuple[int, int], shape: Shape) -> tuple[int, int]:
     """Workgroups (x, y) covering an image of ``size`` with ``shape``."""
-    wx, wy, rows = shape or SHAPE
+    wx, wy, rows = shape
     return -(-size[0] // wx), -(-size[1] // (wy * rows))
 
 
@@ -98,11 +110,13 @@ def _color(p: PostPass) -> str:
             f"    return pass_tail({start}, pos, size);\n}}")
 
 
-FXAA_READS = """
-fn fxaa_texel(p: vec2i) -> vec4f {
+STORED_TEXEL = """
+fn tile_source(p: vec2i) -> vec4f {
     return src_clamped(p);
 }
+"""
 
+FXAA_READS = """
 fn fxaa_sample(uv: vec2f) -> vec4f {
     return textureSampleLevel(src, src_sampler, uv, 0.0);
 }
@@ -110,12 +124,35 @@ fn fxaa_sample(uv: vec2f) -> vec4f {
 
 # post_intermediate = none: the steps before FXAA applied to each texel it reads; a bilinear tap is the mix of four
 # such texels (clamp to edge, texel centres at i + 0.5), as the sampler would filter the stored image.
-FXAA_RECOMPUTED_READS = """
-fn fxaa_texel(p: vec2i) -> vec4f {
+RECOMPUTED_TEXEL = """
+fn tile_source(p: vec2i) -> vec4f {
     let size = vec2i(textureDimensions(src));
     let q = clamp(p, vec2i(0, 0), size - vec2i(1, 1));
     return pass_prelude(textureLoad(src, q, 0), vec2f(q) + vec2f(0.5), vec2f(size));
 }
+"""
+
+UNTILED_TEXEL = """
+fn fxaa_texel(p: vec2i) -> vec4f {
+    return tile_source(p);
+}
+"""
+
+# the compute path: the workgroup's tile (cs_main fills it with tile_source), else tile_source itself
+TILED_TEXEL = """
+var<workgroup> tile: array<vec4f, TILE_N>;
+var<private> tile_origin: vec2i;  // the texel at tile[0]: the workgroup's first pixel minus the apron
+
+fn fxaa_texel(p: vec2i) -> vec4f {
+    let t = p - tile_origin;
+    if t.x >= 0 && t.y >= 0 && t.x < TILE_Wi && t.y < TILE_Hi {
+        return tile[t.y * TILE_Wi + t.x];
+    }
+    return tile_source(p);
+}
+"""
+
+FXAA_RECOMPUTED_READS = """
 
 fn fxaa_sample(uv: vec2f) -> vec4f {
     let x = uv * vec2f(textureDimensions(src)) - vec2f(0.5);
@@ -128,13 +165,20 @@ fn fxaa_sample(uv: vec2f) -> vec4f {
 """
 
 
-def _reads(p: PostPass) -> str:
-    """fxaa_texel / fxaa_sample for a pass with FXAA: the stored image, or the prelude recomputed per texel."""
+def _reads(p: PostPass, shape: Shape | None, tiled: bool) -> str:
+    """fxaa_texel / fxaa_sample for a pass with FXAA: ``tile_source`` (the stored image, or the prelude recomputed
+    per texel), through the workgroup's tile when ``tiled``; bilinear taps by the sampler, or computed from
+    four recomputed texels."""
+    texel = UNTILED_TEXEL
+    if tiled:
+        w, h = tile_texels(shape_of(p, shape))
+        texel = (TILED_TEXEL.replace("TILE_N", str(w * h)).replace("TILE_Wi", f"{w}i")
+                 .replace("TILE_Hi", f"{h}i"))
     if p.prelude == 0:
-        return FXAA_READS
+        return STORED_TEXEL + texel + FXAA_READS
     lines = ["fn pass_prelude(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
     lines += [f"    c = {p.steps[i].effect}_pixel(c, pos, size{_arg(p, i)});" for i in range(p.prelude)]
-    return "\n".join([*lines, "    return c;", "}"]) + "\n" + FXAA_RECOMPUTED_READS
+    return "\n".join([*lines, "    return c;", "}"]) + "\n" + RECOMPUTED_TEXEL + texel + FXAA_RECOMPUTED_READS
 
 
 FRAGMENT_MAIN = """
@@ -175,10 +219,55 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
 """
 
 
-def pass_source(p: PostPass, shape: tuple[int, int, int] | None = None) -> str:
+def _compute_main(p: PostPass, shape: Shape, tiled: bool) -> str:
+    wx, wy, rows = shape
+    text = COMPUTE_MAIN
+    if tiled:
+        w, h = tile_texels(shape)
+        text = TILED_MAIN.replace("TILE_N", str(w * h)).replace("TILE_W", str(w)).replace("TILE_H", str(wy * rows))
+    return (text.replace("APRON", str(TILE_APRON)).replace("FORMAT", p.output_format).replace("WX", str(wx))
+            .replace("WY", str(wy)).replace("ROWS", str(rows)))
+
+# a tiled pass (FXAA) on the compute path: the tile first (every invocation fills its share, then all wait), then
+# ROWS rows per invocation as in COMPUTE_MAIN; the tile is TILE_W texels wide, its pixels TILE_H rows
+TILED_MAIN = """
+@group(0) @binding(3) var dst: texture_storage_2d<FORMAT, write>;
+
+@compute @workgroup_size(WX, WY)
+fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) local: vec3u,
+           @builtin(local_invocation_index) index: u32) {
+    let size = textureDimensions(src);
+    let corner = group.xy * vec2u(WXu, TILE_Hu);
+    tile_origin = vec2i(corner) - vec2i(APRON, APRON);
+    for (var i = index; i < TILE_Nu; i += WXu * WYu) {
+        tile[i] = tile_source(tile_origin + vec2i(i32(i % TILE_Wu), i32(i / TILE_Wu)));
+    }
+    workgroupBarrier();
+    for (var k = 0u; k < ROWSu; k++) {
+        let xy = corner + vec2u(local.x, local.y * ROWSu + k);
+        if xy.x < size.x && xy.y < size.y {
+            let p = vec2i(xy);
+            textureStore(dst, p, pass_color(p, vec2f(xy) + vec2f(0.5), vec2f(size)));
+        }
+    }
+}
+"""
+
+
+def tileable(p: PostPass) -> bool:
+    """Whether the pass's reads can come through a workgroup tile: FXAA starts it (after its prelude), compute."""
+    return p.path == "compute" and p.steps[p.prelude].effect in RECOMPUTING_READERS
+
+
+def pass_source(p: PostPass, shape: Shape | None = None, tiled: bool | None = None) -> str:
     """The whole WGSL module of a post pass on its path (fragment or compute); ``shape``: the compute path's
-    (workgroup x, workgroup y, rows per invocation), :data:`SHAPE` unless a benchmark sweeps it."""
-    wx, wy, rows = shape or SHAPE
+    (workgroup x, workgroup y, rows per invocation), the plan's unless a benchmark sweeps it. ``tiled``: the
+    plan's ``tile`` unless given: whether FXAA on the compute path reads through a workgroup tile (True; a
+    benchmark may tile a pass the plan does not) or every texel from the texture or recomputed where it is read
+    (False). Both draw the same image."""
+    tiled = p.tile if tiled is None else tiled
+    if tiled and not tileable(p):
+        raise ValueError(f"post pass {p.effect!r} on the {p.path} path has no FXAA reads to tile")
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:
@@ -189,11 +278,10 @@ def pass_source(p: PostPass, shape: tuple[int, int, int] | None = None) -> str:
         files.setdefault(SRGB_WGSL)
     parts.extend(load_wgsl(f) for f in files)
     if "post_fxaa.wgsl" in files:
-        parts.append(_reads(p))
+        parts.append(_reads(p, shape, tiled))
     parts.append(_color(p))
     if p.path == "compute":
-        parts.append(COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(wx))
-                     .replace("WY", str(wy)).replace("ROWS", str(rows)))
+        parts.append(_compute_main(p, shape_of(p, shape), tiled))
     else:
         parts.append(FRAGMENT_MAIN)
         if p.mask:

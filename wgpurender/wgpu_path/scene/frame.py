@@ -18,6 +18,7 @@ subpasses, and what fusing them changes: wgpurender/wgpu_path/post/chain.py.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from pathlib import Path
 
 import wgpu
@@ -29,6 +30,7 @@ from wgpurender.core.scene import Scene, load_scene
 from wgpurender.core.view import garbage
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frame, run_frames
+from wgpurender.wgpu_path.device.gpu_cache import GpuCache
 from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
 from wgpurender.wgpu_path.post import PostRunner, attachment_usage, output_usage
 from wgpurender.wgpu_path.scene.resources import SceneResources
@@ -69,6 +71,8 @@ class SceneRenderer:
         self.attachments: dict[str, wgpu.GPUTexture] = {}
         self._scene_pass = plan.scene_pass
         self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
+        # target texture -> its bound untimed frame (_bind); a swapchain's new texture each frame cannot grow it
+        self._frames: GpuCache = GpuCache("scene-frames", 4)
 
     def move_camera(self, camera) -> None:
         """Use ``camera`` from the next frame on (the pass uploads it when it changed): slow-motion measurements."""
@@ -109,6 +113,7 @@ class SceneRenderer:
             return
         self.size = size
         self.attachments = {}
+        self._frames.clear()  # bound frames name the old attachments
         for a in self.plan.attachments:
             usage = ATTACHMENT_USAGE.get(a.role, 0) | attachment_usage(a, self.plan.post_passes)
             if a.role != "output" and usage:
@@ -128,22 +133,46 @@ class SceneRenderer:
         return cached[1]
 
     def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
-        """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass)."""
+        """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass).
+
+        Untimed (as a window draws), the frame is bound once per target texture (:meth:`_bind`): its checks,
+        views, attachment dicts and post steps are made then, and each frame makes only the wgpu calls.
+        """
+        if timer is None:
+            self._frames.get(target, lambda: self._bind(target))(encoder)
+            return
+        scene_pass, chain = self._bound(target)
+        scene_pass(encoder, timer.writes("scene"))
+        if self.chain:
+            self.chain.run(encoder, {**self.attachments, "output": target}, timer=timer)
+
+    def _bound(self, target: wgpu.GPUTexture):
+        """(the scene pass bound to this target's attachments, the textures the post chain reads and writes)."""
         if target.format != self.plan.target_format:
             raise UserError(self._format_mismatch(target.format))
         size = (target.size[0], target.size[1])
         self.resize(size)
-        sp = self._scene_pass  # the plan's property scans its passes: looked up once (issue 22, CPU per frame)
+        sp = self._scene_pass
         color = {"view": self._view(sp.color, target), "clear_value": sp.clear_color,
                  "load_op": "clear", "store_op": "store"}
         if sp.resolve_target is not None:
             # The multisampled image is scratch: resolved at the end of the pass, its samples discarded.
             color.update(resolve_target=self._view(sp.resolve_target, target), store_op="discard")
         depth = self._view(sp.depth, target) if sp.depth else None
-        writes = timer.writes("scene") if timer is not None else None
-        self.scene_pass.record(encoder, color, depth, size[0] / size[1], timestamp_writes=writes)
-        if self.chain:
-            self.chain.run(encoder, {**self.attachments, "output": target}, timer=timer)
+        textures = {**self.attachments, "output": target}
+        return self.scene_pass.bound([color], depth, size[0] / size[1]), textures
+
+    def _bind(self, target: wgpu.GPUTexture):
+        """The untimed frame into ``target``: ``_bind(target)(encoder)`` records it (kept in ``_frames``)."""
+        scene_pass, textures = self._bound(target)
+        chain = self.chain.bind(textures) if self.chain else None
+        return functools.partial(_record_frame, scene_pass, chain)
+
+
+def _record_frame(scene_pass, chain, encoder: wgpu.GPUCommandEncoder) -> None:
+    scene_pass(encoder)
+    if chain is not None:
+        chain(encoder)
 
 
 def load_renderer(path: str | Path, ctx: GPUContext, *, size: tuple[int, int] | None = None, fmt: str | None = None,

@@ -14,6 +14,8 @@ turns around): models whose materials need the same features share one pipeline.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import wgpu
 
@@ -262,15 +264,24 @@ class ScenePassRenderer:
     def record(self, encoder: wgpu.GPUCommandEncoder, color_attachment: dict, depth_view, aspect: float,
                timestamp_writes: dict | None = None) -> None:
         """Write the camera UBO for this frame and record the scene pass."""
+        self.bound([color_attachment], depth_view, aspect)(encoder, timestamp_writes)
+
+    def bound(self, color_attachments: list[dict], depth_view, aspect: float):
+        """``record`` with its attachment dicts made now: ``bound(...)(encoder, timestamp_writes=None)`` records
+        the pass (a frame that keeps its attachments makes them once; issue 31.4)."""
         depth = None
         if depth_view is not None:
             depth = {"view": depth_view, "depth_clear_value": self.depth_clear,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
+        return functools.partial(self._record_pass, color_attachments, depth, aspect)
+
+    def _record_pass(self, color_attachments: list[dict], depth: dict | None, aspect: float,
+                     encoder: wgpu.GPUCommandEncoder, timestamp_writes: dict | None = None) -> None:
         # The objects never move: the visible lists change only with the camera, so the culling pass runs then
         # (the first frame, a resize, an orbit step), and a still frame costs no call for culling.
         if self.draws and self._write_camera(aspect) and self.culler is not None:
             self.culler.record(encoder)
-        render_pass = encoder.begin_render_pass(label="scene", color_attachments=[color_attachment],
+        render_pass = encoder.begin_render_pass(label="scene", color_attachments=color_attachments,
                                                 depth_stencil_attachment=depth, timestamp_writes=timestamp_writes)
         if self.bundle is not None:
             render_pass.execute_bundles([self.bundle])
