@@ -104,19 +104,51 @@ def timed_load(ctx, scene: Path, knobs: dict) -> tuple[list[float], int]:
     return [(b - a) * 1e3 for a, b in itertools.pairwise(marks)], getattr(renderer.plan, "mesh_workers", 0)
 
 
+USAGE = "usage: load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...] [--split=SPLIT.csv] [--max-workers=M]"
+
+
+def arguments(argv: list[str]) -> tuple[str, int, Path, str, Path | None, int | None, dict[str, str]]:
+    """(label, n, out, mode, split_to, most, knobs) from the command line; ValueError (one line) for a bad one:
+    a count that is no whole number >= 1, a mode other than cold or warm, a KNOB without =, an option this
+    script does not take (a misspelt --split was dropped, and the run silently wrote no split)."""
+    if len(argv) < 3:
+        raise ValueError(f"LABEL, N and OUT.csv are required; {USAGE}")
+    label, count, out, *rest = argv
+    if not label or any(c in label for c in ',"\n\r'):
+        raise ValueError(f"LABEL {label!r}: give a name without commas, quotes or line breaks (a CSV cell)")
+    if not count.isdecimal() or int(count) < 1:
+        raise ValueError(f"N {count!r}: give the number of distinct meshes, a whole number >= 1")
+    mode = rest.pop(0) if rest and "=" not in rest[0] and not rest[0].startswith("--") else "cold"
+    if mode not in ("cold", "warm"):
+        raise ValueError(f"cache mode {mode!r}: give cold or warm")
+    split_to, most, knobs = None, None, {}
+    for arg in rest:
+        name, eq, value = arg.partition("=")
+        if not eq or not name.strip("-") or not value:
+            raise ValueError(f"{arg!r}: give KNOB=VALUE, --split=SPLIT.csv or --max-workers=M; {USAGE}")
+        if name == "--split":
+            split_to = Path(value)
+        elif name == "--max-workers":
+            if not value.isdecimal() or int(value) < 1:
+                raise ValueError(f"--max-workers={value}: give a whole number >= 1")
+            most = int(value)
+        elif name.startswith("-"):
+            raise ValueError(f"unknown option {name!r}; {USAGE}")
+        else:
+            knobs[name] = value
+    return label, int(count), Path(out), mode, split_to, most, knobs
+
+
 def main() -> int:
-    label, n, out = sys.argv[1], int(sys.argv[2]), Path(sys.argv[3])
-    mode = sys.argv[4] if len(sys.argv) > 4 else "cold"
-    split_to = next((Path(a.split("=", 1)[1]) for a in sys.argv[5:] if a.startswith("--split=")), None)
-    most = next((int(a.split("=", 1)[1]) for a in sys.argv[5:] if a.startswith("--max-workers=")), None)
-    knobs = dict(arg.split("=", 1) for arg in sys.argv[5:] if not arg.startswith("--"))
+    try:
+        label, n, out, mode, split_to, most, knobs = arguments(sys.argv[1:])
+    except ValueError as e:
+        print(f"load_compare: {e}", file=sys.stderr)
+        return 2
     if most is not None:  # a measurement of the rule's cap, not a knob: the plan's own rule with another bound
         from wgpurender.core.plan import mesh_loading
 
         mesh_loading.MAX_WORKERS = most
-    if mode not in ("cold", "warm"):
-        print(f"cache mode {mode!r}: give cold or warm", file=sys.stderr)
-        return 2
     ctx = get_context()
     with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as cache:
         os.environ["XDG_CACHE_HOME"] = cache  # never the machine's own cache
