@@ -2030,6 +2030,15 @@ MUTATIONS = [
      ["tests/test_cache_entries.py|relative"]),
     ("wgpurender/wgpu_path/device/cdef_cache.py", "    return cache_root()", '    return Path("wgpurender")',
      ["tests/test_cache_entries.py|relative"]),
+    ("benchmarks/load_compare.py", 'if name == "--split":', 'if name == "--splat":', ["tests/test_load_compare_args.py"]),
+    ("benchmarks/load_compare.py", '        elif name.startswith("-"):', "        elif False:",
+     ["tests/test_load_compare_args.py"]),
+    ("benchmarks/load_compare.py", "if not count.isdecimal() or int(count) < 1:", "if not count.isdecimal():",
+     ["tests/test_load_compare_args.py"]),
+    ("benchmarks/load_compare.py", 'if not eq or not name.strip("-") or not value:', "if not eq:",
+     ["tests/test_load_compare_args.py"]),
+    ("benchmarks/load_compare.py", "        print(f\"load_compare: {e}\", file=sys.stderr)\n        return 2",
+     "        raise", ["tests/test_load_compare_args.py"]),
 ]
 
 
