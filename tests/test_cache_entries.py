@@ -157,7 +157,7 @@ def test_the_explain_text_says_not_measured_for_a_bad_record(tmp_path):
 
 def test_a_relative_cache_home_is_ignored_and_no_cache_lands_in_the_working_folder(tmp_path):
     """The XDG spec: a relative $XDG_CACHE_HOME is invalid and ignored. Taken as it was, `wgpurender render` run in
-    a user's folder wrote wgpurender/cffi-wgpu-h-*.json under ./REL there (and each cache module had its own copy
+    a user's folder wrote its wgpu.h parse cache under ./REL/ there (and each cache module had its own copy
     of the rule: wgpu.h's parse, SPIR-V, the bandwidth record, the meshes)."""
     work, home = tmp_path / "work", tmp_path / "home"
     work.mkdir()
