@@ -2040,6 +2040,8 @@ MUTATIONS = [
      ["tests/test_load_compare_args.py"]),
     ("benchmarks/load_compare.py", "        print(f\"load_compare: {e}\", file=sys.stderr)\n        return 2",
      "        raise", ["tests/test_load_compare_args.py"]),
+    ("wgpurender/core/files/cache_entry.py", '.{os.getpid()}.{threading.get_ident()}.tmp")', '.{os.getpid()}.tmp")',
+     ["tests/test_cache_entries.py|threads"]),
 ]
 
 

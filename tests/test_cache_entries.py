@@ -180,3 +180,28 @@ def test_a_relative_cache_home_is_ignored_and_no_cache_lands_in_the_working_fold
     assert out.stdout.split() == [str(ours / "meshes"), str(ours / "spirv"), str(ours), str(ours / "bandwidth.json")]
     assert not (work / relative / "wgpurender").exists(), sorted(p.name for p in (work / relative).rglob("*"))
     assert any(ours.glob("cffi-wgpu-h-*.json")), "the parse was cached where the spec says"
+
+
+def test_threads_writing_one_entry_at_once_each_write_a_whole_entry(tmp_path):
+    """write_entry's temp file was named by the process only: two threads of one process writing the same entry
+    shared it, one removed the other's file mid-write, most writes failed and now and then the rename left half
+    an entry behind (a miss for every later reader)."""
+    import threading
+
+    payloads = [bytes([k]) * (1 << 20) for k in range(8)]
+    for trial in range(5):
+        path, results = tmp_path / f"entry{trial}", [None] * len(payloads)
+        start = threading.Barrier(len(payloads))
+
+        def write(k, path=path, results=results, start=start):
+            start.wait()
+            results[k] = cache_entry.write_entry(path, "key", payloads[k])
+
+        threads = [threading.Thread(target=write, args=(k,)) for k in range(len(payloads))]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        assert results == [True] * len(payloads), results
+        assert cache_entry.read_entry(path, "key") in payloads  # one writer's whole entry
+        assert sorted(p.name for p in tmp_path.iterdir() if p.name.endswith(".tmp")) == []  # no temp file left

@@ -19,6 +19,7 @@ from __future__ import annotations
 import hashlib
 import os
 import stat
+import threading
 from pathlib import Path
 
 MAGIC = b"wgpurender-cache-entry-1\n"
@@ -86,7 +87,9 @@ def write_entry(path: Path, key: bytes | str, payload: bytes) -> bool:
     is there (a link planted to a user's file) is removed, never followed: the temp file is created new
     (O_EXCL, which also refuses a link replanted meanwhile)."""
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    # one temp file per writer: per process and per thread (two threads of one process shared one name, and one's
+    # unlink of "whatever is there" removed the other's file mid-write: its rename then moved half an entry)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}.tmp")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp.unlink(missing_ok=True)
