@@ -2042,6 +2042,10 @@ MUTATIONS = [
      "        raise", ["tests/test_load_compare_args.py"]),
     ("wgpurender/core/files/cache_entry.py", '.{os.getpid()}.{threading.get_ident()}.tmp")', '.{os.getpid()}.tmp")',
      ["tests/test_cache_entries.py|threads"]),
+    ("wgpurender/core/files/cache_entry.py", "or info.st_size > MAX_ENTRY or not _ours(info):",
+     "or info.st_size > MAX_ENTRY:", ["tests/test_cache_entries.py|another_user"]),
+    ("wgpurender/core/files/cache_entry.py", "or info.st_uid == os.geteuid()", "or True",
+     ["tests/test_cache_entries.py|another_user"]),
 ]
 
 

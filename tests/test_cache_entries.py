@@ -205,3 +205,15 @@ def test_threads_writing_one_entry_at_once_each_write_a_whole_entry(tmp_path):
         assert results == [True] * len(payloads), results
         assert cache_entry.read_entry(path, "key") in payloads  # one writer's whole entry
         assert sorted(p.name for p in tmp_path.iterdir() if p.name.endswith(".tmp")) == []  # no temp file left
+
+
+def test_an_entry_another_user_owns_is_a_miss(tmp_path):
+    """The keys are predictable (a file's hash, versions), so anyone who can write the cache folder (a shared or
+    lent $XDG_CACHE_HOME) could seal a forged payload under one: an entry owned by another user is not ours."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        pytest.skip("handing a file to another user takes root")
+    path = tmp_path / "entry"
+    assert cache_entry.write_entry(path, "key", b"payload")
+    assert cache_entry.read_entry(path, "key") == b"payload"
+    os.chown(path, os.geteuid() + 4242, -1)
+    assert cache_entry.read_entry(path, "key") is None

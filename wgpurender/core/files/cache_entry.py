@@ -52,14 +52,14 @@ def unseal(blob: bytes, key: bytes | str) -> bytes | None:
 
 
 def read_entry(path: Path, key: bytes | str) -> bytes | None:
-    """The verified payload at ``path`` (a regular file, not a link elsewhere), or None."""
+    """The verified payload at ``path`` (a regular file of this user's, not a link elsewhere), or None."""
     try:  # one open and one fstat (a scene of 10k meshes reads 10k entries): no final link, no FIFO waited on
         fd = os.open(path, _READ_FLAGS)
     except (OSError, ValueError):
         return None
     try:
         info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_ENTRY:
+        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_ENTRY or not _ours(info):
             return None
         blob = _read(fd, info.st_size + 1)  # one past: a file grown since the fstat is not whole
     except OSError:
@@ -67,6 +67,13 @@ def read_entry(path: Path, key: bytes | str) -> bytes | None:
     finally:
         os.close(fd)
     return unseal(blob, key)
+
+
+def _ours(info: os.stat_result) -> bool:
+    """Whether this user wrote the entry (always, where the system has no owners): an entry another user owns was
+    not written by us, and in a shared or lent $XDG_CACHE_HOME that user could forge one for a key we will ask
+    (the keys are predictable: a file's hash), handing us SPIR-V, a scene's values or a mesh of their choosing."""
+    return not hasattr(os, "geteuid") or info.st_uid == os.geteuid()
 
 
 def _read(fd: int, most: int) -> bytes:
