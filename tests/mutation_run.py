@@ -1794,7 +1794,7 @@ MUTATIONS = [
     (O_CACHED, "mesh = None if payload is None else mesh_pack.unpack(payload, path)", "mesh = None", [PARSE_CACHE]),
     (O_CACHED, "        write_entry(entry, key, packed)", "        packed = packed", [PARSE_CACHE]),
     (O_CACHED, 'return cache_folder("meshes")', 'return cache_folder("")', [PARSE_CACHE]),
-    ("wgpurender/core/files/cache_entry.py", '/ ".cache") / "wgpurender" / name', '/ ".cache") / name', [PARSE_CACHE]),
+    ("wgpurender/core/files/cache_entry.py", "    return cache_root() / name", "    return cache_root()", [PARSE_CACHE]),
     (M_WORK, '        if kind == "refused":', '        if kind == "refused!":', [WORKERS]),
     (M_WORK, "    for chunk in chunks[done:]:", "    for chunk in chunks[len(chunks):]:", [WORKERS]),
     (M_WORK, "except BrokenProcessPool:", "except ValueError:", [WORKERS]),
@@ -2046,6 +2046,8 @@ MUTATIONS = [
      "or info.st_size > MAX_ENTRY:", ["tests/test_cache_entries.py|another_user"]),
     ("wgpurender/core/files/cache_entry.py", "or info.st_uid == os.geteuid()", "or True",
      ["tests/test_cache_entries.py|another_user"]),
+    ("wgpurender/bench/frames.py", '        if os.environ.get(GC_ENV) != "default":\n            gc.disable()',
+     "        gc.disable()", ["tests/test_bench_perf_rows.py|gc_setting"]),
 ]
 
 

@@ -110,3 +110,35 @@ def test_a_same_wait_row_missing_the_largest_count_is_not_the_judged_one():
     same = [label for label in got if "same wait" in label]
     assert len(same) == 1 and got[same[0]][1] == "reported" and f"at {counts[-2]}" in got[same[0]][0]
     assert "does not grow" not in same[0], same  # a partial row does not claim the target's words
+
+
+@pytest.mark.parametrize(("setting", "collector_on"), [(None, False), ("default", True)])
+def test_the_scale_rows_follow_the_bench_gc_setting_as_the_other_frames_do(monkeypatch, setting, collector_on):
+    """cpu_thread_ms and the same-wait row paused the collector with their own helper, which did not read
+    $WGPURENDER_BENCH_GC: with it set to default (the collector as Python sets it) every other frame row ran with
+    the collector and these two without, silently. A stand-in runner notes the collector's state at each record."""
+    import gc
+    from types import SimpleNamespace
+
+    from wgpurender.bench.frames import GC_ENV
+
+    if setting is None:
+        monkeypatch.delenv(GC_ENV, raising=False)
+    else:
+        monkeypatch.setenv(GC_ENV, setting)
+    seen = []
+    encoder = SimpleNamespace(finish=lambda: None)
+    ctx = SimpleNamespace(device=SimpleNamespace(create_command_encoder=lambda label=None: encoder),
+                          queue=SimpleNamespace(submit=lambda buffers: None), wait_idle=lambda: None)
+    runner = SimpleNamespace(ctx=ctx, target=None,
+                             renderer=SimpleNamespace(record=lambda enc, target, t: seen.append(gc.isenabled())))
+    was = gc.isenabled()
+    gc.enable()
+    try:
+        scale.thread_cpu(runner, 3)
+        scale.same_wait_cpu(runner, 3, 5.0)
+        assert gc.isenabled(), "the collector is on again after the rows"
+    finally:
+        if not was:
+            gc.disable()
+    assert len(seen) == 10 and set(seen) == {collector_on}, seen

@@ -22,12 +22,11 @@ import math
 import tempfile
 import time
 from collections.abc import Callable
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-from wgpurender.bench.frames import measure
+from wgpurender.bench.frames import frames_without_gc, measure
 from wgpurender.bench.markdown_scale import SAME_WAIT
 from wgpurender.bench.report import Result, size_text
 from wgpurender.core.files.assets import assets_dir
@@ -150,7 +149,7 @@ def thread_cpu(runner, frames: int) -> Stats:
     previous frame's GPU wait, which grows with the GPU's frame time (benchmarks/cpu_growth_probe.py); this row
     counts only the CPU time spent, to tell the two apart."""
     samples = []
-    with _gc_paused():
+    with frames_without_gc():  # as bench/frames.py's samples ($WGPURENDER_BENCH_GC too)
         for _ in range(frames + 2):
             samples.append(_record_submit(runner, time.thread_time))
             runner.ctx.wait_idle()
@@ -169,7 +168,7 @@ def same_wait_cpu(runner, frames: int, period_ms: float = SAME_WAIT_MS) -> Stats
     after a longer sleep (benchmarks/cpu_growth_probe.py): that row is the frame as a window without vsync draws it,
     this one is the controlled comparison. None when a frame takes longer than the period (no same wait exists)."""
     period, samples = period_ms / 1e3, []
-    with _gc_paused():
+    with frames_without_gc():  # as bench/frames.py's samples ($WGPURENDER_BENCH_GC too)
         begin = time.perf_counter()
         for k in range(-2, frames):  # two frames to fall into step, then the samples
             rest = begin - time.perf_counter()
@@ -193,20 +192,6 @@ def _record_submit(runner, clock: Callable[[], float]) -> float:
     runner.renderer.record(encoder, runner.target, 0.0)
     runner.ctx.queue.submit([encoder.finish()])
     return (clock() - start) * 1e3
-
-
-@contextmanager
-def _gc_paused():
-    """The collector paused for a row's frames (as bench/frames.py's samples), restored after."""
-    import gc
-
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.enable()
 
 
 def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int, int],
