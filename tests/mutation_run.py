@@ -2049,6 +2049,8 @@ MUTATIONS = [
      ["tests/test_cache_entries.py|another_user"]),
     ("wgpurender/bench/frames.py", '        if os.environ.get(GC_ENV) != "default":\n            gc.disable()',
      "        gc.disable()", ["tests/test_bench_perf_rows.py|gc_setting"]),
+    ("wgpurender/bench/post_roofline.py", "    if not resolve_plan(scene, ctx.adapter_facts(), size=size).post_passes:",
+     "    if False:", ["tests/test_post_roofline.py|without_post"]),
 ]
 
 

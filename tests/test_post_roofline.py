@@ -83,3 +83,21 @@ def test_the_shape_sweep_covers_the_auto_and_the_one_pass_chain(ctx):
     assert all(r.variant.startswith("compute, fused, none, shape ") for r in none)
     text = markdown(rows, ctx, FINAL, (16, 12), 1, "test")
     assert "- fastest shape per pass (auto): tonemap " in text and "- fastest shape per pass (none): " in text
+
+
+def test_a_scene_without_post_effects_is_one_line_and_exit_2(ctx, capsys, tmp_path):
+    """A scene with no [[post]] block has no chain to time: the roofline made a query set of zero timestamps and
+    the validation error was a traceback. The scene (a box, a camera, no [[post]]) is written here."""
+    if not ctx.has("timestamp-query"):
+        pytest.skip("no timestamp queries on this adapter: the command refuses that first")
+    from wgpurender.cli import main
+    from wgpurender.core.models import procedural
+
+    procedural.write_obj(tmp_path / "box.obj", procedural.box(1.0))
+    plain = tmp_path / "no_post.toml"
+    plain.write_text('[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "box.obj"\n')
+    code = main(["bench", "post-roofline", str(plain), "--size", "32x24", "--frames", "1", "--out",
+                 str(tmp_path / "out")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert code == 2 and len(err) == 1 and "has no [[post]] effects" in err[0], err
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())  # no file written

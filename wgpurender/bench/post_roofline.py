@@ -231,6 +231,9 @@ def run_roofline(ctx: GPUContext, scene_path: Path, size: tuple[int, int], frame
     """Every variant's rows; with ``shapes``, the fused compute passes dispatched with each shape of ``sweep``
     (default :data:`SHAPES`)."""
     scene = load_scene(scene_path)
+    if not resolve_plan(scene, ctx.adapter_facts(), size=size).post_passes:  # else a query set of 0 timestamps:
+        raise UserError(f"{scene_path} has no [[post]] effects: post-roofline times a post chain; give a scene "
+                        "with one, e.g. final.toml")  # a validation error's traceback
     copy = CopyKernel(ctx)
     rows: list[PassTime] = []
     for intermediate in INTERMEDIATES:
