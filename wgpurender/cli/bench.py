@@ -66,6 +66,9 @@ def run(args) -> int:
         raise UserError(f"unknown benchmark family {unknown[0]!r}: choose from {', '.join(FAMILIES)}")
     if args.frames is not None and args.frames < 1:
         raise UserError("--frames must be at least 1")
+    if args.frames is not None and set(families) <= {"startup"}:  # its rounds are fresh processes, not frames
+        raise UserError("--frames sets the timed frames of the frame families; the startup family times first "
+                        "pixels over fresh processes: add another family with --only, or leave --frames out")
     if args.anisotropy != DEFAULT_ANISOTROPY and "scene" not in families:
         raise UserError("--anisotropy applies to the scene family: add --only scene, or leave it out")
     output_folder(args.out, "--out")  # before any timing
