@@ -2055,6 +2055,8 @@ MUTATIONS = [
      "if False:", ["tests/test_bench_flags.py"]),
     ("wgpurender/cli/bench.py", 'if args.frames is not None and set(families) <= {"startup"}:',
      "if args.frames is not None:", ["tests/test_bench_flags.py"]),
+    ("wgpurender/core/plan/mesh_loading.py", '        if knob == "on":  # asked for by name', '        if False:  #',
+     ["tests/test_mesh_workers.py"]),
 ]
 
 

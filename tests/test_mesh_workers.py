@@ -167,7 +167,6 @@ def test_a_dead_worker_leaves_the_rest_to_this_process(tmp_path, monkeypatch):
     ("off", 10_000, 16, True, 0),
     ("on", 3, 16, True, 1),
     ("on", 65, 16, True, 2),  # 65 files: two workers (one per 64, rounded up)
-    ("on", 3, 16, False, 0),
     ("on", 0, 16, True, 0),
 ])
 def test_the_rule(knob, files, cores, fork, workers):
@@ -175,6 +174,14 @@ def test_the_rule(knob, files, cores, fork, workers):
     assert got == workers and why and "\n" not in why
     if workers:
         assert str(workers) in why
+
+
+def test_on_where_no_worker_can_start_is_refused_not_dropped():
+    """mesh_workers = on without the fork start method read in this process and said so only in --explain: a
+    knob asked for by name that cannot apply is refused in one line (auto falls back, as its rule says)."""
+    with pytest.raises(UserError, match=r"mesh_workers = on: worker processes need the fork start method"):
+        mesh_loading.resolve_mesh_workers("on", 300, cores=16, fork=False)
+    assert mesh_loading.resolve_mesh_workers("auto", 300, cores=16, fork=False)[0] == 0
 
 
 def test_an_unknown_knob_is_one_line():

@@ -47,6 +47,9 @@ def resolve_mesh_workers(knob: str, obj_files: int, cores: int | None = None,
     if obj_files == 0:
         return 0, "no OBJ files: models are read in this process"
     if not fork:
+        if knob == "on":  # asked for by name: refused, never dropped
+            raise UserError("plan knob mesh_workers = on: worker processes need the fork start method (Linux), "
+                            "which this platform does not offer; use auto or off")
         return 0, f"{files} read in this process: worker processes need the fork start method (Linux)"
     wanted = max(1, min(cores, MAX_WORKERS, -(-obj_files // PER_WORKER)))
     if knob == "on":
