@@ -2057,6 +2057,12 @@ MUTATIONS = [
      "if args.frames is not None:", ["tests/test_bench_flags.py"]),
     ("wgpurender/core/plan/mesh_loading.py", '        if knob == "on":  # asked for by name', '        if False:  #',
      ["tests/test_mesh_workers.py"]),
+    ("wgpurender/core/files/cache_entry.py", "    except RuntimeError:  # no $HOME", "    except KeyError:  # no $HOME",
+     ["tests/test_cache_entries.py|without_a_home"]),
+    ("wgpurender/core/files/cache_entry.py", "    atexit.register(shutil.rmtree, folder, True)\n", "",
+     ["tests/test_cache_entries.py|without_a_home"]),
+    ("wgpurender/core/files/cache_entry.py", "@functools.cache\ndef _private_root", "def _private_root",
+     ["tests/test_cache_entries.py|without_a_home"]),
 ]
 
 

@@ -217,3 +217,30 @@ def test_an_entry_another_user_owns_is_a_miss(tmp_path):
     assert cache_entry.read_entry(path, "key") == b"payload"
     os.chown(path, os.geteuid() + 4242, -1)
     assert cache_entry.read_entry(path, "key") is None
+
+
+def test_without_a_home_the_caches_use_a_private_folder_not_a_traceback(tmp_path):
+    """No $HOME and no account entry for the user (a container run with --user N): Path.home() raised
+    RuntimeError inside `wgpurender render` (the wgpu.h parse cache looks its folder up at import). The account
+    lookup is made to fail here as it fails for such a user; the render must succeed and leave nothing behind."""
+    code = ("import os, pwd, stat, tempfile\n"
+            "def nobody(uid):\n"
+            "    raise KeyError(uid)\n"
+            "pwd.getpwuid = nobody\n"
+            "import wgpurender as w\n"
+            "from wgpurender.core.files import cache_entry\n"
+            "img = w.render('triangle', size=(16, 12))\n"
+            "root = cache_entry.cache_root()\n"
+            "assert root == cache_entry.cache_root() and root.parent.parent == __import__('pathlib').Path("
+            "tempfile.gettempdir()), root\n"
+            "assert stat.S_IMODE(os.stat(root.parent).st_mode) == 0o700\n"
+            "print(root.parent, img.pixels.shape)\n")
+    env = {k: v for k, v in os.environ.items() if k not in ("HOME", "XDG_CACHE_HOME")}
+    env.update(WGPURENDER_VALIDATION="0", TMPDIR=str(tmp_path),
+               PYTHONPATH=os.pathsep.join([str(Path(__file__).resolve().parent.parent),
+                                           *filter(None, [os.environ.get("PYTHONPATH")])]))
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr[-2000:]
+    folder, shape = out.stdout.split(maxsplit=1)
+    assert shape.strip() == "(12, 16, 4)" and Path(folder).parent == tmp_path
+    assert not Path(folder).exists(), "the private folder is removed at exit"

@@ -16,6 +16,7 @@ the right shape. API-free.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import stat
@@ -119,7 +120,24 @@ def cache_root() -> Path:
     $XDG_CACHE_HOME is invalid by the XDG base directory spec ("should consider the path invalid and ignore it"):
     taken as it is, it put our cache files in whatever folder the command ran in, among the user's files."""
     base = os.environ.get("XDG_CACHE_HOME") or ""
-    return (Path(base) if os.path.isabs(base) else Path.home() / ".cache") / "wgpurender"
+    if os.path.isabs(base):
+        return Path(base) / "wgpurender"
+    try:
+        return Path.home() / ".cache" / "wgpurender"
+    except RuntimeError:  # no $HOME and no account entry (a container's --user N): Path.home's traceback in render
+        return _private_root()
+
+
+@functools.cache
+def _private_root() -> Path:
+    """A 0700 folder of this process, removed at exit: where there is no home, the caches last one process."""
+    import atexit  # here: tempfile's imports are not on every process's path to its first pixel
+    import shutil
+    import tempfile
+
+    folder = Path(tempfile.mkdtemp(prefix="wgpurender-cache-"))
+    atexit.register(shutil.rmtree, folder, True)
+    return folder / "wgpurender"
 
 
 def cache_folder(name: str) -> Path:
