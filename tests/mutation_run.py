@@ -2027,7 +2027,7 @@ MUTATIONS = [
     ("wgpurender/bench/markdown_scale.py", '"every frame: the count is the only variable)" if judged == SAME_WAIT',
      '"every frame: the count is the only variable)" if True',
      ["tests/test_bench_perf_rows.py"]),
-    ("wgpurender/core/files/cache_entry.py", "if os.path.isabs(base) else", "if base else",
+    ("wgpurender/core/files/cache_entry.py", "    if os.path.isabs(base):", "    if base:",
      ["tests/test_cache_entries.py|relative"]),
     ("wgpurender/wgpu_path/device/cdef_cache.py", "    return cache_root()", '    return Path("wgpurender")',
      ["tests/test_cache_entries.py|relative"]),
