@@ -6,9 +6,11 @@ Python (plus a little for the timing wrappers, the same in every tree).
 
 Run it once per tree (PYTHONPATH picks the tree), in alternating rounds:
 
-    python benchmarks/frame_python_probe.py OUT.csv TREE [SCENE] [W]x[H] [FRAMES] [ROUNDS]
+    python benchmarks/frame_python_probe.py OUT.csv TREE [SCENE] [W]x[H] [FRAMES] [same|new]
 
-Appends one row per round (tree, scene, size, round, frame_us and outside_us medians, the largest wgpu-py methods'
+``new``: each frame draws into a new texture object of the same size, as a window's swapchain hands out (made
+before the frame's clock starts, so only what the renderer does with it is timed); ``same`` (the default): one
+offscreen target, as ``bench perf`` draws. Appends one row per round (tree, scene, size, round, frame_us and outside_us medians, the largest wgpu-py methods'
 mean microseconds per frame).
 """
 
@@ -52,6 +54,7 @@ def main() -> None:
     scene = sys.argv[3] if len(sys.argv) > 3 else "final.toml"
     size = tuple(int(v) for v in (sys.argv[4] if len(sys.argv) > 4 else "320x240").split("x"))
     frames = int(sys.argv[5]) if len(sys.argv) > 5 else 300
+    targets = sys.argv[6] if len(sys.argv) > 6 else "same"
 
     from wgpurender.bench.frames import settle_garbage
     from wgpurender.bench.scene import SceneRunner
@@ -68,6 +71,8 @@ def main() -> None:
     settle_garbage()
     totals, outside, per_method = [], [], Counter()
     for k in range(frames + 10):
+        if targets == "new":
+            target = runner.renderer.create_output()  # the last one is released here, as a presented image is
         spent.clear()
         start = time.perf_counter()
         encoder = device.create_command_encoder(label="probe")
@@ -84,10 +89,11 @@ def main() -> None:
     with out.open("a", newline="") as f:
         writer = csv.writer(f)
         if new:
-            writer.writerow(("tree", "scene", "size", "frames", "frame_us", "outside_wgpu_py_us", "wgpu_py_methods_us"))
-        writer.writerow((tree, scene, f"{size[0]}x{size[1]}", frames, f"{statistics.median(totals):.1f}",
+            writer.writerow(("tree", "scene", "size", "targets", "frames", "frame_us", "outside_wgpu_py_us",
+                             "wgpu_py_methods_us"))
+        writer.writerow((tree, scene, f"{size[0]}x{size[1]}", targets, frames, f"{statistics.median(totals):.1f}",
                          f"{statistics.median(outside):.1f}", largest))
-    print(tree, scene, size, f"frame {statistics.median(totals):.1f} us, outside wgpu-py "
+    print(tree, scene, size, targets, f"frame {statistics.median(totals):.1f} us, outside wgpu-py "
           f"{statistics.median(outside):.1f} us")
 
 
