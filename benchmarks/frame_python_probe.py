@@ -10,8 +10,8 @@ Run it once per tree (PYTHONPATH picks the tree), in alternating rounds:
 
 ``new``: each frame draws into a new texture object of the same size, as a window's swapchain hands out (made
 before the frame's clock starts, so only what the renderer does with it is timed); ``same`` (the default): one
-offscreen target, as ``bench perf`` draws. Appends one row per round (tree, scene, size, round, frame_us and outside_us medians, the largest wgpu-py methods'
-mean microseconds per frame).
+offscreen target, as ``bench perf`` draws. Appends one row per round (tree, scene, size, targets, frames, frame_us
+and outside_us medians, the largest wgpu-py methods' mean microseconds per frame).
 """
 
 from __future__ import annotations

@@ -106,7 +106,7 @@ class PostRunner:
             mask = textures[p.mask] if p.mask else None
             if p.output == "output":
                 kind = "dispatch" if isinstance(runner, ComputePass) else "render"
-                late.append((len(steps), kind, functools.partial(_bound_into, runner, source, mask)))
+                late.append((len(steps), kind, _late_pass(runner, source, mask)))
                 steps.append((kind, None))
             elif isinstance(runner, ComputePass):
                 steps.append(("dispatch", runner.bound(source, textures[p.output])))
@@ -126,10 +126,20 @@ def names_output(p: PostPass) -> bool:
     return p.output == "output" or p.copy_to == "output"
 
 
-def _bound_into(runner, source, mask, output: wgpu.GPUTexture) -> Callable:
+def _late_pass(runner: FragmentPass | ComputePass, source: wgpu.GPUTexture,
+               mask: wgpu.GPUTexture | None) -> Callable[[wgpu.GPUTexture], Callable]:
+    """``step(output)``: the pass into ``output``, with all that does not name it made now (a render pass: its
+    bundle and mask, then per output its view; a dispatch's bind group names its target, so it is made per output).
+    Views and bind groups per output live in the runner's caches of 4: a swapchain's new image cannot grow them."""
     if isinstance(runner, ComputePass):
-        return runner.bound(source, output)
-    return runner.bound(source, output, mask)
+        return functools.partial(runner.bound, source)
+    into = runner.bound_source(source, mask)
+
+    def step(output: wgpu.GPUTexture) -> Callable:
+        runner.check(source, output)
+        return into(output, runner.views.get(output, output.create_view))
+
+    return step
 
 
 def _copy_into(runner, textures: Mapping[str, wgpu.GPUTexture], p: PostPass, output: wgpu.GPUTexture) -> Callable:

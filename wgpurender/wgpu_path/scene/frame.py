@@ -71,6 +71,7 @@ class SceneRenderer:
         self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
         # target texture -> its bound untimed frame (_bind); a swapchain's new texture each frame cannot grow it
         self._frames: GpuCache = GpuCache("scene-frames", 4)
+        self._target_format = plan.target_format  # a property of the plan: read once, checked every new target
         self._bound = None  # finish(target) -> frame: the frame bound to this size's attachments (_bind_size)
 
     def move_camera(self, camera) -> None:
@@ -150,9 +151,10 @@ class SceneRenderer:
 
     def _check_target(self, target: wgpu.GPUTexture) -> None:
         """Refuse a target of another format; (re)make the attachments at its size."""
-        if target.format != self.plan.target_format:
+        if target.format != self._target_format:
             raise UserError(self._format_mismatch(target.format))
-        self.resize((target.size[0], target.size[1]))
+        size = target.size
+        self.resize((size[0], size[1]))
 
     def _scene_bound(self, target: wgpu.GPUTexture | None):
         """The scene pass bound to this size's attachments (and ``target`` where the pass writes the output)."""
