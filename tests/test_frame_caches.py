@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import wgpu
 from test_post import ATOL, RTOL, ref_aces, ref_vignette, upload
 
 from wgpurender.bench.calls import count_frame, steady_calls
@@ -269,3 +270,16 @@ def test_a_new_target_each_frame_makes_no_gpu_object_but_what_names_it(ctx, tmp_
     direct = any(p.path == "compute" and p.output == "output" for p in plan.post_passes)
     assert direct is storage
     assert made == ({"device.create_bind_group": 1} if direct else {}), dict(same)
+
+
+@pytest.mark.parametrize("path", ["fragment", "compute"])
+def test_a_chain_into_an_output_of_another_size_is_refused_in_one_line(ctx, path):
+    """The pass into the output is bound per output (PostRunner.bind's late step): a 16x12 output for a 32x24
+    source is refused by name and both sizes, not drawn into a corner."""
+    from wgpurender.core.errors import UserError
+
+    chain = PostChain([ToneMap(), Vignette(strength=0.5)], fuse=False, path=path)
+    source = upload(ctx, _image(6))
+    usage = TARGET_USAGE | wgpu.TextureUsage.STORAGE_BINDING
+    with pytest.raises(UserError, match=r"vignette.*\(32, 24\).*\(16, 12\) differ"):
+        _run(ctx, chain, source, create_target(ctx, (16, 12), "rgba16float", usage=usage))
