@@ -9,7 +9,8 @@ Run it once per tree (PYTHONPATH picks the tree), in alternating rounds:
     python benchmarks/frame_python_probe.py OUT.csv TREE [SCENE] [W]x[H] [FRAMES] [same|new]
 
 ``new``: each frame draws into a new texture object of the same size, as a window's swapchain hands out (made
-before the frame's clock starts, so only what the renderer does with it is timed); ``same`` (the default): one
+before the frame's clock starts, so only what the renderer does with it is timed), by the window's plan (no
+storage output: the compute post path copies into it); ``same`` (the default): one
 offscreen target, as ``bench perf`` draws. Appends one row per round (tree, scene, size, targets, frames, frame_us
 and outside_us medians, the largest wgpu-py methods' mean microseconds per frame).
 """
@@ -64,6 +65,15 @@ def main() -> None:
     ctx = get_context()
     runner = SceneRunner(ctx, resolve_scene(scene), size)
     record, target, device, queue = runner.renderer.record, runner.target, ctx.device, ctx.queue
+    if targets == "new":  # the window's plan: a swapchain image is no storage texture (output_storage off)
+        from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
+        from wgpurender.wgpu_path.scene import load_renderer
+
+        window = load_renderer(resolve_scene(scene), ctx, size=size, knobs={"output_storage": False})
+        record = window.record
+
+        def new_target():
+            return create_target(ctx, size, window.plan.target_format, usage=TARGET_USAGE | window.target_usage)
     for _ in range(5):
         runner.frame(readback=True)
     spent: Counter = Counter()
@@ -72,7 +82,7 @@ def main() -> None:
     totals, outside, per_method = [], [], Counter()
     for k in range(frames + 10):
         if targets == "new":
-            target = runner.renderer.create_output()  # the last one is released here, as a presented image is
+            target = new_target()  # the last one is released here, as a presented image is
         spent.clear()
         start = time.perf_counter()
         encoder = device.create_command_encoder(label="probe")
