@@ -3,10 +3,15 @@ the scene file to the first frame read back (bench/scale.py's ``load_ms``), and 
 is first on PYTHONPATH is timed, so one call on one machine can time two trees (the device run times main's and
 this branch's).
 
-    python benchmarks/load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...]
+    python benchmarks/load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...] [--split=SPLIT.csv]
+        [--max-workers=M]
         appends: label, n, parse cache, knobs, wall ms, process CPU ms, worker processes, and the wall ms of
         the phases: scene file (load_scene), plan (resolve_plan), renderer (meshes, buffers, pipelines, the
         bundle), first frame (record, submit, read back)
+        --split: also the inclusive wall ms (and calls) of the functions in SPLIT below during the timed load,
+        appended to SPLIT.csv (they nest: each row includes the rows it calls; a tree without one skips it)
+        --max-workers: the worker rule's cap (core/plan/mesh_loading.MAX_WORKERS, 16) set to M in this process
+        only, to measure what fewer forks of a large process save against less parallel reading
 
 ``cold``: the parse cache (core/models/obj_cached.py) starts empty ($XDG_CACHE_HOME is pointed at a new
 temporary folder: the machine's own cache is never read or written); ``warm``: the same folder after one
@@ -34,6 +39,55 @@ from wgpurender.wgpu_path.scene.frame import SceneRenderer
 
 SIZE = (800, 600)
 PHASES = ("scene_ms", "plan_ms", "renderer_ms", "frame_ms")
+SPLIT = (  # (phase, module, function or Class.method): looked up through the module at each call
+    ("scene: TOML values", "wgpurender.core.scene.toml_cache", "loads"),
+    ("scene: models checked (read rule included)", "wgpurender.core.scene.load", "_models"),
+    ("scene: read rule", "wgpurender.core.files.read_jail", "outside"),
+    ("scene: file materials and motion", "wgpurender.core.scene.load", "_with_file_data"),
+    ("plan: batches", "wgpurender.core.plan.batches", "batch_draws"),
+    ("renderer: meshes uploaded (reads included)", "wgpurender.wgpu_path.scene.resources",
+     "SceneResources.upload_meshes"),
+    ("renderer: files read by workers (forks, cache lookups)", "wgpurender.core.models.mesh_workers", "load_all"),
+    ("renderer: workers' meshes unpacked", "wgpurender.core.models.mesh_workers", "_take"),
+    ("renderer: buffer bytes packed", "wgpurender.wgpu_path.scene.resources", "_pair_bytes"),
+    ("renderer: uniforms and object blocks", "wgpurender.wgpu_path.scene.scene_pass",
+     "ScenePassRenderer._setup_uniforms"),
+    ("renderer: draws (pipelines, material groups)", "wgpurender.wgpu_path.scene.scene_pass",
+     "ScenePassRenderer._setup_draws"),
+    ("renderer: pipelines created", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer.pipeline"),
+    ("renderer: bundle recorded", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer._make_bundle"),
+)
+
+
+def timers(split: tuple) -> dict[str, list[float]]:
+    """Wrap each SPLIT function that this tree has with a timer: {phase: [seconds, calls]}."""
+    import functools
+    import importlib
+
+    spent: dict[str, list[float]] = {}
+    for phase, module, name in split:
+        try:
+            owner = importlib.import_module(module)
+        except ImportError:  # a tree without this module (main before it was added)
+            continue
+        *outer, attr = name.split(".")
+        for part in outer:
+            owner = getattr(owner, part, None)
+        real = getattr(owner, attr, None)
+        if real is None:
+            continue
+        cell = spent[phase] = [0.0, 0]
+
+        def timed(*args, _real=real, _cell=cell, **kwargs):
+            start = time.perf_counter()
+            try:
+                return _real(*args, **kwargs)
+            finally:
+                _cell[0] += time.perf_counter() - start
+                _cell[1] += 1
+
+        setattr(owner, attr, functools.wraps(real)(timed))
+    return spent
 
 
 def timed_load(ctx, scene: Path, knobs: dict) -> tuple[list[float], int]:
@@ -53,7 +107,13 @@ def timed_load(ctx, scene: Path, knobs: dict) -> tuple[list[float], int]:
 def main() -> int:
     label, n, out = sys.argv[1], int(sys.argv[2]), Path(sys.argv[3])
     mode = sys.argv[4] if len(sys.argv) > 4 else "cold"
-    knobs = dict(arg.split("=", 1) for arg in sys.argv[5:])
+    split_to = next((Path(a.split("=", 1)[1]) for a in sys.argv[5:] if a.startswith("--split=")), None)
+    most = next((int(a.split("=", 1)[1]) for a in sys.argv[5:] if a.startswith("--max-workers=")), None)
+    knobs = dict(arg.split("=", 1) for arg in sys.argv[5:] if not arg.startswith("--"))
+    if most is not None:  # a measurement of the rule's cap, not a knob: the plan's own rule with another bound
+        from wgpurender.core.plan import mesh_loading
+
+        mesh_loading.MAX_WORKERS = most
     if mode not in ("cold", "warm"):
         print(f"cache mode {mode!r}: give cold or warm", file=sys.stderr)
         return 2
@@ -64,17 +124,26 @@ def main() -> int:
         scene = scale.distinct_scene(Path(tmp), n, SIZE)
         if mode == "warm":
             timed_load(ctx, scene, knobs)  # fills the parse cache
+        spent = timers(SPLIT) if split_to else {}
         wall, cpu = time.perf_counter(), time.process_time()
         phases, workers = timed_load(ctx, scene, knobs)
         wall, cpu = (time.perf_counter() - wall) * 1e3, (time.process_time() - cpu) * 1e3
     new = not out.exists()
-    shown = " ".join(f"{k}={v}" for k, v in knobs.items()) or "-"
+    shown = " ".join([f"{k}={v}" for k, v in knobs.items()] + ([f"max_workers={most}"] if most else [])) or "-"
     with out.open("a") as f:
         if new:
             f.write("tree,distinct_meshes,parse_cache,knobs,load_wall_ms,load_process_cpu_ms,mesh_workers,"
                     + ",".join(PHASES) + "\n")
         f.write(f"{label},{n},{mode},{shown},{wall:.1f},{cpu:.1f},{workers},"
                 + ",".join(f"{p:.1f}" for p in phases) + "\n")
+    if split_to:
+        new_split = not split_to.exists()
+        with split_to.open("a") as f:
+            if new_split:
+                f.write("tree,distinct_meshes,parse_cache,knobs,phase,wall_ms,calls\n")
+            for phase, (seconds, calls) in spent.items():
+                f.write(f'{label},{n},{mode},{shown},"{phase}",{seconds * 1e3:.1f},{calls}\n')  # names hold commas
+                print(f"  {phase}: {seconds * 1e3:.1f} ms ({calls} calls)")
     split = ", ".join(f"{k} {p:.0f}" for k, p in zip(PHASES, phases, strict=True))
     print(f"{label}: {n} distinct meshes load in {wall:.0f} ms ({cpu:.0f} ms process CPU; parse cache {mode}, "
           f"knobs {shown}, {workers} worker processes; {split})")

@@ -7,7 +7,7 @@
 # - perf: `bench perf --only startup` (rows with and without cached bytecode, and without the drivers' preload);
 # - phases: benchmarks/first_pixel_phases.py: where the wgpu child's time goes after start_context.
 # Writes everything under $OUT/run. (The afternoon's batch, docs/perf-h100/2026-11-27-startup/, ran
-# benchmarks/startup_split.py, which this branch removed: bench perf's family replaced it.)
+# startup_split.py, which this branch removed: bench perf's family replaced it.)
 set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
 step perf 130 python3 -m wgpurender bench perf --only startup --out "$D/perf"

@@ -215,3 +215,13 @@ def test_a_large_scene_read_here_writes_no_entries_a_small_one_does(tmp_path, mo
     assert list(obj_cached.folder().glob("*.mesh")) == []
     _meshes(resolve_plan(_scene(tmp_path, names[:3]), None, mesh_workers="off"))
     assert len(list(obj_cached.folder().glob("*.mesh"))) == 3
+
+
+def test_a_worker_checks_a_path_the_read_rule_never_saw_itself(tmp_path):
+    """A bundled scene's model (no read rule: nothing vouched) gets input_file's checks in the worker: a folder
+    named like a model is refused in one line, not opened."""
+    from wgpurender.core.models import mesh_workers
+
+    (tmp_path / "d.obj").mkdir()
+    (entries, blob) = mesh_workers.read_chunk([(tmp_path / "d.obj", False)], None)
+    assert entries[0][0] == "refused" and "directory" in entries[0][1] and blob == b""

@@ -208,3 +208,183 @@ def test_a_draw_of_another_index_format_binds_its_own(ctx, tmp_path):
     for x, rgb in ((-3, [255, 0, 0]), (3, [0, 255, 0])):
         cx, cy = px(x, -0.5 / 3)
         assert img[int(cy), int(cx), :3].tolist() == rgb
+
+
+# -- the second pass (issue 31.3, 2026-11-27 evening): batched uploads, fewer stats, no collection during a load --
+
+def test_the_shared_buffers_hold_each_mesh_at_its_place(tmp_path):
+    """Meshes of two attribute sets, alternating and repeated (runs broken by the set and by padding): at each
+    mesh's place the vertex bytes are its own attributes side by side and its index bytes its own indices; zeros
+    elsewhere. The reference is built mesh by mesh from the arrays, not by the code under test."""
+    from wgpurender.core.models.mesh import load_mesh
+    from wgpurender.core.plan.meshes import buffer_places
+    from wgpurender.wgpu_path.scene.resources import _pair_bytes
+    from wgpurender.wgpu_path.scene.shader_interface import vertex_stride
+
+    meshes = []
+    for k in range(7):
+        procedural.write_obj(tmp_path / f"m{k}.obj", procedural.box(0.5 + 0.1 * k) if k % 3
+                             else procedural.torus(1.0, 0.3, segments=5 + k, rings=3))
+        meshes.append(load_mesh(tmp_path / f"m{k}.obj", generate_tangents=False))
+    sets = [("position",), ("position", "normal", "uv"), ("position", "normal", "uv"), ("position",),
+            ("position", "normal"), ("position", "normal"), ("position", "normal", "uv")]
+    keys = [((tmp_path / f"m{k}.obj", None), attributes) for k, attributes in enumerate(sets)]
+    strides = [4 * sum({"position": 3, "normal": 3, "uv": 2}[a] for a in s) for s in sets]
+    assert [vertex_stride(s) for s in sets] == strides
+    indices = [m.index_bytes() for m in meshes]
+    sizes = [(m.vertex_count * s, len(i)) for m, s, i in zip(meshes, strides, indices, strict=True)]
+    for limit in (1 << 30, max(v for v, _ in sizes) + 64):  # one pair; several pairs
+        places = buffer_places(sizes, limit, [f"m{k}" for k in range(7)], strides)
+        pairs = _pair_bytes(keys, meshes, places, indices)
+        assert sorted(pairs) == sorted({p for p, _, _ in places})
+        covered = {p: np.zeros(len(v), bool) for p, (v, _) in pairs.items()}
+        for mesh, attributes, (pair, v_at, i_at), index in zip(meshes, sets, places, indices, strict=True):
+            vertex, index_bytes = pairs[pair]
+            own = np.concatenate([getattr(mesh, {"position": "positions", "normal": "normals", "uv": "uvs"}[a])
+                                  for a in attributes], axis=1).astype(np.float32).tobytes()
+            assert vertex[v_at:v_at + len(own)] == own
+            assert index_bytes[i_at:i_at + len(index)] == index
+            covered[pair][v_at:v_at + len(own)] = True
+        for pair, (vertex, _) in pairs.items():
+            assert len(vertex) % 4 == 0
+            assert not np.frombuffer(vertex, np.uint8)[~covered[pair]].any()  # padding is zeros
+
+
+def test_a_scene_model_in_a_sibling_folder_with_the_same_prefix_is_outside(tmp_path):
+    """The read rule's folder test is a prefix ending at a separator: ``proj2`` is not inside ``proj``."""
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.scene import load_scene
+
+    (tmp_path / "proj").mkdir()
+    (tmp_path / "proj2").mkdir()
+    procedural.write_obj(tmp_path / "proj2" / "m.obj", procedural.box(1.0))
+    procedural.write_obj(tmp_path / "proj" / "m.obj", procedural.box(1.0))
+    scene = tmp_path / "proj" / "s.toml"
+    scene.write_text('[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "m.obj"\n\n'
+                     '[[models]]\npath = "../proj2/m.obj"\n')
+    with pytest.raises(UserError, match="outside the folders a scene may read"):
+        load_scene(scene)
+    scene.write_text('[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "m.obj"\n')
+    assert [m.path for m in load_scene(scene).models] == [(tmp_path / "proj" / "m.obj").resolve()]
+
+
+@pytest.mark.parametrize("kind", ["directory", "fifo", "link to a directory"])
+def test_a_model_path_that_is_no_regular_file_is_still_named_for_what_it_is(tmp_path, kind):
+    """The folder resolver's one lstat skips input_file's stat only for a regular file."""
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.scene import load_scene
+
+    if kind == "directory":
+        (tmp_path / "m.obj").mkdir()
+    elif kind == "fifo":
+        os.mkfifo(tmp_path / "m.obj")
+    else:
+        (tmp_path / "d").mkdir()
+        (tmp_path / "m.obj").symlink_to(tmp_path / "d")
+    scene = tmp_path / "s.toml"
+    scene.write_text('[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "m.obj"\n')
+    with pytest.raises(UserError, match="directory" if "directory" in kind else "FIFO|named pipe|fifo"):
+        load_scene(scene)
+
+
+def test_a_linked_model_file_is_read_where_the_link_leads(tmp_path):
+    from wgpurender.core.scene import load_scene
+
+    (tmp_path / "real").mkdir()
+    procedural.write_obj(tmp_path / "real" / "m.obj", procedural.box(1.0))
+    (tmp_path / "l.obj").symlink_to(tmp_path / "real" / "m.obj")
+    scene = tmp_path / "s.toml"
+    scene.write_text('[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "l.obj"\n')
+    assert load_scene(scene).models[0].path == (tmp_path / "real" / "m.obj").resolve()
+
+
+@pytest.mark.parametrize("written", ["a.obj", "m/a.OBJ", ".obj", "a.", "a..b", "x/.hidden", "x/y.tar.gz", "a.obj/",
+                                     "a.obj/.", "..", ".", "", "a/b/..", "noext", "a b.glb", "dir.d/file"])
+def test_a_model_paths_suffix_is_pathlibs(written):
+    from pathlib import Path
+
+    from wgpurender.core.scene.validate import _suffix
+
+    assert _suffix(written) == Path(written).suffix
+
+
+def test_no_collection_runs_while_a_scene_loads_and_the_collector_is_as_it_was_after(tmp_path, monkeypatch):
+    import gc
+
+    from wgpurender.core.plan import resolve_plan as plan_of
+    from wgpurender.core.scene import load, load_scene
+    from wgpurender.core.view import garbage
+
+    procedural.write_obj(tmp_path / "m.obj", procedural.box(1.0))
+    scene = tmp_path / "s.toml"
+    scene.write_text('[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n\n[[models]]\npath = "m.obj"\n')
+    seen = []
+    real = load.parse_scene
+    monkeypatch.setattr(load, "parse_scene", lambda *a: seen.append(gc.isenabled()) or real(*a))
+    assert gc.isenabled()
+    plan_of(load_scene(scene), None)
+    assert seen == [False] and gc.isenabled()
+    gc.disable()
+    try:
+        load_scene(scene)
+        assert not gc.isenabled()  # a caller that turned it off keeps it off
+    finally:
+        gc.enable()
+    with pytest.raises(KeyError), garbage.paused():
+        raise KeyError("a load that fails")
+    assert gc.isenabled()  # back on after an error too
+
+
+def test_a_workers_chunk_unpacks_into_writable_views_of_one_copy(tmp_path):
+    from wgpurender.core.models import mesh_pack
+    from wgpurender.core.models.mesh import load_mesh
+
+    procedural.write_obj(tmp_path / "a.obj", procedural.box(1.0))
+    procedural.write_obj(tmp_path / "b.obj", procedural.torus(1.0, 0.3, segments=6, rings=4))
+    meshes = [load_mesh(tmp_path / n, generate_tangents=False) for n in ("a.obj", "b.obj")]
+    blobs = [mesh_pack.pack(m) for m in meshes]
+    view = memoryview(bytearray(b"".join(blobs)))
+    got = mesh_pack.unpack(view[len(blobs[0]):], tmp_path / "b.obj", indices_checked=True)
+    assert np.array_equal(got.positions, meshes[1].positions) and np.array_equal(got.indices, meshes[1].indices)
+    assert got.positions.flags.writeable and got.indices.flags.writeable
+    assert np.shares_memory(got.positions, np.frombuffer(view, np.uint8))  # a view, no copy per mesh
+    bad = bytearray(blobs[0])
+    bad[-2:] = (60000).to_bytes(2, "little")  # an index past the 24 vertices
+    assert mesh_pack.unpack(bytes(bad), None) is None
+    assert mesh_pack.unpack(memoryview(bad), None, indices_checked=True) is not None  # the worker checked them
+
+
+def test_batched_draws_start_where_the_instances_before_them_end(tmp_path):
+    """first_instance of each draw is the sum of the instance counts before it (the scene's copies)."""
+    counts = [1, 3, 1, 2, 1]
+    body = ""
+    for k, n in enumerate(counts):
+        procedural.write_obj(tmp_path / f"m{k}.obj", procedural.box(1.0))
+        copies = ", ".join(f"[{k * 3}, {j * 3}, 0]" for j in range(n))
+        body += f'[[models]]\npath = "m{k}.obj"\n' + (f"instances = {{ translate = [{copies}] }}\n\n" if n > 1
+                                                       else "\n")
+    scene = tmp_path / "s.toml"
+    scene.write_text("[camera]\neye = [0, 0, 30]\ntarget = [0, 0, 0]\n\n" + body)
+    draws = resolve_plan(scene, None).scene_pass.draws
+    assert [d.instance_count for d in draws] == counts
+    assert [d.first_instance for d in draws] == [sum(counts[:k]) for k in range(len(counts))]
+
+
+def test_material_numbers_are_equal_exactly_where_material_keys_are(tmp_path):
+    """Two scene materials with the same values are one material (the key, not the name, decides), whether their
+    draws share objects or not; numbers count distinct keys in first-use order."""
+    from wgpurender.core.plan.model import material_numbers
+
+    names = ["a", "b", "c", "a", "b", "d"]
+    for k in range(len(names)):
+        procedural.write_obj(tmp_path / f"m{k}.obj", procedural.box(1.0))
+    body = "".join(f'[[models]]\npath = "m{k}.obj"\nmaterial = "{m}"\n\n' for k, m in enumerate(names))
+    scene = tmp_path / "s.toml"
+    scene.write_text("[camera]\neye = [0, 0, 9]\ntarget = [0, 0, 0]\n\n[materials.a]\nalbedo_color = [1, 0, 0, 1]\n"
+                     "[materials.b]\nalbedo_color = [1, 0, 0, 1]\n[materials.c]\nalbedo_color = [0, 1, 0, 1]\n"
+                     "[materials.d]\nalbedo_color = [0, 0, 1, 1]\n\n" + body)
+    draws = sorted(resolve_plan(scene, None).scene_pass.draws, key=lambda d: d.model_index)
+    numbers, keys = material_numbers(draws)
+    firsts = list(dict.fromkeys(d.material_key() for d in draws))  # the definition: equal keys, first-use order
+    assert numbers == [firsts.index(d.material_key()) for d in draws] == [0, 0, 1, 0, 0, 2]
+    assert keys == {k: i for i, k in enumerate(firsts)}

@@ -14,7 +14,7 @@ The one method that judges the first pixel (``wgpurender bench perf --only start
   two medians beside it).
 
 Before (to 2026-11-27 afternoon) the family ran each configuration's three processes back to back, wgpu's
-before raw's, and benchmarks/startup_split.py ran its own interleaved children: the two read 1.24x and 1.11x on
+before raw's, and startup_split.py (since removed) ran its own interleaved children: the two read 1.24x and 1.11x on
 two hosts, a spread the three back-to-back samples could not show (docs/benchmarks.md, issue 31.5).
 
 Caches compared ("no caches" clears exactly what :data:`NO_CACHES` says):

@@ -113,6 +113,12 @@ class FolderResolver:
     def __init__(self) -> None:
         self._folders: dict[str, str] = {}
         self._done: dict[str, Path] = {}
+        self._regular: set[str] = set()  # results whose one lstat found a regular file (so no link either)
+
+    def regular(self, path: Path) -> bool:
+        """Whether ``path`` (a result of this resolver) was a regular file, not a link, when it was resolved:
+        then :func:`input_file` would pass it as it is, and the caller may skip that second stat."""
+        return os.fspath(path) in self._regular
 
     def __call__(self, path: str | os.PathLike) -> Path:
         text = os.fspath(path)
@@ -127,7 +133,13 @@ class FolderResolver:
             if real is None:
                 real = self._folders[folder] = os.fspath(resolved(folder))
             candidate = os.path.join(real, name)
-            result = resolved(candidate) if os.path.islink(candidate) else Path(candidate)
+            try:
+                mode = os.lstat(candidate).st_mode  # one call: is it a link, and is it a regular file
+            except (OSError, ValueError):
+                mode = 0  # missing or unreadable: input_file says what it is
+            result = resolved(candidate) if stat.S_ISLNK(mode) else Path(candidate)
+            if stat.S_ISREG(mode):
+                self._regular.add(os.fspath(result))
         self._done[text] = self._done[os.fspath(result)] = result
         return result
 
@@ -148,8 +160,12 @@ def env_limit(name: str, default: int) -> int:
 
 def check_file_size(path: Path, what: str) -> None:
     """Refuse a model file larger than :data:`MAX_MODEL_BYTES` before anything reads it."""
+    check_size(path, os.stat(path).st_size, what)
+
+
+def check_size(path: Path, size: int, what: str) -> None:
+    """:func:`check_file_size` for a size already known (the open file's fstat: read_jail.read_checked)."""
     limit = env_limit(MAX_MODEL_BYTES_ENV, MAX_MODEL_BYTES)
-    size = os.stat(path).st_size
     if size > limit:
         raise UserError(f"{what} {path} is {size / 2**20:.0f} MiB, over the limit of {limit / 2**20:.0f} MiB; "
                         f"simplify the model, or raise the limit with ${MAX_MODEL_BYTES_ENV}=BYTES")

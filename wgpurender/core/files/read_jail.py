@@ -130,12 +130,22 @@ def outside(path: Path, folders: list[Path] | None, resolve: Callable[[Path], Pa
     if folders is None:
         return None
     real = resolve(path)
-    if any(real.is_relative_to(folder) for folder in folders):
-        if real == Path(path):  # the scene reads the canonical path: its reader can check it is still this file
+    if any(_within(real, folder) for folder in folders):
+        # the scene reads the canonical path: its reader can check it is still this file
+        if real == (path if isinstance(path, Path) else Path(path)):
             _vouched(real)
         return None
     return (f"{path} is outside the folders a scene may read ({', '.join(map(str, folders))}); move the file "
             f"under the scene's folder, or allow its folder with ${ALLOW_ENV}=FOLDER")
+
+
+def _within(path: Path, folder: Path) -> bool:
+    """``path.is_relative_to(folder)`` for resolved paths; on POSIX as a string prefix ending at a separator (the
+    same answer for normalised absolute paths, without pathlib's per-call parse: 10k model files a scene)."""
+    if os.name != "posix":
+        return path.is_relative_to(folder)
+    text, top = os.fspath(path), os.fspath(folder)
+    return text == top or text.startswith(top if top.endswith("/") else top + "/")
 
 
 _CHECKED: set[str] = set()  # canonical paths the rule let through: open_checked verifies the file it opens is one
@@ -178,10 +188,19 @@ def open_checked(path: str | os.PathLike) -> BinaryIO:
         raise
 
 
-def read_checked(path: str | os.PathLike) -> bytes:
-    """All of ``path``'s bytes, through :func:`open_checked`."""
+def read_checked(path: str | os.PathLike, size_check: Callable[[int], None] | None = None) -> bytes:
+    """All of ``path``'s bytes, through :func:`open_checked`; ``size_check(size)`` first, on the open file's size
+    (a model's limit without a stat of its own: input_files.check_size)."""
     with open_checked(path) as f:
+        if size_check is not None:
+            size_check(os.fstat(f.fileno()).st_size)
         return f.read()
+
+
+def is_checked(path: str | os.PathLike) -> bool:
+    """Whether the rule let ``path`` through, so :func:`open_checked` verifies the file it opens (a regular file,
+    no link, the checked path): a worker reading it needs no stat of its own first."""
+    return os.fspath(path) in _CHECKED
 
 
 def _real_path(fd: int, info: os.stat_result, name: str) -> str:

@@ -118,14 +118,17 @@ class Mesh:
             return self.extra_uvs[int(name[2:]) - 1]
         if name == "color" and self.colors is None:
             return np.ones((self.vertex_count, 4), np.float32)
-        return {"position": self.positions, "normal": self.normals, "uv": self.uvs, "tangent": self.tangents,
-                "color": self.colors}[name]
+        return getattr(self, _ATTRIBUTE_FIELDS[name])  # a table, not a dict made per call (10k meshes x 3)
 
     def vertex_data(self) -> np.ndarray:
         """Interleaved (N, 12) float32: position xyz @0, normal xyz @12, uv @24, tangent xyzw @32; stride 48 bytes."""
         tangents = self.tangents if self.tangents is not None else np.zeros((self.vertex_count, 4), np.float32)
         return np.ascontiguousarray(np.concatenate([self.positions, self.normals, self.uvs, tangents], axis=1),
                                     dtype=np.float32)
+
+
+_ATTRIBUTE_FIELDS = {"position": "positions", "normal": "normals", "uv": "uvs", "tangent": "tangents",
+                     "color": "colors"}
 
 
 def index_range(mesh: Mesh, draw) -> tuple[int, int]:

@@ -39,8 +39,11 @@ def pack(mesh: Mesh) -> bytes | None:
     return head + parts + b"".join(np.ascontiguousarray(a).tobytes() for a in arrays)
 
 
-def unpack(blob: bytes, source: Path | None) -> Mesh | None:
-    """The mesh :func:`pack` wrote (its ``source`` set to ``source``), or None when ``blob`` is not one whole."""
+def unpack(blob: bytes | memoryview, source: Path | None, indices_checked: bool = False) -> Mesh | None:
+    """The mesh :func:`pack` wrote (its ``source`` set to ``source``), or None when ``blob`` is not one whole.
+    ``blob``: bytes (copied: the arrays are writable, as a fresh load's are) or a view of a writable buffer (the
+    arrays are views of it: a worker's chunk, copied once for all its meshes). ``indices_checked``: the caller
+    already found every index within the vertices (a worker's unpack of the same bytes): not scanned again."""
     if len(blob) < HEADER.size:
         return None
     magic, n, f, index_size, has_uvs, tangents, n_parts = HEADER.unpack_from(blob)
@@ -51,13 +54,14 @@ def unpack(blob: bytes, source: Path | None) -> Mesh | None:
         return None
     parts = tuple(MeshPart(None if m < 0 else m, first, count)
                   for m, first, count in PART.iter_unpack(blob[HEADER.size:at]))
-    blob = bytearray(blob)  # writable arrays, as a fresh load gives
+    if isinstance(blob, bytes):
+        blob = bytearray(blob)  # writable arrays, as a fresh load gives
     arrays = []
     for width in widths:
         arrays.append(np.frombuffer(blob, np.float32, n * width, at).reshape(n, width))
         at += 4 * n * width
     indices = np.frombuffer(blob, np.uint16 if index_size == 2 else np.uint32, 3 * f, at).reshape(f, 3)
-    if int(indices.max()) >= n:  # every index within the vertices, as build_mesh checked when it was packed
+    if not indices_checked and int(indices.max()) >= n:  # every index within the vertices, as build_mesh checked
         return None
     return Mesh(positions=arrays[0], normals=arrays[1], uvs=arrays[2], indices=indices,
                 tangents=arrays[3] if tangents else None, has_uvs=bool(has_uvs), tangents_source=SOURCES[tangents],

@@ -20,18 +20,21 @@ from itertools import repeat
 from pathlib import Path
 
 from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import check_file_size, input_file
 from wgpurender.core.models import mesh_pack, obj_cached
 from wgpurender.core.models.mesh import Mesh
 
-CHUNK = 64  # files per task: one round trip carries ~64 packed cubes (~200 KB)
+CHUNK = 64  # files per task at least: one round trip carries 64 packed cubes or more (~200 KB)
+CHUNKS_PER_WORKER = 4  # and no more tasks than this per worker: fewer round trips, still unpacked as they come
 Job = tuple[Path, bool]  # (model file, make tangents)
 
 
 def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mesh | None]:
     """Every job's mesh (None: not a simple OBJ file), read by ``workers`` forked processes; raises the
     UserError of the first refused file in ``jobs`` order."""
-    chunks = [jobs[i:i + CHUNK] for i in range(0, len(jobs), CHUNK)]
+    size = max(CHUNK, -(-len(jobs) // (workers * CHUNKS_PER_WORKER)))
+    chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
     _before_fork()
     meshes: dict[Job, Mesh | None] = {}
     done = 0
@@ -57,24 +60,38 @@ def _before_fork() -> None:
     obj_cached.parser_version()
 
 
-def _take(chunk: list[Job], result: list[tuple[str, object]], meshes: dict[Job, Mesh | None]) -> None:
-    """Unpack a chunk's meshes; raise the first refusal."""
-    for job, (kind, value) in zip(chunk, result, strict=True):
+def _take(chunk: list[Job], result: tuple[list[tuple[str, object]], bytes],
+          meshes: dict[Job, Mesh | None]) -> None:
+    """Unpack a chunk's meshes (views of one copy of its bytes: the worker checked their indices); raise the
+    first refusal."""
+    entries, blob = result
+    view, at = memoryview(bytearray(blob)), 0
+    for job, (kind, value) in zip(chunk, entries, strict=True):
         if kind == "refused":
             raise UserError(value)
-        meshes[job] = None if value is None else mesh_pack.unpack(value, job[0])
+        if value is None:
+            meshes[job] = None
+            continue
+        meshes[job] = mesh_pack.unpack(view[at:at + value], job[0], indices_checked=True)
+        at += value
 
 
-def read_chunk(chunk: list[Job], where: Path | None) -> list[tuple[str, object]]:
-    """("mesh", packed bytes or None) or ("refused", the one-line message) per job: what runs in a worker (which
-    writes the cache entries of what it parsed)."""
+def read_chunk(chunk: list[Job], where: Path | None) -> tuple[list[tuple[str, object]], bytes]:
+    """(entries, packed meshes one after another): per job ("mesh", its packed length, or None: not a simple OBJ)
+    or ("refused", the one-line message). What runs in a worker (which writes the cache entries of what it
+    parsed); every packed mesh it sends was unpacked here, its indices checked (obj_cached.load_packed)."""
     out: list[tuple[str, object]] = []
+    packed: list[bytes] = []
     for path, tangents in chunk:
         try:
-            check_file_size(input_file(path, "model file"), "model file")
-            out.append(("mesh", obj_cached.load_packed(path, tangents, where)))
+            if not read_jail.is_checked(path):  # else the checked read refuses what is no regular file, or too large
+                check_file_size(input_file(path, "model file"), "model file")
+            data = obj_cached.load_packed(path, tangents, where)
         except UserError as err:
             out.append(("refused", str(err)))
+            continue
         except OSError:  # vanished or unreadable since the check: the parent's general load says what it is
-            out.append(("mesh", None))
-    return out
+            data = None
+        out.append(("mesh", None if data is None else len(data)))
+        packed += [] if data is None else [data]
+    return out, b"".join(packed)

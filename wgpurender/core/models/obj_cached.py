@@ -22,7 +22,7 @@ from pathlib import Path
 
 from wgpurender.core.files import read_jail
 from wgpurender.core.files.cache_entry import cache_folder, read_entry, write_entry
-from wgpurender.core.files.input_files import check_file_size, input_file
+from wgpurender.core.files.input_files import check_file_size, check_size, input_file
 from wgpurender.core.models import mesh, mesh_pack
 from wgpurender.core.models.mesh import Mesh, mesh_of_parts, simple_obj_parts
 
@@ -95,7 +95,8 @@ def _load(path: Path, generate_tangents: bool, where: Path | None,
     host (2026-11-27, docs/perf-h100/2026-11-27-load: 10,000 entries from one process made a cold load 1.65x
     slower than no cache), more than a small file's parse, so a caller reading many files in one process passes
     ``store=False`` (core/plan/meshes.py)."""
-    data = read_jail.read_checked(path)  # the file the scene's read rule checked, still that file
+    # the file the scene's read rule checked, still that file, within the size limit (input_file's checks)
+    data = read_jail.read_checked(path, functools.partial(check_size, path, what="model file"))
     entry = key = None
     if where is not None:
         key = entry_key(data, generate_tangents)

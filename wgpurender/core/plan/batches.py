@@ -17,11 +17,12 @@ same layout as a std140 uniform or std430 storage struct), the bytes both paths 
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 
 import numpy as np
 
-from wgpurender.core.plan.model import Draw
+from wgpurender.core.plan.model import Draw, material_numbers
 from wgpurender.core.scene import Placements
 from wgpurender.core.view.transforms import determinants3
 
@@ -38,14 +39,28 @@ def batch_key(draw: Draw, blend: bool) -> tuple:
 def batch_draws(draws: list[Draw], blend_of: dict[str, bool]) -> list[Draw]:
     """Merge draws with equal :func:`batch_key` (first appearance decides the order) and number their instances."""
     groups: dict[tuple, list[Draw]] = {}
-    for d in draws:
-        groups.setdefault(batch_key(d, blend_of[d.pipeline_key]), []).append(d)
+    materials, _ = material_numbers(draws)  # batch_key's material_key, hashed once per material (10k draws)
+    for d, material in zip(draws, materials, strict=True):
+        key = ("blend", id(d)) if blend_of[d.pipeline_key] else (d.mesh_key, d.part, d.pipeline_key, material)
+        groups.setdefault(key, []).append(d)  # batch_key's grouping
     out, first = [], 0
     for members in groups.values():
         merged = _merge(members)
-        out.append(dataclasses.replace(merged, first_instance=first))
+        out.append(_starting_at(merged, first))
         first += merged.instance_count
     return out
+
+
+def _starting_at(draw: Draw, first: int) -> Draw:
+    """``dataclasses.replace(draw, first_instance=first)`` without its __init__ (Draw has no __post_init__): a
+    shallow copy with that one field set, ~5x cheaper for the 10k draws of a scene of distinct meshes."""
+    if draw.first_instance == first:
+        return draw
+    if hasattr(draw, "__post_init__"):  # then only __init__ makes a Draw right
+        return dataclasses.replace(draw, first_instance=first)
+    moved = copy.copy(draw)
+    object.__setattr__(moved, "first_instance", first)  # a frozen dataclass: its fields are set this way
+    return moved
 
 
 def _merge(members: list[Draw]) -> Draw:

@@ -8,6 +8,8 @@ buffers (wgpu_path/scene/resources.py, raw_path/scene/resources.py).
 
 from __future__ import annotations
 
+import functools
+
 from wgpurender.core.errors import UserError
 from wgpurender.core.models.mesh import Mesh, index_range
 from wgpurender.core.models.obj_cached import load_mesh
@@ -61,7 +63,7 @@ class PlanMeshes:
         if "uv" in attributes and not mesh.has_uvs:
             raise UserError(f"{draw.label}: its {draw.material_label} samples textures, but the model file has no "
                             "texture coordinates: export it with UVs, or use a material without maps")
-        for k in (int(a[2:]) for a in attributes if a.startswith("uv") and a[2:].isdigit()):
+        for k in _uv_slots(attributes):
             if len(mesh.extra_uvs) < k or mesh.extra_uvs[k - 1] is None:
                 raise UserError(f"{draw.label}: its {draw.material_label} samples a set of texture coordinates "
                                 "that the model file does not have: give the primitive the TEXCOORD_n its texCoord "
@@ -73,6 +75,12 @@ class PlanMeshes:
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
         return index_range(self.mesh(draw.mesh_key), draw)
+
+
+@functools.cache  # per attribute set, not per draw (10k draws)
+def _uv_slots(attributes: tuple[str, ...]) -> tuple[int, ...]:
+    """The coordinate slots k >= 1 a variant reads (its ``uv<k>`` attributes)."""
+    return tuple(int(a[2:]) for a in attributes if a.startswith("uv") and a[2:].isdigit())
 
 
 BUFFER_ALIGN = 4  # set_vertex_buffer's and set_index_buffer's offsets, and a buffer's size, are multiples of 4

@@ -27,11 +27,13 @@ from wgpurender.core.plan.build import build_plan
 from wgpurender.core.plan.model import AdapterFacts, Knobs, RenderPlan
 from wgpurender.core.scene import Scene, load_scene
 from wgpurender.core.scene.model_motion import at_time
+from wgpurender.core.view import garbage
 
 _NOT_FLAGS = ("adapter", "anisotropy")  # set from the arguments, never passed as a knob
 KNOB_FLAGS = tuple(k for k in Knobs.__dataclass_fields__ if k not in _NOT_FLAGS)
 
 
+@garbage.paused()  # a plan of 10k draws: no collection walks them on the way (core/view/garbage.py)
 def resolve_plan(target: Scene | str | os.PathLike, adapter: AdapterFacts | None, *,
                  size: tuple[int, int] | None = None, output_format: str | None = None, msaa: int | None = None,
                  anisotropy: str = DEFAULT_ANISOTROPY, camera: int | None = None, time: float | None = None,

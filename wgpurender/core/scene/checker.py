@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -41,16 +42,16 @@ class Checker:
         return UserError(f"{where}: {message}")
 
     def table(self, value: Any, key: KeyPath, allowed: tuple[str, ...], required: tuple[str, ...] = ()) -> dict:
-        name = format_path(key) or "the top level"
         if not isinstance(value, dict):
-            raise self.error(key, f"{name} must be a table, got {_type_name(value)}")
+            raise self.error(key, f"{format_path(key) or 'the top level'} must be a table, got {_type_name(value)}")
         for k in value:
             if k not in allowed:
-                raise self.error(key + (k,), f"unknown key '{k}' in {name}: valid keys are {', '.join(allowed)}")
+                raise self.error(key + (k,), f"unknown key '{k}' in {format_path(key) or 'the top level'}: valid "
+                                             f"keys are {', '.join(allowed)}")
         for k in required:
             if k not in value:
-                raise self.error(key, f"{name} needs '{k}'")
-        return value
+                raise self.error(key, f"{format_path(key) or 'the top level'} needs '{k}'")
+        return value  # the key's name is formatted only for a message (twice per model of a 10k-model scene)
 
     def number(self, value: Any, key: KeyPath, lo: float = -math.inf, hi: float = math.inf,
                open_lo: bool = False) -> float:
@@ -98,14 +99,14 @@ class Checker:
 
     def file(self, value: Any, key: KeyPath, what: str) -> Path:
         written = self.string(value, key)
-        if any(not ch.isprintable() for ch in written):
+        if not written.isprintable():  # some character is not
             raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
                                   "(NUL, newline, ...): give a plain file path")
         if not hasattr(self, "_resolve"):
             self._resolve = FolderResolver()  # each folder resolved once per scene, not once per file
-        path = self._resolve(self.folder / written)
-        try:
-            found = input_file(path, what)  # a stat only: what is missing or special is named as such
+        path = self._resolve(os.path.join(self.folder, written))  # the resolver normalises (Path.resolve)
+        try:  # a stat only (none when the resolver's lstat found a regular file): what is missing or special is named
+            found = path if self._resolve.regular(path) else input_file(path, what)
         except InputFileError as err:
             if not err.missing:
                 raise self.error(key, f"{format_path(key)}: {err}") from None

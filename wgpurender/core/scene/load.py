@@ -9,6 +9,7 @@ from pathlib import Path
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import resolve_scene
 from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
+from wgpurender.core.scene import toml_cache
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.environment_block import parse_environment
 from wgpurender.core.scene.file_materials import read_file_materials
@@ -25,13 +26,14 @@ from wgpurender.core.scene.validate import (
     file_camera_choice,
     resolve_file_camera,
 )
+from wgpurender.core.view import garbage
 
 
 def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     """Validate TOML text as a scene whose file is ``path`` (relative paths resolve from its folder)."""
     path = Path(path).absolute()
     try:
-        data = tomllib.loads(text)
+        data = toml_cache.loads(text)  # a large scene's values parsed once (a verified cache)
     except tomllib.TOMLDecodeError as err:
         raise UserError(f"{path}: invalid TOML: {err}") from None
     except RecursionError:  # tomllib recurses once per nested array or inline table
@@ -77,6 +79,7 @@ def _with_file_data(model):
     return dataclasses.replace(model, file_materials=found, motion=motion)
 
 
+@garbage.paused()  # ~10^5 long-lived objects for 10k models: no collection walks them on the way
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file (or the bundled scene ``path`` names: :mod:`wgpurender.core.files.assets`)."""
     path = input_file(resolve_scene(path), "scene file")

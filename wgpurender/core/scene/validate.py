@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -235,11 +236,21 @@ def _rotation(c: _Checker, data: Any, key: KeyPath) -> tuple[np.ndarray, str]:
     return transforms.rotate(axis, math.radians(degrees)), f"rotate {degrees} deg about {list(axis)}"
 
 
+def _suffix(written: str) -> str:
+    """``Path(written).suffix`` without building a Path (10k model paths a scene): pathlib's own rule on the last
+    name; a name that normalisation would change ("", ".", a trailing "/.") is left to pathlib."""
+    name = written.rpartition("/")[2]
+    if name in ("", ".", "..") or os.sep != "/" or (os.altsep and os.altsep in name):
+        return Path(written).suffix
+    at = name.rfind(".")
+    return name[at:] if 0 < at < len(name) - 1 else ""
+
+
 def _model_path(c: _Checker, value: Any, key: KeyPath) -> Path:
     from wgpurender.core.models.mesh import SUPPORTED, UNSUPPORTED
 
     written = c.string(value, key)
-    suffix = Path(written).suffix.lower()
+    suffix = _suffix(written).lower()
     if suffix in UNSUPPORTED:
         raise c.error(key, f"{format_path(key)}: '{written}' is {UNSUPPORTED[suffix]}, which cannot be loaded: "
                            f"convert it to glTF (.glb); supported formats: {', '.join(SUPPORTED)}")

@@ -27,6 +27,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan import RenderPlan, gpu_memory, resolve_plan
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.scene import Scene, load_scene
+from wgpurender.core.view import garbage
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frame, run_frames
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache
@@ -57,6 +58,7 @@ class SceneRenderer:
     Scenes are static: ``t`` is accepted (the window passes it) and does not change the image.
     """
 
+    @garbage.paused()  # 10k meshes, buffers and draws: no collection walks them on the way (core/view/garbage.py)
     def __init__(self, ctx: GPUContext, scene: Scene, plan: RenderPlan) -> None:
         plan = plan_for_device(ctx, plan)
         self.ctx, self.scene, self.plan = ctx, scene, plan

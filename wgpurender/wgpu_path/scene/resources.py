@@ -12,11 +12,12 @@ from pathlib import Path
 
 import wgpu
 
+from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import Draw, RenderPlan
 from wgpurender.core.plan.meshes import PlanMeshes, buffer_places
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.textures import Texture, create_sampler, create_texture
-from wgpurender.wgpu_path.scene.shader_interface import interleave
+from wgpurender.wgpu_path.scene.shader_interface import interleave, vertex_stride
 
 
 @dataclass(frozen=True)
@@ -54,32 +55,25 @@ class SceneResources:
         would be passed, the next meshes go into another pair (core/plan/meshes.buffer_places; one mesh too large
         for it is refused in one line). Draw order decides the layout; a draw whose mesh fails its variant's check
         (mesh_for) raises here, as it did when its buffers were made one by one."""
-        pending: dict[tuple, tuple[bytes, bytes, object]] = {}
+        pending: dict[tuple, Mesh] = {}
         for draw in draws:
             key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
             if key not in self._buffers and key not in pending:
-                mesh = self.meshes.mesh_for(draw)
-                pending[key] = (interleave(mesh, key[1]).tobytes(), mesh.index_bytes(), mesh)
+                pending[key] = self.meshes.mesh_for(draw)
         if not pending:
             return
-        names = [key[0][0].name for key in pending]  # key[0]: the draw's mesh_key, (file, pose)
-        strides = [len(v) // mesh.vertex_count for v, _, mesh in pending.values()]
-        places = buffer_places([(len(v), len(i)) for v, i, _ in pending.values()],
-                               self.ctx.limit("max-buffer-size"), names, strides)
-        pairs: dict[int, tuple[bytearray, bytearray]] = {}
-        for (vertices, indices, _), (pair, v_at, _) in zip(pending.values(), places, strict=True):
-            vertex, index = pairs.setdefault(pair, (bytearray(), bytearray()))
-            vertex += b"\0" * (v_at - len(vertex))  # up to its place: a whole vertex of its stride
-            vertex += vertices
-            index += indices  # index_bytes is already a multiple of 4
-        for vertex, _ in pairs.values():
-            vertex += b"\0" * (-len(vertex) % 4)  # float32 strides keep it whole; the buffer's size rule, stated
+        keys, meshes = list(pending), list(pending.values())
+        strides = [vertex_stride(key[1]) for key in keys]
+        indices = [mesh.index_bytes() for mesh in meshes]
+        places = buffer_places([(m.vertex_count * s, len(i)) for m, s, i in zip(meshes, strides, indices, strict=True)],
+                               self.ctx.limit("max-buffer-size"), [key[0][0].name for key in keys], strides)
         dev = self.ctx.device
-        # named as the plan lists them (RenderPlan.buffers)
-        made = {pair: (dev.create_buffer_with_data(data=vertex, usage=wgpu.BufferUsage.VERTEX, label="scene-vertices"),
-                       dev.create_buffer_with_data(data=index, usage=wgpu.BufferUsage.INDEX, label="scene-indices"))
-                for pair, (vertex, index) in pairs.items()}
-        for (key, (_, _, mesh)), (pair, v_at, i_at), stride in zip(pending.items(), places, strides, strict=True):
+        made = {}  # named as the plan lists them (RenderPlan.buffers)
+        usage = wgpu.BufferUsage
+        for pair, (vertex, index) in _pair_bytes(keys, meshes, places, indices).items():
+            made[pair] = (dev.create_buffer_with_data(data=vertex, usage=usage.VERTEX, label="scene-vertices"),
+                          dev.create_buffer_with_data(data=index, usage=usage.INDEX, label="scene-indices"))
+        for key, mesh, (pair, v_at, i_at), stride in zip(keys, meshes, places, strides, strict=True):
             self._buffers[key] = MeshBuffers(*made[pair], mesh.index_format, mesh.indices.size, v_at, i_at,
                                              v_at // stride, i_at // mesh.indices.itemsize)
 
@@ -105,3 +99,27 @@ class SceneResources:
     def sampler(self, spec) -> wgpu.GPUSampler:
         return create_sampler(self.ctx, spec)
 
+
+def _pair_bytes(keys: list[tuple], meshes: list[Mesh], places: list[tuple[int, int, int]],
+                indices: list[bytes]) -> dict[int, tuple[bytes, bytes]]:
+    """Each buffer pair's (vertex bytes, index bytes): each mesh at its place (zeros up to it). Consecutive
+    meshes of one pair and one attribute set lie end to end (buffer_places starts a mesh on a whole vertex of its
+    stride, where the one before ends) and are interleaved together (one run; 10k cube files are one)."""
+    vertex: dict[int, list[bytes]] = {}
+    index: dict[int, list[bytes]] = {}
+    ends: dict[int, int] = {}
+    k = 0
+    while k < len(meshes):
+        pair, start, _ = places[k]
+        run = k + 1
+        # one pair and one attribute set (so one stride): buffer_places put them end to end
+        while run < len(meshes) and places[run][0] == pair and keys[run][1] == keys[k][1]:
+            run += 1
+        data = interleave(meshes[k:run], keys[k][1]).tobytes()
+        pieces = vertex.setdefault(pair, [])
+        pieces += [b"\0" * (start - ends.get(pair, 0)), data]  # up to its place: a whole vertex of its stride
+        ends[pair] = start + len(data)
+        index.setdefault(pair, []).extend(indices[k:run])  # index_bytes is already a multiple of 4
+        k = run
+    # float32 strides keep a vertex buffer whole; the buffer's size rule, stated
+    return {pair: (b"".join(vertex[pair]) + b"\0" * (-ends[pair] % 4), b"".join(index[pair])) for pair in vertex}

@@ -23,6 +23,7 @@ from wgpurender.core.course.formats import map_format
 from wgpurender.core.course.shading import AMBIENT, REVERSE_Z
 from wgpurender.core.plan import Draw, RenderPlan, ScenePipeline, ShaderVariant
 from wgpurender.core.plan.batches import instance_blocks
+from wgpurender.core.plan.model import material_numbers
 from wgpurender.core.scene import Scene
 from wgpurender.wgpu_path.device.bind_groups import uniform_group, uniform_layout
 from wgpurender.wgpu_path.device.context import GPUContext
@@ -114,10 +115,10 @@ class ScenePassRenderer:
         if self.instance_data == "storage":
             self._setup_object_group(blocks.nbytes)
         # Equal materials share one slice and one group (Draw.material_key): first-use order.
-        self.material_slots = {k: i for i, k in enumerate(dict.fromkeys(d.material_key() for d in self.draws))}
+        self._draw_slots, self.material_slots = material_numbers(self.draws)
         # One slice per material, as wide as the largest Material block of the plan's variants (a model file's
         # material appends factors: 48 bytes with a clear coat, 64 with emission) at the adapter's offset alignment
-        structs = {L.material_struct(self.plan.variant(d.variant_key)) for d in self.draws} or {L.MATERIAL}
+        structs = {L.material_struct(self.plan.variant(k)) for k in {d.variant_key for d in self.draws}} or {L.MATERIAL}
         self.material_stride = max(s.stride(self.alignment) for s in structs)
         self.material_buffer = None
         if not self.uses_immediates:
@@ -140,25 +141,23 @@ class ScenePassRenderer:
     # -- per draw: pipeline, material group, immediates --------------------------
     def _setup_draws(self) -> None:
         self.draw_state = []
-        groups: dict[tuple, wgpu.GPUBindGroup | None] = {}
-        packed: dict[tuple, bytes] = {}  # equal keys hold equal variants and factors: packed once (10k draws)
+        groups: dict[int, wgpu.GPUBindGroup | None] = {}  # by material slot (core/plan/model.material_numbers)
+        packed: dict[int, bytes] = {}  # equal materials hold equal variants and factors: packed once (10k draws)
         pipelines: dict[str, wgpu.GPURenderPipeline] = {}  # by the plan's key: looked up once, not once a draw
-        for draw in self.draws:
+        for draw, slot in zip(self.draws, self._draw_slots, strict=True):
             variant = self.plan.variant(draw.variant_key)
-            key = draw.material_key()
-            if key not in packed:
-                packed[key] = L.material_struct(variant).pack(material_values(self.scene, draw, variant))
-            data = packed[key]
-            if key not in groups:
-                slot = self.material_slots[key]
+            if slot not in packed:
+                packed[slot] = L.material_struct(variant).pack(material_values(self.scene, draw, variant))
+            data = packed[slot]
+            if slot not in groups:
                 if self.material_buffer is not None:
                     self.ctx.queue.write_buffer(self.material_buffer, slot * self.material_stride, data)
-                groups[key] = self._material_group(variant, draw, slot)
+                groups[slot] = self._material_group(variant, draw, slot)
             pipeline = pipelines.get(draw.pipeline_key)
             if pipeline is None:
                 pipeline = pipelines[draw.pipeline_key] = self.pipeline(self.plan.pipeline(draw.pipeline_key))
             buffers = self.resources.mesh_buffers(draw)
-            self.draw_state.append((draw, pipeline, groups[key], data, buffers, self.resources.index_range(draw)))
+            self.draw_state.append((draw, pipeline, groups[slot], data, buffers, self.resources.index_range(draw)))
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
