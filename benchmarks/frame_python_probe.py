@@ -6,10 +6,13 @@ Python (plus a little for the timing wrappers, the same in every tree).
 
 Run it once per tree (PYTHONPATH picks the tree), in alternating rounds:
 
-    python benchmarks/frame_python_probe.py OUT.csv TREE [SCENE] [W]x[H] [FRAMES] [ROUNDS]
+    python benchmarks/frame_python_probe.py OUT.csv TREE [SCENE] [W]x[H] [FRAMES] [same|new]
 
-Appends one row per round (tree, scene, size, round, frame_us and outside_us medians, the largest wgpu-py methods'
-mean microseconds per frame).
+``new``: each frame draws into a new texture object of the same size, as a window's swapchain hands out (made
+before the frame's clock starts, so only what the renderer does with it is timed), by the window's plan (no
+storage output: the compute post path copies into it); ``same`` (the default): one
+offscreen target, as ``bench perf`` draws. Appends one row per round (tree, scene, size, targets, frames, frame_us
+and outside_us medians, the largest wgpu-py methods' mean microseconds per frame).
 """
 
 from __future__ import annotations
@@ -52,6 +55,7 @@ def main() -> None:
     scene = sys.argv[3] if len(sys.argv) > 3 else "final.toml"
     size = tuple(int(v) for v in (sys.argv[4] if len(sys.argv) > 4 else "320x240").split("x"))
     frames = int(sys.argv[5]) if len(sys.argv) > 5 else 300
+    targets = sys.argv[6] if len(sys.argv) > 6 else "same"
 
     from wgpurender.bench.frames import settle_garbage
     from wgpurender.bench.scene import SceneRunner
@@ -61,6 +65,15 @@ def main() -> None:
     ctx = get_context()
     runner = SceneRunner(ctx, resolve_scene(scene), size)
     record, target, device, queue = runner.renderer.record, runner.target, ctx.device, ctx.queue
+    if targets == "new":  # the window's plan: a swapchain image is no storage texture (output_storage off)
+        from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
+        from wgpurender.wgpu_path.scene import load_renderer
+
+        window = load_renderer(resolve_scene(scene), ctx, size=size, knobs={"output_storage": False})
+        record = window.record
+
+        def new_target():
+            return create_target(ctx, size, window.plan.target_format, usage=TARGET_USAGE | window.target_usage)
     for _ in range(5):
         runner.frame(readback=True)
     spent: Counter = Counter()
@@ -68,6 +81,8 @@ def main() -> None:
     settle_garbage()
     totals, outside, per_method = [], [], Counter()
     for k in range(frames + 10):
+        if targets == "new":
+            target = new_target()  # the last one is released here, as a presented image is
         spent.clear()
         start = time.perf_counter()
         encoder = device.create_command_encoder(label="probe")
@@ -84,10 +99,11 @@ def main() -> None:
     with out.open("a", newline="") as f:
         writer = csv.writer(f)
         if new:
-            writer.writerow(("tree", "scene", "size", "frames", "frame_us", "outside_wgpu_py_us", "wgpu_py_methods_us"))
-        writer.writerow((tree, scene, f"{size[0]}x{size[1]}", frames, f"{statistics.median(totals):.1f}",
+            writer.writerow(("tree", "scene", "size", "targets", "frames", "frame_us", "outside_wgpu_py_us",
+                             "wgpu_py_methods_us"))
+        writer.writerow((tree, scene, f"{size[0]}x{size[1]}", targets, frames, f"{statistics.median(totals):.1f}",
                          f"{statistics.median(outside):.1f}", largest))
-    print(tree, scene, size, f"frame {statistics.median(totals):.1f} us, outside wgpu-py "
+    print(tree, scene, size, targets, f"frame {statistics.median(totals):.1f} us, outside wgpu-py "
           f"{statistics.median(outside):.1f} us")
 
 

@@ -153,6 +153,9 @@ WORKERS = "tests/test_mesh_workers.py"
 LOAD_SCALE = "tests/test_scene_load_scale.py"
 TOML_T = "tests/test_scene_toml_cache.py"
 
+FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
+FRAME_CACHES = "tests/test_frame_caches.py"
+
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -1369,8 +1372,8 @@ MUTATIONS = [
      [TWIN_PATHS]),
     ("wgpurender/wgpu_path/scene/frame.py", "self.plan.size, self.plan.target_format, usage",
      "self.plan.size, self.plan.output_format, usage", [TWIN_PATHS]),
-    ("wgpurender/wgpu_path/scene/frame.py", "if target.format != self.plan.target_format:",
-     "if target.format != self.plan.output_format:", [TWIN_PATHS]),
+    ("wgpurender/wgpu_path/scene/frame.py", "self._target_format = plan.target_format",
+     "self._target_format = plan.output_format", [TWIN_PATHS]),
     ("wgpurender/wgpu_path/post/chain.py", "size, output_twin=False)", "size)", [POST_SRGB]),
     (PP, "        temp_fmt = intermediate\n", "        temp_fmt = scene_fmt\n", [INTERMEDIATE]),
     (PP, "        if n < 2:\n            raise UserError(f\"post_intermediate", "        if n < 1:\n            raise "
@@ -1998,8 +2001,9 @@ MUTATIONS = [
      ["tests/test_plan_is_what_is_built.py"]),
     ("wgpurender/wgpu_path/post/passes.py", "compute_pass.dispatch_workgroups(x, y, 1)",
      "compute_pass.dispatch_workgroups(y, y, 1)", ["tests/test_frame_caches.py"]),
-    ("wgpurender/wgpu_path/post/chain.py", "steps.append((\"dispatch\", runner.bound(source, target)))",
-     "steps.append((\"dispatch\", runner.bound(target, target)))", ["tests/test_frame_caches.py"]),
+    ("wgpurender/wgpu_path/post/chain.py", "steps.append((\"dispatch\", runner.bound(source, textures[p.output])))",
+     "steps.append((\"dispatch\", runner.bound(textures[p.output], textures[p.output])))",
+     ["tests/test_frame_caches.py"]),
     # frametime (issue 31.3): the same-wait row and which growth row is judged
     ("wgpurender/bench/scale.py", "            if time.perf_counter() - begin > period:",
      "            if False:", ["tests/test_bench_perf_rows.py"]),
@@ -2013,6 +2017,28 @@ MUTATIONS = [
      ["tests/test_bench_perf_rows.py"]),
     ("wgpurender/bench/markdown_scale.py", 'verdict(growth <= CPU_GROWTH) if metric == judged else "reported"',
      'verdict(growth <= CPU_GROWTH) if metric != judged else "reported"', ["tests/test_bench_perf_rows.py"]),
+    # passes (issue 31.4): a window's new target each frame reuses the frame bound for its size
+    (FRAME, 'scene_pass = None if "output" in (sp.color, sp.resolve_target) else self._scene_bound(None)',
+     "scene_pass = self._scene_bound(None)", [FRAME_CACHES]),
+    (FRAME, "        self._frames.clear()  # bound frames name the old attachments\n        self._bound = None\n",
+     "        self._frames.clear()  # bound frames name the old attachments\n", [FRAME_CACHES]),
+    (FRAME, "        if self._bound is None:\n", "        if True:\n", [FRAME_CACHES]),
+    (FRAME, "        self.resize((size[0], size[1]))", "        self.resize((size[1], size[0]))", [FRAME_CACHES]),
+    (FRAME, "scene_pass or self._scene_bound(target)", "scene_pass or self._scene_bound(None)", [FRAME_CACHES]),
+    (CHAIN, '            if p.output == "output":\n', "            if False:\n", [FRAME_CACHES]),
+    (CHAIN, "            if p.copy_to and names_output(p):", "            if False:", [FRAME_CACHES]),
+    (CHAIN, '    return p.output == "output" or p.copy_to == "output"', '    return p.output == "output"',
+     [FRAME_CACHES]),
+    (CHAIN, "            steps[index] = (kind, make(output))", "            steps[index] = (kind, None)",
+     [FRAME_CACHES]),
+    (CHAIN, "copy_to=texture(p.copy_to))", "copy_to=texture(p.output))", [FRAME_CACHES]),
+    (CHAIN, "        runner.check(source, output)\n", "", [FRAME_CACHES]),
+    (CHAIN, "        return into(output, runner.views.get(output, output.create_view))",
+     "        return into(output, output.create_view())", [FRAME_CACHES]),
+    ("wgpurender/wgpu_path/post/passes.py", "(target, self.views.get(target, target.create_view))",
+     "(target, self.views.get(source, source.create_view))", [FRAME_CACHES]),
+    (CHAIN, "            if open_pass is None:\n                open_pass = encoder.begin_compute_pass(",
+     "            if True:\n                open_pass = encoder.begin_compute_pass(", ["tests/test_frame_calls.py"]),
     # review (2026-11-27 evening): what the review of issue 31's branches fixed
     ("wgpurender/core/plan/dispatch.py", "not all(p.isdecimal() for p in parts)", "not all(p.isdigit() for p in parts)",
      ["tests/test_post_dispatch.py"]),

@@ -11,12 +11,15 @@ from __future__ import annotations
 
 import gc
 import weakref
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
 import pytest
+import wgpu
 from test_post import ATOL, RTOL, ref_aces, ref_vignette, upload
 
+from wgpurender.bench.calls import count_frame, steady_calls
 from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import parse_scene
 from wgpurender.wgpu_path.device.gpu_cache import GpuCache, cache_stats, device_cache
@@ -185,3 +188,98 @@ def test_bound_frames_draw_into_the_target_they_are_given(ctx, tmp_path, post_pa
     for tex, size in ((a, (96, 40)), (b, (96, 40)), (a, (96, 40)), (c, (48, 64)), (a, (96, 40))):
         got = render_frame(ctx, reused, tex)[0].astype(int)
         assert got.shape == want[size].shape and np.abs(got - want[size]).max() <= tolerance, (tex.size, size)
+
+
+def _counted(obj, name: str, calls: Counter) -> None:
+    """Count calls of ``obj.name`` (an instance attribute over the real method)."""
+    real = getattr(obj, name)
+
+    def call(*args, **kwargs):
+        calls[name] += 1
+        return real(*args, **kwargs)
+
+    setattr(obj, name, call)
+
+
+# (post_path, output_storage, post chain): the window's plans (output_storage False: a swapchain image is no storage
+# texture, so the compute path's last pass writes a scratch copied into it), an offscreen output the last dispatch
+# writes directly (its bind group names the target), and a scene with no post chain (the scene pass resolves into it)
+WINDOW_CASES = [("fragment", False, True), ("compute", False, True), ("compute", True, True),
+                ("fragment", False, False)]
+
+
+@pytest.mark.parametrize(("post_path", "storage", "post"), WINDOW_CASES)
+def test_a_new_target_each_frame_reuses_the_frame_bound_for_its_size(ctx, tmp_path, post_path, storage, post):
+    """A window-like loop: every frame draws into a new texture object (as a swapchain hands out), 5 at one size, 3
+    at another, 3 back at the first. Each read-back equals, exactly, what a fresh renderer of the same plan draws
+    into a fresh target of that size; and the frame is bound once per size (SceneRenderer._bind_size, the scene
+    pass and the post chain bound once), so only what names the new texture is made per frame: the post chain's
+    last step (a view, a copy's argument, or the last dispatch's bind group) or, with no chain, the scene pass."""
+    text = SCENE if post else SCENE.split("[[post]]")[0]
+    scene = parse_scene(text, tmp_path / "scene.toml")
+    plan = resolve_plan(scene, ctx.adapter_facts(), post_path=post_path, output_storage=storage)
+    assert bool(plan.post_passes) is post
+    reused = SceneRenderer(ctx, scene, plan)
+    calls: Counter = Counter()
+    _counted(reused, "_bind_size", calls)
+    _counted(reused.chain, "bind", calls)
+    _counted(reused.scene_pass, "bound", calls)
+    for runner in reused.chain.runners:
+        _counted(runner, "bound", calls)
+        if hasattr(runner, "bound_source"):  # a render pass bound but for its target
+            _counted(runner, "bound_source", calls)
+
+    def target(size, renderer=reused):
+        return create_target(ctx, size, renderer.plan.target_format, usage=TARGET_USAGE | renderer.target_usage)
+
+    want = {}
+    for size in ((96, 40), (48, 64)):
+        fresh = SceneRenderer(ctx, scene, plan)
+        want[size] = render_frame(ctx, fresh, target(size, fresh))[0]
+        assert (want[size][..., :3].astype(int).sum(-1) > 30).mean() > 0.05, "the scene is drawn"
+    sizes = [(96, 40)] * 5 + [(48, 64)] * 3 + [(96, 40)] * 3
+    # a dispatch writing the target is bound again for each (its bind group names it); a render pass is bound for
+    # its source once per size, and only its target's view is made per frame
+    late = sum(p.output == "output" and p.path == "compute" for p in plan.post_passes)
+    for frame, size in enumerate(sizes):
+        got = render_frame(ctx, reused, target(size))[0]
+        np.testing.assert_array_equal(got, want[size], err_msg=f"frame {frame} at {size}")
+    changes = 3  # the sizes drawn in turn: each size's attachments are new, so its frame is bound again
+    assert calls["_bind_size"] == changes
+    assert calls["bind"] == (changes if post else 0)
+    scene_binds = changes if post else len(sizes)  # with no chain the scene pass writes the target itself
+    assert calls["bound"] + calls["bound_source"] == (
+        scene_binds + changes * (len(plan.post_passes) - late) + len(sizes) * late), dict(calls)
+
+
+@pytest.mark.parametrize(("post_path", "storage"), [("fragment", False), ("compute", False), ("compute", True)])
+def test_a_new_target_each_frame_makes_no_gpu_object_but_what_names_it(ctx, tmp_path, post_path, storage):
+    """Counted native calls (wgpurender/bench/calls.py) of a frame into a new texture of the same size, after the
+    frame was bound for that size: the device makes nothing on the window's plans (the target's view is the
+    texture's own call), and one bind group where the last dispatch writes the target directly."""
+    scene = parse_scene(SCENE, tmp_path / "scene.toml")
+    plan = resolve_plan(scene, ctx.adapter_facts(), post_path=post_path, output_storage=storage)
+    renderer = SceneRenderer(ctx, scene, plan)
+
+    def target():
+        return create_target(ctx, (64, 48), plan.target_format, usage=TARGET_USAGE | renderer.target_usage)
+
+    steady_calls(ctx, renderer.record, target())
+    same = count_frame(ctx, renderer.record, target())
+    made = {k: v for k, v in same.items() if k.startswith("device.create_") and k != "device.create_command_encoder"}
+    direct = any(p.path == "compute" and p.output == "output" for p in plan.post_passes)
+    assert direct is storage
+    assert made == ({"device.create_bind_group": 1} if direct else {}), dict(same)
+
+
+@pytest.mark.parametrize("path", ["fragment", "compute"])
+def test_a_chain_into_an_output_of_another_size_is_refused_in_one_line(ctx, path):
+    """The pass into the output is bound per output (PostRunner.bind's late step): a 16x12 output for a 32x24
+    source is refused by name and both sizes, not drawn into a corner."""
+    from wgpurender.core.errors import UserError
+
+    chain = PostChain([ToneMap(), Vignette(strength=0.5)], fuse=False, path=path)
+    source = upload(ctx, _image(6))
+    usage = TARGET_USAGE | wgpu.TextureUsage.STORAGE_BINDING
+    with pytest.raises(UserError, match=r"vignette.*\(32, 24\).*\(16, 12\) differ"):
+        _run(ctx, chain, source, create_target(ctx, (16, 12), "rgba16float", usage=usage))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from wgpurender.bench.calls import count_frame, steady_calls
@@ -52,3 +53,22 @@ def _output(ctx, renderer, size):
     from wgpurender.wgpu_path.device.targets import TARGET_USAGE, create_target
 
     return create_target(ctx, size, renderer.plan.target_format, usage=TARGET_USAGE | renderer.target_usage)
+
+
+def test_dispatches_sharing_one_compute_pass_give_the_bytes_of_separate_passes(ctx):
+    """The untimed frame records the compute post chain as ONE compute pass with a dispatch per planned pass; the
+    timed frame (a PassTimer: each planned pass its own compute pass, for its timestamps) keeps them apart. WebGPU
+    makes each dispatch its own usage scope, so the second dispatch reads what the first wrote either way: the
+    bytes are equal (on lavapipe, with validation on: tests/conftest.py fails on a validation error)."""
+    from wgpurender.wgpu_path.device.frame_loop import run_frame
+    from wgpurender.wgpu_path.device.timing import PassTimer
+
+    renderer = load_renderer(FINAL, ctx, size=(96, 72), knobs={"post_path": "compute"})
+    assert len(renderer.plan.post_passes) == 2 and all(p.path == "compute" for p in renderer.plan.post_passes)
+    target = renderer.create_output()
+    shared = run_frame(ctx, renderer.record, target).pixels
+    calls = steady_calls(ctx, renderer.record, target)
+    assert calls["encoder.begin_compute_pass"] == 1 and calls["compute_pass.dispatch_workgroups"] == 2, dict(calls)
+    separate = run_frame(ctx, renderer.record, renderer.create_output(), timer=PassTimer(ctx)).pixels
+    np.testing.assert_array_equal(shared, separate)
+    assert (shared[..., :3].astype(int).sum(-1) > 30).mean() > 0.05, "the scene is drawn"

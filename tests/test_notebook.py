@@ -122,3 +122,10 @@ def test_the_exercise_cell_checks_a_starter_and_diagnoses_it(executed):
     lines = _text(cell).splitlines()
     assert lines[0].startswith("step_2a.py: step 2a (wgpu) FAIL: your image matches 'nothing drawn"), lines
     assert len(_pngs(cell)) == 1
+
+
+def test_every_cell_has_an_id():
+    """nbformat 4.5 requires a unique id per cell (a cell added without one warns now, fails in later nbformat)."""
+    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
+    ids = [c.get("id") for c in cells]
+    assert None not in ids and len(set(ids)) == len(ids), ids

@@ -86,27 +86,77 @@ class PostRunner:
                               timestamp_writes=writes)
 
     def _run_untimed(self, encoder: wgpu.GPUCommandEncoder, textures: Mapping[str, wgpu.GPUTexture]) -> None:
-        self.bind(textures)(encoder)
+        self.bind(textures)(textures["output"])(encoder)
 
-    def bind(self, textures: Mapping[str, wgpu.GPUTexture]) -> Callable[[wgpu.GPUCommandEncoder], None]:
-        """The untimed chain between these textures, made once: ``bind(textures)(encoder)`` records every pass.
+    def bind(self, textures: Mapping[str, wgpu.GPUTexture]) -> Callable[[wgpu.GPUTexture], Callable]:
+        """The untimed chain between ``textures`` (every attachment but "output"), made once:
+        ``bind(textures)(output)(encoder)`` records every pass into ``output``.
 
         Each pass is checked and its views, bind group and workgroup count are looked up here, so a frame pays
-        only for the wgpu calls (issue 31.4; a caller that keeps the textures keeps the result). Consecutive
-        compute passes share one compute pass (each dispatch is its own usage scope in WebGPU, so a dispatch
-        reading what the one before it wrote is ordered by wgpu): two calls fewer per pass.
+        only for the wgpu calls (issue 31.4; a caller that keeps the textures keeps the result). Only the steps
+        that name the output (:func:`names_output`: the last pass's target or its copy) are finished per output
+        texture, so a swapchain's new image each frame costs one view (or one copy's argument), not the chain.
+        Consecutive compute passes share one compute pass (each dispatch is its own usage scope in WebGPU, so a
+        dispatch reading what the one before it wrote is ordered by wgpu): two calls fewer per pass.
         """
         steps: list[tuple[str, Callable]] = []  # ("render", encode) | ("dispatch", dispatch) | ("copy", copy)
+        late: list[tuple[int, str, Callable]] = []  # (index in steps, kind, output -> step): the output's steps
         for p, runner in zip(self.passes, self.runners, strict=True):
-            source, target = textures[p.input], textures[p.output]
-            if not isinstance(runner, ComputePass):
-                steps.append(("render", runner.bound(source, target, textures[p.mask] if p.mask else None)))
-                continue
-            steps.append(("dispatch", runner.bound(source, target)))
-            if p.copy_to:
-                copy_to = textures[p.copy_to]
-                steps.append(("copy", functools.partial(runner.copy, target=target, copy_to=copy_to)))
-        return functools.partial(_record_steps, tuple(steps))
+            source = textures[p.input]
+            mask = textures[p.mask] if p.mask else None
+            if p.output == "output":
+                kind = "dispatch" if isinstance(runner, ComputePass) else "render"
+                late.append((len(steps), kind, _late_pass(runner, source, mask)))
+                steps.append((kind, None))
+            elif isinstance(runner, ComputePass):
+                steps.append(("dispatch", runner.bound(source, textures[p.output])))
+            else:
+                steps.append(("render", runner.bound(source, textures[p.output], mask)))
+            if p.copy_to and names_output(p):
+                late.append((len(steps), "copy", functools.partial(_copy_into, runner, textures, p)))
+                steps.append(("copy", None))
+            elif p.copy_to:
+                steps.append(("copy", functools.partial(runner.copy, target=textures[p.output],
+                                                        copy_to=textures[p.copy_to])))
+        return functools.partial(_finish, tuple(steps), tuple(late))
+
+
+def names_output(p: PostPass) -> bool:
+    """Whether a planned pass writes the caller's output texture (its target, or its copy's destination)."""
+    return p.output == "output" or p.copy_to == "output"
+
+
+def _late_pass(runner: FragmentPass | ComputePass, source: wgpu.GPUTexture,
+               mask: wgpu.GPUTexture | None) -> Callable[[wgpu.GPUTexture], Callable]:
+    """``step(output)``: the pass into ``output``, with all that does not name it made now (a render pass: its
+    bundle and mask, then per output its view; a dispatch's bind group names its target, so it is made per output).
+    Views and bind groups per output live in the runner's caches of 4: a swapchain's new image cannot grow them."""
+    if isinstance(runner, ComputePass):
+        return functools.partial(runner.bound, source)
+    into = runner.bound_source(source, mask)
+
+    def step(output: wgpu.GPUTexture) -> Callable:
+        runner.check(source, output)
+        return into(output, runner.views.get(output, output.create_view))
+
+    return step
+
+
+def _copy_into(runner, textures: Mapping[str, wgpu.GPUTexture], p: PostPass, output: wgpu.GPUTexture) -> Callable:
+    def texture(name: str) -> wgpu.GPUTexture:
+        return output if name == "output" else textures[name]
+
+    return functools.partial(runner.copy, target=texture(p.output), copy_to=texture(p.copy_to))
+
+
+def _finish(steps: tuple, late: tuple, output: wgpu.GPUTexture) -> Callable[[wgpu.GPUCommandEncoder], None]:
+    """The bound chain finished for ``output``: only its late steps are made now."""
+    if late:
+        steps = list(steps)
+        for index, kind, make in late:
+            steps[index] = (kind, make(output))
+        steps = tuple(steps)
+    return functools.partial(_record_steps, steps)
 
 
 def _record_steps(steps: tuple[tuple[str, Callable], ...], encoder: wgpu.GPUCommandEncoder) -> None:
@@ -177,4 +227,4 @@ class PostChain:
         runner.run(encoder, {**textures, "input": source, "output": target}, timer=timer)
 
 
-__all__ = ["STORAGE_FORMATS", "PostChain", "PostRunner", "attachment_usage", "output_usage"]
+__all__ = ["STORAGE_FORMATS", "PostChain", "PostRunner", "attachment_usage", "names_output", "output_usage"]

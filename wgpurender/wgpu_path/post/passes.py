@@ -142,21 +142,30 @@ class FragmentPass(PlannedPass):
         """:meth:`encode` between these textures with its checks, views, dicts and bundle made now, not per frame:
         the frame calls the result with its encoder (issue 31.4: the same calls, less Python per frame)."""
         self.check(source, target)
+        return self.bound_source(source, mask)(target, self.views.get(target, target.create_view))
+
+    def bound_source(self, source: wgpu.GPUTexture, mask: wgpu.GPUTexture | None = None) -> Callable:
+        """:meth:`bound` with all but the target made now: ``bound_source(source, mask)(target, view)`` is the
+        encode, for a target that changes every frame (a swapchain's image: PostRunner.bind) and its view."""
         label = f"post-{self.p.effect}"
-        colors = [{"view": self.views.get(target, target.create_view), "load_op": "load", "store_op": "store"}]
         depth = None
         if mask is not None:
             depth = {"view": self.views.get(mask, mask.create_view), "depth_clear_value": 1.0,
                      "depth_load_op": "clear", "depth_store_op": "discard"}
         bundles = [self.bundles.get((source,), lambda: self._bundle(source))]
 
-        def encode(encoder: wgpu.GPUCommandEncoder) -> None:
-            render_pass = encoder.begin_render_pass(label=label, color_attachments=colors,
-                                                    depth_stencil_attachment=depth)
-            render_pass.execute_bundles(bundles)
-            render_pass.end()
+        def into(target: wgpu.GPUTexture, view: wgpu.GPUTextureView) -> Callable[[wgpu.GPUCommandEncoder], None]:
+            colors = [{"view": view, "load_op": "load", "store_op": "store"}]
 
-        return encode
+            def encode(encoder: wgpu.GPUCommandEncoder) -> None:
+                render_pass = encoder.begin_render_pass(label=label, color_attachments=colors,
+                                                        depth_stencil_attachment=depth)
+                render_pass.execute_bundles(bundles)
+                render_pass.end()
+
+            return encode
+
+        return into
 
     def _bundle(self, source: wgpu.GPUTexture) -> wgpu.GPURenderBundle:
         """The pass's draws (bind group, pipeline(s), full-screen triangle), recorded once per source texture.

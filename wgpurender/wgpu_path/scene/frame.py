@@ -73,6 +73,8 @@ class SceneRenderer:
         self._views: dict[str, tuple[wgpu.GPUTexture, wgpu.GPUTextureView]] = {}  # name -> (texture, its view)
         # target texture -> its bound untimed frame (_bind); a swapchain's new texture each frame cannot grow it
         self._frames: GpuCache = GpuCache("scene-frames", 4)
+        self._target_format = plan.target_format  # a property of the plan: read once, checked every new target
+        self._bound = None  # finish(target) -> frame: the frame bound to this size's attachments (_bind_size)
 
     def move_camera(self, camera) -> None:
         """Use ``camera`` from the next frame on (the pass uploads it when it changed): slow-motion measurements."""
@@ -114,6 +116,7 @@ class SceneRenderer:
         self.size = size
         self.attachments = {}
         self._frames.clear()  # bound frames name the old attachments
+        self._bound = None
         for a in self.plan.attachments:
             usage = ATTACHMENT_USAGE.get(a.role, 0) | attachment_usage(a, self.plan.post_passes)
             if a.role != "output" and usage:
@@ -135,23 +138,28 @@ class SceneRenderer:
     def record(self, encoder: wgpu.GPUCommandEncoder, target: wgpu.GPUTexture, t: float = 0.0, timer=None) -> None:
         """Record the frame into ``encoder``; ``timer``: an optional timing.PassTimer (one entry per pass).
 
-        Untimed (as a window draws), the frame is bound once per target texture (:meth:`_bind`): its checks,
-        views, attachment dicts and post steps are made then, and each frame makes only the wgpu calls.
+        Untimed (as a window draws), the frame is bound once per size (:meth:`_bind_size`): its checks, views,
+        attachment dicts and post steps are made then, and each frame makes only the wgpu calls. A new target
+        texture of that size (a swapchain's image each frame) finishes only what names it (:meth:`_bind`).
         """
         if timer is None:
             self._frames.get(target, lambda: self._bind(target))(encoder)
             return
-        scene_pass, chain = self._bound(target)
+        self._check_target(target)
+        scene_pass = self._scene_bound(target)
         scene_pass(encoder, timer.writes("scene"))
         if self.chain:
             self.chain.run(encoder, {**self.attachments, "output": target}, timer=timer)
 
-    def _bound(self, target: wgpu.GPUTexture):
-        """(the scene pass bound to this target's attachments, the textures the post chain reads and writes)."""
-        if target.format != self.plan.target_format:
+    def _check_target(self, target: wgpu.GPUTexture) -> None:
+        """Refuse a target of another format; (re)make the attachments at its size."""
+        if target.format != self._target_format:
             raise UserError(self._format_mismatch(target.format))
-        size = (target.size[0], target.size[1])
-        self.resize(size)
+        size = target.size
+        self.resize((size[0], size[1]))
+
+    def _scene_bound(self, target: wgpu.GPUTexture | None):
+        """The scene pass bound to this size's attachments (and ``target`` where the pass writes the output)."""
         sp = self._scene_pass
         color = {"view": self._view(sp.color, target), "clear_value": sp.clear_color,
                  "load_op": "clear", "store_op": "store"}
@@ -159,14 +167,29 @@ class SceneRenderer:
             # The multisampled image is scratch: resolved at the end of the pass, its samples discarded.
             color.update(resolve_target=self._view(sp.resolve_target, target), store_op="discard")
         depth = self._view(sp.depth, target) if sp.depth else None
-        textures = {**self.attachments, "output": target}
-        return self.scene_pass.bound([color], depth, size[0] / size[1]), textures
+        return self.scene_pass.bound([color], depth, self.size[0] / self.size[1])
 
     def _bind(self, target: wgpu.GPUTexture):
-        """The untimed frame into ``target``: ``_bind(target)(encoder)`` records it (kept in ``_frames``)."""
-        scene_pass, textures = self._bound(target)
-        chain = self.chain.bind(textures) if self.chain else None
-        return functools.partial(_record_frame, scene_pass, chain)
+        """The untimed frame into ``target``: ``_bind(target)(encoder)`` records it (kept in ``_frames``). What
+        does not name the target is bound once per size; a new target of that size costs only what names it."""
+        self._check_target(target)
+        if self._bound is None:
+            self._bound = self._bind_size()
+        return self._bound(target)
+
+    def _bind_size(self):
+        """``finish(target) -> frame``: the frame bound to this size's attachments (issue 31.4, the window's
+        swapchain image is a new texture object each frame). Only the scene pass when it writes the output (no
+        post chain) and the post steps that name the output (its last pass's view, or its copy) wait for it."""
+        sp = self._scene_pass
+        scene_pass = None if "output" in (sp.color, sp.resolve_target) else self._scene_bound(None)
+        chain = self.chain.bind(self.attachments) if self.chain else None
+
+        def finish(target: wgpu.GPUTexture):
+            return functools.partial(_record_frame, scene_pass or self._scene_bound(target),
+                                     chain(target) if chain is not None else None)
+
+        return finish
 
 
 def _record_frame(scene_pass, chain, encoder: wgpu.GPUCommandEncoder) -> None:
