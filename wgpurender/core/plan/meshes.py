@@ -43,6 +43,19 @@ class PlanMeshes:
                                               store=self._store)
         return self._meshes[key]
 
+    def posed(self, key: tuple, pose) -> Mesh:
+        """The mesh of ``key`` (a glTF model's file and the pose it was drawn in) re-posed at ``pose``, loaded by
+        the same rule as :meth:`mesh` (tangents where a variant drawing it reads them), not cached: the window's
+        playback (core/scene/playback.py) rewrites the drawn vertices with it each frame."""
+        return load_mesh(key[0], generate_tangents=key in self._needs_tangents, pose=pose, store=False)
+
+    def turned(self, key: tuple, mesh: Mesh) -> bool:
+        """Make re-posed ``mesh`` the mesh of ``key`` (buffers made from now on hold it) and say whether its
+        indices differ from the one before (a node's mirroring turned its winding: core/models/mesh._place)."""
+        before = self.mesh(key).index_bytes()
+        self._meshes[key] = mesh
+        return mesh.index_bytes() != before
+
     def _read_in_workers(self) -> None:
         """The plan's OBJ files, in draw order, read by core/models/mesh_workers.py; a file that is not a simple
         OBJ is left to :func:`load_mesh` (the general loader)."""

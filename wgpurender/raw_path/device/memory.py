@@ -94,13 +94,17 @@ def upload_buffer(ctx: VulkanContext, owned: ExitStack, data: np.ndarray, usage:
         target = create_buffer(ctx, owned, raw.nbytes, usage | vk.VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                vk.VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)
         with one_shot(ctx) as cmd:
-            region = vk.VkBufferCopy(srcOffset=0, dstOffset=0, size=raw.nbytes)
-            vk.vkCmdCopyBuffer(cmd, staging.handle, target.handle, 1, [region])
-            barrier = vk.VkBufferMemoryBarrier(
-                srcAccessMask=vk.VK_ACCESS_TRANSFER_WRITE_BIT, dstAccessMask=reader_access,
-                srcQueueFamilyIndex=vk.VK_QUEUE_FAMILY_IGNORED, dstQueueFamilyIndex=vk.VK_QUEUE_FAMILY_IGNORED,
-                buffer=target.handle, offset=0, size=WHOLE_SIZE,
-            )
-            vk.vkCmdPipelineBarrier(cmd, vk.VK_PIPELINE_STAGE_TRANSFER_BIT, reader_stage, 0, 0, None, 1, [barrier], 0,
-                                    None)
+            record_copy(cmd, staging, target, raw.nbytes, reader_stage, reader_access)
     return target
+
+
+def record_copy(cmd, source: Buffer, target: Buffer, size: int, reader_stage: int, reader_access: int) -> None:
+    """vkCmdCopyBuffer of ``size`` bytes, then the barrier that makes the write visible to the later reader."""
+    region = vk.VkBufferCopy(srcOffset=0, dstOffset=0, size=size)
+    vk.vkCmdCopyBuffer(cmd, source.handle, target.handle, 1, [region])
+    barrier = vk.VkBufferMemoryBarrier(
+        srcAccessMask=vk.VK_ACCESS_TRANSFER_WRITE_BIT, dstAccessMask=reader_access,
+        srcQueueFamilyIndex=vk.VK_QUEUE_FAMILY_IGNORED, dstQueueFamilyIndex=vk.VK_QUEUE_FAMILY_IGNORED,
+        buffer=target.handle, offset=0, size=WHOLE_SIZE,
+    )
+    vk.vkCmdPipelineBarrier(cmd, vk.VK_PIPELINE_STAGE_TRANSFER_BIT, reader_stage, 0, 0, None, 1, [barrier], 0, None)

@@ -9,6 +9,7 @@ chain), vkCmdEndRenderPass, vkCmdCopyImageToBuffer.
 
 from __future__ import annotations
 
+import dataclasses
 from contextlib import ExitStack
 from pathlib import Path
 
@@ -18,6 +19,7 @@ import vulkan as vk
 from wgpurender.core.plan import RenderPlan, gpu_memory, resolve_plan
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.scene import Scene
+from wgpurender.core.scene.playback import Playback
 from wgpurender.raw_path.device.checks import check_size
 from wgpurender.raw_path.device.command_buffers import one_shot
 from wgpurender.raw_path.device.context import VulkanContext, get_vulkan
@@ -77,6 +79,19 @@ class SceneFrame:
             self.post = PostSubpass(ctx, owned, plan, self.pass_.render_pass, self.images["scene_color"],
                                     wgpu_intermediates, passes=head)
         self.neighbourhood = self._neighbourhood_passes(segments, wgpu_intermediates)
+        self.playback = Playback.of(scene, self.resources.meshes.posed)  # None: a still scene, nothing per frame
+        self._moved: dict = {}  # re-posed meshes to copy at the start of the next recorded frame
+
+    def play(self, t: float) -> None:
+        """Pose the scene's animated glTF models at clock time ``t`` (the window's, once per frame; looped at each
+        clip's end: core/scene/playback.py): the file camera and KHR lights placed again now, the re-posed
+        vertices copied over their buffers at the start of the next :meth:`record`."""
+        if self.playback is None:
+            return
+        scene, moved = self.playback.frame(t)
+        self.scene = self.scene_subpass.scene = dataclasses.replace(self.scene, models=scene.models,
+                                                                    lights=scene.lights, camera=scene.camera)
+        self._moved.update(moved)
 
     def _neighbourhood_passes(self, segments, wgpu_intermediates: bool) -> list[tuple[NeighbourhoodPass, Image | None]]:
         """One pass per neighbourhood effect, each with the handoff image it writes (None: the output)."""
@@ -91,7 +106,10 @@ class SceneFrame:
             source = written
         return passes
 
-    def record(self, cmd, target: Image) -> None:
+    def record(self, cmd, target: Image) -> int:
+        """Record the frame into ``cmd``; the number of buffer copies of re-posed meshes it starts with."""
+        writes = sum(self.resources.rewrite(cmd, key, mesh) for key, mesh in self._moved.items())  # outside the pass
+        self._moved = {}
         views = [target if a.name == "output" else self.images[a.name] for a in self.pass_.attachments]
         framebuffer = create_framebuffer(self.ctx, self.owned, self.pass_.render_pass, views)
         begin(cmd, self.pass_.render_pass, framebuffer, self.size)
@@ -104,6 +122,7 @@ class SceneFrame:
         vk.vkCmdEndRenderPass(cmd)
         for nb, written in self.neighbourhood:
             nb.record(cmd, written or target)
+        return writes
 
 
 def render_scene_reference(path: str | Path, size: tuple[int, int] | None = None, fmt: str | None = None,

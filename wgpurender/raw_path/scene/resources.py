@@ -23,7 +23,14 @@ from wgpurender.core.plan.meshes import PlanMeshes
 from wgpurender.core.plan.model import EXTRA_UV_SLOTS
 from wgpurender.core.scene.texture_pixels import load_image
 from wgpurender.raw_path.device.context import VulkanContext
-from wgpurender.raw_path.device.memory import Buffer, upload_buffer
+from wgpurender.raw_path.device.memory import (
+    HOST_MEMORY,
+    Buffer,
+    create_buffer,
+    record_copy,
+    upload_buffer,
+    write_host_buffer,
+)
 from wgpurender.raw_path.device.textures import TextureImage, create_sampler, upload_texture
 
 # attribute -> (shader location, float count): the locations of shaders_glsl/scene.vert
@@ -66,6 +73,7 @@ class SceneResources:
         self._buffers: dict[tuple[Path, tuple[str, ...]], MeshBuffers] = {}
         self._textures: dict[tuple[Path, bool], TextureImage] = {}
         self._samplers: dict[object, object] = {}
+        self._staging: dict[object, object] = {}  # a rewritten buffer's host staging buffer (playback)
         self._mipmaps = {(t.path, t.format.endswith("-srgb")): t.mipmaps for t in plan.textures}
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
@@ -86,6 +94,31 @@ class SceneResources:
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
         return self.meshes.index_range(draw)
+
+    def rewrite(self, cmd, mesh_key: tuple, mesh: Mesh) -> int:
+        """Record into ``cmd`` the copy of ``mesh`` (re-posed: same vertices and triangles, moved) over the buffers
+        of ``mesh_key`` (its indices only where a mirroring node turned the winding), each through its own host
+        staging buffer (made once, written while the frame's fence says the last copy is done); the window's
+        playback. The number of buffer copies."""
+        writes, turned = 0, self.meshes.turned(mesh_key, mesh)
+        for (key, attributes), buffers in self._buffers.items():
+            if key != mesh_key:
+                continue
+            self._copy(cmd, buffers.vertex, interleave(mesh, attributes), vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT)
+            writes += 1
+            if turned:
+                self._copy(cmd, buffers.index, mesh.all_indices(), vk.VK_ACCESS_INDEX_READ_BIT)
+                writes += 1
+        return writes
+
+    def _copy(self, cmd, target, data: np.ndarray, reader_access: int) -> None:
+        if target.handle not in self._staging:
+            self._staging[target.handle] = create_buffer(self.ctx, self.owned, target.size,
+                                                         vk.VK_BUFFER_USAGE_TRANSFER_SRC_BIT, HOST_MEMORY)
+        staging = self._staging[target.handle]
+        write_host_buffer(self.ctx, staging, data)
+        # the frame's earlier reads of the buffer (the last frame of this slot) are done: its fence was waited on
+        record_copy(cmd, staging, target, data.nbytes, vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, reader_access)
 
     def texture(self, path: Path, srgb: bool) -> TextureImage:
         """Albedo maps as R8G8B8A8_SRGB (decoded on sampling), data maps as R8G8B8A8_UNORM, as the plan lists."""

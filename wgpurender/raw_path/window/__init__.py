@@ -455,6 +455,8 @@ class RawDemoLoop:
             t = fixed_time if fixed_time is not None else self.controls.clock.time()  # P pauses it
             last_wanted = screenshot and (frames is None or count == frames - 1)
             slot = raw.slots[count % FRAMES_IN_FLIGHT]
+            if hasattr(slot.drawable, "play"):  # a scene: its glTF animations at this frame's time (stages: none)
+                slot.drawable.play(t)  # its re-posed vertices are copied when the slot records, after its fence
             apply_camera(slot.drawable, self.orbit)
             if not raw.frame(count, t, last_wanted or bool(shots) or self.video is not None):
                 continue

@@ -27,6 +27,7 @@ from wgpurender.core.errors import UserError
 from wgpurender.core.plan import RenderPlan, gpu_memory, resolve_plan
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.scene import Scene, load_scene
+from wgpurender.core.scene.playback import Playback
 from wgpurender.core.view import garbage
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 from wgpurender.wgpu_path.device.frame_loop import RenderResult, run_frame, run_frames
@@ -55,7 +56,7 @@ class SceneRenderer:
     """Draws one scene by its plan into any texture of the plan's output format (offscreen or swapchain).
 
     ``resize(size)`` makes the size-dependent attachments; ``record(encoder, target, t)`` records a frame.
-    Scenes are static: ``t`` is accepted (the window passes it) and does not change the image.
+    ``t`` does not change the image; the window calls ``play(t)`` first, which poses glTF animations at ``t``.
     """
 
     @garbage.paused()  # 10k meshes, buffers and draws: no collection walks them on the way (core/view/garbage.py)
@@ -75,6 +76,18 @@ class SceneRenderer:
         self._frames: GpuCache = GpuCache("scene-frames", 4)
         self._target_format = plan.target_format  # a property of the plan: read once, checked every new target
         self._bound = None  # finish(target) -> frame: the frame bound to this size's attachments (_bind_size)
+        self.playback = Playback.of(scene, self.resources.meshes.posed)  # None: a still scene, nothing per frame
+
+    def play(self, t: float) -> int:
+        """Pose the scene's animated glTF models at clock time ``t`` (the window's, once per frame; looped at each
+        clip's end: core/scene/playback.py): their vertices rewritten in place, the file camera and KHR lights
+        placed again. The number of buffer writes (0 for a still scene or an unchanged pose)."""
+        if self.playback is None:
+            return 0
+        scene, moved = self.playback.frame(t)
+        self.scene = self.scene_pass.scene = dataclasses.replace(self.scene, models=scene.models, lights=scene.lights,
+                                                                 camera=scene.camera)
+        return sum(self.resources.rewrite(key, mesh) for key, mesh in moved.items())
 
     def move_camera(self, camera) -> None:
         """Use ``camera`` from the next frame on (the pass uploads it when it changed): slow-motion measurements."""

@@ -71,8 +71,10 @@ class SceneResources:
         made = {}  # named as the plan lists them (RenderPlan.buffers)
         usage = wgpu.BufferUsage
         for pair, (vertex, index) in _pair_bytes(keys, meshes, places, indices).items():
-            made[pair] = (dev.create_buffer_with_data(data=vertex, usage=usage.VERTEX, label="scene-vertices"),
-                          dev.create_buffer_with_data(data=index, usage=usage.INDEX, label="scene-indices"))
+            made[pair] = (dev.create_buffer_with_data(data=vertex, usage=usage.VERTEX | usage.COPY_DST,
+                                                     label="scene-vertices"),
+                          dev.create_buffer_with_data(data=index, usage=usage.INDEX | usage.COPY_DST,
+                                                      label="scene-indices"))
         for key, mesh, (pair, v_at, i_at), stride in zip(keys, meshes, places, strides, strict=True):
             self._buffers[key] = MeshBuffers(*made[pair], mesh.index_format, mesh.indices.size, v_at, i_at,
                                              v_at // stride, i_at // mesh.indices.itemsize)
@@ -87,6 +89,21 @@ class SceneResources:
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""
         return self.meshes.index_range(draw)
+
+    def rewrite(self, mesh_key: tuple, mesh: Mesh) -> int:
+        """Write ``mesh`` (re-posed: same vertices and triangles, moved) over the GPU copies of ``mesh_key``, in
+        place: its own vertex range of the shared buffer (and its indices only where a mirroring node turned the
+        winding); the window's playback. The number of buffer writes."""
+        writes, turned = 0, self.meshes.turned(mesh_key, mesh)
+        for (key, attributes), buffers in self._buffers.items():
+            if key != mesh_key:
+                continue
+            self.ctx.queue.write_buffer(buffers.vertex, buffers.vertex_offset, interleave([mesh], attributes).tobytes())
+            writes += 1
+            if turned:
+                self.ctx.queue.write_buffer(buffers.index, buffers.index_offset, mesh.index_bytes())
+                writes += 1
+        return writes
 
     # -- textures and samplers -------------------------------------------------
     def texture(self, path: Path, fmt: str) -> Texture:

@@ -224,6 +224,8 @@ class DemoWindow:
         from wgpurender.wgpu_path.device.frame_loop import run_frame
 
         while True:
+            if hasattr(self.drawable, "play"):  # a scene: its glTF animations at this frame's time (stages: none)
+                self.drawable.play(t)
             self.view.apply_camera(self.drawable)
             self.drawable.resize(tuple(texture.size[:2]))
             record, timer = self._record_fn()
