@@ -240,11 +240,16 @@ def _is_scene(target: str, anisotropy: str, knobs: dict) -> bool:
 
 
 def check_static(target: str, t: float | None) -> None:
-    """The window draws a scene as its plan poses it (its models' ``time``): a time other than 0 (or None:
-    animated) would not change the image, so it is refused."""
-    if t:
-        raise UserError(f"scene {str(target)!r}: the window draws a scene at its models' own time = T ([[models]] "
-                        f"block), so --time {t:g} would change nothing (it freezes a stage's animation; leave it out)")
+    """The window plays a scene's glTF animations from its clock; ``--time T`` freezes them at T. On a scene
+    without any (nothing would change) a time other than 0 is refused in one line."""
+    if not t:
+        return
+    from wgpurender.core.scene import load_scene
+    from wgpurender.core.scene.playback import tracks
+
+    if not tracks(load_scene(target)):
+        raise UserError(f"scene {str(target)!r} is static: none of its models is a glTF file with an animation, so "
+                        f"--time {t:g} would change nothing (it freezes a stage's or a glTF animation; leave it out)")
 
 
 def _wgpu_plan(ctx, scene: Target, size, msaa, format, anisotropy, knobs: dict) -> RenderPlan:

@@ -46,7 +46,8 @@ def register(subparsers) -> None:
     )
     p.add_argument("--frames", type=int, default=None, metavar="N", help="exit after N frames")
     p.add_argument("--time", type=time_arg, default=None, metavar="T",
-                   help="freeze a stage's animation at T seconds (a scene is static: only 0)")
+                   help="freeze the animation at T seconds: a stage's, or a scene's glTF animations (which otherwise "
+                   "play from the clock, looping; P pauses)")
     p.add_argument("--screenshot", default=None, metavar="PNG", help="save the last presented frame to PNG")
     p.add_argument("--backend", default=None,
                    help="graphics backend: vulkan (default), opengl or auto; also $WGPURENDER_BACKEND")

@@ -28,7 +28,7 @@ from wgpurender.core.plan.model import (
 )
 from wgpurender.core.plan.post import plan_post_passes, post_pipelines_of, resolve_immediates, resolve_post_path
 from wgpurender.core.plan.targets import SceneTargets, output_attachment, plan_scene_targets
-from wgpurender.core.scene import Scene
+from wgpurender.core.scene import Scene, playback
 
 __all__ = ["build_plan", "knob_settings", "material_variant"]
 
@@ -203,6 +203,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
         samplers=drawn.samplers,
         camera_note=_camera_note(scene),
         notes=tuple(notes),
+        playing=playback.tracks(scene),
         knobs=knobs,
         settings=settings,
         absent=absent,

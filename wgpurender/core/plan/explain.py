@@ -13,6 +13,15 @@ from wgpurender.core.plan import gpu_memory
 # No import of .model: RenderPlan.explain() calls this module, so it reads the plan's passes by their ``kind``.
 
 
+def playback_lines(plan: Any) -> list[str]:
+    """What the window plays (core/scene/playback.py): one line per animated model, none for a still scene."""
+    if not plan.playing:
+        return []
+    from wgpurender.core.scene.playback import describe
+
+    return describe(plan.playing, plan.scene)
+
+
 def explain(plan: Any) -> str:
     """Passes, attachments, pipelines, textures and samplers, each with what asked for it."""
     w, h = plan.size
@@ -20,6 +29,7 @@ def explain(plan: Any) -> str:
            f"memory: {gpu_memory.describe(gpu_memory.plan_bytes(plan))}"]
     if plan.camera_note:
         out.append(f"camera: {plan.camera_note}")
+    out.extend(f"animation: {line}" for line in playback_lines(plan))
     out.append("")
     out.append("knobs:")
     for knob, value, why in plan.settings:

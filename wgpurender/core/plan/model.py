@@ -425,6 +425,8 @@ class RenderPlan:
     samplers: tuple[SamplerUse, ...]
     camera_note: str = ""
     notes: tuple[str, ...] = field(default=())
+    # the glTF models the window animates (core/scene/playback.Track each; empty: a still scene, nothing per frame)
+    playing: tuple = ()
     knobs: Knobs = field(default_factory=Knobs)
     settings: tuple[tuple[str, str, str], ...] = ()  # (knob, resolved value, why), what explain() shows
     msaa_asked: int = 0  # the msaa the scene or the caller asked for (``msaa`` is what is drawn: 1 with no models)

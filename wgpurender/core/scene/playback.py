@@ -89,9 +89,9 @@ class Playback:
         self._drawn: dict[int, float] = {}
 
     @classmethod
-    def of(cls, scene: Scene, load) -> Playback | None:
-        """A playback for ``scene``, or None when it has no animation (a still scene pays nothing)."""
-        playing = tracks(scene)
+    def of(cls, scene: Scene, playing: tuple[Track, ...], load) -> Playback | None:
+        """A playback of the plan's tracks (``RenderPlan.playing``), or None when there are none (a still scene
+        pays nothing)."""
         return cls(scene, playing, load) if playing else None
 
     def frame(self, t: float):

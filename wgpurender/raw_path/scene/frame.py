@@ -79,7 +79,7 @@ class SceneFrame:
             self.post = PostSubpass(ctx, owned, plan, self.pass_.render_pass, self.images["scene_color"],
                                     wgpu_intermediates, passes=head)
         self.neighbourhood = self._neighbourhood_passes(segments, wgpu_intermediates)
-        self.playback = Playback.of(scene, self.resources.meshes.posed)  # None: a still scene, nothing per frame
+        self.playback = Playback.of(scene, plan.playing, self.resources.meshes.posed)  # None: a still scene
         self._moved: dict = {}  # re-posed meshes to copy at the start of the next recorded frame
 
     def play(self, t: float) -> None:

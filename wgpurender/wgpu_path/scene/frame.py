@@ -76,7 +76,7 @@ class SceneRenderer:
         self._frames: GpuCache = GpuCache("scene-frames", 4)
         self._target_format = plan.target_format  # a property of the plan: read once, checked every new target
         self._bound = None  # finish(target) -> frame: the frame bound to this size's attachments (_bind_size)
-        self.playback = Playback.of(scene, self.resources.meshes.posed)  # None: a still scene, nothing per frame
+        self.playback = Playback.of(scene, plan.playing, self.resources.meshes.posed)  # None: a still scene
 
     def play(self, t: float) -> int:
         """Pose the scene's animated glTF models at clock time ``t`` (the window's, once per frame; looped at each

@@ -1,0 +1,277 @@
+"""The windows play glTF animations (core/scene/playback.py, ``play(t)`` on both paths' scene drawables).
+
+A window-like loop (the drawable built once from the scene's own plan, then ``play(t)`` and one frame per clock
+time, as wgpu_path/window and raw_path/window call them) is compared with the offscreen render at ``--time t``:
+exactly within one path. The expectations that do not come from another render come from the test's own
+numbers: the clip's end is the largest key time the test wrote, a looped time is ``t mod end``, and the triangle
+a rotation channel turns covers the place this file computes in float64 (as tests/test_gltf_animation.py).
+Every file is built here at run time (tests/gltf_gen.py).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from contextlib import ExitStack
+
+import numpy as np
+import pytest
+from gltf_gen import GltfWriter, scene_text
+from test_gltf_animation import (
+    CAMERA_KEYS,
+    LIGHT_KEYS,
+    TRIANGLE,
+    _animated_file,
+    _camera_and_lamp_file,
+    _coverage,
+    _lerp,
+    _quat_z,
+    _rot_z,
+    _skinned_file,
+)
+from test_gltf_render import SIZE, UNLIT
+from xvfb import xvfb_display  # noqa: F401 - the shared Xvfb fixture "display"
+
+from wgpurender import api
+from wgpurender.core.plan import resolve_plan
+from wgpurender.core.scene.playback import Track
+
+PATHS = ("wgpu", "raw")
+
+
+def _two_model_scene(tmp_path):
+    """The skinned strip (its joint turns over keys 0..1 s) and a triangle whose node a rotation channel turns
+    0 -> 180 degrees over keys 0..2 s: skins and node animation, two clips of different ends, in one scene."""
+    _skinned_file(tmp_path)
+    _animated_file(tmp_path, "rotation", [0.0, 1.0, 2.0], [_quat_z(0), _quat_z(90), _quat_z(180)], suffix=".glb")
+    scene = tmp_path / "both.toml"
+    scene.write_text(scene_text("skin.glb", SIZE) + '\n[[models]]\npath = "anim.glb"\n')
+    return scene
+
+
+def _wgpu_loop(ctx, scene, times) -> tuple[np.ndarray, list[int]]:
+    """The wgpu window's per-frame calls, headless: the renderer built once (the scene's own pose), then for each
+    clock time ``play(t)`` and one frame; the last frame's pixels and each frame's buffer writes."""
+    from wgpurender.wgpu_path.device.frame_loop import run_frame
+    from wgpurender.wgpu_path.scene.frame import SceneRenderer
+
+    plan = resolve_plan(scene, ctx.adapter_facts())
+    renderer = SceneRenderer(ctx, plan.scene, plan)
+    target = renderer.create_output()
+    writes, frame = [], None
+    for t in times:
+        writes.append(renderer.play(t))
+        frame = run_frame(ctx, renderer.record, target, t)
+    return frame.pixels, writes
+
+
+def _raw_loop(scene, times) -> tuple[np.ndarray, list[int]]:
+    """The raw window's per-frame calls, headless: ``play(t)``, then the frame recorded (the copies first)."""
+    from wgpurender.raw_path.device.command_buffers import one_shot
+    from wgpurender.raw_path.device.context import get_vulkan
+    from wgpurender.raw_path.device.images import create_image
+    from wgpurender.raw_path.device.readback import buffer_to_pixels, record_copy_to_buffer
+    from wgpurender.raw_path.scene.frame import SceneFrame
+    from wgpurender.raw_path.stages.base import TARGET_USAGE
+
+    vk_ctx = get_vulkan()
+    plan = resolve_plan(scene, vk_ctx.adapter_facts())
+    writes = []
+    with ExitStack() as owned:
+        frame = SceneFrame(vk_ctx, owned, plan.scene, plan)
+        target = create_image(vk_ctx, owned, plan.size, plan.output_format, TARGET_USAGE)
+        for k, t in enumerate(times):
+            frame.play(t)
+            with one_shot(vk_ctx) as cmd:
+                writes.append(frame.record(cmd, target))
+                if k == len(times) - 1:
+                    buffer = record_copy_to_buffer(vk_ctx, owned, cmd, target)
+        pixels = buffer_to_pixels(vk_ctx, buffer, target)
+    vk_ctx.check_validation("the raw window loop")
+    return pixels, writes
+
+
+def _loop(ctx, which, scene, times):
+    return _wgpu_loop(ctx, scene, times) if which == "wgpu" else _raw_loop(scene, times)
+
+
+def _offscreen(which, scene, t) -> np.ndarray:
+    draw = api.render if which == "wgpu" else api.reference
+    return draw(str(scene), t=t).pixels
+
+
+# -- the plan: which models play, and the loop ----------------------------------------------------------------------
+
+def test_the_plan_lists_each_animated_model_with_its_clip_end(tmp_path, capsys):
+    """The skinned strip's keys end at 1 s, the triangle's at 2 s (the test wrote them); --explain says so."""
+    plan = resolve_plan(_two_model_scene(tmp_path), None)
+    assert plan.playing == (Track(0, None, 1.0), Track(1, None, 2.0))
+    text = plan.explain()
+    assert "animation: window plays skin.glb (model 0), animation 0, looping every 1 s" in text
+    assert "animation: window plays anim.glb (model 1), animation 0, looping every 2 s" in text
+
+
+def test_a_named_animation_loops_at_its_own_end(tmp_path):
+    def lift(g: GltfWriter) -> list[dict]:  # a second animation whose keys end at 3 s
+        keys, out = g.accessor(np.float32([0.0, 3.0])), g.accessor(np.float32([[0, 0, 0], [0, 4, 0]]))
+        return [{"name": "lift", "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                 "samplers": [{"input": keys, "output": out}]}]
+
+    _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [4, 0, 0]], extra=lift, suffix=".glb")
+    scene = tmp_path / "lift.toml"
+    scene.write_text(scene_text("anim.glb", SIZE, extra='animation = "lift"\n'))
+    assert resolve_plan(scene, None).playing == (Track(0, "lift", 3.0),)
+
+
+@pytest.mark.parametrize(("t", "local"), [(0.0, 0.0), (0.5, 0.5), (2.0, 0.0), (2.75, 0.75), (7.25, 1.25)])
+def test_the_clock_loops_at_the_clip_end(t, local):
+    assert Track(0, None, 2.0).local_time(t) == pytest.approx(local)
+
+
+def test_a_clip_of_one_key_stays_at_zero():
+    assert Track(0, None, 0.0).local_time(5.0) == 0.0
+    assert Track(0, None, 2.0).local_time(float("inf")) == 0.0
+
+
+def test_a_still_scene_plays_nothing(tmp_path, capsys):
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
+    g.write(tmp_path / "still.glb")
+    scene = tmp_path / "still.toml"
+    scene.write_text(scene_text("still.glb", SIZE))
+    plan = resolve_plan(scene, None)
+    assert plan.playing == ()
+    assert "animation:" not in plan.explain()
+
+
+# -- both paths: the window's frame at t is the offscreen frame at --time t -----------------------------------------
+
+@pytest.mark.parametrize("which", PATHS)
+def test_the_window_loop_frame_at_t_is_the_offscreen_frame_at_time_t(ctx, tmp_path, which):
+    """Frames at clock 0, 0.3 and 0.6: the last equals ``--time 0.6`` exactly, and differs from the scene's
+    own pose (the models moved: not a frozen first frame)."""
+    scene = _two_model_scene(tmp_path)
+    got, writes = _loop(ctx, which, scene, [0.0, 0.3, 0.6])
+    assert np.array_equal(got, _offscreen(which, scene, 0.6)), which
+    assert not np.array_equal(got, _offscreen(which, scene, 0.0))
+    assert writes[1:] == [2, 2]  # two animated models, one vertex range each per frame
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_the_window_loops_each_clip_at_its_end(ctx, tmp_path, which):
+    """Clock 2.5 s: the strip (end 1 s) is at 0.5 and the triangle (end 2 s) at 0.5: the offscreen frame at 0.5."""
+    scene = _two_model_scene(tmp_path)
+    got, _ = _loop(ctx, which, scene, [0.0, 2.5])
+    assert np.array_equal(got, _offscreen(which, scene, 0.5)), which
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_a_looped_triangle_lands_at_the_analytic_place(ctx, tmp_path, which):
+    """One rotation channel 0 -> 180 degrees over 0..1 s; clock 1.25 s loops to 0.25: 45 degrees. The frame covers
+    the float64 triangle turned by 45 degrees (pixels further than 1.5 px from an edge), not the clamped 180."""
+    _animated_file(tmp_path, "rotation", [0.0, 1.0], [_quat_z(0), _quat_z(180)], suffix=".glb")
+    scene = tmp_path / "turn.toml"
+    scene.write_text(scene_text("anim.glb", SIZE))
+    got, _ = _loop(ctx, which, scene, [0.0, 1.25])
+    covered = got[..., :3].max(axis=2) > 20
+    inside, sure = _coverage((TRIANGLE @ _rot_z(45)[:3, :3].T)[None, :, :2], SIZE)
+    assert inside.sum() > 100
+    assert np.array_equal(covered[sure], inside[sure]), which
+
+
+def test_both_paths_draw_the_same_frame_for_the_same_time(ctx, tmp_path):
+    """The two loops at one clock time agree within the paths' usual tolerance (the glTF tests': 1/255)."""
+    scene = _two_model_scene(tmp_path)
+    wgpu_frame, _ = _wgpu_loop(ctx, scene, [0.0, 0.4])
+    raw_frame, _ = _raw_loop(scene, [0.0, 0.4])
+    assert np.abs(wgpu_frame.astype(int) - raw_frame.astype(int)).max() <= 1
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_a_paused_clock_writes_nothing(ctx, tmp_path, which):
+    """P stops the clock: the same time again re-poses and writes nothing."""
+    _, writes = _loop(ctx, which, _two_model_scene(tmp_path), [0.3, 0.3, 0.3])
+    assert writes == [2, 0, 0]
+
+
+def test_a_still_scene_writes_no_buffer_per_frame(ctx, tmp_path, monkeypatch):
+    """No animation: the loop makes no playback and no frame writes a buffer after the first (camera uploads
+    happen only when the camera changed; wgpu's queue.write_buffer counted over frames 2..4)."""
+    import wgpu
+
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [0.9, 0.6, 0.2, 1.0]}, **UNLIT)
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}, "material": mat}]))
+    g.write(tmp_path / "still.glb")
+    scene = tmp_path / "still.toml"
+    scene.write_text(scene_text("still.glb", SIZE))
+    from wgpurender.wgpu_path.device.frame_loop import run_frame
+    from wgpurender.wgpu_path.scene.frame import SceneRenderer
+
+    plan = resolve_plan(scene, ctx.adapter_facts())
+    renderer = SceneRenderer(ctx, plan.scene, plan)
+    assert renderer.playback is None
+    target = renderer.create_output()
+    renderer.play(0.0)
+    run_frame(ctx, renderer.record, target, 0.0)
+    calls = []
+    real = wgpu.GPUQueue.write_buffer
+    monkeypatch.setattr(wgpu.GPUQueue, "write_buffer", lambda self, *a, **k: (calls.append(a), real(self, *a, **k)))
+    for t in (0.5, 1.0, 1.5):
+        assert renderer.play(t) == 0
+        run_frame(ctx, renderer.record, target, t)
+    assert calls == []
+
+
+# -- the file camera and KHR lights follow the clock ------------------------------------------------------------------
+
+@pytest.mark.parametrize("t", [0.25, 1.75])
+def test_a_file_camera_and_lamp_are_placed_again_each_frame(ctx, tmp_path, t):
+    """The rig's camera and lamp nodes slide over keys 0..1 s: after ``play(t)`` the drawn view's eye and the lamp
+    sit at the keys' lerp at ``t mod 1``; the scene's own light stays."""
+    from wgpurender.wgpu_path.scene.frame import SceneRenderer
+
+    plan = resolve_plan(_camera_and_lamp_file(tmp_path), ctx.adapter_facts())
+    renderer = SceneRenderer(ctx, plan.scene, plan)
+    renderer.play(t)
+    at = t % 1.0
+    np.testing.assert_allclose(renderer.scene_pass.scene.camera.eye, _lerp(CAMERA_KEYS, at), atol=1e-6)
+    own, lamp = renderer.scene_pass.scene.lights
+    np.testing.assert_allclose(own.position, (0.0, 5.0, 0.0))
+    np.testing.assert_allclose(lamp.position, _lerp(LIGHT_KEYS, at), atol=1e-6)
+
+
+# -- the windows themselves (Xvfb) ------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("raw", [False, True], ids=["wgpu-window", "raw-window"])
+def test_demo_time_freezes_the_animation_at_t(display, tmp_path, raw):
+    """``demo SCENE --time 1.25`` draws every frame at 1.25 s, looped to 0.25 (45 degrees): the screenshot covers
+    the float64 triangle at 45 degrees. Before, the window drew the block's pose and refused --time."""
+    from wgpurender.core.files.imageio import load_png
+
+    _animated_file(tmp_path, "rotation", [0.0, 1.0], [_quat_z(0), _quat_z(180)], suffix=".glb")
+    scene = tmp_path / "turn.toml"
+    scene.write_text(scene_text("anim.glb", SIZE))
+    shot = tmp_path / "shot.png"
+    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]), str(scene),
+            "--size", f"{SIZE[0]}x{SIZE[1]}", "--frames", "3", "--time", "1.25", "--screenshot", str(shot)]
+    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    covered = load_png(shot)[..., :3].max(axis=2) > 20
+    inside, sure = _coverage((TRIANGLE @ _rot_z(45)[:3, :3].T)[None, :, :2], SIZE)
+    assert np.array_equal(covered[sure], inside[sure])
+
+
+def test_demo_time_on_a_still_scene_is_one_line(tmp_path, capsys):
+    from helpers import one_line_refusal
+
+    from wgpurender.cli import main
+
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
+    g.write(tmp_path / "still.glb")
+    scene = tmp_path / "still.toml"
+    scene.write_text(scene_text("still.glb", SIZE))
+    code = main(["demo", str(scene), "--frames", "1", "--time", "2"])
+    one_line_refusal(code, capsys.readouterr().err.strip(), "is static", "--time 2")
