@@ -32,6 +32,7 @@ GLTF = CAUSES + "|gltf or node or accessor or indices or attributes"
 EXT = "tests/test_gltf_extensions.py"
 FBX = "tests/test_fbx.py"
 KHRONOS = "tests/test_khronos_samples.py"
+PLAY = "tests/test_window_play.py"
 HELDOUT = "tests/test_heldout_khronos.py"
 CC = "tests/test_clearcoat.py"
 CC_PIXELS, CC_TEXTURES, CC_IBL = CC + "|pixels_match", CC + "|textures", CC + "|environment"
@@ -2089,6 +2090,51 @@ MUTATIONS = [
      ["tests/test_cache_entries.py|without_a_home"]),
     ("wgpurender/core/files/cache_entry.py", "@functools.cache\ndef _private_root", "def _private_root",
      ["tests/test_cache_entries.py|without_a_home"]),
+    # play (the windows play glTF animations: core/scene/playback.py, both paths' play(t))
+    ("wgpurender/core/scene/playback.py", "        return t % self.end", "        return min(t, self.end)",
+     [PLAY]),
+    ("wgpurender/core/scene/playback.py", "if self.end <= 0.0 or not math.isfinite(t):", "if self.end <= 0.0:",
+     [PLAY]),
+    ("wgpurender/core/scene/playback.py", "Track(i, animation, float(max(ends)))",
+     "Track(i, animation, float(min(ends)))", [PLAY]),
+    ("wgpurender/core/scene/playback.py",
+     "animation = model.pose.animation if model.pose is not None else None", "animation = None", [PLAY]),
+    ("wgpurender/core/scene/playback.py", "        if not doc.json.get(\"animations\"):\n            continue\n", "",
+     [PLAY]),
+    ("wgpurender/core/scene/playback.py", "gltf_animation.Pose(track.animation, track.local_time(t))",
+     "gltf_animation.Pose(track.animation, t)", [PLAY]),
+    ("wgpurender/core/scene/playback.py", "    return placed_again(scene, tuple(models))",
+     "    return dataclasses.replace(scene, models=tuple(models))", [PLAY]),
+    ("wgpurender/core/scene/playback.py",
+     "            if self._drawn.get(track.model) == local:\n                continue\n", "", [PLAY]),
+    ("wgpurender/core/scene/playback.py", "            self._drawn[track.model] = local\n", "", [PLAY]),
+    ("wgpurender/core/scene/playback.py", "return cls(scene, playing, load) if playing else None",
+     "return cls(scene, playing, load)", [PLAY]),
+    ("wgpurender/core/plan/meshes.py", "        return mesh.index_bytes() != before", "        return False", [PLAY]),
+    ("wgpurender/wgpu_path/scene/resources.py", "            if key != mesh_key:\n                continue\n", "",
+     [PLAY]),
+    ("wgpurender/wgpu_path/scene/resources.py", "write_buffer(buffers.vertex, buffers.vertex_offset,",
+     "write_buffer(buffers.vertex, 0,", [PLAY]),
+    ("wgpurender/wgpu_path/scene/resources.py", "write_buffer(buffers.index, buffers.index_offset,",
+     "write_buffer(buffers.index, 0,", [PLAY]),
+    ("wgpurender/wgpu_path/scene/frame.py", "models=scene.models, lights=scene.lights,", "models=scene.models,",
+     [PLAY]),
+    ("wgpurender/wgpu_path/scene/resources.py", "            if turned:\n                self.ctx.queue",
+     "            if False:\n                self.ctx.queue", [PLAY]),
+    ("wgpurender/raw_path/scene/resources.py", "            if key != mesh_key:\n                continue\n", "",
+     [PLAY]),
+    ("wgpurender/raw_path/scene/resources.py", "            if turned:\n                self._copy",
+     "            if False:\n                self._copy", [PLAY]),
+    ("wgpurender/raw_path/scene/frame.py", "        self._moved = {}\n", "", [PLAY]),
+    ("wgpurender/raw_path/scene/frame.py",
+     "writes = sum(self.resources.rewrite(cmd, key, mesh) for key, mesh in self._moved.items())", "writes = 0",
+     [PLAY]),
+    ("wgpurender/raw_path/window/__init__.py", "                slot.drawable.play(t)", "                pass", [PLAY]),
+    ("wgpurender/wgpu_path/window/__init__.py", "                self.drawable.play(t)", "                pass", [PLAY]),
+    ("wgpurender/api.py", "    if not tracks(load_scene(target)):", "    if False:", [PLAY]),
+    ("wgpurender/core/plan/explain.py",
+     "    out.extend(f\"animation: {line}\" for line in playback_lines(plan))\n", "", [PLAY]),
+    ("wgpurender/core/plan/build.py", "        playing=playback.tracks(scene),\n", "", [PLAY]),
 ]
 
 

@@ -113,10 +113,12 @@ def test_the_plan_lists_each_animated_model_with_its_clip_end(tmp_path, capsys):
 
 
 def test_a_named_animation_loops_at_its_own_end(tmp_path):
-    def lift(g: GltfWriter) -> list[dict]:  # a second animation whose keys end at 3 s
+    def lift(g: GltfWriter) -> list[dict]:  # a second animation: channels whose keys end at 3 s and 1.5 s
         keys, out = g.accessor(np.float32([0.0, 3.0])), g.accessor(np.float32([[0, 0, 0], [0, 4, 0]]))
-        return [{"name": "lift", "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
-                 "samplers": [{"input": keys, "output": out}]}]
+        short, grow = g.accessor(np.float32([0.0, 1.5])), g.accessor(np.float32([[1, 1, 1], [2, 2, 2]]))
+        return [{"name": "lift", "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}},
+                                              {"sampler": 1, "target": {"node": 0, "path": "scale"}}],
+                 "samplers": [{"input": keys, "output": out}, {"input": short, "output": grow}]}]
 
     _animated_file(tmp_path, "translation", [0.0, 1.0], [[0, 0, 0], [4, 0, 0]], extra=lift, suffix=".glb")
     scene = tmp_path / "lift.toml"
@@ -178,6 +180,22 @@ def test_a_looped_triangle_lands_at_the_analytic_place(ctx, tmp_path, which):
     inside, sure = _coverage((TRIANGLE @ _rot_z(45)[:3, :3].T)[None, :, :2], SIZE)
     assert inside.sum() > 100
     assert np.array_equal(covered[sure], inside[sure]), which
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_a_node_that_turns_mirrored_has_its_winding_rewritten(ctx, tmp_path, which):
+    """A STEP scale channel (1, 1, 1) -> (-1, 1, 1) at 1 s: from then on the node mirrors, so the loader reverses
+    the triangle's winding (else the single-sided triangle is culled). Frame at 1.5 s = --time 1.5: the triangle
+    covers its mirrored float64 place."""
+    _animated_file(tmp_path, "scale", [0.0, 1.0, 2.0], [[1, 1, 1], [-1, 1, 1], [-1, 1, 1]], "STEP", suffix=".glb")
+    scene = tmp_path / "mirror.toml"
+    scene.write_text(scene_text("anim.glb", SIZE))
+    got, writes = _loop(ctx, which, scene, [0.0, 1.5])
+    assert writes[1] == 2  # the vertices and the turned indices
+    assert np.array_equal(got, _offscreen(which, scene, 1.5)), which
+    covered = got[..., :3].max(axis=2) > 20
+    inside, sure = _coverage((TRIANGLE * [-1, 1, 1])[None, :, :2], SIZE)
+    assert inside.sum() > 100 and np.array_equal(covered[sure], inside[sure]), which
 
 
 def test_both_paths_draw_the_same_frame_for_the_same_time(ctx, tmp_path):
