@@ -188,8 +188,13 @@ def test_a_node_that_turns_mirrored_has_its_winding_rewritten(ctx, tmp_path, whi
     the triangle's winding (else the single-sided triangle is culled). Frame at 1.5 s = --time 1.5: the triangle
     covers its mirrored float64 place."""
     _animated_file(tmp_path, "scale", [0.0, 1.0, 2.0], [[1, 1, 1], [-1, 1, 1], [-1, 1, 1]], "STEP", suffix=".glb")
+    g = GltfWriter()  # a still model first, out of view: the mirrored model's indices do not start at 0
+    still = {"attributes": {"POSITION": g.positions(TRIANGLE)}, "indices": g.accessor(np.uint16([0, 1, 2]))}
+    g.node(mesh=g.mesh([still]))
+    g.write(tmp_path / "still.glb")
     scene = tmp_path / "mirror.toml"
-    scene.write_text(scene_text("anim.glb", SIZE))
+    scene.write_text(scene_text("still.glb", SIZE, extra="[models.transform]\ntranslate = [50, 0, 0]\n")
+                     + '\n[[models]]\npath = "anim.glb"\n')
     got, writes = _loop(ctx, which, scene, [0.0, 1.5])
     assert writes[1] == 2  # the vertices and the turned indices
     assert np.array_equal(got, _offscreen(which, scene, 1.5)), which
