@@ -486,10 +486,17 @@ def _simple_part(read) -> list[_Part] | None:
     return [_Part(positions, faces, normals, uvs, None)]
 
 
-def _gltf_parts(path: Path, pose: Pose | None = None) -> list[_Part]:
+def posed_mesh(path: str | os.PathLike, doc: gltf_io.GltfDocument, pose: Pose, *,
+               generate_tangents: bool = True) -> Mesh:
+    """:func:`load_mesh` of a glTF file already read and checked (``doc``, its parsed document) at ``pose``: the
+    window's playback re-poses a drawn model each frame without reading and parsing its file again."""
+    return mesh_of_parts(Path(path), _gltf_parts(Path(path), pose, doc), generate_tangents)
+
+
+def _gltf_parts(path: Path, pose: Pose | None = None, doc: gltf_io.GltfDocument | None = None) -> list[_Part]:
     """Every triangle primitive the file's scene places, read by gltf_geometry (no trimesh), in world space, the
-    nodes posed at ``pose`` (gltf_animation.posed) and skins applied."""
-    doc = gltf_animation.posed(gltf_io.read_document(path), pose)
+    nodes posed at ``pose`` (gltf_animation.posed) and skins applied; ``doc``: the file's document, read already."""
+    doc = gltf_animation.posed(doc if doc is not None else gltf_io.read_document(path), pose)
     parts = []
     for world, node, geometry in gltf_geometry.mesh_primitives(doc):
         g = geometry

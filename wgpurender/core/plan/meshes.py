@@ -46,8 +46,12 @@ class PlanMeshes:
     def posed(self, key: tuple, pose) -> Mesh:
         """The mesh of ``key`` (a glTF model's file and the pose it was drawn in) re-posed at ``pose``, loaded by
         the same rule as :meth:`mesh` (tangents where a variant drawing it reads them), not cached: the window's
-        playback (core/scene/playback.py) rewrites the drawn vertices with it each frame."""
-        return load_mesh(key[0], generate_tangents=key in self._needs_tangents, pose=pose, store=False)
+        playback (core/scene/playback.py) rewrites the drawn vertices with it each frame, from the parsed document
+        the scene's load read (not the file again)."""
+        from wgpurender.core.models.mesh import posed_mesh
+        from wgpurender.core.scene.gltf_materials import document  # read once while the file is unchanged
+
+        return posed_mesh(key[0], document(str(key[0])), pose, generate_tangents=key in self._needs_tangents)
 
     def turned(self, key: tuple, mesh: Mesh) -> bool:
         """Make re-posed ``mesh`` the mesh of ``key`` (buffers made from now on hold it) and say whether its
