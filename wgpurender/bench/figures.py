@@ -35,6 +35,12 @@ RUNS = (
     ("NVIDIA H100, frametime pass (15:06 UTC; frames and scene-scale only, with the same-wait row the growth target "
      "is judged on; few graphics units: render passes are raster-bound)", "perf-h100/2026-11-27-frametime",
      "perf/results.csv", None),
+    ("NVIDIA H100, evening closing call (integrator, 15:42 UTC: scene-scale and startup on the merged tree; few "
+     "graphics units: render passes are raster-bound)", "perf-h100/2026-11-27-evening", "perf-scale/results.csv", None),
+    ("NVIDIA H100, evening closing call (15:44 UTC, the same machine: frames and scene, wgpu beside raw)",
+     "perf-h100/2026-11-27-evening", "perf-frames/results.csv", None),
+    ("lavapipe, evening closing run (integrator, 15:48 UTC: scene-scale and startup; the 2-core machine, shared by "
+     "two engineers)", "perf-lavapipe/2026-11-27-evening", "perf/results.csv", None),
 )
 
 
