@@ -2140,6 +2140,17 @@ MUTATIONS = [
     ("wgpurender/core/plan/explain.py",
      "    out.extend(f\"animation: {line}\" for line in playback_lines(plan))\n", "", [PLAY]),
     ("wgpurender/core/plan/build.py", "        playing=playback.tracks(scene),\n", "", [PLAY]),
+    ("wgpurender/core/view/orbit.py", 'getattr(camera, "file_camera", None) is None or pose == seen:',
+     'getattr(camera, "file_camera", None) is None:', [PLAY]),
+    ("wgpurender/core/view/orbit.py", 'if orbit is None or getattr(camera, "file_camera", None) is None or',
+     "if orbit is None or", [PLAY]),
+    ("wgpurender/core/view/orbit.py", "    return Orbit.from_look_at(*pose), pose\n", "    return orbit, pose\n",
+     [PLAY]),
+    ("wgpurender/wgpu_path/window/__init__.py", "                self.view.follow(self.drawable)", "                pass",
+     [PLAY]),
+    ("wgpurender/raw_path/window/__init__.py",
+     "                self.orbit, self._seen = follow(self.orbit, self._seen, slot.drawable.scene.camera)\n", "",
+     [PLAY]),
 ]
 
 

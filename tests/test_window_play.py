@@ -298,3 +298,41 @@ def test_demo_time_on_a_still_scene_is_one_line(tmp_path, capsys):
     scene.write_text(scene_text("still.glb", SIZE))
     code = main(["demo", str(scene), "--frames", "1", "--time", "2"])
     one_line_refusal(code, capsys.readouterr().err.strip(), "is static", "--time 2")
+
+
+@pytest.mark.parametrize("raw", [False, True], ids=["wgpu-window", "raw-window"])
+def test_the_window_view_follows_an_animated_file_camera(display, tmp_path, raw):
+    """The rig's camera node slides from z = 2 to 6 over 0..1 s and the scene views through it: ``demo --time
+    0.25`` shows the view from z = 3, as ``render --time 0.25`` does (the block's own time is 0.5: z = 4), within
+    1/255 (the orbit re-derives the eye from its angles)."""
+    from wgpurender.core.files.imageio import load_png
+
+    scene = _camera_and_lamp_file(tmp_path)
+    shot = tmp_path / "shot.png"
+    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]), str(scene),
+            "--size", "32x32", "--frames", "3", "--time", "0.25", "--screenshot", str(shot)]
+    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    got = load_png(shot)[..., :3].astype(int)
+    draw = api.reference if raw else api.render
+    want = np.asarray(draw(str(scene), t=0.25).rgba8())[..., :3].astype(int)
+    block = np.asarray(draw(str(scene)).rgba8())[..., :3].astype(int)
+    assert np.abs(got - block).max() > 20  # the two views differ: the test can tell them apart
+    assert np.abs(got - want).max() <= 1
+
+
+def test_the_orbit_stays_while_the_file_camera_stands_still():
+    """``follow`` restarts the orbit only when a file camera moved: a paused clock (the same pose again) or a
+    scene's own camera (no file camera) keep the user's orbit object."""
+    from wgpurender.core.scene.model import Camera
+    from wgpurender.core.view.orbit import Orbit, follow
+
+    orbit = Orbit.from_look_at((0.0, 0.0, 9.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    file_cam = Camera(eye=(0.0, 0.0, 3.0), target=(0.0, 0.0, 2.0), up=(0.0, 1.0, 0.0), file_camera=(0, 0))
+    pose = ((0.0, 0.0, 3.0), (0.0, 0.0, 2.0), (0.0, 1.0, 0.0))
+    assert follow(orbit, pose, file_cam) == (orbit, pose)
+    own = Camera(eye=(0.0, 0.0, 3.0), target=(0.0, 0.0, 2.0), up=(0.0, 1.0, 0.0))
+    assert follow(orbit, None, own) == (orbit, None)
+    moved, seen = follow(orbit, None, file_cam)
+    assert seen == pose and moved is not orbit
+    np.testing.assert_allclose(moved.eye(), (0.0, 0.0, 3.0), atol=1e-9)

@@ -105,3 +105,13 @@ def moved_camera(camera, orbit: Orbit):
     if (tuple(camera.eye), tuple(camera.target)) == (eye, target):
         return camera
     return dataclasses.replace(camera, eye=eye, target=target)
+
+
+def follow(orbit: Orbit | None, seen: tuple | None, camera) -> tuple[Orbit | None, tuple | None]:
+    """(orbit, seen) after a frame's ``play(t)``: a file camera an animation moved (its eye, target and up differ
+    from ``seen``, the pose last followed) restarts the orbit where it now is; otherwise, a still camera or a
+    paused clock, the user's orbit stays (core/scene/playback.py places the file camera again each frame)."""
+    pose = (tuple(camera.eye), tuple(camera.target), tuple(camera.up))
+    if orbit is None or getattr(camera, "file_camera", None) is None or pose == seen:
+        return orbit, seen
+    return Orbit.from_look_at(*pose), pose

@@ -50,7 +50,7 @@ from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.core.view import garbage
 from wgpurender.core.view.controls import Controls, PausableClock, ScriptEvent, due, install_callbacks, send
 from wgpurender.core.view.frame_times import BenchmarkSpec, FrameRecorder, TitleCounter
-from wgpurender.core.view.orbit import Orbit, moved_camera
+from wgpurender.core.view.orbit import Orbit, follow, moved_camera
 from wgpurender.raw_path.device.checks import check_msaa, check_size
 from wgpurender.raw_path.device.context import VulkanContext, create_context
 from wgpurender.raw_path.device.images import Image, create_image, subresource_layers, subresource_range
@@ -412,6 +412,7 @@ class RawDemoLoop:
                  script: list[ScriptEvent]) -> None:
         self.raw, self.glfw, self.script = raw, raw.glfw, script
         self.orbit = None if camera is None else Orbit.from_look_at(camera.eye, camera.target, camera.up)
+        self._seen = None if camera is None else (tuple(camera.eye), tuple(camera.target), tuple(camera.up))
         self.controls = Controls(self.glfw, lambda: self.orbit)
         install_callbacks(self.glfw, raw.window, self.controls)
         self.titles = TitleCounter(title)
@@ -457,6 +458,7 @@ class RawDemoLoop:
             slot = raw.slots[count % FRAMES_IN_FLIGHT]
             if hasattr(slot.drawable, "play"):  # a scene: its glTF animations at this frame's time (stages: none)
                 slot.drawable.play(t)  # its re-posed vertices are copied when the slot records, after its fence
+                self.orbit, self._seen = follow(self.orbit, self._seen, slot.drawable.scene.camera)
             apply_camera(slot.drawable, self.orbit)
             if not raw.frame(count, t, last_wanted or bool(shots) or self.video is not None):
                 continue

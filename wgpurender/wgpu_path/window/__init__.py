@@ -226,6 +226,7 @@ class DemoWindow:
         while True:
             if hasattr(self.drawable, "play"):  # a scene: its glTF animations at this frame's time (stages: none)
                 self.drawable.play(t)
+                self.view.follow(self.drawable)  # an animated file camera takes the orbit with it
             self.view.apply_camera(self.drawable)
             self.drawable.resize(tuple(texture.size[:2]))
             record, timer = self._record_fn()

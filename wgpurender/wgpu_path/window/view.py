@@ -16,7 +16,7 @@ import dataclasses
 from pathlib import Path
 
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
-from wgpurender.core.view.orbit import Orbit, moved_camera
+from wgpurender.core.view.orbit import Orbit, follow, moved_camera
 from wgpurender.wgpu_path.device.context import GPUContext
 
 
@@ -136,6 +136,11 @@ class DemoView:
         if pose != self._start_pose or self.orbit is None:
             self.orbit = Orbit.from_look_at(*pose)
             self._start_pose = pose
+
+    def follow(self, drawable) -> None:
+        """After ``play(t)``: an animated file camera moves the orbit with it (core/view/orbit.follow)."""
+        if hasattr(drawable, "scene_pass"):
+            self.orbit, self._start_pose = follow(self.orbit, self._start_pose, drawable.scene_pass.scene.camera)
 
     def apply_camera(self, drawable) -> None:
         """Move the drawable's camera to the orbit's eye and target (a no-op for flat stages)."""
