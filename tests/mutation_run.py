@@ -2151,6 +2151,16 @@ MUTATIONS = [
     ("wgpurender/raw_path/window/__init__.py",
      "                self.orbit, self._seen = follow(self.orbit, self._seen, slot.drawable.scene.camera)\n", "",
      [PLAY]),
+    ("wgpurender/core/plan/meshes.py", "    return (int(moved[0]), int(moved[-1]) + 1) if len(moved) else (0, 0)",
+     "    return (0, len(after)) if len(moved) else (0, 0)", [PLAY]),
+    ("wgpurender/core/plan/meshes.py", "int(moved[-1]) + 1) if len(moved)", "int(moved[-1])) if len(moved)", [PLAY]),
+    ("wgpurender/core/plan/meshes.py", "if len(moved) else (0, 0)", "if len(moved) else (0, len(after))", [PLAY]),
+    ("wgpurender/wgpu_path/scene/resources.py", "buffers.vertex_offset + first * rows.strides[0], data)",
+     "buffers.vertex_offset, data)", [PLAY]),
+    ("wgpurender/raw_path/scene/resources.py", "VERTEX_ATTRIBUTE_READ_BIT, first * stride,",
+     "VERTEX_ATTRIBUTE_READ_BIT, 0,", [PLAY]),
+    ("wgpurender/raw_path/device/memory.py", "region = vk.VkBufferCopy(srcOffset=offset, dstOffset=offset, size=size)",
+     "region = vk.VkBufferCopy(srcOffset=0, dstOffset=offset, size=size)", [PLAY]),
 ]
 
 

@@ -14,6 +14,7 @@ import os
 import subprocess
 import sys
 from contextlib import ExitStack
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -50,9 +51,10 @@ def _two_model_scene(tmp_path):
     return scene
 
 
-def _wgpu_loop(ctx, scene, times) -> tuple[np.ndarray, list[int]]:
+def _wgpu_loop(ctx, scene, times, moved_bytes: list | None = None) -> tuple[np.ndarray, list[int]]:
     """The wgpu window's per-frame calls, headless: the renderer built once (the scene's own pose), then for each
-    clock time ``play(t)`` and one frame; the last frame's pixels and each frame's buffer writes."""
+    clock time ``play(t)`` and one frame; the last frame's pixels and each frame's buffer writes (``moved_bytes``
+    gets the vertex bytes written in all)."""
     from wgpurender.wgpu_path.device.frame_loop import run_frame
     from wgpurender.wgpu_path.scene.frame import SceneRenderer
 
@@ -63,10 +65,12 @@ def _wgpu_loop(ctx, scene, times) -> tuple[np.ndarray, list[int]]:
     for t in times:
         writes.append(renderer.play(t))
         frame = run_frame(ctx, renderer.record, target, t)
+    if moved_bytes is not None:
+        moved_bytes.append(renderer.resources.bytes_written)
     return frame.pixels, writes
 
 
-def _raw_loop(scene, times) -> tuple[np.ndarray, list[int]]:
+def _raw_loop(scene, times, moved_bytes: list | None = None) -> tuple[np.ndarray, list[int]]:
     """The raw window's per-frame calls, headless: ``play(t)``, then the frame recorded (the copies first)."""
     from wgpurender.raw_path.device.command_buffers import one_shot
     from wgpurender.raw_path.device.context import get_vulkan
@@ -88,12 +92,14 @@ def _raw_loop(scene, times) -> tuple[np.ndarray, list[int]]:
                 if k == len(times) - 1:
                     buffer = record_copy_to_buffer(vk_ctx, owned, cmd, target)
         pixels = buffer_to_pixels(vk_ctx, buffer, target)
+        if moved_bytes is not None:
+            moved_bytes.append(frame.resources.bytes_copied)
     vk_ctx.check_validation("the raw window loop")
     return pixels, writes
 
 
-def _loop(ctx, which, scene, times):
-    return _wgpu_loop(ctx, scene, times) if which == "wgpu" else _raw_loop(scene, times)
+def _loop(ctx, which, scene, times, moved_bytes: list | None = None):
+    return _wgpu_loop(ctx, scene, times, moved_bytes) if which == "wgpu" else _raw_loop(scene, times, moved_bytes)
 
 
 def _offscreen(which, scene, t) -> np.ndarray:
@@ -201,6 +207,36 @@ def test_a_node_that_turns_mirrored_has_its_winding_rewritten(ctx, tmp_path, whi
     covered = got[..., :3].max(axis=2) > 20
     inside, sure = _coverage((TRIANGLE * [-1, 1, 1])[None, :, :2], SIZE)
     assert inside.sum() > 100 and np.array_equal(covered[sure], inside[sure]), which
+
+
+def _half_moving_file(tmp_path, name: str, both: bool) -> Path:
+    """Two nodes of one triangle mesh: node 1 slides right over 0..1 s; node 0 stands still, or slides too."""
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [0.9, 0.6, 0.2, 1.0]}, **UNLIT)
+    mesh = g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE * 0.5)}, "material": mat}])
+    g.node(mesh=mesh, translation=[-1.5, -1.0, 0.0])
+    g.node(mesh=mesh, translation=[0.0, 0.5, 0.0])
+    keys = g.accessor(np.float32([0.0, 1.0]))
+    channels, samplers = [], []
+    for node, start in ((0, [-1.5, -1.0, 0.0]), (1, [0.0, 0.5, 0.0]))[(0 if both else 1):]:
+        samplers.append({"input": keys, "output": g.accessor(np.float32([start, np.add(start, [0.8, 0, 0])]))})
+        channels.append({"sampler": len(samplers) - 1, "target": {"node": node, "path": "translation"}})
+    g.doc["animations"] = [{"channels": channels, "samplers": samplers}]
+    g.write(tmp_path / f"{name}.glb", roots=[0, 1])
+    scene = tmp_path / f"{name}.toml"
+    scene.write_text(scene_text(f"{name}.glb", SIZE))
+    return scene
+
+
+@pytest.mark.parametrize("which", PATHS)
+def test_only_the_vertices_that_moved_are_uploaded(ctx, tmp_path, which):
+    """A file whose second node moves and first stands still writes half the vertex bytes of the same file with
+    both nodes moving (the still node's three vertices are not uploaded again), and the frame is still --time's."""
+    half, whole = [], []
+    got, _ = _loop(ctx, which, _half_moving_file(tmp_path, "half", False), [0.0, 0.5], half)
+    _loop(ctx, which, _half_moving_file(tmp_path, "whole", True), [0.0, 0.5], whole)
+    assert half[0] > 0 and 2 * half[0] == whole[0], (half, whole)
+    assert np.array_equal(got, _offscreen(which, tmp_path / "half.toml", 0.5)), which
 
 
 def test_both_paths_draw_the_same_frame_for_the_same_time(ctx, tmp_path):

@@ -100,6 +100,18 @@ def _uv_slots(attributes: tuple[str, ...]) -> tuple[int, ...]:
     return tuple(int(a[2:]) for a in attributes if a.startswith("uv") and a[2:].isdigit())
 
 
+def changed_rows(before, after) -> tuple[int, int]:
+    """(first, end) of the rows of ``after`` (a re-posed mesh's interleaved vertices) that differ from ``before``
+    (the ones on the GPU; None or another shape: all of them): the one range a playback frame writes, so the
+    parts of a model that stand still are not uploaded again; (0, 0) when nothing moved."""
+    import numpy as np
+
+    if before is None or before.shape != after.shape:
+        return 0, len(after)
+    moved = np.flatnonzero(np.any(before != after, axis=1))
+    return (int(moved[0]), int(moved[-1]) + 1) if len(moved) else (0, 0)
+
+
 BUFFER_ALIGN = 4  # set_vertex_buffer's and set_index_buffer's offsets, and a buffer's size, are multiples of 4
 
 

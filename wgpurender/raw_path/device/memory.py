@@ -98,9 +98,11 @@ def upload_buffer(ctx: VulkanContext, owned: ExitStack, data: np.ndarray, usage:
     return target
 
 
-def record_copy(cmd, source: Buffer, target: Buffer, size: int, reader_stage: int, reader_access: int) -> None:
-    """vkCmdCopyBuffer of ``size`` bytes, then the barrier that makes the write visible to the later reader."""
-    region = vk.VkBufferCopy(srcOffset=0, dstOffset=0, size=size)
+def record_copy(cmd, source: Buffer, target: Buffer, size: int, reader_stage: int, reader_access: int,
+                offset: int = 0) -> None:
+    """vkCmdCopyBuffer of ``size`` bytes from ``offset`` (the same in both buffers), then the barrier that makes
+    the write visible to the later reader."""
+    region = vk.VkBufferCopy(srcOffset=offset, dstOffset=offset, size=size)
     vk.vkCmdCopyBuffer(cmd, source.handle, target.handle, 1, [region])
     barrier = vk.VkBufferMemoryBarrier(
         srcAccessMask=vk.VK_ACCESS_TRANSFER_WRITE_BIT, dstAccessMask=reader_access,

@@ -19,7 +19,7 @@ import vulkan as vk
 
 from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import Draw, RenderPlan
-from wgpurender.core.plan.meshes import PlanMeshes
+from wgpurender.core.plan.meshes import PlanMeshes, changed_rows
 from wgpurender.core.plan.model import EXTRA_UV_SLOTS
 from wgpurender.core.scene.texture_pixels import load_image
 from wgpurender.raw_path.device.context import VulkanContext
@@ -74,6 +74,8 @@ class SceneResources:
         self._textures: dict[tuple[Path, bool], TextureImage] = {}
         self._samplers: dict[object, object] = {}
         self._staging: dict[object, object] = {}  # a rewritten buffer's host staging buffer (playback)
+        self._drawn: dict[tuple, np.ndarray] = {}  # a re-posed mesh's interleaved rows now on the GPU (playback)
+        self.bytes_copied = 0  # vertex bytes the playback copied (rewrite)
         self._mipmaps = {(t.path, t.format.endswith("-srgb")): t.mipmaps for t in plan.textures}
 
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
@@ -97,28 +99,38 @@ class SceneResources:
 
     def rewrite(self, cmd, mesh_key: tuple, mesh: Mesh) -> int:
         """Record into ``cmd`` the copy of ``mesh`` (re-posed: same vertices and triangles, moved) over the buffers
-        of ``mesh_key`` (its indices only where a mirroring node turned the winding), each through its own host
-        staging buffer (made once, written while the frame's fence says the last copy is done); the window's
-        playback. The number of buffer copies."""
+        of ``mesh_key``: only the rows from the first to the last vertex that moved (core/plan/meshes.changed_rows),
+        and its indices only where a mirroring node turned the winding, each through its own host staging buffer
+        (made once, written while the frame's fence says the last copy is done); the window's playback. The number
+        of buffer copies (``bytes_copied`` counts their vertex bytes)."""
+        before = self.meshes.mesh(mesh_key)
         writes, turned = 0, self.meshes.turned(mesh_key, mesh)
         for (key, attributes), buffers in self._buffers.items():
             if key != mesh_key:
                 continue
-            self._copy(cmd, buffers.vertex, interleave(mesh, attributes), vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT)
-            writes += 1
+            rows = interleave(mesh, attributes)
+            drawn = self._drawn.get((key, attributes))
+            first, end = changed_rows(drawn if drawn is not None else interleave(before, attributes), rows)
+            self._drawn[(key, attributes)] = rows
+            if first < end:
+                stride = rows.strides[0]
+                self._copy(cmd, buffers.vertex, rows, vk.VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT, first * stride,
+                           (end - first) * stride)
+                writes, self.bytes_copied = writes + 1, self.bytes_copied + (end - first) * stride
             if turned:
-                self._copy(cmd, buffers.index, mesh.all_indices(), vk.VK_ACCESS_INDEX_READ_BIT)
+                indices = mesh.all_indices()
+                self._copy(cmd, buffers.index, indices, vk.VK_ACCESS_INDEX_READ_BIT, 0, indices.nbytes)
                 writes += 1
         return writes
 
-    def _copy(self, cmd, target, data: np.ndarray, reader_access: int) -> None:
+    def _copy(self, cmd, target, data: np.ndarray, reader_access: int, offset: int, size: int) -> None:
         if target.handle not in self._staging:
             self._staging[target.handle] = create_buffer(self.ctx, self.owned, target.size,
                                                          vk.VK_BUFFER_USAGE_TRANSFER_SRC_BIT, HOST_MEMORY)
         staging = self._staging[target.handle]
         write_host_buffer(self.ctx, staging, data)
         # the frame's earlier reads of the buffer (the last frame of this slot) are done: its fence was waited on
-        record_copy(cmd, staging, target, data.nbytes, vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, reader_access)
+        record_copy(cmd, staging, target, size, vk.VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, reader_access, offset)
 
     def texture(self, path: Path, srgb: bool) -> TextureImage:
         """Albedo maps as R8G8B8A8_SRGB (decoded on sampling), data maps as R8G8B8A8_UNORM, as the plan lists."""

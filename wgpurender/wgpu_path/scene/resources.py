@@ -14,7 +14,7 @@ import wgpu
 
 from wgpurender.core.models.mesh import Mesh
 from wgpurender.core.plan import Draw, RenderPlan
-from wgpurender.core.plan.meshes import PlanMeshes, buffer_places
+from wgpurender.core.plan.meshes import PlanMeshes, buffer_places, changed_rows
 from wgpurender.wgpu_path.device.context import GPUContext
 from wgpurender.wgpu_path.device.textures import Texture, create_sampler, create_texture
 from wgpurender.wgpu_path.scene.shader_interface import interleave, vertex_stride
@@ -45,6 +45,8 @@ class SceneResources:
         self._buffers: dict[tuple[Path, tuple[str, ...]], MeshBuffers] = {}
         self._textures: dict[tuple[Path, str], Texture] = {}
         self._mipmaps = {(t.path, t.format): t.mipmaps for t in plan.textures}
+        self._drawn: dict[tuple, object] = {}  # a re-posed mesh's interleaved rows now on the GPU (playback)
+        self.bytes_written = 0  # vertex bytes the playback wrote (rewrite)
 
     # -- meshes ----------------------------------------------------------------
     def upload_meshes(self, draws) -> None:
@@ -92,14 +94,22 @@ class SceneResources:
 
     def rewrite(self, mesh_key: tuple, mesh: Mesh) -> int:
         """Write ``mesh`` (re-posed: same vertices and triangles, moved) over the GPU copies of ``mesh_key``, in
-        place: its own vertex range of the shared buffer (and its indices only where a mirroring node turned the
-        winding); the window's playback. The number of buffer writes."""
+        place: within its own vertex range of the shared buffer, only the rows from the first to the last vertex
+        that moved (core/plan/meshes.changed_rows), and its indices only where a mirroring node turned the winding;
+        the window's playback. The number of buffer writes (``bytes_written`` counts their bytes)."""
+        before = self.meshes.mesh(mesh_key)
         writes, turned = 0, self.meshes.turned(mesh_key, mesh)
         for (key, attributes), buffers in self._buffers.items():
             if key != mesh_key:
                 continue
-            self.ctx.queue.write_buffer(buffers.vertex, buffers.vertex_offset, interleave([mesh], attributes).tobytes())
-            writes += 1
+            rows = interleave([mesh], attributes)
+            drawn = self._drawn.get((key, attributes))
+            first, end = changed_rows(drawn if drawn is not None else interleave([before], attributes), rows)
+            self._drawn[(key, attributes)] = rows
+            if first < end:
+                data = rows[first:end].tobytes()
+                self.ctx.queue.write_buffer(buffers.vertex, buffers.vertex_offset + first * rows.strides[0], data)
+                writes, self.bytes_written = writes + 1, self.bytes_written + len(data)
             if turned:
                 self.ctx.queue.write_buffer(buffers.index, buffers.index_offset, mesh.index_bytes())
                 writes += 1
