@@ -53,13 +53,15 @@ def measure(sample, samples_dir: Path) -> dict:
     local = end / 3
     times = [0.0, local, end + local]
     out = {"file": sample.file, "clip_end_s": end, "clock_times": times, "looped_to": local}
-    for which, loop, draw in (("wgpu", lambda: _wgpu_loop(ctx, scene, times), api.render),
-                              ("raw", lambda: _raw_loop(scene, times), api.reference)):
-        pixels, writes = loop()
+    for which, loop, draw in (("wgpu", lambda moved: _wgpu_loop(ctx, scene, times, moved), api.render),
+                              ("raw", lambda moved: _raw_loop(scene, times, moved), api.reference)):
+        moved = []
+        pixels, writes = loop(moved)
         offscreen = draw(str(scene), t=local).pixels
         still = draw(str(scene), t=0.0).pixels  # the clip's start: the loop's frame must have moved from it
         out[which] = {"writes_per_frame": writes, "equal_to_offscreen": bool(np.array_equal(pixels, offscreen)),
                       "pixels_moved_from_t0": int(np.any(pixels != still, axis=-1).sum()),
+                      "vertex_bytes_uploaded": moved[0],
                       "max_abs_diff_to_offscreen": int(np.abs(pixels.astype(int) - offscreen.astype(int)).max())}
         out[which + "_pixels"] = pixels
     out["wgpu_vs_raw_max_abs_diff"] = int(np.abs(out.pop("wgpu_pixels").astype(int)
