@@ -80,8 +80,8 @@ def describe(playing: tuple[Track, ...], scene: Scene) -> list[str]:
 class Playback:
     """The per-frame work of one scene's tracks: :meth:`frame` gives the scene and the re-posed meshes at ``t``.
 
-    ``load(path, pose, key)`` loads a mesh as the path's plan meshes do (core/plan/meshes.PlanMeshes.posed), so a
-    re-posed mesh has the attributes the buffers hold. Nothing is re-posed when a model's clip time is the one
+    ``load(key, pose)`` loads a mesh as the path's plan meshes do (``PlanMeshes.posed`` in core/plan/meshes.py),
+    so a re-posed mesh has the attributes the buffers hold. Nothing is re-posed when a model's clip time is the one
     drawn last (a paused clock writes nothing)."""
 
     def __init__(self, scene: Scene, playing: tuple[Track, ...], load) -> None:
