@@ -2161,6 +2161,8 @@ MUTATIONS = [
      "VERTEX_ATTRIBUTE_READ_BIT, 0,", [PLAY]),
     ("wgpurender/raw_path/device/memory.py", "region = vk.VkBufferCopy(srcOffset=offset, dstOffset=offset, size=size)",
      "region = vk.VkBufferCopy(srcOffset=0, dstOffset=offset, size=size)", [PLAY]),
+    ("wgpurender/core/scene/playback.py", "not in GLTF_SUFFIXES or not model.motion:", "not in GLTF_SUFFIXES:",
+     [PLAY]),
 ]
 
 

@@ -372,3 +372,19 @@ def test_the_orbit_stays_while_the_file_camera_stands_still():
     moved, seen = follow(orbit, None, file_cam)
     assert seen == pose and moved is not orbit
     np.testing.assert_allclose(moved.eye(), (0.0, 0.0, 3.0), atol=1e-9)
+
+
+def test_finding_the_tracks_of_a_still_scene_reads_no_file(tmp_path, monkeypatch):
+    """A still glTF model (no animation: its load found no motion) is skipped without parsing its file again: a
+    scene of many still models pays nothing per plan (the parsed-file cache holds only a few files)."""
+    from wgpurender.core.scene import gltf_materials, load_scene
+    from wgpurender.core.scene.playback import tracks
+
+    g = GltfWriter()
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
+    g.write(tmp_path / "still.glb")
+    scene = tmp_path / "still.toml"
+    scene.write_text(scene_text("still.glb", SIZE))
+    loaded = load_scene(scene)
+    monkeypatch.setattr(gltf_materials, "document", lambda path: pytest.fail(f"{path} parsed again"))
+    assert tracks(loaded) == ()
