@@ -51,6 +51,17 @@ def _two_model_scene(tmp_path):
     return scene
 
 
+def _still_scene(tmp_path) -> Path:
+    """One unlit triangle in a glTF file without animations, in a scene of its own."""
+    g = GltfWriter()
+    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [0.9, 0.6, 0.2, 1.0]}, **UNLIT)
+    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}, "material": mat}]))
+    g.write(tmp_path / "still.glb")
+    scene = tmp_path / "still.toml"
+    scene.write_text(scene_text("still.glb", SIZE))
+    return scene
+
+
 def _wgpu_loop(ctx, scene, times, moved_bytes: list | None = None) -> tuple[np.ndarray, list[int]]:
     """The wgpu window's per-frame calls, headless: the renderer built once (the scene's own pose), then for each
     clock time ``play(t)`` and one frame; the last frame's pixels and each frame's buffer writes (``moved_bytes``
@@ -143,11 +154,7 @@ def test_a_clip_of_one_key_stays_at_zero():
 
 
 def test_a_still_scene_plays_nothing(tmp_path, capsys):
-    g = GltfWriter()
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
-    g.write(tmp_path / "still.glb")
-    scene = tmp_path / "still.toml"
-    scene.write_text(scene_text("still.glb", SIZE))
+    scene = _still_scene(tmp_path)
     plan = resolve_plan(scene, None)
     assert plan.playing == ()
     assert "animation:" not in plan.explain()
@@ -259,12 +266,7 @@ def test_a_still_scene_writes_no_buffer_per_frame(ctx, tmp_path, monkeypatch):
     happen only when the camera changed; wgpu's queue.write_buffer counted over frames 2..4)."""
     import wgpu
 
-    g = GltfWriter()
-    mat = g.material(pbrMetallicRoughness={"baseColorFactor": [0.9, 0.6, 0.2, 1.0]}, **UNLIT)
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}, "material": mat}]))
-    g.write(tmp_path / "still.glb")
-    scene = tmp_path / "still.toml"
-    scene.write_text(scene_text("still.glb", SIZE))
+    scene = _still_scene(tmp_path)
     from wgpurender.wgpu_path.device.frame_loop import run_frame
     from wgpurender.wgpu_path.scene.frame import SceneRenderer
 
@@ -327,11 +329,7 @@ def test_demo_time_on_a_still_scene_is_one_line(tmp_path, capsys):
 
     from wgpurender.cli import main
 
-    g = GltfWriter()
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
-    g.write(tmp_path / "still.glb")
-    scene = tmp_path / "still.toml"
-    scene.write_text(scene_text("still.glb", SIZE))
+    scene = _still_scene(tmp_path)
     code = main(["demo", str(scene), "--frames", "1", "--time", "2"])
     one_line_refusal(code, capsys.readouterr().err.strip(), "is static", "--time 2")
 
@@ -380,11 +378,7 @@ def test_finding_the_tracks_of_a_still_scene_reads_no_file(tmp_path, monkeypatch
     from wgpurender.core.scene import gltf_materials, load_scene
     from wgpurender.core.scene.playback import tracks
 
-    g = GltfWriter()
-    g.node(mesh=g.mesh([{"attributes": {"POSITION": g.positions(TRIANGLE)}}]))
-    g.write(tmp_path / "still.glb")
-    scene = tmp_path / "still.toml"
-    scene.write_text(scene_text("still.glb", SIZE))
+    scene = _still_scene(tmp_path)
     loaded = load_scene(scene)
     monkeypatch.setattr(gltf_materials, "document", lambda path: pytest.fail(f"{path} parsed again"))
     assert tracks(loaded) == ()
