@@ -305,21 +305,27 @@ def test_a_file_camera_and_lamp_are_placed_again_each_frame(ctx, tmp_path, t):
 
 # -- the windows themselves (Xvfb) ------------------------------------------------------------------------------------
 
+def _demo_shot(display, scene: Path, raw: bool, size, time: str) -> np.ndarray:
+    """The RGB of ``demo SCENE --time TIME``'s last frame (3 frames; the wgpu window without its overlay, or the
+    raw window) under the test's Xvfb display."""
+    from wgpurender.core.files.imageio import load_png
+
+    shot = scene.parent / "shot.png"
+    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]), str(scene),
+            "--size", f"{size[0]}x{size[1]}", "--frames", "3", "--time", time, "--screenshot", str(shot)]
+    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    return load_png(shot)[..., :3]
+
+
 @pytest.mark.parametrize("raw", [False, True], ids=["wgpu-window", "raw-window"])
 def test_demo_time_freezes_the_animation_at_t(display, tmp_path, raw):
     """``demo SCENE --time 1.25`` draws every frame at 1.25 s, looped to 0.25 (45 degrees): the screenshot covers
     the float64 triangle at 45 degrees. Before, the window drew the block's pose and refused --time."""
-    from wgpurender.core.files.imageio import load_png
-
     _animated_file(tmp_path, "rotation", [0.0, 1.0], [_quat_z(0), _quat_z(180)], suffix=".glb")
     scene = tmp_path / "turn.toml"
     scene.write_text(scene_text("anim.glb", SIZE))
-    shot = tmp_path / "shot.png"
-    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]), str(scene),
-            "--size", f"{SIZE[0]}x{SIZE[1]}", "--frames", "3", "--time", "1.25", "--screenshot", str(shot)]
-    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
-    assert result.returncode == 0, result.stderr
-    covered = load_png(shot)[..., :3].max(axis=2) > 20
+    covered = _demo_shot(display, scene, raw, SIZE, "1.25").max(axis=2) > 20
     inside, sure = _coverage((TRIANGLE @ _rot_z(45)[:3, :3].T)[None, :, :2], SIZE)
     assert np.array_equal(covered[sure], inside[sure])
 
@@ -339,15 +345,8 @@ def test_the_window_view_follows_an_animated_file_camera(display, tmp_path, raw)
     """The rig's camera node slides from z = 2 to 6 over 0..1 s and the scene views through it: ``demo --time
     0.25`` shows the view from z = 3, as ``render --time 0.25`` does (the block's own time is 0.5: z = 4), within
     1/255 (the orbit re-derives the eye from its angles)."""
-    from wgpurender.core.files.imageio import load_png
-
     scene = _camera_and_lamp_file(tmp_path)
-    shot = tmp_path / "shot.png"
-    argv = [sys.executable, "-m", "wgpurender", "demo", *(["--raw"] if raw else ["--no-overlay"]), str(scene),
-            "--size", "32x32", "--frames", "3", "--time", "0.25", "--screenshot", str(shot)]
-    result = subprocess.run(argv, env=dict(os.environ, DISPLAY=display), capture_output=True, text=True, timeout=300)
-    assert result.returncode == 0, result.stderr
-    got = load_png(shot)[..., :3].astype(int)
+    got = _demo_shot(display, scene, raw, (32, 32), "0.25").astype(int)
     draw = api.reference if raw else api.render
     want = np.asarray(draw(str(scene), t=0.25).rgba8())[..., :3].astype(int)
     block = np.asarray(draw(str(scene)).rgba8())[..., :3].astype(int)
