@@ -381,3 +381,37 @@ def test_finding_the_tracks_of_a_still_scene_reads_no_file(tmp_path, monkeypatch
     loaded = load_scene(scene)
     monkeypatch.setattr(gltf_materials, "document", lambda path: pytest.fail(f"{path} parsed again"))
     assert tracks(loaded) == ()
+
+
+def test_a_skin_without_animations_plays_nothing(tmp_path):
+    """A skinned file whose animations are taken out has motion lines (its skin, posed at rest) but nothing to
+    play: no track, and no error for the missing animation."""
+    import json
+    import struct
+
+    from gltf_gen import write_container
+
+    path = _skinned_file(tmp_path)
+    data = path.read_bytes()  # the .glb the test wrote: header, JSON chunk, BIN chunk (glTF 2.0, 4.4)
+    length = struct.unpack_from("<I", data, 12)[0]
+    doc = json.loads(data[20:20 + length])
+    del doc["animations"]
+    write_container(path, doc, data[20 + length + 8:])
+    scene = tmp_path / "rest.toml"
+    scene.write_text(scene_text("skin.glb", SIZE))
+    plan = resolve_plan(scene, None)
+    assert any("skin 0" in note for note in plan.notes)  # the skin is there (the load's motion line)
+    assert plan.playing == ()
+
+
+def test_a_paused_clock_poses_nothing_again(tmp_path):
+    """The same clip time twice (P): the second frame loads no mesh; a new time loads one per animated model (the
+    strip's clip ends at 1 s, the triangle's at 2 s: clock 2.5 is 0.5 for both, the poses drawn already)."""
+    from wgpurender.core.scene.playback import Playback
+
+    plan = resolve_plan(_two_model_scene(tmp_path), None)
+    loads = []
+    playback = Playback(plan.scene, plan.playing, lambda key, pose: loads.append((key[0].name, pose.time)))
+    for t in (0.5, 0.5, 2.5, 0.7):
+        playback.frame(t)
+    assert loads == [("skin.glb", 0.5), ("anim.glb", 0.5), ("skin.glb", 0.7), ("anim.glb", 0.7)]
