@@ -85,8 +85,11 @@ class ScenePassRenderer:
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
         self._material_layouts: GpuCache[tuple] = GpuCache("scene-material-layouts")
         if self.draws:
-            self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
-            self._setup_uniforms()
+            self.resources.meshes.start_reading()  # worker processes read the files while the blocks are made
+            try:
+                self._setup_uniforms()  # needs no mesh (a CPU culler's bounds wait for the workers)
+            finally:  # a refused mesh file is still the one error said, as when the meshes came first
+                self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask
             self._setup_draws()
         self.bundle = self._make_bundle()
 
