@@ -53,7 +53,10 @@ SPLIT = (  # (phase, module, function or Class.method): looked up through the mo
     ("renderer: uniforms and object blocks", "wgpurender.wgpu_path.scene.scene_pass",
      "ScenePassRenderer._setup_uniforms"),
     ("renderer: draws (pipelines, material groups)", "wgpurender.wgpu_path.scene.scene_pass",
-     "ScenePassRenderer._setup_draws"),
+     "ScenePassRenderer._setup_draws"),  # load3 on: only each draw's mesh buffers and index range
+    ("renderer: draws' pipelines and material groups", "wgpurender.wgpu_path.scene.scene_pass",
+     "ScenePassRenderer._setup_materials"),  # while the workers read (load3 on)
+    ("renderer: workers started", "wgpurender.core.models.mesh_workers", "Reading.__init__"),
     ("renderer: pipelines created", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer.pipeline"),
     ("renderer: bundle recorded", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer._make_bundle"),
 )

@@ -2090,6 +2090,26 @@ MUTATIONS = [
      ["tests/test_cache_entries.py|without_a_home"]),
     ("wgpurender/core/files/cache_entry.py", "@functools.cache\ndef _private_root", "def _private_root",
      ["tests/test_cache_entries.py|without_a_home"]),
+    # load3: the mesh workers started ahead of the scene pass's set-up (core/plan/meshes.start_reading,
+    # core/models/mesh_workers.Reading, wgpu_path/scene/scene_pass.py)
+    ("wgpurender/core/plan/meshes.py", "if self.plan.mesh_workers and not self._meshes and self._reading is None:",
+     "if not self._meshes and self._reading is None:", ["tests/test_mesh_workers_ahead.py"]),
+    ("wgpurender/core/plan/meshes.py", "            self._reading = mesh_workers.Reading(",
+     "            self._reading = None and mesh_workers.Reading(", ["tests/test_mesh_workers_ahead.py"]),
+    ("wgpurender/core/plan/meshes.py", "        reading, self._reading = self._reading, None\n",
+     "        reading = self._reading\n", ["tests/test_mesh_workers_ahead.py", WORKERS]),
+    ("wgpurender/core/models/mesh_workers.py", "            pool.shutdown(wait=False, cancel_futures=True)",
+     "            pass", ["tests/test_mesh_workers_ahead.py|never_finished"]),
+    ("wgpurender/core/models/mesh_workers.py", "            _take(chunk, read_chunk(chunk, self.where), meshes)",
+     "            _take(chunk, read_chunk(chunk, None), meshes)", [WORKERS]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            self.resources.meshes.start_reading()  #",
+     "            pass  #", ["tests/test_mesh_workers_ahead.py"]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py", "            finally:  # a refused mesh file",
+     "            except UserError:  # a refused mesh file", ["tests/test_mesh_workers_ahead.py"]),
+    ("wgpurender/wgpu_path/scene/scene_pass.py",
+     "for draw, (pipeline, group, data) in zip(self.draws, self._draw_materials, strict=True)]",
+     "for draw, (pipeline, group, data) in zip(self.draws, self._draw_materials[::-1], strict=True)]",
+     [SHARED_MESH, "tests/test_instancing.py", INSTANCE_PIXELS]),
 ]
 
 

@@ -47,10 +47,8 @@ class Reading:
         self.where = where
         _before_fork()
         self.pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
-        try:  # every chunk submitted now (Executor.map submits eagerly), read back in order by finish()
-            self.results = self.pool.map(read_chunk, self.chunks, repeat(where))
-        except BrokenProcessPool:
-            self.results = iter(())
+        # every chunk submitted now (Executor.map submits eagerly), read back in order by finish()
+        self.results = self.pool.map(read_chunk, self.chunks, repeat(where))
 
     def finish(self) -> dict[Job, Mesh | None]:
         meshes: dict[Job, Mesh | None] = {}
