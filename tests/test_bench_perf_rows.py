@@ -142,3 +142,26 @@ def test_the_scale_rows_follow_the_bench_gc_setting_as_the_other_frames_do(monke
         if not was:
             gc.disable()
     assert len(seen) == 10 and set(seen) == {collector_on}, seen
+
+
+def test_scale_loads_a_warm_up_scene_of_each_kind_before_the_first_timed_load(ctx, monkeypatch):
+    """The first load in a process pays the driver's first pipelines (2.4 s on a fresh H100 host): bench_scale loads
+    a small instanced and a small distinct scene, untimed and without rows, before the first timed case."""
+    from wgpurender.bench import scene as bench_scene
+
+    events = []
+    real_runner = bench_scene.SceneRunner
+
+    def runner(ctx_, path, size):
+        events.append(("load", path.parent.name, path.stem))
+        return real_runner(ctx_, path, size)
+
+    monkeypatch.setattr(bench_scene, "SceneRunner", runner)
+    monkeypatch.setattr(scale, "bench_case", lambda ctx_, path, case, size, frames: events.append(("timed", case))
+                        or [])
+    results, notes = scale.bench_scale(ctx, [3], frames=1, size=(16, 12), log=lambda _: None)
+    kinds = [e for e in events if e[0] == "load"]
+    assert kinds == [("load", "warm-up", f"instanced_{scale.WARM_UP_COUNT}"),
+                     ("load", "warm-up", f"distinct_{scale.WARM_UP_COUNT}")]
+    assert events.index(kinds[-1]) < events.index(("timed", "instanced/3")) and results == []
+    assert any("untimed load" in n for n in notes)

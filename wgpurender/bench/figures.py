@@ -39,6 +39,8 @@ RUNS = (
      "graphics units: render passes are raster-bound)", "perf-h100/2026-11-27-evening", "perf-scale/results.csv", None),
     ("NVIDIA H100, evening closing call (15:44 UTC, the same machine: frames and scene, wgpu beside raw)",
      "perf-h100/2026-11-27-evening", "perf-frames/results.csv", None),
+    ("lavapipe, evening closing run (integrator, 15:48 UTC: scene-scale and startup; the 2-core machine, shared by "
+     "two engineers)", "perf-lavapipe/2026-11-27-evening", "perf/results.csv", None),
 )
 
 

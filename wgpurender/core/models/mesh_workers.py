@@ -39,7 +39,8 @@ def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mes
 class Reading:
     """The jobs handed to ``workers`` forked processes at once (they read while this process goes on: the
     renderer sets up what needs no mesh meanwhile); :meth:`finish` takes their meshes, in ``jobs`` order, and
-    reads here what a dead worker left. A pool that is never finished is shut down when the object goes."""
+    reads here what a dead worker left. A reading never finished ends its workers when it goes (the executor's
+    own collection hook)."""
 
     def __init__(self, jobs: list[Job], workers: int, where: Path | None) -> None:
         size = max(CHUNK, -(-len(jobs) // (workers * CHUNKS_PER_WORKER)))
@@ -64,11 +65,6 @@ class Reading:
         for chunk in self.chunks[done:]:
             _take(chunk, read_chunk(chunk, self.where), meshes)
         return meshes
-
-    def __del__(self) -> None:
-        pool = getattr(self, "pool", None)
-        if pool is not None:
-            pool.shutdown(wait=False, cancel_futures=True)
 
 
 def _before_fork() -> None:
