@@ -57,6 +57,8 @@ SPLIT = (  # (phase, module, function or Class.method): looked up through the mo
     ("renderer: draws' pipelines and material groups", "wgpurender.wgpu_path.scene.scene_pass",
      "ScenePassRenderer._setup_materials"),  # while the workers read (load3 on)
     ("renderer: workers started", "wgpurender.core.models.mesh_workers", "Reading.__init__"),
+    ("renderer: workers' meshes taken (waits, unpacking)", "wgpurender.core.models.mesh_workers",
+     "Reading.finish"),  # load3 on: what is left of the workers' part after the blocks were made beside it
     ("renderer: pipelines created", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer.pipeline"),
     ("renderer: bundle recorded", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer._make_bundle"),
 )

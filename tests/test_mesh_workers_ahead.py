@@ -66,16 +66,27 @@ def test_without_workers_nothing_starts_ahead(tmp_path):
     assert meshes._reading is None and not list(obj_cached.folder().glob("*.mesh"))
 
 
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` still runs (a zombie has ended): read from /proc, not through the Process object,
+    whose poll answers "alive" forever once the executor's own thread has reaped the child."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rpartition(")")[2].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
 def test_a_reading_never_finished_ends_its_workers(tmp_path):
     names = _cubes(tmp_path, 2)
     reading = mesh_workers.Reading([(tmp_path / n, False) for n in names], 1, None)
-    processes = list(reading.pool._processes.values())
-    assert processes
+    pids = [p.pid for p in reading.pool._processes.values()]
+    assert pids and all(_running(pid) for pid in pids)
     del reading
     gc.collect()
-    for p in processes:
-        p.join(30)
-        assert not p.is_alive()
+    deadline = time.monotonic() + 30
+    while any(_running(pid) for pid in pids):
+        assert time.monotonic() < deadline, "an unfinished reading left its workers running"
+        time.sleep(0.05)
 
 
 def test_the_renderer_draws_the_same_image_with_the_workers_ahead(tmp_path, ctx, monkeypatch):
