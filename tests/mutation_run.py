@@ -2100,8 +2100,6 @@ MUTATIONS = [
      "if not self._meshes and self._reading is None:", ["tests/test_mesh_workers_ahead.py"]),
     ("wgpurender/core/plan/meshes.py", "            self._reading = mesh_workers.Reading(",
      "            self._reading = None and mesh_workers.Reading(", ["tests/test_mesh_workers_ahead.py"]),
-    ("wgpurender/core/plan/meshes.py", "        reading, self._reading = self._reading, None\n",
-     "        reading = self._reading\n", ["tests/test_mesh_workers_ahead.py", WORKERS]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            self.resources.meshes.start_reading()  #",
      "            pass  #", ["tests/test_mesh_workers_ahead.py"]),
     ("wgpurender/wgpu_path/scene/scene_pass.py", "            finally:  # a refused mesh file",
