@@ -1,5 +1,5 @@
-"""The workers handed the plan's OBJ files ahead (core/plan/meshes.PlanMeshes.start_reading,
-core/models/mesh_workers.Reading): they read while the scene pass makes what needs no mesh, and the meshes, the
+"""The workers handed the plan's OBJ files ahead (PlanMeshes.start_reading in core/plan/meshes.py,
+Reading in core/models/mesh_workers.py): they read while the scene pass makes what needs no mesh, and the meshes, the
 images and the one-line refusal are those of a read started where the meshes are first asked for."""
 
 from __future__ import annotations
