@@ -53,7 +53,12 @@ SPLIT = (  # (phase, module, function or Class.method): looked up through the mo
     ("renderer: uniforms and object blocks", "wgpurender.wgpu_path.scene.scene_pass",
      "ScenePassRenderer._setup_uniforms"),
     ("renderer: draws (pipelines, material groups)", "wgpurender.wgpu_path.scene.scene_pass",
-     "ScenePassRenderer._setup_draws"),
+     "ScenePassRenderer._setup_draws"),  # load3 on: only each draw's mesh buffers and index range
+    ("renderer: draws' pipelines and material groups", "wgpurender.wgpu_path.scene.scene_pass",
+     "ScenePassRenderer._setup_materials"),  # while the workers read (load3 on)
+    ("renderer: workers started", "wgpurender.core.models.mesh_workers", "Reading.__init__"),
+    ("renderer: workers' meshes taken (waits, unpacking)", "wgpurender.core.models.mesh_workers",
+     "Reading.finish"),  # load3 on: what is left of the workers' part after the blocks were made beside it
     ("renderer: pipelines created", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer.pipeline"),
     ("renderer: bundle recorded", "wgpurender.wgpu_path.scene.scene_pass", "ScenePassRenderer._make_bundle"),
 )
@@ -73,8 +78,8 @@ def timers(split: tuple) -> dict[str, list[float]]:
         *outer, attr = name.split(".")
         for part in outer:
             owner = getattr(owner, part, None)
-        real = getattr(owner, attr, None)
-        if real is None:
+        real = None if owner is None else getattr(owner, attr, None)
+        if real is None:  # a tree without this class or function (main before load3's Reading)
             continue
         cell = spent[phase] = [0.0, 0]
 

@@ -33,23 +33,38 @@ Job = tuple[Path, bool]  # (model file, make tangents)
 def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mesh | None]:
     """Every job's mesh (None: not a simple OBJ file), read by ``workers`` forked processes; raises the
     UserError of the first refused file in ``jobs`` order."""
-    size = max(CHUNK, -(-len(jobs) // (workers * CHUNKS_PER_WORKER)))
-    chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
-    _before_fork()
-    meshes: dict[Job, Mesh | None] = {}
-    done = 0
-    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
-    try:
-        for result in pool.map(read_chunk, chunks, repeat(where)):  # in order, each as soon as it is read
-            _take(chunks[done], result, meshes)  # unpacked here while the workers read the next chunks
-            done += 1
-    except BrokenProcessPool:  # a worker died (killed, out of memory): the rest in this process
-        pass
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)  # a refusal stops the chunks not started yet
-    for chunk in chunks[done:]:
-        _take(chunk, read_chunk(chunk, where), meshes)
-    return meshes
+    return Reading(jobs, workers, where).finish()
+
+
+class Reading:
+    """The jobs handed to ``workers`` forked processes at once (they read while this process goes on: the
+    renderer sets up what needs no mesh meanwhile); :meth:`finish` takes their meshes, in ``jobs`` order, and
+    reads here what a dead worker left. A reading never finished ends its workers when it goes (the executor's
+    own collection hook)."""
+
+    def __init__(self, jobs: list[Job], workers: int, where: Path | None) -> None:
+        size = max(CHUNK, -(-len(jobs) // (workers * CHUNKS_PER_WORKER)))
+        self.chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
+        self.where = where
+        _before_fork()
+        self.pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+        # every chunk submitted now (Executor.map submits eagerly), read back in order by finish()
+        self.results = self.pool.map(read_chunk, self.chunks, repeat(where))
+
+    def finish(self) -> dict[Job, Mesh | None]:
+        meshes: dict[Job, Mesh | None] = {}
+        done = 0
+        try:
+            for result in self.results:  # in order, each as soon as it is read
+                _take(self.chunks[done], result, meshes)  # unpacked here while the workers read the next chunks
+                done += 1
+        except BrokenProcessPool:  # a worker died (killed, out of memory): the rest in this process
+            pass
+        finally:
+            self.pool.shutdown(wait=True, cancel_futures=True)  # a refusal stops the chunks not started yet
+        for chunk in self.chunks[done:]:
+            _take(chunk, read_chunk(chunk, self.where), meshes)
+        return meshes
 
 
 def _before_fork() -> None:

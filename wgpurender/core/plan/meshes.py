@@ -29,6 +29,7 @@ class PlanMeshes:
         # cost more than the parses they save (core/models/obj_cached._load)
         obj_files = {d.model_path for d in plan.scene_pass.draws if d.model_path.suffix.lower() == ".obj"}
         self._store = len(obj_files) < MIN_FILES
+        self._reading = None  # the workers' reads, when started ahead (start_reading)
 
     def mesh(self, key: tuple) -> Mesh:
         """The loaded mesh of a draw's ``mesh_key`` (its file and pose); tangents only when a variant drawing it
@@ -42,6 +43,18 @@ class PlanMeshes:
                 self._meshes[key] = load_mesh(path, generate_tangents=key in self._needs_tangents, pose=pose,
                                               store=self._store)
         return self._meshes[key]
+
+    def start_reading(self) -> None:
+        """With worker processes in the plan, hand them every OBJ file of the plan now, so that they read while
+        the caller sets up what needs no mesh; the first :meth:`mesh` call takes what they read (and raises the
+        first refusal in draw order, as when they are started there). Nothing without workers."""
+        if self.plan.mesh_workers and not self._meshes and self._reading is None:
+            from wgpurender.core.models import mesh_workers, obj_cached
+
+            keys = dict.fromkeys(d.mesh_key for d in self.plan.scene_pass.draws
+                                 if d.model_path.suffix.lower() == ".obj" and d.pose is None)
+            jobs = [(key[0], key in self._needs_tangents) for key in keys]
+            self._reading = mesh_workers.Reading(jobs, self.plan.mesh_workers, obj_cached.folder())
 
     def posed(self, key: tuple, pose) -> Mesh:
         """The mesh of ``key`` (a glTF model's file and the pose it was drawn in) re-posed at ``pose``, loaded by
@@ -63,12 +76,9 @@ class PlanMeshes:
     def _read_in_workers(self) -> None:
         """The plan's OBJ files, in draw order, read by core/models/mesh_workers.py; a file that is not a simple
         OBJ is left to :func:`load_mesh` (the general loader)."""
-        from wgpurender.core.models import mesh_workers, obj_cached
-
-        keys = dict.fromkeys(d.mesh_key for d in self.plan.scene_pass.draws
-                             if d.model_path.suffix.lower() == ".obj" and d.pose is None)
-        jobs = [(key[0], key in self._needs_tangents) for key in keys]
-        for (path, _), mesh in mesh_workers.load_all(jobs, self.plan.mesh_workers, obj_cached.folder()).items():
+        self.start_reading()
+        reading, self._reading = self._reading, None
+        for (path, _), mesh in reading.finish().items():
             if mesh is not None:
                 self._meshes[(path, None)] = mesh
 

@@ -85,8 +85,12 @@ class ScenePassRenderer:
         self._modules: GpuCache[wgpu.GPUShaderModule] = GpuCache("scene-modules")
         self._material_layouts: GpuCache[tuple] = GpuCache("scene-material-layouts")
         if self.draws:
-            self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask for theirs
-            self._setup_uniforms()
+            self.resources.meshes.start_reading()  # worker processes read the files while the blocks are made
+            try:  # neither needs a mesh (a CPU culler's bounds wait for the workers)
+                self._setup_uniforms()
+                self._setup_materials()
+            finally:  # a refused mesh file is still the one error said, as when the meshes came first
+                self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask
             self._setup_draws()
         self.bundle = self._make_bundle()
 
@@ -139,8 +143,10 @@ class ScenePassRenderer:
         self.object_group = dev.create_bind_group(label="objects", layout=self.object_layout, entries=resources)
 
     # -- per draw: pipeline, material group, immediates --------------------------
-    def _setup_draws(self) -> None:
-        self.draw_state = []
+    def _setup_materials(self) -> None:
+        """Each draw's pipeline, material group and packed Material (textures loaded, pipelines made): no mesh
+        needed, so this runs while worker processes read the mesh files."""
+        self._draw_materials = []
         groups: dict[int, wgpu.GPUBindGroup | None] = {}  # by material slot (core/plan/model.material_numbers)
         packed: dict[int, bytes] = {}  # equal materials hold equal variants and factors: packed once (10k draws)
         pipelines: dict[str, wgpu.GPURenderPipeline] = {}  # by the plan's key: looked up once, not once a draw
@@ -156,8 +162,13 @@ class ScenePassRenderer:
             pipeline = pipelines.get(draw.pipeline_key)
             if pipeline is None:
                 pipeline = pipelines[draw.pipeline_key] = self.pipeline(self.plan.pipeline(draw.pipeline_key))
-            buffers = self.resources.mesh_buffers(draw)
-            self.draw_state.append((draw, pipeline, groups[slot], data, buffers, self.resources.index_range(draw)))
+            self._draw_materials.append((pipeline, groups[slot], data))
+
+    def _setup_draws(self) -> None:
+        """Each draw's state: its material part and its mesh's buffers and index range (the meshes uploaded)."""
+        buffers, index_range = self.resources.mesh_buffers, self.resources.index_range
+        self.draw_state = [(draw, pipeline, group, data, buffers(draw), index_range(draw))
+                           for draw, (pipeline, group, data) in zip(self.draws, self._draw_materials, strict=True)]
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
