@@ -7,8 +7,9 @@ clip's end (its channels' largest key time): the model is posed at ``t mod end``
 
 What moves per frame, made here once for both paths (so both draw the same frame for the same time):
 
-- the vertices of each animated model's meshes, re-posed on the CPU (nodes and skins; core/models/mesh.load_mesh
-  with the pose), which each path writes over that mesh's own vertex range of its shared buffer, nothing else;
+- the vertices of each animated model's meshes, re-posed on the CPU (nodes and skins, as core/models/mesh.load_mesh
+  poses them, from the document parsed at load), of which each path writes the rows from the first to the last
+  vertex that moved over that mesh's own range of its shared vertex buffer (core/plan/meshes.changed_rows);
 - the view when it is a file camera on an animated node, and the file's KHR lights (model_motion.placed_again).
 
 The offscreen render at ``--time t`` (model_motion.at_time) poses the same models at the same ``t``, so frame k
