@@ -51,18 +51,19 @@ def test_same_wait_rows_begin_every_frame_one_period_after_the_last(ctx, tmp_pat
     runner = SceneRunner(ctx, scale.instanced_scene(tmp_path, 8, size), size)
     runner.frame(readback=True)
     starts = []
-    record = runner.renderer.record
+    record_submit = scale._record_submit
 
-    def stamped(*args, **kwargs):
+    def stamped(runner_, clock):  # stamped where the frame begins, not inside the record (which a busy host delays)
         starts.append(time.perf_counter())
-        return record(*args, **kwargs)
+        return record_submit(runner_, clock)
 
-    monkeypatch.setattr(runner.renderer, "record", stamped)
+    monkeypatch.setattr(scale, "_record_submit", stamped)
     period_ms = 150.0  # longer than any 32x24 frame here, however loaded the machine
     stats = scale.same_wait_cpu(runner, 5, period_ms)
     assert stats.n == 5 and 0 < stats.p10 <= stats.median <= stats.p90 < period_ms
     gaps = [(b - a) * 1e3 for a, b in zip(starts, starts[1:], strict=False)]
-    assert len(gaps) == 6 and all(g >= period_ms for g in gaps), gaps  # never sooner (later: the machine's sleep)
+    # never sooner (later: the machine's sleep); 1 ms for a thread switch between the schedule's clock and the stamp
+    assert len(gaps) == 6 and all(g >= period_ms - 1.0 for g in gaps), gaps
     assert scale.same_wait_cpu(runner, 5, 1e-3) is None  # no frame fits in a microsecond
 
 
