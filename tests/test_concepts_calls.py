@@ -37,6 +37,8 @@ HELPERS = {
     "raw_path.device.context:get_vulkan": "the cached context: calls create_device, which makes the call",
     "raw_path.device.memory:find_memory_type": "pure search of the memory types for a memoryTypeBits mask",
     "raw_path.device.textures:upload_texture": "calls the staging helpers (create_buffer, write_host_buffer)",
+    "raw_path.device.memory:upload_buffer":
+        "the staging upload: a staging buffer (create_buffer, write_host_buffer), then record_copy's copy and barrier",
     "raw_path.stages.textured:Textured._setup_descriptors": "calls the descriptors module's helpers",
     "raw_path.stages.cube3d:Cube3D._setup_descriptors": "calls the descriptors module's helpers",
     "raw_path.device.textures:TextureImage.level": "a per-level view through the images module's helper",
