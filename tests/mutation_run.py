@@ -2180,6 +2180,15 @@ MUTATIONS = [
      "region = vk.VkBufferCopy(srcOffset=0, dstOffset=offset, size=size)", [PLAY]),
     ("wgpurender/core/scene/playback.py", "not in GLTF_SUFFIXES or not model.motion:", "not in GLTF_SUFFIXES:",
      [PLAY]),
+    # playback's per-frame cost: a document's channels read once, no posing for a file without light nodes (integrator)
+    ("wgpurender/core/models/gltf_animation.py", "    if hit is not None and hit[0] is doc:", "    if False:",
+     ["tests/test_gltf_animation.py"]),
+    ("wgpurender/core/models/gltf_animation.py", "        values.setflags(write=False)", "        pass",
+     ["tests/test_gltf_animation.py"]),
+    ("wgpurender/core/scene/gltf_lights.py", "        return []  # posing moves nodes",
+     "        pass  # posing moves nodes", ["tests/test_gltf_animation.py"]),
+    ("wgpurender/core/scene/gltf_lights.py", "    if not any(_light_of(node) is not None for node",
+     "    if not any(_light_of(node) is None for node", ["tests/test_gltf_animation.py", "tests/test_gltf_lights.py"]),
 ]
 
 

@@ -587,3 +587,44 @@ def test_camera_flag_views_from_the_animated_node_at_the_time(tmp_path):
     scene.write_text(scene.read_text().replace("from_model = 0\n", "eye = [0, 0, 9]\ntarget = [0, 0, 0]\n"))
     plan = resolve_plan(scene, None, time=0.75, camera=0)
     np.testing.assert_allclose(plan.scene.camera.eye, _lerp(CAMERA_KEYS, 0.75), atol=1e-6)
+
+
+# -- playback's per-frame cost: what is read once -----------------------------------------------------------------
+
+def test_a_documents_channels_are_read_once_and_kept_read_only(tmp_path, monkeypatch):
+    """The window poses the same parsed document every frame: its keys are read from the buffers once per document
+    object and animation (a new document reads them again), the positions it gives are those of a fresh read, and
+    the kept arrays refuse in-place changes."""
+    from wgpurender.core.models import gltf_animation, gltf_io
+
+    path = _animated_file(tmp_path, "translation", [0.0, 2.0], [[0, 0, 0], [8, 0, 0]])
+    reads = []
+    real = gltf_animation.read_accessor
+    monkeypatch.setattr(gltf_animation, "read_accessor", lambda doc, i: reads.append(i) or real(doc, i))
+    doc = gltf_io.read_document(path)
+    first = gltf_animation.posed(doc, Pose(None, 0.5))
+    once = len(reads)
+    second = gltf_animation.posed(doc, Pose(None, 1.5))
+    assert once == 2 and len(reads) == once  # times and values, then nothing more for the same document
+    assert first.json["nodes"][0]["translation"][0] == pytest.approx(2.0)  # 8 * 0.5 / 2
+    assert second.json["nodes"][0]["translation"][0] == pytest.approx(6.0)
+    gltf_animation.posed(gltf_io.read_document(path), Pose(None, 0.5))
+    assert len(reads) == 2 * once  # another document object: read again
+    (_, _, times, values, _), = gltf_animation.read_channels(doc, 0)
+    with pytest.raises(ValueError):
+        values[0, 0] = 99.0
+
+
+def test_a_file_without_light_nodes_is_not_posed_for_its_lights(tmp_path, monkeypatch):
+    """The window places a file's KHR lights again every frame (model_motion.placed_again): a file whose nodes
+    place no light gives none without being posed (posing moves nodes, it adds no light)."""
+    from wgpurender.core.models import gltf_animation
+    from wgpurender.core.scene import gltf_lights
+    from wgpurender.core.scene.load import load_scene
+
+    path = _animated_file(tmp_path, "translation", [0.0, 2.0], [[0, 0, 0], [8, 0, 0]])
+    scene = tmp_path / "scene.toml"
+    scene.write_text(scene_text(path.name, (16, 12), extra="time = 1.0\n"))
+    model = load_scene(scene).models[0]
+    monkeypatch.setattr(gltf_animation, "posed", lambda doc, pose: (_ for _ in ()).throw(AssertionError("posed")))
+    assert gltf_lights.model_lights(model, 0) == []

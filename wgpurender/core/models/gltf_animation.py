@@ -96,6 +96,27 @@ def _unit(q: np.ndarray, rotation: bool) -> np.ndarray:
     return q / norm if norm > 0 else np.array([0.0, 0.0, 0.0, 1.0])
 
 
+_READ: dict[tuple[int, int], tuple[GltfDocument, tuple]] = {}  # (id(doc), animation) -> (that doc, its channels)
+READ_KEEP = 16  # documents x animations kept
+
+
+def read_channels(doc: GltfDocument, index: int) -> tuple:
+    """:func:`channels` as a tuple, read once per document object and animation: the window poses the same
+    parsed document every frame (core/scene/playback.py) and its keys do not change. The arrays are read-only, so
+    a caller that would change them in place fails instead of changing every later frame."""
+    hit = _READ.get((id(doc), index))
+    if hit is not None and hit[0] is doc:  # the document itself held: its id is not another's
+        return hit[1]
+    found = tuple(channels(doc, index))
+    for _, _, times, values, _ in found:
+        times.setflags(write=False)
+        values.setflags(write=False)
+    if len(_READ) >= READ_KEEP:
+        _READ.pop(next(iter(_READ)))
+    _READ[(id(doc), index)] = (doc, found)
+    return found
+
+
 def channels(doc: GltfDocument, index: int):
     """(node, path, times, values, interpolation) of each channel of animation ``index`` that targets a node,
     its keys checked (one line naming what is wrong)."""
@@ -138,7 +159,7 @@ def posed(doc: GltfDocument, pose: Pose | None) -> GltfDocument:
         return doc
     index = choose(doc, pose.animation)
     nodes = [dict(node) for node in doc.json.get("nodes", [])]
-    for node, path, times, values, mode in channels(doc, index):
+    for node, path, times, values, mode in read_channels(doc, index):
         if "matrix" in nodes[node]:
             raise UserError(f"malformed glTF file {doc.path}: animation {index} targets node {node}, which has a "
                             "matrix (glTF animates translation/rotation/scale nodes only); fix or re-export the file")
@@ -154,7 +175,7 @@ def describe(doc: GltfDocument, pose: Pose | None) -> str | None:
         return (f"{len(found)} animation(s) not applied: drawn at rest (the nodes as written); pose one with "
                 "time = T (and animation = NAME or INDEX) in the model's [[models]] block") if found else None
     index = choose(doc, pose.animation)
-    keys = [times for _, _, times, _, _ in channels(doc, index)]
+    keys = [times for _, _, times, _, _ in read_channels(doc, index)]
     name = found[index].get("name", "")
     if not keys:
         return (f"animation {index}" + (f" '{name}'" if name else "") + ": no channel targets a node (its targets "

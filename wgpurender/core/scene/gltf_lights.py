@@ -31,8 +31,7 @@ def placed_lights(doc: gltf_io.GltfDocument) -> list[tuple[np.ndarray, int, int]
     """(world matrix, light index, node index) for each node that places a KHR_lights_punctual light."""
     out = []
     for world, index, node in gltf_geometry.node_worlds(doc):
-        ext = node.get("extensions", {}).get(EXTENSION) if isinstance(node.get("extensions"), dict) else None
-        light = ext.get("light") if isinstance(ext, dict) else None
+        light = _light_of(node)
         if light is not None:
             if not isinstance(light, int) or isinstance(light, bool):
                 raise UserError(f"malformed glTF file {doc.path}: node {index}'s {EXTENSION} light is {light!r}, "
@@ -41,17 +40,26 @@ def placed_lights(doc: gltf_io.GltfDocument) -> list[tuple[np.ndarray, int, int]
     return out
 
 
+def _light_of(node: dict):
+    """The light index a node's KHR_lights_punctual extension names (None: the node places no light)."""
+    ext = node.get("extensions", {}).get(EXTENSION) if isinstance(node.get("extensions"), dict) else None
+    return ext.get("light") if isinstance(ext, dict) else None
+
+
 def model_lights(model: Model, first_index: int) -> list[Light]:
     """The scene lights of a glTF ``model``'s KHR_lights_punctual nodes, numbered from ``first_index``."""
     if model.path.suffix.lower() not in (".gltf", ".glb"):
         return []
     from wgpurender.core.scene.gltf_materials import document
 
-    doc = gltf_animation.posed(document(str(model.path)), model.pose)  # a light on an animated node: at the time
+    doc = document(str(model.path))
     defined = doc.json.get("extensions", {}).get(EXTENSION, {})
     defined = defined.get("lights", []) if isinstance(defined, dict) else None
     if not isinstance(defined, list):
         raise UserError(f"malformed glTF file {doc.path}: extensions.{EXTENSION}.lights is not a list; fix the file")
+    if not any(_light_of(node) is not None for node in doc.json.get("nodes", []) if isinstance(node, dict)):
+        return []  # posing moves nodes, it places no light: the window's every frame need not pose the file here
+    doc = gltf_animation.posed(doc, model.pose)  # a light on an animated node: at the time
     out = []
     for world, k, node in placed_lights(doc):
         if not 0 <= k < len(defined):

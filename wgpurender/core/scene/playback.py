@@ -55,7 +55,8 @@ def tracks(scene: Scene) -> tuple[Track, ...]:
         if not doc.json.get("animations"):
             continue
         animation = model.pose.animation if model.pose is not None else None
-        ends = [times[-1] for _, _, times, _, _ in gltf_animation.channels(doc, gltf_animation.choose(doc, animation))]
+        clip = gltf_animation.choose(doc, animation)
+        ends = [times[-1] for _, _, times, _, _ in gltf_animation.read_channels(doc, clip)]
         if ends:
             found.append(Track(i, animation, float(max(ends))))
     return tuple(found)
