@@ -1623,8 +1623,8 @@ MUTATIONS = [
     # a file camera and a file's lights on animated nodes follow the time (integrator)
     ("wgpurender/core/scene/gltf_cameras.py", "doc = gltf_animation.posed(document(str(model.path)), model.pose)",
      "doc = document(str(model.path))", [ANIM_T]),
-    ("wgpurender/core/scene/gltf_lights.py", "doc = gltf_animation.posed(document(str(model.path)), model.pose)",
-     "doc = document(str(model.path))", [ANIM_T]),
+    ("wgpurender/core/scene/gltf_lights.py", "    doc = gltf_animation.posed(doc, model.pose)  # a light on",
+     "    pass  # a light on", [ANIM_T]),
     ("wgpurender/core/scene/model_motion.py", "        camera = file_camera(models[model], index)",
      "        pass", [ANIM_T]),
     ("wgpurender/core/scene/model_motion.py", "    own = tuple(light for light in scene.lights if not light.origin)",
