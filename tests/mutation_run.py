@@ -2189,6 +2189,13 @@ MUTATIONS = [
      "        pass  # posing moves nodes", ["tests/test_gltf_animation.py"]),
     ("wgpurender/core/scene/gltf_lights.py", "    if not any(_light_of(node) is not None for node",
      "    if not any(_light_of(node) is None for node", ["tests/test_gltf_animation.py", "tests/test_gltf_lights.py"]),
+    # a Draco primitive decoded once per document, handed out fresh (integrator)
+    ("wgpurender/core/models/gltf_compression.py",
+     "    if hit is None or hit[0] is not buffer or hit[1] is not prim:", "    if True:",
+     ["tests/test_gltf_extensions.py"]),
+    ("wgpurender/core/models/gltf_compression.py",
+     "    return {k: v.copy() for k, v in arrays.items()}, faces.copy()", "    return arrays, faces",
+     ["tests/test_gltf_extensions.py"]),
 ]
 
 

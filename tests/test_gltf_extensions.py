@@ -591,3 +591,28 @@ def test_wgpu_equals_raw_within_one_run(ctx, tmp_path, make):
     wgpu_image, raw_image = render(ctx, scene, "wgpu"), render(ctx, scene, "raw")
     assert wgpu_image[..., :3].max() > 0
     np.testing.assert_array_equal(wgpu_image, raw_image)
+
+
+def test_a_draco_primitive_is_decoded_once_per_document_and_handed_out_fresh(tmp_path, monkeypatch):
+    """The window re-poses an animated model from the same parsed document every frame: its Draco primitive is
+    decoded once for that document (a document read again decodes again), each call gets arrays of its own (a
+    caller changing them changes no later call), equal to the first decode's."""
+    DracoPy = pytest.importorskip("DracoPy")
+    from wgpurender.core.models import gltf_compression, gltf_io
+
+    path = _draco_quad(tmp_path)
+    decodes = []
+    real = DracoPy.decode
+    monkeypatch.setattr(DracoPy, "decode", lambda data: decodes.append(len(data)) or real(data))
+    doc = gltf_io.read_document(path)
+    prim = doc.json["meshes"][0]["primitives"][0]
+    first, faces = gltf_compression.draco_attributes(doc, prim, "mesh 0")
+    first["POSITION"][:] = 99.0
+    faces[:] = 0
+    again, faces_again = gltf_compression.draco_attributes(doc, prim, "mesh 0")
+    assert len(decodes) == 1
+    assert np.abs(again["POSITION"][:, :2]).max() == pytest.approx(HALF, abs=1e-3)  # not the 99 written above
+    assert faces_again.max() == 3 and len(faces_again) == 2  # the quad's two triangles over its four corners
+    other = gltf_io.read_document(path)
+    gltf_compression.draco_attributes(other, other.json["meshes"][0]["primitives"][0], "mesh 0")
+    assert len(decodes) == 2

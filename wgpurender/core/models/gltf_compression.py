@@ -107,9 +107,28 @@ def _meshopt_decode(codec, mode: str, filter_name: str, data: bytes, count: int,
     return raw
 
 
+_DECODED: dict[tuple[int, int], tuple[object, dict, tuple]] = {}  # (id(buffer), id(prim)) -> (both, the decode)
+DECODED_KEEP = 64  # primitives kept
+
+
 def draco_attributes(doc, prim: dict, where: str) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """The attributes (by semantic, float64; normalized integer accessors scaled to [0,1]/[-1,1]) and the
-    triangle indices (F, 3) of a Draco-compressed primitive."""
+    triangle indices (F, 3) of a Draco-compressed primitive, as fresh arrays.
+
+    A primitive is decoded once per buffer and primitive object: the window re-poses an animated model from the
+    same parsed document every frame (core/scene/playback.py), whose compressed bytes do not change."""
+    buffer = doc.buffers[doc.json["bufferViews"][prim["extensions"][DRACO]["bufferView"]]["buffer"]]
+    hit = _DECODED.get((id(buffer), id(prim)))
+    if hit is None or hit[0] is not buffer or hit[1] is not prim:  # the objects held: their ids are not others'
+        hit = (buffer, prim, _decode(doc, prim, where))
+        if len(_DECODED) >= DECODED_KEEP:
+            _DECODED.pop(next(iter(_DECODED)))
+        _DECODED[(id(buffer), id(prim))] = hit
+    arrays, faces = hit[2]
+    return {k: v.copy() for k, v in arrays.items()}, faces.copy()
+
+
+def _decode(doc, prim: dict, where: str) -> tuple[dict[str, np.ndarray], np.ndarray]:
     ext = prim["extensions"][DRACO]
     codec = _decoder(doc.path, DRACO)
     view = doc.json["bufferViews"][ext["bufferView"]]
