@@ -15,7 +15,6 @@ device thread also writes a small buffer and submits once; does the first frame'
 
 from __future__ import annotations
 
-import csv
 import json
 import os
 import statistics
@@ -23,6 +22,8 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+from probe_csv import write_rows
 
 CHILD = r"""
 import time
@@ -119,10 +120,7 @@ def main(runs: int, out: Path | None) -> None:
     for r in rows:
         print(f"{r['variant']:6s} {r['mark']:24s} {r['median_ms']:9.1f} ms  [{r['min_ms']:.1f}..{r['max_ms']:.1f}]")
     if out:
-        with out.open("w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
+        write_rows(out, rows)
 
 
 if __name__ == "__main__":

@@ -22,7 +22,6 @@ Each slow sample (cpu_ms over 2x the case's median) is put in the first class th
 
 from __future__ import annotations
 
-import csv
 import gc
 import resource
 import statistics
@@ -30,6 +29,8 @@ import sys
 import threading
 import time
 from pathlib import Path
+
+from probe_csv import write_rows
 
 STAGES = (("clear", (800, 600)), ("clear-pass", (800, 600)), ("triangle", (1280, 720)), ("textured", (800, 600)),
           ("msaa-post", (1920, 1080)))
@@ -131,10 +132,7 @@ def main(out: Path, frames: int) -> None:
               f"frames with faults {sum(r['minflt'] > 0 for r in mine)}, preempted "
               f"{sum(r['nivcsw'] > 0 for r in mine)}, blocked {sum(r['nvcsw'] > 0 for r in mine)}")
     print("python threads:", rows[-1]["threads"])
-    with out.open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows({k: round(v, 4) if isinstance(v, float) else v for k, v in r.items()} for r in rows)
+    write_rows(out, rows, digits=4)
 
 
 if __name__ == "__main__":

@@ -13,10 +13,11 @@ frame_ms, and where the frames over 2x the median cpu_ms sit (right after a read
 
 from __future__ import annotations
 
-import csv
 import statistics
 import sys
 from pathlib import Path
+
+from probe_csv import write_rows
 
 CASES = (("msaa-post", (1920, 1080)), ("textured", (800, 600)), ("clear", (800, 600)), ("clear-pass", (800, 600)),
          ("triangle", (1280, 720)))
@@ -91,10 +92,7 @@ def main(out: Path | None, frames: int) -> None:
               f"{p99(cpu) / statistics.median(cpu):.1f}x | frame med {statistics.median(frame):.3f} p99 "
               f"{p99(frame) / statistics.median(frame):.1f}x | cpu > 2x median: {len(slow)} ({where})")
     if out:
-        with out.open("w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
+        write_rows(out, rows)
 
 
 if __name__ == "__main__":

@@ -29,14 +29,12 @@ def _resolved(scene, knobs=None, **overrides):
     return resolve_knobs(scene, knobs or _Knobs(), **overrides)
 
 
+CAMERA = "[camera]\neye = [0, 0, 12]\ntarget = [0, 0, 0]\nfov_y = 40\n"  # both scenes' view, down -z
+
+
 def write_scene(folder: Path, copies: int = COPIES) -> Path:
     procedural.write_obj(folder / "cube.obj", procedural.box(1.0))
-    text = f"""
-[camera]
-eye = [0, 0, 12]
-target = [0, 0, 0]
-fov_y = 40
-[[models]]
+    text = CAMERA + f"""[[models]]
 path = "cube.obj"
 material = {{ albedo_color = [1, 1, 1], unlit = true }}
 instances = {{ grid = [{copies}, 1, 1], spacing = [{SPACING}, 1, 1] }}
@@ -142,12 +140,7 @@ TRIANGLE = "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0 0.5 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0
 def write_grid_after_triangle(folder: Path) -> Path:
     (folder / "tri.obj").write_text(TRIANGLE)
     procedural.write_obj(folder / "cube.obj", procedural.box(CUBE))
-    text = f"""
-[camera]
-eye = [0, 0, 12]
-target = [0, 0, 0]
-fov_y = 40
-[[models]]
+    text = CAMERA + f"""[[models]]
 path = "tri.obj"
 material = {{ albedo_color = [1, 0, 0], unlit = true }}
 transform = {{ translate = [-4.5, 0, 0] }}
