@@ -35,23 +35,33 @@ SQUARE: Shape = (8, 8, 2)
 # of vec4f = 1.6 KB of workgroup memory (WebGPU's default limit is 16 KB); one row each: the recomputing is ALU
 # work, and the more invocations share it the better
 RECOMPUTED: Shape = (8, 8, 1)
+# FXAA reading a stored image through a tile of lumas: 8x8 invocations of 2 rows, 10 x 18 texels of f32 (720 B)
+LUMA: Shape = (8, 8, 2)
 TILE_APRON = 1
 
 
-def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) -> tuple[Shape, str]:
-    """(shape, why) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect reads
-    neighbours; ``recomputes``: it recomputes the steps before that effect per texel (a prelude), through a
-    workgroup tile."""
+def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool,
+                   fxaa: bool = False) -> tuple[Shape, str, str]:
+    """(shape, why, tile) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect
+    reads neighbours; ``fxaa``: through FXAA's reads, which a workgroup tile can serve; ``recomputes``: it
+    recomputes the steps before that effect per texel (a prelude). ``tile``: the workgroup tile its reads go
+    through (:data:`TILE_KINDS`), "" for none."""
     if recomputes:
         w, h = RECOMPUTED[0], RECOMPUTED[1] * RECOMPUTED[2]
         return RECOMPUTED, (f"each workgroup recomputes its {w}x{h} tile and a {TILE_APRON}-texel apron once into "
                             "workgroup memory, which FXAA's reads take where they fall in it; the others recompute "
-                            "from the input")
+                            "from the input"), "texels"
+    if neighbourhood and fxaa:
+        w, h = LUMA[0], LUMA[1] * LUMA[2]
+        return LUMA, (f"a neighbourhood pass: each workgroup computes the luma of its {w}x{h} pixels and a "
+                      f"{TILE_APRON}-texel apron once into workgroup memory (4 bytes a texel), where FXAA's "
+                      "neighbourhood reads take it; its edge search samples the input"), "luma"
     if neighbourhood:
-        return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache"
+        return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache", ""
     if BYTES_PER_PIXEL.get(output_format, 4) >= 8:
-        return SQUARE, f"a per-pixel pass writing {output_format} ({BYTES_PER_PIXEL[output_format]} bytes a texel)"
-    return WIDE, f"a per-pixel pass writing {output_format}: wide rows, 4 per invocation"
+        return SQUARE, (f"a per-pixel pass writing {output_format} ({BYTES_PER_PIXEL[output_format]} bytes a "
+                        "texel)"), ""
+    return WIDE, f"a per-pixel pass writing {output_format}: wide rows, 4 per invocation", ""
 
 
 def shape_text(shape: Shape) -> str:
@@ -59,13 +69,16 @@ def shape_text(shape: Shape) -> str:
 
 
 TILE_BYTES_LIMIT = 16384  # WebGPU's default maxComputeWorkgroupStorageSize, what the device is made with
-TEXEL_BYTES = 16  # a vec4f per tile texel
+# FXAA's workgroup tiles (wgpu_path/post/tiles.py) and the bytes of one texel of each: a vec4f colour, or its luma
+TEXEL_BYTES = {"texels": 16, "luma": 4}
+TILE_KINDS = tuple(TEXEL_BYTES)
 
 
-def tile_fits(shape: Shape) -> bool:
-    """Whether a tiled pass's workgroup memory with ``shape`` stays within WebGPU's default limit."""
+def tile_fits(shape: Shape, kind: str = "texels") -> bool:
+    """Whether a tiled pass's workgroup memory with ``shape`` and a ``kind`` tile stays within WebGPU's default
+    limit."""
     w, h = tile_texels(shape)
-    return w * h * TEXEL_BYTES <= TILE_BYTES_LIMIT
+    return w * h * TEXEL_BYTES[kind] <= TILE_BYTES_LIMIT
 
 
 def tile_texels(shape: Shape) -> tuple[int, int]:
