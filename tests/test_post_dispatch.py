@@ -27,9 +27,8 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
     # tonemap writes rgba16float (8 bytes a texel): square 8x8 groups, 2 rows each; FXAA too (it reads neighbours)
     assert (tonemap.effect, tonemap.output_format, tonemap.shape, tonemap.tile) == (
         "tonemap", "rgba16float", (8, 8, 2), "")
-    # FXAA reading the stored image: its neighbours' lumas through a tile of 10 x 18 lumas
-    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (8, 8, 2), "luma")
-    assert "computes the luma of its 8x16 pixels" in fxaa.shape_why
+    # FXAA reading the stored image reads the texture: both tiles lost on the H100 (core/plan/dispatch.py)
+    assert (fxaa.effect, fxaa.shape, fxaa.tile) == ("fxaa+vignette", (8, 8, 2), "")
     (fused,) = resolve_plan(SUBPASS, None, size=(640, 480), post_path="compute").post_passes
     assert (fused.effect, fused.output_format, fused.shape, fused.tile) == (
         "tonemap+vignette", "rgba8unorm", (32, 8, 4), "")
@@ -38,10 +37,6 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
     assert "recomputes its 8x8 tile" in one.shape_why
     fragment = resolve_plan(FINAL, None, size=(640, 480), post_path="fragment")
     assert all(p.shape is None and p.tile == "" for p in fragment.post_passes)
-    # sharpen reads neighbours too, but not through FXAA's reads: square, untiled
-    sharpen = resolve_plan(SCENES / "retro.toml", None, size=(640, 480), post_path="compute").post_passes[-1]
-    assert (sharpen.steps[0].effect, sharpen.shape, sharpen.tile) == ("sharpen", (8, 8, 2), "")
-    assert sharpen.shape_why == "a neighbourhood pass: square workgroups keep the neighbours' rows in cache"
     none_fragment = resolve_plan(FINAL, None, size=(640, 480), post_path="fragment", post_intermediate="none")
     (recomputed,) = none_fragment.post_passes
     assert (recomputed.prelude, recomputed.shape, recomputed.tile) == (1, None, "")  # a fragment pass: no tile
@@ -50,8 +45,7 @@ def test_each_compute_pass_gets_the_shape_of_what_it_does():
 def test_explain_shows_each_dispatch():
     text = resolve_plan(FINAL, None, size=(640, 480), post_path="compute").explain()
     assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a per-pixel pass writing rgba16float" in text
-    assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a neighbourhood pass: each workgroup computes the " \
-        "luma of its 8x16 pixels" in text
+    assert "dispatch: workgroups of 8x8, 2 row(s) per invocation (a neighbourhood pass" in text
     none = resolve_plan(FINAL, None, size=(640, 480), post_path="compute", post_intermediate="none").explain()
     assert "dispatch: workgroups of 8x8, 1 row(s) per invocation (each workgroup recomputes its 8x8 tile" in none
     assert "dispatch:" not in resolve_plan(FINAL, None, size=(640, 480), post_path="fragment").explain()
@@ -87,8 +81,9 @@ def test_the_shader_declares_the_tile_only_where_the_plan_says():
     assert "@workgroup_size(8, 8)" in pass_source(one) and "k < 1u" in pass_source(one)
     assert "var<workgroup>" not in pass_source(one, tiled="")
     assert "var<workgroup>" not in pass_source(fxaa, tiled="") and "var<workgroup>" not in pass_source(tonemap)
-    # the plan's FXAA pass: 10 x 18 lumas (8 x 16 pixels and the apron), of which 52 are the apron's
-    assert "var<workgroup> luma_tile: array<f32, 180>" in pass_source(fxaa) and "j < 52u" in pass_source(fxaa)
+    # FXAA's pass through a tile of lumas: 10 x 18 (8 x 16 pixels and the apron), of which 52 are the apron's
+    lumas = pass_source(fxaa, tiled="luma")
+    assert "var<workgroup> luma_tile: array<f32, 180>" in lumas and "j < 52u" in lumas
     assert "@workgroup_size(8, 8)" in pass_source(fxaa) and "k < 2u" in pass_source(fxaa)
     tiled = pass_source(fxaa, (16, 8, 2), tiled="texels")  # a benchmark's tile: 18 x 18 texels, 16 x 16 pixels
     assert "var<workgroup> tile: array<vec4f, 324>" in tiled and "vec2u(16u, 16u)" in tiled
@@ -129,7 +124,7 @@ def _render(ctx, size, knob, monkeypatch, tiled, shape=None):
 @pytest.mark.parametrize("size", [(203, 117), (13, 7)])
 def test_the_tiled_pass_draws_the_untiled_image(ctx, monkeypatch, knob, kind, shape, size):
     """(203, 117): tiles (8x16 pixels for auto, 8x8 for none) cut on the right and bottom; (13, 7): a partial tile.
-    auto's pass is tiled as the plan tiles it (lumas) and as a benchmark may (texels), none's as the plan does;
+    auto's pass is tiled as a benchmark may tile it (lumas, texels), none's as the plan does;
     the luma tile also with other shapes (its apron is shared out by index: rows of 3, 16 wide, 32 invocations)."""
     tiled = _render(ctx, size, knob, monkeypatch, kind, shape)
     untiled = _render(ctx, size, knob, monkeypatch, "", shape)

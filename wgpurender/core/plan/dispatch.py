@@ -18,6 +18,12 @@ another):
 - FXAA (then vignette) reading the stored image: 8x8 x2 0.073 ms (final) / 0.132 (probe), 32x8 x4 0.075 /
   0.147. Through a workgroup tile it reads 0.103-0.106 ms on both hosts: slower where the texture reads are
   fast, so FXAA reads the texture (the tile stays a ``--shapes`` variant);
+- FXAA reading the stored image, interleaved in one process with its SM clock read each round
+  (docs/perf-h100/2026-11-27-post4/, ``benchmarks/post_interleave.py``): untiled 8x8 x2 0.0735 ms at 1980 MHz,
+  0.126 at 1080 MHz (the clock fell mid-run): the pass follows the SM clock, it is not bound by memory. Through
+  the tile of lumas (each texel's luma once, 4 bytes a texel) it is slower at every clock and shape: the median
+  per-round ratio to untiled 1.41x (16x16 x1) to 1.61x (8x8 x4), 1.58x with 8x8 x2; the texel tile 1.40x. So the
+  texture fetches were not the bound either: FXAA reads the texture (both tiles stay ``--shapes`` variants);
 - FXAA recomputing tonemap (post_intermediate = none) through its tile: 8x8 x1 0.318 / 0.403 ms, 8x8 x2
   0.210 / 0.715; untiled 0.395-0.618 / 0.952-1.342: the tile wins on both hosts, the shape's ranking differs.
 """
@@ -35,27 +41,18 @@ SQUARE: Shape = (8, 8, 2)
 # of vec4f = 1.6 KB of workgroup memory (WebGPU's default limit is 16 KB); one row each: the recomputing is ALU
 # work, and the more invocations share it the better
 RECOMPUTED: Shape = (8, 8, 1)
-# FXAA reading a stored image through a tile of lumas: 8x8 invocations of 2 rows, 10 x 18 texels of f32 (720 B)
-LUMA: Shape = (8, 8, 2)
 TILE_APRON = 1
 
 
-def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool,
-                   fxaa: bool = False) -> tuple[Shape, str, str]:
+def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) -> tuple[Shape, str, str]:
     """(shape, why, tile) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect
-    reads neighbours; ``fxaa``: through FXAA's reads, which a workgroup tile can serve; ``recomputes``: it
-    recomputes the steps before that effect per texel (a prelude). ``tile``: the workgroup tile its reads go
-    through (:data:`TILE_KINDS`), "" for none."""
+    reads neighbours; ``recomputes``: it recomputes the steps before that effect per texel (a prelude), through a
+    workgroup tile. ``tile``: the workgroup tile its reads go through (:data:`TILE_KINDS`), "" for none."""
     if recomputes:
         w, h = RECOMPUTED[0], RECOMPUTED[1] * RECOMPUTED[2]
         return RECOMPUTED, (f"each workgroup recomputes its {w}x{h} tile and a {TILE_APRON}-texel apron once into "
                             "workgroup memory, which FXAA's reads take where they fall in it; the others recompute "
                             "from the input"), "texels"
-    if neighbourhood and fxaa:
-        w, h = LUMA[0], LUMA[1] * LUMA[2]
-        return LUMA, (f"a neighbourhood pass: each workgroup computes the luma of its {w}x{h} pixels and a "
-                      f"{TILE_APRON}-texel apron once into workgroup memory (4 bytes a texel), where FXAA's "
-                      "neighbourhood reads take it; its edge search samples the input"), "luma"
     if neighbourhood:
         return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache", ""
     if BYTES_PER_PIXEL.get(output_format, 4) >= 8:

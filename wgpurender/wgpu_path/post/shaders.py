@@ -18,12 +18,12 @@ read once and written once. The entry points around ``pass_color``:
   depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
 - compute: ``cs_main`` over workgroups of the pass's shape (the plan's, core/plan/dispatch.py), ``textureStore``
-  into ``dst`` (binding 3), a storage texture. A tiled FXAA pass (the plan's ``tile``: with a prelude, knob
-  post_intermediate = none) first fills a workgroup tile and a one-texel apron in workgroup memory with
+  into ``dst`` (binding 3), a storage texture. A tiled FXAA pass (the plan's ``tile``: "texels" with a prelude,
+  knob post_intermediate = none) first fills a workgroup tile and a one-texel apron in workgroup memory with
   ``tile_source``: the effects before FXAA recomputed once per texel instead of at each read (a benchmark may
-  also tile the plain FXAA pass: each texel loaded once per workgroup instead of at each of up to nine reads).
-  Reads that fall in the tile take it, the rest call ``tile_source`` itself: the same function on the same
-  texel, so the image is the untiled one's.
+  also tile the plain FXAA pass, with texels or with their lumas: wgpu_path/post/tiles.py). Reads that fall in
+  the tile take it, the rest call ``tile_source`` itself: the same function on the same texel, so the image is
+  the untiled one's.
   A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
   texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
   (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
