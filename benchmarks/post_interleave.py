@@ -11,6 +11,7 @@ untiled (must read the same), through the plan's tile and through other tiles an
 case's image is read back and compared with main's, byte for byte.
 
     python benchmarks/post_interleave.py OUT_DIR [--main-wgsl FILE] [--size 3840x2160] [--rounds 25] [--frames 8]
+    python benchmarks/post_interleave.py --by-clock OUT_DIR/interleave.csv   # a run's rows grouped by SM clock
 """
 
 from __future__ import annotations
@@ -106,6 +107,12 @@ def time_once(ctx, case, timer: PassTimer) -> float:
 
 
 def main() -> int:
+    if sys.argv[1:2] == ["--by-clock"]:
+        with open(sys.argv[2], newline="") as fh:
+            rows = [(int(r["round"]), r["case"], int(r["frame"]), float(r["ms"]), r["sm_clock_mhz"])
+                    for r in csv.DictReader(fh)]
+        print(by_clock(rows), end="")
+        return 0
     ap = argparse.ArgumentParser()
     ap.add_argument("out", type=Path)
     ap.add_argument("--main-wgsl", type=Path)
@@ -161,7 +168,7 @@ def main() -> int:
         w = csv.writer(fh)
         w.writerow(["round", "case", "frame", "ms", "sm_clock_mhz"])
         w.writerows(rows)
-    text = summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tonemap, fxaa)
+    text = summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tonemap, fxaa) + by_clock(rows)
     (args.out / "interleave.md").write_text(text)
     print(text)
     return 0
@@ -210,6 +217,26 @@ def summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tone
             ms = statistics.median(tm[r] + rounds[n][r] for r in rounds[n])
             lines.append(f"- tonemap + {n}: {ms:.4f} ms, {statistics.median(per):.3f}x the copy "
                          f"(rounds {min(per):.3f}-{max(per):.3f}x; copy {statistics.median(copy.values()):.4f} ms)")
+    return "\n".join(lines) + "\n"
+
+
+def by_clock(rows) -> str:
+    """Each case's median per SM clock read at the rounds' start (the clock is not locked; it may fall mid-run),
+    and the chain tonemap + FXAA case over the copy at each clock."""
+    clocks = sorted({c for *_, c in rows}, key=lambda c: -float(c) if c.replace(".", "").isdigit() else 0)
+    names = list(dict.fromkeys(n for _, n, *_ in rows))
+    med = {(n, c): statistics.median(ms for _, m, _, ms, k in rows if m == n and k == c)
+           for n in names for c in clocks if any(m == n and k == c for _, m, _, _, k in rows)}
+    lines = ["", "By SM clock (MHz, read at each round's start; rounds at that clock):", "",
+             "| case | " + " | ".join(f"{c} ({len({r for r, *_, k in rows if k == c})})" for c in clocks) + " |",
+             "|---|" + "---:|" * len(clocks)]
+    lines += [f"| {n} | " + " | ".join(f"{med[(n, c)]:.4f}" if (n, c) in med else "" for c in clocks) + " |"
+              for n in names]
+    copy, tm = "copy (chain bytes)", "tonemap (plan)"
+    for n in names:
+        if n.startswith("fxaa") and all((x, c) in med for x in (copy, tm, n) for c in clocks):
+            lines.append(f"- tonemap + {n} over the copy: " + ", ".join(
+                f"{(med[(tm, c)] + med[(n, c)]) / med[(copy, c)]:.3f}x at {c}" for c in clocks))
     return "\n".join(lines) + "\n"
 
 
