@@ -2229,6 +2229,15 @@ MUTATIONS = [
      ["tests/test_post_interleave.py"]),
     ("benchmarks/post_interleave.py", "for x in (copy, tm, n) for c in clocks)", "for x in (copy, tm) for c in clocks)",
      ["tests/test_post_interleave.py"]),
+    # benchmarks/fxaa_edge_share.py's counts (post4)
+    ("benchmarks/fxaa_edge_share.py", ".transpose(0, 3, 2, 1, 4).reshape(gy, gx, rows, wy * wx)",
+     ".transpose(0, 3, 1, 2, 4).reshape(gy, gx, rows, wy * wx)", ["tests/test_fxaa_edge_share.py"]),
+    ("benchmarks/fxaa_edge_share.py", "    return ~(l_max - l_min < np.maximum(threshold_min, l_max * threshold))",
+     "    return ~(l_max - l_min < np.maximum(threshold_min, threshold))", ["tests/test_fxaa_edge_share.py"]),
+    ("benchmarks/fxaa_edge_share.py", "    pad = np.pad(lum, 1, mode=\"edge\")", "    pad = np.pad(lum, 1)",
+     ["tests/test_fxaa_edge_share.py"]),
+    ("benchmarks/fxaa_edge_share.py", "    lanes = -(-(wy * wx) // WARP) * WARP", "    lanes = wy * wx",
+     ["tests/test_fxaa_edge_share.py"]),
 ]
 
 
