@@ -63,7 +63,8 @@ fn fxaa_luma(p: vec2i) -> f32 {
 }
 """
 
-TEXELS_MAIN = """
+# both tiles' cs_main begins so: the workgroup's first pixel and the tile's origin, one apron up and left
+MAIN_HEAD = """
 @group(0) @binding(3) var dst: texture_storage_2d<FORMAT, write>;
 
 @compute @workgroup_size(WX, WY)
@@ -72,7 +73,9 @@ fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) lo
     let size = textureDimensions(src);
     let corner = group.xy * vec2u(WXu, PIX_Hu);
     tile_origin = vec2i(corner) - vec2i(APRON, APRON);
-    for (var i = index; i < TILE_Nu; i += WXu * WYu) {
+"""
+
+TEXELS_MAIN = MAIN_HEAD + """    for (var i = index; i < TILE_Nu; i += WXu * WYu) {
         tile[i] = tile_source(tile_origin + vec2i(i32(i % TILE_Wu), i32(i / TILE_Wu)));
     }
     workgroupBarrier();
@@ -87,8 +90,6 @@ fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) lo
 """
 
 LUMA_MAIN = """
-@group(0) @binding(3) var dst: texture_storage_2d<FORMAT, write>;
-
 // Texel j of the tile's apron (tile coordinates): the rows above the pixels, the rows below, then the
 // columns left and right of the pixel rows.
 fn apron_texel(j: u32) -> vec2u {
@@ -101,14 +102,7 @@ fn apron_texel(j: u32) -> vec2u {
     let col = c / PIX_Hu;
     return vec2u(select(col, col + WXu, col >= APRONu), APRONu + c % PIX_Hu);
 }
-
-@compute @workgroup_size(WX, WY)
-fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) local: vec3u,
-           @builtin(local_invocation_index) index: u32) {
-    let size = textureDimensions(src);
-    let corner = group.xy * vec2u(WXu, PIX_Hu);
-    tile_origin = vec2i(corner) - vec2i(APRON, APRON);
-    var own: array<vec4f, ROWS>;  // this invocation's pixels (clamped to the image: the apron's rule)
+""" + MAIN_HEAD + """    var own: array<vec4f, ROWS>;  // this invocation's pixels (clamped to the image, as the apron)
     for (var k = 0u; k < ROWSu; k++) {
         let t = vec2u(local.x, local.y * ROWSu + k) + vec2u(APRONu, APRONu);
         own[k] = tile_source(tile_origin + vec2i(t));
