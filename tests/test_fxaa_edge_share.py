@@ -4,19 +4,12 @@ dispatch's layout (invocation (x, y) draws rows y * rows + k; a warp is 32 conse
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
-
-SCRIPT = Path(__file__).resolve().parent.parent / "benchmarks" / "fxaa_edge_share.py"
+from helpers import benchmark_script
 
 
 def _module():
-    spec = importlib.util.spec_from_file_location("fxaa_edge_share", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return benchmark_script("fxaa_edge_share")
 
 
 def test_a_lone_bright_pixel_and_its_four_neighbours_are_edges():

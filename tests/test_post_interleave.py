@@ -4,17 +4,11 @@ rows here are made up; the expected medians and chain ratios are computed from t
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
-SCRIPT = Path(__file__).resolve().parent.parent / "benchmarks" / "post_interleave.py"
+from helpers import benchmark_script
 
 
 def _module():
-    spec = importlib.util.spec_from_file_location("post_interleave", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return benchmark_script("post_interleave")
 
 
 def _rows():
