@@ -39,10 +39,11 @@ from wgpurender.wgpu_path.post import passes  # noqa: E402
 
 FINAL = ROOT / "assets" / "scenes" / "final.toml"
 # (name, shape, tile) of FXAA's pass; None: the plan's
-FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("untiled 16x16x1", (16, 16, 1), ""),
-              ("luma 16x8x2", (16, 8, 2), "luma"), ("luma 32x8x1", (32, 8, 1), "luma"),
-              ("luma 16x16x1", (16, 16, 1), "luma"), ("luma 8x8x4", (8, 8, 4), "luma"),
-              ("luma 32x4x2", (32, 4, 2), "luma"), ("texels 16x8x2", (16, 8, 2), "texels"))
+# tile "edges": FXAA's edge search over a list of edge pixels (wgpu_path/post/edge_list.py), cs_mark's shape given
+FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("edges 8x8x2", (8, 8, 2), "edges"),
+              ("edges 8x8x1", (8, 8, 1), "edges"), ("edges 16x8x2", (16, 8, 2), "edges"),
+              ("edges 32x8x1", (32, 8, 1), "edges"), ("edges 8x8x4", (8, 8, 4), "edges"),
+              ("untiled 8x8x1", (8, 8, 1), ""), ("untiled 32x8x1", (32, 8, 1), ""))
 
 
 def sm_clock() -> str:
@@ -84,6 +85,11 @@ class PassCase:
     """One planned pass with a given shape and tile (or a given WGSL text: main's), input and output fixed."""
 
     def __init__(self, ctx, p, source, target, shape=None, tile=None, text: str | None = None) -> None:
+        if tile == "edges":
+            from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+
+            self.runner, self.source, self.target = EdgeListPass(ctx.device, p, shape), source, target
+            return
         original = passes.pass_source
         if text is not None:
             passes.pass_source = lambda *a, **k: text
@@ -163,6 +169,8 @@ def main() -> int:
             cases[name].encode(encoder, None)
             ctx.queue.submit([encoder.finish()])
             images[name] = read_texture(ctx, fx_out)
+            if hasattr(cases[name].runner, "listed"):
+                args.listed = cases[name].runner.listed()
     args.out.mkdir(parents=True, exist_ok=True)
     with open(args.out / "interleave.csv", "w", newline="") as fh:
         w = csv.writer(fh)
@@ -196,7 +204,8 @@ def summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tone
              f"{', '.join(clocks)}; after: {clock_after}",
              f"- plan: tonemap {tonemap.shape} tile {tonemap.tile!r}; FXAA {fxaa.shape} tile {fxaa.tile!r}; "
              f"chain bytes {chain_bytes / 1e6:.1f} MB; FXAA's untiled text the same with and without the adapter's "
-             f"facts: {args.same_text}", "",
+             f"facts: {args.same_text}",
+             f"- edge pixels listed by the edge-list cases: {getattr(args, 'listed', '-')} of {size[0] * size[1]}", "",
              f"| case | median ms | p10 ms | p90 ms | median of per-round ratios to {base} | image = {base}'s |",
              "|---|---:|---:|---:|---:|---|"]
     for n in names:
