@@ -41,9 +41,13 @@ FINAL = ROOT / "assets" / "scenes" / "final.toml"
 # (name, shape, tile) of FXAA's pass; None: the plan's
 # tile "edges": FXAA's edge search over a list of edge pixels (wgpu_path/post/edge_list.py), cs_mark's shape given
 FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("edges 8x8x2", (8, 8, 2), "edges"),
-              ("edges 8x8x1", (8, 8, 1), "edges"), ("edges 16x8x2", (16, 8, 2), "edges"),
-              ("edges 32x8x1", (32, 8, 1), "edges"), ("edges 8x8x4", (8, 8, 4), "edges"),
-              ("untiled 8x8x1", (8, 8, 1), ""), ("untiled 32x8x1", (32, 8, 1), ""))
+              ("edges 16x8x2", (16, 8, 2), "edges"), ("edges 8x8x4", (8, 8, 4), "edges"),
+              ("edges 16x8x4", (16, 8, 4), "edges"), ("edges 32x8x4", (32, 8, 4), "edges"),
+              ("untiled 16x8x2", (16, 8, 2), ""), ("untiled 8x8x4", (8, 8, 4), ""),
+              ("untiled 16x8x1", (16, 8, 1), ""), ("untiled 32x8x2", (32, 8, 2), ""), ("untiled 8x4x2", (8, 4, 2), ""))
+# the edge list's first two dispatches alone (cs_mark, cs_size: every pixel off edges written, the edges listed and
+# counted, the count zeroed), no edge search: what the list costs before FXAA's work on the edges; not an image
+PART_CASES = (("part: mark+size 16x8x2", (16, 8, 2)), ("part: mark+size 8x8x4", (8, 8, 4)))
 
 
 def sm_clock() -> str:
@@ -103,6 +107,28 @@ class PassCase:
         self.runner.encode(encoder, self.source, self.target, timestamp_writes=writes)
 
 
+class MarkCase:
+    """An edge-list FXAA pass's cs_mark and cs_size dispatches only (PART_CASES)."""
+
+    def __init__(self, ctx, p, source, target, shape) -> None:
+        from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+        from wgpurender.wgpu_path.post.shaders import dispatch_groups
+
+        self.runner = EdgeListPass(ctx.device, p, shape)
+        self.group = self.runner._group(source, target)
+        self.groups = dispatch_groups((target.size[0], target.size[1]), shape)
+
+    def encode(self, encoder, writes) -> None:
+        cp = encoder.begin_compute_pass(timestamp_writes=writes)
+        cp.set_pipeline(self.runner.mark)
+        cp.set_bind_group(0, self.group)
+        cp.dispatch_workgroups(*self.groups, 1)
+        cp.set_pipeline(self.runner.size_pipeline)
+        cp.set_bind_group(0, self.runner.size_group)
+        cp.dispatch_workgroups(1, 1, 1)
+        cp.end()
+
+
 def time_once(ctx, case, timer: PassTimer) -> float:
     timer.reset()
     encoder = ctx.device.create_command_encoder()
@@ -148,6 +174,8 @@ def main() -> int:
         cases["fxaa main"] = PassCase(ctx, fxaa, fx_in, fx_out, (8, 8, 2), "", args.main_wgsl.read_text())
     for name, shape, tile in FXAA_CASES:
         cases[f"fxaa {name}"] = PassCase(ctx, fxaa, fx_in, fx_out, shape, tile)
+    for name, shape in PART_CASES:
+        cases[name] = MarkCase(ctx, fxaa, fx_in, fx_out, shape)
     timer = PassTimer(ctx, max_passes=1)
     names = list(cases)
     for name in names:  # warm-up: pipelines made, caches filled
