@@ -2,9 +2,9 @@
 
 ``cs_mark`` writes every pixel off edges and lists the edge pixels, ``cs_size`` sizes the indirect dispatch and
 zeroes the count, ``cs_edges`` runs FXAA on the listed pixels. The image must be the one-dispatch pass's, byte for
-byte, at sizes that cut workgroups and at shapes of 1 to 4 rows; the list must hold exactly the pixels FXAA's
-local-contrast test marks, counted here in numpy from the image the pass reads; a second frame must list them
-again (the count is zeroed on the GPU, not by the CPU).
+byte, at sizes that cut workgroups (one over 256 pixels wide: x is packed in 16 bits) and at shapes of 1 to 4
+rows; the list must hold exactly the pixels FXAA's local-contrast test marks, counted here in numpy from the image
+the pass reads; a second frame must list them again (the count is zeroed on the GPU, not by the CPU).
 """
 
 from __future__ import annotations
@@ -32,9 +32,12 @@ def _edges(rgb: np.ndarray, threshold: float, threshold_min: float) -> np.ndarra
     return ~(l_max - l_min < np.maximum(threshold_min, l_max * threshold))
 
 
-def _run(ctx, runner, source, target) -> np.ndarray:
+def _run(ctx, runner, source, like) -> np.ndarray:
+    """The runner's image into a new texture like ``like`` (zeros where no dispatch writes: a pixel left out shows,
+    not the image an earlier run left there)."""
     from wgpurender.wgpu_path.device.targets import read_texture
 
+    target = ctx.device.create_texture(size=like.size, format=like.format, usage=like.usage)
     encoder = ctx.device.create_command_encoder()
     runner.encode(encoder, source, target)
     ctx.queue.submit([encoder.finish()])
@@ -55,7 +58,7 @@ def _blocks(size: tuple[int, int], seed: int) -> np.ndarray:
 
 
 @pytest.mark.parametrize("size,shape", [((203, 117), None), ((13, 7), None), ((203, 117), (8, 8, 1)),
-                                        ((97, 61), (32, 8, 1)), ((97, 61), (8, 8, 4))])
+                                        ((301, 37), (32, 8, 1)), ((97, 61), (8, 8, 4))])
 def test_the_edge_list_draws_the_one_dispatch_image_and_lists_the_edges(ctx, size, shape):
     from wgpurender.wgpu_path.post import PostChain, create_effect
     from wgpurender.wgpu_path.post.edge_list import EdgeListPass
