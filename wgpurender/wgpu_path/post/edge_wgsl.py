@@ -14,7 +14,9 @@ dispatch hold one (benchmarks/fxaa_edge_share.py). So the pass becomes three dis
   the listed pixels only, 64 to a workgroup.
 
 Every pixel is written once, by the same functions on the same texels as the one-dispatch pass: the image is
-that pass's, byte for byte (tests/test_post_edge_list.py).
+that pass's, byte for byte (tests/test_post_edge_list.py). Measured on the H100 it loses (core/plan/dispatch.py):
+``cs_mark`` alone costs almost what the one dispatch does, so the plan never draws it; ``bench post-roofline
+--shapes`` and benchmarks/post_interleave.py time it.
 """
 
 from __future__ import annotations
