@@ -1,0 +1,146 @@
+"""Does recording the next frame ahead cut the final scene's CPU per frame (issue 31.4)? A probe, run on the device.
+
+The frame as ``bench perf``'s untimed rows draw it (one offscreen target, no timestamps, no readback, the blocking
+GPU wait after each frame), in two structures with the same calls, in alternating rounds on one process:
+
+- ``after_wait`` (today's): encoder + ``renderer.record`` + ``finish``, then ``submit``, then the wait;
+- ``ahead`` (wgpu_path/device/frame_ahead.py): ``submit`` of the frame recorded ahead, then encoder + record +
+  ``finish`` of the next frame, then the wait: the record runs right after the submit, before the thread sleeps.
+
+Every CPU span of a frame is timed in wall time and thread CPU time (``time.thread_time``): ``record`` (encoder,
+record, finish) and ``submit``; ``cpu`` is their sum, the CPU per frame. After each round the target is read back
+and hashed: both structures must draw the same image.
+
+Each structure runs a second time with the thread pinned to the CPU it was on (``_pinned``, os.sched_setaffinity
+for this thread only): after a long sleep the scheduler may wake the thread on another CPU, whose caches hold none
+of the frame's code and objects; pinning asks whether that is the cold start.
+
+    python benchmarks/record_ahead_probe.py OUT.csv [SCENE] [SIZES] [FRAMES] [ROUNDS]
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from probe_csv import write_rows
+
+SIZES = "800x600,1280x720,1920x1080,3840x2160"
+WARM = 10  # untimed frames at the start of each round
+
+
+def after_wait(ctx, record, target, t: float) -> tuple[float, ...]:
+    """One frame of today's structure: (record wall, record cpu, submit wall, submit cpu) in seconds."""
+    w0, c0 = time.perf_counter(), time.thread_time()
+    encoder = ctx.device.create_command_encoder(label="probe")
+    record(encoder, target, t)
+    buffer = encoder.finish()
+    w1, c1 = time.perf_counter(), time.thread_time()
+    ctx.queue.submit([buffer])
+    w2, c2 = time.perf_counter(), time.thread_time()
+    ctx.wait_idle()
+    return w1 - w0, c1 - c0, w2 - w1, c2 - c1
+
+
+def ahead_frame(ctx, ahead, t: float) -> tuple[float, ...]:
+    """One frame recorded ahead: submit the pending buffer, record the next, then wait."""
+    w0, c0 = time.perf_counter(), time.thread_time()
+    ahead.submit(t)
+    w1, c1 = time.perf_counter(), time.thread_time()
+    ahead.record_next(t)
+    w2, c2 = time.perf_counter(), time.thread_time()
+    ctx.wait_idle()
+    return w2 - w1, c2 - c1, w1 - w0, c1 - c0
+
+
+def this_cpu() -> int:
+    """The CPU this thread runs on now (field 39 of /proc/thread-self/stat)."""
+    return int(Path("/proc/thread-self/stat").read_text().rsplit(")", 1)[1].split()[36])
+
+
+def image_hash(ctx, target) -> str:
+    from wgpurender.wgpu_path.device.targets import Readback
+
+    readback = Readback(ctx)
+    encoder = ctx.device.create_command_encoder(label="probe-readback")
+    readback.record(encoder, target)
+    ctx.queue.submit([encoder.finish()])
+    return hashlib.sha256(readback.read().tobytes()).hexdigest()[:16]
+
+
+def rows_for(structure: str, size: str, spans: list[tuple[float, ...]], frames_ms: list[float], hashes: set) -> dict:
+    ms = [[v * 1e3 for v in s] for s in spans]
+    cpu_wall = [s[0] + s[2] for s in ms]
+    cpu_thread = [s[1] + s[3] for s in ms]
+
+    def p99(values):
+        return sorted(values)[min(len(values) - 1, int(0.99 * len(values)))]
+
+    med = statistics.median
+    return {"structure": structure, "size": size, "frames": len(ms),
+            "cpu_wall_ms": med(cpu_wall), "cpu_wall_p99_ms": p99(cpu_wall),
+            "cpu_thread_ms": med(cpu_thread), "cpu_thread_p99_ms": p99(cpu_thread),
+            "record_wall_ms": med(s[0] for s in ms), "record_thread_ms": med(s[1] for s in ms),
+            "submit_wall_ms": med(s[2] for s in ms), "submit_thread_ms": med(s[3] for s in ms),
+            "frame_ms": med(frames_ms), "image_sha256": "/".join(sorted(hashes))}
+
+
+def main() -> int:
+    out = Path(sys.argv[1])
+    scene = sys.argv[2] if len(sys.argv) > 2 else "final.toml"
+    sizes = [tuple(int(v) for v in s.split("x")) for s in (sys.argv[3] if len(sys.argv) > 3 else SIZES).split(",")]
+    frames = int(sys.argv[4]) if len(sys.argv) > 4 else 200
+    rounds = int(sys.argv[5]) if len(sys.argv) > 5 else 4
+
+    from wgpurender.bench.frames import frames_without_gc, settle_garbage
+    from wgpurender.bench.scene import SceneRunner
+    from wgpurender.core.files.assets import resolve_scene
+    from wgpurender.wgpu_path.device.context import get_context
+    from wgpurender.wgpu_path.device.frame_ahead import FramesAhead
+
+    ctx = get_context()
+    rows = []
+    for size in sizes:
+        runner = SceneRunner(ctx, resolve_scene(scene), size)
+        record, target = runner.renderer.record, runner.target
+        ahead = FramesAhead(ctx, record, target, label="probe")
+        plain = {"after_wait": lambda: after_wait(ctx, record, target, 0.0),
+                 "ahead": lambda: ahead_frame(ctx, ahead, 0.0)}
+        structures = {**plain, **{f"{name}_pinned": f for name, f in plain.items()}}
+        spans = {name: [] for name in structures}
+        frame_ms = {name: [] for name in structures}
+        hashes = {name: set() for name in structures}
+        settle_garbage()
+        for k in range(rounds):
+            for name in (list(structures) if k % 2 == 0 else list(structures)[::-1]):
+                ahead.drop()
+                allowed = os.sched_getaffinity(0)
+                if name.endswith("_pinned"):
+                    os.sched_setaffinity(0, {this_cpu()})
+                with frames_without_gc():
+                    for i in range(WARM + frames // rounds):
+                        start = time.perf_counter()
+                        s = structures[name]()
+                        if i >= WARM:
+                            spans[name].append(s)
+                            frame_ms[name].append((time.perf_counter() - start) * 1e3)
+                os.sched_setaffinity(0, allowed)
+                hashes[name].add(image_hash(ctx, target))
+        text = f"{size[0]}x{size[1]}"
+        for name in structures:
+            rows.append(rows_for(name, text, spans[name], frame_ms[name], hashes[name]))
+            r = rows[-1]
+            print(f"{text} {name}: cpu {r['cpu_wall_ms']:.3f} ms wall (p99 {r['cpu_wall_p99_ms']:.3f}), "
+                  f"{r['cpu_thread_ms']:.3f} thread; record {r['record_wall_ms']:.3f}, submit "
+                  f"{r['submit_wall_ms']:.3f}; frame {r['frame_ms']:.3f}; image {r['image_sha256']}", flush=True)
+        ahead.drop()
+    write_rows(out, rows, digits=4)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
