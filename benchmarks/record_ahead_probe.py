@@ -20,6 +20,7 @@ of the frame's code and objects; pinning asks whether that is the cold start.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import statistics
@@ -108,8 +109,8 @@ def main() -> int:
         runner = SceneRunner(ctx, resolve_scene(scene), size)
         record, target = runner.renderer.record, runner.target
         ahead = FramesAhead(ctx, record, target, label="probe")
-        plain = {"after_wait": lambda: after_wait(ctx, record, target, 0.0),
-                 "ahead": lambda: ahead_frame(ctx, ahead, 0.0)}
+        plain = {"after_wait": functools.partial(after_wait, ctx, record, target, 0.0),
+                 "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0)}
         structures = {**plain, **{f"{name}_pinned": f for name, f in plain.items()}}
         spans = {name: [] for name in structures}
         frame_ms = {name: [] for name in structures}
