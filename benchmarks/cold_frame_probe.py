@@ -28,7 +28,7 @@ import time
 from pathlib import Path
 
 from probe_csv import write_rows
-from record_ahead_probe import SIZES, WARM, ahead_frame, after_wait, image_hash, rows_for
+from record_ahead_probe import SIZES, WARM, after_wait, ahead_frame, image_hash, rows_for
 
 NAP_S, NAP_UNTIL = 0.0001, 0.9
 

@@ -6,9 +6,18 @@
 # - probe_1, probe_2: benchmarks/record_ahead_probe.py at 800x600..3840x2160, two processes (each: today's
 #   structure, record-ahead, and both with the thread pinned, in alternating rounds; every CPU span timed);
 # - scene: `bench perf --only scene --no-raw` (the judged cpu_ms:untimed rows, as the bench draws them now).
+# The second call (PROBE=cold): benchmarks/cold_frame_probe.py instead (today's frame, record-ahead, the same
+# native calls replayed without Python, and a wait in naps), one process.
 # Writes everything under $OUT/run.
 set -u
 . benchmarks/device_run_setup.sh  # loader, wheels, machine.txt, step()
+if [ "${PROBE:-}" = cold ]; then
+  step cold 120 python3 benchmarks/cold_frame_probe.py "$D/cold_frame_probe.csv" final.toml \
+    800x600,1280x720,1920x1080,3840x2160 400 4
+  cat "$D/commands.txt" "$D/cold_frame_probe.csv"
+  tar czf "$OUT/run.tgz" -C "$OUT" run && rm -rf "$OUT/run"
+  exit 0
+fi
 for r in 1 2; do
   step "probe_$r" 60 python3 benchmarks/record_ahead_probe.py "$D/record_ahead_probe_$r.csv" final.toml \
     800x600,1280x720,1920x1080,3840x2160 400 4
