@@ -14,7 +14,7 @@ as ``bench perf``'s untimed rows draw it, structures in alternating rounds on on
   (the virtual machine's vCPU never idle long) record faster, and what does the waiting itself cost (``wait_thread``)?
 
 Every CPU span is timed in wall and thread CPU time: ``record`` (encoder, record, finish), ``submit``, and the wait.
-After each round the target is read back and hashed: every structure must draw the same image.
+Before each round the target is zeroed, after it read back and hashed: every structure must draw the same image.
 
     python benchmarks/cold_frame_probe.py OUT.csv [SCENE] [SIZES] [FRAMES] [ROUNDS]
 """
@@ -28,7 +28,7 @@ import time
 from pathlib import Path
 
 from probe_csv import write_rows
-from record_ahead_probe import SIZES, WARM, after_wait, ahead_frame, image_hash, rows_for
+from record_ahead_probe import SIZES, WARM, after_wait, ahead_frame, image_hash, rows_for, wipe
 
 NAP_S, NAP_UNTIL = 0.0001, 0.9
 
@@ -50,8 +50,15 @@ class NativeFrame:
                 return result
             return call
 
+        # wgpu-py's pass encoders call some functions through class attributes (``_set_bind_group_function``...)
+        # bound at import: those are captured too; releases are not (the replay releases its own handles)
+        bound = [(cls, attr, fn) for cls in vars(_api).values() if isinstance(cls, type)
+                 for attr, fn in vars(cls).items()
+                 if attr.endswith("_function") and attr != "_release_function" and fn is not None]
         for name, fn in real.items():
             setattr(self.libf, name, capture(name, fn))
+        for cls, attr, fn in bound:
+            setattr(cls, attr, staticmethod(capture(attr, fn)))
         try:
             encoder = ctx.device.create_command_encoder(label="probe")
             record(encoder, target, 0.0)
@@ -59,6 +66,8 @@ class NativeFrame:
         finally:
             for name, fn in real.items():
                 setattr(self.libf, name, fn)
+            for cls, attr, fn in bound:
+                setattr(cls, attr, fn)
         ctx.wait_idle()
         self.submit = real["wgpuQueueSubmit"]
 
@@ -147,6 +156,7 @@ def main() -> int:
         for k in range(rounds):
             for name in (list(structures) if k % 2 == 0 else list(structures)[::-1]):
                 ahead.drop()
+                wipe(ctx, target)
                 with frames_without_gc():
                     for i in range(WARM + frames // rounds):
                         start, c_start = time.perf_counter(), time.thread_time()

@@ -63,6 +63,17 @@ def this_cpu() -> int:
     return int(Path("/proc/thread-self/stat").read_text().rsplit(")", 1)[1].split()[36])
 
 
+def wipe(ctx, target) -> None:
+    """Zeros into the target, so the hash after a round shows what that round drew (cold_frame_probe.py)."""
+    import numpy as np
+
+    w, h = target.size[0], target.size[1]
+    bpp = 8 if "16float" in target.format else 4
+    ctx.queue.write_texture({"texture": target}, np.zeros(w * h * bpp, np.uint8),
+                            {"bytes_per_row": w * bpp, "rows_per_image": h}, (w, h, 1))
+    ctx.wait_idle()
+
+
 def image_hash(ctx, target) -> str:
     from wgpurender.wgpu_path.device.targets import Readback
 
