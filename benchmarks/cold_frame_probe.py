@@ -5,7 +5,7 @@ where it was on the H100 (docs/perf-h100/2026-11-27-frame4/). This probe asks tw
 as ``bench perf``'s untimed rows draw it, structures in alternating rounds on one process:
 
 - ``after_wait``: today's frame (encoder, ``renderer.record``, finish; submit; the blocking wait);
-- ``ahead``: the frame recorded ahead (wgpu_path/device/frame_ahead.py), again, beside the others;
+- ``ahead``: the frame recorded ahead (record_ahead_probe.FramesAhead), again, beside the others;
 - ``native``: the same frame's wgpu-native calls replayed with the same arguments (captured once from a frame of
   wgpu-py, the handles it returns substituted), no wgpu-py or renderer Python: how much of the cold frame is native
   (wgpu-core, the driver) and how much is Python;
@@ -28,7 +28,7 @@ import time
 from pathlib import Path
 
 from probe_csv import write_rows
-from record_ahead_probe import SIZES, WARM, after_wait, ahead_frame, image_hash, rows_for, wipe
+from record_ahead_probe import SIZES, WARM, FramesAhead, after_wait, ahead_frame, image_hash, rows_for, wipe
 
 NAP_S, NAP_UNTIL = 0.0001, 0.9
 
@@ -129,7 +129,6 @@ def main() -> int:
     from wgpurender.bench.scene import SceneRunner
     from wgpurender.core.files.assets import resolve_scene
     from wgpurender.wgpu_path.device.context import get_context
-    from wgpurender.wgpu_path.device.frame_ahead import FramesAhead
 
     ctx = get_context()
     rows = []

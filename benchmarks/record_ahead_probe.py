@@ -4,7 +4,7 @@ The frame as ``bench perf``'s untimed rows draw it (one offscreen target, no tim
 GPU wait after each frame), in two structures with the same calls, in alternating rounds on one process:
 
 - ``after_wait`` (today's): encoder + ``renderer.record`` + ``finish``, then ``submit``, then the wait;
-- ``ahead`` (wgpu_path/device/frame_ahead.py): ``submit`` of the frame recorded ahead, then encoder + record +
+- ``ahead`` (:class:`FramesAhead`): ``submit`` of the frame recorded ahead, then encoder + record +
   ``finish`` of the next frame, then the wait: the record runs right after the submit, before the thread sleeps.
 
 Every CPU span of a frame is timed in wall time and thread CPU time (``time.thread_time``): ``record`` (encoder,
@@ -29,6 +29,44 @@ import time
 from pathlib import Path
 
 from probe_csv import write_rows
+
+
+class FramesAhead:
+    """Frames recorded one ahead, as the Vulkan tutorial's frames in flight (the raw path's window,
+    FRAMES_IN_FLIGHT = 2): the next frame's command buffer is recorded and finished right after this frame's submit,
+    before the wait for this frame's GPU work. wgpu cannot reuse a command buffer, but a finished one can wait to be
+    submitted, and ``queue.write_buffer`` stays ordered with the submits around it. The target must stay the same
+    texture between the record and the submit; :meth:`drop` forgets a frame recorded for an old target or state.
+    Tried on the H100 and not adopted (docs/perf-h100/2026-11-27-frame4/README.md)."""
+
+    def __init__(self, ctx, record, target, label: str = "frame-ahead") -> None:
+        """``record(encoder, target, t)`` records a frame (a SceneRenderer's ``record``)."""
+        self.ctx, self.record, self.target, self.label = ctx, record, target, label
+        self.pending = None  # the finished command buffer of the frame recorded ahead
+
+    def record_next(self, t: float) -> None:
+        """Record and finish the next frame at clock time ``t``; it waits for :meth:`submit`."""
+        encoder = self.ctx.device.create_command_encoder(label=self.label)
+        self.record(encoder, self.target, t)
+        self.pending = encoder.finish()
+
+    def submit(self, t: float) -> None:
+        """Submit the frame recorded ahead (recorded now, at ``t``, when none is: the first frame, or after
+        :meth:`drop`)."""
+        if self.pending is None:
+            self.record_next(t)
+        pending, self.pending = self.pending, None
+        self.ctx.queue.submit([pending])
+
+    def frame(self, t: float, t_next: float | None = None) -> None:
+        """Submit this frame, then record the next one at ``t_next`` (``t`` when not given) before any wait."""
+        self.submit(t)
+        self.record_next(t if t_next is None else t_next)
+
+    def drop(self) -> None:
+        """Forget the frame recorded ahead (a new target, size or scene state it did not see)."""
+        self.pending = None
+
 
 SIZES = "800x600,1280x720,1920x1080,3840x2160"
 WARM = 10  # untimed frames at the start of each round
@@ -112,7 +150,6 @@ def main() -> int:
     from wgpurender.bench.scene import SceneRunner
     from wgpurender.core.files.assets import resolve_scene
     from wgpurender.wgpu_path.device.context import get_context
-    from wgpurender.wgpu_path.device.frame_ahead import FramesAhead
 
     ctx = get_context()
     rows = []
