@@ -1,0 +1,146 @@
+"""The frame4 pass's probes (issue 31.4): benchmarks/record_ahead_probe.py (frames recorded one ahead, the thread
+pinned) and benchmarks/cold_frame_probe.py (the same native calls replayed without Python, a wait in naps).
+
+Their numbers are the H100's (docs/perf-h100/2026-11-27-frame4/); what is tested here is that each structure they
+compare draws the frame it claims: the same calls in the order claimed, the same pixels as a frame recorded after
+the wait, and spans summed as the docs read them. The replay's first try on the H100 failed validation: wgpu-py's
+pass encoders call set_bind_group through a class attribute the capture did not see (the compute post path)."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wgpurender.wgpu_path.device.frame_loop import run_frame
+from wgpurender.wgpu_path.device.targets import read_texture
+from wgpurender.wgpu_path.scene import load_renderer
+
+REPO = Path(__file__).resolve().parent.parent
+FINAL = REPO / "assets" / "scenes" / "final.toml"
+
+
+@pytest.fixture
+def probes(monkeypatch):
+    """The two probe scripts as modules (they import each other and probe_csv from their own folder)."""
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    return importlib.import_module("record_ahead_probe"), importlib.import_module("cold_frame_probe")
+
+
+class _Log:
+    """A stand-in context whose device, encoders and queue write what happens into ``events``."""
+
+    def __init__(self) -> None:
+        self.events, self.made = [], 0
+        self.device, self.queue = self, self
+
+    def create_command_encoder(self, label: str = ""):
+        self.made += 1
+        number, events = self.made, self.events
+        events.append(("encoder", number))
+
+        class Encoder:
+            def finish(self):
+                events.append(("finish", number))
+                return f"buffer {number}"
+
+        return Encoder()
+
+    def submit(self, buffers):
+        self.events.append(("submit", *buffers))
+
+
+def test_frames_ahead_submits_the_frame_recorded_before_and_records_the_next_at_its_time(probes):
+    ahead_module, _ = probes
+    log = _Log()
+    ahead = ahead_module.FramesAhead(log, lambda encoder, target, t: log.events.append(("record", target, t)), "T")
+    ahead.frame(0.5)
+    assert log.events == [("encoder", 1), ("record", "T", 0.5), ("finish", 1), ("submit", "buffer 1"),
+                          ("encoder", 2), ("record", "T", 0.5), ("finish", 2)]
+    del log.events[:]
+    ahead.frame(1.0, t_next=2.0)  # the frame recorded at 0.5 goes now; the next is recorded for 2.0
+    assert log.events == [("submit", "buffer 2"), ("encoder", 3), ("record", "T", 2.0), ("finish", 3)]
+    del log.events[:]
+    ahead.drop()
+    ahead.submit(3.0)  # nothing ahead: recorded at 3.0, submitted, and nothing is left pending
+    assert log.events == [("encoder", 4), ("record", "T", 3.0), ("finish", 4), ("submit", "buffer 4")]
+    assert ahead.pending is None
+
+
+@pytest.mark.parametrize("post_path", ["fragment", "compute"])
+def test_each_structure_draws_the_frame_recorded_after_the_wait(ctx, probes, post_path):
+    """Today's frame, the frame recorded ahead, the native replay and the napping wait: the same pixels, each
+    drawn into a target zeroed first (so an empty replay cannot pass as the last structure's image)."""
+    ahead_module, cold = probes
+    renderer = load_renderer(FINAL, ctx, size=(96, 72), knobs={"post_path": post_path})
+    target = renderer.create_output()
+    expected = run_frame(ctx, renderer.record, target).pixels
+    assert (expected[..., :3].astype(int).sum(-1) > 30).mean() > 0.05, "the scene is drawn"
+    ahead = ahead_module.FramesAhead(ctx, renderer.record, target)
+    native = cold.NativeFrame(ctx, renderer.record, target)
+    structures = {
+        "after_wait": lambda: ahead_module.after_wait(ctx, renderer.record, target, 0.0),
+        "ahead": lambda: ahead_module.ahead_frame(ctx, ahead, 0.0),
+        "native": lambda: cold.native_frame(ctx, native),
+        "naps": lambda: cold.napping_frame(ctx, renderer.record, target, 0.002),
+    }
+    for name, frame in structures.items():
+        ahead_module.wipe(ctx, target)
+        assert not read_texture(ctx, target).any(), "the wipe leaves zeros"
+        frame()
+        np.testing.assert_array_equal(read_texture(ctx, target), expected, err_msg=name)
+    assert ahead.pending is not None  # the next frame waits, finished, for its submit
+    ahead_module.wipe(ctx, target)
+    ahead.submit(0.0)
+    ctx.wait_idle()
+    np.testing.assert_array_equal(read_texture(ctx, target), expected)
+
+
+def test_the_native_replay_makes_the_calls_of_the_wgpu_py_frame(ctx, probes):
+    """The compute path's frame: its set_bind_group calls (made through a class attribute) are captured too."""
+    _, cold = probes
+    renderer = load_renderer(FINAL, ctx, size=(96, 72), knobs={"post_path": "compute"})
+    target = renderer.create_output()
+    run_frame(ctx, renderer.record, target)
+    names = [fn.__name__ for fn, _, _ in cold.NativeFrame(ctx, renderer.record, target).calls]
+    dispatches = len(renderer.plan.post_passes)
+    assert names.count("wgpuComputePassEncoderSetBindGroup") == dispatches
+    assert names.count("wgpuComputePassEncoderDispatchWorkgroups") == dispatches
+    assert names[0] == "wgpuDeviceCreateCommandEncoder" and names[-1] == "wgpuQueueSubmit"
+    assert not any(name.endswith("Release") for name in names)  # the replay releases its own handles
+
+
+def test_the_napping_wait_sleeps_until_its_share_of_the_expected_frame(ctx, probes):
+    ahead_module, cold = probes
+    renderer = load_renderer(FINAL, ctx, size=(32, 24), knobs={"post_path": "fragment"})
+    target = renderer.create_output()
+    start = time.perf_counter()
+    spans = cold.napping_frame(ctx, renderer.record, target, 0.2)
+    took = time.perf_counter() - start
+    assert took >= cold.NAP_UNTIL * 0.2
+    assert all(s >= 0 for s in spans) and spans[0] + spans[2] < took
+
+
+def test_the_rows_sum_the_spans_of_a_frame_into_its_cpu(probes):
+    ahead_module, _ = probes
+    # (record wall, record thread, submit wall, submit thread) in seconds; frame k's record is k ms
+    spans = [(k / 1e3, k / 2e3, 0.5e-3, 0.25e-3) for k in range(1, 101)]
+    row = ahead_module.rows_for("s", "8x8", spans, [2.0] * 100, {"h"})
+    cpu = [k + 0.5 for k in range(1, 101)]
+    assert row["cpu_wall_ms"] == pytest.approx(statistics.median(cpu))
+    assert row["cpu_wall_p99_ms"] == pytest.approx(sorted(cpu)[99])
+    assert row["cpu_thread_ms"] == pytest.approx(statistics.median(k / 2 + 0.25 for k in range(1, 101)))
+    assert row["record_wall_ms"] == pytest.approx(50.5) and row["submit_thread_ms"] == pytest.approx(0.25)
+    assert row["frames"] == 100 and row["frame_ms"] == 2.0 and row["image_sha256"] == "h"
+    few = ahead_module.rows_for("s", "8x8", spans[:10], [1.0] * 10, {"b", "a"})
+    assert few["cpu_wall_p99_ms"] == pytest.approx(10.5) and few["image_sha256"] == "a/b"
+
+
+def test_this_cpu_is_one_the_thread_may_run_on(probes):
+    ahead_module, _ = probes
+    assert ahead_module.this_cpu() in os.sched_getaffinity(0)
