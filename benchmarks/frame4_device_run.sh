@@ -1,7 +1,7 @@
 #!/bin/sh
 # Issue 31.4's frame4 pass on the GPU machine (frame4 engineer, 2026-11-27): does recording the next frame ahead
-# (wgpu_path/device/frame_ahead.py) or pinning the thread cut the final scene's CPU per frame? Run from a copy of
-# the branch in a folder of main's checkout, .gl/ and .whl/ carried beside it:
+# (FramesAhead, benchmarks/record_ahead_probe.py) or pinning the thread cut the final scene's CPU per frame? Run
+# from a copy of the branch in a folder of main's checkout, .gl/ and .whl/ carried beside it:
 # `cd .frame4 && ln -s ../.gl .gl && ln -s ../.whl .whl && sh benchmarks/frame4_device_run.sh`.
 # - probe_1, probe_2: benchmarks/record_ahead_probe.py at 800x600..3840x2160, two processes (each: today's
 #   structure, record-ahead, and both with the thread pinned, in alternating rounds; every CPU span timed);
