@@ -146,3 +146,29 @@ def test_the_rows_sum_the_spans_of_a_frame_into_its_cpu(probes):
 def test_this_cpu_is_one_the_thread_may_run_on(probes):
     ahead_module, _ = probes
     assert ahead_module.this_cpu() in os.sched_getaffinity(0)
+
+
+@pytest.fixture
+def python_calls(monkeypatch):
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    return importlib.import_module("frame_python_calls")
+
+
+def test_each_function_is_counted_for_whoever_wrote_it(python_calls):
+    owner = python_calls.owner
+    assert owner("~") == "builtins"
+    assert owner("/x/site-packages/wgpu/backends/wgpu_native/_api.py") == "wgpu-py"
+    assert owner("/x/wgpurender/wgpu_path/scene/frame.py") == "wgpurender"
+    assert owner("/x/site-packages/cffi/api.py") == "cffi"
+    assert owner("/usr/lib/python3.11/weakref.py") == "stdlib"
+    assert owner("/x/wgpu_helpers/wgpurender_notes.py") == "stdlib"  # a name that only contains the words
+
+
+def test_the_frame_s_python_calls_are_counted_per_frame(ctx, python_calls):
+    renderer = load_renderer(FINAL, ctx, size=(32, 24), knobs={"post_path": "compute"})
+    counts = python_calls.calls_per_frame(ctx, renderer, 4)
+    # ours per frame: the renderer's record, its bound frame and the scene pass's and chain's records, a dispatch
+    # per planned pass (the exact set may change; a frame of ours stays a handful, wgpu-py's far more)
+    assert 3 + len(renderer.plan.post_passes) <= counts["wgpurender"] <= 20
+    assert counts["wgpu-py"] > 5 * counts["wgpurender"]
+    assert counts["builtins"] > 0 and counts["wgpurender"] == int(counts["wgpurender"])  # the same every frame
