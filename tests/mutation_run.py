@@ -2229,6 +2229,16 @@ MUTATIONS = [
     ("benchmarks/cold_frame_probe.py", "    end = w0 + NAP_UNTIL * expected_s", "    end = w0",
      ["tests/test_frame4_probes.py"]),
     ("benchmarks/cold_frame_probe.py", "    native.replay()\n", "    pass\n", ["tests/test_frame4_probes.py"]),
+    ("benchmarks/frame_python_calls.py", '    if filename == "~":', '    if filename == "-":',
+     ["tests/test_frame4_probes.py"]),
+    ("benchmarks/frame_python_calls.py", '    if "wgpurender" in parts:', '    if "wgpurender" in filename:',
+     ["tests/test_frame4_probes.py"]),
+    ("benchmarks/frame_python_calls.py", '    if "wgpu" in parts:', '    if "wgpu" in filename:',
+     ["tests/test_frame4_probes.py"]),
+    ("benchmarks/frame_python_calls.py", '    return "cffi" if "cffi" in parts else "stdlib"', '    return "stdlib"',
+     ["tests/test_frame4_probes.py"]),
+    ("benchmarks/frame_python_calls.py", "    return Counter({k: v / frames for k, v in counts.items()})",
+     "    return Counter(counts)", ["tests/test_frame4_probes.py"]),
 ]
 
 
