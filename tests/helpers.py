@@ -70,3 +70,15 @@ def render_both_paths(ctx, folder, size: tuple[int, int]) -> np.ndarray:
     raw = render_scene_reference(path, size=size)
     assert np.array_equal(wgpu, raw), "wgpu and raw differ"
     return wgpu[..., :3].astype(np.float64)
+
+
+def benchmark_script(name: str):
+    """benchmarks/<name>.py imported as a module (the folder is no package), for tests of a probe's helpers."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parent.parent / "benchmarks" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -25,11 +25,17 @@ REPO = Path(__file__).resolve().parent.parent
 FINAL = REPO / "assets" / "scenes" / "final.toml"
 
 
+def _scripts(monkeypatch, *names: str):
+    """benchmarks/<name>.py as modules, their folder on the path: they import each other and probe_csv from it
+    (helpers.benchmark_script imports a lone script)."""
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    return tuple(importlib.import_module(name) for name in names)
+
+
 @pytest.fixture
 def probes(monkeypatch):
-    """The two probe scripts as modules (they import each other and probe_csv from their own folder)."""
-    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
-    return importlib.import_module("record_ahead_probe"), importlib.import_module("cold_frame_probe")
+    """The two probe scripts as modules."""
+    return _scripts(monkeypatch, "record_ahead_probe", "cold_frame_probe")
 
 
 class _Log:
@@ -150,8 +156,7 @@ def test_this_cpu_is_one_the_thread_may_run_on(probes):
 
 @pytest.fixture
 def python_calls(monkeypatch):
-    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
-    return importlib.import_module("frame_python_calls")
+    return _scripts(monkeypatch, "frame_python_calls")[0]
 
 
 def test_each_function_is_counted_for_whoever_wrote_it(python_calls):
