@@ -25,10 +25,9 @@ import functools
 import statistics
 import sys
 import time
-from pathlib import Path
 
 from probe_csv import write_rows
-from record_ahead_probe import SIZES, WARM, FramesAhead, after_wait, ahead_frame, image_hash, rows_for, wipe
+from record_ahead_probe import WARM, FramesAhead, after_wait, ahead_frame, arguments, run_rounds
 
 NAP_S, NAP_UNTIL = 0.0001, 0.9
 
@@ -102,30 +101,26 @@ def native_frame(ctx, native: NativeFrame) -> tuple[float, ...]:
     return w1 - w0, c1 - c0, 0.0, 0.0  # the replay's submit is inside its one span
 
 
+def naps(expected_s: float):
+    """A wait (record_ahead_probe.after_wait's ``wait``): naps of NAP_S until NAP_UNTIL of ``expected_s`` after the
+    frame's start, then the blocking wait."""
+    def wait(ctx, start: float) -> None:
+        end = start + NAP_UNTIL * expected_s
+        while time.perf_counter() < end:
+            time.sleep(NAP_S)
+        ctx.wait_idle()
+
+    return wait
+
+
 def napping_frame(ctx, record, target, expected_s: float) -> tuple[float, ...]:
-    """Today's frame, waited for in naps until NAP_UNTIL of ``expected_s``, then blocking."""
-    w0, c0 = time.perf_counter(), time.thread_time()
-    encoder = ctx.device.create_command_encoder(label="probe")
-    record(encoder, target, 0.0)
-    buffer = encoder.finish()
-    w1, c1 = time.perf_counter(), time.thread_time()
-    ctx.queue.submit([buffer])
-    w2, c2 = time.perf_counter(), time.thread_time()
-    end = w0 + NAP_UNTIL * expected_s
-    while time.perf_counter() < end:
-        time.sleep(NAP_S)
-    ctx.wait_idle()
-    return w1 - w0, c1 - c0, w2 - w1, c2 - c1
+    """Today's frame, waited for in naps (:func:`naps`)."""
+    return after_wait(ctx, record, target, 0.0, wait=naps(expected_s))
 
 
 def main() -> int:
-    out = Path(sys.argv[1])
-    scene = sys.argv[2] if len(sys.argv) > 2 else "final.toml"
-    sizes = [tuple(int(v) for v in s.split("x")) for s in (sys.argv[3] if len(sys.argv) > 3 else SIZES).split(",")]
-    frames = int(sys.argv[4]) if len(sys.argv) > 4 else 200
-    rounds = int(sys.argv[5]) if len(sys.argv) > 5 else 4
+    out, scene, sizes, frames, rounds = arguments(sys.argv[1:])
 
-    from wgpurender.bench.frames import frames_without_gc, settle_garbage
     from wgpurender.bench.scene import SceneRunner
     from wgpurender.core.files.assets import resolve_scene
     from wgpurender.wgpu_path.device.context import get_context
@@ -148,33 +143,7 @@ def main() -> int:
                       "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0),
                       "native": functools.partial(native_frame, ctx, native),
                       "naps": functools.partial(napping_frame, ctx, record, target, statistics.median(calibrate))}
-        spans = {name: [] for name in structures}
-        frame_ms, wait_cpu = {name: [] for name in structures}, {name: [] for name in structures}
-        hashes = {name: set() for name in structures}
-        settle_garbage()
-        for k in range(rounds):
-            for name in (list(structures) if k % 2 == 0 else list(structures)[::-1]):
-                ahead.drop()
-                wipe(ctx, target)
-                with frames_without_gc():
-                    for i in range(WARM + frames // rounds):
-                        start, c_start = time.perf_counter(), time.thread_time()
-                        s = structures[name]()
-                        if i >= WARM:
-                            spans[name].append(s)
-                            frame_ms[name].append((time.perf_counter() - start) * 1e3)
-                            wait_cpu[name].append((time.thread_time() - c_start - s[1] - s[3]) * 1e3)
-                hashes[name].add(image_hash(ctx, target))
-        text = f"{size[0]}x{size[1]}"
-        for name in structures:
-            rows.append({**rows_for(name, text, spans[name], frame_ms[name], hashes[name]),
-                         "wait_thread_ms": statistics.median(wait_cpu[name])})
-            r = rows[-1]
-            print(f"{text} {name}: cpu {r['cpu_wall_ms']:.3f} ms wall (p99 {r['cpu_wall_p99_ms']:.3f}), "
-                  f"{r['cpu_thread_ms']:.3f} thread; record {r['record_wall_ms']:.3f}, submit "
-                  f"{r['submit_wall_ms']:.3f}; wait CPU {r['wait_thread_ms']:.3f}; frame {r['frame_ms']:.3f}; "
-                  f"image {r['image_sha256']}", flush=True)
-        ahead.drop()
+        rows += run_rounds(ctx, target, structures, ahead, frames, rounds, f"{size[0]}x{size[1]}")
     write_rows(out, rows, digits=4)
     return 0
 

@@ -8,8 +8,10 @@ GPU wait after each frame), in two structures with the same calls, in alternatin
   ``finish`` of the next frame, then the wait: the record runs right after the submit, before the thread sleeps.
 
 Every CPU span of a frame is timed in wall time and thread CPU time (``time.thread_time``): ``record`` (encoder,
-record, finish) and ``submit``; ``cpu`` is their sum, the CPU per frame. After each round the target is read back
-and hashed: both structures must draw the same image.
+record, finish) and ``submit``; ``cpu`` is their sum, the CPU per frame; ``wait_thread`` is the CPU the wait
+burns. Before each round the target is zeroed, after it read back and hashed: every structure must draw the same
+image. (The first H100 call ran an earlier form of this file, without the zeroing and the wait column:
+docs/perf-h100/2026-11-27-frame4/README.md.)
 
 Each structure runs a second time with the thread pinned to the CPU it was on (``_pinned``, os.sched_setaffinity
 for this thread only): after a long sleep the scheduler may wake the thread on another CPU, whose caches hold none
@@ -72,8 +74,14 @@ SIZES = "800x600,1280x720,1920x1080,3840x2160"
 WARM = 10  # untimed frames at the start of each round
 
 
-def after_wait(ctx, record, target, t: float) -> tuple[float, ...]:
-    """One frame of today's structure: (record wall, record cpu, submit wall, submit cpu) in seconds."""
+def block(ctx, start: float) -> None:
+    """The frame loop's wait: wgpuDevicePoll(wait=True) until the GPU is done."""
+    ctx.wait_idle()
+
+
+def after_wait(ctx, record, target, t: float, wait=block) -> tuple[float, ...]:
+    """One frame of today's structure: (record wall, record cpu, submit wall, submit cpu) in seconds; then
+    ``wait(ctx, start)`` (``start``: the frame's first perf_counter)."""
     w0, c0 = time.perf_counter(), time.thread_time()
     encoder = ctx.device.create_command_encoder(label="probe")
     record(encoder, target, t)
@@ -81,7 +89,7 @@ def after_wait(ctx, record, target, t: float) -> tuple[float, ...]:
     w1, c1 = time.perf_counter(), time.thread_time()
     ctx.queue.submit([buffer])
     w2, c2 = time.perf_counter(), time.thread_time()
-    ctx.wait_idle()
+    wait(ctx, w0)
     return w1 - w0, c1 - c0, w2 - w1, c2 - c1
 
 
@@ -122,7 +130,10 @@ def image_hash(ctx, target) -> str:
     return hashlib.sha256(readback.read().tobytes()).hexdigest()[:16]
 
 
-def rows_for(structure: str, size: str, spans: list[tuple[float, ...]], frames_ms: list[float], hashes: set) -> dict:
+def rows_for(structure: str, size: str, spans: list[tuple[float, ...]], frames_ms: list[float], hashes: set,
+             wait_ms: list[float] = ()) -> dict:
+    """One CSV row: the medians (and p99s) of a structure's spans, in ms; ``wait_ms``: the thread CPU of each
+    frame's wait (a column only where given)."""
     ms = [[v * 1e3 for v in s] for s in spans]
     cpu_wall = [s[0] + s[2] for s in ms]
     cpu_thread = [s[1] + s[3] for s in ms]
@@ -136,17 +147,57 @@ def rows_for(structure: str, size: str, spans: list[tuple[float, ...]], frames_m
             "cpu_thread_ms": med(cpu_thread), "cpu_thread_p99_ms": p99(cpu_thread),
             "record_wall_ms": med(s[0] for s in ms), "record_thread_ms": med(s[1] for s in ms),
             "submit_wall_ms": med(s[2] for s in ms), "submit_thread_ms": med(s[3] for s in ms),
-            "frame_ms": med(frames_ms), "image_sha256": "/".join(sorted(hashes))}
+            "frame_ms": med(frames_ms), "image_sha256": "/".join(sorted(hashes)),
+            **({"wait_thread_ms": med(wait_ms)} if wait_ms else {})}
+
+
+def arguments(argv: list[str]) -> tuple[Path, str, list[tuple[int, int]], int, int]:
+    """OUT.csv [SCENE] [SIZES] [FRAMES] [ROUNDS] (both probes' command line)."""
+    scene = argv[1] if len(argv) > 1 else "final.toml"
+    sizes = [tuple(int(v) for v in s.split("x")) for s in (argv[2] if len(argv) > 2 else SIZES).split(",")]
+    return Path(argv[0]), scene, sizes, int(argv[3]) if len(argv) > 3 else 200, int(argv[4]) if len(argv) > 4 else 4
+
+
+def run_rounds(ctx, target, structures: dict, ahead: FramesAhead, frames: int, rounds: int, size: str) -> list[dict]:
+    """Each structure ``frames // rounds`` timed frames a round (after WARM untimed ones), the order flipped each
+    round; before a round the frame ahead is dropped and the target zeroed, after it the image hashed; a name
+    ending in ``_pinned`` runs with the thread pinned to the CPU it is on. One row per structure (rows_for)."""
+    from wgpurender.bench.frames import frames_without_gc, settle_garbage
+
+    spans, frame_ms, wait_ms = ({name: [] for name in structures} for _ in range(3))
+    hashes = {name: set() for name in structures}
+    settle_garbage()
+    for k in range(rounds):
+        for name in (list(structures) if k % 2 == 0 else list(structures)[::-1]):
+            ahead.drop()
+            wipe(ctx, target)
+            allowed = os.sched_getaffinity(0)
+            if name.endswith("_pinned"):
+                os.sched_setaffinity(0, {this_cpu()})
+            try:
+                with frames_without_gc():
+                    for i in range(WARM + frames // rounds):
+                        start, c_start = time.perf_counter(), time.thread_time()
+                        s = structures[name]()
+                        if i >= WARM:
+                            spans[name].append(s)
+                            frame_ms[name].append((time.perf_counter() - start) * 1e3)
+                            wait_ms[name].append((time.thread_time() - c_start - s[1] - s[3]) * 1e3)
+            finally:
+                os.sched_setaffinity(0, allowed)
+            hashes[name].add(image_hash(ctx, target))
+    ahead.drop()
+    rows = [rows_for(name, size, spans[name], frame_ms[name], hashes[name], wait_ms[name]) for name in structures]
+    for r in rows:
+        print(f"{size} {r['structure']}: cpu {r['cpu_wall_ms']:.3f} ms wall (p99 {r['cpu_wall_p99_ms']:.3f}), "
+              f"{r['cpu_thread_ms']:.3f} thread; record {r['record_wall_ms']:.3f}, submit {r['submit_wall_ms']:.3f}; "
+              f"wait CPU {r['wait_thread_ms']:.3f}; frame {r['frame_ms']:.3f}; image {r['image_sha256']}", flush=True)
+    return rows
 
 
 def main() -> int:
-    out = Path(sys.argv[1])
-    scene = sys.argv[2] if len(sys.argv) > 2 else "final.toml"
-    sizes = [tuple(int(v) for v in s.split("x")) for s in (sys.argv[3] if len(sys.argv) > 3 else SIZES).split(",")]
-    frames = int(sys.argv[4]) if len(sys.argv) > 4 else 200
-    rounds = int(sys.argv[5]) if len(sys.argv) > 5 else 4
+    out, scene, sizes, frames, rounds = arguments(sys.argv[1:])
 
-    from wgpurender.bench.frames import frames_without_gc, settle_garbage
     from wgpurender.bench.scene import SceneRunner
     from wgpurender.core.files.assets import resolve_scene
     from wgpurender.wgpu_path.device.context import get_context
@@ -160,33 +211,7 @@ def main() -> int:
         plain = {"after_wait": functools.partial(after_wait, ctx, record, target, 0.0),
                  "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0)}
         structures = {**plain, **{f"{name}_pinned": f for name, f in plain.items()}}
-        spans = {name: [] for name in structures}
-        frame_ms = {name: [] for name in structures}
-        hashes = {name: set() for name in structures}
-        settle_garbage()
-        for k in range(rounds):
-            for name in (list(structures) if k % 2 == 0 else list(structures)[::-1]):
-                ahead.drop()
-                allowed = os.sched_getaffinity(0)
-                if name.endswith("_pinned"):
-                    os.sched_setaffinity(0, {this_cpu()})
-                with frames_without_gc():
-                    for i in range(WARM + frames // rounds):
-                        start = time.perf_counter()
-                        s = structures[name]()
-                        if i >= WARM:
-                            spans[name].append(s)
-                            frame_ms[name].append((time.perf_counter() - start) * 1e3)
-                os.sched_setaffinity(0, allowed)
-                hashes[name].add(image_hash(ctx, target))
-        text = f"{size[0]}x{size[1]}"
-        for name in structures:
-            rows.append(rows_for(name, text, spans[name], frame_ms[name], hashes[name]))
-            r = rows[-1]
-            print(f"{text} {name}: cpu {r['cpu_wall_ms']:.3f} ms wall (p99 {r['cpu_wall_p99_ms']:.3f}), "
-                  f"{r['cpu_thread_ms']:.3f} thread; record {r['record_wall_ms']:.3f}, submit "
-                  f"{r['submit_wall_ms']:.3f}; frame {r['frame_ms']:.3f}; image {r['image_sha256']}", flush=True)
-        ahead.drop()
+        rows += run_rounds(ctx, target, structures, ahead, frames, rounds, f"{size[0]}x{size[1]}")
     write_rows(out, rows, digits=4)
     return 0
 

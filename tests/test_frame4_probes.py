@@ -177,3 +177,34 @@ def test_the_frame_s_python_calls_are_counted_per_frame(ctx, python_calls):
     assert 3 + len(renderer.plan.post_passes) <= counts["wgpurender"] <= 20
     assert counts["wgpu-py"] > 5 * counts["wgpurender"]
     assert counts["builtins"] > 0 and counts["wgpurender"] == int(counts["wgpurender"])  # the same every frame
+
+
+def test_the_rounds_flip_the_order_zero_the_target_and_pin_only_the_pinned(ctx, probes):
+    ahead_module, _ = probes
+    renderer = load_renderer(FINAL, ctx, size=(32, 24), knobs={"post_path": "fragment"})
+    target = renderer.create_output()
+    allowed, seen = os.sched_getaffinity(0), []
+
+    def draws():
+        seen.append(("draws", len(os.sched_getaffinity(0))))
+        return ahead_module.after_wait(ctx, renderer.record, target, 0.0)
+
+    def nothing_pinned():
+        seen.append(("nothing_pinned", len(os.sched_getaffinity(0))))
+        return (0.001, 0.001, 0.0005, 0.0005)
+
+    ahead = ahead_module.FramesAhead(ctx, renderer.record, target)
+    rows = ahead_module.run_rounds(ctx, target, {"draws": draws, "nothing_pinned": nothing_pinned}, ahead, 4, 2,
+                                   "32x24")
+    per_round = ahead_module.WARM + 2
+    blocks = [seen[i][0] for i in range(0, len(seen), per_round)]
+    assert blocks == ["draws", "nothing_pinned", "nothing_pinned", "draws"]
+    assert {n for name, n in seen if name == "nothing_pinned"} == {1}
+    assert {n for name, n in seen if name == "draws"} == {len(allowed)} and os.sched_getaffinity(0) == allowed
+    by_name = {r["structure"]: r for r in rows}
+    assert by_name["draws"]["frames"] == 4 and by_name["nothing_pinned"]["cpu_wall_ms"] == pytest.approx(1.5)
+    ahead_module.wipe(ctx, target)
+    zeros = ahead_module.image_hash(ctx, target)
+    assert by_name["nothing_pinned"]["image_sha256"] == zeros  # zeroed before its round: it drew nothing
+    assert by_name["draws"]["image_sha256"] != zeros
+    assert by_name["draws"]["wait_thread_ms"] >= 0  # the thread CPU of the frame less its spans
