@@ -26,8 +26,7 @@ import statistics
 import sys
 import time
 
-from probe_csv import write_rows
-from record_ahead_probe import WARM, FramesAhead, after_wait, ahead_frame, arguments, run_rounds
+from record_ahead_probe import WARM, FramesAhead, after_wait, ahead_frame, probe_main
 
 NAP_S, NAP_UNTIL = 0.0001, 0.9
 
@@ -118,34 +117,24 @@ def napping_frame(ctx, record, target, expected_s: float) -> tuple[float, ...]:
     return after_wait(ctx, record, target, 0.0, wait=naps(expected_s))
 
 
+def structures(ctx, record, target, ahead: FramesAhead) -> dict:
+    """Today's frame, recorded ahead, the native replay, and the napping wait (its expected frame measured now)."""
+    for _ in range(WARM):
+        after_wait(ctx, record, target, 0.0)
+    calibrate = []
+    for _ in range(20):
+        start = time.perf_counter()
+        after_wait(ctx, record, target, 0.0)
+        calibrate.append(time.perf_counter() - start)
+    native = NativeFrame(ctx, record, target)
+    return {"after_wait": functools.partial(after_wait, ctx, record, target, 0.0),
+            "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0),
+            "native": functools.partial(native_frame, ctx, native),
+            "naps": functools.partial(napping_frame, ctx, record, target, statistics.median(calibrate))}
+
+
 def main() -> int:
-    out, scene, sizes, frames, rounds = arguments(sys.argv[1:])
-
-    from wgpurender.bench.scene import SceneRunner
-    from wgpurender.core.files.assets import resolve_scene
-    from wgpurender.wgpu_path.device.context import get_context
-
-    ctx = get_context()
-    rows = []
-    for size in sizes:
-        runner = SceneRunner(ctx, resolve_scene(scene), size)
-        record, target = runner.renderer.record, runner.target
-        ahead = FramesAhead(ctx, record, target, label="probe")
-        for _ in range(WARM):
-            after_wait(ctx, record, target, 0.0)
-        calibrate = []
-        for _ in range(20):
-            start = time.perf_counter()
-            after_wait(ctx, record, target, 0.0)
-            calibrate.append(time.perf_counter() - start)
-        native = NativeFrame(ctx, record, target)
-        structures = {"after_wait": functools.partial(after_wait, ctx, record, target, 0.0),
-                      "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0),
-                      "native": functools.partial(native_frame, ctx, native),
-                      "naps": functools.partial(napping_frame, ctx, record, target, statistics.median(calibrate))}
-        rows += run_rounds(ctx, target, structures, ahead, frames, rounds, f"{size[0]}x{size[1]}")
-    write_rows(out, rows, digits=4)
-    return 0
+    return probe_main(sys.argv[1:], structures)
 
 
 if __name__ == "__main__":

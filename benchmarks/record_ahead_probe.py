@@ -195,8 +195,10 @@ def run_rounds(ctx, target, structures: dict, ahead: FramesAhead, frames: int, r
     return rows
 
 
-def main() -> int:
-    out, scene, sizes, frames, rounds = arguments(sys.argv[1:])
+def probe_main(argv: list[str], structures_for) -> int:
+    """Both probes' run: for each size the scene's renderer and target, ``structures_for(ctx, record, target,
+    ahead)`` the structures to compare, :func:`run_rounds`; the rows into OUT.csv."""
+    out, scene, sizes, frames, rounds = arguments(argv)
 
     from wgpurender.bench.scene import SceneRunner
     from wgpurender.core.files.assets import resolve_scene
@@ -208,12 +210,21 @@ def main() -> int:
         runner = SceneRunner(ctx, resolve_scene(scene), size)
         record, target = runner.renderer.record, runner.target
         ahead = FramesAhead(ctx, record, target, label="probe")
-        plain = {"after_wait": functools.partial(after_wait, ctx, record, target, 0.0),
-                 "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0)}
-        structures = {**plain, **{f"{name}_pinned": f for name, f in plain.items()}}
+        structures = structures_for(ctx, record, target, ahead)
         rows += run_rounds(ctx, target, structures, ahead, frames, rounds, f"{size[0]}x{size[1]}")
     write_rows(out, rows, digits=4)
     return 0
+
+
+def structures(ctx, record, target, ahead: FramesAhead) -> dict:
+    """Today's frame and the frame recorded ahead, each also with the thread pinned."""
+    plain = {"after_wait": functools.partial(after_wait, ctx, record, target, 0.0),
+             "ahead": functools.partial(ahead_frame, ctx, ahead, 0.0)}
+    return {**plain, **{f"{name}_pinned": f for name, f in plain.items()}}
+
+
+def main() -> int:
+    return probe_main(sys.argv[1:], structures)
 
 
 if __name__ == "__main__":
