@@ -153,6 +153,8 @@ PARSE_CACHE = "tests/test_mesh_parse_cache.py"
 WORKERS = "tests/test_mesh_workers.py"
 LOAD_SCALE = "tests/test_scene_load_scale.py"
 TOML_T = "tests/test_scene_toml_cache.py"
+O_CHUNKS = "wgpurender/core/models/obj_cached_chunks.py"
+CHUNK_T = "tests/test_mesh_chunk_cache.py"
 
 FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
 FRAME_CACHES = "tests/test_frame_caches.py"
@@ -1816,8 +1818,8 @@ MUTATIONS = [
      'jobs = [(key[0], False) for key in keys]', [WORKERS]),
     (O_CACHED, 'if store and entry is not None and packed is not None:', 'if entry is not None and packed is not None:',
      [PARSE_CACHE]),
-    (O_CACHED, '    mesh, packed = _load(path, generate_tangents, where, store=True)',
-     '    mesh, packed = _load(path, generate_tangents, where, store=False)', [WORKERS]),
+    (M_WORK, 'data = read_jail.read_checked(path, functools.partial(check_size, path, what="model file"))',
+     "data = path.read_bytes()", [WORKERS]),  # load4: the worker reads the file itself (was load_packed's store)
     ('wgpurender/core/plan/meshes.py', 'self._store = len(obj_files) < MIN_FILES', 'self._store = True', [WORKERS]),
     (M_LOAD, "if obj_files < MIN_FILES:", "if obj_files <= MIN_FILES:", [WORKERS]),
     (M_LOAD, "-(-obj_files // PER_WORKER)", "(obj_files // PER_WORKER)", [WORKERS]),
@@ -2196,6 +2198,33 @@ MUTATIONS = [
     ("wgpurender/core/models/gltf_compression.py",
      "    return {k: v.copy() for k, v in arrays.items()}, faces.copy()", "    return arrays, faces",
      ["tests/test_gltf_extensions.py"]),
+    # load4: a worker's chunk of OBJ files cached as one sealed entry (core/models/obj_cached_chunks.py)
+    (O_CHUNKS, "key = None if where is None else chunk_key(files)", "key = None", [CHUNK_T]),
+    (O_CHUNKS, "found = None if key is None else lookup(where, key, files)", "found = None", [CHUNK_T]),
+    (O_CHUNKS, "if key is not None and not any(isinstance(p, UserError) for p in packed):", "if key is not None:",
+     [CHUNK_T]),
+    (O_CHUNKS, 'f"{int(tangents)} {hashlib.sha256(data).hexdigest()}"', 'f"{hashlib.sha256(data).hexdigest()}"',
+     [CHUNK_T]),
+    (O_CHUNKS, 'parser {obj_cached.parser_version()}; files {names}', 'parser ?; files {names}', [CHUNK_T]),
+    (O_CHUNKS, 'files {names}"', 'files {len(files)}"', [CHUNK_T]),
+    (O_CHUNKS, "HEAD.unpack_from(payload) != (MAGIC, count)", "HEAD.unpack_from(payload)[1] != count", [CHUNK_T]),
+    (O_CHUNKS, "    if len(payload) < at or HEAD", "    if HEAD", [CHUNK_T]),
+    (O_CHUNKS, "if at + sum(n for n in lengths if n > 0) != len(payload):",
+     "if at + sum(n for n in lengths if n > 0) > len(payload):", [CHUNK_T]),
+    (O_CHUNKS, "        at += max(n, 0)", "        at += n", [CHUNK_T]),
+    (O_CHUNKS, "if packed is not None and mesh_pack.unpack(packed, path) is None:", "if False:", [CHUNK_T]),
+    (O_CHUNKS, "    if len(payload) + 1024 > MAX_ENTRY:", "    if False:", [CHUNK_T]),
+    (O_CHUNKS, 'return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.meshes"',
+     'return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.mesh"', [CHUNK_T]),
+    (O_CHUNKS, "        return obj_cached.parse_packed(path, data, tangents)[1]",
+     "        return obj_cached.parse_packed(path, data, tangents)[0]", [CHUNK_T]),
+    (O_CHUNKS, "    lengths = [-1 if p is None else len(p) for p in packed]",
+     "    lengths = [0 if p is None else len(p) for p in packed]", [CHUNK_T]),
+    (O_CACHED, "    return mesh, mesh_pack.pack(mesh)", "    return mesh, None", [CHUNK_T]),
+    (M_WORK, "            if isinstance(data, UserError):", "            if False:", [CHUNK_T]),
+    (M_WORK, "            packed += [] if data is None else [data]", "            packed += []", [CHUNK_T]),
+    (M_WORK, "    found = iter(obj_cached_chunks.meshes(files, where))",
+     "    found = iter(obj_cached_chunks.meshes(files, None))", [CHUNK_T]),
 ]
 
 

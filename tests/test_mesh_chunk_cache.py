@@ -151,7 +151,7 @@ def test_decode_takes_only_a_whole_chunk():
     head = obj_cached_chunks.HEAD.size
     bad = {"another count": (payload, 2), "short": (payload[:-1], 3), "left over": (payload + b"x", 3),
            "magic": (b"x" + payload[1:], 3), "no lengths": (payload[:head], 3),
-           "below -1": (payload[:head] + struct.pack("<3q", 3, -2, 4) + payload[head + 24:], 3)}
+           "lengths past the bytes": (payload[:head] + struct.pack("<3q", 3, -1, 3) + payload[head + 24:], 3)}
     for what, (blob, count) in bad.items():
         assert obj_cached_chunks.decode(blob, count) is None, what
 
@@ -182,6 +182,15 @@ def test_a_chunk_too_large_to_read_back_is_not_written(tmp_path, where, monkeypa
     monkeypatch.setattr(obj_cached_chunks, "MAX_ENTRY", 1024 + 100)
     mesh_workers.read_chunk(chunk, where)
     assert _entries(where) == []
+
+
+def test_another_parser_version_is_a_miss(tmp_path, where, monkeypatch):
+    chunk = _cubes(tmp_path, 2)
+    mesh_workers.read_chunk(chunk, where)
+    monkeypatch.setattr(obj_cached, "parser_version", lambda: "another parser")
+    calls = _parses(monkeypatch)
+    mesh_workers.read_chunk(chunk, where)
+    assert len(calls) == 2 and len(_entries(where)) == 2
 
 
 def test_the_parser_version_covers_the_chunk_format():

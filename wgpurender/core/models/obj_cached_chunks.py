@@ -7,7 +7,7 @@ tangents are made, so a lookup is a hit only for the same bytes in the same chun
 machine (the chunks follow the file count and the worker count, core/models/mesh_workers.py). An edited file
 misses its own chunk only, whose files are then parsed again. The payload::
 
-    MAGIC | file count (8 bytes) | each file's packed length (8 bytes each; -1: not a simple OBJ) | packed meshes
+    MAGIC | file count (8 bytes) | each file's packed length (8 bytes each; < 0: not a simple OBJ) | packed meshes
 
 Verified before use: the sealed entry (core/files/cache_entry.py: key, digest, length, owner), the count and the
 lengths against the bytes, and every mesh unpacked with its indices checked (core/models/mesh_pack.py); anything
@@ -74,7 +74,7 @@ def decode(payload: bytes, count: int) -> list[bytes | None] | None:
     if len(payload) < at or HEAD.unpack_from(payload) != (MAGIC, count):
         return None
     lengths = struct.unpack_from(f"<{count}q", payload, HEAD.size)
-    if min(lengths, default=0) < -1 or at + sum(n for n in lengths if n > 0) != len(payload):
+    if at + sum(n for n in lengths if n > 0) != len(payload):
         return None
     out: list[bytes | None] = []
     for n in lengths:
@@ -98,6 +98,6 @@ def lookup(where: Path, key: str, files: list[File]) -> list[Packed] | None:
 def store(where: Path, key: str, packed: list[bytes | None]) -> bool:
     """Write the chunk's entry (one file); False when it cannot be written or would be too large to be read back."""
     payload = encode(packed)
-    if len(payload) + 1024 > MAX_ENTRY:  # read_entry refuses a file over MAX_ENTRY: never written, never a miss
+    if len(payload) + 1024 > MAX_ENTRY:  # read_entry refuses a file over MAX_ENTRY: it would only ever be a miss
         return False
     return write_entry(entry_path(where, key), key, payload)
