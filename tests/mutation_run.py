@@ -1807,8 +1807,8 @@ MUTATIONS = [
     (M_WORK, "        for chunk in self.chunks[done:]:", "        for chunk in self.chunks[len(self.chunks):]:",
      [WORKERS]),
     (M_WORK, "except BrokenProcessPool:", "except ValueError:", [WORKERS]),
-    (M_WORK, 'check_file_size(input_file(path, "model file"), "model file")',
-     'input_file(path, "model file")', [WORKERS]),
+    (M_WORK, '                input_file(path, "model file")  # a folder',
+     '                path  # a folder', [WORKERS]),  # load4: the size check was the read's already (equivalent)
     (M_WORK, 'meshes[job] = mesh_pack.unpack(view[at:at + value], job[0], indices_checked=True)',
      'meshes[job] = None', [WORKERS]),
     ("wgpurender/core/plan/meshes.py", "if self.plan.mesh_workers and not self._meshes:", "if False:", [WORKERS]),
@@ -1886,8 +1886,8 @@ MUTATIONS = [
      "            if True:\n                self._regular", [LOAD_SCALE]),
     ("wgpurender/core/scene/checker.py", "found = path if self._resolve.regular(path) else input_file(path, what)",
      "found = path", [LOAD_SCALE]),
-    (O_CACHED, "data = read_jail.read_checked(path, functools.partial(check_size, path, what=\"model file\"))",
-     "data = read_jail.read_checked(path)", [WORKERS]),
+    (M_WORK, "data = read_jail.read_checked(path, functools.partial(check_size, path, what=\"model file\"))",
+     "data = read_jail.read_checked(path)", [WORKERS]),  # load4: the worker's read now (was obj_cached's)
     (JAILR, "size_check(os.fstat(f.fileno()).st_size)", "size_check(0)", [WORKERS]),
     (JAILR, 'text.startswith(top if top.endswith("/") else top + "/")', "text.startswith(top)", [LOAD_SCALE]),
     ("wgpurender/core/scene/toml_cache.py", "    if len(text) < MIN_CHARS:", "    if False:", [TOML_T]),

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
-from wgpurender.core.files.input_files import check_file_size, check_size, input_file
+from wgpurender.core.files.input_files import check_size, input_file
 from wgpurender.core.models import mesh_pack, obj_cached, obj_cached_chunks
 from wgpurender.core.models.mesh import Mesh
 
@@ -102,8 +102,8 @@ def read_chunk(chunk: list[Job], where: Path | None) -> tuple[list[tuple[str, ob
     files: list[obj_cached_chunks.File] = []
     for path, tangents in chunk:
         try:
-            if not read_jail.is_checked(path):  # else the checked read refuses what is no regular file, or too large
-                check_file_size(input_file(path, "model file"), "model file")
+            if not read_jail.is_checked(path):  # else the checked read refuses what is no regular file
+                input_file(path, "model file")  # a folder, a FIFO, a missing file: one line (the read checks the size)
             # the file the scene's read rule checked, still that file, within the size limit (input_file's checks)
             data = read_jail.read_checked(path, functools.partial(check_size, path, what="model file"))
         except UserError as err:
