@@ -70,3 +70,16 @@ def render_both_paths(ctx, folder, size: tuple[int, int]) -> np.ndarray:
     raw = render_scene_reference(path, size=size)
     assert np.array_equal(wgpu, raw), "wgpu and raw differ"
     return wgpu[..., :3].astype(np.float64)
+
+
+def same_mesh(a, b) -> None:
+    """Two loaded meshes (core/models/mesh.Mesh) are equal field by field: arrays of one dtype, shape and value."""
+    from dataclasses import fields
+
+    for f in fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+            assert x is not None and y is not None, f.name
+            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
+        else:
+            assert x == y, f.name

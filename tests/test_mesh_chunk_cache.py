@@ -7,10 +7,10 @@ not stored, an unwritable cache only costs time. The expected meshes come from t
 from __future__ import annotations
 
 import struct
-from dataclasses import fields
 
 import numpy as np
 import pytest
+from helpers import same_mesh as _same
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import cache_entry
@@ -38,16 +38,6 @@ def _meshes(chunk, result):
     taken = {}
     mesh_workers._take(chunk, result, taken)
     return [taken[job] for job in chunk]
-
-
-def _same(a, b) -> None:
-    for f in fields(a):
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
-            assert x is not None and y is not None, f.name
-            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
-        else:
-            assert x == y, f.name
 
 
 def _parses(monkeypatch) -> list[int]:

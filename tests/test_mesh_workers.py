@@ -6,10 +6,10 @@ answered by a serial read, and the decision shown by --explain."""
 from __future__ import annotations
 
 import os
-from dataclasses import fields
 
 import numpy as np
 import pytest
+from helpers import same_mesh as _same
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.models import obj_cached, obj_cached_chunks, procedural
@@ -49,15 +49,6 @@ def _cubes(folder, n):
 def _meshes(plan):
     meshes = PlanMeshes(plan)
     return [meshes.mesh(d.mesh_key) for d in plan.scene_pass.draws]
-
-
-def _same(a, b) -> None:
-    for f in fields(a):
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
-            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
-        else:
-            assert x == y, f.name
 
 
 def test_workers_read_the_meshes_this_process_reads(tmp_path):
