@@ -23,8 +23,8 @@
 
 @group(0) @binding(1) var src_sampler: sampler;
 
-// Every read of the input goes through fxaa_texel(p) (a texel, clamped to the edge) and fxaa_sample(uv) (a
-// bilinear sample), which wgpurender/wgpu_path/post/shaders.py generates: src_clamped and the sampler, or, with
+// Every read of the input goes through fxaa_texel(p) (a texel, clamped to the edge), fxaa_luma(p) (its luma)
+// and fxaa_sample(uv) (a bilinear sample), which wgpurender/wgpu_path/post/shaders.py generates: src_clamped and the sampler, or, with
 // the knob post_intermediate = none, the effects before FXAA applied to each texel read and the bilinear taps
 // computed here from four such texels (nothing stored between the passes).
 
@@ -38,8 +38,10 @@ fn luma_of(c: vec3f) -> f32 {
     return sqrt(max(dot(c, LUMA_709), 0.0));
 }
 
+// The luma of texel p: fxaa_luma, generated with the reads (luma_of of fxaa_texel(p), or a workgroup tile of
+// lumas filled with luma_of from the same texels on the compute path).
 fn luma_at(p: vec2i) -> f32 {
-    return luma_of(fxaa_texel(p).rgb);
+    return fxaa_luma(p);
 }
 
 fn luma_uv(uv: vec2f) -> f32 {

@@ -83,3 +83,15 @@ def same_mesh(a, b) -> None:
             assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
         else:
             assert x == y, f.name
+
+
+def benchmark_script(name: str):
+    """benchmarks/<name>.py imported as a module (the folder is no package), for tests of a probe's helpers."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parent.parent / "benchmarks" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -178,14 +178,18 @@ SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2)
           (32, 8, 2), (8, 8, 4), (32, 8, 4), (64, 1, 4), (128, 1, 2))
 
 
-def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], bool]]:
-    """(shape, tiled) dispatched by the sweep for pass ``p``: every shape; an FXAA pass (tiled by the plan or not)
-    both through a workgroup tile (where the tile fits in workgroup memory) and untiled, the same image."""
-    from wgpurender.core.plan.dispatch import tile_fits
+def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], str]]:
+    """(shape, tile) dispatched by the sweep for pass ``p``: every shape; an FXAA pass (tiled by the plan or not)
+    through each workgroup tile it can take (where the tile fits in workgroup memory) and untiled (""), the same
+    image."""
+    from wgpurender.core.plan.dispatch import TILE_KINDS, tile_fits
     from wgpurender.wgpu_path.post.shaders import tileable
 
-    cases = [(shape, True) for shape in shapes if tile_fits(shape)] if tileable(p) else []
-    return cases + [(shape, False) for shape in shapes]
+    cases = [(shape, kind) for kind in TILE_KINDS if tileable(p, kind) for shape in shapes if tile_fits(shape, kind)]
+    return cases + [(shape, "") for shape in shapes]
+
+
+TILE_LABELS = {"texels": ", tiled", "luma": ", luma tile", "": ", untiled"}
 
 
 def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy: CopyKernel,
@@ -220,7 +224,7 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
             ms = statistics.median(samples[2:])
             wall = wall_time(lambda r=runner, p=p: _pass_once(ctx, r, textures[p.input], textures[p.output]),
                              warmup=1, repeats=frames).median  # lavapipe's timestamps do not bracket a dispatch
-            how = ", tiled" if tiled else ", untiled" if tileable(p) else ""
+            how = TILE_LABELS[tiled] if tileable(p) else ""
             rows.append(PassTime(f"compute, fused{knob}, shape {shape_text(shape)}{how}", p.effect,
                                  "compute", moved, ms, copy.ms(moved, frames), copied, wall, intermediate))
     return rows

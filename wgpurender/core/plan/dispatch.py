@@ -18,6 +18,12 @@ another):
 - FXAA (then vignette) reading the stored image: 8x8 x2 0.073 ms (final) / 0.132 (probe), 32x8 x4 0.075 /
   0.147. Through a workgroup tile it reads 0.103-0.106 ms on both hosts: slower where the texture reads are
   fast, so FXAA reads the texture (the tile stays a ``--shapes`` variant);
+- FXAA reading the stored image, interleaved in one process with its SM clock read each round
+  (docs/perf-h100/2026-11-27-post4/, ``benchmarks/post_interleave.py``): untiled 8x8 x2 0.0735 ms at 1980 MHz,
+  0.126 at 1080 MHz (the clock fell mid-run): the pass follows the SM clock, it is not bound by memory. Through
+  the tile of lumas (each texel's luma once, 4 bytes a texel) it is slower at every clock and shape: the median
+  per-round ratio to untiled 1.41x (16x16 x1) to 1.61x (8x8 x4), 1.58x with 8x8 x2; the texel tile 1.40x. So the
+  texture fetches were not the bound either: FXAA reads the texture (both tiles stay ``--shapes`` variants);
 - FXAA recomputing tonemap (post_intermediate = none) through its tile: 8x8 x1 0.318 / 0.403 ms, 8x8 x2
   0.210 / 0.715; untiled 0.395-0.618 / 0.952-1.342: the tile wins on both hosts, the shape's ranking differs.
 """
@@ -38,20 +44,21 @@ RECOMPUTED: Shape = (8, 8, 1)
 TILE_APRON = 1
 
 
-def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) -> tuple[Shape, str]:
-    """(shape, why) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect reads
-    neighbours; ``recomputes``: it recomputes the steps before that effect per texel (a prelude), through a
-    workgroup tile."""
+def dispatch_shape(output_format: str, neighbourhood: bool, recomputes: bool) -> tuple[Shape, str, str]:
+    """(shape, why, tile) of a compute post pass writing ``output_format``; ``neighbourhood``: its first effect
+    reads neighbours; ``recomputes``: it recomputes the steps before that effect per texel (a prelude), through a
+    workgroup tile. ``tile``: the workgroup tile its reads go through (:data:`TILE_KINDS`), "" for none."""
     if recomputes:
         w, h = RECOMPUTED[0], RECOMPUTED[1] * RECOMPUTED[2]
         return RECOMPUTED, (f"each workgroup recomputes its {w}x{h} tile and a {TILE_APRON}-texel apron once into "
                             "workgroup memory, which FXAA's reads take where they fall in it; the others recompute "
-                            "from the input")
+                            "from the input"), "texels"
     if neighbourhood:
-        return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache"
+        return SQUARE, "a neighbourhood pass: square workgroups keep the neighbours' rows in cache", ""
     if BYTES_PER_PIXEL.get(output_format, 4) >= 8:
-        return SQUARE, f"a per-pixel pass writing {output_format} ({BYTES_PER_PIXEL[output_format]} bytes a texel)"
-    return WIDE, f"a per-pixel pass writing {output_format}: wide rows, 4 per invocation"
+        return SQUARE, (f"a per-pixel pass writing {output_format} ({BYTES_PER_PIXEL[output_format]} bytes a "
+                        "texel)"), ""
+    return WIDE, f"a per-pixel pass writing {output_format}: wide rows, 4 per invocation", ""
 
 
 def shape_text(shape: Shape) -> str:
@@ -59,13 +66,16 @@ def shape_text(shape: Shape) -> str:
 
 
 TILE_BYTES_LIMIT = 16384  # WebGPU's default maxComputeWorkgroupStorageSize, what the device is made with
-TEXEL_BYTES = 16  # a vec4f per tile texel
+# FXAA's workgroup tiles (wgpu_path/post/tiles.py) and the bytes of one texel of each: a vec4f colour, or its luma
+TEXEL_BYTES = {"texels": 16, "luma": 4}
+TILE_KINDS = tuple(TEXEL_BYTES)
 
 
-def tile_fits(shape: Shape) -> bool:
-    """Whether a tiled pass's workgroup memory with ``shape`` stays within WebGPU's default limit."""
+def tile_fits(shape: Shape, kind: str = "texels") -> bool:
+    """Whether a tiled pass's workgroup memory with ``shape`` and a ``kind`` tile stays within WebGPU's default
+    limit."""
     w, h = tile_texels(shape)
-    return w * h * TEXEL_BYTES <= TILE_BYTES_LIMIT
+    return w * h * TEXEL_BYTES[kind] <= TILE_BYTES_LIMIT
 
 
 def tile_texels(shape: Shape) -> tuple[int, int]:

@@ -175,9 +175,8 @@ def plan_post_passes(steps: list[EffectStep], fuse: bool, path: str, scene_targe
             read += pixels * BYTES_PER_PIXEL[dst_fmt]
             written += pixels * BYTES_PER_PIXEL[copy_format]
         fusion = _recompute_text(group, preludes[i]) if preludes[i] else _fusion_text(group)
-        tile = pass_path == "compute" and preludes[i] > 0
-        shape, shape_why = (dispatch_shape(dst_fmt, not head.fusable, tile) if pass_path == "compute"
-                            else (None, ""))
+        shape, shape_why, tile = (dispatch_shape(dst_fmt, not head.fusable, preludes[i] > 0)
+                                  if pass_path == "compute" else (None, "", ""))
         passes.append(PostPass(i, group, src_name, dst_name, src_fmt, dst_fmt, pass_path, fusion,
                                tuple(notes), mask, copy_to, read, written, copy_format=copy_format, twin_of=twin_of,
                                prelude=preludes[i], shape=shape, shape_why=shape_why, tile=tile))

@@ -37,7 +37,7 @@ class PlannedPass:
     stage = FRAGMENT
 
     def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
-                 tiled: bool | None = None) -> None:
+                 tiled: str | None = None) -> None:
         self.device, self.p, self.shape = device, p, shape
         self.source = pass_source(p, shape, tiled)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
@@ -197,7 +197,7 @@ class ComputePass(PlannedPass):
             "access": "write-only", "format": self.p.output_format, "view_dimension": "2d"}}]
 
     def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
-                 tiled: bool | None = None) -> None:
+                 tiled: str | None = None) -> None:
         super().__init__(device, p, shape, tiled)
         constants = {"SRGB_ENCODE": srgb_constant(p)} if any(s.effect == "srgb" for s in p.steps) else {}
         self.pipeline = device_cache(device, "post-pipelines").get(

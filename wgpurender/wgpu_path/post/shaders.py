@@ -18,12 +18,12 @@ read once and written once. The entry points around ``pass_color``:
   depth test. ``fs_mark`` writes every pixel as it is off edges and depth 1 on edge pixels, 0 elsewhere;
   ``fs_main`` (depth 0, compare "less") then runs only on edge blocks. Bit-identical to one draw;
 - compute: ``cs_main`` over workgroups of the pass's shape (the plan's, core/plan/dispatch.py), ``textureStore``
-  into ``dst`` (binding 3), a storage texture. A tiled FXAA pass (the plan's ``tile``: with a prelude, knob
-  post_intermediate = none) first fills a workgroup tile and a one-texel apron in workgroup memory with
+  into ``dst`` (binding 3), a storage texture. A tiled FXAA pass (the plan's ``tile``: "texels" with a prelude,
+  knob post_intermediate = none) first fills a workgroup tile and a one-texel apron in workgroup memory with
   ``tile_source``: the effects before FXAA recomputed once per texel instead of at each read (a benchmark may
-  also tile the plain FXAA pass: each texel loaded once per workgroup instead of at each of up to nine reads).
-  Reads that fall in the tile take it, the rest call ``tile_source`` itself: the same function on the same
-  texel, so the image is the untiled one's.
+  also tile the plain FXAA pass, with texels or with their lumas: wgpu_path/post/tiles.py). Reads that fall in
+  the tile take it, the rest call ``tile_source`` itself: the same function on the same texel, so the image is
+  the untiled one's.
   A pass whose output is an ``-srgb`` format writes ``rgba8unorm`` instead (``-srgb`` cannot be a storage
   texture) with the sRGB curve applied here: offscreen, the output texture itself is that rgba8unorm twin
   (same bytes, read back as they are); into a swapchain image a scratch, which the runner then copies.
@@ -33,10 +33,11 @@ from __future__ import annotations
 
 from wgpurender.core.course.effects import EffectSpec, encoding_of, needs_shader_encoding
 from wgpurender.core.plan import PostPass
-from wgpurender.core.plan.dispatch import TILE_APRON, tile_texels
+from wgpurender.core.plan.dispatch import TILE_KINDS
 from wgpurender.core.plan.post import RECOMPUTING_READERS
 from wgpurender.core.shaders.uniforms import F32, Struct, wgsl_structs
 from wgpurender.wgpu_path.device.shaders import load_wgsl
+from wgpurender.wgpu_path.post.tiles import tiled_main, tiled_reads
 
 COMMON_WGSL = "post_common.wgsl"
 SRGB_WGSL = "post_srgb.wgsl"
@@ -136,19 +137,9 @@ UNTILED_TEXEL = """
 fn fxaa_texel(p: vec2i) -> vec4f {
     return tile_source(p);
 }
-"""
 
-# the compute path: the workgroup's tile (cs_main fills it with tile_source), else tile_source itself
-TILED_TEXEL = """
-var<workgroup> tile: array<vec4f, TILE_N>;
-var<private> tile_origin: vec2i;  // the texel at tile[0]: the workgroup's first pixel minus the apron
-
-fn fxaa_texel(p: vec2i) -> vec4f {
-    let t = p - tile_origin;
-    if t.x >= 0 && t.y >= 0 && t.x < TILE_Wi && t.y < TILE_Hi {
-        return tile[t.y * TILE_Wi + t.x];
-    }
-    return tile_source(p);
+fn fxaa_luma(p: vec2i) -> f32 {
+    return luma_of(fxaa_texel(p).rgb);
 }
 """
 
@@ -165,15 +156,11 @@ fn fxaa_sample(uv: vec2f) -> vec4f {
 """
 
 
-def _reads(p: PostPass, shape: Shape | None, tiled: bool) -> str:
-    """fxaa_texel / fxaa_sample for a pass with FXAA: ``tile_source`` (the stored image, or the prelude recomputed
-    per texel), through the workgroup's tile when ``tiled``; bilinear taps by the sampler, or computed from
-    four recomputed texels."""
-    texel = UNTILED_TEXEL
-    if tiled:
-        w, h = tile_texels(shape_of(p, shape))
-        texel = (TILED_TEXEL.replace("TILE_N", str(w * h)).replace("TILE_Wi", f"{w}i")
-                 .replace("TILE_Hi", f"{h}i"))
+def _reads(p: PostPass, shape: Shape | None, tiled: str) -> str:
+    """fxaa_texel / fxaa_luma / fxaa_sample for a pass with FXAA: ``tile_source`` (the stored image, or the prelude
+    recomputed per texel), through the workgroup's ``tiled`` tile (wgpu_path/post/tiles.py) unless it is "";
+    bilinear taps by the sampler, or computed from four recomputed texels."""
+    texel = tiled_reads(tiled, shape_of(p, shape)) if tiled else UNTILED_TEXEL
     if p.prelude == 0:
         return STORED_TEXEL + texel + FXAA_READS
     lines = ["fn pass_prelude(c0: vec4f, pos: vec2f, size: vec2f) -> vec4f {", "    var c = c0;"]
@@ -219,55 +206,32 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
 """
 
 
-def _compute_main(p: PostPass, shape: Shape, tiled: bool) -> str:
-    wx, wy, rows = shape
-    text = COMPUTE_MAIN
+def _compute_main(p: PostPass, shape: Shape, tiled: str) -> str:
     if tiled:
-        w, h = tile_texels(shape)
-        text = TILED_MAIN.replace("TILE_N", str(w * h)).replace("TILE_W", str(w)).replace("TILE_H", str(wy * rows))
-    return (text.replace("APRON", str(TILE_APRON)).replace("FORMAT", p.output_format).replace("WX", str(wx))
-            .replace("WY", str(wy)).replace("ROWS", str(rows)))
+        return tiled_main(tiled, shape, p.output_format)
+    wx, wy, rows = shape
+    return (COMPUTE_MAIN.replace("FORMAT", p.output_format).replace("WX", str(wx)).replace("WY", str(wy))
+            .replace("ROWS", str(rows)))
 
-# a tiled pass (FXAA) on the compute path: the tile first (every invocation fills its share, then all wait), then
-# ROWS rows per invocation as in COMPUTE_MAIN; the tile is TILE_W texels wide, its pixels TILE_H rows
-TILED_MAIN = """
-@group(0) @binding(3) var dst: texture_storage_2d<FORMAT, write>;
-
-@compute @workgroup_size(WX, WY)
-fn cs_main(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_id) local: vec3u,
-           @builtin(local_invocation_index) index: u32) {
-    let size = textureDimensions(src);
-    let corner = group.xy * vec2u(WXu, TILE_Hu);
-    tile_origin = vec2i(corner) - vec2i(APRON, APRON);
-    for (var i = index; i < TILE_Nu; i += WXu * WYu) {
-        tile[i] = tile_source(tile_origin + vec2i(i32(i % TILE_Wu), i32(i / TILE_Wu)));
-    }
-    workgroupBarrier();
-    for (var k = 0u; k < ROWSu; k++) {
-        let xy = corner + vec2u(local.x, local.y * ROWSu + k);
-        if xy.x < size.x && xy.y < size.y {
-            let p = vec2i(xy);
-            textureStore(dst, p, pass_color(p, vec2f(xy) + vec2f(0.5), vec2f(size)));
-        }
-    }
-}
-"""
+def tileable(p: PostPass, kind: str = "texels") -> bool:
+    """Whether the pass's reads can come through a workgroup tile of ``kind``: FXAA starts it (after its prelude),
+    on the compute path; a ``luma`` tile only where FXAA reads a stored image (no prelude: a recomputing pass's
+    bilinear taps need the texels themselves)."""
+    if kind not in TILE_KINDS:
+        raise ValueError(f"no workgroup tile {kind!r}: one of {', '.join(TILE_KINDS)}")
+    fxaa = p.path == "compute" and p.steps[p.prelude].effect in RECOMPUTING_READERS
+    return fxaa and (kind == "texels" or p.prelude == 0)
 
 
-def tileable(p: PostPass) -> bool:
-    """Whether the pass's reads can come through a workgroup tile: FXAA starts it (after its prelude), compute."""
-    return p.path == "compute" and p.steps[p.prelude].effect in RECOMPUTING_READERS
-
-
-def pass_source(p: PostPass, shape: Shape | None = None, tiled: bool | None = None) -> str:
+def pass_source(p: PostPass, shape: Shape | None = None, tiled: str | None = None) -> str:
     """The whole WGSL module of a post pass on its path (fragment or compute); ``shape``: the compute path's
     (workgroup x, workgroup y, rows per invocation), the plan's unless a benchmark sweeps it. ``tiled``: the
-    plan's ``tile`` unless given: whether FXAA on the compute path reads through a workgroup tile (True; a
-    benchmark may tile a pass the plan does not) or every texel from the texture or recomputed where it is read
-    (False). Both draw the same image."""
+    plan's ``tile`` unless given: the workgroup tile FXAA on the compute path reads through ("texels" or "luma",
+    wgpu_path/post/tiles.py; a benchmark may tile a pass the plan does not), or "": every texel from the texture
+    or recomputed where it is read. All draw the same image."""
     tiled = p.tile if tiled is None else tiled
-    if tiled and not tileable(p):
-        raise ValueError(f"post pass {p.effect!r} on the {p.path} path has no FXAA reads to tile")
+    if tiled and not tileable(p, tiled):
+        raise ValueError(f"post pass {p.effect!r} on the {p.path} path has no FXAA reads to tile with {tiled!r}")
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:
