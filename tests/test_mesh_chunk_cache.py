@@ -168,10 +168,17 @@ def test_an_unwritable_cache_only_costs_time(tmp_path, monkeypatch):
 
 
 def test_a_chunk_too_large_to_read_back_is_not_written(tmp_path, where, monkeypatch):
+    """The bound is the payload's size (worked out from the files' packed meshes, not from the code's encode) plus
+    1 KiB for the entry's seal: one byte less and nothing is written, the bound itself and the entry is."""
     chunk = _cubes(tmp_path, 2)
-    monkeypatch.setattr(obj_cached_chunks, "MAX_ENTRY", 1024 + 100)
+    sizes = [len(mesh_pack.pack(load_mesh(path, generate_tangents=False))) for path, _ in chunk]
+    payload = 8 + 8 + 8 * len(chunk) + sum(sizes)  # magic, count, one length per file, the meshes
+    monkeypatch.setattr(obj_cached_chunks, "MAX_ENTRY", payload + 1023)
     mesh_workers.read_chunk(chunk, where)
     assert _entries(where) == []
+    monkeypatch.setattr(obj_cached_chunks, "MAX_ENTRY", payload + 1024)
+    mesh_workers.read_chunk(chunk, where)
+    assert len(_entries(where)) == 1
 
 
 def test_another_parser_version_is_a_miss(tmp_path, where, monkeypatch):

@@ -97,7 +97,7 @@ def lookup(where: Path, key: str, files: list[File]) -> list[Packed] | None:
 
 def store(where: Path, key: str, packed: list[bytes | None]) -> bool:
     """Write the chunk's entry (one file); False when it cannot be written or would be too large to be read back."""
-    payload = encode(packed)
-    if len(payload) + 1024 > MAX_ENTRY:  # read_entry refuses a file over MAX_ENTRY: it would only ever be a miss
-        return False
-    return write_entry(entry_path(where, key), key, payload)
+    size = HEAD.size + 8 * len(packed) + sum(len(p) for p in packed if p is not None)
+    if size + 1024 > MAX_ENTRY:  # read_entry refuses a file over MAX_ENTRY (it would only ever be a miss): not
+        return False  # encoded either, so a chunk of large meshes is never held twice for nothing
+    return write_entry(entry_path(where, key), key, encode(packed))
