@@ -154,6 +154,8 @@ PARSE_CACHE = "tests/test_mesh_parse_cache.py"
 WORKERS = "tests/test_mesh_workers.py"
 LOAD_SCALE = "tests/test_scene_load_scale.py"
 TOML_T = "tests/test_scene_toml_cache.py"
+O_CHUNKS = "wgpurender/core/models/obj_cached_chunks.py"
+CHUNK_T = "tests/test_mesh_chunk_cache.py"
 
 FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
 FRAME_CACHES = "tests/test_frame_caches.py"
@@ -1806,8 +1808,8 @@ MUTATIONS = [
     (M_WORK, "        for chunk in self.chunks[done:]:", "        for chunk in self.chunks[len(self.chunks):]:",
      [WORKERS]),
     (M_WORK, "except BrokenProcessPool:", "except ValueError:", [WORKERS]),
-    (M_WORK, 'check_file_size(input_file(path, "model file"), "model file")',
-     'input_file(path, "model file")', [WORKERS]),
+    (M_WORK, '                input_file(path, "model file")  # a folder',
+     '                path  # a folder', [WORKERS]),  # load4: the size check was the read's already (equivalent)
     (M_WORK, 'meshes[job] = mesh_pack.unpack(view[at:at + value], job[0], indices_checked=True)',
      'meshes[job] = None', [WORKERS]),
     ("wgpurender/core/plan/meshes.py", "if self.plan.mesh_workers and not self._meshes:", "if False:", [WORKERS]),
@@ -1817,8 +1819,8 @@ MUTATIONS = [
      'jobs = [(key[0], False) for key in keys]', [WORKERS]),
     (O_CACHED, 'if store and entry is not None and packed is not None:', 'if entry is not None and packed is not None:',
      [PARSE_CACHE]),
-    (O_CACHED, '    mesh, packed = _load(path, generate_tangents, where, store=True)',
-     '    mesh, packed = _load(path, generate_tangents, where, store=False)', [WORKERS]),
+    (M_WORK, 'data = read_jail.read_checked(path, functools.partial(check_size, path, what="model file"))',
+     "data = path.read_bytes()", [WORKERS]),  # load4: the worker reads the file itself (was load_packed's store)
     ('wgpurender/core/plan/meshes.py', 'self._store = len(obj_files) < MIN_FILES', 'self._store = True', [WORKERS]),
     (M_LOAD, "if obj_files < MIN_FILES:", "if obj_files <= MIN_FILES:", [WORKERS]),
     (M_LOAD, "-(-obj_files // PER_WORKER)", "(obj_files // PER_WORKER)", [WORKERS]),
@@ -1885,8 +1887,8 @@ MUTATIONS = [
      "            if True:\n                self._regular", [LOAD_SCALE]),
     ("wgpurender/core/scene/checker.py", "found = path if self._resolve.regular(path) else input_file(path, what)",
      "found = path", [LOAD_SCALE]),
-    (O_CACHED, "data = read_jail.read_checked(path, functools.partial(check_size, path, what=\"model file\"))",
-     "data = read_jail.read_checked(path)", [WORKERS]),
+    (M_WORK, "data = read_jail.read_checked(path, functools.partial(check_size, path, what=\"model file\"))",
+     "data = read_jail.read_checked(path)", [WORKERS]),  # load4: the worker's read now (was obj_cached's)
     (JAILR, "size_check(os.fstat(f.fileno()).st_size)", "size_check(0)", [WORKERS]),
     (JAILR, 'text.startswith(top if top.endswith("/") else top + "/")', "text.startswith(top)", [LOAD_SCALE]),
     ("wgpurender/core/scene/toml_cache.py", "    if len(text) < MIN_CHARS:", "    if False:", [TOML_T]),
@@ -2238,6 +2240,34 @@ MUTATIONS = [
      ["tests/test_fxaa_edge_share.py"]),
     ("benchmarks/fxaa_edge_share.py", "    lanes = -(-(wy * wx) // WARP) * WARP", "    lanes = wy * wx",
      ["tests/test_fxaa_edge_share.py"]),
+    # load4: a worker's chunk of OBJ files cached as one sealed entry (core/models/obj_cached_chunks.py)
+    (O_CHUNKS, "key = None if where is None else chunk_key(files)", "key = None", [CHUNK_T]),
+    (O_CHUNKS, "found = None if key is None else lookup(where, key, files)", "found = None", [CHUNK_T]),
+    (O_CHUNKS, "if key is not None and not any(isinstance(p, UserError) for p in packed):", "if key is not None:",
+     [CHUNK_T]),
+    (O_CHUNKS, 'f"{int(tangents)} {hashlib.sha256(data).hexdigest()}"', 'f"{hashlib.sha256(data).hexdigest()}"',
+     [CHUNK_T]),
+    (O_CHUNKS, 'parser {obj_cached.parser_version()}; files {names}', 'parser ?; files {names}', [CHUNK_T]),
+    (O_CHUNKS, 'files {names}"', 'files {len(files)}"', [CHUNK_T]),
+    (O_CHUNKS, "HEAD.unpack_from(payload) != (MAGIC, count)", "HEAD.unpack_from(payload)[1] != count", [CHUNK_T]),
+    (O_CHUNKS, "    if len(payload) < at or HEAD", "    if HEAD", [CHUNK_T]),
+    (O_CHUNKS, "if at + sum(n for n in lengths if n > 0) != len(payload):",
+     "if at + sum(n for n in lengths if n > 0) > len(payload):", [CHUNK_T]),
+    (O_CHUNKS, "        at += max(n, 0)", "        at += n", [CHUNK_T]),
+    (O_CHUNKS, "if packed is not None and mesh_pack.unpack(packed, path) is None:", "if False:", [CHUNK_T]),
+    (O_CHUNKS, "    if size + 1024 > MAX_ENTRY:", "    if False:", [CHUNK_T]),
+    (O_CHUNKS, "sum(len(p) for p in packed if p is not None)", "sum(1 for p in packed if p is not None)", [CHUNK_T]),
+    (O_CHUNKS, 'return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.meshes"',
+     'return where / f"{hashlib.sha256(key.encode()).hexdigest()[:40]}.mesh"', [CHUNK_T]),
+    (O_CHUNKS, "        return obj_cached.parse_packed(path, data, tangents)[1]",
+     "        return obj_cached.parse_packed(path, data, tangents)[0]", [CHUNK_T]),
+    (O_CHUNKS, "    lengths = [-1 if p is None else len(p) for p in packed]",
+     "    lengths = [0 if p is None else len(p) for p in packed]", [CHUNK_T]),
+    (O_CACHED, "    return mesh, mesh_pack.pack(mesh)", "    return mesh, None", [CHUNK_T]),
+    (M_WORK, "            if isinstance(data, UserError):", "            if False:", [CHUNK_T]),
+    (M_WORK, "            packed += [] if data is None else [data]", "            packed += []", [CHUNK_T]),
+    (M_WORK, "    found = iter(obj_cached_chunks.meshes(files, where))",
+     "    found = iter(obj_cached_chunks.meshes(files, None))", [CHUNK_T]),
     # issue 31.4's frame4 pass: the probes' structures (record ahead, native replay, naps) and their rows (frame4)
     ("benchmarks/record_ahead_probe.py", "        if self.pending is None:\n            self.record_next(t)",
      "        if False:\n            self.record_next(t)", ["tests/test_frame4_probes.py"]),
