@@ -72,6 +72,19 @@ def render_both_paths(ctx, folder, size: tuple[int, int]) -> np.ndarray:
     return wgpu[..., :3].astype(np.float64)
 
 
+def same_mesh(a, b) -> None:
+    """Two loaded meshes (core/models/mesh.Mesh) are equal field by field: arrays of one dtype, shape and value."""
+    from dataclasses import fields
+
+    for f in fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+            assert x is not None and y is not None, f.name
+            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
+        else:
+            assert x == y, f.name
+
+
 def benchmark_script(name: str):
     """benchmarks/<name>.py imported as a module (the folder is no package), for tests of a probe's helpers."""
     import importlib.util

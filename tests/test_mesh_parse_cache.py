@@ -6,25 +6,16 @@ at a folder of the session's own, never ~/.cache), nothing is written beside the
 from __future__ import annotations
 
 import os
-from dataclasses import fields, replace
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import same_mesh as _same
 
 from wgpurender.core.files import cache_entry
 from wgpurender.core.models import mesh as mesh_module
 from wgpurender.core.models import mesh_pack, obj_cached, obj_simple, procedural
-
-
-def _same(a, b) -> None:
-    for f in fields(a):
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
-            assert x is not None and y is not None, f.name
-            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
-        else:
-            assert x == y, f.name
 
 
 def _trimesh(monkeypatch, path, **kwargs):

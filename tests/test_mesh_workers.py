@@ -6,13 +6,13 @@ answered by a serial read, and the decision shown by --explain."""
 from __future__ import annotations
 
 import os
-from dataclasses import fields
 
 import numpy as np
 import pytest
+from helpers import same_mesh as _same
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models import obj_cached, procedural
+from wgpurender.core.models import obj_cached, obj_cached_chunks, procedural
 from wgpurender.core.models.mesh import load_mesh
 from wgpurender.core.plan import mesh_loading, resolve_plan
 from wgpurender.core.plan import meshes as plan_meshes
@@ -51,15 +51,6 @@ def _meshes(plan):
     return [meshes.mesh(d.mesh_key) for d in plan.scene_pass.draws]
 
 
-def _same(a, b) -> None:
-    for f in fields(a):
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
-            assert x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y), f.name
-        else:
-            assert x == y, f.name
-
-
 def test_workers_read_the_meshes_this_process_reads(tmp_path):
     names = _cubes(tmp_path, 12)
     (tmp_path / "bare.obj").write_text(  # not simple (a group record): the parent's general loader reads it
@@ -74,8 +65,9 @@ def test_workers_read_the_meshes_this_process_reads(tmp_path):
         m.setattr(plan_meshes, "load_mesh", lambda path, **kw: here.append(path.name) or real(path, **kw))
         served = _meshes(on)
     assert here == ["bare.obj"]
-    # what the workers parsed, they stored: one entry per simple file
-    assert len(list(obj_cached.folder().glob("*.mesh"))) == 12
+    # what the worker parsed, it stored as one entry for its one chunk (no entry per file)
+    assert len(list(obj_cached.folder().glob("*.meshes"))) == 1
+    assert list(obj_cached.folder().glob("*.mesh")) == []
     assert len(served) == 13
     for got, want, draw in zip(served, _meshes(off), on.scene_pass.draws, strict=True):
         _same(got, want)
@@ -140,14 +132,14 @@ def test_a_dead_worker_leaves_the_rest_to_this_process(tmp_path, monkeypatch):
     names = _cubes(tmp_path, 3)
     scene = _scene(tmp_path, names)
     parent = os.getpid()
-    real = obj_cached.load_packed
+    real = obj_cached_chunks.meshes
 
     def dies_in_a_worker(*args):
         if os.getpid() != parent:  # the forked worker has this module as patched here
             os._exit(3)
         return real(*args)
 
-    monkeypatch.setattr(obj_cached, "load_packed", dies_in_a_worker)
+    monkeypatch.setattr(obj_cached_chunks, "meshes", dies_in_a_worker)
     general = []  # the chunks a dead worker left are read here the same way, not by the general loader
     real_general = plan_meshes.load_mesh
     monkeypatch.setattr(plan_meshes, "load_mesh", lambda path, **kw: general.append(path) or real_general(path, **kw))

@@ -3,16 +3,18 @@ Python parsing on one core); the plan decides whether and how many (core/plan/me
 
 The parent has already checked every path against the read rule (the scene's folders: core/scene/checker.py);
 each worker applies the same per-file checks as :func:`~wgpurender.core.models.mesh.load_mesh` (a readable
-regular file, within the size limit) and reads the file through the same cache-aware reader
-(core/models/obj_cached.py), so its mesh is the serial load's. A worker sends back packed meshes
-(core/models/mesh_pack.py) in chunks; a refused file comes back as its one-line message, which the parent raises
-as the same :class:`UserError`, for the first such file in draw order. A file that is not a simple OBJ comes back
-as None and is loaded by the parent the general way. Workers are forked (POSIX ``fork``: no re-import of the
-caller's main module, no start-up beyond the fork); if one dies, the chunks not read yet are loaded serially.
+regular file, within the size limit) and parses it as the serial load does (core/models/obj_cached.py), so its
+mesh is the serial load's; a chunk's meshes are cached as one entry (core/models/obj_cached_chunks.py). A worker
+sends back packed meshes (core/models/mesh_pack.py) in chunks; a refused file comes back as its one-line message,
+which the parent raises as the same :class:`UserError`, for the first such file in draw order. A file that is not
+a simple OBJ comes back as None and is loaded by the parent the general way. Workers are forked (POSIX ``fork``: no
+re-import of the caller's main module, no start-up beyond the fork); if one dies, the chunks not read yet are
+loaded serially.
 """
 
 from __future__ import annotations
 
+import functools
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -21,8 +23,8 @@ from pathlib import Path
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
-from wgpurender.core.files.input_files import check_file_size, input_file
-from wgpurender.core.models import mesh_pack, obj_cached
+from wgpurender.core.files.input_files import check_size, input_file
+from wgpurender.core.models import mesh_pack, obj_cached, obj_cached_chunks
 from wgpurender.core.models.mesh import Mesh
 
 CHUNK = 64  # files per task at least: one round trip carries 64 packed cubes or more (~200 KB)
@@ -93,20 +95,33 @@ def _take(chunk: list[Job], result: tuple[list[tuple[str, object]], bytes],
 
 def read_chunk(chunk: list[Job], where: Path | None) -> tuple[list[tuple[str, object]], bytes]:
     """(entries, packed meshes one after another): per job ("mesh", its packed length, or None: not a simple OBJ)
-    or ("refused", the one-line message). What runs in a worker (which writes the cache entries of what it
-    parsed); every packed mesh it sends was unpacked here, its indices checked (obj_cached.load_packed)."""
-    out: list[tuple[str, object]] = []
-    packed: list[bytes] = []
+    or ("refused", the one-line message). What runs in a worker: each file checked and read here, then the
+    chunk's meshes from its one cache entry or parsed (core/models/obj_cached_chunks.py, which writes that entry);
+    every packed mesh it sends had its indices checked here."""
+    out: list[tuple[str, object] | None] = []
+    files: list[obj_cached_chunks.File] = []
     for path, tangents in chunk:
         try:
-            if not read_jail.is_checked(path):  # else the checked read refuses what is no regular file, or too large
-                check_file_size(input_file(path, "model file"), "model file")
-            data = obj_cached.load_packed(path, tangents, where)
+            if not read_jail.is_checked(path):  # else the checked read refuses what is no regular file
+                input_file(path, "model file")  # a folder, a FIFO, a missing file: one line (the read checks the size)
+            # the file the scene's read rule checked, still that file, within the size limit (input_file's checks)
+            data = read_jail.read_checked(path, functools.partial(check_size, path, what="model file"))
         except UserError as err:
             out.append(("refused", str(err)))
             continue
         except OSError:  # vanished or unreadable since the check: the parent's general load says what it is
-            data = None
-        out.append(("mesh", None if data is None else len(data)))
-        packed += [] if data is None else [data]
+            out.append(("mesh", None))
+            continue
+        out.append(None)  # its mesh, below
+        files.append((path, tangents, data))
+    found = iter(obj_cached_chunks.meshes(files, where))
+    packed: list[bytes] = []
+    for k, entry in enumerate(out):
+        if entry is None:
+            data = next(found)
+            if isinstance(data, UserError):
+                out[k] = ("refused", str(data))
+                continue
+            out[k] = ("mesh", None if data is None else len(data))
+            packed += [] if data is None else [data]
     return out, b"".join(packed)

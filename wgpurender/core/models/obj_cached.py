@@ -5,9 +5,10 @@ Content-addressed: the key is the SHA-256 of the file's bytes, whether tangents 
 which is a hash of the source of every module the result depends on (this one, obj_simple, mesh, tangents,
 mesh_pack) and of the numpy, trimesh and wgpurender versions (trimesh's ``unmerge_faces`` orders the vertices). So
 an edited file, an edited parser or another library version is a miss, never a stale mesh. An entry is a sealed
-cache entry (core/files/cache_entry.py: verified before use, written atomically, by the worker that parsed the file,
-or by a process that reads a small scene itself) holding a packed mesh (core/models/mesh_pack.py: arrays, no pickle), in
-``$XDG_CACHE_HOME/wgpurender/meshes``, never in the user's folder. Only files the simple reader takes are cached:
+cache entry (core/files/cache_entry.py: verified before use, written atomically by a process that reads a small scene
+itself) holding a packed mesh (core/models/mesh_pack.py: arrays, no pickle), in ``$XDG_CACHE_HOME/wgpurender/meshes``,
+never in the user's folder; worker processes store a whole chunk of files as one entry there
+(core/models/obj_cached_chunks.py). Only files the simple reader takes are cached:
 their bytes are all they depend on (no MTL, no texture); anything else goes through the general loader every time. A
 cache that cannot be written is only slower.
 """
@@ -26,7 +27,7 @@ from wgpurender.core.files.input_files import check_file_size, check_size, input
 from wgpurender.core.models import mesh, mesh_pack
 from wgpurender.core.models.mesh import Mesh, mesh_of_parts, simple_obj_parts
 
-CODE = ("obj_cached.py", "obj_simple.py", "mesh.py", "tangents.py", "mesh_pack.py")
+CODE = ("obj_cached.py", "obj_cached_chunks.py", "obj_simple.py", "mesh.py", "tangents.py", "mesh_pack.py")
 LIBRARIES = ("numpy", "trimesh", "wgpurender")
 
 
@@ -82,11 +83,14 @@ def load(path: Path, generate_tangents: bool, where: Path | None, store: bool = 
     return mesh
 
 
-def load_packed(path: Path, generate_tangents: bool, where: Path | None) -> bytes | None:
-    """:func:`load`'s mesh packed (mesh_pack): what a worker process sends its parent. A worker writes the entry
-    of what it parsed, before it returns: in parallel with the other workers, off the parent's path."""
-    mesh, packed = _load(path, generate_tangents, where, store=True)
-    return None if mesh is None else packed or mesh_pack.pack(mesh)
+def parse_packed(path: Path, data: bytes, generate_tangents: bool) -> tuple[Mesh | None, bytes | None]:
+    """(mesh, packed) of a simple OBJ file's bytes, parsed (no cache); (None, None) when the file is not simple.
+    What a miss costs: here and in a worker (core/models/obj_cached_chunks.py, which stores whole chunks)."""
+    parts = simple_obj_parts(data)
+    if parts is None:
+        return None, None
+    mesh = mesh_of_parts(path, parts, generate_tangents)
+    return mesh, mesh_pack.pack(mesh)
 
 
 def _load(path: Path, generate_tangents: bool, where: Path | None,
@@ -105,11 +109,7 @@ def _load(path: Path, generate_tangents: bool, where: Path | None,
         mesh = None if payload is None else mesh_pack.unpack(payload, path)
         if mesh is not None:
             return mesh, payload
-    parts = simple_obj_parts(data)
-    if parts is None:
-        return None, None
-    mesh = mesh_of_parts(path, parts, generate_tangents)
-    packed = mesh_pack.pack(mesh)
+    mesh, packed = parse_packed(path, data, generate_tangents)
     if store and entry is not None and packed is not None:
         write_entry(entry, key, packed)
     return mesh, packed
