@@ -45,7 +45,7 @@ var<workgroup> group_base: u32;
 @compute @workgroup_size(WX, WY)
 fn cs_mark(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) index: u32) {
     if index == 0u {
-        atomicStore(&group_edges, 0u);  // not left to the implementation's zeroing: lavapipe's keeps old values
+        atomicStore(&group_edges, 0u);  // zeroed here: on lavapipe the count began at a stale value without it
     }
     workgroupBarrier();
     let size = textureDimensions(src);
