@@ -1,0 +1,160 @@
+"""Issue 31.3's load, per array instead of per model: a scene's model paths checked in one pass
+(Checker.files_ahead, read_jail.inside_all), the draws' world matrices stacked per run (batches.stacked_worlds),
+a draw's first instance set without copy.copy (batches._starting_at). Each gives what the per-model way gave,
+and an error is the same one line about the same model. API-free."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from wgpurender.core.errors import UserError
+from wgpurender.core.files import read_jail
+from wgpurender.core.models import procedural
+from wgpurender.core.plan import batches
+from wgpurender.core.scene.checker import Checker
+from wgpurender.core.scene.load import load_scene
+
+SCENE = ("[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\n"
+         "[materials.red]\nalbedo_color = [1.0, 0.0, 0.0]\n\n")
+
+
+def _scene(folder, models: list[str], extra: dict[int, str] | None = None):
+    extra = extra or {}
+    text = SCENE + "".join(f'[[models]]\npath = "{m}"\n{extra.get(k, "")}\n' for k, m in enumerate(models))
+    path = folder / "s.toml"
+    path.write_text(text)
+    return path
+
+
+def _cubes(folder, names):
+    for name in names:
+        procedural.write_obj(folder / name, procedural.box(1.0))
+
+
+def test_plain_files_are_found_ahead_as_file_finds_them(tmp_path, monkeypatch):
+    monkeypatch.setattr(read_jail, "_CHECKED", set())
+    _cubes(tmp_path, ["a.obj", "b.obj"])
+    (tmp_path / "sub").mkdir()
+    _cubes(tmp_path / "sub", ["c.obj"])
+    ahead = Checker(tmp_path / "s.toml", "").files_ahead(["a.obj", "sub/c.obj", "b.obj"])
+    assert ahead == [(tmp_path / n).resolve() for n in ("a.obj", "sub/c.obj", "b.obj")]
+    assert read_jail._CHECKED == {os.fspath(p) for p in ahead}  # vouched: open_checked verifies what it opens
+    for p in ahead:
+        with read_jail.open_checked(p) as f:
+            assert f.read() == p.read_bytes()
+
+
+def test_anything_but_a_plain_file_inside_is_left_to_file(tmp_path, monkeypatch):
+    monkeypatch.setattr(read_jail, "_CHECKED", set())
+    project, away = tmp_path / "project", tmp_path / "away"
+    project.mkdir()
+    away.mkdir()
+    _cubes(project, ["ok.obj"])
+    _cubes(away, ["far.obj"])
+    (project / "link.obj").symlink_to(project / "ok.obj")
+    (project / "dir.obj").mkdir()
+    values = ["ok.obj", "link.obj", "missing.obj", "dir.obj", "../away/far.obj", "o\nk.obj", 7, None]
+    ahead = Checker(project / "s.toml", "").files_ahead(values)
+    ok = (project / "ok.obj").resolve()
+    assert ahead == [ok, ok] + [None] * 6  # a link inside is its target, as file() and pathlib resolve it
+    assert read_jail._CHECKED == {os.fspath((project / "ok.obj").resolve())}  # nothing refused was vouched
+
+
+def test_a_sibling_folder_with_the_same_prefix_is_outside():
+    folders = [read_jail.Path("/x/proj")]
+    got = read_jail.inside_all([read_jail.Path("/x/proj2/m.obj"), read_jail.Path("/x/proj/m.obj"),
+                                read_jail.Path("/x/proj")], folders)
+    assert got == [False, True, True]
+    assert read_jail.inside_all([read_jail.Path("/a/b.obj")], [read_jail.Path("/")]) == [True]
+
+
+def test_a_bundled_scene_lets_all_through_and_non_posix_is_left_to_outside(monkeypatch):
+    assert read_jail.inside_all([read_jail.Path("/a"), read_jail.Path("/b")], None) == [True, True]
+    monkeypatch.setattr(read_jail, "os", SimpleNamespace(name="nt", fspath=os.fspath))  # the rule's module only
+    assert read_jail.inside_all([read_jail.Path("/a")], [read_jail.Path("/a")]) is None
+
+
+def test_the_scene_loads_the_paths_found_ahead(tmp_path):
+    names = [f"m{k}.obj" for k in range(6)]
+    _cubes(tmp_path, names)
+    (tmp_path / "l.obj").symlink_to(tmp_path / "m0.obj")  # left to file(): resolved to its target
+    scene = load_scene(_scene(tmp_path, [*names, "l.obj"]))
+    assert [m.path for m in scene.models] == [(tmp_path / n).resolve() for n in [*names, "m0.obj"]]
+
+
+@pytest.mark.parametrize(("models", "extra", "where", "says"), [
+    (["m0.obj", "gone.obj"], {0: 'material = "blue"'}, "models[0].material", "no material 'blue'"),
+    (["gone.obj", "m0.obj"], {1: 'material = "blue"'}, "models[0].path", "'gone.obj' not found"),
+    (["m0.obj", "m0.fbx2"], {}, "models[1].path", "unknown model format"),
+    (["m0.obj", "m1.blend"], {}, "models[1].path", "Blender"),
+])
+def test_an_error_is_about_the_first_bad_model_in_order(tmp_path, models, extra, where, says):
+    _cubes(tmp_path, ["m0.obj", "m0.fbx2", "m1.blend"])  # files that exist: the format check still refuses them
+    with pytest.raises(UserError) as err:
+        load_scene(_scene(tmp_path, models, extra))
+    line = str(err.value)
+    assert "\n" not in line and where in line and says in line
+
+
+def test_a_path_outside_the_project_is_refused_by_the_rule(tmp_path):
+    project, away = tmp_path / "project", tmp_path / "away"
+    project.mkdir()
+    away.mkdir()
+    _cubes(project, ["m0.obj"])
+    _cubes(away, ["far.obj"])
+    with pytest.raises(UserError, match=r"models\[1\]\.path: .*outside the folders a scene may read"):
+        load_scene(_scene(project, ["m0.obj", "../away/far.obj"]))
+
+
+def _matrix(k: float) -> tuple:
+    return tuple(tuple(float(k * 16 + 4 * r + c) for c in range(4)) for r in range(4))
+
+
+def test_worlds_are_stacked_in_draw_order_across_runs():
+    single = [SimpleNamespace(worlds=None, transform=_matrix(k)) for k in range(5)]
+    copies = np.arange(3 * 16, dtype=np.float64).reshape(3, 4, 4) + 1000.0
+    many = SimpleNamespace(worlds=object(), transform=None, world_matrices=lambda: copies)
+    draws = [single[0], single[1], many, single[2], many, single[3], single[4]]
+    expected = [np.array(_matrix(0)), np.array(_matrix(1)), *copies, np.array(_matrix(2)), *copies,
+                np.array(_matrix(3)), np.array(_matrix(4))]
+    got = batches.stacked_worlds(draws)
+    assert got.dtype == np.float64 and got.shape == (11, 4, 4)
+    np.testing.assert_array_equal(got, np.array(expected))
+    np.testing.assert_array_equal(batches.stacked_worlds([many]), copies)
+    assert batches.stacked_worlds([]).shape == (0, 4, 4)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Fields:
+    a: int
+    b: tuple
+    first_instance: int = 0
+
+
+def test_a_draw_moved_to_its_first_instance_keeps_every_other_field():
+    draw = _Fields(3, (1, 2))
+    moved = batches._starting_at(draw, 7)
+    assert type(moved) is _Fields and moved == _Fields(3, (1, 2), 7) and moved.b is draw.b
+    assert draw.first_instance == 0  # the plan's draw is not changed
+    assert batches._starting_at(draw, 0) is draw
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        moved.a = 1
+
+
+def test_distinct_models_start_one_instance_apart(tmp_path):
+    from wgpurender.core.plan import Knobs, resolve_knobs
+
+    names = [f"m{k}.obj" for k in range(4)]
+    _cubes(tmp_path, names)
+    scene = load_scene(_scene(tmp_path, names, {k: f"transform = {{ translate = [{k}.0, 0.0, 0.0] }}"
+                                                for k in range(4)}))
+    plan = resolve_knobs(scene, Knobs())
+    draws = plan.scene_pass.draws
+    assert [d.first_instance for d in draws] == [0, 1, 2, 3]
+    blocks = batches.instance_blocks(draws)
+    assert [float(blocks[k, 12]) for k in range(4)] == [0.0, 1.0, 2.0, 3.0]  # column-major: x translation at 12
