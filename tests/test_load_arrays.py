@@ -158,3 +158,50 @@ def test_distinct_models_start_one_instance_apart(tmp_path):
     assert [d.first_instance for d in draws] == [0, 1, 2, 3]
     blocks = batches.instance_blocks(draws)
     assert [float(blocks[k, 12]) for k in range(4)] == [0.0, 1.0, 2.0, 3.0]  # column-major: x translation at 12
+
+
+def _greedy_places(sizes, limit, strides):
+    """The rule buffer_places' docstring states, step by step: each mesh at the end of the one before, rounded up
+    to a whole vertex of its stride, both sizes rounded up to 4 bytes; a new pair where the limit would be passed."""
+    places, pair, vertex_end, index_end = [], 0, 0, 0
+    for (vertex, index), step in zip(sizes, strides, strict=True):
+        vertex, index = -(-vertex // 4) * 4, -(-index // 4) * 4
+        start = -(-vertex_end // step) * step
+        if start + vertex > limit or index_end + index > limit:
+            pair, start, index_end = pair + 1, 0, 0
+        places.append((pair, start, index_end))
+        vertex_end, index_end = start + vertex, index_end + index
+    return places
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_places_in_one_pair_are_the_running_sums_of_the_rule(seed):
+    from wgpurender.core.plan.meshes import _places_in_one_pair, buffer_places
+
+    rng = np.random.default_rng(seed)
+    stride = int(rng.choice([12, 32, 48]))
+    n = int(rng.integers(1, 400))
+    sizes = [(int(v) * stride, int(i) * 2) for v, i in zip(rng.integers(1, 50, n), rng.integers(1, 90, n), strict=True)]
+    total = max(sum(v for v, _ in sizes), sum(-(-i // 4) * 4 for _, i in sizes))
+    names = [f"m{k}" for k in range(n)]
+    got = _places_in_one_pair(sizes, total, [stride] * n)
+    assert got == _greedy_places(sizes, total, [stride] * n) == buffer_places(sizes, total, names, [stride] * n)
+    assert all(p == 0 for p, _, _ in got)
+    assert got[-1][1] == sum(v for v, _ in sizes[:-1]) and got[-1][2] == sum(-(-i // 4) * 4 for _, i in sizes[:-1])
+    # a byte less than the total: no longer one pair, the loop decides (and still follows the rule)
+    assert _places_in_one_pair(sizes, total - 1, [stride] * n) is None
+    if n > 1:
+        assert buffer_places(sizes, total - 1, names, [stride] * n) == _greedy_places(sizes, total - 1, [stride] * n)
+
+
+def test_places_not_plain_are_left_to_the_loop():
+    from wgpurender.core.plan.meshes import _places_in_one_pair, buffer_places
+
+    sizes = [(48, 72), (96, 36), (48, 72)]
+    assert _places_in_one_pair(sizes, 10**6, [48, 32, 48]) is None  # two strides
+    assert buffer_places(sizes, 10**6, list("abc"), [48, 32, 48]) == _greedy_places(sizes, 10**6, [48, 32, 48])
+    assert _places_in_one_pair([(40, 8), (48, 8)], 10**6, [48, 48]) is None  # 40 bytes: not a whole vertex
+    assert buffer_places([(40, 8), (48, 8)], 10**6, list("ab"), [48, 48]) == [(0, 0, 0), (0, 48, 8)]
+    assert _places_in_one_pair([], 10**6, []) is None
+    assert _places_in_one_pair([(10, 6), (8, 2)], 10**6, None) == [(0, 0, 0), (0, 12, 8)]  # rounded up to 4
+    assert _places_in_one_pair([(10, 6)], 10**6, [4, 4]) is None  # strides not one per mesh
