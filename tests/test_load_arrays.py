@@ -205,3 +205,25 @@ def test_places_not_plain_are_left_to_the_loop():
     assert _places_in_one_pair([], 10**6, []) is None
     assert _places_in_one_pair([(10, 6), (8, 2)], 10**6, None) == [(0, 0, 0), (0, 12, 8)]  # rounded up to 4
     assert _places_in_one_pair([(10, 6)], 10**6, [4, 4]) is None  # strides not one per mesh
+
+
+def test_names_in_a_folder_resolve_as_one_by_one(tmp_path):
+    from wgpurender.core.files.input_files import FolderResolver
+
+    real = tmp_path / "real"
+    real.mkdir()
+    (tmp_path / "via").symlink_to(real)  # the folder itself through a link: resolved once
+    _cubes(real, ["a.obj", "b.obj"])
+    (real / "l.obj").symlink_to(real / "b.obj")
+    (real / "d.obj").mkdir()
+    values = ["a.obj", "l.obj", "d.obj", "gone.obj", "sub/a.obj", ".", "..", "", "x\ty.obj", 3]
+    batch, single = FolderResolver(), FolderResolver()
+    got = batch.names_in(os.fspath(tmp_path / "via"), values)
+    plain = values[:4]
+    assert got[:4] == [single(os.path.join(tmp_path / "via", v)) for v in plain]
+    assert got[:4] == [real / "a.obj", real / "b.obj", real / "d.obj", real / "gone.obj"]
+    assert got[4:] == [None] * 6  # left to the caller
+    # only a name whose own lstat found a regular file (a link's target is checked again by input_file)
+    assert [batch.regular(p) for p in got[:4]] == [single.regular(p) for p in got[:4]] == [True, False, False, False]
+    assert batch(os.path.join(tmp_path / "via", "a.obj")) is got[0]  # one cache: asked again, the same result
+    assert batch(got[0]) is got[0]

@@ -127,7 +127,9 @@ class Checker:
         None for anything else, which :meth:`file` then checks and names in its one line (or returns) as before.
         A scene's 10k model paths: one loop, the rule's folders compared as strings (issue 31.3)."""
         resolve, folder = self._resolver(), os.fspath(self.folder)
-        paths = [resolve(os.path.join(folder, v)) if type(v) is str and v.isprintable() else None for v in values]
+        paths = resolve.names_in(folder, values)  # plain names in one loop; a path with folders one by one
+        paths = [resolve(os.path.join(folder, v)) if p is None and type(v) is str and v.isprintable() else p
+                 for p, v in zip(paths, values, strict=True)]
         plain = [p if p is not None and resolve.regular(p) else None for p in paths]
         inside = read_jail.inside_all([p for p in plain if p is not None], self._jail_folders())
         if inside is None:  # not decidable in one pass here: file() checks each
