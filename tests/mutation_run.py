@@ -160,6 +160,13 @@ CHUNK_T = "tests/test_mesh_chunk_cache.py"
 FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
 FRAME_CACHES = "tests/test_frame_caches.py"
 
+L5_T = "tests/test_load_arrays.py"
+L5_CHECK = "wgpurender/core/scene/checker.py"
+L5_VALID = "wgpurender/core/scene/validate.py"
+L5_JAIL = "wgpurender/core/files/read_jail.py"
+L5_INPUT = "wgpurender/core/files/input_files.py"
+L5_BATCH = "wgpurender/core/plan/batches.py"
+L5_MESHES = "wgpurender/core/plan/meshes.py"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -2268,6 +2275,57 @@ MUTATIONS = [
     (M_WORK, "            packed += [] if data is None else [data]", "            packed += []", [CHUNK_T]),
     (M_WORK, "    found = iter(obj_cached_chunks.meshes(files, where))",
      "    found = iter(obj_cached_chunks.meshes(files, None))", [CHUNK_T]),
+    # load5: the load per array (Checker.files_ahead, read_jail.inside_all, FolderResolver.names_in,
+    # batches.stacked_worlds / _starting_at, meshes._places_in_one_pair)
+    (L5_CHECK, "plain = [p if p is not None and resolve.regular(p) else None for p in paths]",
+     "plain = list(paths)", [L5_T]),
+    (L5_CHECK, "        if inside is None:  # not decidable", "        if False:  # not decidable", [L5_T]),
+    (L5_CHECK, "return [p if p is not None and next(allowed) else None for p in plain]", "return plain", [L5_T]),
+    (L5_CHECK, "        paths = [resolve(os.path.join(folder, v)) if p is None and type(v) is str",
+     "        paths = [p if p is None and type(v) is str", [L5_T]),
+    (L5_VALID, "    ahead = c.files_ahead([entry.get(\"path\")",
+     "    ahead = [None] * len(data) or ([entry.get(\"path\")", [L5_T]),
+    (L5_VALID, "    return found if found is not None else c.file(written, key, \"model file\")",
+     "    return c.file(written, key, \"model file\")", [L5_T]),
+    (L5_JAIL, "        return [True] * len(paths)", "        return [False] * len(paths)", [L5_T]),
+    (L5_JAIL, "    if os.name != \"posix\":\n        return None\n    tops",
+     "    if False:\n        return None\n    tops", [L5_T]),
+    (L5_JAIL, "tuple(t if t.endswith(\"/\") else t + \"/\" for t in tops)", "tuple(tops)", [L5_T]),
+    (L5_JAIL, "        ok = text in exact or text.startswith(prefixes)", "        ok = text.startswith(prefixes)",
+     [L5_T]),
+    (L5_JAIL, "        if ok:\n            _CHECKED.add(text)", "        if ok:\n            pass", [L5_T]),
+    (L5_JAIL, "        if ok:\n            _CHECKED.add(text)", "        if True:\n            _CHECKED.add(text)",
+     [L5_T]),
+    (L5_INPUT, "or not value.isprintable() or \"/\" in value or value in", "or not value.isprintable() or value in",
+     [L5_T]),
+    (L5_INPUT, "\"/\" in value or value in (\"\", \".\", \"..\")", "\"/\" in value or value in (\"\",)", [L5_T]),
+    (L5_INPUT, "                if stat.S_ISLNK(mode):\n                    done = resolved(candidate)",
+     "                if False:\n                    done = resolved(candidate)", [L5_T]),
+    (L5_INPUT, "                        self._regular.add(candidate)", "                        pass", [L5_T]),
+    (L5_INPUT, "                self._done[text] = self._done[os.fspath(done)] = done",
+     "                self._done[text] = done", [L5_T]),
+    (L5_INPUT, "given, under = os.path.join(folder, \"\"), os.path.join(real, \"\")",
+     "given = under = os.path.join(folder, \"\")", [L5_T]),
+    (L5_BATCH, "            pieces.append(np.array(run, dtype=np.float64).reshape(-1, 4, 4))\n            run = []",
+     "            pieces.append(np.array(run, dtype=np.float64).reshape(-1, 4, 4))", [L5_T]),
+    (L5_BATCH, "    if run:\n        pieces.append", "    if False:\n        pieces.append", [L5_T]),
+    (L5_BATCH, "        if d.worlds is None:\n            run.append(d.transform)",
+     "        if d.transform is not None:\n            run.append(d.transform)", [L5_T]),
+    (L5_BATCH, "moved.__dict__.update(draw.__dict__, first_instance=first)", "moved.__dict__.update(draw.__dict__)",
+     [L5_T]),
+    (L5_BATCH, "    worlds = stacked_worlds(draws)\n", "    worlds = stacked_worlds(draws[:1])\n", [L5_T]),
+    (L5_MESHES, "(strides and (min(strides) != max(strides) or len(strides) != len(sizes)))",
+     "(strides and len(strides) != len(sizes))", [L5_T]),
+    (L5_MESHES, "(strides and (min(strides) != max(strides) or len(strides) != len(sizes)))",
+     "(strides and min(strides) != max(strides))", [L5_T]),
+    (L5_MESHES, "    if (aligned[:, 0] % step).any() or aligned", "    if aligned", [L5_T]),
+    (L5_MESHES, "aligned.sum(axis=0).max() > limit", "aligned.sum(axis=0).max() >= limit", [L5_T]),
+    (L5_MESHES, "    starts = (np.cumsum(aligned, axis=0) - aligned).tolist()",
+     "    starts = np.cumsum(aligned, axis=0).tolist()", [L5_T]),
+    (L5_MESHES, "    aligned = -(-np.array(sizes, dtype=np.int64).reshape(-1, 2) // BUFFER_ALIGN) * BUFFER_ALIGN",
+     "    aligned = np.array(sizes, dtype=np.int64).reshape(-1, 2)", [L5_T]),
+    (L5_MESHES, "    step = strides[0] if strides else BUFFER_ALIGN\n    aligned",
+     "    step = BUFFER_ALIGN\n    aligned", [L5_T]),
 ]
 
 

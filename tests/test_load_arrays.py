@@ -227,3 +227,23 @@ def test_names_in_a_folder_resolve_as_one_by_one(tmp_path):
     assert [batch.regular(p) for p in got[:4]] == [single.regular(p) for p in got[:4]] == [True, False, False, False]
     assert batch(os.path.join(tmp_path / "via", "a.obj")) is got[0]  # one cache: asked again, the same result
     assert batch(got[0]) is got[0]
+
+
+def test_plain_model_paths_skip_the_per_file_check(tmp_path, monkeypatch):
+    names = [f"m{k}.obj" for k in range(5)]
+    _cubes(tmp_path, names)
+    (tmp_path / "sub").mkdir()
+    _cubes(tmp_path / "sub", ["s.obj"])
+    asked = []
+    real = Checker.file
+    monkeypatch.setattr(Checker, "file", lambda self, value, *rest: asked.append(value) or real(self, value, *rest))
+    scene = load_scene(_scene(tmp_path, [*names, "sub/s.obj"]))
+    assert len(scene.models) == 6
+    assert [v for v in asked if v.endswith(".obj")] == []  # the one pass found all six
+
+
+def test_without_posix_paths_every_file_is_checked_one_by_one(tmp_path, monkeypatch):
+    _cubes(tmp_path, ["a.obj"])
+    monkeypatch.setattr(read_jail, "os", SimpleNamespace(name="nt", fspath=os.fspath, environ=os.environ,
+                                                         pathsep=os.pathsep, path=os.path))
+    assert Checker(tmp_path / "s.toml", "").files_ahead(["a.obj", "b.obj"]) == [None, None]
