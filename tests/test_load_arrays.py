@@ -118,7 +118,8 @@ def _matrix(k: float) -> tuple:
 def test_worlds_are_stacked_in_draw_order_across_runs():
     single = [SimpleNamespace(worlds=None, transform=_matrix(k)) for k in range(5)]
     copies = np.arange(3 * 16, dtype=np.float64).reshape(3, 4, 4) + 1000.0
-    many = SimpleNamespace(worlds=object(), transform=None, world_matrices=lambda: copies)
+    # an instanced draw keeps a transform too (its first copy's, batches.instanced): its worlds decide
+    many = SimpleNamespace(worlds=object(), transform=_matrix(9), world_matrices=lambda: copies)
     draws = [single[0], single[1], many, single[2], many, single[3], single[4]]
     expected = [np.array(_matrix(0)), np.array(_matrix(1)), *copies, np.array(_matrix(2)), *copies,
                 np.array(_matrix(3)), np.array(_matrix(4))]
