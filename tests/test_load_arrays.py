@@ -227,6 +227,7 @@ def test_names_in_a_folder_resolve_as_one_by_one(tmp_path):
     # only a name whose own lstat found a regular file (a link's target is checked again by input_file)
     assert [batch.regular(p) for p in got[:4]] == [single.regular(p) for p in got[:4]] == [True, False, False, False]
     assert batch(os.path.join(tmp_path / "via", "a.obj")) is got[0]  # one cache: asked again, the same result
+    assert all(a is b for a, b in zip(batch.names_in(os.fspath(tmp_path / "via"), plain), got, strict=True))
     assert batch(got[0]) is got[0]
 
 
@@ -248,3 +249,16 @@ def test_without_posix_paths_every_file_is_checked_one_by_one(tmp_path, monkeypa
     monkeypatch.setattr(read_jail, "os", SimpleNamespace(name="nt", fspath=os.fspath, environ=os.environ,
                                                          pathsep=os.pathsep, path=os.path))
     assert Checker(tmp_path / "s.toml", "").files_ahead(["a.obj", "b.obj"]) == [None, None]
+
+
+def test_the_rule_is_asked_once_when_each_file_is_checked_alone(tmp_path, monkeypatch):
+    targets = [f"t{k}.obj" for k in range(4)]
+    _cubes(tmp_path, targets)
+    for k, name in enumerate(targets):
+        (tmp_path / f"l{k}.obj").symlink_to(tmp_path / name)  # links: left to the per-model check, one by one
+    asked = []
+    real = read_jail.scene_folders
+    monkeypatch.setattr(read_jail, "scene_folders", lambda scene: asked.append(scene) or real(scene))
+    scene = load_scene(_scene(tmp_path, [f"l{k}.obj" for k in range(4)]))
+    assert [m.path for m in scene.models] == [(tmp_path / n).resolve() for n in targets]
+    assert len(asked) == 1
