@@ -1287,7 +1287,7 @@ MUTATIONS = [
     ("wgpurender/core/files/read_jail.py", "    return None if is_bundled_scene(scene) else allowed_folders(scene)",
      "    return allowed_folders(scene)", [JAIL_ONCE]),
     ("wgpurender/core/scene/checker.py", '        if not hasattr(self, "_jail"):', "        if True:",
-     [JAIL_ONCE]),
+     [JAIL_ONCE, L5_T]),
     ("wgpurender/bench/scale.py", "    return (clock() - start) * 1e3",
      "    return clock() * 1e3", ["tests/test_bench_perf_rows.py"]),
     ("wgpurender/bench/scale.py", "    return Stats.of(samples[2:])", "    return Stats.of(samples)",

@@ -227,7 +227,7 @@ def test_names_in_a_folder_resolve_as_one_by_one(tmp_path):
     # only a name whose own lstat found a regular file (a link's target is checked again by input_file)
     assert [batch.regular(p) for p in got[:4]] == [single.regular(p) for p in got[:4]] == [True, False, False, False]
     assert batch(os.path.join(tmp_path / "via", "a.obj")) is got[0]  # one cache: asked again, the same result
-    assert all(a is b for a, b in zip(batch.names_in(os.fspath(tmp_path / "via"), plain), got, strict=True))
+    assert all(a is b for a, b in zip(batch.names_in(os.fspath(tmp_path / "via"), plain), got[:4], strict=True))
     assert batch(got[0]) is got[0]
 
 
