@@ -160,6 +160,13 @@ CHUNK_T = "tests/test_mesh_chunk_cache.py"
 FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
 FRAME_CACHES = "tests/test_frame_caches.py"
 
+L5_T = "tests/test_load_arrays.py"
+L5_CHECK = "wgpurender/core/scene/checker.py"
+L5_VALID = "wgpurender/core/scene/validate.py"
+L5_JAIL = "wgpurender/core/files/read_jail.py"
+L5_INPUT = "wgpurender/core/files/input_files.py"
+L5_BATCH = "wgpurender/core/plan/batches.py"
+L5_MESHES = "wgpurender/core/plan/meshes.py"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -1275,12 +1282,12 @@ MUTATIONS = [
     (O_SIMPLE, "unmerge_faces(faces[:, 0::3], faces[:, 1::3], faces[:, 2::3],",
      "unmerge_faces(faces[:, 0::3], faces[:, 2::3], faces[:, 1::3],", [OBJ_SIMPLE]),
     (G_MESH, "    uvs[:, 1] = 1.0 - uvs[:, 1]", "    uvs[:, 1] = uvs[:, 1]", [OBJ_SIMPLE]),
-    ("wgpurender/core/scene/checker.py", "                self._jail = read_jail.scene_folders(self.path)",
-     "                self._jail = None", [JAIL_ONCE, JAIL]),
+    ("wgpurender/core/scene/checker.py", "            self._jail = read_jail.scene_folders(self.path)",
+     "            self._jail = None", [JAIL_ONCE, JAIL]),
     ("wgpurender/core/files/read_jail.py", "    return None if is_bundled_scene(scene) else allowed_folders(scene)",
      "    return allowed_folders(scene)", [JAIL_ONCE]),
-    ("wgpurender/core/scene/checker.py", '            if not hasattr(self, "_jail"):', "            if True:",
-     [JAIL_ONCE]),
+    ("wgpurender/core/scene/checker.py", '        if not hasattr(self, "_jail"):', "        if True:",
+     [JAIL_ONCE, L5_T]),
     ("wgpurender/bench/scale.py", "    return (clock() - start) * 1e3",
      "    return clock() * 1e3", ["tests/test_bench_perf_rows.py"]),
     ("wgpurender/bench/scale.py", "    return Stats.of(samples[2:])", "    return Stats.of(samples)",
@@ -1883,9 +1890,9 @@ MUTATIONS = [
     (M_WORK, "unpack(view[at:at + value], job[0]", "unpack(view[at:], job[0]", [WORKERS]),
     (M_WORK, "if not read_jail.is_checked(path):  # else", "if False:  # else", [WORKERS]),
     (M_PACK, "if not indices_checked and int(", "if int(", [LOAD_SCALE]),
-    ("wgpurender/core/files/input_files.py", "            if stat.S_ISREG(mode):\n                self._regular",
-     "            if True:\n                self._regular", [LOAD_SCALE]),
-    ("wgpurender/core/scene/checker.py", "found = path if self._resolve.regular(path) else input_file(path, what)",
+    ("wgpurender/core/files/input_files.py", "        if stat.S_ISREG(mode):\n            self._regular",
+     "        if True:\n            self._regular", [LOAD_SCALE]),
+    ("wgpurender/core/scene/checker.py", "found = path if resolve.regular(path) else input_file(path, what)",
      "found = path", [LOAD_SCALE]),
     (M_WORK, "data = read_jail.read_checked(path, functools.partial(check_size, path, what=\"model file\"))",
      "data = read_jail.read_checked(path)", [WORKERS]),  # load4: the worker's read now (was obj_cached's)
@@ -1904,7 +1911,8 @@ MUTATIONS = [
     ("wgpurender/core/view/garbage.py", "    gc.disable()\n    try:\n        yield", "    try:\n        yield",
      [LOAD_SCALE]),
     ("wgpurender/core/scene/load.py", "@garbage.paused()  # ~10^5", "# ~10^5", [LOAD_SCALE]),
-    ("wgpurender/core/plan/batches.py", 'object.__setattr__(moved, "first_instance", first)', "pass", [LOAD_SCALE]),
+    ("wgpurender/core/plan/batches.py", "first_instance=first)  # a frozen", "first_instance=first + 1)  # a frozen",
+     [LOAD_SCALE]),
     ("wgpurender/core/scene/validate.py", "return name[at:] if 0 < at < len(name) - 1 else",
      "return name[at:] if 0 <= at < len(name) - 1 else", [LOAD_SCALE]),
     ("wgpurender/core/scene/validate.py", 'if name in ("", ".", "..") or os.sep', "if os.sep", [LOAD_SCALE]),
@@ -2323,6 +2331,56 @@ MUTATIONS = [
      ["tests/test_frame4_probes.py"]),
     ("benchmarks/frame_python_calls.py", "    return Counter({k: v / frames for k, v in counts.items()})",
      "    return Counter(counts)", ["tests/test_frame4_probes.py"]),
+    # load5: the load per array (Checker.files_ahead, read_jail.inside_all, FolderResolver.names_in,
+    # batches.stacked_worlds / _starting_at, meshes._places_in_one_pair)
+    (L5_CHECK, "plain = [p if p is not None and resolve.regular(p) else None for p in paths]",
+     "plain = list(paths)", [L5_T]),
+    (L5_CHECK, "        if inside is None:  # not decidable", "        if False:  # not decidable", [L5_T]),
+    (L5_CHECK, "return [p if p is not None and next(allowed) else None for p in plain]", "return plain", [L5_T]),
+    (L5_CHECK, "        paths = [resolve(os.path.join(folder, v)) if p is None and type(v) is str",
+     "        paths = [p if p is None and type(v) is str", [L5_T]),
+    (L5_VALID, "    ahead = c.files_ahead([entry.get(\"path\")",
+     "    ahead = [None] * len(data) or ([entry.get(\"path\")", [L5_T]),
+    (L5_VALID, "    return found if found is not None else c.file(written, key, \"model file\")",
+     "    return c.file(written, key, \"model file\")", [L5_T]),
+    (L5_JAIL, "        return [True] * len(paths)", "        return [False] * len(paths)", [L5_T]),
+    (L5_JAIL, "    if os.name != \"posix\":\n        return None\n    tops",
+     "    if False:\n        return None\n    tops", [L5_T]),
+    (L5_JAIL, "tuple(t if t.endswith(\"/\") else t + \"/\" for t in tops)", "tuple(tops)", [L5_T]),
+    (L5_JAIL, "        ok = text in exact or text.startswith(prefixes)", "        ok = text.startswith(prefixes)",
+     [L5_T]),
+    (L5_JAIL, "        if ok:\n            _CHECKED.add(text)", "        if ok:\n            pass", [L5_T]),
+    (L5_JAIL, "        if ok:\n            _CHECKED.add(text)", "        if True:\n            _CHECKED.add(text)",
+     [L5_T]),
+    (L5_INPUT, "or not value.isprintable() or \"/\" in value or value in", "or not value.isprintable() or value in",
+     [L5_T]),
+    (L5_INPUT, "\"/\" in value or value in (\"\", \".\", \"..\")", "\"/\" in value or value in (\"\",)", [L5_T]),
+    (L5_INPUT, "out.append(done if done is not None else self._settle(text, under + value))",
+     "out.append(self._settle(text, under + value))", [L5_T]),
+    (L5_INPUT, "        given, under = os.path.join(folder, \"\"), os.path.join(self._real(folder), \"\")",
+     "        given = under = os.path.join(folder, \"\")", [L5_T]),
+    (L5_INPUT, "        given, under = os.path.join(folder, \"\"), os.path.join(self._real(folder), \"\")",
+     "        given, under = os.path.join(folder, \"\"), os.path.join(self._real(folder), \"x\")", [L5_T]),
+    (L5_BATCH, "            pieces.append(np.array(run, dtype=np.float64).reshape(-1, 4, 4))\n            run = []",
+     "            pieces.append(np.array(run, dtype=np.float64).reshape(-1, 4, 4))", [L5_T]),
+    (L5_BATCH, "    if run:\n        pieces.append", "    if False:\n        pieces.append", [L5_T]),
+    (L5_BATCH, "        if d.worlds is None:\n            run.append(d.transform)",
+     "        if d.transform is not None:\n            run.append(d.transform)", [L5_T]),
+    (L5_BATCH, "moved.__dict__.update(draw.__dict__, first_instance=first)", "moved.__dict__.update(draw.__dict__)",
+     [L5_T]),
+    (L5_BATCH, "    worlds = stacked_worlds(draws)\n", "    worlds = stacked_worlds(draws[:1])\n", [L5_T]),
+    (L5_MESHES, "(strides and (min(strides) != max(strides) or len(strides) != len(sizes)))",
+     "(strides and len(strides) != len(sizes))", [L5_T]),
+    (L5_MESHES, "(strides and (min(strides) != max(strides) or len(strides) != len(sizes)))",
+     "(strides and min(strides) != max(strides))", [L5_T]),
+    (L5_MESHES, "    if (aligned[:, 0] % step).any() or aligned", "    if aligned", [L5_T]),
+    (L5_MESHES, "aligned.sum(axis=0).max() > limit", "aligned.sum(axis=0).max() >= limit", [L5_T]),
+    (L5_MESHES, "    starts = (np.cumsum(aligned, axis=0) - aligned).tolist()",
+     "    starts = np.cumsum(aligned, axis=0).tolist()", [L5_T]),
+    (L5_MESHES, "    aligned = -(-np.array(sizes, dtype=np.int64).reshape(-1, 2) // BUFFER_ALIGN) * BUFFER_ALIGN",
+     "    aligned = np.array(sizes, dtype=np.int64).reshape(-1, 2)", [L5_T]),
+    (L5_MESHES, "    step = strides[0] if strides else BUFFER_ALIGN\n    aligned",
+     "    step = BUFFER_ALIGN\n    aligned", [L5_T]),
 ]
 
 
