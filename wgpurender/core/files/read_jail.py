@@ -139,6 +139,26 @@ def outside(path: Path, folders: list[Path] | None, resolve: Callable[[Path], Pa
             f"under the scene's folder, or allow its folder with ${ALLOW_ENV}=FOLDER")
 
 
+def inside_all(paths: list[Path], folders: list[Path] | None) -> list[bool] | None:
+    """``outside(path, folders) is None`` for each of ``paths`` (canonical: a resolver's own results, regular files
+    that are no link), as one pass over string prefixes, each path let through vouched for as :func:`outside`
+    does; None where this pass cannot decide (not POSIX): the caller asks :func:`outside` per path."""
+    if folders is None:
+        return [True] * len(paths)
+    if os.name != "posix":
+        return None
+    tops = [os.fspath(f) for f in folders]
+    exact, prefixes = set(tops), tuple(t if t.endswith("/") else t + "/" for t in tops)
+    out = []
+    for path in paths:
+        text = os.fspath(path)
+        ok = text in exact or text.startswith(prefixes)
+        if ok:
+            _CHECKED.add(text)
+        out.append(ok)
+    return out
+
+
 def _within(path: Path, folder: Path) -> bool:
     """``path.is_relative_to(folder)`` for resolved paths; on POSIX as a string prefix ending at a separator (the
     same answer for normalised absolute paths, without pathlib's per-call parse: 10k model files a scene)."""

@@ -134,6 +134,9 @@ def buffer_places(sizes: list[tuple[int, int]], limit: int, names: list[str],
     larger than the limit cannot be drawn from one buffer: UserError naming it (``names``, beside ``sizes``).
     ``strides``: each mesh's vertex stride (bytes, a multiple of 4): its vertices then start on a whole vertex of
     it, so a draw can name them by base vertex from the buffer bound at 0."""
+    plain = _places_in_one_pair(sizes, limit, strides)
+    if plain is not None:
+        return plain
     places, pair, vertex_end, index_end = [], 0, 0, 0
     for k, ((vertex, index), name) in enumerate(zip(sizes, names, strict=True)):
         vertex, index = (-(-n // BUFFER_ALIGN) * BUFFER_ALIGN for n in (vertex, index))
@@ -147,3 +150,21 @@ def buffer_places(sizes: list[tuple[int, int]], limit: int, names: list[str],
         places.append((pair, start, index_end))
         vertex_end, index_end = start + vertex, index_end + index
     return places
+
+
+def _places_in_one_pair(sizes: list[tuple[int, int]], limit: int,
+                        strides: list[int] | None) -> list[tuple[int, int, int]] | None:
+    """:func:`buffer_places`' answer as one array pass where it is plain: one stride for every mesh, each mesh's
+    aligned vertex bytes a whole number of it (so each mesh starts where the one before ends) and all of them
+    within one pair (so no mesh is over the limit either); None otherwise (the loop decides). A scene of 10k mesh
+    files: two running sums instead of 10k steps (issue 31.3)."""
+    import numpy as np
+
+    if not sizes or (strides and (min(strides) != max(strides) or len(strides) != len(sizes))):
+        return None
+    step = strides[0] if strides else BUFFER_ALIGN
+    aligned = -(-np.array(sizes, dtype=np.int64).reshape(-1, 2) // BUFFER_ALIGN) * BUFFER_ALIGN
+    if (aligned[:, 0] % step).any() or aligned.sum(axis=0).max() > limit:
+        return None
+    starts = (np.cumsum(aligned, axis=0) - aligned).tolist()
+    return [(0, vertex, index) for vertex, index in starts]

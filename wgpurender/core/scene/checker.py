@@ -102,18 +102,15 @@ class Checker:
         if not written.isprintable():  # some character is not
             raise self.error(key, f"{format_path(key)}: {what} path {written!r} contains a control character "
                                   "(NUL, newline, ...): give a plain file path")
-        if not hasattr(self, "_resolve"):
-            self._resolve = FolderResolver()  # each folder resolved once per scene, not once per file
-        path = self._resolve(os.path.join(self.folder, written))  # the resolver normalises (Path.resolve)
+        resolve = self._resolver()
+        path = resolve(os.path.join(self.folder, written))  # the resolver normalises (Path.resolve)
         try:  # a stat only (none when the resolver's lstat found a regular file): what is missing or special is named
-            found = path if self._resolve.regular(path) else input_file(path, what)
+            found = path if resolve.regular(path) else input_file(path, what)
         except InputFileError as err:
             if not err.missing:
                 raise self.error(key, f"{format_path(key)}: {err}") from None
         else:
-            if not hasattr(self, "_jail"):
-                self._jail = read_jail.scene_folders(self.path)  # once per scene, not per file
-            refused = read_jail.outside(found, self._jail, self._resolve)
+            refused = read_jail.outside(found, self._jail_folders(), resolve)
             if refused is not None:
                 raise self.error(key, f"{format_path(key)}: {what} '{written}': {refused}")
             return found
@@ -122,6 +119,33 @@ class Checker:
             f"{format_path(key)}: {what} '{written}' not found (looked for {path}; "
             f"paths are relative to the scene file's folder {self.folder}){_anchors_hint(written)}",
         )
+
+
+    def files_ahead(self, values: list) -> list[Path | None]:
+        """What :meth:`file` returns for each of ``values``, in ONE pass, where that is the plain case: a printable
+        string naming a regular file (no link) that the read rule lets through, vouched for as :meth:`file` does;
+        None for anything else, which :meth:`file` then checks and names in its one line (or returns) as before.
+        A scene's 10k model paths: one loop, the rule's folders compared as strings (issue 31.3)."""
+        resolve, folder = self._resolver(), os.fspath(self.folder)
+        paths = resolve.names_in(folder, values)  # plain names in one loop; a path with folders one by one
+        paths = [resolve(os.path.join(folder, v)) if p is None and type(v) is str and v.isprintable() else p
+                 for p, v in zip(paths, values, strict=True)]
+        plain = [p if p is not None and resolve.regular(p) else None for p in paths]
+        inside = read_jail.inside_all([p for p in plain if p is not None], self._jail_folders())
+        if inside is None:  # not decidable in one pass here: file() checks each
+            return [None] * len(values)
+        allowed = iter(inside)
+        return [p if p is not None and next(allowed) else None for p in plain]
+
+    def _resolver(self) -> FolderResolver:
+        if not hasattr(self, "_resolve"):
+            self._resolve = FolderResolver()  # each folder resolved once per scene, not once per file
+        return self._resolve
+
+    def _jail_folders(self) -> list[Path] | None:
+        if not hasattr(self, "_jail"):
+            self._jail = read_jail.scene_folders(self.path)  # once per scene, not per file
+        return self._jail
 
 
 def _anchors_hint(written: str) -> str:

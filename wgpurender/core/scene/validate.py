@@ -246,7 +246,9 @@ def _suffix(written: str) -> str:
     return name[at:] if 0 < at < len(name) - 1 else ""
 
 
-def _model_path(c: _Checker, value: Any, key: KeyPath) -> Path:
+def _model_path(c: _Checker, value: Any, key: KeyPath, found: Path | None = None) -> Path:
+    """The model file ``value`` names, checked (format, then the file and the read rule); ``found``: what
+    Checker.files_ahead already let through for it (None: checked here)."""
     from wgpurender.core.models.mesh import SUPPORTED, UNSUPPORTED
 
     written = c.string(value, key)
@@ -257,13 +259,16 @@ def _model_path(c: _Checker, value: Any, key: KeyPath) -> Path:
     if suffix not in SUPPORTED:
         raise c.error(key, f"{format_path(key)}: '{written}' has an unknown model format "
                            f"(supported: {', '.join(SUPPORTED)})")
-    return c.file(written, key, "model file")
+    return found if found is not None else c.file(written, key, "model file")
 
 
 def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Model, ...]:
     if not isinstance(data, list):
         raise c.error(("models",), "models must be an array of tables: write each as [[models]]")
     out = []
+    # every plain model path checked in one pass; the loop still checks each model in order, so an error is the
+    # same one line, about the same model, as without this pass
+    ahead = c.files_ahead([entry.get("path") if isinstance(entry, dict) else None for entry in data])
     for i, entry in enumerate(data):
         key = ("models", i)
         t = c.table(entry, key, MODEL_KEYS, required=("path",))
@@ -281,7 +286,7 @@ def _models(c: _Checker, data: Any, materials: dict[str, Material]) -> tuple[Mod
         out.append(
             Model(
                 index=i,
-                path=_model_path(c, t["path"], key + ("path",)),
+                path=_model_path(c, t["path"], key + ("path",), ahead[i]),
                 written_path=t["path"],
                 material=material,
                 transform=_transform(c, t.get("transform", {}), key + ("transform",)),

@@ -7,8 +7,8 @@ draws it. Everything is cached, so models sharing a mesh file or a texture share
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import wgpu
 
@@ -20,10 +20,11 @@ from wgpurender.wgpu_path.device.textures import Texture, create_sampler, create
 from wgpurender.wgpu_path.scene.shader_interface import interleave, vertex_stride
 
 
-@dataclass(frozen=True)
-class MeshBuffers:
+class MeshBuffers(NamedTuple):
     """A mesh on the GPU, interleaved for one attribute set: its bytes from ``vertex_offset`` and
-    ``index_offset`` of buffers it may share with the scene's other meshes (:meth:`SceneResources.upload_meshes`)."""
+    ``index_offset`` of buffers it may share with the scene's other meshes (:meth:`SceneResources.upload_meshes`).
+    A named tuple: made once per mesh, 10k times for a scene of 10k mesh files (~4x cheaper than a frozen
+    dataclass)."""
 
     vertex: wgpu.GPUBuffer
     index: wgpu.GPUBuffer
