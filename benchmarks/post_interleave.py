@@ -7,8 +7,9 @@ round. A case is judged against main's FXAA pass by the median of per-round rati
 
 Cases: the plan's tonemap pass; the copy kernel moving the chain's bytes (bench post-roofline's roofline); FXAA's
 pass as main draws it (its WGSL text given by ``--main-wgsl``, made by main's tree) and as this tree draws it
-untiled (must read the same), through the plan's tile and through other tiles and shapes. After timing, every FXAA
-case's image is read back and compared with main's, byte for byte.
+untiled (must read the same), through the plan's tile, over an edge list (wgpu_path/post/edge_list.py) and with
+other shapes; ``part:`` rows time the edge list's first two dispatches alone (no image). After timing, every FXAA
+case's image is read back and compared with main's, byte for byte, and the edge list's length is reported.
 
     python benchmarks/post_interleave.py OUT_DIR [--main-wgsl FILE] [--size 3840x2160] [--rounds 25] [--frames 8]
     python benchmarks/post_interleave.py --by-clock OUT_DIR/interleave.csv   # a run's rows grouped by SM clock
