@@ -7,8 +7,9 @@ round. A case is judged against main's FXAA pass by the median of per-round rati
 
 Cases: the plan's tonemap pass; the copy kernel moving the chain's bytes (bench post-roofline's roofline); FXAA's
 pass as main draws it (its WGSL text given by ``--main-wgsl``, made by main's tree) and as this tree draws it
-untiled (must read the same), through the plan's tile and through other tiles and shapes. After timing, every FXAA
-case's image is read back and compared with main's, byte for byte.
+untiled (must read the same), through the plan's tile, over an edge list (wgpu_path/post/edge_list.py) and with
+other shapes; ``part:`` rows time the edge list's first two dispatches alone (no image). After timing, every FXAA
+case's image is read back and compared with main's, byte for byte, and the edge list's length is reported.
 
     python benchmarks/post_interleave.py OUT_DIR [--main-wgsl FILE] [--size 3840x2160] [--rounds 25] [--frames 8]
     python benchmarks/post_interleave.py --by-clock OUT_DIR/interleave.csv   # a run's rows grouped by SM clock
@@ -39,10 +40,15 @@ from wgpurender.wgpu_path.post import passes  # noqa: E402
 
 FINAL = ROOT / "assets" / "scenes" / "final.toml"
 # (name, shape, tile) of FXAA's pass; None: the plan's
-FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("untiled 16x16x1", (16, 16, 1), ""),
-              ("luma 16x8x2", (16, 8, 2), "luma"), ("luma 32x8x1", (32, 8, 1), "luma"),
-              ("luma 16x16x1", (16, 16, 1), "luma"), ("luma 8x8x4", (8, 8, 4), "luma"),
-              ("luma 32x4x2", (32, 4, 2), "luma"), ("texels 16x8x2", (16, 8, 2), "texels"))
+# tile "edges": FXAA's edge search over a list of edge pixels (wgpu_path/post/edge_list.py), cs_mark's shape given
+FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("edges 8x8x2", (8, 8, 2), "edges"),
+              ("edges 16x8x2", (16, 8, 2), "edges"), ("edges 8x8x4", (8, 8, 4), "edges"),
+              ("edges 16x8x4", (16, 8, 4), "edges"), ("edges 32x8x4", (32, 8, 4), "edges"),
+              ("untiled 16x8x2", (16, 8, 2), ""), ("untiled 8x8x4", (8, 8, 4), ""),
+              ("untiled 16x8x1", (16, 8, 1), ""), ("untiled 32x8x2", (32, 8, 2), ""), ("untiled 8x4x2", (8, 4, 2), ""))
+# the edge list's first two dispatches alone (cs_mark, cs_size: every pixel off edges written, the edges listed and
+# counted, the count zeroed), no edge search: what the list costs before FXAA's work on the edges; not an image
+PART_CASES = (("part: mark+size 16x8x2", (16, 8, 2)), ("part: mark+size 8x8x4", (8, 8, 4)))
 
 
 def sm_clock() -> str:
@@ -84,6 +90,11 @@ class PassCase:
     """One planned pass with a given shape and tile (or a given WGSL text: main's), input and output fixed."""
 
     def __init__(self, ctx, p, source, target, shape=None, tile=None, text: str | None = None) -> None:
+        if tile == "edges":
+            from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+
+            self.runner, self.source, self.target = EdgeListPass(ctx.device, p, shape), source, target
+            return
         original = passes.pass_source
         if text is not None:
             passes.pass_source = lambda *a, **k: text
@@ -95,6 +106,28 @@ class PassCase:
 
     def encode(self, encoder, writes) -> None:
         self.runner.encode(encoder, self.source, self.target, timestamp_writes=writes)
+
+
+class MarkCase:
+    """An edge-list FXAA pass's cs_mark and cs_size dispatches only (PART_CASES)."""
+
+    def __init__(self, ctx, p, source, target, shape) -> None:
+        from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+        from wgpurender.wgpu_path.post.shaders import dispatch_groups
+
+        self.runner = EdgeListPass(ctx.device, p, shape)
+        self.group = self.runner._group(source, target)
+        self.groups = dispatch_groups((target.size[0], target.size[1]), shape)
+
+    def encode(self, encoder, writes) -> None:
+        cp = encoder.begin_compute_pass(timestamp_writes=writes)
+        cp.set_pipeline(self.runner.mark)
+        cp.set_bind_group(0, self.group)
+        cp.dispatch_workgroups(*self.groups, 1)
+        cp.set_pipeline(self.runner.size_pipeline)
+        cp.set_bind_group(0, self.runner.size_group)
+        cp.dispatch_workgroups(1, 1, 1)
+        cp.end()
 
 
 def time_once(ctx, case, timer: PassTimer) -> float:
@@ -142,6 +175,8 @@ def main() -> int:
         cases["fxaa main"] = PassCase(ctx, fxaa, fx_in, fx_out, (8, 8, 2), "", args.main_wgsl.read_text())
     for name, shape, tile in FXAA_CASES:
         cases[f"fxaa {name}"] = PassCase(ctx, fxaa, fx_in, fx_out, shape, tile)
+    for name, shape in PART_CASES:
+        cases[name] = MarkCase(ctx, fxaa, fx_in, fx_out, shape)
     timer = PassTimer(ctx, max_passes=1)
     names = list(cases)
     for name in names:  # warm-up: pipelines made, caches filled
@@ -163,6 +198,8 @@ def main() -> int:
             cases[name].encode(encoder, None)
             ctx.queue.submit([encoder.finish()])
             images[name] = read_texture(ctx, fx_out)
+            if hasattr(cases[name].runner, "listed"):
+                args.listed = cases[name].runner.listed()
     args.out.mkdir(parents=True, exist_ok=True)
     with open(args.out / "interleave.csv", "w", newline="") as fh:
         w = csv.writer(fh)
@@ -196,7 +233,8 @@ def summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tone
              f"{', '.join(clocks)}; after: {clock_after}",
              f"- plan: tonemap {tonemap.shape} tile {tonemap.tile!r}; FXAA {fxaa.shape} tile {fxaa.tile!r}; "
              f"chain bytes {chain_bytes / 1e6:.1f} MB; FXAA's untiled text the same with and without the adapter's "
-             f"facts: {args.same_text}", "",
+             f"facts: {args.same_text}",
+             f"- edge pixels listed by the edge-list cases: {getattr(args, 'listed', '-')} of {size[0] * size[1]}", "",
              f"| case | median ms | p10 ms | p90 ms | median of per-round ratios to {base} | image = {base}'s |",
              "|---|---:|---:|---:|---:|---|"]
     for n in names:

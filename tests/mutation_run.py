@@ -157,6 +157,10 @@ TOML_T = "tests/test_scene_toml_cache.py"
 O_CHUNKS = "wgpurender/core/models/obj_cached_chunks.py"
 CHUNK_T = "tests/test_mesh_chunk_cache.py"
 
+EDGE_WGSL = "wgpurender/wgpu_path/post/edge_wgsl.py"
+EDGE_LIST = "wgpurender/wgpu_path/post/edge_list.py"
+EDGE_T = "tests/test_post_edge_list.py"
+
 FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
 FRAME_CACHES = "tests/test_frame_caches.py"
 
@@ -2381,6 +2385,29 @@ MUTATIONS = [
      "    aligned = np.array(sizes, dtype=np.int64).reshape(-1, 2)", [L5_T]),
     (L5_MESHES, "    step = strides[0] if strides else BUFFER_ALIGN\n    aligned",
      "    step = BUFFER_ALIGN\n    aligned", [L5_T]),
+    # FXAA over an edge list (post5): wgpu_path/post/edge_wgsl.py, edge_list.py
+    (EDGE_WGSL, "mine |= 1u << k;", "mine |= 1u;", [EDGE_T]),
+    (EDGE_WGSL, "atomicStore(&group_edges, 0u);", "atomicStore(&group_edges, 3u);", [EDGE_T]),
+    (EDGE_WGSL, "group_base = atomicAdd(&edge_count.next, atomicLoad(&group_edges));",
+     "group_base = atomicAdd(&edge_count.next, 1u);", [EDGE_T]),
+    (EDGE_WGSL, "edges[base + slot] = id.x | ((id.y * ROWSu + k) << 16u);",
+     "edges[base + slot] = id.x | ((id.y + k) << 16u);", [EDGE_T]),
+    (EDGE_WGSL, "            slot += 1u;\n", "", [EDGE_T]),
+    (EDGE_WGSL, "var slot = atomicAdd(&group_edges, countOneBits(mine));", "var slot = atomicAdd(&group_edges, 1u);",
+     [EDGE_T]),
+    (EDGE_WGSL, "textureStore(dst, p, pass_tail(centre, vec2f(xy) + vec2f(0.5), vec2f(size)));",
+     "textureStore(dst, p, centre);", [EDGE_T]),
+    (EDGE_WGSL, "let xy = vec2u(edges[i] & 0xffffu, edges[i] >> 16u);",
+     "let xy = vec2u(edges[i] & 0xffu, edges[i] >> 16u);", [EDGE_T]),
+    (EDGE_WGSL, "    args[0] = min(groups, MAXu);", "    args[0] = min(groups, 1u);", [EDGE_T]),
+    (EDGE_WGSL, "    let groups = (n + GROUPu - 1u) / GROUPu;", "    let groups = n / GROUPu;", [EDGE_T]),
+    (EDGE_WGSL, "    edge_count.next = 0u;", "    edge_count.next = n;", [EDGE_T]),
+    (EDGE_LIST, "if max(size) >= MAX_SIDE:", "if max(size) > MAX_SIDE:", [EDGE_T]),
+    (EDGE_LIST, "size=4 * size[0] * size[1]", "size=size[0] * size[1]", [EDGE_T]),
+    (EDGE_LIST, "            compute_pass.dispatch_workgroups(1, 1, 1)",
+     "            compute_pass.dispatch_workgroups(0, 1, 1)", [EDGE_T]),
+    (EDGE_LIST, "p.steps[p.prelude].effect != \"fxaa\"", "p.steps[0].effect != \"fxaa\"", [EDGE_T]),
+    (EDGE_LIST, "read_buffer(self.count, 4, 4)", "read_buffer(self.count, 0, 4)", [EDGE_T]),
 ]
 
 

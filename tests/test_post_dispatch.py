@@ -62,7 +62,7 @@ def test_the_tile_fits_webgpus_workgroup_memory():
     fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes[1]
     cases = sweep_cases(fxaa, SHAPES)
     assert ((32, 8, 4), "texels") not in cases and ((32, 8, 4), "") in cases and ((16, 16, 2), "texels") in cases
-    assert ((32, 8, 4), "luma") in cases and len(cases) == 3 * len(SHAPES) - 1
+    assert ((32, 8, 4), "luma") in cases and ((32, 8, 4), "edges") in cases and len(cases) == 4 * len(SHAPES) - 1
     tonemap = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes[0]
     assert sweep_cases(tonemap, SHAPES) == [(s, "") for s in SHAPES]
     (one,) = resolve_plan(FINAL, None, size=(64, 48), post_path="compute", post_intermediate="none").post_passes

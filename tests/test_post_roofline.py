@@ -67,8 +67,8 @@ def test_chain_ratio_is_the_chains_time_over_the_copy_of_its_bytes():
 def test_the_shape_sweep_covers_the_auto_and_the_one_pass_chain(ctx):
     """--shapes dispatches the fused compute passes with each shape, for the auto chain and post_intermediate none;
     FXAA's pass through its tile of texels (each shape whose tile fits 16 KB of workgroup memory: all but 32x8 x4),
-    through its tile of lumas (4 bytes a texel: every shape), and untiled; the one-pass chain's has no luma tile (its
-    bilinear taps need the texels)."""
+    through its tile of lumas (4 bytes a texel: every shape), over an edge list (every shape), and untiled; the
+    one-pass chain's has no luma tile (its bilinear taps need the texels)."""
     if not ctx.has("timestamp-query"):
         pytest.skip("no timestamp queries on this adapter")
     from wgpurender.bench.post_roofline import SHAPES
@@ -77,11 +77,12 @@ def test_the_shape_sweep_covers_the_auto_and_the_one_pass_chain(ctx):
     auto = [r for r in rows if r.intermediate == "auto"]
     none = [r for r in rows if r.intermediate == "none"]
     n = len(SHAPES)
-    assert len(auto) == n + 3 * n - 1 and {r.effects for r in auto} == {"tonemap", "fxaa+vignette"}
+    assert len(auto) == n + 4 * n - 1 and {r.effects for r in auto} == {"tonemap", "fxaa+vignette"}
+    assert sum(r.variant.endswith(", edge list") for r in auto) == n
     assert sum(r.variant.endswith(", tiled") for r in auto) == n - 1
     assert sum(r.variant.endswith(", luma tile") for r in auto) == n
     assert not any(r.variant.endswith("tiled") for r in auto if r.effects == "tonemap")
-    assert len(none) == 2 * n - 1 and {r.effects for r in none} == {"tonemap+fxaa+vignette"}
+    assert len(none) == 3 * n - 1 and {r.effects for r in none} == {"tonemap+fxaa+vignette"}
     assert all(r.variant.startswith("compute, fused, none, shape ") for r in none)
     text = markdown(rows, ctx, FINAL, (16, 12), 1, "test")
     assert "- fastest shape per pass (auto): tonemap " in text and "- fastest shape per pass (none): " in text

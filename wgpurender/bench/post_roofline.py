@@ -180,22 +180,24 @@ SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2)
 
 def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], str]]:
     """(shape, tile) dispatched by the sweep for pass ``p``: every shape; an FXAA pass (tiled by the plan or not)
-    through each workgroup tile it can take (where the tile fits in workgroup memory) and untiled (""), the same
-    image."""
+    through each workgroup tile it can take (where the tile fits in workgroup memory), over an edge list
+    ("edges": wgpu_path/post/edge_list.py) and untiled (""), the same image."""
     from wgpurender.core.plan.dispatch import TILE_KINDS, tile_fits
     from wgpurender.wgpu_path.post.shaders import tileable
 
     cases = [(shape, kind) for kind in TILE_KINDS if tileable(p, kind) for shape in shapes if tile_fits(shape, kind)]
-    return cases + [(shape, "") for shape in shapes]
+    edges = [(shape, "edges") for shape in shapes] if tileable(p) else []
+    return cases + edges + [(shape, "") for shape in shapes]
 
 
-TILE_LABELS = {"texels": ", tiled", "luma": ", luma tile", "": ", untiled"}
+TILE_LABELS = {"texels": ", tiled", "luma": ", luma tile", "edges": ", edge list", "": ", untiled"}
 
 
 def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy: CopyKernel,
                 shapes=SHAPES, intermediate: str = "auto") -> list[PassTime]:
     """The fused compute chain's passes, each dispatched with every shape (:func:`sweep_cases`), same run;
     ``intermediate``: the knob post_intermediate of the chain swept."""
+    from wgpurender.wgpu_path.post.edge_list import EdgeListPass
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.post.shaders import tileable
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
@@ -211,7 +213,8 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
     for p in plan.post_passes:
         moved, copied = dispatch_bytes(p, size)
         for shape, tiled in sweep_cases(p, shapes):
-            runner = ComputePass(ctx.device, p, shape, tiled)
+            edges = tiled == "edges"
+            runner = EdgeListPass(ctx.device, p, shape) if edges else ComputePass(ctx.device, p, shape, tiled)
             timer = PassTimer(ctx, max_passes=1)
             samples = []
             for _ in range(frames + 2):

@@ -24,6 +24,12 @@ another):
   the tile of lumas (each texel's luma once, 4 bytes a texel) it is slower at every clock and shape: the median
   per-round ratio to untiled 1.41x (16x16 x1) to 1.61x (8x8 x4), 1.58x with 8x8 x2; the texel tile 1.40x. So the
   texture fetches were not the bound either: FXAA reads the texture (both tiles stay ``--shapes`` variants);
+- FXAA reading the stored image over an edge list (wgpu_path/post/edge_list.py; docs/perf-h100/2026-11-27-post5/):
+  a pass over every pixel writes those off edges and lists the 3.1% that are edges, a second runs the edge search
+  on the listed pixels only (an indirect dispatch). Interleaved at 1980 MHz it is slower at every shape: 0.089 ms
+  at best (16x8 x4) against 0.0735 untiled, 0.108 with 8x8 x2. The first dispatch alone (the contrast test over
+  every pixel) takes 0.071 ms: the edge search was never the cost. The plan keeps the one dispatch (the edge list
+  is a ``--shapes`` variant);
 - FXAA recomputing tonemap (post_intermediate = none) through its tile: 8x8 x1 0.318 / 0.403 ms, 8x8 x2
   0.210 / 0.715; untiled 0.395-0.618 / 0.952-1.342: the tile wins on both hosts, the shape's ranking differs.
 """

@@ -39,7 +39,7 @@ class PlannedPass:
     def __init__(self, device: wgpu.GPUDevice, p: PostPass, shape: tuple[int, int, int] | None = None,
                  tiled: str | None = None) -> None:
         self.device, self.p, self.shape = device, p, shape
-        self.source = pass_source(p, shape, tiled)
+        self.source = self.make_source(p, shape, tiled)
         self.key = hashlib.sha1(self.source.encode()).hexdigest()[:16]
         # a recomputing pass (post_intermediate = none) filters in its shader: no sampler
         self.filtering = p.steps[0].spec.filtering and not p.prelude
@@ -51,6 +51,10 @@ class PlannedPass:
             device.queue.write_buffer(self.buffer, 0, data)
         self.layout = device_cache(device, "post-layouts").get((self.key, self.stage), self._make_layout)
         self.groups: GpuCache[wgpu.GPUBindGroup] = GpuCache(f"post-{p.effect}-bind-groups", 4)
+
+    def make_source(self, p: PostPass, shape: tuple[int, int, int] | None, tiled: str | None) -> str:
+        """The pass's WGSL (a runner that splits the pass over dispatches makes its own)."""
+        return pass_source(p, shape, tiled)
 
     def module(self) -> wgpu.GPUShaderModule:
         return device_cache(self.device, "post-modules").get(self.key, lambda: create_shader_module(

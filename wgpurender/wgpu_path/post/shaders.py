@@ -232,6 +232,19 @@ def pass_source(p: PostPass, shape: Shape | None = None, tiled: str | None = Non
     tiled = p.tile if tiled is None else tiled
     if tiled and not tileable(p, tiled):
         raise ValueError(f"post pass {p.effect!r} on the {p.path} path has no FXAA reads to tile with {tiled!r}")
+    parts = pass_functions(p, shape, tiled)
+    if p.path == "compute":
+        parts.append(_compute_main(p, shape_of(p, shape), tiled))
+    else:
+        parts.append(FRAGMENT_MAIN)
+        if p.mask:
+            parts.append(FRAGMENT_MARK.replace("HEAD", p.steps[0].effect).replace(" ARG", _arg(p, 0)))
+    return "\n\n".join(parts) + "\n"
+
+
+def pass_functions(p: PostPass, shape: Shape | None = None, tiled: str = "") -> list[str]:
+    """The parts of a pass's WGSL before its entry points: bindings 0-2, the effects and ``pass_color`` /
+    ``pass_tail`` (an FXAA pass split over two dispatches adds its own: wgpu_path/post/edge_list.py)."""
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:
@@ -244,10 +257,9 @@ def pass_source(p: PostPass, shape: Shape | None = None, tiled: str | None = Non
     if "post_fxaa.wgsl" in files:
         parts.append(_reads(p, shape, tiled))
     parts.append(_color(p))
-    if p.path == "compute":
-        parts.append(_compute_main(p, shape_of(p, shape), tiled))
-    else:
-        parts.append(FRAGMENT_MAIN)
-        if p.mask:
-            parts.append(FRAGMENT_MARK.replace("HEAD", p.steps[0].effect).replace(" ARG", _arg(p, 0)))
-    return "\n\n".join(parts) + "\n"
+    return parts
+
+
+def head_arg(p: PostPass) -> str:
+    """The parameter argument of the pass's first effect after its prelude ("" without parameters)."""
+    return _arg(p, p.prelude)
