@@ -3,8 +3,8 @@
 The tonemap variant must store the plan's colour unchanged and, in alpha, sqrt(Rec. 709 luminance) of that stored
 colour (numpy here, from the f16 texels read back, to one f16 step); the FXAA variant, given those lumas, must draw
 the plan's FXAA image byte for byte, on images far from FXAA's threshold (a wrong gather component moves edges) and
-on noise whose contrast straddles it (without the slack for the lumas' f16 rounding, 13 and 4 of its pixels
-differ on lavapipe); and the chain of tests/test_post_intermediate.py's quad scene must be the plan's image.
+on noise whose contrast straddles it (without the slack for the lumas' f16 rounding some of its pixels differ:
+a mutation row removes it); and the chain of tests/test_post_intermediate.py's quad scene must be the plan's image.
 """
 
 from __future__ import annotations

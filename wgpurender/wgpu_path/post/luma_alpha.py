@@ -11,8 +11,9 @@ What it costs: the intermediate's alpha. The chain's output alpha is the scene's
 pass it through): 1 unless ``render.clear_color`` has an alpha below 1 or a material blends or writes one, and
 an offscreen render keeps it in its PNG. This variant writes alpha 1, so it is for outputs whose alpha is known
 to be 1 only (tests/test_post_luma_alpha.py; benchmarks/post_interleave.py --set gather compares the images).
-Reading the f16 lumas straight into FXAA's arithmetic (no exact recompute) moved 677 of 230,400 pixels of
-final.toml at 640x360 on lavapipe, up to 29 steps: the edge search's end test is sensitive to the last bits.
+A first version that fed the f16 lumas straight into all of FXAA's arithmetic (no exact recompute) changed
+pixels of final.toml on lavapipe, by many steps at some: the edge search's end test is sensitive to the last bits.
+Measured on the H100 (docs/perf-h100/2026-11-27-post6/): byte-equal, and only 2-3% faster than the plan's pass.
 
 The WGSL is the plan's text for each pass with a few lines exchanged; each exchange must match exactly once, so a
 change of shaders_wgsl/post_fxaa.wgsl that this does not follow fails here, not silently.
