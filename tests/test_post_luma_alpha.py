@@ -71,14 +71,26 @@ def _noise(size: tuple[int, int], seed: int) -> np.ndarray:
     return image
 
 
+def _straddle(size: tuple[int, int], seed: int) -> np.ndarray:
+    """A checkerboard of greys with lumas 0.6 and 0.5004 (contrast 0.0996 = 0.166 * 0.6, FXAA's threshold at
+    0.6), each channel jittered by up to 0.1% (about one f16 step of luma): nearly every pixel's contrast test
+    is decided within the lumas' rounding; alpha 1."""
+    rng = np.random.default_rng(seed)
+    ys, xs = np.mgrid[0:size[1], 0:size[0]]
+    grey = np.where((xs + ys) % 2 == 0, 0.36, 0.5004 ** 2)
+    image = np.ones((size[1], size[0], 4), np.float32)
+    image[..., :3] = grey[..., None] * rng.uniform(0.999, 1.001, (size[1], size[0], 3))
+    return image
+
+
 @pytest.mark.parametrize("pattern,size,shape", [(_blocks, (203, 117), None), (_blocks, (97, 61), (8, 8, 4)),
                                                 (_blocks, (13, 7), (16, 8, 1)), (_noise, (203, 117), None),
-                                                (_noise, (64, 48), (8, 8, 1))])
+                                                (_noise, (64, 48), (8, 8, 1)), (_straddle, (256, 160), None)])
 def test_gathered_lumas_draw_the_plan_fxaa_image(ctx, pattern, size, shape):
     """Given each texel's luma in alpha (numpy: sqrt of the Rec. 709 luminance of the f16 colour, rounded to f16),
     the variant must draw what the plan's FXAA draws from the colour, byte for byte, borders (clamped) included:
     on grey blocks (lumas 0, 0.5, 1: far from the threshold) and on noise whose contrast straddles it (the
-    pixels where the f16 lumas alone would decide otherwise must be recomputed)."""
+    pixels where the f16 lumas alone would decide otherwise must be recomputed), and a checkerboard on it."""
     from wgpurender.wgpu_path.post import PostChain, create_effect
     from wgpurender.wgpu_path.post.luma_alpha import LumaAlphaPass
     from wgpurender.wgpu_path.post.passes import ComputePass
