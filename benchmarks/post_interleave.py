@@ -183,7 +183,7 @@ def main() -> int:
     renderer = SceneRenderer(ctx, scene, plan)
     target = renderer.create_output()
     render_frame(ctx, renderer, target)
-    if args.set == "gather":  # the lumas in alpha of a second intermediate (draw_chain renders the frame too)
+    if args.set == "gather":  # the lumas in alpha of a second intermediate
         from wgpurender.wgpu_path.post.luma_alpha import draw_chain
 
         middle = draw_chain(ctx, renderer, target)

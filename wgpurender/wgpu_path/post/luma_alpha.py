@@ -108,12 +108,10 @@ class LumaAlphaPass(ComputePass):
 
 
 def draw_chain(ctx, renderer, target: wgpu.GPUTexture) -> wgpu.GPUTexture:
-    """A frame of ``renderer``'s plan (tonemap, then an FXAA pass) with its post chain drawn again as the luma-in-alpha
-    variant into ``target``: the scene image the plan drew is kept, the variant's intermediate is a new texture.
-    Returns that intermediate (readable: a benchmark times the passes from it, the tests read it back)."""
-    from wgpurender.wgpu_path.scene import render_frame
-
-    render_frame(ctx, renderer, target)
+    """After a frame of ``renderer``'s plan (a SceneRenderer's: tonemap, then an FXAA pass) was drawn into ``target``,
+    its post chain drawn again as the luma-in-alpha variant into ``target`` from the scene image that frame left;
+    the variant's intermediate is a new texture. Returns it (readable: a benchmark times the passes from it, the
+    tests read it back)."""
     first, second = renderer.plan.post_passes
     textures = {**renderer.attachments, "output": target}
     like = textures[first.output]
