@@ -49,6 +49,19 @@ FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("edges 8x
 # the edge list's first two dispatches alone (cs_mark, cs_size: every pixel off edges written, the edges listed and
 # counted, the count zeroed), no edge search: what the list costs before FXAA's work on the edges; not an image
 PART_CASES = (("part: mark+size 16x8x2", (16, 8, 2)), ("part: mark+size 8x8x4", (8, 8, 4)))
+# --set gather (post6): FXAA's lumas in the intermediate's alpha (wgpu_path/post/luma_alpha.py): "tonemap luma"
+# writes them (the plan's tonemap with the luma in alpha), the "fxaa gather" cases read them with textureGather;
+# their chain is tonemap luma + fxaa gather. Untiled shapes beside them for the same clocks.
+GATHER_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("gather 8x8x2", (8, 8, 2), "gather"),
+                ("gather 16x8x2", (16, 8, 2), "gather"), ("gather 8x8x4", (8, 8, 4), "gather"),
+                ("gather 16x8x4", (16, 8, 4), "gather"), ("gather 32x8x2", (32, 8, 2), "gather"),
+                ("gather 8x8x1", (8, 8, 1), "gather"))
+LUMA_TONEMAP = "tonemap luma"
+
+
+def tonemap_of(name: str, names) -> str:
+    """The tonemap case whose image an FXAA case reads: the luma-writing one for a gather case (when timed)."""
+    return LUMA_TONEMAP if name.startswith("fxaa gather") and LUMA_TONEMAP in names else "tonemap (plan)"
 
 
 def sm_clock() -> str:
@@ -90,6 +103,12 @@ class PassCase:
     """One planned pass with a given shape and tile (or a given WGSL text: main's), input and output fixed."""
 
     def __init__(self, ctx, p, source, target, shape=None, tile=None, text: str | None = None) -> None:
+        if tile in ("gather", "luma"):  # reads / writes FXAA's lumas in alpha
+            from wgpurender.wgpu_path.post.luma_alpha import LumaAlphaPass
+
+            role = "fxaa" if tile == "gather" else "tonemap"
+            self.runner, self.source, self.target = LumaAlphaPass(ctx.device, p, role, shape), source, target
+            return
         if tile == "edges":
             from wgpurender.wgpu_path.post.edge_list import EdgeListPass
 
@@ -152,6 +171,8 @@ def main() -> int:
     ap.add_argument("--size", default="3840x2160")
     ap.add_argument("--rounds", type=int, default=25)
     ap.add_argument("--frames", type=int, default=8)
+    ap.add_argument("--set", choices=("edges", "gather"), default="edges",
+                    help="the FXAA cases: post5's edge list and shapes (default), or post6's lumas in alpha")
     args = ap.parse_args()
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
@@ -162,6 +183,10 @@ def main() -> int:
     renderer = SceneRenderer(ctx, scene, plan)
     target = renderer.create_output()
     render_frame(ctx, renderer, target)
+    if args.set == "gather":  # the lumas in alpha of a second intermediate
+        from wgpurender.wgpu_path.post.luma_alpha import draw_chain
+
+        middle = draw_chain(ctx, renderer, target)
     textures = {**renderer.attachments, "output": target}
     tonemap, fxaa = plan.post_passes
     # main's text is made without an adapter (--main-wgsl's command): this tree's untiled text must not depend on it
@@ -173,9 +198,11 @@ def main() -> int:
     fx_in, fx_out = textures[fxaa.input], textures[fxaa.output]
     if args.main_wgsl:
         cases["fxaa main"] = PassCase(ctx, fxaa, fx_in, fx_out, (8, 8, 2), "", args.main_wgsl.read_text())
-    for name, shape, tile in FXAA_CASES:
-        cases[f"fxaa {name}"] = PassCase(ctx, fxaa, fx_in, fx_out, shape, tile)
-    for name, shape in PART_CASES:
+    if args.set == "gather":
+        cases[LUMA_TONEMAP] = PassCase(ctx, tonemap, textures[tonemap.input], middle, None, "luma")
+    for name, shape, tile in (GATHER_CASES if args.set == "gather" else FXAA_CASES):
+        cases[f"fxaa {name}"] = PassCase(ctx, fxaa, middle if tile == "gather" else fx_in, fx_out, shape, tile)
+    for name, shape in (PART_CASES if args.set == "edges" else ()):
         cases[name] = MarkCase(ctx, fxaa, fx_in, fx_out, shape)
     timer = PassTimer(ctx, max_passes=1)
     names = list(cases)
@@ -227,7 +254,8 @@ def summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tone
     lines = [f"# final.toml's post chain, FXAA's pass interleaved ({size[0]}x{size[1]})", "",
              f"- adapter: {ctx.describe()}",
              f"- command: `python benchmarks/post_interleave.py OUT {'--main-wgsl FILE ' if args.main_wgsl else ''}"
-             f"--size {args.size} --rounds {args.rounds} --frames {args.frames}`",
+             f"--size {args.size} --rounds {args.rounds} --frames {args.frames}"
+             f"{' --set gather' if args.set == 'gather' else ''}`",
              f"- {args.rounds} rounds, every case {args.frames} dispatches a round (GPU timestamps), the order rotated "
              "each round and reversed every other; SM clock (MHz) read at each round's start: "
              f"{', '.join(clocks)}; after: {clock_after}",
@@ -243,19 +271,33 @@ def summary(rows, names, images, ctx, size, chain_bytes, args, clock_after, tone
         ratio = ""
         if n.startswith("fxaa"):
             ratio = f"{statistics.median(rounds[n][r] / rounds[base][r] for r in rounds[n]):.3f}"
-        same = "" if n not in images or ref is None else (
-            "yes" if np.array_equal(images[n], ref) else f"NO ({int((images[n] != ref).any(-1).sum())} px)")
+        same = "" if n not in images or ref is None else image_verdict(images[n], ref)
         lines.append(f"| {n} | {statistics.median(allms):.4f} | {q[0]:.4f} | {q[-1]:.4f} | {ratio} | {same} |")
     lines += ["", "Chains (tonemap + FXAA case) over the copy of the chain's bytes, the median of per-round ratios "
               "(each round's tonemap, FXAA and copy medians):", ""]
-    copy, tm = rounds["copy (chain bytes)"], rounds["tonemap (plan)"]
+    copy = rounds["copy (chain bytes)"]
     for n in names:
         if n.startswith("fxaa"):
+            tm = rounds[tonemap_of(n, names)]
             per = [(tm[r] + rounds[n][r]) / copy[r] for r in rounds[n]]
             ms = statistics.median(tm[r] + rounds[n][r] for r in rounds[n])
-            lines.append(f"- tonemap + {n}: {ms:.4f} ms, {statistics.median(per):.3f}x the copy "
+            lines.append(f"- {chain_label(n, names)} + {n}: {ms:.4f} ms, {statistics.median(per):.3f}x the copy "
                          f"(rounds {min(per):.3f}-{max(per):.3f}x; copy {statistics.median(copy.values()):.4f} ms)")
     return "\n".join(lines) + "\n"
+
+
+def chain_label(name: str, names) -> str:
+    """The chain's first pass as the summary lines name it: "tonemap" (the plan's) or "tonemap luma"."""
+    return "tonemap" if tonemap_of(name, names) == "tonemap (plan)" else LUMA_TONEMAP
+
+
+def image_verdict(image: np.ndarray, ref: np.ndarray) -> str:
+    """"yes" where ``image`` is ``ref`` byte for byte, else how many pixels differ and by how many 8-bit steps at
+    most (alpha included)."""
+    if np.array_equal(image, ref):
+        return "yes"
+    diff = np.abs(image.astype(np.int32) - ref.astype(np.int32)).max(-1)
+    return f"NO ({int((diff > 0).sum())} px, max {int(diff.max())}, > 1: {int((diff > 1).sum())})"
 
 
 def by_clock(rows) -> str:
@@ -270,10 +312,11 @@ def by_clock(rows) -> str:
              "|---|" + "---:|" * len(clocks)]
     lines += [f"| {n} | " + " | ".join(f"{med[(n, c)]:.4f}" if (n, c) in med else "" for c in clocks) + " |"
               for n in names]
-    copy, tm = "copy (chain bytes)", "tonemap (plan)"
+    copy = "copy (chain bytes)"
     for n in names:
+        tm = tonemap_of(n, names)
         if n.startswith("fxaa") and all((x, c) in med for x in (copy, tm, n) for c in clocks):
-            lines.append(f"- tonemap + {n} over the copy: " + ", ".join(
+            lines.append(f"- {chain_label(n, names)} + {n} over the copy: " + ", ".join(
                 f"{(med[(tm, c)] + med[(n, c)]) / med[(copy, c)]:.3f}x at {c}" for c in clocks))
     return "\n".join(lines) + "\n"
 

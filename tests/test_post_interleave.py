@@ -40,3 +40,26 @@ def test_a_case_missing_at_a_clock_has_no_chain_line():
     text = _module().by_clock(rows)
     assert "| fxaa luma 8x8x2 | 0.1110 |  |" in text
     assert "- tonemap + fxaa luma 8x8x2" not in text and "- tonemap + fxaa main" in text
+
+
+def test_a_gather_case_chains_with_the_tonemap_that_writes_its_lumas():
+    """--set gather: FXAA reading lumas from alpha runs after "tonemap luma", so its chain is that pass + it."""
+    rows = _rows()
+    rows += [(r, "tonemap luma", f, ms + 0.002, c) for r, case, f, ms, c in _rows() if case == "tonemap (plan)"]
+    rows += [(r, "fxaa gather 8x8x2", f, ms - 0.03, c) for r, case, f, ms, c in _rows() if case == "fxaa main"]
+    text = _module().by_clock(rows)
+    # (0.063 + 0.041) / 0.081 at 1980, (0.083 + 0.091) / 0.091 at 1080
+    assert (f"- tonemap luma + fxaa gather 8x8x2 over the copy: {0.104 / 0.081:.3f}x at 1980, "
+            f"{0.174 / 0.091:.3f}x at 1080") in text
+    assert f"- tonemap + fxaa main over the copy: {0.132 / 0.081:.3f}x at 1980" in text
+
+
+def test_an_image_differing_says_how_many_pixels_and_by_how_much():
+    import numpy as np
+
+    verdict = _module().image_verdict
+    ref = np.zeros((4, 5, 4), np.uint8)
+    assert verdict(ref.copy(), ref) == "yes"
+    img = ref.copy()
+    img[0, 0, 1], img[2, 3, 3], img[3, 4, 0] = 1, 3, 250  # three pixels, 1, 3 and 250 steps
+    assert verdict(img, ref) == "NO (3 px, max 250, > 1: 2)"

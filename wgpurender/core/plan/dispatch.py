@@ -30,6 +30,10 @@ another):
   at best (16x8 x4) against 0.0735 untiled, 0.108 with 8x8 x2. The first dispatch alone (the contrast test over
   every pixel) takes 0.071 ms: the edge search was never the cost. The plan keeps the one dispatch (the edge list
   is a ``--shapes`` variant);
+- FXAA taking its lumas from the intermediate's alpha (wgpu_path/post/luma_alpha.py; docs/perf-h100/2026-11-27-post6/):
+  the tonemap pass stores them at no cost, FXAA's contrast test gathers them (two textureGathers and the centre
+  texel instead of five loads and five square roots), byte-equal: 0.0717 ms against 0.0735 at 1980 MHz (8x8 x2),
+  2.5%, and it writes alpha 1, which the chain's output may not have. The plan keeps main's pass (a benchmark case);
 - FXAA recomputing tonemap (post_intermediate = none) through its tile: 8x8 x1 0.318 / 0.403 ms, 8x8 x2
   0.210 / 0.715; untiled 0.395-0.618 / 0.952-1.342: the tile wins on both hosts, the shape's ranking differs.
 """
