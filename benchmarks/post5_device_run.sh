@@ -1,6 +1,6 @@
 #!/bin/sh
 # Issue 31.6 on the GPU machine (post5, 2026-11-27 night: docs/perf-h100/2026-11-27-post5/): FXAA over an edge
-# list (wgpu_path/post/edge_list.py) against main's one-dispatch pass. Run from a copy of the branch in a folder of
+# list (wgpurender/bench/fxaa_variants/edge_list.py) against main's one-dispatch pass. Run from a copy of the branch in a folder of
 # main's checkout: `cd .post5 && ln -s ../.gl .gl && ln -s ../.whl .whl && sh benchmarks/post5_device_run.sh [all|interleave]`.
 # - main's FXAA pass text, made by main's tree (the folder above), for the interleaved run's "fxaa main" case;
 # - tests (mode all, the default): the edge list (byte-equal to one dispatch, the listed count) and the dispatch/tile tests, on the GPU;

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Issue 31.6 on the GPU machine (post6, 2026-11-27 night: docs/perf-h100/2026-11-27-post6/): FXAA's luma in the
-# intermediate's alpha (wgpu_path/post/luma_alpha.py) against main's pass. Run from a copy of the branch in a folder
+# intermediate's alpha (wgpurender/bench/fxaa_variants/luma_alpha.py) against main's pass. Run from a copy of the branch in a folder
 # of main's checkout: `cd .post6 && ln -s ../.gl .gl && ln -s ../.whl .whl && sh benchmarks/post6_device_run.sh`.
 # - main's FXAA pass text, made by main's tree (the folder above), for the interleaved run's "fxaa main" case;
 # - tests: the variant (byte-equal to the plan's pass, the lumas stored) and the interleave summary, on the GPU;

@@ -7,7 +7,8 @@ round. A case is judged against main's FXAA pass by the median of per-round rati
 
 Cases: the plan's tonemap pass; the copy kernel moving the chain's bytes (bench post-roofline's roofline); FXAA's
 pass as main draws it (its WGSL text given by ``--main-wgsl``, made by main's tree) and as this tree draws it
-untiled (must read the same), through the plan's tile, over an edge list (wgpu_path/post/edge_list.py) and with
+untiled (must read the same), through the plan's tile, over an edge list
+(wgpurender/bench/fxaa_variants/edge_list.py) and with
 other shapes; ``part:`` rows time the edge list's first two dispatches alone (no image). After timing, every FXAA
 case's image is read back and compared with main's, byte for byte, and the edge list's length is reported.
 
@@ -40,7 +41,8 @@ from wgpurender.wgpu_path.post import passes  # noqa: E402
 
 FINAL = ROOT / "assets" / "scenes" / "final.toml"
 # (name, shape, tile) of FXAA's pass; None: the plan's
-# tile "edges": FXAA's edge search over a list of edge pixels (wgpu_path/post/edge_list.py), cs_mark's shape given
+# tile "edges": FXAA's edge search over a list of edge pixels
+# (wgpurender/bench/fxaa_variants/edge_list.py), cs_mark's shape given
 FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("edges 8x8x2", (8, 8, 2), "edges"),
               ("edges 16x8x2", (16, 8, 2), "edges"), ("edges 8x8x4", (8, 8, 4), "edges"),
               ("edges 16x8x4", (16, 8, 4), "edges"), ("edges 32x8x4", (32, 8, 4), "edges"),
@@ -49,7 +51,8 @@ FXAA_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("plan", None, None), ("edges 8x
 # the edge list's first two dispatches alone (cs_mark, cs_size: every pixel off edges written, the edges listed and
 # counted, the count zeroed), no edge search: what the list costs before FXAA's work on the edges; not an image
 PART_CASES = (("part: mark+size 16x8x2", (16, 8, 2)), ("part: mark+size 8x8x4", (8, 8, 4)))
-# --set gather (post6): FXAA's lumas in the intermediate's alpha (wgpu_path/post/luma_alpha.py): "tonemap luma"
+# --set gather (post6): FXAA's lumas in the intermediate's alpha
+# (wgpurender/bench/fxaa_variants/luma_alpha.py): "tonemap luma"
 # writes them (the plan's tonemap with the luma in alpha), the "fxaa gather" cases read them with textureGather;
 # their chain is tonemap luma + fxaa gather. Untiled shapes beside them for the same clocks.
 GATHER_CASES = (("untiled 8x8x2", (8, 8, 2), ""), ("gather 8x8x2", (8, 8, 2), "gather"),
@@ -104,13 +107,13 @@ class PassCase:
 
     def __init__(self, ctx, p, source, target, shape=None, tile=None, text: str | None = None) -> None:
         if tile in ("gather", "luma"):  # reads / writes FXAA's lumas in alpha
-            from wgpurender.wgpu_path.post.luma_alpha import LumaAlphaPass
+            from wgpurender.bench.fxaa_variants.luma_alpha import LumaAlphaPass
 
             role = "fxaa" if tile == "gather" else "tonemap"
             self.runner, self.source, self.target = LumaAlphaPass(ctx.device, p, role, shape), source, target
             return
         if tile == "edges":
-            from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+            from wgpurender.bench.fxaa_variants.edge_list import EdgeListPass
 
             self.runner, self.source, self.target = EdgeListPass(ctx.device, p, shape), source, target
             return
@@ -131,7 +134,7 @@ class MarkCase:
     """An edge-list FXAA pass's cs_mark and cs_size dispatches only (PART_CASES)."""
 
     def __init__(self, ctx, p, source, target, shape) -> None:
-        from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+        from wgpurender.bench.fxaa_variants.edge_list import EdgeListPass
         from wgpurender.wgpu_path.post.shaders import dispatch_groups
 
         self.runner = EdgeListPass(ctx.device, p, shape)
@@ -184,7 +187,7 @@ def main() -> int:
     target = renderer.create_output()
     render_frame(ctx, renderer, target)
     if args.set == "gather":  # the lumas in alpha of a second intermediate
-        from wgpurender.wgpu_path.post.luma_alpha import draw_chain
+        from wgpurender.bench.fxaa_variants.luma_alpha import draw_chain
 
         middle = draw_chain(ctx, renderer, target)
     textures = {**renderer.attachments, "output": target}

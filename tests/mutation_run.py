@@ -157,10 +157,10 @@ TOML_T = "tests/test_scene_toml_cache.py"
 O_CHUNKS = "wgpurender/core/models/obj_cached_chunks.py"
 CHUNK_T = "tests/test_mesh_chunk_cache.py"
 
-EDGE_WGSL = "wgpurender/wgpu_path/post/edge_wgsl.py"
-EDGE_LIST = "wgpurender/wgpu_path/post/edge_list.py"
+EDGE_WGSL = "wgpurender/bench/fxaa_variants/edge_wgsl.py"
+EDGE_LIST = "wgpurender/bench/fxaa_variants/edge_list.py"
 EDGE_T = "tests/test_post_edge_list.py"
-LUMA_A = "wgpurender/wgpu_path/post/luma_alpha.py"
+LUMA_A = "wgpurender/bench/fxaa_variants/luma_alpha.py"
 LUMA_T = "tests/test_post_luma_alpha.py"
 
 FRAME, CHAIN = "wgpurender/wgpu_path/scene/frame.py", "wgpurender/wgpu_path/post/chain.py"
@@ -2387,7 +2387,7 @@ MUTATIONS = [
      "    aligned = np.array(sizes, dtype=np.int64).reshape(-1, 2)", [L5_T]),
     (L5_MESHES, "    step = strides[0] if strides else BUFFER_ALIGN\n    aligned",
      "    step = BUFFER_ALIGN\n    aligned", [L5_T]),
-    # FXAA over an edge list (post5): wgpu_path/post/edge_wgsl.py, edge_list.py
+    # FXAA over an edge list (post5): wgpurender/bench/fxaa_variants/edge_wgsl.py, edge_list.py
     (EDGE_WGSL, "mine |= 1u << k;", "mine |= 1u;", [EDGE_T]),
     (EDGE_WGSL, "atomicStore(&group_edges, 0u);", "atomicStore(&group_edges, 3u);", [EDGE_T]),
     (EDGE_WGSL, "group_base = atomicAdd(&edge_count.next, atomicLoad(&group_edges));",
@@ -2410,7 +2410,8 @@ MUTATIONS = [
      "            compute_pass.dispatch_workgroups(0, 1, 1)", [EDGE_T]),
     (EDGE_LIST, "p.steps[p.prelude].effect != \"fxaa\"", "p.steps[0].effect != \"fxaa\"", [EDGE_T]),
     (EDGE_LIST, "read_buffer(self.count, 4, 4)", "read_buffer(self.count, 0, 4)", [EDGE_T]),
-    # post6: FXAA's luma in the intermediate's alpha (wgpu_path/post/luma_alpha.py), post_interleave's --set gather
+    # post6: FXAA's luma in the intermediate's alpha
+    # (wgpurender/bench/fxaa_variants/luma_alpha.py), post_interleave's --set gather
     (LUMA_A, "let slack = s_max * (1.0 / 256.0) + (1.0 / 1048576.0);", "let slack = 0.0;", [LUMA_T]),
     (LUMA_A, "textureGather(3, src, src_sampler, uv - 0.5 * inv);", "textureGather(3, src, src_sampler, uv);",
      [LUMA_T]),

@@ -1,4 +1,5 @@
-"""FXAA over an edge list (wgpu_path/post/edge_list.py, issue 31.6): three dispatches, the one-dispatch image.
+"""FXAA over an edge list (issue 31.6; wgpurender/bench/fxaa_variants/edge_list.py): three dispatches, the
+one-dispatch image.
 
 ``cs_mark`` writes every pixel off edges and lists the edge pixels, ``cs_size`` sizes the indirect dispatch and
 zeroes the count, ``cs_edges`` runs FXAA on the listed pixels. The image must be the one-dispatch pass's, byte for
@@ -60,8 +61,8 @@ def _blocks(size: tuple[int, int], seed: int) -> np.ndarray:
 @pytest.mark.parametrize("size,shape", [((203, 117), None), ((13, 7), None), ((203, 117), (8, 8, 1)),
                                         ((301, 37), (32, 8, 1)), ((97, 61), (8, 8, 4))])
 def test_the_edge_list_draws_the_one_dispatch_image_and_lists_the_edges(ctx, size, shape):
+    from wgpurender.bench.fxaa_variants.edge_list import EdgeListPass
     from wgpurender.wgpu_path.post import PostChain, create_effect
-    from wgpurender.wgpu_path.post.edge_list import EdgeListPass
     from wgpurender.wgpu_path.post.passes import ComputePass
 
     chain = PostChain([create_effect("fxaa"), create_effect("vignette")], path="compute")
@@ -89,8 +90,8 @@ def test_the_edge_list_draws_the_one_dispatch_image_and_lists_the_edges(ctx, siz
 @pytest.mark.parametrize("knob", ["auto", "none"])
 def test_final_tomls_fxaa_pass_over_an_edge_list_is_the_same_image(ctx, knob):
     """final.toml's FXAA pass, reading the stored tone-mapped image (auto) or recomputing it per texel (none)."""
+    from wgpurender.bench.fxaa_variants.edge_list import EdgeListPass
     from wgpurender.core.scene import load_scene
-    from wgpurender.wgpu_path.post.edge_list import EdgeListPass
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
@@ -111,8 +112,8 @@ def test_final_tomls_fxaa_pass_over_an_edge_list_is_the_same_image(ctx, knob):
 
 
 def test_a_pass_without_fxaa_or_an_image_too_wide_is_refused(ctx):
+    from wgpurender.bench.fxaa_variants.edge_list import EdgeListPass
     from wgpurender.core.errors import UserError
-    from wgpurender.wgpu_path.post.edge_list import EdgeListPass
 
     tonemap, fxaa = resolve_plan(FINAL, None, size=(64, 48), post_path="compute").post_passes
     with pytest.raises(ValueError, match="no FXAA to run over an edge list"):

@@ -1,4 +1,5 @@
-"""FXAA's luma in the intermediate's alpha (wgpu_path/post/luma_alpha.py, issue 31.6), against independent values.
+"""FXAA's luma in the intermediate's alpha (issue 31.6; wgpurender/bench/fxaa_variants/luma_alpha.py), against
+independent values.
 
 The tonemap variant must store the plan's colour unchanged and, in alpha, sqrt(Rec. 709 luminance) of that stored
 colour (numpy here, from the f16 texels read back, to one f16 step); the FXAA variant, given those lumas, must draw
@@ -23,8 +24,8 @@ LUMA_709 = np.array([0.2126, 0.7152, 0.0722], np.float32)
 
 @pytest.fixture(scope="module")
 def drawn(ctx, tmp_path_factory):
+    from wgpurender.bench.fxaa_variants.luma_alpha import draw_chain
     from wgpurender.wgpu_path.device.targets import read_texture
-    from wgpurender.wgpu_path.post.luma_alpha import draw_chain
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame
 
@@ -91,8 +92,8 @@ def test_gathered_lumas_draw_the_plan_fxaa_image(ctx, pattern, size, shape):
     the variant must draw what the plan's FXAA draws from the colour, byte for byte, borders (clamped) included:
     on grey blocks (lumas 0, 0.5, 1: far from the threshold) and on noise whose contrast straddles it (the
     pixels where the f16 lumas alone would decide otherwise must be recomputed), and a checkerboard on it."""
+    from wgpurender.bench.fxaa_variants.luma_alpha import LumaAlphaPass
     from wgpurender.wgpu_path.post import PostChain, create_effect
-    from wgpurender.wgpu_path.post.luma_alpha import LumaAlphaPass
     from wgpurender.wgpu_path.post.passes import ComputePass
 
     chain = PostChain([create_effect("fxaa"), create_effect("vignette")], path="compute")
@@ -114,7 +115,7 @@ def test_gathered_lumas_draw_the_plan_fxaa_image(ctx, pattern, size, shape):
 
 
 def test_each_variant_refuses_the_other_pass_and_a_changed_shader():
-    from wgpurender.wgpu_path.post.luma_alpha import exchange, fxaa_gather_source, tonemap_luma_source
+    from wgpurender.bench.fxaa_variants.luma_alpha import exchange, fxaa_gather_source, tonemap_luma_source
 
     plan = resolve_plan(str(FINAL), None,
                         size=(64, 32), post_path="compute")

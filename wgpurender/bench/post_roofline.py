@@ -181,7 +181,7 @@ SHAPES = ((8, 8, 1), (16, 16, 1), (32, 8, 1), (64, 4, 1), (256, 1, 1), (8, 8, 2)
 def sweep_cases(p: PostPass, shapes) -> list[tuple[tuple[int, int, int], str]]:
     """(shape, tile) dispatched by the sweep for pass ``p``: every shape; an FXAA pass (tiled by the plan or not)
     through each workgroup tile it can take (where the tile fits in workgroup memory), over an edge list
-    ("edges": wgpu_path/post/edge_list.py) and untiled (""), the same image."""
+    ("edges": wgpurender/bench/fxaa_variants/edge_list.py) and untiled (""), the same image."""
     from wgpurender.core.plan.dispatch import TILE_KINDS, tile_fits
     from wgpurender.wgpu_path.post.shaders import tileable
 
@@ -197,7 +197,7 @@ def shape_sweep(ctx: GPUContext, scene, size: tuple[int, int], frames: int, copy
                 shapes=SHAPES, intermediate: str = "auto") -> list[PassTime]:
     """The fused compute chain's passes, each dispatched with every shape (:func:`sweep_cases`), same run;
     ``intermediate``: the knob post_intermediate of the chain swept."""
-    from wgpurender.wgpu_path.post.edge_list import EdgeListPass
+    from wgpurender.bench.fxaa_variants.edge_list import EdgeListPass
     from wgpurender.wgpu_path.post.passes import ComputePass
     from wgpurender.wgpu_path.post.shaders import tileable
     from wgpurender.wgpu_path.scene import SceneRenderer, render_frame

@@ -24,13 +24,15 @@ another):
   the tile of lumas (each texel's luma once, 4 bytes a texel) it is slower at every clock and shape: the median
   per-round ratio to untiled 1.41x (16x16 x1) to 1.61x (8x8 x4), 1.58x with 8x8 x2; the texel tile 1.40x. So the
   texture fetches were not the bound either: FXAA reads the texture (both tiles stay ``--shapes`` variants);
-- FXAA reading the stored image over an edge list (wgpu_path/post/edge_list.py; docs/perf-h100/2026-11-27-post5/):
+- FXAA reading the stored image over an edge list (wgpurender/bench/fxaa_variants/edge_list.py;
+  docs/perf-h100/2026-11-27-post5/):
   a pass over every pixel writes those off edges and lists the 3.1% that are edges, a second runs the edge search
   on the listed pixels only (an indirect dispatch). Interleaved at 1980 MHz it is slower at every shape: 0.089 ms
   at best (16x8 x4) against 0.0735 untiled, 0.108 with 8x8 x2. The first dispatch alone (the contrast test over
   every pixel) takes 0.071 ms: the edge search was never the cost. The plan keeps the one dispatch (the edge list
   is a ``--shapes`` variant);
-- FXAA taking its lumas from the intermediate's alpha (wgpu_path/post/luma_alpha.py; docs/perf-h100/2026-11-27-post6/):
+- FXAA taking its lumas from the intermediate's alpha (wgpurender/bench/fxaa_variants/luma_alpha.py;
+  docs/perf-h100/2026-11-27-post6/):
   the tonemap pass stores them at no cost, FXAA's contrast test gathers them (two textureGathers and the centre
   texel instead of five loads and five square roots), byte-equal: 0.0717 ms against 0.0735 at 1980 MHz (8x8 x2),
   2.5%, and it writes alpha 1, which the chain's output may not have. The plan keeps main's pass (a benchmark case);

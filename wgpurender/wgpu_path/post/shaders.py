@@ -244,7 +244,7 @@ def pass_source(p: PostPass, shape: Shape | None = None, tiled: str | None = Non
 
 def pass_functions(p: PostPass, shape: Shape | None = None, tiled: str = "") -> list[str]:
     """The parts of a pass's WGSL before its entry points: bindings 0-2, the effects and ``pass_color`` /
-    ``pass_tail`` (an FXAA pass split over two dispatches adds its own: wgpu_path/post/edge_list.py)."""
+    ``pass_tail`` (an FXAA pass split over two dispatches adds its own: wgpurender/bench/fxaa_variants/edge_list.py)."""
     parts = [load_wgsl(COMMON_WGSL)]
     struct = pass_struct(p)
     if struct is not None:

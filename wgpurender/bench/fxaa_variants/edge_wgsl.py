@@ -1,4 +1,4 @@
-"""The WGSL of FXAA split over an edge list (issue 31.6): the run by wgpu_path/post/edge_list.py.
+"""The WGSL of FXAA split over an edge list (issue 31.6): the run by wgpurender/bench/fxaa_variants/edge_list.py.
 
 FXAA's edge search (up to 24 bilinear samples) runs for only ~3% of a 4K frame's pixels, but a warp (32
 invocations) with one edge pixel runs it whole while its other lanes wait: 12.5% of the warps of an 8x8 x2

@@ -1,7 +1,7 @@
 """An FXAA pass run over an edge list (issue 31.6): three dispatches in one compute pass, one image.
 
-The shaders and why are in wgpu_path/post/edge_wgsl.py: ``cs_mark`` writes every pixel off edges and lists
-the edge pixels, ``cs_size`` turns the list's length into ``cs_edges``' indirect workgroup counts (and zeroes
+The shaders and why are in wgpurender/bench/fxaa_variants/edge_wgsl.py: ``cs_mark`` writes every pixel off edges
+and lists the edge pixels, ``cs_size`` turns the list's length into ``cs_edges``' indirect workgroup counts (and zeroes
 the count for the next frame), ``cs_edges`` runs FXAA's edge search on the listed pixels only. The runner has
 :class:`~wgpurender.wgpu_path.post.passes.ComputePass`'s calls (encode, dispatch, bound, copy), so a benchmark
 or the chain can take it in that one's place. Its buffers: the count (8 bytes), the indirect arguments (12)
@@ -14,11 +14,11 @@ from collections.abc import Callable
 
 import wgpu
 
+from wgpurender.bench.fxaa_variants.edge_wgsl import SIZE_WGSL, edge_list_source
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan import PostPass
 from wgpurender.wgpu_path.device.gpu_cache import device_cache
 from wgpurender.wgpu_path.device.shaders import create_shader_module
-from wgpurender.wgpu_path.post.edge_wgsl import SIZE_WGSL, edge_list_source
 from wgpurender.wgpu_path.post.passes import COMPUTE, ComputePass, PlannedPass
 from wgpurender.wgpu_path.post.shaders import dispatch_groups, shape_of, srgb_constant
 

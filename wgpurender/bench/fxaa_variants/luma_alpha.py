@@ -50,7 +50,7 @@ CONTRAST_READS = """    // 1. local contrast (texture y grows downwards: north i
 # included). If the contrast test fails by more than that on the stored lumas, it fails on the exact ones: the
 # pixel is returned as the plan's pass returns it. Otherwise (the edges and a few pixels near the threshold) the
 # exact lumas are computed from the texels, as the plan's pass does, so every decision is the plan's.
-PREFILTER = """    // 1a. the contrast test on the stored lumas, with slack for their f16 rounding (post/luma_alpha.py)
+PREFILTER = """    // 1a. the contrast test on the stored lumas, with slack for their f16 rounding (luma_alpha.py)
     let g_tl = textureGather(3, src, src_sampler, uv - 0.5 * inv);  // x W, y M, z N, w NW
     let g_br = textureGather(3, src, src_sampler, uv + 0.5 * inv);  // x S, y SE, z E, w M
     let s_max = max(centre.a, max(max(g_tl.z, g_br.x), max(g_tl.x, g_br.z)));
