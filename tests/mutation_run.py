@@ -173,6 +173,7 @@ L5_JAIL = "wgpurender/core/files/read_jail.py"
 L5_INPUT = "wgpurender/core/files/input_files.py"
 L5_BATCH = "wgpurender/core/plan/batches.py"
 L5_MESHES = "wgpurender/core/plan/meshes.py"
+CU_T = "tests/test_chunk_unpack.py"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -1804,7 +1805,8 @@ MUTATIONS = [
     # issue 31.3, the load engineer: parse cache, packed meshes, worker processes, the plan's rule, faster scene parse
     (M_PACK, 'or len(blob) != at + 4 * n * sum(widths) + 3 * f * index_size',
      'or len(blob) < at + 4 * n * sum(widths) + 3 * f * index_size', [PARSE_CACHE]),
-    (M_PACK, "and int(indices.max()) >= n:", "and int(indices.max()) > n:", [PARSE_CACHE]),
+    (M_PACK, "and int(indices.max()) >= n:  # every index", "and int(indices.max()) > n:  # every index",
+     [PARSE_CACHE]),
     (M_PACK, "blob = bytearray(blob)  # writable", "blob = bytes(blob)  # writable", [PARSE_CACHE]),
     (M_PACK, "MeshPart(None if m < 0 else m, first, count)", "MeshPart(m, first, count)", [PARSE_CACHE]),
     (M_PACK, 'if (mesh.colors is not None or mesh.extra_uvs',
@@ -1823,8 +1825,8 @@ MUTATIONS = [
     (M_WORK, "except BrokenProcessPool:", "except ValueError:", [WORKERS]),
     (M_WORK, '                input_file(path, "model file")  # a folder',
      '                path  # a folder', [WORKERS]),  # load4: the size check was the read's already (equivalent)
-    (M_WORK, 'meshes[job] = mesh_pack.unpack(view[at:at + value], job[0], indices_checked=True)',
-     'meshes[job] = None', [WORKERS]),
+    (M_WORK, "            out.update(zip(jobs, meshes, strict=True))", "            out.update(dict.fromkeys(jobs))",
+     [WORKERS]),
     ("wgpurender/core/plan/meshes.py", "if self.plan.mesh_workers and not self._meshes:", "if False:", [WORKERS]),
     ('wgpurender/core/plan/meshes.py', 'if d.model_path.suffix.lower() == ".obj" and d.pose is None)',
      'if d.model_path.suffix.lower() == ".glb" and d.pose is None)', [WORKERS]),
@@ -1892,10 +1894,13 @@ MUTATIONS = [
      "return sum(ATTRIBUTE_LOCATIONS[name][1] for", [LOAD_SCALE]),
     ("wgpurender/wgpu_path/scene/shader_interface.py", "columns = [np.concatenate([m.attribute(a) for m in meshes])",
      "columns = [np.concatenate([m.attribute(a) for m in meshes[:1]])", [LOAD_SCALE]),
-    (M_WORK, "        at += value", "        at += 0", [WORKERS]),
-    (M_WORK, "unpack(view[at:at + value], job[0]", "unpack(view[at:], job[0]", [WORKERS]),
+    (M_WORK, "            at += value * len(jobs)", "            at += 0 * len(jobs)",
+     [WORKERS, "tests/test_chunk_unpack.py"]),
+    (M_WORK, "unpack(memoryview(run[k * value:(k + 1) * value])", "unpack(memoryview(run[k * value:])",
+     [WORKERS, "tests/test_chunk_unpack.py"]),
     (M_WORK, "if not read_jail.is_checked(path):  # else", "if False:  # else", [WORKERS]),
-    (M_PACK, "if not indices_checked and int(", "if int(", [LOAD_SCALE]),
+    (M_PACK, "if not indices_checked and int(indices.max()) >= n:  # every", "if int(indices.max()) >= n:  # every",
+     [LOAD_SCALE]),
     ("wgpurender/core/files/input_files.py", "        if stat.S_ISREG(mode):\n            self._regular",
      "        if True:\n            self._regular", [LOAD_SCALE]),
     ("wgpurender/core/scene/checker.py", "found = path if resolve.regular(path) else input_file(path, what)",
@@ -2447,6 +2452,19 @@ MUTATIONS = [
      ["tests/test_post_interleave.py"]),
     ("benchmarks/post_interleave.py", "    if np.array_equal(image, ref):\n        return \"yes\"",
      "    if False:\n        return \"yes\"", ["tests/test_post_interleave.py"]),
+    # load6 (merged in part): a worker's chunk unpacked as one array (mesh_pack.unpack_alike, mesh_workers.unpack_chunk)
+    (M_PACK, "    if count == 0 or len(data) % count:", "    if len(data) % count:", [CU_T]),
+    (M_PACK, "    if not (rows[:, :at] == rows[0, :at]).all():", "    if False:", [CU_T]),
+    (M_PACK, "    if not indices_checked and int(indices.max()) >= n:\n        return None\n    tangents",
+     "    if False:\n        return None\n    tangents", [CU_T]),
+    (M_PACK, "tangents = arrays[3] if first.tangents is not None else [None] * count", "tangents = [None] * count",
+     [CU_T]),
+    (M_PACK, "        arrays.append(rows[:, at:at + 4 * n * width].view(np.float32).reshape(count, n, width))\n"
+     "        at += 4 * n * width", "        arrays.append(rows[:, at:at + 4 * n * width].view(np.float32)"
+     ".reshape(count, n, width))\n        at += 4 * n", [CU_T]),
+    (M_WORK, "    if len(entries) != len(chunk):", "    if False:", [CU_T]),
+    (M_WORK, "            at += value * len(jobs)", "            at += value", [CU_T]),
+    (M_WORK, "and entries[end] == entries[k]:", "and entries[end][0] == entries[k][0]:", [CU_T]),
 ]
 
 

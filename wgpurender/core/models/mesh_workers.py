@@ -21,6 +21,8 @@ from concurrent.futures.process import BrokenProcessPool
 from itertools import repeat
 from pathlib import Path
 
+import numpy as np
+
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import check_size, input_file
@@ -79,18 +81,48 @@ def _before_fork() -> None:
 
 def _take(chunk: list[Job], result: tuple[list[tuple[str, object]], bytes],
           meshes: dict[Job, Mesh | None]) -> None:
-    """Unpack a chunk's meshes (views of one copy of its bytes: the worker checked their indices); raise the
-    first refusal."""
+    """Unpack a chunk's meshes into ``meshes``; raise the first refusal."""
+    for job, mesh in unpack_chunk(chunk, result).items():
+        if isinstance(mesh, UserError):
+            raise mesh
+        meshes[job] = mesh
+
+
+def unpack_chunk(chunk: list[Job],
+                 result: tuple[list[tuple[str, object]], bytes]) -> dict[Job, Mesh | UserError | None]:
+    """A chunk's meshes, in ``chunk`` order: views of one copy of the chunk's bytes (the worker checked their
+    indices), each run of alike meshes as one array (mesh_pack.unpack_alike); None (not a simple OBJ) or the
+    file's refusal."""
     entries, blob = result
-    view, at = memoryview(bytearray(blob)), 0
-    for job, (kind, value) in zip(chunk, entries, strict=True):
+    if len(entries) != len(chunk):
+        raise ValueError(f"a worker answered {len(entries)} files of a chunk of {len(chunk)}")
+    data, at = np.frombuffer(bytearray(blob), np.uint8), 0
+    out: dict[Job, Mesh | UserError | None] = {}
+    for jobs, (kind, value) in _runs(chunk, entries):
         if kind == "refused":
-            raise UserError(value)
-        if value is None:
-            meshes[job] = None
-            continue
-        meshes[job] = mesh_pack.unpack(view[at:at + value], job[0], indices_checked=True)
-        at += value
+            out[jobs[0]] = UserError(value)
+        elif value is None:
+            out.update(dict.fromkeys(jobs))
+        else:
+            sources = [path for path, _ in jobs]
+            run = data[at:at + value * len(jobs)]
+            meshes = mesh_pack.unpack_alike(run, sources, indices_checked=True) or [
+                mesh_pack.unpack(memoryview(run[k * value:(k + 1) * value]), path, indices_checked=True)
+                for k, path in enumerate(sources)]
+            out.update(zip(jobs, meshes, strict=True))
+            at += value * len(jobs)
+    return out
+
+
+def _runs(chunk: list[Job], entries: list[tuple[str, object]]):
+    """(jobs, entry) for each run of equal consecutive entries (a refusal alone)."""
+    k = 0
+    while k < len(chunk):
+        end = k + 1
+        while entries[k][0] != "refused" and end < len(chunk) and entries[end] == entries[k]:
+            end += 1
+        yield chunk[k:end], entries[k]
+        k = end
 
 
 def read_chunk(chunk: list[Job], where: Path | None) -> tuple[list[tuple[str, object]], bytes]:
