@@ -115,10 +115,15 @@ def _damaged(blob: bytes, how: str, key: str) -> bytes:
         first_end = 16 + 8 * count + struct.unpack_from("<q", payload, 16)[0]
         bad = payload[:first_end - 2] + len(mesh.positions).to_bytes(2, "little") + payload[first_end:]
         return cache_entry.seal(key, bad)
+    if how == "part":  # the first mesh's first part runs 3 indices past its triangles, under a valid seal
+        at = 16 + 8 * count + mesh_pack.HEADER.size
+        material, first, size = mesh_pack.PART.unpack_from(payload, at)
+        lying = mesh_pack.PART.pack(material, first, size + 3)
+        return cache_entry.seal(key, payload[:at] + lying + payload[at + mesh_pack.PART.size:])
     raise AssertionError(how)
 
 
-@pytest.mark.parametrize("how", ["truncate", "flip", "count", "length", "index"])
+@pytest.mark.parametrize("how", ["truncate", "flip", "count", "length", "index", "part"])
 def test_a_damaged_or_forged_entry_is_parsed_again_and_rewritten(tmp_path, where, monkeypatch, how):
     chunk = _cubes(tmp_path, 3)
     first = mesh_workers.read_chunk(chunk, where)
