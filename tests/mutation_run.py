@@ -2465,6 +2465,10 @@ MUTATIONS = [
     (M_WORK, "    if len(entries) != len(chunk):", "    if False:", [CU_T]),
     (M_WORK, "            at += value * len(jobs)", "            at += value", [CU_T]),
     (M_WORK, "and entries[end] == entries[k]:", "and entries[end][0] == entries[k][0]:", [CU_T]),
+    # review4: a part past its mesh's triangles is no whole mesh (mesh_pack.unpack)
+    (M_PACK, "    if any(p.first_index + p.index_count > 3 * f for p in parts):", "    if False:", [CHUNK_T]),
+    (M_PACK, "p.first_index + p.index_count > 3 * f for", "p.first_index + p.index_count > 3 * f + 3 for", [CHUNK_T]),
+    (M_PACK, "p.first_index + p.index_count > 3 * f for", "p.first_index + p.index_count >= 3 * f for", [CHUNK_T]),
 ]
 
 

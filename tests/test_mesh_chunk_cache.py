@@ -6,6 +6,7 @@ not stored, an unwritable cache only costs time. The expected meshes come from t
 
 from __future__ import annotations
 
+import os
 import struct
 
 import numpy as np
@@ -115,10 +116,15 @@ def _damaged(blob: bytes, how: str, key: str) -> bytes:
         first_end = 16 + 8 * count + struct.unpack_from("<q", payload, 16)[0]
         bad = payload[:first_end - 2] + len(mesh.positions).to_bytes(2, "little") + payload[first_end:]
         return cache_entry.seal(key, bad)
+    if how == "part":  # the first mesh's first part runs 3 indices past its triangles, under a valid seal
+        at = 16 + 8 * count + mesh_pack.HEADER.size
+        material, first, size = mesh_pack.PART.unpack_from(payload, at)
+        lying = mesh_pack.PART.pack(material, first, size + 3)
+        return cache_entry.seal(key, payload[:at] + lying + payload[at + mesh_pack.PART.size:])
     raise AssertionError(how)
 
 
-@pytest.mark.parametrize("how", ["truncate", "flip", "count", "length", "index"])
+@pytest.mark.parametrize("how", ["truncate", "flip", "count", "length", "index", "part"])
 def test_a_damaged_or_forged_entry_is_parsed_again_and_rewritten(tmp_path, where, monkeypatch, how):
     chunk = _cubes(tmp_path, 3)
     first = mesh_workers.read_chunk(chunk, where)
@@ -131,6 +137,20 @@ def test_a_damaged_or_forged_entry_is_parsed_again_and_rewritten(tmp_path, where
     assert len(calls) == 3 and again == first and entry.read_bytes() == blob
     for got, (path, _) in zip(_meshes(chunk, again), chunk, strict=True):
         _same(got, load_mesh(path, generate_tangents=False))
+
+
+def test_an_entry_another_user_owns_is_parsed_again_and_replaced(tmp_path, where, monkeypatch):
+    """The module docstring's "foreign": a whole, well-sealed chunk entry that another user owns (a shared
+    $XDG_CACHE_HOME) is not used; the chunk is parsed and its entry written again, ours."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        pytest.skip("handing a file to another user takes root")
+    chunk = _cubes(tmp_path, 3)
+    first = mesh_workers.read_chunk(chunk, where)
+    (entry,) = _entries(where)
+    os.chown(entry, os.geteuid() + 4242, -1)
+    calls = _parses(monkeypatch)
+    assert mesh_workers.read_chunk(chunk, where) == first and len(calls) == 3
+    assert entry.stat().st_uid == os.geteuid()
 
 
 def test_decode_takes_only_a_whole_chunk():

@@ -5,7 +5,8 @@ Plain arrays behind a fixed header, never pickle: a cache entry is data that can
 (core/files/cache_entry.py, docs/security.md). Only the meshes a simple OBJ file gives are packed (positions,
 normals, uvs, triangle indices, tangents or none, triangle parts); anything else (vertex colours, extra
 coordinate slots, points and lines) is not, and :func:`pack` returns None for it. :func:`unpack` checks that the
-header's counts match the bytes, so a short or padded blob is refused (None), never read past its end.
+header's counts match the bytes, so a short or padded blob is refused (None), never read past its end, and that
+every index and every part lies within the mesh (a part past its triangles would draw past them).
 """
 
 from __future__ import annotations
@@ -54,6 +55,8 @@ def unpack(blob: bytes | memoryview, source: Path | None, indices_checked: bool 
         return None
     parts = tuple(MeshPart(None if m < 0 else m, first, count)
                   for m, first, count in PART.iter_unpack(blob[HEADER.size:at]))
+    if any(p.first_index + p.index_count > 3 * f for p in parts):  # a draw of it would read past its triangles
+        return None
     if isinstance(blob, bytes):
         blob = bytearray(blob)  # writable arrays, as a fresh load gives
     arrays = []

@@ -276,7 +276,7 @@ class PostPass:
     prelude: int = 0  # the first steps, applied to every texel the neighbourhood step reads (post_intermediate none)
     shape: tuple[int, int, int] | None = None  # compute: workgroup (x, y), rows per invocation (core/plan/dispatch.py)
     shape_why: str = ""
-    tile: str = ""  # compute: FXAA reads through a workgroup tile, "texels" or "luma" (core/plan/dispatch.py)
+    tile: str = ""  # compute: FXAA reads through a workgroup tile: "texels" (the plan, a prelude), "luma" (bench)
 
     @property
     def encodes_for(self) -> str | None:

@@ -7,8 +7,9 @@ What an effect *is* (name, parameters with ranges, reach) lives in the API-free 
 - :mod:`.shaders`: the WGSL of a pass, generated (parameter structs from the specs, the effects composed);
 - :mod:`.passes`: the two small runners, :class:`FragmentPass` and :class:`ComputePass`;
 - :mod:`.chain`: :class:`PostRunner` (a plan's passes) and :class:`PostChain` (a bare list of steps);
-- :mod:`.tiles`, :mod:`.edge_list` (with :mod:`.edge_wgsl`): FXAA's pass through a workgroup tile, or over a list
-  of its edge pixels: benchmark variants, the same image (the plan draws neither for a stored image).
+- :mod:`.tiles`: FXAA's reads through a workgroup tile (the plan's pass that recomputes the effects before
+  FXAA; for a stored image a benchmark variant). The FXAA variants the plan never draws (the edge list, the
+  luma in alpha) live with the benchmarks that time them, in wgpurender/bench/fxaa_variants/.
 
 Each effect is one ``shaders_wgsl/post_<name>.wgsl`` holding functions, not entry points.
 """
