@@ -41,6 +41,11 @@ RUNS = (
      "perf-h100/2026-11-27-evening", "perf-frames/results.csv", None),
     ("lavapipe, evening closing run (integrator, 15:48 UTC: scene-scale and startup; the 2-core machine, shared by "
      "two engineers)", "perf-lavapipe/2026-11-27-evening", "perf/results.csv", None),
+    ("NVIDIA H100, night closing call (integrator, 18:33 UTC: scene-scale and startup on main with tonight's load, "
+     "post and frame passes merged; few graphics units: render passes are raster-bound)",
+     "perf-h100/2026-11-27-night", "scale/perf-scale/results.csv", None),
+    ("NVIDIA H100, night closing call (18:36 UTC, the same machine: frames and scene, wgpu beside raw)",
+     "perf-h100/2026-11-27-night", "frames/perf-frames/results.csv", None),
 )
 
 
