@@ -303,9 +303,9 @@ def test_a_linked_model_file_is_read_where_the_link_leads(tmp_path):
 def test_a_model_paths_suffix_is_pathlibs(written):
     from pathlib import Path
 
-    from wgpurender.core.scene.validate import _suffix
+    from wgpurender.core.files.input_files import file_suffix
 
-    assert _suffix(written) == Path(written).suffix
+    assert file_suffix(written) == Path(written).suffix
 
 
 def test_no_collection_runs_while_a_scene_loads_and_the_collector_is_as_it_was_after(tmp_path, monkeypatch):

@@ -16,7 +16,7 @@ from wgpurender.core.plan import culling
 from wgpurender.core.plan.batches import OBJECT_BYTES
 from wgpurender.core.plan.draws import PipelineTarget, SceneDraws, material_variant, plan_draws
 from wgpurender.core.plan.instance_data import fit_binding, resolve_instance_data
-from wgpurender.core.plan.mesh_loading import resolve_mesh_workers
+from wgpurender.core.plan.mesh_loading import obj_keys, resolve_mesh_workers
 from wgpurender.core.plan.model import (
     ATTACHMENT_ORDER,
     DEPTH_FORMAT,
@@ -79,7 +79,7 @@ def _intermediate_why(knob: str) -> str:
 
 def _mesh_workers(draws, knob: str) -> tuple[str, str, str]:
     """The mesh_workers setting: how many worker processes read the draws' distinct OBJ files, and why."""
-    files = {d.model_path for d in draws if d.model_path.suffix.lower() == ".obj"}
+    files = {path for path, _ in obj_keys(draws)}
     workers, why = resolve_mesh_workers(knob, len(files))
     return "mesh_workers", str(workers), why
 
@@ -92,7 +92,7 @@ def _camera_note(scene: Scene) -> str:
         lines.append("convention glm-vulkan: the projection has proj[1][1] *= -1 for Vulkan's y-down NDC; "
                      "wgpu's NDC is y-up, so it is multiplied by diag(1, -1, 1, 1) to undo the flip "
                      "(front faces stay counter-clockwise)")
-    if scene.camera.origin or any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
+    if scene.camera.origin or any(m.suffix in (".gltf", ".glb") for m in scene.models):
         from wgpurender.core.scene.gltf_cameras import camera_note
 
         listed = camera_note(scene.camera, scene.models)

@@ -102,11 +102,6 @@ def draw_factors(material: Material, variant: ShaderVariant) -> dict:
                             **file_materials.factor_options(material, variant.flags))
 
 
-def _determinant3(matrix) -> float:
-    (a, b, c), (d, e, f), (g, h, i) = (tuple(row[:3]) for row in matrix[:3])
-    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-
-
 @dataclass(frozen=True)
 class PipelineTarget:
     """What every scene pipeline shares: the pass's colour format, sample count, depth format and test."""
@@ -163,7 +158,7 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
             first_time = id(mat) not in seen_materials
             seen_materials.add(id(mat))
             for mirror, worlds in _copies(model):
-                mirror = _determinant3(model.transform.matrix) < 0 if mirror is None else mirror
+                mirror = model.transform.mirrors if mirror is None else mirror
                 key = (id(mat), mirror)
                 if key not in shaded:
                     shaded[key] = _shading(mat, target, srgb_output, knobs, anisotropy_adapter,

@@ -13,7 +13,7 @@ import functools
 from wgpurender.core.errors import UserError
 from wgpurender.core.models.mesh import Mesh, index_range
 from wgpurender.core.models.obj_cached import load_mesh
-from wgpurender.core.plan.mesh_loading import MIN_FILES
+from wgpurender.core.plan.mesh_loading import MIN_FILES, obj_keys
 from wgpurender.core.plan.model import Draw, RenderPlan
 
 
@@ -27,8 +27,8 @@ class PlanMeshes:
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
         # cache entries are written by workers, or here for a small scene: writing thousands from this process
         # cost more than the parses they save (core/models/obj_cached._load)
-        obj_files = {d.model_path for d in plan.scene_pass.draws if d.model_path.suffix.lower() == ".obj"}
-        self._store = len(obj_files) < MIN_FILES
+        self._obj_keys = obj_keys(plan.scene_pass.draws)  # the OBJ files, worked out once per plan
+        self._store = len({path for path, _ in self._obj_keys}) < MIN_FILES
         self._reading = None  # the workers' reads, when started ahead (start_reading)
 
     def mesh(self, key: tuple) -> Mesh:
@@ -51,9 +51,7 @@ class PlanMeshes:
         if self.plan.mesh_workers and not self._meshes and self._reading is None:
             from wgpurender.core.models import mesh_workers, obj_cached
 
-            keys = dict.fromkeys(d.mesh_key for d in self.plan.scene_pass.draws
-                                 if d.model_path.suffix.lower() == ".obj" and d.pose is None)
-            jobs = [(key[0], key in self._needs_tangents) for key in keys]
+            jobs = [(key[0], key in self._needs_tangents) for key in self._obj_keys if key[1] is None]
             self._reading = mesh_workers.Reading(jobs, self.plan.mesh_workers, obj_cached.folder())
 
     def posed(self, key: tuple, pose) -> Mesh:

@@ -33,9 +33,9 @@ def read_file_materials(model: Model) -> ModelMaterials | None:
     """The materials ``model`` draws with from its file (None: the scene's material; an OBJ without an MTL)."""
     if not model.material_from_file:
         return None
-    if model.path.suffix.lower() in GLTF_SUFFIXES:
+    if model.suffix in GLTF_SUFFIXES:
         return model_materials(model.path, model.label)
-    if model.path.suffix.lower() in (".obj", ".fbx"):
+    if model.suffix in (".obj", ".fbx"):
         return obj_materials(model)
     return None
 
@@ -44,7 +44,7 @@ def obj_materials(model: Model) -> ModelMaterials | None:
     """An OBJ's MTL material (its first ``usemtl``) as a scene material: Kd x map_Kd (sRGB), the bump/norm map as
     normal map, map_Pr as roughness map, d (or 1 - Tr) as the base colour's alpha, illum 0 as unlit; None without
     an MTL. An FBX's materials (one per material its meshes use): core/scene/fbx_materials.py, the same way."""
-    if model.path.suffix.lower() == ".fbx":
+    if model.suffix == ".fbx":
         return fbx_materials(model)
     found = obj_mtl_entry(model.path)
     if found is None:

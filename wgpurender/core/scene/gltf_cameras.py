@@ -76,7 +76,7 @@ def file_camera(model: Model, index: int, asked: str = "") -> Camera:
 
     label = model.label
     asked = asked or f"[camera] file_camera = {index}"
-    if model.path.suffix.lower() not in GLTF_SUFFIXES:
+    if model.suffix not in GLTF_SUFFIXES:
         raise UserError(f"[camera] from_model = {model.index}: {label} is not a glTF file, and only glTF files "
                         "carry cameras; set eye and target instead")
     if model.placements is not None:
@@ -117,7 +117,7 @@ def with_file_camera(scene, index: int):
 
     chosen = [m for m in scene.models if scene.camera.origin.startswith(f"{m.label} camera ")]
     if not chosen:
-        chosen = [m for m in scene.models if m.path.suffix.lower() in GLTF_SUFFIXES
+        chosen = [m for m in scene.models if m.suffix in GLTF_SUFFIXES
                   and document(str(m.path)).json.get("cameras")]
     if not chosen:
         raise UserError(f"--camera {index}: no model of {scene.path.name} is a glTF file with cameras; leave "
@@ -152,7 +152,7 @@ def camera_note(camera: Camera, models: tuple[Model, ...]) -> list[str]:
         out.append(f"the view is {camera.origin} ({shape}, near {camera.near:g}, {far}); eye "
                    f"{[round(v, 6) for v in camera.eye]}, looking along {[round(float(v), 6) for v in _look(camera)]}")
     for model in models:
-        if model.path.suffix.lower() not in GLTF_SUFFIXES:
+        if model.suffix not in GLTF_SUFFIXES:
             continue
         cameras = document(str(model.path)).json.get("cameras", [])
         for k, cam in enumerate(cameras):

@@ -48,7 +48,7 @@ def _light_of(node: dict):
 
 def model_lights(model: Model, first_index: int) -> list[Light]:
     """The scene lights of a glTF ``model``'s KHR_lights_punctual nodes, numbered from ``first_index``."""
-    if model.path.suffix.lower() not in (".gltf", ".glb"):
+    if model.suffix not in (".gltf", ".glb"):
         return []
     from wgpurender.core.scene.gltf_materials import document
 

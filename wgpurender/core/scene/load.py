@@ -63,7 +63,7 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
         description=c.string(description, ("description",)),
         environment=parse_environment(c, data.get("environment")),
     )
-    if not any(m.path.suffix.lower() in (".gltf", ".glb") for m in scene.models):
+    if not any(m.suffix in (".gltf", ".glb") for m in scene.models):
         return scene
     from wgpurender.core.scene.gltf_lights import scene_lights  # imported only for glTF models
 

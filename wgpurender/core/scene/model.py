@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -11,6 +13,7 @@ import numpy as np
 from wgpurender.core.course.formats import OUTPUT_FORMATS  # noqa: F401  (the value sets a scene accepts: one home each)
 from wgpurender.core.course.samplers import ADDRESS_MODES, FILTERS, MAX_ANISOTROPY  # noqa: F401
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
+from wgpurender.core.files.input_files import file_suffix
 from wgpurender.core.models.gltf_animation import Pose
 from wgpurender.core.view import transforms
 
@@ -190,6 +193,13 @@ class Transform:
     def array(self) -> np.ndarray:
         return np.array(self.matrix, dtype=np.float64)
 
+    @functools.cached_property
+    def mirrors(self) -> bool:
+        """Whether the matrix mirrors (its 3x3 part's determinant is negative: the winding turns around). Worked
+        out once per transform: the models of a large scene that are placed inside their files share one."""
+        (a, b, c), (d, e, f), (g, h, i) = (row[:3] for row in self.matrix[:3])
+        return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g) < 0
+
 
 def _rows(m: np.ndarray) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(float(v) for v in row) for row in m)
@@ -253,6 +263,12 @@ class Model:
     @property
     def label(self) -> str:
         return f"models[{self.index}] '{self.written_path}'"
+
+    @functools.cached_property
+    def suffix(self) -> str:
+        """Its file's format as its resolved path's suffix, lower case (".obj", ".glb"): worked out once per
+        model, where the scene checks, the file data, the plan and the meshes each ask (issue 31.3)."""
+        return file_suffix(os.fspath(self.path)).lower()
 
     @property
     def instance_count(self) -> int:

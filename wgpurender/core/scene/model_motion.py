@@ -19,7 +19,7 @@ GLTF_SUFFIXES = (".gltf", ".glb")
 
 def read_motion(model: Model) -> tuple[str, ...]:
     """``--explain``'s lines for the model's animation and skins (none for other formats or a still file)."""
-    if model.path.suffix.lower() not in GLTF_SUFFIXES:
+    if model.suffix not in GLTF_SUFFIXES:
         return ()
     from wgpurender.core.scene.gltf_materials import document  # the parsed file, shared with its materials
 
@@ -34,7 +34,7 @@ def at_time(scene: Scene, t: float) -> Scene:
 
     models, posed = [], 0
     for model in scene.models:
-        if model.path.suffix.lower() in GLTF_SUFFIXES and document(str(model.path)).json.get("animations"):
+        if model.suffix in GLTF_SUFFIXES and document(str(model.path)).json.get("animations"):
             model = dataclasses.replace(model, pose=gltf_animation.Pose(model.pose.animation if model.pose else None,
                                                                        t))
             model = dataclasses.replace(model, motion=read_motion(model))

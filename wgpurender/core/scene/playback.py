@@ -49,7 +49,7 @@ def tracks(scene: Scene) -> tuple[Track, ...]:
 
     found = []
     for i, model in enumerate(scene.models):
-        if model.path.suffix.lower() not in GLTF_SUFFIXES or not model.motion:
+        if model.suffix not in GLTF_SUFFIXES or not model.motion:
             continue  # motion: the load's lines, one at least for a file with animations (model_motion)
         doc = document(str(model.path))
         if not doc.json.get("animations"):

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 from typing import Any
 
@@ -12,6 +11,7 @@ import numpy as np
 from wgpurender.core.course.formats import POST_PATHS, SAMPLE_COUNTS
 from wgpurender.core.course.shading import DEFAULT_ALBEDO_COLOR, DEFAULT_CLEAR_COLOR, DEFAULT_ROUGHNESS
 from wgpurender.core.errors import UserError
+from wgpurender.core.files.input_files import file_suffix
 from wgpurender.core.models.gltf_animation import Pose
 from wgpurender.core.scene.checker import Checker as _Checker
 from wgpurender.core.scene.checker import _type_name
@@ -236,23 +236,13 @@ def _rotation(c: _Checker, data: Any, key: KeyPath) -> tuple[np.ndarray, str]:
     return transforms.rotate(axis, math.radians(degrees)), f"rotate {degrees} deg about {list(axis)}"
 
 
-def _suffix(written: str) -> str:
-    """``Path(written).suffix`` without building a Path (10k model paths a scene): pathlib's own rule on the last
-    name; a name that normalisation would change ("", ".", a trailing "/.") is left to pathlib."""
-    name = written.rpartition("/")[2]
-    if name in ("", ".", "..") or os.sep != "/" or (os.altsep and os.altsep in name):
-        return Path(written).suffix
-    at = name.rfind(".")
-    return name[at:] if 0 < at < len(name) - 1 else ""
-
-
 def _model_path(c: _Checker, value: Any, key: KeyPath, found: Path | None = None) -> Path:
     """The model file ``value`` names, checked (format, then the file and the read rule); ``found``: what
     Checker.files_ahead already let through for it (None: checked here)."""
     from wgpurender.core.models.mesh import SUPPORTED, UNSUPPORTED
 
     written = c.string(value, key)
-    suffix = _suffix(written).lower()
+    suffix = file_suffix(written).lower()
     if suffix in UNSUPPORTED:
         raise c.error(key, f"{format_path(key)}: '{written}' is {UNSUPPORTED[suffix]}, which cannot be loaded: "
                            f"convert it to glTF (.glb); supported formats: {', '.join(SUPPORTED)}")
