@@ -50,21 +50,27 @@ class SceneResources:
         self.bytes_written = 0  # vertex bytes the playback wrote (rewrite)
 
     # -- meshes ----------------------------------------------------------------
-    def upload_meshes(self, draws) -> None:
+    def upload_meshes(self, draws) -> list[MeshBuffers]:
         """The meshes of ``draws`` not on the GPU yet, in ONE vertex and ONE index buffer, each mesh's vertices
         starting on a whole vertex of its stride (so a draw names it by ``base_vertex`` with the buffers bound at
         0) and at 4-byte aligned offsets (set_vertex_buffer's and set_index_buffer's rule): a scene of 10k mesh
         files made 20k buffers before, each several wgpu calls (issue 31.3). Where the device's max-buffer-size
         would be passed, the next meshes go into another pair (core/plan/meshes.buffer_places; one mesh too large
         for it is refused in one line). Draw order decides the layout; a draw whose mesh fails its variant's check
-        (mesh_for) raises here, as it did when its buffers were made one by one."""
+        (mesh_for) raises here, as it did when its buffers were made one by one. Returns each draw's buffers, in
+        ``draws`` order (its key worked out once, here: the draws' state is made from them)."""
+        variant = self.plan.variant
+        drawn = [(draw.mesh_key, variant(draw.variant_key).vertex_attributes) for draw in draws]
         pending: dict[tuple, Mesh] = {}
-        for draw in draws:
-            key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
+        for draw, key in zip(draws, drawn, strict=True):
             if key not in self._buffers and key not in pending:
                 pending[key] = self.meshes.mesh_for(draw)
-        if not pending:
-            return
+        if pending:
+            self._upload(pending)
+        return [self._buffers[key] for key in drawn]
+
+    def _upload(self, pending: dict[tuple, Mesh]) -> None:
+        """The ``pending`` meshes ({(mesh key, attributes): mesh}, in draw order) into new buffer pairs."""
         keys, meshes = list(pending), list(pending.values())
         strides = [vertex_stride(key[1]) for key in keys]
         indices = [mesh.index_bytes() for mesh in meshes]
@@ -85,9 +91,7 @@ class SceneResources:
     def mesh_buffers(self, draw: Draw) -> MeshBuffers:
         """The draw's mesh on the GPU (uploaded now, alone, unless :meth:`upload_meshes` did already)."""
         key = (draw.mesh_key, self.plan.variant(draw.variant_key).vertex_attributes)
-        if key not in self._buffers:
-            self.upload_meshes([draw])
-        return self._buffers[key]
+        return self._buffers[key] if key in self._buffers else self.upload_meshes([draw])[0]
 
     def index_range(self, draw: Draw) -> tuple[int, int]:
         """(first index, index count) of the triangles a draw covers: its file material's part, or all."""

@@ -32,7 +32,7 @@ from wgpurender.wgpu_path.device.shaders import create_shader_module
 from wgpurender.wgpu_path.scene import shader_interface as L
 from wgpurender.wgpu_path.scene.cpu_culling import CpuCuller
 from wgpurender.wgpu_path.scene.culling import GpuCuller
-from wgpurender.wgpu_path.scene.resources import SceneResources
+from wgpurender.wgpu_path.scene.resources import MeshBuffers, SceneResources
 
 
 def camera_values(scene: Scene, aspect: float) -> dict:
@@ -90,8 +90,8 @@ class ScenePassRenderer:
                 self._setup_uniforms()
                 self._setup_materials()
             finally:  # a refused mesh file is still the one error said, as when the meshes came first
-                self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws ask
-            self._setup_draws()
+                placed = self.resources.upload_meshes(self.draws)  # every mesh in two buffers, before the draws
+            self._setup_draws(placed)
         self.bundle = self._make_bundle()
 
     # -- uniforms ----------------------------------------------------------------
@@ -164,11 +164,14 @@ class ScenePassRenderer:
                 pipeline = pipelines[draw.pipeline_key] = self.pipeline(self.plan.pipeline(draw.pipeline_key))
             self._draw_materials.append((pipeline, groups[slot], data))
 
-    def _setup_draws(self) -> None:
-        """Each draw's state: its material part and its mesh's buffers and index range (the meshes uploaded)."""
-        buffers, index_range = self.resources.mesh_buffers, self.resources.index_range
-        self.draw_state = [(draw, pipeline, group, data, buffers(draw), index_range(draw))
-                           for draw, (pipeline, group, data) in zip(self.draws, self._draw_materials, strict=True)]
+    def _setup_draws(self, placed: list[MeshBuffers]) -> None:
+        """Each draw's state: its material part and its mesh's buffers (``placed``, the upload's, in draw order)
+        and index range (a draw of the whole mesh: all of the indices its buffers hold)."""
+        index_range = self.resources.index_range
+        self.draw_state = [(draw, pipeline, group, data, buffers,
+                            (0, buffers.index_count) if draw.part is None else index_range(draw))
+                           for draw, (pipeline, group, data), buffers
+                           in zip(self.draws, self._draw_materials, placed, strict=True)]
 
     def material_layout(self, variant: ShaderVariant) -> wgpu.GPUBindGroupLayout | None:
         """Group 2 for a variant: its textures and sampler, plus the Material UBO without immediates."""
