@@ -77,9 +77,9 @@ def _intermediate_why(knob: str) -> str:
     return "knob post_intermediate: the format stored between post passes"
 
 
-def _mesh_workers(draws, knob: str) -> tuple[str, str, str]:
+def _mesh_workers(draws, knob: str, models) -> tuple[str, str, str]:
     """The mesh_workers setting: how many worker processes read the draws' distinct OBJ files, and why."""
-    files = {path for path, _ in obj_keys(draws)}
+    files = {path for path, _ in obj_keys(draws, models)}
     workers, why = resolve_mesh_workers(knob, len(files))
     return "mesh_workers", str(workers), why
 
@@ -176,7 +176,7 @@ def build_plan(scene: Scene, *, size: tuple[int, int] | None = None, output_form
     setting["instance_data"] = way[0]
     drawn.draws, cull, cull_why = culling.decide(drawn.draws, drawn.pipelines, knobs.culling, features,
                                                  setting["instance_data"], compute)
-    settings = (*settings, ("culling", cull, cull_why), _mesh_workers(drawn.draws, knobs.mesh_workers))
+    settings = (*settings, ("culling", cull, cull_why), _mesh_workers(drawn.draws, knobs.mesh_workers, scene.models))
     scene_pass = ScenePass(targets.color, targets.target if msaa > 1 else None, targets.depth, r.clear_color,
                            tuple(drawn.draws), depth_clear=0.0 if knobs.reverse_z else 1.0)
     post_passes, post_attachments = plan_post_passes(steps, setting["post_fuse"] == "on", setting["post_path"],

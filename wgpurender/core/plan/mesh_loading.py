@@ -14,6 +14,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import sys
+from collections.abc import Sequence
 
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.input_files import file_suffix
@@ -24,10 +25,13 @@ MAX_WORKERS = 16
 PER_WORKER = 64
 
 
-def obj_keys(draws) -> list[tuple]:
+def obj_keys(draws, models: Sequence | None = None) -> list[tuple]:
     """The distinct ``mesh_key`` (file, pose) of the draws whose file is an OBJ, in first-use order: the files the
-    worker rule counts and the workers read. Each file's suffix is looked at once, as a string (10k draws of
-    distinct files asked pathlib three times each, issue 31.3)."""
+    worker rule counts and the workers read. ``models``: the scene's, each draw's by its ``model_index``, whose
+    file format each model worked out once (``Model.suffix``); without them each file's name is looked at once,
+    as a string (10k draws of distinct files asked pathlib three times each, issue 31.3)."""
+    if models is not None:
+        return list(dict.fromkeys(d.mesh_key for d in draws if models[d.model_index].suffix == ".obj"))
     keys = dict.fromkeys(d.mesh_key for d in draws)
     return [key for key in keys if file_suffix(os.fspath(key[0])).lower() == ".obj"]
 

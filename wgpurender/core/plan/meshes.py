@@ -27,7 +27,8 @@ class PlanMeshes:
                                 if "tangent" in plan.variant(d.variant_key).vertex_attributes}
         # cache entries are written by workers, or here for a small scene: writing thousands from this process
         # cost more than the parses they save (core/models/obj_cached._load)
-        self._obj_keys = obj_keys(plan.scene_pass.draws)  # the OBJ files, worked out once per plan
+        models = plan.scene.models if plan.scene is not None else None  # each knows its file's format
+        self._obj_keys = obj_keys(plan.scene_pass.draws, models)  # the OBJ files, worked out once per plan
         self._store = len({path for path, _ in self._obj_keys}) < MIN_FILES
         self._reading = None  # the workers' reads, when started ahead (start_reading)
 
