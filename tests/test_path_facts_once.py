@@ -1,0 +1,113 @@
+"""Issue 31.3's load, load7: a model's path facts worked out once (its file's suffix, its transform's mirroring,
+the plan's OBJ files), a folder's files made as pathlib's own children, the TOML nesting walk over tables and
+arrays only. Each is checked against an independent answer: pathlib's own rules, numpy's determinant, the scene
+text's names, the structures built here. API-free."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wgpurender.core.files import input_files
+from wgpurender.core.files.input_files import FolderResolver, nesting_depth
+from wgpurender.core.models import procedural
+from wgpurender.core.plan import resolve_plan
+from wgpurender.core.plan.mesh_loading import obj_keys
+from wgpurender.core.plan.meshes import PlanMeshes
+from wgpurender.core.scene import Transform
+from wgpurender.core.scene.load import load_scene
+
+HEAD = "[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\n[materials.red]\nalbedo_color = [1, 0, 0]\n\n"
+ASSETS = Path(__file__).resolve().parent.parent / "assets" / "models"
+
+
+def _scene(folder: Path, names: list[str]) -> Path:
+    path = folder / "s.toml"
+    path.write_text(HEAD + "".join(f'[[models]]\npath = "{n}"\nmaterial = "red"\n\n' for n in names))
+    return path
+
+
+def test_a_models_suffix_is_its_resolved_files_in_lower_case(tmp_path):
+    procedural.write_obj(tmp_path / "A.OBJ", procedural.box(1.0))
+    procedural.write_obj(tmp_path / "m.obj", procedural.box(1.0))
+    (tmp_path / "l.glb").symlink_to(tmp_path / "m.obj")  # written .glb, read as the OBJ it links to
+    (tmp_path / "t.glb").write_bytes((ASSETS / "gltf_features.glb").read_bytes())
+    names = ["A.OBJ", "l.glb", "t.glb", "m.obj"]
+    models = load_scene(_scene(tmp_path, names)).models
+    assert [m.suffix for m in models] == [Path(os.path.realpath(tmp_path / n)).suffix.lower() for n in names]
+    assert [m.suffix for m in models] == [".obj", ".obj", ".glb", ".obj"]
+
+
+def test_the_plans_obj_files_are_the_scenes_obj_files_with_or_without_its_models(tmp_path):
+    for name in ("b.obj", "a.OBJ"):
+        procedural.write_obj(tmp_path / name, procedural.box(1.0))
+    (tmp_path / "t.glb").write_bytes((ASSETS / "gltf_features.glb").read_bytes())
+    names = ["b.obj", "t.glb", "a.OBJ", "b.obj", "t.glb"]  # repeated files count once, in first-use order
+    scene = load_scene(_scene(tmp_path, names))
+    plan = resolve_plan(scene, None, mesh_workers="off")
+    draws = plan.scene_pass.draws
+    want = [(tmp_path / n).resolve() for n in ("b.obj", "a.OBJ")]
+    assert [path for path, _ in obj_keys(draws, scene.models)] == want
+    assert [path for path, _ in obj_keys(draws)] == want  # each draw's path looked at instead
+    assert all(pose is None for _, pose in obj_keys(draws))
+    assert [path for path, _ in PlanMeshes(plan)._obj_keys] == want
+
+
+@pytest.mark.parametrize("written", ["m.obj", "M.Obj", "x.glb", "x.tar.gz", ".obj", "a.", "a..obj", "noext"])
+def test_file_suffix_is_pathlibs_for_each_kind_of_name(written):
+    assert input_files.file_suffix(f"/some/folder/{written}") == Path(f"/some/folder/{written}").suffix
+
+
+def _nest(depth: int, kind: str):
+    value: object = 1.5
+    for level in range(depth):
+        value = [value, "s"] if (kind == "list" or (kind == "mixed" and level % 2)) else {"k": value, "n": 2}
+    return value
+
+
+@pytest.mark.parametrize("kind", ["list", "dict", "mixed"])
+@pytest.mark.parametrize("depth", [1, 2, 5, 40])
+def test_nesting_depth_counts_the_tables_and_arrays_built_inside_each_other(depth, kind):
+    assert nesting_depth(_nest(depth, kind)) == depth
+    beside = {"models": [{"path": "m.obj"}] * 3, "deep": _nest(depth, kind)}  # the deepest branch decides
+    assert nesting_depth(beside) == 1 + max(depth, 2)  # models: an array of tables (2)
+
+
+def test_nesting_depth_of_what_holds_no_table_or_array():
+    assert nesting_depth(3) == 0
+    assert nesting_depth("text") == 0
+    assert nesting_depth([]) == 1
+    assert nesting_depth({"a": [], "b": 1}) == 2
+
+
+def test_a_folders_files_are_the_same_paths_without_pathlibs_child_maker(tmp_path, monkeypatch):
+    real = tmp_path / "real"
+    real.mkdir()
+    (tmp_path / "in").symlink_to(real)  # a linked folder: its files are named in the resolved one
+    names = ["a.obj", "b c.obj", "missing.obj"]
+    procedural.write_obj(real / "a.obj", procedural.box(1.0))
+    procedural.write_obj(real / "b c.obj", procedural.box(1.0))
+    want = [real.resolve() / n for n in names]
+    with_maker = FolderResolver().names_in(str(tmp_path / "in"), names)
+    monkeypatch.setattr(input_files, "_MAKE_CHILD", None)  # a Python whose pathlib has no such maker (3.13)
+    resolver = FolderResolver()
+    without = resolver.names_in(str(tmp_path / "in"), names)
+    assert with_maker == without == want
+    assert [str(p) for p in without] == [str(p) for p in want]
+    assert [resolver.regular(p) for p in without] == [True, True, False]
+
+
+@pytest.mark.parametrize("factors", [(1, 1, 1), (-1, 1, 1), (1, -2, 1), (-1, -1, 1), (-1, -1, -1), (2, 3, 0.5)])
+def test_a_transform_mirrors_where_its_3x3_determinant_is_negative(factors):
+    rng = np.random.default_rng(len(str(factors)))
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    rotation = q * np.sign(np.linalg.det(q))  # a proper rotation (det +1): it never mirrors by itself
+    m = np.eye(4)
+    m[:3, :3] = rotation @ np.diag(factors)
+    m[:3, 3] = (1.0, -2.0, 3.0)
+    t = Transform(tuple(tuple(float(v) for v in row) for row in m))
+    assert t.mirrors == bool(np.linalg.det(m[:3, :3]) < 0)
+    assert t.mirrors == (np.prod(factors) < 0)
