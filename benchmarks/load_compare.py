@@ -4,7 +4,7 @@ is first on PYTHONPATH is timed, so one call on one machine can time two trees (
 this branch's).
 
     python benchmarks/load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...] [--split=SPLIT.csv]
-        [--max-workers=M]
+        [--max-workers=M] [--scene=distinct|batched]
         appends: label, n, parse cache, knobs, wall ms, process CPU ms, worker processes, and the wall ms of
         the phases: scene file (load_scene), plan (resolve_plan), renderer (meshes, buffers, pipelines, the
         bundle), first frame (record, submit, read back)
@@ -12,6 +12,9 @@ this branch's).
         appended to SPLIT.csv (they nest: each row includes the rows it calls; a tree without one skips it)
         --max-workers: the worker rule's cap (core/plan/mesh_loading.MAX_WORKERS, 16) set to M in this process
         only, to measure what fewer forks of a large process save against less parallel reading
+        --scene: distinct (the default: N cube files, each its own model) or batched (N [[models]] of ONE cube
+        file, each with its own transform: bench perf's scene-scale batched/N, one instanced draw), appended
+        to the label as "LABEL batched"
 
 ``cold``: the parse cache (core/models/obj_cached.py) starts empty ($XDG_CACHE_HOME is pointed at a new
 temporary folder: the machine's own cache is never read or written); ``warm``: the same folder after one
@@ -31,6 +34,7 @@ from pathlib import Path
 
 from wgpurender.bench import scale
 from wgpurender.bench.scene import SceneRunner
+from wgpurender.core.models import procedural
 from wgpurender.core.plan import resolve_plan
 from wgpurender.core.scene import load_scene
 from wgpurender.wgpu_path.device.context import get_context
@@ -109,7 +113,22 @@ def timed_load(ctx, scene: Path, knobs: dict) -> tuple[list[float], int]:
     return [(b - a) * 1e3 for a, b in itertools.pairwise(marks)], getattr(renderer.plan, "mesh_workers", 0)
 
 
-USAGE = "usage: load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...] [--split=SPLIT.csv] [--max-workers=M]"
+USAGE = ("usage: load_compare.py LABEL N OUT.csv [cold|warm] [KNOB=VALUE ...] [--split=SPLIT.csv] [--max-workers=M] "
+         "[--scene=distinct|batched]")
+
+
+def batched_scene(folder: Path, n: int) -> Path:
+    """bench perf's batched/N scene (bench/scale.py's ``batched_scene`` where the timed tree has it), else the
+    same text made here: N models of one cube file, each at its grid place by its own ``transform``."""
+    made = getattr(scale, "batched_scene", None)
+    if made is not None:
+        return made(folder, n, SIZE)
+    procedural.write_obj(folder / "cube.obj", procedural.box(1.0))
+    lines = [f'[[models]]\npath = "cube.obj"\nmaterial = "brick"\ntransform = {{ translate = [{x!r}, {y!r}, {z!r}] }}\n'
+             for x, y, z in scale.grid_offsets(n).tolist()]
+    path = folder / f"batched_{n}.toml"
+    path.write_text(scale._head(n, SIZE, scale.brick_texture()) + "\n" + "\n".join(lines))
+    return path
 
 
 def arguments(argv: list[str]) -> tuple[str, int, Path, str, Path | None, int | None, dict[str, str]]:
@@ -137,6 +156,10 @@ def arguments(argv: list[str]) -> tuple[str, int, Path, str, Path | None, int | 
             if not value.isdecimal() or int(value) < 1:
                 raise ValueError(f"--max-workers={value}: give a whole number >= 1")
             most = int(value)
+        elif name == "--scene":
+            if value not in ("distinct", "batched"):
+                raise ValueError(f"--scene={value}: give distinct or batched")
+            knobs[name] = value  # taken out by main: a scene, not a plan knob
         elif name.startswith("-"):
             raise ValueError(f"unknown option {name!r}; {USAGE}")
         else:
@@ -150,6 +173,8 @@ def main() -> int:
     except ValueError as e:
         print(f"load_compare: {e}", file=sys.stderr)
         return 2
+    batched = knobs.pop("--scene", "distinct") == "batched"
+    label = f"{label} batched" if batched else label
     if most is not None:  # a measurement of the rule's cap, not a knob: the plan's own rule with another bound
         from wgpurender.core.plan import mesh_loading
 
@@ -158,7 +183,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as cache:
         os.environ["XDG_CACHE_HOME"] = cache  # never the machine's own cache
         SceneRunner(ctx, scale.distinct_scene(Path(tmp), 4, SIZE), SIZE).frame(readback=True)  # shaders, imports
-        scene = scale.distinct_scene(Path(tmp), n, SIZE)
+        scene = batched_scene(Path(tmp), n) if batched else scale.distinct_scene(Path(tmp), n, SIZE)
         if mode == "warm":
             timed_load(ctx, scene, knobs)  # fills the parse cache
         spent = timers(SPLIT) if split_to else {}

@@ -29,6 +29,18 @@ def test_the_documented_forms_are_read():
     assert args(["m", "7", "o.csv", "cold", "mesh_workers=off", "--max-workers=8"]) == (
         "m", 7, Path("o.csv"), "cold", None, 8, {"mesh_workers": "off"})
     assert args(["m", "7", "o.csv"])[3] == "cold"
+    assert args(["m", "7", "o.csv", "warm", "--scene=batched"])[6] == {"--scene": "batched"}  # main takes it out
+
+
+def test_the_batched_scene_is_n_models_of_one_file_each_at_its_grid_place(tmp_path):
+    from wgpurender.bench import scale
+    from wgpurender.core.scene.load import load_scene
+
+    module = _module()
+    models = load_scene(module.batched_scene(tmp_path, 7)).models
+    assert len(models) == 7 and {m.path for m in models} == {(tmp_path / "cube.obj").resolve()}
+    places = [[row[3] for row in m.transform.matrix[:3]] for m in models]
+    assert places == scale.grid_offsets(7).tolist()
 
 
 @pytest.mark.parametrize(("argv", "words"), [
@@ -39,6 +51,7 @@ def test_the_documented_forms_are_read():
     (["m", "5", "o.csv", "cold", "--max-workers=x"], "--max-workers=x"),
     (["m", "5", "o.csv", "cold", "--max-workers=0"], "--max-workers=0"),
     (["m", "5", "o.csv", "cold", "--split="], "'--split='"),
+    (["m", "5", "o.csv", "cold", "--scene=instanced"], "--scene=instanced: give distinct or batched"),
     (["a,b", "5", "o.csv"], "without commas")])
 def test_a_bad_argument_is_refused(argv, words):
     with pytest.raises(ValueError, match=None) as caught:
