@@ -207,7 +207,8 @@ def main() -> int:
                 f.write(f'{label},{n},{mode},{shown},"{phase}",{seconds * 1e3:.1f},{calls}\n')  # names hold commas
                 print(f"  {phase}: {seconds * 1e3:.1f} ms ({calls} calls)")
     split = ", ".join(f"{k} {p:.0f}" for k, p in zip(PHASES, phases, strict=True))
-    print(f"{label}: {n} distinct meshes load in {wall:.0f} ms ({cpu:.0f} ms process CPU; parse cache {mode}, "
+    what = "models of one mesh file" if batched else "distinct meshes"
+    print(f"{label}: {n} {what} load in {wall:.0f} ms ({cpu:.0f} ms process CPU; parse cache {mode}, "
           f"knobs {shown}, {workers} worker processes; {split})")
     return 0
 

@@ -2477,7 +2477,7 @@ MUTATIONS = [
      "        return file_suffix(os.fspath(self.path))", [P7_T]),
     ("wgpurender/core/scene/model.py", "        return file_suffix(os.fspath(self.path)).lower()",
      "        return file_suffix(os.fspath(self.written_path)).lower()", [P7_T]),
-    ("wgpurender/core/scene/model.py", " + c * (d * h - e * g) < 0", " + c * (d * h - e * g) <= 0", [P7_T]),
+    ("wgpurender/core/scene/model.py", " - b * (d * i - f * g) + c", " - b * (d * i + f * g) + c", [P7_T]),
     ("wgpurender/core/scene/model.py", "        return a * (e * i - f * h) - b * (d * i",
      "        return a * (e * i - f * h) + b * (d * i", [P7_T]),
     ("wgpurender/core/scene/model.py", "(a, b, c), (d, e, f), (g, h, i) = (row[:3] for row in self.matrix[:3])",

@@ -20,13 +20,16 @@ from wgpurender.core.plan.meshes import PlanMeshes
 from wgpurender.core.scene import Transform
 from wgpurender.core.scene.load import load_scene
 
-HEAD = "[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\n[materials.red]\nalbedo_color = [1, 0, 0]\n\n"
+HEAD = ("[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\n[materials.red]\nalbedo_color = [1, 0, 0]\n\n"
+        "[materials.blue]\nalbedo_color = [0, 0, 1]\n\n")
 ASSETS = Path(__file__).resolve().parent.parent / "assets" / "models"
 
 
-def _scene(folder: Path, names: list[str]) -> Path:
+def _scene(folder: Path, names: list[str], materials: list[str] | None = None) -> Path:
     path = folder / "s.toml"
-    path.write_text(HEAD + "".join(f'[[models]]\npath = "{n}"\nmaterial = "red"\n\n' for n in names))
+    materials = materials or ["red"] * len(names)
+    path.write_text(HEAD + "".join(f'[[models]]\npath = "{n}"\nmaterial = "{m}"\n\n'
+                                   for n, m in zip(names, materials, strict=True)))
     return path
 
 
@@ -46,9 +49,10 @@ def test_the_plans_obj_files_are_the_scenes_obj_files_with_or_without_its_models
         procedural.write_obj(tmp_path / name, procedural.box(1.0))
     (tmp_path / "t.glb").write_bytes((ASSETS / "gltf_features.glb").read_bytes())
     names = ["b.obj", "t.glb", "a.OBJ", "b.obj", "t.glb"]  # repeated files count once, in first-use order
-    scene = load_scene(_scene(tmp_path, names))
+    scene = load_scene(_scene(tmp_path, names, ["red", "red", "red", "blue", "red"]))  # blue: a draw of its own
     plan = resolve_plan(scene, None, mesh_workers="off")
     draws = plan.scene_pass.draws
+    assert [d.model_path.name for d in draws].count("b.obj") == 2  # the file is drawn twice, counted once below
     want = [(tmp_path / n).resolve() for n in ("b.obj", "a.OBJ")]
     assert [path for path, _ in obj_keys(draws, scene.models)] == want
     assert [path for path, _ in obj_keys(draws)] == want  # each draw's path looked at instead
