@@ -2499,8 +2499,8 @@ MUTATIONS = [
      "    deepest, level = 0, [value] if isinstance(value, dict) else []", [P7_T]),
     (RES_PY, "        return [self._buffers[key] for key in drawn]",
      "        return [self._buffers[key] for key in drawn[::-1]]", [SHARED_MESH]),
-    (RES_PY, "        return self._buffers[key] if key in self._buffers else self.upload_meshes([draw])[0]",
-     "        return self.upload_meshes([draw])[0]", [SHARED_MESH, CULL_GRID]),
+    (RES_PY, "        if pending:\n            self._upload(pending)",
+     "        if len(pending) > 1:\n            self._upload(pending)", ["tests/test_gltf_render.py"]),
     (SCENE_PASS, "(0, buffers.index_count) if draw.part is None else index_range(draw))",
      "(0, buffers.index_count))", [P7_PARTS]),
 ]

@@ -55,6 +55,23 @@ def test_three_meshes_of_two_index_formats_draw_from_one_buffer_pair(ctx, tmp_pa
     _assert_each_colour_where_its_model_projects(ctx, renderer, path)
 
 
+def test_each_draw_holds_its_own_meshs_buffers_and_all_of_its_indices(ctx, tmp_path):
+    """The draws' state (made from the upload's per-draw answer) names each draw's own mesh: the buffers its mesh
+    key was placed in, no second upload, and as many indices as its file's triangles (from the meshes written)."""
+    from wgpurender.wgpu_path.scene import load_renderer
+
+    renderer = load_renderer(_scene(tmp_path), ctx)
+    indices = {"tri.obj": 3, "plane.obj": procedural.plane(1.6, 1.6, cols=256, rows=256).indices.size,
+               "cube.obj": procedural.box(1.2).indices.size}
+    uploaded = len(renderer.resources._buffers)
+    state = renderer.scene_pass.draw_state
+    assert sorted(d.model_path.name for d, *_ in state) == sorted(indices)
+    for draw, _, _, _, buffers, (first, count) in state:
+        assert (first, count) == (0, indices[draw.model_path.name]) == (0, buffers.index_count), draw.label
+        assert renderer.resources.mesh_buffers(draw) is buffers, draw.label
+    assert len(renderer.resources._buffers) == uploaded == 3
+
+
 def test_buffer_places_start_a_new_pair_where_the_limit_would_be_passed():
     from wgpurender.core.plan.meshes import buffer_places
 
