@@ -22,7 +22,7 @@ from wgpurender.core.plan.model import (
     TextureUse,
 )
 from wgpurender.core.plan.textures import TextureTable, material_sampler
-from wgpurender.core.scene import Material, Model, Scene
+from wgpurender.core.scene import IDENTITY, Material, Model, Scene
 from wgpurender.core.scene.gltf_lights import light_note
 from wgpurender.core.view.transforms import determinants3
 
@@ -158,7 +158,8 @@ def plan_draws(scene: Scene, target: PipelineTarget, srgb_output: str | None, kn
             first_time = id(mat) not in seen_materials
             seen_materials.add(id(mat))
             for mirror, worlds in _copies(model):
-                mirror = model.transform.mirrors if mirror is None else mirror
+                if mirror is None:  # IDENTITY: every model placed inside its file (10k of a distinct scene)
+                    mirror = model.transform is not IDENTITY and model.transform.mirrors
                 key = (id(mat), mirror)
                 if key not in shaded:
                     shaded[key] = _shading(mat, target, srgb_output, knobs, anisotropy_adapter,

@@ -193,10 +193,9 @@ class Transform:
     def array(self) -> np.ndarray:
         return np.array(self.matrix, dtype=np.float64)
 
-    @functools.cached_property
+    @property
     def mirrors(self) -> bool:
-        """Whether the matrix mirrors (its 3x3 part's determinant is negative: the winding turns around). Worked
-        out once per transform: the models of a large scene that are placed inside their files share one."""
+        """Whether the matrix mirrors (its 3x3 part's determinant is negative: the winding turns around)."""
         (a, b, c), (d, e, f), (g, h, i) = (row[:3] for row in self.matrix[:3])
         return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g) < 0
 
