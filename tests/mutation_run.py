@@ -2502,7 +2502,7 @@ MUTATIONS = [
     (RES_PY, "        if pending:\n            self._upload(pending)",
      "        if len(pending) > 1:\n            self._upload(pending)", ["tests/test_gltf_render.py"]),
     ("wgpurender/core/plan/draws.py", "mirror = model.transform is not IDENTITY and model.transform.mirrors",
-     "mirror = model.transform is IDENTITY or model.transform.mirrors", [LOAD_SCALE]),
+     "mirror = model.transform is IDENTITY or model.transform.mirrors", [P7_T]),
     (SCENE_PASS, "(0, buffers.index_count) if draw.part is None else index_range(draw))",
      "(0, buffers.index_count))", [P7_PARTS]),
 ]

@@ -115,3 +115,19 @@ def test_a_transform_mirrors_where_its_3x3_determinant_is_negative(factors):
     t = Transform(tuple(tuple(float(v) for v in row) for row in m))
     assert t.mirrors == bool(np.linalg.det(m[:3, :3]) < 0)
     assert t.mirrors == (np.prod(factors) < 0)
+
+
+WRITTEN = ["", "transform = { scale = [-1, 1, 1] }\n", "transform = { scale = [-1, -1, 1] }\n",
+           "transform = { translate = [1, 2, 3] }\n"]
+
+
+@pytest.mark.parametrize("transform", WRITTEN)
+def test_a_draws_winding_follows_its_written_transform(tmp_path, transform):
+    """No transform (the shared IDENTITY, asked no determinant) draws counter-clockwise; a mirroring one (an odd
+    count of negative scale factors, the scene's own numbers) clockwise."""
+    procedural.write_obj(tmp_path / "m.obj", procedural.box(1.0))
+    (tmp_path / "s.toml").write_text(HEAD + f'[[models]]\npath = "m.obj"\nmaterial = "red"\n{transform}\n')
+    plan = resolve_plan(load_scene(tmp_path / "s.toml"), None, mesh_workers="off")
+    (draw,) = plan.scene_pass.draws
+    negatives = transform.count("-1")
+    assert plan.pipeline(draw.pipeline_key).front_face == ("cw" if negatives % 2 else "ccw")
