@@ -147,7 +147,7 @@ def test_the_scale_rows_follow_the_bench_gc_setting_as_the_other_frames_do(monke
 
 def test_scale_loads_a_warm_up_scene_of_each_kind_before_the_first_timed_load(ctx, monkeypatch):
     """The first load in a process pays the driver's first pipelines (2.4 s on a fresh H100 host): bench_scale loads
-    a small instanced and a small distinct scene, untimed and without rows, before the first timed case."""
+    a small instanced, batched and distinct scene, untimed and without rows, before the first timed case."""
     from wgpurender.bench import scene as bench_scene
 
     events = []
@@ -163,6 +163,7 @@ def test_scale_loads_a_warm_up_scene_of_each_kind_before_the_first_timed_load(ct
     results, notes = scale.bench_scale(ctx, [3], frames=1, size=(16, 12), log=lambda _: None)
     kinds = [e for e in events if e[0] == "load"]
     assert kinds == [("load", "warm-up", f"instanced_{scale.WARM_UP_COUNT}"),
+                     ("load", "warm-up", f"batched_{scale.WARM_UP_COUNT}"),
                      ("load", "warm-up", f"distinct_{scale.WARM_UP_COUNT}")]
     assert events.index(kinds[-1]) < events.index(("timed", "instanced/3")) and results == []
     assert any("untimed load" in n for n in notes)
