@@ -135,7 +135,7 @@ def test_the_control_row_says_whether_the_host_itself_is_over(gpu_p99, over):
     measured, status = got[CONTROL_TITLE]
     assert measured.startswith(f"{over} of 4 rows over: cpu-fixed frame 0.300 ms, p99 0.360 ms (1.20x); ")
     assert f"gpu-empty frame 0.050 ms, p99 {gpu_p99:.3f} ms ({gpu_p99 / 0.05:.2f}x)" in measured
-    assert status == ("over: the host has such tails" if over else "within: the host alone has no such tail")
+    assert status == ("over: the host alone makes such tails" if over else "within: no host tail in this run")
     assert list(got).index(CONTROL_TITLE) == list(got).index("p99 <= 2x median in the frame rows (frame and CPU)") + 1
 
 

@@ -78,7 +78,7 @@ def control_row(res: list[Result]) -> tuple[str, str, str] | None:
              f"({r.p99 / r.median:.2f}x)" for r in rows]
     return ("control: p99 <= 2x median with no renderer (sampled as the frame rows)",
             f"{len(over)} of {len(rows)} rows over: " + "; ".join(parts),
-            "over: the host has such tails" if over else "within: the host alone has no such tail")
+            "over: the host alone makes such tails" if over else "within: no host tail in this run")
 
 
 def _growth(res: list[Result], verdict) -> list[tuple[str, str, str]]:
