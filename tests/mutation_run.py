@@ -174,6 +174,10 @@ L5_INPUT = "wgpurender/core/files/input_files.py"
 L5_BATCH = "wgpurender/core/plan/batches.py"
 L5_MESHES = "wgpurender/core/plan/meshes.py"
 CU_T = "tests/test_chunk_unpack.py"
+B7_SC, B7_CT, B7_MS = "wgpurender/bench/scale.py", "wgpurender/bench/control.py", "wgpurender/bench/markdown_scale.py"
+B7_PERF, B7_CLI = "wgpurender/bench/perf.py", "wgpurender/cli/bench.py"
+B7_BT, B7_CTL = "tests/test_bench_scale_batched.py", "tests/test_bench_control.py"
+B7_ROWS = "tests/test_bench_perf_rows.py"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -2469,6 +2473,58 @@ MUTATIONS = [
     (M_PACK, "    if any(p.first_index + p.index_count > 3 * f for p in parts):", "    if False:", [CHUNK_T]),
     (M_PACK, "p.first_index + p.index_count > 3 * f for", "p.first_index + p.index_count > 3 * f + 3 for", [CHUNK_T]),
     (M_PACK, "p.first_index + p.index_count > 3 * f for", "p.first_index + p.index_count >= 3 * f for", [CHUNK_T]),
+    # bench7: scene-scale's batched/N (N [[models]] of one mesh file), the control family, --counts
+    (B7_SC, "f'transform = {{ translate = [{x!r}, {y!r}, {z!r}] }}\\n'",
+     "f'transform = {{ translate = [{y!r}, {x!r}, {z!r}] }}\\n'", [B7_BT]),
+    (B7_SC, 'path = folder / f"batched_{n}.toml"', 'path = folder / f"instanced_{n}.toml"', [B7_BT, B7_ROWS]),
+    (B7_SC, "            if n <= batched:", "            if n < batched:", [B7_ROWS]),
+    (B7_SC, "    limit, batched = DISTINCT_LIMITS[kind], BATCHED_LIMITS[kind]",
+     "    limit, batched = DISTINCT_LIMITS[kind], DISTINCT_LIMITS[kind]", [B7_ROWS]),
+    (B7_SC, 'batched_scene(folder, n, size), f"batched/{n}", size, frames)',
+     'batched_scene(folder, n, size), f"instanced/{n}", size, frames)', [B7_ROWS]),
+    (B7_SC, "    for make in (instanced_scene, batched_scene, distinct_scene):",
+     "    for make in (instanced_scene, distinct_scene):", [B7_ROWS]),
+    (B7_CT, "        return zlib.crc32(self.buffer)", "        return 0", [B7_CTL]),
+    (B7_CT, "        self.checksum = self.run()", "        self.checksum = 0", [B7_CTL]),
+    (B7_CT, "    want = int(target_ms / 1e3 / per_byte) // 1024 * 1024",
+     "    want = int(target_ms / 1e3 / per_byte)", [B7_CTL]),
+    (B7_CT, "    want = int(target_ms / 1e3 / per_byte) // 1024 * 1024",
+     "    want = int(target_ms / 1e2 / per_byte) // 1024 * 1024", [B7_CTL]),
+    (B7_CT, "        cpu_ms = (time.perf_counter() - start) * 1e3\n        self.ctx.wait_idle()",
+     "        self.ctx.wait_idle()\n        cpu_ms = (time.perf_counter() - start) * 1e3", [B7_CTL]),
+    (B7_CT, "        self.ctx.queue.submit([encoder.finish()])", "        encoder.finish()", [B7_CTL]),
+    (B7_CT, "        self.ctx.wait_idle()\n        return cpu_ms, None", "        return cpu_ms, None", [B7_CTL]),
+    (B7_CT, "        return (time.perf_counter() - start) * 1e3, None", "        return 0.3, None", [B7_CTL]),
+    (B7_CT, "    out = measure(cpu, frames).results(", "    out = measure(cpu, frames // 2).results(", [B7_CTL]),
+    (B7_CT, "    return [dataclasses.replace(r, size=SIZE) for r in out]", "    return out", [B7_CTL]),
+    (B7_CT, "    out += measure(EmptyGpuRoundTrip(ctx), frames).results(",
+     "    out += measure(CpuWorkload(), frames).results(", [B7_CTL]),
+    (B7_MS, "    over = [r for r in rows if r.p99 > P99_FACTOR * r.median]",
+     "    over = [r for r in rows if r.p99 > 3 * r.median]", [B7_CTL]),
+    (B7_MS, 'r.family == CONTROL and r.metric in ("frame_ms", "cpu_ms") and r.n >= 5',
+     'r.family == CONTROL and r.metric in ("frame_ms", "cpu_ms")', [B7_CTL]),
+    (B7_MS, 'r.family == CONTROL and r.metric in ("frame_ms", "cpu_ms") and r.n >= 5',
+     "r.family == CONTROL and r.n >= 5", [B7_CTL]),
+    (B7_MS, '"over: the host alone makes such tails" if over else',
+     '"over: the host alone makes such tails" if not over else', [B7_CTL]),
+    (B7_MS, "({r.p99 / r.median:.2f}x)", "({r.p90 / r.median:.2f}x)", [B7_CTL]),
+    (B7_MS, 'f"{len(over)} of {len(rows)} rows over: "', 'f"{len(rows)} of {len(rows)} rows over: "', [B7_CTL]),
+    (B7_MS, "    if control:\n        out.append(control)", "    if control:\n        pass", [B7_CTL]),
+    (B7_MS, '("batched", "batched: N models of one file")', '("batched", "batched")', [B7_BT]),
+    (B7_MS, '("batched", "batched: N models of one file"), ("distinct", "distinct"))', '("distinct", "distinct"))',
+     [B7_BT]),
+    (B7_PERF, "        if family in (*TAIL_FAMILIES, CONTROL) and ctx", "        if family in TAIL_FAMILIES and ctx",
+     [B7_CTL]),
+    (B7_PERF, "    counts = config.counts or (QUICK_COUNTS if config.quick else COUNTS)",
+     "    counts = QUICK_COUNTS if config.quick else COUNTS", [B7_CTL]),
+    (B7_PERF, "    run.results += bench_control(ctx, config.timed_frames(ctx, CONTROL))",
+     "    run.results += bench_control(ctx, config.timed_frames())", [B7_CTL]),
+    (B7_PERF, '"objects", "scene-scale", CONTROL, "startup")', '"objects", "scene-scale", "startup")', [B7_CTL]),
+    (B7_CLI, '    if "scene-scale" not in families:\n        raise UserError("--counts',
+     '    if False:\n        raise UserError("--counts', [B7_CTL]),
+    (B7_CLI, "not all(p.isdigit() and int(p) > 0 for p in parts)", "not all(p.isdigit() for p in parts)", [B7_CTL]),
+    (B7_CLI, "    return tuple(int(p) for p in parts)", "    return tuple(int(p) for p in parts[:1])", [B7_CTL]),
+    (B7_CLI, "anisotropy=args.anisotropy, counts=counts)", "anisotropy=args.anisotropy)", [B7_CTL]),
 ]
 
 

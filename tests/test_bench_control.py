@@ -103,6 +103,17 @@ def test_the_round_trip_submits_an_empty_encoder_and_waits_outside_its_cpu_time(
     assert gpu is None and 0 < cpu_ms < 20 <= wall_ms
 
 
+def test_run_perf_samples_the_control_as_many_times_as_the_frame_rows(monkeypatch):
+    """bench perf's control step asks for the frame rows' count on a GPU adapter (100), not the default 20."""
+    from wgpurender.bench import perf
+
+    fake = _fake_ctx([])
+    fake.adapter = SimpleNamespace(info={"adapter_type": "DiscreteGPU"})
+    monkeypatch.setattr(perf, "machine_info", lambda ctx: {})
+    run = perf.run_perf(perf.PerfConfig(families=("control",)), ctx=fake, log=lambda _: None)
+    assert {(r.family, r.n) for r in run.results} == {("control", perf.TAIL_FRAMES)} and len(run.results) == 4
+
+
 def test_control_family_gets_the_frame_rows_sample_count():
     from wgpurender.bench.perf import FAMILIES, TAIL_FRAMES, PerfConfig
 
@@ -113,7 +124,7 @@ def test_control_family_gets_the_frame_rows_sample_count():
 
 
 def _row(family: str, case: str, metric: str, median: float, p99: float, n: int = 100) -> Result:
-    return Result(family, case, "wgpu", "", metric, median, median, p99, n, "", p99)
+    return Result(family, case, "wgpu", "", metric, median, median, (median + p99) / 2, n, "", p99)
 
 
 def _targets(rows):
@@ -146,12 +157,27 @@ def test_no_control_rows_no_control_row():
 # -- --counts ------------------------------------------------------------------------------------------------
 
 
+@pytest.fixture
+def nothing_runs(monkeypatch):
+    """No bench runs and no GPU starts: a flag not refused fails the test at once rather than timing for minutes."""
+    from wgpurender.bench import perf
+    from wgpurender.wgpu_path.device import context
+
+    monkeypatch.setattr(context, "get_context", lambda backend=None: SimpleNamespace(
+        adapter=SimpleNamespace(info={"adapter_type": "CPU"})))
+
+    def ran(*a, **k):
+        raise AssertionError("the bench ran: the flag was not refused")
+
+    monkeypatch.setattr(perf, "run_perf", ran)
+
+
 @pytest.mark.parametrize(("args", "words"), [
     (["--only", "frames", "--counts", "1000"], "--only scene-scale"),
     (["--only", "scene-scale", "--counts", "1000,x"], "positive whole numbers"),
     (["--only", "scene-scale", "--counts", "0"], "positive whole numbers"),
     (["--only", "scene-scale", "--counts", ","], "positive whole numbers")])
-def test_bad_counts_are_one_line(capsys, tmp_path, args, words):
+def test_bad_counts_are_one_line(capsys, tmp_path, nothing_runs, args, words):
     from wgpurender.cli import main
 
     out = tmp_path / "r"
