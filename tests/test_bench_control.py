@@ -103,6 +103,14 @@ def test_the_round_trip_submits_an_empty_encoder_and_waits_outside_its_cpu_time(
     assert gpu is None and 0 < cpu_ms < 20 <= wall_ms
 
 
+def test_the_round_trip_rows_time_the_round_trip():
+    """gpu-empty's rows are the round trip's: its frame holds the GPU wait (2 ms here), its CPU part does not."""
+    events = []
+    rows = {(r.case, r.metric): r for r in control.bench_control(_fake_ctx(events, wait_s=0.002), 5)}
+    assert rows[("gpu-empty", "frame_ms")].median >= 2 > rows[("gpu-empty", "cpu_ms")].median
+    assert events.count("wait") >= 5 and events.count("encoder") == events.count("wait")
+
+
 def test_run_perf_samples_the_control_as_many_times_as_the_frame_rows(monkeypatch):
     """bench perf's control step asks for the frame rows' count on a GPU adapter (100), not the default 20."""
     from wgpurender.bench import perf
