@@ -2469,6 +2469,19 @@ MUTATIONS = [
     (M_PACK, "    if any(p.first_index + p.index_count > 3 * f for p in parts):", "    if False:", [CHUNK_T]),
     (M_PACK, "p.first_index + p.index_count > 3 * f for", "p.first_index + p.index_count > 3 * f + 3 for", [CHUNK_T]),
     (M_PACK, "p.first_index + p.index_count > 3 * f for", "p.first_index + p.index_count >= 3 * f for", [CHUNK_T]),
+    # late: a translate-only transform built without numpy (validate._translation_rows)
+    ("wgpurender/core/scene/validate.py", '    if len(t) == 1 and "translate" in t:', '    if "translate" in t:',
+     ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", "    x, y, z = (float(v) + 0.0 for v in offset)",
+     "    x, y, z = (float(v) for v in offset)", ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", "(0.0, 1.0, 0.0, y), (0.0, 0.0, 1.0, z)",
+     "(0.0, 1.0, 0.0, z), (0.0, 0.0, 1.0, y)", ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", "(0.0, 0.0, 0.0, 1.0)\n", "(0.0, 0.0, 0.0, 0.0)\n",
+     ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", 'f"translate {list(offset)}")', 'f"translate {offset}")',
+     ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/model.py", "np.asarray(m, dtype=np.float64).tolist()",
+     "np.asarray(m, dtype=np.float32).tolist()", ["tests/test_translate_rows.py"]),
 ]
 
 
