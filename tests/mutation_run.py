@@ -2525,6 +2525,19 @@ MUTATIONS = [
     (B7_CLI, "not all(p.isdigit() and int(p) > 0 for p in parts)", "not all(p.isdigit() for p in parts)", [B7_CTL]),
     (B7_CLI, "    return tuple(int(p) for p in parts)", "    return tuple(int(p) for p in parts[:1])", [B7_CTL]),
     (B7_CLI, "anisotropy=args.anisotropy, counts=counts)", "anisotropy=args.anisotropy)", [B7_CTL]),
+    # late: a translate-only transform built without numpy (validate._translation_rows)
+    ("wgpurender/core/scene/validate.py", '    if len(t) == 1 and "translate" in t:', '    if "translate" in t:',
+     ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", "    x, y, z = (float(v) + 0.0 for v in offset)",
+     "    x, y, z = (float(v) for v in offset)", ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", "(0.0, 1.0, 0.0, y), (0.0, 0.0, 1.0, z)",
+     "(0.0, 1.0, 0.0, z), (0.0, 0.0, 1.0, y)", ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", "(0.0, 0.0, 0.0, 1.0)\n", "(0.0, 0.0, 0.0, 0.0)\n",
+     ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/validate.py", 'f"translate {list(offset)}")', 'f"translate {offset}")',
+     ["tests/test_translate_rows.py"]),
+    ("wgpurender/core/scene/model.py", "np.asarray(m, dtype=np.float64).tolist()",
+     "np.asarray(m, dtype=np.float32).tolist()", ["tests/test_translate_rows.py"]),
 ]
 
 
