@@ -2534,7 +2534,7 @@ MUTATIONS = [
      "(0.0, 1.0, 0.0, z), (0.0, 0.0, 1.0, y)", ["tests/test_translate_rows.py"]),
     ("wgpurender/core/scene/validate.py", "(0.0, 0.0, 0.0, 1.0)\n", "(0.0, 0.0, 0.0, 0.0)\n",
      ["tests/test_translate_rows.py"]),
-    ("wgpurender/core/scene/validate.py", 'f"translate {list(offset)}")', 'f"translate {offset}")',
+    ("wgpurender/core/scene/validate.py", '(offset), f"translate {list(offset)}")', '(offset), f"translate {offset}")',
      ["tests/test_translate_rows.py"]),
     ("wgpurender/core/scene/model.py", "np.asarray(m, dtype=np.float64).tolist()",
      "np.asarray(m, dtype=np.float32).tolist()", ["tests/test_translate_rows.py"]),
