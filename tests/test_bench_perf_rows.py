@@ -147,7 +147,7 @@ def test_the_scale_rows_follow_the_bench_gc_setting_as_the_other_frames_do(monke
 
 def test_scale_loads_a_warm_up_scene_of_each_kind_before_the_first_timed_load(ctx, monkeypatch):
     """The first load in a process pays the driver's first pipelines (2.4 s on a fresh H100 host): bench_scale loads
-    a small instanced and a small distinct scene, untimed and without rows, before the first timed case."""
+    a small instanced, batched and distinct scene, untimed and without rows, before the first timed case."""
     from wgpurender.bench import scene as bench_scene
 
     events = []
@@ -163,6 +163,23 @@ def test_scale_loads_a_warm_up_scene_of_each_kind_before_the_first_timed_load(ct
     results, notes = scale.bench_scale(ctx, [3], frames=1, size=(16, 12), log=lambda _: None)
     kinds = [e for e in events if e[0] == "load"]
     assert kinds == [("load", "warm-up", f"instanced_{scale.WARM_UP_COUNT}"),
+                     ("load", "warm-up", f"batched_{scale.WARM_UP_COUNT}"),
                      ("load", "warm-up", f"distinct_{scale.WARM_UP_COUNT}")]
     assert events.index(kinds[-1]) < events.index(("timed", "instanced/3")) and results == []
     assert any("untimed load" in n for n in notes)
+
+
+def test_scale_times_batched_beside_instanced_and_distinct_up_to_its_limit(ctx, monkeypatch):
+    """Every count has instanced/N; batched/N (N models of one file) and distinct/N up to their own limits on
+    this adapter's kind (lavapipe: CPU), each named for its count."""
+    timed = []
+    monkeypatch.setattr(scale, "warm_up", lambda *a: None)
+    monkeypatch.setattr(scale, "bench_case", lambda ctx_, path, case, size, frames: timed.append(
+        (case, path.name)) or [])
+    monkeypatch.setattr(scale, "BATCHED_LIMITS", {"CPU": 3, "GPU": 0})
+    monkeypatch.setattr(scale, "DISTINCT_LIMITS", {"CPU": 20, "GPU": 0})
+    _, notes = scale.bench_scale(ctx, [3, 20, 21], frames=1, size=(16, 12), log=lambda _: None)
+    assert timed == [("instanced/3", "instanced_3.toml"), ("batched/3", "batched_3.toml"),
+                     ("distinct/3", "distinct_3.toml"), ("instanced/20", "instanced_20.toml"),
+                     ("distinct/20", "distinct_20.toml"), ("instanced/21", "instanced_21.toml")]
+    assert any("batched" in n and "stops at 3 on a CPU adapter" in n for n in notes)

@@ -18,7 +18,7 @@ from wgpurender.core.files import assets
 from wgpurender.core.scene.load import load_scene
 
 
-@pytest.mark.parametrize("write", [scale.instanced_scene, scale.distinct_scene])
+@pytest.mark.parametrize("write", [scale.instanced_scene, scale.batched_scene, scale.distinct_scene])
 def test_scale_scenes_read_the_brick_texture_from_the_bundled_assets_wherever_they_are(write, tmp_path,
                                                                                        monkeypatch):
     bundled = assets.assets_dir() / "textures" / "brick_albedo.png"

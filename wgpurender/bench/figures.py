@@ -46,6 +46,9 @@ RUNS = (
      "perf-h100/2026-11-27-night", "scale/perf-scale/results.csv", None),
     ("NVIDIA H100, night closing call (18:36 UTC, the same machine: frames and scene, wgpu beside raw)",
      "perf-h100/2026-11-27-night", "frames/perf-frames/results.csv", None),
+    ("NVIDIA H100, bench7 call (19:45 UTC: scene-scale at 1k and 10k with the batched case, N models of one file, "
+     "and the control family, the host's own tail; few graphics units: render passes are raster-bound)",
+     "perf-h100/2026-11-27-bench7", "perf/results.csv", None),
 )
 
 

@@ -217,8 +217,11 @@ def render_markdown(run, plots: dict[str, str]) -> str:
     if _pick(res, "objects"):
         lines += ["## Many objects (800x600, quads of ~4 px)", "", _objects_table(res), ""]
     if _pick(res, "scene-scale"):
-        lines += ["## Scene scale: N copies of a lit, textured cube (instanced), N distinct meshes, pygfx beside", "",
-                  markdown_scale.table(res), ""]
+        lines += ["## Scene scale: N copies of a lit, textured cube (instanced: one instances block; batched: N models "
+                  "of one file), N distinct meshes, pygfx beside", "", markdown_scale.table(res), ""]
+    if _pick(res, markdown_scale.CONTROL):
+        lines += ["## Control: the host's own tail (no renderer; sampled as the frame rows)", "",
+                  results_table(_pick(res, markdown_scale.CONTROL)), ""]
     if _pick(res, "startup"):
         lines += ["## First frame (fresh process per run)", "", _startup_table(res), ""]
     if plots:

@@ -3,13 +3,15 @@
 Targets, each judged from the run's rows (never from a number written here):
 
 - 10k instances at most 0.5x pygfx ``InstancedMesh``'s frame time (both timed with the readback);
-- a 10k-object scene loads in at most 1 s (the instanced one; the distinct one where it was measured);
+- a 10k-object scene loads in at most 1 s (the instanced one; the batched one, N models of one mesh file, and the
+  distinct one where they were measured);
 - CPU per frame does not grow with the instance count: the largest count's CPU median at most
   :data:`CPU_GROWTH` x the smallest's, judged on the same-wait row where the run has it (:func:`_growth`);
 - the first pixel at most 1.2x raw's with Python bytecode cached (and the ratio without, reported): the median of
   the startup family's paired per-round ratios;
 - frame rows' p99 at most 2x their median (``frame_ms`` and ``cpu_ms`` of the frames, scene and scene-scale
-  families: the tail check covers the CPU metric too).
+  families: the tail check covers the CPU metric too); beside it the control family's rows (bench/control.py: the
+  same sampling with no renderer), over or within the same 2x, so a reader can tell the host's tail from ours.
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ CPU_GROWTH = 1.5  # "does not grow": the noise of a sub-millisecond median betwe
 P99_FACTOR = 2.0
 SAME_WAIT = "cpu_ms:same_wait"  # the metric of bench/scale.py's same_wait_cpu rows
 TAIL_FAMILIES = ("frames", "scene", "scene-scale")
+CONTROL = "control"  # bench/control.py's family: sampled as TAIL_FAMILIES' frames, but no renderer in it
+LOAD_KINDS = (("instanced", "instanced"), ("batched", "batched: N models of one file"), ("distinct", "distinct"))
 
 
 def _rows(res: list[Result], metric: str, path: str = "wgpu") -> dict[str, Result]:
@@ -38,10 +42,10 @@ def targets(res: list[Result], verdict) -> list[tuple[str, str, str]]:
         out.append(("10k instances <= 0.5x pygfx InstancedMesh frame time",
                     f"{ratio.median:.2f}x (frame with readback, same adapter, same run)", verdict(ratio.median <= 0.5)))
     loads = _rows(res, "load_ms")
-    for kind in ("instanced", "distinct"):
+    for kind, words in LOAD_KINDS:
         r = loads.get(f"{kind}/10000")
         if r is not None:
-            out.append((f"a 10k-object scene loads in <= 1 s ({kind})", f"{r.median / 1e3:.2f} s",
+            out.append((f"a 10k-object scene loads in <= 1 s ({words})", f"{r.median / 1e3:.2f} s",
                         verdict(r.median <= 1000.0)))
     out += _growth(res, verdict)
     for label, judged in (("no caches", True), ("no caches, no bytecode", False)):
@@ -56,7 +60,25 @@ def targets(res: list[Result], verdict) -> list[tuple[str, str, str]]:
         out.append(("p99 <= 2x median in the frame rows (frame and CPU)",
                     f"{len(over)} of {len(frames)} rows over; worst {worst.p99 / worst.median:.1f}x "
                     f"({worst.family} {worst.case} {worst.path} {worst.size} {worst.metric})", verdict(not over)))
+    control = control_row(res)
+    if control:
+        out.append(control)
     return out
+
+
+def control_row(res: list[Result]) -> tuple[str, str, str] | None:
+    """The control family's rows (no renderer, sampled as the frame rows): each one's median, p99 and p99/median,
+    and whether any is over :data:`P99_FACTOR`: then the host alone makes such tails. None without control rows."""
+    rows = [r for r in res if r.family == CONTROL and r.metric in ("frame_ms", "cpu_ms") and r.n >= 5
+            and r.p99 == r.p99 and r.median > 0]
+    if not rows:
+        return None
+    over = [r for r in rows if r.p99 > P99_FACTOR * r.median]
+    parts = [f"{r.case} {r.metric.removesuffix('_ms')} {fmt_ms(r.median)} ms, p99 {fmt_ms(r.p99)} ms "
+             f"({r.p99 / r.median:.2f}x)" for r in rows]
+    return ("control: p99 <= 2x median with no renderer (sampled as the frame rows)",
+            f"{len(over)} of {len(rows)} rows over: " + "; ".join(parts),
+            "over: the host alone makes such tails" if over else "within: no host tail in this run")
 
 
 def _growth(res: list[Result], verdict) -> list[tuple[str, str, str]]:

@@ -16,13 +16,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wgpurender.bench.markdown_scale import TAIL_FAMILIES
+from wgpurender.bench.markdown_scale import CONTROL, TAIL_FAMILIES
 from wgpurender.bench.report import NOT_OFFERED, Result, command_line, not_offered, size_text  # noqa: F401 (command_line: the CLI's import)
 from wgpurender.core.errors import UserError
 from wgpurender.core.plan.anisotropy import DEFAULT_ANISOTROPY
 from wgpurender.wgpu_path.device.context import GPUContext, get_context
 
-FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "scene-scale", "startup")
+FAMILIES = ("frames", "scene", "post", "msaa-post", "objects", "scene-scale", CONTROL, "startup")
 FULL_SIZES = ((800, 600), (1280, 720), (1920, 1080))
 BIG_SIZE = (3840, 2160)
 QUICK_SIZES = ((96, 64),)
@@ -57,13 +57,15 @@ class PerfConfig:
     scene_file: Path = SCENE_FILE
     command: str = ""
     anisotropy: str = DEFAULT_ANISOTROPY  # the scene families' rule (core/plan/anisotropy.py), as render's --anisotropy
+    counts: tuple[int, ...] | None = None  # scene-scale's counts (--counts); None: bench/scale.py's (quick: its few)
 
     def timed_frames(self, ctx: GPUContext | None = None, family: str = "") -> int:
         """--frames, else 4 (quick), else :data:`TAIL_FRAMES` in the families whose p99 is judged on a GPU adapter
-        (markdown_scale.TAIL_FAMILIES: the p99 of 20 samples is their largest, a single stall), else 20."""
+        (markdown_scale.TAIL_FAMILIES: the p99 of 20 samples is their largest, a single stall) and in the control
+        family, sampled as they are, else 20."""
         if self.frames or self.quick:
             return self.frames or 4
-        if family in TAIL_FAMILIES and ctx is not None and ctx.adapter.info["adapter_type"] != "CPU":
+        if family in (*TAIL_FAMILIES, CONTROL) and ctx is not None and ctx.adapter.info["adapter_type"] != "CPU":
             return TAIL_FRAMES
         return 20
 
@@ -111,7 +113,7 @@ def run_perf(config: PerfConfig, ctx: GPUContext | None = None, log: Callable[[s
     start = time.perf_counter()
     run = PerfRun(config, machine_info(ctx))
     steps = {"frames": _frames, "scene": _scene, "post": _post, "msaa-post": _msaa_post, "objects": _objects,
-             "scene-scale": _scene_scale, "startup": _startup}
+             "scene-scale": _scene_scale, CONTROL: _control, "startup": _startup}
     for family in config.families:
         log(f"[{family}]")
         steps[family](ctx, config, run, log)
@@ -243,12 +245,20 @@ def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None
     from wgpurender.bench.scale import COUNTS, QUICK_COUNTS, bench_scale, ratio_rows
     from wgpurender.bench.scale_pygfx import pygfx_peer
 
-    counts = QUICK_COUNTS if config.quick else COUNTS
+    counts = config.counts or (QUICK_COUNTS if config.quick else COUNTS)
     size = QUICK_SIZES[0] if config.quick else (800, 600)
     results, notes = bench_scale(ctx, list(counts), config.timed_frames(ctx, "scene-scale"), size, log,
                                  pygfx_peer())
     run.results += results + ratio_rows(results)
     run.notes += notes
+
+
+def _control(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
+    """The host's own tail: a fixed CPU workload and an empty GPU round trip, sampled as the frame rows are."""
+    from wgpurender.bench.control import bench_control
+
+    run.results += bench_control(ctx, config.timed_frames(ctx, CONTROL))
+    log("  control: cpu-fixed, gpu-empty")
 
 
 def _startup(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:

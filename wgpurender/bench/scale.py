@@ -3,6 +3,10 @@
 Cases (each a scene file written into a temporary folder, drawn by the scene renderer as any scene is):
 
 - ``instanced/N``: one ``[[models]]`` entry with ``instances = { grid = ... }``: one instanced draw;
+- ``batched/N``: N ``[[models]]`` entries of ONE mesh file, each with its own ``transform`` (the grid places of
+  ``instanced/N``): what a user writes without knowing about ``instances``; the plan batches them into one
+  instanced draw (core/plan/batches.py), so the load pays for N models' TOML and checks, not N meshes; capped at
+  :data:`BATCHED_LIMITS`;
 - ``distinct/N``: N models of N different mesh files (each cube moved a little in its own file): N draws,
   capped at :data:`DISTINCT_LIMITS` (every mesh file is loaded and uploaded on its own, ~1 ms each here);
 - ``pygfx/N`` (path ``pygfx``): pygfx 0.17's ``InstancedMesh`` of the same cube, texture, light and camera, in
@@ -37,6 +41,7 @@ from wgpurender.wgpu_path.device.timing import Stats
 COUNTS = (1_000, 10_000, 100_000, 1_000_000)
 QUICK_COUNTS = (50, 200)
 DISTINCT_LIMITS = {"CPU": 1_000, "GPU": 10_000}  # N mesh files loaded one by one: seconds per thousand
+BATCHED_LIMITS = {"CPU": 10_000, "GPU": 100_000}  # N [[models]] tables: ~20 ms of TOML and checks per thousand
 PYGFX_LIMIT = 100_000  # pygfx gives every instance a pick id from a 2**20 pool (and sets them in a Python loop)
 SPACING = 1.5
 
@@ -78,6 +83,21 @@ def instanced_scene(folder: Path, n: int, size: tuple[int, int], texture: Path |
     path = folder / f"instanced_{n}.toml"
     path.write_text(_head(n, size, texture) + f'\n[[models]]\npath = "cube.obj"\nmaterial = "brick"\n'
                     f'instances = {{ file = "grid_{n}.npy" }}\n')
+    return path
+
+
+def batched_scene(folder: Path, n: int, size: tuple[int, int], texture: Path | None = None) -> Path:
+    """N models of the one ``cube.obj``, each at its grid place by its own ``transform`` (the places of
+    :func:`instanced_scene`'s grid): the plan makes them one draw of N instances; the texture is
+    :func:`brick_texture` unless given."""
+    texture = texture or brick_texture()
+    cube = folder / "cube.obj"
+    if not cube.exists():
+        procedural.write_obj(cube, procedural.box(1.0))
+    lines = [f'[[models]]\npath = "cube.obj"\nmaterial = "brick"\n'
+             f'transform = {{ translate = [{x!r}, {y!r}, {z!r}] }}\n' for x, y, z in grid_offsets(n).tolist()]
+    path = folder / f"batched_{n}.toml"
+    path.write_text(_head(n, size, texture) + "\n" + "\n".join(lines))
     return path
 
 
@@ -199,21 +219,26 @@ def bench_scale(ctx: GPUContext, counts: list[int], frames: int, size: tuple[int
     """(results, notes) of every case; ``peer(ctx, n, size, frames)`` (bench/scale_pygfx.py's, or None when pygfx
     is not installed: one line says so) beside each count up to :data:`PYGFX_LIMIT`."""
     kind = "CPU" if ctx.adapter.info["adapter_type"] == "CPU" else "GPU"
-    limit = DISTINCT_LIMITS[kind]
+    limit, batched = DISTINCT_LIMITS[kind], BATCHED_LIMITS[kind]
     out: list[Result] = []
     notes = [f"scene-scale: distinct meshes stop at {limit} on a {kind} adapter (each mesh file is loaded and "
-             "uploaded on its own: seconds per thousand)"]
+             "uploaded on its own: seconds per thousand)",
+             f"scene-scale: batched (N [[models]] of one mesh file) stops at {batched} on a {kind} adapter (each "
+             "model is a TOML table the scene checks: ~20 ms per thousand)"]
     if peer is None:
         notes.append("scene-scale: pygfx is not installed (pip install 'wgpurender[bench]'): no pygfx rows")
     with tempfile.TemporaryDirectory(prefix="wgpurender-scale-") as tmp:
         folder = Path(tmp)
         warm_up(ctx, folder, size)
-        notes.append(f"scene-scale: one untimed load of {WARM_UP_COUNT} instances and of {WARM_UP_COUNT} distinct "
-                     "meshes first, so the process's one-time costs (the driver's first pipelines) are not charged "
-                     "to the first case's load_ms")
+        notes.append(f"scene-scale: one untimed load of {WARM_UP_COUNT} instances, {WARM_UP_COUNT} batched models "
+                     f"and {WARM_UP_COUNT} distinct meshes first, so the process's one-time costs (the driver's "
+                     "first pipelines) are not charged to the first case's load_ms")
         for n in counts:
             out += bench_case(ctx, instanced_scene(folder, n, size), f"instanced/{n}", size, frames)
             log(f"  scene-scale: instanced {n}")
+            if n <= batched:
+                out += bench_case(ctx, batched_scene(folder, n, size), f"batched/{n}", size, frames)
+                log(f"  scene-scale: batched {n}")
             if n <= limit:
                 out += bench_case(ctx, distinct_scene(folder, n, size), f"distinct/{n}", size, frames)
                 log(f"  scene-scale: distinct {n}")
@@ -236,7 +261,7 @@ def warm_up(ctx: GPUContext, folder: Path, size: tuple[int, int]) -> None:
     from wgpurender.bench.scene import SceneRunner
 
     (folder / "warm-up").mkdir()
-    for make in (instanced_scene, distinct_scene):
+    for make in (instanced_scene, batched_scene, distinct_scene):
         SceneRunner(ctx, make(folder / "warm-up", WARM_UP_COUNT, size), size).frame(readback=True)
 
 
@@ -253,4 +278,5 @@ def ratio_rows(results: list[Result]) -> list[Result]:
     return out
 
 
-__all__ = ["COUNTS", "QUICK_COUNTS", "Stats", "bench_scale", "distinct_scene", "instanced_scene", "ratio_rows"]
+__all__ = ["COUNTS", "QUICK_COUNTS", "Stats", "batched_scene", "bench_scale", "distinct_scene", "instanced_scene",
+           "ratio_rows"]

@@ -39,7 +39,10 @@ def _register_perf(suites) -> None:
                    help="where results go (default ./bench-results)")
     p.add_argument("--only", "--families", dest="only", action="append", default=None, metavar="FAMILY",
                    help="run only these families (repeatable, or comma-separated): frames, scene, post, msaa-post, "
-                   "objects, scene-scale, startup")
+                   "objects, scene-scale, control, startup")
+    p.add_argument("--counts", default=None, metavar="N,N",
+                   help="scene-scale's counts, comma-separated (default 1000,10000,100000,1000000; 50,200 with "
+                   "--quick)")
     big = p.add_mutually_exclusive_group()
     big.add_argument("--big", dest="big", action="store_true", default=None,
                      help="add 3840x2160 (default: when the adapter is not a CPU)")
@@ -71,16 +74,31 @@ def run(args) -> int:
                         "pixels over fresh processes: add another family with --only, or leave --frames out")
     if args.anisotropy != DEFAULT_ANISOTROPY and "scene" not in families:
         raise UserError("--anisotropy applies to the scene family: add --only scene, or leave it out")
+    counts = _counts(args.counts, families)
     output_folder(args.out, "--out")  # before any timing
     if args.docs_img is not None:
         output_folder(args.docs_img, "--docs-img")
     config = PerfConfig(quick=args.quick, out_dir=args.out, families=families, big=args.big, raw=args.raw,
-                        frames=args.frames, command=command_line(), anisotropy=args.anisotropy)
+                        frames=args.frames, command=command_line(), anisotropy=args.anisotropy, counts=counts)
     run_ = run_perf(config, get_context(args.backend))
     paths = write_reports(run_, args.out, args.docs_img)
     for kind, path in paths.items():
         print(f"{kind}: {path}")
     return 0
+
+
+def _counts(text: str | None, families: tuple[str, ...]) -> tuple[int, ...] | None:
+    """--counts as positive integers; refused where the scene-scale family does not run."""
+    from wgpurender.core.errors import UserError
+
+    if text is None:
+        return None
+    if "scene-scale" not in families:
+        raise UserError("--counts sets the scene-scale family's counts: add --only scene-scale, or leave it out")
+    parts = [p.strip() for p in text.split(",") if p.strip()]
+    if not parts or not all(p.isdigit() and int(p) > 0 for p in parts):
+        raise UserError(f"--counts {text!r}: give positive whole numbers, comma-separated (e.g. --counts 1000,10000)")
+    return tuple(int(p) for p in parts)
 
 
 def _sizes(preset: str) -> str:

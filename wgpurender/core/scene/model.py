@@ -201,7 +201,7 @@ class Transform:
 
 
 def _rows(m: np.ndarray) -> tuple[tuple[float, ...], ...]:
-    return tuple(tuple(float(v) for v in row) for row in m)
+    return tuple(map(tuple, np.asarray(m, dtype=np.float64).tolist()))  # Python floats, as float() gives
 
 
 IDENTITY = Transform(_rows(np.eye(4)))

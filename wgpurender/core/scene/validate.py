@@ -200,6 +200,9 @@ def _transform(c: _Checker, data: Any, key: KeyPath) -> Transform:
         return Transform(_rows(m), "matrix")
     if not t:
         return IDENTITY  # most models of a large scene: no matrix to build
+    if len(t) == 1 and "translate" in t:  # the next most common (10k placed copies of one mesh): no numpy
+        offset = c.vector(t["translate"], key + ("translate",))
+        return Transform(_translation_rows(offset), f"translate {list(offset)}")
     parts, m = [], np.eye(4)
     if "translate" in t:
         offset = c.vector(t["translate"], key + ("translate",))
@@ -217,6 +220,13 @@ def _transform(c: _Checker, data: Any, key: KeyPath) -> Transform:
         m = m @ transforms.scale(factors)
         parts.append(f"scale {list(factors) if isinstance(s, list) else factors[0]}")
     return Transform(_rows(m), ", ".join(parts) or "identity")
+
+
+def _translation_rows(offset: tuple) -> tuple[tuple[float, ...], ...]:
+    """The rows numpy's ``np.eye(4) @ transforms.translate(offset)`` holds, made without numpy (+ 0.0: the
+    product's sum turns a -0.0 offset into 0.0)."""
+    x, y, z = (float(v) + 0.0 for v in offset)
+    return (1.0, 0.0, 0.0, x), (0.0, 1.0, 0.0, y), (0.0, 0.0, 1.0, z), (0.0, 0.0, 0.0, 1.0)
 
 
 def _rotation(c: _Checker, data: Any, key: KeyPath) -> tuple[np.ndarray, str]:
