@@ -2121,8 +2121,8 @@ MUTATIONS = [
      ["tests/test_cache_entries.py|without_a_home"]),
     # scene-scale's untimed warm-up loads before the first timed case (integrator, evening)
     ("wgpurender/bench/scale.py", "        warm_up(ctx, folder, size)\n", "\n", ["tests/test_bench_perf_rows.py"]),
-    ("wgpurender/bench/scale.py", "    for make in (instanced_scene, distinct_scene):",
-     "    for make in (instanced_scene,):", ["tests/test_bench_perf_rows.py"]),
+    ("wgpurender/bench/scale.py", "    for make in (instanced_scene, batched_scene, distinct_scene):",
+     "    for make in (instanced_scene, batched_scene):", ["tests/test_bench_perf_rows.py"]),
     # load3: the mesh workers started ahead of the scene pass's set-up (core/plan/meshes.start_reading,
     # core/models/mesh_workers.Reading, wgpu_path/scene/scene_pass.py)
     ("wgpurender/core/plan/meshes.py", "if self.plan.mesh_workers and not self._meshes and self._reading is None:",
