@@ -26,8 +26,6 @@ from wgpurender.core.models import frames
 
 MODULE = "wgpurender.core.models.mesh_worker_main"
 ROOT = str(Path(__file__).resolve().parents[3])  # the folder holding this wgpurender package
-ONE_THREAD = dict.fromkeys(("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"), "1")  # numpy's pools: a
-# worker parses on one core, and 16 workers each starting a pool per core would take the parent's cores
 _booted: Workers | None = None  # booted ahead by the scene's load, until a reading claims it
 
 
@@ -39,8 +37,7 @@ class Workers:
     """``count`` worker processes, started now."""
 
     def __init__(self, count: int) -> None:
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, (ROOT, os.environ.get("PYTHONPATH")))),
-                   **ONE_THREAD)
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, (ROOT, os.environ.get("PYTHONPATH")))))
         self.procs = [subprocess.Popen([sys.executable, "-m", MODULE], stdin=subprocess.PIPE,
                                        stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env)
                       for _ in range(count)]
