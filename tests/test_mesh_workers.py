@@ -5,12 +5,14 @@ answered by a serial read, and the decision shown by --explain."""
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 from helpers import same_mesh as _same
 
 from wgpurender.core.errors import UserError
-from wgpurender.core.models import mesh_workers, obj_cached, procedural, worker_processes
+from wgpurender.core.models import obj_cached, obj_cached_chunks, procedural
 from wgpurender.core.models.mesh import load_mesh
 from wgpurender.core.plan import mesh_loading, resolve_plan
 from wgpurender.core.plan import meshes as plan_meshes
@@ -129,23 +131,20 @@ def test_the_read_rule_is_the_parents_before_any_worker(tmp_path):
 def test_a_dead_worker_leaves_the_rest_to_this_process(tmp_path, monkeypatch):
     names = _cubes(tmp_path, 3)
     scene = _scene(tmp_path, names)
-    real = worker_processes.claim
+    parent = os.getpid()
+    real = obj_cached_chunks.meshes
 
-    def a_dead_one(count):  # the worker killed before its request: its chunks are this process's to read
-        pool = real(count)
-        pool.procs[0].kill()
-        pool.procs[0].wait()
-        return pool
+    def dies_in_a_worker(*args):
+        if os.getpid() != parent:  # the forked worker has this module as patched here
+            os._exit(3)
+        return real(*args)
 
-    monkeypatch.setattr(worker_processes, "claim", a_dead_one)
-    read = []
-    real_read = mesh_workers.read_chunk
-    monkeypatch.setattr(mesh_workers, "read_chunk", lambda chunk, where: read.append(chunk) or real_read(chunk, where))
+    monkeypatch.setattr(obj_cached_chunks, "meshes", dies_in_a_worker)
     general = []  # the chunks a dead worker left are read here the same way, not by the general loader
     real_general = plan_meshes.load_mesh
     monkeypatch.setattr(plan_meshes, "load_mesh", lambda path, **kw: general.append(path) or real_general(path, **kw))
     served = _meshes(resolve_plan(scene, None, mesh_workers="on"))
-    assert general == [] and [path.name for path, _ in read[0]] == names  # its one chunk, read here
+    assert general == []
     for got, name in zip(served, names, strict=True):
         _same(got, load_mesh(tmp_path / name, generate_tangents=False))
 

@@ -79,7 +79,7 @@ def _running(pid: int) -> bool:
 def test_a_reading_never_finished_ends_its_workers(tmp_path):
     names = _cubes(tmp_path, 2)
     reading = mesh_workers.Reading([(tmp_path / n, False) for n in names], 1, None)
-    pids = [p.pid for p in reading.pool.procs]
+    pids = [p.pid for p in reading.pool._processes.values()]
     assert pids and all(_running(pid) for pid in pids)
     del reading
     gc.collect()

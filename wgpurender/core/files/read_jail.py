@@ -179,12 +179,6 @@ def _vouched(path: Path) -> Path:
     return path
 
 
-def vouch(paths: list[str]) -> None:
-    """Take ``paths`` as let through by the rule: a mesh worker's parent checked them (core/models/
-    mesh_worker_main.py), so :func:`open_checked` verifies that the file it opens is still the one checked."""
-    _CHECKED.update(paths)
-
-
 def open_checked(path: str | os.PathLike) -> BinaryIO:
     """``path`` opened for reading (binary). When the rule let it through (:func:`model_file`, :func:`outside`),
     the file opened is the file checked: no final link followed (O_NOFOLLOW), no FIFO waited on (O_NONBLOCK), a

@@ -7,14 +7,18 @@ regular file, within the size limit) and parses it as the serial load does (core
 mesh is the serial load's; a chunk's meshes are cached as one entry (core/models/obj_cached_chunks.py). A worker
 sends back packed meshes (core/models/mesh_pack.py) in chunks; a refused file comes back as its one-line message,
 which the parent raises as the same :class:`UserError`, for the first such file in draw order. A file that is not
-a simple OBJ comes back as None and is loaded by the parent the general way. Workers are fresh interpreters of our
-own worker module (core/models/worker_processes.py: no fork of this process, no re-run of the caller's main
-module); if one dies, its chunks not read yet are loaded here.
+a simple OBJ comes back as None and is loaded by the parent the general way. Workers are forked (POSIX ``fork``: no
+re-import of the caller's main module, no start-up beyond the fork); if one dies, the chunks not read yet are
+loaded serially.
 """
 
 from __future__ import annotations
 
 import functools
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from itertools import repeat
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +26,7 @@ import numpy as np
 from wgpurender.core.errors import UserError
 from wgpurender.core.files import read_jail
 from wgpurender.core.files.input_files import check_size, input_file
-from wgpurender.core.models import mesh_pack, obj_cached_chunks, worker_processes
+from wgpurender.core.models import mesh_pack, obj_cached, obj_cached_chunks
 from wgpurender.core.models.mesh import Mesh
 
 CHUNK = 64  # files per task at least: one round trip carries 64 packed cubes or more (~200 KB)
@@ -31,37 +35,48 @@ Job = tuple[Path, bool]  # (model file, make tangents)
 
 
 def load_all(jobs: list[Job], workers: int, where: Path | None) -> dict[Job, Mesh | None]:
-    """Every job's mesh (None: not a simple OBJ file), read by ``workers`` worker processes; raises the
+    """Every job's mesh (None: not a simple OBJ file), read by ``workers`` forked processes; raises the
     UserError of the first refused file in ``jobs`` order."""
     return Reading(jobs, workers, where).finish()
 
 
 class Reading:
-    """The jobs handed to ``workers`` worker processes at once (booted ahead by the scene's load when it could:
-    core/models/worker_processes.py; they read while this process goes on: the renderer sets up what needs no
-    mesh meanwhile); :meth:`finish` takes their meshes, in ``jobs`` order, and reads here what a dead worker
-    left. A reading never finished ends its workers when it goes (the pool's finalizer)."""
+    """The jobs handed to ``workers`` forked processes at once (they read while this process goes on: the
+    renderer sets up what needs no mesh meanwhile); :meth:`finish` takes their meshes, in ``jobs`` order, and
+    reads here what a dead worker left. A reading never finished ends its workers when it goes (the executor's
+    own collection hook)."""
 
     def __init__(self, jobs: list[Job], workers: int, where: Path | None) -> None:
         size = max(CHUNK, -(-len(jobs) // (workers * CHUNKS_PER_WORKER)))
         self.chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
         self.where = where
-        self.pool = worker_processes.claim(workers)  # a worker with no chunk gets an empty request and ends
-        checked = [str(path) for path, _ in jobs if read_jail.is_checked(path)]  # the rule let these through
-        self.results = self.pool.read(self.chunks, checked, where)
+        _before_fork()
+        self.pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+        # every chunk submitted now (Executor.map submits eagerly), read back in order by finish()
+        self.results = self.pool.map(read_chunk, self.chunks, repeat(where))
 
     def finish(self) -> dict[Job, Mesh | None]:
         meshes: dict[Job, Mesh | None] = {}
+        done = 0
         try:
-            for chunk, result in zip(self.chunks, self.results, strict=True):  # in order, each as soon as read
-                try:
-                    answer = result.result()
-                except worker_processes.WorkerDied:  # killed, out of memory: its chunks read here
-                    answer = read_chunk(chunk, self.where)
-                _take(chunk, answer, meshes)  # unpacked here while the workers read the next chunks
+            for result in self.results:  # in order, each as soon as it is read
+                _take(self.chunks[done], result, meshes)  # unpacked here while the workers read the next chunks
+                done += 1
+        except BrokenProcessPool:  # a worker died (killed, out of memory): the rest in this process
+            pass
         finally:
-            self.pool.end()  # a refusal ends the workers still reading
+            self.pool.shutdown(wait=True, cancel_futures=True)  # a refusal stops the chunks not started yet
+        for chunk in self.chunks[done:]:
+            _take(chunk, read_chunk(chunk, self.where), meshes)
         return meshes
+
+
+def _before_fork() -> None:
+    """What every worker would otherwise do first, each on its own: import trimesh's ``unmerge_faces`` (the
+    simple reader's, ~0.1 s) and hash the parser's source for the cache key (obj_cached.parser_version)."""
+    from trimesh.visual.texture import unmerge_faces  # noqa: F401
+
+    obj_cached.parser_version()
 
 
 def _take(chunk: list[Job], result: tuple[list[tuple[str, object]], bytes],

@@ -31,10 +31,6 @@ class PlanMeshes:
         self._obj_keys = obj_keys(plan.scene_pass.draws, models)  # the OBJ files, worked out once per plan
         self._store = len({path for path, _ in self._obj_keys}) < MIN_FILES
         self._reading = None  # the workers' reads, when started ahead (start_reading)
-        if not plan.mesh_workers:  # workers the scene's load booted ahead, not wanted after all
-            from wgpurender.core.models.worker_processes import drop_booted
-
-            drop_booted()
 
     def mesh(self, key: tuple) -> Mesh:
         """The loaded mesh of a draw's ``mesh_key`` (its file and pose); tangents only when a variant drawing it

@@ -9,7 +9,6 @@ from pathlib import Path
 from wgpurender.core.errors import UserError
 from wgpurender.core.files.assets import resolve_scene
 from wgpurender.core.files.input_files import MAX_NESTING, input_file, nesting_depth
-from wgpurender.core.plan.mesh_loading import MIN_FILES
 from wgpurender.core.scene import toml_cache
 from wgpurender.core.scene.checker import Checker
 from wgpurender.core.scene.environment_block import parse_environment
@@ -42,10 +41,6 @@ def parse_scene(text: str, path: str | Path = "<scene>") -> Scene:
     if data is None or nesting_depth(data) > MAX_NESTING:
         raise UserError(f"{path}: tables and arrays are nested more than {MAX_NESTING} deep; a scene needs 3 "
                         "(e.g. [[models]] with a position array)")
-    if isinstance(data, dict) and isinstance(data.get("models"), list) and len(data["models"]) >= MIN_FILES:
-        from wgpurender.core.models.worker_processes import boot_ahead
-
-        boot_ahead(data["models"])  # the mesh workers start up while the models are checked (issue 31.3)
     c = Checker(path, text)
     c.table(data, (), TOP_KEYS, required=("camera",))
     materials = {}
