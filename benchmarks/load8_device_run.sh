@@ -1,7 +1,8 @@
 #!/bin/sh
 # Issue 31.3's load, eighth pass (load8 engineer, 2026-11-27 late): the mesh workers as fresh interpreters booted
-# while the scene is checked, against main's forked workers, on the GPU machine in one call of at most 3 minutes
-# (the machine's start included). Run from a copy of the branch in a folder of main's checkout, with main's tree
+# while the scene is checked, against main's forked workers (branch commit 7b5f49c; the fresh workers and
+# their tests were reverted after this call: docs/perf-h100/2026-11-27-load8/README.md says why), on the GPU
+# machine in one call of at most 3 minutes (the machine's start included). Run from a copy of the branch in a folder of main's checkout, with main's tree
 # (`git archive main wgpurender assets/textures shaders_wgsl`) in a second folder beside it; the device tool
 # carries both, and .gl/ and .whl/: `cd .load8 && ln -s ../.gl .gl && ln -s ../.whl .whl && sh
 # benchmarks/load8_device_run.sh`.
