@@ -207,5 +207,6 @@ def test_counts_reach_the_scene_scale_family(monkeypatch, tmp_path):
     monkeypatch.setattr(scale, "bench_scale",
                         lambda ctx, counts, *a, **k: got.setdefault("counts", counts) and ([], []))
     monkeypatch.setattr("wgpurender.bench.scale_pygfx.pygfx_peer", lambda: None)
+    monkeypatch.setattr("wgpurender.bench.scale_pygfx.pygfx_pair", lambda: None)
     assert main(["bench", "perf", "--only", "scene-scale", "--counts", "1000, 10000", "--out", str(tmp_path)]) == 0
     assert got["counts"] == [1000, 10000]
