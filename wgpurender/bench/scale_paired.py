@@ -76,7 +76,7 @@ def paired_rows(rounds: list[Round], n: int, size: tuple[int, int], frames: int 
     """The goal's row (ratio/N, :data:`PAIRED`), each side's :data:`PAIRED_FRAME` row and the :data:`CLOCK` row."""
     s, span = size_text(size), clock_span([r.clock for r in rounds])
     how = (f"{len(rounds)} rounds, {frames} frames with readback a side each, the order flipped each round; "
-           f"SM clock {span}")
+           f"{span}")
     out = [Result.of("scene-scale", f"ratio/{n}", "wgpu/pygfx", s, PAIRED, Stats.of([r.ratio for r in rounds]),
                      f"median of the rounds' ratios, wgpu instanced / pygfx InstancedMesh (goal <= 0.5): {how}")]
     for side, case in zip(SIDES, (f"instanced/{n}", f"pygfx/{n}"), strict=True):

@@ -25,8 +25,9 @@ def sm_clock(missing: str = "?") -> str:
 
 
 def clock_span(clocks: list[str]) -> str:
-    """``"1080-1980 MHz"`` over the readings that are numbers (one value when all agree), else :data:`NO_CLOCK`."""
+    """``"SM clock 1080-1980 MHz"`` over the readings that are numbers (one value when all agree), else
+    :data:`NO_CLOCK`."""
     mhz = sorted(int(c) for c in clocks if c.isdigit())
     if not mhz:
         return NO_CLOCK
-    return f"{mhz[0]} MHz" if mhz[0] == mhz[-1] else f"{mhz[0]}-{mhz[-1]} MHz"
+    return f"SM clock {mhz[0]} MHz" if mhz[0] == mhz[-1] else f"SM clock {mhz[0]}-{mhz[-1]} MHz"
