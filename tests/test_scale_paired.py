@@ -185,3 +185,21 @@ def test_without_pygfx_the_family_says_so_in_one_line(ctx, monkeypatch):
     _, notes = scale.bench_scale(ctx, [8], 2, (64, 48), log=lambda s: None, peer=None)
     assert [n for n in notes if "pygfx" in n] == [
         "scene-scale: pygfx is not installed (pip install 'wgpurender[bench]'): no pygfx rows"]
+
+
+def test_a_side_s_round_is_the_median_of_its_timed_frames():
+    times = iter([0.0, 0.001, 0.001, 0.002, 0.002, 0.012])  # timed frames of 1, 1 and 10 ms
+    assert scale_paired._median_frame(lambda: None, 3, lambda: next(times)) == pytest.approx(1.0)
+
+
+def test_bench_perf_s_scene_scale_carries_the_paired_rows_and_notes(monkeypatch):
+    from wgpurender.bench import perf, scale, scale_pygfx
+
+    mine = _row("ratio/50", "wgpu/pygfx", scale_paired.PAIRED, 0.3)
+    monkeypatch.setattr(scale, "bench_scale", lambda *a, **k: ([], ["sequential"]))
+    monkeypatch.setattr(scale_pygfx, "pygfx_pair", lambda: "side")
+    monkeypatch.setattr(scale_paired, "bench_paired",
+                        lambda ctx, counts, size, side, log: ([mine], [f"paired {counts} {side}"]))
+    run = perf.PerfRun(perf.PerfConfig(counts=(50,)), {})
+    perf._scene_scale(None, run.config, run, lambda s: None)
+    assert run.results == [mine] and run.notes == ["sequential", "paired [50] side"]
