@@ -131,3 +131,16 @@ def test_a_draws_winding_follows_its_written_transform(tmp_path, transform):
     (draw,) = plan.scene_pass.draws
     negatives = transform.count("-1")
     assert plan.pipeline(draw.pipeline_key).front_face == ("cw" if negatives % 2 else "ccw")
+
+
+def test_a_name_holding_this_systems_separator_is_not_made_a_folders_child(tmp_path, monkeypatch):
+    """On Windows a backslash separates folders: "sub\\x.obj" is two names, and pathlib's child maker would make it
+    ONE part (its parent the scene's folder, its name "sub\\x.obj": a path unequal to the same file named any other
+    way), where os.path.join and Path parse it. names_in must leave such a value to the one-by-one resolve. Played
+    here by making os.sep a backslash for the call (what os.path.split and Path use stays POSIX's)."""
+    procedural.write_obj(tmp_path / "a.obj", procedural.box(1.0))
+    resolver = FolderResolver()
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "sep", "\\")
+        got = resolver.names_in(str(tmp_path), ["a.obj", "sub\\x.obj"])
+    assert got == [tmp_path.resolve() / "a.obj", None]
