@@ -2584,6 +2584,8 @@ MUTATIONS = [
     ("wgpurender/cli/bench.py", "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES)",
      "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES + 1)",
      ["tests/test_bench_control.py"]),
+    ("wgpurender/core/files/input_files.py", "                    or os.sep in value or (os.altsep and",
+     "                    or (os.altsep and", ["tests/test_path_facts_once.py"]),
 ]
 
 
