@@ -41,8 +41,8 @@ def _register_perf(suites) -> None:
                    help="run only these families (repeatable, or comma-separated): frames, scene, post, msaa-post, "
                    "objects, scene-scale, control, startup")
     p.add_argument("--counts", default=None, metavar="N,N",
-                   help="scene-scale's counts, comma-separated (default 1000,10000,100000,1000000; 50,200 with "
-                   "--quick)")
+                   help="scene-scale's counts, comma-separated, each within a scene's bound on copies of one "
+                   "model (default 1000,10000,100000,1000000; 50,200 with --quick)")
     big = p.add_mutually_exclusive_group()
     big.add_argument("--big", dest="big", action="store_true", default=None,
                      help="add 3840x2160 (default: when the adapter is not a CPU)")
