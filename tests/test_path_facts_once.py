@@ -144,3 +144,26 @@ def test_a_name_holding_this_systems_separator_is_not_made_a_folders_child(tmp_p
         patch.setattr(os, "sep", "\\")
         got = resolver.names_in(str(tmp_path), ["a.obj", "sub\\x.obj"])
     assert got == [tmp_path.resolve() / "a.obj", None]
+
+
+DEEP = 10_000
+DEEP_SHAPES = {  # every way TOML nests: tomllib recurses on the first three, builds the rest in a loop
+    "arrays": "x = " + "[" * DEEP + "]" * DEEP,
+    "inline tables": "x = " + "{a = " * DEEP + "1" + "}" * DEEP,
+    "inline tables in arrays": "x = " + "[{a = " * (DEEP // 2) + "1" + "}]" * (DEEP // 2),
+    "a table header": "[" + ".".join(["a"] * DEEP) + "]",
+    "an array-of-tables header": "[[" + ".".join(["a"] * DEEP) + "]]",
+    "a dotted key": ".".join(["a"] * DEEP) + " = 1",
+    "arrays under a deep header": "[" + ".".join(["a"] * 20) + "]\nb = " + "[" * 20 + "]" * 20,
+}
+
+
+@pytest.mark.parametrize("shape", list(DEEP_SHAPES))
+def test_a_scene_nested_deeper_than_the_bound_in_any_shape_is_one_line(shape):
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.scene.load import parse_scene
+
+    with pytest.raises(UserError) as err:
+        parse_scene(HEAD + DEEP_SHAPES[shape] + "\n", "/nowhere/s.toml")
+    message = str(err.value)
+    assert "\n" not in message and f"nested more than {input_files.MAX_NESTING} deep" in message, message
