@@ -7,6 +7,14 @@ object blocks the scene pass uploads and of the vertex and index bytes drawn, an
 instanced's.
 
     python benchmarks/batched_gpu_probe.py OUT.csv [N,N,...]
+    python benchmarks/batched_gpu_probe.py --alone SCENE N OUT.csv
+        one scene alone in this process (bench perf's order: loaded, then measured as scene-scale measures it),
+        a row appended to OUT.csv with the SM clock before and after (nvidia-smi, where there is one)
+
+The first call (the late session's, 20:05 UTC on the H100) read the three scenes of a count alike when
+interleaved (1k: 0.40-0.42 ms; 10k: 1.56-1.60), where bench perf's rows, measured one scene after another in
+one process, read instanced 0.107 / 0.273 ms and batched 0.616 / 1.564: ``--alone`` runs each scene in a fresh
+process, in either order, to tell the scene from the order.
 """
 
 from __future__ import annotations
@@ -45,7 +53,47 @@ def facts(runner: SceneRunner) -> dict:
             "instance_data": runner.renderer.plan.instance_data}
 
 
+def sm_clock() -> str:
+    import subprocess
+
+    try:
+        done = subprocess.run(["nvidia-smi", "--query-gpu=clocks.sm", "--format=csv,noheader,nounits"],
+                              capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.TimeoutExpired):
+        return ""
+    return done.stdout.strip()
+
+
+def alone(name: str, n: int, out: Path) -> int:
+    """One scene in this process, measured as bench/scale.py's bench_case measures it (frames.measure)."""
+    from wgpurender.bench.frames import measure
+
+    ctx = get_context()
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        texture = folder / "brick_albedo.png"
+        shutil.copy(scale.brick_texture(), texture)
+        make = {"batched": scale.batched_scene, "distinct": scale.distinct_scene, "instanced": scale.instanced_scene}
+        runner = SceneRunner(ctx, make[name](folder, n, SIZE, texture), SIZE)
+        runner.frame(readback=True)
+        before = sm_clock()
+        samples = measure(runner, 100)
+        row = {"n": n, "scene": name, "gpu_ms": statistics.median(samples.gpu),
+               "cpu_ms": statistics.median(samples.cpu), "sm_mhz_before": before, "sm_mhz_after": sm_clock(),
+               **facts(runner)}
+    print(row, flush=True)
+    new = not out.exists()
+    with open(out, "a", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(row))
+        if new:
+            w.writeheader()
+        w.writerow(row)
+    return 0
+
+
 def main() -> int:
+    if sys.argv[1] == "--alone":
+        return alone(sys.argv[2], int(sys.argv[3]), Path(sys.argv[4]))
     out = Path(sys.argv[1])
     counts = [int(n) for n in (sys.argv[2] if len(sys.argv) > 2 else "1000,10000").split(",")]
     ctx = get_context()

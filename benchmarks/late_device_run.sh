@@ -4,8 +4,9 @@
 # pygfx) and control families; benchmarks/batched_gpu_probe.py (why batched/N's GPU time read 5.7x instanced/N's
 # in bench7's call); benchmarks/load_compare.py of this tree against the night's (6534ca3, carried in .lateold:
 # `git archive 6534ca3 wgpurender | tar -x -C .lateold`), batched and distinct 10k, cold and warm, alternating.
-# MODE frames: bench perf's frames, scene and control families in one call (the p99 rows beside the host's own
-# control), then the whole suite (as .gl/run_pytest.sh: pytester loaded, the wheel and fuzz tests left out).
+# MODE frames: each scene-scale scene alone in a fresh process, in two orders (batched_gpu_probe.py --alone: the
+# scale call read the three alike interleaved, bench perf's rows did not), bench perf's frames, scene and control
+# families in one call (the p99 rows beside the host's own control), then the whole suite (as .gl/run_pytest.sh: pytester loaded, the wheel and fuzz tests left out).
 # Each mode is one call (at most 10 minutes). Run from the repository root with .gl/ and .whl/ (and .lateold/)
 # carried: `sh benchmarks/late_device_run.sh MODE`. Writes $OUT/run.tgz.
 set -u
@@ -28,6 +29,14 @@ if [ "${1:-}" = scale ]; then
   cat "$D/commands.txt"; sed -n '/^## Targets/,/^## Tails/p' "$D/perf-scale/report.md" 2>/dev/null
   cat "$D/batched_gpu_probe.csv" "$D/load_compare.csv"
 else
+  for order in "instanced batched distinct" "distinct batched instanced"; do
+    for n in 1000 10000; do
+      for scene in $order; do
+        step "alone_${scene}_$n" 40 python3 benchmarks/batched_gpu_probe.py --alone "$scene" "$n" "$D/alone.csv"
+      done
+    done
+  done
+  rm -f "$D"/alone_*.log; cat "$D/alone.csv"
   step frames 260 python3 -m wgpurender bench perf --only frames,scene,control --out "$D/perf-frames"
   step tests 320 python3 -m pytest -q -p no:cacheprovider -n 15 -o addopts="" -p pytester --timeout 120 \
     --ignore tests/test_wheel.py --ignore tests/fuzz
