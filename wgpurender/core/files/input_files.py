@@ -175,11 +175,10 @@ _MAKE_CHILD = getattr(Path, "_make_child_relpath", None)  # pathlib's own, for a
 
 def _child(folder: Path, name: str) -> Path:
     """``folder / name`` for a plain ``name`` (no separator, not "." or ".."), made as pathlib makes the entries
-    of ``iterdir``: the folder's parts are not parsed again (:meth:`FolderResolver.names_in` over 10k files, lstat
-    included, on the 2-core lavapipe host: ~52 ms with it, ~62 with ``/``, ~73 parsing each joined string on
-    Python 3.11; ~55, ~97 and ~86 on 3.12). Where this Python's pathlib has no such maker (3.13), ``/`` makes
-    it (~94 ms there, against ~86 for a parsed string). The maker does not parse
-    ``name``: one holding a separator of this system (Windows: "\\" as well as "/") would become one part."""
+    of ``iterdir``: the folder's parts are not parsed again for each of a scene's 10k model files (load7's pass in
+    docs/benchmarks.md). Where this Python's pathlib has no such maker (3.13), ``/`` makes it. The maker does not
+    parse ``name``: one holding a separator of this system (Windows: "\\" as well as "/") would become one part,
+    so :meth:`FolderResolver.names_in` leaves such names to the one-by-one resolve."""
     return _MAKE_CHILD(folder, name) if _MAKE_CHILD is not None else folder / name
 
 
