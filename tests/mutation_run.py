@@ -2577,6 +2577,18 @@ MUTATIONS = [
      "mirror = model.transform is IDENTITY or model.transform.mirrors", [P7_T]),
     (SCENE_PASS, "(0, buffers.index_count) if draw.part is None else index_range(draw))",
      "(0, buffers.index_count))", [P7_PARTS]),
+    # review5: bench perf --counts bounded and ASCII (cli/bench.py _counts)
+    ("wgpurender/cli/bench.py", "all(p.isascii() and p.isdigit() and p.strip(\"0\") for p in parts)",
+     "all(p.isdigit() and p.strip(\"0\") for p in parts)", ["tests/test_bench_control.py"]),
+    ("wgpurender/cli/bench.py", "all(p.isascii() and p.isdigit() and p.strip(\"0\") for p in parts)",
+     "all(p.isascii() and p.isdigit() for p in parts)", ["tests/test_bench_control.py"]),
+    ("wgpurender/cli/bench.py", "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES)",
+     "if int(p) > MAX_INSTANCES)", ["tests/test_bench_control.py"]),
+    ("wgpurender/cli/bench.py", "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES)",
+     "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES + 1)",
+     ["tests/test_bench_control.py"]),
+    ("wgpurender/core/files/input_files.py", "                    or os.sep in value or (os.altsep and",
+     "                    or (os.altsep and", ["tests/test_path_facts_once.py"]),
     # bench8: issue 31's paired pygfx rounds, the SM clock's one home, the goal row judged on the paired row
     (B8_PY, "            order = names if k % 2 == 0 else names[::-1]", "            order = names", [B8_T]),
     (B8_PY, "            order = names if k % 2 == 0 else names[::-1]",

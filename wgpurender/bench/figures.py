@@ -49,6 +49,9 @@ RUNS = (
     ("NVIDIA H100, bench7 call (19:45 UTC: scene-scale at 1k and 10k with the batched case, N models of one file, "
      "and the control family, the host's own tail; few graphics units: render passes are raster-bound)",
      "perf-h100/2026-11-27-bench7", "perf/results.csv", None),
+    ("NVIDIA H100, late closing call (integrator, 20:05 UTC: scene-scale at 1k and 10k and the control on main with "
+     "load7, bench7 and the translate-only transform merged; few graphics units: render passes are raster-bound)",
+     "perf-h100/2026-11-27-late", "scale/perf-scale/results.csv", None),
     ("lavapipe, bench8 (20:14 UTC: scene-scale at 1k and 10k, the pygfx goal judged on paired rounds; the 2-core "
      "machine, shared with other engineers and this branch's mutation run)", "perf-lavapipe/2026-11-27-bench8",
      "run2/results.csv", None),
