@@ -3,11 +3,12 @@
 # translate-only transform merged. MODE scale: bench perf's scene-scale (1k, 10k: instanced, batched, distinct,
 # pygfx) and control families; benchmarks/batched_gpu_probe.py (why batched/N's GPU time read 5.7x instanced/N's
 # in bench7's call); benchmarks/load_compare.py of this tree against the night's (6534ca3, carried in .lateold:
-# `git archive 6534ca3 wgpurender | tar -x -C .lateold`), batched and distinct 10k, cold and warm, alternating.
+# `git archive 6534ca3 wgpurender assets/textures shaders_wgsl | tar -x -C .lateold`), batched and distinct 10k, cold and warm, alternating.
 # MODE final: each scene-scale scene alone in a fresh process, in two orders (batched_gpu_probe.py --alone: the
 # scale call read the three alike interleaved, bench perf's rows did not), then bench perf's scene-scale (with
 # bench8's paired pygfx rounds) and control families, and its frames, scene and control families (the p99 rows
-# beside the host's own control). MODE tests: the whole suite (as .gl/run_pytest.sh: pytester loaded, the wheel and fuzz tests left out).
+# beside the host's own control). MODE tests: the whole suite (as .gl/run_pytest.sh: pytester loaded, the wheel
+# and fuzz tests left out).
 # Each mode is one call (at most 10 minutes). Run from the repository root with .gl/ and .whl/ (and .lateold/)
 # carried: `sh benchmarks/late_device_run.sh MODE`. Writes $OUT/run.tgz.
 set -u
