@@ -32,6 +32,7 @@ import numpy as np
 from wgpurender.bench import scale
 from wgpurender.bench.frames import measure_interleaved
 from wgpurender.bench.scene import SceneRunner
+from wgpurender.bench.sm_clock import sm_clock
 from wgpurender.wgpu_path.device.context import get_context
 from wgpurender.wgpu_path.device.targets import read_texture
 
@@ -53,17 +54,6 @@ def facts(runner: SceneRunner) -> dict:
             "instance_data": runner.renderer.plan.instance_data}
 
 
-def sm_clock() -> str:
-    import subprocess
-
-    try:
-        done = subprocess.run(["nvidia-smi", "--query-gpu=clocks.sm", "--format=csv,noheader,nounits"],
-                              capture_output=True, text=True, timeout=10)
-    except (OSError, subprocess.TimeoutExpired):
-        return ""
-    return done.stdout.strip()
-
-
 def alone(name: str, n: int, out: Path) -> int:
     """One scene in this process, measured as bench/scale.py's bench_case measures it (frames.measure)."""
     from wgpurender.bench.frames import measure
@@ -76,10 +66,10 @@ def alone(name: str, n: int, out: Path) -> int:
         make = {"batched": scale.batched_scene, "distinct": scale.distinct_scene, "instanced": scale.instanced_scene}
         runner = SceneRunner(ctx, make[name](folder, n, SIZE, texture), SIZE)
         runner.frame(readback=True)
-        before = sm_clock()
+        before = sm_clock("")
         samples = measure(runner, 100)
         row = {"n": n, "scene": name, "gpu_ms": statistics.median(samples.gpu),
-               "cpu_ms": statistics.median(samples.cpu), "sm_mhz_before": before, "sm_mhz_after": sm_clock(),
+               "cpu_ms": statistics.median(samples.cpu), "sm_mhz_before": before, "sm_mhz_after": sm_clock(""),
                **facts(runner)}
     print(row, flush=True)
     new = not out.exists()

@@ -21,7 +21,6 @@ from __future__ import annotations
 import argparse
 import csv
 import statistics
-import subprocess
 import sys
 from pathlib import Path
 
@@ -32,6 +31,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from wgpurender.bench.post_roofline import COPY_WGSL, dispatch_bytes  # noqa: E402
+from wgpurender.bench.sm_clock import sm_clock  # noqa: E402
 from wgpurender.core.plan import resolve_plan  # noqa: E402
 from wgpurender.core.scene import load_scene  # noqa: E402
 from wgpurender.wgpu_path.device.context import get_context  # noqa: E402
@@ -65,15 +65,6 @@ LUMA_TONEMAP = "tonemap luma"
 def tonemap_of(name: str, names) -> str:
     """The tonemap case whose image an FXAA case reads: the luma-writing one for a gather case (when timed)."""
     return LUMA_TONEMAP if name.startswith("fxaa gather") and LUMA_TONEMAP in names else "tonemap (plan)"
-
-
-def sm_clock() -> str:
-    try:
-        out = subprocess.run(["nvidia-smi", "--query-gpu=clocks.sm", "--format=csv,noheader,nounits"],
-                             capture_output=True, text=True, timeout=10).stdout.strip()
-        return out or "?"
-    except (OSError, subprocess.SubprocessError):
-        return "?"
 
 
 class CopyCase:

@@ -180,6 +180,9 @@ B7_SC, B7_CT, B7_MS = "wgpurender/bench/scale.py", "wgpurender/bench/control.py"
 B7_PERF, B7_CLI = "wgpurender/bench/perf.py", "wgpurender/cli/bench.py"
 B7_BT, B7_CTL = "tests/test_bench_scale_batched.py", "tests/test_bench_control.py"
 B7_ROWS = "tests/test_bench_perf_rows.py"
+B8_PY, B8_CLK, B8_GOAL = ("wgpurender/bench/scale_paired.py", "wgpurender/bench/sm_clock.py",
+                          "wgpurender/bench/markdown_pygfx.py")  # bench8's rows (issue 31's paired pygfx rounds)
+B8_T = "tests/test_scale_paired.py"
 MUTATIONS = [
     # comparison and heatmap
     ("wgpurender/core/verdict/compare.py", "10 * np.log10(1.0 / mse)", "20 * np.log10(1.0 / mse)", [COMPARE, REPORT]),
@@ -2574,6 +2577,66 @@ MUTATIONS = [
      "mirror = model.transform is IDENTITY or model.transform.mirrors", [P7_T]),
     (SCENE_PASS, "(0, buffers.index_count) if draw.part is None else index_range(draw))",
      "(0, buffers.index_count))", [P7_PARTS]),
+    # review5: bench perf --counts bounded and ASCII (cli/bench.py _counts)
+    ("wgpurender/cli/bench.py", "all(p.isascii() and p.isdigit() and p.strip(\"0\") for p in parts)",
+     "all(p.isdigit() and p.strip(\"0\") for p in parts)", ["tests/test_bench_control.py"]),
+    ("wgpurender/cli/bench.py", "all(p.isascii() and p.isdigit() and p.strip(\"0\") for p in parts)",
+     "all(p.isascii() and p.isdigit() for p in parts)", ["tests/test_bench_control.py"]),
+    ("wgpurender/cli/bench.py", "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES)",
+     "if int(p) > MAX_INSTANCES)", ["tests/test_bench_control.py"]),
+    ("wgpurender/cli/bench.py", "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES)",
+     "if len(p.lstrip(\"0\")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES + 1)",
+     ["tests/test_bench_control.py"]),
+    ("wgpurender/core/files/input_files.py", "                    or os.sep in value or (os.altsep and",
+     "                    or (os.altsep and", ["tests/test_path_facts_once.py"]),
+    # bench8: issue 31's paired pygfx rounds, the SM clock's one home, the goal row judged on the paired row
+    (B8_PY, "            order = names if k % 2 == 0 else names[::-1]", "            order = names", [B8_T]),
+    (B8_PY, "            order = names if k % 2 == 0 else names[::-1]",
+     "            order = names if k % 2 == 1 else names[::-1]", [B8_T]),
+    (B8_PY, "            reading = clock()\n            ms = {name: _median_frame(sides[name], frames, timer) "
+     "for name in order}", "            ms = {name: _median_frame(sides[name], frames, timer) for name in order}\n"
+     "            reading = clock()", [B8_T]),
+    (B8_PY, "            out.append(Round(order[0], reading, ms))",
+     "            out.append(Round(names[0], reading, ms))",
+     [B8_T]),
+    (B8_PY, '        return self.ms["wgpu"] / self.ms["pygfx"]', '        return self.ms["pygfx"] / self.ms["wgpu"]',
+     [B8_T]),
+    (B8_PY, "    draw()\n    times = []", "    times = []", [B8_T]),
+    (B8_PY, "    return statistics.median(times)", "    return statistics.mean(times)", [B8_T]),
+    (B8_PY, "        times.append((timer() - start) * 1e3)", "        times.append((timer() - start) * 1e6)",
+     [B8_T]),
+    (B8_PY, "PAIRED, Stats.of([r.ratio for r in rounds]),", 'PAIRED, Stats.of([r.ms["wgpu"] for r in rounds]),',
+     [B8_T]),
+    (B8_PY, 'zip(SIDES, (f"instanced/{n}", f"pygfx/{n}"), strict=True)',
+     'zip(SIDES, (f"pygfx/{n}", f"instanced/{n}"), strict=True)', [B8_T]),
+    (B8_PY, "    mhz = [int(r.clock) for r in rounds if r.clock.isdigit()]",
+     "    mhz = [int(r.clock) for r in rounds[1:] if r.clock.isdigit()]", [B8_T]),
+    (B8_PY, "statistics.median(mhz), min(mhz),\n                          max(mhz),",
+     "statistics.median(mhz), max(mhz),\n                          min(mhz),", [B8_T]),
+    (B8_PY, "    if pygfx_side is None:\n        return [], []", "    if pygfx_side is None:\n        return [], ['']",
+     [B8_T]),
+    (B8_PY, '            log(f"  scene-scale: paired wgpu/pygfx {n}")', "            pass", [B8_T]),
+    (B8_CLK, "    return first if first.isdigit() else missing", "    return first", [B8_T]),
+    (B8_CLK, '    first = out.splitlines()[0].strip() if out else ""', '    first = out.strip() if out else ""',
+     [B8_T]),
+    (B8_CLK, "    except (OSError, subprocess.SubprocessError):", "    except subprocess.SubprocessError:", [B8_T]),
+    (B8_CLK, "    mhz = sorted(int(c) for c in clocks if c.isdigit())",
+     "    mhz = [int(c) for c in clocks if c.isdigit()]", [B8_T]),
+    (B8_CLK, "if mhz[0] == mhz[-1] else", "if mhz[0] <= mhz[-1] else", [B8_T]),
+    (B8_CLK, "    if not mhz:\n        return NO_CLOCK", "    if not mhz:\n        return ''", [B8_T]),
+    (B8_GOAL, "                    verdict(paired.median <= GOAL)))",
+     "                    verdict(paired.median < 0.3)))",
+     [B8_T]),
+    (B8_GOAL, "        if paired is None:\n", "        if paired is not None:\n", [B8_T]),
+    (B8_GOAL, "    lo, hi = round(row.p10), round(row.p90)", "    lo, hi = round(row.p10), round(row.median)", [B8_T]),
+    (B8_GOAL, "    if row.n == 0:", "    if row.n != 0:", [B8_T]),
+    (B8_GOAL, '    if row is None:\n        return "SM clock not recorded"', '    if row is None:\n        return ""',
+     [B8_T]),
+    ("wgpurender/bench/markdown_scale.py", "    out = pygfx_targets(res, verdict)", "    out = []",
+     ["tests/test_benchmark_figures.py"]),
+    ("wgpurender/bench/perf.py", "    run.results += results + ratio_rows(results) + paired",
+     "    run.results += results + ratio_rows(results)", [B8_T]),
+    ("wgpurender/bench/scale_pygfx.py", "    return pygfx_side if _installed() else None", "    return None", [B8_T]),
 ]
 
 

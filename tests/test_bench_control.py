@@ -14,6 +14,7 @@ import pytest
 
 from wgpurender.bench import control, markdown_scale
 from wgpurender.bench.report import Result
+from wgpurender.core.scene.model import MAX_INSTANCES
 
 
 def _crc_ms(size: int, runs: int = 21) -> float:
@@ -184,7 +185,11 @@ def nothing_runs(monkeypatch):
     (["--only", "frames", "--counts", "1000"], "--only scene-scale"),
     (["--only", "scene-scale", "--counts", "1000,x"], "positive whole numbers"),
     (["--only", "scene-scale", "--counts", "0"], "positive whole numbers"),
-    (["--only", "scene-scale", "--counts", ","], "positive whole numbers")])
+    (["--only", "scene-scale", "--counts", ","], "positive whole numbers"),
+    (["--only", "scene-scale", "--counts", "1000,\u00b2"], "positive whole numbers"),  # str.isdigit's, not int's
+    (["--only", "scene-scale", "--counts", str(MAX_INSTANCES + 1)], f"at most {MAX_INSTANCES}"),
+    (["--only", "scene-scale", "--counts", "1" + "0" * 40], f"at most {MAX_INSTANCES}"),
+    (["--only", "scene-scale", "--counts", "9" * 5000], f"at most {MAX_INSTANCES}")])  # past int()'s 4300 digits
 def test_bad_counts_are_one_line(capsys, tmp_path, nothing_runs, args, words):
     from wgpurender.cli import main
 
@@ -207,5 +212,6 @@ def test_counts_reach_the_scene_scale_family(monkeypatch, tmp_path):
     monkeypatch.setattr(scale, "bench_scale",
                         lambda ctx, counts, *a, **k: got.setdefault("counts", counts) and ([], []))
     monkeypatch.setattr("wgpurender.bench.scale_pygfx.pygfx_peer", lambda: None)
+    monkeypatch.setattr("wgpurender.bench.scale_pygfx.pygfx_pair", lambda: None)
     assert main(["bench", "perf", "--only", "scene-scale", "--counts", "1000, 10000", "--out", str(tmp_path)]) == 0
     assert got["counts"] == [1000, 10000]

@@ -131,3 +131,39 @@ def test_a_draws_winding_follows_its_written_transform(tmp_path, transform):
     (draw,) = plan.scene_pass.draws
     negatives = transform.count("-1")
     assert plan.pipeline(draw.pipeline_key).front_face == ("cw" if negatives % 2 else "ccw")
+
+
+def test_a_name_holding_this_systems_separator_is_not_made_a_folders_child(tmp_path, monkeypatch):
+    """On Windows a backslash separates folders: "sub\\x.obj" is two names, and pathlib's child maker would make it
+    ONE part (its parent the scene's folder, its name "sub\\x.obj": a path unequal to the same file named any other
+    way), where os.path.join and Path parse it. names_in must leave such a value to the one-by-one resolve. Played
+    here by making os.sep a backslash for the call (what os.path.split and Path use stays POSIX's)."""
+    procedural.write_obj(tmp_path / "a.obj", procedural.box(1.0))
+    resolver = FolderResolver()
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "sep", "\\")
+        got = resolver.names_in(str(tmp_path), ["a.obj", "sub\\x.obj"])
+    assert got == [tmp_path.resolve() / "a.obj", None]
+
+
+DEEP = 10_000
+DEEP_SHAPES = {  # every way TOML nests: tomllib recurses on the first three, builds the rest in a loop
+    "arrays": "x = " + "[" * DEEP + "]" * DEEP,
+    "inline tables": "x = " + "{a = " * DEEP + "1" + "}" * DEEP,
+    "inline tables in arrays": "x = " + "[{a = " * (DEEP // 2) + "1" + "}]" * (DEEP // 2),
+    "a table header": "[" + ".".join(["a"] * DEEP) + "]",
+    "an array-of-tables header": "[[" + ".".join(["a"] * DEEP) + "]]",
+    "a dotted key": ".".join(["a"] * DEEP) + " = 1",
+    "arrays under a deep header": "[" + ".".join(["a"] * 20) + "]\nb = " + "[" * 20 + "]" * 20,
+}
+
+
+@pytest.mark.parametrize("shape", list(DEEP_SHAPES))
+def test_a_scene_nested_deeper_than_the_bound_in_any_shape_is_one_line(shape):
+    from wgpurender.core.errors import UserError
+    from wgpurender.core.scene.load import parse_scene
+
+    with pytest.raises(UserError) as err:
+        parse_scene(HEAD + DEEP_SHAPES[shape] + "\n", "/nowhere/s.toml")
+    message = str(err.value)
+    assert "\n" not in message and f"nested more than {input_files.MAX_NESTING} deep" in message, message

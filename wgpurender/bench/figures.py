@@ -52,6 +52,11 @@ RUNS = (
     ("NVIDIA H100, late closing call (integrator, 20:05 UTC: scene-scale at 1k and 10k and the control on main with "
      "load7, bench7 and the translate-only transform merged; few graphics units: render passes are raster-bound)",
      "perf-h100/2026-11-27-late", "scale/perf-scale/results.csv", None),
+    ("lavapipe, bench8 (20:14 UTC: scene-scale at 1k and 10k, the pygfx goal judged on paired rounds; the 2-core "
+     "machine, shared with other engineers and this branch's mutation run)", "perf-lavapipe/2026-11-27-bench8",
+     "run2/results.csv", None),
+    ("lavapipe, bench8 (20:15 UTC: the same command again; the 2-core machine, shared with other engineers)",
+     "perf-lavapipe/2026-11-27-bench8", "run3/results.csv", None),
 )
 
 

@@ -2,7 +2,8 @@
 
 Targets, each judged from the run's rows (never from a number written here):
 
-- 10k instances at most 0.5x pygfx ``InstancedMesh``'s frame time (both timed with the readback);
+- 10k instances at most 0.5x pygfx ``InstancedMesh``'s frame time (both timed with the readback), judged on the
+  paired rounds (bench/markdown_pygfx.py);
 - a 10k-object scene loads in at most 1 s (the instanced one; the batched one, N models of one mesh file, and the
   distinct one where they were measured);
 - CPU per frame does not grow with the instance count: the largest count's CPU median at most
@@ -16,6 +17,7 @@ Targets, each judged from the run's rows (never from a number written here):
 
 from __future__ import annotations
 
+from wgpurender.bench.markdown_pygfx import pygfx_targets
 from wgpurender.bench.report import Result, fmt_ms, markdown_table
 
 CPU_GROWTH = 1.5  # "does not grow": the noise of a sub-millisecond median between two cases, not a trend
@@ -36,11 +38,7 @@ def _count(case: str) -> int:
 
 def targets(res: list[Result], verdict) -> list[tuple[str, str, str]]:
     """(target, measured, status) rows; ``verdict(met, applies="")`` is the report's judge."""
-    out = []
-    ratio = next((r for r in res if r.family == "scene-scale" and r.case == "ratio/10000"), None)
-    if ratio is not None:
-        out.append(("10k instances <= 0.5x pygfx InstancedMesh frame time",
-                    f"{ratio.median:.2f}x (frame with readback, same adapter, same run)", verdict(ratio.median <= 0.5)))
+    out = pygfx_targets(res, verdict)
     loads = _rows(res, "load_ms")
     for kind, words in LOAD_KINDS:
         r = loads.get(f"{kind}/10000")

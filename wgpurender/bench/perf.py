@@ -243,14 +243,16 @@ def _objects(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
 def _scene_scale(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:
     """N instanced copies and N distinct meshes of a lit, textured cube; pygfx beside (bench/scale.py)."""
     from wgpurender.bench.scale import COUNTS, QUICK_COUNTS, bench_scale, ratio_rows
-    from wgpurender.bench.scale_pygfx import pygfx_peer
+    from wgpurender.bench.scale_paired import bench_paired
+    from wgpurender.bench.scale_pygfx import pygfx_pair, pygfx_peer
 
     counts = config.counts or (QUICK_COUNTS if config.quick else COUNTS)
     size = QUICK_SIZES[0] if config.quick else (800, 600)
     results, notes = bench_scale(ctx, list(counts), config.timed_frames(ctx, "scene-scale"), size, log,
                                  pygfx_peer())
-    run.results += results + ratio_rows(results)
-    run.notes += notes
+    paired, paired_notes = bench_paired(ctx, list(counts), size, pygfx_pair(), log=log)
+    run.results += results + ratio_rows(results) + paired
+    run.notes += notes + paired_notes
 
 
 def _control(ctx: GPUContext, config: PerfConfig, run: PerfRun, log) -> None:

@@ -78,13 +78,30 @@ class _Runner:
         return 0.0, None
 
 
-def pygfx_peer():
-    """:func:`bench_pygfx`, or None when pygfx is not installed (``pip install 'wgpurender[bench]'``)."""
+def _installed() -> bool:
     try:
         import pygfx  # noqa: F401
     except ImportError:
-        return None
-    return bench_pygfx
+        return False
+    return True
+
+
+def pygfx_peer():
+    """:func:`bench_pygfx`, or None when pygfx is not installed (``pip install 'wgpurender[bench]'``)."""
+    return bench_pygfx if _installed() else None
+
+
+def pygfx_pair():
+    """:func:`pygfx_side` (bench/scale_paired.py's peer), or None when pygfx is not installed."""
+    return pygfx_side if _installed() else None
+
+
+def pygfx_side(ctx: GPUContext, n: int, size: tuple[int, int]):
+    """pygfx's scene of ``n`` instanced cubes, drawn once: its draw function (render, submit, read back)."""
+    _select(ctx)
+    canvas, _ = build(n, size)
+    canvas.draw()
+    return canvas.draw
 
 
 def bench_pygfx(ctx: GPUContext, n: int, size: tuple[int, int], frames: int) -> list[Result]:

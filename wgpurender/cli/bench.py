@@ -41,8 +41,8 @@ def _register_perf(suites) -> None:
                    help="run only these families (repeatable, or comma-separated): frames, scene, post, msaa-post, "
                    "objects, scene-scale, control, startup")
     p.add_argument("--counts", default=None, metavar="N,N",
-                   help="scene-scale's counts, comma-separated (default 1000,10000,100000,1000000; 50,200 with "
-                   "--quick)")
+                   help="scene-scale's counts, comma-separated, each within a scene's bound on copies of one "
+                   "model (default 1000,10000,100000,1000000; 50,200 with --quick)")
     big = p.add_mutually_exclusive_group()
     big.add_argument("--big", dest="big", action="store_true", default=None,
                      help="add 3840x2160 (default: when the adapter is not a CPU)")
@@ -88,16 +88,24 @@ def run(args) -> int:
 
 
 def _counts(text: str | None, families: tuple[str, ...]) -> tuple[int, ...] | None:
-    """--counts as positive integers; refused where the scene-scale family does not run."""
+    """--counts as positive integers up to the scene's own bound on copies of one model (a count is an
+    instanced/N scene: its N offsets are made before the scene is read); refused where scene-scale does not run."""
     from wgpurender.core.errors import UserError
+    from wgpurender.core.scene.model import MAX_INSTANCES
 
     if text is None:
         return None
     if "scene-scale" not in families:
         raise UserError("--counts sets the scene-scale family's counts: add --only scene-scale, or leave it out")
     parts = [p.strip() for p in text.split(",") if p.strip()]
-    if not parts or not all(p.isdigit() and int(p) > 0 for p in parts):
+    # ASCII digits only: str.isdigit also passes "²", which int() refuses
+    if not parts or not all(p.isascii() and p.isdigit() and p.strip("0") for p in parts):
         raise UserError(f"--counts {text!r}: give positive whole numbers, comma-separated (e.g. --counts 1000,10000)")
+    big = next((p for p in parts if len(p.lstrip("0")) > len(str(MAX_INSTANCES)) or int(p) > MAX_INSTANCES), None)
+    if big is not None:  # the length first: int() refuses a string of over 4300 digits
+        shown = big if len(big) <= 20 else f"{big[:8]}... ({len(big)} digits)"
+        raise UserError(f"--counts {shown}: at most {MAX_INSTANCES} (copies of one model a scene may hold); "
+                        "give smaller counts")
     return tuple(int(p) for p in parts)
 
 

@@ -141,7 +141,7 @@ class FolderResolver:
         out: list[Path | None] = []
         for value in values:
             if type(value) is not str or not value.isprintable() or "/" in value or value in ("", ".", "..") \
-                    or (os.altsep and os.altsep in value):
+                    or os.sep in value or (os.altsep and os.altsep in value):  # Windows: "\\" too (_child's rule)
                 out.append(None)
                 continue
             text = given + value
@@ -175,8 +175,10 @@ _MAKE_CHILD = getattr(Path, "_make_child_relpath", None)  # pathlib's own, for a
 
 def _child(folder: Path, name: str) -> Path:
     """``folder / name`` for a plain ``name`` (no separator, not "." or ".."), made as pathlib makes the entries
-    of ``iterdir``: the folder's parts are not parsed again (10k model files: ~3 us a path, not ~30, on the
-    lavapipe host). Where this Python's pathlib has no such maker, ``/`` makes it."""
+    of ``iterdir``: the folder's parts are not parsed again for each of a scene's 10k model files (load7's pass in
+    docs/benchmarks.md). Where this Python's pathlib has no such maker (3.13), ``/`` makes it. The maker does not
+    parse ``name``: one holding a separator of this system (Windows: "\\" as well as "/") would become one part,
+    so :meth:`FolderResolver.names_in` leaves such names to the one-by-one resolve."""
     return _MAKE_CHILD(folder, name) if _MAKE_CHILD is not None else folder / name
 
 
