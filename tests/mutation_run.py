@@ -2527,7 +2527,8 @@ MUTATIONS = [
     (B7_PERF, '"objects", "scene-scale", CONTROL, "startup")', '"objects", "scene-scale", "startup")', [B7_CTL]),
     (B7_CLI, '    if "scene-scale" not in families:\n        raise UserError("--counts',
      '    if False:\n        raise UserError("--counts', [B7_CTL]),
-    (B7_CLI, "not all(p.isdigit() and int(p) > 0 for p in parts)", "not all(p.isdigit() for p in parts)", [B7_CTL]),
+    (B7_CLI, 'p.isascii() and p.isdigit() and p.strip("0") for p in parts)',
+     "p.isascii() and p.isdigit() for p in parts)", [B7_CTL]),
     (B7_CLI, "    return tuple(int(p) for p in parts)", "    return tuple(int(p) for p in parts[:1])", [B7_CTL]),
     (B7_CLI, "anisotropy=args.anisotropy, counts=counts)", "anisotropy=args.anisotropy)", [B7_CTL]),
     # late: a translate-only transform built without numpy (validate._translation_rows)

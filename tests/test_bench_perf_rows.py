@@ -171,15 +171,16 @@ def test_scale_loads_a_warm_up_scene_of_each_kind_before_the_first_timed_load(ct
 
 def test_scale_times_batched_beside_instanced_and_distinct_up_to_its_limit(ctx, monkeypatch):
     """Every count has instanced/N; batched/N (N models of one file) and distinct/N up to their own limits on
-    this adapter's kind (lavapipe: CPU), each named for its count."""
+    this adapter's kind (lavapipe: CPU; the H100: GPU; both set alike here), each named for its count."""
     timed = []
     monkeypatch.setattr(scale, "warm_up", lambda *a: None)
     monkeypatch.setattr(scale, "bench_case", lambda ctx_, path, case, size, frames: timed.append(
         (case, path.name)) or [])
-    monkeypatch.setattr(scale, "BATCHED_LIMITS", {"CPU": 3, "GPU": 0})
-    monkeypatch.setattr(scale, "DISTINCT_LIMITS", {"CPU": 20, "GPU": 0})
+    monkeypatch.setattr(scale, "BATCHED_LIMITS", {"CPU": 3, "GPU": 3})
+    monkeypatch.setattr(scale, "DISTINCT_LIMITS", {"CPU": 20, "GPU": 20})
+    kind = "CPU" if ctx.adapter.info["adapter_type"] == "CPU" else "GPU"
     _, notes = scale.bench_scale(ctx, [3, 20, 21], frames=1, size=(16, 12), log=lambda _: None)
     assert timed == [("instanced/3", "instanced_3.toml"), ("batched/3", "batched_3.toml"),
                      ("distinct/3", "distinct_3.toml"), ("instanced/20", "instanced_20.toml"),
                      ("distinct/20", "distinct_20.toml"), ("instanced/21", "instanced_21.toml")]
-    assert any("batched" in n and "stops at 3 on a CPU adapter" in n for n in notes)
+    assert any("batched" in n and f"stops at 3 on a {kind} adapter" in n for n in notes)
