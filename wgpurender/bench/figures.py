@@ -49,7 +49,7 @@ RUNS = (
     ("NVIDIA H100, bench7 call (19:45 UTC: scene-scale at 1k and 10k with the batched case, N models of one file, "
      "and the control family, the host's own tail; few graphics units: render passes are raster-bound)",
      "perf-h100/2026-11-27-bench7", "perf/results.csv", None),
-    ("NVIDIA H100, late closing call (integrator, 20:05 UTC: scene-scale at 1k and 10k and the control on main with "
+    ("NVIDIA H100, late scale call (integrator, 20:05 UTC: scene-scale at 1k and 10k and the control on main with "
      "load7, bench7 and the translate-only transform merged; few graphics units: render passes are raster-bound)",
      "perf-h100/2026-11-27-late", "scale/perf-scale/results.csv", None),
     ("lavapipe, bench8 (20:14 UTC: scene-scale at 1k and 10k, the pygfx goal judged on paired rounds; the 2-core "
@@ -57,6 +57,11 @@ RUNS = (
      "run2/results.csv", None),
     ("lavapipe, bench8 (20:15 UTC: the same command again; the 2-core machine, shared with other engineers)",
      "perf-lavapipe/2026-11-27-bench8", "run3/results.csv", None),
+    ("NVIDIA H100, late closing call (integrator, 20:24 UTC: scene-scale at 1k and 10k with bench8's paired pygfx "
+     "rounds and the control, on main with every late branch merged; few graphics units: render passes are "
+     "raster-bound)", "perf-h100/2026-11-27-late", "final/perf-scale/results.csv", None),
+    ("NVIDIA H100, late closing call (20:24 UTC, the same machine: frames, scene and the control, wgpu beside raw)",
+     "perf-h100/2026-11-27-late", "final/perf-frames/results.csv", None),
 )
 
 
